@@ -1,0 +1,35 @@
+#pragma once
+// Command-line parsing for the lightpass executable: flags are validated with one-line errors.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/render/settings.hpp"
+
+namespace lp::app {
+
+struct Options {
+    std::string command;  // "viewer", "render", "graph", "info", "help"
+    std::string scene;
+    std::string model;
+    std::string out;
+    std::string exr;
+    std::string dot;
+    std::string timingsJson;
+    int width = 1280, height = 720;
+    bool sizeGiven = false;
+    DebugView view = DebugView::Final;
+    int frames = 1;
+    int warmup = 5;
+    float exposure = 0.0f;
+    bool vsync = true;
+    bool verbose = false;
+    bool quiet = false;
+};
+
+// Throws lp::Error("unknown flag ...") etc.
+Options parseArgs(const std::vector<std::string>& args);
+std::string helpText();
+std::string defaultScenePath();
+
+}  // namespace lp::app

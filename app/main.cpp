@@ -1,0 +1,153 @@
+// lightpass: viewer and headless sub-commands. Every failure ends with one line on stderr and a
+// non-zero exit code.
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "app/cli.hpp"
+#include "app/viewer.hpp"
+#include "engine/core/error.hpp"
+#include "engine/core/log.hpp"
+#include "engine/gl/context.hpp"
+#include "engine/io/image_io.hpp"
+#include "engine/render/renderer.hpp"
+#include "engine/scene/scene_loader.hpp"
+#ifdef LIGHTPASS_HAVE_CUDA
+#include "cuda/device_info.hpp"
+#endif
+
+namespace lp::app {
+namespace {
+
+Scene loadFromOptions(const Options& o) { return o.model.empty() ? loadScene(o.scene) : sceneForModel(o.model); }
+
+RenderSettings settingsFromOptions(const Options& o) {
+    RenderSettings s;
+    s.width = o.width;
+    s.height = o.height;
+    s.view = o.view;
+    s.exposureEV = o.exposure;
+    s.keepHdr = !o.exr.empty();
+    return s;
+}
+
+int commandInfo() {
+    auto ctx = gl::createHeadlessContext();
+    const auto& info = ctx->info();
+    std::printf("platform: %s\nvendor:   %s\nrenderer: %s\nversion:  %s\n", info.platform.c_str(), info.vendor.c_str(),
+                info.renderer.c_str(), info.version.c_str());
+    if (ctx->isSoftware()) std::printf("note:     software rasteriser: GPU timings are not meaningful here\n");
+#ifdef LIGHTPASS_HAVE_CUDA
+    cuda::DeviceInfo cu = cuda::queryDevice();
+    if (cu.available)
+        std::printf("cuda:     %s (compute %d.%d)\n", cu.name.c_str(), cu.computeMajor, cu.computeMinor);
+    else
+        std::printf("cuda:     unavailable (%s): post effects use GLSL\n", cu.reason.c_str());
+#else
+    std::printf("cuda:     not built (no CUDA toolkit at build time): post effects use GLSL\n");
+#endif
+    return 0;
+}
+
+int commandGraph(const Options& o) {
+    Scene scene = loadFromOptions(o);
+    RenderSettings settings = settingsFromOptions(o);
+    FrameData frame = makeFrameData(scene, settings, 0.0f);
+    fg::FrameGraph graph;
+    PassStates passes;  // never executed: describing a graph needs no GPU
+    buildFrameGraph(graph, passes, frame);
+    graph.compile();
+    std::printf("frame graph for %s, view '%s', %dx%d\n", (o.model.empty() ? o.scene : o.model).c_str(),
+                viewName(settings.view), settings.width, settings.height);
+    std::fputs(graph.describe().c_str(), stdout);
+    if (!o.dot.empty()) {
+        writeFileAtomically(o.dot, [&](const std::filesystem::path& tmp) {
+            std::ofstream f(tmp);
+            f << graph.toDot();
+            if (!f) throw Error("write failed");
+        });
+        std::printf("wrote %s\n", o.dot.c_str());
+    }
+    return 0;
+}
+
+int commandRender(const Options& o) {
+    Scene scene = loadFromOptions(o);
+    auto ctx = gl::createHeadlessContext();
+    logInfo("rendering on " + ctx->info().renderer + " (" + ctx->info().platform + ")");
+    Renderer renderer(scene);
+    RenderSettings settings = settingsFromOptions(o);
+    for (int i = 0; i < o.warmup; ++i) renderer.render(settings, 0.0f, false);
+    for (int i = 0; i < o.frames; ++i) renderer.render(settings, 0.0f, true);
+    glFinish();
+    renderer.timers().flush();
+
+    // Per-pass GPU time table.
+    const auto& timers = renderer.timers();
+    std::printf("%-16s %10s %10s %10s  (GPU ms over %d frames, %dx%d%s)\n", "pass", "median", "min", "max", o.frames,
+                settings.width, settings.height, ctx->isSoftware() ? ", software rasteriser: not meaningful" : "");
+    nlohmann::json j;
+    j["device"] = ctx->info().renderer;
+    j["width"] = settings.width;
+    j["height"] = settings.height;
+    j["frames"] = o.frames;
+    j["view"] = viewName(settings.view);
+    for (const auto& name : timers.passOrder()) {
+        const auto& s = timers.samples(name);
+        double lo = *std::min_element(s.begin(), s.end()), hi = *std::max_element(s.begin(), s.end());
+        std::printf("%-16s %10.4f %10.4f %10.4f\n", name.c_str(), timers.median(name), lo, hi);
+        j["passes"][name] = {{"median_ms", timers.median(name)}, {"min_ms", lo}, {"max_ms", hi}, {"samples", s.size()}};
+    }
+    for (const auto& r : renderer.graph().report())
+        if (r.culled) j["culled"][r.name] = r.reason;
+
+    if (!o.out.empty()) {
+        writePng(o.out, renderer.readDisplay());
+        std::printf("wrote %s\n", o.out.c_str());
+    }
+    if (!o.exr.empty()) {
+        writeExr(o.exr, renderer.readHdr());
+        std::printf("wrote %s\n", o.exr.c_str());
+    }
+    if (!o.timingsJson.empty()) {
+        writeFileAtomically(o.timingsJson, [&](const std::filesystem::path& tmp) {
+            std::ofstream f(tmp);
+            f << j.dump(2) << "\n";
+            if (!f) throw Error("write failed");
+        });
+    }
+    return 0;
+}
+
+}  // namespace
+}  // namespace lp::app
+
+int main(int argc, char** argv) {
+    using namespace lp;
+    try {
+        std::vector<std::string> args(argv + 1, argv + argc);
+        app::Options o = app::parseArgs(args);
+        if (o.verbose) setLogLevel(LogLevel::Debug);
+        if (o.quiet) setLogLevel(LogLevel::Error);
+        if (o.command == "help") {
+            std::fputs(app::helpText().c_str(), stdout);
+            return 0;
+        }
+        if (o.command == "info") return app::commandInfo();
+        if (o.command == "graph") return app::commandGraph(o);
+        if (o.command == "render") return app::commandRender(o);
+        return app::runViewer(o);
+    } catch (const lp::Error& e) {
+        std::fprintf(stderr, "lightpass: error: %s\n", e.what());
+        return 1;
+    } catch (const std::bad_alloc&) {
+        std::fprintf(stderr, "lightpass: error: out of memory\n");
+        return 1;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "lightpass: error: %s\n", e.what());
+        return 1;
+    }
+}

@@ -1,0 +1,43 @@
+#pragma once
+// GLSL loading: resolves `#include "common/x.glsl"` from the shader root, inserts `#line` markers so
+// the driver's error log can be mapped back to the original file and line, and injects #defines.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "engine/gl/handles.hpp"
+
+namespace lp::gl {
+
+struct ShaderSource {
+    std::string text;
+    std::vector<std::string> files;  // #line source-string number -> file, relative to the root
+};
+
+// Where shaders/ lives: $LIGHTPASS_SHADER_DIR, else the source tree the binary was built from,
+// else ./shaders (the GPU machine runs the binary from a copy of the repository).
+std::filesystem::path findShaderRoot();
+
+class ShaderLibrary {
+public:
+    explicit ShaderLibrary(std::filesystem::path root = findShaderRoot());
+    const std::filesystem::path& root() const { return root_; }
+
+    // Throws lp::Error naming the file for a missing file, a bad include or an include cycle.
+    ShaderSource preprocess(const std::string& path, const std::vector<std::string>& defines = {}) const;
+    // Throws lp::Error whose first line names file:line of the first error in the original source.
+    Program compute(const std::string& path, const std::vector<std::string>& defines = {}) const;
+    Program graphics(const std::string& vertexPath, const std::string& fragmentPath,
+                     const std::vector<std::string>& defines = {}) const;
+    // A compute program from source text (whose #includes resolve from the root); `name` labels it
+    // in errors. The shader tests build their harness kernels this way.
+    Program computeFromSource(const std::string& name, const std::string& text) const;
+
+private:
+    std::filesystem::path root_;
+};
+
+// Rewrites "0:12(5): error" (Mesa) and "0(12) : error" (NVIDIA) to "shaders/file.glsl:12: error".
+std::string mapCompileLog(const std::string& log, const std::vector<std::string>& files);
+
+}  // namespace lp::gl

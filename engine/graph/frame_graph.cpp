@@ -1,0 +1,386 @@
+#include "engine/graph/frame_graph.hpp"
+
+#include <algorithm>
+#include <set>
+#include <sstream>
+
+#include "engine/core/error.hpp"
+#include "engine/gl/gpu_timer.hpp"
+#include "engine/gl/handles.hpp"
+#include "engine/graph/texture_pool.hpp"
+
+namespace lp::fg {
+
+// ---- building ---------------------------------------------------------------------------------
+
+int FrameGraph::newVersion(int resource, int writer) {
+    Version v;
+    v.resource = resource;
+    v.number = int(resources_[resource].versions.size());
+    v.writer = writer;
+    versions_.push_back(v);
+    resources_[resource].versions.push_back(int(versions_.size()) - 1);
+    return int(versions_.size()) - 1;
+}
+
+std::string FrameGraph::versionName(int version) const {
+    const Version& v = versions_[version];
+    const std::string& name = resources_[v.resource].name;
+    return v.number == 0 ? name : name + "@" + std::to_string(v.number);
+}
+
+ResourceId PassBuilder::create(const std::string& name, const TextureDesc& desc) {
+    if (desc.width <= 0 || desc.height <= 0)
+        throw Error("frame graph: pass '" + graph_.passes_[pass_].name + "' creates '" + name + "' with an empty size");
+    FrameGraph::Resource r;
+    r.name = name;
+    r.desc = desc;
+    graph_.resources_.push_back(r);
+    int v = graph_.newVersion(int(graph_.resources_.size()) - 1, pass_);
+    graph_.passes_[pass_].writes.push_back(v);
+    return ResourceId{v};
+}
+
+ResourceId PassBuilder::read(ResourceId id) {
+    if (!id.valid() || id.version >= int(graph_.versions_.size()))
+        throw Error("frame graph: pass '" + graph_.passes_[pass_].name + "' reads an invalid resource handle");
+    graph_.passes_[pass_].reads.push_back(id.version);
+    graph_.versions_[id.version].readers.push_back(pass_);
+    return id;
+}
+
+ResourceId PassBuilder::read(const std::string& resourceName) {
+    graph_.passes_[pass_].namedReads.emplace_back(pass_, resourceName);
+    return ResourceId{};
+}
+
+ResourceId PassBuilder::write(ResourceId id) {
+    auto& pass = graph_.passes_[pass_];
+    if (!id.valid() || id.version >= int(graph_.versions_.size()))
+        throw Error("frame graph: pass '" + pass.name + "' writes an invalid resource handle");
+    const auto& v = graph_.versions_[id.version];
+    const auto& res = graph_.resources_[v.resource];
+    if (res.versions.back() != id.version)
+        throw Error("frame graph: pass '" + pass.name + "' writes '" + graph_.versionName(id.version) +
+                    "', which pass '" + graph_.passes_[graph_.versions_[res.versions[v.number + 1]].writer].name +
+                    "' already wrote (a version is written once)");
+    // Writing in place reads the previous contents.
+    pass.reads.push_back(id.version);
+    graph_.versions_[id.version].readers.push_back(pass_);
+    int nv = graph_.newVersion(v.resource, pass_);
+    pass.writes.push_back(nv);
+    return ResourceId{nv};
+}
+
+void PassBuilder::sideEffect() { graph_.passes_[pass_].sideEffect = true; }
+
+void FrameGraph::addPass(const std::string& name, const SetupFn& setup, ExecuteFn execute) {
+    for (const auto& p : passes_)
+        if (p.name == name) throw Error("frame graph: two passes named '" + name + "'");
+    passes_.push_back(Pass{name, std::move(execute), {}, {}, {}, false, false});
+    compiled_ = false;
+    PassBuilder builder(*this, int(passes_.size()) - 1);
+    if (setup) setup(builder);
+}
+
+ResourceId FrameGraph::importTexture(const std::string& name, const TextureDesc& desc, GLuint texture) {
+    Resource r;
+    r.name = name;
+    r.desc = desc;
+    r.imported = texture;
+    r.isImported = true;
+    resources_.push_back(r);
+    return ResourceId{newVersion(int(resources_.size()) - 1, -1)};
+}
+
+void FrameGraph::markOutput(ResourceId id) {
+    if (!id.valid()) throw Error("frame graph: output is an invalid resource handle");
+    outputs_.push_back(id.version);
+}
+void FrameGraph::markOutput(const std::string& resourceName) { namedOutputs_.push_back(resourceName); }
+
+// ---- compiling --------------------------------------------------------------------------------
+
+namespace {
+int findResource(const std::vector<std::string>& names, const std::string& name) {
+    for (int i = int(names.size()) - 1; i >= 0; --i)
+        if (names[i] == name) return i;
+    return -1;
+}
+}  // namespace
+
+void FrameGraph::compile() {
+    std::vector<std::string> names;
+    for (const auto& r : resources_) names.push_back(r.name);
+    auto lastVersion = [&](const std::string& name, const std::string& who) {
+        int r = findResource(names, name);
+        if (r < 0) throw Error("frame graph: " + who + " reads '" + name + "', which no pass creates or imports");
+        return resources_[r].versions.back();
+    };
+    for (auto& p : passes_) {
+        for (auto& [passIndex, name] : p.namedReads) {
+            int v = lastVersion(name, "pass '" + p.name + "'");
+            if (versions_[v].writer == passIndex)
+                throw Error("frame graph: pass '" + p.name + "' reads '" + name + "', which only it writes");
+            p.reads.push_back(v);
+            versions_[v].readers.push_back(passIndex);
+        }
+        p.namedReads.clear();
+    }
+    for (const auto& name : namedOutputs_) outputs_.push_back(lastVersion(name, "the output"));
+    namedOutputs_.clear();
+    if (outputs_.empty()) throw Error("frame graph: no output marked; nothing would be drawn");
+
+    for (const auto& p : passes_)
+        for (int v : p.reads)
+            if (versions_[v].writer < 0 && !resources_[versions_[v].resource].isImported)
+                throw Error("frame graph: pass '" + p.name + "' reads '" + versionName(v) + "', which nothing writes");
+
+    // Liveness: walk back from the outputs (and side effects).
+    for (auto& p : passes_) p.live = false;
+    for (auto& r : resources_) {
+        r.live = false;
+        r.output = false;
+    }
+    std::vector<char> needed(versions_.size(), 0);
+    std::vector<int> work;
+    auto need = [&](int v) {
+        if (!needed[v]) {
+            needed[v] = 1;
+            work.push_back(v);
+        }
+    };
+    std::vector<int> livePasses;
+    auto makeLive = [&](int pi) {
+        if (passes_[pi].live) return;
+        passes_[pi].live = true;
+        livePasses.push_back(pi);
+        for (int r : passes_[pi].reads) need(r);
+        for (int w : passes_[pi].writes) {
+            const Version& wv = versions_[w];
+            if (wv.number > 0) need(resources_[wv.resource].versions[wv.number - 1]);
+        }
+    };
+    for (int v : outputs_) {
+        need(v);
+        resources_[versions_[v].resource].output = true;
+    }
+    for (size_t i = 0; i < passes_.size(); ++i)
+        if (passes_[i].sideEffect) makeLive(int(i));
+    while (!work.empty()) {
+        int v = work.back();
+        work.pop_back();
+        if (versions_[v].writer >= 0) makeLive(versions_[v].writer);
+    }
+
+    // Order the live passes: read-after-write, write-after-write and write-after-read edges;
+    // among ready passes the one added first goes first, so the order is stable and readable.
+    const int n = int(passes_.size());
+    std::vector<std::set<int>> succ(n);
+    std::vector<int> indeg(n, 0);
+    auto edge = [&](int from, int to) {
+        if (from < 0 || from == to || !passes_[from].live || !passes_[to].live) return;
+        if (succ[from].insert(to).second) ++indeg[to];
+    };
+    for (int pi = 0; pi < n; ++pi) {
+        if (!passes_[pi].live) continue;
+        for (int r : passes_[pi].reads) edge(versions_[r].writer, pi);
+        for (int w : passes_[pi].writes) {
+            const Version& wv = versions_[w];
+            if (wv.number == 0) continue;
+            int prev = resources_[wv.resource].versions[wv.number - 1];
+            edge(versions_[prev].writer, pi);
+            for (int reader : versions_[prev].readers) edge(reader, pi);
+        }
+    }
+    order_.clear();
+    std::set<int> ready;
+    for (int pi = 0; pi < n; ++pi)
+        if (passes_[pi].live && indeg[pi] == 0) ready.insert(pi);
+    while (!ready.empty()) {
+        int pi = *ready.begin();
+        ready.erase(ready.begin());
+        order_.push_back(pi);
+        for (int s : succ[pi])
+            if (--indeg[s] == 0) ready.insert(s);
+    }
+    if (order_.size() != livePasses.size()) {
+        std::string cycle;
+        for (int pi = 0; pi < n; ++pi)
+            if (passes_[pi].live && indeg[pi] > 0) cycle += (cycle.empty() ? "" : ", ") + passes_[pi].name;
+        throw Error("frame graph: cycle between passes " + cycle);
+    }
+
+    // Lifetimes in execution order.
+    for (int i = 0; i < int(order_.size()); ++i) {
+        const Pass& p = passes_[order_[i]];
+        auto touch = [&](int v) {
+            Resource& r = resources_[versions_[v].resource];
+            r.live = true;
+            if (r.first < 0) r.first = i;
+            r.last = std::max(r.last, i);
+        };
+        for (int v : p.reads) touch(v);
+        for (int v : p.writes) touch(v);
+    }
+    for (auto& r : resources_)
+        if (r.output && r.live) r.last = int(order_.size());
+
+    // Report.
+    report_.clear();
+    for (const auto& p : passes_) {
+        PassReport rep;
+        rep.name = p.name;
+        rep.culled = !p.live;
+        for (int v : p.reads) {
+            bool inPlace = false;
+            for (int w : p.writes)
+                if (versions_[w].resource == versions_[v].resource) inPlace = true;
+            if (!inPlace) rep.reads.push_back(versionName(v));
+        }
+        for (int v : p.writes) rep.writes.push_back(versionName(v));
+        if (!p.live) {
+            std::string list;
+            for (const auto& w : rep.writes) list += (list.empty() ? "" : ", ") + w;
+            rep.reason = p.writes.empty() ? "writes nothing and has no side effect"
+                                          : "culled: nothing live reads its writes (" + list + ")";
+        }
+        report_.push_back(rep);
+    }
+    compiled_ = true;
+}
+
+// ---- executing --------------------------------------------------------------------------------
+
+GLuint PassResources::texture(ResourceId id) const {
+    const auto& r = graph_.resourceOf(id);
+    return r.texture;
+}
+const TextureDesc& PassResources::desc(ResourceId id) const { return graph_.resourceOf(id).desc; }
+
+const FrameGraph::Resource& FrameGraph::resourceOf(ResourceId id) const {
+    if (!id.valid() || id.version >= int(versions_.size())) throw Error("frame graph: invalid resource handle");
+    return resources_[versions_[id.version].resource];
+}
+
+void FrameGraph::execute(TexturePool& pool, gl::GpuTimerRing* timers) {
+    if (!compiled_) compile();
+    pool.beginFrame();
+    for (auto& r : resources_) r.texture = r.isImported ? r.imported : 0;
+    for (int i = 0; i < int(order_.size()); ++i) {
+        for (auto& r : resources_)
+            if (r.live && !r.isImported && r.first == i) r.texture = pool.acquire(r.desc, r.name);
+        Pass& p = passes_[order_[i]];
+        {
+            gl::DebugGroup group(p.name);
+            if (timers) timers->beginPass(p.name);
+            if (p.execute) p.execute(PassResources(*this));
+            if (timers) timers->endPass();
+        }
+        gl::checkErrors("pass '" + p.name + "'");
+        for (auto& r : resources_)
+            if (r.live && !r.isImported && r.last == i) pool.release(r.texture);
+    }
+    pool.endFrame();
+}
+
+// ---- reporting --------------------------------------------------------------------------------
+
+std::vector<std::string> FrameGraph::executionOrder() const {
+    std::vector<std::string> out;
+    for (int pi : order_) out.push_back(passes_[pi].name);
+    return out;
+}
+
+std::vector<ResourceReport> FrameGraph::resources() const {
+    std::vector<ResourceReport> out;
+    for (const auto& r : resources_) out.push_back({r.name, r.desc, r.isImported, r.live, r.first, r.last});
+    return out;
+}
+
+bool FrameGraph::isLive(const std::string& passName) const {
+    for (const auto& p : passes_)
+        if (p.name == passName) return p.live;
+    return false;
+}
+
+bool FrameGraph::hasPass(const std::string& passName) const {
+    for (const auto& p : passes_)
+        if (p.name == passName) return true;
+    return false;
+}
+
+GLuint FrameGraph::outputTexture(const std::string& resourceName) const {
+    for (int i = int(resources_.size()) - 1; i >= 0; --i)
+        if (resources_[i].name == resourceName) return resources_[i].live ? resources_[i].texture : 0;
+    return 0;
+}
+GLuint FrameGraph::outputTexture(ResourceId id) const { return resourceOf(id).texture; }
+
+namespace {
+std::string join(const std::vector<std::string>& v) {
+    std::string s;
+    for (const auto& x : v) s += (s.empty() ? "" : ", ") + x;
+    return s.empty() ? "-" : s;
+}
+std::string descText(const TextureDesc& d) {
+    std::ostringstream s;
+    s << d.width << "x" << d.height << " " << gl::formatName(d.format);
+    if (d.levels > 1) s << " (" << d.levels << " mips)";
+    return s.str();
+}
+}  // namespace
+
+std::string FrameGraph::describe() const {
+    std::ostringstream out;
+    out << "passes that run, in order:\n";
+    int i = 0;
+    for (int pi : order_) {
+        const PassReport& r = report_[pi];
+        out << "  " << ++i << ". " << r.name << "\n      reads:  " << join(r.reads) << "\n      writes: " << join(r.writes)
+            << "\n";
+    }
+    bool any = false;
+    for (const auto& r : report_) {
+        if (!r.culled) continue;
+        if (!any) out << "passes culled:\n";
+        any = true;
+        out << "  - " << r.name << ": " << r.reason << "\n";
+    }
+    out << "transient textures:\n";
+    size_t total = 0;
+    for (const auto& r : resources_) {
+        if (r.isImported) continue;
+        out << "  " << r.name << "  " << descText(r.desc) << "  " << (r.live ? "" : "(not allocated)") << "\n";
+        if (r.live) total += r.desc.bytes();
+    }
+    out << "  total " << (total / 1024.0 / 1024.0) << " MiB before pooling\n";
+    return out.str();
+}
+
+std::string FrameGraph::toDot() const {
+    std::ostringstream out;
+    out << "digraph frame {\n  rankdir=LR;\n  node [fontname=\"Helvetica\"];\n";
+    for (size_t pi = 0; pi < passes_.size(); ++pi) {
+        const auto& p = passes_[pi];
+        out << "  p" << pi << " [shape=box, style=" << (p.live ? "\"filled\", fillcolor=\"#cfe8ff\"" : "dashed")
+            << ", label=\"" << p.name << (p.live ? "" : "\\n(culled)") << "\"];\n";
+    }
+    for (size_t ri = 0; ri < resources_.size(); ++ri) {
+        const auto& r = resources_[ri];
+        out << "  r" << ri << " [shape=ellipse, " << (r.live ? "" : "style=dashed, ") << "label=\"" << r.name << "\\n"
+            << descText(r.desc) << "\"];\n";
+    }
+    std::set<std::pair<std::string, std::string>> edges;
+    for (size_t pi = 0; pi < passes_.size(); ++pi) {
+        for (int v : passes_[pi].reads)
+            edges.insert({"r" + std::to_string(versions_[v].resource), "p" + std::to_string(pi)});
+        for (int v : passes_[pi].writes)
+            edges.insert({"p" + std::to_string(pi), "r" + std::to_string(versions_[v].resource)});
+    }
+    for (const auto& [a, b] : edges) out << "  " << a << " -> " << b << ";\n";
+    out << "}\n";
+    return out.str();
+}
+
+}  // namespace lp::fg

@@ -1,0 +1,13 @@
+#pragma once
+// Wavefront OBJ + MTL through tinyobjloader, into MeshData ready for the GPU.
+#include <filesystem>
+
+#include "engine/scene/mesh.hpp"
+
+namespace lp {
+
+// Throws lp::Error("<path>: <what>") for a missing/unreadable file, a parse error or a mesh with no
+// triangles left. Warns (naming the file) for a missing MTL, dropped triangles, bad material values.
+MeshData loadObj(const std::filesystem::path& path, MeshLoadReport* report = nullptr);
+
+}  // namespace lp

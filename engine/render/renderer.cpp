@@ -1,0 +1,63 @@
+#include "engine/render/renderer.hpp"
+
+#include "engine/core/error.hpp"
+
+namespace lp {
+
+Renderer::Renderer(const Scene& scene, gl::ShaderLibrary shaders)
+    : scene_(&scene), shaders_(std::move(shaders)), gpu_(std::make_unique<SceneGpu>(scene)) {}
+
+void Renderer::render(const RenderSettings& settings, float time, bool timed) {
+    if (settings.width <= 0 || settings.height <= 0) throw Error("render size must be positive");
+    FrameData frame = makeFrameData(*scene_, settings, time);
+    frame.gpu = gpu_.get();
+    frame.shaders = &shaders_;
+    graph_ = fg::FrameGraph();
+    outputs_ = buildFrameGraph(graph_, passes_, frame);
+    graph_.compile();
+    if (timed) timers_.beginFrame();
+    graph_.execute(pool_, timed ? &timers_ : nullptr);
+    if (timed) timers_.endFrame();
+    width_ = settings.width;
+    height_ = settings.height;
+}
+
+GLuint Renderer::displayTexture() const { return outputs_.display.valid() ? graph_.outputTexture(outputs_.display) : 0; }
+GLuint Renderer::hdrTexture() const { return outputs_.hdr.valid() ? graph_.outputTexture(outputs_.hdr) : 0; }
+
+namespace {
+template <typename T>
+void flipRows(std::vector<T>& pixels, int width, int height) {
+    const size_t row = size_t(width) * 4;
+    for (int y = 0; y < height / 2; ++y)
+        std::swap_ranges(pixels.begin() + long(size_t(y) * row), pixels.begin() + long(size_t(y + 1) * row),
+                         pixels.begin() + long(size_t(height - 1 - y) * row));
+}
+}  // namespace
+
+Image8 Renderer::readDisplay() const {
+    GLuint tex = displayTexture();
+    if (!tex) throw Error("no frame has been rendered");
+    Image8 img;
+    img.width = width_;
+    img.height = height_;
+    img.rgba.resize(size_t(width_) * height_ * 4);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glGetTextureImage(tex, 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(img.rgba.size()), img.rgba.data());
+    flipRows(img.rgba, width_, height_);
+    return img;
+}
+
+ImageF Renderer::readHdr() const {
+    GLuint tex = hdrTexture();
+    if (!tex) throw Error("this frame kept no HDR buffer (a G-buffer debug view has none)");
+    ImageF img;
+    img.width = width_;
+    img.height = height_;
+    img.rgba.resize(size_t(width_) * height_ * 4);
+    glGetTextureImage(tex, 0, GL_RGBA, GL_FLOAT, GLsizei(img.rgba.size() * sizeof(float)), img.rgba.data());
+    flipRows(img.rgba, width_, height_);
+    return img;
+}
+
+}  // namespace lp

@@ -1,0 +1,46 @@
+#pragma once
+// Owns everything a scene needs on the GPU (meshes, textures, pass programs, the transient texture
+// pool, the timers) and renders frames through a freshly built frame graph.
+#include <memory>
+
+#include "engine/gl/gpu_timer.hpp"
+#include "engine/gl/shader.hpp"
+#include "engine/graph/texture_pool.hpp"
+#include "engine/io/image_io.hpp"
+#include "engine/render/frame_builder.hpp"
+#include "engine/render/scene_gpu.hpp"
+
+namespace lp {
+
+class Renderer {
+public:
+    // `scene` must outlive the renderer. Needs a current GL 4.5 context.
+    Renderer(const Scene& scene, gl::ShaderLibrary shaders = gl::ShaderLibrary());
+
+    // Builds, compiles and executes one frame; timings go to timers() when `timed`.
+    void render(const RenderSettings& settings, float time = 0.0f, bool timed = true);
+
+    const fg::FrameGraph& graph() const { return graph_; }
+    gl::GpuTimerRing& timers() { return timers_; }
+    const fg::TexturePool& pool() const { return pool_; }
+    const SceneGpu& sceneGpu() const { return *gpu_; }
+    GLuint displayTexture() const;
+    GLuint hdrTexture() const;
+
+    // Read back the last frame (rows top first). readHdr needs settings.keepHdr and a lit view.
+    Image8 readDisplay() const;
+    ImageF readHdr() const;
+
+private:
+    const Scene* scene_;
+    gl::ShaderLibrary shaders_;
+    std::unique_ptr<SceneGpu> gpu_;
+    PassStates passes_;
+    fg::TexturePool pool_;
+    gl::GpuTimerRing timers_;
+    fg::FrameGraph graph_;
+    FrameOutputs outputs_;
+    int width_ = 0, height_ = 0;
+};
+
+}  // namespace lp

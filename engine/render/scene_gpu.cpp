@@ -1,0 +1,75 @@
+#include "engine/render/scene_gpu.hpp"
+
+#include <cstddef>
+
+#include "engine/io/image_io.hpp"
+
+namespace lp {
+
+GLuint SceneGpu::texture(const std::filesystem::path& path, bool srgb) {
+    const std::string key = path.string() + (srgb ? "#srgb" : "#linear");
+    auto it = textures_.find(key);
+    if (it != textures_.end()) return it->second.id();
+    Image8 img = loadTextureOrChecker(path);
+    // Rows arrive top first; OBJ texture coordinates put v = 0 at the bottom.
+    std::vector<uint8_t> flipped(img.rgba.size());
+    const size_t row = size_t(img.width) * 4;
+    for (int y = 0; y < img.height; ++y)
+        std::copy_n(&img.rgba[size_t(img.height - 1 - y) * row], row, &flipped[size_t(y) * row]);
+    int levels = gl::fullMipCount(img.width, img.height);
+    gl::Texture t = gl::makeTexture2D(srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, img.width, img.height, levels,
+                                      path.filename().string());
+    glTextureSubImage2D(t.id(), 0, 0, 0, img.width, img.height, GL_RGBA, GL_UNSIGNED_BYTE, flipped.data());
+    glGenerateTextureMipmap(t.id());
+    glTextureParameteri(t.id(), GL_TEXTURE_WRAP_S, GL_REPEAT);
+    glTextureParameteri(t.id(), GL_TEXTURE_WRAP_T, GL_REPEAT);
+    if (GLAD_GL_EXT_texture_filter_anisotropic) glTextureParameterf(t.id(), GL_TEXTURE_MAX_ANISOTROPY_EXT, 8.0f);
+    textureBytes += size_t(img.width) * img.height * 4 * 4 / 3;
+    GLuint id = t.id();
+    textures_.emplace(key, std::move(t));
+    return id;
+}
+
+SceneGpu::SceneGpu(const Scene& scene) {
+    for (const auto& model : scene.models) {
+        const MeshData& mesh = model.mesh;
+        GpuMesh gm;
+        gm.name = model.name;
+        gm.model = model.transform;
+        gm.vao = gl::makeVertexArray(model.name);
+        gm.vertices = gl::makeBuffer(GLsizeiptr(mesh.vertices.size() * sizeof(Vertex)), mesh.vertices.data(), 0,
+                                     model.name + ".vertices");
+        gm.indices = gl::makeBuffer(GLsizeiptr(mesh.indices.size() * sizeof(uint32_t)), mesh.indices.data(), 0,
+                                    model.name + ".indices");
+        geometryBytes += mesh.vertices.size() * sizeof(Vertex) + mesh.indices.size() * sizeof(uint32_t);
+        triangleCount += mesh.indices.size() / 3;
+        const GLuint vao = gm.vao.id();
+        glVertexArrayVertexBuffer(vao, 0, gm.vertices.id(), 0, sizeof(Vertex));
+        glVertexArrayElementBuffer(vao, gm.indices.id());
+        auto attrib = [vao](GLuint loc, GLint n, size_t offset) {
+            glEnableVertexArrayAttrib(vao, loc);
+            glVertexArrayAttribFormat(vao, loc, n, GL_FLOAT, GL_FALSE, GLuint(offset));
+            glVertexArrayAttribBinding(vao, loc, 0);
+        };
+        attrib(0, 3, offsetof(Vertex, position));
+        attrib(1, 3, offsetof(Vertex, normal));
+        attrib(2, 2, offsetof(Vertex, uv));
+        attrib(3, 4, offsetof(Vertex, tangent));
+
+        const int base = int(materials.size());
+        for (const auto& m : mesh.materials) {
+            GpuMaterial g;
+            g.diffuse = m.diffuse;
+            g.specular = m.specular;
+            g.shininess = m.shininess;
+            g.bumpScale = m.bumpScale;
+            if (!m.diffuseMap.empty()) g.diffuseMap = texture(m.diffuseMap, true);
+            if (!m.bumpMap.empty()) g.bumpMap = texture(m.bumpMap, false);
+            materials.push_back(g);
+        }
+        for (const auto& sm : mesh.subMeshes) gm.draws.push_back({sm.firstIndex, sm.indexCount, base + sm.material});
+        meshes.push_back(std::move(gm));
+    }
+}
+
+}  // namespace lp

@@ -1,0 +1,54 @@
+#pragma once
+// The scene's meshes, materials and textures on the GPU. Textures are shared by path, sRGB colour
+// maps are stored as SRGB8_ALPHA8 (so sampling returns linear values) with full mip chains, and a
+// missing texture becomes a visible checker with a warning.
+#include <map>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "engine/gl/handles.hpp"
+#include "engine/scene/scene.hpp"
+
+namespace lp {
+
+struct GpuMaterial {
+    glm::vec3 diffuse{0.8f};
+    glm::vec3 specular{0.04f};
+    float shininess = 32.0f;
+    GLuint diffuseMap = 0;  // 0: none
+    GLuint bumpMap = 0;
+    float bumpScale = 1.0f;
+};
+
+struct GpuDraw {
+    uint32_t firstIndex = 0;
+    uint32_t indexCount = 0;
+    int material = 0;  // into SceneGpu::materials
+};
+
+struct GpuMesh {
+    std::string name;
+    gl::VertexArray vao;
+    gl::Buffer vertices;
+    gl::Buffer indices;
+    glm::mat4 model{1.0f};
+    std::vector<GpuDraw> draws;
+};
+
+class SceneGpu {
+public:
+    explicit SceneGpu(const Scene& scene);
+    std::vector<GpuMesh> meshes;
+    std::vector<GpuMaterial> materials;
+    size_t geometryBytes = 0;
+    size_t textureBytes = 0;
+    size_t triangleCount = 0;
+
+private:
+    GLuint texture(const std::filesystem::path& path, bool srgb);
+    std::map<std::string, gl::Texture> textures_;
+};
+
+}  // namespace lp

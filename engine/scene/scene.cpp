@@ -1,0 +1,36 @@
+#include "engine/scene/scene.hpp"
+
+#include <limits>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace lp {
+
+glm::mat4 Camera::view() const {
+    glm::vec3 forward = target - position;
+    glm::vec3 upv = up;
+    if (glm::length(glm::cross(forward, upv)) < 1e-6f * glm::length(forward))
+        upv = std::abs(forward.y) > 0.0f ? glm::vec3(0, 0, -1) : glm::vec3(0, 1, 0);  // looking along up
+    return glm::lookAt(position, target, upv);
+}
+
+glm::mat4 Camera::projection(float aspect) const {
+    return glm::perspective(glm::radians(fovYDegrees), aspect, nearPlane, farPlane);
+}
+
+void Scene::bounds(glm::vec3& lo, glm::vec3& hi) const {
+    lo = glm::vec3(std::numeric_limits<float>::max());
+    hi = glm::vec3(std::numeric_limits<float>::lowest());
+    for (const auto& m : models) {
+        for (int c = 0; c < 8; ++c) {
+            glm::vec3 p((c & 1) ? m.mesh.boundsMax.x : m.mesh.boundsMin.x, (c & 2) ? m.mesh.boundsMax.y : m.mesh.boundsMin.y,
+                        (c & 4) ? m.mesh.boundsMax.z : m.mesh.boundsMin.z);
+            glm::vec3 w = glm::vec3(m.transform * glm::vec4(p, 1.0f));
+            lo = glm::min(lo, w);
+            hi = glm::max(hi, w);
+        }
+    }
+    if (models.empty()) lo = hi = glm::vec3(0.0f);
+}
+
+}  // namespace lp

@@ -1,0 +1,97 @@
+#pragma once
+// A scene as the scene file describes it: camera, models, lights, environment and effects.
+// Units: metres for lengths; a directional light's intensity is its irradiance at normal incidence;
+// a point light's intensity is its radiant intensity (irradiance = intensity / d^2 before the window).
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "engine/scene/mesh.hpp"
+
+namespace lp {
+
+struct Camera {
+    glm::vec3 position{0.0f, 1.0f, 3.0f};
+    glm::vec3 target{0.0f};
+    glm::vec3 up{0.0f, 1.0f, 0.0f};
+    float fovYDegrees = 45.0f;
+    float nearPlane = 0.05f;
+    float farPlane = 100.0f;
+
+    glm::mat4 view() const;
+    glm::mat4 projection(float aspect) const;
+};
+
+struct DirectionalLight {
+    glm::vec3 direction{0.0f, -1.0f, 0.0f};  // the way light travels (world space)
+    glm::vec3 color{1.0f};
+    float intensity = 3.0f;
+    bool castsShadows = true;
+};
+
+struct PointLight {
+    glm::vec3 position{0.0f};
+    glm::vec3 color{1.0f};
+    float intensity = 1.0f;
+    float range = 1.0f;  // brightness reaches exactly zero here
+    // Demo animation: orbit around `orbitCenter` about +Y at `orbitSpeed` radians per second.
+    glm::vec3 orbitCenter{0.0f};
+    float orbitSpeed = 0.0f;
+};
+
+struct Environment {
+    std::filesystem::path map;  // equirectangular .hdr/.exr; empty: plain colour
+    glm::vec3 color{0.02f, 0.02f, 0.025f};
+    float intensity = 1.0f;
+    float rotationDegrees = 0.0f;  // about +Y
+};
+
+struct BloomEffect {
+    bool enabled = false;
+    float threshold = 1.0f;
+    float knee = 0.5f;
+    float strength = 0.1f;
+    int kernelSize = 25;
+};
+
+struct ToonEffect {
+    bool enabled = false;
+    int levels = 4;
+    float edgeThreshold = 0.2f;
+};
+
+struct Effects {
+    BloomEffect bloom;
+    ToonEffect toon;
+};
+
+// One placed model: a mesh loaded from OBJ or made by a primitive generator.
+struct ModelInstance {
+    std::string name;
+    std::filesystem::path obj;  // empty for primitives
+    std::string primitive;      // "plane" | "sphere" | "cube" | ""
+    glm::mat4 transform{1.0f};
+    std::optional<glm::vec3> diffuseOverride;
+    std::optional<glm::vec3> specularOverride;
+    std::optional<float> shininessOverride;
+    MeshData mesh;  // filled by the loader
+};
+
+struct Scene {
+    std::filesystem::path file;  // where it came from (empty for generated scenes)
+    Camera camera;
+    std::vector<ModelInstance> models;
+    std::vector<DirectionalLight> directionalLights;
+    std::vector<PointLight> pointLights;
+    Environment environment;
+    glm::vec3 ambient{0.03f};  // constant ambient radiance in BRDF mode
+    Effects effects;
+
+    // World-space bounds of every model (after transforms).
+    void bounds(glm::vec3& lo, glm::vec3& hi) const;
+};
+
+}  // namespace lp

@@ -1,0 +1,318 @@
+#include "engine/scene/scene_loader.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <nlohmann/json.hpp>
+
+#include "engine/core/error.hpp"
+#include "engine/core/log.hpp"
+#include "engine/io/obj_loader.hpp"
+#include "engine/scene/primitives.hpp"
+
+namespace lp {
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+namespace {
+
+struct Reader {
+    std::string file;
+
+    [[noreturn]] void fail(const std::string& where, const std::string& what) const {
+        throw Error(file + ": " + where + ": " + what);
+    }
+    void onlyKnown(const json& obj, const std::string& where, const std::set<std::string>& known) const {
+        if (!obj.is_object()) fail(where, "expected an object");
+        for (auto it = obj.begin(); it != obj.end(); ++it) {
+            if (!known.count(it.key())) {
+                std::string list;
+                for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
+                fail(where.empty() ? it.key() : where + "." + it.key(), "unknown field (known: " + list + ")");
+            }
+        }
+    }
+    float number(const json& v, const std::string& where) const {
+        if (!v.is_number()) fail(where, "expected a number");
+        double d = v.get<double>();
+        if (!std::isfinite(d) || std::abs(d) > 3.0e38) fail(where, "not a finite number");
+        return float(d);
+    }
+    float number(const json& obj, const char* key, const std::string& where, float fallback) const {
+        return obj.contains(key) ? number(obj[key], where + "." + key) : fallback;
+    }
+    float positive(const json& obj, const char* key, const std::string& where, float fallback, bool allowZero) const {
+        float v = number(obj, key, where, fallback);
+        if (v < 0.0f || (!allowZero && v == 0.0f)) fail(where + "." + key, allowZero ? "must be >= 0" : "must be > 0");
+        return v;
+    }
+    glm::vec3 vec3(const json& v, const std::string& where) const {
+        if (v.is_number()) {
+            float s = number(v, where);
+            return glm::vec3(s);
+        }
+        if (!v.is_array() || v.size() != 3) fail(where, "expected an array of 3 numbers");
+        return {number(v[0], where + "[0]"), number(v[1], where + "[1]"), number(v[2], where + "[2]")};
+    }
+    glm::vec3 vec3(const json& obj, const char* key, const std::string& where, glm::vec3 fallback) const {
+        return obj.contains(key) ? vec3(obj[key], where + "." + key) : fallback;
+    }
+    glm::vec3 color(const json& obj, const char* key, const std::string& where, glm::vec3 fallback) const {
+        glm::vec3 c = vec3(obj, key, where, fallback);
+        if (c.x < 0 || c.y < 0 || c.z < 0) fail(where + "." + key, "colour components must be >= 0");
+        return c;
+    }
+    bool boolean(const json& obj, const char* key, const std::string& where, bool fallback) const {
+        if (!obj.contains(key)) return fallback;
+        if (!obj[key].is_boolean()) fail(where + "." + key, "expected true or false");
+        return obj[key].get<bool>();
+    }
+    std::string string(const json& obj, const char* key, const std::string& where) const {
+        if (!obj.contains(key)) return {};
+        if (!obj[key].is_string()) fail(where + "." + key, "expected a string");
+        return obj[key].get<std::string>();
+    }
+    int integer(const json& obj, const char* key, const std::string& where, int fallback, int lo, int hi) const {
+        if (!obj.contains(key)) return fallback;
+        const json& v = obj[key];
+        if (!v.is_number_integer()) fail(where + "." + key, "expected a whole number");
+        long long x = v.get<long long>();
+        if (x < lo || x > hi)
+            fail(where + "." + key, "must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+        return int(x);
+    }
+};
+
+fs::path resolve(const fs::path& base, const std::string& p) {
+    fs::path path(p);
+    return path.is_absolute() ? path : (base / path).lexically_normal();
+}
+
+void parseCamera(const Reader& r, const json& j, Camera& cam) {
+    const std::string w = "camera";
+    r.onlyKnown(j, w, {"position", "target", "up", "fov", "near", "far"});
+    cam.position = r.vec3(j, "position", w, cam.position);
+    cam.target = r.vec3(j, "target", w, cam.target);
+    cam.up = r.vec3(j, "up", w, cam.up);
+    cam.fovYDegrees = r.number(j, "fov", w, cam.fovYDegrees);
+    cam.nearPlane = r.positive(j, "near", w, cam.nearPlane, false);
+    cam.farPlane = r.positive(j, "far", w, cam.farPlane, false);
+    if (cam.fovYDegrees <= 0.5f || cam.fovYDegrees >= 179.0f) r.fail(w + ".fov", "must be in (0.5, 179) degrees");
+    if (cam.farPlane <= cam.nearPlane) r.fail(w + ".far", "must be greater than near");
+    if (glm::length(cam.target - cam.position) <= 0.0f) r.fail(w + ".target", "equals the position");
+    if (glm::length(cam.up) <= 0.0f) r.fail(w + ".up", "is the zero vector");
+}
+
+void parseModel(const Reader& r, const json& j, const std::string& w, const fs::path& base, ModelInstance& m) {
+    r.onlyKnown(j, w, {"name", "obj", "primitive", "translate", "rotate", "scale", "material"});
+    m.name = r.string(j, "name", w);
+    std::string obj = r.string(j, "obj", w);
+    m.primitive = r.string(j, "primitive", w);
+    if (obj.empty() == m.primitive.empty()) r.fail(w, "needs exactly one of \"obj\" or \"primitive\"");
+    if (!m.primitive.empty() && m.primitive != "plane" && m.primitive != "sphere" && m.primitive != "cube")
+        r.fail(w + ".primitive", "unknown primitive '" + m.primitive + "' (plane, sphere, cube)");
+    if (!obj.empty()) m.obj = resolve(base, obj);
+    if (m.name.empty()) m.name = obj.empty() ? m.primitive : fs::path(obj).stem().string();
+    glm::vec3 t = r.vec3(j, "translate", w, glm::vec3(0.0f));
+    glm::vec3 rot = r.vec3(j, "rotate", w, glm::vec3(0.0f));
+    glm::vec3 s = r.vec3(j, "scale", w, glm::vec3(1.0f));
+    if (s.x == 0.0f || s.y == 0.0f || s.z == 0.0f) r.fail(w + ".scale", "must not be zero");
+    glm::mat4 x = glm::translate(glm::mat4(1.0f), t);
+    x = glm::rotate(x, glm::radians(rot.y), glm::vec3(0, 1, 0));
+    x = glm::rotate(x, glm::radians(rot.x), glm::vec3(1, 0, 0));
+    x = glm::rotate(x, glm::radians(rot.z), glm::vec3(0, 0, 1));
+    m.transform = glm::scale(x, s);
+    if (j.contains("material")) {
+        const json& mat = j["material"];
+        const std::string mw = w + ".material";
+        r.onlyKnown(mat, mw, {"diffuse", "specular", "shininess"});
+        if (mat.contains("diffuse")) m.diffuseOverride = r.color(mat, "diffuse", mw, glm::vec3(0.0f));
+        if (mat.contains("specular")) m.specularOverride = r.color(mat, "specular", mw, glm::vec3(0.0f));
+        if (mat.contains("shininess")) {
+            float n = r.number(mat["shininess"], mw + ".shininess");
+            if (n < 0.0f || n > 10000.0f) r.fail(mw + ".shininess", "must be in [0, 10000]");
+            m.shininessOverride = n;
+        }
+    }
+}
+
+void parseLight(const Reader& r, const json& j, const std::string& w, Scene& scene) {
+    std::string type = r.string(j, "type", w);
+    if (type == "directional") {
+        r.onlyKnown(j, w, {"type", "direction", "color", "intensity", "shadows"});
+        DirectionalLight l;
+        l.direction = r.vec3(j, "direction", w, l.direction);
+        if (glm::length(l.direction) <= 0.0f) r.fail(w + ".direction", "is the zero vector");
+        l.direction = glm::normalize(l.direction);
+        l.color = r.color(j, "color", w, l.color);
+        l.intensity = r.positive(j, "intensity", w, l.intensity, true);
+        l.castsShadows = r.boolean(j, "shadows", w, l.castsShadows);
+        scene.directionalLights.push_back(l);
+    } else if (type == "point") {
+        r.onlyKnown(j, w, {"type", "position", "color", "intensity", "range", "orbit"});
+        PointLight l;
+        l.position = r.vec3(j, "position", w, l.position);
+        l.color = r.color(j, "color", w, l.color);
+        l.intensity = r.positive(j, "intensity", w, l.intensity, true);
+        l.range = r.positive(j, "range", w, l.range, false);
+        if (j.contains("orbit")) {
+            const std::string ow = w + ".orbit";
+            r.onlyKnown(j["orbit"], ow, {"center", "speed"});
+            l.orbitCenter = r.vec3(j["orbit"], "center", ow, l.position);
+            l.orbitSpeed = r.number(j["orbit"], "speed", ow, 0.5f);
+        }
+        scene.pointLights.push_back(l);
+    } else {
+        r.fail(w + ".type", type.empty() ? "missing (directional or point)" : "unknown light type '" + type + "' (directional, point)");
+    }
+}
+
+void loadMesh(const Reader& r, ModelInstance& m, const std::string& where) {
+    if (!m.primitive.empty()) {
+        if (m.primitive == "plane") m.mesh = makePlane(1.0f, 8);
+        else if (m.primitive == "sphere") m.mesh = makeSphere(0.5f, 64, 32);
+        else m.mesh = makeCube(1.0f);
+    } else {
+        if (!fs::exists(m.obj)) r.fail(where + ".obj", m.obj.string() + ": file not found");
+        m.mesh = loadObj(m.obj);
+    }
+    for (auto& mat : m.mesh.materials) {
+        if (m.diffuseOverride) {
+            mat.diffuse = *m.diffuseOverride;
+            mat.diffuseMap.clear();
+        }
+        if (m.specularOverride) mat.specular = *m.specularOverride;
+        if (m.shininessOverride) mat.shininess = *m.shininessOverride;
+    }
+}
+
+}  // namespace
+
+Scene parseScene(const std::string& text, const fs::path& origin, bool loadMeshes) {
+    Reader r{origin.string()};
+    json root;
+    try {
+        root = json::parse(text);
+    } catch (const json::parse_error& e) {
+        std::string what = e.what();
+        auto pos = what.find("parse error");
+        throw Error(origin.string() + ": invalid JSON: " + (pos == std::string::npos ? what : what.substr(pos)));
+    }
+    r.onlyKnown(root, "", {"camera", "models", "lights", "environment", "ambient", "effects", "description"});
+    Scene scene;
+    scene.file = origin;
+    const fs::path base = origin.has_parent_path() ? origin.parent_path() : fs::path(".");
+    bool hasCamera = root.contains("camera");
+    if (hasCamera) parseCamera(r, root["camera"], scene.camera);
+    if (root.contains("models")) {
+        if (!root["models"].is_array()) r.fail("models", "expected an array");
+        for (size_t i = 0; i < root["models"].size(); ++i) {
+            ModelInstance m;
+            parseModel(r, root["models"][i], "models[" + std::to_string(i) + "]", base, m);
+            scene.models.push_back(std::move(m));
+        }
+    }
+    if (root.contains("lights")) {
+        if (!root["lights"].is_array()) r.fail("lights", "expected an array");
+        for (size_t i = 0; i < root["lights"].size(); ++i)
+            parseLight(r, root["lights"][i], "lights[" + std::to_string(i) + "]", scene);
+    }
+    if (root.contains("environment")) {
+        const json& e = root["environment"];
+        r.onlyKnown(e, "environment", {"map", "color", "intensity", "rotation"});
+        std::string map = r.string(e, "map", "environment");
+        if (!map.empty()) scene.environment.map = resolve(base, map);
+        scene.environment.color = r.color(e, "color", "environment", scene.environment.color);
+        scene.environment.intensity = r.positive(e, "intensity", "environment", 1.0f, true);
+        scene.environment.rotationDegrees = r.number(e, "rotation", "environment", 0.0f);
+    }
+    if (root.contains("ambient")) scene.ambient = r.color(root, "ambient", "", scene.ambient);
+    if (root.contains("effects")) {
+        const json& fx = root["effects"];
+        r.onlyKnown(fx, "effects", {"bloom", "toon"});
+        if (fx.contains("bloom")) {
+            const json& b = fx["bloom"];
+            const std::string w = "effects.bloom";
+            r.onlyKnown(b, w, {"enabled", "threshold", "knee", "strength", "kernel"});
+            auto& bl = scene.effects.bloom;
+            bl.enabled = r.boolean(b, "enabled", w, true);
+            bl.threshold = r.positive(b, "threshold", w, bl.threshold, true);
+            bl.knee = r.positive(b, "knee", w, bl.knee, true);
+            bl.strength = r.positive(b, "strength", w, bl.strength, true);
+            bl.kernelSize = r.integer(b, "kernel", w, bl.kernelSize, 1, 101);
+        }
+        if (fx.contains("toon")) {
+            const json& t = fx["toon"];
+            const std::string w = "effects.toon";
+            r.onlyKnown(t, w, {"enabled", "levels", "edge"});
+            auto& tn = scene.effects.toon;
+            tn.enabled = r.boolean(t, "enabled", w, true);
+            tn.levels = r.integer(t, "levels", w, tn.levels, 1, 64);
+            tn.edgeThreshold = r.positive(t, "edge", w, tn.edgeThreshold, true);
+        }
+    }
+    if (loadMeshes) {
+        for (size_t i = 0; i < scene.models.size(); ++i) {
+            try {
+                loadMesh(r, scene.models[i], "models[" + std::to_string(i) + "]");
+            } catch (const Error& e) {
+                std::string msg = e.what();
+                if (msg.rfind(r.file, 0) == 0) throw;
+                throw Error(r.file + ": models[" + std::to_string(i) + "]: " + msg);
+            }
+        }
+        if (!hasCamera) frameCamera(scene);
+    }
+    return scene;
+}
+
+Scene loadScene(const fs::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    if (!in) throw Error(file.string() + ": " + (fs::exists(file) ? "cannot be read" : "file not found"));
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    return parseScene(ss.str(), file, true);
+}
+
+void frameCamera(Scene& scene) {
+    glm::vec3 lo, hi;
+    scene.bounds(lo, hi);
+    glm::vec3 center = 0.5f * (lo + hi);
+    float radius = std::max(0.5f * glm::length(hi - lo), 1e-4f);
+    float fov = glm::radians(scene.camera.fovYDegrees);
+    float distance = radius / std::sin(0.5f * fov) * 1.05f;
+    glm::vec3 dir = glm::normalize(glm::vec3(0.0f, 0.35f, 1.0f));
+    scene.camera.position = center + dir * distance;
+    scene.camera.target = center;
+    scene.camera.up = glm::vec3(0, 1, 0);
+    scene.camera.nearPlane = std::max(distance - radius * 1.5f, distance * 1e-3f);
+    scene.camera.farPlane = distance + radius * 3.0f;
+}
+
+Scene sceneForModel(const fs::path& obj) {
+    Scene scene;
+    scene.file = obj;
+    ModelInstance m;
+    m.name = obj.stem().string();
+    m.obj = obj;
+    if (!fs::exists(obj)) throw Error(obj.string() + ": file not found");
+    m.mesh = loadObj(obj);
+    scene.models.push_back(std::move(m));
+    DirectionalLight key;
+    key.direction = glm::normalize(glm::vec3(-0.4f, -1.0f, -0.6f));
+    key.intensity = 3.0f;
+    DirectionalLight fill;
+    fill.direction = glm::normalize(glm::vec3(0.6f, -0.3f, 0.5f));
+    fill.intensity = 0.8f;
+    fill.color = glm::vec3(0.8f, 0.9f, 1.0f);
+    fill.castsShadows = false;
+    scene.directionalLights = {key, fill};
+    scene.ambient = glm::vec3(0.05f);
+    frameCamera(scene);
+    return scene;
+}
+
+}  // namespace lp

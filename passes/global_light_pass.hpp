@@ -1,0 +1,19 @@
+#pragma once
+// Global (directional) lights with normalised Blinn-Phong plus a constant ambient, as one compute
+// pass over the G-buffer. Creates the HDR buffer (RGBA16F) that later light passes add into.
+#include "engine/gl/handles.hpp"
+#include "engine/graph/frame_graph.hpp"
+#include "engine/render/frame_data.hpp"
+#include "passes/gbuffer_pass.hpp"
+
+namespace lp {
+
+struct GlobalLightPass {
+    gl::Program program;
+};
+
+// `lightingOnly` (the lighting debug view) lights a white albedo and does not read the diffuse target.
+fg::ResourceId addGlobalLightPass(fg::FrameGraph& graph, GlobalLightPass& state, const FrameData& frame,
+                                  const GBuffer& gbuffer, bool lightingOnly);
+
+}  // namespace lp

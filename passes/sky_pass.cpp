@@ -1,0 +1,41 @@
+#include "passes/sky_pass.hpp"
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include "engine/gl/shader.hpp"
+#include "engine/gl/state.hpp"
+
+namespace lp {
+
+namespace {
+struct Data {
+    fg::ResourceId depth, hdr;
+};
+}  // namespace
+
+fg::ResourceId addSkyPass(fg::FrameGraph& graph, SkyPass& state, const FrameData& frame, fg::ResourceId depth,
+                          fg::ResourceId hdr) {
+    const Data& d = graph.addPass<Data>(
+        "sky",
+        [&](fg::PassBuilder& b, Data& data) {
+            data.depth = b.read(depth);
+            data.hdr = b.write(hdr);
+        },
+        [&state, frame](const Data& data, const fg::PassResources& res) {
+            if (!state.program) state.program = frame.shaders->compute("sky.comp");
+            const GLuint prog = state.program.id();
+            glm::vec3 c = frame.scene->environment.color * frame.scene->environment.intensity;
+            glProgramUniform3fv(prog, glGetUniformLocation(prog, "uColor"), 1, glm::value_ptr(c));
+            glBindTextureUnit(0, res.texture(data.depth));
+            glBindImageTexture(0, res.texture(data.hdr), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
+            glUseProgram(prog);
+            gl::dispatch2D(frame.width, frame.height);
+            glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+            glUseProgram(0);
+            glBindTextureUnit(0, 0);
+            glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
+        });
+    return d.hdr;
+}
+
+}  // namespace lp

@@ -1,0 +1,15 @@
+#pragma once
+// HDR -> display: exposure, pow(c / (c + 1), 1.2) per channel, sRGB encoding, into RGBA8.
+#include "engine/gl/handles.hpp"
+#include "engine/graph/frame_graph.hpp"
+#include "engine/render/frame_data.hpp"
+
+namespace lp {
+
+struct ToneMapPass {
+    gl::Program program;
+};
+
+fg::ResourceId addToneMapPass(fg::FrameGraph& graph, ToneMapPass& state, const FrameData& frame, fg::ResourceId hdr);
+
+}  // namespace lp

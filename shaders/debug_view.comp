@@ -1,0 +1,41 @@
+#version 450
+// G-buffer channels as images. Values are written directly (no tone map, no sRGB) so a picked
+// pixel reads back the encoding documented in the README.
+#include "common/gbuffer_layout.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(binding = 0) uniform sampler2D uChannel;
+layout(rgba8, binding = 0) uniform writeonly image2D uLdr;
+
+// 1 depth, 2 normals, 3 diffuse, 4 position, 5 shininess, 6 specular, 7 texcoords
+uniform int uMode;
+uniform float uNear;
+uniform float uFar;
+uniform float uPositionScale;  // 1 / (scene extent), maps eye-space positions into [-1, 1]
+
+void main() {
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 size = imageSize(uLdr);
+    if (p.x >= size.x || p.y >= size.y) return;
+    vec4 t = texelFetch(uChannel, p, 0);
+    vec3 c = vec3(0.0);
+    if (uMode == 1) {
+        // Window depth -> eye distance along the view axis -> [0, 1] between near and far.
+        float d = t.r;
+        float zEye = uNear * uFar / (uFar - d * (uFar - uNear));
+        c = vec3(d >= 1.0 ? 1.0 : clamp((zEye - uNear) / (uFar - uNear), 0.0, 1.0));
+    } else if (uMode == 2) {
+        c = dot(t.xyz, t.xyz) > 0.0 ? t.xyz * 0.5 + 0.5 : vec3(0.0);
+    } else if (uMode == 3) {
+        c = t.rgb;
+    } else if (uMode == 4) {
+        c = t.w > 0.0 ? clamp(t.xyz * uPositionScale * 0.5 + 0.5, 0.0, 1.0) : vec3(0.0);
+    } else if (uMode == 5) {
+        c = vec3(clamp(t.a / 1024.0, 0.0, 1.0));
+    } else if (uMode == 6) {
+        c = t.rgb;
+    } else if (uMode == 7) {
+        c = vec3(fract(t.xy), 0.0);
+    }
+    imageStore(uLdr, p, vec4(c, 1.0));
+}

@@ -1,0 +1,23 @@
+#version 450
+layout(location = 0) in vec3 inPosition;
+layout(location = 1) in vec3 inNormal;
+layout(location = 2) in vec2 inUv;
+layout(location = 3) in vec4 inTangent;
+
+uniform mat4 uModelView;
+uniform mat3 uNormalMatrix;
+uniform mat4 uProjection;
+
+out vec3 vPosition;   // eye space
+out vec3 vNormal;     // eye space
+out vec2 vUv;
+out vec4 vTangent;    // eye space xyz, handedness w
+
+void main() {
+    vec4 p = uModelView * vec4(inPosition, 1.0);
+    vPosition = p.xyz;
+    vNormal = uNormalMatrix * inNormal;
+    vTangent = vec4(mat3(uModelView) * inTangent.xyz, inTangent.w);
+    vUv = inUv;
+    gl_Position = uProjection * p;
+}

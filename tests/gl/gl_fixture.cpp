@@ -1,0 +1,44 @@
+#include "tests/gl/gl_fixture.hpp"
+
+#include "engine/gl/handles.hpp"
+
+namespace lp::test {
+
+std::vector<glm::vec4> runGlsl(const std::vector<std::string>& includes, const std::string& body,
+                               const std::vector<glm::vec4>& inputs) {
+    std::string src = "#version 450\n";
+    for (const auto& inc : includes) src += "#include \"" + inc + "\"\n";
+    src += R"(
+layout(local_size_x = 64) in;
+layout(std430, binding = 0) readonly buffer InData { vec4 inData[]; };
+layout(std430, binding = 1) writeonly buffer OutData { vec4 outData[]; };
+uniform uint uCount;
+vec4 lpTest(vec4 x) {
+)" + body + R"(
+}
+void main() {
+    uint i = gl_GlobalInvocationID.x;
+    if (i < uCount) outData[i] = lpTest(inData[i]);
+}
+)";
+    gl::ShaderLibrary lib;
+    gl::Program prog = lib.computeFromSource("harness.comp", src);
+    const GLsizeiptr bytes = GLsizeiptr(inputs.size() * sizeof(glm::vec4));
+    gl::Buffer in = gl::makeBuffer(bytes, inputs.data(), 0, "harness.in");
+    gl::Buffer out = gl::makeBuffer(bytes, nullptr, GL_DYNAMIC_STORAGE_BIT, "harness.out");
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, in.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, out.id());
+    glUseProgram(prog.id());
+    glUniform1ui(glGetUniformLocation(prog.id(), "uCount"), GLuint(inputs.size()));
+    glDispatchCompute(GLuint((inputs.size() + 63) / 64), 1, 1);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    std::vector<glm::vec4> result(inputs.size());
+    glGetNamedBufferSubData(out.id(), 0, bytes, result.data());
+    glUseProgram(0);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, 0);
+    gl::checkErrors("GLSL harness");
+    return result;
+}
+
+}  // namespace lp::test

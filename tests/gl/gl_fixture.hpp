@@ -1,0 +1,21 @@
+#pragma once
+// Helpers shared by the GL tests: the context, a GLSL compute harness, and small scenes.
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "engine/gl/context.hpp"
+#include "engine/gl/shader.hpp"
+
+namespace lp::test {
+
+extern gl::GpuContext* gContext;
+
+// Runs `vec4 lpTest(vec4 x) { <body> }` over `inputs` in a compute shader that includes
+// `includes` (e.g. "common/tonemap.glsl") and returns the outputs. This is how the functions in
+// shaders/common/ are checked on the real driver against double-precision C++ references.
+std::vector<glm::vec4> runGlsl(const std::vector<std::string>& includes, const std::string& body,
+                               const std::vector<glm::vec4>& inputs);
+
+}  // namespace lp::test

@@ -1,0 +1,90 @@
+// Scene files: the bundled scenes load; every malformed field is an error naming file and field.
+#include <gtest/gtest.h>
+
+#include "engine/core/error.hpp"
+#include "engine/scene/scene_loader.hpp"
+
+using namespace lp;
+
+namespace {
+std::string errorFor(const std::string& json) {
+    try {
+        parseScene(json, "test.json", false);
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "";
+}
+}  // namespace
+
+TEST(SceneLoader, DefaultSceneLoads) {
+    Scene s = loadScene(std::string(LIGHTPASS_SOURCE_DIR) + "/scenes/cornell.json");
+    EXPECT_EQ(s.models.size(), 3u);
+    EXPECT_EQ(s.directionalLights.size(), 1u);
+    EXPECT_GE(s.pointLights.size(), 2u);
+    EXPECT_FALSE(s.models[0].mesh.vertices.empty());
+    glm::vec3 lo, hi;
+    s.bounds(lo, hi);
+    EXPECT_NEAR(hi.x - lo.x, 0.556f, 0.01f);  // the published 556 mm width
+    EXPECT_NEAR(hi.y - lo.y, 0.5488f, 0.01f);
+}
+
+TEST(SceneLoader, ParsesEveryField) {
+    Scene s = parseScene(R"({
+      "camera": {"position": [1, 2, 3], "target": [0, 0, 0], "fov": 60, "near": 0.5, "far": 50},
+      "models": [{"primitive": "sphere", "translate": [1, 0, 0], "scale": [2, 2, 2], "rotate": [0, 90, 0],
+                  "material": {"diffuse": [0.1, 0.2, 0.3], "shininess": 5}}],
+      "lights": [{"type": "directional", "direction": [0, -2, 0], "intensity": 2, "shadows": false},
+                 {"type": "point", "position": [0, 1, 0], "range": 3, "orbit": {"speed": 1}}],
+      "environment": {"color": [0.1, 0.1, 0.1], "intensity": 2, "rotation": 45},
+      "ambient": 0.05,
+      "effects": {"bloom": {"kernel": 51}, "toon": {"enabled": false, "levels": 3}}
+    })", "inline.json", true);
+    EXPECT_FLOAT_EQ(s.camera.fovYDegrees, 60.0f);
+    ASSERT_EQ(s.models.size(), 1u);
+    EXPECT_EQ(s.models[0].mesh.materials[0].diffuse, glm::vec3(0.1f, 0.2f, 0.3f));
+    EXPECT_FLOAT_EQ(s.models[0].mesh.materials[0].shininess, 5.0f);
+    EXPECT_NEAR(glm::length(s.directionalLights[0].direction), 1.0f, 1e-6f);
+    EXPECT_FALSE(s.directionalLights[0].castsShadows);
+    EXPECT_FLOAT_EQ(s.pointLights[0].range, 3.0f);
+    EXPECT_TRUE(s.effects.bloom.enabled);
+    EXPECT_EQ(s.effects.bloom.kernelSize, 51);
+    EXPECT_FALSE(s.effects.toon.enabled);
+    EXPECT_EQ(s.ambient, glm::vec3(0.05f));
+}
+
+TEST(SceneLoader, ErrorsNameFileAndField) {
+    EXPECT_NE(errorFor("{").find("test.json: invalid JSON"), std::string::npos);
+    EXPECT_NE(errorFor(R"({"cameraa": {}})").find("test.json: cameraa: unknown field"), std::string::npos);
+    EXPECT_NE(errorFor(R"({"models": [{"primitive": "cube", "scale": "big"}]})").find("models[0].scale: expected an array of 3 numbers"),
+              std::string::npos);
+    EXPECT_NE(errorFor(R"({"models": [{"primitive": "torus"}]})").find("unknown primitive 'torus'"), std::string::npos);
+    EXPECT_NE(errorFor(R"({"models": [{}]})").find("exactly one of"), std::string::npos);
+    EXPECT_NE(errorFor(R"({"lights": [{"type": "spot"}]})").find("lights[0].type: unknown light type 'spot'"), std::string::npos);
+    EXPECT_NE(errorFor(R"({"lights": [{"type": "point", "range": 0}]})").find("lights[0].range: must be > 0"), std::string::npos);
+    EXPECT_NE(errorFor(R"({"lights": [{"type": "directional", "direction": [0, 0, 0]}]})").find("zero vector"), std::string::npos);
+    EXPECT_NE(errorFor(R"({"lights": [{"type": "point", "color": [-1, 0, 0]}]})").find(">= 0"), std::string::npos);
+    EXPECT_NE(errorFor(R"({"camera": {"near": 2, "far": 1}})").find("camera.far: must be greater than near"), std::string::npos);
+    EXPECT_NE(errorFor(R"({"camera": {"fov": 1e39}})").find("camera.fov: not a finite number"), std::string::npos);
+    EXPECT_NE(errorFor(R"({"effects": {"bloom": {"kernel": 500}}})").find("effects.bloom.kernel: must be in [1, 101]"), std::string::npos);
+    EXPECT_NE(errorFor(R"({"models": [{"primitive": "cube", "material": {"shininess": 20000}}]})").find("[0, 10000]"),
+              std::string::npos);
+}
+
+TEST(SceneLoader, MissingObjNamesBothFiles) {
+    try {
+        parseScene(R"({"models": [{"obj": "nope.obj"}]})", "dir/s.json", true);
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        std::string m = e.what();
+        EXPECT_NE(m.find("dir/s.json: models[0].obj:"), std::string::npos) << m;
+        EXPECT_NE(m.find("nope.obj: file not found"), std::string::npos) << m;
+    }
+}
+
+TEST(SceneLoader, WithoutCameraFramesTheBounds) {
+    Scene s = parseScene(R"({"models": [{"primitive": "cube", "translate": [10, 0, 0], "scale": 2}]})", "x.json", true);
+    EXPECT_NEAR(s.camera.target.x, 10.0f, 1e-4f);
+    EXPECT_GT(glm::length(s.camera.position - s.camera.target), 2.0f);
+    EXPECT_LT(s.camera.nearPlane, glm::length(s.camera.position - s.camera.target) - 1.8f);
+}
