@@ -34,6 +34,8 @@ options:
   --warmup N        untimed frames before timing (default 5 when --frames > 1, else 0)
   --exposure EV     exposure in stops before the tone map (default 0)
   --timings-json F  write the per-pass timings as JSON (for scripts and benchmarks)
+  --floors          also measure this GPU's compute and fragment bandwidth and print each pass's
+                    floor (bytes it must move / bandwidth) and measured/floor
   --dot F           with graph: also write Graphviz DOT
   --no-vsync        viewer: don't wait for vertical sync (for measuring)
   -v, --verbose     log debug messages (GL debug output included)
@@ -125,6 +127,7 @@ Options parseArgs(const std::vector<std::string>& args) {
             warmupGiven = true;
         } else if (a == "--exposure") o.exposure = parseFloat(a, value(a));
         else if (a == "--no-vsync") o.vsync = false;
+        else if (a == "--floors") o.floors = true;
         else if (a == "-v" || a == "--verbose") o.verbose = true;
         else if (a == "-q" || a == "--quiet") o.quiet = true;
         else throw Error("unknown flag '" + a + "' (see --help)");

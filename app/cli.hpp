@@ -23,6 +23,7 @@ struct Options {
     int warmup = 5;
     float exposure = 0.0f;
     bool vsync = true;
+    bool floors = false;
     bool verbose = false;
     bool quiet = false;
 };

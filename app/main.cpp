@@ -13,6 +13,7 @@
 #include "engine/core/log.hpp"
 #include "engine/gl/context.hpp"
 #include "engine/io/image_io.hpp"
+#include "engine/render/floors.hpp"
 #include "engine/render/renderer.hpp"
 #include "engine/scene/scene_loader.hpp"
 #ifdef LIGHTPASS_HAVE_CUDA
@@ -85,11 +86,23 @@ int commandRender(const Options& o) {
     glFinish();
     renderer.timers().flush();
 
-    // Per-pass GPU time table.
+    // Per-pass GPU time table, with floors when asked.
     const auto& timers = renderer.timers();
-    std::printf("%-16s %10s %10s %10s  (GPU ms over %d frames, %dx%d%s)\n", "pass", "median", "min", "max", o.frames,
-                settings.width, settings.height, ctx->isSoftware() ? ", software rasteriser: not meaningful" : "");
+    Bandwidth compute, fragment;
+    if (o.floors) {
+        gl::ShaderLibrary shaders;
+        compute = measureComputeBandwidth(shaders);
+        fragment = measureFragmentBandwidth(shaders);
+        std::printf("bandwidth: compute copy %.1f GB/s, fragment fill %.1f GB/s (RGBA32F 3840x2160, median of 30)\n",
+                    compute.bytesPerSecond * 1e-9, fragment.bytesPerSecond * 1e-9);
+    }
+    std::printf("%-16s %10s %10s %10s%s  (GPU ms over %d frames, %dx%d%s)\n", "pass", "median", "min", "max",
+                o.floors ? "   floor ms  meas/floor" : "", o.frames, settings.width, settings.height,
+                ctx->isSoftware() ? ", software rasteriser: not meaningful" : "");
     nlohmann::json j;
+    if (o.floors) {
+        j["bandwidth"] = {{"compute_GBps", compute.bytesPerSecond * 1e-9}, {"fragment_GBps", fragment.bytesPerSecond * 1e-9}};
+    }
     j["device"] = ctx->info().renderer;
     j["width"] = settings.width;
     j["height"] = settings.height;
@@ -98,8 +111,19 @@ int commandRender(const Options& o) {
     for (const auto& name : timers.passOrder()) {
         const auto& s = timers.samples(name);
         double lo = *std::min_element(s.begin(), s.end()), hi = *std::max_element(s.begin(), s.end());
-        std::printf("%-16s %10.4f %10.4f %10.4f\n", name.c_str(), timers.median(name), lo, hi);
+        std::printf("%-16s %10.4f %10.4f %10.4f", name.c_str(), timers.median(name), lo, hi);
         j["passes"][name] = {{"median_ms", timers.median(name)}, {"min_ms", lo}, {"max_ms", hi}, {"samples", s.size()}};
+        const size_t bytes = renderer.graph().passTrafficBytes(name);
+        if (o.floors && bytes > 0) {
+            // The G-buffer is raster work: its floor is what it writes at the fragment fill rate.
+            const bool raster = name == "gbuffer";
+            const double floorMs = double(bytes) / (raster ? fragment.bytesPerSecond : compute.bytesPerSecond) * 1e3;
+            std::printf(" %11.4f %10.1fx", floorMs, timers.median(name) / floorMs);
+            j["passes"][name]["bytes"] = bytes;
+            j["passes"][name]["floor_ms"] = floorMs;
+            j["passes"][name]["floor_basis"] = raster ? "fragment fill" : "compute copy";
+        }
+        std::printf("\n");
     }
     for (const auto& r : renderer.graph().report())
         if (r.culled) j["culled"][r.name] = r.reason;

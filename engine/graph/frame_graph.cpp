@@ -304,6 +304,17 @@ bool FrameGraph::isLive(const std::string& passName) const {
     return false;
 }
 
+size_t FrameGraph::passTrafficBytes(const std::string& passName) const {
+    for (const auto& p : passes_) {
+        if (p.name != passName) continue;
+        size_t bytes = 0;
+        for (int v : p.reads) bytes += resources_[versions_[v].resource].desc.bytes();
+        for (int v : p.writes) bytes += resources_[versions_[v].resource].desc.bytes();
+        return bytes;
+    }
+    return 0;
+}
+
 bool FrameGraph::hasPass(const std::string& passName) const {
     for (const auto& p : passes_)
         if (p.name == passName) return true;

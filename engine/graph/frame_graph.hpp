@@ -114,6 +114,9 @@ public:
     std::vector<std::string> executionOrder() const;
     std::vector<ResourceReport> resources() const;
     bool isLive(const std::string& passName) const;
+    // Bytes a pass must move at least: every texel of what it reads plus what it writes (an
+    // in-place write counts as a read and a write). The basis of its bandwidth floor.
+    size_t passTrafficBytes(const std::string& passName) const;
     bool hasPass(const std::string& passName) const;
     // Text table and Graphviz DOT of the compiled graph.
     std::string describe() const;

@@ -2,7 +2,14 @@
 
 #include "engine/gl/handles.hpp"
 
+#include <filesystem>
+
 namespace lp::test {
+
+std::string repoPath(const std::string& relative) {
+    std::filesystem::path built = std::filesystem::path(LIGHTPASS_SOURCE_DIR) / relative;
+    return std::filesystem::exists(built) ? built.string() : relative;
+}
 
 std::vector<glm::vec4> runGlsl(const std::vector<std::string>& includes, const std::string& body,
                                const std::vector<glm::vec4>& inputs) {

@@ -12,6 +12,10 @@ namespace lp::test {
 
 extern gl::GpuContext* gContext;
 
+// A file of the repository: from the source tree the tests were built in, or (on another machine,
+// run from a copy of the repository) relative to the working directory.
+std::string repoPath(const std::string& relative);
+
 // Runs `vec4 lpTest(vec4 x) { <body> }` over `inputs` in a compute shader that includes
 // `includes` (e.g. "common/tonemap.glsl") and returns the outputs. This is how the functions in
 // shaders/common/ are checked on the real driver against double-precision C++ references.

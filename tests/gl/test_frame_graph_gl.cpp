@@ -49,7 +49,7 @@ TEST(FrameGraphGl, GlErrorInAPassIsReportedByName) {
 }
 
 TEST(FrameGraphGl, RenderingAndResizingLeaksNoGlObjects) {
-    Scene scene = loadScene(std::string(LIGHTPASS_SOURCE_DIR) + "/scenes/cornell.json");
+    Scene scene = loadScene(test::repoPath("scenes/cornell.json"));
     Renderer r(scene);
     RenderSettings s;
     auto settle = [&] {  // pool entries unused for a few frames are freed
@@ -75,7 +75,7 @@ TEST(FrameGraphGl, RenderingAndResizingLeaksNoGlObjects) {
 }
 
 TEST(FrameGraphGl, DefaultSceneRendersEveryViewWithoutNan) {
-    Scene scene = loadScene(std::string(LIGHTPASS_SOURCE_DIR) + "/scenes/cornell.json");
+    Scene scene = loadScene(test::repoPath("scenes/cornell.json"));
     Renderer r(scene);
     RenderSettings s;
     s.width = 96;

@@ -1,0 +1,19 @@
+#pragma once
+// Floors: the least time a pass could take on this GPU. For a compute pass, the bytes it must move
+// over the bandwidth a plain streaming copy achieves in GL compute on the same device.
+#include "engine/gl/shader.hpp"
+
+namespace lp {
+
+struct Bandwidth {
+    double bytesPerSecond = 0.0;
+    double copyMs = 0.0;  // median time of one copy
+    size_t bytes = 0;     // moved per copy (read + write)
+};
+
+// Median over `repeats` copies of a width x height RGBA32F image, after warm-up; GL timer queries.
+Bandwidth measureComputeBandwidth(const gl::ShaderLibrary& shaders, int width = 3840, int height = 2160, int repeats = 30);
+// The same for the raster path: a full-screen triangle writing an RGBA32F target (write bytes only).
+Bandwidth measureFragmentBandwidth(const gl::ShaderLibrary& shaders, int width = 3840, int height = 2160, int repeats = 30);
+
+}  // namespace lp
