@@ -34,6 +34,10 @@ options:
   --warmup N        untimed frames before timing (default 5 when --frames > 1, else 0)
   --exposure EV     exposure in stops before the tone map (default 0)
   --timings-json F  write the per-pass timings as JSON (for scripts and benchmarks)
+  [shadows]
+  [ibl]
+  [local-lights]
+  [post]
   --floors          also measure this GPU's compute and fragment bandwidth and print each pass's
                     floor (bytes it must move / bandwidth) and measured/floor
   --dot F           with graph: also write Graphviz DOT
@@ -128,6 +132,10 @@ Options parseArgs(const std::vector<std::string>& args) {
         } else if (a == "--exposure") o.exposure = parseFloat(a, value(a));
         else if (a == "--no-vsync") o.vsync = false;
         else if (a == "--floors") o.floors = true;
+        // [shadows] flags here.
+        // [ibl] flags here.
+        // [local-lights] flags here.
+        // [post] flags here.
         else if (a == "-v" || a == "--verbose") o.verbose = true;
         else if (a == "-q" || a == "--quiet") o.quiet = true;
         else throw Error("unknown flag '" + a + "' (see --help)");

@@ -24,6 +24,7 @@ struct Options {
     float exposure = 0.0f;
     bool vsync = true;
     bool floors = false;
+    RenderSettings base;  // feature flags ([shadows], [ibl], [local-lights], [post]) set these
     bool verbose = false;
     bool quiet = false;
 };

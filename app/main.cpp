@@ -26,7 +26,7 @@ namespace {
 Scene loadFromOptions(const Options& o) { return o.model.empty() ? loadScene(o.scene) : sceneForModel(o.model); }
 
 RenderSettings settingsFromOptions(const Options& o) {
-    RenderSettings s;
+    RenderSettings s = o.base;
     s.width = o.width;
     s.height = o.height;
     s.view = o.view;

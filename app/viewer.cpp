@@ -93,6 +93,7 @@ int runViewer(const Options& o) {
     logInfo("viewer on " + ctx->info().renderer);
     Renderer renderer(scene);
     ViewerState st;
+    st.settings = o.base;
     st.settings.view = o.view;
     st.settings.exposureEV = o.exposure;
     st.home = scene.camera;

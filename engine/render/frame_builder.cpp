@@ -10,8 +10,12 @@ FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const Fr
     const bool lightingView = s.view == DebugView::Lighting;
 
     GBuffer gbuffer = addGBufferPass(graph, passes.gbuffer, frame, channelsForView(s.view));
+    // [shadows] shadow-map passes go here (before the global lights, which read them).
     fg::ResourceId hdr = addGlobalLightPass(graph, passes.globalLights, frame, gbuffer, lightingView);
+    // [ibl] the IBL pass adds into hdr here.
+    // [local-lights] the local-light pass adds into hdr here.
     if (!lightingView) hdr = addSkyPass(graph, passes.sky, frame, gbuffer.depth, hdr);
+    // [post] bloom and toon read and write hdr here, before the tone map.
     fg::ResourceId display = addToneMapPass(graph, passes.tonemap, frame, hdr);
     if (channelView) display = addDebugViewPass(graph, passes.debugView, frame, gbuffer, s.view);
 

@@ -19,6 +19,10 @@ struct PassStates {
     SkyPass sky;
     ToneMapPass tonemap;
     DebugViewPass debugView;
+    // [shadows] state members go here.
+    // [ibl] state members go here.
+    // [local-lights] state members go here.
+    // [post] state members go here.
 };
 
 struct FrameOutputs {
