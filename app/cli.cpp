@@ -42,13 +42,15 @@ options:
                     floor (bytes it must move / bandwidth) and measured/floor
   --dot F           with graph: also write Graphviz DOT
   --no-vsync        viewer: don't wait for vertical sync (for measuring)
+  --screenshot-dir D  viewer: where F12 writes lightpass-N.png (+ .exr of the HDR buffer)
+  --hide-panel      viewer: start with the ImGui panel hidden (Tab toggles it)
   -v, --verbose     log debug messages (GL debug output included)
   -q, --quiet       log errors only
 
 viewer keys (seed 001):
   1 depth  2 normals  3 diffuse  4 eye-space position  5 lighting  6 shininess  7 specular
   8 texcoords  0 final  r reset camera  x toggle scissor  W/S/A/D/Q/Z move  mouse drag: look
-  +/- exposure  Esc quit
+  +/- exposure  Tab panel  h help  F12 screenshot  Esc quit
 )";
 }
 
@@ -132,6 +134,8 @@ Options parseArgs(const std::vector<std::string>& args) {
         } else if (a == "--exposure") o.exposure = parseFloat(a, value(a));
         else if (a == "--no-vsync") o.vsync = false;
         else if (a == "--floors") o.floors = true;
+        else if (a == "--screenshot-dir") o.screenshotDir = value(a);
+        else if (a == "--hide-panel") o.hidePanel = true;
         // [shadows] flags here.
         // [ibl] flags here.
         // [local-lights] flags here.

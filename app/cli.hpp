@@ -24,6 +24,8 @@ struct Options {
     float exposure = 0.0f;
     bool vsync = true;
     bool floors = false;
+    std::string screenshotDir;  // viewer: where F12 writes
+    bool hidePanel = false;
     RenderSettings base;  // feature flags ([shadows], [ibl], [local-lights], [post]) set these
     bool verbose = false;
     bool quiet = false;
