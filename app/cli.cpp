@@ -38,12 +38,15 @@ options:
   [ibl]
   [local-lights]
   [post]
+  --disable-pass P  switch pass P off (repeatable): in-place passes pass their input through,
+                    passes that create textures clear them instead (see 'lightpass graph')
   --floors          also measure this GPU's compute and fragment bandwidth and print each pass's
                     floor (bytes it must move / bandwidth) and measured/floor
   --dot F           with graph: also write Graphviz DOT
   --no-vsync        viewer: don't wait for vertical sync (for measuring)
   --screenshot-dir D  viewer: where F12 writes lightpass-N.png (+ .exr of the HDR buffer)
   --hide-panel      viewer: start with the ImGui panel hidden (Tab toggles it)
+  --screenshot-ui   viewer: F12 captures the whole window, panel included
   -v, --verbose     log debug messages (GL debug output included)
   -q, --quiet       log errors only
 
@@ -136,6 +139,8 @@ Options parseArgs(const std::vector<std::string>& args) {
         else if (a == "--floors") o.floors = true;
         else if (a == "--screenshot-dir") o.screenshotDir = value(a);
         else if (a == "--hide-panel") o.hidePanel = true;
+        else if (a == "--screenshot-ui") o.screenshotUi = true;
+        else if (a == "--disable-pass") o.base.disabledPasses.insert(value(a));
         // [shadows] flags here.
         // [ibl] flags here.
         // [local-lights] flags here.

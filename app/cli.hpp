@@ -26,6 +26,7 @@ struct Options {
     bool floors = false;
     std::string screenshotDir;  // viewer: where F12 writes
     bool hidePanel = false;
+    bool screenshotUi = false;
     RenderSettings base;  // feature flags ([shadows], [ibl], [local-lights], [post]) set these
     bool verbose = false;
     bool quiet = false;

@@ -29,6 +29,7 @@ struct ViewerState {
     bool showPanel = true;
     bool showHelp = false;
     bool screenshotRequested = false;
+    bool screenshotWithPanel = false;  // --screenshot-ui: F12 captures the window, panel included
     bool dragging = false;
     double lastX = 0, lastY = 0;
     std::filesystem::path screenshotDir = ".";
@@ -141,14 +142,21 @@ void drawPanel(ViewerState& st, Renderer& renderer, const gl::GpuContext& ctx) {
         for (const auto& p : renderer.graph().report()) {
             ImGui::TableNextRow();
             ImGui::TableSetColumnIndex(0);
-            if (p.culled) {
-                ImGui::TextDisabled("%s", p.name.c_str());
-                if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", p.reason.c_str());
-            } else {
-                ImGui::TextUnformatted(p.name.c_str());
+            // One checkbox per pass: unticking switches it off (FrameGraph::disablePass).
+            bool on = !st.settings.disabledPasses.count(p.name);
+            ImGui::PushID(p.name.c_str());
+            if (p.culled && !p.disabled) ImGui::BeginDisabled();
+            if (ImGui::Checkbox(p.name.c_str(), &on)) {
+                if (on) st.settings.disabledPasses.erase(p.name);
+                else st.settings.disabledPasses.insert(p.name);
             }
+            if (p.culled && !p.disabled) ImGui::EndDisabled();
+            if (!p.reason.empty() && ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+                ImGui::SetTooltip("%s", p.reason.c_str());
+            ImGui::PopID();
             ImGui::TableSetColumnIndex(1);
-            if (p.culled) ImGui::TextDisabled("culled");
+            if (p.disabled && p.culled) ImGui::TextDisabled("off");
+            else if (p.culled) ImGui::TextDisabled("culled");
             else ImGui::Text("%.3f", renderer.timers().median(p.name));
         }
         ImGui::EndTable();
@@ -187,6 +195,7 @@ int runViewer(const Options& o) {
     st.home = scene.camera;
     if (!o.screenshotDir.empty()) st.screenshotDir = o.screenshotDir;
     st.showPanel = !o.hidePanel;
+    st.screenshotWithPanel = o.screenshotUi;
     GLFWwindow* window = ctx->window();
     glfwSetWindowUserPointer(window, &st);
     glfwSetKeyCallback(window, keyCallback);  // before ImGui, which chains to it
@@ -225,7 +234,7 @@ int runViewer(const Options& o) {
         st.settings.width = fb.x;
         st.settings.height = fb.y;
         renderer.render(st.settings, float(now), true);
-        if (st.screenshotRequested) {  // the frame alone: the panel never shows in screenshots
+        if (st.screenshotRequested && !st.screenshotWithPanel) {  // the frame alone, no panel
             st.screenshotRequested = false;
             takeScreenshot(st, renderer);
         }
@@ -243,6 +252,21 @@ int runViewer(const Options& o) {
         }
         ImGui::Render();
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+        if (st.screenshotRequested && st.screenshotWithPanel) {
+            st.screenshotRequested = false;
+            Image8 window{fb.x, fb.y, std::vector<uint8_t>(size_t(fb.x) * fb.y * 4)};
+            glPixelStorei(GL_PACK_ALIGNMENT, 1);
+            glReadPixels(0, 0, fb.x, fb.y, GL_RGBA, GL_UNSIGNED_BYTE, window.rgba.data());
+            std::vector<uint8_t> flipped(window.rgba.size());
+            const size_t row = size_t(fb.x) * 4;
+            for (int y = 0; y < fb.y; ++y)
+                std::copy_n(&window.rgba[size_t(fb.y - 1 - y) * row], row, &flipped[size_t(y) * row]);
+            window.rgba.swap(flipped);
+            std::string path = (st.screenshotDir / ("lightpass-" + std::to_string(st.screenshotCount++) + ".png")).string();
+            writePng(path, window);
+            std::printf("screenshot %s (window with panel)\n", path.c_str());
+            std::fflush(stdout);
+        }
         ctx->swapBuffers();
         if (++frame == 3) {
             std::printf("viewer ready\n");

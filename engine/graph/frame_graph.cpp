@@ -93,6 +93,17 @@ ResourceId FrameGraph::importTexture(const std::string& name, const TextureDesc&
     return ResourceId{newVersion(int(resources_.size()) - 1, -1)};
 }
 
+void FrameGraph::disablePass(const std::string& passName) {
+    for (auto& p : passes_)
+        if (p.name == passName) p.disabled = true;
+    compiled_ = false;
+}
+
+int FrameGraph::resolve(int version) const {
+    while (version >= 0 && version < int(alias_.size()) && alias_[version] >= 0) version = alias_[version];
+    return version;
+}
+
 void FrameGraph::markOutput(ResourceId id) {
     if (!id.valid()) throw Error("frame graph: output is an invalid resource handle");
     outputs_.push_back(id.version);
@@ -131,6 +142,50 @@ void FrameGraph::compile() {
     namedOutputs_.clear();
     if (outputs_.empty()) throw Error("frame graph: no output marked; nothing would be drawn");
 
+    // Disabled passes: in-place writes become aliases of their input; created textures get cleared.
+    alias_.assign(versions_.size(), -1);
+    for (auto& p : passes_) {
+        if (!p.disabled) continue;
+        bool creates = false;
+        for (int w : p.writes) {
+            const Version& wv = versions_[w];
+            if (wv.number > 0) alias_[w] = resources_[wv.resource].versions[wv.number - 1];
+            else creates = true;
+        }
+        for (int r : p.reads) {
+            auto& readers = versions_[r].readers;
+            readers.erase(std::remove(readers.begin(), readers.end(), int(&p - passes_.data())), readers.end());
+        }
+        p.reads.clear();
+        if (creates) {
+            std::vector<int> created;
+            for (int w : p.writes)
+                if (versions_[w].number == 0) created.push_back(w);
+            p.writes = created;
+            p.execute = [this, created](const PassResources&) {
+                const float zero[4] = {0, 0, 0, 0};
+                for (int v : created) {
+                    const Resource& r = resources_[versions_[v].resource];
+                    for (int level = 0; level < r.desc.levels; ++level)
+                        glClearTexImage(r.texture, level, GL_RGBA, GL_FLOAT, zero);
+                }
+            };
+        } else {
+            p.writes.clear();
+            p.execute = nullptr;
+        }
+    }
+    for (auto& p : passes_)
+        for (int& r : p.reads) {
+            int to = resolve(r);
+            if (to != r) {
+                auto& readers = versions_[to].readers;
+                readers.push_back(int(&p - passes_.data()));
+                r = to;
+            }
+        }
+    for (int& v : outputs_) v = resolve(v);
+
     for (const auto& p : passes_)
         for (int v : p.reads)
             if (versions_[v].writer < 0 && !resources_[versions_[v].resource].isImported)
@@ -158,7 +213,7 @@ void FrameGraph::compile() {
         for (int r : passes_[pi].reads) need(r);
         for (int w : passes_[pi].writes) {
             const Version& wv = versions_[w];
-            if (wv.number > 0) need(resources_[wv.resource].versions[wv.number - 1]);
+            if (wv.number > 0) need(resolve(resources_[wv.resource].versions[wv.number - 1]));
         }
     };
     for (int v : outputs_) {
@@ -188,7 +243,7 @@ void FrameGraph::compile() {
         for (int w : passes_[pi].writes) {
             const Version& wv = versions_[w];
             if (wv.number == 0) continue;
-            int prev = resources_[wv.resource].versions[wv.number - 1];
+            int prev = resolve(resources_[wv.resource].versions[wv.number - 1]);
             edge(versions_[prev].writer, pi);
             for (int reader : versions_[prev].readers) edge(reader, pi);
         }
@@ -239,7 +294,13 @@ void FrameGraph::compile() {
             if (!inPlace) rep.reads.push_back(versionName(v));
         }
         for (int v : p.writes) rep.writes.push_back(versionName(v));
-        if (!p.live) {
+        rep.disabled = p.disabled;
+        if (p.disabled) {
+            rep.reason = p.writes.empty() ? "disabled by the user (its input passes through)"
+                                          : "disabled by the user (its outputs are cleared)";
+            rep.culled = !p.live;
+        }
+        if (!p.live && !p.disabled) {
             std::string list;
             for (const auto& w : rep.writes) list += (list.empty() ? "" : ", ") + w;
             rep.reason = p.writes.empty() ? "writes nothing and has no side effect"

@@ -71,7 +71,8 @@ using ExecuteFn = std::function<void(const PassResources&)>;
 struct PassReport {
     std::string name;
     bool culled = false;
-    std::string reason;               // why it was culled
+    bool disabled = false;            // switched off by the user
+    std::string reason;               // why it was culled or disabled
     std::vector<std::string> reads;   // "gbuffer.normal", "hdr@1" for later versions
     std::vector<std::string> writes;
 };
@@ -102,6 +103,10 @@ public:
     // The graph's result(s): what is presented, saved or read back. At least one is required.
     void markOutput(ResourceId id);
     void markOutput(const std::string& resourceName);
+    // The user switched a pass off: it contributes nothing. Its in-place writes pass their input
+    // through (readers see the previous version); textures it creates are cleared to zero instead
+    // of drawn, so the passes after it still run. Unknown names are ignored.
+    void disablePass(const std::string& passName);
 
     // Throws lp::Error for a read of a resource nothing writes, a double write of one version,
     // a cycle, or a graph with no output.
@@ -153,6 +158,7 @@ private:
         std::vector<int> writes;
         bool sideEffect = false;
         bool live = false;
+        bool disabled = false;
     };
     int newVersion(int resource, int writer);
     std::string versionName(int version) const;
@@ -161,6 +167,8 @@ private:
     std::vector<Resource> resources_;
     std::vector<Version> versions_;
     std::vector<Pass> passes_;
+    int resolve(int version) const;  // follows pass-through aliases of disabled passes
+    std::vector<int> alias_;         // per version: the version it passes through to, or -1
     std::vector<int> outputs_;
     std::vector<std::string> namedOutputs_;
     std::vector<int> order_;

@@ -19,6 +19,7 @@ FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const Fr
     fg::ResourceId display = addToneMapPass(graph, passes.tonemap, frame, hdr);
     if (channelView) display = addDebugViewPass(graph, passes.debugView, frame, gbuffer, s.view);
 
+    for (const auto& name : s.disabledPasses) graph.disablePass(name);
     graph.markOutput(display);
     FrameOutputs out{display, {}};
     if (s.keepHdr && !channelView) {

@@ -1,6 +1,7 @@
 #pragma once
 // What the user chose for a frame (CLI flags, keys, later the UI): independent of the scene.
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,7 @@ struct RenderSettings {
     float exposureEV = 0.0f;
     bool globalLighting = true;  // the directional-light pass
     bool keepHdr = false;        // keep the HDR buffer as an output (EXR dumps)
+    std::set<std::string> disabledPasses;  // switched off in the UI / --disable-pass
     ShadowSettings shadows;
     LocalLightSettings localLights;
     EnvironmentSettings environment;

@@ -64,7 +64,7 @@ TEST(FrameGraphGl, RenderingAndResizingLeaksNoGlObjects) {
     }
     settle();
     const long before = gl::liveObjectCount();
-    for (int i = 0; i < 40; ++i) {
+    for (int i = 0; i < 100; ++i) {  // 100 resizes and view switches
         s.width = 64 + (i % 7) * 8;
         s.height = 48 + (i % 5) * 8;
         s.view = allViews()[size_t(i) % allViews().size()];

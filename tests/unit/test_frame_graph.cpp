@@ -203,3 +203,53 @@ TEST(FrameBuilder, LightingViewSkipsDiffuseAndSky) {
         if (r.name == "global_lights")
             EXPECT_EQ(std::count(r.reads.begin(), r.reads.end(), "gbuffer.diffuse"), 0);
 }
+
+TEST(FrameGraph, DisabledInPlacePassPassesItsInputThrough) {
+    FrameGraph g;
+    ResourceId hdr, hdr2;
+    g.addPass("light", [&](PassBuilder& p) { hdr = p.create("hdr", kDesc); }, nullptr);
+    g.addPass("sky", [&](PassBuilder& p) { hdr2 = p.write(hdr); }, nullptr);
+    g.addPass("tonemap", [&](PassBuilder& p) { p.read(hdr2); p.create("out", kDesc); }, nullptr);
+    g.markOutput("out");
+    g.disablePass("sky");
+    g.compile();
+    EXPECT_EQ(g.executionOrder(), (std::vector<std::string>{"light", "tonemap"}));
+    for (const auto& r : g.report()) {
+        if (r.name == "sky") {
+            EXPECT_TRUE(r.disabled);
+            EXPECT_TRUE(r.culled);
+            EXPECT_NE(r.reason.find("disabled"), std::string::npos);
+        }
+        if (r.name == "tonemap") EXPECT_EQ(r.reads, (std::vector<std::string>{"hdr"}));
+    }
+}
+
+TEST(FrameGraph, DisabledCreatingPassClearsInsteadOfDrawing) {
+    FrameGraph g;
+    ResourceId a;
+    bool drew = false;
+    g.addPass("gbuf", [&](PassBuilder& p) { a = p.create("a", kDesc); }, nullptr);
+    g.addPass("light", [&](PassBuilder& p) { p.read(a); p.create("hdr", kDesc); }, [&](const fg::PassResources&) { drew = true; });
+    g.addPass("tonemap", [&](PassBuilder& p) { p.read("hdr"); p.create("out", kDesc); }, nullptr);
+    g.markOutput("out");
+    g.disablePass("light");
+    g.compile();
+    // light still runs (as a clear of hdr) but no longer reads the G-buffer, so gbuf is culled.
+    EXPECT_EQ(g.executionOrder(), (std::vector<std::string>{"light", "tonemap"}));
+    EXPECT_FALSE(g.isLive("gbuf"));
+    EXPECT_FALSE(drew);
+}
+
+TEST(FrameBuilder, DisablingSkyRemovesItFromTheCompiledGraph) {
+    Scene s = oneLightScene();
+    RenderSettings settings;
+    settings.width = 64;
+    settings.height = 48;
+    settings.disabledPasses = {"sky"};
+    FrameData frame = makeFrameData(s, settings, 0.0f);
+    FrameGraph g;
+    PassStates passes;
+    buildFrameGraph(g, passes, frame);
+    g.compile();
+    EXPECT_EQ(g.executionOrder(), (std::vector<std::string>{"gbuffer", "global_lights", "tonemap"}));
+}
