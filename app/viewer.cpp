@@ -159,6 +159,14 @@ void drawPanel(ViewerState& st, Renderer& renderer, const gl::GpuContext& ctx) {
             else if (p.culled) ImGui::TextDisabled("culled");
             else ImGui::Text("%.3f", renderer.timers().median(p.name));
         }
+        for (const auto& [name, reason] : renderer.graph().skippedPasses()) {
+            ImGui::TableNextRow();
+            ImGui::TableSetColumnIndex(0);
+            ImGui::TextDisabled("   %s", name.c_str());
+            if (ImGui::IsItemHovered()) ImGui::SetTooltip("skipped: %s", reason.c_str());
+            ImGui::TableSetColumnIndex(1);
+            ImGui::TextDisabled("skipped");
+        }
         ImGui::EndTable();
     }
     ImGui::Text("transient textures: %.1f MiB in %zu", renderer.pool().totalBytes() / 1048576.0, renderer.pool().textureCount());

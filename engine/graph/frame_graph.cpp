@@ -99,6 +99,10 @@ void FrameGraph::disablePass(const std::string& passName) {
     compiled_ = false;
 }
 
+void FrameGraph::skipPass(const std::string& passName, const std::string& reason) {
+    skipped_.emplace_back(passName, reason);
+}
+
 int FrameGraph::resolve(int version) const {
     while (version >= 0 && version < int(alias_.size()) && alias_[version] >= 0) version = alias_[version];
     return version;
@@ -335,7 +339,7 @@ void FrameGraph::execute(TexturePool& pool, gl::GpuTimerRing* timers) {
         {
             gl::DebugGroup group(p.name);
             if (timers) timers->beginPass(p.name);
-            if (p.execute) p.execute(PassResources(*this));
+            if (p.execute) p.execute(PassResources(*this, timers));
             if (timers) timers->endPass();
         }
         gl::checkErrors("pass '" + p.name + "'");
@@ -418,6 +422,10 @@ std::string FrameGraph::describe() const {
         if (!any) out << "passes culled:\n";
         any = true;
         out << "  - " << r.name << ": " << r.reason << "\n";
+    }
+    if (!skipped_.empty()) {
+        out << "passes not added (the scene or settings don't call for them):\n";
+        for (const auto& [name, reason] : skipped_) out << "  - " << name << ": skipped: " << reason << "\n";
     }
     out << "transient textures:\n";
     size_t total = 0;

@@ -58,11 +58,15 @@ class PassResources {
 public:
     GLuint texture(ResourceId id) const;
     const TextureDesc& desc(ResourceId id) const;
+    // The timer ring of this execute (null when untimed): passes timed outside GL (CUDA events)
+    // report through GpuTimerRing::addExternal.
+    gl::GpuTimerRing* timers() const { return timers_; }
 
 private:
     friend class FrameGraph;
-    explicit PassResources(const FrameGraph& g) : graph_(g) {}
+    PassResources(const FrameGraph& g, gl::GpuTimerRing* timers) : graph_(g), timers_(timers) {}
     const FrameGraph& graph_;
+    gl::GpuTimerRing* timers_ = nullptr;
 };
 
 using SetupFn = std::function<void(PassBuilder&)>;
@@ -107,6 +111,10 @@ public:
     // through (readers see the previous version); textures it creates are cleared to zero instead
     // of drawn, so the passes after it still run. Unknown names are ignored.
     void disablePass(const std::string& passName);
+    // Records a pass the frame builder did not add because the scene or settings don't call for it
+    // ("scene has no shadow-casting light"); shown by describe() and report(), never executed.
+    void skipPass(const std::string& passName, const std::string& reason);
+    const std::vector<std::pair<std::string, std::string>>& skippedPasses() const { return skipped_; }
 
     // Throws lp::Error for a read of a resource nothing writes, a double write of one version,
     // a cycle, or a graph with no output.
@@ -168,6 +176,7 @@ private:
     std::vector<Version> versions_;
     std::vector<Pass> passes_;
     int resolve(int version) const;  // follows pass-through aliases of disabled passes
+    std::vector<std::pair<std::string, std::string>> skipped_;
     std::vector<int> alias_;         // per version: the version it passes through to, or -1
     std::vector<int> outputs_;
     std::vector<std::string> namedOutputs_;

@@ -253,3 +253,14 @@ TEST(FrameBuilder, DisablingSkyRemovesItFromTheCompiledGraph) {
     g.compile();
     EXPECT_EQ(g.executionOrder(), (std::vector<std::string>{"gbuffer", "global_lights", "tonemap"}));
 }
+
+TEST(FrameGraph, SkippedPassesAreReportedWithTheirReason) {
+    FrameGraph g;
+    g.addPass("A", [&](PassBuilder& p) { p.create("out", kDesc); }, nullptr);
+    g.skipPass("shadows", "scene has no shadow-casting light");
+    g.markOutput("out");
+    g.compile();
+    EXPECT_EQ(g.executionOrder(), (std::vector<std::string>{"A"}));
+    ASSERT_EQ(g.skippedPasses().size(), 1u);
+    EXPECT_NE(g.describe().find("shadows: skipped: scene has no shadow-casting light"), std::string::npos);
+}
