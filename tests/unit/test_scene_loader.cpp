@@ -1,6 +1,10 @@
 // Scene files: the bundled scenes load; every malformed field is an error naming file and field.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
 #include "engine/core/error.hpp"
 #include "engine/scene/scene_loader.hpp"
 
@@ -87,4 +91,28 @@ TEST(SceneLoader, WithoutCameraFramesTheBounds) {
     EXPECT_NEAR(s.camera.target.x, 10.0f, 1e-4f);
     EXPECT_GT(glm::length(s.camera.position - s.camera.target), 2.0f);
     EXPECT_LT(s.camera.nearPlane, glm::length(s.camera.position - s.camera.target) - 1.8f);
+}
+
+TEST(SceneLoader, EveryBundledSceneParses) {
+    const std::filesystem::path dir = std::filesystem::path(LIGHTPASS_SOURCE_DIR) / "scenes";
+    int count = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+        if (entry.path().extension() != ".json") continue;
+        std::ifstream in(entry.path());
+        std::stringstream text;
+        text << in.rdbuf();
+        EXPECT_NO_THROW(parseScene(text.str(), entry.path(), false)) << entry.path();
+        ++count;
+    }
+    EXPECT_GE(count, 4);
+}
+
+TEST(SceneLoader, GalleryLoadsTheStanfordModels) {
+    if (!std::filesystem::exists(LIGHTPASS_SHARED_ASSETS)) GTEST_SKIP() << "no ../shared/assets here";
+    Scene s = loadScene(std::string(LIGHTPASS_SOURCE_DIR) + "/scenes/gallery.json");
+    EXPECT_EQ(s.pointLights.size(), 256u);
+    EXPECT_EQ(s.directionalLights.size(), 2u);
+    size_t triangles = 0;
+    for (const auto& m : s.models) triangles += m.mesh.indices.size() / 3;
+    EXPECT_GT(triangles, 250000u);  // bunny 69k + dragon 100k + buddha 113k
 }

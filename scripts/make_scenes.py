@@ -1,0 +1,83 @@
+#!/usr/bin/env python3
+"""Writes the generated bundled scenes: scenes/gallery.json (256 local lights) and
+scenes/ibl-spheres.json (a material grid). Deterministic (fixed seed), so re-running changes nothing.
+
+gallery: the Stanford bunny, dragon and Happy Buddha (from ../shared/assets) on a floor, two suns with
+shadows, 256 ranged point lights orbiting above the floor, and an HDR sky.
+ibl-spheres: 7 x 3 spheres, roughness (shininess) across, specular up, under an HDR map, no local lights.
+"""
+import json
+import math
+import os
+import random
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+SCENES = os.path.join(HERE, "..", "scenes")
+ASSETS = "../../shared/assets"
+
+
+def write(name, scene):
+    path = os.path.join(SCENES, name)
+    tmp = path + ".tmp"
+    with open(tmp, "w") as f:
+        json.dump(scene, f, indent=1)
+        f.write("\n")
+    os.replace(tmp, path)
+
+
+def gallery():
+    rng = random.Random(562)
+    lights = [
+        {"type": "directional", "direction": [-0.4, -1.0, -0.3], "color": [1.0, 0.95, 0.85], "intensity": 2.5, "shadows": True},
+        {"type": "directional", "direction": [0.6, -0.8, 0.4], "color": [0.6, 0.7, 1.0], "intensity": 0.8, "shadows": True},
+    ]
+    for i in range(256):
+        a = rng.uniform(0, 2 * math.pi)
+        r = rng.uniform(0.5, 5.5)
+        h = rng.uniform(0.15, 1.6)
+        hue = rng.random()
+        c = [0.5 + 0.5 * math.cos(2 * math.pi * (hue + k / 3.0)) for k in range(3)]
+        lights.append({"type": "point", "position": [round(r * math.cos(a), 3), round(h, 3), round(r * math.sin(a), 3)],
+                       "color": [round(x, 3) for x in c], "intensity": round(rng.uniform(0.05, 0.25), 3),
+                       "range": round(rng.uniform(0.6, 1.4), 3),
+                       "orbit": {"center": [0, round(h, 3), 0], "speed": round(rng.uniform(-0.4, 0.4), 3)}})
+    return {
+        "description": "Stanford models from ../shared/assets on a floor, two suns with shadows, 256 local lights, HDR sky. Needs ../shared/assets.",
+        "camera": {"position": [0.0, 2.6, 7.5], "target": [0.0, 0.8, 0.0], "fov": 45, "near": 0.05, "far": 60},
+        "models": [
+            {"name": "floor", "primitive": "plane", "scale": [14, 1, 14], "material": {"diffuse": [0.55, 0.55, 0.52], "specular": [0.04, 0.04, 0.04], "shininess": 32}},
+            {"name": "bunny", "obj": f"{ASSETS}/stanford-bunny/stanford-bunny.obj", "translate": [-2.4, -0.33, 0.3], "scale": 10.0,
+             "material": {"diffuse": [0.8, 0.75, 0.7], "specular": [0.2, 0.2, 0.2], "shininess": 64}},
+            {"name": "dragon", "obj": f"{ASSETS}/stanford-dragon/dragon.obj", "translate": [0.0, 0.0, -0.2], "scale": 0.16,
+             "material": {"diffuse": [0.35, 0.6, 0.3], "specular": [0.5, 0.5, 0.5], "shininess": 128}},
+            {"name": "buddha", "obj": f"{ASSETS}/stanford-happy-buddha/buddha.obj", "translate": [2.4, 0.0, 0.2], "rotate": [0, 180, 0], "scale": 0.02,
+             "material": {"diffuse": [0.85, 0.7, 0.4], "specular": [0.6, 0.55, 0.4], "shininess": 256}},
+        ],
+        "lights": lights,
+        "environment": {"map": f"{ASSETS}/hdri-polyhaven-1k/pedestrian_overpass_1k.hdr", "intensity": 1.0},
+        "ambient": [0.02, 0.02, 0.02],
+    }
+
+
+def ibl_spheres():
+    models = []
+    shininess = [2, 8, 32, 128, 512, 2048, 8192]
+    for row, spec in enumerate([0.04, 0.3, 1.0]):
+        for col, n in enumerate(shininess):
+            models.append({"name": f"sphere_r{row}_c{col}", "primitive": "sphere",
+                           "translate": [round((col - 3) * 1.2, 3), round(row * 1.2, 3), 0.0],
+                           "material": {"diffuse": [0.8, 0.8, 0.8] if row == 0 else [0.2, 0.2, 0.2],
+                                        "specular": [spec, spec, spec], "shininess": n}})
+    return {
+        "description": "Material grid under an HDR map, no local lights: shininess (GGX roughness) across, specular up.",
+        "camera": {"position": [0.0, 1.2, 9.5], "target": [0.0, 1.2, 0.0], "fov": 45, "near": 0.1, "far": 50},
+        "models": models,
+        "lights": [],
+        "environment": {"map": "../hdr/sky.hdr", "intensity": 1.0},
+        "ambient": [0.0, 0.0, 0.0],
+    }
+
+
+if __name__ == "__main__":
+    write("gallery.json", gallery())
+    write("ibl-spheres.json", ibl_spheres())
