@@ -19,6 +19,11 @@ usage:
   lightpass graph (--scene F | --model F.obj) [--view V] [--dot F.dot]
                                     print the frame graph: passes that run, passes culled and
                                     why, what each reads and writes, transient textures
+  lightpass sweep (--scene F | --model F.obj) --knob K [--knob K2 ...] [--out-dir D]
+                                    render every value of each quality knob; GPU ms per pass
+                                    and error against the knob's best value -> D/sweep.csv,
+                                    D/sweep.md and images (bench/sweep_report.py adds FLIP
+                                    and a Pareto plot)
   lightpass info                    print the OpenGL device headless rendering would use
   lightpass --help                  this text
 
@@ -95,8 +100,9 @@ Options parseArgs(const std::vector<std::string>& args) {
     if (!args.empty() && args[0].rfind("-", 0) != 0) {
         o.command = args[0];
         i = 1;
-        if (o.command != "render" && o.command != "graph" && o.command != "view" && o.command != "info")
-            throw Error("unknown command '" + o.command + "' (render, graph, view, info; see --help)");
+        if (o.command != "render" && o.command != "graph" && o.command != "view" && o.command != "info" &&
+            o.command != "sweep")
+            throw Error("unknown command '" + o.command + "' (render, graph, view, sweep, info; see --help)");
         if (o.command == "view") {
             if (i >= args.size() || args[i].rfind("-", 0) == 0) throw Error("view: expected a .json scene or .obj model");
             std::string f = args[i++];
@@ -140,6 +146,8 @@ Options parseArgs(const std::vector<std::string>& args) {
         else if (a == "--screenshot-dir") o.screenshotDir = value(a);
         else if (a == "--hide-panel") o.hidePanel = true;
         else if (a == "--screenshot-ui") o.screenshotUi = true;
+        else if (a == "--knob") o.knobs.push_back(value(a));
+        else if (a == "--out-dir") o.outDir = value(a);
         else if (a == "--disable-pass") o.base.disabledPasses.insert(value(a));
         // [shadows] flags here.
         // [ibl] flags here.
@@ -152,7 +160,8 @@ Options parseArgs(const std::vector<std::string>& args) {
     if (!warmupGiven) o.warmup = o.frames > 1 ? 5 : 0;
     if (o.command == "help" || o.command == "info") return o;
     if (!o.scene.empty() && !o.model.empty()) throw Error("give --scene or --model, not both");
-    if (o.command == "render" || o.command == "graph") {
+    if (o.command == "sweep" && !warmupGiven) o.warmup = 10;
+    if (o.command == "render" || o.command == "graph" || o.command == "sweep") {
         if (o.scene.empty() && o.model.empty()) throw Error(o.command + ": --scene F or --model F.obj is required");
     }
     if (o.command == "render" && o.out.empty() && o.exr.empty()) throw Error("render: --out F.png (or --exr F.exr) is required");

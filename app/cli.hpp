@@ -27,6 +27,8 @@ struct Options {
     std::string screenshotDir;  // viewer: where F12 writes
     bool hidePanel = false;
     bool screenshotUi = false;
+    std::vector<std::string> knobs;  // sweep
+    std::string outDir;              // sweep
     RenderSettings base;  // feature flags ([shadows], [ibl], [local-lights], [post]) set these
     bool verbose = false;
     bool quiet = false;

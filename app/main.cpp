@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/cli.hpp"
+#include "app/sweep.hpp"
 #include "app/viewer.hpp"
 #include "engine/core/error.hpp"
 #include "engine/core/log.hpp"
@@ -163,6 +164,7 @@ int main(int argc, char** argv) {
         if (o.command == "info") return app::commandInfo();
         if (o.command == "graph") return app::commandGraph(o);
         if (o.command == "render") return app::commandRender(o);
+        if (o.command == "sweep") return app::runSweep(o);
         return app::runViewer(o);
     } catch (const lp::Error& e) {
         std::fprintf(stderr, "lightpass: error: %s\n", e.what());

@@ -1,0 +1,153 @@
+#include "app/sweep.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "engine/core/error.hpp"
+#include "engine/core/log.hpp"
+#include "engine/gl/context.hpp"
+#include "engine/render/image_metrics.hpp"
+#include "engine/render/knobs.hpp"
+#include "engine/render/renderer.hpp"
+#include "engine/scene/scene_loader.hpp"
+
+namespace lp::app {
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Row {
+    std::string knob, value;
+    std::map<std::string, double> passMs;
+    std::vector<std::string> passOrder;
+    ImageError error;
+    bool reference = false;
+};
+
+void progress(const std::string& knob, size_t knobIndex, size_t knobCount, size_t step, size_t steps) {
+    const int width = 30;
+    int filled = steps ? int(width * step / steps) : width;
+    std::fprintf(stderr, "\r[%zu/%zu] %-22s [%s%s] %zu/%zu", knobIndex + 1, knobCount, knob.c_str(),
+                 std::string(size_t(filled), '#').c_str(), std::string(size_t(width - filled), '.').c_str(), step, steps);
+    if (step == steps) std::fprintf(stderr, "\n");
+    std::fflush(stderr);
+}
+
+std::string csvEscape(const std::string& s) { return s.find(',') == std::string::npos ? s : "\"" + s + "\""; }
+
+}  // namespace
+
+int runSweep(const Options& o) {
+    if (o.knobs.empty()) throw Error("sweep: --knob NAME is required (knobs: " + knobNames() + ")");
+    std::vector<const Knob*> knobs;
+    for (const auto& name : o.knobs) {
+        const Knob* k = findKnob(name);
+        if (!k) throw Error("sweep: unknown knob '" + name + "' (knobs: " + knobNames() + ")");
+        knobs.push_back(k);
+    }
+    const fs::path outDir = o.outDir.empty() ? fs::path("sweep") : fs::path(o.outDir);
+    fs::create_directories(outDir);
+    Scene scene = o.model.empty() ? loadScene(o.scene) : sceneForModel(o.model);
+    auto ctx = gl::createHeadlessContext();
+    logInfo("sweeping on " + ctx->info().renderer + (ctx->isSoftware() ? " (software: times are not meaningful)" : ""));
+    Renderer renderer(scene);
+
+    std::vector<Row> rows;
+    std::vector<std::string> allPasses;
+    for (size_t ki = 0; ki < knobs.size(); ++ki) {
+        const Knob& knob = *knobs[ki];
+        const fs::path dir = outDir / knob.name;
+        fs::create_directories(dir);
+        auto settingsFor = [&](const KnobValue& v) {
+            RenderSettings s = o.base;
+            s.width = o.width;
+            s.height = o.height;
+            s.view = DebugView::Final;
+            s.keepHdr = true;
+            v.apply(s);
+            return s;
+        };
+        // The reference: the knob's best value.
+        RenderSettings refSettings = settingsFor(knob.values.back());
+        for (int i = 0; i <= o.warmup; ++i) renderer.render(refSettings, 0.0f, false);
+        const ImageF reference = renderer.readHdr();
+        writePng(dir / "reference.png", renderer.readDisplay());
+        writeExr(dir / "reference.exr", reference);
+
+        const size_t steps = knob.values.size();
+        for (size_t vi = 0; vi < steps; ++vi) {
+            progress(knob.name, ki, knobs.size(), vi, steps);
+            const KnobValue& value = knob.values[vi];
+            RenderSettings s = settingsFor(value);
+            for (int i = 0; i < o.warmup; ++i) renderer.render(s, 0.0f, false);
+            renderer.timers().clear();
+            for (int i = 0; i < o.frames; ++i) renderer.render(s, 0.0f, true);
+            glFinish();
+            renderer.timers().flush();
+            Row row;
+            row.knob = knob.name;
+            row.value = value.label;
+            row.reference = vi + 1 == steps;
+            for (const auto& name : renderer.timers().passOrder()) {
+                row.passMs[name] = renderer.timers().median(name);
+                row.passOrder.push_back(name);
+                if (std::find(allPasses.begin(), allPasses.end(), name) == allPasses.end()) allPasses.push_back(name);
+            }
+            row.error = compareHdr(renderer.readHdr(), reference);
+            std::string file = std::to_string(vi) + ".png";
+            writePng(dir / file, renderer.readDisplay());
+            rows.push_back(row);
+        }
+        progress(knob.name, ki, knobs.size(), steps, steps);
+    }
+
+    // CSV: one row per knob value; pass times in columns.
+    writeFileAtomically(outDir / "sweep.csv", [&](const fs::path& tmp) {
+        std::ofstream f(tmp);
+        f << "knob,value,index,reference,frame_ms";
+        for (const auto& p : allPasses)
+            if (p != "frame") f << "," << p << "_ms";
+        f << ",rmse,psnr_db,max_abs,non_finite,image\n";
+        std::map<std::string, int> index;
+        for (const auto& r : rows) {
+            int i = index[r.knob]++;
+            f << csvEscape(r.knob) << "," << csvEscape(r.value) << "," << i << "," << (r.reference ? 1 : 0) << ","
+              << (r.passMs.count("frame") ? r.passMs.at("frame") : 0.0);
+            for (const auto& p : allPasses)
+                if (p != "frame") f << "," << (r.passMs.count(p) ? r.passMs.at(p) : 0.0);
+            f << "," << r.error.rmse << "," << (std::isinf(r.error.psnr) ? 999.0 : r.error.psnr) << "," << r.error.maxAbs
+              << "," << r.error.nonFinite << "," << r.knob << "/" << i << ".png\n";
+        }
+        if (!f) throw Error("write failed");
+    });
+    // Markdown: one table per knob.
+    std::ostringstream md;
+    md << "# Sweep: " << (o.model.empty() ? o.scene : o.model) << ", " << o.width << "x" << o.height << ", "
+       << ctx->info().renderer << "\n\nGPU ms are medians of " << o.frames << " frames after " << o.warmup
+       << " warm-up frames; errors are against each knob's best value, on the linear HDR buffer (PSNR peak 1).\n";
+    for (const Knob* k : knobs) {
+        md << "\n## " << k->name << "\n\n" << k->description << "\n\n| value | frame ms | RMSE | PSNR dB |\n| --- | --- | --- | --- |\n";
+        for (const auto& r : rows) {
+            if (r.knob != k->name) continue;
+            char line[256];
+            std::snprintf(line, sizeof line, "| %s%s | %.4f | %.3g | %s |\n", r.value.c_str(), r.reference ? " (reference)" : "",
+                          r.passMs.count("frame") ? r.passMs.at("frame") : 0.0, r.error.rmse,
+                          std::isinf(r.error.psnr) ? "inf" : std::to_string(r.error.psnr).substr(0, 6).c_str());
+            md << line;
+        }
+    }
+    writeFileAtomically(outDir / "sweep.md", [&](const fs::path& tmp) {
+        std::ofstream f(tmp);
+        f << md.str();
+        if (!f) throw Error("write failed");
+    });
+    std::fputs(md.str().c_str(), stdout);
+    std::printf("\nwrote %s and %s\n", (outDir / "sweep.csv").c_str(), (outDir / "sweep.md").c_str());
+    return 0;
+}
+
+}  // namespace lp::app
