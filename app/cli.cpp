@@ -39,10 +39,52 @@ options:
   --warmup N        untimed frames before timing (default 5 when --frames > 1, else 0)
   --exposure EV     exposure in stops before the tone map (default 0)
   --timings-json F  write the per-pass timings as JSON (for scripts and benchmarks)
-  [shadows]
-  [ibl]
-  [local-lights]
-  [post]
+  --brdf B          blinn-phong | ggx: the analytic BRDF of the lights (default blinn-phong;
+                    ggx: Cook-Torrance, roughness from MTL Ns, F0 = Ks)
+  --no-shadows      no shadow maps (shadow-casting directional lights light everything)
+  --shadow-size N   texels per side of each cascade's shadow map (16..8192, default 2048)
+  --shadow-cascades N  cascades per light, 1..4 (default 4; practical log/linear splits)
+  --shadow-split-lambda X  0 linear .. 1 logarithmic cascade splits (default 0.75)
+  --pcf F           off | 3x3 | 5x5 | poisson: shadow filter (default 3x3)
+  --shadow-depth-bias X   constant bias, shadow texels of depth (default 0.5)
+  --shadow-slope-bias X   slope-scaled bias of the depth pass, glPolygonOffset factor (default 1)
+  --shadow-normal-bias X  receiver offset along its normal, texels x (1 - N.L) (default 1)
+  --view shadowmap  light-space depth of directional light --shadow-light N's shadow map (N = 0)
+  --view environment | irradiance | prefiltered | dfg   environment debug views (README)
+  --ibl             image-based lighting from the scene's environment map (replaces the ambient)
+  --brdf-only       analytic lights + constant ambient only (the default)
+  --tonemap T       lightpass | aces | pbr-neutral | agx   (default lightpass: pow(c/(c+1),1.2))
+  --ibl-diffuse D   sh | cubemap: diffuse IBL from 9 SH coefficients or the irradiance cube (sh)
+  --ibl-mip N       mip the 'prefiltered' view shows (0 = roughness 0)
+  --ibl-cache DIR   also keep converted/baked environments on disk in DIR
+  --env-size N      environment cube face size, a power of two (512)
+  --ibl-specular-size N  prefiltered cube face size, cube size / 2^k (256)
+  --ibl-specular-levels N  prefiltered mips, roughness m/(N-1) at mip m (6)
+  --ibl-samples N   GGX samples per prefiltered texel (256)
+  --ibl-irradiance-size N / --ibl-irradiance-samples N   irradiance cube (32, 512)
+  --dfg-size N / --dfg-samples N   split-sum DFG LUT size and samples (128, 512)
+  --local-lights M  local-light method: fullscreen | scissor | volumes | tiled (default tiled);
+                    all four give the same image
+  --no-local-lights draw no local lights (the pass leaves the frame graph)
+  --light-count N   draw the scene's first N point lights, plus generated demo lights up to N
+                    (deterministic, spread through the scene's bounds; e.g. 4096)
+  --no-scissor      the scissor method draws every light full screen (the viewer's 'x')
+  --globes          draw each local light as a small flat-lit globe
+  --no-local-specular  local lights add diffuse only
+  --specular-outside-range  diffuse limited by the range, specular (1/d^2) not (seed 003)
+  --view light-ranges | lights-per-tile  overlay each light's rectangle/volume, or lights per 16x16 tile
+  --bloom, --no-bloom  bloom on/off (default: the scene's effects.bloom.enabled)
+  --bloom-method M  separable | mip-chain   (default separable; mip-chain: Jimenez 2014)
+  --bloom-kernel N  blur width in pixels, 1..101 (default: the scene's, else 25)
+  --bloom-threshold X, --bloom-knee X, --bloom-strength X   soft-knee bright pass and mix
+  --bloom-clamp X   per-channel ceiling of what enters the blur (default 1000)
+  --no-karis        mip-chain: no Karis average on the first downsample
+  --bloom-blur S    compute | fragment: the GLSL separable blur's stage (default compute)
+  --bloom-only      display the bloom buffer alone (seed 001's bloom view)
+  --toon, --no-toon  toon ramp and outlines on/off (default: the scene's effects.toon.enabled)
+  --toon-levels N   ramp bands, 1..64; --toon-edge T depth-edge threshold (relative depth step)
+  --toon-normal-edge T  normal-edge threshold, sin of half the crease angle (default 0.5 = 60 deg)
+  --post-backend B  auto | cuda | glsl: who runs bloom and toon (auto: CUDA on an NVIDIA GPU)
   --disable-pass P  switch pass P off (repeatable): in-place passes pass their input through,
                     passes that create textures clear them instead (see 'lightpass graph')
   --floors          also measure this GPU's compute and fragment bandwidth and print each pass's
@@ -149,10 +191,97 @@ Options parseArgs(const std::vector<std::string>& args) {
         else if (a == "--knob") o.knobs.push_back(value(a));
         else if (a == "--out-dir") o.outDir = value(a);
         else if (a == "--disable-pass") o.base.disabledPasses.insert(value(a));
-        // [shadows] flags here.
-        // [ibl] flags here.
-        // [local-lights] flags here.
-        // [post] flags here.
+        else if (a == "--brdf") {
+            std::string v = value(a);
+            auto brdf = parseBrdf(v);
+            if (!brdf) throw Error("--brdf " + v + ": unknown BRDF (blinn-phong, ggx)");
+            o.base.brdf = *brdf;
+        } else if (a == "--no-shadows") o.base.shadows.enabled = false;
+        else if (a == "--shadow-size") o.base.shadows.size = parseInt(a, value(a), 16, 8192);
+        else if (a == "--shadow-cascades") o.base.shadows.cascades = parseInt(a, value(a), 1, 4);
+        else if (a == "--shadow-light") o.base.shadows.debugLight = parseInt(a, value(a), 0, 1000000);
+        else if (a == "--pcf") {
+            std::string v = value(a);
+            auto filter = ShadowSettings::parseFilter(v);
+            if (!filter) throw Error("--pcf " + v + ": unknown filter (off, 3x3, 5x5, poisson)");
+            o.base.shadows.filter = *filter;
+        } else if (a == "--shadow-split-lambda" || a == "--shadow-depth-bias" || a == "--shadow-slope-bias" ||
+                   a == "--shadow-normal-bias") {
+            std::string v = value(a);
+            float x = parseFloat(a, v);
+            const bool lambda = a == "--shadow-split-lambda";
+            if (x < 0.0f || (lambda && x > 1.0f)) throw Error(a + " " + v + (lambda ? ": expected a number in [0, 1]" : ": expected a number >= 0"));
+            (lambda ? o.base.shadows.splitLambda : a == "--shadow-depth-bias" ? o.base.shadows.depthBias
+                      : a == "--shadow-slope-bias" ? o.base.shadows.slopeBias : o.base.shadows.normalBias) = x;
+        }
+        else if (a == "--ibl") o.base.environment.ibl = true;
+        else if (a == "--brdf-only") o.base.environment.ibl = false;
+        else if (a == "--tonemap") {
+            std::string v = value(a);
+            auto op = parseToneMap(v);
+            if (!op) throw Error("--tonemap " + v + ": unknown operator (lightpass, aces, pbr-neutral, agx)");
+            o.base.environment.toneMap = *op;
+        } else if (a == "--ibl-diffuse") {
+            std::string v = value(a);
+            if (v != "sh" && v != "cubemap") throw Error("--ibl-diffuse " + v + ": expected sh or cubemap");
+            o.base.environment.diffuse = v == "sh" ? IrradianceSource::SphericalHarmonics : IrradianceSource::Cubemap;
+        } else if (a == "--ibl-mip") o.base.environment.debugMip = parseInt(a, value(a), 0, 16);
+        else if (a == "--ibl-cache") o.base.environment.cacheDir = value(a);
+        else if (a == "--env-size") o.base.environment.cubeSize = parseInt(a, value(a), 4, 4096);
+        else if (a == "--ibl-specular-size") o.base.environment.specularSize = parseInt(a, value(a), 4, 4096);
+        else if (a == "--ibl-specular-levels") o.base.environment.specularLevels = parseInt(a, value(a), 1, 13);
+        else if (a == "--ibl-samples") o.base.environment.specularSamples = parseInt(a, value(a), 1, 65536);
+        else if (a == "--ibl-irradiance-size") o.base.environment.irradianceSize = parseInt(a, value(a), 1, 1024);
+        else if (a == "--ibl-irradiance-samples") o.base.environment.irradianceSamples = parseInt(a, value(a), 1, 65536);
+        else if (a == "--dfg-size") o.base.environment.dfgSize = parseInt(a, value(a), 2, 1024);
+        else if (a == "--dfg-samples") o.base.environment.dfgSamples = parseInt(a, value(a), 1, 65536);
+        else if (a == "--local-lights") {
+            std::string v = value(a);
+            auto m = parseLocalLightMethod(v);
+            if (!m) throw Error("--local-lights " + v + ": unknown method (fullscreen, scissor, volumes, tiled)");
+            o.base.localLights.method = *m;
+        } else if (a == "--no-local-lights") o.base.localLights.enabled = false;
+        else if (a == "--light-count") o.base.localLights.lightCount = parseInt(a, value(a), 0, 1000000);
+        else if (a == "--no-scissor") o.base.localLights.scissor = false;
+        else if (a == "--globes") o.base.localLights.globes = true;
+        else if (a == "--no-local-specular") o.base.localLights.specular = false;
+        else if (a == "--specular-outside-range") o.base.localLights.specularOutsideRange = true;
+        else if (a == "--bloom") o.base.post.bloom = true;  // flags
+        else if (a == "--no-bloom") o.base.post.bloom = false;
+        else if (a == "--bloom-method") {
+            std::string v = value(a);
+            if (v == "separable") o.base.post.bloomMethod = PostSettings::BloomMethod::Separable;
+            else if (v == "mip-chain") o.base.post.bloomMethod = PostSettings::BloomMethod::MipChain;
+            else throw Error("--bloom-method " + v + ": expected separable or mip-chain");
+        } else if (a == "--bloom-kernel") o.base.post.bloomKernel = parseInt(a, value(a), 1, 101);
+        else if (a == "--bloom-threshold" || a == "--bloom-knee" || a == "--bloom-strength" || a == "--bloom-clamp" ||
+                 a == "--toon-edge" || a == "--toon-normal-edge") {
+            std::string v = value(a);
+            float x = parseFloat(a, v);
+            if (x < 0.0f || (a == "--bloom-clamp" && x == 0.0f))
+                throw Error(a + " " + v + ": expected a " + (a == "--bloom-clamp" ? "positive" : "non-negative") + " number");
+            if (a == "--bloom-threshold") o.base.post.bloomThreshold = x;
+            else if (a == "--bloom-knee") o.base.post.bloomKnee = x;
+            else if (a == "--bloom-strength") o.base.post.bloomStrength = x;
+            else if (a == "--bloom-clamp") o.base.post.bloomHighlight = x;
+            else if (a == "--toon-edge") o.base.post.toonEdge = x;
+            else o.base.post.toonNormalEdge = x;
+        } else if (a == "--bloom-blur") {
+            std::string v = value(a);
+            if (v != "compute" && v != "fragment") throw Error("--bloom-blur " + v + ": expected compute or fragment");
+            o.base.post.bloomFragmentBlur = v == "fragment";
+        } else if (a == "--no-karis") o.base.post.bloomKaris = false;
+        else if (a == "--bloom-only") o.base.post.bloomOnly = true;
+        else if (a == "--toon") o.base.post.toon = true;
+        else if (a == "--no-toon") o.base.post.toon = false;
+        else if (a == "--toon-levels") o.base.post.toonLevels = parseInt(a, value(a), 1, 64);
+        else if (a == "--post-backend") {
+            std::string v = value(a);
+            if (v == "auto") o.base.post.backend = PostSettings::Backend::Auto;
+            else if (v == "cuda") o.base.post.backend = PostSettings::Backend::Cuda;
+            else if (v == "glsl") o.base.post.backend = PostSettings::Backend::Glsl;
+            else throw Error("--post-backend " + v + ": expected auto, cuda or glsl");
+        }
         else if (a == "-v" || a == "--verbose") o.verbose = true;
         else if (a == "-q" || a == "--quiet") o.quiet = true;
         else throw Error("unknown flag '" + a + "' (see --help)");

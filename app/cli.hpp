@@ -29,7 +29,7 @@ struct Options {
     bool screenshotUi = false;
     std::vector<std::string> knobs;  // sweep
     std::string outDir;              // sweep
-    RenderSettings base;  // feature flags ([shadows], [ibl], [local-lights], [post]) set these
+    RenderSettings base;  // feature flags (, , , ) set these
     bool verbose = false;
     bool quiet = false;
 };

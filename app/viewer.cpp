@@ -197,6 +197,7 @@ int runViewer(const Options& o) {
     Renderer renderer(scene);
     ViewerState st;
     st.settings = o.base;
+    st.scissor = o.base.localLights.scissor;  // --no-scissor starts with it off
     st.settings.view = o.view;
     st.settings.exposureEV = o.exposure;
     st.settings.keepHdr = true;
@@ -241,6 +242,7 @@ int runViewer(const Options& o) {
         }
         st.settings.width = fb.x;
         st.settings.height = fb.y;
+        st.settings.localLights.scissor = st.scissor;  // 'x' / the panel's checkbox
         renderer.render(st.settings, float(now), true);
         if (st.screenshotRequested && !st.screenshotWithPanel) {  // the frame alone, no panel
             st.screenshotRequested = false;

@@ -7,14 +7,15 @@ if(LIGHTPASS_WITH_CUDA)
   include(CheckLanguage)
   check_language(CUDA)
   if(CMAKE_CUDA_COMPILER)
+    # Must be set before enable_language, which otherwise caches the compiler's default (sm_75).
+    if(NOT DEFINED CMAKE_CUDA_ARCHITECTURES)
+      set(CMAKE_CUDA_ARCHITECTURES 90)  # H100 SASS + compute_90 PTX; newer GPUs JIT the PTX
+    endif()
     enable_language(CUDA)
     find_package(CUDAToolkit)
   endif()
   if(CMAKE_CUDA_COMPILER AND CUDAToolkit_FOUND)
     set(LIGHTPASS_HAVE_CUDA ON)
-    if(NOT DEFINED CMAKE_CUDA_ARCHITECTURES)
-      set(CMAKE_CUDA_ARCHITECTURES 90)  # H100; others JIT from the embedded PTX
-    endif()
     message(STATUS "lightpass: CUDA ${CUDAToolkit_VERSION} found - building the CUDA post effects")
   else()
     message(STATUS "lightpass: no CUDA toolkit found - building the GLSL post-effect paths only")

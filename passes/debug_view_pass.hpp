@@ -5,11 +5,15 @@
 #include "engine/graph/frame_graph.hpp"
 #include "engine/render/frame_data.hpp"
 #include "passes/gbuffer_pass.hpp"
+#include "passes/ibl_pass.hpp"
+#include "passes/shadow_map_pass.hpp"
 
 namespace lp {
 
 struct DebugViewPass {
     gl::Program program;
+    IblPass* ibl = nullptr;  // the environment views draw from its cache (set by the frame builder)
+    const ShadowMaps* shadowMaps = nullptr;  // this frame's maps, for the shadowmap view (set by the frame builder)
 };
 
 // Which G-buffer channels `view` needs (texcoords are only written for their view).

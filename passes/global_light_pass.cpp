@@ -12,15 +12,55 @@
 namespace lp {
 
 namespace {
-constexpr int kMaxLights = 16;  // matches MAX_LIGHTS in global_light.comp
+constexpr int kMaxLights = 16;            // matches MAX_LIGHTS in global_light.comp
+constexpr GLuint kShadowMapUnit = 8;      // matches the uShadowMap binding in global_light.comp
 struct Data {
     GBuffer in;
+    std::vector<fg::ResourceId> shadowMaps;  // parallel to GlobalLightPass::shadowMaps
     fg::ResourceId hdr;
 };
+
+GLint loc(GLuint prog, const char* name) { return glGetUniformLocation(prog, name); }
+
+// Shadow uniforms: per light its slot (or -1), per slot its cascades (see global_light.comp).
+void setShadowUniforms(GLuint prog, const FrameData& frame, const ShadowMaps& maps, int lightCount) {
+    std::vector<GLint> slotOfLight(size_t(kMaxLights), -1);
+    std::vector<GLint> cascadeCount(size_t(kMaxShadowedLights), 0);
+    std::vector<glm::mat4> eyeToClip(size_t(kMaxShadowedLights * kMaxShadowCascades), glm::mat4(1.0f));
+    std::vector<glm::vec4> cascadeInfo(size_t(kMaxShadowedLights * kMaxShadowCascades), glm::vec4(0.0f));
+    std::vector<glm::mat3> eyeToLight(size_t(kMaxShadowedLights), glm::mat3(1.0f));
+    int columns = 1, tileSize = 1;
+    for (size_t slot = 0; slot < maps.size() && slot < size_t(kMaxShadowedLights); ++slot) {
+        const LightShadowMap& m = maps[slot];
+        if (m.light < lightCount) slotOfLight[size_t(m.light)] = GLint(slot);
+        cascadeCount[slot] = GLint(m.frustum.cascades.size());
+        eyeToLight[slot] = m.frustum.eyeToLight;
+        columns = m.frustum.columns;  // the same settings for every light
+        tileSize = m.frustum.tileSize;
+        for (size_t c = 0; c < m.frustum.cascades.size(); ++c) {
+            const ShadowCascade& sc = m.frustum.cascades[c];
+            eyeToClip[slot * kMaxShadowCascades + c] = sc.eyeToClip;
+            cascadeInfo[slot * kMaxShadowCascades + c] = glm::vec4(sc.splitFar, sc.texelWorld, sc.texelWorld / sc.depthRange, 0.0f);
+        }
+    }
+    const ShadowSettings& s = frame.settings->shadows;
+    glProgramUniform1iv(prog, loc(prog, "uLightShadowSlot"), kMaxLights, slotOfLight.data());
+    glProgramUniform1iv(prog, loc(prog, "uShadowCascadeCount"), kMaxShadowedLights, cascadeCount.data());
+    glProgramUniformMatrix4fv(prog, loc(prog, "uShadowEyeToClip"), GLsizei(eyeToClip.size()), GL_FALSE,
+                              glm::value_ptr(eyeToClip[0]));
+    glProgramUniform4fv(prog, loc(prog, "uShadowCascade"), GLsizei(cascadeInfo.size()), glm::value_ptr(cascadeInfo[0]));
+    glProgramUniformMatrix3fv(prog, loc(prog, "uShadowEyeToLight"), kMaxShadowedLights, GL_FALSE, glm::value_ptr(eyeToLight[0]));
+    glProgramUniform1i(prog, loc(prog, "uShadowColumns"), columns);
+    glProgramUniform1i(prog, loc(prog, "uShadowTileSize"), tileSize);
+    glProgramUniform1i(prog, loc(prog, "uShadowFilter"), int(s.filter));
+    glProgramUniform1f(prog, loc(prog, "uShadowDepthBias"), s.depthBias);
+    glProgramUniform1f(prog, loc(prog, "uShadowNormalBias"), s.normalBias);
+}
 }  // namespace
 
 fg::ResourceId addGlobalLightPass(fg::FrameGraph& graph, GlobalLightPass& state, const FrameData& frame,
                                   const GBuffer& gbuffer, bool lightingOnly) {
+    const ShadowMaps shadowMaps = state.shadowMaps;
     const Data& d = graph.addPass<Data>(
         "global_lights",
         [&](fg::PassBuilder& b, Data& data) {
@@ -30,9 +70,10 @@ fg::ResourceId addGlobalLightPass(fg::FrameGraph& graph, GlobalLightPass& state,
             if (!lightingOnly) b.read(gbuffer.diffuse);
             b.read(gbuffer.position);
             b.read(gbuffer.specular);
+            for (const auto& m : shadowMaps) data.shadowMaps.push_back(b.read(m.depth));
             data.hdr = b.create("hdr", {frame.width, frame.height, GL_RGBA16F});
         },
-        [&state, frame, lightingOnly](const Data& data, const fg::PassResources& res) {
+        [&state, frame, lightingOnly, shadowMaps](const Data& data, const fg::PassResources& res) {
             if (!state.program) state.program = frame.shaders->compute("global_light.comp");
             const GLuint prog = state.program.id();
             const auto& lights = frame.scene->directionalLights;
@@ -46,24 +87,29 @@ fg::ResourceId addGlobalLightPass(fg::FrameGraph& graph, GlobalLightPass& state,
                 dirs.push_back(glm::normalize(glm::mat3(frame.view) * toLight));
                 irr.push_back(lights[size_t(i)].color * lights[size_t(i)].intensity);
             }
-            glProgramUniform1i(prog, glGetUniformLocation(prog, "uLightCount"), count);
+            glProgramUniform1i(prog, loc(prog, "uLightCount"), count);
             if (count > 0) {
-                glProgramUniform3fv(prog, glGetUniformLocation(prog, "uLightDirEye"), count, glm::value_ptr(dirs[0]));
-                glProgramUniform3fv(prog, glGetUniformLocation(prog, "uLightIrradiance"), count, glm::value_ptr(irr[0]));
+                glProgramUniform3fv(prog, loc(prog, "uLightDirEye"), count, glm::value_ptr(dirs[0]));
+                glProgramUniform3fv(prog, loc(prog, "uLightIrradiance"), count, glm::value_ptr(irr[0]));
             }
-            glProgramUniform3fv(prog, glGetUniformLocation(prog, "uAmbient"), 1, glm::value_ptr(frame.scene->ambient));
-            glProgramUniform1i(prog, glGetUniformLocation(prog, "uLightingOnly"), lightingOnly);
+            glProgramUniform3fv(prog, loc(prog, "uAmbient"), 1, glm::value_ptr(frame.scene->ambient));
+            glProgramUniform1i(prog, loc(prog, "uLightingOnly"), lightingOnly);
+            glProgramUniform1i(prog, loc(prog, "uBrdf"), frame.settings->brdf == Brdf::Ggx ? 1 : 0);
+            setShadowUniforms(prog, frame, shadowMaps, count);
             glBindTextureUnit(0, res.texture(data.in.depth));
             glBindTextureUnit(1, res.texture(data.in.normal));
             glBindTextureUnit(2, lightingOnly ? 0 : res.texture(data.in.diffuse));
             glBindTextureUnit(3, res.texture(data.in.position));
             glBindTextureUnit(4, res.texture(data.in.specular));
+            for (size_t i = 0; i < data.shadowMaps.size(); ++i)
+                glBindTextureUnit(kShadowMapUnit + GLuint(i), res.texture(data.shadowMaps[i]));
             glBindImageTexture(0, res.texture(data.hdr), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
             glUseProgram(prog);
             gl::dispatch2D(frame.width, frame.height);
             glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
             glUseProgram(0);
             for (GLuint u = 0; u < 5; ++u) glBindTextureUnit(u, 0);
+            for (size_t i = 0; i < data.shadowMaps.size(); ++i) glBindTextureUnit(kShadowMapUnit + GLuint(i), 0);
             glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
         });
     return d.hdr;

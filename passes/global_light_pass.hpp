@@ -1,15 +1,20 @@
 #pragma once
-// Global (directional) lights with normalised Blinn-Phong plus a constant ambient, as one compute
-// pass over the G-buffer. Creates the HDR buffer (RGBA16F) that later light passes add into.
+// Global (directional) lights with the chosen analytic BRDF (normalised Blinn-Phong or GGX), their
+// cascaded shadow maps, plus a constant ambient, as one compute pass over the G-buffer. Creates the
+// HDR buffer (RGBA16F) that later light passes add into.
 #include "engine/gl/handles.hpp"
 #include "engine/graph/frame_graph.hpp"
 #include "engine/render/frame_data.hpp"
 #include "passes/gbuffer_pass.hpp"
+#include "passes/shadow_map_pass.hpp"
 
 namespace lp {
 
 struct GlobalLightPass {
     gl::Program program;
+    // This frame's shadow maps (from addShadowMapPasses; the frame builder sets them before
+    // addGlobalLightPass). Lights without one are unshadowed.
+    ShadowMaps shadowMaps;
 };
 
 // `lightingOnly` (the lighting debug view) lights a white albedo and does not read the diffuse target.

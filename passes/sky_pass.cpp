@@ -24,8 +24,24 @@ fg::ResourceId addSkyPass(fg::FrameGraph& graph, SkyPass& state, const FrameData
         [&state, frame](const Data& data, const fg::PassResources& res) {
             if (!state.program) state.program = frame.shaders->compute("sky.comp");
             const GLuint prog = state.program.id();
-            glm::vec3 c = frame.scene->environment.color * frame.scene->environment.intensity;
+            const Environment& environment = frame.scene->environment;
+            glm::vec3 c = environment.color * environment.intensity;
             glProgramUniform3fv(prog, glGetUniformLocation(prog, "uColor"), 1, glm::value_ptr(c));
+            const bool hasMap = !environment.map.empty() && state.environments;
+            glProgramUniform1i(prog, glGetUniformLocation(prog, "uHasMap"), hasMap);
+            if (hasMap) {
+                const BakedEnvironment& env =
+                    state.environments->get(*frame.scene, frame.settings->environment, *frame.shaders, false);
+                glBindTextureUnit(7, env.cube.id());
+                glProgramUniform1f(prog, glGetUniformLocation(prog, "uIntensity"), environment.intensity);
+                glm::mat4 invProjection = glm::inverse(frame.projection);
+                glm::mat3 eyeToWorld = glm::transpose(glm::mat3(frame.view));
+                glProgramUniformMatrix4fv(prog, glGetUniformLocation(prog, "uInvProjection"), 1, GL_FALSE,
+                                          glm::value_ptr(invProjection));
+                glProgramUniformMatrix3fv(prog, glGetUniformLocation(prog, "uEyeToWorld"), 1, GL_FALSE,
+                                          glm::value_ptr(eyeToWorld));
+            }
+            gl::ScopedEnable seamless(GL_TEXTURE_CUBE_MAP_SEAMLESS, true);
             glBindTextureUnit(0, res.texture(data.depth));
             glBindImageTexture(0, res.texture(data.hdr), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
             glUseProgram(prog);
@@ -33,6 +49,7 @@ fg::ResourceId addSkyPass(fg::FrameGraph& graph, SkyPass& state, const FrameData
             glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
             glUseProgram(0);
             glBindTextureUnit(0, 0);
+            glBindTextureUnit(7, 0);
             glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
         });
     return d.hdr;

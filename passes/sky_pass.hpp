@@ -1,14 +1,17 @@
 #pragma once
 // The background, drawn after the geometry: only pixels whose depth is at the far plane are
-// written. Without an environment map it is the scene's plain colour.
+// written: the environment cubemap in the view direction (times the scene's intensity), or without
+// an environment map the scene's plain colour.
 #include "engine/gl/handles.hpp"
 #include "engine/graph/frame_graph.hpp"
 #include "engine/render/frame_data.hpp"
+#include "engine/render/ibl_environment.hpp"
 
 namespace lp {
 
 struct SkyPass {
     gl::Program program;
+    EnvironmentCache* environments = nullptr;  // set by the frame builder (the IBL pass owns it)
 };
 
 fg::ResourceId addSkyPass(fg::FrameGraph& graph, SkyPass& state, const FrameData& frame, fg::ResourceId depth,

@@ -22,6 +22,7 @@ fg::ResourceId addToneMapPass(fg::FrameGraph& graph, ToneMapPass& state, const F
             if (!state.program) state.program = frame.shaders->compute("tonemap.comp");
             const GLuint prog = state.program.id();
             glProgramUniform1f(prog, glGetUniformLocation(prog, "uExposureEV"), frame.settings->exposureEV);
+            glProgramUniform1i(prog, glGetUniformLocation(prog, "uOperator"), int(frame.settings->environment.toneMap));
             glBindTextureUnit(6, res.texture(data.hdr));
             glBindImageTexture(0, res.texture(data.ldr), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
             glUseProgram(prog);

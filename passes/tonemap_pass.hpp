@@ -1,5 +1,6 @@
 #pragma once
-// HDR -> display: exposure, pow(c / (c + 1), 1.2) per channel, sRGB encoding, into RGBA8.
+// HDR -> display: exposure, the tone map of EnvironmentSettings::toneMap (default the seeds'
+// pow(c / (c + 1), 1.2) per channel), sRGB encoding, into RGBA8.
 #include "engine/gl/handles.hpp"
 #include "engine/graph/frame_graph.hpp"
 #include "engine/render/frame_data.hpp"

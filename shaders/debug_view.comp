@@ -7,16 +7,39 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = 0) uniform sampler2D uChannel;
 layout(rgba8, binding = 0) uniform writeonly image2D uLdr;
 
-// 1 depth, 2 normals, 3 diffuse, 4 position, 5 shininess, 6 specular, 7 texcoords
+// 1 depth, 2 normals, 3 diffuse, 4 position, 5 shininess, 6 specular, 7 texcoords, 8 shadow map
 uniform int uMode;
 uniform float uNear;
 uniform float uFar;
 uniform float uPositionScale;  // 1 / (scene extent), maps eye-space positions into [-1, 1]
+uniform ivec2 uShadowGrid;     // mode 8: cascade tiles (columns, rows) of the atlas
 
 void main() {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     ivec2 size = imageSize(uLdr);
     if (p.x >= size.x || p.y >= size.y) return;
+    if (uMode == 8) {
+        // The light's shadow-map atlas (cascade 0 bottom left, one square tile per cascade),
+        // fitted into the image with its aspect kept: light-space window depth as grey, 1 = no caster.
+        // Outside the atlas: dark blue.
+        ivec2 atlas = textureSize(uChannel, 0);
+        float scale = min(float(size.x) / float(atlas.x), float(size.y) / float(atlas.y));
+        vec2 offset = 0.5 * (vec2(size) - vec2(atlas) * scale);
+        vec2 a = (vec2(p) + 0.5 - offset) / scale;
+        vec3 grey = vec3(0.0, 0.0, 0.15);
+        if (all(greaterThanEqual(a, vec2(0.0))) && all(lessThan(a, vec2(atlas)))) {
+            grey = vec3(texelFetch(uChannel, clamp(ivec2(a), ivec2(0), atlas - 1), 0).r);
+            // A red line one image pixel wide where cascade tiles meet.
+            vec2 tile = vec2(atlas) / vec2(max(uShadowGrid, ivec2(1)));
+            vec2 inTile = mod(a, tile);
+            vec2 edge = min(inTile, tile - inTile) * scale;
+            if ((uShadowGrid.x > 1 && edge.x < 0.5 && a.x > 1.0 && a.x < float(atlas.x) - 1.0) ||
+                (uShadowGrid.y > 1 && edge.y < 0.5 && a.y > 1.0 && a.y < float(atlas.y) - 1.0))
+                grey = vec3(1.0, 0.0, 0.0);
+        }
+        imageStore(uLdr, p, vec4(grey, 1.0));
+        return;
+    }
     vec4 t = texelFetch(uChannel, p, 0);
     vec3 c = vec3(0.0);
     if (uMode == 1) {

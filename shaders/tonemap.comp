@@ -1,5 +1,5 @@
 #version 450
-// HDR -> display: exposure, pow(c / (c + 1), 1.2), sRGB encoding, into an RGBA8 image.
+// HDR -> display: exposure, the chosen tone map (default pow(c / (c + 1), 1.2)), sRGB encoding, into an RGBA8 image.
 #include "common/tonemap.glsl"
 #include "common/gbuffer_layout.glsl"
 
@@ -7,11 +7,12 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = LP_BIND_HDR) uniform sampler2D uHdr;
 layout(rgba8, binding = 0) uniform writeonly image2D uLdr;
 uniform float uExposureEV;
+uniform int uOperator;  // lp::ToneMapOperator: 0 lightpass, 1 aces, 2 pbr-neutral, 3 agx
 
 void main() {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     ivec2 size = imageSize(uLdr);
     if (p.x >= size.x || p.y >= size.y) return;
     vec3 c = applyExposure(texelFetch(uHdr, p, 0).rgb, uExposureEV);
-    imageStore(uLdr, p, vec4(linearToSrgb(tonemapLightpass(c)), 1.0));
+    imageStore(uLdr, p, vec4(linearToSrgb(applyToneMap(c, uOperator)), 1.0));
 }

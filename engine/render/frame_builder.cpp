@@ -6,16 +6,23 @@ namespace lp {
 
 FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const FrameData& frame) {
     const RenderSettings& s = *frame.settings;
-    const bool channelView = s.view != DebugView::Final && s.view != DebugView::Lighting;
+    const bool channelView = s.view != DebugView::Final && s.view != DebugView::Lighting &&
+                             !isLocalLightView(s.view);  // overlays on the final image
     const bool lightingView = s.view == DebugView::Lighting;
 
     GBuffer gbuffer = addGBufferPass(graph, passes.gbuffer, frame, channelsForView(s.view));
-    // [shadows] shadow-map passes go here (before the global lights, which read them).
+    // one depth pass per shadow-casting directional light; global_lights and the shadowmap view read them.
+    passes.globalLights.shadowMaps = addShadowMapPasses(graph, passes.shadowMaps, frame);
+    passes.debugView.shadowMaps = &passes.globalLights.shadowMaps;
     fg::ResourceId hdr = addGlobalLightPass(graph, passes.globalLights, frame, gbuffer, lightingView);
-    // [ibl] the IBL pass adds into hdr here.
-    // [local-lights] the local-light pass adds into hdr here.
+    passes.sky.environments = &passes.ibl.environments;  // the sky and environment views read it
+    passes.debugView.ibl = &passes.ibl;
+    hdr = addIblPass(graph, passes.ibl, frame, gbuffer, hdr, lightingView);
+    hdr = addLocalLightPass(graph, passes.localLights, frame, gbuffer, hdr, lightingView);
     if (!lightingView) hdr = addSkyPass(graph, passes.sky, frame, gbuffer.depth, hdr);
-    // [post] bloom and toon read and write hdr here, before the tone map.
+    // globes and the light-ranges / lights-per-tile overlays, over the sky too.
+    if (!lightingView) hdr = addLocalLightOverlayPasses(graph, passes.localLights, frame, gbuffer, hdr);
+    hdr = addPostPasses(graph, passes.post, frame, gbuffer, hdr);  // bloom, toon (not in the lighting view)
     fg::ResourceId display = addToneMapPass(graph, passes.tonemap, frame, hdr);
     if (channelView) display = addDebugViewPass(graph, passes.debugView, frame, gbuffer, s.view);
 

@@ -6,7 +6,9 @@
 #include "engine/render/frame_data.hpp"
 #include "passes/debug_view_pass.hpp"
 #include "passes/gbuffer_pass.hpp"
+#include "passes/post_pass.hpp"
 #include "passes/global_light_pass.hpp"
+#include "passes/local_light_pass.hpp"
 #include "passes/sky_pass.hpp"
 #include "passes/tonemap_pass.hpp"
 
@@ -19,10 +21,10 @@ struct PassStates {
     SkyPass sky;
     ToneMapPass tonemap;
     DebugViewPass debugView;
-    // [shadows] state members go here.
-    // [ibl] state members go here.
-    // [local-lights] state members go here.
-    // [post] state members go here.
+    ShadowMapPass shadowMaps;  // the depth-only program and framebuffer
+    IblPass ibl;  // environment cache (cubes, bakes, DFG LUT) and the IBL programs
+    LocalLightPass localLights;
+    PostPasses post;
 };
 
 struct FrameOutputs {

@@ -13,18 +13,58 @@ const char* viewName(DebugView v) {
         case DebugView::Specular: return "specular";
         case DebugView::Texcoords: return "texcoords";
         case DebugView::Lighting: return "lighting";
+        case DebugView::Environment: return "environment";
+        case DebugView::Irradiance: return "irradiance";
+        case DebugView::Prefiltered: return "prefiltered";
+        case DebugView::Dfg: return "dfg";
+        case DebugView::ShadowMap: return "shadowmap";
+        case DebugView::LightRanges: return "light-ranges";
+        case DebugView::LightsPerTile: return "lights-per-tile";
     }
     return "final";
 }
 
 std::vector<DebugView> allViews() {
     return {DebugView::Final,     DebugView::Depth,    DebugView::Normals,   DebugView::Diffuse, DebugView::Position,
-            DebugView::Shininess, DebugView::Specular, DebugView::Texcoords, DebugView::Lighting};
+            DebugView::Shininess, DebugView::Specular, DebugView::Texcoords, DebugView::Lighting,
+            DebugView::Environment, DebugView::Irradiance, DebugView::Prefiltered, DebugView::Dfg};
 }
 
 std::optional<DebugView> parseView(const std::string& name) {
     for (DebugView v : allViews())
         if (name == viewName(v)) return v;
+    // Not in allViews(): it shows a light's shadow map, not the camera's image, and needs a
+    // shadow-casting light (the camera views work on every scene).
+    if (name == viewName(DebugView::ShadowMap)) return DebugView::ShadowMap;
+    for (DebugView v : localLightViews())
+        if (name == viewName(v)) return v;
+    return std::nullopt;
+}
+
+std::vector<DebugView> localLightViews() { return {DebugView::LightRanges, DebugView::LightsPerTile}; }
+bool isLocalLightView(DebugView v) { return v == DebugView::LightRanges || v == DebugView::LightsPerTile; }
+
+const char* brdfName(Brdf brdf) { return brdf == Brdf::Ggx ? "ggx" : "blinn-phong"; }
+
+std::optional<Brdf> parseBrdf(const std::string& name) {
+    for (Brdf b : {Brdf::BlinnPhong, Brdf::Ggx})
+        if (name == brdfName(b)) return b;
+    return std::nullopt;
+}
+
+const char* toneMapName(ToneMapOperator op) {
+    switch (op) {
+        case ToneMapOperator::Lightpass: return "lightpass";
+        case ToneMapOperator::Aces: return "aces";
+        case ToneMapOperator::PbrNeutral: return "pbr-neutral";
+        case ToneMapOperator::Agx: return "agx";
+    }
+    return "lightpass";
+}
+
+std::optional<ToneMapOperator> parseToneMap(const std::string& name) {
+    for (ToneMapOperator op : {ToneMapOperator::Lightpass, ToneMapOperator::Aces, ToneMapOperator::PbrNeutral, ToneMapOperator::Agx})
+        if (name == toneMapName(op)) return op;
     return std::nullopt;
 }
 

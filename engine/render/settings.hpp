@@ -7,25 +7,103 @@
 
 namespace lp {
 
-enum class DebugView { Final, Depth, Normals, Diffuse, Position, Shininess, Specular, Texcoords, Lighting };
+enum class DebugView {
+    Final, Depth, Normals, Diffuse, Position, Shininess, Specular, Texcoords, Lighting,
+    Environment, Irradiance, Prefiltered, Dfg,  // environment views (passes/ibl_pass)
+    ShadowMap,  // light-space depth of light settings.shadows.debugLight's shadow map
+    LightRanges, LightsPerTile  // overlays on the final image (local_light_pass)
+};
+// overlay views (not in allViews(): they are the final image with the local lights'
+// bounds or per-tile light counts drawn over it).
+std::vector<DebugView> localLightViews();
+bool isLocalLightView(DebugView view);
+
+// The analytic BRDF: energy-normalised Blinn-Phong or Cook-Torrance GGX (MTL Ns -> roughness).
+enum class Brdf { BlinnPhong, Ggx };
+const char* brdfName(Brdf brdf);
+std::optional<Brdf> parseBrdf(const std::string& name);
 
 const char* viewName(DebugView view);
 std::optional<DebugView> parseView(const std::string& name);
 std::vector<DebugView> allViews();
 
 // Each feature area owns one of these structs (and only its own fields).
-struct ShadowSettings {         // [shadows] directional-light shadow maps
+struct ShadowSettings {         // directional-light shadow maps (passes/shadow_map_pass)
+    enum class Filter { Off, Pcf3x3, Pcf5x5, Poisson };
     bool enabled = true;
+    int size = 2048;            // texels per side of one cascade's square tile
+    int cascades = 4;           // 1..4, split by the practical log/linear scheme
+    float splitLambda = 0.75f;  // 0: linear splits, 1: logarithmic
+    Filter filter = Filter::Pcf3x3;
+    float depthBias = 0.5f;     // constant receiver bias, in shadow texels of depth
+    float slopeBias = 1.0f;     // glPolygonOffset factor of the depth pass
+    float normalBias = 1.0f;    // receiver offset along its normal, in shadow texels (scaled by 1 - N.L)
+    int debugLight = 0;         // the shadowmap view shows this directional light's map
+
+    static const char* filterName(Filter f) {
+        switch (f) {
+            case Filter::Off: return "off";
+            case Filter::Pcf3x3: return "3x3";
+            case Filter::Pcf5x5: return "5x5";
+            case Filter::Poisson: return "poisson";
+        }
+        return "off";
+    }
+    static std::optional<Filter> parseFilter(const std::string& name) {
+        for (Filter f : {Filter::Off, Filter::Pcf3x3, Filter::Pcf5x5, Filter::Poisson})
+            if (name == filterName(f)) return f;
+        return std::nullopt;
+    }
 };
-struct LocalLightSettings {     // [local-lights] ranged point lights
+// how ranged point lights are drawn; all four give the same image (see README).
+enum class LocalLightMethod { Fullscreen, Scissor, Volumes, Tiled };
+const char* localLightMethodName(LocalLightMethod method);  // defined in engine/render/local_lights.cpp
+std::optional<LocalLightMethod> parseLocalLightMethod(const std::string& name);
+struct LocalLightSettings {     // ranged point lights
     bool enabled = true;
+    LocalLightMethod method = LocalLightMethod::Tiled;
+    bool scissor = true;        // scissor method: off draws every light full screen ('x' toggles)
+    int lightCount = -1;        // -1: the scene's lights; N: the first N, plus generated demo lights up to N
+    bool globes = false;        // small flat-lit spheres at the lights
+    bool specular = true;       // local lights add a specular term
+    bool specularOutsideRange = false;  // diffuse limited by range, specular (1/d^2 only) not
 };
-struct EnvironmentSettings {    // [ibl] environment, skybox, image-based lighting, tone map operator
-    bool ibl = false;           // false: analytic lights + constant ambient; true: + IBL
+enum class ToneMapOperator { Lightpass, Aces, PbrNeutral, Agx };
+enum class IrradianceSource { SphericalHarmonics, Cubemap };
+const char* toneMapName(ToneMapOperator op);
+std::optional<ToneMapOperator> parseToneMap(const std::string& name);
+struct EnvironmentSettings {    // environment, skybox, image-based lighting, tone map operator
+    // false: analytic lights + constant ambient; true: + IBL. Unset: the scene's environment.ibl.
+    std::optional<bool> ibl;
+    int cubeSize = 512;         // face size of the environment cubemap (full mip chain)
+    int specularSize = 256;     // face size of the prefiltered specular cube (<= cubeSize)
+    int specularLevels = 6;     // prefiltered mips: level m holds roughness m / (levels - 1)
+    int specularSamples = 256;  // GGX importance samples per prefiltered texel
+    int irradianceSize = 32;    // face size of the irradiance cubemap
+    int irradianceSamples = 512;  // cosine-weighted samples per irradiance texel
+    int dfgSize = 128;          // split-sum DFG LUT is dfgSize x dfgSize RG16F
+    int dfgSamples = 512;       // GGX samples per LUT texel
+    IrradianceSource diffuse = IrradianceSource::SphericalHarmonics;
+    ToneMapOperator toneMap = ToneMapOperator::Lightpass;
+    int debugMip = 0;           // the 'prefiltered' debug view shows this mip
+    std::string cacheDir;       // non-empty: baked environments are also cached on disk here
 };
-struct PostSettings {           // [post] bloom and toon
-    bool bloom = false;
-    bool toon = false;
+struct PostSettings {           // bloom and toon (engine/post/post_config.hpp resolves them)
+    enum class BloomMethod { Separable, MipChain };
+    enum class Backend { Auto, Cuda, Glsl };  // auto: CUDA on an NVIDIA GL context with a CUDA device
+    // Unset: the scene's effects.bloom / effects.toon value.
+    std::optional<bool> bloom, toon;
+    std::optional<int> bloomKernel;  // 1..101 px
+    std::optional<float> bloomThreshold, bloomKnee, bloomStrength;
+    BloomMethod bloomMethod = BloomMethod::Separable;
+    float bloomHighlight = 1000.0f;  // per-channel ceiling entering the blur
+    bool bloomKaris = true;          // mip chain: Karis average on the first downsample
+    bool bloomFragmentBlur = false;  // GLSL separable: blur with fragment passes (benchmark)
+    bool bloomOnly = false;          // display the bloom buffer alone (seed 001's '8')
+    std::optional<int> toonLevels;
+    std::optional<float> toonEdge;   // depth-edge threshold
+    float toonNormalEdge = 0.5f;     // normal-edge threshold (sin of half the crease angle)
+    Backend backend = Backend::Auto;
 };
 
 struct RenderSettings {
@@ -34,6 +112,7 @@ struct RenderSettings {
     DebugView view = DebugView::Final;
     float exposureEV = 0.0f;
     bool globalLighting = true;  // the directional-light pass
+    Brdf brdf = Brdf::BlinnPhong;  // analytic BRDF of the light passes
     bool keepHdr = false;        // keep the HDR buffer as an output (EXR dumps)
     std::set<std::string> disabledPasses;  // switched off in the UI / --disable-pass
     ShadowSettings shadows;

@@ -47,6 +47,7 @@ struct Environment {
     glm::vec3 color{0.02f, 0.02f, 0.025f};
     float intensity = 1.0f;
     float rotationDegrees = 0.0f;  // about +Y
+    bool ibl = false;              // light the scene with the map (IBL) instead of a constant ambient
 };
 
 struct BloomEffect {

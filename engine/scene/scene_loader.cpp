@@ -222,12 +222,14 @@ Scene parseScene(const std::string& text, const fs::path& origin, bool loadMeshe
     }
     if (root.contains("environment")) {
         const json& e = root["environment"];
-        r.onlyKnown(e, "environment", {"map", "color", "intensity", "rotation"});
+        r.onlyKnown(e, "environment", {"map", "color", "intensity", "rotation", "ibl"});
         std::string map = r.string(e, "map", "environment");
         if (!map.empty()) scene.environment.map = resolve(base, map);
         scene.environment.color = r.color(e, "color", "environment", scene.environment.color);
         scene.environment.intensity = r.positive(e, "intensity", "environment", 1.0f, true);
         scene.environment.rotationDegrees = r.number(e, "rotation", "environment", 0.0f);
+        scene.environment.ibl = r.boolean(e, "ibl", "environment", false);
+        if (scene.environment.ibl && scene.environment.map.empty()) r.fail("environment.ibl", "true needs environment.map (an .hdr or .exr)");
     }
     if (root.contains("ambient")) scene.ambient = r.color(root, "ambient", "", scene.ambient);
     if (root.contains("effects")) {

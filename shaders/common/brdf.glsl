@@ -25,4 +25,88 @@ vec3 blinnPhongRadiance(vec3 N, vec3 V, vec3 L, vec3 kd, vec3 ks, float shinines
     return blinnPhongBrdf(N, V, L, kd, ks, shininess) * irradiance * nl;
 }
 
+// ---- Cook-Torrance GGX ---------------------------------------------------------------------------
+// f = kd/pi + D(h) Vis(v, l) F(v.h): GGX (Trowbridge-Reitz) distribution, height-correlated Smith
+// visibility Vis = G2 / (4 N.L N.V) (Heitz 2014), Schlick Fresnel. alpha is GGX's width (alpha =
+// roughness^2). alpha is clamped to LP_GGX_MIN_ALPHA: D peaks at 1/(pi alpha^2), 3.2e5 there, which
+// float holds; alpha = 0 would be a delta. N.V is clamped to LP_GGX_MIN_NV: normal interpolation
+// and bump maps make slightly back-facing N.V, which must give a bright rim, not NaN.
+const float LP_GGX_MIN_ALPHA = 1e-3;
+const float LP_GGX_MIN_NV = 1e-4;
+
+float ggxAlphaFromRoughness(float roughness) {
+    float r = clamp(roughness, 0.0, 1.0);
+    return max(r * r, LP_GGX_MIN_ALPHA);
+}
+
+// MTL/Blinn-Phong exponent -> GGX alpha by the usual Beckmann equivalence alpha = sqrt(2 / (n + 2)):
+// n = 0 gives alpha = 1 (roughest), n = 10000 gives alpha = 0.0141.
+float ggxAlphaFromShininess(float shininess) {
+    float n = clamp(shininess, 0.0, 10000.0);
+    return max(sqrt(2.0 / (n + 2.0)), LP_GGX_MIN_ALPHA);
+}
+
+// D(h) = alpha^2 / (pi ((N.H)^2 (alpha^2 - 1) + 1)^2), written with |N x H|^2 = 1 - (N.H)^2 from
+// the cross product: near the peak 1 - nh*nh cancels to rounding noise far above alpha^2.
+float ggxDistribution(vec3 N, vec3 H, float alpha) {
+    float a = max(alpha, LP_GGX_MIN_ALPHA);
+    float a2 = a * a;
+    float nh = min(dot(N, H), 1.0);
+    if (nh <= 0.0) return 0.0;  // microfacets face up: chi+(N.H)
+    vec3 nxh = cross(N, H);
+    float sin2 = min(dot(nxh, nxh), 1.0);
+    float d = nh * nh * a2 + sin2;  // = nh^2 (a2 - 1) + 1 for unit N, H
+    return a2 / (LP_PI * max(d * d, 1e-30));
+}
+
+// Height-correlated Smith: Vis = 0.5 / (N.L sqrt(N.V^2 (1 - a2) + a2) + N.V sqrt(N.L^2 (1 - a2) + a2)).
+float ggxVisibility(float nv, float nl, float alpha) {
+    float a = max(alpha, LP_GGX_MIN_ALPHA);
+    float a2 = a * a;
+    nv = max(nv, LP_GGX_MIN_NV);
+    nl = max(nl, 0.0);
+    float gv = nl * sqrt(nv * nv * (1.0 - a2) + a2);
+    float gl = nv * sqrt(nl * nl * (1.0 - a2) + a2);
+    return 0.5 / max(gv + gl, 1e-30);
+}
+
+// Schlick's Fresnel towards f90 = clamp(50 * mean(F0), 0, 1) (Filament's specular occlusion): no
+// real material has F0 below 0.02, so F0 = 0 (MTL Ks 0, "no specular") stays exactly Lambertian.
+vec3 fresnelSchlick(vec3 f0, float vh) {
+    float m = clamp(1.0 - vh, 0.0, 1.0);
+    float m2 = m * m;
+    float f90 = clamp(50.0 * dot(f0, vec3(1.0 / 3.0)), 0.0, 1.0);
+    return f0 + (vec3(f90) - f0) * (m2 * m2 * m);
+}
+
+// Specular lobe alone: D Vis F (no N.L). Zero for N.L <= 0.
+vec3 ggxSpecular(vec3 N, vec3 V, vec3 L, vec3 f0, float alpha) {
+    float nl = dot(N, L);
+    if (nl <= 0.0) return vec3(0.0);
+    vec3 h = V + L;
+    float hl = dot(h, h);
+    vec3 H = hl > 1e-12 ? h * inversesqrt(hl) : N;
+    float vh = clamp(dot(V, H), 0.0, 1.0);
+    return ggxDistribution(N, H, alpha) * ggxVisibility(dot(N, V), nl, alpha) * fresnelSchlick(f0, vh);
+}
+
+// Full GGX BRDF with a Lambert diffuse term; F0 = ks (MTL Ks), alpha from the MTL Ns.
+vec3 ggxBrdf(vec3 N, vec3 V, vec3 L, vec3 kd, vec3 ks, float shininess) {
+    return kd / LP_PI + ggxSpecular(N, V, L, ks, ggxAlphaFromShininess(shininess));
+}
+
+vec3 ggxRadiance(vec3 N, vec3 V, vec3 L, vec3 kd, vec3 ks, float shininess, vec3 irradiance) {
+    float nl = dot(N, L);
+    if (nl <= 0.0) return vec3(0.0);
+    return ggxBrdf(N, V, L, kd, ks, shininess) * irradiance * nl;
+}
+
+// The BRDF switch (RenderSettings::brdf): 0 Blinn-Phong, 1 GGX.
+#define LP_BRDF_BLINN_PHONG 0
+#define LP_BRDF_GGX 1
+vec3 brdfRadiance(int brdf, vec3 N, vec3 V, vec3 L, vec3 kd, vec3 ks, float shininess, vec3 irradiance) {
+    return brdf == LP_BRDF_GGX ? ggxRadiance(N, V, L, kd, ks, shininess, irradiance)
+                               : blinnPhongRadiance(N, V, L, kd, ks, shininess, irradiance);
+}
+
 #endif

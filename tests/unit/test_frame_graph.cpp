@@ -169,7 +169,7 @@ FrameGraph buildFor(const Scene& scene, DebugView view, bool keepHdr = false) {
 TEST(FrameBuilder, FinalViewRunsLightingSkyAndToneMap) {
     Scene s = oneLightScene();
     FrameGraph g = buildFor(s, DebugView::Final);
-    EXPECT_EQ(g.executionOrder(), (std::vector<std::string>{"gbuffer", "global_lights", "sky", "tonemap"}));
+    EXPECT_EQ(g.executionOrder(), (std::vector<std::string>{"gbuffer", "shadow_map_0", "global_lights", "sky", "tonemap"}));
     EXPECT_FALSE(g.hasPass("debug_view"));
 }
 
@@ -198,7 +198,7 @@ TEST(FrameBuilder, EveryChannelViewReadsOnlyTheGBuffer) {
 TEST(FrameBuilder, LightingViewSkipsDiffuseAndSky) {
     Scene s = oneLightScene();
     FrameGraph g = buildFor(s, DebugView::Lighting);
-    EXPECT_EQ(g.executionOrder(), (std::vector<std::string>{"gbuffer", "global_lights", "tonemap"}));
+    EXPECT_EQ(g.executionOrder(), (std::vector<std::string>{"gbuffer", "shadow_map_0", "global_lights", "tonemap"}));
     for (const auto& r : g.report())
         if (r.name == "global_lights")
             EXPECT_EQ(std::count(r.reads.begin(), r.reads.end(), "gbuffer.diffuse"), 0);
@@ -251,7 +251,7 @@ TEST(FrameBuilder, DisablingSkyRemovesItFromTheCompiledGraph) {
     PassStates passes;
     buildFrameGraph(g, passes, frame);
     g.compile();
-    EXPECT_EQ(g.executionOrder(), (std::vector<std::string>{"gbuffer", "global_lights", "tonemap"}));
+    EXPECT_EQ(g.executionOrder(), (std::vector<std::string>{"gbuffer", "shadow_map_0", "global_lights", "tonemap"}));
 }
 
 TEST(FrameGraph, SkippedPassesAreReportedWithTheirReason) {

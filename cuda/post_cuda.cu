@@ -1,0 +1,163 @@
+// The CUDA post effects' host side: device checks, GL interop per call, CUDA-event timing,
+// and the device-buffer runs the tests use.
+#include "cuda/post_cuda.hpp"
+
+#include <chrono>
+
+#include "cuda/interop.hpp"
+#include "cuda/post_kernels.cuh"
+
+namespace lp::cuda {
+
+std::string postDeviceProblem() {
+    int count = 0;
+    cudaError_t err = cudaGetDeviceCount(&count);
+    if (err != cudaSuccess) {
+        cudaGetLastError();
+        return std::string("cudaGetDeviceCount: ") + cudaGetErrorString(err);
+    }
+    if (count <= 0) return "no CUDA device";
+    return {};
+}
+
+namespace {
+
+// CUDA events around a stretch of kernels on `stream`; ms() waits for the end event.
+class EventTimer {
+public:
+    explicit EventTimer(cudaStream_t stream) : stream_(stream) {
+        check(cudaEventCreate(&begin_), "cudaEventCreate");
+        check(cudaEventCreate(&end_), "cudaEventCreate");
+        check(cudaEventRecord(begin_, stream_), "cudaEventRecord");
+    }
+    ~EventTimer() {
+        cudaEventDestroy(begin_);
+        cudaEventDestroy(end_);
+    }
+    double stop() {
+        check(cudaEventRecord(end_, stream_), "cudaEventRecord");
+        check(cudaEventSynchronize(end_), "cudaEventSynchronize");
+        float ms = 0.0f;
+        check(cudaEventElapsedTime(&ms, begin_, end_), "cudaEventElapsedTime");
+        return double(ms);
+    }
+
+private:
+    cudaStream_t stream_;
+    cudaEvent_t begin_ = nullptr, end_ = nullptr;
+};
+
+using Clock = std::chrono::steady_clock;
+double msSince(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+
+// Device copies of host images.
+struct DeviceImage {
+    float4* data = nullptr;
+    DeviceImage(const ImageF& img) {
+        const size_t bytes = size_t(img.width) * size_t(img.height) * sizeof(float4);
+        check(cudaMalloc(&data, bytes), "cudaMalloc");
+        check(cudaMemcpy(data, img.rgba.data(), bytes, cudaMemcpyHostToDevice), "cudaMemcpy (to device)");
+    }
+    DeviceImage(int width, int height) {
+        check(cudaMalloc(&data, size_t(width) * size_t(height) * sizeof(float4)), "cudaMalloc");
+    }
+    ~DeviceImage() { cudaFree(data); }
+    DeviceImage(const DeviceImage&) = delete;
+    DeviceImage& operator=(const DeviceImage&) = delete;
+    ImageF download(int width, int height) const {
+        ImageF out;
+        out.width = width;
+        out.height = height;
+        out.rgba.resize(size_t(width) * size_t(height) * 4);
+        check(cudaMemcpy(out.rgba.data(), data, out.rgba.size() * sizeof(float), cudaMemcpyDeviceToHost),
+              "cudaMemcpy (to host)");
+        return out;
+    }
+};
+
+}  // namespace
+
+struct PostInterop::Impl {
+    GlImageRegistry registry;
+    BloomWorkspace workspace;
+    cudaStream_t stream = nullptr;
+    Impl() { check(cudaStreamCreate(&stream), "cudaStreamCreate"); }
+    ~Impl() { cudaStreamDestroy(stream); }
+};
+
+PostInterop::PostInterop() : impl_(std::make_unique<Impl>()) {}
+PostInterop::~PostInterop() = default;
+
+int PostInterop::registeredCount() const { return impl_->registry.size(); }
+void PostInterop::beginFrame(unsigned long frame) { impl_->registry.beginFrame(frame); }
+
+PostTiming PostInterop::bloom(GLuint hdr, GLuint bloom, int width, int height, const post::BloomParams& p) {
+    PostTiming t;
+    auto t0 = Clock::now();
+    MappedSurfaces mapped({impl_->registry.resource(hdr, width, height), impl_->registry.resource(bloom, width, height)},
+                          impl_->stream);
+    t.interopMs = msSince(t0);
+    EventTimer timer(impl_->stream);
+    bloomSurfaceToSurface(mapped.surface(0), mapped.surface(1), width, height, p, impl_->workspace, impl_->stream);
+    t.kernelMs = timer.stop();
+    auto t1 = Clock::now();
+    mapped.unmap();
+    t.interopMs += msSince(t1);
+    return t;
+}
+
+PostTiming PostInterop::composite(GLuint hdr, GLuint bloom, int width, int height, float strength) {
+    PostTiming t;
+    auto t0 = Clock::now();
+    MappedSurfaces mapped({impl_->registry.resource(hdr, width, height), impl_->registry.resource(bloom, width, height)},
+                          impl_->stream);
+    t.interopMs = msSince(t0);
+    EventTimer timer(impl_->stream);
+    compositeSurfaces(mapped.surface(0), mapped.surface(1), width, height, strength, impl_->stream);
+    t.kernelMs = timer.stop();
+    auto t1 = Clock::now();
+    mapped.unmap();
+    t.interopMs += msSince(t1);
+    return t;
+}
+
+PostTiming PostInterop::toon(GLuint hdr, GLuint position, GLuint normal, int width, int height,
+                             const post::ToonParams& p) {
+    PostTiming t;
+    auto t0 = Clock::now();
+    MappedSurfaces mapped({impl_->registry.resource(hdr, width, height), impl_->registry.resource(position, width, height),
+                           impl_->registry.resource(normal, width, height)},
+                          impl_->stream);
+    t.interopMs = msSince(t0);
+    EventTimer timer(impl_->stream);
+    toonSurfaces(mapped.surface(0), mapped.surface(1), mapped.surface(2), width, height, p, impl_->stream);
+    t.kernelMs = timer.stop();
+    auto t1 = Clock::now();
+    mapped.unmap();
+    t.interopMs += msSince(t1);
+    return t;
+}
+
+ImageF bloomOnDevice(const ImageF& hdr, const post::BloomParams& p) {
+    DeviceImage in(hdr), out(hdr.width, hdr.height);
+    BloomWorkspace ws;
+    bloomBufferToBuffer(in.data, out.data, hdr.width, hdr.height, p, ws, nullptr);
+    check(cudaDeviceSynchronize(), "cudaDeviceSynchronize");
+    return out.download(hdr.width, hdr.height);
+}
+
+ImageF compositeOnDevice(const ImageF& hdr, const ImageF& bloom, float strength) {
+    DeviceImage h(hdr), b(bloom), out(hdr.width, hdr.height);
+    compositeBuffers(h.data, b.data, out.data, hdr.width, hdr.height, strength, nullptr);
+    check(cudaDeviceSynchronize(), "cudaDeviceSynchronize");
+    return out.download(hdr.width, hdr.height);
+}
+
+ImageF toonOnDevice(const ImageF& hdr, const ImageF& position, const ImageF& normal, const post::ToonParams& p) {
+    DeviceImage h(hdr), pos(position), n(normal), out(hdr.width, hdr.height);
+    toonBuffers(h.data, pos.data, n.data, out.data, hdr.width, hdr.height, p, nullptr);
+    check(cudaDeviceSynchronize(), "cudaDeviceSynchronize");
+    return out.download(hdr.width, hdr.height);
+}
+
+}  // namespace lp::cuda

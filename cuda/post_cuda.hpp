@@ -1,0 +1,55 @@
+#pragma once
+// Bloom and toon in CUDA, the plain-C++ face of cuda/bloom.cu, cuda/toon.cu and
+// cuda/interop.cu (only built with a CUDA toolkit: LIGHTPASS_HAVE_CUDA).
+//
+// Two entry points: PostInterop works on GL textures (registered once with
+// cudaGraphicsGLRegisterImage, mapped per call, read and written through surfaces) and is what the
+// passes use; the *OnDevice functions take host images, run the same kernels on device buffers and
+// copy back, so the kernels can be tested against the CPU reference without a GL context.
+#include <memory>
+#include <string>
+
+#include "engine/gl/gl.hpp"
+#include "engine/io/image_io.hpp"
+#include "engine/post/post_params.hpp"
+
+namespace lp::cuda {
+
+// Empty when a CUDA device can run the kernels, else why not ("cudaGetDeviceCount: ...").
+std::string postDeviceProblem();
+
+struct PostTiming {
+    double kernelMs = 0.0;   // CUDA events around the kernels
+    double interopMs = 0.0;  // host time of cudaGraphicsMapResources + UnmapResources
+};
+
+class PostInterop {
+public:
+    PostInterop();
+    ~PostInterop();
+    PostInterop(const PostInterop&) = delete;
+    PostInterop& operator=(const PostInterop&) = delete;
+
+    // hdr: RGBA16F (read); bloom: RGBA16F (written: the bloom buffer alone, before strength).
+    PostTiming bloom(GLuint hdr, GLuint bloom, int width, int height, const post::BloomParams& p);
+    // hdr = sanitize(sanitize(hdr) + strength * bloom), in place.
+    PostTiming composite(GLuint hdr, GLuint bloom, int width, int height, float strength);
+    // hdr in place; position and normal: the G-buffer's RGBA32F targets.
+    PostTiming toon(GLuint hdr, GLuint position, GLuint normal, int width, int height, const post::ToonParams& p);
+    // Call once per frame before the calls of that frame (`frame` grows by one per frame):
+    // registrations idle for more than two frames are dropped.
+    void beginFrame(unsigned long frame);
+    // Textures registered now (tests: registration happens once per texture).
+    int registeredCount() const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+// Device-buffer runs (fp32 intermediates) for tests and the benchmark.
+ImageF bloomOnDevice(const ImageF& hdr, const post::BloomParams& p);  // the bloom buffer
+ImageF compositeOnDevice(const ImageF& hdr, const ImageF& bloom, float strength);
+ImageF toonOnDevice(const ImageF& hdr, const ImageF& position, const ImageF& normal, const post::ToonParams& p);
+
+}  // namespace lp::cuda

@@ -1,0 +1,75 @@
+#pragma once
+// Kernels shared by cuda/bloom.cu, cuda/toon.cu and cuda/post_cuda.cu: texel accessors for
+// device buffers and mapped GL surfaces, the device workspace, and the host-side launchers.
+#include <cuda_fp16.h>
+#include <cuda_runtime.h>
+
+#include "engine/post/post_math.hpp"
+#include "engine/post/post_params.hpp"
+
+namespace lp::cuda {
+
+// A row-major float4 image in device memory.
+struct BufferImage {
+    float4* data;
+    int width;
+    __device__ float4 load(int x, int y) const { return data[size_t(y) * size_t(width) + size_t(x)]; }
+    __device__ void store(int x, int y, float4 c) const { data[size_t(y) * size_t(width) + size_t(x)] = c; }
+};
+
+// A mapped RGBA16F GL texture (the HDR buffer, the bloom buffer).
+struct Half4Surface {
+    cudaSurfaceObject_t surface;
+    __device__ float4 load(int x, int y) const {
+        ushort4 v = surf2Dread<ushort4>(surface, x * int(sizeof(ushort4)), y);
+        return make_float4(__half2float(__ushort_as_half(v.x)), __half2float(__ushort_as_half(v.y)),
+                           __half2float(__ushort_as_half(v.z)), __half2float(__ushort_as_half(v.w)));
+    }
+    __device__ void store(int x, int y, float4 c) const {
+        ushort4 v = make_ushort4(__half_as_ushort(__float2half_rn(c.x)), __half_as_ushort(__float2half_rn(c.y)),
+                                 __half_as_ushort(__float2half_rn(c.z)), __half_as_ushort(__float2half_rn(c.w)));
+        surf2Dwrite(v, surface, x * int(sizeof(ushort4)), y);
+    }
+};
+
+// A mapped RGBA32F GL texture (G-buffer position and normal).
+struct Float4Surface {
+    cudaSurfaceObject_t surface;
+    __device__ float4 load(int x, int y) const { return surf2Dread<float4>(surface, x * int(sizeof(float4)), y); }
+    __device__ void store(int x, int y, float4 c) const { surf2Dwrite(c, surface, x * int(sizeof(float4)), y); }
+};
+
+// Device scratch of the bloom: full-resolution ping-pong buffers and the mip chain, grown on demand.
+struct BloomWorkspace {
+    float4* a = nullptr;
+    float4* b = nullptr;
+    size_t fullTexels = 0;
+    float4* mips[post::kMaxMipLevels] = {};
+    size_t mipTexels[post::kMaxMipLevels] = {};
+    BloomWorkspace() = default;
+    ~BloomWorkspace();
+    BloomWorkspace(const BloomWorkspace&) = delete;
+    BloomWorkspace& operator=(const BloomWorkspace&) = delete;
+    void ensure(int width, int height, const post::BloomParams& p);
+};
+
+// Bloom buffer of `hdr` into `bloom` (fp32 intermediates), by p.method.
+void bloomBufferToBuffer(const float4* hdr, float4* bloom, int width, int height, const post::BloomParams& p,
+                         BloomWorkspace& ws, cudaStream_t stream);
+void bloomSurfaceToSurface(cudaSurfaceObject_t hdr, cudaSurfaceObject_t bloom, int width, int height,
+                           const post::BloomParams& p, BloomWorkspace& ws, cudaStream_t stream);
+// out = sanitize(hdr + strength * bloom).
+void compositeBuffers(const float4* hdr, const float4* bloom, float4* out, int width, int height, float strength,
+                      cudaStream_t stream);
+void compositeSurfaces(cudaSurfaceObject_t hdr, cudaSurfaceObject_t bloom, int width, int height, float strength,
+                       cudaStream_t stream);
+// Toon (ramp + outlines) of hdr into out; the surface version works in place.
+void toonBuffers(const float4* hdr, const float4* position, const float4* normal, float4* out, int width, int height,
+                 const post::ToonParams& p, cudaStream_t stream);
+void toonSurfaces(cudaSurfaceObject_t hdr, cudaSurfaceObject_t position, cudaSurfaceObject_t normal, int width,
+                  int height, const post::ToonParams& p, cudaStream_t stream);
+
+inline dim3 gridFor(int width, int height) { return dim3(unsigned(width + 15) / 16, unsigned(height + 15) / 16); }
+constexpr unsigned kBlock = 16;
+
+}  // namespace lp::cuda

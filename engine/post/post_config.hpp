@@ -1,0 +1,29 @@
+#pragma once
+// What bloom and toon do this frame: the scene's `effects` overridden by the user's flags.
+#include <optional>
+#include <string>
+
+#include "engine/post/post_params.hpp"
+#include "engine/render/settings.hpp"
+#include "engine/scene/scene.hpp"
+
+namespace lp::post {
+
+struct PostConfig {
+    bool bloom = false;
+    bool toon = false;
+    bool bloomOnly = false;  // display the bloom buffer alone
+    BloomParams bloomParams;
+    ToonParams toonParams;
+    PostSettings::Backend backend = PostSettings::Backend::Auto;
+};
+
+// A flag that is set wins; an unset one takes the scene's effects.bloom / effects.toon value.
+PostConfig resolvePostConfig(const Effects& sceneEffects, const PostSettings& settings, float farPlane);
+
+const char* bloomMethodName(BloomMethod m);
+std::optional<BloomMethod> parseBloomMethod(const std::string& name);  // "separable" | "mip-chain"
+const char* backendName(PostSettings::Backend b);
+std::optional<PostSettings::Backend> parseBackend(const std::string& name);  // "auto" | "cuda" | "glsl"
+
+}  // namespace lp::post

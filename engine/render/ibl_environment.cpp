@@ -1,0 +1,337 @@
+#include "engine/render/ibl_environment.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <vector>
+
+#include "engine/core/error.hpp"
+#include "engine/core/log.hpp"
+#include "engine/gl/state.hpp"
+#include "engine/io/image_io.hpp"
+#include "engine/render/ibl_sh.hpp"
+
+namespace lp {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+bool isPowerOfTwo(int x) { return x > 0 && (x & (x - 1)) == 0; }
+
+int log2Int(int x) {
+    int l = 0;
+    while ((1 << (l + 1)) <= x) ++l;
+    return l;
+}
+
+// A uniform environment is the same at every resolution: bake it small.
+EnvironmentSettings effectiveSettings(const EnvironmentSettings& s, bool hasMap) {
+    if (hasMap) return s;
+    EnvironmentSettings u = s;
+    u.cubeSize = std::min(s.cubeSize, 16);
+    u.specularSize = std::min(s.specularSize, u.cubeSize);
+    u.specularLevels = std::min(s.specularLevels, log2Int(u.specularSize) + 1);
+    u.irradianceSize = std::min(s.irradianceSize, 8);
+    return u;
+}
+
+std::string fmt(double x) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%.9g", x);
+    return b;
+}
+
+// Identity of the map file: a changed file (new mtime or size) is a new key.
+std::string sourceKey(const Scene& scene) {
+    const Environment& e = scene.environment;
+    if (e.map.empty())
+        return "color:" + fmt(e.color.x) + "," + fmt(e.color.y) + "," + fmt(e.color.z);
+    std::error_code ec;
+    auto size = fs::file_size(e.map, ec);
+    auto time = fs::last_write_time(e.map, ec).time_since_epoch().count();
+    return "map:" + fs::absolute(e.map).lexically_normal().string() + "|bytes=" + std::to_string(ec ? 0 : size) +
+           "|mtime=" + std::to_string(ec ? 0 : time) + "|rot=" + fmt(e.rotationDegrees);
+}
+
+std::string cubeKey(const Scene& scene, const EnvironmentSettings& s) {
+    return sourceKey(scene) + "|cube=" + std::to_string(s.cubeSize);
+}
+
+std::string bakeKeyOf(const std::string& cube, const EnvironmentSettings& s) {
+    return cube + "|spec=" + std::to_string(s.specularSize) + "x" + std::to_string(s.specularLevels) + "x" +
+           std::to_string(s.specularSamples) + "|irr=" + std::to_string(s.irradianceSize) + "x" +
+           std::to_string(s.irradianceSamples);
+}
+
+uint64_t fnv1a(const std::string& text) {
+    uint64_t h = 1469598103934665603ull;
+    for (unsigned char c : text) h = (h ^ c) * 1099511628211ull;
+    return h;
+}
+
+fs::path cacheFile(const std::string& dir, const std::string& kind, const std::string& key) {
+    char name[64];
+    std::snprintf(name, sizeof name, "%s-%016llx.lpibl", kind.c_str(), static_cast<unsigned long long>(fnv1a(key)));
+    return fs::path(dir) / name;
+}
+
+size_t levelBytes(const gl::Texture& t, int level) {
+    const size_t s = size_t(std::max(t.width >> level, 1));
+    return s * s * 6 * 4 * sizeof(uint16_t);
+}
+
+// Cache file: "lightpass-ibl 1\n<key>\n", 9 SH vec3 (float), then each cube's levels as RGBA half.
+void saveCache(const fs::path& path, const std::string& key, const std::array<glm::vec3, 9>* sh,
+               const std::vector<const gl::Texture*>& cubes) {
+    std::error_code ec;
+    fs::create_directories(path.parent_path(), ec);
+    if (ec) throw Error(path.parent_path().string() + ": cannot create the IBL cache folder: " + ec.message());
+    writeFileAtomically(path, [&](const fs::path& tmp) {
+        std::ofstream out(tmp, std::ios::binary);
+        out << "lightpass-ibl 1\n" << key << "\n";
+        if (sh) out.write(reinterpret_cast<const char*>(sh->data()), sizeof(*sh));
+        std::vector<char> data;
+        for (const gl::Texture* t : cubes)
+            for (int l = 0; l < t->levels; ++l) {
+                data.resize(levelBytes(*t, l));
+                glGetTextureImage(t->id(), l, GL_RGBA, GL_HALF_FLOAT, GLsizei(data.size()), data.data());
+                out.write(data.data(), std::streamsize(data.size()));
+            }
+        if (!out) throw Error(tmp.string() + ": write failed");
+    });
+}
+
+// False (and the textures untouched) when the file is absent or not for `key`.
+bool loadCache(const fs::path& path, const std::string& key, std::array<glm::vec3, 9>* sh,
+               const std::vector<gl::Texture*>& cubes) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) return false;
+    std::string magic, storedKey;
+    std::getline(in, magic);
+    std::getline(in, storedKey);
+    if (magic != "lightpass-ibl 1" || storedKey != key) return false;
+    std::array<glm::vec3, 9> shRead{};
+    if (sh && !in.read(reinterpret_cast<char*>(shRead.data()), sizeof(shRead))) return false;
+    std::vector<std::vector<char>> levels;
+    for (const gl::Texture* t : cubes)
+        for (int l = 0; l < t->levels; ++l) {
+            levels.emplace_back(levelBytes(*t, l));
+            if (!in.read(levels.back().data(), std::streamsize(levels.back().size()))) {
+                logWarn(path.string() + ": truncated IBL cache file, baking again");
+                return false;
+            }
+        }
+    size_t i = 0;
+    for (gl::Texture* t : cubes)
+        for (int l = 0; l < t->levels; ++l) {
+            const int s = std::max(t->width >> l, 1);
+            glTextureSubImage3D(t->id(), l, 0, 0, 0, s, s, 6, GL_RGBA, GL_HALF_FLOAT, levels[i++].data());
+        }
+    if (sh) *sh = shRead;
+    return true;
+}
+
+void dispatchCube(int size) {
+    glDispatchCompute(GLuint((size + 7) / 8), GLuint((size + 7) / 8), 6);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+}
+
+double secondsSince(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+ImageF uniformImage(glm::vec3 c) {
+    ImageF img;
+    img.width = 4;
+    img.height = 2;
+    for (int i = 0; i < 8; ++i) img.rgba.insert(img.rgba.end(), {c.x, c.y, c.z, 1.0f});
+    return img;
+}
+
+}  // namespace
+
+void validateEnvironmentSettings(const EnvironmentSettings& s) {
+    auto need = [](bool ok, const std::string& msg) {
+        if (!ok) throw Error("environment settings: " + msg);
+    };
+    need(isPowerOfTwo(s.cubeSize) && s.cubeSize >= 4 && s.cubeSize <= 4096, "cube size " + std::to_string(s.cubeSize) + " must be a power of two in [4, 4096]");
+    need(isPowerOfTwo(s.specularSize) && s.specularSize >= 4 && s.specularSize <= s.cubeSize,
+         "specular size " + std::to_string(s.specularSize) + " must be a power of two in [4, cube size " + std::to_string(s.cubeSize) + "]");
+    need(s.specularLevels >= 1 && s.specularLevels <= log2Int(s.specularSize) + 1,
+         "specular levels " + std::to_string(s.specularLevels) + " must be in [1, " + std::to_string(log2Int(s.specularSize) + 1) + "]");
+    need(s.specularSamples >= 1 && s.specularSamples <= 65536, "specular samples must be in [1, 65536]");
+    need(s.irradianceSize >= 1 && s.irradianceSize <= 1024, "irradiance size must be in [1, 1024]");
+    need(s.irradianceSamples >= 1 && s.irradianceSamples <= 65536, "irradiance samples must be in [1, 65536]");
+    need(s.dfgSize >= 2 && s.dfgSize <= 1024, "DFG LUT size must be in [2, 1024]");
+    need(s.dfgSamples >= 1 && s.dfgSamples <= 65536, "DFG samples must be in [1, 65536]");
+    need(s.debugMip >= 0, "debug mip must be >= 0");
+}
+
+const BakedEnvironment& EnvironmentCache::get(const Scene& scene, const EnvironmentSettings& requested,
+                                              const gl::ShaderLibrary& shaders, bool bake) {
+    validateEnvironmentSettings(requested);
+    const bool hasMap = !scene.environment.map.empty();
+    const EnvironmentSettings s = effectiveSettings(requested, hasMap);
+    const std::string key = cubeKey(scene, s);
+    auto it = environments_.find(key);
+    if (it == environments_.end()) {
+        if (environments_.size() >= 4) environments_.clear();  // bounded: maps are tens of MB each
+        auto env = std::make_unique<BakedEnvironment>();
+        env->hasMap = hasMap;
+        makeCube(*env, scene, s, shaders, key);
+        it = environments_.emplace(key, std::move(env)).first;
+    }
+    BakedEnvironment& env = *it->second;
+    const std::string bakeKey = bakeKeyOf(key, s);
+    if (bake && env.bakeKey != bakeKey) bakeIbl(env, scene, s, shaders, bakeKey);
+    return env;
+}
+
+void EnvironmentCache::makeCube(BakedEnvironment& env, const Scene& scene, const EnvironmentSettings& s,
+                                const gl::ShaderLibrary& shaders, const std::string& key) {
+    const int levels = log2Int(s.cubeSize) + 1;
+    env.cube = gl::makeTextureCube(GL_RGBA16F, s.cubeSize, levels, "ibl.environment");
+    const bool useDisk = env.hasMap && !s.cacheDir.empty();
+    const fs::path file = useDisk ? cacheFile(s.cacheDir, "cube", key) : fs::path();
+    if (useDisk && loadCache(file, key, nullptr, {&env.cube})) {
+        logInfo("ibl: environment cube read from " + file.string());
+        return;
+    }
+    const auto t0 = std::chrono::steady_clock::now();
+    ImageF map = env.hasMap ? loadHdrImage(scene.environment.map) : uniformImage(scene.environment.color);
+    gl::Texture equirect = gl::makeTexture2D(GL_RGBA32F, map.width, map.height, 1, "ibl.equirect");
+    glTextureSubImage2D(equirect.id(), 0, 0, 0, map.width, map.height, GL_RGBA, GL_FLOAT, map.rgba.data());
+    glTextureParameteri(equirect.id(), GL_TEXTURE_WRAP_S, GL_REPEAT);
+    glTextureParameteri(equirect.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(equirect.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(equirect.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    if (!toCube_) toCube_ = shaders.compute("ibl_equirect_to_cube.comp");
+    const GLuint prog = toCube_.id();
+    // Map texels per cube texel at the equator, times 2: enough taps that poles and small faces
+    // average their footprint instead of aliasing.
+    const double ratio = double(map.width) / (3.14159265358979 * s.cubeSize);
+    const int taps = std::clamp(int(std::ceil(2.0 * ratio)), 2, 8);
+    glProgramUniform1i(prog, glGetUniformLocation(prog, "uSize"), s.cubeSize);
+    glProgramUniform1i(prog, glGetUniformLocation(prog, "uTaps"), taps);
+    glProgramUniform1f(prog, glGetUniformLocation(prog, "uRotation"),
+                       float(double(scene.environment.rotationDegrees) * 3.14159265358979 / 180.0));
+    glBindTextureUnit(0, equirect.id());
+    glBindImageTexture(0, env.cube.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glUseProgram(prog);
+    dispatchCube(s.cubeSize);
+    glUseProgram(0);
+    glBindTextureUnit(0, 0);
+    glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glGenerateTextureMipmap(env.cube.id());
+    gl::checkErrors("converting the environment map to a cubemap");
+    if (env.hasMap) {
+        glFinish();
+        logInfo("ibl: " + scene.environment.map.string() + " -> cubemap " + std::to_string(s.cubeSize) + "^2 x 6 (" +
+                std::to_string(levels) + " mips) in " + fmt(std::round(secondsSince(t0) * 1000.0)) + " ms");
+    }
+    if (useDisk) saveCache(file, key, nullptr, {&env.cube});
+}
+
+void EnvironmentCache::bakeIbl(BakedEnvironment& env, const Scene& scene, const EnvironmentSettings& s,
+                               const gl::ShaderLibrary& shaders, const std::string& key) {
+    env.prefiltered = gl::makeTextureCube(GL_RGBA16F, s.specularSize, s.specularLevels, "ibl.prefiltered");
+    env.irradiance = gl::makeTextureCube(GL_RGBA16F, s.irradianceSize, 1, "ibl.irradiance");
+    const bool useDisk = env.hasMap && !s.cacheDir.empty();
+    const fs::path file = useDisk ? cacheFile(s.cacheDir, "bake", key) : fs::path();
+    if (useDisk && loadCache(file, key, &env.sh, {&env.prefiltered, &env.irradiance})) {
+        env.bakeKey = key;
+        logInfo("ibl: baked environment read from " + file.string());
+        return;
+    }
+    const auto t0 = std::chrono::steady_clock::now();
+    const std::string what = env.hasMap ? scene.environment.map.string() : std::string("uniform environment");
+    auto progress = [&](const std::string& step) {
+        if (env.hasMap) logInfo("ibl: " + what + ": " + step);
+    };
+
+    // Diffuse SH: on the CPU, in double, from the equirectangular map (not from the clamped cube).
+    ImageF map = env.hasMap ? loadHdrImage(scene.environment.map) : uniformImage(scene.environment.color);
+    ShCoefficients sh = projectEquirectSh(map, scene.environment.rotationDegrees);
+    for (size_t i = 0; i < 9; ++i) env.sh[i] = glm::vec3(sh[i]);
+    progress("SH (CPU, double) done");
+
+    gl::ScopedEnable seamless(GL_TEXTURE_CUBE_MAP_SEAMLESS, true);
+    const float sourceMaxLod = float(env.cube.levels - 1);
+    glBindTextureUnit(0, env.cube.id());
+
+    // Irradiance cube.
+    if (!irradiance_) irradiance_ = shaders.compute("ibl_irradiance.comp");
+    GLuint prog = irradiance_.id();
+    glProgramUniform1i(prog, glGetUniformLocation(prog, "uSize"), s.irradianceSize);
+    glProgramUniform1i(prog, glGetUniformLocation(prog, "uSamples"), s.irradianceSamples);
+    glProgramUniform1i(prog, glGetUniformLocation(prog, "uSourceSize"), env.cube.width);
+    glProgramUniform1f(prog, glGetUniformLocation(prog, "uSourceMaxLod"), sourceMaxLod);
+    glBindImageTexture(0, env.irradiance.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glUseProgram(prog);
+    dispatchCube(s.irradianceSize);
+    progress("irradiance cube " + std::to_string(s.irradianceSize) + "^2 x " + std::to_string(s.irradianceSamples) +
+             " samples recorded");
+
+    // Specular: mip 0 (roughness 0) is an exact copy of the cube mip of that size (Filament #3093).
+    const int sourceLevel = log2Int(s.cubeSize / s.specularSize);
+    glCopyImageSubData(env.cube.id(), GL_TEXTURE_CUBE_MAP, sourceLevel, 0, 0, 0, env.prefiltered.id(),
+                       GL_TEXTURE_CUBE_MAP, 0, 0, 0, 0, s.specularSize, s.specularSize, 6);
+    if (!prefilter_) prefilter_ = shaders.compute("ibl_prefilter.comp");
+    prog = prefilter_.id();
+    glProgramUniform1i(prog, glGetUniformLocation(prog, "uSamples"), s.specularSamples);
+    glProgramUniform1i(prog, glGetUniformLocation(prog, "uSourceSize"), env.cube.width);
+    glProgramUniform1f(prog, glGetUniformLocation(prog, "uSourceMaxLod"), sourceMaxLod);
+    glUseProgram(prog);
+    for (int level = 1; level < s.specularLevels; ++level) {
+        const int size = std::max(s.specularSize >> level, 1);
+        const float roughness = float(level) / float(s.specularLevels - 1);
+        glProgramUniform1i(prog, glGetUniformLocation(prog, "uSize"), size);
+        glProgramUniform1f(prog, glGetUniformLocation(prog, "uRoughness"), roughness);
+        glBindImageTexture(0, env.prefiltered.id(), level, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+        dispatchCube(size);
+        if (env.hasMap) {
+            glFinish();  // per-level progress and a bounded time per submission
+            progress("prefiltered mip " + std::to_string(level) + "/" + std::to_string(s.specularLevels - 1) +
+                     " (roughness " + fmt(roughness) + ", " + std::to_string(size) + "^2, " +
+                     std::to_string(s.specularSamples) + " samples) at " + fmt(std::round(secondsSince(t0) * 1000.0)) + " ms");
+        }
+    }
+    glUseProgram(0);
+    glBindTextureUnit(0, 0);
+    glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    gl::checkErrors("baking image-based lighting");
+    glFinish();
+    env.bakeKey = key;
+    if (env.hasMap)
+        logInfo("ibl: baked " + what + " in " + fmt(std::round(secondsSince(t0) * 1000.0)) + " ms");
+    if (useDisk) saveCache(file, key, &env.sh, {&env.prefiltered, &env.irradiance});
+}
+
+const gl::Texture& EnvironmentCache::dfgLut(const EnvironmentSettings& s, const gl::ShaderLibrary& shaders) {
+    validateEnvironmentSettings(s);
+    const std::string key = std::to_string(s.dfgSize) + "x" + std::to_string(s.dfgSamples);
+    if (dfg_ && dfgKey_ == key) return dfg_;
+    dfg_ = gl::makeTexture2D(GL_RG16F, s.dfgSize, s.dfgSize, 1, "ibl.dfg_lut");
+    glTextureParameteri(dfg_.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(dfg_.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(dfg_.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(dfg_.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    if (!dfgProgram_) dfgProgram_ = shaders.compute("ibl_dfg.comp");
+    const GLuint prog = dfgProgram_.id();
+    glProgramUniform1i(prog, glGetUniformLocation(prog, "uSize"), s.dfgSize);
+    glProgramUniform1i(prog, glGetUniformLocation(prog, "uSamples"), s.dfgSamples);
+    glBindImageTexture(0, dfg_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG16F);
+    glUseProgram(prog);
+    gl::dispatch2D(s.dfgSize, s.dfgSize);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+    glUseProgram(0);
+    glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG16F);
+    gl::checkErrors("computing the DFG LUT");
+    dfgKey_ = key;
+    return dfg_;
+}
+
+}  // namespace lp

@@ -1,0 +1,53 @@
+#pragma once
+// An environment on the GPU: the equirectangular map converted to a cubemap (RGBA16F, full
+// mip chain, the scene's rotation about +Y applied, so it is in world space) and, when IBL needs
+// it, the bake: 9 SH coefficients of radiance (CPU, double, from the map), an irradiance cubemap
+// and the GGX-prefiltered specular chain (GPU compute). Plus the split-sum DFG LUT. Everything is
+// made once per key (map path, rotation, sizes, samples) and kept in memory; with
+// EnvironmentSettings::cacheDir the cubes are also written to / read from disk.
+#include <array>
+#include <map>
+#include <memory>
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "engine/gl/handles.hpp"
+#include "engine/gl/shader.hpp"
+#include "engine/render/settings.hpp"
+#include "engine/scene/scene.hpp"
+
+namespace lp {
+
+struct BakedEnvironment {
+    bool hasMap = false;        // false: a uniform environment of the scene's colour
+    gl::Texture cube;           // radiance (without the scene's intensity)
+    std::string bakeKey;        // empty until baked
+    std::array<glm::vec3, 9> sh{};  // SH of radiance
+    gl::Texture irradiance;     // E(n), W/m^2
+    gl::Texture prefiltered;    // mip m: GGX roughness m / (levels - 1); mip 0 is a copy of a cube mip
+};
+
+class EnvironmentCache {
+public:
+    // The environment of `scene` with its cube made; if `bake`, also its IBL data. Needs GL.
+    const BakedEnvironment& get(const Scene& scene, const EnvironmentSettings& settings,
+                                const gl::ShaderLibrary& shaders, bool bake);
+    const gl::Texture& dfgLut(const EnvironmentSettings& settings, const gl::ShaderLibrary& shaders);
+
+private:
+    void makeCube(BakedEnvironment& env, const Scene& scene, const EnvironmentSettings& s,
+                  const gl::ShaderLibrary& shaders, const std::string& key);
+    void bakeIbl(BakedEnvironment& env, const Scene& scene, const EnvironmentSettings& s,
+                 const gl::ShaderLibrary& shaders, const std::string& key);
+
+    std::map<std::string, std::unique_ptr<BakedEnvironment>> environments_;
+    gl::Texture dfg_;
+    std::string dfgKey_;
+    gl::Program toCube_, prefilter_, irradiance_, dfgProgram_;
+};
+
+// Throws lp::Error naming the field when the bake settings are unusable (sizes, sample counts).
+void validateEnvironmentSettings(const EnvironmentSettings& s);
+
+}  // namespace lp

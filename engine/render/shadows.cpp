@@ -1,0 +1,178 @@
+#include "engine/render/shadows.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "engine/core/error.hpp"
+
+namespace lp {
+
+std::vector<int> shadowCastingLights(const FrameData& frame) {
+    std::vector<int> lights;
+    if (!frame.scene || !frame.settings || !frame.settings->shadows.enabled) return lights;
+    const auto& all = frame.scene->directionalLights;
+    for (int i = 0; i < int(all.size()) && int(lights.size()) < kMaxShadowedLights; ++i)
+        if (all[size_t(i)].castsShadows) lights.push_back(i);
+    return lights;
+}
+
+std::vector<double> practicalSplits(double nearDist, double farDist, int cascades, double lambda) {
+    std::vector<double> splits(size_t(cascades) + 1);
+    for (int i = 0; i <= cascades; ++i) {
+        const double t = double(i) / cascades;
+        const double logSplit = nearDist * std::pow(farDist / nearDist, t);
+        const double linSplit = nearDist + (farDist - nearDist) * t;
+        splits[size_t(i)] = lambda * logSplit + (1.0 - lambda) * linSplit;
+    }
+    splits.front() = nearDist;  // exact ends, whatever pow rounds to
+    splits.back() = farDist;
+    return splits;
+}
+
+glm::ivec2 shadowAtlasGrid(int cascades) { return {cascades > 1 ? 2 : 1, cascades > 2 ? 2 : 1}; }
+
+namespace {
+
+void checkSettings(const ShadowSettings& s) {
+    if (s.size < 16 || s.size > 8192) throw Error("shadows: size " + std::to_string(s.size) + " is outside [16, 8192]");
+    if (s.cascades < 1 || s.cascades > kMaxShadowCascades)
+        throw Error("shadows: cascades " + std::to_string(s.cascades) + " is outside [1, " + std::to_string(kMaxShadowCascades) + "]");
+    if (!(s.splitLambda >= 0.0f && s.splitLambda <= 1.0f))
+        throw Error("shadows: split lambda " + std::to_string(s.splitLambda) + " is outside [0, 1]");
+    for (float b : {s.depthBias, s.slopeBias, s.normalBias})
+        if (!std::isfinite(b) || b < 0.0f) throw Error("shadows: biases must be finite and >= 0");
+}
+
+glm::dvec3 clampCoordinate(glm::dvec3 p) {
+    for (int i = 0; i < 3; ++i)
+        p[i] = std::isfinite(p[i]) ? std::clamp(p[i], -kMaxShadowCoordinate, kMaxShadowCoordinate) : 0.0;
+    return p;
+}
+
+glm::mat4 toFloat(const glm::dmat4& m) {
+    glm::mat4 f(m);
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r)
+            if (!std::isfinite(f[c][r])) throw Error("shadows: light matrix is not finite (scene bounds too large)");
+    return f;
+}
+
+}  // namespace
+
+ShadowFrustum fitShadowFrustum(const FrameData& frame, glm::vec3 lightDirection) {
+    const ShadowSettings& settings = frame.settings->shadows;
+    checkSettings(settings);
+    glm::dvec3 f(lightDirection);
+    const double len = glm::length(f);
+    if (!std::isfinite(len) || len < 1e-20) throw Error("shadows: a directional light has a zero or non-finite direction");
+    f /= len;
+
+    ShadowFrustum out;
+    out.lightDirection = f;
+    out.tileSize = settings.size;
+    const glm::ivec2 grid = shadowAtlasGrid(settings.cascades);
+    out.columns = grid.x;
+    out.rows = grid.y;
+
+    // Light view: looks along f (-z), an orthonormal basis without translation (translation goes
+    // into the projection, so huge coordinates never meet a lookAt's eye position).
+    const glm::dvec3 up = std::abs(f.y) < 0.99 ? glm::dvec3(0, 1, 0) : glm::dvec3(1, 0, 0);
+    const glm::dvec3 lx = glm::normalize(glm::cross(f, up));
+    const glm::dvec3 ly = glm::cross(lx, f);
+    glm::dmat4 lightView(1.0);
+    for (int i = 0; i < 3; ++i) {
+        lightView[i][0] = lx[i];
+        lightView[i][1] = ly[i];
+        lightView[i][2] = -f[i];
+    }
+
+    // Scene bounds, clamped; an empty scene is a unit box at the origin.
+    glm::vec3 flo, fhi;
+    frame.scene->bounds(flo, fhi);
+    glm::dvec3 lo = clampCoordinate(glm::dvec3(flo)), hi = clampCoordinate(glm::dvec3(fhi));
+    if (!(lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z)) lo = glm::dvec3(-0.5), hi = glm::dvec3(0.5);
+    const double magnitude = std::max({1.0, glm::length(lo), glm::length(hi)});
+    const double tiny = 1e-6 * magnitude;  // below this, extents are rounding noise
+
+    const glm::dmat4 view(frame.view);
+    const glm::dmat4 eyeToWorld = glm::inverse(view);
+    out.eyeToLight = glm::mat3(glm::dmat3(lightView) * glm::dmat3(eyeToWorld));
+    glm::dvec3 lsLo(std::numeric_limits<double>::max()), lsHi(std::numeric_limits<double>::lowest());
+    double camLo = std::numeric_limits<double>::max(), camHi = std::numeric_limits<double>::lowest();
+    for (int c = 0; c < 8; ++c) {
+        glm::dvec4 p((c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z, 1.0);
+        glm::dvec3 ls(lightView * p);
+        lsLo = glm::min(lsLo, ls);
+        lsHi = glm::max(lsHi, ls);
+        const double depth = -(view * p).z;
+        camLo = std::min(camLo, depth);
+        camHi = std::max(camHi, depth);
+    }
+
+    // The camera depth range worth covering: [near, far] clipped to the scene's depth range. For
+    // stable texels the clip uses the scene's bounding sphere (turning the camera changes nothing)
+    // and snaps to a 2^(1/4) grid (moving changes the splits only when it crosses a grid step).
+    const double nearPlane = std::max(double(frame.nearPlane), 1e-6);
+    const double farPlane = std::max(double(frame.farPlane), nearPlane * (1.0 + 1e-6));
+    const glm::dvec3 sceneCentre = 0.5 * (lo + hi);
+    const double sceneRadius = 0.5 * glm::length(hi - lo);
+    const double centreDistance = glm::length(glm::dvec3(eyeToWorld[3]) - sceneCentre);
+    auto snapDown = [](double z) { return std::exp2(std::floor(std::log2(z) * 4.0) / 4.0); };
+    auto snapUp = [](double z) { return std::exp2(std::ceil(std::log2(z) * 4.0) / 4.0); };
+    double zNear = nearPlane, zFar = farPlane;
+    if (centreDistance - sceneRadius > nearPlane) zNear = std::max(nearPlane, snapDown(centreDistance - sceneRadius));
+    if (centreDistance + sceneRadius < farPlane) zFar = std::min(farPlane, snapUp(centreDistance + sceneRadius));
+    if (!(zFar > zNear * (1.0 + 1e-6)) || camHi < nearPlane || camLo > farPlane)
+        zNear = nearPlane, zFar = farPlane;  // scene out of view: any splits do
+    const std::vector<double> splits = practicalSplits(zNear, zFar, settings.cascades, settings.splitLambda);
+
+    // Symmetric perspective: tangents of the half angles from the projection.
+    const double tanY = 1.0 / double(frame.projection[1][1]), tanX = 1.0 / double(frame.projection[0][0]);
+    const double k2 = tanX * tanX + tanY * tanY;
+    const glm::dvec3 camPos(eyeToWorld[3]);
+    const glm::dvec3 camForward = -glm::normalize(glm::dvec3(eyeToWorld[2]));
+
+    // Depth: the whole scene along the light, padded so its faces never clip.
+    const double depthPad = std::max(1e-3 * (lsHi.z - lsLo.z), tiny);
+    const double nearZ = -lsHi.z - depthPad, farZ = -lsLo.z + depthPad;  // distances along f
+    const double sceneSide = std::max(lsHi.x - lsLo.x, lsHi.y - lsLo.y);
+
+    for (int c = 0; c < settings.cascades; ++c) {
+        const double a = splits[size_t(c)], b = splits[size_t(c) + 1];
+        // Smallest sphere around the slice's 8 corners: centre on the view axis at depth s.
+        double s = std::clamp(0.5 * (a + b) * (1.0 + k2), a, b);
+        const double radius = std::max(std::sqrt((s - a) * (s - a) + a * a * k2), std::sqrt((b - s) * (b - s) + b * b * k2));
+        const glm::dvec3 centre = camPos + camForward * s;
+
+        // Square side: the sphere's diameter, or the scene's light-space extent when smaller.
+        // The extra 2 texels leave room for the texel snap below.
+        double side = std::max(std::min(2.0 * radius, sceneSide), tiny);
+        const double texel = side / double(settings.size - 2);
+        side = texel * settings.size;
+
+        glm::dvec2 ctr(glm::dvec3(lightView * glm::dvec4(centre, 1.0)));
+        for (int i = 0; i < 2; ++i) {  // keep the square over the scene where it can be
+            const double slo = lsLo[i] + 0.5 * side, shi = lsHi[i] - 0.5 * side;
+            ctr[i] = slo <= shi ? std::clamp(ctr[i], slo, shi) : 0.5 * (lsLo[i] + lsHi[i]);
+            ctr[i] = std::floor(ctr[i] / texel + 0.5) * texel;  // whole texels: stable under motion
+        }
+
+        const glm::dmat4 proj = glm::ortho(ctr.x - 0.5 * side, ctr.x + 0.5 * side, ctr.y - 0.5 * side,
+                                           ctr.y + 0.5 * side, nearZ, farZ);
+        ShadowCascade cascade;
+        cascade.worldToClip = toFloat(proj * lightView);
+        cascade.eyeToClip = toFloat(proj * lightView * eyeToWorld);
+        cascade.splitNear = float(a);
+        cascade.splitFar = c + 1 == settings.cascades ? std::numeric_limits<float>::max() : float(b);
+        cascade.texelWorld = float(texel);
+        cascade.depthRange = float(farZ - nearZ);
+        out.cascades.push_back(cascade);
+    }
+    return out;
+}
+
+}  // namespace lp

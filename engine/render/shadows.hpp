@@ -1,0 +1,58 @@
+#pragma once
+// Cascaded shadow maps for directional lights: which lights get one, and the light-space
+// orthographic frusta (CPU math, no GL, so unit tests and 'lightpass graph' can use it).
+//
+// Each cascade covers one slice [splitNear, splitFar] of the camera's view depth, itself clipped to
+// the depth range the scene's bounds occupy. Its square is the slice's bounding sphere (so its
+// size, hence its texel size, does not change as the camera turns or moves: no shimmering), shrunk
+// to the scene's light-space extent when the scene is smaller, kept inside the scene's extent, and
+// its centre snapped to whole texels. Depth spans the whole scene bounds along the light, so
+// casters outside the view still cast. Everything is computed in double precision from bounds
+// clamped to +-kMaxShadowCoordinate, so huge scenes give finite matrices (Filament PR #6314).
+#include <array>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "engine/render/frame_data.hpp"
+
+namespace lp {
+
+constexpr int kMaxShadowCascades = 4;
+constexpr int kMaxShadowedLights = 4;  // shadow maps the global-light shader binds
+constexpr double kMaxShadowCoordinate = 1e18;
+
+struct ShadowCascade {
+    glm::mat4 worldToClip{1.0f};  // light orthographic projection * light view
+    glm::mat4 eyeToClip{1.0f};    // the same from the camera's eye space (what the shader uses)
+    float splitNear = 0.0f;       // view-axis distances (positive) the cascade serves
+    float splitFar = 0.0f;
+    float texelWorld = 0.0f;      // world-space size of one shadow texel
+    float depthRange = 0.0f;      // world-space distance that window depth 0..1 spans
+};
+
+struct ShadowFrustum {
+    glm::dvec3 lightDirection{0.0, -1.0, 0.0};  // normalised travel direction
+    glm::mat3 eyeToLight{1.0f};  // rotation from camera eye space to light view space (+z towards the light)
+    std::vector<ShadowCascade> cascades;
+    // Tile layout of the cascades in the shadow-map atlas: cascade c at column c % columns, row c / columns.
+    int columns = 1, rows = 1;
+    int tileSize = 0;
+};
+
+// Indices into scene.directionalLights of the lights that get a shadow map this frame: those with
+// castsShadows, when settings.shadows.enabled, at most kMaxShadowedLights (the first ones).
+std::vector<int> shadowCastingLights(const FrameData& frame);
+
+// The cascades for `lightDirection` (travel direction, need not be unit) and `frame`'s camera.
+// Throws lp::Error for a zero or non-finite direction or out-of-range settings.
+ShadowFrustum fitShadowFrustum(const FrameData& frame, glm::vec3 lightDirection);
+
+// Camera view-depth split distances (cascades + 1 values, first = near, last = far) by the
+// practical scheme: lambda * logarithmic + (1 - lambda) * linear.
+std::vector<double> practicalSplits(double nearDist, double farDist, int cascades, double lambda);
+
+// Atlas tile grid for `cascades` tiles: 1 -> 1x1, 2 -> 2x1, 3..4 -> 2x2.
+glm::ivec2 shadowAtlasGrid(int cascades);
+
+}  // namespace lp

@@ -1,0 +1,393 @@
+#include "passes/local_light_pass.hpp"
+
+#include <algorithm>
+#include <memory>
+#include <vector>
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include "engine/gl/shader.hpp"
+#include "engine/gl/state.hpp"
+#include "engine/render/local_lights.hpp"
+
+namespace lp {
+
+namespace {
+constexpr int kTileSize = 16;           // local_size of local_light_tiled.comp
+constexpr float kGlobeScale = 0.04f;    // globe radius as a fraction of the light's range
+constexpr float kGlobeRadiance = 8.0f;  // flat radiance of a globe (brightest channel)
+constexpr float kOverlayRadiance = 3.0f;
+constexpr float kHeatMax = 32.0f;       // lights per tile shown as red
+
+int specularMode(const LocalLightSettings& s) {
+    if (!s.specular) return 0;                 // LP_LOCAL_SPECULAR_OFF
+    return s.specularOutsideRange ? 2 : 1;     // UNRANGED : RANGED
+}
+bool unbounded(const LocalLightSettings& s) { return s.specular && s.specularOutsideRange; }
+
+// Blend function/equation, cull face, depth func/mask, polygon mode and scissor box: the raster
+// state the local-light draws change beyond what gl::ScopedEnable covers, put back when they end.
+class ScopedRasterState {
+public:
+    ScopedRasterState() {
+        glGetIntegerv(GL_BLEND_SRC_RGB, &srcRgb_);
+        glGetIntegerv(GL_BLEND_DST_RGB, &dstRgb_);
+        glGetIntegerv(GL_BLEND_SRC_ALPHA, &srcAlpha_);
+        glGetIntegerv(GL_BLEND_DST_ALPHA, &dstAlpha_);
+        glGetIntegerv(GL_BLEND_EQUATION_RGB, &eqRgb_);
+        glGetIntegerv(GL_BLEND_EQUATION_ALPHA, &eqAlpha_);
+        glGetIntegerv(GL_CULL_FACE_MODE, &cullFace_);
+        glGetIntegerv(GL_DEPTH_FUNC, &depthFunc_);
+        glGetBooleanv(GL_DEPTH_WRITEMASK, &depthMask_);
+        glGetIntegerv(GL_POLYGON_MODE, polygonMode_);
+        glGetIntegerv(GL_SCISSOR_BOX, scissor_);
+    }
+    ~ScopedRasterState() {
+        glBlendFuncSeparate(GLenum(srcRgb_), GLenum(dstRgb_), GLenum(srcAlpha_), GLenum(dstAlpha_));
+        glBlendEquationSeparate(GLenum(eqRgb_), GLenum(eqAlpha_));
+        glCullFace(GLenum(cullFace_));
+        glDepthFunc(GLenum(depthFunc_));
+        glDepthMask(depthMask_);
+        glPolygonMode(GL_FRONT_AND_BACK, GLenum(polygonMode_[0]));
+        glScissor(scissor_[0], scissor_[1], scissor_[2], scissor_[3]);
+    }
+    ScopedRasterState(const ScopedRasterState&) = delete;
+    ScopedRasterState& operator=(const ScopedRasterState&) = delete;
+
+private:
+    GLint srcRgb_ = 0, dstRgb_ = 0, srcAlpha_ = 0, dstAlpha_ = 0, eqRgb_ = 0, eqAlpha_ = 0;
+    GLint cullFace_ = 0, depthFunc_ = 0;
+    GLboolean depthMask_ = GL_TRUE;
+    GLint polygonMode_[2] = {GL_FILL, GL_FILL};
+    GLint scissor_[4] = {0, 0, 0, 0};
+};
+
+void makeMesh(const std::vector<glm::vec3>& tris, const std::string& name, gl::Buffer& buffer, gl::VertexArray& vao,
+              int& vertices) {
+    buffer = gl::makeBuffer(GLsizeiptr(tris.size() * sizeof(glm::vec3)), tris.data(), 0, name);
+    vao = gl::makeVertexArray(name);
+    glVertexArrayVertexBuffer(vao.id(), 0, buffer.id(), 0, sizeof(glm::vec3));
+    glEnableVertexArrayAttrib(vao.id(), 0);
+    glVertexArrayAttribFormat(vao.id(), 0, 3, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribBinding(vao.id(), 0, 0);
+    vertices = int(tris.size());
+}
+
+void ensureState(LocalLightPass& state, const FrameData& frame) {
+    if (state.fbo) return;
+    state.fragmentProgram = frame.shaders->graphics("local_light.vert", "local_light.frag");
+    state.tiledProgram = frame.shaders->compute("local_light_tiled.comp");
+    state.heatmapProgram = frame.shaders->compute("local_light_tiled.comp", {"LP_TILE_HEATMAP"});
+    state.sanitizeProgram = frame.shaders->compute("local_light_sanitize.comp");
+    state.overlayProgram = frame.shaders->graphics("local_light_overlay.vert", "local_light_overlay.frag");
+    makeMesh(circumscribingIcosphere(1), "local_light.volume", state.volumeMesh, state.volumeVao, state.volumeVertices);
+    makeMesh(circumscribingIcosphere(2), "local_light.globe", state.globeMesh, state.globeVao, state.globeVertices);
+    state.fbo = gl::makeFramebuffer("local_lights");
+}
+
+// Uploads the frame's lights (eye space) into the SSBO at binding 0; returns them.
+std::vector<PointLight> uploadLights(LocalLightPass& state, const FrameData& frame) {
+    std::vector<PointLight> lights = localLightsForFrame(*frame.scene, frame.settings->localLights, frame.time);
+    std::vector<GpuLocalLight> gpu;
+    gpu.reserve(lights.size());
+    for (const auto& l : lights)
+        gpu.push_back({glm::vec4(glm::vec3(frame.view * glm::vec4(l.position, 1.0f)), l.range),
+                       glm::vec4(l.color * l.intensity, 0.0f)});
+    if (gpu.size() > state.lightCapacity || !state.lights) {
+        state.lightCapacity = std::max<size_t>(gpu.size(), 64);
+        state.lights = gl::makeBuffer(GLsizeiptr(state.lightCapacity * sizeof(GpuLocalLight)), nullptr,
+                                      GL_DYNAMIC_STORAGE_BIT, "local_lights.ssbo");
+    }
+    if (!gpu.empty())
+        glNamedBufferSubData(state.lights.id(), 0, GLsizeiptr(gpu.size() * sizeof(GpuLocalLight)), gpu.data());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, state.lights.id());
+    return lights;
+}
+
+void setInt(GLuint prog, const char* name, int v) { glProgramUniform1i(prog, glGetUniformLocation(prog, name), v); }
+void setFloat(GLuint prog, const char* name, float v) { glProgramUniform1f(prog, glGetUniformLocation(prog, name), v); }
+void setMat4(GLuint prog, const char* name, const glm::mat4& m) {
+    glProgramUniformMatrix4fv(prog, glGetUniformLocation(prog, name), 1, GL_FALSE, glm::value_ptr(m));
+}
+
+void bindGBuffer(const fg::PassResources& res, const GBuffer& g, bool lightingOnly) {
+    glBindTextureUnit(0, res.texture(g.depth));
+    glBindTextureUnit(1, res.texture(g.normal));
+    glBindTextureUnit(2, lightingOnly ? 0 : res.texture(g.diffuse));
+    glBindTextureUnit(3, res.texture(g.position));
+    glBindTextureUnit(4, res.texture(g.specular));
+}
+// Also detaches the pooled textures from the FBO, so it keeps no reference to textures the pool frees.
+void unbindAll(const LocalLightPass& state) {
+    if (state.fbo) {
+        glNamedFramebufferTexture(state.fbo.id(), GL_COLOR_ATTACHMENT0, 0, 0);
+        glNamedFramebufferTexture(state.fbo.id(), GL_DEPTH_ATTACHMENT, 0, 0);
+    }
+    for (GLuint u = 0; u < 5; ++u) glBindTextureUnit(u, 0);
+    glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
+    glBindVertexArray(0);
+    glUseProgram(0);
+}
+
+struct LightData {
+    GBuffer in;
+    fg::ResourceId hdr;
+};
+
+// The fullscreen, scissor and volumes methods: additive blending into an FBO holding the HDR texture.
+void drawFragmentMethod(LocalLightPass& state, const FrameData& frame, const std::vector<PointLight>& lights,
+                        GLuint hdrTexture) {
+    const LocalLightSettings& s = frame.settings->localLights;
+    const int count = int(lights.size());
+    const bool noBounds = unbounded(s);
+    const LocalLightMethod method = s.method;
+    const bool useScissor = method == LocalLightMethod::Scissor && s.scissor && !noBounds;
+    const GLuint prog = state.fragmentProgram.id();
+    const GLuint fbo = state.fbo.id();
+    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, hdrTexture, 0);
+    glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, 0, 0);
+    glNamedFramebufferDrawBuffer(fbo, GL_COLOR_ATTACHMENT0);
+    setMat4(prog, "uProjection", frame.projection);
+
+    ScopedRasterState saved;
+    gl::ScopedFramebuffer bind(fbo, frame.width, frame.height);
+    gl::ScopedEnable blend(GL_BLEND, true);
+    // Volumes: back faces only, no depth test. A back face of the circumscribing icosphere covers
+    // every pixel whose surface lies in the light's sphere, whether the camera is outside it, inside
+    // it, or the sphere crosses the near plane; depth clamping keeps back faces past the far plane
+    // or before the near plane from being clipped. Pixels the volume covers but the light does not
+    // reach add exactly 0 (the window is 0 at and past the range).
+    gl::ScopedEnable depthTest(GL_DEPTH_TEST, false);
+    gl::ScopedEnable depthClamp(GL_DEPTH_CLAMP, true);
+    gl::ScopedEnable cull(GL_CULL_FACE, method == LocalLightMethod::Volumes && !noBounds);
+    gl::ScopedEnable scissor(GL_SCISSOR_TEST, useScissor);
+    glBlendEquation(GL_FUNC_ADD);
+    glBlendFunc(GL_ONE, GL_ONE);
+    glCullFace(GL_FRONT);
+    glDepthMask(GL_FALSE);
+    glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+    glUseProgram(prog);
+    glBindVertexArray(state.volumeVao.id());
+
+    LocalLightStats& st = state.stats;
+    if (method == LocalLightMethod::Volumes) {
+        setInt(prog, "uFirstLight", 0);
+        setInt(prog, "uMode", noBounds ? 0 : 1);
+        glDrawArraysInstanced(GL_TRIANGLES, 0, noBounds ? 3 : state.volumeVertices, count);
+        st.drawn = count;
+    } else {
+        setInt(prog, "uMode", 0);
+        const GLint locFirst = glGetUniformLocation(prog, "uFirstLight");
+        for (int i = 0; i < count; ++i) {
+            if (useScissor) {
+                const glm::vec3 eye = glm::vec3(frame.view * glm::vec4(lights[size_t(i)].position, 1.0f));
+                ScissorRect r = sphereScissorRect(eye, lights[size_t(i)].range, frame.projection, frame.nearPlane,
+                                                  frame.width, frame.height);
+                if (r.empty()) {
+                    ++st.offscreen;
+                    continue;
+                }
+                if (r.fullScreen) ++st.fullScreen;
+                glScissor(r.x, r.y, r.width, r.height);
+            }
+            glProgramUniform1i(prog, locFirst, i);
+            glDrawArrays(GL_TRIANGLES, 0, 3);
+            ++st.drawn;
+        }
+    }
+}
+}  // namespace
+
+fg::ResourceId addLocalLightPass(fg::FrameGraph& graph, LocalLightPass& state, const FrameData& frame,
+                                 const GBuffer& gbuffer, fg::ResourceId hdr, bool lightingOnly) {
+    if (localLightCount(*frame.scene, frame.settings->localLights) <= 0) return hdr;
+    const LightData& d = graph.addPass<LightData>(
+        "local_lights",
+        [&](fg::PassBuilder& b, LightData& data) {
+            data.in = gbuffer;
+            b.read(gbuffer.depth);
+            b.read(gbuffer.normal);
+            if (!lightingOnly) b.read(gbuffer.diffuse);
+            b.read(gbuffer.position);
+            b.read(gbuffer.specular);
+            data.hdr = b.write(hdr);
+        },
+        [&state, frame, lightingOnly](const LightData& data, const fg::PassResources& res) {
+            ensureState(state, frame);
+            const LocalLightSettings& s = frame.settings->localLights;
+            state.stats = LocalLightStats{};
+            state.stats.method = s.method;
+            std::vector<PointLight> lights = uploadLights(state, frame);
+            state.stats.requested = int(lights.size());
+            bindGBuffer(res, data.in, lightingOnly);
+            const GLuint hdrTexture = res.texture(data.hdr);
+            if (s.method == LocalLightMethod::Tiled) {
+                const GLuint prog = state.tiledProgram.id();
+                setInt(prog, "uLightCount", int(lights.size()));
+                setMat4(prog, "uProjection", frame.projection);
+                setInt(prog, "uUnbounded", unbounded(s));
+                setInt(prog, "uLightingOnly", lightingOnly);
+                setInt(prog, "uSpecularMode", specularMode(s));
+                glBindImageTexture(0, hdrTexture, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
+                glUseProgram(prog);
+                gl::dispatch2D(frame.width, frame.height, kTileSize);
+                state.stats.drawn = int(lights.size());
+            } else {
+                const GLuint prog = state.fragmentProgram.id();
+                setInt(prog, "uLightingOnly", lightingOnly);
+                setInt(prog, "uSpecularMode", specularMode(s));
+                drawFragmentMethod(state, frame, lights, hdrTexture);
+                // Blending can overflow fp16 to +Inf: clamp like every other HDR write.
+                glBindImageTexture(0, hdrTexture, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
+                glUseProgram(state.sanitizeProgram.id());
+                gl::dispatch2D(frame.width, frame.height);
+            }
+            glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
+                            GL_FRAMEBUFFER_BARRIER_BIT);
+            unbindAll(state);
+        });
+    return d.hdr;
+}
+
+namespace {
+struct OverlayData {
+    GBuffer in;
+    fg::ResourceId hdr;
+};
+
+void drawGlobes(LocalLightPass& state, const FrameData& frame, int count, GLuint hdrTexture, GLuint depthTexture) {
+    const GLuint prog = state.overlayProgram.id();
+    const GLuint fbo = state.fbo.id();
+    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, hdrTexture, 0);
+    glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, depthTexture, 0);  // read only: depth mask off
+    glNamedFramebufferDrawBuffer(fbo, GL_COLOR_ATTACHMENT0);
+    ScopedRasterState saved;
+    gl::ScopedFramebuffer bind(fbo, frame.width, frame.height);
+    gl::ScopedEnable blend(GL_BLEND, false);
+    gl::ScopedEnable depthTest(GL_DEPTH_TEST, true);  // hidden behind the scene's surfaces
+    gl::ScopedEnable cull(GL_CULL_FACE, true);
+    gl::ScopedEnable scissor(GL_SCISSOR_TEST, false);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_FALSE);
+    glCullFace(GL_BACK);
+    glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+    glUseProgram(prog);
+    setInt(prog, "uMode", 1);
+    setFloat(prog, "uGlobeScale", kGlobeScale);
+    setFloat(prog, "uRadiance", kGlobeRadiance);
+    setMat4(prog, "uProjection", frame.projection);
+    glBindVertexArray(state.globeVao.id());
+    glDrawArraysInstanced(GL_TRIANGLES, 0, state.globeVertices, count);
+}
+
+// The light-ranges view: the volumes method's icospheres as wireframes, every other method's
+// scissor rectangles as outlines (the tight screen bounds of each light's sphere).
+void drawRanges(LocalLightPass& state, const FrameData& frame, const std::vector<PointLight>& lights, GLuint hdrTexture) {
+    const GLuint prog = state.overlayProgram.id();
+    const GLuint fbo = state.fbo.id();
+    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, hdrTexture, 0);
+    glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, 0, 0);
+    glNamedFramebufferDrawBuffer(fbo, GL_COLOR_ATTACHMENT0);
+    ScopedRasterState saved;
+    gl::ScopedFramebuffer bind(fbo, frame.width, frame.height);
+    gl::ScopedEnable blend(GL_BLEND, false);
+    gl::ScopedEnable depthTest(GL_DEPTH_TEST, false);
+    gl::ScopedEnable depthClamp(GL_DEPTH_CLAMP, true);
+    gl::ScopedEnable cull(GL_CULL_FACE, false);
+    gl::ScopedEnable scissor(GL_SCISSOR_TEST, false);
+    glUseProgram(prog);
+    setFloat(prog, "uRadiance", kOverlayRadiance);
+    setMat4(prog, "uProjection", frame.projection);
+    glBindVertexArray(state.volumeVao.id());
+    if (frame.settings->localLights.method == LocalLightMethod::Volumes) {
+        setInt(prog, "uMode", 0);
+        glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
+        glDrawArraysInstanced(GL_TRIANGLES, 0, state.volumeVertices, int(lights.size()));
+        return;
+    }
+    setInt(prog, "uMode", 2);
+    const GLint locRect = glGetUniformLocation(prog, "uRectNdc");
+    const GLint locLight = glGetUniformLocation(prog, "uLightIndex");
+    const float w = float(frame.width), h = float(frame.height);
+    for (size_t i = 0; i < lights.size(); ++i) {
+        const glm::vec3 eye = glm::vec3(frame.view * glm::vec4(lights[i].position, 1.0f));
+        ScissorRect r = sphereScissorRect(eye, lights[i].range, frame.projection, frame.nearPlane, frame.width,
+                                          frame.height);
+        if (r.empty()) continue;
+        // Through the centres of the rectangle's outermost pixels, so every edge is visible.
+        glProgramUniform4f(prog, locRect, (float(r.x) + 0.5f) / w * 2.0f - 1.0f, (float(r.y) + 0.5f) / h * 2.0f - 1.0f,
+                           (float(r.x + r.width) - 0.5f) / w * 2.0f - 1.0f,
+                           (float(r.y + r.height) - 0.5f) / h * 2.0f - 1.0f);
+        glProgramUniform1i(prog, locLight, int(i));
+        glDrawArrays(GL_LINE_LOOP, 0, 4);
+    }
+}
+}  // namespace
+
+fg::ResourceId addLocalLightOverlayPasses(fg::FrameGraph& graph, LocalLightPass& state, const FrameData& frame,
+                                          const GBuffer& gbuffer, fg::ResourceId hdr) {
+    const RenderSettings& s = *frame.settings;
+    if (localLightCount(*frame.scene, s.localLights) <= 0) return hdr;
+    if (s.localLights.globes) {
+        hdr = graph.addPass<OverlayData>(
+                       "light_globes",
+                       [&](fg::PassBuilder& b, OverlayData& data) {
+                           data.in = gbuffer;
+                           b.read(gbuffer.depth);
+                           data.hdr = b.write(hdr);
+                       },
+                       [&state, frame](const OverlayData& data, const fg::PassResources& res) {
+                           ensureState(state, frame);
+                           std::vector<PointLight> lights = uploadLights(state, frame);
+                           drawGlobes(state, frame, int(lights.size()), res.texture(data.hdr),
+                                      res.texture(data.in.depth));
+                           unbindAll(state);
+                       })
+                  .hdr;
+    }
+    if (s.view == DebugView::LightRanges) {
+        hdr = graph.addPass<OverlayData>(
+                       "light_ranges",
+                       [&](fg::PassBuilder& b, OverlayData& data) { data.hdr = b.write(hdr); },
+                       [&state, frame](const OverlayData& data, const fg::PassResources& res) {
+                           ensureState(state, frame);
+                           std::vector<PointLight> lights = uploadLights(state, frame);
+                           drawRanges(state, frame, lights, res.texture(data.hdr));
+                           unbindAll(state);
+                       })
+                  .hdr;
+    }
+    if (s.view == DebugView::LightsPerTile) {
+        hdr = graph.addPass<OverlayData>(
+                       "lights_per_tile",
+                       [&](fg::PassBuilder& b, OverlayData& data) {
+                           data.in = gbuffer;
+                           b.read(gbuffer.depth);
+                           b.read(gbuffer.position);
+                           data.hdr = b.write(hdr);
+                       },
+                       [&state, frame](const OverlayData& data, const fg::PassResources& res) {
+                           ensureState(state, frame);
+                           std::vector<PointLight> lights = uploadLights(state, frame);
+                           const LocalLightSettings& ls = frame.settings->localLights;
+                           const GLuint prog = state.heatmapProgram.id();
+                           setInt(prog, "uLightCount", int(lights.size()));
+                           setMat4(prog, "uProjection", frame.projection);
+                           setInt(prog, "uUnbounded", unbounded(ls));
+                           setFloat(prog, "uHeatMax", kHeatMax);
+                           setFloat(prog, "uExposure", frame.settings->exposureEV);
+                           glBindTextureUnit(0, res.texture(data.in.depth));
+                           glBindTextureUnit(3, res.texture(data.in.position));
+                           glBindImageTexture(0, res.texture(data.hdr), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
+                           glUseProgram(prog);
+                           gl::dispatch2D(frame.width, frame.height, kTileSize);
+                           glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+                           unbindAll(state);
+                       })
+                  .hdr;
+    }
+    return hdr;
+}
+
+}  // namespace lp

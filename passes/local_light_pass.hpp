@@ -1,0 +1,46 @@
+#pragma once
+// Ranged point lights added into the HDR buffer, by one of four methods that give the
+// same image (settings.localLights.method): fullscreen, scissor, volumes, tiled. Plus the overlays:
+// light globes, the light-ranges view and the lights-per-tile heat map.
+#include "engine/gl/handles.hpp"
+#include "engine/graph/frame_graph.hpp"
+#include "engine/render/frame_data.hpp"
+#include "passes/gbuffer_pass.hpp"
+
+namespace lp {
+
+// What the last executed local-light pass did, for tests and the UI.
+struct LocalLightStats {
+    LocalLightMethod method = LocalLightMethod::Tiled;
+    int requested = 0;   // lights in the SSBO this frame
+    int drawn = 0;       // lights the method shaded: draw calls, instances, or lights the tiles binned from
+    int offscreen = 0;   // scissor method: lights skipped because their rectangle was empty
+    int fullScreen = 0;  // scissor method: lights drawn full screen (camera inside / near plane crossed)
+};
+
+struct LocalLightPass {
+    gl::Program fragmentProgram;  // local_light.vert/.frag: fullscreen, scissor, volumes
+    gl::Program tiledProgram;     // local_light_tiled.comp
+    gl::Program heatmapProgram;   // local_light_tiled.comp with LP_TILE_HEATMAP
+    gl::Program sanitizeProgram;  // local_light_sanitize.comp
+    gl::Program overlayProgram;   // local_light_overlay.vert/.frag: globes, volumes, rectangles
+    gl::Framebuffer fbo;
+    gl::Buffer lights;            // SSBO of GpuLocalLight
+    size_t lightCapacity = 0;
+    gl::Buffer volumeMesh, globeMesh;
+    gl::VertexArray volumeVao, globeVao;
+    int volumeVertices = 0, globeVertices = 0;
+    LocalLightStats stats;
+};
+
+// Adds the "local_lights" pass (read-modify-write of hdr) when the scene or --light-count gives lights
+// and they are enabled; otherwise adds nothing and returns hdr.
+fg::ResourceId addLocalLightPass(fg::FrameGraph& graph, LocalLightPass& state, const FrameData& frame,
+                                 const GBuffer& gbuffer, fg::ResourceId hdr, bool lightingOnly);
+
+// After the sky: "light_globes" (settings.localLights.globes) and the overlay views
+// ("light_ranges", "lights_per_tile") over the finished HDR image.
+fg::ResourceId addLocalLightOverlayPasses(fg::FrameGraph& graph, LocalLightPass& state, const FrameData& frame,
+                                          const GBuffer& gbuffer, fg::ResourceId hdr);
+
+}  // namespace lp

@@ -1,0 +1,25 @@
+#pragma once
+// The post effects of a frame, between the light passes and the tone map: bloom, then toon
+// (DESIGN.md's order), each only when the scene's effects or the user's flags enable it.
+#include "engine/graph/frame_graph.hpp"
+#include "engine/render/frame_data.hpp"
+#include "passes/bloom_pass.hpp"
+#include "passes/gbuffer_pass.hpp"
+#include "passes/post_backend.hpp"
+#include "passes/toon_pass.hpp"
+
+namespace lp {
+
+struct PostPasses {
+    PostBackend backend;
+    BloomPass bloom;
+    ToonPass toon;
+};
+
+// Returns the HDR buffer for the tone map: hdr after bloom and toon, or the bloom buffer alone
+// when settings.post.bloomOnly (the bloom view). Called for every frame (it counts frames for the
+// CUDA registrations); adds nothing in the lighting view.
+fg::ResourceId addPostPasses(fg::FrameGraph& graph, PostPasses& state, const FrameData& frame, const GBuffer& gbuffer,
+                             fg::ResourceId hdr);
+
+}  // namespace lp

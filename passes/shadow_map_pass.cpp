@@ -1,0 +1,110 @@
+#include "passes/shadow_map_pass.hpp"
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include "engine/gl/shader.hpp"
+#include "engine/gl/state.hpp"
+#include "engine/render/scene_gpu.hpp"
+
+namespace lp {
+
+namespace {
+struct Data {
+    fg::ResourceId depth;
+};
+
+// Polygon offset and depth function are not covered by gl::ScopedEnable: put them back by hand.
+class ScopedDepthState {
+public:
+    ScopedDepthState() {
+        glGetFloatv(GL_POLYGON_OFFSET_FACTOR, &factor_);
+        glGetFloatv(GL_POLYGON_OFFSET_UNITS, &units_);
+        glGetIntegerv(GL_DEPTH_FUNC, &func_);
+        glGetBooleanv(GL_DEPTH_WRITEMASK, &mask_);
+    }
+    ~ScopedDepthState() {
+        glPolygonOffset(factor_, units_);
+        glDepthFunc(GLenum(func_));
+        glDepthMask(mask_);
+    }
+    ScopedDepthState(const ScopedDepthState&) = delete;
+    ScopedDepthState& operator=(const ScopedDepthState&) = delete;
+
+private:
+    GLfloat factor_ = 0, units_ = 0;
+    GLint func_ = GL_LESS;
+    GLboolean mask_ = GL_TRUE;
+};
+}  // namespace
+
+ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const FrameData& frame) {
+    ShadowMaps maps;
+    // Say why a frame has no (or fewer) shadow passes: 'lightpass graph' and the viewer show it.
+    const auto& lights = frame.scene->directionalLights;
+    int casting = 0;
+    for (const auto& l : lights) casting += l.castsShadows ? 1 : 0;
+    if (casting == 0) graph.skipPass("shadow_map", "no directional light casts shadows");
+    else if (!frame.settings->shadows.enabled) graph.skipPass("shadow_map", "shadows are off (--no-shadows)");
+    else if (casting > kMaxShadowedLights)
+        graph.skipPass("shadow_map", std::to_string(casting - kMaxShadowedLights) + " shadow-casting lights past the first " +
+                                         std::to_string(kMaxShadowedLights) + " are unshadowed");
+    for (int light : shadowCastingLights(frame)) {
+        LightShadowMap map;
+        map.light = light;
+        map.frustum = fitShadowFrustum(frame, frame.scene->directionalLights[size_t(light)].direction);
+        const ShadowFrustum& fr = map.frustum;
+        const std::string name = "shadow_map_" + std::to_string(light);
+        const fg::TextureDesc desc{fr.tileSize * fr.columns, fr.tileSize * fr.rows, GL_DEPTH_COMPONENT32F};
+        const Data& data = graph.addPass<Data>(
+            name, [&](fg::PassBuilder& b, Data& out) { out.depth = b.create(name + ".depth", desc); },
+            [&state, frame, fr](const Data& out, const fg::PassResources& res) {
+                const fg::ResourceId depth = out.depth;
+                if (!state.program) {
+                    state.program = frame.shaders->graphics("shadow_depth.vert", "shadow_depth.frag");
+                    state.fbo = gl::makeFramebuffer("shadow_map");
+                }
+                const GLuint fbo = state.fbo.id();
+                glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, res.texture(depth), 0);
+                glNamedFramebufferDrawBuffer(fbo, GL_NONE);
+                glNamedFramebufferReadBuffer(fbo, GL_NONE);
+                const fg::TextureDesc& d = res.desc(depth);
+                gl::ScopedFramebuffer bind(fbo, d.width, d.height);
+                gl::ScopedEnable depthTest(GL_DEPTH_TEST, true);
+                gl::ScopedEnable cull(GL_CULL_FACE, false);  // thin walls and open meshes cast from both sides
+                gl::ScopedEnable blend(GL_BLEND, false);
+                gl::ScopedEnable offset(GL_POLYGON_OFFSET_FILL, true);
+                gl::ScopedEnable clamp(GL_DEPTH_CLAMP, true);  // casters past the light's near plane still cast
+                ScopedDepthState depthState;
+                glDepthFunc(GL_LESS);
+                glDepthMask(GL_TRUE);
+                // Slope-scaled bias against acne; the constant part is the receiver's (see shadow.glsl).
+                glPolygonOffset(frame.settings->shadows.slopeBias, 0.0f);
+                const float one = 1.0f;
+                glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &one);
+
+                const GLuint prog = state.program.id();
+                const GLint locMvp = glGetUniformLocation(prog, "uModelToClip");
+                glUseProgram(prog);
+                for (size_t c = 0; c < fr.cascades.size(); ++c) {
+                    glViewport(GLint(c % size_t(fr.columns)) * fr.tileSize, GLint(c / size_t(fr.columns)) * fr.tileSize,
+                               fr.tileSize, fr.tileSize);
+                    for (const auto& mesh : frame.gpu->meshes) {
+                        const glm::mat4 mvp = fr.cascades[c].worldToClip * mesh.model;
+                        glProgramUniformMatrix4fv(prog, locMvp, 1, GL_FALSE, glm::value_ptr(mvp));
+                        glBindVertexArray(mesh.vao.id());
+                        for (const auto& draw : mesh.draws)
+                            glDrawElements(GL_TRIANGLES, GLsizei(draw.indexCount), GL_UNSIGNED_INT,
+                                           reinterpret_cast<const void*>(size_t(draw.firstIndex) * sizeof(uint32_t)));
+                    }
+                }
+                glBindVertexArray(0);
+                glUseProgram(0);
+                glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, 0, 0);
+            });
+        map.depth = data.depth;
+        maps.push_back(std::move(map));
+    }
+    return maps;
+}
+
+}  // namespace lp

@@ -1,0 +1,29 @@
+#pragma once
+// One depth-only raster pass per shadow-casting directional light ("shadow_map_<i>",
+// i = the light's index in the scene). Each creates a D32F atlas "shadow_map_<i>.depth" holding its
+// cascades as square tiles (see engine/render/shadows.hpp), drawn with slope-scaled depth bias.
+// No shadow-casting light, or shadows switched off: no pass at all.
+#include <vector>
+
+#include "engine/gl/handles.hpp"
+#include "engine/graph/frame_graph.hpp"
+#include "engine/render/frame_data.hpp"
+#include "engine/render/shadows.hpp"
+
+namespace lp {
+
+struct ShadowMapPass {
+    gl::Program program;
+    gl::Framebuffer fbo;
+};
+
+struct LightShadowMap {
+    int light = -1;          // index into scene.directionalLights
+    fg::ResourceId depth;    // the atlas
+    ShadowFrustum frustum;   // cascades, matrices, tile layout
+};
+using ShadowMaps = std::vector<LightShadowMap>;
+
+ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const FrameData& frame);
+
+}  // namespace lp

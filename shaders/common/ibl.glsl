@@ -1,0 +1,131 @@
+// Image-based lighting math shared by the bake kernels, the IBL pass and the shader tests.
+// Conventions (world space, +Y up):
+//   equirect: u = atan(d.x, -d.z) / (2 pi) + 0.5, v = acos(d.y) / pi (v = 0 is the top row, +Y)
+//   cube faces: the GL layer order +X -X +Y -Y +Z -Z, texel (i, j) of a face as imageStore sees it
+//   roughness: perceptual r, GGX alpha = r^2; Blinn-Phong shininess n maps to alpha = sqrt(2 / (n + 2))
+#ifndef LP_IBL_GLSL
+#define LP_IBL_GLSL
+
+const float LP_IBL_PI = 3.14159265358979;
+
+vec2 equirectUv(vec3 d) {
+    return vec2(atan(d.x, -d.z) / (2.0 * LP_IBL_PI) + 0.5, acos(clamp(d.y, -1.0, 1.0)) / LP_IBL_PI);
+}
+
+vec3 equirectDirection(vec2 uv) {
+    float phi = (uv.x - 0.5) * 2.0 * LP_IBL_PI, theta = uv.y * LP_IBL_PI;
+    return vec3(sin(theta) * sin(phi), cos(theta), -sin(theta) * cos(phi));
+}
+
+// Unit direction through point (s, t) in [-1, 1]^2 of cube face `face` (GL convention: t grows
+// downwards in the face image).
+vec3 cubeDirection(int face, vec2 st) {
+    float s = st.x, t = st.y;
+    vec3 d;
+    if (face == 0) d = vec3(1.0, -t, -s);
+    else if (face == 1) d = vec3(-1.0, -t, s);
+    else if (face == 2) d = vec3(s, 1.0, t);
+    else if (face == 3) d = vec3(s, -1.0, -t);
+    else if (face == 4) d = vec3(s, -t, 1.0);
+    else d = vec3(-s, -t, -1.0);
+    return normalize(d);
+}
+
+// Direction through the centre of texel `texel` of a face of `size` x `size`.
+vec3 cubeTexelDirection(int face, ivec2 texel, int size) {
+    return cubeDirection(face, (vec2(texel) + 0.5) / float(size) * 2.0 - 1.0);
+}
+
+// Rotation of the environment about +Y by `radians` (world direction -> map direction uses -angle).
+vec3 rotateY(vec3 d, float radians) {
+    float c = cos(radians), s = sin(radians);
+    return vec3(c * d.x + s * d.z, d.y, -s * d.x + c * d.z);
+}
+
+// Van der Corput radical inverse / Hammersley point i of n.
+float radicalInverseVdC(uint bits) {
+    bits = (bits << 16u) | (bits >> 16u);
+    bits = ((bits & 0x55555555u) << 1u) | ((bits & 0xAAAAAAAAu) >> 1u);
+    bits = ((bits & 0x33333333u) << 2u) | ((bits & 0xCCCCCCCCu) >> 2u);
+    bits = ((bits & 0x0F0F0F0Fu) << 4u) | ((bits & 0xF0F0F0F0u) >> 4u);
+    bits = ((bits & 0x00FF00FFu) << 8u) | ((bits & 0xFF00FF00u) >> 8u);
+    return float(bits) * 2.3283064365386963e-10;
+}
+vec2 hammersley(uint i, uint n) { return vec2((float(i) + 0.5) / float(n), radicalInverseVdC(i)); }
+
+// Orthonormal basis around n (Duff et al. 2017), for tangent-space samples.
+void basisAround(vec3 n, out vec3 t, out vec3 b) {
+    float sgn = n.z >= 0.0 ? 1.0 : -1.0;
+    float a = -1.0 / (sgn + n.z);
+    float c = n.x * n.y * a;
+    t = vec3(1.0 + sgn * n.x * n.x * a, sgn * c, -sgn * n.x);
+    b = vec3(c, sgn + n.y * n.y * a, -n.y);
+}
+
+// GGX normal distribution D(h) for alpha.
+float ggxD(float NdotH, float alpha) {
+    float a2 = alpha * alpha;
+    float d = NdotH * NdotH * (a2 - 1.0) + 1.0;
+    return a2 / (LP_IBL_PI * d * d);
+}
+
+// Half vector (tangent space, z = normal) distributed by D(h) (N.H): pdf(h) = D(h) N.H.
+vec3 importanceSampleGgx(vec2 xi, float alpha) {
+    float a2 = alpha * alpha;
+    float phi = 2.0 * LP_IBL_PI * xi.x;
+    float cosTheta = sqrt(max((1.0 - xi.y) / (1.0 + (a2 - 1.0) * xi.y), 0.0));
+    float sinTheta = sqrt(max(1.0 - cosTheta * cosTheta, 0.0));
+    return vec3(sinTheta * cos(phi), sinTheta * sin(phi), cosTheta);
+}
+
+// Height-correlated Smith visibility V = G / (4 N.L N.V) (Heitz 2014, Filament's form).
+float smithGgxVisibility(float NdotV, float NdotL, float alpha) {
+    float a2 = alpha * alpha;
+    float gv = NdotL * sqrt(NdotV * NdotV * (1.0 - a2) + a2);
+    float gl = NdotV * sqrt(NdotL * NdotL * (1.0 - a2) + a2);
+    return 0.5 / max(gv + gl, 1e-12);
+}
+
+// The split-sum DFG terms (Karis 2013): specular reflectance of a white environment is
+// F0 * A + B with A = integral of (1 - Fc) f cos, B = integral of Fc f cos, Fc = (1 - V.H)^5.
+// N.V is clamped to 1e-4 (a view exactly along the surface has a finite limit).
+vec2 dfgIntegrate(float NdotV, float roughness, uint samples) {
+    NdotV = clamp(NdotV, 1e-4, 1.0);
+    float alpha = roughness * roughness;
+    vec3 V = vec3(sqrt(1.0 - NdotV * NdotV), 0.0, NdotV);
+    vec2 ab = vec2(0.0);
+    for (uint i = 0u; i < samples; ++i) {
+        vec3 H = importanceSampleGgx(hammersley(i, samples), alpha);
+        float VdotH = dot(V, H);
+        vec3 L = 2.0 * VdotH * H - V;
+        float NdotL = L.z;
+        if (NdotL <= 0.0 || VdotH <= 0.0) continue;
+        // f cos / pdf(L), pdf(L) = D N.H / (4 V.H): = V_vis * 4 N.L V.H / N.H
+        float w = smithGgxVisibility(NdotV, NdotL, alpha) * 4.0 * NdotL * VdotH / max(H.z, 1e-12);
+        float fc = pow(1.0 - VdotH, 5.0);
+        ab += vec2((1.0 - fc) * w, fc * w);
+    }
+    return ab / float(samples);
+}
+
+// Perceptual roughness for an energy-normalised Blinn-Phong exponent (Walter et al. 2007:
+// alpha = sqrt(2 / (n + 2))); n = 0 gives the roughest lobe, 1.
+float roughnessFromShininess(float n) {
+    float alpha = sqrt(2.0 / (clamp(n, 0.0, 10000.0) + 2.0));
+    return sqrt(alpha);
+}
+
+// Irradiance from 9 SH coefficients of radiance (Ramamoorthi & Hanrahan 2001): E(n) =
+// sum_l A_l sum_m L_lm Y_lm(n), A_0 = pi, A_1 = 2 pi / 3, A_2 = pi / 4. Clamped at 0: for a
+// sun-dominated map the order-2 truncation rings negative on the far side (Filament #744).
+vec3 shIrradiance(vec3 sh[9], vec3 n) {
+    const float A0 = LP_IBL_PI, A1 = 2.0 * LP_IBL_PI / 3.0, A2 = LP_IBL_PI / 4.0;
+    vec3 e = A0 * 0.282095 * sh[0]
+           + A1 * 0.488603 * (n.y * sh[1] + n.z * sh[2] + n.x * sh[3])
+           + A2 * (1.092548 * (n.x * n.y * sh[4] + n.y * n.z * sh[5] + n.x * n.z * sh[7])
+                   + 0.315392 * (3.0 * n.z * n.z - 1.0) * sh[6]
+                   + 0.546274 * (n.x * n.x - n.y * n.y) * sh[8]);
+    return max(e, vec3(0.0));
+}
+
+#endif

@@ -1,0 +1,32 @@
+#version 450
+// One light at one pixel, added (blend ONE, ONE) into the HDR buffer. The same code
+// serves the fullscreen, scissor and volumes methods; the tiled method runs the same function.
+#include "common/local_light.glsl"
+#include "common/tonemap.glsl"
+#include "common/gbuffer_layout.glsl"
+
+layout(std430, binding = 0) readonly buffer LocalLights { LpLocalLight uLights[]; };
+layout(binding = LP_BIND_DEPTH) uniform sampler2D uDepth;
+layout(binding = LP_BIND_NORMAL) uniform sampler2D uNormal;
+layout(binding = LP_BIND_DIFFUSE) uniform sampler2D uDiffuse;
+layout(binding = LP_BIND_POSITION) uniform sampler2D uPosition;
+layout(binding = LP_BIND_SPECULAR) uniform sampler2D uSpecular;
+uniform bool uLightingOnly;  // the lighting view: white albedo
+uniform int uSpecularMode;   // LP_LOCAL_SPECULAR_*
+flat in int vLight;
+layout(location = 0) out vec4 oColor;
+
+void main() {
+    ivec2 p = ivec2(gl_FragCoord.xy);
+    if (texelFetch(uDepth, p, 0).r >= 1.0) discard;  // background: no surface to light
+    vec3 N = texelFetch(uNormal, p, 0).xyz;
+    vec3 P = texelFetch(uPosition, p, 0).xyz;
+    vec4 spec = texelFetch(uSpecular, p, 0);
+    vec3 kd = uLightingOnly ? vec3(1.0) : texelFetch(uDiffuse, p, 0).rgb;
+    float pl = length(P);
+    vec3 V = pl > 0.0 ? -P / pl : vec3(0.0, 0.0, 1.0);
+    LpLocalLight l = uLights[vLight];
+    vec3 c = lpLocalLightRadiance(l.positionRange.xyz, l.positionRange.w, l.intensity.rgb, P, N, V, kd, spec.rgb,
+                                  spec.a, uSpecularMode);
+    oColor = vec4(sanitizeHdr(c), 0.0);
+}

@@ -1,0 +1,28 @@
+#version 450
+// Overlays: mode 0 light volumes (icosphere x range, drawn as wireframe), mode 1 light
+// globes (icosphere x uGlobeScale x range), mode 2 the outline of light uLightIndex's scissor
+// rectangle (uRectNdc = x0, y0, x1, y1; gl_VertexID 0..3 as a line loop).
+#include "common/local_light.glsl"
+
+layout(std430, binding = 0) readonly buffer LocalLights { LpLocalLight uLights[]; };
+layout(location = 0) in vec3 aPosition;
+uniform int uMode;
+uniform int uLightIndex;
+uniform mat4 uProjection;
+uniform float uGlobeScale;
+uniform vec4 uRectNdc;
+flat out vec3 vColour;  // the light's colour, brightest channel 1
+
+void main() {
+    int light = uMode == 2 ? uLightIndex : gl_InstanceID;
+    vec3 c = uLights[light].intensity.rgb;
+    vColour = c / max(max(c.r, max(c.g, c.b)), 1e-20);
+    if (uMode == 2) {
+        int v = gl_VertexID & 3;
+        gl_Position = vec4(v == 0 || v == 3 ? uRectNdc.x : uRectNdc.z, v < 2 ? uRectNdc.y : uRectNdc.w, 0.0, 1.0);
+    } else {
+        vec4 pr = uLights[light].positionRange;
+        float s = uMode == 1 ? uGlobeScale * pr.w : pr.w;
+        gl_Position = uProjection * vec4(pr.xyz + aPosition * s, 1.0);
+    }
+}

@@ -1,0 +1,127 @@
+#version 450
+// Tiled method in one compute pass: each 16x16 work group finds its tile's eye-depth
+// bounds from the G-buffer, bins the lights whose range sphere touches the tile's frustum (four side
+// planes and the depth bounds) into shared memory, 256 lights at a time, and shades its pixels with
+// that list. With LP_TILE_HEATMAP it instead paints the per-tile count over the finished image.
+#include "common/local_light.glsl"
+#include "common/tonemap.glsl"
+#include "common/gbuffer_layout.glsl"
+
+layout(local_size_x = 16, local_size_y = 16) in;
+const uint LP_BATCH = 256u;  // = threads per group: each thread tests one light per batch
+
+layout(std430, binding = 0) readonly buffer LocalLights { LpLocalLight uLights[]; };
+layout(binding = LP_BIND_DEPTH) uniform sampler2D uDepth;
+layout(binding = LP_BIND_NORMAL) uniform sampler2D uNormal;
+layout(binding = LP_BIND_DIFFUSE) uniform sampler2D uDiffuse;
+layout(binding = LP_BIND_POSITION) uniform sampler2D uPosition;
+layout(binding = LP_BIND_SPECULAR) uniform sampler2D uSpecular;
+layout(rgba16f, binding = 0) uniform image2D uHdr;
+uniform int uLightCount;
+uniform mat4 uProjection;
+uniform bool uUnbounded;     // specular outside the range: every light reaches every tile
+uniform bool uLightingOnly;
+uniform int uSpecularMode;
+uniform float uHeatMax;      // heat map: this many lights per tile or more is red
+uniform float uExposure;     // heat map: EV the tone map will apply
+
+shared uint sMinDist, sMaxDist;  // float bits of positive eye distances (order-preserving as uint)
+shared uint sCount, sTotal;
+shared uint sList[LP_BATCH];
+
+// Does the sphere (eye-space centre c, radius r) touch the tile between NDC x in [x0, x1], y in [y0, y1]
+// and eye distance [d0, d1]? Conservative: a sphere near a frustum corner may pass (it then adds 0).
+bool touchesTile(vec3 c, float r, vec2 lo, vec2 hi, float d0, float d1) {
+    float dist = -c.z;
+    if (dist + r < d0 || dist - r > d1) return false;
+    float p00 = uProjection[0][0], p20 = uProjection[2][0], p11 = uProjection[1][1], p21 = uProjection[2][1];
+    // x_ndc >= lo.x  <=>  p00 x + (p20 + lo.x) z >= 0 (with z < 0); likewise for the other sides.
+    vec3 planes[4] = vec3[4](vec3(p00, 0.0, p20 + lo.x), vec3(-p00, 0.0, -(p20 + hi.x)),
+                             vec3(0.0, p11, p21 + lo.y), vec3(0.0, -p11, -(p21 + hi.y)));
+    for (int i = 0; i < 4; ++i)
+        if (dot(planes[i], c) < -r * length(planes[i])) return false;
+    return true;
+}
+
+vec3 heatColour(float t) {  // blue -> cyan -> green -> yellow -> red
+    t = clamp(t, 0.0, 1.0);
+    return clamp(vec3(1.5 - abs(4.0 * t - 3.0), 1.5 - abs(4.0 * t - 2.0), 1.5 - abs(4.0 * t - 1.0)), 0.0, 1.0);
+}
+
+// HDR value that the lightpass tone map (at uExposure) turns into display-linear y.
+vec3 untonemap(vec3 y) {
+    vec3 x = pow(clamp(y, 0.0, 0.995), vec3(1.0 / 1.2));
+    return x / (1.0 - x) * exp2(-uExposure);
+}
+
+void main() {
+    ivec2 size = imageSize(uHdr);
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    uint lid = gl_LocalInvocationIndex;
+    bool inside = p.x < size.x && p.y < size.y;
+    if (lid == 0u) {
+        sMinDist = floatBitsToUint(3.0e38);
+        sMaxDist = 0u;
+        sTotal = 0u;
+    }
+    barrier();
+    bool surface = inside && texelFetch(uDepth, p, 0).r < 1.0;
+    vec3 P = vec3(0.0);
+    if (surface) {
+        P = texelFetch(uPosition, p, 0).xyz;
+        uint bits = floatBitsToUint(max(-P.z, 0.0));
+        atomicMin(sMinDist, bits);
+        atomicMax(sMaxDist, bits);
+    }
+    barrier();
+    float d0 = uintBitsToFloat(sMinDist), d1 = uintBitsToFloat(sMaxDist);
+    bool anySurface = d0 <= d1;  // uniform across the group
+    vec2 tileLo = vec2(gl_WorkGroupID.xy * gl_WorkGroupSize.xy) / vec2(size) * 2.0 - 1.0;
+    vec2 tileHi = vec2((gl_WorkGroupID.xy + 1u) * gl_WorkGroupSize.xy) / vec2(size) * 2.0 - 1.0;
+
+#ifndef LP_TILE_HEATMAP
+    vec3 N = vec3(0.0), kd = vec3(0.0), V = vec3(0.0, 0.0, 1.0);
+    vec4 spec = vec4(0.0);
+    if (surface) {
+        N = texelFetch(uNormal, p, 0).xyz;
+        spec = texelFetch(uSpecular, p, 0);
+        kd = uLightingOnly ? vec3(1.0) : texelFetch(uDiffuse, p, 0).rgb;
+        float pl = length(P);
+        V = pl > 0.0 ? -P / pl : vec3(0.0, 0.0, 1.0);
+    }
+    vec3 sum = vec3(0.0);
+#endif
+    if (anySurface) {
+        for (int base = 0; base < uLightCount; base += int(LP_BATCH)) {
+            if (lid == 0u) sCount = 0u;
+            barrier();
+            int i = base + int(lid);
+            if (i < uLightCount) {
+                vec4 pr = uLights[i].positionRange;
+                // 0.1% + 1 um margin: float rounding must never drop a light that reaches the tile.
+                if (uUnbounded || touchesTile(pr.xyz, pr.w * 1.001 + 1e-6, tileLo, tileHi, d0, d1))
+                    sList[atomicAdd(sCount, 1u)] = uint(i);
+            }
+            barrier();
+            uint n = sCount;
+#ifndef LP_TILE_HEATMAP
+            if (surface)
+                for (uint k = 0u; k < n; ++k) {
+                    LpLocalLight l = uLights[sList[k]];
+                    sum += lpLocalLightRadiance(l.positionRange.xyz, l.positionRange.w, l.intensity.rgb, P, N, V, kd,
+                                                spec.rgb, spec.a, uSpecularMode);
+                }
+#endif
+            if (lid == 0u) sTotal += n;
+            barrier();
+        }
+    }
+    if (!inside) return;
+#ifdef LP_TILE_HEATMAP
+    vec3 scene = tonemapLightpass(applyExposure(imageLoad(uHdr, p).rgb, uExposure));
+    vec3 y = sTotal == 0u ? 0.5 * scene : mix(scene, heatColour(float(sTotal) / uHeatMax), 0.6);
+    imageStore(uHdr, p, vec4(sanitizeHdr(untonemap(y)), 1.0));
+#else
+    if (surface) imageStore(uHdr, p, vec4(sanitizeHdr(imageLoad(uHdr, p).rgb + sum), 1.0));
+#endif
+}

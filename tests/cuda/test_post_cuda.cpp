@@ -1,0 +1,138 @@
+// The CUDA kernels against the CPU reference. Every test SKIPS (with the reason) where no
+// CUDA device exists, e.g. CI machines with the toolkit but no GPU. Kernel tests use device
+// buffers (no GL); the interop tests make their own headless GL context and need it on NVIDIA.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include "cuda/post_cuda.hpp"
+#include "engine/gl/context.hpp"
+#include "engine/gl/handles.hpp"
+#include "engine/post/post_reference.hpp"
+
+using namespace lp;
+using post::BloomMethod;
+using post::BloomParams;
+using post::Storage;
+
+namespace {
+
+constexpr int kW = 64, kH = 48;
+
+ImageF makeImage(int w, int h, float fill = 0.0f) {
+    ImageF img;
+    img.width = w;
+    img.height = h;
+    img.rgba.assign(size_t(w) * size_t(h) * 4, fill);
+    for (size_t i = 3; i < img.rgba.size(); i += 4) img.rgba[i] = 1.0f;
+    return img;
+}
+
+ImageF randomHdr(unsigned seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> base(0.0f, 2.0f), bright(2.0f, 40.0f), pick(0.0f, 1.0f);
+    ImageF img = makeImage(kW, kH);
+    for (size_t i = 0; i < img.rgba.size(); ++i)
+        if (i % 4 != 3) img.rgba[i] = post::roundToHalf(pick(rng) < 0.1f ? bright(rng) : base(rng));
+    return img;
+}
+
+double maxRelError(const ImageF& got, const ImageF& ref, double floor = 1e-3) {
+    double worst = 0.0;
+    for (size_t i = 0; i < got.rgba.size(); ++i)
+        if (i % 4 != 3)
+            worst = std::max(worst, std::fabs(double(got.rgba[i]) - double(ref.rgba[i])) / (std::fabs(double(ref.rgba[i])) + floor));
+    return worst;
+}
+
+bool skipWithoutDevice() {
+    const std::string problem = cuda::postDeviceProblem();
+    if (problem.empty()) return false;
+    std::printf("  no CUDA device here (%s): CUDA tests skipped\n", problem.c_str());
+    return true;
+}
+
+BloomParams params(int kernel, BloomMethod m) {
+    BloomParams p;
+    p.kernel = kernel;
+    p.method = m;
+    p.strength = 0.5f;
+    return p;
+}
+
+}  // namespace
+
+// Bound: fp32 device buffers vs the fp32 CPU reference (same per-texel code, post_math.hpp):
+// |d| <= 1e-5 (|ref| + 1e-3), for kernels 1, 5, 25, 101 and both methods (FMA contraction and
+// summation order are the only differences).
+TEST(CudaKernels, BloomMatchesCpuReference) {
+    if (skipWithoutDevice()) GTEST_SKIP() << "no CUDA device: " << cuda::postDeviceProblem();
+    const ImageF hdr = randomHdr(1);
+    for (BloomMethod m : {BloomMethod::Separable, BloomMethod::MipChain})
+        for (int kernel : {1, 5, 25, 101}) {
+            const BloomParams p = params(kernel, m);
+            const ImageF gpu = cuda::bloomOnDevice(hdr, p);
+            const ImageF ref = post::bloomBuffer(hdr, p, Storage::Float);
+            EXPECT_LE(maxRelError(gpu, ref), 1e-5) << "kernel " << kernel << " method " << int(m);
+        }
+}
+
+// Composite and toon: fp32 device results vs the reference's fp16-stored HDR: 1 fp16 ulp relative.
+TEST(CudaKernels, CompositeAndToonMatchCpuReference) {
+    if (skipWithoutDevice()) GTEST_SKIP() << "no CUDA device: " << cuda::postDeviceProblem();
+    const ImageF hdr = randomHdr(2);
+    const BloomParams p = params(25, BloomMethod::Separable);
+    const ImageF bloom = post::bloomBuffer(hdr, p, Storage::Float);
+    EXPECT_LE(maxRelError(cuda::compositeOnDevice(hdr, bloom, p.strength), post::compositeBloom(hdr, bloom, p.strength)),
+              1.0 / 1024.0);
+    ImageF position = makeImage(kW, kH), normal = makeImage(kW, kH);
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x) {
+            float* q = &position.rgba[(size_t(y) * kW + size_t(x)) * 4];
+            q[2] = x < 32 ? -2.0f : -4.0f;
+            normal.rgba[(size_t(y) * kW + size_t(x)) * 4 + 2] = 1.0f;
+        }
+    post::ToonParams t;
+    const ImageF gpu = cuda::toonOnDevice(hdr, position, normal, t);
+    const ImageF ref = post::toonImage(hdr, position, normal, t);
+    for (int y = 0; y < kH; ++y)  // outline exactly on columns 31 and 32 (see the GLSL test)
+        for (int x = 0; x < kW; ++x)
+            EXPECT_EQ(gpu.rgba[(size_t(y) * kW + size_t(x)) * 4] == 0.0f, x == 31 || x == 32) << x << "," << y;
+    int mismatched = 0;  // texels on a band boundary may fall either way (float ordering)
+    for (size_t i = 0; i < gpu.rgba.size(); ++i)
+        if (i % 4 != 3 && std::fabs(gpu.rgba[i] - ref.rgba[i]) > (std::fabs(ref.rgba[i]) + 1e-4) / 1024.0) ++mismatched;
+    EXPECT_LE(mismatched, kW * kH / 100);
+}
+
+// +Inf and NaN texels: every output of the device bloom is finite.
+TEST(CudaKernels, InfAndNanDoNotSpread) {
+    if (skipWithoutDevice()) GTEST_SKIP() << "no CUDA device: " << cuda::postDeviceProblem();
+    ImageF hdr = randomHdr(3);
+    hdr.rgba[(size_t(20) * kW + 20) * 4] = std::numeric_limits<float>::infinity();
+    hdr.rgba[(size_t(30) * kW + 40) * 4 + 1] = std::numeric_limits<float>::quiet_NaN();
+    for (BloomMethod m : {BloomMethod::Separable, BloomMethod::MipChain}) {
+        const ImageF b = cuda::bloomOnDevice(hdr, params(25, m));
+        for (float v : b.rgba) ASSERT_TRUE(std::isfinite(v));
+    }
+}
+
+// Interop: the GL textures path (register once, map, surfaces) matches the CPU reference within
+// 2 fp16 ulps, and a texture is registered once however often it is used.
+TEST(CudaInterop, BloomOnGlTexturesMatchesReference) {
+    if (skipWithoutDevice()) GTEST_SKIP() << "no CUDA device: " << cuda::postDeviceProblem();
+    std::unique_ptr<gl::GpuContext> ctx = gl::createHeadlessContext();
+    if (!ctx->isNvidia()) GTEST_SKIP() << "the headless GL context is not NVIDIA (" << ctx->info().renderer << ")";
+    const ImageF hdrIn = randomHdr(4);
+    const BloomParams p = params(25, BloomMethod::Separable);
+    gl::Texture hdr = gl::makeTexture2D(GL_RGBA16F, kW, kH, 1, "test.hdr");
+    gl::Texture bloom = gl::makeTexture2D(GL_RGBA16F, kW, kH, 1, "test.bloom");
+    glTextureSubImage2D(hdr.id(), 0, 0, 0, kW, kH, GL_RGBA, GL_FLOAT, hdrIn.rgba.data());
+    cuda::PostInterop interop;
+    for (int i = 0; i < 3; ++i) interop.bloom(hdr.id(), bloom.id(), kW, kH, p);
+    EXPECT_EQ(interop.registeredCount(), 2);
+    ImageF got = makeImage(kW, kH);
+    glGetTextureImage(bloom.id(), 0, GL_RGBA, GL_FLOAT, GLsizei(got.rgba.size() * 4), got.rgba.data());
+    EXPECT_LE(maxRelError(got, post::bloomBuffer(hdrIn, p, Storage::Float)), 2.0 / 1024.0);
+}

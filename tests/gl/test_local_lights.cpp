@@ -1,0 +1,390 @@
+// Attenuation and point-light shading on the GL driver against double-precision
+// references; the four local-light methods against each other and an analytic plane; counters;
+// NaN/Inf safety. Small images (64x48) keep llvmpipe fast.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "engine/gl/shader.hpp"
+#include "engine/graph/texture_pool.hpp"
+#include "engine/render/frame_builder.hpp"
+#include "engine/render/local_lights.hpp"
+#include "engine/render/scene_gpu.hpp"
+#include "engine/scene/primitives.hpp"
+#include "tests/gl/gl_fixture.hpp"
+
+using namespace lp;
+using lp::test::runGlsl;
+
+namespace {
+
+double windowRef(double d, double range) {
+    double x = d / range;
+    double w = std::clamp(1.0 - x * x * x * x, 0.0, 1.0);
+    return w * w;
+}
+double attenuationRef(double d, double range) {
+    double dMin = 0.01 * range;
+    return windowRef(d, range) / std::max(d * d, dMin * dMin);
+}
+
+// ---- attenuation.glsl --------------------------------------------------------------------------
+
+TEST(LocalLightShader, AttenuationMatchesDoubleReference) {
+    std::vector<glm::vec4> in;
+    for (float range : {0.05f, 1.0f, 30.0f})
+        for (int i = 0; i <= 300; ++i) in.push_back({float(i) / 200.0f * range, range, 0, 0});  // d in [0, 1.5 R]
+    auto out = runGlsl({"common/attenuation.glsl"},
+                       "return vec4(lpPointAttenuation(x.x, x.y), lpRangeWindow(x.x, x.y), lpInverseSquare(x.x, x.y), 0.0);",
+                       in);
+    for (size_t i = 0; i < in.size(); ++i) {
+        const double d = in[i].x, r = in[i].y;
+        ASSERT_TRUE(std::isfinite(out[i].x)) << d << " " << r;
+        // Bound: float32 evaluation, 1e-5 relative (plus 1e-7 of the d = 0 value where the window
+        // cancels towards 0 near the range).
+        const double e = attenuationRef(d, r);
+        EXPECT_NEAR(out[i].x, e, 1e-5 * e + 1e-7 * attenuationRef(0.0, r)) << "d " << d << " range " << r;
+        EXPECT_NEAR(out[i].y, windowRef(d, r), 1e-6) << "d " << d << " range " << r;
+        if (d >= r) EXPECT_EQ(out[i].x, 0.0f) << "exactly zero at and past the range: d " << d << " range " << r;
+    }
+}
+
+TEST(LocalLightShader, FiniteAtZeroDistanceAndZeroAtRange) {
+    std::vector<glm::vec4> in = {{0.0f, 1.0f, 0, 0}, {0.0f, 1e-3f, 0, 0}, {1.0f, 1.0f, 0, 0}, {2.5f, 2.5f, 0, 0},
+                                 {1e6f, 1.0f, 0, 0}};
+    auto out = runGlsl({"common/attenuation.glsl"}, "return vec4(lpPointAttenuation(x.x, x.y));", in);
+    // d = 0: the inverse square is held at d = 0.01 R, so E/I = 1 / (0.01 R)^2 exactly (float rounding 1e-6).
+    EXPECT_NEAR(out[0].x, 1e4, 1e4 * 1e-6);
+    EXPECT_NEAR(out[1].x, 1e10, 1e10 * 1e-6);
+    EXPECT_EQ(out[2].x, 0.0f);  // d = range
+    EXPECT_EQ(out[3].x, 0.0f);
+    EXPECT_EQ(out[4].x, 0.0f);  // d >> range
+}
+
+TEST(LocalLightShader, WindowValueAndSlopeVanishAtTheRange) {
+    // window(1 - h) = (1 - (1 - h)^4)^2 <= (4h)^2 = 16 h^2: value O(h^2), so the one-sided slope
+    // (window(1 - h) - window(1)) / h <= 16 h -> 0 (C1 at the range edge). Checked for h down to 1e-3
+    // with 1e-4 relative float slack; past the range both are exactly 0.
+    std::vector<glm::vec4> in;
+    const float hs[] = {0.1f, 0.03f, 0.01f, 0.003f, 0.001f};
+    for (float h : hs) in.push_back({1.0f - h, 1.0f, 1.0f + h, 0});
+    auto out = runGlsl({"common/attenuation.glsl"},
+                       "return vec4(lpRangeWindow(x.x, x.y), lpRangeWindow(x.z, x.y), lpRangeWindow(x.y, x.y), 0.0);", in);
+    for (size_t i = 0; i < in.size(); ++i) {
+        const double h = hs[i];
+        EXPECT_LE(out[i].x, 16.0 * h * h * (1.0 + 1e-4) + 1e-9) << "value at 1 - " << h;
+        EXPECT_LE(out[i].x / h, 16.0 * h * (1.0 + 1e-4) + 1e-6) << "slope at 1 - " << h;
+        EXPECT_GE(out[i].x, 0.0f);
+        EXPECT_EQ(out[i].y, 0.0f) << "past the range";
+        EXPECT_EQ(out[i].z, 0.0f) << "at the range";
+    }
+}
+
+TEST(LocalLightShader, LightOnTheSurfaceIsFiniteAndLitAlongTheNormal) {
+    // P = light position: L falls back to N, E = I / (0.01 R)^2; diffuse kd/pi E, specular (n+8)/(8pi) E.
+    std::vector<glm::vec4> in = {{0.0f, 0.0f, 0.0f, 2.0f}};
+    auto out = runGlsl({"common/local_light.glsl"},
+                       "vec3 c = lpLocalLightRadiance(x.xyz, x.w, vec3(1.0), x.xyz, vec3(0, 0, 1), vec3(0, 0, 1),"
+                       " vec3(0.5), vec3(0.25), 16.0, LP_LOCAL_SPECULAR_RANGED); return vec4(c, 0.0);",
+                       in);
+    const double e = 1.0 / (0.02 * 0.02);
+    const double expected = (0.5 / M_PI + 0.25 * 24.0 / (8.0 * M_PI)) * e;
+    EXPECT_TRUE(std::isfinite(out[0].x));
+    EXPECT_NEAR(out[0].x, expected, expected * 1e-5);  // float32: 1e-5 relative
+}
+
+// ---- the four methods ---------------------------------------------------------------------------
+
+// Everything one test needs to render frames and look at the local-light pass's state.
+struct Rig {
+    explicit Rig(const Scene& s) : scene(s), gpu(std::make_unique<SceneGpu>(scene)) {}
+    const Scene& scene;
+    std::unique_ptr<SceneGpu> gpu;
+    gl::ShaderLibrary shaders;
+    PassStates passes;
+    fg::TexturePool pool;
+
+    std::vector<float> renderHdr(RenderSettings settings) {
+        settings.keepHdr = true;
+        FrameData frame = makeFrameData(scene, settings, 0.0f);
+        frame.gpu = gpu.get();
+        frame.shaders = &shaders;
+        fg::FrameGraph graph;
+        FrameOutputs out = buildFrameGraph(graph, passes, frame);
+        graph.compile();
+        graph.execute(pool);
+        std::vector<float> px(size_t(settings.width) * settings.height * 4);
+        glGetTextureImage(graph.outputTexture(out.hdr), 0, GL_RGBA, GL_FLOAT, GLsizei(px.size() * sizeof(float)),
+                          px.data());
+        gl::checkErrors("local-light test frame");
+        return px;
+    }
+};
+
+ModelInstance model(const std::string& primitive, MeshData mesh, glm::mat4 transform, glm::vec3 kd, glm::vec3 ks,
+                    float n) {
+    ModelInstance m;
+    m.name = primitive;
+    m.primitive = primitive;
+    m.mesh = std::move(mesh);
+    for (auto& mat : m.mesh.materials) {
+        mat.diffuse = kd;
+        mat.specular = ks;
+        mat.shininess = n;
+    }
+    m.transform = transform;
+    return m;
+}
+
+// A floor, a cube and a sphere under one sun and 20 point lights; light 0 holds the camera, light 1
+// crosses the near plane with the camera outside it, the rest sit on a grid above the floor.
+Scene twentyLightScene() {
+    Scene s;
+    s.models.push_back(model("plane", makePlane(1.0f, 4), glm::scale(glm::mat4(1.0f), glm::vec3(8.0f)),
+                             {0.6f, 0.6f, 0.6f}, {0.4f, 0.4f, 0.4f}, 32.0f));
+    s.models.push_back(model("cube", makeCube(1.0f), glm::translate(glm::mat4(1.0f), {-0.8f, 0.5f, -0.5f}),
+                             {0.2f, 0.5f, 0.8f}, {0.2f, 0.2f, 0.2f}, 8.0f));
+    s.models.push_back(model("sphere", makeSphere(0.5f, 24, 12), glm::translate(glm::mat4(1.0f), {1.0f, 0.5f, -0.8f}),
+                             {0.8f, 0.3f, 0.2f}, {0.6f, 0.6f, 0.6f}, 128.0f));
+    s.camera.position = {0.0f, 1.2f, 3.0f};
+    s.camera.target = {0.0f, 0.3f, 0.0f};
+    s.camera.nearPlane = 0.1f;
+    s.camera.farPlane = 30.0f;
+    s.camera.fovYDegrees = 60.0f;
+    DirectionalLight sun;
+    sun.direction = glm::normalize(glm::vec3(-0.3f, -1.0f, -0.4f));
+    sun.intensity = 0.5f;
+    sun.castsShadows = false;
+    s.directionalLights.push_back(sun);
+    s.ambient = glm::vec3(0.01f);
+    const glm::mat4 toWorld = glm::inverse(s.camera.view());
+    PointLight inside;  // the camera is 0.5 m from its centre, range 1.5
+    inside.position = glm::vec3(toWorld * glm::vec4(0.3f, -0.4f, -0.1f, 1.0f));
+    inside.range = 1.5f;
+    inside.intensity = 0.3f;
+    inside.color = {1.0f, 0.9f, 0.7f};
+    s.pointLights.push_back(inside);
+    PointLight nearCrossing;  // |centre| = 1.37 m > range 1.3 m, but it reaches past the near plane
+    nearCrossing.position = glm::vec3(toWorld * glm::vec4(1.2f, -0.6f, -0.3f, 1.0f));
+    nearCrossing.range = 1.3f;
+    nearCrossing.intensity = 0.4f;
+    nearCrossing.color = {0.3f, 1.0f, 0.4f};
+    s.pointLights.push_back(nearCrossing);
+    for (int i = 0; i < 18; ++i) {
+        PointLight l;
+        l.position = {-2.5f + float(i % 6), 0.25f + 0.1f * float(i % 3), -2.5f + 1.2f * float(i / 6)};
+        l.range = 0.8f + 0.1f * float(i % 4);
+        l.intensity = 0.05f + 0.02f * float(i % 5);
+        l.color = {0.4f + 0.1f * float(i % 7), 0.5f, 1.0f - 0.1f * float(i % 6)};
+        s.pointLights.push_back(l);
+    }
+    return s;
+}
+
+RenderSettings smallSettings(LocalLightMethod method) {
+    RenderSettings r;
+    r.width = 64;
+    r.height = 48;
+    r.localLights.method = method;
+    return r;
+}
+
+// Lights whose scissor rectangle holds pixel (x, y) (row 0 = bottom): an upper bound on the number of
+// lights that add to that pixel, hence on the number of fp16 roundings in a blended sum.
+std::vector<int> lightsPerPixel(const Scene& s, const RenderSettings& settings) {
+    FrameData f = makeFrameData(s, settings, 0.0f);
+    std::vector<int> n(size_t(settings.width) * settings.height, 0);
+    for (const auto& l : localLightsForFrame(s, settings.localLights, 0.0f)) {
+        glm::vec3 eye = glm::vec3(f.view * glm::vec4(l.position, 1.0f));
+        ScissorRect r = sphereScissorRect(eye, l.range, f.projection, f.nearPlane, settings.width, settings.height);
+        for (int y = r.y; y < r.y + r.height; ++y)
+            for (int x = r.x; x < r.x + r.width; ++x) ++n[size_t(y) * settings.width + x];
+    }
+    return n;
+}
+
+TEST(LocalLights, TestSceneHasCameraInsideAndNearPlaneCases) {
+    Scene s = twentyLightScene();
+    FrameData f = makeFrameData(s, smallSettings(LocalLightMethod::Scissor), 0.0f);
+    glm::vec3 c0 = glm::vec3(f.view * glm::vec4(s.pointLights[0].position, 1.0f));
+    glm::vec3 c1 = glm::vec3(f.view * glm::vec4(s.pointLights[1].position, 1.0f));
+    EXPECT_LT(glm::length(c0), s.pointLights[0].range);
+    EXPECT_GT(glm::length(c1), s.pointLights[1].range);
+    EXPECT_GT(c1.z + s.pointLights[1].range, -f.nearPlane);
+    EXPECT_TRUE(sphereScissorRect(c0, s.pointLights[0].range, f.projection, f.nearPlane, 64, 48).fullScreen);
+    EXPECT_TRUE(sphereScissorRect(c1, s.pointLights[1].range, f.projection, f.nearPlane, 64, 48).fullScreen);
+    EXPECT_EQ(s.pointLights.size(), 20u);
+}
+
+// The same image from all four methods, for each specular mode.
+//   scissor and volumes vs fullscreen: bit-identical (each pixel gets the same lights added in the
+//   same order; pixels a rectangle or volume leaves out would have received exactly +0).
+//   tiled vs fullscreen: the tiled sum is float32 with one fp16 store, the blended sum rounds to fp16
+//   after each of the k lights reaching the pixel: |a - b| <= ((k + 1) 2^-11 + 1e-3) |b| + 1e-6.
+TEST(LocalLights, FourMethodsGiveTheSameImage) {
+    Scene s = twentyLightScene();
+    Rig rig(s);
+    RenderSettings off = smallSettings(LocalLightMethod::Fullscreen);
+    off.localLights.enabled = false;
+    const std::vector<float> unlit = rig.renderHdr(off);
+    struct Mode {
+        bool specular, outside;
+    };
+    for (Mode mode : {Mode{true, false}, Mode{false, false}, Mode{true, true}}) {
+        SCOPED_TRACE(std::string("specular ") + (mode.specular ? "on" : "off") + (mode.outside ? ", outside range" : ""));
+        auto settingsFor = [&](LocalLightMethod m) {
+            RenderSettings r = smallSettings(m);
+            r.localLights.specular = mode.specular;
+            r.localLights.specularOutsideRange = mode.outside;
+            return r;
+        };
+        const std::vector<float> ref = rig.renderHdr(settingsFor(LocalLightMethod::Fullscreen));
+        EXPECT_EQ(rig.passes.localLights.stats.drawn, 20);
+        // The lights matter (the comparison is not vacuous): over an eighth of the pixels change by > 1%.
+        int changed = 0;
+        for (size_t i = 0; i < ref.size(); i += 4)
+            if (ref[i + 1] > 1.01f * unlit[i + 1] + 1e-4f) ++changed;
+        EXPECT_GT(changed, 64 * 48 / 8);
+        // Unbounded specular reaches every pixel: count every light there.
+        std::vector<int> k = lightsPerPixel(s, settingsFor(LocalLightMethod::Scissor));
+        for (LocalLightMethod m : {LocalLightMethod::Scissor, LocalLightMethod::Volumes, LocalLightMethod::Tiled}) {
+            const std::vector<float> got = rig.renderHdr(settingsFor(m));
+            double worst = 0.0;
+            for (size_t i = 0; i < got.size(); ++i) {
+                ASSERT_TRUE(std::isfinite(got[i]));
+                const double diff = std::abs(double(got[i]) - double(ref[i]));
+                if (m != LocalLightMethod::Tiled) {
+                    EXPECT_EQ(got[i], ref[i]) << localLightMethodName(m) << " texel " << i / 4;
+                    continue;
+                }
+                const int lights = mode.outside ? 20 : k[i / 4];
+                const double bound = ((lights + 1) * std::ldexp(1.0, -11) + 1e-3) * std::abs(ref[i]) + 1e-6;
+                EXPECT_LE(diff, bound) << "tiled texel " << i / 4 << " channel " << i % 4;
+                worst = std::max(worst, diff / (std::abs(ref[i]) + 1e-6));
+            }
+            if (m == LocalLightMethod::Tiled) RecordProperty("tiled_worst_relative", std::to_string(worst));
+        }
+    }
+}
+
+// Each method shades exactly the lights asked for (counter in LocalLightPass::stats), also for a
+// generated set of 1000 (--light-count).
+TEST(LocalLights, EachMethodDrawsTheRequestedLightCount) {
+    Scene s = twentyLightScene();
+    Rig rig(s);
+    for (int count : {-1, 7, 1000}) {
+        const int expected = count < 0 ? 20 : count;
+        for (LocalLightMethod m : allLocalLightMethods()) {
+            RenderSettings r = smallSettings(m);
+            r.localLights.lightCount = count;
+            rig.renderHdr(r);
+            const LocalLightStats& st = rig.passes.localLights.stats;
+            EXPECT_EQ(st.requested, expected) << localLightMethodName(m);
+            if (m == LocalLightMethod::Scissor) {
+                EXPECT_EQ(st.drawn + st.offscreen, expected);
+                if (count == -1) {
+                    EXPECT_EQ(st.offscreen, 0);  // all 20 are on screen
+                    EXPECT_EQ(st.fullScreen, 2);  // the camera-inside and near-plane lights
+                }
+            } else {
+                EXPECT_EQ(st.drawn, expected) << localLightMethodName(m);
+            }
+        }
+    }
+}
+
+// One light above a matte plane, no other light: every method matches the analytic radiance
+// kd/pi * I/d^2 * window * N.L within fp16 storage (2^-11) and float shading: 2e-3 relative.
+TEST(LocalLights, SingleLightOverPlaneMatchesAnalyticRadiance) {
+    Scene s;
+    const glm::vec3 kd(0.6f, 0.4f, 0.2f);
+    s.models.push_back(model("plane", makePlane(1.0f, 4), glm::scale(glm::mat4(1.0f), glm::vec3(8.0f)), kd,
+                             glm::vec3(0.0f), 1.0f));
+    s.camera.position = {0.0f, 3.0f, 0.01f};
+    s.camera.target = {0.0f, 0.0f, 0.0f};
+    s.camera.nearPlane = 0.1f;
+    s.camera.farPlane = 10.0f;
+    s.ambient = glm::vec3(0.0f);
+    PointLight l;
+    l.position = {0.3f, 0.4f, -0.2f};
+    l.range = 1.5f;
+    l.intensity = 0.7f;
+    l.color = {1.0f, 0.8f, 0.5f};
+    s.pointLights.push_back(l);
+    Rig rig(s);
+    const int w = 64, h = 48;
+    const glm::dmat4 inv = glm::inverse(glm::dmat4(s.camera.projection(float(w) / float(h))) * glm::dmat4(s.camera.view()));
+    const glm::dvec3 kd8 = glm::round(glm::dvec3(kd) * 255.0) / 255.0;  // the G-buffer stores RGBA8 albedo
+    for (LocalLightMethod m : allLocalLightMethods()) {
+        std::vector<float> img = rig.renderHdr(smallSettings(m));
+        int lit = 0;
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                double nx = (x + 0.5) / w * 2.0 - 1.0, ny = (y + 0.5) / h * 2.0 - 1.0;  // row 0 = bottom
+                glm::dvec4 a = inv * glm::dvec4(nx, ny, -1.0, 1.0), b = inv * glm::dvec4(nx, ny, 1.0, 1.0);
+                glm::dvec3 p0 = glm::dvec3(a) / a.w, p1 = glm::dvec3(b) / b.w;
+                glm::dvec3 p = p0 + (-p0.y / (p1.y - p0.y)) * (p1 - p0);
+                glm::dvec3 toLight = glm::dvec3(l.position) - p;
+                double d = glm::length(toLight);
+                double e = double(l.intensity) * attenuationRef(d, l.range) * std::max(toLight.y / d, 0.0);
+                for (int c = 0; c < 3; ++c) {
+                    double expected = kd8[c] / M_PI * double(l.color[c]) * e;
+                    double got = img[(size_t(y) * w + x) * 4 + c];
+                    EXPECT_NEAR(got, expected, 2e-3 * expected + 1e-6)
+                        << localLightMethodName(m) << " pixel " << x << "," << y << " channel " << c;
+                }
+                if (e > 0.0) ++lit;
+            }
+        EXPECT_GT(lit, 100) << "the light reaches a good part of the image";
+    }
+}
+
+// A very bright light lying exactly on the floor: no NaN or Inf in the HDR buffer, and the pixels
+// around it are bright (the clamp of d^2 at (0.01 R)^2 keeps them finite, not zero).
+TEST(LocalLights, LightOnTheSurfaceLeavesNoNanOrInf) {
+    Scene s = twentyLightScene();
+    s.pointLights.resize(2);
+    s.pointLights[1].position = {0.0f, 0.0f, 0.0f};  // on the plane y = 0, in view
+    s.pointLights[1].intensity = 1e6f;
+    s.pointLights[1].range = 2.0f;
+    Rig rig(s);
+    for (LocalLightMethod m : allLocalLightMethods()) {
+        std::vector<float> img = rig.renderHdr(smallSettings(m));
+        float brightest = 0.0f;
+        for (float v : img) {
+            ASSERT_TRUE(std::isfinite(v)) << localLightMethodName(m);
+            ASSERT_GE(v, 0.0f) << localLightMethodName(m);
+            brightest = std::max(brightest, v);
+        }
+        EXPECT_GE(brightest, 1000.0f) << localLightMethodName(m);
+        EXPECT_LE(brightest, 65504.0f) << "largest half float";
+    }
+}
+
+// Globes and the two overlay views render without GL errors and leave the buffer finite; the
+// lights-per-tile view changes the picture (it is a heat map over it).
+TEST(LocalLights, GlobesAndOverlayViewsRender) {
+    Scene s = twentyLightScene();
+    Rig rig(s);
+    RenderSettings base = smallSettings(LocalLightMethod::Tiled);
+    const std::vector<float> plain = rig.renderHdr(base);
+    for (DebugView v : {DebugView::Final, DebugView::LightRanges, DebugView::LightsPerTile})
+        for (LocalLightMethod m : {LocalLightMethod::Volumes, LocalLightMethod::Tiled}) {
+            RenderSettings r = base;
+            r.view = v;
+            r.localLights.method = m;
+            r.localLights.globes = v == DebugView::Final;
+            std::vector<float> img = rig.renderHdr(r);
+            size_t differ = 0;
+            for (size_t i = 0; i < img.size(); ++i) {
+                ASSERT_TRUE(std::isfinite(img[i])) << viewName(v);
+                if (img[i] != plain[i]) ++differ;
+            }
+            EXPECT_GT(differ, 0u) << viewName(v) << " " << localLightMethodName(m);
+        }
+}
+
+}  // namespace

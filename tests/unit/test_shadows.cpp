@@ -1,0 +1,230 @@
+// Shadow passes in the frame graph and the cascade fitting math (no GL: nothing executes).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "engine/core/error.hpp"
+#include "engine/graph/frame_graph.hpp"
+#include "engine/render/frame_builder.hpp"
+#include "engine/render/shadows.hpp"
+
+using namespace lp;
+using fg::FrameGraph;
+
+namespace {
+
+// A 20 m box of "geometry" (bounds only) at the origin, camera outside looking at it.
+Scene boundsScene(glm::vec3 lo, glm::vec3 hi, std::vector<bool> lightCasts) {
+    Scene s;
+    ModelInstance m;
+    m.name = "block";
+    m.mesh.boundsMin = lo;
+    m.mesh.boundsMax = hi;
+    s.models.push_back(m);
+    for (bool casts : lightCasts) {
+        DirectionalLight l;
+        l.direction = glm::vec3(-0.3f, -1.0f, -0.2f);
+        l.castsShadows = casts;
+        s.directionalLights.push_back(l);
+    }
+    s.camera.position = glm::vec3(0, 4, 12);
+    s.camera.target = glm::vec3(0);
+    s.camera.nearPlane = 0.1f;
+    s.camera.farPlane = 200.0f;
+    return s;
+}
+
+std::vector<std::string> orderFor(const Scene& scene, const RenderSettings& settings) {
+    FrameData frame = makeFrameData(scene, settings, 0.0f);
+    FrameGraph g;
+    PassStates passes;
+    buildFrameGraph(g, passes, frame);
+    g.compile();
+    return g.executionOrder();
+}
+
+RenderSettings small(DebugView view = DebugView::Final) {
+    RenderSettings s;
+    s.width = 64;
+    s.height = 48;
+    s.view = view;
+    return s;
+}
+
+bool hasShadowPass(const std::vector<std::string>& order) {
+    return std::any_of(order.begin(), order.end(), [](const std::string& n) { return n.rfind("shadow_map", 0) == 0; });
+}
+
+}  // namespace
+
+TEST(ShadowGraph, NoShadowCastingLightMeansNoShadowPass) {
+    Scene s = boundsScene(glm::vec3(-10), glm::vec3(10), {false, false});
+    const RenderSettings settings = small();
+    FrameData frame = makeFrameData(s, settings, 0.0f);
+    FrameGraph g;
+    PassStates passes;
+    buildFrameGraph(g, passes, frame);
+    g.compile();
+    for (const auto& r : g.report()) EXPECT_NE(r.name.rfind("shadow_map", 0), 0u) << r.name;
+    EXPECT_FALSE(hasShadowPass(g.executionOrder()));
+    ASSERT_FALSE(g.skippedPasses().empty());
+    EXPECT_NE(g.describe().find("shadow_map: skipped: no directional light casts shadows"), std::string::npos);
+}
+
+TEST(ShadowGraph, ShadowsOffMeansNoShadowPass) {
+    Scene s = boundsScene(glm::vec3(-10), glm::vec3(10), {true});
+    RenderSettings settings = small();
+    settings.shadows.enabled = false;
+    EXPECT_FALSE(hasShadowPass(orderFor(s, settings)));
+}
+
+TEST(ShadowGraph, OnePassPerCastingLightBeforeGlobalLights) {
+    Scene s = boundsScene(glm::vec3(-10), glm::vec3(10), {false, true, true});
+    auto order = orderFor(s, small());
+    auto pos = [&](const std::string& n) { return std::find(order.begin(), order.end(), n) - order.begin(); };
+    EXPECT_EQ(std::count_if(order.begin(), order.end(), [](const std::string& n) { return n.rfind("shadow_map", 0) == 0; }), 2);
+    EXPECT_EQ(pos("shadow_map_0"), long(order.size()));  // light 0 casts none
+    EXPECT_LT(pos("shadow_map_1"), pos("global_lights"));
+    EXPECT_LT(pos("shadow_map_2"), pos("global_lights"));
+}
+
+TEST(ShadowGraph, ChannelViewCullsShadowPassAndShadowMapViewKeepsOnlyIt) {
+    Scene s = boundsScene(glm::vec3(-10), glm::vec3(10), {true});
+    EXPECT_EQ(orderFor(s, small(DebugView::Normals)), (std::vector<std::string>{"gbuffer", "debug_view"}));
+    EXPECT_EQ(orderFor(s, small(DebugView::ShadowMap)), (std::vector<std::string>{"shadow_map_0", "debug_view"}));
+}
+
+TEST(ShadowGraph, ShadowMapViewOfALightWithoutMapIsAnError) {
+    Scene s = boundsScene(glm::vec3(-10), glm::vec3(10), {true, false});
+    RenderSettings settings = small(DebugView::ShadowMap);
+    settings.shadows.debugLight = 1;
+    try {
+        orderFor(s, settings);
+        FAIL() << "expected an error";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("directional light 1 has no shadow map"), std::string::npos) << e.what();
+    }
+}
+
+TEST(ShadowSettingsNames, ParseAndPrintRoundTrip) {
+    for (auto f : {ShadowSettings::Filter::Off, ShadowSettings::Filter::Pcf3x3, ShadowSettings::Filter::Pcf5x5,
+                   ShadowSettings::Filter::Poisson})
+        EXPECT_EQ(ShadowSettings::parseFilter(ShadowSettings::filterName(f)), f);
+    EXPECT_FALSE(ShadowSettings::parseFilter("7x7"));
+    EXPECT_EQ(parseBrdf("ggx"), Brdf::Ggx);
+    EXPECT_EQ(parseBrdf("blinn-phong"), Brdf::BlinnPhong);
+    EXPECT_FALSE(parseBrdf("phong"));
+    EXPECT_EQ(parseView("shadowmap"), DebugView::ShadowMap);
+}
+
+// Bound: splits are exact at both ends, strictly increasing, and lambda 0 / 1 give the linear and
+// logarithmic schemes to 1e-12 relative.
+TEST(ShadowCascades, PracticalSplitsInterpolateLinearAndLog) {
+    auto lin = practicalSplits(0.1, 100.0, 4, 0.0), log = practicalSplits(0.1, 100.0, 4, 1.0);
+    auto mid = practicalSplits(0.1, 100.0, 4, 0.75);
+    for (int i = 0; i <= 4; ++i) {
+        EXPECT_NEAR(lin[size_t(i)], 0.1 + 99.9 * i / 4.0, 1e-12 * 100);
+        EXPECT_NEAR(log[size_t(i)], 0.1 * std::pow(1000.0, i / 4.0), 1e-12 * 100);
+        if (i > 0) EXPECT_GT(mid[size_t(i)], mid[size_t(i) - 1]);
+    }
+    EXPECT_EQ(mid.front(), 0.1);
+    EXPECT_EQ(mid.back(), 100.0);
+}
+
+// Coverage: every point of the camera's view volume that lies inside the scene bounds falls inside
+// its cascade's orthographic box (|x|, |y| <= 1, z in [-1, 1]) - checked on a 9x9x33 grid.
+TEST(ShadowCascades, CascadesCoverTheVisibleSceneInsideTheirBoxes) {
+    Scene s = boundsScene(glm::vec3(-50, 0, -50), glm::vec3(50, 5, 50), {true});
+    s.camera.farPlane = 80.0f;
+    RenderSettings settings = small();
+    FrameData frame = makeFrameData(s, settings, 0.0f);
+    ShadowFrustum fr = fitShadowFrustum(frame, s.directionalLights[0].direction);
+    ASSERT_EQ(fr.cascades.size(), 4u);
+    const glm::mat4 invVp = glm::inverse(frame.projection * frame.view);
+    int inside = 0;
+    for (int iz = 0; iz <= 32; ++iz)
+        for (int iy = 0; iy <= 8; ++iy)
+            for (int ix = 0; ix <= 8; ++ix) {
+                glm::vec4 ndc(ix / 4.0f - 1.0f, iy / 4.0f - 1.0f, iz / 16.0f - 1.0f, 1.0f);
+                glm::vec4 w = invVp * ndc;
+                glm::vec3 p = glm::vec3(w) / w.w;
+                if (glm::any(glm::lessThan(p, glm::vec3(-50, 0, -50))) || glm::any(glm::greaterThan(p, glm::vec3(50, 5, 50))))
+                    continue;
+                const float depth = -(frame.view * glm::vec4(p, 1.0f)).z;
+                size_t c = 0;
+                while (c + 1 < fr.cascades.size() && depth > fr.cascades[c].splitFar) ++c;
+                glm::vec4 clip = fr.cascades[c].worldToClip * glm::vec4(p, 1.0f);
+                EXPECT_LE(std::abs(clip.x), 1.0f + 1e-4f) << "cascade " << c << " depth " << depth;
+                EXPECT_LE(std::abs(clip.y), 1.0f + 1e-4f) << "cascade " << c << " depth " << depth;
+                EXPECT_LE(std::abs(clip.z), 1.0f) << "cascade " << c;
+                ++inside;
+            }
+    EXPECT_GT(inside, 500);
+    for (size_t c = 1; c < fr.cascades.size(); ++c) EXPECT_GE(fr.cascades[c].texelWorld, fr.cascades[c - 1].texelWorld);
+}
+
+// Stability: turning the camera, and moving it within one 2^(1/4) step of its distance to the
+// scene, keeps each cascade's texel size (bitwise), and the cascade's square moves by whole texels
+// only (to 1e-3 texel), so shadow edges do not shimmer.
+TEST(ShadowCascades, TexelSizeIsConstantAndOffsetsSnapToTexels) {
+    Scene s = boundsScene(glm::vec3(-100, 0, -100), glm::vec3(100, 10, 100), {true});
+    RenderSettings settings = small();
+    settings.shadows.size = 1024;
+    FrameData a = makeFrameData(s, settings, 0.0f);
+    ShadowFrustum fa = fitShadowFrustum(a, s.directionalLights[0].direction);
+    s.camera.position += glm::vec3(0.37f, 0.0f, -1.13f);
+    s.camera.target += glm::vec3(2.1f, 0.0f, 0.4f);
+    FrameData b = makeFrameData(s, settings, 0.0f);
+    ShadowFrustum fb = fitShadowFrustum(b, s.directionalLights[0].direction);
+    for (size_t c = 0; c < fa.cascades.size(); ++c) {
+        EXPECT_FLOAT_EQ(fa.cascades[c].texelWorld, fb.cascades[c].texelWorld) << c;
+        // The world origin's position in each cascade's texel grid: its fractional part is the same.
+        auto texelOfOrigin = [&](const ShadowCascade& sc) {
+            glm::vec4 clip = sc.worldToClip * glm::vec4(0, 0, 0, 1);
+            return glm::dvec2(clip.x, clip.y) * 0.5 * double(settings.shadows.size);
+        };
+        glm::dvec2 d = texelOfOrigin(fa.cascades[c]) - texelOfOrigin(fb.cascades[c]);
+        EXPECT_NEAR(d.x, std::round(d.x), 1e-3) << c;
+        EXPECT_NEAR(d.y, std::round(d.y), 1e-3) << c;
+    }
+}
+
+// Huge bounds (1e30 m) and a far plane of 1e30: every matrix entry finite (Filament PR #6314's bug).
+TEST(ShadowCascades, HugeSceneBoundsGiveFiniteMatrices) {
+    Scene s = boundsScene(glm::vec3(-1e30f), glm::vec3(1e30f), {true});
+    s.camera.farPlane = 1e30f;
+    RenderSettings settings = small();
+    FrameData frame = makeFrameData(s, settings, 0.0f);
+    for (glm::vec3 dir : {glm::vec3(0, -1, 0), glm::vec3(-0.3f, -1, -0.2f), glm::vec3(1, 0, 0)}) {
+        ShadowFrustum fr = fitShadowFrustum(frame, dir);
+        for (const auto& c : fr.cascades) {
+            for (int i = 0; i < 4; ++i)
+                for (int j = 0; j < 4; ++j) {
+                    EXPECT_TRUE(std::isfinite(c.worldToClip[i][j]));
+                    EXPECT_TRUE(std::isfinite(c.eyeToClip[i][j]));
+                }
+            EXPECT_TRUE(std::isfinite(c.texelWorld) && c.texelWorld > 0.0f);
+            EXPECT_TRUE(std::isfinite(c.depthRange) && c.depthRange > 0.0f);
+        }
+    }
+    // An empty scene and a zero direction: finite, or a one-line error.
+    Scene empty;
+    FrameData ef = makeFrameData(empty, settings, 0.0f);
+    ShadowFrustum fr = fitShadowFrustum(ef, glm::vec3(0, -1, 0));
+    for (const auto& c : fr.cascades) EXPECT_TRUE(std::isfinite(c.worldToClip[0][0]));
+    EXPECT_THROW(fitShadowFrustum(frame, glm::vec3(0.0f)), Error);
+}
+
+TEST(ShadowCascades, BadSettingsAreOneLineErrors) {
+    Scene s = boundsScene(glm::vec3(-1), glm::vec3(1), {true});
+    RenderSettings settings = small();
+    settings.shadows.cascades = 5;
+    FrameData frame = makeFrameData(s, settings, 0.0f);
+    EXPECT_THROW(fitShadowFrustum(frame, glm::vec3(0, -1, 0)), Error);
+    settings.shadows.cascades = 2;
+    settings.shadows.size = 8;
+    EXPECT_THROW(fitShadowFrustum(frame, glm::vec3(0, -1, 0)), Error);
+}
