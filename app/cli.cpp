@@ -24,6 +24,13 @@ usage:
                                     and error against the knob's best value -> D/sweep.csv,
                                     D/sweep.md and images (bench/sweep_report.py adds FLIP
                                     and a Pareto plot)
+  lightpass bench (--scene F | --model F.obj) --vary 'FLAG V1,V2,..' [--vary ...] [flags]
+                                    one process renders every combination of the --vary axes
+                                    (an axis is 'FLAG V1,V2' or 'FLAGS A|FLAGS B'), GPU ms per
+                                    pass (median of --frames after --warmup, default 10) and
+                                    floors with --floors -> --timings-json F (default bench.json);
+                                    --max-seconds S caps a slow variant's frames and warm-up
+                                    (never below --min-frames N, default 10)
   lightpass info                    print the OpenGL device headless rendering would use
   lightpass --help                  this text
 
@@ -143,8 +150,8 @@ Options parseArgs(const std::vector<std::string>& args) {
         o.command = args[0];
         i = 1;
         if (o.command != "render" && o.command != "graph" && o.command != "view" && o.command != "info" &&
-            o.command != "sweep")
-            throw Error("unknown command '" + o.command + "' (render, graph, view, sweep, info; see --help)");
+            o.command != "sweep" && o.command != "bench")
+            throw Error("unknown command '" + o.command + "' (render, graph, view, sweep, bench, info; see --help)");
         if (o.command == "view") {
             if (i >= args.size() || args[i].rfind("-", 0) == 0) throw Error("view: expected a .json scene or .obj model");
             std::string f = args[i++];
@@ -190,6 +197,13 @@ Options parseArgs(const std::vector<std::string>& args) {
         else if (a == "--screenshot-ui") o.screenshotUi = true;
         else if (a == "--knob") o.knobs.push_back(value(a));
         else if (a == "--out-dir") o.outDir = value(a);
+        else if (a == "--vary") o.varies.push_back(value(a));
+        else if (a == "--min-frames") o.minFrames = parseInt(a, value(a), 1, 100000);
+        else if (a == "--max-seconds") {
+            std::string v = value(a);
+            o.maxSeconds = parseFloat(a, v);
+            if (o.maxSeconds <= 0) throw Error(a + " " + v + ": expected a positive number of seconds");
+        }
         else if (a == "--disable-pass") o.base.disabledPasses.insert(value(a));
         else if (a == "--brdf") {
             std::string v = value(a);
@@ -289,8 +303,8 @@ Options parseArgs(const std::vector<std::string>& args) {
     if (!warmupGiven) o.warmup = o.frames > 1 ? 5 : 0;
     if (o.command == "help" || o.command == "info") return o;
     if (!o.scene.empty() && !o.model.empty()) throw Error("give --scene or --model, not both");
-    if (o.command == "sweep" && !warmupGiven) o.warmup = 10;
-    if (o.command == "render" || o.command == "graph" || o.command == "sweep") {
+    if ((o.command == "sweep" || o.command == "bench") && !warmupGiven) o.warmup = 10;
+    if (o.command == "render" || o.command == "graph" || o.command == "sweep" || o.command == "bench") {
         if (o.scene.empty() && o.model.empty()) throw Error(o.command + ": --scene F or --model F.obj is required");
     }
     if (o.command == "render" && o.out.empty() && o.exr.empty()) throw Error("render: --out F.png (or --exr F.exr) is required");
@@ -302,6 +316,16 @@ Options parseArgs(const std::vector<std::string>& args) {
         throw Error("--exr: the '" + std::string(viewName(o.view)) + "' view has no HDR buffer; use --view final or lighting");
     if (o.command == "viewer" && o.scene.empty() && o.model.empty()) o.scene = defaultScenePath();
     return o;
+}
+
+RenderSettings renderSettings(const Options& o) {
+    RenderSettings s = o.base;
+    s.width = o.width;
+    s.height = o.height;
+    s.view = o.view;
+    s.exposureEV = o.exposure;
+    s.keepHdr = !o.exr.empty();
+    return s;
 }
 
 }  // namespace lp::app

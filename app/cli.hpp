@@ -29,6 +29,9 @@ struct Options {
     bool screenshotUi = false;
     std::vector<std::string> knobs;  // sweep
     std::string outDir;              // sweep
+    std::vector<std::string> varies; // bench: one axis of variants per --vary
+    double maxSeconds = 0;           // bench: time cap per variant (0: none)
+    int minFrames = 10;              // bench: timed frames a capped variant still gets
     RenderSettings base;  // feature flags (, , , ) set these
     bool verbose = false;
     bool quiet = false;
@@ -36,6 +39,8 @@ struct Options {
 
 // Throws lp::Error("unknown flag ...") etc.
 Options parseArgs(const std::vector<std::string>& args);
+// The frame settings the options describe (size, view, exposure, feature flags).
+RenderSettings renderSettings(const Options& options);
 std::string helpText();
 std::string defaultScenePath();
 

@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/bench.hpp"
 #include "app/cli.hpp"
 #include "app/sweep.hpp"
 #include "app/viewer.hpp"
@@ -26,15 +27,7 @@ namespace {
 
 Scene loadFromOptions(const Options& o) { return o.model.empty() ? loadScene(o.scene) : sceneForModel(o.model); }
 
-RenderSettings settingsFromOptions(const Options& o) {
-    RenderSettings s = o.base;
-    s.width = o.width;
-    s.height = o.height;
-    s.view = o.view;
-    s.exposureEV = o.exposure;
-    s.keepHdr = !o.exr.empty();
-    return s;
-}
+RenderSettings settingsFromOptions(const Options& o) { return renderSettings(o); }
 
 int commandInfo() {
     auto ctx = gl::createHeadlessContext();
@@ -165,6 +158,7 @@ int main(int argc, char** argv) {
         if (o.command == "graph") return app::commandGraph(o);
         if (o.command == "render") return app::commandRender(o);
         if (o.command == "sweep") return app::runSweep(o);
+        if (o.command == "bench") return app::runBench(o, args);
         return app::runViewer(o);
     } catch (const lp::Error& e) {
         std::fprintf(stderr, "lightpass: error: %s\n", e.what());

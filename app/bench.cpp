@@ -1,0 +1,172 @@
+#include "app/bench.hpp"
+
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "engine/core/error.hpp"
+#include "engine/core/log.hpp"
+#include "engine/gl/context.hpp"
+#include "engine/io/image_io.hpp"
+#include "engine/render/floors.hpp"
+#include "engine/render/renderer.hpp"
+#include "engine/scene/scene_loader.hpp"
+
+namespace lp::app {
+namespace {
+
+std::vector<std::string> split(const std::string& s, char sep) {
+    std::vector<std::string> out;
+    std::string cur;
+    std::istringstream in(s);
+    while (std::getline(in, cur, sep)) out.push_back(cur);
+    return out;
+}
+
+std::vector<std::string> words(const std::string& s) {
+    std::vector<std::string> out;
+    std::istringstream in(s);
+    for (std::string w; in >> w;) out.push_back(w);
+    return out;
+}
+
+std::string join(const std::vector<std::string>& v) {
+    std::string s;
+    for (const auto& w : v) s += (s.empty() ? "" : " ") + w;
+    return s;
+}
+
+// The bench's own flags are removed from the flags every variant shares.
+std::vector<std::string> commonFlags(const std::vector<std::string>& args) {
+    std::vector<std::string> out;
+    for (size_t i = 1; i < args.size(); ++i) {  // args[0] is "bench"
+        if (args[i] == "--vary" || args[i] == "--max-seconds" || args[i] == "--min-frames" || args[i] == "--timings-json") {
+            ++i;
+            continue;
+        }
+        out.push_back(args[i]);
+    }
+    return out;
+}
+
+}  // namespace
+
+std::vector<std::vector<std::string>> parseVaryAxis(const std::string& spec) {
+    std::vector<std::vector<std::string>> axis;
+    auto alternatives = split(spec, '|');
+    if (alternatives.size() == 1) {
+        // "--flag v1,v2,v3": one alternative per value.
+        auto w = words(spec);
+        if (w.size() == 2 && w[1].find(',') != std::string::npos) {
+            for (const auto& v : split(w[1], ',')) axis.push_back({w[0], v});
+            return axis;
+        }
+    }
+    for (const auto& alt : alternatives) {
+        auto w = words(alt);
+        if (w.empty()) throw Error("--vary '" + spec + "': empty alternative");
+        if (w[0].rfind("--", 0) != 0) throw Error("--vary '" + spec + "': '" + w[0] + "' is not a flag");
+        axis.push_back(w);
+    }
+    return axis;
+}
+
+std::vector<std::vector<std::string>> expandVariants(const std::vector<std::string>& specs) {
+    std::vector<std::vector<std::string>> variants{{}};
+    for (const auto& spec : specs) {
+        std::vector<std::vector<std::string>> next;
+        for (const auto& v : variants)
+            for (const auto& alt : parseVaryAxis(spec)) {
+                auto combined = v;
+                combined.insert(combined.end(), alt.begin(), alt.end());
+                next.push_back(combined);
+            }
+        variants = std::move(next);
+    }
+    return variants;
+}
+
+int runBench(const Options& o, const std::vector<std::string>& args) {
+    if (o.varies.empty()) throw Error("bench: --vary 'FLAG V1,V2,...' is required (see --help)");
+    const auto common = commonFlags(args);
+    const auto variants = expandVariants(o.varies);
+    // Validate every variant's flags before any GPU work, so a typo fails at once.
+    std::vector<RenderSettings> settings;
+    for (const auto& v : variants) {
+        std::vector<std::string> a{"graph"};
+        a.insert(a.end(), common.begin(), common.end());
+        a.insert(a.end(), v.begin(), v.end());
+        Options vo = parseArgs(a);
+        settings.push_back(renderSettings(vo));
+    }
+
+    Scene scene = o.model.empty() ? loadScene(o.scene) : sceneForModel(o.model);
+    auto ctx = gl::createHeadlessContext();
+    logInfo("bench on " + ctx->info().renderer + (ctx->isSoftware() ? " (software rasteriser: times are not meaningful)" : ""));
+    Renderer renderer(scene);
+    nlohmann::json j;
+    j["device"] = ctx->info().renderer;
+    j["scene"] = o.model.empty() ? o.scene : o.model;
+    j["common_flags"] = join(common);
+    Bandwidth compute, fragment;
+    if (o.floors) {
+        gl::ShaderLibrary shaders;
+        compute = measureComputeBandwidth(shaders);
+        fragment = measureFragmentBandwidth(shaders);
+        j["bandwidth"] = {{"compute_GBps", compute.bytesPerSecond * 1e-9}, {"fragment_GBps", fragment.bytesPerSecond * 1e-9}};
+    }
+    for (size_t vi = 0; vi < variants.size(); ++vi) {
+        const RenderSettings& s = settings[vi];
+        renderer.timers().clear();
+        // Slow variants (e.g. 4096 full-screen light passes at 4K) get fewer frames: about
+        // --max-seconds per variant (a quarter of it for warm-up), never fewer than --min-frames.
+        int frames = o.frames, warmup = o.warmup;
+        if (o.maxSeconds > 0) {
+            glFinish();
+            auto t0 = std::chrono::steady_clock::now();
+            renderer.render(s, 0.0f, false);
+            glFinish();
+            const double secs = std::max(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 1e-6);
+            frames = std::min(o.frames, std::max(o.minFrames, int(o.maxSeconds / secs)));
+            warmup = std::min(o.warmup, std::max(1, int(0.25 * o.maxSeconds / secs)));
+        }
+        for (int i = 0; i < warmup; ++i) renderer.render(s, 0.0f, false);
+        for (int i = 0; i < frames; ++i) renderer.render(s, 0.0f, true);
+        glFinish();
+        renderer.timers().flush();
+        nlohmann::json run;
+        run["flags"] = join(variants[vi]);
+        run["width"] = s.width;
+        run["height"] = s.height;
+        run["frames"] = frames;
+        run["transient_texture_bytes"] = renderer.pool().totalBytes();
+        const auto& timers = renderer.timers();
+        std::fprintf(stderr, "[%zu/%zu] %-50s frame %9.4f ms (%d frames)\n", vi + 1, variants.size(),
+                     join(variants[vi]).c_str(), timers.median("frame"), frames);
+        for (const auto& name : timers.passOrder()) {
+            if (timers.samples(name).empty()) continue;
+            run["passes"][name]["median_ms"] = timers.median(name);
+            const size_t bytes = renderer.graph().passTrafficBytes(name);
+            if (o.floors && bytes > 0) {
+                const bool raster = name == "gbuffer" || name == "shadow_map" || name.rfind("shadow_map_", 0) == 0;
+                run["passes"][name]["bytes"] = bytes;
+                run["passes"][name]["floor_ms"] = double(bytes) / (raster ? fragment.bytesPerSecond : compute.bytesPerSecond) * 1e3;
+                run["passes"][name]["floor_basis"] = raster ? "fragment fill" : "compute copy";
+            }
+        }
+        j["runs"].push_back(run);
+    }
+    const std::string out = o.timingsJson.empty() ? "bench.json" : o.timingsJson;
+    writeFileAtomically(out, [&](const std::filesystem::path& tmp) {
+        std::ofstream f(tmp);
+        f << j.dump(1) << "\n";
+        if (!f) throw Error("write failed");
+    });
+    std::printf("wrote %s (%zu variants)\n", out.c_str(), variants.size());
+    return 0;
+}
+
+}  // namespace lp::app
