@@ -125,6 +125,7 @@ int runBench(const Options& o, const std::vector<std::string>& args) {
         // --max-seconds per variant (a quarter of it for warm-up), never fewer than --min-frames.
         int frames = o.frames, warmup = o.warmup;
         if (o.maxSeconds > 0) {
+            renderer.render(s, 0.0f, false);  // first frame of a setting compiles programs, fills caches
             glFinish();
             auto t0 = std::chrono::steady_clock::now();
             renderer.render(s, 0.0f, false);
