@@ -10,6 +10,7 @@
 #include "engine/core/error.hpp"
 #include "engine/core/log.hpp"
 #include "engine/gl/state.hpp"
+#include "engine/graph/frame_graph.hpp"
 #include "engine/io/image_io.hpp"
 #include "engine/render/ibl_sh.hpp"
 
@@ -190,6 +191,26 @@ const BakedEnvironment& EnvironmentCache::get(const Scene& scene, const Environm
     return env;
 }
 
+bool EnvironmentCache::ready(const Scene& scene, const EnvironmentSettings& requested, bool bake) const {
+    const EnvironmentSettings s = effectiveSettings(requested, !scene.environment.map.empty());
+    const std::string key = cubeKey(scene, s);
+    auto it = environments_.find(key);
+    if (it == environments_.end()) return false;
+    return !bake || (it->second->bakeKey == bakeKeyOf(key, s) && dfg_ && dfgKey_ == std::to_string(s.dfgSize) + "x" + std::to_string(s.dfgSamples));
+}
+
+size_t EnvironmentCache::gpuBytes() const {
+    auto bytes = [](const gl::Texture& t) -> size_t {
+        if (!t) return 0;
+        const size_t faces = t.target == GL_TEXTURE_CUBE_MAP ? 6 : 1;
+        return faces * fg::TextureDesc{t.width, t.height, t.format, t.levels}.bytes();
+    };
+    size_t total = bytes(dfg_);
+    for (const auto& [key, env] : environments_)
+        total += bytes(env->cube) + bytes(env->irradiance) + bytes(env->prefiltered);
+    return total;
+}
+
 void EnvironmentCache::makeCube(BakedEnvironment& env, const Scene& scene, const EnvironmentSettings& s,
                                 const gl::ShaderLibrary& shaders, const std::string& key) {
     const int levels = log2Int(s.cubeSize) + 1;
@@ -259,6 +280,9 @@ void EnvironmentCache::bakeIbl(BakedEnvironment& env, const Scene& scene, const 
     progress("SH (CPU, double) done");
 
     gl::ScopedEnable seamless(GL_TEXTURE_CUBE_MAP_SEAMLESS, true);
+    // GPU time of the bake itself (irradiance + prefiltered chain), apart from file reading and the CPU SH.
+    gl::Query gpuBegin = gl::makeQuery(GL_TIMESTAMP), gpuEnd = gl::makeQuery(GL_TIMESTAMP);
+    glQueryCounter(gpuBegin.id(), GL_TIMESTAMP);
     const float sourceMaxLod = float(env.cube.levels - 1);
     glBindTextureUnit(0, env.cube.id());
 
@@ -302,11 +326,19 @@ void EnvironmentCache::bakeIbl(BakedEnvironment& env, const Scene& scene, const 
     glUseProgram(0);
     glBindTextureUnit(0, 0);
     glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glQueryCounter(gpuEnd.id(), GL_TIMESTAMP);
     gl::checkErrors("baking image-based lighting");
     glFinish();
     env.bakeKey = key;
+    GLuint64 gpuT0 = 0, gpuT1 = 0;
+    glGetQueryObjectui64v(gpuBegin.id(), GL_QUERY_RESULT, &gpuT0);
+    glGetQueryObjectui64v(gpuEnd.id(), GL_QUERY_RESULT, &gpuT1);
+    env.bakeGpuMs = double(gpuT1 - gpuT0) * 1e-6;
     if (env.hasMap)
-        logInfo("ibl: baked " + what + " in " + fmt(std::round(secondsSince(t0) * 1000.0)) + " ms");
+        logInfo("ibl: baked " + what + " in " + fmt(std::round(secondsSince(t0) * 1000.0)) + " ms (GPU " +
+                fmt(float(std::round(env.bakeGpuMs * 100.0) / 100.0)) + " ms: irradiance " + std::to_string(s.irradianceSize) + "^2 x " +
+                std::to_string(s.irradianceSamples) + ", prefiltered " + std::to_string(s.specularSize) + "^2 x " +
+                std::to_string(s.specularLevels) + " mips x " + std::to_string(s.specularSamples) + " samples)");
     if (useDisk) saveCache(file, key, &env.sh, {&env.prefiltered, &env.irradiance});
 }
 

@@ -23,6 +23,7 @@ struct BakedEnvironment {
     bool hasMap = false;        // false: a uniform environment of the scene's colour
     gl::Texture cube;           // radiance (without the scene's intensity)
     std::string bakeKey;        // empty until baked
+    double bakeGpuMs = 0.0;     // GPU time of the last bake (timestamp queries)
     std::array<glm::vec3, 9> sh{};  // SH of radiance
     gl::Texture irradiance;     // E(n), W/m^2
     gl::Texture prefiltered;    // mip m: GGX roughness m / (levels - 1); mip 0 is a copy of a cube mip
@@ -34,6 +35,11 @@ public:
     const BakedEnvironment& get(const Scene& scene, const EnvironmentSettings& settings,
                                 const gl::ShaderLibrary& shaders, bool bake);
     const gl::Texture& dfgLut(const EnvironmentSettings& settings, const gl::ShaderLibrary& shaders);
+    // Whether get(scene, settings, .., bake) would find everything made already (no GL needed):
+    // false in the frame where the environment or the bake settings changed.
+    bool ready(const Scene& scene, const EnvironmentSettings& settings, bool bake) const;
+    // GPU bytes of every cube and LUT the cache holds (persistent, outside the frame graph's pool).
+    size_t gpuBytes() const;
 
 private:
     void makeCube(BakedEnvironment& env, const Scene& scene, const EnvironmentSettings& s,
