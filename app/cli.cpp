@@ -16,7 +16,7 @@ usage:
   lightpass render (--scene F | --model F.obj) --out F.png [options]
                                     render headless (EGL; NVIDIA if present, else Mesa llvmpipe)
                                     and print each pass's GPU time (median over the frames)
-  lightpass graph (--scene F | --model F.obj) [--view V] [--dot F.dot]
+  lightpass graph (--scene F | --model F.obj) [--view V] [--dot F.dot] [--explain]
                                     print the frame graph: passes that run, passes culled and
                                     why, what each reads and writes, transient textures
   lightpass sweep (--scene F | --model F.obj) --knob K [--knob K2 ...] [--out-dir D]
@@ -80,6 +80,12 @@ options:
   --no-local-specular  local lights add diffuse only
   --specular-outside-range  diffuse limited by the range, specular (1/d^2) not (seed 003)
   --view light-ranges | lights-per-tile  overlay each light's rectangle/volume, or lights per 16x16 tile
+  --light-range-scale S  each local light's range x S, 0.01..1 (default 1 = full range; < 1 cuts
+                    lights short, cheaper and darker: a sweep knob)
+  --gbuffer F       G-buffer normal format: unpacked | seed-packed | seed-packed-signed | two-angle |
+                    oct16 | oct24 | oct32   (default unpacked; README "G-buffer formats")
+  --gbuffer-position P  stored | depth | reversed-z: eye positions stored (RGBA32F) or rebuilt
+                    from standard or reversed-Z depth (default stored)
   --bloom, --no-bloom  bloom on/off (default: the scene's effects.bloom.enabled)
   --bloom-method M  separable | mip-chain   (default separable; mip-chain: Jimenez 2014)
   --bloom-kernel N  blur width in pixels, 1..101 (default: the scene's, else 25)
@@ -97,6 +103,11 @@ options:
   --floors          also measure this GPU's compute and fragment bandwidth and print each pass's
                     floor (bytes it must move / bandwidth) and measured/floor
   --dot F           with graph: also write Graphviz DOT
+  --explain         with graph: list every candidate pass, whether it runs, and why not
+                    ("skipped: scene has no shadow-casting light")
+  --all-passes      add every candidate pass even where the scene does not call for it (shadow
+                    maps for every sun, local lights with none in view, colour sky, IBL, bloom at
+                    strength 0); for measuring what the scene-driven graph saves, image may differ
   --no-vsync        viewer: don't wait for vertical sync (for measuring)
   --screenshot-dir D  viewer: where F12 writes lightpass-N.png (+ .exr of the HDR buffer)
   --hide-panel      viewer: start with the ImGui panel hidden (Tab toggles it)
@@ -105,9 +116,10 @@ options:
   -q, --quiet       log errors only
 
 viewer keys (seed 001):
-  1 depth  2 normals  3 diffuse  4 eye-space position  5 lighting  6 shininess  7 specular
-  8 texcoords  0 final  r reset camera  x toggle scissor  W/S/A/D/Q/Z move  mouse drag: look
-  +/- exposure  Tab panel  h help  F12 screenshot  Esc quit
+  1 depth  2 normals  3 diffuse  4 eye-space position  5 lighting  6 shininess  7 toon on/off
+  8 bloom buffer alone  0 standard view  r reset camera  x toggle scissor  W/S/A/D/Q/Z move
+  mouse drag: look  +/- exposure  Tab panel  h help  F12 screenshot  Esc quit
+  (the panel also picks scenes and environments, and shaders/ edits reload while it runs)
 )";
 }
 
@@ -172,6 +184,8 @@ Options parseArgs(const std::vector<std::string>& args) {
         else if (a == "--out") o.out = value(a);
         else if (a == "--exr") o.exr = value(a);
         else if (a == "--dot") o.dot = value(a);
+        else if (a == "--explain") o.explain = true;
+        else if (a == "--all-passes") o.base.allPasses = true;
         else if (a == "--timings-json") o.timingsJson = value(a);
         else if (a == "--size") {
             std::string v = value(a);
@@ -260,6 +274,22 @@ Options parseArgs(const std::vector<std::string>& args) {
         else if (a == "--globes") o.base.localLights.globes = true;
         else if (a == "--no-local-specular") o.base.localLights.specular = false;
         else if (a == "--specular-outside-range") o.base.localLights.specularOutsideRange = true;
+        else if (a == "--light-range-scale") {
+            const std::string v = value(a);
+            const float x = parseFloat(a, v);
+            if (x < 0.01f || x > 1.0f) throw Error("--light-range-scale " + v + ": expected a number in [0.01, 1]");
+            o.base.localLights.rangeScale = x;
+        } else if (a == "--gbuffer") {
+            const std::string v = value(a);
+            auto f = parseGBufferFormat(v);
+            if (!f) throw Error("--gbuffer " + v + ": unknown format (" + gbufferFormatNames() + ")");
+            o.base.gbuffer.normal = *f;
+        } else if (a == "--gbuffer-position") {
+            const std::string v = value(a);
+            auto m = parseGBufferPosition(v);
+            if (!m) throw Error("--gbuffer-position " + v + ": unknown mode (" + gbufferPositionNames() + ")");
+            o.base.gbuffer.position = *m;
+        }
         else if (a == "--bloom") o.base.post.bloom = true;  // flags
         else if (a == "--no-bloom") o.base.post.bloom = false;
         else if (a == "--bloom-method") {

@@ -16,6 +16,7 @@ struct Options {
     std::string exr;
     std::string dot;
     std::string timingsJson;
+    bool explain = false;  // graph: every candidate pass, whether it runs and why not
     int width = 1280, height = 720;
     bool sizeGiven = false;
     DebugView view = DebugView::Final;

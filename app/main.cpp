@@ -57,7 +57,7 @@ int commandGraph(const Options& o) {
     graph.compile();
     std::printf("frame graph for %s, view '%s', %dx%d\n", (o.model.empty() ? o.scene : o.model).c_str(),
                 viewName(settings.view), settings.width, settings.height);
-    std::fputs(graph.describe().c_str(), stdout);
+    std::fputs((o.explain ? graph.explainText() : graph.describe()).c_str(), stdout);
     if (!o.dot.empty()) {
         writeFileAtomically(o.dot, [&](const std::filesystem::path& tmp) {
             std::ofstream f(tmp);
@@ -121,6 +121,17 @@ int commandRender(const Options& o) {
     }
     for (const auto& r : renderer.graph().report())
         if (r.culled) j["culled"][r.name] = r.reason;
+    for (const auto& d : renderer.graph().explain())
+        if (!d.runs) j["not_run"][d.name] = d.reason;
+    j["all_passes"] = settings.allPasses;
+    // GPU memory of textures: the pool (every transient, shadow maps included, after reuse) and
+    // what outlives frames outside it (environment cubes, IBL bakes).
+    const size_t poolBytes = renderer.pool().totalBytes(), persistentBytes = renderer.persistentTextureBytes();
+    std::printf("texture memory: %.2f MiB pooled transients + %.2f MiB persistent (environment, IBL)\n",
+                poolBytes / 1048576.0, persistentBytes / 1048576.0);
+    j["memory"] = {{"pool_bytes", poolBytes}, {"persistent_bytes", persistentBytes},
+                   {"total_bytes", poolBytes + persistentBytes},
+                   {"graph_transient_bytes", renderer.graph().liveTransientBytes()}};
 
     if (!o.out.empty()) {
         writePng(o.out, renderer.readDisplay());

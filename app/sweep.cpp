@@ -7,6 +7,8 @@
 #include <map>
 #include <sstream>
 
+#include <unistd.h>
+
 #include "engine/core/error.hpp"
 #include "engine/core/log.hpp"
 #include "engine/gl/context.hpp"
@@ -28,12 +30,17 @@ struct Row {
     bool reference = false;
 };
 
-void progress(const std::string& knob, size_t knobIndex, size_t knobCount, size_t step, size_t steps) {
+// One progress line per knob value ("[1/2] shadow-size [########......] 2/4 1024"): redrawn in place
+// on a terminal, one line each in a log (CI).
+void progress(const std::string& knob, size_t knobIndex, size_t knobCount, size_t step, size_t steps,
+              const std::string& value) {
     const int width = 30;
     int filled = steps ? int(width * step / steps) : width;
-    std::fprintf(stderr, "\r[%zu/%zu] %-22s [%s%s] %zu/%zu", knobIndex + 1, knobCount, knob.c_str(),
-                 std::string(size_t(filled), '#').c_str(), std::string(size_t(width - filled), '.').c_str(), step, steps);
-    if (step == steps) std::fprintf(stderr, "\n");
+    static const bool terminal = isatty(fileno(stderr)) != 0;
+    std::fprintf(stderr, "%s[%zu/%zu] %-22s [%s%s] %zu/%zu %s", terminal ? "\r\033[K" : "", knobIndex + 1, knobCount,
+                 knob.c_str(), std::string(size_t(filled), '#').c_str(), std::string(size_t(width - filled), '.').c_str(),
+                 step, steps, step == steps ? "done" : value.c_str());
+    if (step == steps || !terminal) std::fprintf(stderr, "\n");
     std::fflush(stderr);
 }
 
@@ -80,7 +87,7 @@ int runSweep(const Options& o) {
 
         const size_t steps = knob.values.size();
         for (size_t vi = 0; vi < steps; ++vi) {
-            progress(knob.name, ki, knobs.size(), vi, steps);
+            progress(knob.name, ki, knobs.size(), vi, steps, knob.values[vi].label);
             const KnobValue& value = knob.values[vi];
             RenderSettings s = settingsFor(value);
             for (int i = 0; i < o.warmup; ++i) renderer.render(s, 0.0f, false);
@@ -102,7 +109,7 @@ int runSweep(const Options& o) {
             writePng(dir / file, renderer.readDisplay());
             rows.push_back(row);
         }
-        progress(knob.name, ki, knobs.size(), steps, steps);
+        progress(knob.name, ki, knobs.size(), steps, steps, "");
     }
 
     // CSV: one row per knob value; pass times in columns.

@@ -1,4 +1,5 @@
 #include "app/viewer.hpp"
+#include "app/viewer_state.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -22,64 +23,63 @@
 namespace lp::app {
 namespace {
 
-struct ViewerState {
-    RenderSettings settings;
-    Camera home;
-    bool scissor = true;
-    bool showPanel = true;
-    bool showHelp = false;
-    bool screenshotRequested = false;
-    bool screenshotWithPanel = false;  // --screenshot-ui: F12 captures the window, panel included
-    bool dragging = false;
-    double lastX = 0, lastY = 0;
-    std::filesystem::path screenshotDir = ".";
-    int screenshotCount = 0;
-    std::deque<float> frameMs;  // frame-time graph
-};
-
-const char* kHelp =
-    "1 depth   2 normals   3 diffuse   4 eye-space position   5 lighting only\n"
-    "6 shininess   7 specular   8 texcoords   0 final view\n"
-    "r reset camera   x toggle scissor (local lights)\n"
-    "W/S forward/back   A/D left/right   Q/Z up/down   left-drag look\n"
-    "+/- exposure   Tab hide/show panel   h this help   F12 screenshot   Esc quit";
-
+// Seed 001's keys. Each prints what it did, which the viewer tests read.
 void keyCallback(GLFWwindow* window, int key, int, int action, int) {
     if (action != GLFW_PRESS) return;
     if (ImGui::GetCurrentContext() && ImGui::GetIO().WantCaptureKeyboard) return;  // typing in a field
     auto* st = static_cast<ViewerState*>(glfwGetWindowUserPointer(window));
-    auto& v = st->settings.view;
+    RenderSettings& s = st->settings;
+    auto say = [](const std::string& line) {
+        std::printf("%s\n", line.c_str());
+        std::fflush(stdout);
+    };
+    auto setView = [&](DebugView v) {
+        s.view = v;
+        say(std::string("view ") + viewName(v));
+    };
     switch (key) {
-        case GLFW_KEY_1: v = DebugView::Depth; break;
-        case GLFW_KEY_2: v = DebugView::Normals; break;
-        case GLFW_KEY_3: v = DebugView::Diffuse; break;
-        case GLFW_KEY_4: v = DebugView::Position; break;
-        case GLFW_KEY_5: v = DebugView::Lighting; break;
-        case GLFW_KEY_6: v = DebugView::Shininess; break;
-        case GLFW_KEY_7: v = DebugView::Specular; break;
-        case GLFW_KEY_8: v = DebugView::Texcoords; break;
-        case GLFW_KEY_0: v = DebugView::Final; break;
+        case GLFW_KEY_1: setView(DebugView::Depth); break;
+        case GLFW_KEY_2: setView(DebugView::Normals); break;
+        case GLFW_KEY_3: setView(DebugView::Diffuse); break;
+        case GLFW_KEY_4: setView(DebugView::Position); break;
+        case GLFW_KEY_5: setView(DebugView::Lighting); break;
+        case GLFW_KEY_6: setView(DebugView::Shininess); break;
+        case GLFW_KEY_7:  // toon on/off over the standard view
+            s.view = DebugView::Final;
+            s.post.toon = !st->toonShown;
+            say(std::string("toon ") + (*s.post.toon ? "on" : "off"));
+            break;
+        case GLFW_KEY_8:  // the bloom buffer alone (bloom switched on for it)
+            s.view = DebugView::Final;
+            s.post.bloomOnly = !s.post.bloomOnly;
+            s.post.bloom = s.post.bloomOnly ? std::optional<bool>(true) : st->startBloom;
+            say(std::string("bloom only ") + (s.post.bloomOnly ? "on" : "off"));
+            break;
+        case GLFW_KEY_0:
+            s.post.bloomOnly = false;
+            s.post.bloom = st->startBloom;
+            s.post.toon = st->startToon;
+            setView(DebugView::Final);
+            break;
+        case GLFW_KEY_R: st->resetCamera = true; break;
         case GLFW_KEY_X:
-            st->scissor = !st->scissor;
-            std::printf("scissor %s\n", st->scissor ? "on" : "off");
-            std::fflush(stdout);
+            s.localLights.scissor = !s.localLights.scissor;
+            say(std::string("scissor ") + (s.localLights.scissor ? "on" : "off"));
             break;
         case GLFW_KEY_H: st->showHelp = !st->showHelp; break;
         case GLFW_KEY_TAB: st->showPanel = !st->showPanel; break;
         case GLFW_KEY_F12: st->screenshotRequested = true; break;
-        case GLFW_KEY_EQUAL: case GLFW_KEY_KP_ADD: st->settings.exposureEV += 0.5f; break;
-        case GLFW_KEY_MINUS: case GLFW_KEY_KP_SUBTRACT: st->settings.exposureEV -= 0.5f; break;
+        case GLFW_KEY_EQUAL: case GLFW_KEY_KP_ADD: s.exposureEV += 0.5f; break;
+        case GLFW_KEY_MINUS: case GLFW_KEY_KP_SUBTRACT: s.exposureEV -= 0.5f; break;
         case GLFW_KEY_ESCAPE: glfwSetWindowShouldClose(window, GLFW_TRUE); break;
         default: break;
-    }
-    if (key >= GLFW_KEY_0 && key <= GLFW_KEY_8) {
-        std::printf("view %s\n", viewName(v));
-        std::fflush(stdout);
     }
 }
 
 // Fly camera: W/S forward/back, A/D strafe, Q/Z up/down; drag with the left button to look.
 void moveCamera(GLFWwindow* window, ViewerState& st, Camera& cam, float dt) {
+    if (st.resetCamera) cam = st.home;
+    st.resetCamera = false;
     const ImGuiIO& io = ImGui::GetIO();
     glm::vec3 forward = glm::normalize(cam.target - cam.position);
     glm::vec3 right = glm::normalize(glm::cross(forward, cam.up));
@@ -94,7 +94,6 @@ void moveCamera(GLFWwindow* window, ViewerState& st, Camera& cam, float dt) {
         if (glfwGetKey(window, GLFW_KEY_Z) == GLFW_PRESS) move -= cam.up;
         cam.position += move * speed;
         cam.target += move * speed;
-        if (glfwGetKey(window, GLFW_KEY_R) == GLFW_PRESS) cam = st.home;
     }
     double x, y;
     glfwGetCursorPos(window, &x, &y);
@@ -112,6 +111,11 @@ void moveCamera(GLFWwindow* window, ViewerState& st, Camera& cam, float dt) {
     st.lastY = y;
 }
 
+void say(const std::string& line) {
+    std::printf("%s\n", line.c_str());
+    std::fflush(stdout);
+}
+
 void takeScreenshot(ViewerState& st, Renderer& renderer) {
     std::filesystem::path base = st.screenshotDir / ("lightpass-" + std::to_string(st.screenshotCount++));
     writePng(base.string() + ".png", renderer.readDisplay());
@@ -120,73 +124,50 @@ void takeScreenshot(ViewerState& st, Renderer& renderer) {
         writeExr(base.string() + ".exr", renderer.readHdr());
         msg += " + .exr";
     }
-    std::printf("%s\n", msg.c_str());
-    std::fflush(stdout);
+    st.lastScreenshot = msg;
+    say(msg);
 }
 
-void drawPanel(ViewerState& st, Renderer& renderer, const gl::GpuContext& ctx) {
-    ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize(ImVec2(340, 0), ImGuiCond_FirstUseEver);
-    ImGui::Begin("lightpass (Tab hides, h help)");
-    ImGui::TextUnformatted(ctx.info().renderer.c_str());
+void takeWindowScreenshot(ViewerState& st, glm::ivec2 fb) {
+    Image8 window{fb.x, fb.y, std::vector<uint8_t>(size_t(fb.x) * fb.y * 4)};
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, fb.x, fb.y, GL_RGBA, GL_UNSIGNED_BYTE, window.rgba.data());
+    std::vector<uint8_t> flipped(window.rgba.size());
+    const size_t row = size_t(fb.x) * 4;
+    for (int y = 0; y < fb.y; ++y) std::copy_n(&window.rgba[size_t(fb.y - 1 - y) * row], row, &flipped[size_t(y) * row]);
+    window.rgba.swap(flipped);
+    std::string path = (st.screenshotDir / ("lightpass-" + std::to_string(st.screenshotCount++) + ".png")).string();
+    writePng(path, window);
+    st.lastScreenshot = "screenshot " + path + " (window with panel)";
+    say(st.lastScreenshot);
+}
 
-    // Frame-time graph and per-pass GPU times (rolling median of the last frames).
-    std::vector<float> ms(st.frameMs.begin(), st.frameMs.end());
-    char overlay[64];
-    std::snprintf(overlay, sizeof overlay, "frame %.2f ms GPU", renderer.timers().median("frame"));
-    ImGui::PlotLines("##frame", ms.data(), int(ms.size()), 0, overlay, 0.0f, FLT_MAX, ImVec2(-1, 48));
-    if (ImGui::BeginTable("passes", 2, ImGuiTableFlags_RowBg)) {
-        ImGui::TableSetupColumn("pass");
-        ImGui::TableSetupColumn("GPU ms", ImGuiTableColumnFlags_WidthFixed, 70);
-        ImGui::TableHeadersRow();
-        for (const auto& p : renderer.graph().report()) {
-            ImGui::TableNextRow();
-            ImGui::TableSetColumnIndex(0);
-            // One checkbox per pass: unticking switches it off (FrameGraph::disablePass).
-            bool on = !st.settings.disabledPasses.count(p.name);
-            ImGui::PushID(p.name.c_str());
-            if (p.culled && !p.disabled) ImGui::BeginDisabled();
-            if (ImGui::Checkbox(p.name.c_str(), &on)) {
-                if (on) st.settings.disabledPasses.erase(p.name);
-                else st.settings.disabledPasses.insert(p.name);
-            }
-            if (p.culled && !p.disabled) ImGui::EndDisabled();
-            if (!p.reason.empty() && ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
-                ImGui::SetTooltip("%s", p.reason.c_str());
-            ImGui::PopID();
-            ImGui::TableSetColumnIndex(1);
-            if (p.disabled && p.culled) ImGui::TextDisabled("off");
-            else if (p.culled) ImGui::TextDisabled("culled");
-            else ImGui::Text("%.3f", renderer.timers().median(p.name));
-        }
-        for (const auto& [name, reason] : renderer.graph().skippedPasses()) {
-            ImGui::TableNextRow();
-            ImGui::TableSetColumnIndex(0);
-            ImGui::TextDisabled("   %s", name.c_str());
-            if (ImGui::IsItemHovered()) ImGui::SetTooltip("skipped: %s", reason.c_str());
-            ImGui::TableSetColumnIndex(1);
-            ImGui::TextDisabled("skipped");
-        }
-        ImGui::EndTable();
+// Twice a second: rebuild the programs that read a changed shader file; only when all compile are
+// the renderer's programs dropped (rebuilt next frame), so a broken edit keeps the last good ones.
+void reloadChangedShaders(ViewerState& st, Renderer& renderer, double now) {
+    if (now < st.nextShaderPoll) return;
+    st.nextShaderPoll = now + 0.5;
+    std::vector<std::string> changed = gl::pollChangedShaderFiles(st.shaderWatcher);
+    if (changed.empty()) return;
+    gl::ShaderReloadResult result = gl::rebuildProgramsReading(renderer.shaders(), changed);
+    if (result.affected.empty() && st.shaderError.empty()) return;
+    std::string files;
+    for (const auto& f : changed) files += (files.empty() ? "" : ", ") + f;
+    if (!result.ok()) {
+        st.shaderError = result.error;
+        say("shader error: " + result.error);
+        return;
     }
-    ImGui::Text("transient textures: %.1f MiB in %zu", renderer.pool().totalBytes() / 1048576.0, renderer.pool().textureCount());
-
-    // View and lighting controls.
-    int view = int(st.settings.view);
-    std::string names;
-    for (DebugView v : allViews()) names += std::string(viewName(v)) + '\0';
-    if (ImGui::Combo("view", &view, names.c_str())) st.settings.view = DebugView(view);
-    ImGui::SliderFloat("exposure (EV)", &st.settings.exposureEV, -8.0f, 8.0f, "%.1f");
-    ImGui::Checkbox("global lights", &st.settings.globalLighting);
-    ImGui::Checkbox("scissor (x)", &st.scissor);
-    if (ImGui::Button("screenshot (F12)")) st.screenshotRequested = true;
-    ImGui::End();
+    renderer.resetPasses();
+    st.shaderError.clear();
+    st.shaderStatus = "shaders reloaded: " + std::to_string(result.affected.size()) + " programs (" + files + ")";
+    say(st.shaderStatus);
 }
 
 }  // namespace
 
 int runViewer(const Options& o) {
-    Scene scene = o.model.empty() ? loadScene(o.scene) : sceneForModel(o.model);
+    auto scene = std::make_unique<Scene>(o.model.empty() ? loadScene(o.scene) : sceneForModel(o.model));
     gl::ContextOptions co;
     co.width = o.width;
     co.height = o.height;
@@ -194,17 +175,22 @@ int runViewer(const Options& o) {
     co.title = "lightpass";
     auto ctx = gl::createWindowContext(co);
     logInfo("viewer on " + ctx->info().renderer);
-    Renderer renderer(scene);
+    gl::ShaderLibrary shaders;
+    auto renderer = std::make_unique<Renderer>(*scene, shaders);
     ViewerState st;
     st.settings = o.base;
-    st.scissor = o.base.localLights.scissor;  // --no-scissor starts with it off
     st.settings.view = o.view;
     st.settings.exposureEV = o.exposure;
     st.settings.keepHdr = true;
-    st.home = scene.camera;
+    st.startToon = o.base.post.toon;
+    st.startBloom = o.base.post.bloom;
+    st.home = scene->camera;
+    st.sceneFile = o.model.empty() ? std::filesystem::path(o.scene) : std::filesystem::path(o.model);
     if (!o.screenshotDir.empty()) st.screenshotDir = o.screenshotDir;
     st.showPanel = !o.hidePanel;
     st.screenshotWithPanel = o.screenshotUi;
+    st.shaderWatcher = gl::watchShaderFiles(shaders.root());
+    const PickerFiles pickerFiles = findPickerFiles(shaders.root().parent_path());
     GLFWwindow* window = ctx->window();
     glfwSetWindowUserPointer(window, &st);
     glfwSetKeyCallback(window, keyCallback);  // before ImGui, which chains to it
@@ -213,6 +199,8 @@ int runViewer(const Options& o) {
     ImGui::CreateContext();
     ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini files left in the user's folder
     ImGui::StyleColorsDark();
+    ImGui::GetStyle().WindowRounding = 4.0f;
+    ImGui::GetStyle().Colors[ImGuiCol_WindowBg].w = 0.88f;  // the frame shows faintly through
     ImGui_ImplGlfw_InitForOpenGL(window, true);
     ImGui_ImplOpenGL3_Init("#version 450");
     struct ImGuiShutdown {
@@ -226,15 +214,46 @@ int runViewer(const Options& o) {
     gl::Framebuffer blit = gl::makeFramebuffer("present");
     double last = glfwGetTime();
     long frame = 0;
+    std::string reportedGraph;
+    RenderSettings lastGoodSettings = st.settings;
     while (!glfwWindowShouldClose(window)) {
         glfwPollEvents();
         double now = glfwGetTime();
         float dt = float(now - last);
         last = now;
+        if (frame >= 3) st.frameMs.push_back(dt * 1000.0f);  // the first frames include start-up bakes
+        if (st.frameMs.size() > 240) st.frameMs.pop_front();
+
+        // Pickers: load between frames; a bad file keeps the old scene and shows its one-line error.
+        if (st.sceneRequest) {
+            try {
+                const auto& file = *st.sceneRequest;
+                auto next = std::make_unique<Scene>(file.extension() == ".obj" ? sceneForModel(file) : loadScene(file));
+                renderer.reset();  // it points at the old scene
+                scene = std::move(next);
+                renderer = std::make_unique<Renderer>(*scene, shaders);
+                st.home = scene->camera;
+                st.sceneError.clear();
+                st.sceneFile = file;
+                say("scene " + file.string());
+            } catch (const Error& e) {
+                st.sceneError = e.what();
+                say(std::string("scene error: ") + e.what());
+            }
+            st.sceneRequest.reset();
+        }
+        std::optional<std::filesystem::path> previousMap;
+        if (st.environmentRequest) {
+            previousMap = scene->environment.map;
+            scene->environment.map = *st.environmentRequest;
+            st.environmentRequest.reset();
+        }
+        reloadChangedShaders(st, *renderer, now);
+
         ImGui_ImplOpenGL3_NewFrame();
         ImGui_ImplGlfw_NewFrame();
         ImGui::NewFrame();
-        moveCamera(window, st, scene.camera, dt);
+        moveCamera(window, st, scene->camera, dt);
         glm::ivec2 fb = ctx->framebufferSize();
         if (fb.x <= 0 || fb.y <= 0) {  // minimised
             ImGui::EndFrame();
@@ -242,46 +261,53 @@ int runViewer(const Options& o) {
         }
         st.settings.width = fb.x;
         st.settings.height = fb.y;
-        st.settings.localLights.scissor = st.scissor;  // 'x' / the panel's checkbox
-        renderer.render(st.settings, float(now), true);
+        st.toonShown = st.settings.post.toon.value_or(scene->effects.toon.enabled);
+        try {
+            renderer->render(st.settings, float(now), true);
+            if (previousMap) {
+                st.sceneError.clear();
+                say("environment " + (scene->environment.map.empty() ? std::string("plain colour") : scene->environment.map.string()));
+            }
+            lastGoodSettings = st.settings;
+        } catch (const Error& e) {
+            // A map that does not load, or a setting the renderer refuses: show the one-line error,
+            // go back to what last rendered (the first frame has nothing to go back to).
+            if (frame == 0) throw;
+            if (previousMap) scene->environment.map = *previousMap;
+            st.settings = lastGoodSettings;
+            st.sceneError = e.what();
+            say(std::string(previousMap ? "environment error: " : "render error: ") + e.what());
+            renderer->render(st.settings, float(now), true);
+        }
+        {  // the passes that ran, whenever they change (checkboxes, '7', '8', settings)
+            std::string live;
+            for (const auto& p : renderer->graph().report())
+                if (!p.culled && p.name != "ibl_bake") live += " " + p.name;
+            if (live != reportedGraph) say("graph:" + live);
+            reportedGraph = live;
+        }
         if (st.screenshotRequested && !st.screenshotWithPanel) {  // the frame alone, no panel
             st.screenshotRequested = false;
-            takeScreenshot(st, renderer);
+            takeScreenshot(st, *renderer);
         }
-        glNamedFramebufferTexture(blit.id(), GL_COLOR_ATTACHMENT0, renderer.displayTexture(), 0);
+        glNamedFramebufferTexture(blit.id(), GL_COLOR_ATTACHMENT0, renderer->displayTexture(), 0);
         glBlitNamedFramebuffer(blit.id(), 0, 0, 0, fb.x, fb.y, 0, 0, fb.x, fb.y, GL_COLOR_BUFFER_BIT, GL_NEAREST);
-        renderer.timers().trim(120);
-        st.frameMs.push_back(float(renderer.timers().samples("frame").empty() ? 0.0 : renderer.timers().samples("frame").back()));
-        if (st.frameMs.size() > 240) st.frameMs.pop_front();
-        if (st.showPanel) drawPanel(st, renderer, *ctx);
+        renderer->timers().trim(120);
+        if (st.showPanel) drawViewerPanel(st, *renderer, *scene, *ctx, pickerFiles);
         if (st.showHelp) {
             ImGui::SetNextWindowPos(ImVec2(fb.x * 0.5f, fb.y * 0.5f), ImGuiCond_Always, ImVec2(0.5f, 0.5f));
-            ImGui::Begin("keys", &st.showHelp, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse);
-            ImGui::TextUnformatted(kHelp);
+            ImGui::Begin("keys (h closes)", &st.showHelp, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse);
+            ImGui::TextUnformatted(kViewerHelp);
             ImGui::End();
         }
         ImGui::Render();
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
         if (st.screenshotRequested && st.screenshotWithPanel) {
             st.screenshotRequested = false;
-            Image8 window{fb.x, fb.y, std::vector<uint8_t>(size_t(fb.x) * fb.y * 4)};
-            glPixelStorei(GL_PACK_ALIGNMENT, 1);
-            glReadPixels(0, 0, fb.x, fb.y, GL_RGBA, GL_UNSIGNED_BYTE, window.rgba.data());
-            std::vector<uint8_t> flipped(window.rgba.size());
-            const size_t row = size_t(fb.x) * 4;
-            for (int y = 0; y < fb.y; ++y)
-                std::copy_n(&window.rgba[size_t(fb.y - 1 - y) * row], row, &flipped[size_t(y) * row]);
-            window.rgba.swap(flipped);
-            std::string path = (st.screenshotDir / ("lightpass-" + std::to_string(st.screenshotCount++) + ".png")).string();
-            writePng(path, window);
-            std::printf("screenshot %s (window with panel)\n", path.c_str());
-            std::fflush(stdout);
+            takeWindowScreenshot(st, fb);
         }
         ctx->swapBuffers();
-        if (++frame == 3) {
-            std::printf("viewer ready\n");
-            std::fflush(stdout);
-        }
+        if (++frame == 3) say("viewer ready");
     }
     return 0;
 }

@@ -2,6 +2,7 @@
 #include "app/cli.hpp"
 
 namespace lp::app {
-// The interactive window: the seeds' keys, a fly camera, per-pass timings in the title.
+// The interactive window: seed 001's keys, a fly camera, the ImGui panel (app/viewer_panel.cpp),
+// scene/environment pickers and shader hot reload.
 int runViewer(const Options& options);
 }

@@ -22,29 +22,41 @@ std::string postDeviceProblem() {
 
 namespace {
 
-// CUDA events around a stretch of kernels on `stream`; ms() waits for the end event.
-class EventTimer {
+// CUDA events around the kernels of one kind of call on `stream`. The host never waits for them:
+// begin() reports the previous call's kernel time (finished by then: its unmap made GL wait for
+// it), so timing costs no CPU<->GPU round trip per pass. The first call reports 0.
+class LaggedEventTimer {
 public:
-    explicit EventTimer(cudaStream_t stream) : stream_(stream) {
+    LaggedEventTimer() {
         check(cudaEventCreate(&begin_), "cudaEventCreate");
         check(cudaEventCreate(&end_), "cudaEventCreate");
-        check(cudaEventRecord(begin_, stream_), "cudaEventRecord");
     }
-    ~EventTimer() {
+    ~LaggedEventTimer() {
         cudaEventDestroy(begin_);
         cudaEventDestroy(end_);
     }
-    double stop() {
-        check(cudaEventRecord(end_, stream_), "cudaEventRecord");
-        check(cudaEventSynchronize(end_), "cudaEventSynchronize");
-        float ms = 0.0f;
-        check(cudaEventElapsedTime(&ms, begin_, end_), "cudaEventElapsedTime");
-        return double(ms);
+    LaggedEventTimer(const LaggedEventTimer&) = delete;
+    LaggedEventTimer& operator=(const LaggedEventTimer&) = delete;
+    double begin(cudaStream_t stream) {
+        double previous = 0.0;
+        if (pending_) {
+            check(cudaEventSynchronize(end_), "cudaEventSynchronize");
+            float ms = 0.0f;
+            check(cudaEventElapsedTime(&ms, begin_, end_), "cudaEventElapsedTime");
+            previous = double(ms);
+            pending_ = false;
+        }
+        check(cudaEventRecord(begin_, stream), "cudaEventRecord");
+        return previous;
+    }
+    void end(cudaStream_t stream) {
+        check(cudaEventRecord(end_, stream), "cudaEventRecord");
+        pending_ = true;
     }
 
 private:
-    cudaStream_t stream_;
     cudaEvent_t begin_ = nullptr, end_ = nullptr;
+    bool pending_ = false;
 };
 
 using Clock = std::chrono::steady_clock;
@@ -80,6 +92,7 @@ struct DeviceImage {
 struct PostInterop::Impl {
     GlImageRegistry registry;
     BloomWorkspace workspace;
+    LaggedEventTimer bloomTimer, compositeTimer, toonTimer;
     cudaStream_t stream = nullptr;
     Impl() { check(cudaStreamCreate(&stream), "cudaStreamCreate"); }
     ~Impl() { cudaStreamDestroy(stream); }
@@ -97,9 +110,24 @@ PostTiming PostInterop::bloom(GLuint hdr, GLuint bloom, int width, int height, c
     MappedSurfaces mapped({impl_->registry.resource(hdr, width, height), impl_->registry.resource(bloom, width, height)},
                           impl_->stream);
     t.interopMs = msSince(t0);
-    EventTimer timer(impl_->stream);
+    t.kernelMs = impl_->bloomTimer.begin(impl_->stream);
     bloomSurfaceToSurface(mapped.surface(0), mapped.surface(1), width, height, p, impl_->workspace, impl_->stream);
-    t.kernelMs = timer.stop();
+    impl_->bloomTimer.end(impl_->stream);
+    auto t1 = Clock::now();
+    mapped.unmap();
+    t.interopMs += msSince(t1);
+    return t;
+}
+
+PostTiming PostInterop::bloomComposite(GLuint hdr, GLuint bloom, int width, int height, const post::BloomParams& p) {
+    PostTiming t;
+    auto t0 = Clock::now();
+    MappedSurfaces mapped({impl_->registry.resource(hdr, width, height), impl_->registry.resource(bloom, width, height)},
+                          impl_->stream);
+    t.interopMs = msSince(t0);
+    t.kernelMs = impl_->bloomTimer.begin(impl_->stream);
+    bloomCompositeSurfaces(mapped.surface(0), mapped.surface(1), width, height, p, impl_->workspace, impl_->stream);
+    impl_->bloomTimer.end(impl_->stream);
     auto t1 = Clock::now();
     mapped.unmap();
     t.interopMs += msSince(t1);
@@ -112,9 +140,9 @@ PostTiming PostInterop::composite(GLuint hdr, GLuint bloom, int width, int heigh
     MappedSurfaces mapped({impl_->registry.resource(hdr, width, height), impl_->registry.resource(bloom, width, height)},
                           impl_->stream);
     t.interopMs = msSince(t0);
-    EventTimer timer(impl_->stream);
+    t.kernelMs = impl_->compositeTimer.begin(impl_->stream);
     compositeSurfaces(mapped.surface(0), mapped.surface(1), width, height, strength, impl_->stream);
-    t.kernelMs = timer.stop();
+    impl_->compositeTimer.end(impl_->stream);
     auto t1 = Clock::now();
     mapped.unmap();
     t.interopMs += msSince(t1);
@@ -129,9 +157,9 @@ PostTiming PostInterop::toon(GLuint hdr, GLuint position, GLuint normal, int wid
                            impl_->registry.resource(normal, width, height)},
                           impl_->stream);
     t.interopMs = msSince(t0);
-    EventTimer timer(impl_->stream);
+    t.kernelMs = impl_->toonTimer.begin(impl_->stream);
     toonSurfaces(mapped.surface(0), mapped.surface(1), mapped.surface(2), width, height, p, impl_->stream);
-    t.kernelMs = timer.stop();
+    impl_->toonTimer.end(impl_->stream);
     auto t1 = Clock::now();
     mapped.unmap();
     t.interopMs += msSince(t1);
@@ -144,6 +172,14 @@ ImageF bloomOnDevice(const ImageF& hdr, const post::BloomParams& p) {
     bloomBufferToBuffer(in.data, out.data, hdr.width, hdr.height, p, ws, nullptr);
     check(cudaDeviceSynchronize(), "cudaDeviceSynchronize");
     return out.download(hdr.width, hdr.height);
+}
+
+BloomAndComposite bloomCompositeOnDevice(const ImageF& hdr, const post::BloomParams& p) {
+    DeviceImage in(hdr), bloom(hdr.width, hdr.height);
+    BloomWorkspace ws;
+    bloomCompositeBuffers(in.data, bloom.data, in.data, hdr.width, hdr.height, p, ws, nullptr);  // in place
+    check(cudaDeviceSynchronize(), "cudaDeviceSynchronize");
+    return {bloom.download(hdr.width, hdr.height), in.download(hdr.width, hdr.height)};
 }
 
 ImageF compositeOnDevice(const ImageF& hdr, const ImageF& bloom, float strength) {

@@ -19,7 +19,8 @@ namespace lp::cuda {
 std::string postDeviceProblem();
 
 struct PostTiming {
-    double kernelMs = 0.0;   // CUDA events around the kernels
+    double kernelMs = 0.0;   // CUDA events around the kernels of the previous call of the same kind
+                             // (read without waiting; 0 on the first call)
     double interopMs = 0.0;  // host time of cudaGraphicsMapResources + UnmapResources
 };
 
@@ -32,6 +33,9 @@ public:
 
     // hdr: RGBA16F (read); bloom: RGBA16F (written: the bloom buffer alone, before strength).
     PostTiming bloom(GLuint hdr, GLuint bloom, int width, int height, const post::BloomParams& p);
+    // bloom() then composite() with p.strength in one mapped section, the composite fused into the
+    // last bloom kernel (the passes use it when bloom_composite runs right after bloom).
+    PostTiming bloomComposite(GLuint hdr, GLuint bloom, int width, int height, const post::BloomParams& p);
     // hdr = sanitize(sanitize(hdr) + strength * bloom), in place.
     PostTiming composite(GLuint hdr, GLuint bloom, int width, int height, float strength);
     // hdr in place; position and normal: the G-buffer's RGBA32F targets.
@@ -49,6 +53,10 @@ private:
 
 // Device-buffer runs (fp32 intermediates) for tests and the benchmark.
 ImageF bloomOnDevice(const ImageF& hdr, const post::BloomParams& p);  // the bloom buffer
+struct BloomAndComposite {
+    ImageF bloom, hdr;
+};
+BloomAndComposite bloomCompositeOnDevice(const ImageF& hdr, const post::BloomParams& p);  // the fused path
 ImageF compositeOnDevice(const ImageF& hdr, const ImageF& bloom, float strength);
 ImageF toonOnDevice(const ImageF& hdr, const ImageF& position, const ImageF& normal, const post::ToonParams& p);
 

@@ -15,6 +15,7 @@ struct BufferImage {
     int width;
     __device__ float4 load(int x, int y) const { return data[size_t(y) * size_t(width) + size_t(x)]; }
     __device__ void store(int x, int y, float4 c) const { data[size_t(y) * size_t(width) + size_t(x)] = c; }
+    __device__ static float4 stored(float4 c) { return c; }  // what load() returns after store(c)
 };
 
 // A mapped RGBA16F GL texture (the HDR buffer, the bloom buffer).
@@ -30,6 +31,10 @@ struct Half4Surface {
                                  __half_as_ushort(__float2half_rn(c.z)), __half_as_ushort(__float2half_rn(c.w)));
         surf2Dwrite(v, surface, x * int(sizeof(ushort4)), y);
     }
+    __device__ static float4 stored(float4 c) {  // what load() returns after store(c)
+        return make_float4(__half2float(__float2half_rn(c.x)), __half2float(__float2half_rn(c.y)),
+                           __half2float(__float2half_rn(c.z)), __half2float(__float2half_rn(c.w)));
+    }
 };
 
 // A mapped RGBA32F GL texture (G-buffer position and normal).
@@ -39,10 +44,10 @@ struct Float4Surface {
     __device__ void store(int x, int y, float4 c) const { surf2Dwrite(c, surface, x * int(sizeof(float4)), y); }
 };
 
-// Device scratch of the bloom: full-resolution ping-pong buffers and the mip chain, grown on demand.
+// Device scratch of the bloom: the full-resolution horizontal-blur buffer and the mip chain, grown
+// on demand.
 struct BloomWorkspace {
     float4* a = nullptr;
-    float4* b = nullptr;
     size_t fullTexels = 0;
     float4* mips[post::kMaxMipLevels] = {};
     size_t mipTexels[post::kMaxMipLevels] = {};
@@ -58,6 +63,13 @@ void bloomBufferToBuffer(const float4* hdr, float4* bloom, int width, int height
                          BloomWorkspace& ws, cudaStream_t stream);
 void bloomSurfaceToSurface(cudaSurfaceObject_t hdr, cudaSurfaceObject_t bloom, int width, int height,
                            const post::BloomParams& p, BloomWorkspace& ws, cudaStream_t stream);
+// Both at once: the bloom buffer into `bloom` and, from the last bloom kernel's outputs as stored,
+// hdrOut = sanitize(sanitize(hdr) + p.strength * bloom) (hdrOut may be hdr: in place). One launch
+// fewer, and through interop one map/unmap fewer, than bloom then composite.
+void bloomCompositeBuffers(const float4* hdr, float4* bloom, float4* hdrOut, int width, int height,
+                           const post::BloomParams& p, BloomWorkspace& ws, cudaStream_t stream);
+void bloomCompositeSurfaces(cudaSurfaceObject_t hdr, cudaSurfaceObject_t bloom, int width, int height,
+                            const post::BloomParams& p, BloomWorkspace& ws, cudaStream_t stream);
 // out = sanitize(hdr + strength * bloom).
 void compositeBuffers(const float4* hdr, const float4* bloom, float4* out, int width, int height, float strength,
                       cudaStream_t stream);

@@ -1,5 +1,7 @@
 #include "passes/bloom_pass.hpp"
 
+#include <algorithm>
+
 #include "engine/gl/gpu_timer.hpp"
 #include "engine/gl/shader.hpp"
 #include "engine/gl/state.hpp"
@@ -27,6 +29,19 @@ void dispatch(GLuint prog, int width, int height) {
     gl::dispatch2D(width, height);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 }
+
+#ifdef LIGHTPASS_HAVE_CUDA
+// CUDA fuses the composite into the bloom pass (one GL<->CUDA map fewer) only when that cannot be
+// seen: bloom_composite runs, and runs right after bloom, so no pass reads the HDR buffer between.
+bool compositeRunsRightAfterBloom(const fg::FrameGraph& graph) {
+    const std::vector<std::string> order = graph.executionOrder();
+    const auto it = std::find(order.begin(), order.end(), "bloom");
+    if (it == order.end() || it + 1 == order.end() || *(it + 1) != "bloom_composite") return false;
+    for (const fg::PassDecision& d : graph.explain())
+        if (d.name == "bloom_composite") return d.runs;
+    return false;
+}
+#endif
 
 void unbind() {
     glUseProgram(0);
@@ -152,13 +167,17 @@ BloomResult addBloomPass(fg::FrameGraph& graph, BloomPass& state, PostBackend& b
             data.hdr = b.read(hdr);
             data.bloom = b.create("bloom", {frame.width, frame.height, GL_RGBA16F});
         },
-        [&state, &backend, frame, params, requested, frameIndex = backend.frameIndex](const Data& data,
-                                                                                      const fg::PassResources& res) {
+        [&graph, &state, &backend, frame, params, requested, frameIndex = backend.frameIndex](
+            const Data& data, const fg::PassResources& res) {
             const GLuint hdrTex = res.texture(data.hdr), bloomTex = res.texture(data.bloom);
             if (backend.useCuda(requested)) {
                 backend.beginFrame(frameIndex);
 #ifdef LIGHTPASS_HAVE_CUDA
-                cuda::PostTiming t = backend.interop->bloom(hdrTex, bloomTex, frame.width, frame.height, params);
+                const bool fuse = compositeRunsRightAfterBloom(graph);
+                cuda::PostTiming t =
+                    fuse ? backend.interop->bloomComposite(hdrTex, bloomTex, frame.width, frame.height, params)
+                         : backend.interop->bloom(hdrTex, bloomTex, frame.width, frame.height, params);
+                if (fuse) state.cudaCompositedFrame = frameIndex;
                 if (res.timers()) {
                     res.timers()->addExternal("bloom (cuda kernels)", t.kernelMs);
                     res.timers()->addExternal("bloom (cuda interop)", t.interopMs);
@@ -174,9 +193,11 @@ BloomResult addBloomPass(fg::FrameGraph& graph, BloomPass& state, PostBackend& b
             data.bloom = b.read(made.bloom);
             data.hdr = b.write(hdr);
         },
-        [&state, &backend, frame, params, requested](const Data& data, const fg::PassResources& res) {
+        [&state, &backend, frame, params, requested, frameIndex = backend.frameIndex](const Data& data,
+                                                                                      const fg::PassResources& res) {
             const GLuint hdrTex = res.texture(data.hdr), bloomTex = res.texture(data.bloom);
             if (backend.useCuda(requested)) {
+                if (state.cudaCompositedFrame == frameIndex) return;  // done by the bloom pass
 #ifdef LIGHTPASS_HAVE_CUDA
                 cuda::PostTiming t =
                     backend.interop->composite(hdrTex, bloomTex, frame.width, frame.height, params.strength);

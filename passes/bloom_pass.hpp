@@ -17,6 +17,9 @@ struct BloomPass {
     gl::Program blurFragment;        // the fragment version of the blur (bloom_blur.frag)
     gl::Framebuffer fbo;
     gl::VertexArray vao;
+    // CUDA: the frame (PostBackend::frameIndex) whose composite the bloom pass already did, fused
+    // into its last kernel; bloom_composite then has nothing left to do.
+    unsigned long cudaCompositedFrame = 0;
 };
 
 struct BloomResult {

@@ -8,8 +8,11 @@ namespace lp {
 
 namespace {
 struct Data {
-    fg::ResourceId channel, ldr;
+    GBuffer in;                // the decoded channels' targets (modes 1-6)
+    fg::ResourceId channel;    // texcoords or the shadow-map atlas (modes 7, 8)
+    fg::ResourceId ldr;
 };
+constexpr GLuint kChannelUnit = 12;  // uChannel in debug_view.comp
 
 int modeOf(DebugView v) {
     switch (v) {
@@ -25,18 +28,6 @@ int modeOf(DebugView v) {
     }
 }
 
-fg::ResourceId channelOf(const GBuffer& g, DebugView v) {
-    switch (v) {
-        case DebugView::Depth: return g.depth;
-        case DebugView::Normals: return g.normal;
-        case DebugView::Diffuse: return g.diffuse;
-        case DebugView::Position: return g.position;
-        case DebugView::Shininess:
-        case DebugView::Specular: return g.specular;
-        case DebugView::Texcoords: return g.texcoord;
-        default: return {};
-    }
-}
 }  // namespace
 
 GBufferChannels channelsForView(DebugView view) {
@@ -66,28 +57,38 @@ fg::ResourceId addDebugViewPass(fg::FrameGraph& graph, DebugViewPass& state, con
     const Data& d = graph.addPass<Data>(
         std::string("debug_view"),
         [&](fg::PassBuilder& b, Data& data) {
-            fg::ResourceId ch = shadowMap ? shadowMap->depth : channelOf(gbuffer, view);
-            if (!ch.valid()) throw Error(std::string("debug view '") + viewName(view) + "': the G-buffer lacks its channel");
-            data.channel = b.read(ch);
+            if (mode == 7 || mode == 8) {
+                fg::ResourceId ch = shadowMap ? shadowMap->depth : gbuffer.texcoord;
+                if (!ch.valid())
+                    throw Error(std::string("debug view '") + viewName(view) + "': the G-buffer lacks its channel");
+                data.channel = b.read(ch);
+            } else {
+                data.in = gbuffer;
+                readGBuffer(b, gbuffer, true);
+            }
             data.ldr = b.create("ldr.debug", {frame.width, frame.height, GL_RGBA8});
         },
         [&state, frame, mode, grid = shadowMap ? glm::ivec2(shadowMap->frustum.columns, shadowMap->frustum.rows)
                                                : glm::ivec2(1)](const Data& data, const fg::PassResources& res) {
-            if (!state.program) state.program = frame.shaders->compute("debug_view.comp");
+            programForLayout(state.program, state.layout, frame, [&](const std::vector<std::string>& defines) {
+                return frame.shaders->compute("debug_view.comp", defines);
+            });
             const GLuint prog = state.program.id();
             glProgramUniform1i(prog, glGetUniformLocation(prog, "uMode"), mode);
             glProgramUniform1f(prog, glGetUniformLocation(prog, "uNear"), frame.nearPlane);
             glProgramUniform1f(prog, glGetUniformLocation(prog, "uFar"), frame.farPlane);
             glProgramUniform1f(prog, glGetUniformLocation(prog, "uPositionScale"), 1.0f / frame.sceneExtent);
             glProgramUniform2i(prog, glGetUniformLocation(prog, "uShadowGrid"), grid.x, grid.y);
-            glBindTextureUnit(0, res.texture(data.channel));
+            if (data.channel.valid()) glBindTextureUnit(kChannelUnit, res.texture(data.channel));
+            else bindGBuffer(prog, res, data.in, frame, true);
             glBindImageTexture(0, res.texture(data.ldr), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
             glUseProgram(prog);
             gl::dispatch2D(frame.width, frame.height);
             glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
                             GL_TEXTURE_UPDATE_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
             glUseProgram(0);
-            glBindTextureUnit(0, 0);
+            glBindTextureUnit(kChannelUnit, 0);
+            unbindGBuffer();
             glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
         });
     return d.ldr;

@@ -9,23 +9,89 @@
 
 namespace lp {
 
+GLenum gbufferNormalFormat(GBufferNormalFormat format) {
+    switch (format) {
+        case GBufferNormalFormat::Unpacked: return GL_RGBA32F;
+        case GBufferNormalFormat::SeedPacked:
+        case GBufferNormalFormat::SeedPackedSigned: return GL_RGBA16F;
+        case GBufferNormalFormat::TwoAngle: return GL_RG32F;
+        case GBufferNormalFormat::Oct16: return GL_R16UI;
+        case GBufferNormalFormat::Oct24:
+        case GBufferNormalFormat::Oct32: return GL_R32UI;
+    }
+    return GL_RGBA32F;
+}
+
+GLenum gbufferSpecularFormat(GBufferNormalFormat format) {
+    return shininessInNormalTarget(format) ? GL_RGBA8 : GL_RGBA16F;
+}
+
+glm::mat4 gbufferDepthProjection(const FrameData& frame) {
+    glm::mat4 p = frame.projection;
+    if (frame.settings->gbuffer.position != GBufferPositionMode::ReversedZ) return p;
+    // z_clip = n/(f-n) z_eye + n f/(f-n), w = -z_eye: window depth 1 at the near plane, 0 at the far.
+    const double n = frame.nearPlane, f = frame.farPlane;
+    p[2][2] = float(n / (f - n));
+    p[3][2] = float(n * f / (f - n));
+    return p;
+}
+
+ScopedGBufferDepthTest::ScopedGBufferDepthTest(const GBufferSettings& layout) {
+    glGetIntegerv(GL_CLIP_ORIGIN, &origin_);
+    glGetIntegerv(GL_CLIP_DEPTH_MODE, &depthMode_);
+    glGetIntegerv(GL_DEPTH_FUNC, &depthFunc_);
+    const bool reversed = layout.position == GBufferPositionMode::ReversedZ;
+    glClipControl(GL_LOWER_LEFT, reversed ? GL_ZERO_TO_ONE : GL_NEGATIVE_ONE_TO_ONE);
+    glDepthFunc(reversed ? GL_GREATER : GL_LESS);
+}
+
+ScopedGBufferDepthTest::~ScopedGBufferDepthTest() {
+    glClipControl(GLenum(origin_), GLenum(depthMode_));
+    glDepthFunc(GLenum(depthFunc_));
+}
+
+void readGBuffer(fg::PassBuilder& b, const GBuffer& g, bool diffuse) {
+    b.read(g.depth);
+    b.read(g.normal);
+    if (diffuse) b.read(g.diffuse);
+    if (g.position.valid()) b.read(g.position);
+    b.read(g.specular);
+}
+
+void bindGBuffer(GLuint program, const fg::PassResources& res, const GBuffer& g, const FrameData& frame, bool diffuse) {
+    glBindTextureUnit(0, res.texture(g.depth));
+    glBindTextureUnit(1, res.texture(g.normal));
+    glBindTextureUnit(2, diffuse ? res.texture(g.diffuse) : 0);
+    glBindTextureUnit(3, g.position.valid() ? res.texture(g.position) : 0);
+    glBindTextureUnit(4, res.texture(g.specular));
+    const glm::mat4& p = frame.projection;
+    glProgramUniform4f(program, glGetUniformLocation(program, "uGbufferCamera"), frame.nearPlane, frame.farPlane,
+                       1.0f / p[1][1], p[1][1] / p[0][0]);
+}
+
+void unbindGBuffer() {
+    for (GLuint u = 0; u < 5; ++u) glBindTextureUnit(u, 0);
+}
+
 GBuffer addGBufferPass(fg::FrameGraph& graph, GBufferPass& state, const FrameData& frame, GBufferChannels channels) {
     const int w = frame.width, h = frame.height;
+    const GBufferSettings layout = frame.settings->gbuffer;
     return graph.addPass<GBuffer>(
         "gbuffer",
         [&](fg::PassBuilder& b, GBuffer& out) {
             out.depth = b.create("gbuffer.depth", {w, h, GL_DEPTH_COMPONENT32F});
-            out.normal = b.create("gbuffer.normal", {w, h, GL_RGBA32F});
-            out.diffuse = b.create("gbuffer.diffuse", {w, h, GL_RGBA8});
-            if (channels.position) out.position = b.create("gbuffer.position", {w, h, GL_RGBA32F});
-            out.specular = b.create("gbuffer.specular", {w, h, GL_RGBA16F});
-            if (channels.texcoord) out.texcoord = b.create("gbuffer.texcoord", {w, h, GL_RG32F});
+            out.normal = b.createIfRead("gbuffer.normal", {w, h, gbufferNormalFormat(layout.normal)});
+            out.diffuse = b.createIfRead("gbuffer.diffuse", {w, h, GL_RGBA8});
+            if (channels.position && !positionFromDepth(layout.position))
+                out.position = b.createIfRead("gbuffer.position", {w, h, GL_RGBA32F});
+            out.specular = b.createIfRead("gbuffer.specular", {w, h, gbufferSpecularFormat(layout.normal)});
+            if (channels.texcoord) out.texcoord = b.createIfRead("gbuffer.texcoord", {w, h, GL_RG32F});
         },
-        [&state, frame](const GBuffer& out, const fg::PassResources& res) {
-            if (!state.program) {
-                state.program = frame.shaders->graphics("gbuffer.vert", "gbuffer.frag");
-                state.fbo = gl::makeFramebuffer("gbuffer");
-            }
+        [&state, frame, layout](const GBuffer& out, const fg::PassResources& res) {
+            programForLayout(state.program, state.layout, frame, [&](const std::vector<std::string>& defines) {
+                return frame.shaders->graphics("gbuffer.vert", "gbuffer.frag", defines);
+            });
+            if (!state.fbo) state.fbo = gl::makeFramebuffer("gbuffer");
             const GLuint fbo = state.fbo.id();
             glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, res.texture(out.depth), 0);
             const fg::ResourceId colour[5] = {out.normal, out.diffuse, out.position, out.specular, out.texcoord};
@@ -40,18 +106,24 @@ GBuffer addGBufferPass(fg::FrameGraph& graph, GBufferPass& state, const FrameDat
             gl::ScopedEnable depthTest(GL_DEPTH_TEST, true);
             gl::ScopedEnable cull(GL_CULL_FACE, false);  // thin walls and open meshes are two-sided
             gl::ScopedEnable blend(GL_BLEND, false);
-            glDepthFunc(GL_LESS);
+            ScopedGBufferDepthTest depthConvention(layout);  // reversed-Z: clip control 0..1, GL_GREATER
             glDepthMask(GL_TRUE);
             const float zero[4] = {0, 0, 0, 0};
-            for (int i = 0; i < 5; ++i)
-                if (buffers[i] != GL_NONE) glClearNamedFramebufferfv(fbo, GL_COLOR, i, zero);
-            const float one = 1.0f;
-            glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &one);
+            const GLuint zeroU[4] = {0, 0, 0, 0};
+            const GLenum normalFormat = gbufferNormalFormat(layout.normal);
+            const bool integerNormal = normalFormat == GL_R16UI || normalFormat == GL_R32UI;  // octahedral
+            for (int i = 0; i < 5; ++i) {
+                if (buffers[i] == GL_NONE) continue;
+                if (i == 0 && integerNormal) glClearNamedFramebufferuiv(fbo, GL_COLOR, i, zeroU);
+                else glClearNamedFramebufferfv(fbo, GL_COLOR, i, zero);
+            }
+            const float farDepth = layout.position == GBufferPositionMode::ReversedZ ? 0.0f : 1.0f;
+            glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &farDepth);
 
             const GLuint prog = state.program.id();
             glUseProgram(prog);
             glProgramUniformMatrix4fv(prog, glGetUniformLocation(prog, "uProjection"), 1, GL_FALSE,
-                                      glm::value_ptr(frame.projection));
+                                      glm::value_ptr(gbufferDepthProjection(frame)));
             const GLint locMV = glGetUniformLocation(prog, "uModelView");
             const GLint locN = glGetUniformLocation(prog, "uNormalMatrix");
             const GLint locKd = glGetUniformLocation(prog, "uDiffuse");

@@ -1,6 +1,8 @@
 #pragma once
-// G-buffer: rasterises every mesh once into the seeds' unpacked layout (see
-// shaders/common/gbuffer_layout.glsl). Writes only the channels some pass will read.
+// G-buffer: rasterises every mesh once into the layout settings.gbuffer chooses (normal format,
+// position stored or rebuilt from standard / reversed-Z depth; see shaders/common/gbuffer_layout.glsl).
+// Writes only the channels some pass will read. Passes that read it use readGBuffer / bindGBuffer
+// and compile their programs with gbufferDefines() through programForLayout.
 #include "engine/gl/handles.hpp"
 #include "engine/graph/frame_graph.hpp"
 #include "engine/render/frame_data.hpp"
@@ -8,19 +10,61 @@
 namespace lp {
 
 struct GBufferChannels {
-    bool position = true;
+    bool position = true;  // only when the position mode stores positions
     bool texcoord = false;
 };
 
 struct GBuffer {
-    fg::ResourceId depth, normal, diffuse, position, specular, texcoord;
+    fg::ResourceId depth, normal, diffuse, position, specular, texcoord;  // position invalid when rebuilt
 };
 
 struct GBufferPass {
     gl::Program program;
+    GBufferSettings layout;  // what `program` was compiled for
     gl::Framebuffer fbo;
 };
 
 GBuffer addGBufferPass(fg::FrameGraph& graph, GBufferPass& state, const FrameData& frame, GBufferChannels channels);
+
+// GL internal formats of the targets under a layout (README "G-buffer formats").
+GLenum gbufferNormalFormat(GBufferNormalFormat format);
+GLenum gbufferSpecularFormat(GBufferNormalFormat format);
+
+// The projection the G-buffer's depth was written with: frame.projection, or for reversed-Z the
+// same frustum mapping near to 1 and far to 0 (with glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE)).
+glm::mat4 gbufferDepthProjection(const FrameData& frame);
+
+// For passes that raster against the G-buffer depth (light globes): sets the clip control and
+// depth function matching the depth convention (GL_LESS or, reversed-Z, GL_GREATER), restores both.
+class ScopedGBufferDepthTest {
+public:
+    explicit ScopedGBufferDepthTest(const GBufferSettings& layout);
+    ~ScopedGBufferDepthTest();
+    ScopedGBufferDepthTest(const ScopedGBufferDepthTest&) = delete;
+    ScopedGBufferDepthTest& operator=(const ScopedGBufferDepthTest&) = delete;
+
+private:
+    GLint origin_ = GL_LOWER_LEFT, depthMode_ = GL_NEGATIVE_ONE_TO_ONE, depthFunc_ = GL_LESS;
+};
+
+// Declares reads of the targets the decode API needs (position only when stored; diffuse when asked).
+void readGBuffer(fg::PassBuilder& b, const GBuffer& g, bool diffuse = true);
+// Binds the targets to units LP_BIND_* and sets `program`'s uGbufferCamera; unbindGBuffer clears the units.
+void bindGBuffer(GLuint program, const fg::PassResources& res, const GBuffer& g, const FrameData& frame,
+                 bool diffuse = true);
+void unbindGBuffer();
+
+// `program`, compiled by compile(defines) for the frame's G-buffer layout; compiled again when the
+// layout changed since (lightpass sweep changes it within one process).
+template <class Compile>
+const gl::Program& programForLayout(gl::Program& program, GBufferSettings& builtFor, const FrameData& frame,
+                                    Compile compile) {
+    const GBufferSettings& layout = frame.settings->gbuffer;
+    if (!program || builtFor != layout) {
+        program = compile(gbufferDefines(layout));
+        builtFor = layout;
+    }
+    return program;
+}
 
 }  // namespace lp

@@ -65,16 +65,14 @@ fg::ResourceId addGlobalLightPass(fg::FrameGraph& graph, GlobalLightPass& state,
         "global_lights",
         [&](fg::PassBuilder& b, Data& data) {
             data.in = gbuffer;
-            b.read(gbuffer.depth);
-            b.read(gbuffer.normal);
-            if (!lightingOnly) b.read(gbuffer.diffuse);
-            b.read(gbuffer.position);
-            b.read(gbuffer.specular);
+            readGBuffer(b, gbuffer, !lightingOnly);
             for (const auto& m : shadowMaps) data.shadowMaps.push_back(b.read(m.depth));
             data.hdr = b.create("hdr", {frame.width, frame.height, GL_RGBA16F});
         },
         [&state, frame, lightingOnly, shadowMaps](const Data& data, const fg::PassResources& res) {
-            if (!state.program) state.program = frame.shaders->compute("global_light.comp");
+            programForLayout(state.program, state.layout, frame, [&](const std::vector<std::string>& defines) {
+                return frame.shaders->compute("global_light.comp", defines);
+            });
             const GLuint prog = state.program.id();
             const auto& lights = frame.scene->directionalLights;
             if (int(lights.size()) > kMaxLights)
@@ -96,11 +94,7 @@ fg::ResourceId addGlobalLightPass(fg::FrameGraph& graph, GlobalLightPass& state,
             glProgramUniform1i(prog, loc(prog, "uLightingOnly"), lightingOnly);
             glProgramUniform1i(prog, loc(prog, "uBrdf"), frame.settings->brdf == Brdf::Ggx ? 1 : 0);
             setShadowUniforms(prog, frame, shadowMaps, count);
-            glBindTextureUnit(0, res.texture(data.in.depth));
-            glBindTextureUnit(1, res.texture(data.in.normal));
-            glBindTextureUnit(2, lightingOnly ? 0 : res.texture(data.in.diffuse));
-            glBindTextureUnit(3, res.texture(data.in.position));
-            glBindTextureUnit(4, res.texture(data.in.specular));
+            bindGBuffer(prog, res, data.in, frame, !lightingOnly);
             for (size_t i = 0; i < data.shadowMaps.size(); ++i)
                 glBindTextureUnit(kShadowMapUnit + GLuint(i), res.texture(data.shadowMaps[i]));
             glBindImageTexture(0, res.texture(data.hdr), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
@@ -108,7 +102,7 @@ fg::ResourceId addGlobalLightPass(fg::FrameGraph& graph, GlobalLightPass& state,
             gl::dispatch2D(frame.width, frame.height);
             glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
             glUseProgram(0);
-            for (GLuint u = 0; u < 5; ++u) glBindTextureUnit(u, 0);
+            unbindGBuffer();
             for (size_t i = 0; i < data.shadowMaps.size(); ++i) glBindTextureUnit(kShadowMapUnit + GLuint(i), 0);
             glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
         });

@@ -12,6 +12,7 @@ namespace lp {
 
 struct GlobalLightPass {
     gl::Program program;
+    GBufferSettings layout;  // the G-buffer layout `program` was compiled for
     // This frame's shadow maps (from addShadowMapPasses; the frame builder sets them before
     // addGlobalLightPass). Lights without one are unshadowed.
     ShadowMaps shadowMaps;

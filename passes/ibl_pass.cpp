@@ -31,24 +31,23 @@ bool isEnvironmentView(DebugView view) {
 
 fg::ResourceId addIblPass(fg::FrameGraph& graph, IblPass& state, const FrameData& frame, const GBuffer& gbuffer,
                           fg::ResourceId hdr, bool lightingOnly) {
-    if (!frame.settings->environment.ibl.value_or(frame.scene->environment.ibl) || frame.scene->environment.map.empty())
-        return hdr;
+    const bool wanted = frame.settings->environment.ibl.value_or(frame.scene->environment.ibl) &&
+                        !frame.scene->environment.map.empty();
+    if (!wanted && !frame.settings->allPasses) return hdr;
     const Data& d = graph.addPass<Data>(
         "ibl",
         [&](fg::PassBuilder& b, Data& data) {
             data.in = gbuffer;
-            b.read(gbuffer.depth);
-            b.read(gbuffer.normal);
-            if (!lightingOnly) b.read(gbuffer.diffuse);
-            b.read(gbuffer.position);
-            b.read(gbuffer.specular);
+            readGBuffer(b, gbuffer, !lightingOnly);
             data.hdr = b.write(hdr);
         },
         [&state, frame, lightingOnly](const Data& data, const fg::PassResources& res) {
             const EnvironmentSettings& s = frame.settings->environment;
             const BakedEnvironment& env = state.environments.get(*frame.scene, s, *frame.shaders, true);
             const gl::Texture& dfg = state.environments.dfgLut(s, *frame.shaders);
-            if (!state.program) state.program = frame.shaders->compute("ibl.comp");
+            programForLayout(state.program, state.layout, frame, [&](const std::vector<std::string>& defines) {
+                return frame.shaders->compute("ibl.comp", defines);
+            });
             const GLuint prog = state.program.id();
             setSh(prog, env);
             glProgramUniform1i(prog, glGetUniformLocation(prog, "uDiffuseFromCube"),
@@ -59,11 +58,7 @@ fg::ResourceId addIblPass(fg::FrameGraph& graph, IblPass& state, const FrameData
             glProgramUniform1f(prog, glGetUniformLocation(prog, "uMaxLod"), float(env.prefiltered.levels - 1));
             glProgramUniform1i(prog, glGetUniformLocation(prog, "uLightingOnly"), lightingOnly);
             gl::ScopedEnable seamless(GL_TEXTURE_CUBE_MAP_SEAMLESS, true);
-            glBindTextureUnit(0, res.texture(data.in.depth));
-            glBindTextureUnit(1, res.texture(data.in.normal));
-            glBindTextureUnit(2, lightingOnly ? 0 : res.texture(data.in.diffuse));
-            glBindTextureUnit(3, res.texture(data.in.position));
-            glBindTextureUnit(4, res.texture(data.in.specular));
+            bindGBuffer(prog, res, data.in, frame, !lightingOnly);
             glBindTextureUnit(7, env.irradiance.id());
             glBindTextureUnit(8, env.prefiltered.id());
             glBindTextureUnit(9, dfg.id());
@@ -86,10 +81,7 @@ fg::ResourceId addIblDebugViewPass(fg::FrameGraph& graph, IblPass& state, const 
         "debug_view",
         [&](fg::PassBuilder& b, DebugData& data) {
             data.in = gbuffer;
-            b.read(gbuffer.depth);
-            b.read(gbuffer.normal);
-            b.read(gbuffer.position);
-            b.read(gbuffer.specular);
+            readGBuffer(b, gbuffer, false);
             data.ldr = b.create("ldr.debug", {frame.width, frame.height, GL_RGBA8});
         },
         [&state, frame, mode](const DebugData& data, const fg::PassResources& res) {
@@ -97,7 +89,9 @@ fg::ResourceId addIblDebugViewPass(fg::FrameGraph& graph, IblPass& state, const 
             const bool bake = mode == 2 || mode == 3;
             const BakedEnvironment& env = state.environments.get(*frame.scene, s, *frame.shaders, bake);
             const gl::Texture& dfg = state.environments.dfgLut(s, *frame.shaders);
-            if (!state.debugProgram) state.debugProgram = frame.shaders->compute("ibl_debug.comp");
+            programForLayout(state.debugProgram, state.debugLayout, frame, [&](const std::vector<std::string>& defines) {
+                return frame.shaders->compute("ibl_debug.comp", defines);
+            });
             const GLuint prog = state.debugProgram.id();
             if (bake) setSh(prog, env);
             const float maxMip = bake ? float(env.prefiltered.levels - 1) : 0.0f;
@@ -115,10 +109,7 @@ fg::ResourceId addIblDebugViewPass(fg::FrameGraph& graph, IblPass& state, const 
             glProgramUniform1f(prog, glGetUniformLocation(prog, "uExposureEV"), frame.settings->exposureEV);
             glProgramUniform1i(prog, glGetUniformLocation(prog, "uOperator"), int(s.toneMap));
             gl::ScopedEnable seamless(GL_TEXTURE_CUBE_MAP_SEAMLESS, true);
-            glBindTextureUnit(0, res.texture(data.in.depth));
-            glBindTextureUnit(1, res.texture(data.in.normal));
-            glBindTextureUnit(3, res.texture(data.in.position));
-            glBindTextureUnit(4, res.texture(data.in.specular));
+            bindGBuffer(prog, res, data.in, frame, false);
             glBindTextureUnit(7, env.cube.id());
             glBindTextureUnit(8, bake ? env.irradiance.id() : 0);
             glBindTextureUnit(9, bake ? env.prefiltered.id() : 0);
@@ -133,6 +124,15 @@ fg::ResourceId addIblDebugViewPass(fg::FrameGraph& graph, IblPass& state, const 
             glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
         });
     return d.ldr;
+}
+
+void addIblBakePass(fg::FrameGraph& graph, IblPass& state, const FrameData& frame, bool bake) {
+    graph.addPass(
+        "ibl_bake", [](fg::PassBuilder& b) { b.sideEffect(); },
+        [&state, frame, bake](const fg::PassResources&) {
+            state.environments.get(*frame.scene, frame.settings->environment, *frame.shaders, bake);
+            if (bake) state.environments.dfgLut(frame.settings->environment, *frame.shaders);
+        });
 }
 
 }  // namespace lp

@@ -15,6 +15,7 @@ struct IblPass {
     EnvironmentCache environments;  // cubes and bakes, made once per environment and kept
     gl::Program program;
     gl::Program debugProgram;
+    GBufferSettings layout, debugLayout;  // the G-buffer layouts the programs were compiled for
 };
 
 bool isEnvironmentView(DebugView view);
@@ -22,6 +23,11 @@ bool isEnvironmentView(DebugView view);
 // Returns `hdr` unchanged (and adds no pass) when IBL is off or the scene has no map.
 fg::ResourceId addIblPass(fg::FrameGraph& graph, IblPass& state, const FrameData& frame, const GBuffer& gbuffer,
                           fg::ResourceId hdr, bool lightingOnly);
+
+// "ibl_bake": makes the environment cube and, if `bake`, its irradiance / prefiltered cubes and the
+// DFG LUT. The frame builder adds it only in a frame where the cache lacks them (the environment or
+// the bake settings changed); a side effect, so it runs first and the ibl and sky passes find them made.
+void addIblBakePass(fg::FrameGraph& graph, IblPass& state, const FrameData& frame, bool bake);
 
 // An environment debug view into a new RGBA8 image (pass name "debug_view").
 fg::ResourceId addIblDebugViewPass(fg::FrameGraph& graph, IblPass& state, const FrameData& frame,

@@ -74,10 +74,17 @@ void makeMesh(const std::vector<glm::vec3>& tris, const std::string& name, gl::B
 }
 
 void ensureState(LocalLightPass& state, const FrameData& frame) {
+    // The programs that read the G-buffer follow its layout (recompiled when it changes).
+    const GBufferSettings& layout = frame.settings->gbuffer;
+    if (!state.fbo || state.layout != layout) {
+        std::vector<std::string> defines = gbufferDefines(layout);
+        state.fragmentProgram = frame.shaders->graphics("local_light.vert", "local_light.frag", defines);
+        state.tiledProgram = frame.shaders->compute("local_light_tiled.comp", defines);
+        defines.push_back("LP_TILE_HEATMAP");
+        state.heatmapProgram = frame.shaders->compute("local_light_tiled.comp", defines);
+        state.layout = layout;
+    }
     if (state.fbo) return;
-    state.fragmentProgram = frame.shaders->graphics("local_light.vert", "local_light.frag");
-    state.tiledProgram = frame.shaders->compute("local_light_tiled.comp");
-    state.heatmapProgram = frame.shaders->compute("local_light_tiled.comp", {"LP_TILE_HEATMAP"});
     state.sanitizeProgram = frame.shaders->compute("local_light_sanitize.comp");
     state.overlayProgram = frame.shaders->graphics("local_light_overlay.vert", "local_light_overlay.frag");
     makeMesh(circumscribingIcosphere(1), "local_light.volume", state.volumeMesh, state.volumeVao, state.volumeVertices);
@@ -110,13 +117,6 @@ void setMat4(GLuint prog, const char* name, const glm::mat4& m) {
     glProgramUniformMatrix4fv(prog, glGetUniformLocation(prog, name), 1, GL_FALSE, glm::value_ptr(m));
 }
 
-void bindGBuffer(const fg::PassResources& res, const GBuffer& g, bool lightingOnly) {
-    glBindTextureUnit(0, res.texture(g.depth));
-    glBindTextureUnit(1, res.texture(g.normal));
-    glBindTextureUnit(2, lightingOnly ? 0 : res.texture(g.diffuse));
-    glBindTextureUnit(3, res.texture(g.position));
-    glBindTextureUnit(4, res.texture(g.specular));
-}
 // Also detaches the pooled textures from the FBO, so it keeps no reference to textures the pool frees.
 void unbindAll(const LocalLightPass& state) {
     if (state.fbo) {
@@ -201,16 +201,12 @@ void drawFragmentMethod(LocalLightPass& state, const FrameData& frame, const std
 
 fg::ResourceId addLocalLightPass(fg::FrameGraph& graph, LocalLightPass& state, const FrameData& frame,
                                  const GBuffer& gbuffer, fg::ResourceId hdr, bool lightingOnly) {
-    if (localLightCount(*frame.scene, frame.settings->localLights) <= 0) return hdr;
+    if (localLightCount(*frame.scene, frame.settings->localLights) <= 0 && !frame.settings->allPasses) return hdr;
     const LightData& d = graph.addPass<LightData>(
         "local_lights",
         [&](fg::PassBuilder& b, LightData& data) {
             data.in = gbuffer;
-            b.read(gbuffer.depth);
-            b.read(gbuffer.normal);
-            if (!lightingOnly) b.read(gbuffer.diffuse);
-            b.read(gbuffer.position);
-            b.read(gbuffer.specular);
+            readGBuffer(b, gbuffer, !lightingOnly);
             data.hdr = b.write(hdr);
         },
         [&state, frame, lightingOnly](const LightData& data, const fg::PassResources& res) {
@@ -220,10 +216,10 @@ fg::ResourceId addLocalLightPass(fg::FrameGraph& graph, LocalLightPass& state, c
             state.stats.method = s.method;
             std::vector<PointLight> lights = uploadLights(state, frame);
             state.stats.requested = int(lights.size());
-            bindGBuffer(res, data.in, lightingOnly);
             const GLuint hdrTexture = res.texture(data.hdr);
             if (s.method == LocalLightMethod::Tiled) {
                 const GLuint prog = state.tiledProgram.id();
+                bindGBuffer(prog, res, data.in, frame, !lightingOnly);
                 setInt(prog, "uLightCount", int(lights.size()));
                 setMat4(prog, "uProjection", frame.projection);
                 setInt(prog, "uUnbounded", unbounded(s));
@@ -235,6 +231,7 @@ fg::ResourceId addLocalLightPass(fg::FrameGraph& graph, LocalLightPass& state, c
                 state.stats.drawn = int(lights.size());
             } else {
                 const GLuint prog = state.fragmentProgram.id();
+                bindGBuffer(prog, res, data.in, frame, !lightingOnly);
                 setInt(prog, "uLightingOnly", lightingOnly);
                 setInt(prog, "uSpecularMode", specularMode(s));
                 drawFragmentMethod(state, frame, lights, hdrTexture);
@@ -268,7 +265,9 @@ void drawGlobes(LocalLightPass& state, const FrameData& frame, int count, GLuint
     gl::ScopedEnable depthTest(GL_DEPTH_TEST, true);  // hidden behind the scene's surfaces
     gl::ScopedEnable cull(GL_CULL_FACE, true);
     gl::ScopedEnable scissor(GL_SCISSOR_TEST, false);
-    glDepthFunc(GL_LESS);
+    // The G-buffer's depth convention: GL_LESS, or under reversed-Z clip control 0..1 and GL_GREATER
+    // with the reversed projection below, so globes stay hidden by nearer surfaces in every mode.
+    ScopedGBufferDepthTest depthConvention(frame.settings->gbuffer);
     glDepthMask(GL_FALSE);
     glCullFace(GL_BACK);
     glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
@@ -276,7 +275,7 @@ void drawGlobes(LocalLightPass& state, const FrameData& frame, int count, GLuint
     setInt(prog, "uMode", 1);
     setFloat(prog, "uGlobeScale", kGlobeScale);
     setFloat(prog, "uRadiance", kGlobeRadiance);
-    setMat4(prog, "uProjection", frame.projection);
+    setMat4(prog, "uProjection", gbufferDepthProjection(frame));
     glBindVertexArray(state.globeVao.id());
     glDrawArraysInstanced(GL_TRIANGLES, 0, state.globeVertices, count);
 }
@@ -363,8 +362,7 @@ fg::ResourceId addLocalLightOverlayPasses(fg::FrameGraph& graph, LocalLightPass&
                        "lights_per_tile",
                        [&](fg::PassBuilder& b, OverlayData& data) {
                            data.in = gbuffer;
-                           b.read(gbuffer.depth);
-                           b.read(gbuffer.position);
+                           readGBuffer(b, gbuffer, false);
                            data.hdr = b.write(hdr);
                        },
                        [&state, frame](const OverlayData& data, const fg::PassResources& res) {
@@ -377,8 +375,7 @@ fg::ResourceId addLocalLightOverlayPasses(fg::FrameGraph& graph, LocalLightPass&
                            setInt(prog, "uUnbounded", unbounded(ls));
                            setFloat(prog, "uHeatMax", kHeatMax);
                            setFloat(prog, "uExposure", frame.settings->exposureEV);
-                           glBindTextureUnit(0, res.texture(data.in.depth));
-                           glBindTextureUnit(3, res.texture(data.in.position));
+                           bindGBuffer(prog, res, data.in, frame, false);
                            glBindImageTexture(0, res.texture(data.hdr), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
                            glUseProgram(prog);
                            gl::dispatch2D(frame.width, frame.height, kTileSize);

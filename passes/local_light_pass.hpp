@@ -24,6 +24,7 @@ struct LocalLightPass {
     gl::Program heatmapProgram;   // local_light_tiled.comp with LP_TILE_HEATMAP
     gl::Program sanitizeProgram;  // local_light_sanitize.comp
     gl::Program overlayProgram;   // local_light_overlay.vert/.frag: globes, volumes, rectangles
+    GBufferSettings layout;       // the G-buffer layout the fragment, tiled and heatmap programs were compiled for
     gl::Framebuffer fbo;
     gl::Buffer lights;            // SSBO of GpuLocalLight
     size_t lightCapacity = 0;

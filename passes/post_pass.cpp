@@ -4,7 +4,11 @@ namespace lp {
 
 fg::ResourceId addPostPasses(fg::FrameGraph& graph, PostPasses& state, const FrameData& frame, const GBuffer& gbuffer,
                              fg::ResourceId hdr) {
-    const post::PostConfig config = post::resolvePostConfig(frame.scene->effects, frame.settings->post, frame.farPlane);
+    post::PostConfig config = post::resolvePostConfig(frame.scene->effects, frame.settings->post, frame.farPlane);
+    if (frame.settings->allPasses && !config.bloom) {  // measuring: the bloom work, added at strength 0
+        config.bloom = true;
+        config.bloomParams.strength = 0.0f;
+    }
     ++state.backend.frameIndex;  // every built frame, so CUDA registrations age even when culled
     if (frame.settings->view == DebugView::Lighting) return hdr;  // light alone: no post effects
     if (config.bloom) {
@@ -15,8 +19,8 @@ fg::ResourceId addPostPasses(fg::FrameGraph& graph, PostPasses& state, const Fra
         graph.skipPass("bloom", frame.settings->post.bloom ? "switched off (--no-bloom)"
                                                            : "off in the scene (effects.bloom.enabled) and no --bloom");
     }
-    if (config.toon && gbuffer.position.valid())
-        hdr = addToonPass(graph, state.toon, state.backend, frame, config, gbuffer.position, gbuffer.normal, hdr);
+    if (config.toon)
+        hdr = addToonPass(graph, state.toon, state.backend, frame, config, gbuffer, hdr);
     else if (!config.toon)
         graph.skipPass("toon", frame.settings->post.toon ? "switched off (--no-toon)"
                                                          : "off in the scene (effects.toon.enabled) and no --toon");

@@ -42,7 +42,7 @@ ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const
     // Say why a frame has no (or fewer) shadow passes: 'lightpass graph' and the viewer show it.
     const auto& lights = frame.scene->directionalLights;
     int casting = 0;
-    for (const auto& l : lights) casting += l.castsShadows ? 1 : 0;
+    for (const auto& l : lights) casting += (l.castsShadows || frame.settings->allPasses) ? 1 : 0;
     if (casting == 0) graph.skipPass("shadow_map", "no directional light casts shadows");
     else if (!frame.settings->shadows.enabled) graph.skipPass("shadow_map", "shadows are off (--no-shadows)");
     else if (casting > kMaxShadowedLights)

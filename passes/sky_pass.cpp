@@ -22,7 +22,10 @@ fg::ResourceId addSkyPass(fg::FrameGraph& graph, SkyPass& state, const FrameData
             data.hdr = b.write(hdr);
         },
         [&state, frame](const Data& data, const fg::PassResources& res) {
-            if (!state.program) state.program = frame.shaders->compute("sky.comp");
+            // Compiled for the G-buffer layout: background is depth 1, or 0 under reversed-Z.
+            programForLayout(state.program, state.layout, frame, [&](const std::vector<std::string>& defines) {
+                return frame.shaders->compute("sky.comp", defines);
+            });
             const GLuint prog = state.program.id();
             const Environment& environment = frame.scene->environment;
             glm::vec3 c = environment.color * environment.intensity;

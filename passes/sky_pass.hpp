@@ -6,11 +6,13 @@
 #include "engine/graph/frame_graph.hpp"
 #include "engine/render/frame_data.hpp"
 #include "engine/render/ibl_environment.hpp"
+#include "passes/gbuffer_pass.hpp"
 
 namespace lp {
 
 struct SkyPass {
     gl::Program program;
+    GBufferSettings layout;  // the G-buffer layout (depth convention) `program` was compiled for
     EnvironmentCache* environments = nullptr;  // set by the frame builder (the IBL pass owns it)
 };
 

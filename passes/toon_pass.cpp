@@ -1,5 +1,6 @@
 #include "passes/toon_pass.hpp"
 
+#include "engine/core/log.hpp"
 #include "engine/gl/gpu_timer.hpp"
 #include "engine/gl/shader.hpp"
 #include "engine/gl/state.hpp"
@@ -8,47 +9,61 @@ namespace lp {
 
 namespace {
 struct Data {
-    fg::ResourceId position, normal, hdr;
+    GBuffer in;
+    fg::ResourceId hdr;
 };
 }  // namespace
 
-void runToonGlsl(ToonPass& state, const gl::ShaderLibrary& shaders, GLuint hdr, GLuint position, GLuint normal,
+void runToonGlsl(ToonPass& state, const gl::ShaderLibrary& shaders, GLuint hdr, const ToonGBufferTextures& g,
                  int width, int height, const post::ToonParams& p) {
-    if (!state.program) state.program = shaders.compute("toon.comp");
+    if (!state.program || state.layout != g.layout) {
+        state.program = shaders.compute("toon.comp", gbufferDefines(g.layout));
+        state.layout = g.layout;
+    }
     const GLuint prog = state.program.id();
+    glProgramUniform4f(prog, glGetUniformLocation(prog, "uGbufferCamera"), g.camera.x, g.camera.y, g.camera.z,
+                       g.camera.w);
     glProgramUniform1i(prog, glGetUniformLocation(prog, "uLevels"), p.levels);
     glProgramUniform1f(prog, glGetUniformLocation(prog, "uDepthEdge"), p.depthEdge);
     glProgramUniform1f(prog, glGetUniformLocation(prog, "uNormalEdge"), p.normalEdge);
     glProgramUniform1f(prog, glGetUniformLocation(prog, "uFarDepth"), p.farDepth);
-    glBindTextureUnit(0, position);
-    glBindTextureUnit(1, normal);
+    glBindTextureUnit(0, g.depth);
+    glBindTextureUnit(1, g.normal);
+    glBindTextureUnit(3, g.position);
     glBindImageTexture(0, hdr, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
     glUseProgram(prog);
     gl::dispatch2D(width, height);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     glUseProgram(0);
-    glBindTextureUnit(0, 0);
-    glBindTextureUnit(1, 0);
+    for (GLuint u : {0u, 1u, 3u}) glBindTextureUnit(u, 0);
     glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
 }
 
 fg::ResourceId addToonPass(fg::FrameGraph& graph, ToonPass& state, PostBackend& backend, const FrameData& frame,
-                           const post::PostConfig& config, fg::ResourceId position, fg::ResourceId normal,
-                           fg::ResourceId hdr) {
+                           const post::PostConfig& config, const GBuffer& gbuffer, fg::ResourceId hdr) {
     const post::ToonParams params = config.toonParams;
     const PostSettings::Backend requested = config.backend;
     const Data& d = graph.addPass<Data>(
         "toon",
         [&](fg::PassBuilder& b, Data& data) {
-            data.position = b.read(position);
-            data.normal = b.read(normal);
+            data.in = gbuffer;
+            b.read(gbuffer.depth);
+            b.read(gbuffer.normal);
+            if (gbuffer.position.valid()) b.read(gbuffer.position);
             data.hdr = b.write(hdr);
         },
         [&state, &backend, frame, params, requested, frameIndex = backend.frameIndex](const Data& data,
                                                                                       const fg::PassResources& res) {
-            const GLuint hdrTex = res.texture(data.hdr), posTex = res.texture(data.position),
-                         normalTex = res.texture(data.normal);
-            if (backend.useCuda(requested)) {
+            const GLuint hdrTex = res.texture(data.hdr), normalTex = res.texture(data.in.normal);
+            const GLuint posTex = data.in.position.valid() ? res.texture(data.in.position) : 0;
+            const bool defaultLayout = frame.settings->gbuffer == GBufferSettings{};  // what the CUDA kernel reads
+            if (!defaultLayout && requested != PostSettings::Backend::Glsl && !state.toldGlslForLayout) {
+                logInfo("toon: the CUDA kernel reads the unpacked, stored G-buffer; --gbuffer " +
+                        std::string(gbufferFormatName(frame.settings->gbuffer.normal)) + " --gbuffer-position " +
+                        gbufferPositionName(frame.settings->gbuffer.position) + " runs the GLSL toon");
+                state.toldGlslForLayout = true;
+            }
+            if (defaultLayout && backend.useCuda(requested)) {
                 backend.beginFrame(frameIndex);  // idempotent within a frame
 #ifdef LIGHTPASS_HAVE_CUDA
                 cuda::PostTiming t = backend.interop->toon(hdrTex, posTex, normalTex, frame.width, frame.height, params);
@@ -59,7 +74,10 @@ fg::ResourceId addToonPass(fg::FrameGraph& graph, ToonPass& state, PostBackend& 
 #endif
                 return;
             }
-            runToonGlsl(state, *frame.shaders, hdrTex, posTex, normalTex, frame.width, frame.height, params);
+            const glm::mat4& proj = frame.projection;
+            ToonGBufferTextures g{res.texture(data.in.depth), normalTex, posTex, frame.settings->gbuffer,
+                                  glm::vec4(frame.nearPlane, frame.farPlane, 1.0f / proj[1][1], proj[1][1] / proj[0][0])};
+            runToonGlsl(state, *frame.shaders, hdrTex, g, frame.width, frame.height, params);
         });
     return d.hdr;
 }

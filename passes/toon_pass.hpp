@@ -5,20 +5,30 @@
 #include "engine/graph/frame_graph.hpp"
 #include "engine/post/post_config.hpp"
 #include "engine/render/frame_data.hpp"
+#include "passes/gbuffer_pass.hpp"
 #include "passes/post_backend.hpp"
 
 namespace lp {
 
 struct ToonPass {
     gl::Program program;
+    GBufferSettings layout;  // the G-buffer layout `program` was compiled for
+    bool toldGlslForLayout = false;  // the once-logged note that a non-default layout runs the GLSL toon
 };
 
-// position / normal: the G-buffer's eye-space position (w = coverage) and normal (RGBA32F).
+// Reads the G-buffer's depth (coverage), eye depth and normal through shaders/common/gbuffer_layout.glsl.
+// The CUDA backend reads the unpacked, stored layout only; other layouts run the GLSL toon.
 fg::ResourceId addToonPass(fg::FrameGraph& graph, ToonPass& state, PostBackend& backend, const FrameData& frame,
-                           const post::PostConfig& config, fg::ResourceId position, fg::ResourceId normal,
-                           fg::ResourceId hdr);
+                           const post::PostConfig& config, const GBuffer& gbuffer, fg::ResourceId hdr);
 
-void runToonGlsl(ToonPass& state, const gl::ShaderLibrary& shaders, GLuint hdr, GLuint position, GLuint normal,
+// The G-buffer targets the GLSL toon reads (texture ids; position 0 when rebuilt from depth), their
+// layout, and the camera that rebuilds positions: (near, far, tan(vertical fov / 2), width / height).
+struct ToonGBufferTextures {
+    GLuint depth = 0, normal = 0, position = 0;
+    GBufferSettings layout;
+    glm::vec4 camera{0.1f, 100.0f, 1.0f, 1.0f};
+};
+void runToonGlsl(ToonPass& state, const gl::ShaderLibrary& shaders, GLuint hdr, const ToonGBufferTextures& g,
                  int width, int height, const post::ToonParams& p);
 
 }  // namespace lp

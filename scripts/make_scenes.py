@@ -1,10 +1,12 @@
 #!/usr/bin/env python3
-"""Writes the generated bundled scenes: scenes/gallery.json (256 local lights) and
-scenes/ibl-spheres.json (a material grid). Deterministic (fixed seed), so re-running changes nothing.
+"""Writes the generated bundled scenes: scenes/gallery.json (256 local lights),
+scenes/ibl-spheres.json (a material grid) and scenes/lights-4k.json (4096 local lights). Deterministic (fixed seed), so re-running changes nothing.
 
 gallery: the Stanford bunny, dragon and Happy Buddha (from ../shared/assets) on a floor, two suns with
 shadows, 256 ranged point lights orbiting above the floor, and an HDR sky.
 ibl-spheres: 7 x 3 spheres, roughness (shininess) across, specular up, under an HDR map, no local lights.
+lights-4k: the bundled Cornell box with two spheres lit by 4096 small ranged point lights and nothing
+else: no sun, no shadows, no environment map (so the graph has no shadow, IBL or sky pass).
 """
 import json
 import math
@@ -54,7 +56,7 @@ def gallery():
              "material": {"diffuse": [0.85, 0.7, 0.4], "specular": [0.6, 0.55, 0.4], "shininess": 256}},
         ],
         "lights": lights,
-        "environment": {"map": f"{ASSETS}/hdri-polyhaven-1k/pedestrian_overpass_1k.hdr", "intensity": 1.0},
+        "environment": {"map": f"{ASSETS}/hdri-polyhaven-1k/pedestrian_overpass_1k.hdr", "intensity": 1.0, "ibl": True},
         "ambient": [0.02, 0.02, 0.02],
     }
 
@@ -73,11 +75,38 @@ def ibl_spheres():
         "camera": {"position": [0.0, 1.2, 9.5], "target": [0.0, 1.2, 0.0], "fov": 45, "near": 0.1, "far": 50},
         "models": models,
         "lights": [],
-        "environment": {"map": "../hdr/sky.hdr", "intensity": 1.0},
+        "environment": {"map": "../hdr/sky.hdr", "intensity": 1.0, "ibl": True},
         "ambient": [0.0, 0.0, 0.0],
+    }
+
+
+def lights_4k():
+    rng = random.Random(4096)
+    lights = []
+    for i in range(4096):
+        hue = rng.random()
+        c = [0.5 + 0.5 * math.cos(2 * math.pi * (hue + k / 3.0)) for k in range(3)]
+        # inside the box (0..0.556 m in x and z, 0..0.549 m in y), kept off the walls
+        p = [rng.uniform(0.02, 0.536), rng.uniform(0.02, 0.529), rng.uniform(0.02, 0.54)]
+        lights.append({"type": "point", "position": [round(x, 4) for x in p], "color": [round(x, 3) for x in c],
+                       "intensity": round(rng.uniform(0.0005, 0.002), 5), "range": round(rng.uniform(0.04, 0.09), 4)})
+    return {
+        "description": "The Cornell box lit only by 4096 small ranged point lights: no sun, no shadows, no environment map.",
+        "camera": {"position": [0.278, 0.273, -0.8], "target": [0.278, 0.273, 0.0], "fov": 39.3, "near": 0.05, "far": 3.0},
+        "models": [
+            {"name": "cornell_box", "obj": "../models/cornell_box.obj"},
+            {"name": "glossy_sphere", "primitive": "sphere", "translate": [0.185, 0.245, 0.169], "scale": 0.16,
+             "material": {"diffuse": [0.9, 0.9, 0.9], "specular": [0.6, 0.6, 0.6], "shininess": 256}},
+            {"name": "blue_sphere", "primitive": "sphere", "translate": [0.42, 0.06, 0.11], "scale": 0.12,
+             "material": {"diffuse": [0.1, 0.25, 0.8], "specular": [0.3, 0.3, 0.3], "shininess": 64}},
+        ],
+        "lights": lights,
+        "environment": {"color": [0.0, 0.0, 0.0]},
+        "ambient": [0.005, 0.005, 0.005],
     }
 
 
 if __name__ == "__main__":
     write("gallery.json", gallery())
     write("ibl-spheres.json", ibl_spheres())
+    write("lights-4k.json", lights_4k())

@@ -1,10 +1,12 @@
 #version 450
-// G-buffer channels as images. Values are written directly (no tone map, no sRGB) so a picked
-// pixel reads back the encoding documented in the README.
+// G-buffer channels as images, decoded from any layout (common/gbuffer_layout.glsl). Values are
+// written directly (no tone map, no sRGB) so a picked pixel reads back the encoding documented in
+// the README.
+#define LP_GBUFFER_READ
 #include "common/gbuffer_layout.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(binding = 0) uniform sampler2D uChannel;
+layout(binding = 12) uniform sampler2D uChannel;  // texcoords (7) or the shadow-map atlas (8)
 layout(rgba8, binding = 0) uniform writeonly image2D uLdr;
 
 // 1 depth, 2 normals, 3 diffuse, 4 position, 5 shininess, 6 specular, 7 texcoords, 8 shadow map
@@ -40,25 +42,28 @@ void main() {
         imageStore(uLdr, p, vec4(grey, 1.0));
         return;
     }
-    vec4 t = texelFetch(uChannel, p, 0);
+    if (uMode == 7) {
+        imageStore(uLdr, p, vec4(fract(texelFetch(uChannel, p, 0).xy), 0.0, 1.0));
+        return;
+    }
+    bool background = gbufferIsBackground(p);
     vec3 c = vec3(0.0);
     if (uMode == 1) {
-        // Window depth -> eye distance along the view axis -> [0, 1] between near and far.
-        float d = t.r;
-        float zEye = uNear * uFar / (uFar - d * (uFar - uNear));
-        c = vec3(d >= 1.0 ? 1.0 : clamp((zEye - uNear) / (uFar - uNear), 0.0, 1.0));
+        // Eye distance along the view axis -> [0, 1] between near and far; background 1.
+        float zEye = -gbufferEyeZ(p);
+        c = vec3(background ? 1.0 : clamp((zEye - uNear) / (uFar - uNear), 0.0, 1.0));
+    } else if (background) {
+        c = vec3(0.0);
     } else if (uMode == 2) {
-        c = dot(t.xyz, t.xyz) > 0.0 ? t.xyz * 0.5 + 0.5 : vec3(0.0);
+        c = gbufferNormal(p) * 0.5 + 0.5;
     } else if (uMode == 3) {
-        c = t.rgb;
+        c = gbufferDiffuse(p);
     } else if (uMode == 4) {
-        c = t.w > 0.0 ? clamp(t.xyz * uPositionScale * 0.5 + 0.5, 0.0, 1.0) : vec3(0.0);
+        c = clamp(gbufferPosition(p) * uPositionScale * 0.5 + 0.5, 0.0, 1.0);
     } else if (uMode == 5) {
-        c = vec3(clamp(t.a / 1024.0, 0.0, 1.0));
+        c = vec3(clamp(gbufferShininess(p) / 1024.0, 0.0, 1.0));
     } else if (uMode == 6) {
-        c = t.rgb;
-    } else if (uMode == 7) {
-        c = vec3(fract(t.xy), 0.0);
+        c = gbufferSpecular(p);
     }
     imageStore(uLdr, p, vec4(c, 1.0));
 }

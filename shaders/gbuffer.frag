@@ -1,5 +1,7 @@
 #version 450
 #include "common/tonemap.glsl"
+// The normal format and position mode come from gbuffer_layout.glsl's #defines.
+#include "common/gbuffer_layout.glsl"
 
 in vec3 vPosition;
 in vec3 vNormal;
@@ -15,9 +17,15 @@ uniform float uBumpScale;
 layout(binding = 0) uniform sampler2D uDiffuseMap;  // sRGB texture: sampled as linear
 layout(binding = 1) uniform sampler2D uBumpMap;     // height map in r
 
+#ifdef LP_GBUFFER_NORMAL_OCT
+layout(location = 0) out uint outNormal;
+#else
 layout(location = 0) out vec4 outNormal;
+#endif
 layout(location = 1) out vec4 outDiffuse;
+#ifndef LP_GBUFFER_POSITION_FROM_DEPTH
 layout(location = 2) out vec4 outPosition;
+#endif
 layout(location = 3) out vec4 outSpecular;
 layout(location = 4) out vec4 outTexcoord;
 
@@ -43,9 +51,16 @@ void main() {
     }
     vec3 albedo = uDiffuse;
     if (uHasDiffuseMap) albedo *= texture(uDiffuseMap, vUv).rgb;
-    outNormal = vec4(N, 0.0);
+    float shininess = clamp(uShininess, 0.0, 10000.0);
+#ifdef LP_GBUFFER_NORMAL_OCT
+    outNormal = gbufferEncodeNormalOct(N);
+#else
+    outNormal = gbufferEncodeNormal(N, shininess);
+#endif
     outDiffuse = vec4(clamp(albedo, 0.0, 1.0), 1.0);
+#ifndef LP_GBUFFER_POSITION_FROM_DEPTH
     outPosition = vec4(vPosition, 1.0);
-    outSpecular = vec4(clamp(uSpecular, 0.0, 1.0), clamp(uShininess, 0.0, 10000.0));
+#endif
+    outSpecular = vec4(clamp(uSpecular, 0.0, 1.0), shininess);
     outTexcoord = vec4(vUv, 0.0, 0.0);
 }

@@ -7,13 +7,10 @@
 //                  shows the whole LUT (x = N.V, y = roughness), raw
 #include "common/ibl.glsl"
 #include "common/tonemap.glsl"
+#define LP_GBUFFER_READ
 #include "common/gbuffer_layout.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(binding = LP_BIND_DEPTH) uniform sampler2D uDepth;
-layout(binding = LP_BIND_NORMAL) uniform sampler2D uNormal;
-layout(binding = LP_BIND_POSITION) uniform sampler2D uPosition;
-layout(binding = LP_BIND_SPECULAR) uniform sampler2D uSpecular;
 layout(binding = 7) uniform samplerCube uEnvironment;
 layout(binding = 8) uniform samplerCube uIrradiance;
 layout(binding = 9) uniform samplerCube uPrefiltered;
@@ -34,19 +31,19 @@ void main() {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     ivec2 size = imageSize(uLdr);
     if (p.x >= size.x || p.y >= size.y) return;
-    bool background = texelFetch(uDepth, p, 0).r >= 1.0;
+    bool background = gbufferIsBackground(p);
     vec2 ndc = (vec2(p) + 0.5) / vec2(size) * 2.0 - 1.0;
     vec4 e = uInvProjection * vec4(ndc, 1.0, 1.0);
     vec3 viewEye = normalize(e.xyz / e.w);
-    vec3 N = texelFetch(uNormal, p, 0).xyz;
-    vec3 P = texelFetch(uPosition, p, 0).xyz;
+    vec3 N = gbufferNormal(p);
+    vec3 P = gbufferPosition(p);
     vec3 V = length(P) > 0.0 ? -normalize(P) : vec3(0.0, 0.0, 1.0);
     vec3 R = 2.0 * dot(N, V) * N - V;
     vec3 lookup = normalize(uEyeToWorld * (background ? viewEye : R));
     vec3 c;
     if (uMode == 4) {
         vec2 uv = background ? (vec2(p) + 0.5) / vec2(size)
-                             : vec2(clamp(dot(N, V), 0.0, 1.0), roughnessFromShininess(texelFetch(uSpecular, p, 0).a));
+                             : vec2(clamp(dot(N, V), 0.0, 1.0), roughnessFromShininess(gbufferShininess(p)));
         imageStore(uLdr, p, vec4(textureLod(uDfg, uv, 0.0).rg, 0.0, 1.0));
         return;
     }

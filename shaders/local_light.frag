@@ -3,14 +3,10 @@
 // serves the fullscreen, scissor and volumes methods; the tiled method runs the same function.
 #include "common/local_light.glsl"
 #include "common/tonemap.glsl"
+#define LP_GBUFFER_READ
 #include "common/gbuffer_layout.glsl"
 
 layout(std430, binding = 0) readonly buffer LocalLights { LpLocalLight uLights[]; };
-layout(binding = LP_BIND_DEPTH) uniform sampler2D uDepth;
-layout(binding = LP_BIND_NORMAL) uniform sampler2D uNormal;
-layout(binding = LP_BIND_DIFFUSE) uniform sampler2D uDiffuse;
-layout(binding = LP_BIND_POSITION) uniform sampler2D uPosition;
-layout(binding = LP_BIND_SPECULAR) uniform sampler2D uSpecular;
 uniform bool uLightingOnly;  // the lighting view: white albedo
 uniform int uSpecularMode;   // LP_LOCAL_SPECULAR_*
 flat in int vLight;
@@ -18,11 +14,11 @@ layout(location = 0) out vec4 oColor;
 
 void main() {
     ivec2 p = ivec2(gl_FragCoord.xy);
-    if (texelFetch(uDepth, p, 0).r >= 1.0) discard;  // background: no surface to light
-    vec3 N = texelFetch(uNormal, p, 0).xyz;
-    vec3 P = texelFetch(uPosition, p, 0).xyz;
-    vec4 spec = texelFetch(uSpecular, p, 0);
-    vec3 kd = uLightingOnly ? vec3(1.0) : texelFetch(uDiffuse, p, 0).rgb;
+    if (gbufferIsBackground(p)) discard;  // background: no surface to light
+    vec3 N = gbufferNormal(p);
+    vec3 P = gbufferPosition(p);
+    vec4 spec = vec4(gbufferSpecular(p), gbufferShininess(p));
+    vec3 kd = uLightingOnly ? vec3(1.0) : gbufferDiffuse(p);
     float pl = length(P);
     vec3 V = pl > 0.0 ? -P / pl : vec3(0.0, 0.0, 1.0);
     LpLocalLight l = uLights[vLight];

@@ -5,17 +5,13 @@
 // that list. With LP_TILE_HEATMAP it instead paints the per-tile count over the finished image.
 #include "common/local_light.glsl"
 #include "common/tonemap.glsl"
+#define LP_GBUFFER_READ
 #include "common/gbuffer_layout.glsl"
 
 layout(local_size_x = 16, local_size_y = 16) in;
 const uint LP_BATCH = 256u;  // = threads per group: each thread tests one light per batch
 
 layout(std430, binding = 0) readonly buffer LocalLights { LpLocalLight uLights[]; };
-layout(binding = LP_BIND_DEPTH) uniform sampler2D uDepth;
-layout(binding = LP_BIND_NORMAL) uniform sampler2D uNormal;
-layout(binding = LP_BIND_DIFFUSE) uniform sampler2D uDiffuse;
-layout(binding = LP_BIND_POSITION) uniform sampler2D uPosition;
-layout(binding = LP_BIND_SPECULAR) uniform sampler2D uSpecular;
 layout(rgba16f, binding = 0) uniform image2D uHdr;
 uniform int uLightCount;
 uniform mat4 uProjection;
@@ -65,10 +61,10 @@ void main() {
         sTotal = 0u;
     }
     barrier();
-    bool surface = inside && texelFetch(uDepth, p, 0).r < 1.0;
+    bool surface = inside && !gbufferIsBackground(p);
     vec3 P = vec3(0.0);
     if (surface) {
-        P = texelFetch(uPosition, p, 0).xyz;
+        P = gbufferPosition(p);
         uint bits = floatBitsToUint(max(-P.z, 0.0));
         atomicMin(sMinDist, bits);
         atomicMax(sMaxDist, bits);
@@ -83,9 +79,9 @@ void main() {
     vec3 N = vec3(0.0), kd = vec3(0.0), V = vec3(0.0, 0.0, 1.0);
     vec4 spec = vec4(0.0);
     if (surface) {
-        N = texelFetch(uNormal, p, 0).xyz;
-        spec = texelFetch(uSpecular, p, 0);
-        kd = uLightingOnly ? vec3(1.0) : texelFetch(uDiffuse, p, 0).rgb;
+        N = gbufferNormal(p);
+        spec = vec4(gbufferSpecular(p), gbufferShininess(p));
+        kd = uLightingOnly ? vec3(1.0) : gbufferDiffuse(p);
         float pl = length(P);
         V = pl > 0.0 ? -P / pl : vec3(0.0, 0.0, 1.0);
     }

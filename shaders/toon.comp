@@ -1,13 +1,13 @@
 #version 450
 // Toon: the luminance ramp of common/post.glsl on every covered texel, and black outlines
 // where the Sobel gradient of eye depth (relative to the centre depth) or of the eye-space normal
-// exceeds its threshold. Uncovered texels (position.w = 0) read depth uFarDepth and normal 0.
+// exceeds its threshold. Uncovered texels (G-buffer background) read depth uFarDepth and normal 0.
 #include "common/tonemap.glsl"
 #include "common/post.glsl"
+#define LP_GBUFFER_READ
+#include "common/gbuffer_layout.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(binding = 0) uniform sampler2D uPosition;
-layout(binding = 1) uniform sampler2D uNormal;
 layout(rgba16f, binding = 0) uniform image2D uHdr;
 uniform int uLevels;
 uniform float uDepthEdge;
@@ -22,9 +22,9 @@ void main() {
     for (int j = 0; j < 3; ++j)
         for (int i = 0; i < 3; ++i) {
             ivec2 q = clamp(p + ivec2(i - 1, j - 1), ivec2(0), size - 1);
-            vec4 pos = texelFetch(uPosition, q, 0);
-            vec3 n = texelFetch(uNormal, q, 0).xyz;
-            z[j * 3 + i] = pos.w > 0.0 ? -pos.z : uFarDepth;
+            bool background = gbufferIsBackground(q);
+            vec3 n = background ? vec3(0.0) : gbufferNormal(q);
+            z[j * 3 + i] = background ? uFarDepth : -gbufferEyeZ(q);
             nx[j * 3 + i] = n.x;
             ny[j * 3 + i] = n.y;
             nz[j * 3 + i] = n.z;
@@ -33,7 +33,7 @@ void main() {
     bool edge = sobelSquared(z) / (zc * zc) > uDepthEdge * uDepthEdge ||
                 sobelSquared(nx) + sobelSquared(ny) + sobelSquared(nz) > uNormalEdge * uNormalEdge;
     vec3 c = sanitizeHdr(imageLoad(uHdr, p).rgb);
-    bool covered = texelFetch(uPosition, p, 0).w > 0.0;
+    bool covered = !gbufferIsBackground(p);
     if (edge) c = vec3(0.0);
     else if (covered) c *= toonScale(postLuminance(c), uLevels);
     imageStore(uHdr, p, vec4(sanitizeHdr(c), 1.0));

@@ -111,7 +111,7 @@ Query makeQuery(GLenum target) {
 int bytesPerTexel(GLenum f) {
     switch (f) {
         case GL_R8: return 1;
-        case GL_RG8: case GL_R16F: case GL_DEPTH_COMPONENT16: return 2;
+        case GL_RG8: case GL_R16F: case GL_R16UI: case GL_DEPTH_COMPONENT16: return 2;
         case GL_RGBA8: case GL_SRGB8_ALPHA8: case GL_R32F: case GL_RG16F: case GL_RGB10_A2:
         case GL_R11F_G11F_B10F: case GL_DEPTH_COMPONENT32F: case GL_DEPTH24_STENCIL8: case GL_R32UI:
         case GL_RG16: case GL_RGBA8UI: return 4;
@@ -140,6 +140,7 @@ const char* formatName(GLenum f) {
         case GL_RG16: return "RG16";
         case GL_RGBA16: return "RGBA16";
         case GL_R32UI: return "R32UI";
+        case GL_R16UI: return "R16UI";
         case GL_DEPTH_COMPONENT32F: return "D32F";
         case GL_DEPTH_COMPONENT16: return "D16";
         case GL_DEPTH24_STENCIL8: return "D24S8";

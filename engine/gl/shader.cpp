@@ -1,5 +1,6 @@
 #include "engine/gl/shader.hpp"
 
+#include <algorithm>
 #include <fstream>
 #include <regex>
 #include <set>
@@ -131,7 +132,9 @@ ShaderSource ShaderLibrary::preprocess(const std::string& path, const std::vecto
 
 Program ShaderLibrary::compute(const std::string& path, const std::vector<std::string>& defines) const {
     Shader cs = compileStage(GL_COMPUTE_SHADER, preprocess(path, defines), path);
-    return link({&cs}, path);
+    Program program = link({&cs}, path);
+    remember({{path}, defines});
+    return program;
 }
 
 Program ShaderLibrary::computeFromSource(const std::string& name, const std::string& text) const {
@@ -145,7 +148,19 @@ Program ShaderLibrary::graphics(const std::string& vertexPath, const std::string
                                 const std::vector<std::string>& defines) const {
     Shader vs = compileStage(GL_VERTEX_SHADER, preprocess(vertexPath, defines), vertexPath);
     Shader fs = compileStage(GL_FRAGMENT_SHADER, preprocess(fragmentPath, defines), fragmentPath);
-    return link({&vs, &fs}, vertexPath + "+" + fragmentPath);
+    Program program = link({&vs, &fs}, vertexPath + "+" + fragmentPath);
+    remember({{vertexPath, fragmentPath}, defines});
+    return program;
+}
+
+Program ShaderLibrary::build(const ProgramRecipe& recipe) const {
+    if (recipe.stages.size() == 1) return compute(recipe.stages[0], recipe.defines);
+    if (recipe.stages.size() == 2) return graphics(recipe.stages[0], recipe.stages[1], recipe.defines);
+    throw Error("program recipe needs 1 (compute) or 2 (vertex, fragment) stages");
+}
+
+void ShaderLibrary::remember(ProgramRecipe recipe) const {
+    if (std::find(built_->begin(), built_->end(), recipe) == built_->end()) built_->push_back(std::move(recipe));
 }
 
 std::string mapCompileLog(const std::string& log, const std::vector<std::string>& files) {

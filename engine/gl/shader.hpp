@@ -2,12 +2,20 @@
 // GLSL loading: resolves `#include "common/x.glsl"` from the shader root, inserts `#line` markers so
 // the driver's error log can be mapped back to the original file and line, and injects #defines.
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "engine/gl/handles.hpp"
 
 namespace lp::gl {
+
+// What one compute()/graphics() call built: enough to build it again (shader hot reload).
+struct ProgramRecipe {
+    std::vector<std::string> stages;  // one compute file, or vertex + fragment files
+    std::vector<std::string> defines;
+    bool operator==(const ProgramRecipe& o) const { return stages == o.stages && defines == o.defines; }
+};
 
 struct ShaderSource {
     std::string text;
@@ -32,9 +40,15 @@ public:
     // A compute program from source text (whose #includes resolve from the root); `name` labels it
     // in errors. The shader tests build their harness kernels this way.
     Program computeFromSource(const std::string& name, const std::string& text) const;
+    // Every distinct program compute()/graphics() built successfully (copies of a library share it).
+    std::vector<ProgramRecipe> builtPrograms() const { return *built_; }
+    // Builds a recipe again from the current files (throws like compute()/graphics()).
+    Program build(const ProgramRecipe& recipe) const;
 
 private:
+    void remember(ProgramRecipe recipe) const;
     std::filesystem::path root_;
+    std::shared_ptr<std::vector<ProgramRecipe>> built_ = std::make_shared<std::vector<ProgramRecipe>>();
 };
 
 // Rewrites "0:12(5): error" (Mesa) and "0(12) : error" (NVIDIA) to "shaders/file.glsl:12: error".

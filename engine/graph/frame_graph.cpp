@@ -41,6 +41,12 @@ ResourceId PassBuilder::create(const std::string& name, const TextureDesc& desc)
     return ResourceId{v};
 }
 
+ResourceId PassBuilder::createIfRead(const std::string& name, const TextureDesc& desc) {
+    ResourceId id = create(name, desc);
+    graph_.resources_.back().optional = true;
+    return id;
+}
+
 ResourceId PassBuilder::read(ResourceId id) {
     if (!id.valid() || id.version >= int(graph_.versions_.size()))
         throw Error("frame graph: pass '" + graph_.passes_[pass_].name + "' reads an invalid resource handle");
@@ -78,6 +84,7 @@ void FrameGraph::addPass(const std::string& name, const SetupFn& setup, ExecuteF
     for (const auto& p : passes_)
         if (p.name == name) throw Error("frame graph: two passes named '" + name + "'");
     passes_.push_back(Pass{name, std::move(execute), {}, {}, {}, false, false});
+    candidates_.emplace_back(true, int(passes_.size()) - 1);
     compiled_ = false;
     PassBuilder builder(*this, int(passes_.size()) - 1);
     if (setup) setup(builder);
@@ -101,6 +108,7 @@ void FrameGraph::disablePass(const std::string& passName) {
 
 void FrameGraph::skipPass(const std::string& passName, const std::string& reason) {
     skipped_.emplace_back(passName, reason);
+    candidates_.emplace_back(false, int(skipped_.size()) - 1);
 }
 
 int FrameGraph::resolve(int version) const {
@@ -170,6 +178,7 @@ void FrameGraph::compile() {
                 const float zero[4] = {0, 0, 0, 0};
                 for (int v : created) {
                     const Resource& r = resources_[versions_[v].resource];
+                    if (!r.texture) continue;  // an optional target nothing reads
                     for (int level = 0; level < r.desc.levels; ++level)
                         glClearTexImage(r.texture, level, GL_RGBA, GL_FLOAT, zero);
                 }
@@ -270,11 +279,17 @@ void FrameGraph::compile() {
         throw Error("frame graph: cycle between passes " + cycle);
     }
 
+    // Optional targets nobody live reads are not allocated (their writer sees texture 0).
+    std::vector<char> readByLive(resources_.size(), 0);
+    for (const Version& v : versions_)
+        for (int reader : v.readers)
+            if (passes_[reader].live) readByLive[v.resource] = 1;
     // Lifetimes in execution order.
     for (int i = 0; i < int(order_.size()); ++i) {
         const Pass& p = passes_[order_[i]];
         auto touch = [&](int v) {
             Resource& r = resources_[versions_[v].resource];
+            if (r.optional && !r.output && !readByLive[versions_[v].resource]) return;
             r.live = true;
             if (r.first < 0) r.first = i;
             r.last = std::max(r.last, i);
@@ -316,6 +331,38 @@ void FrameGraph::compile() {
 }
 
 // ---- executing --------------------------------------------------------------------------------
+
+std::vector<PassDecision> FrameGraph::explain() const {
+    std::vector<PassDecision> out;
+    for (const auto& [added, index] : candidates_) {
+        if (!added) {
+            out.push_back({skipped_[size_t(index)].first, false, "skipped: " + skipped_[size_t(index)].second});
+            continue;
+        }
+        const Pass& p = passes_[size_t(index)];
+        PassDecision d{p.name, p.live && !p.disabled, ""};
+        if (index < int(report_.size()) && !d.runs) d.reason = report_[size_t(index)].reason;
+        if (p.disabled && p.live) d.reason = report_[size_t(index)].reason;  // runs as a clear / pass-through
+        out.push_back(d);
+    }
+    return out;
+}
+
+std::string FrameGraph::explainText() const {
+    std::ostringstream out;
+    out << "candidate passes:\n";
+    for (const PassDecision& d : explain())
+        out << "  " << (d.runs ? "runs     " : "-        ") << d.name << (d.reason.empty() ? "" : "  (" + d.reason + ")")
+            << "\n";
+    return out.str();
+}
+
+size_t FrameGraph::liveTransientBytes() const {
+    size_t total = 0;
+    for (const auto& r : resources_)
+        if (r.live && !r.isImported) total += r.desc.bytes();
+    return total;
+}
 
 GLuint PassResources::texture(ResourceId id) const {
     const auto& r = graph_.resourceOf(id);

@@ -42,6 +42,9 @@ class TexturePool;
 class PassBuilder {
 public:
     ResourceId create(const std::string& name, const TextureDesc& desc);
+    // A target the pass can do without (a G-buffer channel): allocated only when some live pass
+    // reads it or it is an output; otherwise PassResources::texture() gives 0 and the writer skips it.
+    ResourceId createIfRead(const std::string& name, const TextureDesc& desc);
     ResourceId read(ResourceId id);
     ResourceId read(const std::string& resourceName);  // resolves at compile time to the last version
     ResourceId write(ResourceId id);                   // read-modify-write: returns the new version
@@ -89,6 +92,13 @@ struct ResourceReport {
     int firstPass = -1, lastPass = -1;  // in execution order
 };
 
+// One candidate pass of a frame: it runs, or why not (culled, disabled, or skipped by the builder).
+struct PassDecision {
+    std::string name;
+    bool runs = false;
+    std::string reason;  // "skipped: scene has no shadow-casting light"; empty when it runs
+};
+
 class FrameGraph {
 public:
     // Runs `setup` now; `execute` runs in execute() if the pass survives compile().
@@ -115,6 +125,12 @@ public:
     // ("scene has no shadow-casting light"); shown by describe() and report(), never executed.
     void skipPass(const std::string& passName, const std::string& reason);
     const std::vector<std::pair<std::string, std::string>>& skippedPasses() const { return skipped_; }
+    // Every candidate pass (added or skipped) with its decision, in the order they were considered;
+    // after compile(). explainText() is what 'lightpass graph --explain' prints.
+    std::vector<PassDecision> explain() const;
+    std::string explainText() const;
+    // Bytes of the live transient textures (before the pool reuses memory between lifetimes).
+    size_t liveTransientBytes() const;
 
     // Throws lp::Error for a read of a resource nothing writes, a double write of one version,
     // a cycle, or a graph with no output.
@@ -151,6 +167,7 @@ private:
         int first = -1, last = -1;
         bool live = false;
         bool output = false;
+        bool optional = false;  // createIfRead: dropped when nothing live reads it
     };
     struct Version {
         int resource = -1;
@@ -177,6 +194,7 @@ private:
     std::vector<Pass> passes_;
     int resolve(int version) const;  // follows pass-through aliases of disabled passes
     std::vector<std::pair<std::string, std::string>> skipped_;
+    std::vector<std::pair<bool, int>> candidates_;  // (added, index into passes_ or skipped_) in order
     std::vector<int> alias_;         // per version: the version it passes through to, or -1
     std::vector<int> outputs_;
     std::vector<std::string> namedOutputs_;

@@ -1,15 +1,66 @@
 #include "engine/render/frame_builder.hpp"
 
 #include <algorithm>
+#include <string>
+
+#include "engine/render/local_lights.hpp"
 
 namespace lp {
 
+bool sphereIntersectsFrustum(const glm::mat4& viewProjection, glm::vec3 center, float radius) {
+    const glm::mat4 m = glm::transpose(viewProjection);  // rows of the matrix
+    const glm::vec4 planes[6] = {m[3] + m[0], m[3] - m[0], m[3] + m[1], m[3] - m[1], m[3] + m[2], m[3] - m[2]};
+    for (const glm::vec4& p : planes) {
+        const float len = glm::length(glm::vec3(p));
+        if (len <= 0.0f) continue;
+        if ((glm::dot(glm::vec3(p), center) + p.w) / len < -radius) return false;
+    }
+    return true;
+}
+
+int localLightsInView(const FrameData& frame) {
+    const glm::mat4 viewProjection = frame.projection * frame.view;
+    int visible = 0;
+    for (const PointLight& l : localLightsForFrame(*frame.scene, frame.settings->localLights, frame.time))
+        visible += (l.range <= 0.0f || sphereIntersectsFrustum(viewProjection, l.position, l.range)) ? 1 : 0;
+    return visible;
+}
+
+namespace {
+// Why the frame needs no local-light pass (nor tiling, globes, overlays); empty when it does.
+std::string localLightSkipReason(const FrameData& frame) {
+    const LocalLightSettings& s = frame.settings->localLights;
+    if (!s.enabled) return "local lights are off (--no-local-lights)";
+    const int count = localLightCount(*frame.scene, s);
+    if (count <= 0) return "scene has no local lights";
+    if (localLightsInView(frame) == 0) return "all " + std::to_string(count) + " local lights are out of view";
+    return "";
+}
+}  // namespace
+
 FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const FrameData& frame) {
     const RenderSettings& s = *frame.settings;
+    const Scene& scene = *frame.scene;
     const bool channelView = s.view != DebugView::Final && s.view != DebugView::Lighting &&
                              !isLocalLightView(s.view);  // overlays on the final image
     const bool lightingView = s.view == DebugView::Lighting;
+    const bool hasMap = !scene.environment.map.empty();
+    const bool iblWanted = s.environment.ibl.value_or(scene.environment.ibl) && hasMap;
+    const bool iblAdded = iblWanted || s.allPasses;
+    // A black background with no map: the global-light pass already leaves the background at zero.
+    const bool skyWanted = hasMap || glm::any(glm::greaterThan(scene.environment.color * scene.environment.intensity, glm::vec3(0.0f)));
+    const bool skyAdded = !lightingView && (skyWanted || s.allPasses);
+    const std::string localSkip = s.allPasses ? "" : localLightSkipReason(frame);
 
+    // The environment's cubes are made (and, for IBL, baked) in the frame where they changed.
+    const bool environmentView = isEnvironmentView(s.view);  // shows the cubes or the LUT themselves
+    const bool bake = iblAdded || environmentView;
+    if (environmentView || (!channelView && (iblAdded || (skyAdded && hasMap)))) {
+        if (!passes.ibl.environments.ready(scene, s.environment, bake)) addIblBakePass(graph, passes.ibl, frame, bake);
+        else graph.skipPass("ibl_bake", "environment unchanged since its bake (cached)");
+    } else {
+        graph.skipPass("ibl_bake", hasMap ? "nothing in this view samples the environment" : "scene has no environment map");
+    }
     GBuffer gbuffer = addGBufferPass(graph, passes.gbuffer, frame, channelsForView(s.view));
     // one depth pass per shadow-casting directional light; global_lights and the shadowmap view read them.
     passes.globalLights.shadowMaps = addShadowMapPasses(graph, passes.shadowMaps, frame);
@@ -17,11 +68,14 @@ FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const Fr
     fg::ResourceId hdr = addGlobalLightPass(graph, passes.globalLights, frame, gbuffer, lightingView);
     passes.sky.environments = &passes.ibl.environments;  // the sky and environment views read it
     passes.debugView.ibl = &passes.ibl;
-    hdr = addIblPass(graph, passes.ibl, frame, gbuffer, hdr, lightingView);
-    hdr = addLocalLightPass(graph, passes.localLights, frame, gbuffer, hdr, lightingView);
-    if (!lightingView) hdr = addSkyPass(graph, passes.sky, frame, gbuffer.depth, hdr);
+    if (iblAdded) hdr = addIblPass(graph, passes.ibl, frame, gbuffer, hdr, lightingView);
+    else graph.skipPass("ibl", hasMap ? "IBL is off (environment.ibl false, no --ibl)" : "scene has no environment map");
+    if (localSkip.empty()) hdr = addLocalLightPass(graph, passes.localLights, frame, gbuffer, hdr, lightingView);
+    else graph.skipPass("local_lights", localSkip);
+    if (skyAdded) hdr = addSkyPass(graph, passes.sky, frame, gbuffer.depth, hdr);
+    else graph.skipPass("sky", lightingView ? "the lighting view shows light alone" : "scene has no environment (black, no map)");
     // globes and the light-ranges / lights-per-tile overlays, over the sky too.
-    if (!lightingView) hdr = addLocalLightOverlayPasses(graph, passes.localLights, frame, gbuffer, hdr);
+    if (!lightingView && localSkip.empty()) hdr = addLocalLightOverlayPasses(graph, passes.localLights, frame, gbuffer, hdr);
     hdr = addPostPasses(graph, passes.post, frame, gbuffer, hdr);  // bloom, toon (not in the lighting view)
     fg::ResourceId display = addToneMapPass(graph, passes.tonemap, frame, hdr);
     if (channelView) display = addDebugViewPass(graph, passes.debugView, frame, gbuffer, s.view);

@@ -1,7 +1,10 @@
 #pragma once
-// Builds one frame's graph from the scene and the settings. Every pass a frame could use is added;
-// the outputs chosen by the settings (final image, a debug view, the HDR buffer) decide what
-// survives compile(), so e.g. the normals view culls lighting and tone mapping by itself.
+// Builds one frame's graph from the scene and the settings. A pass is added only when the scene
+// calls for it (a shadow-casting sun, a local light in view, an environment, an enabled effect);
+// every candidate left out is recorded with FrameGraph::skipPass and its reason. The outputs chosen
+// by the settings (final image, a debug view, the HDR buffer) then decide what survives compile(),
+// so e.g. the normals view culls lighting and tone mapping by itself. RenderSettings::allPasses
+// adds every candidate regardless (to measure what the scene-driven graph saves).
 #include "engine/graph/frame_graph.hpp"
 #include "engine/render/frame_data.hpp"
 #include "passes/debug_view_pass.hpp"
@@ -32,7 +35,15 @@ struct FrameOutputs {
     fg::ResourceId hdr;      // RGBA16F linear radiance (valid when the view has one)
 };
 
+// The one entry point: frame.scene and frame.settings decide the passes. After graph.compile(),
+// graph.explain() lists every candidate pass as "runs" or "skipped: <reason>".
 FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const FrameData& frame);
+
+// Whether a world-space sphere reaches into the frustum of `viewProjection` (its six planes, after
+// Gribb and Hartmann; conservative near the frustum's edges, never wrongly false).
+bool sphereIntersectsFrustum(const glm::mat4& viewProjection, glm::vec3 center, float radius);
+// How many of the frame's local lights (orbits applied at frame.time) reach into the view.
+int localLightsInView(const FrameData& frame);
 
 // Camera matrices, planes and sizes for a frame of `scene` under `settings`.
 FrameData makeFrameData(const Scene& scene, const RenderSettings& settings, float time);

@@ -97,6 +97,7 @@ std::vector<PointLight> localLightsForFrame(const Scene& scene, const LocalLight
     for (auto& l : lights) {
         l.position = orbitPosition(l, time);
         l.orbitSpeed = 0.0f;
+        l.range *= settings.rangeScale;  // --light-range-scale: shading and every method's bounds agree
     }
     return lights;
 }

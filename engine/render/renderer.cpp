@@ -22,6 +22,12 @@ void Renderer::render(const RenderSettings& settings, float time, bool timed) {
     height_ = settings.height;
 }
 
+void Renderer::resetPasses() {
+    graph_ = fg::FrameGraph();  // the old graph's passes point into the old states
+    outputs_ = {};
+    passes_ = PassStates{};
+}
+
 GLuint Renderer::displayTexture() const { return outputs_.display.valid() ? graph_.outputTexture(outputs_.display) : 0; }
 GLuint Renderer::hdrTexture() const { return outputs_.hdr.valid() ? graph_.outputTexture(outputs_.hdr) : 0; }
 

@@ -23,7 +23,13 @@ public:
     const fg::FrameGraph& graph() const { return graph_; }
     gl::GpuTimerRing& timers() { return timers_; }
     const fg::TexturePool& pool() const { return pool_; }
+    // GPU bytes of the textures that outlive a frame outside the pool: environment cubes, IBL bakes, DFG LUT.
+    size_t persistentTextureBytes() const { return passes_.ibl.environments.gpuBytes(); }
     const SceneGpu& sceneGpu() const { return *gpu_; }
+    const gl::ShaderLibrary& shaders() const { return shaders_; }
+    // Drops every pass's programs and GPU state so the next frame rebuilds them from the current
+    // shader files (hot reload; environments are baked again).
+    void resetPasses();
     GLuint displayTexture() const;
     GLuint hdrTexture() const;
 

@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "engine/render/gbuffer_format.hpp"
+
 namespace lp {
 
 enum class DebugView {
@@ -67,6 +69,7 @@ struct LocalLightSettings {     // ranged point lights
     bool globes = false;        // small flat-lit spheres at the lights
     bool specular = true;       // local lights add a specular term
     bool specularOutsideRange = false;  // diffuse limited by range, specular (1/d^2 only) not
+    float rangeScale = 1.0f;    // --light-range-scale: each light's range x this (< 1 cuts lights short; a sweep knob)
 };
 enum class ToneMapOperator { Lightpass, Aces, PbrNeutral, Agx };
 enum class IrradianceSource { SphericalHarmonics, Cubemap };
@@ -114,11 +117,15 @@ struct RenderSettings {
     bool globalLighting = true;  // the directional-light pass
     Brdf brdf = Brdf::BlinnPhong;  // analytic BRDF of the light passes
     bool keepHdr = false;        // keep the HDR buffer as an output (EXR dumps)
+    // --all-passes: add every candidate pass even where the scene does not call for it (shadow maps
+    // for every sun, local lights with none in view, a colour sky, bloom at strength 0); measuring only.
+    bool allPasses = false;
     std::set<std::string> disabledPasses;  // switched off in the UI / --disable-pass
     ShadowSettings shadows;
     LocalLightSettings localLights;
     EnvironmentSettings environment;
     PostSettings post;
+    GBufferSettings gbuffer;     // normal format and position mode (--gbuffer, --gbuffer-position)
 };
 
 }  // namespace lp

@@ -16,7 +16,7 @@ std::vector<int> shadowCastingLights(const FrameData& frame) {
     if (!frame.scene || !frame.settings || !frame.settings->shadows.enabled) return lights;
     const auto& all = frame.scene->directionalLights;
     for (int i = 0; i < int(all.size()) && int(lights.size()) < kMaxShadowedLights; ++i)
-        if (all[size_t(i)].castsShadows) lights.push_back(i);
+        if (all[size_t(i)].castsShadows || frame.settings->allPasses) lights.push_back(i);
     return lights;
 }
 

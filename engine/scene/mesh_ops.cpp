@@ -68,9 +68,13 @@ void computeBounds(MeshData& mesh) {
     mesh.boundsMin = glm::vec3(std::numeric_limits<float>::max());
     mesh.boundsMax = glm::vec3(std::numeric_limits<float>::lowest());
     for (const auto& v : mesh.vertices) {
+        // A NaN/Inf vertex draws nothing; in the bounds it would make the scene infinite for the
+        // camera framing, the generated demo lights and the shadow cascade fit.
+        if (!std::isfinite(v.position.x) || !std::isfinite(v.position.y) || !std::isfinite(v.position.z)) continue;
         mesh.boundsMin = glm::min(mesh.boundsMin, v.position);
         mesh.boundsMax = glm::max(mesh.boundsMax, v.position);
     }
+    if (mesh.boundsMin.x > mesh.boundsMax.x) mesh.boundsMin = mesh.boundsMax = glm::vec3(0.0f);  // none finite
 }
 
 }  // namespace lp

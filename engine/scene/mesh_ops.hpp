@@ -10,7 +10,7 @@ void computeNormals(MeshData& mesh);
 // Per-vertex tangents from UVs (Lengyel), Gram-Schmidt against the normal, w = handedness. Where
 // UVs are absent or degenerate, any unit tangent perpendicular to the normal (Duff et al. 2017).
 void computeTangents(MeshData& mesh);
-void computeBounds(MeshData& mesh);
+void computeBounds(MeshData& mesh);  // of the finite positions (none: zero)
 // A unit vector perpendicular to unit n, continuous except on a measure-zero set, never 0/0
 // (Duff et al., "Building an Orthonormal Basis, Revisited", JCGT 2017).
 glm::vec3 anyPerpendicular(glm::vec3 n);

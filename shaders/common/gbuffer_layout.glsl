@@ -1,10 +1,21 @@
-// The G-buffer's texture bindings as every full-screen pass sees them (the seeds' unpacked layout):
-//   depth     D32F      window-space depth
-//   normal    RGBA32F   eye-space unit normal in xyz
+// The G-buffer's texture bindings, its layouts, and the one API every pass reads it through.
+//   depth     D32F      window depth: standard (near 0, far 1) or reversed-Z (near 1, far 0)
+//   normal    depends on the normal format (below)
 //   diffuse   RGBA8     diffuse albedo (linear)
-//   position  RGBA32F   eye-space position in xyz
+//   position  RGBA32F   eye-space position in xyz; absent when positions are rebuilt from depth
 //   specular  RGBA16F   specular colour in rgb, Blinn-Phong shininess in a
+//             (RGBA8, colour only, for the seed-packed formats, which keep shininess with the normal)
 //   texcoord  RG32F     texture coordinates (only when a debug view asks for them)
+// The layout is chosen by the #defines a program is compiled with (lp::gbufferDefines):
+//   LP_GBUFFER_NORMAL_UNPACKED (default)  RGBA32F  xyz
+//   LP_GBUFFER_NORMAL_SEED_PACKED         RGBA16F  (x, y, shininess); z = sqrt(1 - x² - y²) >= 0
+//   LP_GBUFFER_NORMAL_SEED_PACKED_SIGNED  RGBA16F  (x, y, ±shininess); the sign is z's
+//   LP_GBUFFER_NORMAL_TWO_ANGLE           RG32F    (phi, cos theta)
+//   LP_GBUFFER_NORMAL_OCT <16|24|32>      R16UI / R32UI: octahedral, two bits/2-bit snorm integers
+//   LP_GBUFFER_POSITION_STORED (default), LP_GBUFFER_POSITION_DEPTH, LP_GBUFFER_POSITION_REVERSED_Z
+// A shader that reads the G-buffer defines LP_GBUFFER_READ before including this file; it then gets
+// the samplers (units LP_BIND_*) and gbufferIsBackground / gbufferNormal / gbufferPosition /
+// gbufferEyeZ / gbufferDiffuse / gbufferSpecular / gbufferShininess. The pass sets uGbufferCamera.
 #ifndef LP_GBUFFER_LAYOUT_GLSL
 #define LP_GBUFFER_LAYOUT_GLSL
 #define LP_BIND_DEPTH 0
@@ -14,4 +25,127 @@
 #define LP_BIND_SPECULAR 4
 #define LP_BIND_TEXCOORD 5
 #define LP_BIND_HDR 6
+
+#include "common/depth_reconstruct.glsl"
+#include "common/normal_encoding.glsl"
+
+#if !defined(LP_GBUFFER_NORMAL_SEED_PACKED) && !defined(LP_GBUFFER_NORMAL_SEED_PACKED_SIGNED) && \
+    !defined(LP_GBUFFER_NORMAL_TWO_ANGLE) && !defined(LP_GBUFFER_NORMAL_OCT) && !defined(LP_GBUFFER_NORMAL_UNPACKED)
+#define LP_GBUFFER_NORMAL_UNPACKED
+#endif
+#if defined(LP_GBUFFER_NORMAL_SEED_PACKED) || defined(LP_GBUFFER_NORMAL_SEED_PACKED_SIGNED)
+#define LP_GBUFFER_SHININESS_IN_NORMAL
+#endif
+#if defined(LP_GBUFFER_POSITION_DEPTH) || defined(LP_GBUFFER_POSITION_REVERSED_Z)
+#define LP_GBUFFER_POSITION_FROM_DEPTH
+#endif
+
+// ---- encoding (gbuffer.frag writes these) ------------------------------------------------------
+#ifdef LP_GBUFFER_NORMAL_OCT
+const uint LP_OCT_BITS = uint(LP_GBUFFER_NORMAL_OCT) / 2u;
+const float LP_OCT_MAX = float((1u << (LP_OCT_BITS - 1u)) - 1u);  // snorm scale: 127, 2047, 32767
+// Two snorm integers k in [-m, m], stored as k + m in LP_OCT_BITS bits each.
+uint gbufferEncodeNormalOct(vec3 n) {
+    vec2 q = octahedralEncodeQuantized(n, float(LP_GBUFFER_NORMAL_OCT));
+    uvec2 k = uvec2(round(q * LP_OCT_MAX) + LP_OCT_MAX);
+    return k.x | (k.y << LP_OCT_BITS);
+}
+vec3 gbufferDecodeNormalOct(uint u) {
+    uint mask = (1u << LP_OCT_BITS) - 1u;
+    vec2 k = vec2(float(u & mask), float((u >> LP_OCT_BITS) & mask));
+    return octahedralDecode((k - LP_OCT_MAX) / LP_OCT_MAX);
+}
+#else
+// What the float normal target stores for unit normal n and Blinn-Phong exponent `shininess`.
+vec4 gbufferEncodeNormal(vec3 n, float shininess) {
+#if defined(LP_GBUFFER_NORMAL_SEED_PACKED)
+    return vec4(seedPackedEncode(n), shininess, 0.0);
+#elif defined(LP_GBUFFER_NORMAL_SEED_PACKED_SIGNED)
+    // A carrier of at least fp16's smallest normal number, so shininess 0 keeps a negative sign
+    // (-1e-30 would round to -0 in the RGBA16F target and read back as not negative).
+    return vec4(n.xy, n.z < 0.0 ? -max(shininess, 1.0 / 16384.0) : shininess, 0.0);
+#elif defined(LP_GBUFFER_NORMAL_TWO_ANGLE)
+    return vec4(twoAngleEncode(n), 0.0, 0.0);
+#else
+    return vec4(n, 0.0);
+#endif
+}
+vec3 gbufferDecodeNormal(vec4 t) {
+#if defined(LP_GBUFFER_NORMAL_SEED_PACKED)
+    return seedPackedDecode(t.xy);
+#elif defined(LP_GBUFFER_NORMAL_SEED_PACKED_SIGNED)
+    return seedPackedSignedDecode(t.xy, t.z);
+#elif defined(LP_GBUFFER_NORMAL_TWO_ANGLE)
+    return twoAngleDecode(t.xy);
+#else
+    return t.xyz;
+#endif
+}
+#endif
+
+// ---- decoding (every pass that reads the G-buffer) ---------------------------------------------
+#ifdef LP_GBUFFER_READ
+layout(binding = LP_BIND_DEPTH) uniform sampler2D uGbufferDepth;
+#ifdef LP_GBUFFER_NORMAL_OCT
+layout(binding = LP_BIND_NORMAL) uniform usampler2D uGbufferNormal;
+#else
+layout(binding = LP_BIND_NORMAL) uniform sampler2D uGbufferNormal;
+#endif
+layout(binding = LP_BIND_DIFFUSE) uniform sampler2D uGbufferDiffuse;
+#ifndef LP_GBUFFER_POSITION_FROM_DEPTH
+layout(binding = LP_BIND_POSITION) uniform sampler2D uGbufferPosition;
+#endif
+layout(binding = LP_BIND_SPECULAR) uniform sampler2D uGbufferSpecular;
+uniform vec4 uGbufferCamera;  // near, far, tan(vertical fov / 2), width / height
+
+float gbufferRawDepth(ivec2 p) { return texelFetch(uGbufferDepth, p, 0).r; }
+
+// No geometry at p (the depth clear value: far plane).
+bool gbufferIsBackground(ivec2 p) {
+#ifdef LP_GBUFFER_POSITION_REVERSED_Z
+    return gbufferRawDepth(p) <= 0.0;
+#else
+    return gbufferRawDepth(p) >= 1.0;
+#endif
+}
+
+vec3 gbufferNormal(ivec2 p) {
+#ifdef LP_GBUFFER_NORMAL_OCT
+    return gbufferDecodeNormalOct(texelFetch(uGbufferNormal, p, 0).r);
+#else
+    return gbufferDecodeNormal(texelFetch(uGbufferNormal, p, 0));
+#endif
+}
+
+// Eye-space z (negative in front of the camera) of the surface at p.
+float gbufferEyeZ(ivec2 p) {
+#if defined(LP_GBUFFER_POSITION_REVERSED_Z)
+    return eyeZFromReversedDepth(gbufferRawDepth(p), uGbufferCamera.x, uGbufferCamera.y);
+#elif defined(LP_GBUFFER_POSITION_DEPTH)
+    return eyeZFromStandardDepth(gbufferRawDepth(p), uGbufferCamera.x, uGbufferCamera.y);
+#else
+    return texelFetch(uGbufferPosition, p, 0).z;
+#endif
+}
+
+vec3 gbufferPosition(ivec2 p) {
+#ifdef LP_GBUFFER_POSITION_FROM_DEPTH
+    vec2 uv = (vec2(p) + 0.5) / vec2(textureSize(uGbufferDepth, 0));
+    return eyePositionFromZ(uv, gbufferEyeZ(p), uGbufferCamera.z, uGbufferCamera.w);
+#else
+    return texelFetch(uGbufferPosition, p, 0).xyz;
+#endif
+}
+
+vec3 gbufferDiffuse(ivec2 p) { return texelFetch(uGbufferDiffuse, p, 0).rgb; }
+vec3 gbufferSpecular(ivec2 p) { return texelFetch(uGbufferSpecular, p, 0).rgb; }
+float gbufferShininess(ivec2 p) {
+#ifdef LP_GBUFFER_SHININESS_IN_NORMAL
+    return abs(texelFetch(uGbufferNormal, p, 0).z);
+#else
+    return texelFetch(uGbufferSpecular, p, 0).a;
+#endif
+}
+#endif  // LP_GBUFFER_READ
+
 #endif

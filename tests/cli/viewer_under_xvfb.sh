@@ -1,21 +1,25 @@
 #!/usr/bin/env bash
 # The viewer as a user drives it: starts on the default scene under Xvfb (Mesa), key '2' switches to
-# the normals view and F12's screenshot shows the normal encoding, 'x' toggles scissor, Esc quits.
+# the normals view and F12's screenshot shows the normal encoding, 'x' toggles scissor, '7' adds the
+# toon pass and '8' the bloom pass (alone: toon is moot) to the compiled graph, '0' takes them out again, unticking the
+# panel's "sky" checkbox removes that pass from the compiled graph, Esc quits.
 #   viewer_under_xvfb.sh LIGHTPASS SCENE OUTDIR
 set -uo pipefail
 lp=$1 scene=$2 out=$3
 rm -rf "$out" && mkdir -p "$out"
 for cmd in Xvfb xdotool python3; do command -v $cmd >/dev/null || { echo "missing $cmd"; exit 1; }; done
-display=:$((90 + RANDOM % 100))
-Xvfb "$display" -screen 0 640x480x24 -nolisten tcp >"$out/xvfb.log" 2>&1 &
+# -displayfd: Xvfb picks a free display number (other tests may run Xvfb at the same time).
+Xvfb -displayfd 3 -screen 0 640x480x24 -nolisten tcp 3>"$out/display" >"$out/xvfb.log" 2>&1 &
 xvfb=$!
+viewer=
 trap 'kill $viewer $xvfb 2>/dev/null; wait 2>/dev/null' EXIT
-export DISPLAY=$display
+for i in $(seq 50); do [ -s "$out/display" ] && break; sleep 0.1; done
+export DISPLAY=:$(cat "$out/display")
 for i in $(seq 50); do xdotool getmouselocation >/dev/null 2>&1 && break; sleep 0.1; done
-"$lp" view "$scene" --size 200x150 --screenshot-dir "$out" --hide-panel >"$out/viewer.log" 2>&1 &
+"$lp" view "$scene" --size 600x440 --screenshot-dir "$out" --hide-panel >"$out/viewer.log" 2>&1 &
 viewer=$!
-wait_for() {  # wait_for PATTERN FILE
-  for i in $(seq 300); do grep -q -- "$1" "$2" 2>/dev/null && return 0; kill -0 $viewer 2>/dev/null || break; sleep 0.1; done
+wait_for() {  # wait_for PATTERN FILE (an extended regular expression)
+  for i in $(seq 300); do grep -qE -- "$1" "$2" 2>/dev/null && return 0; kill -0 $viewer 2>/dev/null || break; sleep 0.1; done
   echo "timed out waiting for '$1' in $2"; cat "$out/viewer.log"; exit 1
 }
 wait_for "viewer ready" "$out/viewer.log"
@@ -26,6 +30,27 @@ xdotool key F12
 wait_for "screenshot" "$out/viewer.log"
 xdotool key x
 wait_for "scissor off" "$out/viewer.log"
+# "graph:" lines list the passes that ran, printed whenever that list changes.
+last_graph() { grep '^graph:' "$out/viewer.log" | tail -1; }
+xdotool key 7
+wait_for "toon on" "$out/viewer.log"
+wait_for "^graph:.* toon" "$out/viewer.log"
+xdotool key 8
+wait_for "bloom only on" "$out/viewer.log"
+wait_for "^graph:.* bloom" "$out/viewer.log"
+xdotool key 0
+wait_for "view final" "$out/viewer.log"
+for i in $(seq 100); do last_graph | grep -qE ' (bloom|toon)' || break; sleep 0.1; done
+last_graph | grep -qE ' (bloom|toon)' && { echo "'0' left bloom or toon on: $(last_graph)"; exit 1; }
+last_graph | grep -q ' sky' || { echo "sky missing before the checkbox test: $(last_graph)"; exit 1; }
+# Tab shows the panel; its "sky" checkbox sits in the passes table (ImGui's built-in font, panel at
+# (8, 8), the 5th pass of the default scene).
+xdotool key Tab
+sleep 1
+xdotool mousemove 25 247 click 1
+for i in $(seq 100); do last_graph | grep -q ' sky' || break; sleep 0.1; done
+last_graph | grep -q ' sky' && { echo "unticking sky left it in the graph: $(last_graph)"; exit 1; }
+xdotool mousemove 400 300
 xdotool key Escape
 for i in $(seq 100); do kill -0 $viewer 2>/dev/null || break; sleep 0.1; done
 kill -0 $viewer 2>/dev/null && { echo "viewer did not quit on Escape"; exit 1; }

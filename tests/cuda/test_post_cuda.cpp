@@ -136,3 +136,57 @@ TEST(CudaInterop, BloomOnGlTexturesMatchesReference) {
     glGetTextureImage(bloom.id(), 0, GL_RGBA, GL_FLOAT, GLsizei(got.rgba.size() * 4), got.rgba.data());
     EXPECT_LE(maxRelError(got, post::bloomBuffer(hdrIn, p, Storage::Float)), 2.0 / 1024.0);
 }
+
+// The tiled blur at sizes that are not multiples of its 32 x 64 tiles, on images narrower than
+// its radius (kernel 101 on 7 px): same clamped borders, same bound as above.
+TEST(CudaKernels, TiledBlurMatchesReferenceOnOddSizes) {
+    if (skipWithoutDevice()) GTEST_SKIP() << "no CUDA device: " << cuda::postDeviceProblem();
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> v(0.0f, 8.0f);
+    for (auto [w, h] : {std::pair{7, 3}, std::pair{33, 65}, std::pair{130, 1}, std::pair{1, 70}}) {
+        ImageF hdr = makeImage(w, h);
+        for (size_t i = 0; i < hdr.rgba.size(); ++i)
+            if (i % 4 != 3) hdr.rgba[i] = post::roundToHalf(v(rng));
+        for (BloomMethod m : {BloomMethod::Separable, BloomMethod::MipChain})
+            for (int kernel : {1, 5, 101}) {
+                const BloomParams p = params(kernel, m);
+                EXPECT_LE(maxRelError(cuda::bloomOnDevice(hdr, p), post::bloomBuffer(hdr, p, Storage::Float)), 1e-5)
+                    << w << "x" << h << " kernel " << kernel << " method " << int(m);
+            }
+    }
+}
+
+// The fused bloom + composite (what the passes run when bloom_composite follows bloom) gives the
+// bloom buffer of bloomBuffer (1e-5 relative) and the composite of compositeBloom (1 fp16 ulp).
+TEST(CudaKernels, FusedBloomCompositeMatchesSeparateSteps) {
+    if (skipWithoutDevice()) GTEST_SKIP() << "no CUDA device: " << cuda::postDeviceProblem();
+    const ImageF hdr = randomHdr(6);
+    for (BloomMethod m : {BloomMethod::Separable, BloomMethod::MipChain}) {
+        const BloomParams p = params(25, m);
+        const cuda::BloomAndComposite got = cuda::bloomCompositeOnDevice(hdr, p);
+        const ImageF bloom = post::bloomBuffer(hdr, p, Storage::Float);
+        EXPECT_LE(maxRelError(got.bloom, bloom), 1e-5) << "method " << int(m);
+        EXPECT_LE(maxRelError(got.hdr, post::compositeBloom(hdr, bloom, p.strength)), 1.0 / 1024.0) << int(m);
+    }
+}
+
+// The fused path on GL textures: the bloom texture as bloom() writes it, the HDR texture as
+// composite() would leave it, within 2 fp16 ulps of the CPU reference.
+TEST(CudaInterop, FusedBloomCompositeOnGlTexturesMatchesReference) {
+    if (skipWithoutDevice()) GTEST_SKIP() << "no CUDA device: " << cuda::postDeviceProblem();
+    std::unique_ptr<gl::GpuContext> ctx = gl::createHeadlessContext();
+    if (!ctx->isNvidia()) GTEST_SKIP() << "the headless GL context is not NVIDIA (" << ctx->info().renderer << ")";
+    const ImageF hdrIn = randomHdr(7);
+    const BloomParams p = params(25, BloomMethod::Separable);
+    gl::Texture hdr = gl::makeTexture2D(GL_RGBA16F, kW, kH, 1, "test.hdr");
+    gl::Texture bloom = gl::makeTexture2D(GL_RGBA16F, kW, kH, 1, "test.bloom");
+    glTextureSubImage2D(hdr.id(), 0, 0, 0, kW, kH, GL_RGBA, GL_FLOAT, hdrIn.rgba.data());
+    cuda::PostInterop interop;
+    interop.bloomComposite(hdr.id(), bloom.id(), kW, kH, p);
+    ImageF gotBloom = makeImage(kW, kH), gotHdr = makeImage(kW, kH);
+    glGetTextureImage(bloom.id(), 0, GL_RGBA, GL_FLOAT, GLsizei(gotBloom.rgba.size() * 4), gotBloom.rgba.data());
+    glGetTextureImage(hdr.id(), 0, GL_RGBA, GL_FLOAT, GLsizei(gotHdr.rgba.size() * 4), gotHdr.rgba.data());
+    const ImageF refBloom = post::bloomBuffer(hdrIn, p, Storage::Float);
+    EXPECT_LE(maxRelError(gotBloom, refBloom), 2.0 / 1024.0);
+    EXPECT_LE(maxRelError(gotHdr, post::compositeBloom(hdrIn, refBloom, p.strength)), 2.0 / 1024.0);
+}

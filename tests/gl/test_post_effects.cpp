@@ -300,7 +300,16 @@ ImageF runGlslToon(const ToonInputs& in, const post::ToonParams& p) {
     gl::Texture hdr = upload(in.hdr, GL_RGBA16F, "test.hdr");
     gl::Texture pos = upload(in.position, GL_RGBA32F, "test.position");
     gl::Texture nrm = upload(in.normal, GL_RGBA32F, "test.normal");
-    runToonGlsl(state, shaders, hdr.id(), pos.id(), nrm.id(), in.hdr.width, in.hdr.height, p);
+    // The toon reads coverage from the G-buffer depth: 1 (far plane) where position.w = 0.
+    ImageF depthImage = makeImage(in.position.width, in.position.height);
+    for (int y = 0; y < depthImage.height; ++y)
+        for (int x = 0; x < depthImage.width; ++x) at(depthImage, x, y, 0) = at(in.position, x, y, 3) > 0.0f ? 0.5f : 1.0f;
+    gl::Texture depth = upload(depthImage, GL_R32F, "test.depth");
+    ToonGBufferTextures g;
+    g.depth = depth.id();
+    g.normal = nrm.id();
+    g.position = pos.id();
+    runToonGlsl(state, shaders, hdr.id(), g, in.hdr.width, in.hdr.height, p);
     gl::checkErrors("toon test");
     return download(hdr);
 }

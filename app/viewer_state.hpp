@@ -1,0 +1,61 @@
+#pragma once
+// What the viewer's keys and panel change, shared by app/viewer.cpp (window, keys, frame loop) and
+// app/viewer_panel.cpp (the ImGui panel).
+#include <deque>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/gl/context.hpp"
+#include "engine/gl/shader_reload.hpp"
+#include "engine/render/renderer.hpp"
+#include "engine/scene/scene.hpp"
+
+namespace lp::app {
+
+struct ViewerState {
+    RenderSettings settings;
+    // What '0' (and '8' off) go back to: the --toon/--bloom flags as given, else the scene's.
+    std::optional<bool> startToon, startBloom;
+    Camera home;
+    bool showPanel = true;
+    bool showHelp = false;
+    bool screenshotRequested = false;
+    bool screenshotWithPanel = false;  // --screenshot-ui: F12 captures the window, panel included
+    bool resetCamera = false;
+    bool toonShown = false;         // toon as the last frame resolved it (scene or flag), for '7'
+    bool dragging = false;
+    double lastX = 0, lastY = 0;
+    std::filesystem::path screenshotDir = ".";
+    int screenshotCount = 0;
+    std::string lastScreenshot;
+    std::deque<float> frameMs;  // frame-time graph (CPU time between frames)
+
+    // Scene and environment pickers: the panel asks, the frame loop loads between frames.
+    std::filesystem::path sceneFile;  // the scene (.json) or model (.obj) on screen
+    std::optional<std::filesystem::path> sceneRequest;
+    std::optional<std::filesystem::path> environmentRequest;  // empty path: the scene's plain colour
+    std::string sceneError;        // the one-line error of the last failed load
+    std::string shaderError;       // the first compile error of the last shader reload, file:line
+    std::string shaderStatus;      // "reloaded 3 programs (common/post.glsl)"
+    gl::ShaderFileWatcher shaderWatcher;
+    double nextShaderPoll = 0.0;
+};
+
+// Files the pickers offer: scenes (*.json, and *.obj models shown as `lightpass view model.obj` does) and environments (*.exr, *.hdr) under scenes/, hdr/ and,
+// when present, ../shared/assets, searched from the repository the shaders come from.
+struct PickerFiles {
+    std::vector<std::filesystem::path> scenes;
+    std::vector<std::filesystem::path> environments;
+};
+PickerFiles findPickerFiles(const std::filesystem::path& repositoryRoot);
+
+void drawViewerPanel(ViewerState& state, Renderer& renderer, const Scene& scene, const gl::GpuContext& context,
+                     const PickerFiles& files);
+
+// Every key binding, one per line (the 'h' overlay and the README's table say the same).
+extern const char* const kViewerHelp;
+
+}  // namespace lp::app

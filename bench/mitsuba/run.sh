@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# Path-traced ground truth for lightpass's IBL: makes a Python environment with Mitsuba 3 and numpy
+# (once; $MITSUBA_VENV, default ../venv-mitsuba beside the repository) and runs ground_truth.py with
+# the arguments given, e.g.
+#   bench/mitsuba/run.sh --size 256x144 --spp 256
+#   bench/mitsuba/run.sh --maps hdr/sky.exr --spp 64
+# lightpass must be built (build/app/lightpass, or --lightpass PATH).
+set -euo pipefail
+repo="$(cd "$(dirname "$0")/../.." && pwd)"
+venv="${MITSUBA_VENV:-$repo/../venv-mitsuba}"
+if [ ! -x "$venv/bin/python" ] || ! "$venv/bin/python" -c 'import mitsuba, numpy' 2>/dev/null; then
+    echo "bench/mitsuba/run.sh: making $venv (mitsuba, numpy)" >&2
+    python3 -m venv "$venv"
+    "$venv/bin/pip" install --quiet mitsuba numpy
+fi
+cd "$repo"
+exec "$venv/bin/python" bench/mitsuba/ground_truth.py "$@"

@@ -1,0 +1,97 @@
+#include "engine/render/gbuffer_format.hpp"
+
+namespace lp {
+
+const char* gbufferFormatName(GBufferNormalFormat format) {
+    switch (format) {
+        case GBufferNormalFormat::Unpacked: return "unpacked";
+        case GBufferNormalFormat::SeedPacked: return "seed-packed";
+        case GBufferNormalFormat::SeedPackedSigned: return "seed-packed-signed";
+        case GBufferNormalFormat::TwoAngle: return "two-angle";
+        case GBufferNormalFormat::Oct16: return "oct16";
+        case GBufferNormalFormat::Oct24: return "oct24";
+        case GBufferNormalFormat::Oct32: return "oct32";
+    }
+    return "unpacked";
+}
+
+std::vector<GBufferNormalFormat> allGBufferFormats() {
+    return {GBufferNormalFormat::Unpacked, GBufferNormalFormat::SeedPacked, GBufferNormalFormat::SeedPackedSigned,
+            GBufferNormalFormat::TwoAngle, GBufferNormalFormat::Oct16,      GBufferNormalFormat::Oct24,
+            GBufferNormalFormat::Oct32};
+}
+
+std::optional<GBufferNormalFormat> parseGBufferFormat(const std::string& name) {
+    for (GBufferNormalFormat f : allGBufferFormats())
+        if (name == gbufferFormatName(f)) return f;
+    return std::nullopt;
+}
+
+const char* gbufferPositionName(GBufferPositionMode mode) {
+    switch (mode) {
+        case GBufferPositionMode::Stored: return "stored";
+        case GBufferPositionMode::Depth: return "depth";
+        case GBufferPositionMode::ReversedZ: return "reversed-z";
+    }
+    return "stored";
+}
+
+std::vector<GBufferPositionMode> allGBufferPositionModes() {
+    return {GBufferPositionMode::Stored, GBufferPositionMode::Depth, GBufferPositionMode::ReversedZ};
+}
+
+std::optional<GBufferPositionMode> parseGBufferPosition(const std::string& name) {
+    for (GBufferPositionMode m : allGBufferPositionModes())
+        if (name == gbufferPositionName(m)) return m;
+    return std::nullopt;
+}
+
+std::string gbufferFormatNames() {
+    std::string s;
+    for (GBufferNormalFormat f : allGBufferFormats()) s += (s.empty() ? "" : ", ") + std::string(gbufferFormatName(f));
+    return s;
+}
+
+std::string gbufferPositionNames() {
+    std::string s;
+    for (GBufferPositionMode m : allGBufferPositionModes())
+        s += (s.empty() ? "" : ", ") + std::string(gbufferPositionName(m));
+    return s;
+}
+
+std::vector<std::string> gbufferDefines(const GBufferSettings& g) {
+    std::vector<std::string> d;
+    switch (g.normal) {
+        case GBufferNormalFormat::Unpacked: d.push_back("LP_GBUFFER_NORMAL_UNPACKED"); break;
+        case GBufferNormalFormat::SeedPacked: d.push_back("LP_GBUFFER_NORMAL_SEED_PACKED"); break;
+        case GBufferNormalFormat::SeedPackedSigned: d.push_back("LP_GBUFFER_NORMAL_SEED_PACKED_SIGNED"); break;
+        case GBufferNormalFormat::TwoAngle: d.push_back("LP_GBUFFER_NORMAL_TWO_ANGLE"); break;
+        case GBufferNormalFormat::Oct16: d.push_back("LP_GBUFFER_NORMAL_OCT 16"); break;
+        case GBufferNormalFormat::Oct24: d.push_back("LP_GBUFFER_NORMAL_OCT 24"); break;
+        case GBufferNormalFormat::Oct32: d.push_back("LP_GBUFFER_NORMAL_OCT 32"); break;
+    }
+    switch (g.position) {
+        case GBufferPositionMode::Stored: d.push_back("LP_GBUFFER_POSITION_STORED"); break;
+        case GBufferPositionMode::Depth: d.push_back("LP_GBUFFER_POSITION_DEPTH"); break;
+        case GBufferPositionMode::ReversedZ: d.push_back("LP_GBUFFER_POSITION_REVERSED_Z"); break;
+    }
+    return d;
+}
+
+int gbufferBytesPerPixel(const GBufferSettings& g) {
+    int normal = 16;
+    switch (g.normal) {
+        case GBufferNormalFormat::Unpacked: normal = 16; break;            // RGBA32F
+        case GBufferNormalFormat::SeedPacked:
+        case GBufferNormalFormat::SeedPackedSigned: normal = 8; break;     // RGBA16F
+        case GBufferNormalFormat::TwoAngle: normal = 8; break;             // RG32F
+        case GBufferNormalFormat::Oct16: normal = 2; break;                // R16UI
+        case GBufferNormalFormat::Oct24:
+        case GBufferNormalFormat::Oct32: normal = 4; break;                // R32UI
+    }
+    const int specular = shininessInNormalTarget(g.normal) ? 4 : 8;  // RGBA8 ks, or RGBA16F ks + shininess
+    const int position = positionFromDepth(g.position) ? 0 : 16;     // RGBA32F
+    return 4 /* D32F */ + normal + 4 /* RGBA8 diffuse */ + specular + position;
+}
+
+}  // namespace lp

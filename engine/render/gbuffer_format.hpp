@@ -1,0 +1,53 @@
+#pragma once
+// How the G-buffer stores normals and positions (--gbuffer, --gbuffer-position). Every pass reads
+// the G-buffer through the one decode API of shaders/common/gbuffer_layout.glsl, compiled with
+// gbufferDefines(), so every layout works in every pass.
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace lp {
+
+enum class GBufferNormalFormat {
+    Unpacked,          // RGBA32F xyz (the seeds' default)
+    SeedPacked,        // seed 001: RGBA16F (x, y, shininess), z rebuilt >= 0: wrong for z < 0
+    SeedPackedSigned,  // the fix: the sign of z in the shininess channel's sign bit
+    TwoAngle,          // seed 004: RG32F (phi, cos theta)
+    Oct16,             // octahedral, 2 x 8 bits in R16UI
+    Oct24,             // octahedral, 2 x 12 bits in R32UI (8 bits spare)
+    Oct32,             // octahedral, 2 x 16 bits in R32UI
+};
+enum class GBufferPositionMode {
+    Stored,     // RGBA32F eye-space position target
+    Depth,      // rebuilt from the standard D32F depth buffer
+    ReversedZ,  // rebuilt from a reversed-Z D32F depth buffer (near 1, far 0, GL_GREATER)
+};
+
+struct GBufferSettings {
+    GBufferNormalFormat normal = GBufferNormalFormat::Unpacked;
+    GBufferPositionMode position = GBufferPositionMode::Stored;
+    bool operator==(const GBufferSettings& o) const { return normal == o.normal && position == o.position; }
+    bool operator!=(const GBufferSettings& o) const { return !(*this == o); }
+};
+
+const char* gbufferFormatName(GBufferNormalFormat format);
+std::optional<GBufferNormalFormat> parseGBufferFormat(const std::string& name);
+std::vector<GBufferNormalFormat> allGBufferFormats();
+const char* gbufferPositionName(GBufferPositionMode mode);
+std::optional<GBufferPositionMode> parseGBufferPosition(const std::string& name);
+std::vector<GBufferPositionMode> allGBufferPositionModes();
+std::string gbufferFormatNames();    // "unpacked, seed-packed, ..." for errors and help
+std::string gbufferPositionNames();
+
+// The #defines shaders/common/gbuffer_layout.glsl selects its encode/decode with.
+std::vector<std::string> gbufferDefines(const GBufferSettings& g);
+inline bool shininessInNormalTarget(GBufferNormalFormat f) {
+    return f == GBufferNormalFormat::SeedPacked || f == GBufferNormalFormat::SeedPackedSigned;
+}
+inline bool positionFromDepth(GBufferPositionMode m) { return m != GBufferPositionMode::Stored; }
+
+// Bytes per pixel of the targets the lighting reads: depth, normal, diffuse, specular and, when stored,
+// position (not the texcoord target of the texcoords view).
+int gbufferBytesPerPixel(const GBufferSettings& g);
+
+}  // namespace lp

@@ -1,0 +1,49 @@
+#!/usr/bin/env python3
+"""Checks a `lightpass sweep` run of one knob: sweep.csv has one row per value with the expected
+columns, the reference (last) row has error 0, every image was written and finite, sweep.md has the
+knob's table, stderr has a progress line per value, and for a monotone knob the HDR RMSE never
+rises as the value moves towards the reference (equal is allowed).
+  check_sweep.py OUTDIR STDERR_FILE KNOB VALUES [--monotone]"""
+import csv
+import os
+import sys
+
+out_dir, progress_file, knob, values = sys.argv[1], sys.argv[2], sys.argv[3], int(sys.argv[4])
+monotone = "--monotone" in sys.argv[5:]
+
+with open(os.path.join(out_dir, "sweep.csv")) as f:
+    reader = csv.DictReader(f)
+    columns = reader.fieldnames
+    rows = [r for r in reader if r["knob"] == knob]
+expected = ["knob", "value", "index", "reference", "frame_ms", "rmse", "psnr_db", "max_abs", "non_finite", "image"]
+missing = [c for c in expected if c not in columns]
+assert not missing, f"columns missing: {missing} (have {columns})"
+assert any(c.endswith("_ms") and c != "frame_ms" for c in columns), f"no per-pass time columns: {columns}"
+assert len(rows) == values, f"{len(rows)} rows for {knob}, expected {values}"
+assert [int(r["index"]) for r in rows] == list(range(values)), "rows out of order"
+assert len({r["value"] for r in rows}) == values, "values are not distinct"
+assert [r["reference"] for r in rows] == ["0"] * (values - 1) + ["1"], "the last value must be the reference"
+rmse = [float(r["rmse"]) for r in rows]
+assert rmse[-1] == 0.0 and float(rows[-1]["max_abs"]) == 0.0, f"reference error {rmse[-1]}"
+for r in rows:
+    assert int(r["non_finite"]) == 0, f"{r['value']}: {r['non_finite']} non-finite pixels"
+    assert float(r["frame_ms"]) > 0.0, f"{r['value']}: no frame time"
+    assert os.path.isfile(os.path.join(out_dir, r["image"])), f"missing {r['image']}"
+if monotone:
+    for a, b, ea, eb in zip(rows, rows[1:], rmse, rmse[1:]):
+        assert eb <= ea * (1.0 + 1e-9), f"RMSE rises from {a['value']} ({ea}) to {b['value']} ({eb})"
+    assert rmse[0] > 0.0, "the cheapest value gives the reference's image: the knob does nothing"
+
+with open(os.path.join(out_dir, "sweep.md")) as f:
+    md = f.read()
+assert f"## {knob}" in md, "no Markdown section for the knob"
+section = md.split(f"## {knob}", 1)[1].split("\n## ", 1)[0]
+table_rows = [l for l in section.splitlines() if l.startswith("| ") and not l.startswith("| value") and "---" not in l]
+assert len(table_rows) == values, f"{len(table_rows)} Markdown rows, expected {values}"
+
+with open(progress_file) as f:
+    progress = [l for l in f.read().splitlines() if l.startswith("[") and knob in l]
+assert len(progress) == values + 1, f"{len(progress)} progress lines, expected one per value and a final one"
+for i, r in enumerate(rows):
+    assert progress[i].endswith(f"{i}/{values} {r['value']}"), f"progress line {progress[i]!r}"
+print(f"sweep ok: {knob}, {values} values, RMSE {' >= '.join(f'{e:.3g}' for e in rmse)}")

@@ -1,0 +1,244 @@
+// The scene-driven frame graph: which passes and G-buffer targets a scene under given settings gets
+// (no GL: graphs are built and compiled, never executed), and the CPU frustum test behind "all local
+// lights out of view".
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <iterator>
+#include <map>
+#include <set>
+#include <string>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "engine/graph/frame_graph.hpp"
+#include "engine/render/frame_builder.hpp"
+#include "engine/scene/scene_loader.hpp"
+
+using namespace lp;
+
+namespace {
+
+using Names = std::set<std::string>;
+
+const Scene& bundledScene(const std::string& name) {
+    static std::map<std::string, Scene> cache;  // each scene is loaded once for all tests
+    auto it = cache.find(name);
+    if (it == cache.end())
+        it = cache.emplace(name, loadScene(std::string(LIGHTPASS_SOURCE_DIR) + "/scenes/" + name + ".json")).first;
+    return it->second;
+}
+
+struct Built {
+    Names runs;      // candidate passes that run
+    Names skipped;   // candidate passes with a reason
+    Names gbuffer;   // G-buffer targets that are allocated
+    std::map<std::string, std::string> reasons;
+    size_t transientBytes = 0;
+};
+
+Built build(const Scene& scene, const RenderSettings& settings) {
+    FrameData frame = makeFrameData(scene, settings, 0.0f);
+    fg::FrameGraph graph;
+    PassStates passes;
+    buildFrameGraph(graph, passes, frame);
+    graph.compile();
+    Built b;
+    for (const fg::PassDecision& d : graph.explain()) {
+        (d.runs ? b.runs : b.skipped).insert(d.name);
+        if (!d.runs) b.reasons[d.name] = d.reason;
+    }
+    for (const fg::ResourceReport& r : graph.resources())
+        if (r.live && r.name.rfind("gbuffer.", 0) == 0) b.gbuffer.insert(r.name.substr(8));
+    b.transientBytes = graph.liveTransientBytes();
+    return b;
+}
+
+RenderSettings small() {
+    RenderSettings s;
+    s.width = 320;
+    s.height = 180;
+    return s;
+}
+
+Names minus(const Names& a, const Names& b) {
+    Names out;
+    std::set_difference(a.begin(), a.end(), b.begin(), b.end(), std::inserter(out, out.end()));
+    return out;
+}
+
+std::string show(const Names& n) {
+    std::string s;
+    for (const auto& x : n) s += (s.empty() ? "" : " ") + x;
+    return "{" + s + "}";
+}
+
+}  // namespace
+
+// Scenes x settings -> exactly the passes that run and the G-buffer targets that are allocated.
+TEST(SceneDrivenGraph, TableOfScenesAndSettings) {
+    const Names lit = {"depth", "normal", "diffuse", "position", "specular"};
+    struct Row {
+        std::string scene, label;
+        std::function<void(RenderSettings&)> set;
+        Names runs, gbuffer;
+    };
+    const std::vector<Row> rows = {
+        {"cornell", "defaults", [](RenderSettings&) {},
+         {"ibl_bake", "gbuffer", "shadow_map_0", "global_lights", "local_lights", "sky", "tonemap"}, lit},
+        {"cornell", "positions rebuilt from depth",
+         [](RenderSettings& s) { s.gbuffer.position = GBufferPositionMode::Depth; },
+         {"ibl_bake", "gbuffer", "shadow_map_0", "global_lights", "local_lights", "sky", "tonemap"},
+         {"depth", "normal", "diffuse", "specular"}},
+        {"cornell", "lighting view (no albedo, no sky)", [](RenderSettings& s) { s.view = DebugView::Lighting; },
+         {"gbuffer", "shadow_map_0", "global_lights", "local_lights", "tonemap"},
+         {"depth", "normal", "position", "specular"}},
+        {"cornell", "--no-shadows", [](RenderSettings& s) { s.shadows.enabled = false; },
+         {"ibl_bake", "gbuffer", "global_lights", "local_lights", "sky", "tonemap"}, lit},
+        {"cornell", "--no-local-lights", [](RenderSettings& s) { s.localLights.enabled = false; },
+         {"ibl_bake", "gbuffer", "shadow_map_0", "global_lights", "sky", "tonemap"}, lit},
+        {"cornell", "--ibl --bloom --toon",
+         [](RenderSettings& s) {
+             s.environment.ibl = true;
+             s.post.bloom = true;
+             s.post.toon = true;
+         },
+         {"ibl_bake", "gbuffer", "shadow_map_0", "global_lights", "ibl", "local_lights", "sky", "bloom",
+          "bloom_composite", "toon", "tonemap"},
+         lit},
+        {"cornell", "texcoords view", [](RenderSettings& s) { s.view = DebugView::Texcoords; },
+         {"gbuffer", "debug_view"}, {"depth", "texcoord"}},
+        {"unlit", "defaults", [](RenderSettings&) {}, {"gbuffer", "global_lights", "tonemap"}, lit},
+        {"unlit", "--all-passes", [](RenderSettings& s) { s.allPasses = true; },
+         {"ibl_bake", "gbuffer", "global_lights", "ibl", "local_lights", "sky", "bloom", "bloom_composite", "tonemap"},
+         lit},
+        {"ibl-spheres", "defaults", [](RenderSettings&) {},
+         {"ibl_bake", "gbuffer", "global_lights", "ibl", "sky", "tonemap"}, lit},
+        {"lights-4k", "defaults", [](RenderSettings&) {}, {"gbuffer", "global_lights", "local_lights", "tonemap"}, lit},
+    };
+    for (const Row& row : rows) {
+        RenderSettings s = small();
+        row.set(s);
+        const Built b = build(bundledScene(row.scene), s);
+        EXPECT_EQ(b.runs, row.runs) << row.scene << " / " << row.label << ": runs " << show(b.runs) << ", expected "
+                                    << show(row.runs);
+        EXPECT_EQ(b.gbuffer, row.gbuffer) << row.scene << " / " << row.label << ": G-buffer " << show(b.gbuffer)
+                                          << ", expected " << show(row.gbuffer);
+    }
+}
+
+TEST(SceneDrivenGraph, SkippedPassesSayWhy) {
+    const Built unlit = build(bundledScene("unlit"), small());
+    EXPECT_EQ(unlit.reasons.at("shadow_map"), "skipped: no directional light casts shadows");
+    EXPECT_EQ(unlit.reasons.at("local_lights"), "skipped: scene has no local lights");
+    EXPECT_EQ(unlit.reasons.at("ibl"), "skipped: scene has no environment map");
+    EXPECT_EQ(unlit.reasons.at("ibl_bake"), "skipped: scene has no environment map");
+    EXPECT_EQ(unlit.reasons.at("sky"), "skipped: scene has no environment (black, no map)");
+    EXPECT_NE(unlit.reasons.at("bloom").find("skipped: off in the scene"), std::string::npos);
+    // The bake runs where something samples the environment: the final image's sky, an environment view.
+    RenderSettings view = small();
+    view.view = DebugView::Normals;
+    EXPECT_EQ(build(bundledScene("cornell"), view).reasons.at("ibl_bake"),
+              "skipped: nothing in this view samples the environment");
+    view.view = DebugView::Prefiltered;
+    EXPECT_TRUE(build(bundledScene("cornell"), view).runs.count("ibl_bake"));
+    EXPECT_TRUE(build(bundledScene("cornell"), small()).runs.count("ibl_bake"));
+    RenderSettings off = small();
+    off.localLights.enabled = false;
+    EXPECT_EQ(build(bundledScene("lights-4k"), off).reasons.at("local_lights"),
+              "skipped: local lights are off (--no-local-lights)");
+}
+
+// Toggling one effect adds or removes exactly that effect's passes, and nothing else.
+TEST(SceneDrivenGraph, TogglingAnEffectChangesExactlyItsPasses) {
+    struct Toggle {
+        std::string label;
+        std::function<void(RenderSettings&, bool)> set;
+        Names passes;
+        std::string skippedAs;  // the name it is listed under when off ("" when never listed)
+    };
+    const std::vector<Toggle> toggles = {
+        {"shadows", [](RenderSettings& s, bool on) { s.shadows.enabled = on; }, {"shadow_map_0"}, "shadow_map"},
+        {"local lights", [](RenderSettings& s, bool on) { s.localLights.enabled = on; }, {"local_lights"}, "local_lights"},
+        {"light globes", [](RenderSettings& s, bool on) { s.localLights.globes = on; }, {"light_globes"}, ""},
+        {"ibl", [](RenderSettings& s, bool on) { s.environment.ibl = on; }, {"ibl"}, "ibl"},
+        {"bloom", [](RenderSettings& s, bool on) { s.post.bloom = on; }, {"bloom", "bloom_composite"}, "bloom"},
+        {"toon", [](RenderSettings& s, bool on) { s.post.toon = on; }, {"toon"}, "toon"},
+    };
+    for (const Toggle& t : toggles) {
+        RenderSettings on = small(), off = small();
+        t.set(on, true);
+        t.set(off, false);
+        const Built a = build(bundledScene("cornell"), on), b = build(bundledScene("cornell"), off);
+        EXPECT_EQ(minus(a.runs, b.runs), t.passes) << t.label << " on adds " << show(minus(a.runs, b.runs));
+        EXPECT_EQ(minus(b.runs, a.runs), Names{}) << t.label << " on removes " << show(minus(b.runs, a.runs));
+        if (!t.skippedAs.empty()) {
+            EXPECT_TRUE(b.skipped.count(t.skippedAs)) << t.label << " off: not listed as skipped";
+            EXPECT_FALSE(a.skipped.count(t.skippedAs)) << t.label << " on: still listed as skipped";
+        }
+    }
+}
+
+// A pass the scene does not need costs no texture: the graph's live transients shrink by exactly
+// the bytes of what it would have created (shadow maps) and of the targets only it reads.
+TEST(SceneDrivenGraph, SkippedPassesAllocateNothing) {
+    RenderSettings s = small();
+    const Built normal = build(bundledScene("unlit"), s);
+    s.allPasses = true;
+    const Built all = build(bundledScene("unlit"), s);
+    auto bytes = [](GLenum format) { return fg::TextureDesc{320, 180, format}.bytes(); };
+    // depth, normal, diffuse, position, specular; hdr; ldr.final: nothing for shadows, lights, sky, IBL.
+    EXPECT_EQ(normal.transientBytes, bytes(GL_DEPTH_COMPONENT32F) + bytes(gbufferNormalFormat(s.gbuffer.normal)) +
+                                         bytes(GL_RGBA8) + bytes(GL_RGBA32F) + bytes(gbufferSpecularFormat(s.gbuffer.normal)) +
+                                         bytes(GL_RGBA16F) + bytes(GL_RGBA8));
+    EXPECT_GT(all.transientBytes, normal.transientBytes);  // bloom's buffers
+
+    // cornell with shadows off: exactly the shadow atlas less.
+    RenderSettings on = small(), off = small();
+    off.shadows.enabled = false;
+    FrameData frame = makeFrameData(bundledScene("cornell"), on, 0.0f);
+    fg::FrameGraph g;
+    PassStates passes;
+    buildFrameGraph(g, passes, frame);
+    g.compile();
+    size_t shadowBytes = 0;
+    for (const auto& r : g.resources())
+        if (r.name.rfind("shadow_map_", 0) == 0 && r.live) shadowBytes += r.desc.bytes();
+    ASSERT_GT(shadowBytes, 0u);
+    EXPECT_EQ(build(bundledScene("cornell"), on).transientBytes - build(bundledScene("cornell"), off).transientBytes,
+              shadowBytes);
+}
+
+TEST(SceneDrivenGraph, LocalLightsAllOutOfViewSkipThePass) {
+    Scene scene = bundledScene("lights-4k");
+    RenderSettings s = small();
+    EXPECT_EQ(localLightsInView(makeFrameData(scene, s, 0.0f)), int(scene.pointLights.size()));
+    // Turn the camera around: every light is inside the box, now behind the camera.
+    scene.camera.target = scene.camera.position + (scene.camera.position - scene.camera.target);
+    EXPECT_EQ(localLightsInView(makeFrameData(scene, s, 0.0f)), 0);
+    const Built b = build(scene, s);
+    EXPECT_EQ(b.runs, (Names{"gbuffer", "global_lights", "tonemap"}));
+    EXPECT_EQ(b.reasons.at("local_lights"), "skipped: all 4096 local lights are out of view");
+    s.allPasses = true;
+    EXPECT_TRUE(build(scene, s).runs.count("local_lights"));
+}
+
+// Spheres against a 90-degree frustum looking down -Z (near 1, far 10): the distance to a side
+// plane x = -z is |x + z| / sqrt(2), so a sphere at (x, 0, -5) touches it when x - 5 = r * sqrt(2).
+TEST(SceneDrivenGraph, SphereFrustumTestMatchesPlaneDistances) {
+    const glm::mat4 vp = glm::perspective(glm::radians(90.0f), 1.0f, 1.0f, 10.0f);
+    const float r = 1.0f, touch = 5.0f + r * std::sqrt(2.0f);
+    EXPECT_TRUE(sphereIntersectsFrustum(vp, {0, 0, -5}, 0.1f));
+    EXPECT_TRUE(sphereIntersectsFrustum(vp, {touch - 1e-3f, 0, -5}, r));
+    EXPECT_FALSE(sphereIntersectsFrustum(vp, {touch + 1e-3f, 0, -5}, r));
+    EXPECT_FALSE(sphereIntersectsFrustum(vp, {0, 0, 2.0f}, 0.9f));     // behind the near plane (z = -1) by 3
+    EXPECT_TRUE(sphereIntersectsFrustum(vp, {0, 0, 2.0f}, 3.01f));
+    EXPECT_FALSE(sphereIntersectsFrustum(vp, {0, 0, -12.0f}, 1.99f));  // past the far plane by 2
+    EXPECT_TRUE(sphereIntersectsFrustum(vp, {0, 0, -12.0f}, 2.01f));
+    // A camera that has moved: the same test in world space through the view matrix.
+    const glm::mat4 view = glm::lookAt(glm::vec3(3, 0, 0), glm::vec3(3, 0, -1), glm::vec3(0, 1, 0));
+    EXPECT_TRUE(sphereIntersectsFrustum(vp * view, {3, 0, -5}, 0.1f));
+    EXPECT_FALSE(sphereIntersectsFrustum(vp * view, {3 + touch + 1e-3f, 0, -5}, r));
+}
