@@ -112,6 +112,16 @@ vec2 dfgIntegrate(float NdotV, float roughness, uint samples) {
     return ab / float(samples);
 }
 
+// Where a GGX lobe of roughness alpha around the mirror direction R gathers most of its energy:
+// it leans from R (smooth) towards N (rough). Filament's fit, mix(R, N, alpha^2): Frostbite's
+// (Lagarde & de Rousiers 2014) bends near-mirror lobes too far, which moved a sharp sun's reflection
+// in the Mitsuba comparison (bench/mitsuba).
+vec3 specularDominantDirection(vec3 N, vec3 R, float alpha) {
+    vec3 d = mix(R, N, clamp(alpha * alpha, 0.0, 1.0));
+    float l = length(d);
+    return l > 0.0 ? d / l : N;
+}
+
 // Perceptual roughness for an energy-normalised Blinn-Phong exponent (Walter et al. 2007:
 // alpha = sqrt(2 / (n + 2))); n = 0 gives the roughest lobe, 1.
 float roughnessFromShininess(float n) {
