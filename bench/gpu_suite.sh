@@ -2,12 +2,12 @@
 # The GPU benchmarks of lightpass in one go, each as one `lightpass bench` process (one scene load,
 # every variant timed in turn; medians after warm-up; floors measured on the same GPU).
 #   bench/gpu_suite.sh LIGHTPASS OUTDIR [PART ...]
-# PART: lights shadows ibl post frame (default: all). Needs ../shared/assets for the gallery scene and
+# PART: lights shadows ibl post frame sweep scene (default: all). Needs ../shared/assets for the gallery scene and
 # the Poly Haven maps. Tables: bench/summarize_bench.py OUTDIR/<part>.json (see bench/results/*/README.md).
 set -uo pipefail
 lp=$1 out=$2
 shift 2
-parts=${*:-lights shadows ibl post frame}
+parts=${*:-lights shadows ibl post frame sweep scene}
 mkdir -p "$out"
 maps="hdr/sky.exr"
 for m in ../shared/assets/hdri-polyhaven-1k/*.hdr ../shared/assets/hdri-polyhaven-1k/*.exr; do [ -f "$m" ] && maps="$maps $m"; done
@@ -55,6 +55,15 @@ PY
         "$lp" bench --scene scenes/$s.json --frames 200 --warmup 30 --floors \
           --vary '--size 1920x1080,3840x2160' --timings-json "$out/frame_$s.json"
       done ;;
+    sweep)  # every quality knob: GPU ms against error vs the knob's best value (bench/sweep_report.py adds FLIP)
+      "$lp" sweep --scene scenes/cornell.json --size 1920x1080 --frames 100 \
+        --knob gbuffer-format --knob gbuffer-position --knob shadow-size --knob shadow-pcf --knob shadow-cascades \
+        --knob local-light-method --knob light-range-cutoff --knob bloom-kernel --knob bloom-method \
+        --out-dir "$out/sweep_cornell"
+      "$lp" sweep --scene scenes/ibl-spheres.json --size 1920x1080 --frames 100 \
+        --knob ibl-samples --knob ibl-face-size --knob ibl-diffuse --out-dir "$out/sweep_ibl" ;;
+    scene)  # scene-driven graph against every pass forced on
+      bench/scene_driven.sh "$lp" 1920x1080 200 30 "$out/scene_driven" ;;
     *) echo "unknown part $part" >&2; exit 2 ;;
   esac
 done
