@@ -3,6 +3,7 @@
 #include "cuda/post_cuda.hpp"
 
 #include <chrono>
+#include <initializer_list>
 
 #include "cuda/interop.hpp"
 #include "cuda/post_kernels.cuh"
@@ -96,6 +97,26 @@ struct PostInterop::Impl {
     cudaStream_t stream = nullptr;
     Impl() { check(cudaStreamCreate(&stream), "cudaStreamCreate"); }
     ~Impl() { cudaStreamDestroy(stream); }
+
+    // Maps the GL textures, runs `kernels(mapped)` timed by `timer`, unmaps; map and unmap are the
+    // interop time.
+    template <class Kernels>
+    PostTiming runMapped(std::initializer_list<GLuint> textures, int width, int height, LaggedEventTimer& timer,
+                         Kernels&& kernels) {
+        std::vector<cudaGraphicsResource_t> resources;
+        for (GLuint texture : textures) resources.push_back(registry.resource(texture, width, height));
+        PostTiming t;
+        auto t0 = Clock::now();
+        MappedSurfaces mapped(std::move(resources), stream);
+        t.interopMs = msSince(t0);
+        t.kernelMs = timer.begin(stream);
+        kernels(mapped);
+        timer.end(stream);
+        auto t1 = Clock::now();
+        mapped.unmap();
+        t.interopMs += msSince(t1);
+        return t;
+    }
 };
 
 PostInterop::PostInterop() : impl_(std::make_unique<Impl>()) {}
@@ -105,65 +126,28 @@ int PostInterop::registeredCount() const { return impl_->registry.size(); }
 void PostInterop::beginFrame(unsigned long frame) { impl_->registry.beginFrame(frame); }
 
 PostTiming PostInterop::bloom(GLuint hdr, GLuint bloom, int width, int height, const post::BloomParams& p) {
-    PostTiming t;
-    auto t0 = Clock::now();
-    MappedSurfaces mapped({impl_->registry.resource(hdr, width, height), impl_->registry.resource(bloom, width, height)},
-                          impl_->stream);
-    t.interopMs = msSince(t0);
-    t.kernelMs = impl_->bloomTimer.begin(impl_->stream);
-    bloomSurfaceToSurface(mapped.surface(0), mapped.surface(1), width, height, p, impl_->workspace, impl_->stream);
-    impl_->bloomTimer.end(impl_->stream);
-    auto t1 = Clock::now();
-    mapped.unmap();
-    t.interopMs += msSince(t1);
-    return t;
+    return impl_->runMapped({hdr, bloom}, width, height, impl_->bloomTimer, [&](const MappedSurfaces& m) {
+        bloomSurfaceToSurface(m.surface(0), m.surface(1), width, height, p, impl_->workspace, impl_->stream);
+    });
 }
 
 PostTiming PostInterop::bloomComposite(GLuint hdr, GLuint bloom, int width, int height, const post::BloomParams& p) {
-    PostTiming t;
-    auto t0 = Clock::now();
-    MappedSurfaces mapped({impl_->registry.resource(hdr, width, height), impl_->registry.resource(bloom, width, height)},
-                          impl_->stream);
-    t.interopMs = msSince(t0);
-    t.kernelMs = impl_->bloomTimer.begin(impl_->stream);
-    bloomCompositeSurfaces(mapped.surface(0), mapped.surface(1), width, height, p, impl_->workspace, impl_->stream);
-    impl_->bloomTimer.end(impl_->stream);
-    auto t1 = Clock::now();
-    mapped.unmap();
-    t.interopMs += msSince(t1);
-    return t;
+    return impl_->runMapped({hdr, bloom}, width, height, impl_->bloomTimer, [&](const MappedSurfaces& m) {
+        bloomCompositeSurfaces(m.surface(0), m.surface(1), width, height, p, impl_->workspace, impl_->stream);
+    });
 }
 
 PostTiming PostInterop::composite(GLuint hdr, GLuint bloom, int width, int height, float strength) {
-    PostTiming t;
-    auto t0 = Clock::now();
-    MappedSurfaces mapped({impl_->registry.resource(hdr, width, height), impl_->registry.resource(bloom, width, height)},
-                          impl_->stream);
-    t.interopMs = msSince(t0);
-    t.kernelMs = impl_->compositeTimer.begin(impl_->stream);
-    compositeSurfaces(mapped.surface(0), mapped.surface(1), width, height, strength, impl_->stream);
-    impl_->compositeTimer.end(impl_->stream);
-    auto t1 = Clock::now();
-    mapped.unmap();
-    t.interopMs += msSince(t1);
-    return t;
+    return impl_->runMapped({hdr, bloom}, width, height, impl_->compositeTimer, [&](const MappedSurfaces& m) {
+        compositeSurfaces(m.surface(0), m.surface(1), width, height, strength, impl_->stream);
+    });
 }
 
 PostTiming PostInterop::toon(GLuint hdr, GLuint position, GLuint normal, int width, int height,
                              const post::ToonParams& p) {
-    PostTiming t;
-    auto t0 = Clock::now();
-    MappedSurfaces mapped({impl_->registry.resource(hdr, width, height), impl_->registry.resource(position, width, height),
-                           impl_->registry.resource(normal, width, height)},
-                          impl_->stream);
-    t.interopMs = msSince(t0);
-    t.kernelMs = impl_->toonTimer.begin(impl_->stream);
-    toonSurfaces(mapped.surface(0), mapped.surface(1), mapped.surface(2), width, height, p, impl_->stream);
-    impl_->toonTimer.end(impl_->stream);
-    auto t1 = Clock::now();
-    mapped.unmap();
-    t.interopMs += msSince(t1);
-    return t;
+    return impl_->runMapped({hdr, position, normal}, width, height, impl_->toonTimer, [&](const MappedSurfaces& m) {
+        toonSurfaces(m.surface(0), m.surface(1), m.surface(2), width, height, p, impl_->stream);
+    });
 }
 
 ImageF bloomOnDevice(const ImageF& hdr, const post::BloomParams& p) {

@@ -48,4 +48,18 @@ void main() {
     return result;
 }
 
+EnvironmentSettings smallIblBake(int dfgSamples) {
+    EnvironmentSettings s;
+    s.ibl = true;
+    s.cubeSize = 32;
+    s.specularSize = 32;
+    s.specularLevels = 6;
+    s.specularSamples = 64;
+    s.irradianceSize = 8;
+    s.irradianceSamples = 128;
+    s.dfgSize = 32;
+    s.dfgSamples = dfgSamples;
+    return s;
+}
+
 }  // namespace lp::test

@@ -7,6 +7,7 @@
 
 #include "engine/gl/context.hpp"
 #include "engine/gl/shader.hpp"
+#include "engine/render/settings.hpp"
 
 namespace lp::test {
 
@@ -21,5 +22,9 @@ std::string repoPath(const std::string& relative);
 // shaders/common/ are checked on the real driver against double-precision C++ references.
 std::vector<glm::vec4> runGlsl(const std::vector<std::string>& includes, const std::string& body,
                                const std::vector<glm::vec4>& inputs);
+
+// IBL on with a bake small enough for a software rasteriser (32^2 cubes, 64 GGX samples, a 32^2
+// DFG LUT of `dfgSamples` samples per texel).
+EnvironmentSettings smallIblBake(int dfgSamples);
 
 }  // namespace lp::test

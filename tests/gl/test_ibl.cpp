@@ -24,19 +24,7 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-EnvironmentSettings smallBake() {
-    EnvironmentSettings s;
-    s.ibl = true;
-    s.cubeSize = 32;
-    s.specularSize = 32;
-    s.specularLevels = 6;
-    s.specularSamples = 64;
-    s.irradianceSize = 8;
-    s.irradianceSamples = 128;
-    s.dfgSize = 32;
-    s.dfgSamples = 256;
-    return s;
-}
+EnvironmentSettings smallBake() { return lp::test::smallIblBake(256); }
 
 std::filesystem::path tempPath(const std::string& name) {
     return std::filesystem::temp_directory_path() / ("lightpass-ibl-test-" + std::to_string(::getpid()) + "-" + name);

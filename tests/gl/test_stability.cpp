@@ -131,19 +131,7 @@ bool floorPoint(const Scene& s, int w, int h, int x, int y, glm::dvec3& hit) {
     return true;
 }
 
-EnvironmentSettings smallBake() {
-    EnvironmentSettings s;
-    s.ibl = true;
-    s.cubeSize = 32;
-    s.specularSize = 32;
-    s.specularLevels = 6;
-    s.specularSamples = 64;
-    s.irradianceSize = 8;
-    s.irradianceSamples = 128;
-    s.dfgSize = 32;
-    s.dfgSamples = 64;
-    return s;
-}
+EnvironmentSettings smallBake() { return lp::test::smallIblBake(64); }
 
 }  // namespace
 
