@@ -75,6 +75,14 @@ TEST(SceneLoader, ErrorsNameFileAndField) {
               std::string::npos);
 }
 
+// environment.ibl turns image-based lighting on from the scene file; it needs a map to light with.
+TEST(SceneLoader, EnvironmentIblNeedsAMap) {
+    EXPECT_TRUE(parseScene(R"({"environment": {"map": "sky.exr", "ibl": true}})", "test.json", false).environment.ibl);
+    EXPECT_FALSE(parseScene(R"({"environment": {"map": "sky.exr"}})", "test.json", false).environment.ibl);
+    EXPECT_NE(errorFor(R"({"environment": {"ibl": true}})").find("test.json: environment.ibl: true needs environment.map"),
+              std::string::npos);
+}
+
 TEST(SceneLoader, MissingObjNamesBothFiles) {
     try {
         parseScene(R"({"models": [{"obj": "nope.obj"}]})", "dir/s.json", true);
