@@ -142,6 +142,7 @@ int runBench(const Options& o, const std::vector<std::string>& args) {
         run["flags"] = join(variants[vi]);
         run["width"] = s.width;
         run["height"] = s.height;
+        run["render_scale"] = s.renderScale;
         run["frames"] = frames;
         run["transient_texture_bytes"] = renderer.pool().totalBytes();
         const auto& timers = renderer.timers();

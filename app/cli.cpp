@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "engine/core/error.hpp"
+#include "engine/render/frame_builder.hpp"
 
 namespace lp::app {
 
@@ -82,6 +83,8 @@ options:
   --view light-ranges | lights-per-tile  overlay each light's rectangle/volume, or lights per 16x16 tile
   --light-range-scale S  each local light's range x S, 0.01..1 (default 1 = full range; < 1 cuts
                     lights short, cheaper and darker: a sweep knob)
+  --render-scale S  G-buffer, lighting and post effects at S x the output size, 0.25..1, upsampled
+                    bilinearly before the tone map (default 1; a sweep knob)
   --gbuffer F       G-buffer normal format: unpacked | seed-packed | seed-packed-signed | two-angle |
                     oct16 | oct24 | oct32   (default unpacked; README "G-buffer formats")
   --gbuffer-position P  stored | depth | reversed-z: eye positions stored (RGBA32F) or rebuilt
@@ -121,6 +124,15 @@ viewer keys (seed 001):
   mouse drag: look  +/- exposure  Tab panel  h help  F12 screenshot  Esc quit
   (the panel also picks scenes and environments, and shaders/ edits reload while it runs)
 )";
+}
+
+std::string sizeLabel(const RenderSettings& s) {
+    std::string label = std::to_string(s.width) + "x" + std::to_string(s.height);
+    const glm::ivec2 r = scaledRenderSize(s.width, s.height, s.renderScale);
+    if (r.x == s.width && r.y == s.height) return label;
+    char scale[16];
+    std::snprintf(scale, sizeof scale, "%.2f", double(s.renderScale));
+    return label + " (rendered at " + std::to_string(r.x) + "x" + std::to_string(r.y) + ", render scale " + scale + ")";
 }
 
 std::string defaultScenePath() {
@@ -274,7 +286,12 @@ Options parseArgs(const std::vector<std::string>& args) {
         else if (a == "--globes") o.base.localLights.globes = true;
         else if (a == "--no-local-specular") o.base.localLights.specular = false;
         else if (a == "--specular-outside-range") o.base.localLights.specularOutsideRange = true;
-        else if (a == "--light-range-scale") {
+        else if (a == "--render-scale") {
+            const std::string v = value(a);
+            const float x = parseFloat(a, v);
+            if (!(x >= kMinRenderScale && x <= 1.0f)) throw Error("--render-scale " + v + ": expected a number in [0.25, 1]");
+            o.base.renderScale = x;
+        } else if (a == "--light-range-scale") {
             const std::string v = value(a);
             const float x = parseFloat(a, v);
             if (x < 0.01f || x > 1.0f) throw Error("--light-range-scale " + v + ": expected a number in [0.01, 1]");

@@ -43,6 +43,8 @@ Options parseArgs(const std::vector<std::string>& args);
 // The frame settings the options describe (size, view, exposure, feature flags).
 RenderSettings renderSettings(const Options& options);
 std::string helpText();
+// "WxH", plus " (rendered at wxh, render scale S)" below render scale 1: for table headers.
+std::string sizeLabel(const RenderSettings& settings);
 std::string defaultScenePath();
 
 }  // namespace lp::app

@@ -55,8 +55,8 @@ int commandGraph(const Options& o) {
     PassStates passes;  // never executed: describing a graph needs no GPU
     buildFrameGraph(graph, passes, frame);
     graph.compile();
-    std::printf("frame graph for %s, view '%s', %dx%d\n", (o.model.empty() ? o.scene : o.model).c_str(),
-                viewName(settings.view), settings.width, settings.height);
+    std::printf("frame graph for %s, view '%s', %s\n", (o.model.empty() ? o.scene : o.model).c_str(),
+                viewName(settings.view), sizeLabel(settings).c_str());
     std::fputs((o.explain ? graph.explainText() : graph.describe()).c_str(), stdout);
     if (!o.dot.empty()) {
         writeFileAtomically(o.dot, [&](const std::filesystem::path& tmp) {
@@ -90,8 +90,8 @@ int commandRender(const Options& o) {
         std::printf("bandwidth: compute copy %.1f GB/s, fragment fill %.1f GB/s (RGBA32F 3840x2160, median of 30)\n",
                     compute.bytesPerSecond * 1e-9, fragment.bytesPerSecond * 1e-9);
     }
-    std::printf("%-16s %10s %10s %10s%s  (GPU ms over %d frames, %dx%d%s)\n", "pass", "median", "min", "max",
-                o.floors ? "   floor ms  meas/floor" : "", o.frames, settings.width, settings.height,
+    std::printf("%-16s %10s %10s %10s%s  (GPU ms over %d frames, %s%s)\n", "pass", "median", "min", "max",
+                o.floors ? "   floor ms  meas/floor" : "", o.frames, sizeLabel(settings).c_str(),
                 ctx->isSoftware() ? ", software rasteriser: not meaningful" : "");
     nlohmann::json j;
     if (o.floors) {
@@ -100,6 +100,7 @@ int commandRender(const Options& o) {
     j["device"] = ctx->info().renderer;
     j["width"] = settings.width;
     j["height"] = settings.height;
+    j["render_scale"] = settings.renderScale;
     j["frames"] = o.frames;
     j["view"] = viewName(settings.view);
     for (const auto& name : timers.passOrder()) {

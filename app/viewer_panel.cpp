@@ -233,6 +233,9 @@ void drawViewerPanel(ViewerState& st, Renderer& renderer, const Scene& scene, co
                                        ToneMapOperator::Agx};
         enumCombo("tone map", st.settings.environment.toneMap, ops, toneMapName);
         ImGui::SliderFloat("exposure (EV)", &st.settings.exposureEV, -8.0f, 8.0f, "%+.1f");
+        // G-buffer and lighting at a fraction of the window, upsampled before the tone map.
+        ImGui::SliderFloat("render scale", &st.settings.renderScale, kMinRenderScale, 1.0f, "%.2f",
+                           ImGuiSliderFlags_AlwaysClamp);
     }
     if (ImGui::CollapsingHeader("lighting")) drawLighting(st, scene);
     if (ImGui::CollapsingHeader("bloom and toon")) drawPost(st, scene);

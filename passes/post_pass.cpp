@@ -9,6 +9,7 @@ fg::ResourceId addPostPasses(fg::FrameGraph& graph, PostPasses& state, const Fra
         config.bloom = true;
         config.bloomParams.strength = 0.0f;
     }
+    config.bloomParams.kernel = post::bloomKernelAtRenderSize(config.bloomParams.kernel, frame.width, frame.outputWidth);
     ++state.backend.frameIndex;  // every built frame, so CUDA registrations age even when culled
     if (frame.settings->view == DebugView::Lighting) return hdr;  // light alone: no post effects
     if (config.bloom) {

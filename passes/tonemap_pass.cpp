@@ -16,7 +16,7 @@ fg::ResourceId addToneMapPass(fg::FrameGraph& graph, ToneMapPass& state, const F
         "tonemap",
         [&](fg::PassBuilder& b, Data& data) {
             data.hdr = b.read(hdr);
-            data.ldr = b.create("ldr.final", {frame.width, frame.height, GL_RGBA8});
+            data.ldr = b.create("ldr.final", {frame.outputWidth, frame.outputHeight, GL_RGBA8});
         },
         [&state, frame](const Data& data, const fg::PassResources& res) {
             if (!state.program) state.program = frame.shaders->compute("tonemap.comp");
@@ -26,7 +26,7 @@ fg::ResourceId addToneMapPass(fg::FrameGraph& graph, ToneMapPass& state, const F
             glBindTextureUnit(6, res.texture(data.hdr));
             glBindImageTexture(0, res.texture(data.ldr), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
             glUseProgram(prog);
-            gl::dispatch2D(frame.width, frame.height);
+            gl::dispatch2D(frame.outputWidth, frame.outputHeight);
             glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
                             GL_TEXTURE_UPDATE_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
             glUseProgram(0);

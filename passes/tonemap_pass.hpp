@@ -1,6 +1,7 @@
 #pragma once
 // HDR -> display: exposure, the tone map of EnvironmentSettings::toneMap (default the seeds'
-// pow(c / (c + 1), 1.2) per channel), sRGB encoding, into RGBA8.
+// pow(c / (c + 1), 1.2) per channel), sRGB encoding, into RGBA8 at the output size (its input has
+// that size: at render scale < 1 the upscale pass comes first).
 #include "engine/gl/handles.hpp"
 #include "engine/graph/frame_graph.hpp"
 #include "engine/render/frame_data.hpp"

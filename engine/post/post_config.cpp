@@ -1,6 +1,14 @@
 #include "engine/post/post_config.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 namespace lp::post {
+
+int bloomKernelAtRenderSize(int outputKernel, int renderWidth, int outputWidth) {
+    if (renderWidth >= outputWidth || outputWidth <= 0) return outputKernel;
+    return std::max(1, int(std::lround(double(outputKernel) * renderWidth / outputWidth)));
+}
 
 PostConfig resolvePostConfig(const Effects& fx, const PostSettings& s, float farPlane) {
     PostConfig c;

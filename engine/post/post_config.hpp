@@ -19,6 +19,11 @@ struct PostConfig {
 };
 
 // A flag that is set wins; an unset one takes the scene's effects.bloom / effects.toon value.
+// The bloom kernel is given in output pixels. At render scale < 1 the blur runs on the smaller image,
+// so it spans kernel x renderWidth / outputWidth of its pixels (at least 1): the glow keeps its size
+// on screen.
+int bloomKernelAtRenderSize(int outputKernel, int renderWidth, int outputWidth);
+
 PostConfig resolvePostConfig(const Effects& sceneEffects, const PostSettings& settings, float farPlane);
 
 const char* bloomMethodName(BloomMethod m);

@@ -1,6 +1,7 @@
 #include "engine/render/frame_builder.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "engine/render/local_lights.hpp"
@@ -51,6 +52,7 @@ FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const Fr
     const bool skyWanted = hasMap || glm::any(glm::greaterThan(scene.environment.color * scene.environment.intensity, glm::vec3(0.0f)));
     const bool skyAdded = !lightingView && (skyWanted || s.allPasses);
     const std::string localSkip = s.allPasses ? "" : localLightSkipReason(frame);
+    const bool scaled = frame.width != frame.outputWidth || frame.height != frame.outputHeight;
 
     // The environment's cubes are made (and, for IBL, baked) in the frame where they changed.
     const bool environmentView = isEnvironmentView(s.view);  // shows the cubes or the LUT themselves
@@ -77,8 +79,13 @@ FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const Fr
     // globes and the light-ranges / lights-per-tile overlays, over the sky too.
     if (!lightingView && localSkip.empty()) hdr = addLocalLightOverlayPasses(graph, passes.localLights, frame, gbuffer, hdr);
     hdr = addPostPasses(graph, passes.post, frame, gbuffer, hdr);  // bloom, toon (not in the lighting view)
+    if (scaled) hdr = addUpscalePass(graph, passes.upscale, frame, hdr, UpscaleInput::Hdr);
+    else graph.skipPass("upscale", "render scale 1: the frame is rendered at the output size");
     fg::ResourceId display = addToneMapPass(graph, passes.tonemap, frame, hdr);
-    if (channelView) display = addDebugViewPass(graph, passes.debugView, frame, gbuffer, s.view);
+    if (channelView) {
+        display = addDebugViewPass(graph, passes.debugView, frame, gbuffer, s.view);
+        if (scaled) display = addUpscalePass(graph, passes.upscale, frame, display, UpscaleInput::DebugView);
+    }
 
     for (const auto& name : s.disabledPasses) graph.disablePass(name);
     graph.markOutput(display);
@@ -90,10 +97,19 @@ FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const Fr
     return out;
 }
 
+glm::ivec2 scaledRenderSize(int outputWidth, int outputHeight, float renderScale) {
+    const float scale = std::isfinite(renderScale) ? std::clamp(renderScale, 0.0f, 1.0f) : 1.0f;
+    return {std::max(1, int(std::lround(double(outputWidth) * scale))),
+            std::max(1, int(std::lround(double(outputHeight) * scale)))};
+}
+
 FrameData makeFrameData(const Scene& scene, const RenderSettings& settings, float time) {
     FrameData f;
-    f.width = settings.width;
-    f.height = settings.height;
+    const glm::ivec2 size = scaledRenderSize(settings.width, settings.height, settings.renderScale);
+    f.width = size.x;
+    f.height = size.y;
+    f.outputWidth = settings.width;
+    f.outputHeight = settings.height;
     f.view = scene.camera.view();
     f.projection = scene.camera.projection(float(settings.width) / float(std::max(settings.height, 1)));
     f.nearPlane = scene.camera.nearPlane;

@@ -14,6 +14,7 @@
 #include "passes/local_light_pass.hpp"
 #include "passes/sky_pass.hpp"
 #include "passes/tonemap_pass.hpp"
+#include "passes/upscale_pass.hpp"
 
 namespace lp {
 
@@ -28,6 +29,7 @@ struct PassStates {
     IblPass ibl;  // environment cache (cubes, bakes, DFG LUT) and the IBL programs
     LocalLightPass localLights;
     PostPasses post;
+    UpscalePass upscale;
 };
 
 struct FrameOutputs {
@@ -44,6 +46,9 @@ FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const Fr
 bool sphereIntersectsFrustum(const glm::mat4& viewProjection, glm::vec3 center, float radius);
 // How many of the frame's local lights (orbits applied at frame.time) reach into the view.
 int localLightsInView(const FrameData& frame);
+
+// The size the G-buffer and lighting run at: round(output x renderScale), at least 1 x 1.
+glm::ivec2 scaledRenderSize(int outputWidth, int outputHeight, float renderScale);
 
 // Camera matrices, planes and sizes for a frame of `scene` under `settings`.
 FrameData makeFrameData(const Scene& scene, const RenderSettings& settings, float time);

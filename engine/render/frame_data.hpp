@@ -13,8 +13,10 @@ class ShaderLibrary;
 class SceneGpu;
 
 struct FrameData {
-    int width = 0;
-    int height = 0;
+    int width = 0;          // the size the G-buffer, lighting and post effects run at:
+    int height = 0;         // the output size x RenderSettings::renderScale
+    int outputWidth = 0;    // the size of the displayed / saved image (the tone map's target)
+    int outputHeight = 0;
     glm::mat4 view{1.0f};
     glm::mat4 projection{1.0f};
     float nearPlane = 0.1f;

@@ -15,6 +15,11 @@ std::vector<KnobValue> valuesOf(const std::vector<T>& values, Label label, Set s
 }
 
 std::string str(int v) { return std::to_string(v); }
+std::string str2(float v) {
+    char b[16];
+    std::snprintf(b, sizeof b, "%.2f", double(v));
+    return b;
+}
 
 std::vector<Knob> makeKnobs() {
     std::vector<Knob> knobs;
@@ -139,12 +144,17 @@ std::vector<Knob> makeKnobs() {
                      "each local light's range x this (--light-range-scale): lights stop sooner, fewer pixels per "
                      "light; 1 (the full range) is the reference",
                      valuesOf<float>({0.25f, 0.5f, 0.75f, 1.0f},
-                                     [](float v) {
-                                         char b[16];
-                                         std::snprintf(b, sizeof b, "%.2f", double(v));
-                                         return std::string(b);
-                                     },
+                                     str2,
                                      [](RenderSettings& s, float v) { s.localLights.rangeScale = v; }),
+                     true});
+
+    // ---- resolution ----
+    knobs.push_back({"render-scale",
+                     "G-buffer, lighting and post effects at this fraction of the output size (--render-scale), "
+                     "upsampled bilinearly before the tone map; 1 is the reference",
+                     valuesOf<float>({0.25f, 0.5f, 0.75f, 1.0f},
+                                     str2,
+                                     [](RenderSettings& s, float v) { s.renderScale = v; }),
                      true});
     return knobs;
 }

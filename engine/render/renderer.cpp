@@ -1,5 +1,7 @@
 #include "engine/render/renderer.hpp"
 
+#include <string>
+
 #include "engine/core/error.hpp"
 
 namespace lp {
@@ -9,6 +11,8 @@ Renderer::Renderer(const Scene& scene, gl::ShaderLibrary shaders)
 
 void Renderer::render(const RenderSettings& settings, float time, bool timed) {
     if (settings.width <= 0 || settings.height <= 0) throw Error("render size must be positive");
+    if (!(settings.renderScale >= kMinRenderScale && settings.renderScale <= 1.0f))
+        throw Error("render scale " + std::to_string(settings.renderScale) + " is outside [0.25, 1]");
     FrameData frame = makeFrameData(*scene_, settings, time);
     frame.gpu = gpu_.get();
     frame.shaders = &shaders_;

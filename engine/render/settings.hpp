@@ -109,9 +109,14 @@ struct PostSettings {           // bloom and toon (engine/post/post_config.hpp r
     Backend backend = Backend::Auto;
 };
 
+inline constexpr float kMinRenderScale = 0.25f;  // --render-scale's lower bound
+
 struct RenderSettings {
     int width = 1280;
     int height = 720;
+    // --render-scale: the G-buffer, lighting and post effects run at round(size x renderScale)
+    // (0.25..1) and are upsampled bilinearly to width x height before the tone map.
+    float renderScale = 1.0f;
     DebugView view = DebugView::Final;
     float exposureEV = 0.0f;
     bool globalLighting = true;  // the directional-light pass

@@ -12,10 +12,10 @@ std::string repoPath(const std::string& relative) {
 }
 
 std::vector<glm::vec4> runGlsl(const std::vector<std::string>& includes, const std::string& body,
-                               const std::vector<glm::vec4>& inputs) {
+                               const std::vector<glm::vec4>& inputs, const std::string& globals) {
     std::string src = "#version 450\n";
     for (const auto& inc : includes) src += "#include \"" + inc + "\"\n";
-    src += R"(
+    src += globals + R"(
 layout(local_size_x = 64) in;
 layout(std430, binding = 0) readonly buffer InData { vec4 inData[]; };
 layout(std430, binding = 1) writeonly buffer OutData { vec4 outData[]; };

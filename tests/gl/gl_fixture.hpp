@@ -20,8 +20,9 @@ std::string repoPath(const std::string& relative);
 // Runs `vec4 lpTest(vec4 x) { <body> }` over `inputs` in a compute shader that includes
 // `includes` (e.g. "common/tonemap.glsl") and returns the outputs. This is how the functions in
 // shaders/common/ are checked on the real driver against double-precision C++ references.
+// `globals` is GLSL placed before lpTest (e.g. a sampler the caller binds).
 std::vector<glm::vec4> runGlsl(const std::vector<std::string>& includes, const std::string& body,
-                               const std::vector<glm::vec4>& inputs);
+                               const std::vector<glm::vec4>& inputs, const std::string& globals = "");
 
 // IBL on with a bake small enough for a software rasteriser (32^2 cubes, 64 GGX samples, a 32^2
 // DFG LUT of `dfgSamples` samples per texel).

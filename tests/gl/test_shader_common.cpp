@@ -1,9 +1,12 @@
 // The GLSL in shaders/common/ on the real driver, against double-precision C++ references.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 
+#include "engine/gl/handles.hpp"
 #include "tests/gl/gl_fixture.hpp"
 
 using lp::test::runGlsl;
@@ -116,4 +119,104 @@ TEST(ShaderBrdf, OppositeViewAndLightIsFinite) {
                        "vec3 L = normalize(vec3(0.3, 0.0, 1.0)); return vec4(blinnPhongBrdf(vec3(0,0,1), -L, L, vec3(0.5), vec3(1.0), x.x), 0.0);",
                        {glm::vec4(0.0f), glm::vec4(64.0f), glm::vec4(10000.0f)});
     for (auto& o : out) EXPECT_TRUE(std::isfinite(o.x));
+}
+
+namespace {
+// A w x h RGBA32F texture on unit 9 holding `texels` (row 0 first), for common/upscale.glsl.
+struct UpscaleSource {
+    int w, h;
+    std::vector<glm::vec4> texels;
+    lp::gl::Texture texture;
+    UpscaleSource(int w_, int h_, const std::function<glm::vec4(int, int)>& f) : w(w_), h(h_) {
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) texels.push_back(f(x, y));
+        texture = lp::gl::makeTexture2D(GL_RGBA32F, w, h, 1, "upscale.source");
+        glTextureSubImage2D(texture.id(), 0, 0, 0, w, h, GL_RGBA, GL_FLOAT, texels.data());
+        glBindTextureUnit(9, texture.id());
+    }
+    ~UpscaleSource() { glBindTextureUnit(9, 0); }
+    glm::dvec4 at(int x, int y) const {
+        glm::vec4 t = texels[size_t(std::clamp(y, 0, h - 1)) * size_t(w) + size_t(std::clamp(x, 0, w - 1))];
+        return glm::dvec4(t);
+    }
+    // Double-precision bilinear with centres aligned and edges clamped.
+    glm::dvec4 bilinear(int px, int py, int ow, int oh) const {
+        double cx = std::clamp((px + 0.5) * w / ow - 0.5, 0.0, double(w - 1));
+        double cy = std::clamp((py + 0.5) * h / oh - 0.5, 0.0, double(h - 1));
+        int x0 = int(std::floor(cx)), y0 = int(std::floor(cy));
+        double fx = cx - x0, fy = cy - y0;
+        return (1 - fx) * (1 - fy) * at(x0, y0) + fx * (1 - fy) * at(x0 + 1, y0) + (1 - fx) * fy * at(x0, y0 + 1) +
+               fx * fy * at(x0 + 1, y0 + 1);
+    }
+    // One input per output pixel: (x, y, outW, outH).
+    static std::vector<glm::vec4> pixels(int ow, int oh) {
+        std::vector<glm::vec4> in;
+        for (int y = 0; y < oh; ++y)
+            for (int x = 0; x < ow; ++x) in.push_back(glm::vec4(x, y, ow, oh));
+        return in;
+    }
+};
+const char* kUpscaleGlobals = "layout(binding = 9) uniform sampler2D uSrc;\n";
+const char* kBilinear = "return upscaleBilinear(uSrc, ivec2(x.xy), ivec2(x.zw));";
+}  // namespace
+
+// Bound: |GLSL - double bilinear| <= 1e-5 relative for 2x, 4x and non-integer ratios (7x5 -> 16x11),
+// and a linear ramp is reproduced exactly away from the clamped border (bilinear is exact on linear
+// functions), so upsampling adds no bias to smooth lighting.
+TEST(ShaderUpscale, BilinearMatchesDoubleReferenceAndKeepsLinearRamps) {
+    for (glm::ivec4 sizes : {glm::ivec4(8, 6, 16, 12), glm::ivec4(8, 6, 32, 24), glm::ivec4(7, 5, 16, 11)}) {
+        UpscaleSource src(sizes.x, sizes.y, [](int x, int y) { return glm::vec4(2.0f + 1.5f * x + 0.25f * y, x, y, 1.0f); });
+        const int ow = sizes.z, oh = sizes.w;
+        auto out = runGlsl({"common/upscale.glsl"}, kBilinear, UpscaleSource::pixels(ow, oh), kUpscaleGlobals);
+        for (int y = 0; y < oh; ++y)
+            for (int x = 0; x < ow; ++x) {
+                const glm::dvec4 e = src.bilinear(x, y, ow, oh);
+                const glm::vec4 g = out[size_t(y) * ow + x];
+                for (int c = 0; c < 4; ++c)
+                    ASSERT_NEAR(g[c], e[c], 1e-5 * std::max(1.0, std::abs(e[c]))) << x << "," << y << " of " << ow << "x" << oh;
+                const double cx = (x + 0.5) * sizes.x / ow - 0.5, cy = (y + 0.5) * sizes.y / oh - 0.5;
+                if (cx >= 0.0 && cy >= 0.0 && cx <= sizes.x - 1 && cy <= sizes.y - 1)  // inside: the ramp itself
+                    ASSERT_NEAR(g.x, 2.0 + 1.5 * cx + 0.25 * cy, 1e-5 * (2.0 + 1.5 * cx + 0.25 * cy));
+            }
+    }
+}
+
+// Bound: at the same size the upscale is the identity, bit for bit (weights 1, 0, 0, 0), and a tap
+// of NaN or Inf never yields NaN: an Inf texel reads 65504
+// (sanitizeHdr), a NaN texel 0, and their neighbours are unchanged.
+TEST(ShaderUpscale, IdentityIsExactAndNonFiniteTexelsStayFinite) {
+    UpscaleSource src(6, 4, [](int x, int y) {
+        if (x == 2 && y == 1) return glm::vec4(kInf, kInf, 1.0f, 1.0f);
+        if (x == 3 && y == 1) return glm::vec4(kNaN, 1.0f, kNaN, 1.0f);
+        return glm::vec4(0.1f * x + 1e-7f, float(y), 1e-30f, 1.0f);
+    });
+    auto same = runGlsl({"common/upscale.glsl"}, kBilinear, UpscaleSource::pixels(6, 4), kUpscaleGlobals);
+    for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 6; ++x) {
+            const glm::vec4 g = same[size_t(y) * 6 + x];
+            for (int c = 0; c < 4; ++c) ASSERT_TRUE(std::isfinite(g[c])) << x << "," << y;
+            if (x == 2 && y == 1) EXPECT_EQ(g, glm::vec4(65504.0f, 65504.0f, 1.0f, 1.0f));
+            else if (x == 3 && y == 1) EXPECT_EQ(g, glm::vec4(0.0f, 1.0f, 0.0f, 1.0f));
+            else EXPECT_EQ(g, src.texels[size_t(y) * 6 + x]) << x << "," << y;
+        }
+    auto up = runGlsl({"common/upscale.glsl"}, kBilinear, UpscaleSource::pixels(24, 16), kUpscaleGlobals);
+    for (const glm::vec4& g : up)
+        for (int c = 0; c < 4; ++c) {
+            ASSERT_TRUE(std::isfinite(g[c]));
+            ASSERT_GE(g[c], 0.0f);
+            ASSERT_LE(g[c], 65504.0f);
+        }
+}
+
+// Nearest (the debug views): each output pixel is exactly the source texel its centre falls in.
+TEST(ShaderUpscale, NearestPicksTheCoveringTexel) {
+    UpscaleSource src(5, 3, [](int x, int y) { return glm::vec4(x, y, x * 10 + y, 1.0f); });
+    const int ow = 17, oh = 8;
+    auto out = runGlsl({"common/upscale.glsl"}, "return upscaleNearest(uSrc, ivec2(x.xy), ivec2(x.zw));",
+                       UpscaleSource::pixels(ow, oh), kUpscaleGlobals);
+    for (int y = 0; y < oh; ++y)
+        for (int x = 0; x < ow; ++x) {
+            const int sx = int((x + 0.5) * 5 / ow), sy = int((y + 0.5) * 3 / oh);
+            EXPECT_EQ(out[size_t(y) * ow + x], glm::vec4(sx, sy, sx * 10 + sy, 1.0f)) << x << "," << y;
+        }
 }

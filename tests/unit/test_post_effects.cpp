@@ -101,6 +101,15 @@ TEST(PostConfig, FlagsOverrideTheScene) {
     EXPECT_EQ(post::parseBackend("glsl"), PostSettings::Backend::Glsl);
 }
 
+// The kernel is in output pixels: at render scale S the blur spans S x as many of its own pixels.
+TEST(PostConfig, BloomKernelFollowsRenderScale) {
+    EXPECT_EQ(post::bloomKernelAtRenderSize(25, 1920, 1920), 25);
+    EXPECT_EQ(post::bloomKernelAtRenderSize(25, 960, 1920), 13);   // 12.5 rounds up
+    EXPECT_EQ(post::bloomKernelAtRenderSize(100, 480, 1920), 25);
+    EXPECT_EQ(post::bloomKernelAtRenderSize(1, 480, 1920), 1);     // never below one tap
+    EXPECT_EQ(post::bloomKernelAtRenderSize(5, 0, 0), 5);          // degenerate sizes: unchanged
+}
+
 // Bloom and toon are in the graph only when enabled, sit between sky and tone map, and a G-buffer
 // view culls them; the bloom view keeps the bloom pass and culls the composite and toon.
 TEST(PostGraph, PassesAppearWhenEnabledAndCullWithViews) {

@@ -242,3 +242,63 @@ TEST(SceneDrivenGraph, SphereFrustumTestMatchesPlaneDistances) {
     EXPECT_TRUE(sphereIntersectsFrustum(vp * view, {3, 0, -5}, 0.1f));
     EXPECT_FALSE(sphereIntersectsFrustum(vp * view, {3 + touch + 1e-3f, 0, -5}, r));
 }
+
+namespace {
+// Every live resource's size, by name.
+std::map<std::string, glm::ivec2> liveSizes(const Scene& scene, const RenderSettings& settings, Names* runs) {
+    FrameData frame = makeFrameData(scene, settings, 0.0f);
+    fg::FrameGraph graph;
+    PassStates passes;
+    buildFrameGraph(graph, passes, frame);
+    graph.compile();
+    std::map<std::string, glm::ivec2> sizes;
+    for (const fg::ResourceReport& r : graph.resources())
+        if (r.live && !r.imported) sizes[r.name] = {r.desc.width, r.desc.height};
+    if (runs)
+        for (const fg::PassDecision& d : graph.explain())
+            if (d.runs) runs->insert(d.name);
+    return sizes;
+}
+}  // namespace
+
+// --render-scale S: the G-buffer and the HDR buffer are round(S x output); the upscale pass and the
+// tone map's target are the output size. At S = 1 the upscale pass is skipped with its reason.
+TEST(SceneDrivenGraph, RenderScaleShrinksGBufferAndLightingOnly) {
+    RenderSettings s = small();  // 320 x 180
+    s.post.bloom = true;
+    Built full = build(bundledScene("cornell"), s);
+    EXPECT_FALSE(full.runs.count("upscale"));
+    EXPECT_NE(full.reasons["upscale"].find("render scale 1"), std::string::npos) << full.reasons["upscale"];
+
+    for (float scale : {0.5f, 0.25f, 0.3f}) {
+        s.renderScale = scale;
+        Names runs;
+        auto sizes = liveSizes(bundledScene("cornell"), s, &runs);
+        const glm::ivec2 inner(int(std::lround(320 * scale)), int(std::lround(180 * scale)));
+        EXPECT_TRUE(runs.count("upscale")) << scale;
+        EXPECT_TRUE(runs.count("bloom")) << scale;
+        EXPECT_EQ(sizes["gbuffer.depth"], inner) << scale;
+        EXPECT_EQ(sizes["gbuffer.normal"], inner) << scale;
+        EXPECT_EQ(sizes["hdr"], inner) << scale;
+        EXPECT_EQ(sizes["bloom"], inner) << scale;
+        EXPECT_EQ(sizes["hdr.output"], glm::ivec2(320, 180)) << scale;
+        EXPECT_EQ(sizes["ldr.final"], glm::ivec2(320, 180)) << scale;
+    }
+    // A debug view is upsampled too (nearest), so every view keeps the output size.
+    s.renderScale = 0.5f;
+    s.view = DebugView::Normals;
+    Names runs;
+    auto sizes = liveSizes(bundledScene("cornell"), s, &runs);
+    EXPECT_TRUE(runs.count("upscale_debug"));
+    EXPECT_FALSE(runs.count("upscale"));  // the HDR path is culled in a channel view
+    EXPECT_EQ(sizes["ldr.debug"], glm::ivec2(160, 90));
+    EXPECT_EQ(sizes["ldr.debug.output"], glm::ivec2(320, 180));
+}
+
+TEST(SceneDrivenGraph, ScaledRenderSizeRoundsAndNeverReachesZero) {
+    EXPECT_EQ(scaledRenderSize(1920, 1080, 1.0f), glm::ivec2(1920, 1080));
+    EXPECT_EQ(scaledRenderSize(1920, 1080, 0.5f), glm::ivec2(960, 540));
+    EXPECT_EQ(scaledRenderSize(1920, 1080, 0.75f), glm::ivec2(1440, 810));
+    EXPECT_EQ(scaledRenderSize(3, 1, 0.25f), glm::ivec2(1, 1));
+    EXPECT_EQ(scaledRenderSize(64, 64, std::nanf("")), glm::ivec2(64, 64));  // not finite: full size
+}
