@@ -23,15 +23,8 @@ fg::ResourceId addToneMapPass(fg::FrameGraph& graph, ToneMapPass& state, const F
             const GLuint prog = state.program.id();
             glProgramUniform1f(prog, glGetUniformLocation(prog, "uExposureEV"), frame.settings->exposureEV);
             glProgramUniform1i(prog, glGetUniformLocation(prog, "uOperator"), int(frame.settings->environment.toneMap));
-            glBindTextureUnit(6, res.texture(data.hdr));
-            glBindImageTexture(0, res.texture(data.ldr), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
-            glUseProgram(prog);
-            gl::dispatch2D(frame.outputWidth, frame.outputHeight);
-            glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
-                            GL_TEXTURE_UPDATE_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
-            glUseProgram(0);
-            glBindTextureUnit(6, 0);
-            glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
+            gl::dispatchTextureToImage(prog, 6, res.texture(data.hdr), res.texture(data.ldr), GL_RGBA8,
+                                       frame.outputWidth, frame.outputHeight);
         });
     return d.ldr;
 }

@@ -27,15 +27,8 @@ fg::ResourceId addUpscalePass(fg::FrameGraph& graph, UpscalePass& state, const F
             if (!program)
                 program = frame.shaders->compute("upscale.comp", debug ? std::vector<std::string>{"LP_UPSCALE_DEBUG"}
                                                                        : std::vector<std::string>{});
-            glBindTextureUnit(0, res.texture(data.source));
-            glBindImageTexture(0, res.texture(data.target), 0, GL_FALSE, 0, GL_WRITE_ONLY, format);
-            glUseProgram(program.id());
-            gl::dispatch2D(frame.outputWidth, frame.outputHeight);
-            glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
-                            GL_TEXTURE_UPDATE_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
-            glUseProgram(0);
-            glBindTextureUnit(0, 0);
-            glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, format);
+            gl::dispatchTextureToImage(program.id(), 0, res.texture(data.source), res.texture(data.target), format,
+                                       frame.outputWidth, frame.outputHeight);
         });
     return d.target;
 }
