@@ -24,7 +24,7 @@ usage:
                                     render every value of each quality knob; GPU ms per pass
                                     and error against the knob's best value -> D/sweep.csv,
                                     D/sweep.md and images (bench/sweep_report.py adds FLIP
-                                    and a Pareto plot)
+                                    and a Pareto plot); --knob A+B sweeps every combination
   lightpass bench (--scene F | --model F.obj) --vary 'FLAG V1,V2,..' [--vary ...] [flags]
                                     one process renders every combination of the --vary axes
                                     (an axis is 'FLAG V1,V2' or 'FLAGS A|FLAGS B'), GPU ms per

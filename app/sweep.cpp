@@ -50,12 +50,16 @@ std::string csvEscape(const std::string& s) { return s.find(',') == std::string:
 
 int runSweep(const Options& o) {
     if (o.knobs.empty()) throw Error("sweep: --knob NAME is required (knobs: " + knobNames() + ")");
-    std::vector<const Knob*> knobs;
+    std::vector<Knob> knobValues;
     for (const auto& name : o.knobs) {
-        const Knob* k = findKnob(name);
-        if (!k) throw Error("sweep: unknown knob '" + name + "' (knobs: " + knobNames() + ")");
-        knobs.push_back(k);
+        std::optional<Knob> k = knobByName(name);
+        if (!k)
+            throw Error("sweep: unknown knob '" + name + "' (knobs: " + knobNames() +
+                        "; A+B sweeps every combination of two different knobs)");
+        knobValues.push_back(std::move(*k));
     }
+    std::vector<const Knob*> knobs;
+    for (const Knob& k : knobValues) knobs.push_back(&k);
     const fs::path outDir = o.outDir.empty() ? fs::path("sweep") : fs::path(o.outDir);
     fs::create_directories(outDir);
     Scene scene = o.model.empty() ? loadScene(o.scene) : sceneForModel(o.model);
@@ -90,7 +94,11 @@ int runSweep(const Options& o) {
             progress(knob.name, ki, knobs.size(), vi, steps, knob.values[vi].label);
             const KnobValue& value = knob.values[vi];
             RenderSettings s = settingsFor(value);
-            for (int i = 0; i < o.warmup; ++i) renderer.render(s, 0.0f, false);
+            // Each value bakes its IBL afresh in its first (untimed) frame: the bake is a one-off cost,
+            // not part of frame_ms, reported as ibl_bake_gpu_ms where a bake ran.
+            renderer.environments().forgetBakes();
+            for (int i = 0; i < std::max(o.warmup, 1); ++i) renderer.render(s, 0.0f, false);
+            const double bakeMs = renderer.environments().lastBakeGpuMs();
             renderer.timers().clear();
             for (int i = 0; i < o.frames; ++i) renderer.render(s, 0.0f, true);
             glFinish();
@@ -103,6 +111,11 @@ int runSweep(const Options& o) {
                 row.passMs[name] = renderer.timers().median(name);
                 row.passOrder.push_back(name);
                 if (std::find(allPasses.begin(), allPasses.end(), name) == allPasses.end()) allPasses.push_back(name);
+            }
+            if (bakeMs > 0.0) {
+                row.passMs["ibl_bake_gpu"] = bakeMs;
+                if (std::find(allPasses.begin(), allPasses.end(), "ibl_bake_gpu") == allPasses.end())
+                    allPasses.push_back("ibl_bake_gpu");
             }
             row.error = compareHdr(renderer.readHdr(), reference);
             std::string file = std::to_string(vi) + ".png";

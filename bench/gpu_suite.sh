@@ -2,12 +2,12 @@
 # The GPU benchmarks of lightpass in one go, each as one `lightpass bench` process (one scene load,
 # every variant timed in turn; medians after warm-up; floors measured on the same GPU).
 #   bench/gpu_suite.sh LIGHTPASS OUTDIR [PART ...]
-# PART: lights shadows ibl post frame sweep scale scene (default: all). Needs ../shared/assets for the gallery scene and
+# PART: lights shadows ibl post frame sweep products scale scene (default: all). Needs ../shared/assets for the gallery scene and
 # the Poly Haven maps. Tables: bench/summarize_bench.py OUTDIR/<part>.json (see bench/results/*/README.md).
 set -uo pipefail
 lp=$1 out=$2
 shift 2
-parts=${*:-lights shadows ibl post frame sweep scale scene}
+parts=${*:-lights shadows ibl post frame sweep products scale scene}
 mkdir -p "$out"
 maps="hdr/sky.exr"
 for m in ../shared/assets/hdri-polyhaven-1k/*.hdr ../shared/assets/hdri-polyhaven-1k/*.exr; do [ -f "$m" ] && maps="$maps $m"; done
@@ -62,6 +62,11 @@ PY
         --out-dir "$out/sweep_cornell"
       "$lp" sweep --scene scenes/ibl-spheres.json --size 1920x1080 --frames 100 \
         --knob ibl-samples --knob ibl-face-size --knob ibl-diffuse --out-dir "$out/sweep_ibl" ;;
+    products)  # knobs that interact, swept together (every combination; the Pareto front picks the pairs)
+      "$lp" sweep --scene scenes/cornell.json --size 1920x1080 --frames 100 \
+        --knob shadow-size+shadow-pcf --knob bloom-method+bloom-kernel --out-dir "$out/sweep_products_cornell"
+      "$lp" sweep --scene scenes/ibl-spheres.json --size 1920x1080 --frames 100 \
+        --knob ibl-samples+ibl-face-size --out-dir "$out/sweep_products_ibl" ;;
     scale)  # --render-scale: the small Cornell box at 1080p, the Stanford models with two shadowed suns at 4K
       "$lp" sweep --scene scenes/cornell.json --size 1920x1080 --frames 100 --knob render-scale \
         --out-dir "$out/sweep_render_scale_cornell"

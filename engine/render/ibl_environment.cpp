@@ -334,12 +334,18 @@ void EnvironmentCache::bakeIbl(BakedEnvironment& env, const Scene& scene, const 
     glGetQueryObjectui64v(gpuBegin.id(), GL_QUERY_RESULT, &gpuT0);
     glGetQueryObjectui64v(gpuEnd.id(), GL_QUERY_RESULT, &gpuT1);
     env.bakeGpuMs = double(gpuT1 - gpuT0) * 1e-6;
+    lastBakeGpuMs_ = env.bakeGpuMs;
     if (env.hasMap)
         logInfo("ibl: baked " + what + " in " + fmt(std::round(secondsSince(t0) * 1000.0)) + " ms (GPU " +
                 fmt(float(std::round(env.bakeGpuMs * 100.0) / 100.0)) + " ms: irradiance " + std::to_string(s.irradianceSize) + "^2 x " +
                 std::to_string(s.irradianceSamples) + ", prefiltered " + std::to_string(s.specularSize) + "^2 x " +
                 std::to_string(s.specularLevels) + " mips x " + std::to_string(s.specularSamples) + " samples)");
     if (useDisk) saveCache(file, key, &env.sh, {&env.prefiltered, &env.irradiance});
+}
+
+void EnvironmentCache::forgetBakes() {
+    for (auto& entry : environments_) entry.second->bakeKey.clear();
+    lastBakeGpuMs_ = 0.0;
 }
 
 const gl::Texture& EnvironmentCache::dfgLut(const EnvironmentSettings& s, const gl::ShaderLibrary& shaders) {

@@ -40,6 +40,11 @@ public:
     bool ready(const Scene& scene, const EnvironmentSettings& settings, bool bake) const;
     // GPU bytes of every cube and LUT the cache holds (persistent, outside the frame graph's pool).
     size_t gpuBytes() const;
+    // Keeps the cubes but forgets every IBL bake, so the next get(.., bake = true) bakes again and
+    // lastBakeGpuMs() says what that bake cost (lightpass sweep: each IBL setting's one-off cost).
+    void forgetBakes();
+    // GPU ms of the last bake run since forgetBakes() (0 when none ran, or it came from the disk cache).
+    double lastBakeGpuMs() const { return lastBakeGpuMs_; }
 
 private:
     void makeCube(BakedEnvironment& env, const Scene& scene, const EnvironmentSettings& s,
@@ -50,6 +55,7 @@ private:
     std::map<std::string, std::unique_ptr<BakedEnvironment>> environments_;
     gl::Texture dfg_;
     std::string dfgKey_;
+    double lastBakeGpuMs_ = 0.0;
     gl::Program toCube_, prefilter_, irradiance_, dfgProgram_;
 };
 

@@ -1,5 +1,6 @@
 #include "engine/render/knobs.hpp"
 
+#include <algorithm>
 #include <cstdio>
 
 namespace lp {
@@ -108,11 +109,11 @@ std::vector<Knob> makeKnobs() {
                      true});
 
     // ---- bloom (switches --bloom on) ----
-    knobs.push_back({"bloom-kernel", "separable bloom width in pixels (--bloom-kernel); 100 is the reference",
+    knobs.push_back({"bloom-kernel", "bloom width in pixels (--bloom-kernel), with --bloom-method's blur (separable "
+                                     "unless given); 100 is the reference",
                      valuesOf<int>({5, 10, 25, 50, 100}, str,
                                    [](RenderSettings& s, int v) {
-                                       s.post.bloom = true;
-                                       s.post.bloomMethod = PostSettings::BloomMethod::Separable;
+                                       s.post.bloom = true;  // the method is --bloom-method's (separable)
                                        s.post.bloomKernel = v;
                                    }),
                      true});
@@ -169,6 +170,33 @@ const Knob* findKnob(const std::string& name) {
     for (const auto& k : allKnobs())
         if (k.name == name) return &k;
     return nullptr;
+}
+
+std::optional<Knob> knobByName(const std::string& spec) {
+    std::vector<const Knob*> parts;
+    for (size_t start = 0;;) {
+        const size_t plus = spec.find('+', start);
+        const Knob* k = findKnob(spec.substr(start, plus == std::string::npos ? std::string::npos : plus - start));
+        if (!k || std::find(parts.begin(), parts.end(), k) != parts.end()) return std::nullopt;
+        parts.push_back(k);
+        if (plus == std::string::npos) break;
+        start = plus + 1;
+    }
+    if (parts.size() == 1) return *parts[0];
+    Knob product{spec, "every combination of", {KnobValue{"", [](RenderSettings&) {}}}, false};
+    for (const Knob* k : parts) {
+        product.description += (k == parts.front() ? " " : " x ") + k->name;
+        std::vector<KnobValue> combined;
+        for (const KnobValue& a : product.values)
+            for (const KnobValue& b : k->values)
+                combined.push_back({a.label.empty() ? b.label : a.label + "/" + b.label,
+                                    [first = a.apply, second = b.apply](RenderSettings& s) {
+                                        first(s);
+                                        second(s);
+                                    }});
+        product.values = std::move(combined);
+    }
+    return product;
 }
 
 std::string knobNames() {

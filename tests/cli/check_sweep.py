@@ -3,13 +3,15 @@
 columns, the reference (last) row has error 0, every image was written and finite, sweep.md has the
 knob's table, stderr has a progress line per value, and for a monotone knob the HDR RMSE never
 rises as the value moves towards the reference (equal is allowed).
-  check_sweep.py OUTDIR STDERR_FILE KNOB VALUES [--monotone]"""
+With --positive COLUMN, that column must be > 0 in every row of the knob (e.g. ibl_bake_gpu_ms).
+  check_sweep.py OUTDIR STDERR_FILE KNOB VALUES [--monotone] [--positive COLUMN]"""
 import csv
 import os
 import sys
 
 out_dir, progress_file, knob, values = sys.argv[1], sys.argv[2], sys.argv[3], int(sys.argv[4])
 monotone = "--monotone" in sys.argv[5:]
+positive = [sys.argv[i + 1] for i in range(5, len(sys.argv) - 1) if sys.argv[i] == "--positive"]
 
 with open(os.path.join(out_dir, "sweep.csv")) as f:
     reader = csv.DictReader(f)
@@ -29,6 +31,10 @@ for r in rows:
     assert int(r["non_finite"]) == 0, f"{r['value']}: {r['non_finite']} non-finite pixels"
     assert float(r["frame_ms"]) > 0.0, f"{r['value']}: no frame time"
     assert os.path.isfile(os.path.join(out_dir, r["image"])), f"missing {r['image']}"
+for column in positive:
+    assert column in columns, f"no {column} column (have {columns})"
+    for r in rows:
+        assert float(r[column]) > 0.0, f"{r['value']}: {column} = {r[column]}"
 if monotone:
     for a, b, ea, eb in zip(rows, rows[1:], rmse, rmse[1:]):
         assert eb <= ea * (1.0 + 1e-9), f"RMSE rises from {a['value']} ({ea}) to {b['value']} ({eb})"

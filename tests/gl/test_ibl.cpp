@@ -259,6 +259,44 @@ TEST(Ibl, DiskCacheRoundTripsTheBake) {
     std::filesystem::remove(mapPath);
 }
 
+// forgetBakes (lightpass sweep times each IBL setting's bake): the cube stays, the bake is redone
+// on the next get and its GPU time is reported; a disk-cache hit reports 0 (nothing was baked).
+TEST(Ibl, ForgetBakesBakesAgainAndReportsItsGpuTime) {
+    const auto mapPath = tempPath("forget.exr");
+    ImageF img;
+    img.width = 32;
+    img.height = 16;
+    for (int y = 0; y < 16; ++y)
+        for (int x = 0; x < 32; ++x) img.rgba.insert(img.rgba.end(), {x / 32.0f, 1.0f, y / 16.0f, 1.0f});
+    writeExr(mapPath, img);
+    Scene scene;
+    scene.environment.map = mapPath;
+    const EnvironmentSettings s = smallBake();
+    gl::ShaderLibrary shaders;
+    EnvironmentCache cache;
+    EXPECT_EQ(cache.lastBakeGpuMs(), 0.0);
+    const GLuint cube = cache.get(scene, s, shaders, true).cube.id();
+    cache.dfgLut(s, shaders);  // ready(.., true) also wants the LUT, which forgetBakes keeps
+    EXPECT_GT(cache.lastBakeGpuMs(), 0.0);
+    EXPECT_TRUE(cache.ready(scene, s, true));
+    cache.forgetBakes();
+    EXPECT_EQ(cache.lastBakeGpuMs(), 0.0);
+    EXPECT_TRUE(cache.ready(scene, s, false));  // the cube is kept
+    EXPECT_FALSE(cache.ready(scene, s, true));  // the bake is not
+    EXPECT_EQ(cache.get(scene, s, shaders, true).cube.id(), cube);
+    EXPECT_GT(cache.lastBakeGpuMs(), 0.0);
+    EXPECT_TRUE(cache.ready(scene, s, true));
+
+    EnvironmentSettings cached = s;
+    cached.cacheDir = tempPath("forget-cache").string();
+    EnvironmentCache writer, reader;
+    writer.get(scene, cached, shaders, true);
+    reader.get(scene, cached, shaders, true);
+    EXPECT_EQ(reader.lastBakeGpuMs(), 0.0);
+    std::filesystem::remove_all(cached.cacheDir);
+    std::filesystem::remove(mapPath);
+}
+
 // The shader's SH irradiance equals the CPU (double) one. Bound: relative 1e-4 at 64 normals.
 TEST(Ibl, ShaderShIrradianceMatchesCpu) {
     ShCoefficients sh{};

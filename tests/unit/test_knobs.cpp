@@ -11,7 +11,8 @@ using namespace lp;
 TEST(Knobs, EveryQualityKnobIsRegisteredAndDescribed) {
     const std::set<std::string> expected = {"gbuffer-format", "gbuffer-position", "shadow-size", "shadow-pcf",
                                             "shadow-cascades", "ibl-samples", "ibl-face-size", "ibl-diffuse",
-                                            "bloom-kernel", "bloom-method", "local-light-method", "light-range-cutoff"};
+                                            "bloom-kernel", "bloom-method", "local-light-method", "light-range-cutoff",
+                                            "render-scale"};
     std::set<std::string> names;
     for (const Knob& k : allKnobs()) {
         EXPECT_TRUE(names.insert(k.name).second) << "duplicate knob " << k.name;
@@ -63,6 +64,55 @@ TEST(Knobs, ValuesSetWhatTheyNameAndTheReferenceIsLast) {
     EXPECT_EQ(s.environment.ibl, true);
     EXPECT_EQ(s.environment.specularSamples, 1024);
 
+    const Knob* scale = findKnob("render-scale");
+    scale->values.front().apply(s);
+    EXPECT_FLOAT_EQ(s.renderScale, 0.25f);
+    scale->values.back().apply(s);
+    EXPECT_FLOAT_EQ(s.renderScale, 1.0f);
+
     EXPECT_FALSE(findKnob("local-light-method")->monotone);
     EXPECT_FALSE(findKnob("shadow-pcf")->monotone);
+}
+
+// "A+B": every combination, A slowest, both applied, the reference both references together.
+TEST(Knobs, ProductOfKnobsSweepsEveryCombination) {
+    std::optional<Knob> p = knobByName("shadow-size+shadow-pcf");
+    ASSERT_TRUE(p.has_value());
+    EXPECT_EQ(p->name, "shadow-size+shadow-pcf");
+    EXPECT_FALSE(p->monotone);
+    ASSERT_EQ(p->values.size(), 16u);
+    EXPECT_EQ(p->values.front().label, "512/off");
+    EXPECT_EQ(p->values[1].label, "512/3x3");
+    EXPECT_EQ(p->values.back().label, "4096/poisson");
+    std::set<std::string> labels;
+    for (const KnobValue& v : p->values) EXPECT_TRUE(labels.insert(v.label).second) << v.label;
+    RenderSettings s;
+    s.shadows.enabled = false;
+    p->values[6].apply(s);  // 1024 x 5x5
+    EXPECT_TRUE(s.shadows.enabled);
+    EXPECT_EQ(s.shadows.size, 1024);
+    EXPECT_EQ(s.shadows.filter, ShadowSettings::Filter::Pcf5x5);
+    p->values.back().apply(s);
+    EXPECT_EQ(s.shadows.size, 4096);
+    EXPECT_EQ(s.shadows.filter, ShadowSettings::Filter::Poisson);
+
+    // Neither factor undoes the other: the bloom kernel keeps the method the product chose.
+    std::optional<Knob> bloom = knobByName("bloom-method+bloom-kernel");
+    ASSERT_TRUE(bloom.has_value());
+    RenderSettings b;
+    bloom->values.front().apply(b);
+    EXPECT_EQ(bloom->values.front().label, "mip-chain/5");
+    EXPECT_EQ(b.post.bloomMethod, PostSettings::BloomMethod::MipChain);
+    EXPECT_EQ(b.post.bloomKernel, 5);
+
+    std::optional<Knob> three = knobByName("ibl-samples+ibl-face-size+ibl-diffuse");
+    ASSERT_TRUE(three.has_value());
+    EXPECT_EQ(three->values.size(), 4u * 4u * 2u);
+    EXPECT_EQ(three->values.back().label, "1024/512/cubemap");
+
+    EXPECT_EQ(knobByName("render-scale")->values.size(), 4u);  // a single name is the knob itself
+    EXPECT_FALSE(knobByName("shadow-size+bogus").has_value());
+    EXPECT_FALSE(knobByName("shadow-size+shadow-size").has_value());
+    EXPECT_FALSE(knobByName("shadow-size+").has_value());
+    EXPECT_FALSE(knobByName("+shadow-size").has_value());
 }
