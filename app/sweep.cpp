@@ -50,16 +50,14 @@ std::string csvEscape(const std::string& s) { return s.find(',') == std::string:
 
 int runSweep(const Options& o) {
     if (o.knobs.empty()) throw Error("sweep: --knob NAME is required (knobs: " + knobNames() + ")");
-    std::vector<Knob> knobValues;
+    std::vector<Knob> knobs;
     for (const auto& name : o.knobs) {
         std::optional<Knob> k = knobByName(name);
         if (!k)
             throw Error("sweep: unknown knob '" + name + "' (knobs: " + knobNames() +
                         "; A+B sweeps every combination of two different knobs)");
-        knobValues.push_back(std::move(*k));
+        knobs.push_back(std::move(*k));
     }
-    std::vector<const Knob*> knobs;
-    for (const Knob& k : knobValues) knobs.push_back(&k);
     const fs::path outDir = o.outDir.empty() ? fs::path("sweep") : fs::path(o.outDir);
     fs::create_directories(outDir);
     Scene scene = o.model.empty() ? loadScene(o.scene) : sceneForModel(o.model);
@@ -68,9 +66,12 @@ int runSweep(const Options& o) {
     Renderer renderer(scene);
 
     std::vector<Row> rows;
-    std::vector<std::string> allPasses;
+    std::vector<std::string> allPasses;  // the CSV's time columns, in order of first appearance
+    auto addColumn = [&](const std::string& name) {
+        if (std::find(allPasses.begin(), allPasses.end(), name) == allPasses.end()) allPasses.push_back(name);
+    };
     for (size_t ki = 0; ki < knobs.size(); ++ki) {
-        const Knob& knob = *knobs[ki];
+        const Knob& knob = knobs[ki];
         const fs::path dir = outDir / knob.name;
         fs::create_directories(dir);
         auto settingsFor = [&](const KnobValue& v) {
@@ -110,12 +111,11 @@ int runSweep(const Options& o) {
             for (const auto& name : renderer.timers().passOrder()) {
                 row.passMs[name] = renderer.timers().median(name);
                 row.passOrder.push_back(name);
-                if (std::find(allPasses.begin(), allPasses.end(), name) == allPasses.end()) allPasses.push_back(name);
+                addColumn(name);
             }
             if (bakeMs > 0.0) {
                 row.passMs["ibl_bake_gpu"] = bakeMs;
-                if (std::find(allPasses.begin(), allPasses.end(), "ibl_bake_gpu") == allPasses.end())
-                    allPasses.push_back("ibl_bake_gpu");
+                addColumn("ibl_bake_gpu");
             }
             row.error = compareHdr(renderer.readHdr(), reference);
             std::string file = std::to_string(vi) + ".png";
@@ -149,10 +149,10 @@ int runSweep(const Options& o) {
     md << "# Sweep: " << (o.model.empty() ? o.scene : o.model) << ", " << o.width << "x" << o.height << ", "
        << ctx->info().renderer << "\n\nGPU ms are medians of " << o.frames << " frames after " << o.warmup
        << " warm-up frames; errors are against each knob's best value, on the linear HDR buffer (PSNR peak 1).\n";
-    for (const Knob* k : knobs) {
-        md << "\n## " << k->name << "\n\n" << k->description << "\n\n| value | frame ms | RMSE | PSNR dB |\n| --- | --- | --- | --- |\n";
+    for (const Knob& k : knobs) {
+        md << "\n## " << k.name << "\n\n" << k.description << "\n\n| value | frame ms | RMSE | PSNR dB |\n| --- | --- | --- | --- |\n";
         for (const auto& r : rows) {
-            if (r.knob != k->name) continue;
+            if (r.knob != k.name) continue;
             char line[256];
             std::snprintf(line, sizeof line, "| %s%s | %.4f | %.3g | %s |\n", r.value.c_str(), r.reference ? " (reference)" : "",
                           r.passMs.count("frame") ? r.passMs.at("frame") : 0.0, r.error.rmse,
