@@ -12,7 +12,7 @@
 #include "engine/gl/context.hpp"
 #include "engine/io/image_io.hpp"
 #include "engine/render/floors.hpp"
-#include "engine/render/renderer.hpp"
+#include "frame/renderer.hpp"
 #include "engine/scene/scene_loader.hpp"
 
 namespace lp::app {

@@ -4,7 +4,7 @@
 #include <filesystem>
 
 #include "engine/core/error.hpp"
-#include "engine/render/frame_builder.hpp"
+#include "frame/frame_builder.hpp"
 
 namespace lp::app {
 

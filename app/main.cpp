@@ -16,7 +16,7 @@
 #include "engine/gl/context.hpp"
 #include "engine/io/image_io.hpp"
 #include "engine/render/floors.hpp"
-#include "engine/render/renderer.hpp"
+#include "frame/renderer.hpp"
 #include "engine/scene/scene_loader.hpp"
 #ifdef LIGHTPASS_HAVE_CUDA
 #include "cuda/device_info.hpp"

@@ -13,8 +13,8 @@
 #include "engine/core/log.hpp"
 #include "engine/gl/context.hpp"
 #include "engine/render/image_metrics.hpp"
-#include "engine/render/knobs.hpp"
-#include "engine/render/renderer.hpp"
+#include "frame/knobs.hpp"
+#include "frame/renderer.hpp"
 #include "engine/scene/scene_loader.hpp"
 
 namespace lp::app {

@@ -17,7 +17,7 @@
 #include "engine/core/log.hpp"
 #include "engine/gl/context.hpp"
 #include "engine/io/image_io.hpp"
-#include "engine/render/renderer.hpp"
+#include "frame/renderer.hpp"
 #include "engine/scene/scene_loader.hpp"
 
 namespace lp::app {

@@ -10,7 +10,7 @@
 
 #include "engine/gl/context.hpp"
 #include "engine/gl/shader_reload.hpp"
-#include "engine/render/renderer.hpp"
+#include "frame/renderer.hpp"
 #include "engine/scene/scene.hpp"
 
 namespace lp::app {

@@ -4,7 +4,20 @@
 #include "engine/core/log.hpp"
 #include "engine/gl/gl.hpp"
 
+#ifdef LIGHTPASS_HAVE_CUDA
+#include "cuda/post_cuda.hpp"
+#else
+namespace lp::cuda {
+class PostInterop {};  // never made without CUDA; complete so unique_ptr can delete it
+}  // namespace lp::cuda
+#endif
+
 namespace lp {
+
+PostBackend::PostBackend() = default;
+PostBackend::~PostBackend() = default;
+PostBackend::PostBackend(PostBackend&&) noexcept = default;
+PostBackend& PostBackend::operator=(PostBackend&&) noexcept = default;
 
 std::string PostBackend::cudaProblem() {
 #ifndef LIGHTPASS_HAVE_CUDA

@@ -7,13 +7,18 @@
 
 #include "engine/render/settings.hpp"
 
-#ifdef LIGHTPASS_HAVE_CUDA
-#include "cuda/post_cuda.hpp"
-#endif
-
 namespace lp {
 
+namespace cuda {
+class PostInterop;  // cuda/post_cuda.hpp, included by the .cpp files that call it
+}
+
 struct PostBackend {
+    PostBackend();
+    ~PostBackend();
+    PostBackend(PostBackend&&) noexcept;
+    PostBackend& operator=(PostBackend&&) noexcept;
+
     // Whether CUDA runs the post effects for `requested`. `cuda` with no usable device throws
     // lp::Error("--post-backend cuda: <why>"); `auto` falls back to GLSL.
     bool useCuda(PostSettings::Backend requested);
@@ -24,9 +29,7 @@ struct PostBackend {
 
     unsigned long frameIndex = 0;  // counts built frames (addPostPasses)
 
-#ifdef LIGHTPASS_HAVE_CUDA
-    std::unique_ptr<cuda::PostInterop> interop;  // made when CUDA is first chosen
-#endif
+    std::unique_ptr<cuda::PostInterop> interop;  // made when CUDA is first chosen (never without CUDA)
 
 private:
     bool resolved_ = false;

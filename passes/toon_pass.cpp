@@ -5,6 +5,10 @@
 #include "engine/gl/shader.hpp"
 #include "engine/gl/state.hpp"
 
+#ifdef LIGHTPASS_HAVE_CUDA
+#include "cuda/post_cuda.hpp"
+#endif
+
 namespace lp {
 
 namespace {

@@ -4,7 +4,7 @@
 
 #include "engine/core/error.hpp"
 #include "engine/graph/texture_pool.hpp"
-#include "engine/render/renderer.hpp"
+#include "frame/renderer.hpp"
 #include "engine/scene/scene_loader.hpp"
 #include "tests/gl/gl_fixture.hpp"
 

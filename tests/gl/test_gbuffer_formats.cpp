@@ -13,7 +13,7 @@
 
 #include "engine/gl/handles.hpp"
 #include "engine/gl/state.hpp"
-#include "engine/render/renderer.hpp"
+#include "frame/renderer.hpp"
 #include "engine/scene/primitives.hpp"
 #include "tests/gl/gl_fixture.hpp"
 

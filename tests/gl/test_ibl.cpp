@@ -13,7 +13,7 @@
 
 #include "engine/render/ibl_environment.hpp"
 #include "engine/render/ibl_sh.hpp"
-#include "engine/render/renderer.hpp"
+#include "frame/renderer.hpp"
 #include "engine/scene/primitives.hpp"
 #include "tests/gl/gl_fixture.hpp"
 

@@ -10,7 +10,7 @@
 
 #include "engine/gl/shader.hpp"
 #include "engine/graph/texture_pool.hpp"
-#include "engine/render/frame_builder.hpp"
+#include "frame/frame_builder.hpp"
 #include "engine/render/local_lights.hpp"
 #include "engine/render/scene_gpu.hpp"
 #include "engine/scene/primitives.hpp"

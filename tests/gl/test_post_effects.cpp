@@ -10,7 +10,7 @@
 #include "engine/gl/shader.hpp"
 #include "engine/post/post_math.hpp"
 #include "engine/post/post_reference.hpp"
-#include "engine/render/renderer.hpp"
+#include "frame/renderer.hpp"
 #include "engine/scene/primitives.hpp"
 #include "passes/bloom_pass.hpp"
 #include "passes/toon_pass.hpp"

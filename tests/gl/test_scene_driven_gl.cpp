@@ -6,7 +6,7 @@
 #include <cmath>
 #include <string>
 
-#include "engine/render/renderer.hpp"
+#include "frame/renderer.hpp"
 #include "engine/scene/scene_loader.hpp"
 #include "gl_fixture.hpp"
 

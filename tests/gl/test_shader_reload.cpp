@@ -9,7 +9,7 @@
 #include <sstream>
 
 #include "engine/gl/shader_reload.hpp"
-#include "engine/render/renderer.hpp"
+#include "frame/renderer.hpp"
 #include "engine/scene/scene_loader.hpp"
 #include "tests/gl/gl_fixture.hpp"
 

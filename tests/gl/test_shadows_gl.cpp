@@ -6,7 +6,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "engine/render/renderer.hpp"
+#include "frame/renderer.hpp"
 #include "engine/render/shadows.hpp"
 #include "engine/scene/primitives.hpp"
 #include "engine/scene/scene_loader.hpp"

@@ -18,7 +18,7 @@
 #include "engine/io/image_io.hpp"
 #include "engine/io/obj_loader.hpp"
 #include "engine/render/local_lights.hpp"
-#include "engine/render/renderer.hpp"
+#include "frame/renderer.hpp"
 #include "engine/scene/mesh_ops.hpp"
 #include "engine/scene/primitives.hpp"
 #include "tests/gl/gl_fixture.hpp"

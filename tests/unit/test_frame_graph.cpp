@@ -5,7 +5,7 @@
 
 #include "engine/core/error.hpp"
 #include "engine/graph/frame_graph.hpp"
-#include "engine/render/frame_builder.hpp"
+#include "frame/frame_builder.hpp"
 
 using namespace lp;
 using fg::FrameGraph;

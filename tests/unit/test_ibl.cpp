@@ -6,7 +6,7 @@
 #include <filesystem>
 
 #include "engine/io/image_io.hpp"
-#include "engine/render/frame_builder.hpp"
+#include "frame/frame_builder.hpp"
 #include "engine/render/ibl_sh.hpp"
 
 using namespace lp;

@@ -4,7 +4,7 @@
 
 #include <set>
 
-#include "engine/render/knobs.hpp"
+#include "frame/knobs.hpp"
 
 using namespace lp;
 

@@ -8,7 +8,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "engine/graph/frame_graph.hpp"
-#include "engine/render/frame_builder.hpp"
+#include "frame/frame_builder.hpp"
 #include "engine/render/local_lights.hpp"
 
 using namespace lp;

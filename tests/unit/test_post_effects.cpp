@@ -9,7 +9,7 @@
 #include "engine/post/post_config.hpp"
 #include "engine/post/post_math.hpp"
 #include "engine/post/post_reference.hpp"
-#include "engine/render/frame_builder.hpp"
+#include "frame/frame_builder.hpp"
 
 using namespace lp;
 

@@ -14,7 +14,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "engine/graph/frame_graph.hpp"
-#include "engine/render/frame_builder.hpp"
+#include "frame/frame_builder.hpp"
 #include "engine/scene/scene_loader.hpp"
 
 using namespace lp;

@@ -8,7 +8,7 @@
 
 #include "engine/core/error.hpp"
 #include "engine/graph/frame_graph.hpp"
-#include "engine/render/frame_builder.hpp"
+#include "frame/frame_builder.hpp"
 #include "engine/render/shadows.hpp"
 
 using namespace lp;

@@ -1,4 +1,4 @@
-#include "engine/render/renderer.hpp"
+#include "frame/renderer.hpp"
 
 #include <string>
 

@@ -1,4 +1,4 @@
-#include "engine/render/knobs.hpp"
+#include "frame/knobs.hpp"
 
 #include <algorithm>
 #include <cstdio>

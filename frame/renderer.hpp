@@ -7,7 +7,7 @@
 #include "engine/gl/shader.hpp"
 #include "engine/graph/texture_pool.hpp"
 #include "engine/io/image_io.hpp"
-#include "engine/render/frame_builder.hpp"
+#include "frame/frame_builder.hpp"
 #include "engine/render/scene_gpu.hpp"
 
 namespace lp {

@@ -1,4 +1,4 @@
-#include "engine/render/frame_builder.hpp"
+#include "frame/frame_builder.hpp"
 
 #include <algorithm>
 #include <cmath>
