@@ -153,10 +153,10 @@ int runBench(const Options& o, const std::vector<std::string>& args) {
             run["passes"][name]["median_ms"] = timers.median(name);
             const size_t bytes = renderer.graph().passTrafficBytes(name);
             if (o.floors && bytes > 0) {
-                const bool raster = name == "gbuffer" || name == "shadow_map" || name.rfind("shadow_map_", 0) == 0;
+                const fg::PassKind kind = renderer.graph().passKind(name);  // what the pass declared
                 run["passes"][name]["bytes"] = bytes;
-                run["passes"][name]["floor_ms"] = double(bytes) / (raster ? fragment.bytesPerSecond : compute.bytesPerSecond) * 1e3;
-                run["passes"][name]["floor_basis"] = raster ? "fragment fill" : "compute copy";
+                run["passes"][name]["floor_ms"] = passFloorMs(kind, bytes, compute, fragment);
+                run["passes"][name]["floor_basis"] = floorBasis(kind);
             }
         }
         j["runs"].push_back(run);

@@ -110,13 +110,12 @@ int commandRender(const Options& o) {
         j["passes"][name] = {{"median_ms", timers.median(name)}, {"min_ms", lo}, {"max_ms", hi}, {"samples", s.size()}};
         const size_t bytes = renderer.graph().passTrafficBytes(name);
         if (o.floors && bytes > 0) {
-            // The G-buffer is raster work: its floor is what it writes at the fragment fill rate.
-            const bool raster = name == "gbuffer";
-            const double floorMs = double(bytes) / (raster ? fragment.bytesPerSecond : compute.bytesPerSecond) * 1e3;
+            const fg::PassKind kind = renderer.graph().passKind(name);  // what the pass declared
+            const double floorMs = passFloorMs(kind, bytes, compute, fragment);
             std::printf(" %11.4f %10.1fx", floorMs, timers.median(name) / floorMs);
             j["passes"][name]["bytes"] = bytes;
             j["passes"][name]["floor_ms"] = floorMs;
-            j["passes"][name]["floor_basis"] = raster ? "fragment fill" : "compute copy";
+            j["passes"][name]["floor_basis"] = floorBasis(kind);
         }
         std::printf("\n");
     }

@@ -39,7 +39,9 @@ std::string localLightSkipReason(const FrameData& frame) {
 }
 }  // namespace
 
-FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const FrameData& frame) {
+FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const FrameData& frameIn) {
+    FrameData frame = frameIn;
+    frame.environments = &passes.environments;
     const RenderSettings& s = *frame.settings;
     const Scene& scene = *frame.scene;
     const bool channelView = s.view != DebugView::Final && s.view != DebugView::Lighting &&
@@ -57,33 +59,33 @@ FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const Fr
     // The environment's cubes are made (and, for IBL, baked) in the frame where they changed.
     const bool environmentView = isEnvironmentView(s.view);  // shows the cubes or the LUT themselves
     const bool bake = iblAdded || environmentView;
+    EnvironmentTextures environment;  // imported only when something samples it
     if (environmentView || (!channelView && (iblAdded || (skyAdded && hasMap)))) {
-        if (!passes.ibl.environments.ready(scene, s.environment, bake)) addIblBakePass(graph, passes.ibl, frame, bake);
+        environment = importEnvironment(graph, frame, bake);
+        if (!passes.environments.ready(scene, s.environment, bake)) environment = addIblBakePass(graph, frame, environment, bake);
         else graph.skipPass("ibl_bake", "environment unchanged since its bake (cached)");
     } else {
         graph.skipPass("ibl_bake", hasMap ? "nothing in this view samples the environment" : "scene has no environment map");
     }
     GBuffer gbuffer = addGBufferPass(graph, passes.gbuffer, frame, channelsForView(s.view));
     // one depth pass per shadow-casting directional light; global_lights and the shadowmap view read them.
-    passes.globalLights.shadowMaps = addShadowMapPasses(graph, passes.shadowMaps, frame);
-    passes.debugView.shadowMaps = &passes.globalLights.shadowMaps;
-    fg::ResourceId hdr = addGlobalLightPass(graph, passes.globalLights, frame, gbuffer, lightingView);
-    passes.sky.environments = &passes.ibl.environments;  // the sky and environment views read it
-    passes.debugView.ibl = &passes.ibl;
-    if (iblAdded) hdr = addIblPass(graph, passes.ibl, frame, gbuffer, hdr, lightingView);
+    const ShadowMaps shadowMaps = addShadowMapPasses(graph, passes.shadowMaps, frame);
+    fg::ResourceId hdr = addGlobalLightPass(graph, passes.globalLights, frame, gbuffer, shadowMaps, lightingView);
+    if (iblAdded) hdr = addIblPass(graph, passes.ibl, frame, gbuffer, environment, hdr, lightingView);
     else graph.skipPass("ibl", hasMap ? "IBL is off (environment.ibl false, no --ibl)" : "scene has no environment map");
     if (localSkip.empty()) hdr = addLocalLightPass(graph, passes.localLights, frame, gbuffer, hdr, lightingView);
     else graph.skipPass("local_lights", localSkip);
-    if (skyAdded) hdr = addSkyPass(graph, passes.sky, frame, gbuffer.depth, hdr);
+    if (skyAdded) hdr = addSkyPass(graph, passes.sky, frame, gbuffer.depth, hasMap ? environment.cube : fg::ResourceId{}, hdr);
     else graph.skipPass("sky", lightingView ? "the lighting view shows light alone" : "scene has no environment (black, no map)");
     // globes and the light-ranges / lights-per-tile overlays, over the sky too.
-    if (!lightingView && localSkip.empty()) hdr = addLocalLightOverlayPasses(graph, passes.localLights, frame, gbuffer, hdr);
+    if (!lightingView && localSkip.empty() && localLightCount(scene, s.localLights) > 0)
+        hdr = addLocalLightOverlayPasses(graph, passes.localLights, frame, gbuffer, hdr);
     hdr = addPostPasses(graph, passes.post, frame, gbuffer, hdr);  // bloom, toon (not in the lighting view)
     if (scaled) hdr = addUpscalePass(graph, passes.upscale, frame, hdr, UpscaleInput::Hdr);
     else graph.skipPass("upscale", "render scale 1: the frame is rendered at the output size");
     fg::ResourceId display = addToneMapPass(graph, passes.tonemap, frame, hdr);
     if (channelView) {
-        display = addDebugViewPass(graph, passes.debugView, frame, gbuffer, s.view);
+        display = addDebugViewPass(graph, passes.debugView, frame, gbuffer, shadowMaps, environment, s.view);
         if (scaled) display = addUpscalePass(graph, passes.upscale, frame, display, UpscaleInput::DebugView);
     }
 

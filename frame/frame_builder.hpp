@@ -11,6 +11,7 @@
 #include "passes/gbuffer_pass.hpp"
 #include "passes/post_pass.hpp"
 #include "passes/global_light_pass.hpp"
+#include "passes/ibl_pass.hpp"
 #include "passes/local_light_pass.hpp"
 #include "passes/sky_pass.hpp"
 #include "passes/tonemap_pass.hpp"
@@ -18,7 +19,8 @@
 
 namespace lp {
 
-// GL state of every pass (programs, framebuffers), made lazily on first execute.
+// GL state of every pass (programs, framebuffers), made lazily on first execute; and the textures
+// that outlive a frame, which each frame's graph imports.
 struct PassStates {
     GBufferPass gbuffer;
     GlobalLightPass globalLights;
@@ -26,10 +28,13 @@ struct PassStates {
     ToneMapPass tonemap;
     DebugViewPass debugView;
     ShadowMapPass shadowMaps;  // the depth-only program and framebuffer
-    IblPass ibl;  // environment cache (cubes, bakes, DFG LUT) and the IBL programs
+    IblPass ibl;
     LocalLightPass localLights;
     PostPasses post;
     UpscalePass upscale;
+    // Environment cubes, IBL bakes and the DFG LUT, kept across frames; imported into the graph
+    // (written there by ibl_bake in the frame where they change).
+    EnvironmentCache environments;
 };
 
 struct FrameOutputs {
@@ -39,6 +44,7 @@ struct FrameOutputs {
 
 // The one entry point: frame.scene and frame.settings decide the passes. After graph.compile(),
 // graph.explain() lists every candidate pass as "runs" or "skipped: <reason>".
+// frame.environments is set to &passes.environments here.
 FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const FrameData& frame);
 
 // Whether a world-space sphere reaches into the frustum of `viewProjection` (its six planes, after

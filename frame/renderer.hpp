@@ -24,9 +24,9 @@ public:
     gl::GpuTimerRing& timers() { return timers_; }
     const fg::TexturePool& pool() const { return pool_; }
     // GPU bytes of the textures that outlive a frame outside the pool: environment cubes, IBL bakes, DFG LUT.
-    size_t persistentTextureBytes() const { return passes_.ibl.environments.gpuBytes(); }
-    // The environment cubes and IBL bakes (owned by the IBL pass), e.g. to time a fresh bake.
-    EnvironmentCache& environments() { return passes_.ibl.environments; }
+    size_t persistentTextureBytes() const { return passes_.environments.gpuBytes(); }
+    // The environment cubes and IBL bakes (imported into each frame's graph), e.g. to time a fresh bake.
+    EnvironmentCache& environments() { return passes_.environments; }
     const SceneGpu& sceneGpu() const { return *gpu_; }
     const gl::ShaderLibrary& shaders() const { return shaders_; }
     // Drops every pass's programs and GPU state so the next frame rebuilds them from the current

@@ -1,7 +1,5 @@
 #include "passes/bloom_pass.hpp"
 
-#include <algorithm>
-
 #include "engine/gl/gpu_timer.hpp"
 #include "engine/gl/shader.hpp"
 #include "engine/gl/state.hpp"
@@ -16,36 +14,18 @@ namespace {
 
 struct Data {
     fg::ResourceId hdr, bloom;
+    fg::ResourceId bright, blurH, mips;  // the GLSL path's scratch
 };
 
 void uniform1f(GLuint prog, const char* name, float v) { glProgramUniform1f(prog, glGetUniformLocation(prog, name), v); }
 void uniform1i(GLuint prog, const char* name, int v) { glProgramUniform1i(prog, glGetUniformLocation(prog, name), v); }
 
-void ensureTexture(gl::Texture& t, int width, int height, int levels, const char* name) {
-    if (t && t.width == width && t.height == height && t.levels == levels) return;
-    t = gl::makeTexture2D(GL_RGBA16F, width, height, levels, name);
-    // texelFetch of levels > 0 needs a mipmapped minification filter to be defined.
-    if (levels > 1) glTextureParameteri(t.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
-}
-
+// One step of the chain; the next step reads what this one stored (a barrier within the pass).
 void dispatch(GLuint prog, int width, int height) {
     glUseProgram(prog);
     gl::dispatch2D(width, height);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 }
-
-#ifdef LIGHTPASS_HAVE_CUDA
-// CUDA fuses the composite into the bloom pass (one GL<->CUDA map fewer) only when that cannot be
-// seen: bloom_composite runs, and runs right after bloom, so no pass reads the HDR buffer between.
-bool compositeRunsRightAfterBloom(const fg::FrameGraph& graph) {
-    const std::vector<std::string> order = graph.executionOrder();
-    const auto it = std::find(order.begin(), order.end(), "bloom");
-    if (it == order.end() || it + 1 == order.end() || *(it + 1) != "bloom_composite") return false;
-    for (const fg::PassDecision& d : graph.explain())
-        if (d.name == "bloom_composite") return d.runs;
-    return false;
-}
-#endif
 
 void unbind() {
     glUseProgram(0);
@@ -53,10 +33,9 @@ void unbind() {
     glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
 }
 
-
-// The separable blur as two full-screen triangles (scratchA -> scratchB -> bloom); same taps.
-void blurWithFragments(BloomPass& st, const gl::ShaderLibrary& shaders, const std::vector<float>& w, GLuint bloom,
-                       int width, int height) {
+// The separable blur as two full-screen triangles (bright -> blurH -> bloom); same taps.
+void blurWithFragments(BloomPass& st, const gl::ShaderLibrary& shaders, const BloomScratch& scratch,
+                       const std::vector<float>& w, GLuint bloom, int width, int height) {
     if (!st.blurFragment) st.blurFragment = shaders.graphics("fullscreen.vert", "bloom_blur.frag");
     if (!st.fbo) st.fbo = gl::makeFramebuffer("bloom.blur_fragment");
     if (!st.vao) st.vao = gl::makeVertexArray("bloom.blur_fragment");
@@ -68,7 +47,7 @@ void blurWithFragments(BloomPass& st, const gl::ShaderLibrary& shaders, const st
     gl::ScopedEnable blend(GL_BLEND, false);
     glUseProgram(prog);
     glBindVertexArray(st.vao.id());
-    const GLuint sources[2] = {st.scratchA.id(), st.scratchB.id()}, targets[2] = {st.scratchB.id(), bloom};
+    const GLuint sources[2] = {scratch.bright, scratch.blurH}, targets[2] = {scratch.blurH, bloom};
     for (int pass = 0; pass < 2; ++pass) {
         glNamedFramebufferTexture(st.fbo.id(), GL_COLOR_ATTACHMENT0, targets[pass], 0);
         glProgramUniform2i(prog, glGetUniformLocation(prog, "uDirection"), pass == 0, pass == 1);
@@ -82,24 +61,34 @@ void blurWithFragments(BloomPass& st, const gl::ShaderLibrary& shaders, const st
 
 }  // namespace
 
-void runBloomGlsl(BloomPass& st, const gl::ShaderLibrary& shaders, GLuint hdr, GLuint bloom, int width, int height,
-                  const post::BloomParams& p) {
+BloomScratchDescs bloomScratchDescs(const post::BloomParams& p, int width, int height) {
+    BloomScratchDescs d;
+    if (p.method == post::BloomMethod::Separable) {
+        d.bright = {width, height, GL_RGBA16F};
+        d.blurH = {width, height, GL_RGBA16F};
+    } else {
+        d.mips = {post::mipSize(width, 0), post::mipSize(height, 0), GL_RGBA16F,
+                  post::mipLevelCount(p.kernel, width, height)};
+    }
+    return d;
+}
+
+void runBloomGlsl(BloomPass& st, const gl::ShaderLibrary& shaders, const BloomScratch& scratch, GLuint hdr,
+                  GLuint bloom, int width, int height, const post::BloomParams& p) {
     if (p.method == post::BloomMethod::Separable) {
         if (!st.bright) st.bright = shaders.compute("bloom_bright.comp");
         if (!st.blur) st.blur = shaders.compute("bloom_blur.comp");
-        ensureTexture(st.scratchA, width, height, 1, "bloom.bright");
-        ensureTexture(st.scratchB, width, height, 1, "bloom.blur_h");
         GLuint prog = st.bright.id();
         uniform1f(prog, "uThreshold", p.threshold);
         uniform1f(prog, "uKnee", p.knee);
         uniform1f(prog, "uHighlight", p.highlight);
         glBindTextureUnit(0, hdr);
-        glBindImageTexture(0, st.scratchA.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+        glBindImageTexture(0, scratch.bright, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
         dispatch(prog, width, height);
 
         const std::vector<float> w = post::gaussianWeights(p.kernel);
         if (p.fragmentBlur) {
-            blurWithFragments(st, shaders, w, bloom, width, height);
+            blurWithFragments(st, shaders, scratch, w, bloom, width, height);
             return;
         }
         prog = st.blur.id();
@@ -107,20 +96,23 @@ void runBloomGlsl(BloomPass& st, const gl::ShaderLibrary& shaders, GLuint hdr, G
         uniform1i(prog, "uRadius", int(w.size()) - 1);
         const GLint dir = glGetUniformLocation(prog, "uDirection");
         glProgramUniform2i(prog, dir, 1, 0);
-        glBindTextureUnit(0, st.scratchA.id());
-        glBindImageTexture(0, st.scratchB.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+        glBindTextureUnit(0, scratch.bright);
+        glBindImageTexture(0, scratch.blurH, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
         dispatch(prog, width, height);
         glProgramUniform2i(prog, dir, 0, 1);
-        glBindTextureUnit(0, st.scratchB.id());
+        glBindTextureUnit(0, scratch.blurH);
         glBindImageTexture(0, bloom, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-        dispatch(prog, width, height);
+        glUseProgram(prog);
+        gl::dispatch2D(width, height);  // the last step: the graph orders what reads `bloom`
         unbind();
         return;
     }
     if (!st.down) st.down = shaders.compute("bloom_down.comp");
     if (!st.up) st.up = shaders.compute("bloom_up.comp");
     const int levels = post::mipLevelCount(p.kernel, width, height);
-    ensureTexture(st.mips, post::mipSize(width, 0), post::mipSize(height, 0), levels, "bloom.mips");
+    // texelFetch of levels > 0 needs a mipmapped minification filter to be defined; nearest keeps
+    // every tap exact (the pool hands the texture over with the default linear filter).
+    glTextureParameteri(scratch.mips, GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
     GLuint prog = st.down.id();
     uniform1f(prog, "uThreshold", p.threshold);
     uniform1f(prog, "uKnee", p.knee);
@@ -129,24 +121,25 @@ void runBloomGlsl(BloomPass& st, const gl::ShaderLibrary& shaders, GLuint hdr, G
     for (int l = 0; l < levels; ++l) {
         uniform1i(prog, "uFirst", l == 0);
         uniform1i(prog, "uSourceLevel", l == 0 ? 0 : l - 1);
-        glBindTextureUnit(0, l == 0 ? hdr : st.mips.id());
-        glBindImageTexture(0, st.mips.id(), l, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+        glBindTextureUnit(0, l == 0 ? hdr : scratch.mips);
+        glBindImageTexture(0, scratch.mips, l, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
         dispatch(prog, post::mipSize(width, l), post::mipSize(height, l));
     }
     prog = st.up.id();
-    glBindTextureUnit(0, st.mips.id());
+    glBindTextureUnit(0, scratch.mips);
     for (int l = levels - 2; l >= 0; --l) {
         uniform1i(prog, "uCoarseLevel", l + 1);
         uniform1i(prog, "uAddFine", 1);
         uniform1f(prog, "uScale", 1.0f);
-        glBindImageTexture(0, st.mips.id(), l, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
+        glBindImageTexture(0, scratch.mips, l, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
         dispatch(prog, post::mipSize(width, l), post::mipSize(height, l));
     }
     uniform1i(prog, "uCoarseLevel", 0);
     uniform1i(prog, "uAddFine", 0);
     uniform1f(prog, "uScale", 1.0f / float(levels));
     glBindImageTexture(0, bloom, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
-    dispatch(prog, width, height);
+    glUseProgram(prog);
+    gl::dispatch2D(width, height);  // the last step: the graph orders what reads `bloom`
     unbind();
 }
 
@@ -157,54 +150,87 @@ void runBloomCompositeGlsl(BloomPass& st, const gl::ShaderLibrary& shaders, GLui
     uniform1f(prog, "uStrength", strength);
     glBindTextureUnit(0, bloom);
     glBindImageTexture(0, hdr, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
-    dispatch(prog, width, height);
+    glUseProgram(prog);
+    gl::dispatch2D(width, height);
     unbind();
 }
 
-BloomResult addBloomPass(fg::FrameGraph& graph, BloomPass& state, PostBackend& backend, const FrameData& frame,
-                         const post::PostConfig& config, fg::ResourceId hdr) {
+BloomResult addBloomPass(fg::FrameGraph& graph, BloomPass& state, PostBackend& backend, bool cuda, bool fuse,
+                         const FrameData& frame, const post::PostConfig& config, fg::ResourceId hdr) {
     const post::BloomParams params = config.bloomParams;
-    const PostSettings::Backend requested = config.backend;
-    const Data& made = graph.addPass<Data>(
-        "bloom",
-        [&](fg::PassBuilder& b, Data& data) {
-            data.hdr = b.read(hdr);
-            data.bloom = b.create("bloom", {frame.width, frame.height, GL_RGBA16F});
-        },
-        [&graph, &state, &backend, frame, params, requested, frameIndex = backend.frameIndex](
-            const Data& data, const fg::PassResources& res) {
-            const GLuint hdrTex = res.texture(data.hdr), bloomTex = res.texture(data.bloom);
-            if (backend.useCuda(requested)) {
+    const unsigned long frameIndex = backend.frameIndex;
+    const fg::TextureDesc bloomDesc{frame.width, frame.height, GL_RGBA16F};
+    fuse = fuse && cuda;
+    const Data* made = nullptr;
+    if (cuda) {
+        made = &graph.addPass<Data>(
+            "bloom", fg::PassKind::Cuda,
+            [&](fg::PassBuilder& b, Data& data) {
+                if (fuse) data.hdr = b.write(hdr, fg::Usage::Cuda);
+                else data.hdr = b.read(hdr, fg::Usage::Cuda);
+                data.bloom = b.create("bloom", bloomDesc, fg::Usage::Cuda);
+            },
+            [&backend, frame, params, fuse, frameIndex](const Data& data, const fg::PassResources& res) {
                 backend.beginFrame(frameIndex);
 #ifdef LIGHTPASS_HAVE_CUDA
-                const bool fuse = compositeRunsRightAfterBloom(graph);
+                const GLuint hdrTex = res.texture(data.hdr), bloomTex = res.texture(data.bloom);
                 cuda::PostTiming t =
                     fuse ? backend.interop->bloomComposite(hdrTex, bloomTex, frame.width, frame.height, params)
                          : backend.interop->bloom(hdrTex, bloomTex, frame.width, frame.height, params);
-                if (fuse) state.cudaCompositedFrame = frameIndex;
                 if (res.timers()) {
                     res.timers()->addExternal("bloom (cuda kernels)", t.kernelMs);
                     res.timers()->addExternal("bloom (cuda interop)", t.interopMs);
                 }
+#else
+                (void)data, (void)res, (void)frame, (void)params, (void)fuse;
 #endif
-                return;
-            }
-            runBloomGlsl(state, *frame.shaders, hdrTex, bloomTex, frame.width, frame.height, params);
-        });
+            });
+        if (fuse) {
+            graph.skipPass("bloom_composite", "fused into the CUDA bloom pass");
+            return {made->hdr, made->bloom};
+        }
+    } else {
+        const BloomScratchDescs scratch = bloomScratchDescs(params, frame.width, frame.height);
+        const bool separable = params.method == post::BloomMethod::Separable;
+        const bool fragmentBlur = separable && params.fragmentBlur;
+        made = &graph.addPass<Data>(
+            "bloom", fragmentBlur ? fg::PassKind::Raster : fg::PassKind::Compute,
+            [&](fg::PassBuilder& b, Data& data) {
+                data.hdr = b.read(hdr, fg::Usage::Sampled);
+                const fg::Usage blurTarget = fragmentBlur ? fg::Usage::ColorAttachment : fg::Usage::ImageStore;
+                data.bloom = b.create("bloom", bloomDesc, separable ? blurTarget : fg::Usage::ImageLoadStore);
+                // Scratch lives and dies inside this pass: the pool lends it and takes it back.
+                if (separable) {
+                    data.bright = b.create("bloom.bright", scratch.bright, fg::Usage::ImageStore);
+                    data.blurH = b.create("bloom.blur_h", scratch.blurH, blurTarget);
+                } else {
+                    data.mips = b.create("bloom.mips", scratch.mips, fg::Usage::ImageLoadStore);
+                }
+            },
+            [&state, frame, params](const Data& data, const fg::PassResources& res) {
+                BloomScratch s;
+                if (data.bright.valid()) {
+                    s.bright = res.texture(data.bright);
+                    s.blurH = res.texture(data.blurH);
+                }
+                if (data.mips.valid()) s.mips = res.texture(data.mips);
+                runBloomGlsl(state, *frame.shaders, s, res.texture(data.hdr), res.texture(data.bloom), frame.width,
+                             frame.height, params);
+            });
+    }
     const Data& composited = graph.addPass<Data>(
-        "bloom_composite",
+        "bloom_composite", cuda ? fg::PassKind::Cuda : fg::PassKind::Compute,
         [&](fg::PassBuilder& b, Data& data) {
-            data.bloom = b.read(made.bloom);
-            data.hdr = b.write(hdr);
+            const fg::Usage how = cuda ? fg::Usage::Cuda : fg::Usage::Sampled;
+            data.bloom = b.read(made->bloom, how);
+            data.hdr = b.write(hdr, cuda ? fg::Usage::Cuda : fg::Usage::ImageLoadStore);
         },
-        [&state, &backend, frame, params, requested, frameIndex = backend.frameIndex](const Data& data,
-                                                                                      const fg::PassResources& res) {
+        [&state, &backend, frame, params, cuda, frameIndex](const Data& data, const fg::PassResources& res) {
             const GLuint hdrTex = res.texture(data.hdr), bloomTex = res.texture(data.bloom);
-            if (backend.useCuda(requested)) {
-                if (state.cudaCompositedFrame == frameIndex) return;  // done by the bloom pass
+            if (cuda) {
+                backend.beginFrame(frameIndex);
 #ifdef LIGHTPASS_HAVE_CUDA
-                cuda::PostTiming t =
-                    backend.interop->composite(hdrTex, bloomTex, frame.width, frame.height, params.strength);
+                cuda::PostTiming t = backend.interop->composite(hdrTex, bloomTex, frame.width, frame.height, params.strength);
                 if (res.timers()) {
                     res.timers()->addExternal("bloom_composite (cuda kernels)", t.kernelMs);
                     res.timers()->addExternal("bloom_composite (cuda interop)", t.interopMs);
@@ -214,7 +240,7 @@ BloomResult addBloomPass(fg::FrameGraph& graph, BloomPass& state, PostBackend& b
             }
             runBloomCompositeGlsl(state, *frame.shaders, hdrTex, bloomTex, frame.width, frame.height, params.strength);
         });
-    return {composited.hdr, made.bloom};
+    return {composited.hdr, made->bloom};
 }
 
 }  // namespace lp

@@ -1,7 +1,9 @@
 #pragma once
 // Bloom: "bloom" makes the bloom buffer from the HDR buffer (bright pass + separable Gaussian,
 // or the Jimenez mip chain), "bloom_composite" adds strength x bloom into the HDR buffer. Each runs
-// in CUDA or GLSL compute per PostBackend; the graph is the same either way.
+// in CUDA or GLSL compute per PostBackend, chosen before the graph is built. With CUDA, when the
+// composite is wanted, one fused "bloom" pass does both (one GL<->CUDA map fewer) and declares that
+// it writes the HDR buffer. The GLSL path's scratch textures are graph transients (pooled).
 #include "engine/gl/handles.hpp"
 #include "engine/graph/frame_graph.hpp"
 #include "engine/post/post_config.hpp"
@@ -12,28 +14,35 @@ namespace lp {
 
 struct BloomPass {
     gl::Program bright, blur, composite, down, up;
-    gl::Texture scratchA, scratchB;  // separable: bright pass, horizontal blur (full resolution)
-    gl::Texture mips;                // mip chain: level 0 = half resolution
     gl::Program blurFragment;        // the fragment version of the blur (bloom_blur.frag)
     gl::Framebuffer fbo;
     gl::VertexArray vao;
-    // CUDA: the frame (PostBackend::frameIndex) whose composite the bloom pass already did, fused
-    // into its last kernel; bloom_composite then has nothing left to do.
-    unsigned long cudaCompositedFrame = 0;
 };
 
 struct BloomResult {
-    fg::ResourceId hdr;    // after the composite
+    fg::ResourceId hdr;    // after the composite (unchanged when `composite` is false)
     fg::ResourceId bloom;  // the bloom buffer alone (RGBA16F, before strength)
 };
 
-BloomResult addBloomPass(fg::FrameGraph& graph, BloomPass& state, PostBackend& backend, const FrameData& frame,
-                         const post::PostConfig& config, fg::ResourceId hdr);
+// `cuda`: the post backend chose CUDA. `fuse` (CUDA only): one pass does bloom and composite;
+// otherwise bloom_composite is its own pass (culled when only the bloom buffer is shown).
+BloomResult addBloomPass(fg::FrameGraph& graph, BloomPass& state, PostBackend& backend, bool cuda, bool fuse,
+                         const FrameData& frame, const post::PostConfig& config, fg::ResourceId hdr);
+
+// The scratch textures of the GLSL path: separable uses `bright` and `blurH` (full size, RGBA16F),
+// the mip chain `mips` (bloomScratchDescs gives their sizes).
+struct BloomScratch {
+    GLuint bright = 0, blurH = 0, mips = 0;
+};
+struct BloomScratchDescs {
+    fg::TextureDesc bright, blurH, mips;  // width 0: not used by this method
+};
+BloomScratchDescs bloomScratchDescs(const post::BloomParams& p, int width, int height);
 
 // The GLSL path on plain textures (hdr: RGBA16F read; bloom: RGBA16F written), for the passes
-// and the benchmark.
-void runBloomGlsl(BloomPass& state, const gl::ShaderLibrary& shaders, GLuint hdr, GLuint bloom, int width, int height,
-                  const post::BloomParams& p);
+// and the tests. Barriers between its own dispatches only: the caller orders what comes after.
+void runBloomGlsl(BloomPass& state, const gl::ShaderLibrary& shaders, const BloomScratch& scratch, GLuint hdr,
+                  GLuint bloom, int width, int height, const post::BloomParams& p);
 void runBloomCompositeGlsl(BloomPass& state, const gl::ShaderLibrary& shaders, GLuint hdr, GLuint bloom, int width,
                            int height, float strength);
 

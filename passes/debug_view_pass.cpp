@@ -1,5 +1,7 @@
 #include "passes/debug_view_pass.hpp"
 
+#include <glm/gtc/type_ptr.hpp>
+
 #include "engine/core/error.hpp"
 #include "engine/gl/shader.hpp"
 #include "engine/gl/state.hpp"
@@ -28,6 +30,71 @@ int modeOf(DebugView v) {
     }
 }
 
+struct EnvironmentData {
+    GBuffer in;
+    EnvironmentTextures environment;
+    fg::ResourceId ldr;
+};
+
+// The environment views (ibl_debug.comp): the cube, the irradiance cube, one prefiltered mip, the
+// DFG LUT, tone-mapped into a new RGBA8 image.
+fg::ResourceId addEnvironmentViewPass(fg::FrameGraph& graph, DebugViewPass& state, const FrameData& frame,
+                                      const GBuffer& gbuffer, const EnvironmentTextures& environment, DebugView view) {
+    const int mode = view == DebugView::Environment ? 1 : view == DebugView::Irradiance ? 2
+                     : view == DebugView::Prefiltered ? 3 : 4;
+    const bool bake = mode == 2 || mode == 3;
+    const EnvironmentData& d = graph.addPass<EnvironmentData>(
+        "debug_view", fg::PassKind::Compute,
+        [&](fg::PassBuilder& b, EnvironmentData& data) {
+            data.in = gbuffer;
+            readGBuffer(b, gbuffer, false);
+            constexpr fg::Usage sampled = fg::Usage::Sampled;
+            data.environment.cube = b.read(environment.cube, sampled);
+            if (bake) {
+                data.environment.irradiance = b.read(environment.irradiance, sampled);
+                data.environment.prefiltered = b.read(environment.prefiltered, sampled);
+            }
+            data.environment.dfg = b.read(environment.dfg, sampled);
+            data.ldr = b.create("ldr.debug", {frame.width, frame.height, GL_RGBA8}, fg::Usage::ImageStore);
+        },
+        [&state, frame, mode, bake](const EnvironmentData& data, const fg::PassResources& res) {
+            const EnvironmentSettings& s = frame.settings->environment;
+            const BakedEnvironment& env = frame.environments->get(*frame.scene, s, *frame.shaders, bake);  // SH, levels
+            programForLayout(state.environmentProgram, state.environmentLayout, frame,
+                             [&](const std::vector<std::string>& defines) {
+                                 return frame.shaders->compute("ibl_debug.comp", defines);
+                             });
+            const GLuint prog = state.environmentProgram.id();
+            if (bake) glProgramUniform3fv(prog, glGetUniformLocation(prog, "uSh"), 9, glm::value_ptr(env.sh[0]));
+            const float maxMip = bake ? float(env.prefiltered.levels - 1) : 0.0f;
+            glProgramUniform1i(prog, glGetUniformLocation(prog, "uMode"), mode);
+            glProgramUniform1i(prog, glGetUniformLocation(prog, "uDiffuseFromCube"),
+                               s.diffuse == IrradianceSource::Cubemap);
+            glProgramUniformMatrix3fv(prog, glGetUniformLocation(prog, "uEyeToWorld"), 1, GL_FALSE,
+                                      glm::value_ptr(glm::transpose(glm::mat3(frame.view))));
+            glProgramUniformMatrix4fv(prog, glGetUniformLocation(prog, "uInvProjection"), 1, GL_FALSE,
+                                      glm::value_ptr(glm::inverse(frame.projection)));
+            // Without a map the environment is the plain colour, already scaled here.
+            glProgramUniform1f(prog, glGetUniformLocation(prog, "uIntensity"), frame.scene->environment.intensity);
+            glProgramUniform1f(prog, glGetUniformLocation(prog, "uMip"), std::min(float(s.debugMip), maxMip));
+            glProgramUniform1f(prog, glGetUniformLocation(prog, "uExposureEV"), frame.settings->exposureEV);
+            glProgramUniform1i(prog, glGetUniformLocation(prog, "uOperator"), int(s.toneMap));
+            gl::ScopedEnable seamless(GL_TEXTURE_CUBE_MAP_SEAMLESS, true);
+            bindGBuffer(prog, res, data.in, frame, false);
+            glBindTextureUnit(7, res.texture(data.environment.cube));
+            glBindTextureUnit(8, bake ? res.texture(data.environment.irradiance) : 0);
+            glBindTextureUnit(9, bake ? res.texture(data.environment.prefiltered) : 0);
+            glBindTextureUnit(10, res.texture(data.environment.dfg));
+            glBindImageTexture(0, res.texture(data.ldr), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
+            glUseProgram(prog);
+            gl::dispatch2D(frame.width, frame.height);
+            glUseProgram(0);
+            for (GLuint u : {0u, 1u, 3u, 4u, 7u, 8u, 9u, 10u}) glBindTextureUnit(u, 0);
+            glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
+        });
+    return d.ldr;
+}
+
 }  // namespace
 
 GBufferChannels channelsForView(DebugView view) {
@@ -37,17 +104,16 @@ GBufferChannels channelsForView(DebugView view) {
 }
 
 fg::ResourceId addDebugViewPass(fg::FrameGraph& graph, DebugViewPass& state, const FrameData& frame,
-                                const GBuffer& gbuffer, DebugView view) {
-    if (isEnvironmentView(view) && state.ibl)
-        return addIblDebugViewPass(graph, *state.ibl, frame, gbuffer, view);
+                                const GBuffer& gbuffer, const ShadowMaps& shadowMaps,
+                                const EnvironmentTextures& environment, DebugView view) {
+    if (isEnvironmentView(view)) return addEnvironmentViewPass(graph, state, frame, gbuffer, environment, view);
     const int mode = modeOf(view);
     if (mode == 0) throw Error(std::string("debug view '") + viewName(view) + "' is not a G-buffer channel");
     const LightShadowMap* shadowMap = nullptr;  // the shadowmap view's light
     if (view == DebugView::ShadowMap) {
         const int light = frame.settings->shadows.debugLight;
-        if (state.shadowMaps)
-            for (const auto& m : *state.shadowMaps)
-                if (m.light == light) shadowMap = &m;
+        for (const auto& m : shadowMaps)
+            if (m.light == light) shadowMap = &m;
         if (!shadowMap)
             throw Error("view 'shadowmap': directional light " + std::to_string(light) + " has no shadow map (" +
                         std::to_string(frame.scene->directionalLights.size()) +
@@ -55,18 +121,18 @@ fg::ResourceId addDebugViewPass(fg::FrameGraph& graph, DebugViewPass& state, con
                         std::to_string(kMaxShadowedLights) + " shadowed lights)");
     }
     const Data& d = graph.addPass<Data>(
-        std::string("debug_view"),
+        std::string("debug_view"), fg::PassKind::Compute,
         [&](fg::PassBuilder& b, Data& data) {
             if (mode == 7 || mode == 8) {
                 fg::ResourceId ch = shadowMap ? shadowMap->depth : gbuffer.texcoord;
                 if (!ch.valid())
                     throw Error(std::string("debug view '") + viewName(view) + "': the G-buffer lacks its channel");
-                data.channel = b.read(ch);
+                data.channel = b.read(ch, fg::Usage::Sampled);
             } else {
                 data.in = gbuffer;
                 readGBuffer(b, gbuffer, true);
             }
-            data.ldr = b.create("ldr.debug", {frame.width, frame.height, GL_RGBA8});
+            data.ldr = b.create("ldr.debug", {frame.width, frame.height, GL_RGBA8}, fg::Usage::ImageStore);
         },
         [&state, frame, mode, grid = shadowMap ? glm::ivec2(shadowMap->frustum.columns, shadowMap->frustum.rows)
                                                : glm::ivec2(1)](const Data& data, const fg::PassResources& res) {
@@ -84,8 +150,6 @@ fg::ResourceId addDebugViewPass(fg::FrameGraph& graph, DebugViewPass& state, con
             glBindImageTexture(0, res.texture(data.ldr), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
             glUseProgram(prog);
             gl::dispatch2D(frame.width, frame.height);
-            glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
-                            GL_TEXTURE_UPDATE_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
             glUseProgram(0);
             glBindTextureUnit(kChannelUnit, 0);
             unbindGBuffer();

@@ -1,7 +1,8 @@
 #pragma once
 // One G-buffer channel as an image (depth, normals, diffuse, position, shininess, specular,
-// texcoords), decoded from whatever layout the G-buffer has. It reads only the G-buffer, so the graph
-// culls lighting and tone mapping by itself.
+// texcoords), decoded from whatever layout the G-buffer has; or a shadow map; or an environment
+// texture (environment, irradiance, prefiltered, dfg). It reads only those, so the graph culls
+// lighting and tone mapping by itself.
 #include "engine/gl/handles.hpp"
 #include "engine/graph/frame_graph.hpp"
 #include "engine/render/frame_data.hpp"
@@ -12,15 +13,16 @@
 namespace lp {
 
 struct DebugViewPass {
-    gl::Program program;
-    GBufferSettings layout;  // the G-buffer layout `program` was compiled for
-    IblPass* ibl = nullptr;  // the environment views draw from its cache (set by the frame builder)
-    const ShadowMaps* shadowMaps = nullptr;  // this frame's maps, for the shadowmap view (set by the frame builder)
+    gl::Program program, environmentProgram;
+    GBufferSettings layout, environmentLayout;  // the G-buffer layouts the programs were compiled for
 };
 
 // Which G-buffer channels `view` needs (texcoords are only written for their view).
 GBufferChannels channelsForView(DebugView view);
+// `shadowMaps`: this frame's maps (the shadowmap view); `environment`: imported with a bake for the
+// irradiance and prefiltered views (importEnvironment), unused by the G-buffer views.
 fg::ResourceId addDebugViewPass(fg::FrameGraph& graph, DebugViewPass& state, const FrameData& frame,
-                                const GBuffer& gbuffer, DebugView view);
+                                const GBuffer& gbuffer, const ShadowMaps& shadowMaps,
+                                const EnvironmentTextures& environment, DebugView view);
 
 }  // namespace lp

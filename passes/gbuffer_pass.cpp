@@ -51,11 +51,12 @@ ScopedGBufferDepthTest::~ScopedGBufferDepthTest() {
 }
 
 void readGBuffer(fg::PassBuilder& b, const GBuffer& g, bool diffuse) {
-    b.read(g.depth);
-    b.read(g.normal);
-    if (diffuse) b.read(g.diffuse);
-    if (g.position.valid()) b.read(g.position);
-    b.read(g.specular);
+    constexpr fg::Usage sampled = fg::Usage::Sampled;  // bindGBuffer binds them to texture units
+    b.read(g.depth, sampled);
+    b.read(g.normal, sampled);
+    if (diffuse) b.read(g.diffuse, sampled);
+    if (g.position.valid()) b.read(g.position, sampled);
+    b.read(g.specular, sampled);
 }
 
 void bindGBuffer(GLuint program, const fg::PassResources& res, const GBuffer& g, const FrameData& frame, bool diffuse) {
@@ -77,15 +78,16 @@ GBuffer addGBufferPass(fg::FrameGraph& graph, GBufferPass& state, const FrameDat
     const int w = frame.width, h = frame.height;
     const GBufferSettings layout = frame.settings->gbuffer;
     return graph.addPass<GBuffer>(
-        "gbuffer",
+        "gbuffer", fg::PassKind::Raster,
         [&](fg::PassBuilder& b, GBuffer& out) {
-            out.depth = b.create("gbuffer.depth", {w, h, GL_DEPTH_COMPONENT32F});
-            out.normal = b.createIfRead("gbuffer.normal", {w, h, gbufferNormalFormat(layout.normal)});
-            out.diffuse = b.createIfRead("gbuffer.diffuse", {w, h, GL_RGBA8});
+            constexpr fg::Usage colour = fg::Usage::ColorAttachment;
+            out.depth = b.create("gbuffer.depth", {w, h, GL_DEPTH_COMPONENT32F}, fg::Usage::DepthAttachment);
+            out.normal = b.createIfRead("gbuffer.normal", {w, h, gbufferNormalFormat(layout.normal)}, colour);
+            out.diffuse = b.createIfRead("gbuffer.diffuse", {w, h, GL_RGBA8}, colour);
             if (channels.position && !positionFromDepth(layout.position))
-                out.position = b.createIfRead("gbuffer.position", {w, h, GL_RGBA32F});
-            out.specular = b.createIfRead("gbuffer.specular", {w, h, gbufferSpecularFormat(layout.normal)});
-            if (channels.texcoord) out.texcoord = b.createIfRead("gbuffer.texcoord", {w, h, GL_RG32F});
+                out.position = b.createIfRead("gbuffer.position", {w, h, GL_RGBA32F}, colour);
+            out.specular = b.createIfRead("gbuffer.specular", {w, h, gbufferSpecularFormat(layout.normal)}, colour);
+            if (channels.texcoord) out.texcoord = b.createIfRead("gbuffer.texcoord", {w, h, GL_RG32F}, colour);
         },
         [&state, frame, layout](const GBuffer& out, const fg::PassResources& res) {
             programForLayout(state.program, state.layout, frame, [&](const std::vector<std::string>& defines) {

@@ -59,15 +59,14 @@ void setShadowUniforms(GLuint prog, const FrameData& frame, const ShadowMaps& ma
 }  // namespace
 
 fg::ResourceId addGlobalLightPass(fg::FrameGraph& graph, GlobalLightPass& state, const FrameData& frame,
-                                  const GBuffer& gbuffer, bool lightingOnly) {
-    const ShadowMaps shadowMaps = state.shadowMaps;
+                                  const GBuffer& gbuffer, const ShadowMaps& shadowMaps, bool lightingOnly) {
     const Data& d = graph.addPass<Data>(
-        "global_lights",
+        "global_lights", fg::PassKind::Compute,
         [&](fg::PassBuilder& b, Data& data) {
             data.in = gbuffer;
             readGBuffer(b, gbuffer, !lightingOnly);
-            for (const auto& m : shadowMaps) data.shadowMaps.push_back(b.read(m.depth));
-            data.hdr = b.create("hdr", {frame.width, frame.height, GL_RGBA16F});
+            for (const auto& m : shadowMaps) data.shadowMaps.push_back(b.read(m.depth, fg::Usage::Sampled));
+            data.hdr = b.create("hdr", {frame.width, frame.height, GL_RGBA16F}, fg::Usage::ImageStore);
         },
         [&state, frame, lightingOnly, shadowMaps](const Data& data, const fg::PassResources& res) {
             programForLayout(state.program, state.layout, frame, [&](const std::vector<std::string>& defines) {
@@ -100,7 +99,6 @@ fg::ResourceId addGlobalLightPass(fg::FrameGraph& graph, GlobalLightPass& state,
             glBindImageTexture(0, res.texture(data.hdr), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
             glUseProgram(prog);
             gl::dispatch2D(frame.width, frame.height);
-            glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
             glUseProgram(0);
             unbindGBuffer();
             for (size_t i = 0; i < data.shadowMaps.size(); ++i) glBindTextureUnit(kShadowMapUnit + GLuint(i), 0);

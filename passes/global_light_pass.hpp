@@ -13,13 +13,11 @@ namespace lp {
 struct GlobalLightPass {
     gl::Program program;
     GBufferSettings layout;  // the G-buffer layout `program` was compiled for
-    // This frame's shadow maps (from addShadowMapPasses; the frame builder sets them before
-    // addGlobalLightPass). Lights without one are unshadowed.
-    ShadowMaps shadowMaps;
 };
 
+// `shadowMaps`: this frame's maps (addShadowMapPasses); lights without one are unshadowed.
 // `lightingOnly` (the lighting debug view) lights a white albedo and does not read the diffuse target.
 fg::ResourceId addGlobalLightPass(fg::FrameGraph& graph, GlobalLightPass& state, const FrameData& frame,
-                                  const GBuffer& gbuffer, bool lightingOnly);
+                                  const GBuffer& gbuffer, const ShadowMaps& shadowMaps, bool lightingOnly);
 
 }  // namespace lp

@@ -201,13 +201,15 @@ void drawFragmentMethod(LocalLightPass& state, const FrameData& frame, const std
 
 fg::ResourceId addLocalLightPass(fg::FrameGraph& graph, LocalLightPass& state, const FrameData& frame,
                                  const GBuffer& gbuffer, fg::ResourceId hdr, bool lightingOnly) {
-    if (localLightCount(*frame.scene, frame.settings->localLights) <= 0 && !frame.settings->allPasses) return hdr;
+    // Tiled: one compute pass adding into the HDR buffer in place. The other methods blend light
+    // geometry into it, then clamp it in place (image load/store).
+    const bool tiled = frame.settings->localLights.method == LocalLightMethod::Tiled;
     const LightData& d = graph.addPass<LightData>(
-        "local_lights",
+        "local_lights", tiled ? fg::PassKind::Compute : fg::PassKind::Raster,
         [&](fg::PassBuilder& b, LightData& data) {
             data.in = gbuffer;
             readGBuffer(b, gbuffer, !lightingOnly);
-            data.hdr = b.write(hdr);
+            data.hdr = b.write(hdr, tiled ? fg::Usage::ImageLoadStore : fg::Usage::Blend | fg::Usage::ImageLoadStore);
         },
         [&state, frame, lightingOnly](const LightData& data, const fg::PassResources& res) {
             ensureState(state, frame);
@@ -240,8 +242,6 @@ fg::ResourceId addLocalLightPass(fg::FrameGraph& graph, LocalLightPass& state, c
                 glUseProgram(state.sanitizeProgram.id());
                 gl::dispatch2D(frame.width, frame.height);
             }
-            glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
-                            GL_FRAMEBUFFER_BARRIER_BIT);
             unbindAll(state);
         });
     return d.hdr;
@@ -327,14 +327,13 @@ void drawRanges(LocalLightPass& state, const FrameData& frame, const std::vector
 fg::ResourceId addLocalLightOverlayPasses(fg::FrameGraph& graph, LocalLightPass& state, const FrameData& frame,
                                           const GBuffer& gbuffer, fg::ResourceId hdr) {
     const RenderSettings& s = *frame.settings;
-    if (localLightCount(*frame.scene, s.localLights) <= 0) return hdr;
     if (s.localLights.globes) {
         hdr = graph.addPass<OverlayData>(
-                       "light_globes",
+                       "light_globes", fg::PassKind::Raster,
                        [&](fg::PassBuilder& b, OverlayData& data) {
                            data.in = gbuffer;
-                           b.read(gbuffer.depth);
-                           data.hdr = b.write(hdr);
+                           b.read(gbuffer.depth, fg::Usage::DepthTest);
+                           data.hdr = b.write(hdr, fg::Usage::ColorAttachment);
                        },
                        [&state, frame](const OverlayData& data, const fg::PassResources& res) {
                            ensureState(state, frame);
@@ -347,8 +346,10 @@ fg::ResourceId addLocalLightOverlayPasses(fg::FrameGraph& graph, LocalLightPass&
     }
     if (s.view == DebugView::LightRanges) {
         hdr = graph.addPass<OverlayData>(
-                       "light_ranges",
-                       [&](fg::PassBuilder& b, OverlayData& data) { data.hdr = b.write(hdr); },
+                       "light_ranges", fg::PassKind::Raster,
+                       [&](fg::PassBuilder& b, OverlayData& data) {
+                           data.hdr = b.write(hdr, fg::Usage::ColorAttachment);
+                       },
                        [&state, frame](const OverlayData& data, const fg::PassResources& res) {
                            ensureState(state, frame);
                            std::vector<PointLight> lights = uploadLights(state, frame);
@@ -359,11 +360,11 @@ fg::ResourceId addLocalLightOverlayPasses(fg::FrameGraph& graph, LocalLightPass&
     }
     if (s.view == DebugView::LightsPerTile) {
         hdr = graph.addPass<OverlayData>(
-                       "lights_per_tile",
+                       "lights_per_tile", fg::PassKind::Compute,
                        [&](fg::PassBuilder& b, OverlayData& data) {
                            data.in = gbuffer;
                            readGBuffer(b, gbuffer, false);
-                           data.hdr = b.write(hdr);
+                           data.hdr = b.write(hdr, fg::Usage::ImageLoadStore);
                        },
                        [&state, frame](const OverlayData& data, const fg::PassResources& res) {
                            ensureState(state, frame);
@@ -379,7 +380,6 @@ fg::ResourceId addLocalLightOverlayPasses(fg::FrameGraph& graph, LocalLightPass&
                            glBindImageTexture(0, res.texture(data.hdr), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
                            glUseProgram(prog);
                            gl::dispatch2D(frame.width, frame.height, kTileSize);
-                           glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
                            unbindAll(state);
                        })
                   .hdr;

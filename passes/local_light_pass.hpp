@@ -34,8 +34,8 @@ struct LocalLightPass {
     LocalLightStats stats;
 };
 
-// Adds the "local_lights" pass (read-modify-write of hdr) when the scene or --light-count gives lights
-// and they are enabled; otherwise adds nothing and returns hdr.
+// Adds the "local_lights" pass (read-modify-write of hdr). Whether the frame needs it (lights on,
+// some in view) is the frame builder's decision.
 fg::ResourceId addLocalLightPass(fg::FrameGraph& graph, LocalLightPass& state, const FrameData& frame,
                                  const GBuffer& gbuffer, fg::ResourceId hdr, bool lightingOnly);
 

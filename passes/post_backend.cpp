@@ -19,6 +19,14 @@ PostBackend::~PostBackend() = default;
 PostBackend::PostBackend(PostBackend&&) noexcept = default;
 PostBackend& PostBackend::operator=(PostBackend&&) noexcept = default;
 
+bool PostBackend::compiledWithCuda() {
+#ifdef LIGHTPASS_HAVE_CUDA
+    return true;
+#else
+    return false;
+#endif
+}
+
 std::string PostBackend::cudaProblem() {
 #ifndef LIGHTPASS_HAVE_CUDA
     return "built without a CUDA toolkit";

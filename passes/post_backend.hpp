@@ -24,6 +24,7 @@ struct PostBackend {
     bool useCuda(PostSettings::Backend requested);
     // Empty when CUDA can run here (device present, GL context on NVIDIA), else why not. Needs GL.
     static std::string cudaProblem();
+    static bool compiledWithCuda();
     // Once per frame, by whichever post pass runs first (CUDA registrations age by these frames).
     void beginFrame(unsigned long frame);
 

@@ -22,4 +22,8 @@ struct PostPasses {
 fg::ResourceId addPostPasses(fg::FrameGraph& graph, PostPasses& state, const FrameData& frame, const GBuffer& gbuffer,
                              fg::ResourceId hdr);
 
+// Whether bloom and toon run in CUDA this frame: decided before their passes are added, so the
+// graph knows each pass's kind and what it touches.
+bool postRunsInCuda(PostBackend& backend, const FrameData& frame, PostSettings::Backend requested);
+
 }  // namespace lp

@@ -56,7 +56,8 @@ ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const
         const std::string name = "shadow_map_" + std::to_string(light);
         const fg::TextureDesc desc{fr.tileSize * fr.columns, fr.tileSize * fr.rows, GL_DEPTH_COMPONENT32F};
         const Data& data = graph.addPass<Data>(
-            name, [&](fg::PassBuilder& b, Data& out) { out.depth = b.create(name + ".depth", desc); },
+            name, fg::PassKind::Raster,
+            [&](fg::PassBuilder& b, Data& out) { out.depth = b.create(name + ".depth", desc, fg::Usage::DepthAttachment); },
             [&state, frame, fr](const Data& out, const fg::PassResources& res) {
                 const fg::ResourceId depth = out.depth;
                 if (!state.program) {

@@ -9,17 +9,18 @@ namespace lp {
 
 namespace {
 struct Data {
-    fg::ResourceId depth, hdr;
+    fg::ResourceId depth, cube, hdr;
 };
 }  // namespace
 
 fg::ResourceId addSkyPass(fg::FrameGraph& graph, SkyPass& state, const FrameData& frame, fg::ResourceId depth,
-                          fg::ResourceId hdr) {
+                          fg::ResourceId environmentCube, fg::ResourceId hdr) {
     const Data& d = graph.addPass<Data>(
-        "sky",
+        "sky", fg::PassKind::Compute,
         [&](fg::PassBuilder& b, Data& data) {
-            data.depth = b.read(depth);
-            data.hdr = b.write(hdr);
+            data.depth = b.read(depth, fg::Usage::Sampled);
+            if (environmentCube.valid()) data.cube = b.read(environmentCube, fg::Usage::Sampled);
+            data.hdr = b.write(hdr, fg::Usage::ImageLoadStore);
         },
         [&state, frame](const Data& data, const fg::PassResources& res) {
             // Compiled for the G-buffer layout: background is depth 1, or 0 under reversed-Z.
@@ -30,12 +31,10 @@ fg::ResourceId addSkyPass(fg::FrameGraph& graph, SkyPass& state, const FrameData
             const Environment& environment = frame.scene->environment;
             glm::vec3 c = environment.color * environment.intensity;
             glProgramUniform3fv(prog, glGetUniformLocation(prog, "uColor"), 1, glm::value_ptr(c));
-            const bool hasMap = !environment.map.empty() && state.environments;
+            const bool hasMap = !environment.map.empty() && data.cube.valid();
             glProgramUniform1i(prog, glGetUniformLocation(prog, "uHasMap"), hasMap);
             if (hasMap) {
-                const BakedEnvironment& env =
-                    state.environments->get(*frame.scene, frame.settings->environment, *frame.shaders, false);
-                glBindTextureUnit(7, env.cube.id());
+                glBindTextureUnit(7, res.texture(data.cube));
                 glProgramUniform1f(prog, glGetUniformLocation(prog, "uIntensity"), environment.intensity);
                 glm::mat4 invProjection = glm::inverse(frame.projection);
                 glm::mat3 eyeToWorld = glm::transpose(glm::mat3(frame.view));
@@ -49,7 +48,6 @@ fg::ResourceId addSkyPass(fg::FrameGraph& graph, SkyPass& state, const FrameData
             glBindImageTexture(0, res.texture(data.hdr), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
             glUseProgram(prog);
             gl::dispatch2D(frame.width, frame.height);
-            glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
             glUseProgram(0);
             glBindTextureUnit(0, 0);
             glBindTextureUnit(7, 0);

@@ -5,7 +5,6 @@
 #include "engine/gl/handles.hpp"
 #include "engine/graph/frame_graph.hpp"
 #include "engine/render/frame_data.hpp"
-#include "engine/render/ibl_environment.hpp"
 #include "passes/gbuffer_pass.hpp"
 
 namespace lp {
@@ -13,10 +12,10 @@ namespace lp {
 struct SkyPass {
     gl::Program program;
     GBufferSettings layout;  // the G-buffer layout (depth convention) `program` was compiled for
-    EnvironmentCache* environments = nullptr;  // set by the frame builder (the IBL pass owns it)
 };
 
+// `environmentCube`: the environment (importEnvironment / addIblBakePass); invalid without a map.
 fg::ResourceId addSkyPass(fg::FrameGraph& graph, SkyPass& state, const FrameData& frame, fg::ResourceId depth,
-                          fg::ResourceId hdr);
+                          fg::ResourceId environmentCube, fg::ResourceId hdr);
 
 }  // namespace lp

@@ -13,10 +13,10 @@ struct Data {
 
 fg::ResourceId addToneMapPass(fg::FrameGraph& graph, ToneMapPass& state, const FrameData& frame, fg::ResourceId hdr) {
     const Data& d = graph.addPass<Data>(
-        "tonemap",
+        "tonemap", fg::PassKind::Compute,
         [&](fg::PassBuilder& b, Data& data) {
-            data.hdr = b.read(hdr);
-            data.ldr = b.create("ldr.final", {frame.outputWidth, frame.outputHeight, GL_RGBA8});
+            data.hdr = b.read(hdr, fg::Usage::Sampled);
+            data.ldr = b.create("ldr.final", {frame.outputWidth, frame.outputHeight, GL_RGBA8}, fg::Usage::ImageStore);
         },
         [&state, frame](const Data& data, const fg::PassResources& res) {
             if (!state.program) state.program = frame.shaders->compute("tonemap.comp");

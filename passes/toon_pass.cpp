@@ -37,37 +37,38 @@ void runToonGlsl(ToonPass& state, const gl::ShaderLibrary& shaders, GLuint hdr, 
     glBindImageTexture(0, hdr, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
     glUseProgram(prog);
     gl::dispatch2D(width, height);
-    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     glUseProgram(0);
     for (GLuint u : {0u, 1u, 3u}) glBindTextureUnit(u, 0);
     glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
 }
 
-fg::ResourceId addToonPass(fg::FrameGraph& graph, ToonPass& state, PostBackend& backend, const FrameData& frame,
-                           const post::PostConfig& config, const GBuffer& gbuffer, fg::ResourceId hdr) {
+fg::ResourceId addToonPass(fg::FrameGraph& graph, ToonPass& state, PostBackend& backend, bool cuda,
+                           const FrameData& frame, const post::PostConfig& config, const GBuffer& gbuffer,
+                           fg::ResourceId hdr) {
     const post::ToonParams params = config.toonParams;
-    const PostSettings::Backend requested = config.backend;
+    const bool defaultLayout = frame.settings->gbuffer == GBufferSettings{};  // what the CUDA kernel reads
+    if (cuda && !defaultLayout && !state.toldGlslForLayout) {
+        logInfo("toon: the CUDA kernel reads the unpacked, stored G-buffer; --gbuffer " +
+                std::string(gbufferFormatName(frame.settings->gbuffer.normal)) + " --gbuffer-position " +
+                gbufferPositionName(frame.settings->gbuffer.position) + " runs the GLSL toon");
+        state.toldGlslForLayout = true;
+    }
+    const bool useCuda = cuda && defaultLayout;
     const Data& d = graph.addPass<Data>(
-        "toon",
+        "toon", useCuda ? fg::PassKind::Cuda : fg::PassKind::Compute,
         [&](fg::PassBuilder& b, Data& data) {
+            const fg::Usage how = useCuda ? fg::Usage::Cuda : fg::Usage::Sampled;
             data.in = gbuffer;
-            b.read(gbuffer.depth);
-            b.read(gbuffer.normal);
-            if (gbuffer.position.valid()) b.read(gbuffer.position);
-            data.hdr = b.write(hdr);
+            b.read(gbuffer.depth, how);
+            b.read(gbuffer.normal, how);
+            if (gbuffer.position.valid()) b.read(gbuffer.position, how);
+            data.hdr = b.write(hdr, useCuda ? fg::Usage::Cuda : fg::Usage::ImageLoadStore);
         },
-        [&state, &backend, frame, params, requested, frameIndex = backend.frameIndex](const Data& data,
-                                                                                      const fg::PassResources& res) {
+        [&state, &backend, frame, params, useCuda, frameIndex = backend.frameIndex](const Data& data,
+                                                                                    const fg::PassResources& res) {
             const GLuint hdrTex = res.texture(data.hdr), normalTex = res.texture(data.in.normal);
             const GLuint posTex = data.in.position.valid() ? res.texture(data.in.position) : 0;
-            const bool defaultLayout = frame.settings->gbuffer == GBufferSettings{};  // what the CUDA kernel reads
-            if (!defaultLayout && requested != PostSettings::Backend::Glsl && !state.toldGlslForLayout) {
-                logInfo("toon: the CUDA kernel reads the unpacked, stored G-buffer; --gbuffer " +
-                        std::string(gbufferFormatName(frame.settings->gbuffer.normal)) + " --gbuffer-position " +
-                        gbufferPositionName(frame.settings->gbuffer.position) + " runs the GLSL toon");
-                state.toldGlslForLayout = true;
-            }
-            if (defaultLayout && backend.useCuda(requested)) {
+            if (useCuda) {
                 backend.beginFrame(frameIndex);  // idempotent within a frame
 #ifdef LIGHTPASS_HAVE_CUDA
                 cuda::PostTiming t = backend.interop->toon(hdrTex, posTex, normalTex, frame.width, frame.height, params);

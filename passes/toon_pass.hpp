@@ -17,9 +17,11 @@ struct ToonPass {
 };
 
 // Reads the G-buffer's depth (coverage), eye depth and normal through shaders/common/gbuffer_layout.glsl.
-// The CUDA backend reads the unpacked, stored layout only; other layouts run the GLSL toon.
-fg::ResourceId addToonPass(fg::FrameGraph& graph, ToonPass& state, PostBackend& backend, const FrameData& frame,
-                           const post::PostConfig& config, const GBuffer& gbuffer, fg::ResourceId hdr);
+// `cuda`: the post backend chose CUDA. Its kernel reads the unpacked, stored layout only; other
+// layouts run the GLSL toon.
+fg::ResourceId addToonPass(fg::FrameGraph& graph, ToonPass& state, PostBackend& backend, bool cuda,
+                           const FrameData& frame, const post::PostConfig& config, const GBuffer& gbuffer,
+                           fg::ResourceId hdr);
 
 // The G-buffer targets the GLSL toon reads (texture ids; position 0 when rebuilt from depth), their
 // layout, and the camera that rebuilds positions: (near, far, tan(vertical fov / 2), width / height).
@@ -28,6 +30,7 @@ struct ToonGBufferTextures {
     GBufferSettings layout;
     glm::vec4 camera{0.1f, 100.0f, 1.0f, 1.0f};
 };
+// No barrier after it: the caller (the graph) orders what reads `hdr` next.
 void runToonGlsl(ToonPass& state, const gl::ShaderLibrary& shaders, GLuint hdr, const ToonGBufferTextures& g,
                  int width, int height, const post::ToonParams& p);
 

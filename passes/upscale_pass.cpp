@@ -16,11 +16,11 @@ fg::ResourceId addUpscalePass(fg::FrameGraph& graph, UpscalePass& state, const F
     const bool debug = kind == UpscaleInput::DebugView;
     const GLenum format = debug ? GL_RGBA8 : GL_RGBA16F;
     const Data& d = graph.addPass<Data>(
-        debug ? "upscale_debug" : "upscale",
+        debug ? "upscale_debug" : "upscale", fg::PassKind::Compute,
         [&](fg::PassBuilder& b, Data& data) {
-            data.source = b.read(input);
+            data.source = b.read(input, fg::Usage::Sampled);
             data.target = b.create(debug ? "ldr.debug.output" : "hdr.output",
-                                   {frame.outputWidth, frame.outputHeight, format});
+                                   {frame.outputWidth, frame.outputHeight, format}, fg::Usage::ImageStore);
         },
         [&state, frame, debug, format](const Data& data, const fg::PassResources& res) {
             gl::Program& program = debug ? state.debugProgram : state.hdrProgram;

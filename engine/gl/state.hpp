@@ -43,16 +43,14 @@ inline void dispatch2D(int width, int height, int group = 8) {
 }
 
 // The common shape of an image-to-image compute pass: `source` sampled on `sourceUnit`, `target`
-// written as image 0 in `format`, one invocation per target texel; barriers for every later use,
-// and the bindings put back to 0.
+// written as image 0 in `format`, one invocation per target texel, and the bindings put back to 0.
+// No barrier: the frame graph issues the ones the next users of `target` need.
 inline void dispatchTextureToImage(GLuint program, GLuint sourceUnit, GLuint source, GLuint target, GLenum format,
                                    int width, int height) {
     glBindTextureUnit(sourceUnit, source);
     glBindImageTexture(0, target, 0, GL_FALSE, 0, GL_WRITE_ONLY, format);
     glUseProgram(program);
     dispatch2D(width, height);
-    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
-                    GL_FRAMEBUFFER_BARRIER_BIT);
     glUseProgram(0);
     glBindTextureUnit(sourceUnit, 0);
     glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, format);

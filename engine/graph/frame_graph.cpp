@@ -1,15 +1,58 @@
 #include "engine/graph/frame_graph.hpp"
 
 #include <algorithm>
+#include <map>
 #include <set>
 #include <sstream>
 
 #include "engine/core/error.hpp"
 #include "engine/gl/gpu_timer.hpp"
 #include "engine/gl/handles.hpp"
+#include "engine/gl/state_check.hpp"
 #include "engine/graph/texture_pool.hpp"
 
 namespace lp::fg {
+
+// ---- usages and kinds -------------------------------------------------------------------------
+
+std::string usageName(Usage u) {
+    static const std::pair<Usage, const char*> names[] = {
+        {Usage::ImageLoadStore, "image-load/store"}, {Usage::Sampled, "sampled"},
+        {Usage::ImageLoad, "image-load"},           {Usage::ImageStore, "image-store"},
+        {Usage::ColorAttachment, "color"},          {Usage::Blend, "blend"},
+        {Usage::DepthAttachment, "depth"},          {Usage::DepthTest, "depth-test"},
+        {Usage::Transfer, "transfer"},              {Usage::Cuda, "cuda"}};
+    std::string out;
+    uint32_t left = uint32_t(u);
+    for (const auto& [bits, name] : names) {
+        if ((left & uint32_t(bits)) != uint32_t(bits)) continue;
+        left &= ~uint32_t(bits);
+        out += (out.empty() ? "" : "+") + std::string(name);
+    }
+    return out.empty() ? "none" : out;
+}
+
+GLbitfield barrierBitsFor(Usage u) {
+    GLbitfield bits = 0;
+    if (any(u, Usage::Sampled)) bits |= GL_TEXTURE_FETCH_BARRIER_BIT;
+    if (any(u, Usage::ImageLoadStore)) bits |= GL_SHADER_IMAGE_ACCESS_BARRIER_BIT;
+    if (any(u, Usage::ColorAttachment | Usage::Blend | Usage::DepthAttachment | Usage::DepthTest))
+        bits |= GL_FRAMEBUFFER_BARRIER_BIT;
+    if (any(u, Usage::Transfer)) bits |= GL_TEXTURE_UPDATE_BARRIER_BIT;
+    // CUDA reads the texture's memory once mapped: every way GL may still hold image stores back.
+    if (any(u, Usage::Cuda))
+        bits |= GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT;
+    return bits;
+}
+
+const char* passKindName(PassKind kind) {
+    switch (kind) {
+        case PassKind::Raster: return "raster";
+        case PassKind::Compute: return "compute";
+        case PassKind::Cuda: return "cuda";
+    }
+    return "compute";
+}
 
 // ---- building ---------------------------------------------------------------------------------
 
@@ -23,13 +66,19 @@ int FrameGraph::newVersion(int resource, int writer) {
     return int(versions_.size()) - 1;
 }
 
+void FrameGraph::addRead(int pass, int version, Usage how) {
+    passes_[pass].reads.push_back(version);
+    passes_[pass].readUsage.push_back(how);
+    versions_[version].readers.push_back(pass);
+}
+
 std::string FrameGraph::versionName(int version) const {
     const Version& v = versions_[version];
     const std::string& name = resources_[v.resource].name;
     return v.number == 0 ? name : name + "@" + std::to_string(v.number);
 }
 
-ResourceId PassBuilder::create(const std::string& name, const TextureDesc& desc) {
+ResourceId PassBuilder::create(const std::string& name, const TextureDesc& desc, Usage how) {
     if (desc.width <= 0 || desc.height <= 0)
         throw Error("frame graph: pass '" + graph_.passes_[pass_].name + "' creates '" + name + "' with an empty size");
     FrameGraph::Resource r;
@@ -38,29 +87,29 @@ ResourceId PassBuilder::create(const std::string& name, const TextureDesc& desc)
     graph_.resources_.push_back(r);
     int v = graph_.newVersion(int(graph_.resources_.size()) - 1, pass_);
     graph_.passes_[pass_].writes.push_back(v);
+    graph_.passes_[pass_].writeUsage.push_back(how);
     return ResourceId{v};
 }
 
-ResourceId PassBuilder::createIfRead(const std::string& name, const TextureDesc& desc) {
-    ResourceId id = create(name, desc);
+ResourceId PassBuilder::createIfRead(const std::string& name, const TextureDesc& desc, Usage how) {
+    ResourceId id = create(name, desc, how);
     graph_.resources_.back().optional = true;
     return id;
 }
 
-ResourceId PassBuilder::read(ResourceId id) {
+ResourceId PassBuilder::read(ResourceId id, Usage how) {
     if (!id.valid() || id.version >= int(graph_.versions_.size()))
         throw Error("frame graph: pass '" + graph_.passes_[pass_].name + "' reads an invalid resource handle");
-    graph_.passes_[pass_].reads.push_back(id.version);
-    graph_.versions_[id.version].readers.push_back(pass_);
+    graph_.addRead(pass_, id.version, how);
     return id;
 }
 
-ResourceId PassBuilder::read(const std::string& resourceName) {
-    graph_.passes_[pass_].namedReads.emplace_back(pass_, resourceName);
+ResourceId PassBuilder::read(const std::string& resourceName, Usage how) {
+    graph_.passes_[pass_].namedReads.push_back({resourceName, how});
     return ResourceId{};
 }
 
-ResourceId PassBuilder::write(ResourceId id) {
+ResourceId PassBuilder::write(ResourceId id, Usage how) {
     auto& pass = graph_.passes_[pass_];
     if (!id.valid() || id.version >= int(graph_.versions_.size()))
         throw Error("frame graph: pass '" + pass.name + "' writes an invalid resource handle");
@@ -70,20 +119,24 @@ ResourceId PassBuilder::write(ResourceId id) {
         throw Error("frame graph: pass '" + pass.name + "' writes '" + graph_.versionName(id.version) +
                     "', which pass '" + graph_.passes_[graph_.versions_[res.versions[v.number + 1]].writer].name +
                     "' already wrote (a version is written once)");
-    // Writing in place reads the previous contents.
-    pass.reads.push_back(id.version);
-    graph_.versions_[id.version].readers.push_back(pass_);
+    // Writing in place reads the previous contents, the same way it writes them.
+    graph_.addRead(pass_, id.version, how);
     int nv = graph_.newVersion(v.resource, pass_);
-    pass.writes.push_back(nv);
+    graph_.passes_[pass_].writes.push_back(nv);
+    graph_.passes_[pass_].writeUsage.push_back(how);
     return ResourceId{nv};
 }
 
 void PassBuilder::sideEffect() { graph_.passes_[pass_].sideEffect = true; }
 
-void FrameGraph::addPass(const std::string& name, const SetupFn& setup, ExecuteFn execute) {
+void FrameGraph::addPass(const std::string& name, PassKind kind, const SetupFn& setup, ExecuteFn execute) {
     for (const auto& p : passes_)
         if (p.name == name) throw Error("frame graph: two passes named '" + name + "'");
-    passes_.push_back(Pass{name, std::move(execute), {}, {}, {}, false, false});
+    Pass pass;
+    pass.name = name;
+    pass.kind = kind;
+    pass.execute = std::move(execute);
+    passes_.push_back(std::move(pass));
     candidates_.emplace_back(true, int(passes_.size()) - 1);
     compiled_ = false;
     PassBuilder builder(*this, int(passes_.size()) - 1);
@@ -98,6 +151,12 @@ ResourceId FrameGraph::importTexture(const std::string& name, const TextureDesc&
     r.isImported = true;
     resources_.push_back(r);
     return ResourceId{newVersion(int(resources_.size()) - 1, -1)};
+}
+
+ResourceId FrameGraph::importTexture(const std::string& name, const TextureDesc& desc, std::function<GLuint()> texture) {
+    ResourceId id = importTexture(name, desc, GLuint(0));
+    resources_.back().importedLater = std::move(texture);
+    return id;
 }
 
 void FrameGraph::disablePass(const std::string& passName) {
@@ -133,6 +192,19 @@ int findResource(const std::vector<std::string>& names, const std::string& name)
 }  // namespace
 
 void FrameGraph::compile() {
+    resolveNamedReads();
+    applyDisabledPasses();
+    validateReads();
+    const std::vector<int> live = findLivePasses();
+    orderPasses(live.size());
+    assignLifetimes();
+    planBarriers();
+    buildReport();
+    compiled_ = true;
+}
+
+// Names ("gbuffer.depth") become the last version of that resource, outputs included.
+void FrameGraph::resolveNamedReads() {
     std::vector<std::string> names;
     for (const auto& r : resources_) names.push_back(r.name);
     auto lastVersion = [&](const std::string& name, const std::string& who) {
@@ -140,75 +212,83 @@ void FrameGraph::compile() {
         if (r < 0) throw Error("frame graph: " + who + " reads '" + name + "', which no pass creates or imports");
         return resources_[r].versions.back();
     };
-    for (auto& p : passes_) {
-        for (auto& [passIndex, name] : p.namedReads) {
-            int v = lastVersion(name, "pass '" + p.name + "'");
-            if (versions_[v].writer == passIndex)
-                throw Error("frame graph: pass '" + p.name + "' reads '" + name + "', which only it writes");
-            p.reads.push_back(v);
-            versions_[v].readers.push_back(passIndex);
+    for (int pi = 0; pi < int(passes_.size()); ++pi) {
+        Pass& p = passes_[pi];
+        std::vector<NamedRead> named;
+        named.swap(p.namedReads);
+        for (const NamedRead& read : named) {
+            int v = lastVersion(read.name, "pass '" + p.name + "'");
+            if (versions_[v].writer == pi)
+                throw Error("frame graph: pass '" + p.name + "' reads '" + read.name + "', which only it writes");
+            addRead(pi, v, read.how);
         }
-        p.namedReads.clear();
     }
     for (const auto& name : namedOutputs_) outputs_.push_back(lastVersion(name, "the output"));
     namedOutputs_.clear();
     if (outputs_.empty()) throw Error("frame graph: no output marked; nothing would be drawn");
+}
 
-    // Disabled passes: in-place writes become aliases of their input; created textures get cleared.
+// Disabled passes: in-place writes become aliases of their input; created textures get cleared.
+void FrameGraph::applyDisabledPasses() {
     alias_.assign(versions_.size(), -1);
-    for (auto& p : passes_) {
+    for (int pi = 0; pi < int(passes_.size()); ++pi) {
+        Pass& p = passes_[pi];
         if (!p.disabled) continue;
-        bool creates = false;
         for (int w : p.writes) {
             const Version& wv = versions_[w];
             if (wv.number > 0) alias_[w] = resources_[wv.resource].versions[wv.number - 1];
-            else creates = true;
         }
         for (int r : p.reads) {
             auto& readers = versions_[r].readers;
-            readers.erase(std::remove(readers.begin(), readers.end(), int(&p - passes_.data())), readers.end());
+            readers.erase(std::remove(readers.begin(), readers.end(), pi), readers.end());
         }
         p.reads.clear();
-        if (creates) {
-            std::vector<int> created;
-            for (int w : p.writes)
-                if (versions_[w].number == 0) created.push_back(w);
-            p.writes = created;
-            p.execute = [this, created](const PassResources&) {
-                const float zero[4] = {0, 0, 0, 0};
-                for (int v : created) {
-                    const Resource& r = resources_[versions_[v].resource];
-                    if (!r.texture) continue;  // an optional target nothing reads
-                    for (int level = 0; level < r.desc.levels; ++level)
-                        glClearTexImage(r.texture, level, GL_RGBA, GL_FLOAT, zero);
-                }
-            };
-        } else {
-            p.writes.clear();
+        p.readUsage.clear();
+        std::vector<int> created;
+        for (int w : p.writes)
+            if (versions_[w].number == 0) created.push_back(w);
+        p.writes = created;
+        p.writeUsage.assign(created.size(), Usage::Transfer);
+        if (created.empty()) {
             p.execute = nullptr;
+            continue;
         }
+        p.kind = PassKind::Compute;  // a clear moves bytes; no raster work is left
+        p.execute = [this, created](const PassResources&) {
+            const float zero[4] = {0, 0, 0, 0};
+            for (int v : created) {
+                const Resource& r = resources_[versions_[v].resource];
+                if (!r.texture) continue;  // an optional target nothing reads
+                for (int level = 0; level < r.desc.levels; ++level)
+                    glClearTexImage(r.texture, level, GL_RGBA, GL_FLOAT, zero);
+            }
+        };
     }
-    for (auto& p : passes_)
-        for (int& r : p.reads) {
+    for (int pi = 0; pi < int(passes_.size()); ++pi)
+        for (int& r : passes_[pi].reads) {
             int to = resolve(r);
             if (to != r) {
-                auto& readers = versions_[to].readers;
-                readers.push_back(int(&p - passes_.data()));
+                versions_[to].readers.push_back(pi);
                 r = to;
             }
         }
     for (int& v : outputs_) v = resolve(v);
+}
 
+void FrameGraph::validateReads() const {
     for (const auto& p : passes_)
         for (int v : p.reads)
             if (versions_[v].writer < 0 && !resources_[versions_[v].resource].isImported)
                 throw Error("frame graph: pass '" + p.name + "' reads '" + versionName(v) + "', which nothing writes");
+}
 
-    // Liveness: walk back from the outputs (and side effects).
+// Liveness: walk back from the outputs (and side effects). Returns the live passes.
+std::vector<int> FrameGraph::findLivePasses() {
     for (auto& p : passes_) p.live = false;
     for (auto& r : resources_) {
         r.live = false;
         r.output = false;
+        r.first = r.last = -1;
     }
     std::vector<char> needed(versions_.size(), 0);
     std::vector<int> work;
@@ -240,9 +320,12 @@ void FrameGraph::compile() {
         work.pop_back();
         if (versions_[v].writer >= 0) makeLive(versions_[v].writer);
     }
+    return livePasses;
+}
 
-    // Order the live passes: read-after-write, write-after-write and write-after-read edges;
-    // among ready passes the one added first goes first, so the order is stable and readable.
+// Order the live passes: read-after-write, write-after-write and write-after-read edges;
+// among ready passes the one added first goes first, so the order is stable and readable.
+void FrameGraph::orderPasses(size_t liveCount) {
     const int n = int(passes_.size());
     std::vector<std::set<int>> succ(n);
     std::vector<int> indeg(n, 0);
@@ -272,19 +355,21 @@ void FrameGraph::compile() {
         for (int s : succ[pi])
             if (--indeg[s] == 0) ready.insert(s);
     }
-    if (order_.size() != livePasses.size()) {
+    if (order_.size() != liveCount) {
         std::string cycle;
         for (int pi = 0; pi < n; ++pi)
             if (passes_[pi].live && indeg[pi] > 0) cycle += (cycle.empty() ? "" : ", ") + passes_[pi].name;
         throw Error("frame graph: cycle between passes " + cycle);
     }
+}
 
-    // Optional targets nobody live reads are not allocated (their writer sees texture 0).
+// Lifetimes in execution order; optional targets nobody live reads are not allocated (their
+// writer sees texture 0).
+void FrameGraph::assignLifetimes() {
     std::vector<char> readByLive(resources_.size(), 0);
     for (const Version& v : versions_)
         for (int reader : v.readers)
             if (passes_[reader].live) readByLive[v.resource] = 1;
-    // Lifetimes in execution order.
     for (int i = 0; i < int(order_.size()); ++i) {
         const Pass& p = passes_[order_[i]];
         auto touch = [&](int v) {
@@ -299,13 +384,55 @@ void FrameGraph::compile() {
     }
     for (auto& r : resources_)
         if (r.output && r.live) r.last = int(order_.size());
+}
 
-    // Report.
+// Barriers from the declared usages. A resource written with an image store stays "dirty" until a
+// barrier with the bits of each later usage was issued; glMemoryBarrier is global, so one barrier
+// before a pass covers every dirty resource. Everything else (attachments, clears, CUDA's map and
+// unmap) GL orders by itself. After the last pass, the outputs get the bits of whatever the
+// application does with them (readback, blit, sampling).
+void FrameGraph::planBarriers() {
+    std::vector<char> dirty(resources_.size(), 0);
+    std::vector<GLbitfield> covered(resources_.size(), 0);
+    auto issue = [&](GLbitfield bits) {
+        for (size_t r = 0; r < resources_.size(); ++r)
+            if (dirty[r]) covered[r] |= bits;
+    };
+    for (auto& p : passes_) p.barrierBefore = 0;
+    for (int pi : order_) {
+        Pass& p = passes_[pi];
+        GLbitfield bits = 0;
+        auto need = [&](int version, Usage how) {
+            const int r = versions_[version].resource;
+            if (dirty[r]) bits |= barrierBitsFor(how) & ~covered[r];
+        };
+        for (size_t i = 0; i < p.reads.size(); ++i) need(p.reads[i], p.readUsage[i]);
+        for (size_t i = 0; i < p.writes.size(); ++i) need(p.writes[i], p.writeUsage[i]);
+        p.barrierBefore = bits;
+        issue(bits);
+        for (size_t i = 0; i < p.writes.size(); ++i) {
+            const int r = versions_[p.writes[i]].resource;
+            dirty[r] = any(p.writeUsage[i], Usage::ImageStore);
+            covered[r] = 0;
+        }
+    }
+    finalBarrier_ = 0;
+    const GLbitfield external = GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
+                                GL_FRAMEBUFFER_BARRIER_BIT | GL_PIXEL_BUFFER_BARRIER_BIT;
+    for (int v : outputs_) {
+        const int r = versions_[v].resource;
+        if (dirty[r]) finalBarrier_ |= external & ~covered[r];
+    }
+}
+
+void FrameGraph::buildReport() {
     report_.clear();
     for (const auto& p : passes_) {
         PassReport rep;
         rep.name = p.name;
+        rep.kind = p.kind;
         rep.culled = !p.live;
+        rep.barrierBefore = p.live ? p.barrierBefore : 0;
         for (int v : p.reads) {
             bool inPlace = false;
             for (int w : p.writes)
@@ -327,7 +454,6 @@ void FrameGraph::compile() {
         }
         report_.push_back(rep);
     }
-    compiled_ = true;
 }
 
 // ---- executing --------------------------------------------------------------------------------
@@ -364,8 +490,23 @@ size_t FrameGraph::liveTransientBytes() const {
     return total;
 }
 
+bool FrameGraph::declares(int pass, int resource) const {
+    const Pass& p = passes_[size_t(pass)];
+    for (int v : p.reads)
+        if (versions_[v].resource == resource) return true;
+    for (int v : p.writes)
+        if (versions_[v].resource == resource) return true;
+    return false;
+}
+
 GLuint PassResources::texture(ResourceId id) const {
     const auto& r = graph_.resourceOf(id);
+    const int resource = graph_.versions_[id.version].resource;
+    // A disabled pass's reads are dropped, so only the passes that run are held to their declarations.
+    if (pass_ >= 0 && !graph_.declares(pass_, resource) && !graph_.passes_[size_t(pass_)].disabled)
+        throw Error("frame graph: pass '" + graph_.passes_[size_t(pass_)].name + "' uses '" + r.name +
+                    "', which it did not declare (declare it with read() or write() in its setup)");
+    if (r.importedLater) return r.importedLater();
     return r.texture;
 }
 const TextureDesc& PassResources::desc(ResourceId id) const { return graph_.resourceOf(id).desc; }
@@ -375,8 +516,19 @@ const FrameGraph::Resource& FrameGraph::resourceOf(ResourceId id) const {
     return resources_[versions_[id.version].resource];
 }
 
+bool FrameGraph::stateChecksCompiledIn() {
+#ifdef LIGHTPASS_GL_STATE_CHECKS
+    return true;
+#else
+    return false;
+#endif
+}
+
 void FrameGraph::execute(TexturePool& pool, gl::GpuTimerRing* timers) {
     if (!compiled_) compile();
+#ifdef LIGHTPASS_GL_STATE_CHECKS
+    const gl::WatchedState before = gl::captureWatchedState();
+#endif
     pool.beginFrame();
     for (auto& r : resources_) r.texture = r.isImported ? r.imported : 0;
     for (int i = 0; i < int(order_.size()); ++i) {
@@ -385,14 +537,20 @@ void FrameGraph::execute(TexturePool& pool, gl::GpuTimerRing* timers) {
         Pass& p = passes_[order_[i]];
         {
             gl::DebugGroup group(p.name);
+            if (p.barrierBefore) glMemoryBarrier(p.barrierBefore);
             if (timers) timers->beginPass(p.name);
-            if (p.execute) p.execute(PassResources(*this, timers));
+            if (p.execute) p.execute(PassResources(*this, order_[i], timers));
             if (timers) timers->endPass();
         }
         gl::checkErrors("pass '" + p.name + "'");
+#ifdef LIGHTPASS_GL_STATE_CHECKS
+        const std::string changed = gl::describeStateChange(before, gl::captureWatchedState());
+        if (!changed.empty()) throw Error("frame graph: pass '" + p.name + "' left GL state changed: " + changed);
+#endif
         for (auto& r : resources_)
             if (r.live && !r.isImported && r.last == i) pool.release(r.texture);
     }
+    if (finalBarrier_) glMemoryBarrier(finalBarrier_);
     pool.endFrame();
 }
 
@@ -420,11 +578,27 @@ size_t FrameGraph::passTrafficBytes(const std::string& passName) const {
     for (const auto& p : passes_) {
         if (p.name != passName) continue;
         size_t bytes = 0;
-        for (int v : p.reads) bytes += resources_[versions_[v].resource].desc.bytes();
-        for (int v : p.writes) bytes += resources_[versions_[v].resource].desc.bytes();
+        auto add = [&](int v) {
+            const Resource& r = resources_[versions_[v].resource];
+            if (!r.isImported) bytes += r.desc.bytes();
+        };
+        for (int v : p.reads) add(v);
+        for (int v : p.writes) add(v);
         return bytes;
     }
     return 0;
+}
+
+GLbitfield FrameGraph::barriersBefore(const std::string& passName) const {
+    for (const auto& p : passes_)
+        if (p.name == passName) return p.live ? p.barrierBefore : 0;
+    return 0;
+}
+
+PassKind FrameGraph::passKind(const std::string& passName) const {
+    for (const auto& p : passes_)
+        if (p.name == passName) return p.kind;
+    return PassKind::Compute;
 }
 
 bool FrameGraph::hasPass(const std::string& passName) const {
@@ -446,9 +620,19 @@ std::string join(const std::vector<std::string>& v) {
     for (const auto& x : v) s += (s.empty() ? "" : ", ") + x;
     return s.empty() ? "-" : s;
 }
+std::string barrierText(GLbitfield bits) {
+    static const std::pair<GLbitfield, const char*> names[] = {
+        {GL_TEXTURE_FETCH_BARRIER_BIT, "texture-fetch"}, {GL_SHADER_IMAGE_ACCESS_BARRIER_BIT, "image-access"},
+        {GL_FRAMEBUFFER_BARRIER_BIT, "framebuffer"},     {GL_TEXTURE_UPDATE_BARRIER_BIT, "texture-update"},
+        {GL_PIXEL_BUFFER_BARRIER_BIT, "pixel-buffer"}};
+    std::string out;
+    for (const auto& [bit, name] : names)
+        if (bits & bit) out += (out.empty() ? "" : " | ") + std::string(name);
+    return out;
+}
 std::string descText(const TextureDesc& d) {
     std::ostringstream s;
-    s << d.width << "x" << d.height << " " << gl::formatName(d.format);
+    s << d.width << "x" << d.height << (d.cube ? " cube " : " ") << gl::formatName(d.format);
     if (d.levels > 1) s << " (" << d.levels << " mips)";
     return s.str();
 }
@@ -460,9 +644,11 @@ std::string FrameGraph::describe() const {
     int i = 0;
     for (int pi : order_) {
         const PassReport& r = report_[pi];
-        out << "  " << ++i << ". " << r.name << "\n      reads:  " << join(r.reads) << "\n      writes: " << join(r.writes)
-            << "\n";
+        out << "  " << ++i << ". " << r.name << "  [" << passKindName(r.kind) << "]\n";
+        if (r.barrierBefore) out << "      barrier: " << barrierText(r.barrierBefore) << "\n";
+        out << "      reads:  " << join(r.reads) << "\n      writes: " << join(r.writes) << "\n";
     }
+    if (finalBarrier_) out << "  then, for the outputs, barrier: " << barrierText(finalBarrier_) << "\n";
     bool any = false;
     for (const auto& r : report_) {
         if (!r.culled) continue;
@@ -491,21 +677,26 @@ std::string FrameGraph::toDot() const {
     for (size_t pi = 0; pi < passes_.size(); ++pi) {
         const auto& p = passes_[pi];
         out << "  p" << pi << " [shape=box, style=" << (p.live ? "\"filled\", fillcolor=\"#cfe8ff\"" : "dashed")
-            << ", label=\"" << p.name << (p.live ? "" : "\\n(culled)") << "\"];\n";
+            << ", label=\"" << p.name << "\\n" << passKindName(p.kind) << (p.live ? "" : " (culled)") << "\"];\n";
     }
     for (size_t ri = 0; ri < resources_.size(); ++ri) {
         const auto& r = resources_[ri];
         out << "  r" << ri << " [shape=ellipse, " << (r.live ? "" : "style=dashed, ") << "label=\"" << r.name << "\\n"
             << descText(r.desc) << "\"];\n";
     }
-    std::set<std::pair<std::string, std::string>> edges;
+    // Edges are labelled with the usage (one edge per pair; an in-place write shows as the write).
+    std::map<std::pair<std::string, std::string>, Usage> edges;
     for (size_t pi = 0; pi < passes_.size(); ++pi) {
-        for (int v : passes_[pi].reads)
-            edges.insert({"r" + std::to_string(versions_[v].resource), "p" + std::to_string(pi)});
-        for (int v : passes_[pi].writes)
-            edges.insert({"p" + std::to_string(pi), "r" + std::to_string(versions_[v].resource)});
+        const auto& p = passes_[pi];
+        for (size_t i = 0; i < p.reads.size(); ++i)
+            edges.emplace(std::make_pair("r" + std::to_string(versions_[p.reads[i]].resource), "p" + std::to_string(pi)),
+                          p.readUsage[i]);
+        for (size_t i = 0; i < p.writes.size(); ++i)
+            edges.emplace(std::make_pair("p" + std::to_string(pi), "r" + std::to_string(versions_[p.writes[i]].resource)),
+                          p.writeUsage[i]);
     }
-    for (const auto& [a, b] : edges) out << "  " << a << " -> " << b << ";\n";
+    for (const auto& [ab, how] : edges)
+        out << "  " << ab.first << " -> " << ab.second << " [label=\"" << usageName(how) << "\", fontsize=9];\n";
     out << "}\n";
     return out.str();
 }

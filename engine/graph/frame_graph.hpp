@@ -7,6 +7,13 @@
 // composite writes into it" is expressible. A read may also name a resource by string; it resolves at
 // compile time to that resource's last version (forward references, e.g. a debug view declared
 // before the G-buffer), which is also how a misdeclared graph can form a cycle, reported by compile().
+//
+// Every read and write says how the pass touches the resource (Usage) and every pass says what kind
+// of work it is (PassKind). From those the graph derives what passes used to hand-pick: the memory
+// barriers between a producer's incoherent writes (image stores) and its consumers, the floor a pass
+// is measured against (fill rate for raster, bandwidth for compute and CUDA), and a check that a
+// pass only touches what it declared.
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <string>
@@ -25,11 +32,37 @@ struct TextureDesc {
     int height = 0;
     GLenum format = GL_RGBA16F;
     int levels = 1;
+    bool cube = false;  // six faces (imported environment cubes; the pool makes 2D textures only)
     bool operator==(const TextureDesc& o) const {
-        return width == o.width && height == o.height && format == o.format && levels == o.levels;
+        return width == o.width && height == o.height && format == o.format && levels == o.levels && cube == o.cube;
     }
     size_t bytes() const;
 };
+
+// How a pass touches a resource; a bit set, since one pass may e.g. blend into a target and then
+// fix it up with an image load/store. The graph turns a producer's incoherent writes (ImageStore)
+// into the glMemoryBarrier bits its consumers' usages need; everything else GL orders by itself.
+enum class Usage : uint32_t {
+    Sampled = 1u << 0,          // texture() / texelFetch through a texture unit
+    ImageLoad = 1u << 1,        // imageLoad
+    ImageStore = 1u << 2,       // imageStore: incoherent, needs a barrier before the next use
+    ColorAttachment = 1u << 3,  // drawn into (replaces)
+    Blend = 1u << 4,            // drawn into with blending (reads the previous contents)
+    DepthAttachment = 1u << 5,  // depth written by raster
+    DepthTest = 1u << 6,        // bound as the depth attachment, tested, not written
+    Transfer = 1u << 7,         // glClearTexImage, glGetTextureImage, copies
+    Cuda = 1u << 8,             // mapped into CUDA (map and unmap synchronise with GL)
+    ImageLoadStore = (1u << 1) | (1u << 2),
+};
+constexpr Usage operator|(Usage a, Usage b) { return Usage(uint32_t(a) | uint32_t(b)); }
+constexpr bool any(Usage set, Usage bits) { return (uint32_t(set) & uint32_t(bits)) != 0; }
+std::string usageName(Usage u);  // "sampled", "blend+image-load/store"
+// The glMemoryBarrier bits a consumer touching a resource with `u` needs after an image store.
+GLbitfield barrierBitsFor(Usage u);
+
+// What kind of work a pass is: what its floor is measured against and how reports label it.
+enum class PassKind { Raster, Compute, Cuda };
+const char* passKindName(PassKind kind);
 
 struct ResourceId {
     int version = -1;  // index into the graph's version table
@@ -41,14 +74,15 @@ class TexturePool;
 
 class PassBuilder {
 public:
-    ResourceId create(const std::string& name, const TextureDesc& desc);
+    // A new transient texture, written by this pass as `how`.
+    ResourceId create(const std::string& name, const TextureDesc& desc, Usage how);
     // A target the pass can do without (a G-buffer channel): allocated only when some live pass
     // reads it or it is an output; otherwise PassResources::texture() gives 0 and the writer skips it.
-    ResourceId createIfRead(const std::string& name, const TextureDesc& desc);
-    ResourceId read(ResourceId id);
-    ResourceId read(const std::string& resourceName);  // resolves at compile time to the last version
-    ResourceId write(ResourceId id);                   // read-modify-write: returns the new version
-    void sideEffect();                                 // never culled (presents, readbacks)
+    ResourceId createIfRead(const std::string& name, const TextureDesc& desc, Usage how);
+    ResourceId read(ResourceId id, Usage how);
+    ResourceId read(const std::string& resourceName, Usage how);  // resolves at compile time to the last version
+    ResourceId write(ResourceId id, Usage how);                   // read-modify-write: returns the new version
+    void sideEffect();                                            // never culled (presents, readbacks)
 
 private:
     friend class FrameGraph;
@@ -59,6 +93,8 @@ private:
 
 class PassResources {
 public:
+    // The texture of a resource this pass declared (any version of it); throws lp::Error naming the
+    // pass and the resource for one it did not declare, so a pass cannot reach around the graph.
     GLuint texture(ResourceId id) const;
     const TextureDesc& desc(ResourceId id) const;
     // The timer ring of this execute (null when untimed): passes timed outside GL (CUDA events)
@@ -67,8 +103,9 @@ public:
 
 private:
     friend class FrameGraph;
-    PassResources(const FrameGraph& g, gl::GpuTimerRing* timers) : graph_(g), timers_(timers) {}
+    PassResources(const FrameGraph& g, int pass, gl::GpuTimerRing* timers) : graph_(g), pass_(pass), timers_(timers) {}
     const FrameGraph& graph_;
+    int pass_ = -1;
     gl::GpuTimerRing* timers_ = nullptr;
 };
 
@@ -77,11 +114,13 @@ using ExecuteFn = std::function<void(const PassResources&)>;
 
 struct PassReport {
     std::string name;
+    PassKind kind = PassKind::Compute;
     bool culled = false;
     bool disabled = false;            // switched off by the user
     std::string reason;               // why it was culled or disabled
     std::vector<std::string> reads;   // "gbuffer.normal", "hdr@1" for later versions
     std::vector<std::string> writes;
+    GLbitfield barrierBefore = 0;     // glMemoryBarrier bits the graph issues before it runs
 };
 
 struct ResourceReport {
@@ -102,18 +141,22 @@ struct PassDecision {
 class FrameGraph {
 public:
     // Runs `setup` now; `execute` runs in execute() if the pass survives compile().
-    void addPass(const std::string& name, const SetupFn& setup, ExecuteFn execute);
+    void addPass(const std::string& name, PassKind kind, const SetupFn& setup, ExecuteFn execute);
     // Frostbite-style: setup fills a Data struct (the handles it declared) that execute receives.
     template <typename Data>
-    const Data& addPass(const std::string& name, const std::function<void(PassBuilder&, Data&)>& setup,
+    const Data& addPass(const std::string& name, PassKind kind, const std::function<void(PassBuilder&, Data&)>& setup,
                         std::function<void(const Data&, const PassResources&)> execute) {
         auto data = std::make_shared<Data>();
         addPass(
-            name, [&](PassBuilder& b) { setup(b, *data); },
+            name, kind, [&](PassBuilder& b) { setup(b, *data); },
             [data, execute = std::move(execute)](const PassResources& r) { execute(*data, r); });
         return *data;
     }
+    // A texture that lives outside the graph (not pooled, not in liveTransientBytes).
     ResourceId importTexture(const std::string& name, const TextureDesc& desc, GLuint texture);
+    // The same for a texture that only exists once an earlier pass made it (an environment cube the
+    // bake pass makes): `texture` is asked each time a pass asks for it during execute().
+    ResourceId importTexture(const std::string& name, const TextureDesc& desc, std::function<GLuint()> texture);
     // The graph's result(s): what is presented, saved or read back. At least one is required.
     void markOutput(ResourceId id);
     void markOutput(const std::string& resourceName);
@@ -135,16 +178,25 @@ public:
     // Throws lp::Error for a read of a resource nothing writes, a double write of one version,
     // a cycle, or a graph with no output.
     void compile();
-    // Allocates transient textures from the pool, records every live pass in order, and releases
-    // textures after their last use so later passes can reuse them.
+    // Allocates transient textures from the pool, records every live pass in order with the
+    // barriers compile() derived, and releases textures after their last use so later passes can
+    // reuse them. Built with LIGHTPASS_GL_STATE_CHECKS, throws lp::Error naming a pass that leaves
+    // the watched GL state (engine/gl/state_check.hpp) other than it found it.
     void execute(TexturePool& pool, gl::GpuTimerRing* timers = nullptr);
+    static bool stateChecksCompiledIn();
 
     const std::vector<PassReport>& report() const { return report_; }
+    // glMemoryBarrier bits issued before a pass (0 when none, or no such live pass), and after the
+    // last pass for the outputs (what the application then reads, blits or samples); after compile().
+    GLbitfield barriersBefore(const std::string& passName) const;
+    GLbitfield barriersAfterFrame() const { return finalBarrier_; }
+    PassKind passKind(const std::string& passName) const;  // Compute for an unknown name
     std::vector<std::string> executionOrder() const;
     std::vector<ResourceReport> resources() const;
     bool isLive(const std::string& passName) const;
     // Bytes a pass must move at least: every texel of what it reads plus what it writes (an
-    // in-place write counts as a read and a write). The basis of its bandwidth floor.
+    // in-place write counts as a read and a write). The basis of its bandwidth floor. Imported
+    // textures (environment cubes, LUTs) are looked up by direction, not streamed: not counted.
     size_t passTrafficBytes(const std::string& passName) const;
     bool hasPass(const std::string& passName) const;
     // Text table and Graphviz DOT of the compiled graph.
@@ -161,6 +213,7 @@ private:
         std::string name;
         TextureDesc desc;
         GLuint imported = 0;
+        std::function<GLuint()> importedLater;  // importTexture's lazy form
         bool isImported = false;
         std::vector<int> versions;
         GLuint texture = 0;  // bound during execute
@@ -175,17 +228,36 @@ private:
         int writer = -1;  // pass index; -1 for v0 of an imported resource
         std::vector<int> readers;
     };
+    struct NamedRead {
+        std::string name;
+        Usage how;
+    };
     struct Pass {
         std::string name;
+        PassKind kind = PassKind::Compute;
         ExecuteFn execute;
         std::vector<int> reads;  // version indices
-        std::vector<std::pair<int, std::string>> namedReads;  // resolved in compile
+        std::vector<Usage> readUsage;  // parallel to reads
+        std::vector<NamedRead> namedReads;  // resolved in compile
         std::vector<int> writes;
+        std::vector<Usage> writeUsage;  // parallel to writes
         bool sideEffect = false;
         bool live = false;
         bool disabled = false;
+        GLbitfield barrierBefore = 0;
     };
     int newVersion(int resource, int writer);
+    void addRead(int pass, int version, Usage how);
+    // compile()'s phases, in order.
+    void resolveNamedReads();
+    void applyDisabledPasses();
+    void validateReads() const;
+    std::vector<int> findLivePasses();
+    void orderPasses(size_t liveCount);
+    void assignLifetimes();
+    void planBarriers();
+    void buildReport();
+    bool declares(int pass, int resource) const;
     std::string versionName(int version) const;
     const Resource& resourceOf(ResourceId id) const;
 
@@ -200,6 +272,7 @@ private:
     std::vector<std::string> namedOutputs_;
     std::vector<int> order_;
     std::vector<PassReport> report_;
+    GLbitfield finalBarrier_ = 0;
     bool compiled_ = false;
 };
 

@@ -12,7 +12,7 @@ size_t TextureDesc::bytes() const {
         w = std::max(1, w / 2);
         h = std::max(1, h / 2);
     }
-    return total;
+    return cube ? 6 * total : total;
 }
 
 void TexturePool::beginFrame() {

@@ -70,4 +70,11 @@ Bandwidth measureFragmentBandwidth(const gl::ShaderLibrary& shaders, int width, 
     return bw;
 }
 
+double passFloorMs(fg::PassKind kind, size_t bytes, const Bandwidth& compute, const Bandwidth& fragment) {
+    const double rate = kind == fg::PassKind::Raster ? fragment.bytesPerSecond : compute.bytesPerSecond;
+    return rate > 0.0 ? double(bytes) / rate * 1e3 : 0.0;
+}
+
+const char* floorBasis(fg::PassKind kind) { return kind == fg::PassKind::Raster ? "fragment fill" : "compute copy"; }
+
 }  // namespace lp

@@ -2,6 +2,7 @@
 // Floors: the least time a pass could take on this GPU. For a compute pass, the bytes it must move
 // over the bandwidth a plain streaming copy achieves in GL compute on the same device.
 #include "engine/gl/shader.hpp"
+#include "engine/graph/frame_graph.hpp"
 
 namespace lp {
 
@@ -15,5 +16,10 @@ struct Bandwidth {
 Bandwidth measureComputeBandwidth(const gl::ShaderLibrary& shaders, int width = 3840, int height = 2160, int repeats = 30);
 // The same for the raster path: a full-screen triangle writing an RGBA32F target (write bytes only).
 Bandwidth measureFragmentBandwidth(const gl::ShaderLibrary& shaders, int width = 3840, int height = 2160, int repeats = 30);
+
+// A pass's floor from the kind it declared (fg::PassKind): raster work moves its bytes at the
+// fragment fill rate, compute and CUDA at the compute copy bandwidth. "fragment fill" / "compute copy".
+double passFloorMs(fg::PassKind kind, size_t bytes, const Bandwidth& compute, const Bandwidth& fragment);
+const char* floorBasis(fg::PassKind kind);
 
 }  // namespace lp

@@ -11,6 +11,7 @@ namespace gl {
 class ShaderLibrary;
 }
 class SceneGpu;
+class EnvironmentCache;
 
 struct FrameData {
     int width = 0;          // the size the G-buffer, lighting and post effects run at:
@@ -27,6 +28,8 @@ struct FrameData {
     const RenderSettings* settings = nullptr;
     const SceneGpu* gpu = nullptr;
     const gl::ShaderLibrary* shaders = nullptr;
+    // Environment cubes and IBL bakes, kept across frames (imported into each frame's graph).
+    EnvironmentCache* environments = nullptr;
 };
 
 }  // namespace lp

@@ -13,6 +13,7 @@ gl::GpuContext* gContext = nullptr;
 
 int main(int argc, char** argv) {
     testing::InitGoogleTest(&argc, argv);
+    if (testing::GTEST_FLAG(list_tests)) return RUN_ALL_TESTS();  // ctest's discovery: no context needed
     std::unique_ptr<lp::gl::GpuContext> ctx;
     try {
         ctx = lp::gl::createHeadlessContext();

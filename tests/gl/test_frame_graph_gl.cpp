@@ -2,6 +2,8 @@
 // that leaves a GL error is reported by name.
 #include <gtest/gtest.h>
 
+#include <functional>
+
 #include "engine/core/error.hpp"
 #include "engine/graph/texture_pool.hpp"
 #include "frame/renderer.hpp"
@@ -16,11 +18,11 @@ TEST(FrameGraphGl, PoolReusesTexturesWhoseLifetimesDoNotOverlap) {
     fg::FrameGraph g;
     fg::ResourceId a, b;
     GLuint ta = 0, tc = 0;
-    g.addPass("A", [&](fg::PassBuilder& p) { a = p.create("a", d); }, [&](const fg::PassResources& r) { ta = r.texture(a); });
-    g.addPass("B", [&](fg::PassBuilder& p) { p.read(a); b = p.create("b", d); }, nullptr);
+    g.addPass("A", fg::PassKind::Compute, [&](fg::PassBuilder& p) { a = p.create("a", d, fg::Usage::ImageStore); }, [&](const fg::PassResources& r) { ta = r.texture(a); });
+    g.addPass("B", fg::PassKind::Compute, [&](fg::PassBuilder& p) { p.read(a, fg::Usage::Sampled); b = p.create("b", d, fg::Usage::ImageStore); }, nullptr);
     fg::ResourceId c;
     // "c" is created after "a" dies, so it may take a's texture.
-    g.addPass("C", [&](fg::PassBuilder& p) { p.read(b); c = p.create("c", d); }, [&](const fg::PassResources& r) { tc = r.texture(c); });
+    g.addPass("C", fg::PassKind::Compute, [&](fg::PassBuilder& p) { p.read(b, fg::Usage::Sampled); c = p.create("c", d, fg::Usage::ImageStore); }, [&](const fg::PassResources& r) { tc = r.texture(c); });
     g.markOutput(c);
     g.compile();
     g.execute(pool);
@@ -36,7 +38,7 @@ TEST(FrameGraphGl, GlErrorInAPassIsReportedByName) {
     fg::FrameGraph g;
     fg::ResourceId a;
     g.addPass(
-        "broken", [&](fg::PassBuilder& p) { a = p.create("a", {8, 8, GL_RGBA8}); },
+        "broken", fg::PassKind::Compute, [&](fg::PassBuilder& p) { a = p.create("a", {8, 8, GL_RGBA8}, fg::Usage::ImageStore); },
         [](const fg::PassResources&) { glEnable(GL_INVALID_ENUM); });
     g.markOutput(a);
     g.compile();
@@ -45,6 +47,93 @@ TEST(FrameGraphGl, GlErrorInAPassIsReportedByName) {
         FAIL() << "no error";
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find("pass 'broken'"), std::string::npos) << e.what();
+    }
+}
+
+namespace {
+std::string executeError(fg::FrameGraph& g, fg::TexturePool& pool) {
+    try {
+        g.execute(pool);
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "";
+}
+}  // namespace
+
+TEST(FrameGraphGl, APassCannotUseWhatItDidNotDeclare) {
+    fg::TexturePool pool;
+    fg::FrameGraph g;
+    fg::ResourceId a, b;
+    g.addPass("A", fg::PassKind::Compute, [&](fg::PassBuilder& p) { a = p.create("a", {8, 8, GL_RGBA8}, fg::Usage::ImageStore); },
+              nullptr);
+    g.addPass("B", fg::PassKind::Compute,
+              [&](fg::PassBuilder& p) {
+                  p.read(a, fg::Usage::Sampled);
+                  b = p.create("b", {8, 8, GL_RGBA8}, fg::Usage::ImageStore);
+              },
+              [&](const fg::PassResources& r) { r.texture(b), r.texture(a); });  // both declared: fine
+    g.addPass("sneaky", fg::PassKind::Compute, [&](fg::PassBuilder& p) { p.write(b, fg::Usage::ImageLoadStore); },
+              [&](const fg::PassResources& r) { r.texture(a); });  // a is not its own
+    g.markOutput("b");
+    g.compile();
+    const std::string e = executeError(g, pool);
+    EXPECT_NE(e.find("pass 'sneaky' uses 'a', which it did not declare"), std::string::npos) << e;
+}
+
+TEST(FrameGraphGl, LazyImportIsAskedWhenThePassRuns) {
+    fg::TexturePool pool;
+    fg::FrameGraph g;
+    gl::Texture made;  // made by the first pass, as ibl_bake makes the environment cube
+    const fg::ResourceId imported = g.importTexture("made_later", {4, 4, GL_RGBA8}, [&] { return made.id(); });
+    fg::ResourceId written, out;
+    GLuint seen = 0;
+    g.addPass("make", fg::PassKind::Compute, [&](fg::PassBuilder& p) { written = p.write(imported, fg::Usage::ImageStore); },
+              [&](const fg::PassResources&) { made = gl::makeTexture2D(GL_RGBA8, 4, 4, 1, "made_later"); });
+    g.addPass("use", fg::PassKind::Compute,
+              [&](fg::PassBuilder& p) {
+                  p.read(written, fg::Usage::Sampled);
+                  out = p.create("out", {4, 4, GL_RGBA8}, fg::Usage::ImageStore);
+              },
+              [&](const fg::PassResources& r) { seen = r.texture(written); });
+    g.markOutput(out);
+    g.compile();
+    g.execute(pool);
+    EXPECT_NE(seen, 0u);
+    EXPECT_EQ(seen, made.id());
+    EXPECT_EQ(g.barriersBefore("use"), GLbitfield(GL_TEXTURE_FETCH_BARRIER_BIT));
+}
+
+// With LIGHTPASS_GL_STATE_CHECKS (scripts/test builds with it), a pass that leaves watched GL state
+// changed is named; every real pass runs under it in the other GL tests.
+TEST(FrameGraphGl, StateCheckNamesThePassThatLeavesStateChanged) {
+    if (!fg::FrameGraph::stateChecksCompiledIn()) GTEST_SKIP() << "built without LIGHTPASS_GL_STATE_CHECKS";
+    struct Leak {
+        const char* what;
+        std::function<void()> leave, undo;
+    };
+    gl::Texture t = gl::makeTexture2D(GL_RGBA8, 4, 4, 1, "leak");
+    const Leak leaks[] = {
+        {"GL_BLEND 1 (was 0)", [] { glEnable(GL_BLEND); }, [] { glDisable(GL_BLEND); }},
+        {"GL_DEPTH_FUNC", [] { glDepthFunc(GL_GREATER); }, [] { glDepthFunc(GL_LESS); }},
+        {"texture unit 5 2D", [&] { glBindTextureUnit(5, t.id()); }, [] { glBindTextureUnit(5, 0); }},
+        {"image unit 0", [&] { glBindImageTexture(0, t.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8); },
+         [] { glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8); }},
+    };
+    for (const Leak& leak : leaks) {
+        fg::TexturePool pool;
+        fg::FrameGraph g;
+        fg::ResourceId a;
+        g.addPass("clean", fg::PassKind::Compute, [&](fg::PassBuilder& p) { a = p.create("a", {8, 8, GL_RGBA8}, fg::Usage::ImageStore); },
+                  nullptr);
+        g.addPass("leaky", fg::PassKind::Raster, [&](fg::PassBuilder& p) { p.write(a, fg::Usage::ColorAttachment); },
+                  [&](const fg::PassResources&) { leak.leave(); });
+        g.markOutput("a");
+        g.compile();
+        const std::string e = executeError(g, pool);
+        leak.undo();
+        EXPECT_NE(e.find("pass 'leaky' left GL state changed"), std::string::npos) << e;
+        EXPECT_NE(e.find(leak.what), std::string::npos) << e;
     }
 }
 

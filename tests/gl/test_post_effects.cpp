@@ -69,6 +69,7 @@ gl::Texture upload(const ImageF& img, GLenum format, const char* name) {
 
 ImageF download(const gl::Texture& t) {
     ImageF img = makeImage(t.width, t.height);
+    glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);  // after image stores (outside a graph, the caller orders)
     glGetTextureImage(t.id(), 0, GL_RGBA, GL_FLOAT, GLsizei(img.rgba.size() * sizeof(float)), img.rgba.data());
     return img;
 }
@@ -82,7 +83,14 @@ GlslBloom runGlslBloom(const ImageF& hdrIn, const BloomParams& p) {
     BloomPass state;
     gl::Texture hdr = upload(hdrIn, GL_RGBA16F, "test.hdr");
     gl::Texture bloom = gl::makeTexture2D(GL_RGBA16F, hdrIn.width, hdrIn.height, 1, "test.bloom");
-    runBloomGlsl(state, shaders, hdr.id(), bloom.id(), hdrIn.width, hdrIn.height, p);
+    // The scratch the graph would lend from its pool.
+    const BloomScratchDescs d = bloomScratchDescs(p, hdrIn.width, hdrIn.height);
+    auto make = [](const fg::TextureDesc& desc, const char* name) {
+        return desc.width > 0 ? gl::makeTexture2D(desc.format, desc.width, desc.height, desc.levels, name) : gl::Texture();
+    };
+    gl::Texture bright = make(d.bright, "test.bright"), blurH = make(d.blurH, "test.blur_h"), mips = make(d.mips, "test.mips");
+    runBloomGlsl(state, shaders, {bright.id(), blurH.id(), mips.id()}, hdr.id(), bloom.id(), hdrIn.width, hdrIn.height, p);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);  // what the graph derives
     runBloomCompositeGlsl(state, shaders, hdr.id(), bloom.id(), hdrIn.width, hdrIn.height, p.strength);
     gl::checkErrors("bloom test");
     return {download(bloom), download(hdr)};

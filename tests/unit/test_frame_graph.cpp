@@ -35,10 +35,10 @@ std::string errorOf(FrameGraph& g) {
 TEST(FrameGraph, OrdersByDependencyNotByInsertion) {
     FrameGraph g;
     // "present" is declared first and names its input by string: a forward reference.
-    g.addPass("present", [](PassBuilder& b) { b.read("image"); b.sideEffect(); }, nullptr);
+    g.addPass("present", fg::PassKind::Compute, [](PassBuilder& b) { b.read("image", fg::Usage::Sampled); b.sideEffect(); }, nullptr);
     ResourceId a;
-    g.addPass("producer", [&](PassBuilder& b) { a = b.create("a", kDesc); }, nullptr);
-    g.addPass("consumer", [&](PassBuilder& b) { b.read(a); b.create("image", kDesc); }, nullptr);
+    g.addPass("producer", fg::PassKind::Compute, [&](PassBuilder& b) { a = b.create("a", kDesc, fg::Usage::ImageStore); }, nullptr);
+    g.addPass("consumer", fg::PassKind::Compute, [&](PassBuilder& b) { b.read(a, fg::Usage::Sampled); b.create("image", kDesc, fg::Usage::ImageStore); }, nullptr);
     g.markOutput("image");
     g.compile();
     EXPECT_EQ(g.executionOrder(), (std::vector<std::string>{"producer", "consumer", "present"}));
@@ -48,10 +48,10 @@ TEST(FrameGraph, OrdersByDependencyNotByInsertion) {
 TEST(FrameGraph, CullsPassWhoseWritesNobodyReads) {
     FrameGraph g;
     ResourceId a, b;
-    g.addPass("A", [&](PassBuilder& p) { a = p.create("a", kDesc); }, nullptr);
-    g.addPass("B", [&](PassBuilder& p) { b = p.create("b", kDesc); }, nullptr);  // read by nobody
-    g.addPass("useB", [&](PassBuilder& p) { p.read(b); p.create("dead", kDesc); }, nullptr);
-    g.addPass("final", [&](PassBuilder& p) { p.read(a); p.create("out", kDesc); }, nullptr);
+    g.addPass("A", fg::PassKind::Compute, [&](PassBuilder& p) { a = p.create("a", kDesc, fg::Usage::ImageStore); }, nullptr);
+    g.addPass("B", fg::PassKind::Compute, [&](PassBuilder& p) { b = p.create("b", kDesc, fg::Usage::ImageStore); }, nullptr);  // read by nobody
+    g.addPass("useB", fg::PassKind::Compute, [&](PassBuilder& p) { p.read(b, fg::Usage::Sampled); p.create("dead", kDesc, fg::Usage::ImageStore); }, nullptr);
+    g.addPass("final", fg::PassKind::Compute, [&](PassBuilder& p) { p.read(a, fg::Usage::Sampled); p.create("out", kDesc, fg::Usage::ImageStore); }, nullptr);
     g.markOutput("out");
     g.compile();
     EXPECT_EQ(g.executionOrder(), (std::vector<std::string>{"A", "final"}));
@@ -65,11 +65,11 @@ TEST(FrameGraph, CullsPassWhoseWritesNobodyReads) {
 TEST(FrameGraph, InPlaceWritesAreVersionedAndOrdered) {
     FrameGraph g;
     ResourceId hdr, hdr2, bloom;
-    g.addPass("light", [&](PassBuilder& p) { hdr = p.create("hdr", kDesc); }, nullptr);
+    g.addPass("light", fg::PassKind::Compute, [&](PassBuilder& p) { hdr = p.create("hdr", kDesc, fg::Usage::ImageStore); }, nullptr);
     // bloom reads version 0 of hdr, before "local" writes version 1 in place.
-    g.addPass("bloom", [&](PassBuilder& p) { p.read(hdr); bloom = p.create("bloom", kDesc); }, nullptr);
-    g.addPass("local", [&](PassBuilder& p) { hdr2 = p.write(hdr); }, nullptr);
-    g.addPass("composite", [&](PassBuilder& p) { p.read(bloom); p.read(hdr2); p.create("out", kDesc); }, nullptr);
+    g.addPass("bloom", fg::PassKind::Compute, [&](PassBuilder& p) { p.read(hdr, fg::Usage::Sampled); bloom = p.create("bloom", kDesc, fg::Usage::ImageStore); }, nullptr);
+    g.addPass("local", fg::PassKind::Compute, [&](PassBuilder& p) { hdr2 = p.write(hdr, fg::Usage::ImageLoadStore); }, nullptr);
+    g.addPass("composite", fg::PassKind::Compute, [&](PassBuilder& p) { p.read(bloom, fg::Usage::Sampled); p.read(hdr2, fg::Usage::Sampled); p.create("out", kDesc, fg::Usage::ImageStore); }, nullptr);
     g.markOutput("out");
     g.compile();
     auto order = g.executionOrder();
@@ -80,17 +80,17 @@ TEST(FrameGraph, InPlaceWritesAreVersionedAndOrdered) {
     // Writing an old version a second time is refused.
     FrameGraph bad;
     ResourceId x;
-    bad.addPass("p1", [&](PassBuilder& p) { x = p.create("x", kDesc); }, nullptr);
-    bad.addPass("p2", [&](PassBuilder& p) { p.write(x); }, nullptr);
-    EXPECT_THROW(bad.addPass("p3", [&](PassBuilder& p) { p.write(x); }, nullptr), Error);
+    bad.addPass("p1", fg::PassKind::Compute, [&](PassBuilder& p) { x = p.create("x", kDesc, fg::Usage::ImageStore); }, nullptr);
+    bad.addPass("p2", fg::PassKind::Compute, [&](PassBuilder& p) { p.write(x, fg::Usage::ImageLoadStore); }, nullptr);
+    EXPECT_THROW(bad.addPass("p3", fg::PassKind::Compute, [&](PassBuilder& p) { p.write(x, fg::Usage::ImageLoadStore); }, nullptr), Error);
 }
 
 TEST(FrameGraph, InPlaceWriterKeepsItsProducerAlive) {
     FrameGraph g;
     ResourceId hdr;
-    g.addPass("light", [&](PassBuilder& p) { hdr = p.create("hdr", kDesc); }, nullptr);
+    g.addPass("light", fg::PassKind::Compute, [&](PassBuilder& p) { hdr = p.create("hdr", kDesc, fg::Usage::ImageStore); }, nullptr);
     ResourceId hdr2;
-    g.addPass("sky", [&](PassBuilder& p) { hdr2 = p.write(hdr); }, nullptr);
+    g.addPass("sky", fg::PassKind::Compute, [&](PassBuilder& p) { hdr2 = p.write(hdr, fg::Usage::ImageLoadStore); }, nullptr);
     g.markOutput(hdr2);
     g.compile();
     EXPECT_EQ(g.executionOrder(), (std::vector<std::string>{"light", "sky"}));
@@ -98,8 +98,8 @@ TEST(FrameGraph, InPlaceWriterKeepsItsProducerAlive) {
 
 TEST(FrameGraph, CycleIsAClearError) {
     FrameGraph g;
-    g.addPass("A", [&](PassBuilder& p) { p.read("y"); p.create("x", kDesc); }, nullptr);
-    g.addPass("B", [&](PassBuilder& p) { p.read("x"); p.create("y", kDesc); }, nullptr);
+    g.addPass("A", fg::PassKind::Compute, [&](PassBuilder& p) { p.read("y", fg::Usage::Sampled); p.create("x", kDesc, fg::Usage::ImageStore); }, nullptr);
+    g.addPass("B", fg::PassKind::Compute, [&](PassBuilder& p) { p.read("x", fg::Usage::Sampled); p.create("y", kDesc, fg::Usage::ImageStore); }, nullptr);
     g.markOutput("y");
     std::string err = errorOf(g);
     EXPECT_NE(err.find("cycle"), std::string::npos) << err;
@@ -109,7 +109,7 @@ TEST(FrameGraph, CycleIsAClearError) {
 
 TEST(FrameGraph, ReadOfUnwrittenResourceIsAClearError) {
     FrameGraph g;
-    g.addPass("A", [&](PassBuilder& p) { p.read("ghost"); p.create("out", kDesc); }, nullptr);
+    g.addPass("A", fg::PassKind::Compute, [&](PassBuilder& p) { p.read("ghost", fg::Usage::Sampled); p.create("out", kDesc, fg::Usage::ImageStore); }, nullptr);
     g.markOutput("out");
     std::string err = errorOf(g);
     EXPECT_NE(err.find("'A' reads 'ghost'"), std::string::npos) << err;
@@ -117,16 +117,16 @@ TEST(FrameGraph, ReadOfUnwrittenResourceIsAClearError) {
 
 TEST(FrameGraph, NoOutputIsAnError) {
     FrameGraph g;
-    g.addPass("A", [&](PassBuilder& p) { p.create("out", kDesc); }, nullptr);
+    g.addPass("A", fg::PassKind::Compute, [&](PassBuilder& p) { p.create("out", kDesc, fg::Usage::ImageStore); }, nullptr);
     EXPECT_NE(errorOf(g).find("no output"), std::string::npos);
 }
 
 TEST(FrameGraph, LifetimesSpanFirstToLastUse) {
     FrameGraph g;
     ResourceId a, b;
-    g.addPass("P0", [&](PassBuilder& p) { a = p.create("a", kDesc); }, nullptr);
-    g.addPass("P1", [&](PassBuilder& p) { p.read(a); b = p.create("b", kDesc); }, nullptr);
-    g.addPass("P2", [&](PassBuilder& p) { p.read(b); p.create("out", kDesc); }, nullptr);
+    g.addPass("P0", fg::PassKind::Compute, [&](PassBuilder& p) { a = p.create("a", kDesc, fg::Usage::ImageStore); }, nullptr);
+    g.addPass("P1", fg::PassKind::Compute, [&](PassBuilder& p) { p.read(a, fg::Usage::Sampled); b = p.create("b", kDesc, fg::Usage::ImageStore); }, nullptr);
+    g.addPass("P2", fg::PassKind::Compute, [&](PassBuilder& p) { p.read(b, fg::Usage::Sampled); p.create("out", kDesc, fg::Usage::ImageStore); }, nullptr);
     g.markOutput("out");
     g.compile();
     for (const auto& r : g.resources()) {
@@ -211,9 +211,9 @@ TEST(FrameBuilder, LightingViewSkipsDiffuseAndSky) {
 TEST(FrameGraph, DisabledInPlacePassPassesItsInputThrough) {
     FrameGraph g;
     ResourceId hdr, hdr2;
-    g.addPass("light", [&](PassBuilder& p) { hdr = p.create("hdr", kDesc); }, nullptr);
-    g.addPass("sky", [&](PassBuilder& p) { hdr2 = p.write(hdr); }, nullptr);
-    g.addPass("tonemap", [&](PassBuilder& p) { p.read(hdr2); p.create("out", kDesc); }, nullptr);
+    g.addPass("light", fg::PassKind::Compute, [&](PassBuilder& p) { hdr = p.create("hdr", kDesc, fg::Usage::ImageStore); }, nullptr);
+    g.addPass("sky", fg::PassKind::Compute, [&](PassBuilder& p) { hdr2 = p.write(hdr, fg::Usage::ImageLoadStore); }, nullptr);
+    g.addPass("tonemap", fg::PassKind::Compute, [&](PassBuilder& p) { p.read(hdr2, fg::Usage::Sampled); p.create("out", kDesc, fg::Usage::ImageStore); }, nullptr);
     g.markOutput("out");
     g.disablePass("sky");
     g.compile();
@@ -232,9 +232,9 @@ TEST(FrameGraph, DisabledCreatingPassClearsInsteadOfDrawing) {
     FrameGraph g;
     ResourceId a;
     bool drew = false;
-    g.addPass("gbuf", [&](PassBuilder& p) { a = p.create("a", kDesc); }, nullptr);
-    g.addPass("light", [&](PassBuilder& p) { p.read(a); p.create("hdr", kDesc); }, [&](const fg::PassResources&) { drew = true; });
-    g.addPass("tonemap", [&](PassBuilder& p) { p.read("hdr"); p.create("out", kDesc); }, nullptr);
+    g.addPass("gbuf", fg::PassKind::Compute, [&](PassBuilder& p) { a = p.create("a", kDesc, fg::Usage::ImageStore); }, nullptr);
+    g.addPass("light", fg::PassKind::Compute, [&](PassBuilder& p) { p.read(a, fg::Usage::Sampled); p.create("hdr", kDesc, fg::Usage::ImageStore); }, [&](const fg::PassResources&) { drew = true; });
+    g.addPass("tonemap", fg::PassKind::Compute, [&](PassBuilder& p) { p.read("hdr", fg::Usage::Sampled); p.create("out", kDesc, fg::Usage::ImageStore); }, nullptr);
     g.markOutput("out");
     g.disablePass("light");
     g.compile();
@@ -260,11 +260,189 @@ TEST(FrameBuilder, DisablingSkyRemovesItFromTheCompiledGraph) {
 
 TEST(FrameGraph, SkippedPassesAreReportedWithTheirReason) {
     FrameGraph g;
-    g.addPass("A", [&](PassBuilder& p) { p.create("out", kDesc); }, nullptr);
+    g.addPass("A", fg::PassKind::Compute, [&](PassBuilder& p) { p.create("out", kDesc, fg::Usage::ImageStore); }, nullptr);
     g.skipPass("shadows", "scene has no shadow-casting light");
     g.markOutput("out");
     g.compile();
     EXPECT_EQ(g.executionOrder(), (std::vector<std::string>{"A"}));
     ASSERT_EQ(g.skippedPasses().size(), 1u);
     EXPECT_NE(g.describe().find("shadows: skipped: scene has no shadow-casting light"), std::string::npos);
+}
+
+// ---- usages, barriers and kinds -------------------------------------------------------------------
+
+namespace {
+// producer -> consumer over one 64x64 texture: the barrier the graph issues before the consumer.
+GLbitfield barrierBetween(fg::Usage produced, fg::Usage consumed, bool inPlace) {
+    FrameGraph g;
+    ResourceId a;
+    g.addPass("producer", fg::PassKind::Compute, [&](PassBuilder& p) { a = p.create("a", kDesc, produced); }, nullptr);
+    g.addPass("consumer", fg::PassKind::Compute,
+              [&](PassBuilder& p) {
+                  if (inPlace) p.write(a, consumed);
+                  else p.read(a, consumed);
+                  p.create("out", kDesc, fg::Usage::ColorAttachment);
+              },
+              nullptr);
+    g.markOutput("out");
+    g.compile();
+    return g.barriersBefore("consumer");
+}
+}  // namespace
+
+TEST(FrameGraphBarriers, ImageStoresGetTheBitsOfTheirConsumersUsage) {
+    using fg::Usage;
+    EXPECT_EQ(barrierBetween(Usage::ImageStore, Usage::Sampled, false), GLbitfield(GL_TEXTURE_FETCH_BARRIER_BIT));
+    EXPECT_EQ(barrierBetween(Usage::ImageStore, Usage::ImageLoadStore, true), GLbitfield(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT));
+    // The case the hand-picked barriers missed: compute writes the HDR buffer, raster blends into it.
+    EXPECT_EQ(barrierBetween(Usage::ImageStore, Usage::Blend, true), GLbitfield(GL_FRAMEBUFFER_BARRIER_BIT));
+    EXPECT_EQ(barrierBetween(Usage::ImageStore, Usage::DepthTest, false), GLbitfield(GL_FRAMEBUFFER_BARRIER_BIT));
+    EXPECT_EQ(barrierBetween(Usage::ImageLoadStore, Usage::Transfer, false), GLbitfield(GL_TEXTURE_UPDATE_BARRIER_BIT));
+    EXPECT_NE(barrierBetween(Usage::ImageStore, Usage::Cuda, true) & GL_SHADER_IMAGE_ACCESS_BARRIER_BIT, 0u);
+}
+
+TEST(FrameGraphBarriers, CoherentWritesNeedNone) {
+    using fg::Usage;
+    // Attachments, clears and CUDA's map/unmap are ordered by GL itself.
+    EXPECT_EQ(barrierBetween(Usage::ColorAttachment, Usage::Sampled, false), 0u);
+    EXPECT_EQ(barrierBetween(Usage::DepthAttachment, Usage::ImageLoad, false), 0u);
+    EXPECT_EQ(barrierBetween(Usage::Blend, Usage::ImageLoadStore, true), 0u);
+    EXPECT_EQ(barrierBetween(Usage::Cuda, Usage::Sampled, false), 0u);
+    EXPECT_EQ(barrierBetween(Usage::Transfer, Usage::Sampled, false), 0u);
+}
+
+TEST(FrameGraphBarriers, OneBarrierCoversEveryEarlierStoreAndIsNotRepeated) {
+    using fg::Usage;
+    FrameGraph g;
+    ResourceId a, b;
+    g.addPass("A", fg::PassKind::Compute, [&](PassBuilder& p) { a = p.create("a", kDesc, Usage::ImageStore); }, nullptr);
+    g.addPass("B", fg::PassKind::Compute, [&](PassBuilder& p) { b = p.create("b", kDesc, Usage::ImageStore); }, nullptr);
+    g.addPass("readsBoth", fg::PassKind::Compute,
+              [&](PassBuilder& p) {
+                  p.read(a, Usage::Sampled);
+                  p.read(b, Usage::Sampled);
+                  p.create("c", kDesc, Usage::ColorAttachment);
+              },
+              nullptr);
+    g.addPass("readsAAgain", fg::PassKind::Compute,
+              [&](PassBuilder& p) {
+                  p.read(a, Usage::Sampled);
+                  p.read("c", Usage::Sampled);
+                  p.create("out", kDesc, Usage::ImageStore);
+              },
+              nullptr);
+    g.markOutput("out");
+    g.compile();
+    EXPECT_EQ(g.barriersBefore("A"), 0u);
+    EXPECT_EQ(g.barriersBefore("B"), 0u);
+    EXPECT_EQ(g.barriersBefore("readsBoth"), GLbitfield(GL_TEXTURE_FETCH_BARRIER_BIT));
+    EXPECT_EQ(g.barriersBefore("readsAAgain"), 0u);  // already covered
+    // The output was stored by a shader: what the application does next (readback, blit) is covered.
+    EXPECT_NE(g.barriersAfterFrame() & GL_TEXTURE_UPDATE_BARRIER_BIT, 0u);
+    EXPECT_NE(g.barriersAfterFrame() & GL_FRAMEBUFFER_BARRIER_BIT, 0u);
+}
+
+TEST(FrameGraphBarriers, DescribeAndDotShowKindsBarriersAndUsages) {
+    FrameGraph g;
+    ResourceId a;
+    g.addPass("draw", fg::PassKind::Raster, [&](PassBuilder& p) { a = p.create("a", kDesc, fg::Usage::ImageStore); }, nullptr);
+    g.addPass("blend", fg::PassKind::Raster, [&](PassBuilder& p) { p.write(a, fg::Usage::Blend); }, nullptr);
+    g.markOutput("a");
+    g.compile();
+    const std::string text = g.describe();
+    EXPECT_NE(text.find("1. draw  [raster]"), std::string::npos) << text;
+    EXPECT_NE(text.find("barrier: framebuffer"), std::string::npos) << text;
+    EXPECT_NE(g.toDot().find("label=\"blend\""), std::string::npos) << g.toDot();
+    EXPECT_EQ(fg::usageName(fg::Usage::Blend | fg::Usage::ImageLoadStore), "image-load/store+blend");
+}
+
+TEST(FrameBuilder, PassesDeclareTheirKindAndTheBarriersFollow) {
+    Scene s = oneLightScene();
+    s.pointLights.push_back(PointLight{});
+    s.pointLights.back().position = glm::vec3(0.0f, 0.5f, 0.0f);
+    s.pointLights.back().range = 5.0f;
+    for (LocalLightMethod method : {LocalLightMethod::Tiled, LocalLightMethod::Volumes}) {
+        RenderSettings settings;
+        settings.width = 320;
+        settings.height = 200;
+        settings.localLights.method = method;
+        FrameData frame = makeFrameData(s, settings, 0.0f);
+        FrameGraph g;
+        PassStates passes;
+        buildFrameGraph(g, passes, frame);
+        g.compile();
+        ASSERT_TRUE(g.isLive("local_lights")) << g.explainText();
+        EXPECT_EQ(g.passKind("gbuffer"), fg::PassKind::Raster);
+        EXPECT_EQ(g.passKind("shadow_map_0"), fg::PassKind::Raster);
+        EXPECT_EQ(g.passKind("global_lights"), fg::PassKind::Compute);
+        EXPECT_EQ(g.passKind("tonemap"), fg::PassKind::Compute);
+        // global_lights image-stores the HDR buffer; the local lights read it as their method does.
+        const GLbitfield before = g.barriersBefore("local_lights");
+        if (method == LocalLightMethod::Tiled) {
+            EXPECT_EQ(g.passKind("local_lights"), fg::PassKind::Compute);
+            EXPECT_EQ(before, GLbitfield(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT));
+        } else {
+            EXPECT_EQ(g.passKind("local_lights"), fg::PassKind::Raster);
+            EXPECT_EQ(before, GLbitfield(GL_FRAMEBUFFER_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT));
+        }
+        EXPECT_EQ(g.barriersBefore("gbuffer"), 0u);  // nothing stored before it
+        EXPECT_NE(g.barriersBefore("tonemap") & GL_TEXTURE_FETCH_BARRIER_BIT, 0u);
+    }
+}
+
+TEST(FrameBuilder, BloomScratchIsAGraphTransientCountedInMemory) {
+    Scene s = oneLightScene();
+    for (auto method : {PostSettings::BloomMethod::Separable, PostSettings::BloomMethod::MipChain}) {
+        RenderSettings settings;
+        settings.width = 320;
+        settings.height = 200;
+        settings.post.bloom = true;
+        settings.post.bloomMethod = method;
+        settings.post.backend = PostSettings::Backend::Glsl;
+        FrameData frame = makeFrameData(s, settings, 0.0f);
+        FrameGraph g;
+        PassStates passes;
+        buildFrameGraph(g, passes, frame);
+        g.compile();
+        std::vector<std::string> scratch;
+        size_t scratchBytes = 0;
+        for (const auto& r : g.resources())
+            if (r.name.rfind("bloom.", 0) == 0 && r.live) {
+                scratch.push_back(r.name);
+                scratchBytes += r.desc.bytes();
+                EXPECT_EQ(r.firstPass, r.lastPass) << r.name << " lives only inside the bloom pass";
+            }
+        if (method == PostSettings::BloomMethod::Separable)
+            EXPECT_EQ(scratch, (std::vector<std::string>{"bloom.bright", "bloom.blur_h"}));
+        else
+            EXPECT_EQ(scratch, (std::vector<std::string>{"bloom.mips"}));
+        EXPECT_GT(scratchBytes, 0u);
+        EXPECT_GE(g.liveTransientBytes(), scratchBytes);
+        EXPECT_TRUE(g.isLive("bloom_composite"));
+    }
+}
+
+TEST(FrameBuilder, EnvironmentTexturesAreImportedAndWrittenByTheBake) {
+    Scene s = oneLightScene();
+    s.environment.map = "sky.exr";  // never read: nothing executes
+    s.environment.ibl = true;
+    RenderSettings settings;
+    settings.width = 64;
+    settings.height = 48;
+    FrameData frame = makeFrameData(s, settings, 0.0f);
+    FrameGraph g;
+    PassStates passes;
+    buildFrameGraph(g, passes, frame);
+    g.compile();
+    const auto order = g.executionOrder();
+    ASSERT_FALSE(order.empty());
+    EXPECT_EQ(order.front(), "ibl_bake");  // first: ibl and sky read what it writes
+    bool cubeImported = false;
+    for (const auto& r : g.resources())
+        if (r.name == "environment.cube") cubeImported = r.imported && r.desc.cube;
+    EXPECT_TRUE(cubeImported);
+    for (const auto& r : g.report())
+        if (r.name == "sky") EXPECT_NE(std::find(r.reads.begin(), r.reads.end(), "environment.cube@1"), r.reads.end());
+    // Imported lookups are not streamed: they are not in the floor's bytes.
+    EXPECT_EQ(g.passTrafficBytes("ibl_bake"), 0u);
 }
