@@ -36,18 +36,10 @@ glm::mat4 gbufferDepthProjection(const FrameData& frame) {
     return p;
 }
 
-ScopedGBufferDepthTest::ScopedGBufferDepthTest(const GBufferSettings& layout) {
-    glGetIntegerv(GL_CLIP_ORIGIN, &origin_);
-    glGetIntegerv(GL_CLIP_DEPTH_MODE, &depthMode_);
-    glGetIntegerv(GL_DEPTH_FUNC, &depthFunc_);
+void setGBufferDepthTest(const GBufferSettings& layout) {
     const bool reversed = layout.position == GBufferPositionMode::ReversedZ;
     glClipControl(GL_LOWER_LEFT, reversed ? GL_ZERO_TO_ONE : GL_NEGATIVE_ONE_TO_ONE);
     glDepthFunc(reversed ? GL_GREATER : GL_LESS);
-}
-
-ScopedGBufferDepthTest::~ScopedGBufferDepthTest() {
-    glClipControl(GLenum(origin_), GLenum(depthMode_));
-    glDepthFunc(GLenum(depthFunc_));
 }
 
 void readGBuffer(fg::PassBuilder& b, const GBuffer& g, bool diffuse) {
@@ -108,7 +100,8 @@ GBuffer addGBufferPass(fg::FrameGraph& graph, GBufferPass& state, const FrameDat
             gl::ScopedEnable depthTest(GL_DEPTH_TEST, true);
             gl::ScopedEnable cull(GL_CULL_FACE, false);  // thin walls and open meshes are two-sided
             gl::ScopedEnable blend(GL_BLEND, false);
-            ScopedGBufferDepthTest depthConvention(layout);  // reversed-Z: clip control 0..1, GL_GREATER
+            gl::ScopedRasterState saved;
+            setGBufferDepthTest(layout);  // reversed-Z: clip control 0..1, GL_GREATER
             glDepthMask(GL_TRUE);
             const float zero[4] = {0, 0, 0, 0};
             const GLuint zeroU[4] = {0, 0, 0, 0};

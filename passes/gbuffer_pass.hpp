@@ -35,17 +35,9 @@ GLenum gbufferSpecularFormat(GBufferNormalFormat format);
 glm::mat4 gbufferDepthProjection(const FrameData& frame);
 
 // For passes that raster against the G-buffer depth (light globes): sets the clip control and
-// depth function matching the depth convention (GL_LESS or, reversed-Z, GL_GREATER), restores both.
-class ScopedGBufferDepthTest {
-public:
-    explicit ScopedGBufferDepthTest(const GBufferSettings& layout);
-    ~ScopedGBufferDepthTest();
-    ScopedGBufferDepthTest(const ScopedGBufferDepthTest&) = delete;
-    ScopedGBufferDepthTest& operator=(const ScopedGBufferDepthTest&) = delete;
-
-private:
-    GLint origin_ = GL_LOWER_LEFT, depthMode_ = GL_NEGATIVE_ONE_TO_ONE, depthFunc_ = GL_LESS;
-};
+// depth function matching the depth convention (GL_LESS or, reversed-Z, GL_GREATER); the caller's
+// gl::ScopedRasterState puts both back.
+void setGBufferDepthTest(const GBufferSettings& layout);
 
 // Declares reads of the targets the decode API needs (position only when stored; diffuse when asked).
 void readGBuffer(fg::PassBuilder& b, const GBuffer& g, bool diffuse = true);

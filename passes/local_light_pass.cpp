@@ -25,43 +25,6 @@ int specularMode(const LocalLightSettings& s) {
 }
 bool unbounded(const LocalLightSettings& s) { return s.specular && s.specularOutsideRange; }
 
-// Blend function/equation, cull face, depth func/mask, polygon mode and scissor box: the raster
-// state the local-light draws change beyond what gl::ScopedEnable covers, put back when they end.
-class ScopedRasterState {
-public:
-    ScopedRasterState() {
-        glGetIntegerv(GL_BLEND_SRC_RGB, &srcRgb_);
-        glGetIntegerv(GL_BLEND_DST_RGB, &dstRgb_);
-        glGetIntegerv(GL_BLEND_SRC_ALPHA, &srcAlpha_);
-        glGetIntegerv(GL_BLEND_DST_ALPHA, &dstAlpha_);
-        glGetIntegerv(GL_BLEND_EQUATION_RGB, &eqRgb_);
-        glGetIntegerv(GL_BLEND_EQUATION_ALPHA, &eqAlpha_);
-        glGetIntegerv(GL_CULL_FACE_MODE, &cullFace_);
-        glGetIntegerv(GL_DEPTH_FUNC, &depthFunc_);
-        glGetBooleanv(GL_DEPTH_WRITEMASK, &depthMask_);
-        glGetIntegerv(GL_POLYGON_MODE, polygonMode_);
-        glGetIntegerv(GL_SCISSOR_BOX, scissor_);
-    }
-    ~ScopedRasterState() {
-        glBlendFuncSeparate(GLenum(srcRgb_), GLenum(dstRgb_), GLenum(srcAlpha_), GLenum(dstAlpha_));
-        glBlendEquationSeparate(GLenum(eqRgb_), GLenum(eqAlpha_));
-        glCullFace(GLenum(cullFace_));
-        glDepthFunc(GLenum(depthFunc_));
-        glDepthMask(depthMask_);
-        glPolygonMode(GL_FRONT_AND_BACK, GLenum(polygonMode_[0]));
-        glScissor(scissor_[0], scissor_[1], scissor_[2], scissor_[3]);
-    }
-    ScopedRasterState(const ScopedRasterState&) = delete;
-    ScopedRasterState& operator=(const ScopedRasterState&) = delete;
-
-private:
-    GLint srcRgb_ = 0, dstRgb_ = 0, srcAlpha_ = 0, dstAlpha_ = 0, eqRgb_ = 0, eqAlpha_ = 0;
-    GLint cullFace_ = 0, depthFunc_ = 0;
-    GLboolean depthMask_ = GL_TRUE;
-    GLint polygonMode_[2] = {GL_FILL, GL_FILL};
-    GLint scissor_[4] = {0, 0, 0, 0};
-};
-
 void makeMesh(const std::vector<glm::vec3>& tris, const std::string& name, gl::Buffer& buffer, gl::VertexArray& vao,
               int& vertices) {
     buffer = gl::makeBuffer(GLsizeiptr(tris.size() * sizeof(glm::vec3)), tris.data(), 0, name);
@@ -150,7 +113,7 @@ void drawFragmentMethod(LocalLightPass& state, const FrameData& frame, const std
     glNamedFramebufferDrawBuffer(fbo, GL_COLOR_ATTACHMENT0);
     setMat4(prog, "uProjection", frame.projection);
 
-    ScopedRasterState saved;
+    gl::ScopedRasterState saved;
     gl::ScopedFramebuffer bind(fbo, frame.width, frame.height);
     gl::ScopedEnable blend(GL_BLEND, true);
     // Volumes: back faces only, no depth test. A back face of the circumscribing icosphere covers
@@ -259,7 +222,7 @@ void drawGlobes(LocalLightPass& state, const FrameData& frame, int count, GLuint
     glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, hdrTexture, 0);
     glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, depthTexture, 0);  // read only: depth mask off
     glNamedFramebufferDrawBuffer(fbo, GL_COLOR_ATTACHMENT0);
-    ScopedRasterState saved;
+    gl::ScopedRasterState saved;
     gl::ScopedFramebuffer bind(fbo, frame.width, frame.height);
     gl::ScopedEnable blend(GL_BLEND, false);
     gl::ScopedEnable depthTest(GL_DEPTH_TEST, true);  // hidden behind the scene's surfaces
@@ -267,7 +230,7 @@ void drawGlobes(LocalLightPass& state, const FrameData& frame, int count, GLuint
     gl::ScopedEnable scissor(GL_SCISSOR_TEST, false);
     // The G-buffer's depth convention: GL_LESS, or under reversed-Z clip control 0..1 and GL_GREATER
     // with the reversed projection below, so globes stay hidden by nearer surfaces in every mode.
-    ScopedGBufferDepthTest depthConvention(frame.settings->gbuffer);
+    setGBufferDepthTest(frame.settings->gbuffer);
     glDepthMask(GL_FALSE);
     glCullFace(GL_BACK);
     glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
@@ -288,7 +251,7 @@ void drawRanges(LocalLightPass& state, const FrameData& frame, const std::vector
     glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, hdrTexture, 0);
     glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, 0, 0);
     glNamedFramebufferDrawBuffer(fbo, GL_COLOR_ATTACHMENT0);
-    ScopedRasterState saved;
+    gl::ScopedRasterState saved;
     gl::ScopedFramebuffer bind(fbo, frame.width, frame.height);
     gl::ScopedEnable blend(GL_BLEND, false);
     gl::ScopedEnable depthTest(GL_DEPTH_TEST, false);

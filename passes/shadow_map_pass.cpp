@@ -13,28 +13,6 @@ struct Data {
     fg::ResourceId depth;
 };
 
-// Polygon offset and depth function are not covered by gl::ScopedEnable: put them back by hand.
-class ScopedDepthState {
-public:
-    ScopedDepthState() {
-        glGetFloatv(GL_POLYGON_OFFSET_FACTOR, &factor_);
-        glGetFloatv(GL_POLYGON_OFFSET_UNITS, &units_);
-        glGetIntegerv(GL_DEPTH_FUNC, &func_);
-        glGetBooleanv(GL_DEPTH_WRITEMASK, &mask_);
-    }
-    ~ScopedDepthState() {
-        glPolygonOffset(factor_, units_);
-        glDepthFunc(GLenum(func_));
-        glDepthMask(mask_);
-    }
-    ScopedDepthState(const ScopedDepthState&) = delete;
-    ScopedDepthState& operator=(const ScopedDepthState&) = delete;
-
-private:
-    GLfloat factor_ = 0, units_ = 0;
-    GLint func_ = GL_LESS;
-    GLboolean mask_ = GL_TRUE;
-};
 }  // namespace
 
 ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const FrameData& frame) {
@@ -75,7 +53,7 @@ ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const
                 gl::ScopedEnable blend(GL_BLEND, false);
                 gl::ScopedEnable offset(GL_POLYGON_OFFSET_FILL, true);
                 gl::ScopedEnable clamp(GL_DEPTH_CLAMP, true);  // casters past the light's near plane still cast
-                ScopedDepthState depthState;
+                gl::ScopedRasterState saved;  // depth function and mask, polygon offset
                 glDepthFunc(GL_LESS);
                 glDepthMask(GL_TRUE);
                 // Slope-scaled bias against acne; the constant part is the receiver's (see shadow.glsl).
