@@ -1,5 +1,6 @@
 #pragma once
 // Command-line parsing for the lightpass executable: flags are validated with one-line errors.
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -22,7 +23,7 @@ struct Options {
     DebugView view = DebugView::Final;
     int frames = 1;
     int warmup = 5;
-    float exposure = 0.0f;
+    float exposure = 0.0f;  // = base.exposureEV (the --exposure knob), for the viewer's start
     bool vsync = true;
     bool floors = false;
     std::string screenshotDir;  // viewer: where F12 writes
@@ -33,10 +34,22 @@ struct Options {
     std::vector<std::string> varies; // bench: one axis of variants per --vary
     double maxSeconds = 0;           // bench: time cap per variant (0: none)
     int minFrames = 10;              // bench: timed frames a capped variant still gets
-    RenderSettings base;  // feature flags (, , , ) set these
+    bool warmupGiven = false;
+    RenderSettings base;  // the knob flags (frame/knobs.cpp's table) set these
     bool verbose = false;
     bool quiet = false;
 };
+
+// A flag that is not a knob (commands' inputs and outputs, size, view, timing, viewer options): the
+// knob flags come from frame/knobs.cpp's table, these from commandFlags(). The parser accepts
+// exactly the flags of the two lists, and --help prints both.
+struct CommandFlag {
+    std::vector<std::string> names;  // {"-v", "--verbose"}
+    std::string metavar;             // "F" for a flag that takes a value; empty: it takes none
+    std::string help;
+    std::function<void(Options&, const std::string& flag, const std::string& value)> apply;
+};
+const std::vector<CommandFlag>& commandFlags();
 
 // Throws lp::Error("unknown flag ...") etc.
 Options parseArgs(const std::vector<std::string>& args);

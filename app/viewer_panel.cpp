@@ -1,4 +1,5 @@
-// The viewer's ImGui panel: passes with GPU times, and every render setting a user would tweak.
+// The viewer's ImGui panel: passes with GPU times, and every render setting a user would tweak
+// (the knob widgets come from frame/knobs.cpp's table, through knobWidget()).
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
@@ -7,7 +8,7 @@
 #include <imgui.h>
 
 #include "app/viewer_state.hpp"
-#include "engine/post/post_config.hpp"
+#include "frame/knobs.hpp"
 
 namespace lp::app {
 namespace fs = std::filesystem;
@@ -34,29 +35,82 @@ std::vector<fs::path> filesWithExtensions(const fs::path& dir, std::initializer_
     return found;
 }
 
-// "scene file" / "off" / "on" for a setting that is unset until the user picks a side.
-bool overrideCombo(const char* label, std::optional<bool>& value, bool sceneValue) {
-    int current = value ? (*value ? 2 : 1) : 0;
-    char sceneItem[32];
-    std::snprintf(sceneItem, sizeof sceneItem, "scene (%s)", sceneValue ? "on" : "off");
-    const char* items[] = {sceneItem, "off", "on"};
-    if (!ImGui::Combo(label, &current, items, 3)) return false;
-    value = current == 0 ? std::nullopt : std::optional<bool>(current == 2);
-    return true;
-}
-
-template <typename Enum, size_t N>
-void enumCombo(const char* label, Enum& value, const Enum (&options)[N], const char* (*name)(Enum)) {
-    if (ImGui::BeginCombo(label, name(value))) {
-        for (Enum option : options)
-            if (ImGui::Selectable(name(option), option == value)) value = option;
-        ImGui::EndCombo();
+// One knob's widget, as frame/knobs.cpp's table describes it: the panel's only knob widgets, so the
+// panel offers the CLI's range and choices. Optional knobs show the scene's value until changed;
+// "scene's" unsets them again.
+void knobWidget(const KnobEntry& knob, RenderSettings& s, const Scene& scene) {
+    const KnobPanel& panel = knob.panel;
+    const char* knobLabel = panel.label.empty() ? knob.name.c_str() : panel.label.c_str();
+    const KnobValueOrUnset value = knob.field.get(s);
+    const double shown = value ? *value : knob.field.sceneValue ? knob.field.sceneValue(scene) : 0.0;
+    const KnobRange& range = knob.range;
+    ImGui::PushID(knob.name.c_str());
+    switch (panel.widget) {
+        case PanelWidget::None: break;
+        case PanelWidget::Checkbox: {
+            bool on = shown != 0.0;
+            if (ImGui::Checkbox(knobLabel, &on)) knob.field.set(s, on ? 1.0 : 0.0);
+            break;
+        }
+        case PanelWidget::Combo: {
+            if (knob.type == KnobType::Bool) {  // optional: the scene's value, off or on
+                int current = value ? (*value != 0.0 ? 2 : 1) : 0;
+                const std::string sceneItem = std::string("scene (") + (shown != 0.0 ? "on" : "off") + ")";
+                const char* items[] = {sceneItem.c_str(), "off", "on"};
+                if (ImGui::Combo(knobLabel, &current, items, 3))
+                    knob.field.set(s, current == 0 ? KnobValueOrUnset() : KnobValueOrUnset(current == 2 ? 1.0 : 0.0));
+                break;
+            }
+            if (ImGui::BeginCombo(knobLabel, formatKnobValue(knob, shown).c_str())) {
+                for (size_t i = 0; i < knob.choices.size(); ++i)
+                    if (ImGui::Selectable(knob.choices[i].c_str(), double(i) == shown)) knob.field.set(s, double(i));
+                ImGui::EndCombo();
+            }
+            break;
+        }
+        case PanelWidget::PowersOfTwo: {
+            if (ImGui::BeginCombo(knobLabel, formatKnobValue(knob, shown).c_str())) {
+                for (double p = std::exp2(std::ceil(std::log2(std::max(1.0, range.min)))); p <= range.max; p *= 2)
+                    if (ImGui::Selectable(formatKnobValue(knob, p).c_str(), p == shown)) knob.field.set(s, p);
+                ImGui::EndCombo();
+            }
+            break;
+        }
+        case PanelWidget::Slider:
+        case PanelWidget::LogSlider: {
+            const ImGuiSliderFlags flags =
+                ImGuiSliderFlags_AlwaysClamp | (panel.widget == PanelWidget::LogSlider ? ImGuiSliderFlags_Logarithmic : 0);
+            bool changed = false;
+            if (knob.type == KnobType::Int) {  // the table's int ranges are bounded (tests/unit/test_knob_table.cpp)
+                int v = int(shown);
+                changed = ImGui::SliderInt(knobLabel, &v, int(range.min), int(range.max),
+                                           panel.format.empty() ? "%d" : panel.format.c_str(), flags);
+                if (changed) knob.field.set(s, double(v));
+            } else {
+                float v = float(shown);
+                const char* format = panel.format.empty() ? "%.2f" : panel.format.c_str();
+                const float lo = range.minExclusive ? std::nextafter(float(range.min), FLT_MAX) : float(range.min);
+                changed = range.bounded()
+                              ? ImGui::SliderFloat(knobLabel, &v, lo, float(range.max), format, flags)
+                              // open-ended: a drag box (a slider needs both ends)
+                              : ImGui::DragFloat(knobLabel, &v, 0.01f, std::max(lo, -FLT_MAX),
+                                                 std::min(float(range.max), FLT_MAX), format, flags);
+                if (changed) knob.field.set(s, double(v));
+            }
+            if (knob.field.optional) {
+                ImGui::SameLine();
+                if (ImGui::SmallButton("scene's")) knob.field.set(s, std::nullopt);
+            }
+            break;
+        }
     }
+    ImGui::PopID();
 }
 
-const char* filterLabel(ShadowSettings::Filter f) { return ShadowSettings::filterName(f); }
-const char* bloomMethodLabel(PostSettings::BloomMethod m) {
-    return m == PostSettings::BloomMethod::Separable ? "separable" : "mip-chain";
+// Every knob the table puts in this panel section, in table order.
+void knobWidgets(PanelSection section, RenderSettings& s, const Scene& scene) {
+    for (const KnobEntry& knob : knobTable())
+        if (knob.panel.section == section && knob.panel.widget != PanelWidget::None) knobWidget(knob, s, scene);
 }
 
 // Why a pass is culled or skipped, wrapped under its name (greyed, indented).
@@ -104,73 +158,17 @@ void drawPasses(ViewerState& st, Renderer& renderer) {
 }
 
 void drawLighting(ViewerState& st, const Scene& scene) {
-    RenderSettings& s = st.settings;
-    const Brdf brdfs[] = {Brdf::BlinnPhong, Brdf::Ggx};
-    enumCombo("BRDF", s.brdf, brdfs, brdfName);
-    overrideCombo("IBL", s.environment.ibl, scene.environment.ibl);
-    ImGui::Checkbox("directional lights", &s.globalLighting);
-
-    ImGui::Checkbox("local lights", &s.localLights.enabled);
-    const LocalLightMethod methods[] = {LocalLightMethod::Fullscreen, LocalLightMethod::Scissor,
-                                        LocalLightMethod::Volumes, LocalLightMethod::Tiled};
-    enumCombo("method", s.localLights.method, methods, localLightMethodName);
-    int count = s.localLights.lightCount < 0 ? int(scene.pointLights.size()) : s.localLights.lightCount;
-    if (ImGui::SliderInt("light count", &count, 0, 4096, "%d", ImGuiSliderFlags_Logarithmic))
-        s.localLights.lightCount = count;
-    ImGui::SameLine();
-    if (ImGui::SmallButton("scene's")) s.localLights.lightCount = -1;
-    ImGui::Checkbox("scissor (x)", &s.localLights.scissor);
-    if (s.localLights.method != LocalLightMethod::Scissor) {
-        ImGui::SameLine();
-        ImGui::TextDisabled("(scissor method only)");
-    }
-
+    knobWidgets(PanelSection::Lighting, st.settings, scene);
     if (ImGui::TreeNode("shadows")) {
-        ShadowSettings& sh = s.shadows;
-        ImGui::Checkbox("enabled", &sh.enabled);
-        int sizeIndex = std::clamp(int(std::log2(float(sh.size))) - 9, 0, 3);  // 512..4096
-        const char* sizes[] = {"512", "1024", "2048", "4096"};
-        if (ImGui::Combo("map size", &sizeIndex, sizes, 4)) sh.size = 512 << sizeIndex;
-        ImGui::SliderInt("cascades", &sh.cascades, 1, 4);
-        ImGui::SliderFloat("split lambda", &sh.splitLambda, 0.0f, 1.0f, "%.2f");
-        const ShadowSettings::Filter filters[] = {ShadowSettings::Filter::Off, ShadowSettings::Filter::Pcf3x3,
-                                                  ShadowSettings::Filter::Pcf5x5, ShadowSettings::Filter::Poisson};
-        enumCombo("filter", sh.filter, filters, filterLabel);
-        ImGui::SliderFloat("depth bias", &sh.depthBias, 0.0f, 4.0f, "%.2f texels");
-        ImGui::SliderFloat("slope bias", &sh.slopeBias, 0.0f, 4.0f, "%.2f");
-        ImGui::SliderFloat("normal bias", &sh.normalBias, 0.0f, 4.0f, "%.2f texels");
+        knobWidgets(PanelSection::Shadows, st.settings, scene);
         ImGui::TreePop();
     }
 }
 
-void drawPost(ViewerState& st, const Scene& scene) {
-    PostSettings& p = st.settings.post;
-    const BloomEffect& b = scene.effects.bloom;
-    overrideCombo("bloom", p.bloom, b.enabled);
-    const PostSettings::BloomMethod bloomMethods[] = {PostSettings::BloomMethod::Separable,
-                                                      PostSettings::BloomMethod::MipChain};
-    enumCombo("bloom method", p.bloomMethod, bloomMethods, bloomMethodLabel);
-    int kernel = p.bloomKernel.value_or(b.kernelSize);
-    if (ImGui::SliderInt("kernel (px)", &kernel, 1, 101)) p.bloomKernel = kernel | 1;  // odd: centred taps
-    float threshold = p.bloomThreshold.value_or(b.threshold);
-    if (ImGui::SliderFloat("threshold", &threshold, 0.0f, 10.0f, "%.2f")) p.bloomThreshold = threshold;
-    float strength = p.bloomStrength.value_or(b.strength);
-    if (ImGui::SliderFloat("strength", &strength, 0.0f, 1.0f, "%.3f")) p.bloomStrength = strength;
-    if (ImGui::Checkbox("bloom buffer alone (8)", &p.bloomOnly) && p.bloomOnly) p.bloom = true;
-
-    const ToonEffect& t = scene.effects.toon;
-    overrideCombo("toon (7)", p.toon, t.enabled);
-    int levels = p.toonLevels.value_or(t.levels);
-    if (ImGui::SliderInt("toon levels", &levels, 1, 16)) p.toonLevels = levels;
-    float edge = p.toonEdge.value_or(t.edgeThreshold);
-    if (ImGui::SliderFloat("depth edge", &edge, 0.01f, 2.0f, "%.2f")) p.toonEdge = edge;
-    ImGui::SliderFloat("normal edge", &p.toonNormalEdge, 0.01f, 1.0f, "%.2f");
-}
-
-void filePicker(const char* label, const std::vector<fs::path>& files, const fs::path& current,
+void filePicker(const char* pickerLabel, const std::vector<fs::path>& files, const fs::path& current,
                 std::optional<fs::path>& request, const char* noneItem) {
     std::string shown = !current.empty() ? current.filename().string() : noneItem ? noneItem : "(generated)";
-    if (!ImGui::BeginCombo(label, shown.c_str())) return;
+    if (!ImGui::BeginCombo(pickerLabel, shown.c_str())) return;
     if (noneItem && ImGui::Selectable(noneItem, current.empty())) request = fs::path();
     for (const auto& f : files) {
         std::string item = f.parent_path().filename().string() + "/" + f.filename().string();
@@ -229,16 +227,10 @@ void drawViewerPanel(ViewerState& st, Renderer& renderer, const Scene& scene, co
                 if (ImGui::Selectable(viewName(v), v == st.settings.view)) st.settings.view = v;
             ImGui::EndCombo();
         }
-        const ToneMapOperator ops[] = {ToneMapOperator::Lightpass, ToneMapOperator::Aces, ToneMapOperator::PbrNeutral,
-                                       ToneMapOperator::Agx};
-        enumCombo("tone map", st.settings.environment.toneMap, ops, toneMapName);
-        ImGui::SliderFloat("exposure (EV)", &st.settings.exposureEV, -8.0f, 8.0f, "%+.1f");
-        // G-buffer and lighting at a fraction of the window, upsampled before the tone map.
-        ImGui::SliderFloat("render scale", &st.settings.renderScale, kMinRenderScale, 1.0f, "%.2f",
-                           ImGuiSliderFlags_AlwaysClamp);
+        knobWidgets(PanelSection::View, st.settings, scene);
     }
     if (ImGui::CollapsingHeader("lighting")) drawLighting(st, scene);
-    if (ImGui::CollapsingHeader("bloom and toon")) drawPost(st, scene);
+    if (ImGui::CollapsingHeader("bloom and toon")) knobWidgets(PanelSection::Post, st.settings, scene);
 
     if (ImGui::CollapsingHeader("scene", ImGuiTreeNodeFlags_DefaultOpen)) {
         filePicker("scene file", files.scenes, st.sceneFile, st.sceneRequest, nullptr);

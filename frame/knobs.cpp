@@ -1,168 +1,746 @@
 #include "frame/knobs.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <type_traits>
+
+#include "engine/core/error.hpp"
+#include "engine/post/post_config.hpp"
 
 namespace lp {
 
 namespace {
 
-// One value per entry of `values`, labelled by `label(v)`, applied by `set(settings, v)`.
-template <class T, class Label, class Set>
-std::vector<KnobValue> valuesOf(const std::vector<T>& values, Label label, Set set) {
-    std::vector<KnobValue> out;
-    for (const T& v : values) out.push_back({label(v), [v, set](RenderSettings& s) { set(s, v); }});
-    return out;
+template <class T> struct IsOptional : std::false_type {};
+template <class T> struct IsOptional<std::optional<T>> : std::true_type {};
+
+// Typed access to one RenderSettings member: `at` is [](auto& s) -> auto& { return s.shadows.size; }
+// (one generic lambda serves the getter, on a const RenderSettings, and the setter).
+template <class At>
+KnobField member(At at) {
+    using Member = std::decay_t<decltype(at(std::declval<RenderSettings&>()))>;
+    KnobField f;
+    if constexpr (IsOptional<Member>::value) {
+        using T = typename Member::value_type;
+        f.optional = true;
+        f.get = [at](const RenderSettings& s) -> KnobValueOrUnset {
+            const auto& v = at(s);
+            return v ? KnobValueOrUnset(double(*v)) : std::nullopt;
+        };
+        f.set = [at](RenderSettings& s, KnobValueOrUnset v) { at(s) = v ? Member(T(*v)) : std::nullopt; };
+    } else {
+        f.get = [at](const RenderSettings& s) -> KnobValueOrUnset { return double(at(s)); };
+        f.set = [at](RenderSettings& s, KnobValueOrUnset v) {
+            if (v) at(s) = Member(*v);
+        };
+    }
+    return f;
 }
 
-std::string str(int v) { return std::to_string(v); }
-std::string str2(float v) {
-    char b[16];
-    std::snprintf(b, sizeof b, "%.2f", double(v));
+template <class At>
+KnobEntry intKnob(const std::string& name, At at, int min, int max) {
+    KnobEntry k;
+    k.name = name;
+    k.type = KnobType::Int;
+    k.field = member(at);
+    k.range = {double(min), double(max)};
+    return k;
+}
+
+template <class At>
+KnobEntry floatKnob(const std::string& name, At at, KnobRange range) {
+    KnobEntry k;
+    k.name = name;
+    k.type = KnobType::Float;
+    k.field = member(at);
+    k.range = range;
+    return k;
+}
+
+template <class At>
+KnobEntry boolKnob(const std::string& name, At at) {
+    KnobEntry k;
+    k.name = name;
+    k.type = KnobType::Bool;
+    k.field = member(at);
+    return k;
+}
+
+// An enum (or bool) member given by name: value i is options[i], named nameOf(options[i]).
+template <class E, class At, class Name>
+KnobEntry choiceKnob(const std::string& name, At at, const std::vector<E>& options, Name nameOf) {
+    KnobEntry k;
+    k.name = name;
+    k.type = KnobType::Choice;
+    for (E e : options) k.choices.push_back(nameOf(e));
+    k.field.get = [at, options](const RenderSettings& s) -> KnobValueOrUnset {
+        return double(std::find(options.begin(), options.end(), at(s)) - options.begin());
+    };
+    k.field.set = [at, options](RenderSettings& s, KnobValueOrUnset v) {
+        if (v) at(s) = options.at(size_t(*v));
+    };
+    return k;
+}
+
+KnobFlag valueFlag(const std::string& flag) { return {flag, std::nullopt}; }
+KnobFlag setsFlag(const std::string& flag, double value) { return {flag, value}; }
+
+constexpr double kNoMax = std::numeric_limits<double>::infinity();
+const KnobRange kNonNegative{0.0, kNoMax};
+
+// Sweep side effects: a swept value switches on the feature it measures.
+void shadowsOn(RenderSettings& s, double) { s.shadows.enabled = true; }
+void iblOn(RenderSettings& s, double) { s.environment.ibl = true; }
+void bloomOn(RenderSettings& s, double) { s.post.bloom = true; }  // the method stays --bloom-method's
+
+std::vector<KnobEntry> makeKnobTable() {
+    std::vector<KnobEntry> t;
+    // [knobs] one entry per user-facing setting, grouped by feature area. The order is --help's,
+    // the panel's within a section, and the sweep's (allKnobs()). Defaults come from RenderSettings{}.
+    // Sweep values are cheapest first, the last is the reference; monotone = false where a cheaper
+    // value is not always further from it.
+
+    // ---- G-buffer layout ----
+    {
+        KnobEntry k = choiceKnob("gbuffer-format", [](auto& s) -> auto& { return s.gbuffer.normal; },
+                                 allGBufferFormats(), gbufferFormatName);
+        k.flags = {valueFlag("--gbuffer")};
+        k.choiceNoun = "format";
+        k.help = "G-buffer normal format, see README \"G-buffer formats\"";
+        k.sweep = {{"oct16", "oct24", "oct32", "seed-packed", "seed-packed-signed", "two-angle", "unpacked"},
+                   false,
+                   "G-buffer normal format (--gbuffer), fewest bytes first: octahedral 16/24/32 bits, seed 001's "
+                   "packed xy (wrong where normals face away), its signed fix, seed 004's two angles, unpacked "
+                   "RGBA32F (reference). Not monotone: seed-packed's failure is not a precision loss",
+                   nullptr};
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = choiceKnob("gbuffer-position", [](auto& s) -> auto& { return s.gbuffer.position; },
+                                 allGBufferPositionModes(), gbufferPositionName);
+        k.flags = {valueFlag("--gbuffer-position")};
+        k.choiceNoun = "mode";
+        k.help = "eye positions stored (RGBA32F) or rebuilt from standard or reversed-Z depth";
+        k.sweep = {{"depth", "reversed-z", "stored"},
+                   true,
+                   "eye positions (--gbuffer-position): rebuilt from standard depth, from reversed-Z depth "
+                   "(finer far away), stored RGBA32F (reference, 16 more bytes a pixel)",
+                   nullptr};
+        t.push_back(std::move(k));
+    }
+
+    // ---- shadows ----
+    {
+        KnobEntry k = boolKnob("shadows", [](auto& s) -> auto& { return s.shadows.enabled; });
+        k.flags = {setsFlag("--no-shadows", 0)};
+        k.help = "no shadow maps (shadow-casting directional lights light everything)";
+        k.panel = {PanelSection::Shadows, PanelWidget::Checkbox, "enabled", ""};
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = intKnob("shadow-size", [](auto& s) -> auto& { return s.shadows.size; }, 16, 8192);
+        k.flags = {valueFlag("--shadow-size")};
+        k.help = "texels per side of each cascade's shadow map";
+        k.panel = {PanelSection::Shadows, PanelWidget::PowersOfTwo, "map size", ""};
+        k.sweep = {{"512", "1024", "2048", "4096"}, true,
+                   "texels per side of each cascade's shadow map (--shadow-size); 4096 is the reference", shadowsOn};
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = choiceKnob("shadow-pcf", [](auto& s) -> auto& { return s.shadows.filter; },
+                                 std::vector<ShadowSettings::Filter>{ShadowSettings::Filter::Off, ShadowSettings::Filter::Pcf3x3,
+                                                                     ShadowSettings::Filter::Pcf5x5, ShadowSettings::Filter::Poisson},
+                                 ShadowSettings::filterName);
+        k.flags = {valueFlag("--pcf")};
+        k.choiceNoun = "filter";
+        k.help = "shadow filter";
+        k.panel = {PanelSection::Shadows, PanelWidget::Combo, "filter", ""};
+        k.sweep = {{"off", "3x3", "5x5", "poisson"}, false,
+                   "shadow filter (--pcf): off, 3x3, 5x5, poisson (reference). Not monotone: the filters "
+                   "differ in penumbra shape, not only in sample count",
+                   shadowsOn};
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = intKnob("shadow-cascades", [](auto& s) -> auto& { return s.shadows.cascades; }, 1, 4);
+        k.flags = {valueFlag("--shadow-cascades")};
+        k.help = "cascades per light, practical log/linear splits";
+        k.panel = {PanelSection::Shadows, PanelWidget::Slider, "cascades", ""};
+        k.sweep = {{"1", "2", "3", "4"}, false,
+                   "cascades per shadowed light (--shadow-cascades), 4 is the reference. Not monotone: each "
+                   "count splits the depth range differently",
+                   shadowsOn};
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = floatKnob("shadow-split-lambda", [](auto& s) -> auto& { return s.shadows.splitLambda; }, {0.0, 1.0});
+        k.flags = {valueFlag("--shadow-split-lambda")};
+        k.help = "0 linear .. 1 logarithmic cascade splits";
+        k.panel = {PanelSection::Shadows, PanelWidget::Slider, "split lambda", "%.2f"};
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = floatKnob("shadow-depth-bias", [](auto& s) -> auto& { return s.shadows.depthBias; }, kNonNegative);
+        k.flags = {valueFlag("--shadow-depth-bias")};
+        k.help = "constant bias, shadow texels of depth";
+        k.panel = {PanelSection::Shadows, PanelWidget::Slider, "depth bias", "%.2f texels"};
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = floatKnob("shadow-slope-bias", [](auto& s) -> auto& { return s.shadows.slopeBias; }, kNonNegative);
+        k.flags = {valueFlag("--shadow-slope-bias")};
+        k.help = "slope-scaled bias of the depth pass, glPolygonOffset factor";
+        k.panel = {PanelSection::Shadows, PanelWidget::Slider, "slope bias", "%.2f"};
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = floatKnob("shadow-normal-bias", [](auto& s) -> auto& { return s.shadows.normalBias; }, kNonNegative);
+        k.flags = {valueFlag("--shadow-normal-bias")};
+        k.help = "receiver offset along its normal, texels x (1 - N.L)";
+        k.panel = {PanelSection::Shadows, PanelWidget::Slider, "normal bias", "%.2f texels"};
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = intKnob("shadow-light", [](auto& s) -> auto& { return s.shadows.debugLight; }, 0, 1000000);
+        k.flags = {valueFlag("--shadow-light")};
+        k.help = "--view shadowmap shows this directional light's shadow map";
+        t.push_back(std::move(k));
+    }
+
+    // ---- lighting model, environment, image-based lighting, tone map ----
+    {
+        KnobEntry k = choiceKnob("brdf", [](auto& s) -> auto& { return s.brdf; },
+                                 std::vector<Brdf>{Brdf::BlinnPhong, Brdf::Ggx}, brdfName);
+        k.flags = {valueFlag("--brdf")};
+        k.choiceNoun = "BRDF";
+        k.help = "the analytic BRDF of the lights; ggx: Cook-Torrance, roughness from MTL Ns, F0 = Ks";
+        k.panel = {PanelSection::Lighting, PanelWidget::Combo, "BRDF", ""};
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = boolKnob("ibl", [](auto& s) -> auto& { return s.environment.ibl; });
+        k.field.sceneValue = [](const Scene& scene) { return double(scene.environment.ibl); };
+        k.flags = {setsFlag("--ibl", 1), setsFlag("--brdf-only", 0)};
+        k.help = "image-based lighting from the scene's environment map (replaces the ambient), or analytic "
+                 "lights + constant ambient only";
+        k.panel = {PanelSection::Lighting, PanelWidget::Combo, "IBL", ""};
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = choiceKnob("tonemap", [](auto& s) -> auto& { return s.environment.toneMap; },
+                                 std::vector<ToneMapOperator>{ToneMapOperator::Lightpass, ToneMapOperator::Aces,
+                                                              ToneMapOperator::PbrNeutral, ToneMapOperator::Agx},
+                                 toneMapName);
+        k.flags = {valueFlag("--tonemap")};
+        k.choiceNoun = "operator";
+        k.help = "tone map operator; lightpass: pow(c/(c+1),1.2)";
+        k.panel = {PanelSection::View, PanelWidget::Combo, "tone map", ""};
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = intKnob("ibl-mip", [](auto& s) -> auto& { return s.environment.debugMip; }, 0, 16);
+        k.flags = {valueFlag("--ibl-mip")};
+        k.help = "mip the 'prefiltered' view shows, 0 = roughness 0";
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = intKnob("ibl-samples", [](auto& s) -> auto& { return s.environment.specularSamples; }, 1, 65536);
+        k.flags = {valueFlag("--ibl-samples")};
+        k.help = "GGX samples per prefiltered texel";
+        k.sweep = {{"16", "64", "256", "1024"}, true,
+                   "GGX samples per prefiltered texel (--ibl-samples, with --ibl); 1024 is the reference", iblOn};
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = intKnob("ibl-face-size", [](auto& s) -> auto& { return s.environment.cubeSize; }, 4, 4096);
+        k.flags = {valueFlag("--env-size")};
+        k.help = "environment cube face size, a power of two";
+        k.sweep = {{"64", "128", "256", "512"}, true,
+                   "environment cube face size (--env-size, prefiltered cube half of it, with --ibl); 512 "
+                   "is the reference",
+                   [](RenderSettings& s, double v) {
+                       s.environment.ibl = true;
+                       s.environment.specularSize = int(v) / 2;
+                   }};
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = choiceKnob("ibl-diffuse", [](auto& s) -> auto& { return s.environment.diffuse; },
+                                 std::vector<IrradianceSource>{IrradianceSource::SphericalHarmonics, IrradianceSource::Cubemap},
+                                 [](IrradianceSource d) { return d == IrradianceSource::Cubemap ? "cubemap" : "sh"; });
+        k.flags = {valueFlag("--ibl-diffuse")};
+        k.help = "diffuse IBL from 9 SH coefficients or the irradiance cube";
+        k.sweep = {{"sh", "cubemap"}, true,
+                   "diffuse IBL (--ibl-diffuse, with --ibl): 9 SH coefficients, or the cosine-sampled "
+                   "irradiance cube (reference)",
+                   iblOn};
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = intKnob("ibl-specular-size", [](auto& s) -> auto& { return s.environment.specularSize; }, 4, 4096);
+        k.flags = {valueFlag("--ibl-specular-size")};
+        k.help = "prefiltered cube face size, cube size / 2^k";
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = intKnob("ibl-specular-levels", [](auto& s) -> auto& { return s.environment.specularLevels; }, 1, 13);
+        k.flags = {valueFlag("--ibl-specular-levels")};
+        k.help = "prefiltered mips, roughness m/(N-1) at mip m";
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = intKnob("ibl-irradiance-size", [](auto& s) -> auto& { return s.environment.irradianceSize; }, 1, 1024);
+        k.flags = {valueFlag("--ibl-irradiance-size")};
+        k.help = "irradiance cube face size";
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = intKnob("ibl-irradiance-samples", [](auto& s) -> auto& { return s.environment.irradianceSamples; },
+                              1, 65536);
+        k.flags = {valueFlag("--ibl-irradiance-samples")};
+        k.help = "cosine-weighted samples per irradiance texel";
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = intKnob("dfg-size", [](auto& s) -> auto& { return s.environment.dfgSize; }, 2, 1024);
+        k.flags = {valueFlag("--dfg-size")};
+        k.help = "split-sum DFG LUT size";
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = intKnob("dfg-samples", [](auto& s) -> auto& { return s.environment.dfgSamples; }, 1, 65536);
+        k.flags = {valueFlag("--dfg-samples")};
+        k.help = "GGX samples per DFG LUT texel";
+        t.push_back(std::move(k));
+    }
+
+    // ---- bloom and toon (unset optional values take the scene's effects) ----
+    {
+        KnobEntry k = boolKnob("bloom", [](auto& s) -> auto& { return s.post.bloom; });
+        k.field.sceneValue = [](const Scene& scene) { return double(scene.effects.bloom.enabled); };
+        k.flags = {setsFlag("--bloom", 1), setsFlag("--no-bloom", 0)};
+        k.help = "bloom on/off; the scene's is effects.bloom.enabled";
+        k.panel = {PanelSection::Post, PanelWidget::Combo, "bloom", ""};
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = intKnob("bloom-kernel", [](auto& s) -> auto& { return s.post.bloomKernel; }, 1, 101);
+        k.field.sceneValue = [](const Scene& scene) { return double(scene.effects.bloom.kernelSize); };
+        k.flags = {valueFlag("--bloom-kernel")};
+        k.help = "blur width in pixels";
+        k.panel = {PanelSection::Post, PanelWidget::Slider, "kernel (px)", ""};
+        k.sweep = {{"5", "10", "25", "50", "100"}, true,
+                   "bloom width in pixels (--bloom-kernel), with --bloom-method's blur (separable "
+                   "unless given); 100 is the reference",
+                   bloomOn};
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = choiceKnob("bloom-method", [](auto& s) -> auto& { return s.post.bloomMethod; },
+                                 std::vector<PostSettings::BloomMethod>{PostSettings::BloomMethod::Separable,
+                                                                        PostSettings::BloomMethod::MipChain},
+                                 [](PostSettings::BloomMethod m) {
+                                     return m == PostSettings::BloomMethod::MipChain ? "mip-chain" : "separable";
+                                 });
+        k.flags = {valueFlag("--bloom-method")};
+        k.help = "bloom blur; mip-chain: Jimenez 2014";
+        k.panel = {PanelSection::Post, PanelWidget::Combo, "bloom method", ""};
+        k.sweep = {{"mip-chain", "separable"}, true,
+                   "bloom (--bloom-method) at the scene's kernel: the Jimenez mip chain, or the full-resolution "
+                   "separable Gaussian (reference)",
+                   bloomOn};
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = floatKnob("bloom-threshold", [](auto& s) -> auto& { return s.post.bloomThreshold; }, kNonNegative);
+        k.field.sceneValue = [](const Scene& scene) { return double(scene.effects.bloom.threshold); };
+        k.flags = {valueFlag("--bloom-threshold")};
+        k.help = "soft-knee bright pass: luminance where bloom starts";
+        k.panel = {PanelSection::Post, PanelWidget::Slider, "threshold", "%.2f"};
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = floatKnob("bloom-knee", [](auto& s) -> auto& { return s.post.bloomKnee; }, kNonNegative);
+        k.field.sceneValue = [](const Scene& scene) { return double(scene.effects.bloom.knee); };
+        k.flags = {valueFlag("--bloom-knee")};
+        k.help = "soft-knee bright pass: width of the knee";
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = floatKnob("bloom-strength", [](auto& s) -> auto& { return s.post.bloomStrength; }, kNonNegative);
+        k.field.sceneValue = [](const Scene& scene) { return double(scene.effects.bloom.strength); };
+        k.flags = {valueFlag("--bloom-strength")};
+        k.help = "how much bloom is mixed in";
+        k.panel = {PanelSection::Post, PanelWidget::Slider, "strength", "%.3f"};
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = floatKnob("bloom-clamp", [](auto& s) -> auto& { return s.post.bloomHighlight; },
+                                {0.0, kNoMax, true});
+        k.flags = {valueFlag("--bloom-clamp")};
+        k.help = "per-channel ceiling of what enters the blur";
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = boolKnob("karis", [](auto& s) -> auto& { return s.post.bloomKaris; });
+        k.flags = {setsFlag("--no-karis", 0)};
+        k.help = "mip-chain: no Karis average on the first downsample";
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = choiceKnob("bloom-blur", [](auto& s) -> auto& { return s.post.bloomFragmentBlur; },
+                                 std::vector<bool>{false, true},
+                                 [](bool fragment) { return fragment ? "fragment" : "compute"; });
+        k.flags = {valueFlag("--bloom-blur")};
+        k.help = "the GLSL separable blur's stage";
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = boolKnob("bloom-only", [](auto& s) -> auto& { return s.post.bloomOnly; });
+        k.flags = {setsFlag("--bloom-only", 1)};
+        k.help = "display the bloom buffer alone (seed 001's bloom view)";
+        k.panel = {PanelSection::Post, PanelWidget::Checkbox, "bloom buffer alone (8)", ""};
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = boolKnob("toon", [](auto& s) -> auto& { return s.post.toon; });
+        k.field.sceneValue = [](const Scene& scene) { return double(scene.effects.toon.enabled); };
+        k.flags = {setsFlag("--toon", 1), setsFlag("--no-toon", 0)};
+        k.help = "toon ramp and outlines on/off; the scene's is effects.toon.enabled";
+        k.panel = {PanelSection::Post, PanelWidget::Combo, "toon (7)", ""};
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = intKnob("toon-levels", [](auto& s) -> auto& { return s.post.toonLevels; }, 1, 64);
+        k.field.sceneValue = [](const Scene& scene) { return double(scene.effects.toon.levels); };
+        k.flags = {valueFlag("--toon-levels")};
+        k.help = "toon ramp bands";
+        k.panel = {PanelSection::Post, PanelWidget::Slider, "toon levels", ""};
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = floatKnob("toon-edge", [](auto& s) -> auto& { return s.post.toonEdge; }, kNonNegative);
+        k.field.sceneValue = [](const Scene& scene) { return double(scene.effects.toon.edgeThreshold); };
+        k.flags = {valueFlag("--toon-edge")};
+        k.help = "toon depth-edge threshold, a relative depth step";
+        k.panel = {PanelSection::Post, PanelWidget::Slider, "depth edge", "%.2f"};
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = floatKnob("toon-normal-edge", [](auto& s) -> auto& { return s.post.toonNormalEdge; }, kNonNegative);
+        k.flags = {valueFlag("--toon-normal-edge")};
+        k.help = "toon normal-edge threshold, sin of half the crease angle: 0.5 = 60 deg";
+        k.panel = {PanelSection::Post, PanelWidget::Slider, "normal edge", "%.2f"};
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = choiceKnob("post-backend", [](auto& s) -> auto& { return s.post.backend; },
+                                 std::vector<PostSettings::Backend>{PostSettings::Backend::Auto, PostSettings::Backend::Cuda,
+                                                                    PostSettings::Backend::Glsl},
+                                 post::backendName);
+        k.flags = {valueFlag("--post-backend")};
+        k.help = "who runs bloom and toon; auto: CUDA on an NVIDIA GPU";
+        t.push_back(std::move(k));
+    }
+
+    // ---- local lights ----
+    {
+        KnobEntry k = boolKnob("local-lights", [](auto& s) -> auto& { return s.localLights.enabled; });
+        k.flags = {setsFlag("--no-local-lights", 0)};
+        k.help = "draw no local lights (the pass leaves the frame graph)";
+        k.panel = {PanelSection::Lighting, PanelWidget::Checkbox, "local lights", ""};
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = choiceKnob("local-light-method", [](auto& s) -> auto& { return s.localLights.method; },
+                                 std::vector<LocalLightMethod>{LocalLightMethod::Fullscreen, LocalLightMethod::Scissor,
+                                                               LocalLightMethod::Volumes, LocalLightMethod::Tiled},
+                                 localLightMethodName);
+        k.flags = {valueFlag("--local-lights")};
+        k.choiceNoun = "method";
+        k.help = "how local lights are drawn; all four give the same image";
+        k.panel = {PanelSection::Lighting, PanelWidget::Combo, "method", ""};
+        k.sweep = {{"tiled", "volumes", "scissor", "fullscreen"}, false,
+                   "local-light method (--local-lights): tiled, volumes, scissor, fullscreen (reference). The "
+                   "same image by design: errors should be ~0 (fp16 sums in different orders), so not monotone",
+                   nullptr};
+        t.push_back(std::move(k));
+    }
+    {
+        // lightCount -1 is "the scene's lights": an unset optional to the table.
+        KnobEntry k;
+        k.name = "light-count";
+        k.type = KnobType::Int;
+        k.range = {0, 1000000};
+        k.field.optional = true;
+        k.field.get = [](const RenderSettings& s) -> KnobValueOrUnset {
+            return s.localLights.lightCount < 0 ? std::nullopt : KnobValueOrUnset(s.localLights.lightCount);
+        };
+        k.field.set = [](RenderSettings& s, KnobValueOrUnset v) { s.localLights.lightCount = v ? int(*v) : -1; };
+        k.field.sceneValue = [](const Scene& scene) { return double(scene.pointLights.size()); };
+        k.flags = {valueFlag("--light-count")};
+        k.help = "draw the scene's first N point lights, plus generated demo lights up to N, deterministic and "
+                 "spread through the scene's bounds; e.g. 4096";
+        k.panel = {PanelSection::Lighting, PanelWidget::LogSlider, "light count", ""};
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = boolKnob("scissor", [](auto& s) -> auto& { return s.localLights.scissor; });
+        k.flags = {setsFlag("--no-scissor", 0)};
+        k.help = "the scissor method draws every light full screen (the viewer's 'x')";
+        k.panel = {PanelSection::Lighting, PanelWidget::Checkbox, "scissor (x, scissor method)", ""};
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = boolKnob("globes", [](auto& s) -> auto& { return s.localLights.globes; });
+        k.flags = {setsFlag("--globes", 1)};
+        k.help = "draw each local light as a small flat-lit globe";
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = boolKnob("local-specular", [](auto& s) -> auto& { return s.localLights.specular; });
+        k.flags = {setsFlag("--no-local-specular", 0)};
+        k.help = "local lights add diffuse only";
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = boolKnob("specular-outside-range", [](auto& s) -> auto& { return s.localLights.specularOutsideRange; });
+        k.flags = {setsFlag("--specular-outside-range", 1)};
+        k.help = "diffuse limited by the range, specular (1/d^2) not (seed 003)";
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = floatKnob("light-range-cutoff", [](auto& s) -> auto& { return s.localLights.rangeScale; }, {0.01, 1.0});
+        k.flags = {valueFlag("--light-range-scale")};
+        k.help = "each local light's range x this; < 1 cuts lights short, cheaper and darker";
+        k.panel = {PanelSection::Lighting, PanelWidget::Slider, "light range scale", "%.2f"};
+        k.sweep = {{"0.25", "0.5", "0.75", "1"}, true,
+                   "each local light's range x this (--light-range-scale): lights stop sooner, fewer pixels per "
+                   "light; 1 (the full range) is the reference",
+                   nullptr};
+        t.push_back(std::move(k));
+    }
+
+    // ---- resolution, exposure, measuring ----
+    {
+        KnobEntry k = floatKnob("render-scale", [](auto& s) -> auto& { return s.renderScale; }, {kMinRenderScale, 1.0});
+        k.flags = {valueFlag("--render-scale")};
+        k.help = "G-buffer, lighting and post effects at this fraction of the output size, upsampled "
+                 "bilinearly before the tone map";
+        k.panel = {PanelSection::View, PanelWidget::Slider, "render scale", "%.2f"};
+        k.sweep = {{"0.25", "0.5", "0.75", "1"}, true,
+                   "G-buffer, lighting and post effects at this fraction of the output size (--render-scale), "
+                   "upsampled bilinearly before the tone map; 1 is the reference",
+                   nullptr};
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = floatKnob("exposure", [](auto& s) -> auto& { return s.exposureEV; }, {-16.0, 16.0});
+        k.flags = {valueFlag("--exposure")};
+        k.help = "exposure in stops before the tone map";
+        k.panel = {PanelSection::View, PanelWidget::Slider, "exposure (EV)", "%+.1f"};
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = boolKnob("all-passes", [](auto& s) -> auto& { return s.allPasses; });
+        k.flags = {setsFlag("--all-passes", 1)};
+        k.help = "add every candidate pass even where the scene does not call for it (shadow maps for every "
+                 "sun, local lights with none in view, colour sky, IBL, bloom at strength 0); for measuring "
+                 "what the scene-driven graph saves, image may differ";
+        t.push_back(std::move(k));
+    }
+    return t;
+}
+
+// 16, 0.25, 1e+06 as a person writes them: whole numbers in full, others shortest.
+std::string number(double v) {
+    if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+    if (v == std::floor(v) && std::fabs(v) < 1e15) return std::to_string((long long)v);
+    char b[32];
+    std::snprintf(b, sizeof b, "%g", v);
     return b;
 }
 
-std::vector<Knob> makeKnobs() {
+// "a or b", "a, b or c"
+std::string alternatives(const std::vector<std::string>& names) {
+    std::string s;
+    for (size_t i = 0; i < names.size(); ++i)
+        s += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + names[i];
+    return s;
+}
+
+std::string joined(const std::vector<std::string>& names, const char* separator) {
+    std::string s;
+    for (const auto& n : names) s += (s.empty() ? "" : separator) + n;
+    return s;
+}
+
+// What a float out of range should have been, in the words the CLI has always used.
+std::string floatExpectation(const KnobRange& r) {
+    if (r.bounded()) return "expected a number in [" + number(r.min) + ", " + number(r.max) + "]";
+    if (r.min == 0.0) return r.minExclusive ? "expected a positive number" : "expected a non-negative number";
+    return "expected a number " + std::string(r.minExclusive ? "> " : ">= ") + number(r.min);
+}
+
+// Sweep labels: floats with two decimals ("0.25", "1.00") so a column of them lines up.
+std::string sweepLabel(const KnobEntry& k, double v) {
+    if (k.type != KnobType::Float) return formatKnobValue(k, v);
+    char b[16];
+    std::snprintf(b, sizeof b, "%.2f", v);
+    return b;
+}
+
+std::vector<Knob> makeSweepKnobs() {
     std::vector<Knob> knobs;
-    // [knobs] each feature area registers its quality knobs here; values cheapest first, the last
-    // is the reference. `monotone` = false where a cheaper value is not always further from it.
-
-    // ---- G-buffer layout ----
-    knobs.push_back({"gbuffer-format",
-                     "G-buffer normal format (--gbuffer), fewest bytes first: octahedral 16/24/32 bits, seed 001's "
-                     "packed xy (wrong where normals face away), its signed fix, seed 004's two angles, unpacked "
-                     "RGBA32F (reference). Not monotone: seed-packed's failure is not a precision loss",
-                     valuesOf<GBufferNormalFormat>(
-                         {GBufferNormalFormat::Oct16, GBufferNormalFormat::Oct24, GBufferNormalFormat::Oct32,
-                          GBufferNormalFormat::SeedPacked, GBufferNormalFormat::SeedPackedSigned,
-                          GBufferNormalFormat::TwoAngle, GBufferNormalFormat::Unpacked},
-                         [](GBufferNormalFormat f) { return std::string(gbufferFormatName(f)); },
-                         [](RenderSettings& s, GBufferNormalFormat f) { s.gbuffer.normal = f; }),
-                     false});
-    knobs.push_back({"gbuffer-position",
-                     "eye positions (--gbuffer-position): rebuilt from standard depth, from reversed-Z depth "
-                     "(finer far away), stored RGBA32F (reference, 16 more bytes a pixel)",
-                     valuesOf<GBufferPositionMode>(
-                         {GBufferPositionMode::Depth, GBufferPositionMode::ReversedZ, GBufferPositionMode::Stored},
-                         [](GBufferPositionMode m) { return std::string(gbufferPositionName(m)); },
-                         [](RenderSettings& s, GBufferPositionMode m) { s.gbuffer.position = m; }),
-                     true});
-
-    // ---- shadows ----
-    knobs.push_back({"shadow-size", "texels per side of each cascade's shadow map (--shadow-size); 4096 is the reference",
-                     valuesOf<int>({512, 1024, 2048, 4096}, str,
-                                   [](RenderSettings& s, int v) {
-                                       s.shadows.enabled = true;
-                                       s.shadows.size = v;
-                                   }),
-                     true});
-    knobs.push_back({"shadow-pcf",
-                     "shadow filter (--pcf): off, 3x3, 5x5, poisson (reference). Not monotone: the filters "
-                     "differ in penumbra shape, not only in sample count",
-                     valuesOf<ShadowSettings::Filter>(
-                         {ShadowSettings::Filter::Off, ShadowSettings::Filter::Pcf3x3, ShadowSettings::Filter::Pcf5x5,
-                          ShadowSettings::Filter::Poisson},
-                         [](ShadowSettings::Filter f) { return std::string(ShadowSettings::filterName(f)); },
-                         [](RenderSettings& s, ShadowSettings::Filter f) {
-                             s.shadows.enabled = true;
-                             s.shadows.filter = f;
-                         }),
-                     false});
-    knobs.push_back({"shadow-cascades",
-                     "cascades per shadowed light (--shadow-cascades), 4 is the reference. Not monotone: each "
-                     "count splits the depth range differently",
-                     valuesOf<int>({1, 2, 3, 4}, str,
-                                   [](RenderSettings& s, int v) {
-                                       s.shadows.enabled = true;
-                                       s.shadows.cascades = v;
-                                   }),
-                     false});
-
-    // ---- image-based lighting (switches --ibl on; needs a scene with an environment map) ----
-    knobs.push_back({"ibl-samples", "GGX samples per prefiltered texel (--ibl-samples, with --ibl); 1024 is the reference",
-                     valuesOf<int>({16, 64, 256, 1024}, str,
-                                   [](RenderSettings& s, int v) {
-                                       s.environment.ibl = true;
-                                       s.environment.specularSamples = v;
-                                   }),
-                     true});
-    knobs.push_back({"ibl-face-size",
-                     "environment cube face size (--env-size, prefiltered cube half of it, with --ibl); 512 "
-                     "is the reference",
-                     valuesOf<int>({64, 128, 256, 512}, str,
-                                   [](RenderSettings& s, int v) {
-                                       s.environment.ibl = true;
-                                       s.environment.cubeSize = v;
-                                       s.environment.specularSize = v / 2;
-                                   }),
-                     true});
-    knobs.push_back({"ibl-diffuse",
-                     "diffuse IBL (--ibl-diffuse, with --ibl): 9 SH coefficients, or the cosine-sampled "
-                     "irradiance cube (reference)",
-                     valuesOf<IrradianceSource>(
-                         {IrradianceSource::SphericalHarmonics, IrradianceSource::Cubemap},
-                         [](IrradianceSource d) { return std::string(d == IrradianceSource::Cubemap ? "cubemap" : "sh"); },
-                         [](RenderSettings& s, IrradianceSource d) {
-                             s.environment.ibl = true;
-                             s.environment.diffuse = d;
-                         }),
-                     true});
-
-    // ---- bloom (switches --bloom on) ----
-    knobs.push_back({"bloom-kernel", "bloom width in pixels (--bloom-kernel), with --bloom-method's blur (separable "
-                                     "unless given); 100 is the reference",
-                     valuesOf<int>({5, 10, 25, 50, 100}, str,
-                                   [](RenderSettings& s, int v) {
-                                       s.post.bloom = true;  // the method is --bloom-method's (separable)
-                                       s.post.bloomKernel = v;
-                                   }),
-                     true});
-    knobs.push_back({"bloom-method",
-                     "bloom (--bloom-method) at the scene's kernel: the Jimenez mip chain, or the full-resolution "
-                     "separable Gaussian (reference)",
-                     valuesOf<PostSettings::BloomMethod>(
-                         {PostSettings::BloomMethod::MipChain, PostSettings::BloomMethod::Separable},
-                         [](PostSettings::BloomMethod m) {
-                             return std::string(m == PostSettings::BloomMethod::MipChain ? "mip-chain" : "separable");
-                         },
-                         [](RenderSettings& s, PostSettings::BloomMethod m) {
-                             s.post.bloom = true;
-                             s.post.bloomMethod = m;
-                         }),
-                     true});
-
-    // ---- local lights ----
-    knobs.push_back({"local-light-method",
-                     "local-light method (--local-lights): tiled, volumes, scissor, fullscreen (reference). The "
-                     "same image by design: errors should be ~0 (fp16 sums in different orders), so not monotone",
-                     valuesOf<LocalLightMethod>(
-                         {LocalLightMethod::Tiled, LocalLightMethod::Volumes, LocalLightMethod::Scissor,
-                          LocalLightMethod::Fullscreen},
-                         [](LocalLightMethod m) { return std::string(localLightMethodName(m)); },
-                         [](RenderSettings& s, LocalLightMethod m) { s.localLights.method = m; }),
-                     false});
-    knobs.push_back({"light-range-cutoff",
-                     "each local light's range x this (--light-range-scale): lights stop sooner, fewer pixels per "
-                     "light; 1 (the full range) is the reference",
-                     valuesOf<float>({0.25f, 0.5f, 0.75f, 1.0f},
-                                     str2,
-                                     [](RenderSettings& s, float v) { s.localLights.rangeScale = v; }),
-                     true});
-
-    // ---- resolution ----
-    knobs.push_back({"render-scale",
-                     "G-buffer, lighting and post effects at this fraction of the output size (--render-scale), "
-                     "upsampled bilinearly before the tone map; 1 is the reference",
-                     valuesOf<float>({0.25f, 0.5f, 0.75f, 1.0f},
-                                     str2,
-                                     [](RenderSettings& s, float v) { s.renderScale = v; }),
-                     true});
+    for (const KnobEntry& e : knobTable()) {
+        if (e.sweep.values.empty()) continue;
+        Knob k{e.name, e.sweep.description, {}, e.sweep.monotone};
+        const KnobEntry* entry = &e;  // the table is a function-local static: the address stays
+        for (const std::string& text : e.sweep.values) {
+            const double v = parseKnobValue(e, "sweep " + e.name, text);
+            k.values.push_back({sweepLabel(e, v), [entry, v](RenderSettings& s) {
+                                    entry->field.set(s, v);
+                                    if (entry->sweep.alsoSet) entry->sweep.alsoSet(s, v);
+                                }});
+        }
+        knobs.push_back(std::move(k));
+    }
     return knobs;
 }
+
 }  // namespace
 
+const std::vector<KnobEntry>& knobTable() {
+    static const std::vector<KnobEntry> table = makeKnobTable();
+    return table;
+}
+
+const KnobEntry* findKnobEntry(const std::string& name) {
+    for (const auto& k : knobTable())
+        if (k.name == name) return &k;
+    return nullptr;
+}
+
+const KnobEntry* findKnobFlag(const std::string& flag, const KnobFlag** which) {
+    for (const auto& k : knobTable())
+        for (const auto& f : k.flags)
+            if (f.flag == flag) {
+                if (which) *which = &f;
+                return &k;
+            }
+    return nullptr;
+}
+
+double parseKnobValue(const KnobEntry& k, const std::string& flag, const std::string& text) {
+    auto error = [&](const std::string& what) { return Error(flag + " " + text + ": " + what); };
+    switch (k.type) {
+        case KnobType::Int:
+            try {
+                size_t used = 0;
+                const long x = std::stol(text, &used);
+                if (used != text.size() || !k.range.contains(double(x))) throw std::out_of_range("");
+                return double(x);
+            } catch (const std::exception&) {
+                throw error("expected a whole number in [" + number(k.range.min) + ", " + number(k.range.max) + "]");
+            }
+        case KnobType::Float: {
+            float x = 0.0f;  // parsed as float so that setting it back is exact
+            try {
+                size_t used = 0;
+                x = std::stof(text, &used);
+                if (used != text.size() || !std::isfinite(x)) throw std::out_of_range("");
+            } catch (const std::exception&) {
+                throw error("expected a finite number");
+            }
+            // Bounds as floats too: 0.01 must accept "0.01", which is 0.00999999977f.
+            const KnobRange asFloat{double(float(k.range.min)), double(float(k.range.max)), k.range.minExclusive};
+            if (!asFloat.contains(double(x))) throw error(floatExpectation(k.range));
+            return double(x);
+        }
+        case KnobType::Bool:
+            if (text == "on") return 1.0;
+            if (text == "off") return 0.0;
+            throw error("expected on or off");
+        case KnobType::Choice:
+            for (size_t i = 0; i < k.choices.size(); ++i)
+                if (k.choices[i] == text) return double(i);
+            throw error(k.choiceNoun.empty() ? "expected " + alternatives(k.choices)
+                                             : "unknown " + k.choiceNoun + " (" + joined(k.choices, ", ") + ")");
+    }
+    throw error("unknown knob type");
+}
+
+std::string formatKnobValue(const KnobEntry& k, KnobValueOrUnset v) {
+    if (!v) return "the scene's";
+    switch (k.type) {
+        case KnobType::Int:
+        case KnobType::Float: return number(*v);
+        case KnobType::Bool: return *v != 0.0 ? "on" : "off";
+        case KnobType::Choice: return size_t(*v) < k.choices.size() ? k.choices[size_t(*v)] : "?";
+    }
+    return "?";
+}
+
+std::string knobDefault(const KnobEntry& k) { return formatKnobValue(k, k.field.get(RenderSettings{})); }
+
+std::string knobRangeText(const KnobEntry& k) {
+    switch (k.type) {
+        case KnobType::Choice: return joined(k.choices, " | ");
+        case KnobType::Bool: return "";
+        case KnobType::Int:
+        case KnobType::Float:
+            if (k.range.bounded()) return number(k.range.min) + ".." + number(k.range.max);
+            if (k.range.min > -kNoMax) return (k.range.minExclusive ? "> " : ">= ") + number(k.range.min);
+            return "";
+    }
+    return "";
+}
+
+std::string helpLine(const std::string& flags, const std::string& text) {
+    const size_t column = 20, width = 104;  // text starts in column 20, lines stop by 104
+    std::string line = "  " + flags;
+    line += line.size() + 2 <= column ? std::string(column - line.size(), ' ') : "  ";
+    std::string out;
+    size_t start = 0;
+    while (start < text.size()) {
+        // Break at the last space that fits; a word longer than the line goes on whole.
+        size_t end = text.size();
+        if (line.size() + (end - start) > width) {
+            const size_t room = width > line.size() ? width - line.size() : 0;
+            const size_t space = text.rfind(' ', start + room);
+            end = space != std::string::npos && space > start ? space : text.find(' ', start + room);
+            if (end == std::string::npos) end = text.size();
+        }
+        out += line + text.substr(start, end - start) + "\n";
+        start = text.find_first_not_of(' ', end);
+        if (start == std::string::npos) break;
+        line = std::string(column, ' ');
+    }
+    return out;
+}
+
+std::string knobHelpText() {
+    std::string out;
+    for (const KnobEntry& k : knobTable()) {
+        if (k.flags.empty()) continue;
+        std::string flags;
+        for (const KnobFlag& f : k.flags)
+            flags += (flags.empty() ? "" : ", ") + f.flag + (f.fixedValue ? "" : k.type == KnobType::Int ? " N"
+                                                                               : k.type == KnobType::Float ? " X"
+                                                                                                           : " NAME");
+        std::string facts = knobRangeText(k);
+        const bool takesValue = std::any_of(k.flags.begin(), k.flags.end(), [](const KnobFlag& f) { return !f.fixedValue; });
+        if (k.field.optional) facts += (facts.empty() ? "" : "; ") + std::string("default: the scene's");
+        else if (takesValue) facts += (facts.empty() ? "" : k.type == KnobType::Choice ? "; " : ", ") + ("default " + knobDefault(k));
+        if (!k.sweep.values.empty()) facts += "; sweep knob " + k.name;
+        out += helpLine(flags, k.help + (facts.empty() ? "" : " (" + facts + ")"));
+    }
+    return out;
+}
+
 const std::vector<Knob>& allKnobs() {
-    static const std::vector<Knob> knobs = makeKnobs();
+    static const std::vector<Knob> knobs = makeSweepKnobs();
     return knobs;
 }
 

@@ -1,5 +1,7 @@
 #pragma once
-// What the user chose for a frame (CLI flags, keys, later the UI): independent of the scene.
+// What the user chose for a frame (CLI flags, keys, the viewer panel): independent of the scene.
+// The defaults here are the knobs' defaults: frame/knobs.cpp's table gives each user-facing field its
+// flag, range, help and panel widget, and reads the default from RenderSettings{}.
 #include <optional>
 #include <set>
 #include <string>
@@ -119,7 +121,6 @@ struct RenderSettings {
     float renderScale = 1.0f;
     DebugView view = DebugView::Final;
     float exposureEV = 0.0f;
-    bool globalLighting = true;  // the directional-light pass
     Brdf brdf = Brdf::BlinnPhong;  // analytic BRDF of the light passes
     bool keepHdr = false;        // keep the HDR buffer as an output (EXR dumps)
     // --all-passes: add every candidate pass even where the scene does not call for it (shadow maps
