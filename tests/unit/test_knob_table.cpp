@@ -10,8 +10,9 @@
 #include <set>
 #include <sstream>
 
-// app/ is the executable's own code, not a library: its CLI is compiled into this test.
-#include "app/cli.cpp"
+#include "app/cli.hpp"
+#include "engine/core/error.hpp"
+#include "frame/knobs.hpp"
 
 using namespace lp;
 
