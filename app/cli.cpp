@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "engine/core/error.hpp"
+#include "engine/core/paths.hpp"
 #include "frame/frame_builder.hpp"
 #include "frame/knobs.hpp"
 
@@ -65,13 +66,7 @@ std::string sizeLabel(const RenderSettings& s) {
     return label + " (rendered at " + std::to_string(r.x) + "x" + std::to_string(r.y) + ", render scale " + scale + ")";
 }
 
-std::string defaultScenePath() {
-#ifdef LIGHTPASS_SOURCE_DIR
-    std::filesystem::path built = std::filesystem::path(LIGHTPASS_SOURCE_DIR) / "scenes" / "cornell.json";
-    if (std::filesystem::exists(built)) return built.string();
-#endif
-    return "scenes/cornell.json";
-}
+std::string defaultScenePath() { return (dataRoot() / "scenes" / "cornell.json").string(); }
 
 namespace {
 int parseInt(const std::string& flag, const std::string& v, int lo, int hi) {
@@ -95,9 +90,9 @@ float parseFloat(const std::string& flag, const std::string& v) {
     }
 }
 
-std::string viewList(const std::vector<DebugView>& views) {
+std::string viewList(const std::vector<DebugView>& views, const std::string& separator = " | ") {
     std::string s;
-    for (DebugView v : views) s += (s.empty() ? "" : " | ") + std::string(viewName(v));
+    for (DebugView v : views) s += (s.empty() ? "" : separator) + std::string(viewName(v));
     return s;
 }
 
@@ -105,7 +100,10 @@ std::vector<CommandFlag> makeCommandFlags() {
     using V = const std::string&;
     return {
         {{"-h", "--help"}, "", "this text", [](Options& o, V, V) { o.command = "help"; }},
-        {{"--scene"}, "F", "scene file (JSON, see README)", [](Options& o, V, V v) { o.scene = v; }},
+        {{"--version"}, "", "the version, build (CUDA or not) and where shaders and scenes are read from",
+         [](Options& o, V, V) { o.command = "version"; }},
+        {{"--scene"}, "F", "scene file (JSON, see README); a bundled one by name from anywhere (cornell, gallery, ...)",
+         [](Options& o, V, V v) { o.scene = resolveDataPath(v); }},
         {{"--model"}, "F.obj", "any OBJ, framed by the camera, with a key and a fill light",
          [](Options& o, V, V v) { o.model = v; }},
         {{"--out"}, "F.png", "tone-mapped image (written to a temporary name, then renamed)",
@@ -125,7 +123,7 @@ std::vector<CommandFlag> makeCommandFlags() {
              ": overlay each light's rectangle/volume, or lights per 16x16 tile (README \"Debug views\")",
          [](Options& o, V, V v) {
              auto view = parseView(v);
-             if (!view) throw Error("--view " + v + ": unknown view (final, depth, normals, diffuse, position, shininess, specular, texcoords, lighting)");
+             if (!view) throw Error("--view " + v + ": unknown view (" + viewList(everyView(), ", ") + ")");
              o.view = *view;
          }},
         {{"--frames"}, "N", "frames to render and time (default 1; the image is the last frame)",
@@ -225,7 +223,7 @@ Options parseArgs(const std::vector<std::string>& args) {
     }
     o.exposure = o.base.exposureEV;
     if (!o.warmupGiven) o.warmup = o.frames > 1 ? 5 : 0;
-    if (o.command == "help" || o.command == "info") return o;
+    if (o.command == "help" || o.command == "info" || o.command == "version") return o;
     if (!o.scene.empty() && !o.model.empty()) throw Error("give --scene or --model, not both");
     if ((o.command == "sweep" || o.command == "bench") && !o.warmupGiven) o.warmup = 10;
     if (o.command == "render" || o.command == "graph" || o.command == "sweep" || o.command == "bench") {

@@ -12,6 +12,8 @@
 #include "app/sweep.hpp"
 #include "app/viewer.hpp"
 #include "engine/core/error.hpp"
+#include "engine/core/paths.hpp"
+#include "passes/post_backend.hpp"
 #include "engine/core/log.hpp"
 #include "engine/gl/context.hpp"
 #include "engine/io/image_io.hpp"
@@ -55,6 +57,7 @@ int commandGraph(const Options& o) {
     PassStates passes;  // never executed: describing a graph needs no GPU
     buildFrameGraph(graph, passes, frame);
     graph.compile();
+    checkDisabledPasses(graph, settings.disabledPasses);
     std::printf("frame graph for %s, view '%s', %s\n", (o.model.empty() ? o.scene : o.model).c_str(),
                 viewName(settings.view), sizeLabel(settings).c_str());
     std::fputs((o.explain ? graph.explainText() : graph.describe()).c_str(), stdout);
@@ -77,6 +80,7 @@ int commandRender(const Options& o) {
     RenderSettings settings = settingsFromOptions(o);
     for (int i = 0; i < o.warmup; ++i) renderer.render(settings, 0.0f, false);
     for (int i = 0; i < o.frames; ++i) renderer.render(settings, 0.0f, true);
+    checkDisabledPasses(renderer.graph(), settings.disabledPasses);
     glFinish();
     renderer.timers().flush();
 
@@ -166,6 +170,12 @@ int main(int argc, char** argv) {
             return 0;
         }
         if (o.command == "info") return app::commandInfo();
+        if (o.command == "version") {
+            std::printf("lightpass %s (%s, %s)\ndata: %s\n", LIGHTPASS_VERSION, LIGHTPASS_BUILD_TYPE,
+                        PostBackend::compiledWithCuda() ? "CUDA post effects" : "no CUDA: GLSL post effects",
+                        dataRoot().string().c_str());
+            return 0;
+        }
         if (o.command == "graph") return app::commandGraph(o);
         if (o.command == "render") return app::commandRender(o);
         if (o.command == "sweep") return app::runSweep(o);

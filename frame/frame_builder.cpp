@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "engine/core/error.hpp"
 #include "engine/render/local_lights.hpp"
 
 namespace lp {
@@ -45,7 +46,8 @@ FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const Fr
     const RenderSettings& s = *frame.settings;
     const Scene& scene = *frame.scene;
     const bool channelView = s.view != DebugView::Final && s.view != DebugView::Lighting &&
-                             !isLocalLightView(s.view);  // overlays on the final image
+                             !isLocalLightView(s.view) &&  // overlays on the final image
+                             !isHdrView(s.view);           // the final HDR buffer inspected
     const bool lightingView = s.view == DebugView::Lighting;
     const bool hasMap = !scene.environment.map.empty();
     const bool iblWanted = s.environment.ibl.value_or(scene.environment.ibl) && hasMap;
@@ -59,9 +61,12 @@ FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const Fr
     // The environment's cubes are made (and, for IBL, baked) in the frame where they changed.
     const bool environmentView = isEnvironmentView(s.view);  // shows the cubes or the LUT themselves
     const bool bake = iblAdded || environmentView;
-    EnvironmentTextures environment;  // imported only when something samples it
-    if (environmentView || (!channelView && (iblAdded || (skyAdded && hasMap)))) {
-        environment = importEnvironment(graph, frame, bake);
+    // Imported whenever a pass that samples it is added (in a G-buffer view those passes are
+    // culled, so nothing asks for the textures); baked only when a live pass will sample it.
+    const bool environmentSampled = environmentView || iblAdded || (skyAdded && hasMap);
+    EnvironmentTextures environment;
+    if (environmentSampled) environment = importEnvironment(graph, frame, bake);
+    if (environmentView || (!channelView && environmentSampled)) {
         if (!passes.environments.ready(scene, s.environment, bake)) environment = addIblBakePass(graph, frame, environment, bake);
         else graph.skipPass("ibl_bake", "environment unchanged since its bake (cached)");
     } else {
@@ -84,6 +89,7 @@ FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const Fr
     if (scaled) hdr = addUpscalePass(graph, passes.upscale, frame, hdr, UpscaleInput::Hdr);
     else graph.skipPass("upscale", "render scale 1: the frame is rendered at the output size");
     fg::ResourceId display = addToneMapPass(graph, passes.tonemap, frame, hdr);
+    if (isHdrView(s.view)) display = addHdrViewPass(graph, passes.hdrView, frame, hdr, s.view);  // culls tonemap
     if (channelView) {
         display = addDebugViewPass(graph, passes.debugView, frame, gbuffer, shadowMaps, environment, s.view);
         if (scaled) display = addUpscalePass(graph, passes.upscale, frame, display, UpscaleInput::DebugView);
@@ -97,6 +103,19 @@ FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const Fr
         out.hdr = hdr;
     }
     return out;
+}
+
+void checkDisabledPasses(const fg::FrameGraph& graph, const std::set<std::string>& disabled) {
+    const std::vector<fg::PassDecision> candidates = graph.explain();
+    for (const std::string& name : disabled) {
+        bool known = false;
+        std::string list;
+        for (const fg::PassDecision& d : candidates) {
+            known = known || d.name == name;
+            list += (list.empty() ? "" : ", ") + d.name;
+        }
+        if (!known) throw Error("--disable-pass " + name + ": no such pass in this frame (" + list + ")");
+    }
 }
 
 glm::ivec2 scaledRenderSize(int outputWidth, int outputHeight, float renderScale) {

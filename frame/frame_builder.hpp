@@ -11,6 +11,7 @@
 #include "passes/gbuffer_pass.hpp"
 #include "passes/post_pass.hpp"
 #include "passes/global_light_pass.hpp"
+#include "passes/hdr_view_pass.hpp"
 #include "passes/ibl_pass.hpp"
 #include "passes/local_light_pass.hpp"
 #include "passes/sky_pass.hpp"
@@ -32,6 +33,7 @@ struct PassStates {
     LocalLightPass localLights;
     PostPasses post;
     UpscalePass upscale;
+    HdrViewPass hdrView;
     // Environment cubes, IBL bakes and the DFG LUT, kept across frames; imported into the graph
     // (written there by ibl_bake in the frame where they change).
     EnvironmentCache environments;
@@ -46,6 +48,10 @@ struct FrameOutputs {
 // graph.explain() lists every candidate pass as "runs" or "skipped: <reason>".
 // frame.environments is set to &passes.environments here.
 FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const FrameData& frame);
+
+// Throws lp::Error for a --disable-pass name that is no candidate pass of `graph` (built, compiled),
+// listing the candidates: "--disable-pass foo: no such pass (gbuffer, shadow_map_0, ...)".
+void checkDisabledPasses(const fg::FrameGraph& graph, const std::set<std::string>& disabled);
 
 // Whether a world-space sphere reaches into the frustum of `viewProjection` (its six planes, after
 // Gribb and Hartmann; conservative near the frustum's edges, never wrongly false).

@@ -1,5 +1,7 @@
 #include "passes/debug_view_pass.hpp"
 
+#include <algorithm>
+
 #include <glm/gtc/type_ptr.hpp>
 
 #include "engine/core/error.hpp"
@@ -26,6 +28,9 @@ int modeOf(DebugView v) {
         case DebugView::Specular: return 6;
         case DebugView::Texcoords: return 7;
         case DebugView::ShadowMap: return 8;
+        case DebugView::WorldPosition: return 9;
+        case DebugView::EyeVector: return 10;
+        case DebugView::DepthFitted: return 11;
         default: return 0;
     }
 }
@@ -97,6 +102,22 @@ fg::ResourceId addEnvironmentViewPass(fg::FrameGraph& graph, DebugViewPass& stat
 
 }  // namespace
 
+glm::vec2 sceneDepthRange(const FrameData& frame) {
+    glm::vec3 lo, hi;
+    frame.scene->bounds(lo, hi);
+    float nearest = frame.farPlane, farthest = frame.nearPlane;
+    for (int corner = 0; corner < 8; ++corner) {
+        const glm::vec3 p((corner & 1) ? hi.x : lo.x, (corner & 2) ? hi.y : lo.y, (corner & 4) ? hi.z : lo.z);
+        const float depth = -(frame.view * glm::vec4(p, 1.0f)).z;
+        nearest = std::min(nearest, depth);
+        farthest = std::max(farthest, depth);
+    }
+    nearest = std::clamp(nearest, frame.nearPlane, frame.farPlane);
+    farthest = std::clamp(farthest, nearest, frame.farPlane);
+    if (!(farthest > nearest)) return {frame.nearPlane, frame.farPlane};  // a flat or empty scene
+    return {nearest, farthest};
+}
+
 GBufferChannels channelsForView(DebugView view) {
     GBufferChannels c;
     c.texcoord = view == DebugView::Texcoords;
@@ -145,6 +166,17 @@ fg::ResourceId addDebugViewPass(fg::FrameGraph& graph, DebugViewPass& state, con
             glProgramUniform1f(prog, glGetUniformLocation(prog, "uFar"), frame.farPlane);
             glProgramUniform1f(prog, glGetUniformLocation(prog, "uPositionScale"), 1.0f / frame.sceneExtent);
             glProgramUniform2i(prog, glGetUniformLocation(prog, "uShadowGrid"), grid.x, grid.y);
+            const glm::mat4 eyeToWorld = glm::inverse(frame.view);
+            glProgramUniformMatrix4fv(prog, glGetUniformLocation(prog, "uEyeToWorld"), 1, GL_FALSE,
+                                      glm::value_ptr(eyeToWorld));
+            glm::vec3 lo, hi;
+            frame.scene->bounds(lo, hi);
+            const glm::vec3 center = 0.5f * (lo + hi);
+            const float halfSize = std::max(0.5f * std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z}), 1e-6f);
+            glProgramUniform3fv(prog, glGetUniformLocation(prog, "uSceneCenter"), 1, glm::value_ptr(center));
+            glProgramUniform1f(prog, glGetUniformLocation(prog, "uSceneHalfSize"), halfSize);
+            const glm::vec2 range = sceneDepthRange(frame);
+            glProgramUniform2f(prog, glGetUniformLocation(prog, "uDepthRange"), range.x, range.y);
             if (data.channel.valid()) glBindTextureUnit(kChannelUnit, res.texture(data.channel));
             else bindGBuffer(prog, res, data.in, frame, true);
             glBindImageTexture(0, res.texture(data.ldr), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);

@@ -17,6 +17,9 @@ struct DebugViewPass {
     GBufferSettings layout, environmentLayout;  // the G-buffer layouts the programs were compiled for
 };
 
+// The eye depths the scene's bounds span from frame's camera, within near..far (the depth-fitted
+// view maps them to 0..1); near..far when the bounds give no range.
+glm::vec2 sceneDepthRange(const FrameData& frame);
 // Which G-buffer channels `view` needs (texcoords are only written for their view).
 GBufferChannels channelsForView(DebugView view);
 // `shadowMaps`: this frame's maps (the shadowmap view); `environment`: imported with a bake for the

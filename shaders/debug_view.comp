@@ -9,12 +9,17 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = 12) uniform sampler2D uChannel;  // texcoords (7) or the shadow-map atlas (8)
 layout(rgba8, binding = 0) uniform writeonly image2D uLdr;
 
-// 1 depth, 2 normals, 3 diffuse, 4 position, 5 shininess, 6 specular, 7 texcoords, 8 shadow map
+// 1 depth, 2 normals, 3 diffuse, 4 position, 5 shininess, 6 specular, 7 texcoords, 8 shadow map,
+// 9 world position, 10 eye vector, 11 depth fitted to the scene's range
 uniform int uMode;
 uniform float uNear;
 uniform float uFar;
 uniform float uPositionScale;  // 1 / (scene extent), maps eye-space positions into [-1, 1]
 uniform ivec2 uShadowGrid;     // mode 8: cascade tiles (columns, rows) of the atlas
+uniform mat4 uEyeToWorld;      // modes 9, 10
+uniform vec3 uSceneCenter;     // mode 9: the scene's bounds, mapped into [0, 1]
+uniform float uSceneHalfSize;  // mode 9: half the longest side of the bounds
+uniform vec2 uDepthRange;      // mode 11: eye depth of the scene's nearest and farthest bound
 
 void main() {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
@@ -52,6 +57,11 @@ void main() {
         // Eye distance along the view axis -> [0, 1] between near and far; background 1.
         float zEye = -gbufferEyeZ(p);
         c = vec3(background ? 1.0 : clamp((zEye - uNear) / (uFar - uNear), 0.0, 1.0));
+    } else if (uMode == 11) {
+        // The same, over the depth range the scene's bounds span from this camera: a far plane much
+        // beyond the scene no longer crushes it into black.
+        float zEye = -gbufferEyeZ(p);
+        c = vec3(background ? 1.0 : clamp((zEye - uDepthRange.x) / max(uDepthRange.y - uDepthRange.x, 1e-6), 0.0, 1.0));
     } else if (background) {
         c = vec3(0.0);
     } else if (uMode == 2) {
@@ -64,6 +74,12 @@ void main() {
         c = vec3(clamp(gbufferShininess(p) / 1024.0, 0.0, 1.0));
     } else if (uMode == 6) {
         c = gbufferSpecular(p);
+    } else if (uMode == 9) {
+        vec3 world = (uEyeToWorld * vec4(gbufferPosition(p), 1.0)).xyz;
+        c = clamp((world - uSceneCenter) / uSceneHalfSize * 0.5 + 0.5, 0.0, 1.0);
+    } else if (uMode == 10) {
+        // From the surface towards the eye, in world space.
+        c = normalize(mat3(uEyeToWorld) * -gbufferPosition(p)) * 0.5 + 0.5;
     }
     imageStore(uLdr, p, vec4(c, 1.0));
 }

@@ -7,17 +7,14 @@
 #include <sstream>
 
 #include "engine/core/error.hpp"
+#include "engine/core/paths.hpp"
 
 namespace lp::gl {
 namespace fs = std::filesystem;
 
 fs::path findShaderRoot() {
     if (const char* env = std::getenv("LIGHTPASS_SHADER_DIR")) return fs::path(env);
-#ifdef LIGHTPASS_SOURCE_DIR
-    fs::path built = fs::path(LIGHTPASS_SOURCE_DIR) / "shaders";
-    if (fs::exists(built / "common")) return built;
-#endif
-    return fs::current_path() / "shaders";
+    return dataRoot() / "shaders";
 }
 
 ShaderLibrary::ShaderLibrary(fs::path root) : root_(std::move(root)) {}

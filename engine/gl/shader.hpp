@@ -22,8 +22,8 @@ struct ShaderSource {
     std::vector<std::string> files;  // #line source-string number -> file, relative to the root
 };
 
-// Where shaders/ lives: $LIGHTPASS_SHADER_DIR, else the source tree the binary was built from,
-// else ./shaders (the GPU machine runs the binary from a copy of the repository).
+// Where shaders/ lives: $LIGHTPASS_SHADER_DIR, else dataRoot()/shaders (engine/core/paths.hpp: an
+// install beside the executable, the source tree it was built from, or the working directory).
 std::filesystem::path findShaderRoot();
 
 class ShaderLibrary {

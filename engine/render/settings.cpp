@@ -20,6 +20,11 @@ const char* viewName(DebugView v) {
         case DebugView::ShadowMap: return "shadowmap";
         case DebugView::LightRanges: return "light-ranges";
         case DebugView::LightsPerTile: return "lights-per-tile";
+        case DebugView::WorldPosition: return "world-position";
+        case DebugView::EyeVector: return "eye-vector";
+        case DebugView::DepthFitted: return "depth-fitted";
+        case DebugView::InvalidPixels: return "invalid-pixels";
+        case DebugView::ExposureEv: return "exposure-ev";
     }
     return "final";
 }
@@ -27,7 +32,16 @@ const char* viewName(DebugView v) {
 std::vector<DebugView> allViews() {
     return {DebugView::Final,     DebugView::Depth,    DebugView::Normals,   DebugView::Diffuse, DebugView::Position,
             DebugView::Shininess, DebugView::Specular, DebugView::Texcoords, DebugView::Lighting,
-            DebugView::Environment, DebugView::Irradiance, DebugView::Prefiltered, DebugView::Dfg};
+            DebugView::Environment, DebugView::Irradiance, DebugView::Prefiltered, DebugView::Dfg,
+            DebugView::WorldPosition, DebugView::EyeVector, DebugView::DepthFitted,
+            DebugView::InvalidPixels, DebugView::ExposureEv};
+}
+
+std::vector<DebugView> everyView() {
+    std::vector<DebugView> views = allViews();
+    views.push_back(DebugView::ShadowMap);
+    for (DebugView v : localLightViews()) views.push_back(v);
+    return views;
 }
 
 std::optional<DebugView> parseView(const std::string& name) {

@@ -15,7 +15,9 @@ enum class DebugView {
     Final, Depth, Normals, Diffuse, Position, Shininess, Specular, Texcoords, Lighting,
     Environment, Irradiance, Prefiltered, Dfg,  // environment views (passes/ibl_pass)
     ShadowMap,  // light-space depth of light settings.shadows.debugLight's shadow map
-    LightRanges, LightsPerTile  // overlays on the final image (local_light_pass)
+    LightRanges, LightsPerTile,  // overlays on the final image (local_light_pass)
+    WorldPosition, EyeVector, DepthFitted,  // more G-buffer views (seed 003; depth over the scene's range)
+    InvalidPixels, ExposureEv  // the HDR buffer inspected (passes/hdr_view_pass): NaN/Inf, EV false colour
 };
 // overlay views (not in allViews(): they are the final image with the local lights'
 // bounds or per-tile light counts drawn over it).
@@ -30,6 +32,8 @@ std::optional<Brdf> parseBrdf(const std::string& name);
 const char* viewName(DebugView view);
 std::optional<DebugView> parseView(const std::string& name);
 std::vector<DebugView> allViews();
+// Every view --view accepts, in the order --help and the panel list them.
+std::vector<DebugView> everyView();
 
 // Each feature area owns one of these structs (and only its own fields).
 struct ShadowSettings {         // directional-light shadow maps (passes/shadow_map_pass)

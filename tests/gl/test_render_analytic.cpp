@@ -2,11 +2,15 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "frame/renderer.hpp"
 #include "engine/scene/primitives.hpp"
+#include "engine/graph/texture_pool.hpp"
+#include "passes/debug_view_pass.hpp"
+#include "passes/hdr_view_pass.hpp"
 #include "tests/gl/gl_fixture.hpp"
 
 using namespace lp;
@@ -211,4 +215,140 @@ TEST(RenderAnalytic, HdrBufferHasNoNanOrInf) {
     r.render(settings);
     ImageF hdr = r.readHdr();
     for (float v : hdr.rgba) ASSERT_TRUE(std::isfinite(v));
+}
+
+// ---- views of seed 003 and the HDR inspection views ---------------------------------------------
+
+TEST(RenderAnalytic, WorldPositionAndEyeVectorViewsEncodeThePlane) {
+    // Straight down onto the 20 m plane (bounds 20 x 0 x 20 around the origin): world position maps
+    // x, z from [-10, 10] to [0, 1] and y = 0 to 0.5; the eye vector at the centre is +Y.
+    Scene s = planeScene({0, 5, 0}, {0, 0, 0}, {0, 0, -1}, glm::vec3(0.5f), glm::vec3(0.0f), 1.0f);
+    const int w = 64, h = 64;
+    Renderer r(s);
+    RenderSettings settings;
+    settings.width = w;
+    settings.height = h;
+    settings.view = DebugView::WorldPosition;
+    r.render(settings);
+    EXPECT_FALSE(r.graph().isLive("global_lights"));
+    Image8 img = r.readDisplay();
+    for (int y : {4, 32, 60})
+        for (int x : {4, 32, 60}) {
+            glm::dvec3 p;
+            ASSERT_TRUE(planePoint(s, w, h, x, y, p));
+            const uint8_t* px = &img.rgba[(size_t(y) * w + x) * 4];
+            EXPECT_NEAR(px[0], (p.x / 10.0 * 0.5 + 0.5) * 255.0, 1.5) << x << "," << y;
+            EXPECT_NEAR(px[1], 127.5, 1.0);
+            EXPECT_NEAR(px[2], (p.z / 10.0 * 0.5 + 0.5) * 255.0, 1.5) << x << "," << y;
+        }
+    settings.view = DebugView::EyeVector;
+    r.render(settings);
+    img = r.readDisplay();
+    for (int y : {4, 32, 60})
+        for (int x : {4, 32, 60}) {
+            glm::dvec3 p;
+            ASSERT_TRUE(planePoint(s, w, h, x, y, p));
+            const glm::dvec3 v = glm::normalize(glm::dvec3(s.camera.position) - p);
+            const uint8_t* px = &img.rgba[(size_t(y) * w + x) * 4];
+            for (int c = 0; c < 3; ++c) EXPECT_NEAR(px[c], (v[c] * 0.5 + 0.5) * 255.0, 1.5) << x << "," << y << " c" << c;
+        }
+}
+
+TEST(RenderAnalytic, DepthFittedViewSpansTheScenesRange) {
+    // Far plane 50, scene 20 m: the plain depth view uses a fraction of the grey ramp, the fitted one
+    // runs from the scene's nearest to its farthest bound, so it uses more of it, still monotone.
+    Scene s = planeScene({0, 2, 8}, {0, 0, 0}, {0, 1, 0}, glm::vec3(0.5f), glm::vec3(0.0f), 1.0f);
+    const int w = 64, h = 96;
+    Renderer r(s);
+    RenderSettings settings;
+    settings.width = w;
+    settings.height = h;
+    auto column = [&](DebugView view) {
+        settings.view = view;
+        r.render(settings);
+        Image8 img = r.readDisplay();
+        std::vector<int> values;
+        for (int y = 0; y < h; ++y) {
+            glm::dvec3 p;
+            if (planePoint(s, w, h, w / 2, y, p)) values.push_back(img.rgba[(size_t(y) * w + w / 2) * 4]);
+        }
+        return values;
+    };
+    const std::vector<int> plain = column(DebugView::Depth), fitted = column(DebugView::DepthFitted);
+    ASSERT_EQ(plain.size(), fitted.size());
+    ASSERT_GT(fitted.size(), size_t(h / 3));
+    for (size_t i = 1; i < fitted.size(); ++i) EXPECT_LE(fitted[i], fitted[i - 1]);  // near rows are darker
+    const int plainSpan = plain.front() - plain.back(), fittedSpan = fitted.front() - fitted.back();
+    EXPECT_GT(fittedSpan, 2 * plainSpan) << "plain " << plainSpan << ", fitted " << fittedSpan;
+    // The range itself: the bounds' corners seen from the camera, inside near..far.
+    const FrameData frame = makeFrameData(s, settings, 0.0f);
+    const glm::vec2 range = sceneDepthRange(frame);
+    EXPECT_GE(range.x, frame.nearPlane);
+    EXPECT_LE(range.y, frame.farPlane);
+    EXPECT_NEAR(range.y, 8.0f + 10.0f * 8.0f / std::sqrt(68.0f) + 2.0f * 2.0f / std::sqrt(68.0f), 0.6f);
+}
+
+// A NaN and an Inf injected into the HDR buffer by a test pass are painted by the invalid-pixels view;
+// the rest of the image is dimmed grey.
+TEST(RenderAnalytic, InvalidPixelsViewPaintsInjectedNanAndInf) {
+    Scene s = planeScene({0, 5, 0}, {0, 0, 0}, {0, 0, -1}, glm::vec3(0.5f), glm::vec3(0.0f), 1.0f);
+    RenderSettings settings;
+    settings.width = 16;
+    settings.height = 8;
+    settings.view = DebugView::InvalidPixels;
+    FrameData frame = makeFrameData(s, settings, 0.0f);
+    gl::ShaderLibrary shaders;
+    frame.shaders = &shaders;
+    fg::FrameGraph graph;
+    fg::TexturePool pool;
+    HdrViewPass state;
+    const fg::ResourceId hdr = graph.addPass<fg::ResourceId>(
+        "inject", fg::PassKind::Compute,
+        [&](fg::PassBuilder& b, fg::ResourceId& out) { out = b.create("hdr", {16, 8, GL_RGBA16F}, fg::Usage::Transfer); },
+        [](const fg::ResourceId& out, const fg::PassResources& res) {
+            const float grey[4] = {0.5f, 0.5f, 0.5f, 1.0f};
+            const float nan[4] = {std::nanf(""), 0.0f, 0.0f, 1.0f};
+            const float inf[4] = {0.0f, std::numeric_limits<float>::infinity(), 0.0f, 1.0f};
+            glClearTexImage(res.texture(out), 0, GL_RGBA, GL_FLOAT, grey);
+            glClearTexSubImage(res.texture(out), 0, 3, 2, 0, 1, 1, 1, GL_RGBA, GL_FLOAT, nan);
+            glClearTexSubImage(res.texture(out), 0, 10, 5, 0, 1, 1, 1, GL_RGBA, GL_FLOAT, inf);
+        });
+    const fg::ResourceId view = addHdrViewPass(graph, state, frame, hdr, DebugView::InvalidPixels);
+    graph.markOutput(view);
+    graph.compile();
+    graph.execute(pool);
+    std::vector<uint8_t> px(16 * 8 * 4);
+    glGetTextureImage(graph.outputTexture(view), 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(px.size()), px.data());
+    auto at = [&](int x, int y) { return glm::ivec3(px[(y * 16 + x) * 4], px[(y * 16 + x) * 4 + 1], px[(y * 16 + x) * 4 + 2]); };
+    EXPECT_EQ(at(3, 2), glm::ivec3(255, 0, 255));   // NaN: magenta
+    EXPECT_EQ(at(10, 5), glm::ivec3(0, 255, 255));  // Inf: cyan
+    const glm::ivec3 valid = at(0, 0);
+    EXPECT_EQ(valid.x, valid.y);
+    EXPECT_EQ(valid.y, valid.z);
+    EXPECT_GT(valid.x, 0);
+    EXPECT_LT(valid.x, 110);  // dimmed to 40%
+}
+
+TEST(RenderAnalytic, ExposureEvViewOfALitPlaneIsOneBand) {
+    // A Lambert plane lit head-on has one radiance; the view shows its EV band everywhere on it.
+    Scene s = planeScene({0, 5, 0}, {0, 0, 0}, {0, 0, -1}, glm::vec3(0.5f), glm::vec3(0.0f), 1.0f);
+    s.directionalLights[0].direction = glm::vec3(0.0f, -1.0f, 0.0f);
+    s.directionalLights[0].color = glm::vec3(1.0f);
+    s.directionalLights[0].intensity = float(0.18 * 8.0 * M_PI / 0.5);  // radiance 0.18 x 8: +3 EV
+    s.ambient = glm::vec3(0.0f);
+    Renderer r(s);
+    RenderSettings settings;
+    settings.width = 32;
+    settings.height = 32;
+    settings.shadows.enabled = false;
+    settings.view = DebugView::ExposureEv;
+    r.render(settings);
+    EXPECT_TRUE(r.graph().isLive("hdr_view"));
+    EXPECT_FALSE(r.graph().isLive("tonemap"));
+    Image8 img = r.readDisplay();
+    for (size_t i = 0; i < img.rgba.size(); i += 4) {  // +3: orange (1, 0.55, 0)
+        EXPECT_EQ(img.rgba[i], 255);
+        EXPECT_NEAR(img.rgba[i + 1], 0.55 * 255, 1.0);
+        EXPECT_EQ(img.rgba[i + 2], 0);
+    }
 }

@@ -220,3 +220,39 @@ TEST(ShaderUpscale, NearestPicksTheCoveringTexel) {
             EXPECT_EQ(out[size_t(y) * ow + x], glm::vec4(sx, sy, sx * 10 + sy, 1.0f)) << x << "," << y;
         }
 }
+
+// ---- HDR inspection (common/hdr_inspect.glsl) ----------------------------------------------------
+
+TEST(ShaderHdrInspect, InvalidPixelsAreClassified) {
+    std::vector<glm::vec4> in = {glm::vec4(1.0f, 2.0f, 3.0f, 1.0f), glm::vec4(kNaN, 0.0f, 0.0f, 1.0f),
+                                 glm::vec4(0.0f, kInf, 0.0f, 1.0f), glm::vec4(0.0f, 0.0f, -kInf, 1.0f),
+                                 glm::vec4(kNaN, kInf, 0.0f, 1.0f), glm::vec4(65504.0f, 0.0f, 0.0f, 1.0f)};
+    auto out = runGlsl({"common/hdr_inspect.glsl"}, "return vec4(float(invalidPixelKind(x)));", in);
+    const float expected[] = {0, 1, 2, 2, 1, 0};  // NaN wins over Inf; the largest half float is valid
+    for (size_t i = 0; i < in.size(); ++i) EXPECT_EQ(out[i].x, expected[i]) << i;
+}
+
+// A known radiance lands in the expected stop: L = 0.18 x 2^k is band k (after exposure), rounded to
+// the nearest stop, clamped to [-6, 6]; black and Inf go to the ends.
+TEST(ShaderHdrInspect, EvFalseColourBandOfKnownRadiance) {
+    std::vector<glm::vec4> in;
+    std::vector<int> expected;
+    for (int k = -8; k <= 8; ++k)
+        for (float offset : {-0.45f, 0.0f, 0.45f}) {
+            const float ev = float(k) + offset;
+            in.push_back(glm::vec4(0.18f * std::exp2(ev), 0.0f, 0.0f, 0.0f));  // grey radiance, exposure 0
+            expected.push_back(std::clamp(k, -6, 6));
+        }
+    in.push_back(glm::vec4(0.18f, 2.0f, 0.0f, 0.0f));  // exposure +2 EV moves middle grey to +2
+    expected.push_back(2);
+    in.push_back(glm::vec4(0.0f));
+    expected.push_back(-6);
+    in.push_back(glm::vec4(kInf, 0.0f, 0.0f, 0.0f));
+    expected.push_back(6);
+    auto out = runGlsl({"common/hdr_inspect.glsl"},
+                       "float L = hdrLuminance(vec3(x.x)); int b = evBand(L, x.y); return vec4(float(b), evBandColor(b));", in);
+    for (size_t i = 0; i < in.size(); ++i) {
+        EXPECT_EQ(int(out[i].x), expected[i]) << "L " << in[i].x;
+        if (expected[i] == 0) EXPECT_EQ(glm::vec3(out[i].y, out[i].z, out[i].w), glm::vec3(0.0f, 0.85f, 0.0f));  // green
+    }
+}

@@ -185,7 +185,7 @@ TEST(FrameBuilder, NormalsViewCullsLightingAndToneMap) {
 TEST(FrameBuilder, EveryChannelViewReadsOnlyTheGBuffer) {
     Scene s = oneLightScene();
     for (DebugView v : allViews()) {
-        if (v == DebugView::Final || v == DebugView::Lighting) continue;
+        if (v == DebugView::Final || v == DebugView::Lighting || isHdrView(v)) continue;
         FrameGraph g = buildFor(s, v);
         // the environment views show the cubes / LUT, made by the bake in the first frame
         const std::vector<std::string> expected = isEnvironmentView(v)
@@ -196,6 +196,17 @@ TEST(FrameBuilder, EveryChannelViewReadsOnlyTheGBuffer) {
         for (const auto& r : g.resources())
             if (r.name == "gbuffer.texcoord") texcoordLive = r.live;
         EXPECT_EQ(texcoordLive, v == DebugView::Texcoords) << viewName(v);
+    }
+}
+
+// The HDR views inspect the final HDR buffer in place of the tone map.
+TEST(FrameBuilder, HdrViewsReplaceTheToneMap) {
+    Scene s = oneLightScene();
+    for (DebugView v : {DebugView::InvalidPixels, DebugView::ExposureEv}) {
+        FrameGraph g = buildFor(s, v);
+        EXPECT_EQ(g.executionOrder(), (std::vector<std::string>{"gbuffer", "shadow_map_0", "global_lights", "sky", "hdr_view"}))
+            << viewName(v);
+        EXPECT_FALSE(g.isLive("tonemap"));
     }
 }
 
