@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <deque>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
@@ -164,6 +166,29 @@ void reloadChangedShaders(ViewerState& st, Renderer& renderer, double now) {
     say(st.shaderStatus);
 }
 
+// What --panel-rows-out writes: the panel's place, then one tab-separated line per pass row.
+std::string panelRowsText(const ViewerState& st) {
+    std::ostringstream out;
+    out << "panel\t" << st.panelX << "," << st.panelY << "\t" << st.panelWidth << "x" << st.panelHeight << "\n";
+    for (const PassRow& row : st.passRows) {
+        out << "pass\t" << row.name << "\t" << row.checkboxX << "," << row.checkboxY << "\t" << passRowStateName(row.state);
+        if (!row.reason.empty()) out << ": " << row.reason;
+        out << "\n";
+    }
+    return out.str();
+}
+
+// Written whole under a temporary name and renamed, so a test never reads half a file.
+void writePanelRows(const std::string& path, const std::string& text) {
+    const std::string partial = path + ".partial";
+    {
+        std::ofstream out(partial, std::ios::binary);
+        out << text;
+        if (!out) throw Error(path + ": cannot write the panel rows");
+    }
+    std::filesystem::rename(partial, path);
+}
+
 }  // namespace
 
 int runViewer(const Options& o) {
@@ -215,6 +240,7 @@ int runViewer(const Options& o) {
     double last = glfwGetTime();
     long frame = 0;
     std::string reportedGraph;
+    std::string writtenPanelRows;
     RenderSettings lastGoodSettings = st.settings;
     while (!glfwWindowShouldClose(window)) {
         glfwPollEvents();
@@ -233,6 +259,7 @@ int runViewer(const Options& o) {
                 scene = std::move(next);
                 renderer = std::make_unique<Renderer>(*scene, shaders);
                 st.home = scene->camera;
+                st.passRows.clear();  // the new scene's candidates, in its order
                 st.sceneError.clear();
                 st.sceneFile = file;
                 say("scene " + file.string());
@@ -286,6 +313,7 @@ int runViewer(const Options& o) {
             if (live != reportedGraph) say("graph:" + live);
             reportedGraph = live;
         }
+        updatePassRows(st.passRows, renderer->graph().explain(), st.settings.disabledPasses);
         if (st.screenshotRequested && !st.screenshotWithPanel) {  // the frame alone, no panel
             st.screenshotRequested = false;
             takeScreenshot(st, *renderer);
@@ -299,6 +327,11 @@ int runViewer(const Options& o) {
             ImGui::Begin("keys (h closes)", &st.showHelp, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse);
             ImGui::TextUnformatted(kViewerHelp);
             ImGui::End();
+        }
+        if (!o.panelRowsOut.empty() && frame >= 3) {  // from "viewer ready" on: the panel has settled
+            const std::string rows = panelRowsText(st);
+            if (rows != writtenPanelRows) writePanelRows(o.panelRowsOut, rows);
+            writtenPanelRows = rows;
         }
         ImGui::Render();
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());

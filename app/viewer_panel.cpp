@@ -113,46 +113,40 @@ void knobWidgets(PanelSection section, RenderSettings& s, const Scene& scene) {
         if (knob.panel.section == section && knob.panel.widget != PanelWidget::None) knobWidget(knob, s, scene);
 }
 
-// Why a pass is culled or skipped, wrapped under its name (greyed, indented).
-void reasonText(const std::string& reason) {
-    ImGui::Indent();
-    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
-    ImGui::TextWrapped("%s", reason.c_str());
-    ImGui::PopStyleColor();
-    ImGui::Unindent();
-}
-
+// One line per pass, every row always there with a checkbox of the same size: switching a pass off
+// changes its state text, never the rows' places (a second click lands on the same pass). The reason
+// a pass does not run is clipped to the state column and shown whole on hover.
 void drawPasses(ViewerState& st, Renderer& renderer) {
-    if (!ImGui::BeginTable("passes", 2, ImGuiTableFlags_RowBg)) return;
-    ImGui::TableSetupColumn("pass (untick to switch off)");
-    ImGui::TableSetupColumn("GPU ms", ImGuiTableColumnFlags_WidthFixed, 64);
+    if (!ImGui::BeginTable("passes", 3, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV)) return;
+    ImGui::TableSetupColumn("pass (untick: off)", ImGuiTableColumnFlags_WidthFixed);
+    ImGui::TableSetupColumn("state", ImGuiTableColumnFlags_WidthStretch);
+    ImGui::TableSetupColumn("GPU ms", ImGuiTableColumnFlags_WidthFixed, ImGui::CalcTextSize("000.000").x);
     ImGui::TableHeadersRow();
-    for (const auto& p : renderer.graph().report()) {
+    for (PassRow& p : st.passRows) {
         ImGui::TableNextRow();
         ImGui::TableSetColumnIndex(0);
-        bool on = !st.settings.disabledPasses.count(p.name);
         ImGui::PushID(p.name.c_str());
-        const bool greyed = p.culled && !p.disabled;  // culled by the graph, not by the user
+        bool on = !st.settings.disabledPasses.count(p.name);
+        // Greyed when the graph or the builder left it out: ticking it would change nothing.
+        const bool greyed = on && p.state != PassRowState::Runs;
         if (greyed) ImGui::BeginDisabled();
         if (ImGui::Checkbox(p.name.c_str(), &on)) {
             if (on) st.settings.disabledPasses.erase(p.name);
             else st.settings.disabledPasses.insert(p.name);
         }
         if (greyed) ImGui::EndDisabled();
-        if (p.culled && !p.reason.empty()) reasonText(p.reason);
+        const ImVec2 box = ImGui::GetItemRectMin();
+        p.checkboxX = box.x + ImGui::GetFrameHeight() * 0.5f;
+        p.checkboxY = box.y + ImGui::GetFrameHeight() * 0.5f;
         ImGui::PopID();
         ImGui::TableSetColumnIndex(1);
-        if (p.disabled) ImGui::TextDisabled("off");
-        else if (p.culled) ImGui::TextDisabled("culled");
-        else ImGui::Text("%.3f", renderer.timers().median(p.name));
-    }
-    for (const auto& [name, reason] : renderer.graph().skippedPasses()) {
-        ImGui::TableNextRow();
-        ImGui::TableSetColumnIndex(0);
-        ImGui::TextDisabled("%s", name.c_str());
-        reasonText(reason);
-        ImGui::TableSetColumnIndex(1);
-        ImGui::TextDisabled("skipped");
+        if (p.state == PassRowState::Runs) ImGui::TextUnformatted(passRowStateName(p.state));
+        else if (p.state == PassRowState::Skipped) ImGui::TextDisabled("skipped: %s", p.reason.c_str());
+        else ImGui::TextDisabled("%s", passRowStateName(p.state));
+        if (!p.reason.empty() && ImGui::IsItemHovered())
+            ImGui::SetTooltip("%s: %s", passRowStateName(p.state), p.reason.c_str());
+        ImGui::TableSetColumnIndex(2);
+        if (p.state == PassRowState::Runs) ImGui::Text("%.3f", renderer.timers().median(p.name));
     }
     ImGui::EndTable();
 }
@@ -195,6 +189,10 @@ void drawViewerPanel(ViewerState& st, Renderer& renderer, const Scene& scene, co
     // Fits its content (it shrinks when a section collapses), fixed width, never taller than the window.
     ImGui::SetNextWindowSizeConstraints(ImVec2(380, 60), ImVec2(380, std::max(60.0f, ImGui::GetIO().DisplaySize.y - 16)));
     ImGui::Begin("lightpass   (Tab hides, h lists the keys)", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+    st.panelX = ImGui::GetWindowPos().x;
+    st.panelY = ImGui::GetWindowPos().y;
+    st.panelWidth = ImGui::GetWindowWidth();
+    st.panelHeight = ImGui::GetWindowHeight();
     ImGui::TextUnformatted(ctx.info().renderer.c_str());
 
     if (!st.shaderError.empty()) {
