@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <deque>
 #include <filesystem>
 #include <fstream>
@@ -15,6 +16,7 @@
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
 
+#include "app/config_dir.hpp"
 #include "engine/core/error.hpp"
 #include "engine/core/log.hpp"
 #include "engine/gl/context.hpp"
@@ -166,6 +168,24 @@ void reloadChangedShaders(ViewerState& st, Renderer& renderer, double now) {
     say(st.shaderStatus);
 }
 
+// ImGui's ini file (the panel's position, size, collapsed state) in the per-user config folder,
+// created if missing; empty (no ini) when there is no such folder or it cannot be made.
+std::string panelLayoutFile() {
+    const std::filesystem::path dir = userConfigDir([](const char* name) { return std::getenv(name); });
+    if (dir.empty()) {
+        logWarn("no $LIGHTPASS_CONFIG_DIR, $XDG_CONFIG_HOME or $HOME: the panel layout is not saved");
+        return "";
+    }
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (ec) {
+        logWarn("cannot create " + dir.string() + " (" + ec.message() + "): the panel layout is not saved");
+        return "";
+    }
+    logInfo("panel layout: " + (dir / "imgui.ini").string());
+    return (dir / "imgui.ini").string();
+}
+
 // What --panel-rows-out writes: the panel's place, then one tab-separated line per pass row.
 std::string panelRowsText(const ViewerState& st) {
     std::ostringstream out;
@@ -222,7 +242,8 @@ int runViewer(const Options& o) {
 
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
-    ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini files left in the user's folder
+    const std::string layoutFile = panelLayoutFile();  // ImGui keeps the pointer: outlives the context
+    ImGui::GetIO().IniFilename = layoutFile.empty() ? nullptr : layoutFile.c_str();
     ImGui::StyleColorsDark();
     ImGui::GetStyle().WindowRounding = 4.0f;
     ImGui::GetStyle().Colors[ImGuiCol_WindowBg].w = 0.88f;  // the frame shows faintly through

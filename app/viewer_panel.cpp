@@ -23,6 +23,8 @@ const char* const kViewerHelp =
 
 namespace {
 
+constexpr float kPanelDefaultWidth = 340.0f;
+
 std::vector<fs::path> filesWithExtensions(const fs::path& dir, std::initializer_list<const char*> extensions) {
     std::vector<fs::path> found;
     std::error_code ec;
@@ -78,6 +80,9 @@ void knobWidget(const KnobEntry& knob, RenderSettings& s, const Scene& scene) {
         }
         case PanelWidget::Slider:
         case PanelWidget::LogSlider: {
+            if (knob.field.optional)  // room for the "scene's" button after the label
+                ImGui::SetNextItemWidth(ImGui::CalcItemWidth() - ImGui::CalcTextSize("scene's").x -
+                                        ImGui::GetStyle().FramePadding.x * 2 - ImGui::GetStyle().ItemSpacing.x);
             const ImGuiSliderFlags flags =
                 ImGuiSliderFlags_AlwaysClamp | (panel.widget == PanelWidget::LogSlider ? ImGuiSliderFlags_Logarithmic : 0);
             bool changed = false;
@@ -105,6 +110,17 @@ void knobWidget(const KnobEntry& knob, RenderSettings& s, const Scene& scene) {
         }
     }
     ImGui::PopID();
+}
+
+// Room right of the widgets for the longest label of a knob drawn with its label there (checkboxes
+// put theirs inside the width), so a narrow panel clips none.
+float widgetLabelRoom() {
+    float widest = ImGui::CalcTextSize("environment").x;  // the pickers' labels
+    for (const KnobEntry& knob : knobTable())
+        if (knob.panel.section != PanelSection::None && knob.panel.widget != PanelWidget::None &&
+            knob.panel.widget != PanelWidget::Checkbox)
+            widest = std::max(widest, ImGui::CalcTextSize(knob.panel.label.empty() ? knob.name.c_str() : knob.panel.label.c_str()).x);
+    return widest + ImGui::GetStyle().ItemInnerSpacing.x;
 }
 
 // Every knob the table puts in this panel section, in table order.
@@ -185,14 +201,20 @@ PickerFiles findPickerFiles(const fs::path& repositoryRoot) {
 
 void drawViewerPanel(ViewerState& st, Renderer& renderer, const Scene& scene, const gl::GpuContext& ctx,
                      const PickerFiles& files) {
+    // Narrow by default so most of a 1280x720 frame stays in view; resizable and movable, and ImGui's
+    // ini file (app/viewer.cpp) remembers where the user left it. Never larger than the window.
+    const ImVec2 display = ImGui::GetIO().DisplaySize;
     ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
-    // Fits its content (it shrinks when a section collapses), fixed width, never taller than the window.
-    ImGui::SetNextWindowSizeConstraints(ImVec2(380, 60), ImVec2(380, std::max(60.0f, ImGui::GetIO().DisplaySize.y - 16)));
-    ImGui::Begin("lightpass   (Tab hides, h lists the keys)", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+    ImGui::SetNextWindowSize(ImVec2(kPanelDefaultWidth, std::max(120.0f, display.y - 16)), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSizeConstraints(ImVec2(220, 120), ImVec2(std::max(220.0f, display.x - 16), std::max(120.0f, display.y - 16)));
+    // "###": the ini file keys the layout by this id, not by the title text.
+    ImGui::Begin("lightpass   (Tab hides, h lists the keys)###lightpass panel");
     st.panelX = ImGui::GetWindowPos().x;
     st.panelY = ImGui::GetWindowPos().y;
     st.panelWidth = ImGui::GetWindowWidth();
     st.panelHeight = ImGui::GetWindowHeight();
+    // Widgets take the width less room for their labels, so labels stay inside a narrow panel.
+    ImGui::PushItemWidth(-widgetLabelRoom());
     ImGui::TextUnformatted(ctx.info().renderer.c_str());
 
     if (!st.shaderError.empty()) {
@@ -227,8 +249,9 @@ void drawViewerPanel(ViewerState& st, Renderer& renderer, const Scene& scene, co
         }
         knobWidgets(PanelSection::View, st.settings, scene);
     }
-    if (ImGui::CollapsingHeader("lighting")) drawLighting(st, scene);
-    if (ImGui::CollapsingHeader("bloom and toon")) knobWidgets(PanelSection::Post, st.settings, scene);
+    if (ImGui::CollapsingHeader("lighting", ImGuiTreeNodeFlags_DefaultOpen)) drawLighting(st, scene);
+    if (ImGui::CollapsingHeader("bloom and toon", ImGuiTreeNodeFlags_DefaultOpen))
+        knobWidgets(PanelSection::Post, st.settings, scene);
 
     if (ImGui::CollapsingHeader("scene", ImGuiTreeNodeFlags_DefaultOpen)) {
         filePicker("scene file", files.scenes, st.sceneFile, st.sceneRequest, nullptr);
@@ -243,6 +266,7 @@ void drawViewerPanel(ViewerState& st, Renderer& renderer, const Scene& scene, co
     ImGui::SameLine();
     ImGui::Checkbox("with panel", &st.screenshotWithPanel);
     if (!st.lastScreenshot.empty()) ImGui::TextDisabled("%s", st.lastScreenshot.c_str());
+    ImGui::PopItemWidth();
     ImGui::End();
 }
 

@@ -16,6 +16,7 @@ trap 'kill $viewer $xvfb 2>/dev/null; wait 2>/dev/null' EXIT
 for i in $(seq 50); do [ -s "$out/display" ] && break; sleep 0.1; done
 export DISPLAY=:$(cat "$out/display")
 for i in $(seq 50); do xdotool getmouselocation >/dev/null 2>&1 && break; sleep 0.1; done
+export LIGHTPASS_CONFIG_DIR="$out/config"  # the panel's imgui.ini: never the user's own ~/.config
 "$lp" view "$scene" --size 600x440 --screenshot-dir "$out" --hide-panel --panel-rows-out "$out/rows.txt" \
   >"$out/viewer.log" 2>&1 &
 viewer=$!

@@ -1,6 +1,10 @@
-// The viewer panel's pass rows (app/pass_rows.hpp): no GL, no window.
+// The viewer panel's pass rows (app/pass_rows.hpp) and where the viewer keeps its layout
+// (app/config_dir.hpp): no GL, no window.
 #include <gtest/gtest.h>
 
+#include <map>
+
+#include "app/config_dir.hpp"
 #include "app/pass_rows.hpp"
 
 namespace lp::app {
@@ -65,6 +69,20 @@ TEST(PanelPassRows, APassAddedTwiceIsOneRowThatRunsIfEitherRuns) {
     updatePassRows(rows, {{"upscale", false, "culled: nothing live reads its writes (hdr)"}, {"debug_view", true, ""}, {"upscale", true, ""}}, {});
     EXPECT_EQ(names(rows), (std::vector<std::string>{"upscale", "debug_view"}));
     EXPECT_EQ(row(rows, "upscale").state, PassRowState::Runs);
+}
+
+TEST(ViewerConfigDir, OverrideThenXdgThenHome) {
+    auto from = [](std::map<std::string, std::string> env) {
+        return userConfigDir([env](const char* name) -> const char* {
+            auto it = env.find(name);
+            return it == env.end() ? nullptr : it->second.c_str();
+        });
+    };
+    EXPECT_EQ(from({{"LIGHTPASS_CONFIG_DIR", "/tmp/t"}, {"XDG_CONFIG_HOME", "/x"}, {"HOME", "/h"}}), "/tmp/t");
+    EXPECT_EQ(from({{"XDG_CONFIG_HOME", "/x"}, {"HOME", "/h"}}), "/x/lightpass");
+    EXPECT_EQ(from({{"XDG_CONFIG_HOME", "relative"}, {"HOME", "/h"}}), "/h/.config/lightpass");  // XDG: absolute only
+    EXPECT_EQ(from({{"LIGHTPASS_CONFIG_DIR", ""}, {"HOME", "/h"}}), "/h/.config/lightpass");
+    EXPECT_EQ(from({}), std::filesystem::path());
 }
 
 }  // namespace
