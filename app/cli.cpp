@@ -170,6 +170,10 @@ std::vector<CommandFlag> makeCommandFlags() {
          [](Options& o, V, V) { o.hidePanel = true; }},
         {{"--screenshot-ui"}, "", "viewer: F12 captures the whole window, panel included",
          [](Options& o, V, V) { o.screenshotUi = true; }},
+        {{"--panel-rows-out"}, "F",
+         "viewer (for tests): whenever they change, write the panel's position and size and its pass "
+         "rows (name, checkbox centre, state) to F",
+         [](Options& o, V, V v) { o.panelRowsOut = v; }},
         {{"-v", "--verbose"}, "", "log debug messages (GL debug output included)", [](Options& o, V, V) { o.verbose = true; }},
         {{"-q", "--quiet"}, "", "log errors only", [](Options& o, V, V) { o.quiet = true; }},
     };

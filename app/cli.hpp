@@ -29,6 +29,7 @@ struct Options {
     std::string screenshotDir;  // viewer: where F12 writes
     bool hidePanel = false;
     bool screenshotUi = false;
+    std::string panelRowsOut;  // viewer: where the panel's pass rows go when they change (for tests)
     std::vector<std::string> knobs;  // sweep
     std::string outDir;              // sweep
     std::vector<std::string> varies; // bench: one axis of variants per --vary

@@ -3,8 +3,11 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <deque>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
@@ -13,6 +16,7 @@
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
 
+#include "app/config_dir.hpp"
 #include "engine/core/error.hpp"
 #include "engine/core/log.hpp"
 #include "engine/gl/context.hpp"
@@ -164,6 +168,47 @@ void reloadChangedShaders(ViewerState& st, Renderer& renderer, double now) {
     say(st.shaderStatus);
 }
 
+// ImGui's ini file (the panel's position, size, collapsed state) in the per-user config folder,
+// created if missing; empty (no ini) when there is no such folder or it cannot be made.
+std::string panelLayoutFile() {
+    const std::filesystem::path dir = userConfigDir([](const char* name) { return std::getenv(name); });
+    if (dir.empty()) {
+        logWarn("no $LIGHTPASS_CONFIG_DIR, $XDG_CONFIG_HOME or $HOME: the panel layout is not saved");
+        return "";
+    }
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (ec) {
+        logWarn("cannot create " + dir.string() + " (" + ec.message() + "): the panel layout is not saved");
+        return "";
+    }
+    logInfo("panel layout: " + (dir / "imgui.ini").string());
+    return (dir / "imgui.ini").string();
+}
+
+// What --panel-rows-out writes: the panel's place, then one tab-separated line per pass row.
+std::string panelRowsText(const ViewerState& st) {
+    std::ostringstream out;
+    out << "panel\t" << st.panelX << "," << st.panelY << "\t" << st.panelWidth << "x" << st.panelHeight << "\n";
+    for (const PassRow& row : st.passRows) {
+        out << "pass\t" << row.name << "\t" << row.checkboxX << "," << row.checkboxY << "\t" << passRowStateName(row.state);
+        if (!row.reason.empty()) out << ": " << row.reason;
+        out << "\n";
+    }
+    return out.str();
+}
+
+// Written whole under a temporary name and renamed, so a test never reads half a file.
+void writePanelRows(const std::string& path, const std::string& text) {
+    const std::string partial = path + ".partial";
+    {
+        std::ofstream out(partial, std::ios::binary);
+        out << text;
+        if (!out) throw Error(path + ": cannot write the panel rows");
+    }
+    std::filesystem::rename(partial, path);
+}
+
 }  // namespace
 
 int runViewer(const Options& o) {
@@ -197,7 +242,8 @@ int runViewer(const Options& o) {
 
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
-    ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini files left in the user's folder
+    const std::string layoutFile = panelLayoutFile();  // ImGui keeps the pointer: outlives the context
+    ImGui::GetIO().IniFilename = layoutFile.empty() ? nullptr : layoutFile.c_str();
     ImGui::StyleColorsDark();
     ImGui::GetStyle().WindowRounding = 4.0f;
     ImGui::GetStyle().Colors[ImGuiCol_WindowBg].w = 0.88f;  // the frame shows faintly through
@@ -215,6 +261,7 @@ int runViewer(const Options& o) {
     double last = glfwGetTime();
     long frame = 0;
     std::string reportedGraph;
+    std::string writtenPanelRows;
     RenderSettings lastGoodSettings = st.settings;
     while (!glfwWindowShouldClose(window)) {
         glfwPollEvents();
@@ -233,6 +280,7 @@ int runViewer(const Options& o) {
                 scene = std::move(next);
                 renderer = std::make_unique<Renderer>(*scene, shaders);
                 st.home = scene->camera;
+                st.passRows.clear();  // the new scene's candidates, in its order
                 st.sceneError.clear();
                 st.sceneFile = file;
                 say("scene " + file.string());
@@ -286,6 +334,7 @@ int runViewer(const Options& o) {
             if (live != reportedGraph) say("graph:" + live);
             reportedGraph = live;
         }
+        updatePassRows(st.passRows, renderer->graph().explain(), st.settings.disabledPasses);
         if (st.screenshotRequested && !st.screenshotWithPanel) {  // the frame alone, no panel
             st.screenshotRequested = false;
             takeScreenshot(st, *renderer);
@@ -299,6 +348,11 @@ int runViewer(const Options& o) {
             ImGui::Begin("keys (h closes)", &st.showHelp, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse);
             ImGui::TextUnformatted(kViewerHelp);
             ImGui::End();
+        }
+        if (!o.panelRowsOut.empty() && frame >= 3) {  // from "viewer ready" on: the panel has settled
+            const std::string rows = panelRowsText(st);
+            if (rows != writtenPanelRows) writePanelRows(o.panelRowsOut, rows);
+            writtenPanelRows = rows;
         }
         ImGui::Render();
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());

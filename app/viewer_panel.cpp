@@ -23,6 +23,8 @@ const char* const kViewerHelp =
 
 namespace {
 
+constexpr float kPanelDefaultWidth = 340.0f;
+
 std::vector<fs::path> filesWithExtensions(const fs::path& dir, std::initializer_list<const char*> extensions) {
     std::vector<fs::path> found;
     std::error_code ec;
@@ -78,6 +80,9 @@ void knobWidget(const KnobEntry& knob, RenderSettings& s, const Scene& scene) {
         }
         case PanelWidget::Slider:
         case PanelWidget::LogSlider: {
+            if (knob.field.optional)  // room for the "scene's" button after the label
+                ImGui::SetNextItemWidth(ImGui::CalcItemWidth() - ImGui::CalcTextSize("scene's").x -
+                                        ImGui::GetStyle().FramePadding.x * 2 - ImGui::GetStyle().ItemSpacing.x);
             const ImGuiSliderFlags flags =
                 ImGuiSliderFlags_AlwaysClamp | (panel.widget == PanelWidget::LogSlider ? ImGuiSliderFlags_Logarithmic : 0);
             bool changed = false;
@@ -107,52 +112,57 @@ void knobWidget(const KnobEntry& knob, RenderSettings& s, const Scene& scene) {
     ImGui::PopID();
 }
 
+// Room right of the widgets for the longest label of a knob drawn with its label there (checkboxes
+// put theirs inside the width), so a narrow panel clips none.
+float widgetLabelRoom() {
+    float widest = ImGui::CalcTextSize("environment").x;  // the pickers' labels
+    for (const KnobEntry& knob : knobTable())
+        if (knob.panel.section != PanelSection::None && knob.panel.widget != PanelWidget::None &&
+            knob.panel.widget != PanelWidget::Checkbox)
+            widest = std::max(widest, ImGui::CalcTextSize(knob.panel.label.empty() ? knob.name.c_str() : knob.panel.label.c_str()).x);
+    return widest + ImGui::GetStyle().ItemInnerSpacing.x;
+}
+
 // Every knob the table puts in this panel section, in table order.
 void knobWidgets(PanelSection section, RenderSettings& s, const Scene& scene) {
     for (const KnobEntry& knob : knobTable())
         if (knob.panel.section == section && knob.panel.widget != PanelWidget::None) knobWidget(knob, s, scene);
 }
 
-// Why a pass is culled or skipped, wrapped under its name (greyed, indented).
-void reasonText(const std::string& reason) {
-    ImGui::Indent();
-    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
-    ImGui::TextWrapped("%s", reason.c_str());
-    ImGui::PopStyleColor();
-    ImGui::Unindent();
-}
-
+// One line per pass, every row always there with a checkbox of the same size: switching a pass off
+// changes its state text, never the rows' places (a second click lands on the same pass). The reason
+// a pass does not run is clipped to the state column and shown whole on hover.
 void drawPasses(ViewerState& st, Renderer& renderer) {
-    if (!ImGui::BeginTable("passes", 2, ImGuiTableFlags_RowBg)) return;
-    ImGui::TableSetupColumn("pass (untick to switch off)");
-    ImGui::TableSetupColumn("GPU ms", ImGuiTableColumnFlags_WidthFixed, 64);
+    if (!ImGui::BeginTable("passes", 3, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV)) return;
+    ImGui::TableSetupColumn("pass (untick: off)", ImGuiTableColumnFlags_WidthFixed);
+    ImGui::TableSetupColumn("state", ImGuiTableColumnFlags_WidthStretch);
+    ImGui::TableSetupColumn("GPU ms", ImGuiTableColumnFlags_WidthFixed, ImGui::CalcTextSize("000.000").x);
     ImGui::TableHeadersRow();
-    for (const auto& p : renderer.graph().report()) {
+    for (PassRow& p : st.passRows) {
         ImGui::TableNextRow();
         ImGui::TableSetColumnIndex(0);
-        bool on = !st.settings.disabledPasses.count(p.name);
         ImGui::PushID(p.name.c_str());
-        const bool greyed = p.culled && !p.disabled;  // culled by the graph, not by the user
+        bool on = !st.settings.disabledPasses.count(p.name);
+        // Greyed when the graph or the builder left it out: ticking it would change nothing.
+        const bool greyed = on && p.state != PassRowState::Runs;
         if (greyed) ImGui::BeginDisabled();
         if (ImGui::Checkbox(p.name.c_str(), &on)) {
             if (on) st.settings.disabledPasses.erase(p.name);
             else st.settings.disabledPasses.insert(p.name);
         }
         if (greyed) ImGui::EndDisabled();
-        if (p.culled && !p.reason.empty()) reasonText(p.reason);
+        const ImVec2 box = ImGui::GetItemRectMin();
+        p.checkboxX = box.x + ImGui::GetFrameHeight() * 0.5f;
+        p.checkboxY = box.y + ImGui::GetFrameHeight() * 0.5f;
         ImGui::PopID();
         ImGui::TableSetColumnIndex(1);
-        if (p.disabled) ImGui::TextDisabled("off");
-        else if (p.culled) ImGui::TextDisabled("culled");
-        else ImGui::Text("%.3f", renderer.timers().median(p.name));
-    }
-    for (const auto& [name, reason] : renderer.graph().skippedPasses()) {
-        ImGui::TableNextRow();
-        ImGui::TableSetColumnIndex(0);
-        ImGui::TextDisabled("%s", name.c_str());
-        reasonText(reason);
-        ImGui::TableSetColumnIndex(1);
-        ImGui::TextDisabled("skipped");
+        if (p.state == PassRowState::Runs) ImGui::TextUnformatted(passRowStateName(p.state));
+        else if (p.state == PassRowState::Skipped) ImGui::TextDisabled("skipped: %s", p.reason.c_str());
+        else ImGui::TextDisabled("%s", passRowStateName(p.state));
+        if (!p.reason.empty() && ImGui::IsItemHovered())
+            ImGui::SetTooltip("%s: %s", passRowStateName(p.state), p.reason.c_str());
+        ImGui::TableSetColumnIndex(2);
+        if (p.state == PassRowState::Runs) ImGui::Text("%.3f", renderer.timers().median(p.name));
     }
     ImGui::EndTable();
 }
@@ -191,10 +201,20 @@ PickerFiles findPickerFiles(const fs::path& repositoryRoot) {
 
 void drawViewerPanel(ViewerState& st, Renderer& renderer, const Scene& scene, const gl::GpuContext& ctx,
                      const PickerFiles& files) {
+    // Narrow by default so most of a 1280x720 frame stays in view; resizable and movable, and ImGui's
+    // ini file (app/viewer.cpp) remembers where the user left it. Never larger than the window.
+    const ImVec2 display = ImGui::GetIO().DisplaySize;
     ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
-    // Fits its content (it shrinks when a section collapses), fixed width, never taller than the window.
-    ImGui::SetNextWindowSizeConstraints(ImVec2(380, 60), ImVec2(380, std::max(60.0f, ImGui::GetIO().DisplaySize.y - 16)));
-    ImGui::Begin("lightpass   (Tab hides, h lists the keys)", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+    ImGui::SetNextWindowSize(ImVec2(kPanelDefaultWidth, std::max(120.0f, display.y - 16)), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSizeConstraints(ImVec2(220, 120), ImVec2(std::max(220.0f, display.x - 16), std::max(120.0f, display.y - 16)));
+    // "###": the ini file keys the layout by this id, not by the title text.
+    ImGui::Begin("lightpass   (Tab hides, h lists the keys)###lightpass panel");
+    st.panelX = ImGui::GetWindowPos().x;
+    st.panelY = ImGui::GetWindowPos().y;
+    st.panelWidth = ImGui::GetWindowWidth();
+    st.panelHeight = ImGui::GetWindowHeight();
+    // Widgets take the width less room for their labels, so labels stay inside a narrow panel.
+    ImGui::PushItemWidth(-widgetLabelRoom());
     ImGui::TextUnformatted(ctx.info().renderer.c_str());
 
     if (!st.shaderError.empty()) {
@@ -229,8 +249,9 @@ void drawViewerPanel(ViewerState& st, Renderer& renderer, const Scene& scene, co
         }
         knobWidgets(PanelSection::View, st.settings, scene);
     }
-    if (ImGui::CollapsingHeader("lighting")) drawLighting(st, scene);
-    if (ImGui::CollapsingHeader("bloom and toon")) knobWidgets(PanelSection::Post, st.settings, scene);
+    if (ImGui::CollapsingHeader("lighting", ImGuiTreeNodeFlags_DefaultOpen)) drawLighting(st, scene);
+    if (ImGui::CollapsingHeader("bloom and toon", ImGuiTreeNodeFlags_DefaultOpen))
+        knobWidgets(PanelSection::Post, st.settings, scene);
 
     if (ImGui::CollapsingHeader("scene", ImGuiTreeNodeFlags_DefaultOpen)) {
         filePicker("scene file", files.scenes, st.sceneFile, st.sceneRequest, nullptr);
@@ -245,6 +266,7 @@ void drawViewerPanel(ViewerState& st, Renderer& renderer, const Scene& scene, co
     ImGui::SameLine();
     ImGui::Checkbox("with panel", &st.screenshotWithPanel);
     if (!st.lastScreenshot.empty()) ImGui::TextDisabled("%s", st.lastScreenshot.c_str());
+    ImGui::PopItemWidth();
     ImGui::End();
 }
 

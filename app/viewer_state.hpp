@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "app/pass_rows.hpp"
 #include "engine/gl/context.hpp"
 #include "engine/gl/shader_reload.hpp"
 #include "frame/renderer.hpp"
@@ -32,6 +33,8 @@ struct ViewerState {
     int screenshotCount = 0;
     std::string lastScreenshot;
     std::deque<float> frameMs;  // frame-time graph (CPU time between frames)
+    std::vector<PassRow> passRows;  // the panel's pass list, in a stable order (app/pass_rows.hpp)
+    float panelX = 0, panelY = 0, panelWidth = 0, panelHeight = 0;  // where the panel was last drawn
 
     // Scene and environment pickers: the panel asks, the frame loop loads between frames.
     std::filesystem::path sceneFile;  // the scene (.json) or model (.obj) on screen

@@ -18,6 +18,7 @@ trap 'kill $viewer $xvfb 2>/dev/null; wait 2>/dev/null' EXIT
 for i in $(seq 50); do [ -s "$out/display" ] && break; sleep 0.1; done
 export DISPLAY=:$(cat "$out/display")
 for i in $(seq 50); do xdotool getmouselocation >/dev/null 2>&1 && break; sleep 0.1; done
+export LIGHTPASS_CONFIG_DIR="$out/config"  # the panel's imgui.ini: never the user's own ~/.config
 LIGHTPASS_SHADER_DIR="$out/shaders" "$lp" view "$scene" --size 200x150 --screenshot-dir "$out" --hide-panel \
   >"$out/viewer.log" 2>&1 &
 viewer=$!

@@ -16,7 +16,9 @@ trap 'kill $viewer $xvfb 2>/dev/null; wait 2>/dev/null' EXIT
 for i in $(seq 50); do [ -s "$out/display" ] && break; sleep 0.1; done
 export DISPLAY=:$(cat "$out/display")
 for i in $(seq 50); do xdotool getmouselocation >/dev/null 2>&1 && break; sleep 0.1; done
-"$lp" view "$scene" --size 600x440 --screenshot-dir "$out" --hide-panel >"$out/viewer.log" 2>&1 &
+export LIGHTPASS_CONFIG_DIR="$out/config"  # the panel's imgui.ini: never the user's own ~/.config
+"$lp" view "$scene" --size 600x440 --screenshot-dir "$out" --hide-panel --panel-rows-out "$out/rows.txt" \
+  >"$out/viewer.log" 2>&1 &
 viewer=$!
 wait_for() {  # wait_for PATTERN FILE (an extended regular expression)
   for i in $(seq 300); do grep -qE -- "$1" "$2" 2>/dev/null && return 0; kill -0 $viewer 2>/dev/null || break; sleep 0.1; done
@@ -43,11 +45,12 @@ wait_for "view final" "$out/viewer.log"
 for i in $(seq 100); do last_graph | grep -qE ' (bloom|toon)' || break; sleep 0.1; done
 last_graph | grep -qE ' (bloom|toon)' && { echo "'0' left bloom or toon on: $(last_graph)"; exit 1; }
 last_graph | grep -q ' sky' || { echo "sky missing before the checkbox test: $(last_graph)"; exit 1; }
-# Tab shows the panel; its "sky" checkbox sits in the passes table (ImGui's built-in font, panel at
-# (8, 8), the 5th pass of the default scene).
+# Tab shows the panel; --panel-rows-out says where it drew the "sky" checkbox in the passes table.
 xdotool key Tab
-sleep 1
-xdotool mousemove 25 247 click 1
+for i in $(seq 100); do grep -qP '^pass\tsky\t[1-9]' "$out/rows.txt" 2>/dev/null && break; sleep 0.1; done
+read -r sx sy <<<"$(grep -P '^pass\tsky\t' "$out/rows.txt" | cut -f3 | tr ',' ' ')"
+[ -n "${sy:-}" ] || { echo "no sky row in $out/rows.txt"; cat "$out/rows.txt"; exit 1; }
+xdotool mousemove "${sx%.*}" "${sy%.*}" click 1
 for i in $(seq 100); do last_graph | grep -q ' sky' || break; sleep 0.1; done
 last_graph | grep -q ' sky' && { echo "unticking sky left it in the graph: $(last_graph)"; exit 1; }
 xdotool mousemove 400 300

@@ -1,0 +1,86 @@
+#!/usr/bin/env bash
+# The viewer's panel as a new user meets it at 1280x720 (Xvfb, Mesa): at most 380 px wide by default,
+# so most of the frame stays in view; its pass rows keep their names, order and places when a pass is
+# switched off, and a second click at the same spot switches the same pass on again (the rows, read
+# from --panel-rows-out, come back identical); its layout goes to $LIGHTPASS_CONFIG_DIR/imgui.ini,
+# never the working directory, and the next run opens where that file says.
+#   viewer_panel_under_xvfb.sh LIGHTPASS SCENE OUTDIR
+set -uo pipefail
+lp=$1 scene=$2 out=$3
+rm -rf "$out" && mkdir -p "$out/cwd"
+for cmd in Xvfb xdotool python3; do command -v $cmd >/dev/null || { echo "missing $cmd"; exit 1; }; done
+# -displayfd: Xvfb picks a free display number (other tests may run Xvfb at the same time).
+Xvfb -displayfd 3 -screen 0 1280x720x24 -nolisten tcp 3>"$out/display" >"$out/xvfb.log" 2>&1 &
+xvfb=$!
+viewer=
+trap 'kill $viewer $xvfb 2>/dev/null; wait 2>/dev/null' EXIT
+for i in $(seq 50); do [ -s "$out/display" ] && break; sleep 0.1; done
+export DISPLAY=:$(cat "$out/display")
+for i in $(seq 50); do xdotool getmouselocation >/dev/null 2>&1 && break; sleep 0.1; done
+export LIGHTPASS_CONFIG_DIR="$out/config"  # never the user's own ~/.config
+rows="$out/rows.txt"
+log=
+start_viewer() {  # start_viewer LOG: from a working directory of its own, to see that nothing lands there
+  log=$1
+  rm -f "$rows"
+  (cd "$out/cwd" && exec "$lp" view "$scene" --size 1280x720 --panel-rows-out "$rows" --screenshot-dir "$out" \
+     --screenshot-ui) >"$log" 2>&1 &
+  viewer=$!
+}
+wait_for() {  # wait_for PATTERN FILE (an extended regular expression)
+  for i in $(seq 600); do grep -qE -- "$1" "$2" 2>/dev/null && return 0; kill -0 $viewer 2>/dev/null || break; sleep 0.1; done
+  echo "timed out waiting for '$1' in $2"; cat "$log"; [ -f "$rows" ] && cat "$rows"; exit 1
+}
+quit_viewer() {
+  xdotool key Escape
+  for i in $(seq 100); do kill -0 $viewer 2>/dev/null || break; sleep 0.1; done
+  kill -0 $viewer 2>/dev/null && { echo "viewer did not quit on Escape"; exit 1; }
+  wait $viewer; code=$?
+  [ $code -eq 0 ] || { echo "viewer exit code $code"; cat "$log"; exit 1; }
+}
+# The rows without their state column: "pass NAME X,Y" (the checkbox centre in window pixels).
+places() { grep '^pass' "$1" | cut -f1-3; }
+tab=$'\t'
+
+start_viewer "$out/viewer-1.log"
+wait_for "viewer ready" "$log"
+wait_for "^pass${tab}sky${tab}.*${tab}runs" "$rows"
+[ -d "$out/config" ] || { echo "the config folder $out/config was not created"; exit 1; }
+read -r px py pw ph <<<"$(grep '^panel' "$rows" | sed -E 's/^panel\t([0-9.]+),([0-9.]+)\t([0-9.]+)x([0-9.]+)$/\1 \2 \3 \4/')"
+echo "panel at $px,$py, ${pw}x$ph"
+python3 -c "import sys; sys.exit(0 if 0 < $pw <= 380 and $ph <= 720 else 1)" ||
+  { echo "the default panel is ${pw}x$ph: more than 380 px wide, or taller than the window"; exit 1; }
+cp "$rows" "$out/rows-before.txt"
+read -r sx sy <<<"$(grep "^pass${tab}sky${tab}" "$rows" | cut -f3 | tr ',' ' ')"
+sx=${sx%.*} sy=${sy%.*}
+echo "sky's checkbox at $sx,$sy"
+xdotool mousemove "$sx" "$sy" click 1
+wait_for "^pass${tab}sky${tab}.*${tab}off" "$rows"
+cp "$rows" "$out/rows-off.txt"
+[ "$(places "$out/rows-before.txt")" = "$(places "$out/rows-off.txt")" ] ||
+  { echo "switching sky off moved or removed rows:"; diff "$out/rows-before.txt" "$out/rows-off.txt"; exit 1; }
+grep '^graph:' "$log" | tail -1 | grep -q ' sky' && { echo "sky is off in the panel but still ran"; exit 1; }
+xdotool key F12  # the window with the panel, sky off: for a person to look at
+wait_for "screenshot .*window with panel" "$log"
+# The same spot again: the same pass, on again, and every row as it was.
+xdotool mousemove "$sx" "$sy" click 1
+wait_for "^pass${tab}sky${tab}.*${tab}runs" "$rows"
+cp "$rows" "$out/rows-after.txt"
+[ "$(places "$out/rows-before.txt")" = "$(places "$out/rows-after.txt")" ] ||
+  { echo "switching sky on again moved rows:"; diff "$out/rows-before.txt" "$out/rows-after.txt"; exit 1; }
+diff "$out/rows-before.txt" "$out/rows-after.txt" >/dev/null ||
+  { echo "the rows differ after switching sky off and on:"; diff "$out/rows-before.txt" "$out/rows-after.txt"; exit 1; }
+xdotool mousemove 900 400
+quit_viewer
+ini="$out/config/imgui.ini"
+[ -f "$ini" ] || { echo "no $ini after the run"; ls -la "$out/config"; exit 1; }
+grep -q 'lightpass panel\]' "$ini" || { echo "$ini has no panel window:"; cat "$ini"; exit 1; }
+[ -z "$(ls -A "$out/cwd")" ] || { echo "the viewer wrote into its working directory: $(ls -A "$out/cwd")"; exit 1; }
+
+# The next run opens the panel where the ini file says (as if the user had moved and resized it).
+sed -i -E 's/^Pos=.*/Pos=40,30/; s/^Size=.*/Size=300,500/' "$ini"
+start_viewer "$out/viewer-2.log"
+wait_for "viewer ready" "$log"
+wait_for "^panel${tab}40,30${tab}300x500$" "$rows"
+quit_viewer
+echo "viewer panel test passed"
