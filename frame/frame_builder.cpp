@@ -88,7 +88,10 @@ FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const Fr
     hdr = addPostPasses(graph, passes.post, frame, gbuffer, hdr);  // bloom, toon (not in the lighting view)
     if (scaled) hdr = addUpscalePass(graph, passes.upscale, frame, hdr, UpscaleInput::Hdr);
     else graph.skipPass("upscale", "render scale 1: the frame is rendered at the output size");
-    fg::ResourceId display = addToneMapPass(graph, passes.tonemap, frame, hdr);
+    fg::ResourceId exposure;
+    if (s.autoExposure) exposure = addAutoExposurePass(graph, passes.autoExposure, frame, hdr);
+    else graph.skipPass("auto_exposure", "manual exposure (--auto-exposure picks it from a histogram)");
+    fg::ResourceId display = addToneMapPass(graph, passes.tonemap, frame, hdr, exposure);
     if (isHdrView(s.view)) display = addHdrViewPass(graph, passes.hdrView, frame, hdr, s.view);  // culls tonemap
     if (channelView) {
         display = addDebugViewPass(graph, passes.debugView, frame, gbuffer, shadowMaps, environment, s.view);

@@ -538,8 +538,16 @@ std::vector<KnobEntry> makeKnobTable() {
     {
         KnobEntry k = floatKnob("exposure", [](auto& s) -> auto& { return s.exposureEV; }, {-16.0, 16.0});
         k.flags = {valueFlag("--exposure")};
-        k.help = "exposure in stops before the tone map";
+        k.help = "exposure in stops before the tone map (with --auto-exposure: the compensation added to it)";
         k.panel = {PanelSection::View, PanelWidget::Slider, "exposure (EV)", "%+.1f"};
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = boolKnob("auto-exposure", [](auto& s) -> auto& { return s.autoExposure; });
+        k.flags = {setsFlag("--auto-exposure", 1)};
+        k.help = "expose each frame from a histogram of its luminance (middle 55% on middle grey); "
+                 "--exposure then adds to it";
+        k.panel = {PanelSection::View, PanelWidget::Checkbox, "auto exposure", ""};
         t.push_back(std::move(k));
     }
     {

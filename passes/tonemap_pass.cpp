@@ -7,15 +7,18 @@ namespace lp {
 
 namespace {
 struct Data {
-    fg::ResourceId hdr, ldr;
+    fg::ResourceId hdr, exposure, ldr;
 };
+constexpr GLuint kExposureUnit = 7;  // uExposure in tonemap.comp
 }  // namespace
 
-fg::ResourceId addToneMapPass(fg::FrameGraph& graph, ToneMapPass& state, const FrameData& frame, fg::ResourceId hdr) {
+fg::ResourceId addToneMapPass(fg::FrameGraph& graph, ToneMapPass& state, const FrameData& frame, fg::ResourceId hdr,
+                              fg::ResourceId autoExposure) {
     const Data& d = graph.addPass<Data>(
         "tonemap", fg::PassKind::Compute,
         [&](fg::PassBuilder& b, Data& data) {
             data.hdr = b.read(hdr, fg::Usage::Sampled);
+            if (autoExposure.valid()) data.exposure = b.read(autoExposure, fg::Usage::Sampled);
             data.ldr = b.create("ldr.final", {frame.outputWidth, frame.outputHeight, GL_RGBA8}, fg::Usage::ImageStore);
         },
         [&state, frame](const Data& data, const fg::PassResources& res) {
@@ -23,8 +26,11 @@ fg::ResourceId addToneMapPass(fg::FrameGraph& graph, ToneMapPass& state, const F
             const GLuint prog = state.program.id();
             glProgramUniform1f(prog, glGetUniformLocation(prog, "uExposureEV"), frame.settings->exposureEV);
             glProgramUniform1i(prog, glGetUniformLocation(prog, "uOperator"), int(frame.settings->environment.toneMap));
+            glProgramUniform1i(prog, glGetUniformLocation(prog, "uAutoExposure"), data.exposure.valid());
+            if (data.exposure.valid()) glBindTextureUnit(kExposureUnit, res.texture(data.exposure));
             gl::dispatchTextureToImage(prog, 6, res.texture(data.hdr), res.texture(data.ldr), GL_RGBA8,
                                        frame.outputWidth, frame.outputHeight);
+            if (data.exposure.valid()) glBindTextureUnit(kExposureUnit, 0);
         });
     return d.ldr;
 }

@@ -12,6 +12,8 @@ struct ToneMapPass {
     gl::Program program;
 };
 
-fg::ResourceId addToneMapPass(fg::FrameGraph& graph, ToneMapPass& state, const FrameData& frame, fg::ResourceId hdr);
+// `autoExposure`: the auto_exposure pass's 1x1 EV, added to settings.exposureEV; invalid: manual.
+fg::ResourceId addToneMapPass(fg::FrameGraph& graph, ToneMapPass& state, const FrameData& frame, fg::ResourceId hdr,
+                              fg::ResourceId autoExposure = {});
 
 }  // namespace lp

@@ -122,6 +122,16 @@ int bytesPerTexel(GLenum f) {
     }
 }
 
+ClearFormat clearFormatFor(GLenum f) {
+    switch (f) {
+        case GL_R16UI: case GL_R32UI: case GL_RGBA8UI: return {GL_RED_INTEGER, GL_UNSIGNED_INT};
+        case GL_DEPTH_COMPONENT16: case GL_DEPTH_COMPONENT24: case GL_DEPTH_COMPONENT32F:
+            return {GL_DEPTH_COMPONENT, GL_FLOAT};
+        case GL_DEPTH24_STENCIL8: return {GL_DEPTH_STENCIL, GL_UNSIGNED_INT_24_8};
+        default: return {GL_RGBA, GL_FLOAT};
+    }
+}
+
 const char* formatName(GLenum f) {
     switch (f) {
         case GL_R8: return "R8";

@@ -86,6 +86,12 @@ Query makeQuery(GLenum target);
 int fullMipCount(int width, int height);
 // Bytes per texel of the internal formats lightpass uses (for memory accounting and floors).
 int bytesPerTexel(GLenum internalFormat);
+// The pixel format and type that clear a texture of `internalFormat` with glClearTexImage
+// (integer formats need *_INTEGER, depth formats GL_DEPTH_COMPONENT).
+struct ClearFormat {
+    GLenum format, type;
+};
+ClearFormat clearFormatFor(GLenum internalFormat);
 const char* formatName(GLenum internalFormat);
 
 // Throws lp::Error naming `where` when glGetError reports anything (LIGHTPASS_GL_CHECKS builds);

@@ -255,12 +255,13 @@ void FrameGraph::applyDisabledPasses() {
         }
         p.kind = PassKind::Compute;  // a clear moves bytes; no raster work is left
         p.execute = [this, created](const PassResources&) {
-            const float zero[4] = {0, 0, 0, 0};
+            const uint32_t zero[4] = {0, 0, 0, 0};  // 0.0f, 0u and a zero depth/stencil alike
             for (int v : created) {
                 const Resource& r = resources_[versions_[v].resource];
                 if (!r.texture) continue;  // an optional target nothing reads
+                const gl::ClearFormat f = gl::clearFormatFor(r.desc.format);
                 for (int level = 0; level < r.desc.levels; ++level)
-                    glClearTexImage(r.texture, level, GL_RGBA, GL_FLOAT, zero);
+                    glClearTexImage(r.texture, level, f.format, f.type, zero);
             }
         };
     }

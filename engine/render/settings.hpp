@@ -124,7 +124,8 @@ struct RenderSettings {
     // (0.25..1) and are upsampled bilinearly to width x height before the tone map.
     float renderScale = 1.0f;
     DebugView view = DebugView::Final;
-    float exposureEV = 0.0f;
+    float exposureEV = 0.0f;     // manual exposure; with autoExposure the compensation added to it
+    bool autoExposure = false;   // --auto-exposure: the histogram pass picks the exposure per frame
     Brdf brdf = Brdf::BlinnPhong;  // analytic BRDF of the light passes
     bool keepHdr = false;        // keep the HDR buffer as an output (EXR dumps)
     // --all-passes: add every candidate pass even where the scene does not call for it (shadow maps

@@ -105,3 +105,29 @@ TEST(SceneDrivenGl, IblBakeRunsOnlyWhenTheEnvironmentChanged) {
     EXPECT_TRUE(bakeRuns());
     EXPECT_FALSE(bakeRuns());
 }
+
+// Switching any one pass off still gives a frame: no GL error (a disabled pass clears what it
+// creates, integer and depth targets included), no GL state left changed, no NaN.
+TEST(SceneDrivenGl, DisablingAnyPassLeavesAValidFrame) {
+    Scene scene = loadScene(test::repoPath("scenes/cornell.json"));
+    RenderSettings s = tiny();
+    s.environment.ibl = true;
+    s.post.bloom = true;
+    s.post.toon = true;
+    s.post.bloomMethod = PostSettings::BloomMethod::MipChain;
+    s.post.backend = PostSettings::Backend::Glsl;
+    s.autoExposure = true;
+    s.keepHdr = true;
+    s.gbuffer.normal = GBufferNormalFormat::Oct16;  // an integer target
+    Renderer r(scene);
+    r.render(s, 0.0f, false);
+    std::vector<std::string> passes = r.graph().executionOrder();
+    ASSERT_GE(passes.size(), size_t(9));
+    for (const std::string& name : passes) {
+        RenderSettings off = s;
+        off.disabledPasses = {name};
+        ASSERT_NO_THROW(r.render(off, 0.0f, false)) << name;
+        for (float v : r.readHdr().rgba) ASSERT_TRUE(std::isfinite(v)) << "with " << name << " off";
+        EXPECT_EQ(r.readDisplay().width, s.width);
+    }
+}
