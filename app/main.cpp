@@ -154,31 +154,42 @@ int commandRender(const Options& o) {
 }  // namespace
 }  // namespace lp::app
 
-int main(int argc, char** argv) {
+namespace {
+int run(int argc, char** argv) {
     using namespace lp;
+    std::vector<std::string> args(argv + 1, argv + argc);
+    app::Options o = app::parseArgs(args);
+    if (o.verbose) setLogLevel(LogLevel::Debug);
+    if (o.quiet) setLogLevel(LogLevel::Error);
+    if (o.command == "help") {
+        std::fputs(app::helpText().c_str(), stdout);
+        return 0;
+    }
+    if (o.command == "info") return app::commandInfo();
+    if (o.command == "graph") return app::commandGraph(o);
+    if (o.command == "render") return app::commandRender(o);
+    if (o.command == "sweep") return app::runSweep(o);
+    if (o.command == "bench") return app::runBench(o, args);
+    return app::runViewer(o);
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+    std::string error;
+    int code = 1;
     try {
-        std::vector<std::string> args(argv + 1, argv + argc);
-        app::Options o = app::parseArgs(args);
-        if (o.verbose) setLogLevel(LogLevel::Debug);
-        if (o.quiet) setLogLevel(LogLevel::Error);
-        if (o.command == "help") {
-            std::fputs(app::helpText().c_str(), stdout);
-            return 0;
-        }
-        if (o.command == "info") return app::commandInfo();
-        if (o.command == "graph") return app::commandGraph(o);
-        if (o.command == "render") return app::commandRender(o);
-        if (o.command == "sweep") return app::runSweep(o);
-        if (o.command == "bench") return app::runBench(o, args);
-        return app::runViewer(o);
-    } catch (const lp::Error& e) {
-        std::fprintf(stderr, "lightpass: error: %s\n", e.what());
-        return 1;
+        code = run(argc, argv);
     } catch (const std::bad_alloc&) {
-        std::fprintf(stderr, "lightpass: error: out of memory\n");
-        return 1;
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "lightpass: error: %s\n", e.what());
+        error = "out of memory";
+    } catch (const std::exception& e) {  // lp::Error, and anything a library throws
+        error = *e.what() ? e.what() : "unexpected error";
+    }
+    lp::flushRepeatedWarnings();  // counts of repeated warnings, before the error so it stays last
+    if (!error.empty()) {
+        for (char& c : error)  // one line, whatever a library put in its message
+            if (c == '\n' || c == '\r') c = ' ';
+        std::fprintf(stderr, "lightpass: error: %s\n", error.c_str());
         return 1;
     }
+    return code;
 }
