@@ -1,5 +1,6 @@
 // lightpass: viewer and headless sub-commands. Every failure ends with one line on stderr and a
 // non-zero exit code.
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -9,6 +10,7 @@
 
 #include "app/bench.hpp"
 #include "app/cli.hpp"
+#include "app/render_checks.hpp"
 #include "app/sweep.hpp"
 #include "app/viewer.hpp"
 #include "engine/core/error.hpp"
@@ -48,6 +50,7 @@ int commandInfo() {
 }
 
 int commandGraph(const Options& o) {
+    if (!o.dot.empty()) requireWritableOutput(o.dot);
     Scene scene = loadFromOptions(o);
     RenderSettings settings = settingsFromOptions(o);
     FrameData frame = makeFrameData(scene, settings, 0.0f);
@@ -59,22 +62,35 @@ int commandGraph(const Options& o) {
                 viewName(settings.view), sizeLabel(settings).c_str());
     std::fputs((o.explain ? graph.explainText() : graph.describe()).c_str(), stdout);
     if (!o.dot.empty()) {
-        writeFileAtomically(o.dot, [&](const std::filesystem::path& tmp) {
-            std::ofstream f(tmp);
-            f << graph.toDot();
-            if (!f) throw Error("write failed");
-        });
+        OutputFiles outputs;
+        outputs.add(o.dot, graph.toDot());
+        outputs.commit();
         std::printf("wrote %s\n", o.dot.c_str());
     }
     return 0;
 }
 
+// Every output path checked before any work, and no two the same: a render that cannot save all its
+// outputs should fail before it starts, not after writing some of them.
+void requireOutputs(const std::vector<std::string>& paths) {
+    std::vector<std::filesystem::path> seen;
+    for (const auto& p : paths) {
+        if (p.empty()) continue;
+        requireWritableOutput(p);
+        const auto absolute = std::filesystem::absolute(p).lexically_normal();
+        if (std::find(seen.begin(), seen.end(), absolute) != seen.end()) throw Error(p + ": named twice as an output");
+        seen.push_back(absolute);
+    }
+}
+
 int commandRender(const Options& o) {
+    requireOutputs({o.out, o.exr, o.timingsJson});
     Scene scene = loadFromOptions(o);
+    RenderSettings settings = settingsFromOptions(o);
     auto ctx = gl::createHeadlessContext();
     logInfo("rendering on " + ctx->info().renderer + " (" + ctx->info().platform + ")");
+    requireFrameFitsGpu(*ctx, scene, settings);
     Renderer renderer(scene);
-    RenderSettings settings = settingsFromOptions(o);
     for (int i = 0; i < o.warmup; ++i) renderer.render(settings, 0.0f, false);
     for (int i = 0; i < o.frames; ++i) renderer.render(settings, 0.0f, true);
     glFinish();
@@ -133,21 +149,15 @@ int commandRender(const Options& o) {
                    {"total_bytes", poolBytes + persistentBytes},
                    {"graph_transient_bytes", renderer.graph().liveTransientBytes()}};
 
-    if (!o.out.empty()) {
-        writePng(o.out, renderer.readDisplay());
-        std::printf("wrote %s\n", o.out.c_str());
-    }
-    if (!o.exr.empty()) {
-        writeExr(o.exr, renderer.readHdr());
-        std::printf("wrote %s\n", o.exr.c_str());
-    }
-    if (!o.timingsJson.empty()) {
-        writeFileAtomically(o.timingsJson, [&](const std::filesystem::path& tmp) {
-            std::ofstream f(tmp);
-            f << j.dump(2) << "\n";
-            if (!f) throw Error("write failed");
-        });
-    }
+    // All or nothing: every output goes to a temporary name first; they are renamed only when all
+    // were written.
+    OutputFiles outputs;
+    if (!o.out.empty()) outputs.addPng(o.out, renderer.readDisplay());
+    if (!o.exr.empty()) outputs.addExr(o.exr, renderer.readHdr());
+    if (!o.timingsJson.empty()) outputs.add(o.timingsJson, j.dump(2) + "\n");
+    outputs.commit();
+    if (!o.out.empty()) std::printf("wrote %s\n", o.out.c_str());
+    if (!o.exr.empty()) std::printf("wrote %s\n", o.exr.c_str());
     return 0;
 }
 

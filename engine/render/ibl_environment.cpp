@@ -223,6 +223,16 @@ void EnvironmentCache::makeCube(BakedEnvironment& env, const Scene& scene, const
     }
     const auto t0 = std::chrono::steady_clock::now();
     ImageF map = env.hasMap ? loadHdrImage(scene.environment.map) : uniformImage(scene.environment.color);
+    GLint maxSize = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
+    if (maxSize > 0 && (map.width > maxSize || map.height > maxSize)) {
+        const int w = map.width, h = map.height;
+        map = downscaleToFit(map, maxSize);
+        logWarn(scene.environment.map.string() + ": " + std::to_string(w) + "x" + std::to_string(h) +
+                " is larger than this GPU's " + std::to_string(maxSize) +
+                " texel limit (GL_MAX_TEXTURE_SIZE); downscaled to " + std::to_string(map.width) + "x" +
+                std::to_string(map.height));
+    }
     gl::Texture equirect = gl::makeTexture2D(GL_RGBA32F, map.width, map.height, 1, "ibl.equirect");
     glTextureSubImage2D(equirect.id(), 0, 0, 0, map.width, map.height, GL_RGBA, GL_FLOAT, map.rgba.data());
     glTextureParameteri(equirect.id(), GL_TEXTURE_WRAP_S, GL_REPEAT);

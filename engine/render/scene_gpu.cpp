@@ -2,6 +2,7 @@
 
 #include <cstddef>
 
+#include "engine/core/log.hpp"
 #include "engine/io/image_io.hpp"
 
 namespace lp {
@@ -11,6 +12,15 @@ GLuint SceneGpu::texture(const std::filesystem::path& path, bool srgb) {
     auto it = textures_.find(key);
     if (it != textures_.end()) return it->second.id();
     Image8 img = loadTextureOrChecker(path);
+    GLint maxSize = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
+    if (maxSize > 0 && (img.width > maxSize || img.height > maxSize)) {
+        const int w = img.width, h = img.height;
+        img = downscaleToFit(img, maxSize);
+        logWarn(path.string() + ": " + std::to_string(w) + "x" + std::to_string(h) + " is larger than this GPU's " +
+                std::to_string(maxSize) + " texel limit (GL_MAX_TEXTURE_SIZE); downscaled to " + std::to_string(img.width) +
+                "x" + std::to_string(img.height));
+    }
     // Rows arrive top first; OBJ texture coordinates put v = 0 at the bottom.
     std::vector<uint8_t> flipped(img.rgba.size());
     const size_t row = size_t(img.width) * 4;

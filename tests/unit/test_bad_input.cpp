@@ -1,7 +1,7 @@
 // Bad input, parser by parser (README "Bad input"): special files, numbers tinyobjloader would read as
 // 0, indices that would wrap, degenerate triangles judged by their own size, a UTF-8 BOM, truncated
 // and corrupt images, an EXR display window around almost nothing, scene values out of range,
-// and all-or-nothing outputs. The CLI side is tests/bad_input/.
+// repeated warnings and all-or-nothing outputs. The CLI side is tests/bad_input/.
 #include <gtest/gtest.h>
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>
@@ -17,6 +17,7 @@
 
 #include "engine/core/error.hpp"
 #include "engine/core/log.hpp"
+#include "engine/gl/limits.hpp"
 #include "engine/io/file_check.hpp"
 #include "engine/io/image_io.hpp"
 #include "engine/io/obj_loader.hpp"
@@ -270,6 +271,20 @@ TEST_F(BadInput, OutputFilesAppearOnlyOnCommit) {
 
 TEST(CheckedWrite, FullDiskIsAnError) {
     EXPECT_EQ(errorOf([] { writeBytesChecked("/dev/full", "x"); }), "No space left on device");
+}
+
+// ---- 3. GPU limits (the check itself; the CLI test drives it with LIGHTPASS_GPU_FREE_BYTES) -----------
+
+TEST(GpuLimits, SizeOverALimitNamesTheSizeAndTheLimit) {
+    gl::RenderTargetLimits limits;
+    limits.maxTextureSize = 8192;
+    limits.maxViewport[0] = limits.maxViewport[1] = 16384;
+    limits.freeBytes = int64_t(1) << 30;
+    EXPECT_EQ(errorOf([&] { gl::requireRenderSizeFits(9000, 100, 0, limits); }),
+              "--size 9000x100: larger than this GPU's limit of 8192 (GL_MAX_TEXTURE_SIZE)");
+    EXPECT_EQ(errorOf([&] { gl::requireRenderSizeFits(4000, 4000, size_t(2) << 30, limits); }),
+              "--size 4000x4000: the frame's render targets need 2.00 GiB, more than the 1.00 GiB this GPU has free");
+    EXPECT_EQ(errorOf([&] { gl::requireRenderSizeFits(8192, 8192, 1 << 20, limits); }), "");
 }
 
 // ---- 8. scene values --------------------------------------------------------------------------------------

@@ -1,0 +1,24 @@
+#pragma once
+// What the GPU can hold, asked before the first allocation: a render size over the limits gets one
+// line naming the size and the limit, not the driver's GL errors.
+#include <cstddef>
+#include <cstdint>
+
+namespace lp::gl {
+
+struct RenderTargetLimits {
+    int maxTextureSize = 0;      // GL_MAX_TEXTURE_SIZE
+    int maxViewport[2] = {0, 0};  // GL_MAX_VIEWPORT_DIMS
+    int maxFramebuffer[2] = {0, 0};  // GL_MAX_FRAMEBUFFER_WIDTH / _HEIGHT
+    int64_t freeBytes = -1;       // free GPU memory where the driver says (NVX/ATI meminfo, or system memory
+                                  // for a software rasteriser); -1: unknown
+};
+
+// Needs a current context. LIGHTPASS_GPU_FREE_BYTES=N in the environment overrides freeBytes.
+RenderTargetLimits queryRenderTargetLimits(bool softwareRasteriser);
+
+// Throws lp::Error "--size WxH: ..." when width x height exceeds a dimension limit, or when
+// `renderTargetBytes` (the frame's render targets) exceeds the known free memory.
+void requireRenderSizeFits(int width, int height, size_t renderTargetBytes, const RenderTargetLimits& limits);
+
+}  // namespace lp::gl
