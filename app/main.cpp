@@ -91,8 +91,13 @@ int commandRender(const Options& o) {
     logInfo("rendering on " + ctx->info().renderer + " (" + ctx->info().platform + ")");
     requireFrameFitsGpu(*ctx, scene, settings);
     Renderer renderer(scene);
-    for (int i = 0; i < o.warmup; ++i) renderer.render(settings, 0.0f, false);
-    for (int i = 0; i < o.frames; ++i) renderer.render(settings, 0.0f, true);
+    try {
+        for (int i = 0; i < o.warmup; ++i) renderer.render(settings, 0.0f, false);
+        for (int i = 0; i < o.frames; ++i) renderer.render(settings, 0.0f, true);
+    } catch (const Error& e) {  // what the checks above could not foresee still names the size
+        if (std::string(e.what()).rfind("GL out of memory", 0) != 0) throw;
+        throw Error("--size " + std::to_string(settings.width) + "x" + std::to_string(settings.height) + ": " + e.what());
+    }
     glFinish();
     renderer.timers().flush();
 

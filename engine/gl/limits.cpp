@@ -7,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <utility>
 
 #include "engine/core/error.hpp"
 #include "engine/gl/gl.hpp"
@@ -42,7 +43,44 @@ std::string gib(double bytes) {
     return text;
 }
 
+// A pixel format and type the driver accepts beside internalFormat in glTexImage2D (the data
+// pointer is null: only their compatibility matters).
+std::pair<GLenum, GLenum> uploadFormatFor(GLenum internalFormat) {
+    switch (internalFormat) {
+        case GL_DEPTH_COMPONENT16:
+        case GL_DEPTH_COMPONENT24:
+        case GL_DEPTH_COMPONENT32:
+        case GL_DEPTH_COMPONENT32F: return {GL_DEPTH_COMPONENT, GL_FLOAT};
+        case GL_DEPTH24_STENCIL8: return {GL_DEPTH_STENCIL, GL_UNSIGNED_INT_24_8};
+        case GL_DEPTH32F_STENCIL8: return {GL_DEPTH_STENCIL, GL_FLOAT_32_UNSIGNED_INT_24_8_REV};
+        case GL_R8UI: case GL_R16UI: case GL_R32UI: case GL_RG8UI: case GL_RG16UI: case GL_RG32UI:
+        case GL_RGBA8UI: case GL_RGBA16UI: case GL_RGBA32UI: case GL_RGB10_A2UI:
+            return {GL_RGBA_INTEGER, GL_UNSIGNED_INT};
+        case GL_R8I: case GL_R16I: case GL_R32I: case GL_RG8I: case GL_RG16I: case GL_RG32I:
+        case GL_RGBA8I: case GL_RGBA16I: case GL_RGBA32I:
+            return {GL_RGBA_INTEGER, GL_INT};
+        default: return {GL_RGBA, GL_FLOAT};
+    }
+}
+
 }  // namespace
+
+bool canAllocateTexture(unsigned internalFormat, int width, int height) {
+    // The probe must not reach the log as a GL error, whatever the driver thinks of it.
+    const bool debugOutput = glIsEnabled(GL_DEBUG_OUTPUT);
+    if (debugOutput) glDisable(GL_DEBUG_OUTPUT);
+    while (glGetError() != GL_NO_ERROR) {
+    }
+    const auto [format, type] = uploadFormatFor(GLenum(internalFormat));
+    glTexImage2D(GL_PROXY_TEXTURE_2D, 0, GLint(internalFormat), width, height, 0, format, type, nullptr);
+    GLint probedWidth = 0;
+    glGetTexLevelParameteriv(GL_PROXY_TEXTURE_2D, 0, GL_TEXTURE_WIDTH, &probedWidth);
+    const bool failed = glGetError() != GL_NO_ERROR;
+    while (glGetError() != GL_NO_ERROR) {
+    }
+    if (debugOutput) glEnable(GL_DEBUG_OUTPUT);
+    return failed || probedWidth != 0;  // a probe the driver rejects outright decides nothing
+}
 
 RenderTargetLimits queryRenderTargetLimits(bool softwareRasteriser) {
     RenderTargetLimits l;

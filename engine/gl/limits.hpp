@@ -17,6 +17,11 @@ struct RenderTargetLimits {
 // Needs a current context. LIGHTPASS_GPU_FREE_BYTES=N in the environment overrides freeBytes.
 RenderTargetLimits queryRenderTargetLimits(bool softwareRasteriser);
 
+// Whether the driver can allocate one width x height texture of internalFormat (a proxy texture: no
+// allocation, no GL error). Catches per-texture limits below GL_MAX_TEXTURE_SIZE, such as llvmpipe's
+// 1 GiB per texture. Needs a current context.
+bool canAllocateTexture(unsigned internalFormat, int width, int height);
+
 // Throws lp::Error "--size WxH: ..." when width x height exceeds a dimension limit, or when
 // `renderTargetBytes` (the frame's render targets) exceeds the known free memory.
 void requireRenderSizeFits(int width, int height, size_t renderTargetBytes, const RenderTargetLimits& limits);
