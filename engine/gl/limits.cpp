@@ -82,6 +82,22 @@ bool canAllocateTexture(unsigned internalFormat, int width, int height) {
     return failed || probedWidth != 0;  // a probe the driver rejects outright decides nothing
 }
 
+TextureFit fitTexture(unsigned internalFormat, int width, int height) {
+    GLint maxSize = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
+    TextureFit fit;
+    int w = width, h = height;
+    auto overSide = [&] { return maxSize > 0 && (w > maxSize || h > maxSize); };
+    if (overSide()) fit.reason = "larger than this GPU's " + std::to_string(maxSize) + " texel limit (GL_MAX_TEXTURE_SIZE)";
+    while ((w > 1 || h > 1) && (overSide() || !canAllocateTexture(internalFormat, w, h))) {
+        if (fit.reason.empty()) fit.reason = "more than this GPU allocates for one texture";
+        w = std::max(w / 2, 1);
+        h = std::max(h / 2, 1);
+        ++fit.halvings;
+    }
+    return fit;
+}
+
 RenderTargetLimits queryRenderTargetLimits(bool softwareRasteriser) {
     RenderTargetLimits l;
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &l.maxTextureSize);

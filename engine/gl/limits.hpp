@@ -3,6 +3,7 @@
 // line naming the size and the limit, not the driver's GL errors.
 #include <cstddef>
 #include <cstdint>
+#include <string>
 
 namespace lp::gl {
 
@@ -21,6 +22,15 @@ RenderTargetLimits queryRenderTargetLimits(bool softwareRasteriser);
 // allocation, no GL error). Catches per-texture limits below GL_MAX_TEXTURE_SIZE, such as llvmpipe's
 // 1 GiB per texture. Needs a current context.
 bool canAllocateTexture(unsigned internalFormat, int width, int height);
+
+// How far an image must be halved before the driver takes it as one texture of internalFormat:
+// `halvings` 0 when it fits as it is; otherwise `reason` says which limit it is over
+// ("larger than this GPU's 16384 texel limit (GL_MAX_TEXTURE_SIZE)", or the per-texture memory).
+struct TextureFit {
+    int halvings = 0;
+    std::string reason;
+};
+TextureFit fitTexture(unsigned internalFormat, int width, int height);
 
 // Throws lp::Error "--size WxH: ..." when width x height exceeds a dimension limit, or when
 // `renderTargetBytes` (the frame's render targets) exceeds the known free memory.

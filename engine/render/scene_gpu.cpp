@@ -1,8 +1,10 @@
 #include "engine/render/scene_gpu.hpp"
 
+#include <algorithm>
 #include <cstddef>
 
 #include "engine/core/log.hpp"
+#include "engine/gl/limits.hpp"
 #include "engine/io/image_io.hpp"
 
 namespace lp {
@@ -12,14 +14,12 @@ GLuint SceneGpu::texture(const std::filesystem::path& path, bool srgb) {
     auto it = textures_.find(key);
     if (it != textures_.end()) return it->second.id();
     Image8 img = loadTextureOrChecker(path);
-    GLint maxSize = 0;
-    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
-    if (maxSize > 0 && (img.width > maxSize || img.height > maxSize)) {
+    // Over the GPU's texture limits: halved until it fits, with a warning (README "Bad input").
+    if (const gl::TextureFit fit = gl::fitTexture(srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, img.width, img.height); fit.halvings > 0) {
         const int w = img.width, h = img.height;
-        img = downscaleToFit(img, maxSize);
-        logWarn(path.string() + ": " + std::to_string(w) + "x" + std::to_string(h) + " is larger than this GPU's " +
-                std::to_string(maxSize) + " texel limit (GL_MAX_TEXTURE_SIZE); downscaled to " + std::to_string(img.width) +
-                "x" + std::to_string(img.height));
+        img = downscaleToFit(img, std::max(w, h) >> fit.halvings);
+        logWarn(path.string() + ": " + std::to_string(w) + "x" + std::to_string(h) + " is " + fit.reason +
+                "; downscaled to " + std::to_string(img.width) + "x" + std::to_string(img.height));
     }
     // Rows arrive top first; OBJ texture coordinates put v = 0 at the bottom.
     std::vector<uint8_t> flipped(img.rgba.size());
