@@ -158,7 +158,7 @@ MeshData loadObj(const fs::path& path, MeshLoadReport* reportOut) {
         logWarn(file + ": " + std::to_string(warningsSeen - kWarningsShown) + " more warnings like these");
     if (scan.nonFinitePositions)
         warn(file + ":" + std::to_string(scan.firstNonFinitePositionLine) + ": " +
-                 std::to_string(scan.nonFinitePositions) + " vertices with NaN or Inf coordinates (first here); their triangles are dropped");
+                 std::to_string(scan.nonFinitePositions) + " vertices with NaN, Inf or beyond +-1e18 coordinates (first here); their triangles are dropped");
     if (scan.nonFiniteAttributes)
         warn(file + ":" + std::to_string(scan.firstNonFiniteAttributeLine) + ": " +
                  std::to_string(scan.nonFiniteAttributes) + " normals or texture coordinates with NaN or Inf (first here) ignored");

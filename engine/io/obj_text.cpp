@@ -34,6 +34,10 @@ bool parseNumber(const std::string& token, double& out) {
 
 bool finiteAsFloat(double v) { return std::isfinite(v) && std::abs(v) <= double(std::numeric_limits<float>::max()); }
 
+// Past this a position's squared length overflows a float (bounds, camera framing, shadow fitting):
+// such a vertex counts as Inf.
+constexpr double kMaxPositionCoordinate = 1e18;
+
 struct LineReader {
     const std::string& text;
     size_t pos = 0, number = 0;
@@ -98,7 +102,12 @@ ObjTextScan scanObjText(const std::string& text, const std::string& file) {
                 if (i <= 3) xyz[i - 1] = v;
             }
             if (kind == "v") {
-                for (double c : xyz) scan.positions.push_back(float(c));  // overflow: Inf, dropped later
+                for (double& c : xyz)
+                    if (std::abs(c) > kMaxPositionCoordinate) {
+                        c = std::copysign(HUGE_VAL, c);  // Inf: its triangles are dropped later
+                        finite = false;
+                    }
+                for (double c : xyz) scan.positions.push_back(float(c));
                 if (!finite && scan.nonFinitePositions++ == 0) scan.firstNonFinitePositionLine = reader.number;
             } else if (!finite && scan.nonFiniteAttributes++ == 0) {
                 scan.firstNonFiniteAttributeLine = reader.number;

@@ -8,7 +8,8 @@
 namespace lp {
 
 // What scanObjText found besides errors: positions as written (tinyobjloader's are replaced by these,
-// so NaN/Inf survive to be counted and dropped with their triangles), and counted oddities to warn about.
+// so NaN/Inf survive to be counted and dropped with their triangles; a coordinate beyond +-1e18 is
+// stored as Inf), and counted oddities to warn about.
 struct ObjTextScan {
     std::vector<float> positions;  // xyz per "v" line, in order
     size_t nonFinitePositions = 0;

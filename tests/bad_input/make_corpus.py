@@ -184,8 +184,11 @@ case(3, "size_over_gpu_memory",
 # ---- 4. numbers the OBJ parser used to turn into zero -----------------------------------------------
 write("nan_vertex.obj", CUBE_OBJ + "v nan 7 7\nf 1 2 9\n")
 case(4, "nan_vertex", render_model("nan_vertex.obj"), "fallback",
-     r"nan_vertex.obj:19: 1 vertices with NaN or Inf coordinates \(first here\); their triangles are dropped",
+     r"nan_vertex.obj:19: 1 vertices with NaN, Inf or beyond \+-1e18 coordinates \(first here\); their triangles are dropped",
      outputs=["{O}/out.png"])
+write("huge_vertex.obj", CUBE_OBJ + "v 1e30 0 0\nf 1 2 9\n")
+case(4, "vertex_1e30", render_model("huge_vertex.obj"), "fallback",
+     r"huge_vertex.obj:19: 1 vertices with NaN, Inf or beyond \+-1e18 coordinates", outputs=["{O}/out.png"])
 write("letters_vertex.obj", "v 0 0 0\nv 1 0 0\nv a b c\nf 1 2 3\n")
 case(4, "letters_vertex", render_model("letters_vertex.obj"), "error", r"letters_vertex.obj:3: v: 'a' is not a number")
 write("short_vertex.obj", "v 0 0 0\nv 1 0\nv 0 1 0\nf 1 2 3\n")

@@ -162,6 +162,15 @@ TEST_F(BadInput, QuadBesideAStrayVertexFarAwayIsKept) {
     EXPECT_EQ(mesh.indices.size(), 6u);
 }
 
+TEST_F(BadInput, VertexBeyond1e18CountsAsInfAndIsDroppedWithItsTriangles) {
+    MeshLoadReport report;
+    MeshData mesh = loadObj(write("a.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1e30 0 0\nf 1 2 3\nf 1 4 3\n"), &report);
+    EXPECT_EQ(mesh.indices.size(), 3u);
+    EXPECT_EQ(report.droppedNonFinite, 1u);
+    EXPECT_TRUE(std::isinf(scanObjText("v 1e19 0 0\n", "a.obj").positions[0]));
+    EXPECT_EQ(scanObjText("v 1e18 0 0\n", "a.obj").positions[0], 1e18f);
+}
+
 TEST_F(BadInput, SliverIsStillDegenerateAtAnyScale) {
     // Bound: area / longest edge^2 below 1e-10 is a sliver, for a 1 m and a 1 km triangle alike.
     for (double scale : {1.0, 1000.0}) {
