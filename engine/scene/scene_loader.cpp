@@ -244,6 +244,21 @@ void loadMesh(const Reader& r, ModelInstance& m, const std::string& where) {
     }
 }
 
+// The model as placed (its mesh bounds through its transform, in double) must stay within +-1e18 m,
+// where squared lengths still fit a float: beyond, camera framing and shadow fitting overflow.
+void requirePlacedWithinRange(const Reader& r, const ModelInstance& m, const std::string& where) {
+    constexpr double kMaxWorldCoordinate = 1e18;
+    const glm::dmat4 transform(m.transform);
+    for (int c = 0; c < 8; ++c) {
+        const glm::dvec3 p((c & 1) ? m.mesh.boundsMax.x : m.mesh.boundsMin.x, (c & 2) ? m.mesh.boundsMax.y : m.mesh.boundsMin.y,
+                           (c & 4) ? m.mesh.boundsMax.z : m.mesh.boundsMin.z);
+        const glm::dvec3 w(transform * glm::dvec4(p, 1.0));
+        for (int i = 0; i < 3; ++i)
+            if (!(std::abs(w[i]) <= kMaxWorldCoordinate))
+                r.fail(where, "placed up to " + formatNumber(std::abs(w[i])) + " m from the origin, beyond the 1e+18 m limit");
+    }
+}
+
 }  // namespace
 
 Scene parseScene(const std::string& text, const fs::path& origin, bool loadMeshes) {
@@ -317,6 +332,7 @@ Scene parseScene(const std::string& text, const fs::path& origin, bool loadMeshe
         for (size_t i = 0; i < scene.models.size(); ++i) {
             try {
                 loadMesh(r, scene.models[i], "models[" + std::to_string(i) + "]");
+                requirePlacedWithinRange(r, scene.models[i], "models[" + std::to_string(i) + "]");
             } catch (const Error& e) {
                 std::string msg = e.what();
                 if (msg.rfind(r.file, 0) == 0) throw;

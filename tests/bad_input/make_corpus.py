@@ -281,6 +281,10 @@ case(8, "light_intensity_1e30", render_scene("huge_intensity.json"), "error",
      r"huge_intensity.json: lights\[0\].intensity: 1e\+30 is outside \[0, 1e\+09\]")
 scene("huge_scale.json", models=[{"primitive": "cube", "scale": 1e30}])
 case(8, "model_scale_1e30", render_scene("huge_scale.json"), "error", r"huge_scale.json: models\[0\].scale: 1e\+30")
+write("big_18.obj", "v 0 0 0\nv 1e18 0 0\nv 0 1e18 0\nf 1 2 3\n")
+write("placed_too_far.json", json.dumps({"models": [{"obj": "big_18.obj", "scale": 1e6}], "lights": [LIGHT]}))
+case(8, "model_placed_beyond_1e18", render_scene("placed_too_far.json"), "error",
+     r"placed_too_far.json: models\[0\]: placed up to 1e\+24 m from the origin, beyond the 1e\+18 m limit")
 scene("far_3e38.json", camera=dict(CAMERA, far=3e38))
 case(8, "far_3e38", render_scene("far_3e38.json"), "error", r"far_3e38.json: camera.far: 3e\+38 is beyond the 1e\+07 m maximum")
 scene("near_tiny.json", camera=dict(CAMERA, near=1e-30, far=1e30))

@@ -317,6 +317,12 @@ TEST(SceneValues, OutOfRangeValuesNameFileAndField) {
     EXPECT_EQ(errorFor(R"({"lights": [{"type": "point", "range": 1e30}]})"), "");
 }
 
+TEST_F(BadInput, ModelPlacedBeyond1e18IsAnErrorNamingTheModel) {
+    write("big.obj", "v 0 0 0\nv 1e18 0 0\nv 0 1e18 0\nf 1 2 3\n");
+    const fs::path scene = write("s.json", R"({"models": [{"primitive": "cube"}, {"obj": "big.obj", "scale": 1e6}]})");
+    EXPECT_EQ(errorOf([&] { loadScene(scene); }), scene.string() + ": models[1]: placed up to 1e+24 m from the origin, beyond the 1e+18 m limit");
+}
+
 TEST(SceneValues, HugeAndTinyDirectionsBecomeFiniteUnitVectors) {
     Scene s = parseScene(R"({"camera": {"up": [0, 1e-40, 0]},
                              "lights": [{"type": "directional", "direction": [1e38, -1e38, 1e38]},
