@@ -61,7 +61,9 @@ int runSweep(const Options& o) {
         knobs.push_back(std::move(*k));
     }
     const fs::path outDir = o.outDir.empty() ? fs::path("sweep") : fs::path(o.outDir);
-    // The folders first (each knob's images go in its own), checked writable before any rendering.
+    Scene scene = o.model.empty() ? loadScene(o.scene) : sceneForModel(o.model);
+    // The folders (each knob's images go in its own), made and checked writable before any rendering;
+    // after the scene loaded, so a bad scene leaves no empty folders behind.
     std::error_code ec;
     for (const Knob& knob : knobs) {
         fs::create_directories(outDir / knob.name, ec);
@@ -69,7 +71,7 @@ int runSweep(const Options& o) {
         requireWritableOutput(outDir / knob.name / "reference.png");
     }
     requireWritableOutput(outDir / "sweep.csv");
-    Scene scene = o.model.empty() ? loadScene(o.scene) : sceneForModel(o.model);
+    requireWritableOutput(outDir / "sweep.md");
     auto settingsFor = [&](const KnobValue& v) {
         RenderSettings s = o.base;
         s.width = o.width;
