@@ -21,15 +21,17 @@ struct ImageF {
     std::vector<float> rgba;
 };
 
-// PNG/JPG/TGA/BMP (anything stb_image reads), expanded to RGBA.
+// PNG/JPG/TGA/BMP (anything stb_image reads), expanded to RGBA. A file the decoder needed more bytes
+// of than it has is "truncated", a PNG chunk whose CRC does not match "corrupt": errors, never garbage.
 Image8 loadImage8(const std::filesystem::path& path);
 // Magenta/black checker: the deliberately ugly stand-in for a texture that failed to load.
 Image8 makeCheckerImage(int size = 64, int cells = 8);
 // loadImage8, or one warning and the checker: a missing texture should not stop a render.
 Image8 loadTextureOrChecker(const std::filesystem::path& path);
 
-// .hdr (Radiance) or .exr (any compression, read as float32; the display window is the image, texels
-// outside the data window are 0). Negative/NaN components become 0 and +Inf the largest finite value,
+// .hdr (Radiance; a truncated file is an error, not zero-filled) or .exr (any compression, read as
+// float32; the display window is the image, texels outside the data window are 0, and a display window
+// over 16x its data window and 16M texels is refused). Negative/NaN components become 0 and +Inf the largest finite value,
 // with one warning per file, so later passes (log, sqrt, importance sampling) can trust the data.
 ImageF loadHdrImage(const std::filesystem::path& path);
 
