@@ -18,7 +18,7 @@ void requireFrameFitsGpu(const gl::GpuContext& context, const Scene& scene, cons
     buildFrameGraph(graph, passes, frame);
     graph.compile();
     gl::requireRenderSizeFits(settings.width, settings.height, graph.liveTransientBytes(), limits);
-    // One texture can be over a driver's own limit while the total fits (llvmpipe: 1 GiB each).
+    // One texture can be over a driver's own limit while the total fits (llvmpipe refuses one 4 GiB texture).
     for (const fg::ResourceReport& r : graph.resources()) {
         if (r.imported || !r.live || r.desc.cube) continue;
         if (gl::canAllocateTexture(r.desc.format, r.desc.width, r.desc.height)) continue;

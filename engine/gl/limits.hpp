@@ -19,8 +19,8 @@ struct RenderTargetLimits {
 RenderTargetLimits queryRenderTargetLimits(bool softwareRasteriser);
 
 // Whether the driver can allocate one width x height texture of internalFormat (a proxy texture: no
-// allocation, no GL error). Catches per-texture limits below GL_MAX_TEXTURE_SIZE, such as llvmpipe's
-// 1 GiB per texture. Needs a current context.
+// allocation, no GL error). Catches per-texture limits within GL_MAX_TEXTURE_SIZE, such as llvmpipe
+// refusing a 16384x16384 RGBA32F texture (4 GiB). Needs a current context.
 bool canAllocateTexture(unsigned internalFormat, int width, int height);
 
 // How far an image must be halved before the driver takes it as one texture of internalFormat:
