@@ -9,6 +9,7 @@
 
 #include "engine/core/error.hpp"
 #include "engine/core/log.hpp"
+#include "app/render_checks.hpp"
 #include "engine/gl/context.hpp"
 #include "engine/io/image_io.hpp"
 #include "engine/render/floors.hpp"
@@ -56,6 +57,8 @@ std::vector<std::string> commonFlags(const std::vector<std::string>& args) {
 
 std::vector<std::vector<std::string>> parseVaryAxis(const std::string& spec) {
     std::vector<std::vector<std::string>> axis;
+    // An empty or blank axis would multiply the variants by zero: a bench of nothing that "succeeds".
+    if (words(spec).empty()) throw Error("--vary '" + spec + "': empty (expected 'FLAG V1,V2,...' or 'FLAGS|FLAGS')");
     auto alternatives = split(spec, '|');
     if (alternatives.size() == 1) {
         // "--flag v1,v2,v3": one alternative per value.
@@ -103,9 +106,14 @@ int runBench(const Options& o, const std::vector<std::string>& args) {
         settings.push_back(renderSettings(vo));
     }
 
+    if (variants.empty()) throw Error("bench: --vary gives no variants");
+    const std::string out = o.timingsJson.empty() ? "bench.json" : o.timingsJson;
+    requireWritableOutput(out);
+
     Scene scene = o.model.empty() ? loadScene(o.scene) : sceneForModel(o.model);
     auto ctx = gl::createHeadlessContext();
     logInfo("bench on " + ctx->info().renderer + (ctx->isSoftware() ? " (software rasteriser: times are not meaningful)" : ""));
+    for (const auto& s : settings) requireFrameFitsGpu(*ctx, scene, s);
     Renderer renderer(scene);
     nlohmann::json j;
     j["device"] = ctx->info().renderer;
@@ -161,12 +169,9 @@ int runBench(const Options& o, const std::vector<std::string>& args) {
         }
         j["runs"].push_back(run);
     }
-    const std::string out = o.timingsJson.empty() ? "bench.json" : o.timingsJson;
-    writeFileAtomically(out, [&](const std::filesystem::path& tmp) {
-        std::ofstream f(tmp);
-        f << j.dump(1) << "\n";
-        if (!f) throw Error("write failed");
-    });
+    OutputFiles outputs;
+    outputs.add(out, j.dump(1) + "\n");
+    outputs.commit();
     std::printf("wrote %s (%zu variants)\n", out.c_str(), variants.size());
     return 0;
 }

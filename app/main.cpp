@@ -1,5 +1,6 @@
 // lightpass: viewer and headless sub-commands. Every failure ends with one line on stderr and a
 // non-zero exit code.
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -9,6 +10,7 @@
 
 #include "app/bench.hpp"
 #include "app/cli.hpp"
+#include "app/render_checks.hpp"
 #include "app/sweep.hpp"
 #include "app/viewer.hpp"
 #include "engine/core/error.hpp"
@@ -50,6 +52,7 @@ int commandInfo() {
 }
 
 int commandGraph(const Options& o) {
+    if (!o.dot.empty()) requireWritableOutput(o.dot);
     Scene scene = loadFromOptions(o);
     RenderSettings settings = settingsFromOptions(o);
     FrameData frame = makeFrameData(scene, settings, 0.0f);
@@ -62,24 +65,42 @@ int commandGraph(const Options& o) {
                 viewName(settings.view), sizeLabel(settings).c_str());
     std::fputs((o.explain ? graph.explainText() : graph.describe()).c_str(), stdout);
     if (!o.dot.empty()) {
-        writeFileAtomically(o.dot, [&](const std::filesystem::path& tmp) {
-            std::ofstream f(tmp);
-            f << graph.toDot();
-            if (!f) throw Error("write failed");
-        });
+        OutputFiles outputs;
+        outputs.add(o.dot, graph.toDot());
+        outputs.commit();
         std::printf("wrote %s\n", o.dot.c_str());
     }
     return 0;
 }
 
+// Every output path checked before any work, and no two the same: a render that cannot save all its
+// outputs should fail before it starts, not after writing some of them.
+void requireOutputs(const std::vector<std::string>& paths) {
+    std::vector<std::filesystem::path> seen;
+    for (const auto& p : paths) {
+        if (p.empty()) continue;
+        requireWritableOutput(p);
+        const auto absolute = std::filesystem::absolute(p).lexically_normal();
+        if (std::find(seen.begin(), seen.end(), absolute) != seen.end()) throw Error(p + ": named twice as an output");
+        seen.push_back(absolute);
+    }
+}
+
 int commandRender(const Options& o) {
+    requireOutputs({o.out, o.exr, o.timingsJson});
     Scene scene = loadFromOptions(o);
+    RenderSettings settings = settingsFromOptions(o);
     auto ctx = gl::createHeadlessContext();
     logInfo("rendering on " + ctx->info().renderer + " (" + ctx->info().platform + ")");
+    requireFrameFitsGpu(*ctx, scene, settings);
     Renderer renderer(scene);
-    RenderSettings settings = settingsFromOptions(o);
-    for (int i = 0; i < o.warmup; ++i) renderer.render(settings, 0.0f, false);
-    for (int i = 0; i < o.frames; ++i) renderer.render(settings, 0.0f, true);
+    try {
+        for (int i = 0; i < o.warmup; ++i) renderer.render(settings, 0.0f, false);
+        for (int i = 0; i < o.frames; ++i) renderer.render(settings, 0.0f, true);
+    } catch (const Error& e) {  // what the checks above could not foresee still names the size
+        if (std::string(e.what()).rfind("GL out of memory", 0) != 0) throw;
+        throw Error("--size " + std::to_string(settings.width) + "x" + std::to_string(settings.height) + ": " + e.what());
+    }
     checkDisabledPasses(renderer.graph(), settings.disabledPasses);
     glFinish();
     renderer.timers().flush();
@@ -137,58 +158,63 @@ int commandRender(const Options& o) {
                    {"total_bytes", poolBytes + persistentBytes},
                    {"graph_transient_bytes", renderer.graph().liveTransientBytes()}};
 
-    if (!o.out.empty()) {
-        writePng(o.out, renderer.readDisplay());
-        std::printf("wrote %s\n", o.out.c_str());
-    }
-    if (!o.exr.empty()) {
-        writeExr(o.exr, renderer.readHdr());
-        std::printf("wrote %s\n", o.exr.c_str());
-    }
-    if (!o.timingsJson.empty()) {
-        writeFileAtomically(o.timingsJson, [&](const std::filesystem::path& tmp) {
-            std::ofstream f(tmp);
-            f << j.dump(2) << "\n";
-            if (!f) throw Error("write failed");
-        });
-    }
+    // All or nothing: every output goes to a temporary name first; they are renamed only when all
+    // were written.
+    OutputFiles outputs;
+    if (!o.out.empty()) outputs.addPng(o.out, renderer.readDisplay());
+    if (!o.exr.empty()) outputs.addExr(o.exr, renderer.readHdr());
+    if (!o.timingsJson.empty()) outputs.add(o.timingsJson, j.dump(2) + "\n");
+    outputs.commit();
+    if (!o.out.empty()) std::printf("wrote %s\n", o.out.c_str());
+    if (!o.exr.empty()) std::printf("wrote %s\n", o.exr.c_str());
     return 0;
 }
 
 }  // namespace
 }  // namespace lp::app
 
-int main(int argc, char** argv) {
+namespace {
+int run(int argc, char** argv) {
     using namespace lp;
+    std::vector<std::string> args(argv + 1, argv + argc);
+    app::Options o = app::parseArgs(args);
+    if (o.verbose) setLogLevel(LogLevel::Debug);
+    if (o.quiet) setLogLevel(LogLevel::Error);
+    if (o.command == "help") {
+        std::fputs(app::helpText().c_str(), stdout);
+        return 0;
+    }
+    if (o.command == "info") return app::commandInfo();
+    if (o.command == "version") {
+        std::printf("lightpass %s (%s, %s)\ndata: %s\n", LIGHTPASS_VERSION, LIGHTPASS_BUILD_TYPE,
+                    PostBackend::compiledWithCuda() ? "CUDA post effects" : "no CUDA: GLSL post effects",
+                    dataRoot().string().c_str());
+        return 0;
+    }
+    if (o.command == "graph") return app::commandGraph(o);
+    if (o.command == "render") return app::commandRender(o);
+    if (o.command == "sweep") return app::runSweep(o);
+    if (o.command == "bench") return app::runBench(o, args);
+    return app::runViewer(o);
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+    std::string error;
+    int code = 1;
     try {
-        std::vector<std::string> args(argv + 1, argv + argc);
-        app::Options o = app::parseArgs(args);
-        if (o.verbose) setLogLevel(LogLevel::Debug);
-        if (o.quiet) setLogLevel(LogLevel::Error);
-        if (o.command == "help") {
-            std::fputs(app::helpText().c_str(), stdout);
-            return 0;
-        }
-        if (o.command == "info") return app::commandInfo();
-        if (o.command == "version") {
-            std::printf("lightpass %s (%s, %s)\ndata: %s\n", LIGHTPASS_VERSION, LIGHTPASS_BUILD_TYPE,
-                        PostBackend::compiledWithCuda() ? "CUDA post effects" : "no CUDA: GLSL post effects",
-                        dataRoot().string().c_str());
-            return 0;
-        }
-        if (o.command == "graph") return app::commandGraph(o);
-        if (o.command == "render") return app::commandRender(o);
-        if (o.command == "sweep") return app::runSweep(o);
-        if (o.command == "bench") return app::runBench(o, args);
-        return app::runViewer(o);
-    } catch (const lp::Error& e) {
-        std::fprintf(stderr, "lightpass: error: %s\n", e.what());
-        return 1;
+        code = run(argc, argv);
     } catch (const std::bad_alloc&) {
-        std::fprintf(stderr, "lightpass: error: out of memory\n");
-        return 1;
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "lightpass: error: %s\n", e.what());
+        error = "out of memory";
+    } catch (const std::exception& e) {  // lp::Error, and anything a library throws
+        error = *e.what() ? e.what() : "unexpected error";
+    }
+    lp::flushRepeatedWarnings();  // counts of repeated warnings, before the error so it stays last
+    if (!error.empty()) {
+        for (char& c : error)  // one line, whatever a library put in its message
+            if (c == '\n' || c == '\r') c = ' ';
+        std::fprintf(stderr, "lightpass: error: %s\n", error.c_str());
         return 1;
     }
+    return code;
 }

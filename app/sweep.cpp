@@ -11,7 +11,9 @@
 
 #include "engine/core/error.hpp"
 #include "engine/core/log.hpp"
+#include "app/render_checks.hpp"
 #include "engine/gl/context.hpp"
+#include "engine/io/image_io.hpp"
 #include "engine/render/image_metrics.hpp"
 #include "frame/knobs.hpp"
 #include "frame/renderer.hpp"
@@ -59,11 +61,35 @@ int runSweep(const Options& o) {
         knobs.push_back(std::move(*k));
     }
     const fs::path outDir = o.outDir.empty() ? fs::path("sweep") : fs::path(o.outDir);
-    fs::create_directories(outDir);
     Scene scene = o.model.empty() ? loadScene(o.scene) : sceneForModel(o.model);
+    // The folders (each knob's images go in its own), made and checked writable before any rendering;
+    // after the scene loaded, so a bad scene leaves no empty folders behind.
+    std::error_code ec;
+    for (const Knob& knob : knobs) {
+        fs::create_directories(outDir / knob.name, ec);
+        if (ec) throw Error((outDir / knob.name).string() + ": cannot create the output folder: " + ec.message());
+        requireWritableOutput(outDir / knob.name / "reference.png");
+    }
+    requireWritableOutput(outDir / "sweep.csv");
+    requireWritableOutput(outDir / "sweep.md");
+    auto settingsFor = [&](const KnobValue& v) {
+        RenderSettings s = o.base;
+        s.width = o.width;
+        s.height = o.height;
+        s.view = DebugView::Final;
+        s.keepHdr = true;
+        v.apply(s);
+        return s;
+    };
     auto ctx = gl::createHeadlessContext();
     logInfo("sweeping on " + ctx->info().renderer + (ctx->isSoftware() ? " (software: times are not meaningful)" : ""));
+    // Every value's settings against the GPU before the first frame: no reference image is rendered
+    // for a sweep that cannot finish.
+    for (const Knob& knob : knobs)
+        for (const KnobValue& v : knob.values) requireFrameFitsGpu(*ctx, scene, settingsFor(v));
     Renderer renderer(scene);
+    // Every image, the CSV and the Markdown are renamed into place together at the end.
+    OutputFiles outputs;
 
     std::vector<Row> rows;
     std::vector<std::string> allPasses;  // the CSV's time columns, in order of first appearance
@@ -73,22 +99,12 @@ int runSweep(const Options& o) {
     for (size_t ki = 0; ki < knobs.size(); ++ki) {
         const Knob& knob = knobs[ki];
         const fs::path dir = outDir / knob.name;
-        fs::create_directories(dir);
-        auto settingsFor = [&](const KnobValue& v) {
-            RenderSettings s = o.base;
-            s.width = o.width;
-            s.height = o.height;
-            s.view = DebugView::Final;
-            s.keepHdr = true;
-            v.apply(s);
-            return s;
-        };
         // The reference: the knob's best value.
         RenderSettings refSettings = settingsFor(knob.values.back());
         for (int i = 0; i <= o.warmup; ++i) renderer.render(refSettings, 0.0f, false);
         const ImageF reference = renderer.readHdr();
-        writePng(dir / "reference.png", renderer.readDisplay());
-        writeExr(dir / "reference.exr", reference);
+        outputs.addPng(dir / "reference.png", renderer.readDisplay());
+        outputs.addExr(dir / "reference.exr", reference);
 
         const size_t steps = knob.values.size();
         for (size_t vi = 0; vi < steps; ++vi) {
@@ -119,15 +135,15 @@ int runSweep(const Options& o) {
             }
             row.error = compareHdr(renderer.readHdr(), reference);
             std::string file = std::to_string(vi) + ".png";
-            writePng(dir / file, renderer.readDisplay());
+            outputs.addPng(dir / file, renderer.readDisplay());
             rows.push_back(row);
         }
         progress(knob.name, ki, knobs.size(), steps, steps, "");
     }
 
     // CSV: one row per knob value; pass times in columns.
-    writeFileAtomically(outDir / "sweep.csv", [&](const fs::path& tmp) {
-        std::ofstream f(tmp);
+    {
+        std::ostringstream f;
         f << "knob,value,index,reference,frame_ms";
         for (const auto& p : allPasses)
             if (p != "frame") f << "," << p << "_ms";
@@ -142,8 +158,8 @@ int runSweep(const Options& o) {
             f << "," << r.error.rmse << "," << (std::isinf(r.error.psnr) ? 999.0 : r.error.psnr) << "," << r.error.maxAbs
               << "," << r.error.nonFinite << "," << r.knob << "/" << i << ".png\n";
         }
-        if (!f) throw Error("write failed");
-    });
+        outputs.add(outDir / "sweep.csv", f.str());
+    }
     // Markdown: one table per knob.
     std::ostringstream md;
     md << "# Sweep: " << (o.model.empty() ? o.scene : o.model) << ", " << o.width << "x" << o.height << ", "
@@ -160,11 +176,8 @@ int runSweep(const Options& o) {
             md << line;
         }
     }
-    writeFileAtomically(outDir / "sweep.md", [&](const fs::path& tmp) {
-        std::ofstream f(tmp);
-        f << md.str();
-        if (!f) throw Error("write failed");
-    });
+    outputs.add(outDir / "sweep.md", md.str());
+    outputs.commit();
     std::fputs(md.str().c_str(), stdout);
     std::printf("\nwrote %s and %s\n", (outDir / "sweep.csv").c_str(), (outDir / "sweep.md").c_str());
     return 0;

@@ -4,13 +4,18 @@
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfInputFile.h>
+#include <OpenEXR/ImfIO.h>
 #include <OpenEXR/ImfOutputFile.h>
 #include <stb_image.h>
 #include <stb_image_write.h>
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cctype>
+#include <cerrno>
+#include <cstring>
 #include <cmath>
 #include <memory>
 #include <sstream>
@@ -18,6 +23,7 @@
 
 #include "engine/core/error.hpp"
 #include "engine/core/log.hpp"
+#include "engine/io/file_check.hpp"
 
 namespace fs = std::filesystem;
 
@@ -28,16 +34,81 @@ const char* const kChannels[4] = {"R", "G", "B", "A"};
 
 [[noreturn]] void fail(const fs::path& path, const std::string& what) { throw Error(path.string() + ": " + what); }
 
-// Checked up front so a missing file reads "file not found", not a decoder's "can't fopen".
-void requireFile(const fs::path& path) {
-    std::error_code ec;
-    if (fs::is_regular_file(path, ec)) return;
-    fail(path, fs::exists(path, ec) ? "not a regular file" : "file not found");
+// Checked up front (file_check) so a missing file reads "file not found", not a decoder's "can't fopen",
+// and a FIFO or device is refused instead of read.
+void requireFile(const fs::path& path) { requireRegularFile(path, kMaxImageFileBytes, "an image file"); }
+
+// stb_image decoding from bytes in memory, through callbacks that notice when the decoder asks for data
+// past the end: stb fills a truncated file with zeros and reports success.
+struct StbSource {
+    const std::string& bytes;
+    size_t pos = 0;
+    bool readPastEnd = false;
+};
+const stbi_io_callbacks kStbCallbacks = {
+    [](void* user, char* data, int size) -> int {
+        auto& s = *static_cast<StbSource*>(user);
+        const size_t n = std::min(size_t(std::max(size, 0)), s.bytes.size() - s.pos);
+        if (n == 0 && size > 0) s.readPastEnd = true;
+        std::memcpy(data, s.bytes.data() + s.pos, n);
+        s.pos += n;
+        return int(n);
+    },
+    [](void* user, int n) {
+        auto& s = *static_cast<StbSource*>(user);
+        const long long to = std::clamp<long long>((long long)s.pos + n, 0, (long long)s.bytes.size());
+        if ((long long)s.pos + n > (long long)s.bytes.size()) s.readPastEnd = true;
+        s.pos = size_t(to);
+    },
+    [](void* user) -> int {
+        auto& s = *static_cast<StbSource*>(user);
+        return s.pos >= s.bytes.size() ? 1 : 0;
+    },
+};
+
+uint32_t crc32(const unsigned char* data, size_t size, uint32_t crc = 0) {
+    static const std::array<uint32_t, 256> table = [] {
+        std::array<uint32_t, 256> t{};
+        for (uint32_t i = 0; i < 256; ++i) {
+            uint32_t c = i;
+            for (int k = 0; k < 8; ++k) c = (c & 1) ? 0xEDB88320u ^ (c >> 1) : c >> 1;
+            t[i] = c;
+        }
+        return t;
+    }();
+    crc = ~crc;
+    for (size_t i = 0; i < size; ++i) crc = table[(crc ^ data[i]) & 0xFF] ^ (crc >> 8);
+    return ~crc;
 }
 
-const char* stbReason() {
+uint32_t bigEndian32(const unsigned char* p) { return uint32_t(p[0]) << 24 | uint32_t(p[1]) << 16 | uint32_t(p[2]) << 8 | p[3]; }
+
+// stb_image checks no PNG CRC and stops at a cut: walk the chunks first. Empty when the file is whole.
+std::string pngDamage(const std::string& bytes) {
+    const auto* p = reinterpret_cast<const unsigned char*>(bytes.data());
+    size_t pos = 8;
+    while (pos + 12 <= bytes.size()) {
+        const uint32_t length = bigEndian32(p + pos);
+        const std::string type(bytes.data() + pos + 4, 4);
+        if (length > bytes.size() - pos - 12)
+            return "truncated: chunk " + type + " at byte " + std::to_string(pos) + " needs " + std::to_string(length) +
+                   " bytes, the file ends " + std::to_string(bytes.size() - pos - 12 < bytes.size() ? bytes.size() - pos - 8 : 0) +
+                   " bytes later";
+        if (crc32(p + pos + 4, size_t(length) + 4) != bigEndian32(p + pos + 8 + length))
+            return "corrupt: CRC mismatch in chunk " + type + " at byte " + std::to_string(pos);
+        if (type == "IEND") return {};
+        pos += size_t(length) + 12;
+    }
+    return "truncated: the file ends after " + std::to_string(bytes.size()) + " bytes without an IEND chunk";
+}
+
+std::string truncatedReason(const std::string& bytes) {
+    return "truncated: the decoder needed more than the file's " + std::to_string(bytes.size()) + " bytes";
+}
+
+std::string stbReason() {
     const char* r = stbi_failure_reason();
-    return r ? r : "unreadable image";
+    return r && *r ? std::string("unreadable image (") + r + ")" : std::string("unreadable image");
 }
 
 void requireSize(const fs::path& path, int width, int height, size_t values) {
@@ -48,11 +119,16 @@ void requireSize(const fs::path& path, int width, int height, size_t values) {
 }
 
 ImageF loadRadiance(const fs::path& path) {
+    const std::string bytes = readFileChecked(path, kMaxImageFileBytes, "an image file");
     // stbi_loadf would also accept an LDR file (converting it with a guessed gamma); a .hdr must be Radiance.
-    if (!stbi_is_hdr(path.c_str())) fail(path, "not a Radiance HDR file");
+    if (!stbi_is_hdr_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()), int(std::min<size_t>(bytes.size(), INT32_MAX))))
+        fail(path, "not a Radiance HDR file");
     int w = 0, h = 0, n = 0;
-    std::unique_ptr<float, void (*)(void*)> px(stbi_loadf(path.c_str(), &w, &h, &n, 4), stbi_image_free);
-    if (!px) fail(path, stbReason());
+    StbSource source{bytes};
+    std::unique_ptr<float, void (*)(void*)> px(stbi_loadf_from_callbacks(&kStbCallbacks, &source, &w, &h, &n, 4),
+                                               stbi_image_free);
+    if (!px) fail(path, source.readPastEnd ? truncatedReason(bytes) : stbReason());
+    if (source.readPastEnd) fail(path, truncatedReason(bytes));
     ImageF img{w, h, {}};
     img.rgba.assign(px.get(), px.get() + size_t(w) * h * 4);  // stb sets alpha to 1
     return img;
@@ -78,6 +154,13 @@ ImageF loadExr(const fs::path& path) {
         const Imath::Box2i data = header.dataWindow(), display = header.displayWindow();
         const auto [dataW, dataH] = windowSize(data);
         const auto [dispW, dispH] = windowSize(display);
+        // The zeros around the data cost memory too: a 400-byte file can claim a 16384x8192 display
+        // window around 2x1 texels. Padding is allowed up to 16x the data (or 16M texels in all).
+        const int64_t dataArea = int64_t(dataW) * dataH, displayArea = int64_t(dispW) * dispH;
+        if (displayArea > std::max<int64_t>(16 * dataArea, int64_t(1) << 24))
+            throw Error("display window " + std::to_string(dispW) + "x" + std::to_string(dispH) + " is " +
+                        std::to_string(displayArea / std::max<int64_t>(dataArea, 1)) + " times the " + std::to_string(dataW) +
+                        "x" + std::to_string(dataH) + " data window (more than 16x padding over 16M texels is refused)");
 
         std::vector<float> pixels(size_t(dataW) * dataH * 4);
         Imf::FrameBuffer fb;
@@ -133,13 +216,55 @@ void sanitize(const fs::path& path, ImageF& img) {
 }  // namespace
 
 Image8 loadImage8(const fs::path& path) {
-    requireFile(path);
+    const std::string bytes = readFileChecked(path, kMaxImageFileBytes, "an image file");
+    if (bytes.compare(0, 8, "\x89PNG\r\n\x1a\n") == 0) {
+        const std::string damage = pngDamage(bytes);
+        if (!damage.empty()) fail(path, damage);
+    }
     int w = 0, h = 0, n = 0;
-    std::unique_ptr<stbi_uc, void (*)(void*)> px(stbi_load(path.c_str(), &w, &h, &n, 4), stbi_image_free);
-    if (!px) fail(path, stbReason());
+    StbSource source{bytes};
+    std::unique_ptr<stbi_uc, void (*)(void*)> px(stbi_load_from_callbacks(&kStbCallbacks, &source, &w, &h, &n, 4),
+                                                 stbi_image_free);
+    if (!px) fail(path, source.readPastEnd ? truncatedReason(bytes) : stbReason());
+    if (source.readPastEnd) fail(path, truncatedReason(bytes));
     Image8 img{w, h, {}};
     img.rgba.assign(px.get(), px.get() + size_t(w) * h * 4);
     return img;
+}
+
+namespace {
+// 2x2 box halving until both sides fit (an odd last column/row is averaged into its neighbour's box).
+template <typename Image, typename Accumulate>
+Image halveUntilFits(Image img, int maxSize, Accumulate toTexel) {
+    maxSize = std::max(maxSize, 1);
+    while (img.width > maxSize || img.height > maxSize) {
+        const int w = std::max(img.width / 2, 1), h = std::max(img.height / 2, 1);
+        Image half{w, h, {}};
+        half.rgba.resize(size_t(w) * h * 4);
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x)
+                for (int c = 0; c < 4; ++c) {
+                    double sum = 0.0;
+                    int n = 0;
+                    for (int sy = 2 * y; sy < std::min(2 * y + 2, img.height) + (y == h - 1 && img.height > 2 * h ? 1 : 0); ++sy)
+                        for (int sx = 2 * x; sx < std::min(2 * x + 2, img.width) + (x == w - 1 && img.width > 2 * w ? 1 : 0); ++sx) {
+                            sum += double(img.rgba[(size_t(sy) * img.width + sx) * 4 + c]);
+                            ++n;
+                        }
+                    half.rgba[(size_t(y) * w + x) * 4 + c] = toTexel(sum / std::max(n, 1));
+                }
+        img = std::move(half);
+    }
+    return img;
+}
+}  // namespace
+
+Image8 downscaleToFit(const Image8& image, int maxSize) {
+    return halveUntilFits(image, maxSize, [](double v) { return uint8_t(std::clamp(v + 0.5, 0.0, 255.0)); });
+}
+
+ImageF downscaleToFit(const ImageF& image, int maxSize) {
+    return halveUntilFits(image, maxSize, [](double v) { return float(v); });
 }
 
 Image8 makeCheckerImage(int size, int cells) {
@@ -197,17 +322,61 @@ void writeFileAtomically(const fs::path& path, const std::function<void(const fs
     }
 }
 
-void writePng(const fs::path& path, const Image8& img) {
-    requireSize(path, img.width, img.height, img.rgba.size());
-    writeFileAtomically(path, [&](const fs::path& tmp) {
-        if (!stbi_write_png(tmp.c_str(), img.width, img.height, 4, img.rgba.data(), img.width * 4))
-            throw Error("PNG encoder failed");
-    });
+void writeBytesChecked(const fs::path& path, const std::string& bytes) {
+    const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    if (fd < 0) throw Error(std::strerror(errno));
+    size_t done = 0;
+    while (done < bytes.size()) {
+        const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) {
+            const int err = n < 0 ? errno : EIO;
+            ::close(fd);
+            throw Error(std::strerror(err));
+        }
+        done += size_t(n);
+    }
+    // A full disk may only show at fsync or close (delayed allocation): both are checked.
+    if (::fsync(fd) != 0 && errno != EINVAL && errno != EROFS) {
+        const int err = errno;
+        ::close(fd);
+        throw Error(std::strerror(err));
+    }
+    if (::close(fd) != 0) throw Error(std::strerror(errno));
 }
 
-void writeExr(const fs::path& path, const ImageF& img) {
-    requireSize(path, img.width, img.height, img.rgba.size());
-    writeFileAtomically(path, [&](const fs::path& tmp) {
+std::string encodePng(const Image8& img) {
+    std::string bytes;
+    const int ok = stbi_write_png_to_func(
+        [](void* context, void* data, int size) { static_cast<std::string*>(context)->append(static_cast<const char*>(data), size_t(size)); },
+        &bytes, img.width, img.height, 4, img.rgba.data(), img.width * 4);
+    if (!ok || bytes.empty()) throw Error("PNG encoder failed");
+    return bytes;
+}
+
+namespace {
+// OpenEXR writes through an OStream; this one keeps the file in memory, so writing it to disk is one
+// checked write (OpenEXR's own file stream cannot report a full disk at close).
+class MemoryOStream : public Imf::OStream {
+public:
+    MemoryOStream() : Imf::OStream("memory") {}
+    void write(const char c[], int n) override {
+        if (pos_ + size_t(n) > bytes.size()) bytes.resize(pos_ + size_t(n));
+        std::memcpy(bytes.data() + pos_, c, size_t(n));
+        pos_ += size_t(n);
+    }
+    uint64_t tellp() override { return pos_; }
+    void seekp(uint64_t pos) override { pos_ = size_t(pos); }
+    std::string bytes;
+
+private:
+    size_t pos_ = 0;
+};
+}  // namespace
+
+std::string encodeExr(const ImageF& img) {
+    MemoryOStream stream;
+    {
         Imf::Header header(img.width, img.height);
         header.compression() = Imf::ZIP_COMPRESSION;
         Imf::FrameBuffer fb;
@@ -217,10 +386,82 @@ void writeExr(const fs::path& path, const ImageF& img) {
                       Imf::Slice::Make(Imf::FLOAT, img.rgba.data() + c, Imath::V2i(0, 0), img.width, img.height,
                                        4 * sizeof(float), size_t(img.width) * 4 * sizeof(float)));
         }
-        Imf::OutputFile file(tmp.c_str(), header);  // closed (line offsets written) before the rename
+        Imf::OutputFile file(stream, header);  // the line offset table is written when it closes
         file.setFrameBuffer(fb);
         file.writePixels(img.height);
-    });
+    }
+    return std::move(stream.bytes);
+}
+
+void writePng(const fs::path& path, const Image8& img) {
+    requireSize(path, img.width, img.height, img.rgba.size());
+    const std::string bytes = encodePng(img);
+    writeFileAtomically(path, [&](const fs::path& tmp) { writeBytesChecked(tmp, bytes); });
+}
+
+void writeExr(const fs::path& path, const ImageF& img) {
+    requireSize(path, img.width, img.height, img.rgba.size());
+    std::string bytes;
+    try {
+        bytes = encodeExr(img);
+    } catch (const std::exception& e) {
+        fail(path, std::string("cannot write: ") + e.what());
+    }
+    writeFileAtomically(path, [&](const fs::path& tmp) { writeBytesChecked(tmp, bytes); });
+}
+
+void requireWritableOutput(const fs::path& path) {
+    if (path.empty()) throw Error("(empty path): not a file name");
+    const fs::path folder = path.has_parent_path() ? path.parent_path() : fs::path(".");
+    std::error_code ec;
+    if (!fs::is_directory(folder, ec)) fail(path, "folder " + folder.string() + " does not exist");
+    if (::access(folder.c_str(), W_OK | X_OK) != 0) fail(path, "folder " + folder.string() + " is not writable");
+    if (fs::is_directory(path, ec)) fail(path, "is a folder, not a file name");
+    if (fs::exists(path, ec) && !fs::is_regular_file(path, ec)) fail(path, "exists and is not a regular file");
+}
+
+OutputFiles::~OutputFiles() {
+    std::error_code ec;
+    for (const auto& f : staged_) fs::remove(f.tmp, ec);
+}
+
+void OutputFiles::add(const fs::path& path, const std::string& bytes) {
+    requireWritableOutput(path);
+    for (const auto& f : staged_)
+        if (f.path == path) fail(path, "named twice as an output");
+    fs::path tmp = path;
+    tmp += ".tmp-" + std::to_string(getpid());
+    staged_.push_back({path, tmp});  // before writing, so a partial temporary is removed too
+    try {
+        writeBytesChecked(tmp, bytes);
+    } catch (const std::exception& e) {
+        fail(path, std::string("cannot write: ") + e.what());
+    }
+}
+
+void OutputFiles::addPng(const fs::path& path, const Image8& img) {
+    requireSize(path, img.width, img.height, img.rgba.size());
+    add(path, encodePng(img));
+}
+
+void OutputFiles::addExr(const fs::path& path, const ImageF& img) {
+    requireSize(path, img.width, img.height, img.rgba.size());
+    std::string bytes;
+    try {
+        bytes = encodeExr(img);
+    } catch (const std::exception& e) {
+        fail(path, std::string("cannot write: ") + e.what());
+    }
+    add(path, bytes);
+}
+
+void OutputFiles::commit() {
+    for (const auto& f : staged_) {
+        std::error_code ec;
+        fs::rename(f.tmp, f.path, ec);
+        if (ec) fail(f.path, "cannot write: " + ec.message());  // the destructor removes what is left
+    }
+    staged_.clear();
 }
 
 }  // namespace lp

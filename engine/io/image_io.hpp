@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <string>
 #include <vector>
 
 namespace lp {
@@ -20,19 +21,27 @@ struct ImageF {
     std::vector<float> rgba;
 };
 
-// PNG/JPG/TGA/BMP (anything stb_image reads), expanded to RGBA.
+// PNG/JPG/TGA/BMP (anything stb_image reads), expanded to RGBA. A file the decoder needed more bytes
+// of than it has is "truncated", a PNG chunk whose CRC does not match "corrupt": errors, never garbage.
 Image8 loadImage8(const std::filesystem::path& path);
 // Magenta/black checker: the deliberately ugly stand-in for a texture that failed to load.
 Image8 makeCheckerImage(int size = 64, int cells = 8);
 // loadImage8, or one warning and the checker: a missing texture should not stop a render.
 Image8 loadTextureOrChecker(const std::filesystem::path& path);
 
-// .hdr (Radiance) or .exr (any compression, read as float32; the display window is the image, texels
-// outside the data window are 0). Negative/NaN components become 0 and +Inf the largest finite value,
+// .hdr (Radiance; a truncated file is an error, not zero-filled) or .exr (any compression, read as
+// float32; the display window is the image, texels outside the data window are 0, and a display window
+// over 16x its data window and 16M texels is refused). Negative/NaN components become 0 and +Inf the largest finite value,
 // with one warning per file, so later passes (log, sqrt, importance sampling) can trust the data.
 ImageF loadHdrImage(const std::filesystem::path& path);
 
-// Atomic writes: nothing at `path` changes unless the whole file was written.
+// Halved (2x2 box) until neither side exceeds maxSize: for images wider than the GPU's
+// GL_MAX_TEXTURE_SIZE, which the caller warns about. Unchanged when it already fits.
+Image8 downscaleToFit(const Image8& image, int maxSize);
+ImageF downscaleToFit(const ImageF& image, int maxSize);
+
+// Atomic writes: nothing at `path` changes unless the whole file was written (every write, the fsync
+// and the close checked: a full disk is an error, never a 0-byte file).
 void writePng(const std::filesystem::path& path, const Image8& image);
 void writeExr(const std::filesystem::path& path, const ImageF& image);  // float32 RGBA, ZIP
 
@@ -40,5 +49,37 @@ void writeExr(const std::filesystem::path& path, const ImageF& image);  // float
 // If the writer throws or the rename fails, tmp is removed and an lp::Error naming path is thrown.
 void writeFileAtomically(const std::filesystem::path& path,
                          const std::function<void(const std::filesystem::path& tmp)>& writer);
+
+// Whole files in memory, for writeBytesChecked and OutputFiles.
+std::string encodePng(const Image8& image);
+std::string encodeExr(const ImageF& image);
+// Creates/truncates `path` and writes `bytes`, checking every write, fsync and close; throws lp::Error
+// with the system's reason (without the path).
+void writeBytesChecked(const std::filesystem::path& path, const std::string& bytes);
+// Throws "<path>: ..." unless a file could be written there: the folder exists and is writable, and
+// the path is not a folder or special file. Commands call it for every output before rendering.
+void requireWritableOutput(const std::filesystem::path& path);
+
+// A command's outputs, all or nothing: each add() writes a temporary file beside its target at once
+// (checked), commit() renames them all over their targets; temporaries not committed are removed when
+// this goes out of scope, so a failure anywhere leaves no output and no partial file.
+class OutputFiles {
+public:
+    OutputFiles() = default;
+    OutputFiles(const OutputFiles&) = delete;
+    OutputFiles& operator=(const OutputFiles&) = delete;
+    ~OutputFiles();
+
+    void add(const std::filesystem::path& path, const std::string& bytes);
+    void addPng(const std::filesystem::path& path, const Image8& image);
+    void addExr(const std::filesystem::path& path, const ImageF& image);
+    void commit();
+
+private:
+    struct Staged {
+        std::filesystem::path path, tmp;
+    };
+    std::vector<Staged> staged_;
+};
 
 }  // namespace lp

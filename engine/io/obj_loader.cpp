@@ -3,12 +3,15 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <sstream>
 #include <tuple>
 
 #include <tiny_obj_loader.h>
 
 #include "engine/core/error.hpp"
 #include "engine/core/log.hpp"
+#include "engine/io/file_check.hpp"
+#include "engine/io/obj_text.hpp"
 #include "engine/scene/mesh_ops.hpp"
 
 namespace lp {
@@ -57,53 +60,111 @@ Material convertMaterial(const tinyobj::material_t& m, const fs::path& dir, cons
     return out;
 }
 
-// Twice the triangle's area relative to the mesh scale: below this a face is degenerate.
-bool degenerate(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, float scale) {
-    glm::vec3 n = glm::cross(b - a, c - a);
-    float area2 = glm::length(n);
-    return !(area2 > 1e-12f * scale * scale);
+// Judged by the triangle's own size, never the model's: its area over its longest edge squared (in
+// double, so edges of 1e20 do not overflow) is about the sine of its smallest angle. Below 1e-10 it
+// is a sliver no rasteriser can shade; a 5 mm face beside a 20 km one keeps its angles and survives.
+bool degenerate(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
+    const glm::dvec3 da(a), db(b), dc(c);
+    const glm::dvec3 e0 = db - da, e1 = dc - da, e2 = dc - db;
+    const double area2 = glm::length(glm::cross(e0, e1));
+    const double longest2 = std::max({glm::dot(e0, e0), glm::dot(e1, e1), glm::dot(e2, e2)});
+    return !(area2 > 1e-10 * longest2) || !std::isfinite(area2);
 }
+
+// Reads each "mtllib" through the regular-file check, so a FIFO or folder named there is an error
+// naming it instead of a read that blocks, and sanitises its numbers (sanitizeMtlText).
+class CheckedMaterialReader : public tinyobj::MaterialReader {
+public:
+    CheckedMaterialReader(fs::path folder, std::string objFile, std::vector<std::string>& warnings)
+        : folder_(std::move(folder)), objFile_(std::move(objFile)), warnings_(warnings) {}
+
+    bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
+                    std::map<std::string, int>* matMap, std::string* warn, std::string* err) override {
+        const fs::path path = fs::path(name).is_absolute() ? fs::path(name) : (folder_ / name).lexically_normal();
+        std::error_code ec;
+        if (!fs::exists(path, ec)) {  // a missing MTL is common in exported models: defaults, one warning
+            warnings_.push_back(objFile_ + ": mtllib " + path.string() + ": file not found; using default materials");
+            return false;
+        }
+        std::string text;
+        try {
+            text = readFileChecked(path, kMaxTextFileBytes, "an MTL file", true);
+        } catch (const Error& e) {
+            throw Error(objFile_ + ": mtllib " + e.what());
+        }
+        std::istringstream in(sanitizeMtlText(text, path.string(), warnings_));
+        tinyobj::LoadMtl(matMap, materials, &in, warn, err);
+        return true;
+    }
+
+private:
+    fs::path folder_;
+    std::string objFile_;
+    std::vector<std::string>& warnings_;
+};
 
 }  // namespace
 
 MeshData loadObj(const fs::path& path, MeshLoadReport* reportOut) {
     MeshLoadReport report;
     const std::string file = path.string();
-    if (!fs::exists(path)) throw Error(file + ": file not found");
-    if (fs::is_directory(path)) throw Error(file + ": is a folder, not an OBJ file");
+    // Checked once (regular file, sane size), read without blocking, the UTF-8 BOM removed: tinyobjloader
+    // would take "\xEF\xBB\xBFv" for an unknown statement and lose the first vertex.
+    const std::string text = readFileChecked(path, kMaxTextFileBytes, "an OBJ file", true);
+    const ObjTextScan scan = scanObjText(text, file);
 
-    tinyobj::ObjReaderConfig config;
-    config.triangulate = true;
-    config.vertex_color = false;
-    config.mtl_search_path = path.parent_path().string();
-    tinyobj::ObjReader reader;
-    const bool ok = reader.ParseFromFile(file, config);
+    std::vector<std::string> parserWarnings;
+    CheckedMaterialReader materialReader(path.parent_path(), file, parserWarnings);
+    tinyobj::attrib_t attrib;
+    std::vector<tinyobj::shape_t> shapes;
+    std::vector<tinyobj::material_t> materials;
+    std::string warning, error;
+    std::istringstream objStream(text);
+    const bool ok = tinyobj::LoadObj(&attrib, &shapes, &materials, &warning, &error, &objStream, &materialReader,
+                                     true, false);
+    auto warn = [&](const std::string& msg) {
+        report.warnings.push_back(msg);
+        logWarn(msg);
+    };
+    // The parsers' warnings (a broken exporter repeats itself) are summarised after the first few.
+    const size_t kWarningsShown = 5;
+    size_t warningsSeen = 0;
+    auto warnCapped = [&](const std::string& msg) {
+        report.warnings.push_back(msg);
+        if (++warningsSeen <= kWarningsShown) logWarn(msg);
+    };
     auto warnLines = [&](const std::string& text) {
         size_t start = 0;
         while (start < text.size()) {
             size_t end = text.find('\n', start);
             std::string line = text.substr(start, end == std::string::npos ? std::string::npos : end - start);
-            if (!line.empty()) {
-                std::string msg = file + ": " + line;
-                report.warnings.push_back(msg);
-                logWarn(msg);
-            }
+            // tinyobjloader's own note on a missing MTL repeats CheckedMaterialReader's, which names the file.
+            const bool repeatsMaterialWarning = line.rfind("Failed to load material file", 0) == 0 && !parserWarnings.empty();
+            if (!line.empty() && !repeatsMaterialWarning) warnCapped(file + ": " + line);
             if (end == std::string::npos) break;
             start = end + 1;
         }
     };
+    for (const auto& w : parserWarnings) warnCapped(w);
     if (!ok) {
-        std::string err = reader.Error();
+        std::string err = error;
         while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
         for (char& c : err)
             if (c == '\n') c = ' ';
         throw Error(file + ": " + (err.empty() ? "could not be parsed" : err));
     }
-    warnLines(reader.Warning());
+    warnLines(warning);
+    if (warningsSeen > kWarningsShown)
+        logWarn(file + ": " + std::to_string(warningsSeen - kWarningsShown) + " more warnings like these");
+    if (scan.nonFinitePositions)
+        warn(file + ":" + std::to_string(scan.firstNonFinitePositionLine) + ": " +
+                 std::to_string(scan.nonFinitePositions) + " vertices with NaN, Inf or beyond +-1e18 coordinates (first here); their triangles are dropped");
+    if (scan.nonFiniteAttributes)
+        warn(file + ":" + std::to_string(scan.firstNonFiniteAttributeLine) + ": " +
+                 std::to_string(scan.nonFiniteAttributes) + " normals or texture coordinates with NaN or Inf (first here) ignored");
 
-    const auto& attrib = reader.GetAttrib();
-    const auto& shapes = reader.GetShapes();
-    const auto& materials = reader.GetMaterials();
+    // The positions as written: tinyobjloader turns "nan" into 0, which would keep a garbage triangle.
+    if (scan.positions.size() == attrib.vertices.size()) attrib.vertices = scan.positions;
 
     MeshData mesh;
     mesh.name = path.stem().string();
@@ -114,16 +175,6 @@ MeshData loadObj(const fs::path& path, MeshLoadReport* reportOut) {
     const size_t positionCount = attrib.vertices.size() / 3;
     const size_t normalCount = attrib.normals.size() / 3;
     const size_t uvCount = attrib.texcoords.size() / 2;
-    // Mesh scale for the degeneracy threshold.
-    glm::vec3 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
-    for (size_t i = 0; i < positionCount; ++i) {
-        const float* p = &attrib.vertices[3 * i];
-        if (!finite3(p)) continue;
-        lo = glm::min(lo, glm::vec3(p[0], p[1], p[2]));
-        hi = glm::max(hi, glm::vec3(p[0], p[1], p[2]));
-    }
-    const float scale = positionCount ? std::max(glm::length(hi - lo), 1e-30f) : 1.0f;
-
     std::map<std::tuple<int, int, int>, uint32_t> dedup;
     std::map<int, std::vector<uint32_t>> byMaterial;  // triangles grouped by material
     std::vector<int> positionOf;  // OBJ position index of each output vertex
@@ -181,7 +232,7 @@ MeshData loadObj(const fs::path& path, MeshLoadReport* reportOut) {
                 return glm::vec3(p[0], p[1], p[2]);
             };
             if (tri[0].vertex_index == tri[1].vertex_index || tri[1].vertex_index == tri[2].vertex_index ||
-                tri[0].vertex_index == tri[2].vertex_index || degenerate(pos(0), pos(1), pos(2), scale)) {
+                tri[0].vertex_index == tri[2].vertex_index || degenerate(pos(0), pos(1), pos(2))) {
                 ++report.droppedDegenerate;
                 continue;
             }

@@ -9,6 +9,7 @@
 
 #include "engine/core/error.hpp"
 #include "engine/core/log.hpp"
+#include "engine/gl/limits.hpp"
 #include "engine/gl/state.hpp"
 #include "engine/graph/frame_graph.hpp"
 #include "engine/io/image_io.hpp"
@@ -223,6 +224,13 @@ void EnvironmentCache::makeCube(BakedEnvironment& env, const Scene& scene, const
     }
     const auto t0 = std::chrono::steady_clock::now();
     ImageF map = env.hasMap ? loadHdrImage(scene.environment.map) : uniformImage(scene.environment.color);
+    // Over the GPU's texture limits: halved until it fits, with a warning (README "Bad input").
+    if (const gl::TextureFit fit = gl::fitTexture(GL_RGBA32F, map.width, map.height); fit.halvings > 0) {
+        const int w = map.width, h = map.height;
+        map = downscaleToFit(map, std::max(w, h) >> fit.halvings);
+        logWarn(scene.environment.map.string() + ": " + std::to_string(w) + "x" + std::to_string(h) + " is " + fit.reason +
+                "; downscaled to " + std::to_string(map.width) + "x" + std::to_string(map.height));
+    }
     gl::Texture equirect = gl::makeTexture2D(GL_RGBA32F, map.width, map.height, 1, "ibl.equirect");
     glTextureSubImage2D(equirect.id(), 0, 0, 0, map.width, map.height, GL_RGBA, GL_FLOAT, map.rgba.data());
     glTextureParameteri(equirect.id(), GL_TEXTURE_WRAP_S, GL_REPEAT);

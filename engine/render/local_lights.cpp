@@ -98,6 +98,9 @@ std::vector<PointLight> localLightsForFrame(const Scene& scene, const LocalLight
         l.position = orbitPosition(l, time);
         l.orbitSpeed = 0.0f;
         l.range *= settings.rangeScale;  // --light-range-scale: shading and every method's bounds agree
+        // Any finite range is allowed in a scene; past 1e7 m the window is 1 wherever anything is drawn
+        // (the far plane is at most 1e7 m), and bounds math stays far from float overflow.
+        l.range = std::min(l.range, 1e7f);
     }
     return lights;
 }

@@ -1,7 +1,10 @@
 #include "engine/render/scene_gpu.hpp"
 
+#include <algorithm>
 #include <cstddef>
 
+#include "engine/core/log.hpp"
+#include "engine/gl/limits.hpp"
 #include "engine/io/image_io.hpp"
 
 namespace lp {
@@ -11,6 +14,13 @@ GLuint SceneGpu::texture(const std::filesystem::path& path, bool srgb) {
     auto it = textures_.find(key);
     if (it != textures_.end()) return it->second.id();
     Image8 img = loadTextureOrChecker(path);
+    // Over the GPU's texture limits: halved until it fits, with a warning (README "Bad input").
+    if (const gl::TextureFit fit = gl::fitTexture(srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, img.width, img.height); fit.halvings > 0) {
+        const int w = img.width, h = img.height;
+        img = downscaleToFit(img, std::max(w, h) >> fit.halvings);
+        logWarn(path.string() + ": " + std::to_string(w) + "x" + std::to_string(h) + " is " + fit.reason +
+                "; downscaled to " + std::to_string(img.width) + "x" + std::to_string(img.height));
+    }
     // Rows arrive top first; OBJ texture coordinates put v = 0 at the bottom.
     std::vector<uint8_t> flipped(img.rgba.size());
     const size_t row = size_t(img.width) * 4;

@@ -1,5 +1,6 @@
 #include "engine/scene/scene_loader.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <set>
@@ -10,6 +11,7 @@
 
 #include "engine/core/error.hpp"
 #include "engine/core/log.hpp"
+#include "engine/io/file_check.hpp"
 #include "engine/io/obj_loader.hpp"
 #include "engine/scene/primitives.hpp"
 
@@ -18,6 +20,21 @@ namespace fs = std::filesystem;
 using json = nlohmann::json;
 
 namespace {
+
+// Sane bounds, checked at load time so that a value the renderer cannot use fails here, naming the
+// file and field, instead of later in the shadow code (or as a blank image).
+constexpr float kMaxCoordinate = 1e7f;        // metres from the origin: 10,000 km
+constexpr float kMaxScale = 1e6f;             // per-axis model scale magnitude, and 1 / its minimum
+constexpr float kMaxIntensity = 1e9f;         // light intensity (and colour components)
+constexpr float kMinNear = 1e-6f;             // camera near plane, metres
+constexpr float kMaxFar = 1e7f;               // camera far plane, metres
+constexpr float kMaxDepthRatio = 1e6f;        // far / near: beyond it depth precision is gone
+
+std::string formatNumber(double v) {
+    std::ostringstream s;
+    s << v;
+    return s.str();
+}
 
 struct Reader {
     std::string file;
@@ -63,7 +80,31 @@ struct Reader {
     glm::vec3 color(const json& obj, const char* key, const std::string& where, glm::vec3 fallback) const {
         glm::vec3 c = vec3(obj, key, where, fallback);
         if (c.x < 0 || c.y < 0 || c.z < 0) fail(where + "." + key, "colour components must be >= 0");
+        if (c.x > kMaxIntensity || c.y > kMaxIntensity || c.z > kMaxIntensity)
+            fail(where + "." + key, "colour components must be <= " + formatNumber(kMaxIntensity));
         return c;
+    }
+    // A position in metres, each coordinate within +-kMaxCoordinate.
+    glm::vec3 point(const json& obj, const char* key, const std::string& where, glm::vec3 fallback) const {
+        glm::vec3 p = vec3(obj, key, where, fallback);
+        for (int i = 0; i < 3; ++i)
+            if (std::abs(p[i]) > kMaxCoordinate)
+                fail(where + "." + key, formatNumber(p[i]) + " is too far from the origin (limit +-" + formatNumber(kMaxCoordinate) + " m)");
+        return p;
+    }
+    // Normalised in double: in float, the length of [1e38, 1e38, 1e38] is Inf and of [1e-40, 0, 0] is 0,
+    // and either would reach the shadow code as NaN.
+    glm::vec3 unit(glm::vec3 v, const std::string& where) const {
+        const glm::dvec3 d(v);
+        const double length = glm::length(d);
+        if (!(length > 0.0)) fail(where, "is the zero vector");
+        return glm::vec3(d / length);
+    }
+    float bounded(const json& obj, const char* key, const std::string& where, float fallback, float lo, float hi) const {
+        float v = number(obj, key, where, fallback);
+        if (v < lo || v > hi)
+            fail(where + "." + key, formatNumber(v) + " is outside [" + formatNumber(lo) + ", " + formatNumber(hi) + "]");
+        return v;
     }
     bool boolean(const json& obj, const char* key, const std::string& where, bool fallback) const {
         if (!obj.contains(key)) return fallback;
@@ -94,16 +135,21 @@ fs::path resolve(const fs::path& base, const std::string& p) {
 void parseCamera(const Reader& r, const json& j, Camera& cam) {
     const std::string w = "camera";
     r.onlyKnown(j, w, {"position", "target", "up", "fov", "near", "far"});
-    cam.position = r.vec3(j, "position", w, cam.position);
-    cam.target = r.vec3(j, "target", w, cam.target);
+    cam.position = r.point(j, "position", w, cam.position);
+    cam.target = r.point(j, "target", w, cam.target);
     cam.up = r.vec3(j, "up", w, cam.up);
     cam.fovYDegrees = r.number(j, "fov", w, cam.fovYDegrees);
     cam.nearPlane = r.positive(j, "near", w, cam.nearPlane, false);
     cam.farPlane = r.positive(j, "far", w, cam.farPlane, false);
     if (cam.fovYDegrees <= 0.5f || cam.fovYDegrees >= 179.0f) r.fail(w + ".fov", "must be in (0.5, 179) degrees");
     if (cam.farPlane <= cam.nearPlane) r.fail(w + ".far", "must be greater than near");
+    if (cam.nearPlane < kMinNear) r.fail(w + ".near", formatNumber(cam.nearPlane) + " is below the " + formatNumber(kMinNear) + " m minimum");
+    if (cam.farPlane > kMaxFar) r.fail(w + ".far", formatNumber(cam.farPlane) + " is beyond the " + formatNumber(kMaxFar) + " m maximum");
+    if (double(cam.farPlane) > double(kMaxDepthRatio) * cam.nearPlane)
+        r.fail(w + ".far", "far / near is " + formatNumber(double(cam.farPlane) / cam.nearPlane) + ", over " +
+                               formatNumber(kMaxDepthRatio) + " (the depth buffer cannot resolve it)");
     if (glm::length(cam.target - cam.position) <= 0.0f) r.fail(w + ".target", "equals the position");
-    if (glm::length(cam.up) <= 0.0f) r.fail(w + ".up", "is the zero vector");
+    cam.up = r.unit(cam.up, w + ".up");
 }
 
 void parseModel(const Reader& r, const json& j, const std::string& w, const fs::path& base, ModelInstance& m) {
@@ -116,10 +162,16 @@ void parseModel(const Reader& r, const json& j, const std::string& w, const fs::
         r.fail(w + ".primitive", "unknown primitive '" + m.primitive + "' (plane, sphere, cube)");
     if (!obj.empty()) m.obj = resolve(base, obj);
     if (m.name.empty()) m.name = obj.empty() ? m.primitive : fs::path(obj).stem().string();
-    glm::vec3 t = r.vec3(j, "translate", w, glm::vec3(0.0f));
+    glm::vec3 t = r.point(j, "translate", w, glm::vec3(0.0f));
     glm::vec3 rot = r.vec3(j, "rotate", w, glm::vec3(0.0f));
     glm::vec3 s = r.vec3(j, "scale", w, glm::vec3(1.0f));
     if (s.x == 0.0f || s.y == 0.0f || s.z == 0.0f) r.fail(w + ".scale", "must not be zero");
+    for (int i = 0; i < 3; ++i)
+        if (std::abs(s[i]) > kMaxScale || std::abs(s[i]) < 1.0f / kMaxScale)
+            r.fail(w + ".scale", formatNumber(s[i]) + ": magnitude must be in [" + formatNumber(1.0f / kMaxScale) + ", " +
+                                     formatNumber(kMaxScale) + "]");
+    for (int i = 0; i < 3; ++i)
+        if (std::abs(rot[i]) > 1e6f) r.fail(w + ".rotate", formatNumber(rot[i]) + " degrees: magnitude must be <= 1e6");
     glm::mat4 x = glm::translate(glm::mat4(1.0f), t);
     x = glm::rotate(x, glm::radians(rot.y), glm::vec3(0, 1, 0));
     x = glm::rotate(x, glm::radians(rot.x), glm::vec3(1, 0, 0));
@@ -145,24 +197,23 @@ void parseLight(const Reader& r, const json& j, const std::string& w, Scene& sce
         r.onlyKnown(j, w, {"type", "direction", "color", "intensity", "shadows"});
         DirectionalLight l;
         l.direction = r.vec3(j, "direction", w, l.direction);
-        if (glm::length(l.direction) <= 0.0f) r.fail(w + ".direction", "is the zero vector");
-        l.direction = glm::normalize(l.direction);
+        l.direction = r.unit(l.direction, w + ".direction");
         l.color = r.color(j, "color", w, l.color);
-        l.intensity = r.positive(j, "intensity", w, l.intensity, true);
+        l.intensity = r.bounded(j, "intensity", w, l.intensity, 0.0f, kMaxIntensity);
         l.castsShadows = r.boolean(j, "shadows", w, l.castsShadows);
         scene.directionalLights.push_back(l);
     } else if (type == "point") {
         r.onlyKnown(j, w, {"type", "position", "color", "intensity", "range", "orbit"});
         PointLight l;
-        l.position = r.vec3(j, "position", w, l.position);
+        l.position = r.point(j, "position", w, l.position);
         l.color = r.color(j, "color", w, l.color);
-        l.intensity = r.positive(j, "intensity", w, l.intensity, true);
-        l.range = r.positive(j, "range", w, l.range, false);
+        l.intensity = r.bounded(j, "intensity", w, l.intensity, 0.0f, kMaxIntensity);
+        l.range = r.positive(j, "range", w, l.range, false);  // any finite range: the shading clamps it
         if (j.contains("orbit")) {
             const std::string ow = w + ".orbit";
             r.onlyKnown(j["orbit"], ow, {"center", "speed"});
-            l.orbitCenter = r.vec3(j["orbit"], "center", ow, l.position);
-            l.orbitSpeed = r.number(j["orbit"], "speed", ow, 0.5f);
+            l.orbitCenter = r.point(j["orbit"], "center", ow, l.position);
+            l.orbitSpeed = r.bounded(j["orbit"], "speed", ow, 0.5f, -1e6f, 1e6f);
         }
         scene.pointLights.push_back(l);
     } else {
@@ -177,7 +228,11 @@ void loadMesh(const Reader& r, ModelInstance& m, const std::string& where) {
         else m.mesh = makeCube(1.0f);
     } else {
         if (!fs::exists(m.obj)) r.fail(where + ".obj", m.obj.string() + ": file not found");
-        m.mesh = loadObj(m.obj);
+        try {
+            m.mesh = loadObj(m.obj);
+        } catch (const Error& e) {  // "<scene>: models[i].obj: <obj>: <what>"
+            r.fail(where + ".obj", e.what());
+        }
     }
     for (auto& mat : m.mesh.materials) {
         if (m.diffuseOverride) {
@@ -189,6 +244,21 @@ void loadMesh(const Reader& r, ModelInstance& m, const std::string& where) {
     }
 }
 
+// The model as placed (its mesh bounds through its transform, in double) must stay within +-1e18 m,
+// where squared lengths still fit a float: beyond, camera framing and shadow fitting overflow.
+void requirePlacedWithinRange(const Reader& r, const ModelInstance& m, const std::string& where) {
+    constexpr double kMaxWorldCoordinate = 1e18;
+    const glm::dmat4 transform(m.transform);
+    for (int c = 0; c < 8; ++c) {
+        const glm::dvec3 p((c & 1) ? m.mesh.boundsMax.x : m.mesh.boundsMin.x, (c & 2) ? m.mesh.boundsMax.y : m.mesh.boundsMin.y,
+                           (c & 4) ? m.mesh.boundsMax.z : m.mesh.boundsMin.z);
+        const glm::dvec3 w(transform * glm::dvec4(p, 1.0));
+        for (int i = 0; i < 3; ++i)
+            if (!(std::abs(w[i]) <= kMaxWorldCoordinate))
+                r.fail(where, "placed up to " + formatNumber(std::abs(w[i])) + " m from the origin, beyond the 1e+18 m limit");
+    }
+}
+
 }  // namespace
 
 Scene parseScene(const std::string& text, const fs::path& origin, bool loadMeshes) {
@@ -196,12 +266,14 @@ Scene parseScene(const std::string& text, const fs::path& origin, bool loadMeshe
     json root;
     try {
         root = json::parse(text);
-    } catch (const json::parse_error& e) {
+    } catch (const json::exception& e) {  // parse_error, and out_of_range for numbers such as 1e400
         std::string what = e.what();
         auto pos = what.find("parse error");
+        if (pos == std::string::npos && what.find("] ") != std::string::npos) pos = what.find("] ") + 2;
         throw Error(origin.string() + ": invalid JSON: " + (pos == std::string::npos ? what : what.substr(pos)));
     }
     r.onlyKnown(root, "", {"camera", "models", "lights", "environment", "ambient", "effects", "description"});
+    if (root.contains("description") && !root["description"].is_string()) r.fail("description", "expected a string");
     Scene scene;
     scene.file = origin;
     const fs::path base = origin.has_parent_path() ? origin.parent_path() : fs::path(".");
@@ -226,8 +298,8 @@ Scene parseScene(const std::string& text, const fs::path& origin, bool loadMeshe
         std::string map = r.string(e, "map", "environment");
         if (!map.empty()) scene.environment.map = resolve(base, map);
         scene.environment.color = r.color(e, "color", "environment", scene.environment.color);
-        scene.environment.intensity = r.positive(e, "intensity", "environment", 1.0f, true);
-        scene.environment.rotationDegrees = r.number(e, "rotation", "environment", 0.0f);
+        scene.environment.intensity = r.bounded(e, "intensity", "environment", 1.0f, 0.0f, kMaxIntensity);
+        scene.environment.rotationDegrees = r.bounded(e, "rotation", "environment", 0.0f, -1e6f, 1e6f);
         scene.environment.ibl = r.boolean(e, "ibl", "environment", false);
         if (scene.environment.ibl && scene.environment.map.empty()) r.fail("environment.ibl", "true needs environment.map (an .hdr or .exr)");
     }
@@ -260,6 +332,7 @@ Scene parseScene(const std::string& text, const fs::path& origin, bool loadMeshe
         for (size_t i = 0; i < scene.models.size(); ++i) {
             try {
                 loadMesh(r, scene.models[i], "models[" + std::to_string(i) + "]");
+                requirePlacedWithinRange(r, scene.models[i], "models[" + std::to_string(i) + "]");
             } catch (const Error& e) {
                 std::string msg = e.what();
                 if (msg.rfind(r.file, 0) == 0) throw;
@@ -272,11 +345,7 @@ Scene parseScene(const std::string& text, const fs::path& origin, bool loadMeshe
 }
 
 Scene loadScene(const fs::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    if (!in) throw Error(file.string() + ": " + (fs::exists(file) ? "cannot be read" : "file not found"));
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    return parseScene(ss.str(), file, true);
+    return parseScene(readFileChecked(file, kMaxTextFileBytes, "a scene file", true), file, true);
 }
 
 void frameCamera(Scene& scene) {
@@ -286,7 +355,15 @@ void frameCamera(Scene& scene) {
     float radius = std::max(0.5f * glm::length(hi - lo), 1e-4f);
     float fov = glm::radians(scene.camera.fovYDegrees);
     float distance = radius / std::sin(0.5f * fov) * 1.05f;
+    // Look at the model's largest face: from +Z (slightly above) unless the model is flat across X or
+    // Y, where that view would see it edge-on.
+    const glm::vec3 extent = hi - lo;
+    const float largest = std::max({extent.x, extent.y, extent.z});
     glm::vec3 dir = glm::normalize(glm::vec3(0.0f, 0.35f, 1.0f));
+    if (extent.x < 0.05f * largest && extent.x <= extent.y && extent.x <= extent.z)
+        dir = glm::normalize(glm::vec3(1.0f, 0.35f, 0.0f));
+    else if (extent.y < 0.05f * largest && extent.y <= extent.z)
+        dir = glm::normalize(glm::vec3(0.0f, 1.0f, 0.35f));
     scene.camera.position = center + dir * distance;
     scene.camera.target = center;
     scene.camera.up = glm::vec3(0, 1, 0);

@@ -27,7 +27,7 @@ double windowRef(double d, double range) {
     return w * w;
 }
 double attenuationRef(double d, double range) {
-    double dMin = 0.01 * range;
+    double dMin = std::min(0.01 * range, 0.01);  // held at 1% of the range, capped at 1 cm
     return windowRef(d, range) / std::max(d * d, dMin * dMin);
 }
 
@@ -56,7 +56,8 @@ TEST(LocalLightShader, FiniteAtZeroDistanceAndZeroAtRange) {
     std::vector<glm::vec4> in = {{0.0f, 1.0f, 0, 0}, {0.0f, 1e-3f, 0, 0}, {1.0f, 1.0f, 0, 0}, {2.5f, 2.5f, 0, 0},
                                  {1e6f, 1.0f, 0, 0}};
     auto out = runGlsl({"common/attenuation.glsl"}, "return vec4(lpPointAttenuation(x.x, x.y));", in);
-    // d = 0: the inverse square is held at d = 0.01 R, so E/I = 1 / (0.01 R)^2 exactly (float rounding 1e-6).
+    // d = 0: the inverse square is held at d = min(0.01 R, 1 cm), so E/I = 1 / (0.01 R)^2 exactly for
+    // R <= 1 (float rounding 1e-6).
     EXPECT_NEAR(out[0].x, 1e4, 1e4 * 1e-6);
     EXPECT_NEAR(out[1].x, 1e10, 1e10 * 1e-6);
     EXPECT_EQ(out[2].x, 0.0f);  // d = range
@@ -84,13 +85,14 @@ TEST(LocalLightShader, WindowValueAndSlopeVanishAtTheRange) {
 }
 
 TEST(LocalLightShader, LightOnTheSurfaceIsFiniteAndLitAlongTheNormal) {
-    // P = light position: L falls back to N, E = I / (0.01 R)^2; diffuse kd/pi E, specular (n+8)/(8pi) E.
+    // P = light position: L falls back to N, E = I / dMin^2 with dMin = min(0.01 R, 1 cm) = 1 cm at R = 2;
+    // diffuse kd/pi E, specular (n+8)/(8pi) E.
     std::vector<glm::vec4> in = {{0.0f, 0.0f, 0.0f, 2.0f}};
     auto out = runGlsl({"common/local_light.glsl"},
                        "vec3 c = lpLocalLightRadiance(x.xyz, x.w, vec3(1.0), x.xyz, vec3(0, 0, 1), vec3(0, 0, 1),"
                        " vec3(0.5), vec3(0.25), 16.0, LP_LOCAL_SPECULAR_RANGED); return vec4(c, 0.0);",
                        in);
-    const double e = 1.0 / (0.02 * 0.02);
+    const double e = 1.0 / (0.01 * 0.01);
     const double expected = (0.5 / M_PI + 0.25 * 24.0 / (8.0 * M_PI)) * e;
     EXPECT_TRUE(std::isfinite(out[0].x));
     EXPECT_NEAR(out[0].x, expected, expected * 1e-5);  // float32: 1e-5 relative

@@ -1,0 +1,308 @@
+#!/usr/bin/env python3
+"""make_corpus.py DIR: writes lightpass's own corpus of bad input files into DIR, and DIR/manifest.json
+listing every case: the lightpass arguments, what must happen (a one-line error naming the file and
+what is wrong, or a documented fallback with a warning) and which class of the bad-input promise
+(README, "Bad input") it checks. run_corpus.py runs them.
+
+Placeholders in the manifest: {C} is DIR, {O} a fresh empty output folder per case; in regexes {C}
+stands for DIR, escaped."""
+import json, os, shutil, struct, sys, zlib
+
+C = os.path.abspath(sys.argv[1])
+shutil.rmtree(C, ignore_errors=True)
+os.makedirs(C)
+cases = []
+
+
+def write(name, data):
+    path = os.path.join(C, name)
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    with open(path, "wb") as f:
+        f.write(data.encode() if isinstance(data, str) else data)
+    return path
+
+
+def fifo(name):
+    os.mkfifo(os.path.join(C, name))
+
+
+def case(cls, name, args, expect, regex, **extra):
+    cases.append(dict(cls=cls, name=name, args=args, expect=expect, regex=regex, **extra))
+
+
+RENDER = ["--size", "32x24", "--frames", "1", "--warmup", "0"]
+ENV_SMALL = ["--env-size", "16", "--ibl-specular-size", "8", "--ibl-specular-levels", "4"]  # quick on llvmpipe
+
+
+def render_scene(scene, out="{O}/out.png", more=()):
+    return ["render", "--scene", "{C}/" + scene, "--out", out, *RENDER, *more]
+
+
+def render_model(model, out="{O}/out.png"):
+    return ["render", "--model", model if model.startswith("/") else "{C}/" + model, "--out", out, *RENDER]
+
+
+# ---- well-formed pieces the bad ones are built around --------------------------------------------
+CUBE_OBJ = """v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1
+vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1
+f 1/1 4/4 3/3 2/2\nf 5/1 6/2 7/3 8/4\nf 1/1 2/2 6/3 5/4\nf 4/4 8/1 7/2 3/3\nf 1/1 5/2 8/3 4/4\nf 2/1 3/2 7/3 6/4
+"""
+LIGHT = {"type": "directional", "direction": [-0.3, -1, -0.5], "intensity": 3}
+CAMERA = {"position": [3, 2, 4], "target": [0, 0, 0]}
+
+
+def scene(name, **fields):
+    body = {"camera": CAMERA, "models": [{"primitive": "cube"}], "lights": [LIGHT]}
+    body.update(fields)
+    return write(name, json.dumps(body))
+
+
+def png(width, height, rgba=None):
+    """An RGBA8 PNG; rgba(x, y) -> 4 bytes, or a grey gradient."""
+    raw = bytearray()
+    for y in range(height):
+        raw.append(0)
+        for x in range(width):
+            raw += rgba(x, y) if rgba else bytes(((x * 37 + y * 11) & 255, 128, 64, 255))
+    def chunk(kind, body):
+        return struct.pack(">I", len(body)) + kind + body + struct.pack(">I", zlib.crc32(kind + body))
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 6, 0, 0, 0)) +
+            chunk(b"IDAT", zlib.compress(bytes(raw))) + chunk(b"IEND", b""))
+
+
+def radiance(width, height):
+    # Flat (not run-length) RGBE scanlines: the first pixel is not the 2,2 RLE marker.
+    header = f"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y {height} +X {width}\n".encode()
+    return header + bytes((128, 128, 128, 129)) * (width * height)
+
+
+def exr(data_window, display_window):
+    """An uncompressed scanline EXR with float R, G, B over data_window (x0, y0, x1, y1)."""
+    def attr(name, kind, body):
+        return name.encode() + b"\0" + kind.encode() + b"\0" + struct.pack("<i", len(body)) + body
+    chlist = b"".join(c.encode() + b"\0" + struct.pack("<iB3xii", 2, 0, 1, 1) for c in "BGR") + b"\0"
+    header = (b"\x76\x2f\x31\x01" + struct.pack("<i", 2) + attr("channels", "chlist", chlist) +
+              attr("compression", "compression", b"\0") + attr("dataWindow", "box2i", struct.pack("<4i", *data_window)) +
+              attr("displayWindow", "box2i", struct.pack("<4i", *display_window)) + attr("lineOrder", "lineOrder", b"\0") +
+              attr("pixelAspectRatio", "float", struct.pack("<f", 1)) +
+              attr("screenWindowCenter", "v2f", struct.pack("<2f", 0, 0)) + attr("screenWindowWidth", "float", struct.pack("<f", 1)) +
+              b"\0")
+    width, height = data_window[2] - data_window[0] + 1, data_window[3] - data_window[1] + 1
+    lines = [struct.pack("<ii", data_window[1] + y, 3 * 4 * width) + struct.pack(f"<{3 * width}f", *([0.5] * 3 * width))
+             for y in range(height)]
+    offset, table = len(header) + 8 * height, b""
+    for line in lines:
+        table += struct.pack("<Q", offset)
+        offset += len(line)
+    return header + table + b"".join(lines)
+
+
+write("cube.obj", CUBE_OBJ)
+write("textured.mtl", "newmtl m\nKd 1 1 1\nmap_Kd tex.png\n")
+write("tex.png", png(8, 8))
+
+# ---- 1. special files: one regular-file check, naming the file --------------------------------------
+fifo("fifo.obj")
+fifo("fifo.json")
+fifo("fifo.mtl")
+fifo("fifo.png")
+fifo("fifo.hdr")
+os.makedirs(os.path.join(C, "folder.obj"))
+os.makedirs(os.path.join(C, "folder.json"))
+os.makedirs(os.path.join(C, "folder.hdr"))
+case(1, "fifo_model", render_model("fifo.obj"), "error", r"{C}/fifo.obj: is a FIFO, not a regular file")
+case(1, "fifo_scene", render_scene("fifo.json"), "error", r"{C}/fifo.json: is a FIFO, not a regular file")
+scene("scene_fifo_obj.json", models=[{"obj": "fifo.obj"}])
+case(1, "fifo_scene_obj", render_scene("scene_fifo_obj.json"), "error",
+     r"scene_fifo_obj.json: models\[0\]\.obj: {C}/fifo.obj: is a FIFO")
+write("mtllib_fifo.obj", "mtllib fifo.mtl\n" + CUBE_OBJ)
+case(1, "fifo_mtllib", render_model("mtllib_fifo.obj"), "error", r"mtllib_fifo.obj: mtllib {C}/fifo.mtl: is a FIFO")
+case(1, "dev_zero_model", render_model("/dev/zero"), "error", r"/dev/zero: is a character device, not a regular file")
+case(1, "dev_zero_scene", ["render", "--scene", "/dev/zero", "--out", "{O}/out.png", *RENDER], "error",
+     r"/dev/zero: is a character device, not a regular file")
+case(1, "folder_model", render_model("folder.obj"), "error", r"{C}/folder.obj: is a folder, not an OBJ file")
+case(1, "folder_scene", render_scene("folder.json"), "error", r"{C}/folder.json: is a folder, not a scene file")
+write("texture_fifo.obj", "mtllib texture_fifo.mtl\nusemtl m\n" + CUBE_OBJ)
+write("texture_fifo.mtl", "newmtl m\nmap_Kd fifo.png\n")
+case(1, "fifo_texture", render_model("texture_fifo.obj"), "fallback",
+     r"warning: {C}/fifo.png: is a FIFO, not a regular file; using a checker texture", outputs=["{O}/out.png"])
+scene("env_fifo.json", environment={"map": "fifo.hdr"})
+case(1, "fifo_environment", render_scene("env_fifo.json", more=[*ENV_SMALL]), "error",
+     r"{C}/fifo.hdr: is a FIFO, not a regular file")
+scene("env_folder.json", environment={"map": "folder.hdr"})
+case(1, "folder_environment", render_scene("env_folder.json", more=[*ENV_SMALL]), "error",
+     r"{C}/folder.hdr: is a folder")
+
+# ---- 2. outputs are all or nothing ------------------------------------------------------------------
+scene("plain.json")
+case(2, "exr_unwritable_no_png", render_scene("plain.json", more=["--exr", "{O}/missing/x.exr"]), "error",
+     r"{O}/missing/x.exr: folder .* does not exist", absent=["{O}/out.png"])
+os.makedirs(os.path.join(C, "is_a_folder.json"))
+case(2, "timings_json_folder_no_png", render_scene("plain.json", more=["--timings-json", "{C}/is_a_folder.json"]),
+     "error", r"is_a_folder.json: is a folder, not a file name", absent=["{O}/out.png"])
+case(2, "same_output_twice", render_scene("plain.json", more=["--timings-json", "{O}/out.png"]), "error",
+     r"out.png: named twice as an output", absent=["{O}/out.png"])
+# A full disk: the process may write no more than 100 bytes per file (RLIMIT_FSIZE).
+case(2, "full_disk_png", render_scene("plain.json", out="{O}/big.png", more=["--size", "64x48"]), "error",
+     r"{O}/big.png: cannot write: File too large", fsize_limit=100, absent=["{O}/big.png"])
+case(2, "full_disk_exr", ["render", "--scene", "{C}/plain.json", "--exr", "{O}/big.exr", *RENDER], "error",
+     r"{O}/big.exr: cannot write: File too large", fsize_limit=100, absent=["{O}/big.exr"])
+case(2, "sweep_csv_folder_no_images",
+     ["sweep", "--scene", "{C}/plain.json", "--knob", "shadow-size", "--size", "32x24", "--frames", "1", "--warmup", "0",
+      "--out-dir", "{O}/sweep"], "error", r"{O}/sweep/sweep.csv: is a folder, not a file name",
+     make_dirs=["{O}/sweep/sweep.csv"], absent=["{O}/sweep/shadow-size/reference.png", "{O}/sweep/shadow-size/0.png"])
+write("a_file", "not a folder\n")
+case(2, "sweep_out_dir_under_file",
+     ["sweep", "--scene", "{C}/plain.json", "--knob", "shadow-size", "--size", "32x24", "--out-dir", "{C}/a_file/sweep"],
+     "error", r"a_file/sweep/shadow-size: cannot create the output folder")
+case(2, "bench_json_unwritable",
+     ["bench", "--scene", "{C}/plain.json", "--size", "32x24", "--frames", "1", "--warmup", "0",
+      "--vary", "--shadow-size 64,128", "--timings-json", "{O}/missing/bench.json"], "error",
+     r"{O}/missing/bench.json: folder .* does not exist")
+case(2, "graph_dot_unwritable", ["graph", "--scene", "{C}/plain.json", "--dot", "{O}/missing/g.dot"], "error",
+     r"{O}/missing/g.dot: folder .* does not exist")
+
+# ---- 3. GPU limits ----------------------------------------------------------------------------------
+# 32769 texels: over GL_MAX_TEXTURE_SIZE on every GPU we know (llvmpipe 16384, NVIDIA 32768).
+write("wide.png", png(32769, 2, lambda x, y: b"\xc0\x80\x40\xff"))
+write("wide_texture.obj", "mtllib wide_texture.mtl\nusemtl m\n" + CUBE_OBJ)
+write("wide_texture.mtl", "newmtl m\nKd 1 1 1\nmap_Kd wide.png\n")
+case(3, "texture_over_max_size", render_model("wide_texture.obj"), "fallback",
+     r"warning: {C}/wide.png: 32769x2 is larger than this GPU's [0-9]+ texel limit \(GL_MAX_TEXTURE_SIZE\); downscaled to",
+     outputs=["{O}/out.png"], forbid=r"GL:|error")
+write("wide.hdr", radiance(32769, 2))
+scene("env_wide.json", environment={"map": "wide.hdr"})
+case(3, "environment_over_max_size", render_scene("env_wide.json", more=[*ENV_SMALL]), "fallback",
+     r"warning: {C}/wide.hdr: 32769x2 is larger than this GPU's [0-9]+ texel limit", outputs=["{O}/out.png"],
+     forbid=r"GL:|error")
+# LIGHTPASS_GPU_FREE_BYTES stands in for a GPU with 64 MiB free (the real limit differs per machine).
+case(3, "size_over_gpu_memory",
+     ["render", "--scene", "{C}/plain.json", "--out", "{O}/out.png", "--size", "2048x2048", "--frames", "1", "--warmup", "0"],
+     "error", r"--size 2048x2048: the frame's render targets need [0-9.]+ GiB, more than the 0.06 GiB this GPU has free",
+     env={"LIGHTPASS_GPU_FREE_BYTES": str(64 << 20)}, absent=["{O}/out.png"])
+
+# ---- 4. numbers the OBJ parser used to turn into zero -----------------------------------------------
+write("nan_vertex.obj", CUBE_OBJ + "v nan 7 7\nf 1 2 9\n")
+case(4, "nan_vertex", render_model("nan_vertex.obj"), "fallback",
+     r"nan_vertex.obj:19: 1 vertices with NaN, Inf or beyond \+-1e18 coordinates \(first here\); their triangles are dropped",
+     outputs=["{O}/out.png"])
+write("huge_vertex.obj", CUBE_OBJ + "v 1e30 0 0\nf 1 2 9\n")
+case(4, "vertex_1e30", render_model("huge_vertex.obj"), "fallback",
+     r"huge_vertex.obj:19: 1 vertices with NaN, Inf or beyond \+-1e18 coordinates", outputs=["{O}/out.png"])
+write("letters_vertex.obj", "v 0 0 0\nv 1 0 0\nv a b c\nf 1 2 3\n")
+case(4, "letters_vertex", render_model("letters_vertex.obj"), "error", r"letters_vertex.obj:3: v: 'a' is not a number")
+write("short_vertex.obj", "v 0 0 0\nv 1 0\nv 0 1 0\nf 1 2 3\n")
+case(4, "short_vertex", render_model("short_vertex.obj"), "error", r"short_vertex.obj:2: v needs 3 numbers, got 2")
+write("trailing_junk.obj", "v 0 0 0\nv 1 0 0x\nv 0 1 0\nf 1 2 3\n")
+case(4, "trailing_junk", render_model("trailing_junk.obj"), "error", r"trailing_junk.obj:2: v: '0x' is not a number")
+write("huge_index.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 4294967299\n")
+case(4, "index_over_int", render_model("huge_index.obj"), "error", r"huge_index.obj:5: index 4294967299 is out of range")
+write("word_index.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 three\n")
+case(4, "word_index", render_model("word_index.obj"), "error", r"word_index.obj:4: 'three' is not a vertex index")
+write("nan_kd.obj", "mtllib nan_kd.mtl\nusemtl m\n" + CUBE_OBJ)
+write("nan_kd.mtl", "newmtl m\nKd nan nan nan\nNs abc\n")
+case(4, "nan_kd", render_model("nan_kd.obj"), "fallback",
+     r"nan_kd.mtl:2: Kd: 'nan' is not a finite number; using the default 0.8 0.8 0.8.*nan_kd.mtl:3: Ns: 'abc' is not a number",
+     outputs=["{O}/out.png"])
+write("nan_normal.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn nan 0 1\nf 1//1 2//1 3//1\n")
+case(4, "nan_normal", render_model("nan_normal.obj"), "fallback",
+     r"nan_normal.obj:4: 1 normals or texture coordinates with NaN or Inf \(first here\) ignored", outputs=["{O}/out.png"])
+
+# ---- 5. degenerate triangles judged by their own size -----------------------------------------------
+# A 5 mm cube (the cube scaled to +-2.5 mm) beside a 20 km ground quad.
+small_and_huge = "".join(" ".join(["v"] + ["%g" % (0.0025 * float(t)) for t in l.split()[1:]]) + "\n"
+                         if l.startswith("v ") else l + "\n" for l in CUBE_OBJ.splitlines())
+small_and_huge += "v -10000 -1 -10000\nv 10000 -1 -10000\nv 10000 -1 10000\nv -10000 -1 10000\nf 9 12 11 10\n"
+write("mm_cube_km_plane.obj", small_and_huge)
+case(5, "mm_cube_beside_km_plane", render_model("mm_cube_km_plane.obj"), "ok", r"wrote ", outputs=["{O}/out.png"],
+     forbid=r"degenerate|dropped")
+write("stray_vertex.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 1e15 1e15 1e15\nf 1 2 3 4\n")
+case(5, "quad_beside_stray_vertex", render_model("stray_vertex.obj"), "ok", r"wrote ", outputs=["{O}/out.png"],
+     forbid=r"degenerate|dropped|no triangles")
+
+# ---- 6. text details --------------------------------------------------------------------------------
+write("bom.obj", "\ufeffv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
+case(6, "bom_obj", render_model("bom.obj"), "ok", r"wrote ", outputs=["{O}/out.png"], forbid=r"warning|error")
+write("bom_scene.json", "\ufeff" + json.dumps({"camera": CAMERA, "models": [{"obj": "bom.obj"}], "lights": [LIGHT]}))
+case(6, "bom_scene", render_scene("bom_scene.json"), "ok", r"wrote ", outputs=["{O}/out.png"], forbid=r"warning|error")
+write("no_mtl.obj", "mtllib nowhere.mtl\n" + CUBE_OBJ)
+write("five_hundred.json", json.dumps({"camera": CAMERA, "lights": [LIGHT],
+                                       "models": [{"obj": "no_mtl.obj", "translate": [i % 25, 0, i // 25]} for i in range(500)]}))
+case(6, "warning_repeated_500_times", ["graph", "--scene", "{C}/five_hundred.json"], "fallback",
+     r"nowhere.mtl: file not found; using default materials \(repeated 499 more times\)", max_warnings=2, forbid=r"Failed to load")
+write("plane_x.obj", "v 2 -1 -1\nv 2 1 -1\nv 2 1 1\nv 2 -1 1\nf 1 2 3 4\nf 1 4 3 2\n")
+case(6, "model_in_plane_x_const", render_model("plane_x.obj"), "ok", r"wrote ", outputs=["{O}/out.png"],
+     covered=["{O}/out.png", 0.1])
+
+# ---- 7. images: truncation and corruption -----------------------------------------------------------
+good = png(16, 16)
+idat = good.index(b"IDAT")
+corrupt = bytearray(good)
+corrupt[idat + 10] ^= 0x55  # inside the compressed data; the CRC no longer matches
+write("corrupt.png", bytes(corrupt))
+write("truncated.png", good[:len(good) // 2])
+for name in ("corrupt", "truncated"):
+    write(name + "_texture.obj", f"mtllib {name}_texture.mtl\nusemtl m\n" + CUBE_OBJ)
+    write(name + "_texture.mtl", f"newmtl m\nKd 1 1 1\nmap_Kd {name}.png\n")
+case(7, "png_corrupt_idat", render_model("corrupt_texture.obj"), "fallback",
+     r"warning: {C}/corrupt.png: corrupt: CRC mismatch in chunk IDAT at byte [0-9]+; using a checker texture",
+     outputs=["{O}/out.png"])
+case(7, "png_truncated", render_model("truncated_texture.obj"), "fallback",
+     r"warning: {C}/truncated.png: truncated: chunk IDAT at byte [0-9]+ needs [0-9]+ bytes.*; using a checker texture",
+     outputs=["{O}/out.png"])
+hdr = radiance(16, 8)
+write("truncated.hdr", hdr[:len(hdr) - 100])
+scene("env_truncated.json", environment={"map": "truncated.hdr"})
+case(7, "hdr_truncated", render_scene("env_truncated.json", more=[*ENV_SMALL]), "error",
+     r"{C}/truncated.hdr: truncated: the decoder needed more than the file's [0-9]+ bytes", absent=["{O}/out.png"])
+write("sparse.exr", exr((0, 0, 1, 0), (0, 0, 16383, 8191)))
+scene("env_sparse_exr.json", environment={"map": "sparse.exr"})
+case(7, "exr_display_window_huge", render_scene("env_sparse_exr.json", more=[*ENV_SMALL]), "error",
+     r"{C}/sparse.exr: display window 16384x8192 is [0-9]+ times the 2x1 data window", timeout=10,
+     absent=["{O}/out.png"])
+write("small.exr", exr((0, 0, 3, 1), (0, 0, 3, 1)))
+write("truncated.exr", open(os.path.join(C, "small.exr"), "rb").read()[:-20])
+scene("env_truncated_exr.json", environment={"map": "truncated.exr"})
+case(7, "exr_truncated", render_scene("env_truncated_exr.json", more=[*ENV_SMALL]), "error",
+     r"{C}/truncated.exr: ", absent=["{O}/out.png"])
+
+# ---- 8. scene values that failed late or vanished ---------------------------------------------------
+write("overflow_number.json", '{"camera": {"position": [1e400, 0, 0]}}')
+case(8, "number_1e400", render_scene("overflow_number.json"), "error",
+     r"overflow_number.json: invalid JSON: number overflow parsing '1e400'")
+scene("huge_camera.json", camera={"position": [1e30, 2, 4], "target": [0, 0, 0]})
+case(8, "camera_position_1e30", render_scene("huge_camera.json"), "error",
+     r"huge_camera.json: camera.position: 1e\+30 is too far from the origin")
+scene("huge_light.json", lights=[{"type": "point", "position": [0, 1e35, 0]}])
+case(8, "light_position_1e35", render_scene("huge_light.json"), "error",
+     r"huge_light.json: lights\[0\].position: 1e\+35 is too far from the origin")
+scene("huge_intensity.json", lights=[dict(LIGHT, intensity=1e30)])
+case(8, "light_intensity_1e30", render_scene("huge_intensity.json"), "error",
+     r"huge_intensity.json: lights\[0\].intensity: 1e\+30 is outside \[0, 1e\+09\]")
+scene("huge_scale.json", models=[{"primitive": "cube", "scale": 1e30}])
+case(8, "model_scale_1e30", render_scene("huge_scale.json"), "error", r"huge_scale.json: models\[0\].scale: 1e\+30")
+write("big_18.obj", "v 0 0 0\nv 1e18 0 0\nv 0 1e18 0\nf 1 2 3\n")
+write("placed_too_far.json", json.dumps({"models": [{"obj": "big_18.obj", "scale": 1e6}], "lights": [LIGHT]}))
+case(8, "model_placed_beyond_1e18", render_scene("placed_too_far.json"), "error",
+     r"placed_too_far.json: models\[0\]: placed up to 1e\+24 m from the origin, beyond the 1e\+18 m limit")
+scene("far_3e38.json", camera=dict(CAMERA, far=3e38))
+case(8, "far_3e38", render_scene("far_3e38.json"), "error", r"far_3e38.json: camera.far: 3e\+38 is beyond the 1e\+07 m maximum")
+scene("near_tiny.json", camera=dict(CAMERA, near=1e-30, far=1e30))
+case(8, "near_1e-30_far_1e30", render_scene("near_tiny.json"), "error", r"near_tiny.json: camera.near: 1e-30 is below")
+scene("depth_ratio.json", camera=dict(CAMERA, near=1e-5, far=1e5))
+case(8, "far_over_near_1e10", render_scene("depth_ratio.json"), "error", r"depth_ratio.json: camera.far: far / near is 1e\+10")
+scene("description_number.json", description=42)
+case(8, "description_not_string", render_scene("description_number.json"), "error",
+     r"description_number.json: description: expected a string")
+for r in ("1e6", "1e30"):
+    scene(f"range_{r}.json", ambient=0, camera={"position": [1.2, 0.9, 1.6], "target": [0, 0, 0]}, lights=[{"type": "point", "position": [2, 2, 3], "intensity": 20, "range": float(r)}])
+    case(8, f"point_light_range_{r}", render_scene(f"range_{r}.json", more=["--local-lights", "fullscreen"]), "ok",
+         r"wrote ", outputs=["{O}/out.png"], covered=["{O}/out.png", 0.1])
+case(8, "bench_vary_empty", ["bench", "--scene", "{C}/plain.json", "--vary", "", "--timings-json", "{O}/b.json"], "error",
+     r"--vary '': empty", absent=["{O}/b.json"])
+case(8, "bench_vary_blank", ["bench", "--scene", "{C}/plain.json", "--vary", "  ", "--timings-json", "{O}/b.json"], "error",
+     r"--vary '  ': empty", absent=["{O}/b.json"])
+
+with open(os.path.join(C, "manifest.json"), "w") as f:
+    json.dump(cases, f, indent=1)
+print(f"{len(cases)} cases in {C}")

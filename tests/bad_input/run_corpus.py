@@ -1,0 +1,126 @@
+#!/usr/bin/env python3
+"""run_corpus.py LIGHTPASS CORPUS_DIR OUT_DIR [CLASS...]: runs lightpass on every case of the bad-input
+corpus (make_corpus.py) of the given classes and checks the promise of README "Bad input":
+  - no hang (each run under a timeout) and no crash (no exit by a signal);
+  - an error case exits 1 with exactly one "lightpass: error:" line on stderr, which matches the case's
+    regex (the file, and field or line, and what is wrong), no GL error lines, and leaves no file
+    behind in its output folder (no partial output, no temporary);
+  - a fallback case exits 0 with its warning; an ok case exits 0 without the forbidden words;
+  - outputs the case names exist after success and are absent after failure.
+Prints one line per case and "corpus ok: N cases" when all pass."""
+import json, os, re, resource, shutil, signal, struct, subprocess, sys, zlib
+
+lightpass, corpus, out_root = sys.argv[1], os.path.abspath(sys.argv[2]), os.path.abspath(sys.argv[3])
+classes = {int(c) for c in sys.argv[4:]}
+cases = [c for c in json.load(open(os.path.join(corpus, "manifest.json"))) if not classes or c["cls"] in classes]
+
+
+def read_png(path):
+    data = open(path, "rb").read()
+    pos, idat = 8, b""
+    while pos < len(data):
+        n, kind = struct.unpack(">I4s", data[pos:pos + 8])
+        body = data[pos + 8:pos + 8 + n]
+        if kind == b"IHDR": w, h, _, ctype = struct.unpack(">IIBB", body[:10])
+        if kind == b"IDAT": idat += body
+        pos += 12 + n
+    raw, bpp = zlib.decompress(idat), 4 if ctype == 6 else 3
+    stride, rows, prev = w * bpp, [], bytearray(w * bpp)
+    for y in range(h):
+        f, line = raw[y * (stride + 1)], bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
+        for i in range(stride):
+            a = line[i - bpp] if i >= bpp else 0
+            b, c = prev[i], prev[i - bpp] if i >= bpp else 0
+            if f == 1: line[i] = (line[i] + a) & 255
+            elif f == 2: line[i] = (line[i] + b) & 255
+            elif f == 3: line[i] = (line[i] + (a + b) // 2) & 255
+            elif f == 4:
+                p = a + b - c; pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
+                line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
+        rows.append(line); prev = line
+    return w, h, bpp, rows
+
+
+def lit_fraction(path):
+    """Fraction of pixels clearly brighter than the near-black background."""
+    w, h, bpp, rows = read_png(path)
+    lit = sum(1 for row in rows for x in range(w) if max(row[x * bpp:x * bpp + 3]) > 40)
+    return lit / (w * h)
+
+
+def files_under(folder):
+    return sorted(os.path.relpath(os.path.join(d, f), folder) for d, _, fs in os.walk(folder) for f in fs)
+
+
+def run(case):
+    out = os.path.join(out_root, case["name"])
+    shutil.rmtree(out, ignore_errors=True)
+    os.makedirs(out)
+    sub = lambda s: s.replace("{C}", corpus).replace("{O}", out)
+    for d in case.get("make_dirs", []):
+        os.makedirs(sub(d))
+    before = files_under(out)
+    args = [lightpass] + [sub(a) for a in case["args"]]
+    env = dict(os.environ, **case.get("env", {}))
+    limit = case.get("fsize_limit")
+
+    def limits():  # a full disk: writes past `limit` bytes fail with EFBIG (SIGXFSZ ignored)
+        signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
+        resource.setrlimit(resource.RLIMIT_FSIZE, (limit, limit))
+
+    try:
+        p = subprocess.run(args, capture_output=True, text=True, errors="replace", env=env, timeout=case.get("timeout", 30),
+                           preexec_fn=limits if limit else None, stdin=subprocess.DEVNULL)
+    except subprocess.TimeoutExpired:
+        return "hang: no exit within the timeout"
+    err = p.stderr
+    regex = case["regex"].replace("{C}", re.escape(corpus)).replace("{O}", re.escape(out))
+    if p.returncode < 0:
+        return f"crash: killed by signal {-p.returncode}: {err.strip()[-300:]}"
+    errors = [l for l in err.splitlines() if l.startswith("lightpass: error:")]
+    if re.search(r"^lightpass: (error|warning): GL:", err, re.M):
+        return f"raw GL message on stderr: {err.strip()[-300:]}"
+    if case["expect"] == "error":
+        if p.returncode != 1:
+            return f"exit code {p.returncode}, want 1: {err.strip()[-300:]}"
+        if len(errors) != 1:
+            return f"want exactly one error line, got {len(errors)}: {err.strip()[-300:]}"
+        if not re.search(regex, errors[0]):
+            return f"error does not match /{regex}/: {errors[0]}"
+        left = [f for f in files_under(out) if f not in before]
+        if left:
+            return f"left files behind after the error: {left}"
+    else:
+        if p.returncode != 0 or errors:
+            return f"exit code {p.returncode}, want 0: {err.strip()[-300:]}"
+        if not re.search(regex, err + p.stdout, re.S):
+            return f"output does not match /{regex}/: {(err + p.stdout).strip()[-400:]}"
+        if case.get("forbid") and re.search(case["forbid"], err):
+            return f"stderr matches the forbidden /{case['forbid']}/: {err.strip()[-300:]}"
+        for o in case.get("outputs", []):
+            if not os.path.isfile(sub(o)) or os.path.getsize(sub(o)) == 0:
+                return f"missing output {sub(o)}"
+        if "max_warnings" in case and err.count("warning:") > case["max_warnings"]:
+            return f"{err.count('warning:')} warning lines, want at most {case['max_warnings']}"
+        if case.get("covered"):
+            png, want = case["covered"]
+            got = lit_fraction(sub(png))
+            if got < want:
+                return f"{sub(png)}: only {got:.0%} of the image is lit, want at least {want:.0%}"
+        if [f for f in files_under(out) if ".tmp-" in f]:
+            return "left a temporary file behind"
+    for a in case.get("absent", []):
+        if os.path.exists(sub(a)):
+            return f"{sub(a)} exists after a failed run"
+    return None
+
+
+failed = 0
+for case in cases:
+    problem = run(case)
+    print(f"{'FAIL' if problem else 'ok  '} class {case['cls']} {case['name']}" + (f": {problem}" if problem else ""))
+    failed += bool(problem)
+if failed:
+    print(f"corpus FAILED: {failed} of {len(cases)} cases")
+    sys.exit(1)
+print(f"corpus ok: {len(cases)} cases")

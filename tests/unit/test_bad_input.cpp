@@ -1,0 +1,337 @@
+// Bad input, parser by parser (README "Bad input"): special files, numbers tinyobjloader would read as
+// 0, indices that would wrap, degenerate triangles judged by their own size, a UTF-8 BOM, truncated
+// and corrupt images, an EXR display window around almost nothing, scene values out of range,
+// repeated warnings and all-or-nothing outputs. The CLI side is tests/bad_input/.
+#include <gtest/gtest.h>
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfOutputFile.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "engine/core/error.hpp"
+#include "engine/core/log.hpp"
+#include "engine/gl/limits.hpp"
+#include "engine/io/file_check.hpp"
+#include "engine/io/image_io.hpp"
+#include "engine/io/obj_loader.hpp"
+#include "engine/io/obj_text.hpp"
+#include "engine/scene/scene_loader.hpp"
+
+using namespace lp;
+namespace fs = std::filesystem;
+
+namespace {
+
+template <typename F>
+std::string errorOf(F&& f) {
+    try {
+        f();
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "";
+}
+
+bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+// A fresh empty folder per test, removed afterwards.
+class BadInput : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir = fs::temp_directory_path() / ("lightpass-bad-" + std::to_string(getpid()) + "-" +
+                                           ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::remove_all(dir);
+        fs::create_directories(dir);
+    }
+    void TearDown() override { fs::remove_all(dir); }
+    fs::path write(const std::string& name, const std::string& bytes) const {
+        std::ofstream(dir / name, std::ios::binary) << bytes;
+        return dir / name;
+    }
+    std::string read(const fs::path& p) const {
+        std::ifstream in(p, std::ios::binary);
+        return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    }
+    fs::path dir;
+};
+
+}  // namespace
+
+// ---- 1. special files ---------------------------------------------------------------------------------
+
+TEST_F(BadInput, FifoDeviceFolderAndHugeFileAreRefusedWithoutReading) {
+    const fs::path fifo = dir / "pipe.obj";
+    ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+    const auto t0 = std::chrono::steady_clock::now();  // no writer: a read would block forever
+    EXPECT_EQ(errorOf([&] { loadObj(fifo); }), fifo.string() + ": is a FIFO, not a regular file");
+    EXPECT_EQ(errorOf([&] { loadScene(fifo); }), fifo.string() + ": is a FIFO, not a regular file");
+    EXPECT_EQ(errorOf([&] { loadImage8(fifo); }), fifo.string() + ": is a FIFO, not a regular file");
+    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 5.0);
+    EXPECT_EQ(errorOf([&] { loadObj("/dev/zero"); }), "/dev/zero: is a character device, not a regular file");
+    EXPECT_EQ(errorOf([&] { loadScene(dir); }), dir.string() + ": is a folder, not a scene file");
+    EXPECT_EQ(errorOf([&] { loadObj(dir); }), dir.string() + ": is a folder, not an OBJ file");
+    EXPECT_EQ(errorOf([&] { loadObj(dir / "none.obj"); }), (dir / "none.obj").string() + ": file not found");
+    const fs::path big = write("big.obj", std::string(2000, '#'));
+    EXPECT_EQ(errorOf([&] { readFileChecked(big, 1000, "an OBJ file"); }),
+              big.string() + ": file is 2000 bytes, over the 1000-byte limit");
+}
+
+TEST_F(BadInput, MtllibNamingAFifoIsAnErrorNamingBoth) {
+    ASSERT_EQ(mkfifo((dir / "m.mtl").c_str(), 0600), 0);
+    const fs::path obj = write("a.obj", "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    EXPECT_EQ(errorOf([&] { loadObj(obj); }), obj.string() + ": mtllib " + (dir / "m.mtl").string() + ": is a FIFO, not a regular file");
+}
+
+// ---- 4. numbers and indices ----------------------------------------------------------------------------
+
+TEST(ObjText, UnparsableNumbersAndWrappingIndicesNameFileAndLine) {
+    auto scanError = [](const std::string& text) { return errorOf([&] { scanObjText(text, "m.obj"); }); };
+    EXPECT_EQ(scanError("v 0 0 0\nv a b c\n"), "m.obj:2: v: 'a' is not a number");
+    EXPECT_EQ(scanError("v 0 0 0\nv 1 2\n"), "m.obj:2: v needs 3 numbers, got 2");
+    EXPECT_EQ(scanError("vn 0 0 1x\n"), "m.obj:1: vn: '1x' is not a number");
+    EXPECT_EQ(scanError("v 0 0 0\nf 1 2 4294967296\n"), "m.obj:2: index 4294967296 is out of range");
+    EXPECT_EQ(scanError("f 1/1/-99999999999 2 3\n"), "m.obj:1: index -99999999999 is out of range");
+    EXPECT_EQ(scanError("f 1 2 x\n"), "m.obj:1: 'x' is not a vertex index");
+    EXPECT_EQ(scanError("f 1 0 2\n"), "m.obj:1: index 0 (OBJ indices start at 1)");
+    EXPECT_EQ(scanError("v 1 2 3 # comment a b\r\nf 1//2 -1 3/4\n"), "");  // comments, CRLF, all corner forms
+}
+
+TEST(ObjText, NanAndOverflowPositionsAreKeptAsNonFiniteAndCounted) {
+    ObjTextScan scan = scanObjText("v 0 0 0\nv nan 7 7\nv 1e39 0 0\nvt inf 0\n", "m.obj");
+    ASSERT_EQ(scan.positions.size(), 9u);
+    EXPECT_TRUE(std::isnan(scan.positions[3]));
+    EXPECT_TRUE(std::isinf(scan.positions[6]));
+    EXPECT_EQ(scan.nonFinitePositions, 2u);
+    EXPECT_EQ(scan.firstNonFinitePositionLine, 2u);
+    EXPECT_EQ(scan.nonFiniteAttributes, 1u);
+    EXPECT_EQ(scan.firstNonFiniteAttributeLine, 4u);
+}
+
+TEST(ObjText, BadMtlNumbersFallBackToTheDefaultWithALineNumber) {
+    std::vector<std::string> warnings;
+    const std::string out = sanitizeMtlText("newmtl m\nKd nan nan nan\nNs abc\nd 1e999\nKs 0.5 0.5 0.5\n", "m.mtl", warnings);
+    ASSERT_EQ(warnings.size(), 3u);
+    EXPECT_EQ(warnings[0], "m.mtl:2: Kd: 'nan' is not a finite number; using the default 0.8 0.8 0.8");
+    EXPECT_EQ(warnings[1], "m.mtl:3: Ns: 'abc' is not a number; using the default 32.000000");
+    EXPECT_EQ(warnings[2], "m.mtl:4: d: '1e999' is not a finite number; line ignored");
+    EXPECT_EQ(out, "newmtl m\nKd 0.8 0.8 0.8\nNs 32.000000\nKs 0.5 0.5 0.5\n");
+}
+
+TEST_F(BadInput, ObjNanVertexDropsItsTriangleAndNanKdUsesTheDefault) {
+    write("m.mtl", "newmtl red\nKd nan nan nan\n");
+    const fs::path obj = write("a.obj", "mtllib m.mtl\nusemtl red\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv nan 7 7\nf 1 2 3\nf 1 2 4\n");
+    MeshLoadReport report;
+    MeshData mesh = loadObj(obj, &report);
+    EXPECT_EQ(mesh.indices.size(), 3u);
+    EXPECT_EQ(report.droppedNonFinite, 1u) << "tinyobjloader alone reads nan as 0 and keeps the triangle";
+    ASSERT_FALSE(mesh.materials.empty());
+    EXPECT_EQ(mesh.materials[0].diffuse, glm::vec3(0.8f));
+}
+
+TEST_F(BadInput, ObjIndexTooLargeForAnIntIsAnErrorNotTheLastVertex) {
+    const fs::path obj = write("a.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4294967299\n");
+    EXPECT_EQ(errorOf([&] { loadObj(obj); }), obj.string() + ":4: index 4294967299 is out of range");
+}
+
+// ---- 5. degenerate triangles by their own size -----------------------------------------------------------
+
+TEST_F(BadInput, MillimetreCubeBesideKilometrePlaneKeepsEveryTriangle) {
+    std::string text;
+    for (int i = 0; i < 8; ++i)
+        text += "v " + std::to_string((i & 1) ? 0.0025 : -0.0025) + " " + std::to_string((i & 2) ? 0.0025 : -0.0025) + " " +
+                std::to_string((i & 4) ? 0.0025 : -0.0025) + "\n";
+    text += "f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
+    text += "v -10000 -1 -10000\nv 10000 -1 -10000\nv 10000 -1 10000\nv -10000 -1 10000\nf 9 12 11 10\n";
+    MeshLoadReport report;
+    MeshData mesh = loadObj(write("a.obj", text), &report);
+    EXPECT_EQ(report.droppedDegenerate, 0u);
+    EXPECT_EQ(mesh.indices.size(), 3u * 14u);
+}
+
+TEST_F(BadInput, QuadBesideAStrayVertexFarAwayIsKept) {
+    MeshLoadReport report;
+    MeshData mesh = loadObj(write("a.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 1e15 1e15 1e15\nf 1 2 3 4\n"), &report);
+    EXPECT_EQ(report.droppedDegenerate, 0u);
+    EXPECT_EQ(mesh.indices.size(), 6u);
+}
+
+TEST_F(BadInput, VertexBeyond1e18CountsAsInfAndIsDroppedWithItsTriangles) {
+    MeshLoadReport report;
+    MeshData mesh = loadObj(write("a.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1e30 0 0\nf 1 2 3\nf 1 4 3\n"), &report);
+    EXPECT_EQ(mesh.indices.size(), 3u);
+    EXPECT_EQ(report.droppedNonFinite, 1u);
+    EXPECT_TRUE(std::isinf(scanObjText("v 1e19 0 0\n", "a.obj").positions[0]));
+    EXPECT_EQ(scanObjText("v 1e18 0 0\n", "a.obj").positions[0], 1e18f);
+}
+
+TEST_F(BadInput, SliverIsStillDegenerateAtAnyScale) {
+    // Bound: area / longest edge^2 below 1e-10 is a sliver, for a 1 m and a 1 km triangle alike.
+    for (double scale : {1.0, 1000.0}) {
+        const std::string s = std::to_string(scale), thin = std::to_string(scale * 1e-12);
+        MeshLoadReport report;
+        loadObj(write("a.obj", "v 0 0 0\nv " + s + " 0 0\nv 0 " + s + " 0\nv 0 0 " + thin + "\nf 1 2 3\nf 1 4 2\n"), &report);
+        EXPECT_EQ(report.droppedDegenerate, 1u) << "scale " << scale;
+    }
+}
+
+// ---- 6. text details -------------------------------------------------------------------------------------
+
+TEST_F(BadInput, Utf8BomKeepsTheFirstVertex) {
+    MeshLoadReport report;
+    MeshData mesh = loadObj(write("a.obj", "\xEF\xBB\xBFv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"), &report);
+    EXPECT_EQ(mesh.indices.size(), 3u);
+    EXPECT_TRUE(report.warnings.empty()) << report.warnings.front();
+    EXPECT_EQ(readFileChecked(write("b.txt", "\xEF\xBB\xBFok"), 100, "a file", true), "ok");
+}
+
+TEST_F(BadInput, ModelInPlaneXConstIsFramedFaceOn) {
+    Scene s = sceneForModel(write("a.obj", "v 2 -1 -1\nv 2 1 -1\nv 2 1 1\nv 2 -1 1\nf 1 2 3 4\n"));
+    const glm::vec3 view = glm::normalize(s.camera.target - s.camera.position);
+    EXPECT_GT(std::abs(view.x), 0.9f) << "looking along x, at the face of the plane";
+}
+
+// ---- 7. images -------------------------------------------------------------------------------------------
+
+TEST_F(BadInput, PngWithCorruptDataOrCutShortIsRefusedWithTheReason) {
+    const fs::path good = dir / "good.png";
+    Image8 img{16, 16, std::vector<uint8_t>(16 * 16 * 4)};
+    for (size_t i = 0; i < img.rgba.size(); ++i) img.rgba[i] = uint8_t(i * 7);
+    writePng(good, img);
+    std::string bytes = read(good);
+    std::string corrupt = bytes;
+    corrupt[bytes.find("IDAT") + 12] ^= 0x55;
+    const fs::path bad = write("corrupt.png", corrupt), cut = write("cut.png", bytes.substr(0, bytes.size() / 2));
+    EXPECT_TRUE(contains(errorOf([&] { loadImage8(bad); }), bad.string() + ": corrupt: CRC mismatch in chunk IDAT"));
+    const std::string e = errorOf([&] { loadImage8(cut); });
+    EXPECT_TRUE(contains(e, cut.string() + ": truncated: chunk IDAT")) << e;
+    EXPECT_EQ(loadImage8(good).rgba, img.rgba);
+}
+
+TEST_F(BadInput, TruncatedRadianceIsRefusedNotZeroFilled) {
+    std::string hdr = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 8 +X 16\n";
+    for (int i = 0; i < 16 * 8; ++i) hdr += std::string("\x80\x80\x80\x81", 4);
+    EXPECT_EQ(loadHdrImage(write("whole.hdr", hdr)).width, 16);
+    const fs::path cut = write("cut.hdr", hdr.substr(0, hdr.size() - 100));
+    EXPECT_TRUE(contains(errorOf([&] { loadHdrImage(cut); }), cut.string() + ": truncated:"));
+}
+
+TEST_F(BadInput, ExrDisplayWindowFarLargerThanItsDataIsRefused) {
+    const fs::path p = dir / "sparse.exr";
+    {
+        Imf::Header header(Imath::Box2i({0, 0}, {16383, 8191}), Imath::Box2i({0, 0}, {1, 0}));
+        header.channels().insert("R", Imf::Channel(Imf::FLOAT));
+        float px[2] = {1.0f, 2.0f};
+        Imf::FrameBuffer fb;
+        fb.insert("R", Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(px), sizeof(float), 0));
+        Imf::OutputFile file(p.c_str(), header);
+        file.setFrameBuffer(fb);
+        file.writePixels(1);
+    }
+    const auto t0 = std::chrono::steady_clock::now();
+    const std::string e = errorOf([&] { loadHdrImage(p); });
+    EXPECT_TRUE(contains(e, p.string() + ": display window 16384x8192 is ")) << e;
+    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 2.0);
+}
+
+TEST(Downscale, HalvesUntilItFitsAveragingBoxes) {
+    ImageF img{5, 2, {}};
+    for (int i = 0; i < 10; ++i)
+        for (int c = 0; c < 4; ++c) img.rgba.push_back(float(i));
+    ImageF half = downscaleToFit(img, 4);
+    ASSERT_EQ(half.width, 2);
+    ASSERT_EQ(half.height, 1);
+    EXPECT_FLOAT_EQ(half.rgba[0], (0 + 1 + 5 + 6) / 4.0f);
+    EXPECT_FLOAT_EQ(half.rgba[4], (2 + 3 + 4 + 7 + 8 + 9) / 6.0f);  // the odd last column joins the box
+    EXPECT_EQ(downscaleToFit(img, 8).rgba, img.rgba);
+}
+
+// ---- 2. outputs all or nothing ---------------------------------------------------------------------------
+
+TEST_F(BadInput, OutputFilesAppearOnlyOnCommit) {
+    {
+        OutputFiles outputs;
+        outputs.add(dir / "a.txt", "a");
+        outputs.addPng(dir / "b.png", makeCheckerImage(4, 2));
+        // No commit: an error in between leaves nothing, not even the temporaries.
+    }
+    EXPECT_TRUE(fs::is_empty(dir));
+    {
+        OutputFiles outputs;
+        outputs.add(dir / "a.txt", "a");
+        EXPECT_EQ(errorOf([&] { outputs.add(dir / "missing" / "b.txt", "b"); }),
+                  (dir / "missing" / "b.txt").string() + ": folder " + (dir / "missing").string() + " does not exist");
+    }
+    EXPECT_TRUE(fs::is_empty(dir));
+    OutputFiles outputs;
+    outputs.add(dir / "a.txt", "a");
+    outputs.add(dir / "b.txt", "b");
+    outputs.commit();
+    EXPECT_EQ(read(dir / "a.txt"), "a");
+    EXPECT_EQ(read(dir / "b.txt"), "b");
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 2);
+}
+
+TEST(CheckedWrite, FullDiskIsAnError) {
+    EXPECT_EQ(errorOf([] { writeBytesChecked("/dev/full", "x"); }), "No space left on device");
+}
+
+// ---- 3. GPU limits (the check itself; the CLI test drives it with LIGHTPASS_GPU_FREE_BYTES) -----------
+
+TEST(GpuLimits, SizeOverALimitNamesTheSizeAndTheLimit) {
+    gl::RenderTargetLimits limits;
+    limits.maxTextureSize = 8192;
+    limits.maxViewport[0] = limits.maxViewport[1] = 16384;
+    limits.freeBytes = int64_t(1) << 30;
+    EXPECT_EQ(errorOf([&] { gl::requireRenderSizeFits(9000, 100, 0, limits); }),
+              "--size 9000x100: larger than this GPU's limit of 8192 (GL_MAX_TEXTURE_SIZE)");
+    EXPECT_EQ(errorOf([&] { gl::requireRenderSizeFits(4000, 4000, size_t(2) << 30, limits); }),
+              "--size 4000x4000: the frame's render targets need 2.00 GiB, more than the 1.00 GiB this GPU has free");
+    EXPECT_EQ(errorOf([&] { gl::requireRenderSizeFits(8192, 8192, 1 << 20, limits); }), "");
+}
+
+// ---- 8. scene values --------------------------------------------------------------------------------------
+
+TEST(SceneValues, OutOfRangeValuesNameFileAndField) {
+    auto errorFor = [](const std::string& json) { return errorOf([&] { parseScene(json, "s.json", false); }); };
+    EXPECT_EQ(errorFor(R"({"camera": {"position": [1e400, 0, 0]}})"), "s.json: invalid JSON: number overflow parsing '1e400'");
+    EXPECT_EQ(errorFor(R"({"description": 42})"), "s.json: description: expected a string");
+    EXPECT_EQ(errorFor(R"({"description": "fine"})"), "");
+    EXPECT_EQ(errorFor(R"({"camera": {"far": 3e38}})"), "s.json: camera.far: 3e+38 is beyond the 1e+07 m maximum");
+    EXPECT_EQ(errorFor(R"({"camera": {"near": 1e-30, "far": 1e30}})"), "s.json: camera.near: 1e-30 is below the 1e-06 m minimum");
+    EXPECT_TRUE(contains(errorFor(R"({"camera": {"near": 1e-5, "far": 1e5}})"), "s.json: camera.far: far / near is 1e+10"));
+    EXPECT_EQ(errorFor(R"({"camera": {"position": [1e30, 0, 1]}})"),
+              "s.json: camera.position: 1e+30 is too far from the origin (limit +-1e+07 m)");
+    EXPECT_EQ(errorFor(R"({"lights": [{"type": "point", "position": [0, 1e35, 0]}]})"),
+              "s.json: lights[0].position: 1e+35 is too far from the origin (limit +-1e+07 m)");
+    EXPECT_EQ(errorFor(R"({"lights": [{"type": "directional", "intensity": 1e30}]})"),
+              "s.json: lights[0].intensity: 1e+30 is outside [0, 1e+09]");
+    EXPECT_TRUE(contains(errorFor(R"({"models": [{"primitive": "cube", "scale": 1e30}]})"), "s.json: models[0].scale: 1e+30"));
+    // Any finite range is a valid scene: the shading holds at every range (tests/gl).
+    EXPECT_EQ(errorFor(R"({"lights": [{"type": "point", "range": 1e30}]})"), "");
+}
+
+TEST_F(BadInput, ModelPlacedBeyond1e18IsAnErrorNamingTheModel) {
+    write("big.obj", "v 0 0 0\nv 1e18 0 0\nv 0 1e18 0\nf 1 2 3\n");
+    const fs::path scene = write("s.json", R"({"models": [{"primitive": "cube"}, {"obj": "big.obj", "scale": 1e6}]})");
+    EXPECT_EQ(errorOf([&] { loadScene(scene); }), scene.string() + ": models[1]: placed up to 1e+24 m from the origin, beyond the 1e+18 m limit");
+}
+
+TEST(SceneValues, HugeAndTinyDirectionsBecomeFiniteUnitVectors) {
+    Scene s = parseScene(R"({"camera": {"up": [0, 1e-40, 0]},
+                             "lights": [{"type": "directional", "direction": [1e38, -1e38, 1e38]},
+                                        {"type": "directional", "direction": [0, -1e-40, 0]}]})", "s.json", false);
+    for (const auto& l : s.directionalLights) {
+        EXPECT_TRUE(std::isfinite(l.direction.x) && std::isfinite(l.direction.y) && std::isfinite(l.direction.z));
+        EXPECT_NEAR(glm::length(l.direction), 1.0f, 1e-6f);
+    }
+    EXPECT_NEAR(s.camera.up.y, 1.0f, 1e-6f);
+    EXPECT_EQ(errorOf([] { parseScene(R"({"lights": [{"type": "directional", "direction": [0, 0, 0]}]})", "s.json", false); }),
+              "s.json: lights[0].direction: is the zero vector");
+}
