@@ -87,6 +87,10 @@ void requireOutputs(const std::vector<std::string>& paths) {
 }
 
 int commandRender(const Options& o) {
+    // -q: errors only, so no table either (the JSON still has every number).
+    auto say = [&](const char* format, auto... args) {
+        if (!o.quiet) std::printf(format, args...);
+    };
     requireOutputs({o.out, o.exr, o.timingsJson});
     Scene scene = loadFromOptions(o);
     RenderSettings settings = settingsFromOptions(o);
@@ -112,10 +116,10 @@ int commandRender(const Options& o) {
         gl::ShaderLibrary shaders;
         compute = measureComputeBandwidth(shaders);
         fragment = measureFragmentBandwidth(shaders);
-        std::printf("bandwidth: compute copy %.1f GB/s, fragment fill %.1f GB/s (RGBA32F 3840x2160, median of 30)\n",
+        say("bandwidth: compute copy %.1f GB/s, fragment fill %.1f GB/s (RGBA32F 3840x2160, median of 30)\n",
                     compute.bytesPerSecond * 1e-9, fragment.bytesPerSecond * 1e-9);
     }
-    std::printf("%-16s %10s %10s %10s%s  (GPU ms over %d frames, %s%s)\n", "pass", "median", "min", "max",
+    say("%-16s %10s %10s %10s%s  (GPU ms over %d frames, %s%s)\n", "pass", "median", "min", "max",
                 o.floors ? "   floor ms  meas/floor" : "", o.frames, sizeLabel(settings).c_str(),
                 ctx->isSoftware() ? ", software rasteriser: not meaningful" : "");
     nlohmann::json j;
@@ -131,18 +135,18 @@ int commandRender(const Options& o) {
     for (const auto& name : timers.passOrder()) {
         const auto& s = timers.samples(name);
         double lo = *std::min_element(s.begin(), s.end()), hi = *std::max_element(s.begin(), s.end());
-        std::printf("%-16s %10.4f %10.4f %10.4f", name.c_str(), timers.median(name), lo, hi);
+        say("%-16s %10.4f %10.4f %10.4f", name.c_str(), timers.median(name), lo, hi);
         j["passes"][name] = {{"median_ms", timers.median(name)}, {"min_ms", lo}, {"max_ms", hi}, {"samples", s.size()}};
         const size_t bytes = renderer.graph().passTrafficBytes(name);
         if (o.floors && bytes > 0) {
             const fg::PassKind kind = renderer.graph().passKind(name);  // what the pass declared
             const double floorMs = passFloorMs(kind, bytes, compute, fragment);
-            std::printf(" %11.4f %10.1fx", floorMs, timers.median(name) / floorMs);
+            say(" %11.4f %10.1fx", floorMs, timers.median(name) / floorMs);
             j["passes"][name]["bytes"] = bytes;
             j["passes"][name]["floor_ms"] = floorMs;
             j["passes"][name]["floor_basis"] = floorBasis(kind);
         }
-        std::printf("\n");
+        say("\n");
     }
     for (const auto& r : renderer.graph().report())
         if (r.culled) j["culled"][r.name] = r.reason;
@@ -152,7 +156,7 @@ int commandRender(const Options& o) {
     // GPU memory of textures: the pool (every transient, shadow maps included, after reuse) and
     // what outlives frames outside it (environment cubes, IBL bakes).
     const size_t poolBytes = renderer.pool().totalBytes(), persistentBytes = renderer.persistentTextureBytes();
-    std::printf("texture memory: %.2f MiB pooled transients + %.2f MiB persistent (environment, IBL)\n",
+    say("texture memory: %.2f MiB pooled transients + %.2f MiB persistent (environment, IBL)\n",
                 poolBytes / 1048576.0, persistentBytes / 1048576.0);
     j["memory"] = {{"pool_bytes", poolBytes}, {"persistent_bytes", persistentBytes},
                    {"total_bytes", poolBytes + persistentBytes},
@@ -165,8 +169,8 @@ int commandRender(const Options& o) {
     if (!o.exr.empty()) outputs.addExr(o.exr, renderer.readHdr());
     if (!o.timingsJson.empty()) outputs.add(o.timingsJson, j.dump(2) + "\n");
     outputs.commit();
-    if (!o.out.empty()) std::printf("wrote %s\n", o.out.c_str());
-    if (!o.exr.empty()) std::printf("wrote %s\n", o.exr.c_str());
+    if (!o.out.empty()) say("wrote %s\n", o.out.c_str());
+    if (!o.exr.empty()) say("wrote %s\n", o.exr.c_str());
     return 0;
 }
 

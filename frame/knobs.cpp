@@ -496,6 +496,7 @@ std::vector<KnobEntry> makeKnobTable() {
         KnobEntry k = boolKnob("globes", [](auto& s) -> auto& { return s.localLights.globes; });
         k.flags = {setsFlag("--globes", 1)};
         k.help = "draw each local light as a small flat-lit globe";
+        k.panel = {PanelSection::Lighting, PanelWidget::Checkbox, "light globes", ""};
         t.push_back(std::move(k));
     }
     {
