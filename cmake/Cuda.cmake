@@ -8,8 +8,20 @@ if(LIGHTPASS_WITH_CUDA)
   check_language(CUDA)
   if(CMAKE_CUDA_COMPILER)
     # Must be set before enable_language, which otherwise caches the compiler's default (sm_75).
+    # The GPUs users have: the ones in this machine when nvidia-smi can say, else Turing to Hopper
+    # as SASS plus compute_90 PTX that newer GPUs JIT. -DCMAKE_CUDA_ARCHITECTURES=... overrides.
     if(NOT DEFINED CMAKE_CUDA_ARCHITECTURES)
-      set(CMAKE_CUDA_ARCHITECTURES 90)  # H100 SASS + compute_90 PTX; newer GPUs JIT the PTX
+      execute_process(COMMAND nvidia-smi --query-gpu=compute_cap --format=csv,noheader
+        OUTPUT_VARIABLE lp_caps RESULT_VARIABLE lp_caps_rc ERROR_QUIET)
+      string(REGEX MATCHALL "[0-9]+\\.[0-9]+" lp_caps "${lp_caps}")
+      if(lp_caps_rc EQUAL 0 AND lp_caps)
+        string(REPLACE "." "" lp_caps "${lp_caps}")
+        list(REMOVE_DUPLICATES lp_caps)
+        set(CMAKE_CUDA_ARCHITECTURES ${lp_caps})
+        message(STATUS "lightpass: CUDA for this machine's GPUs (${lp_caps})")
+      else()
+        set(CMAKE_CUDA_ARCHITECTURES "75-real;80-real;86-real;89-real;90")
+      endif()
     endif()
     enable_language(CUDA)
     find_package(CUDAToolkit)
