@@ -399,14 +399,20 @@ void writePng(const fs::path& path, const Image8& img) {
     writeFileAtomically(path, [&](const fs::path& tmp) { writeBytesChecked(tmp, bytes); });
 }
 
-void writeExr(const fs::path& path, const ImageF& img) {
+namespace {
+// The EXR bytes of `img`, or an error naming `path`.
+std::string encodeExrFor(const fs::path& path, const ImageF& img) {
     requireSize(path, img.width, img.height, img.rgba.size());
-    std::string bytes;
     try {
-        bytes = encodeExr(img);
+        return encodeExr(img);
     } catch (const std::exception& e) {
         fail(path, std::string("cannot write: ") + e.what());
     }
+}
+}  // namespace
+
+void writeExr(const fs::path& path, const ImageF& img) {
+    const std::string bytes = encodeExrFor(path, img);
     writeFileAtomically(path, [&](const fs::path& tmp) { writeBytesChecked(tmp, bytes); });
 }
 
@@ -445,14 +451,7 @@ void OutputFiles::addPng(const fs::path& path, const Image8& img) {
 }
 
 void OutputFiles::addExr(const fs::path& path, const ImageF& img) {
-    requireSize(path, img.width, img.height, img.rgba.size());
-    std::string bytes;
-    try {
-        bytes = encodeExr(img);
-    } catch (const std::exception& e) {
-        fail(path, std::string("cannot write: ") + e.what());
-    }
-    add(path, bytes);
+    add(path, encodeExrFor(path, img));
 }
 
 void OutputFiles::commit() {

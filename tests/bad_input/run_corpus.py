@@ -8,37 +8,14 @@ corpus (make_corpus.py) of the given classes and checks the promise of README "B
   - a fallback case exits 0 with its warning; an ok case exits 0 without the forbidden words;
   - outputs the case names exist after success and are absent after failure.
 Prints one line per case and "corpus ok: N cases" when all pass."""
-import json, os, re, resource, shutil, signal, struct, subprocess, sys, zlib
+import json, os, re, resource, shutil, signal, subprocess, sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "cli"))
+from png_pixel import read_png  # noqa: E402 (the one PNG reader of the tests)
 
 lightpass, corpus, out_root = sys.argv[1], os.path.abspath(sys.argv[2]), os.path.abspath(sys.argv[3])
 classes = {int(c) for c in sys.argv[4:]}
 cases = [c for c in json.load(open(os.path.join(corpus, "manifest.json"))) if not classes or c["cls"] in classes]
-
-
-def read_png(path):
-    data = open(path, "rb").read()
-    pos, idat = 8, b""
-    while pos < len(data):
-        n, kind = struct.unpack(">I4s", data[pos:pos + 8])
-        body = data[pos + 8:pos + 8 + n]
-        if kind == b"IHDR": w, h, _, ctype = struct.unpack(">IIBB", body[:10])
-        if kind == b"IDAT": idat += body
-        pos += 12 + n
-    raw, bpp = zlib.decompress(idat), 4 if ctype == 6 else 3
-    stride, rows, prev = w * bpp, [], bytearray(w * bpp)
-    for y in range(h):
-        f, line = raw[y * (stride + 1)], bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
-        for i in range(stride):
-            a = line[i - bpp] if i >= bpp else 0
-            b, c = prev[i], prev[i - bpp] if i >= bpp else 0
-            if f == 1: line[i] = (line[i] + a) & 255
-            elif f == 2: line[i] = (line[i] + b) & 255
-            elif f == 3: line[i] = (line[i] + (a + b) // 2) & 255
-            elif f == 4:
-                p = a + b - c; pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
-                line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
-        rows.append(line); prev = line
-    return w, h, bpp, rows
 
 
 def lit_fraction(path):

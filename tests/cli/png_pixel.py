@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
 # png_pixel.py FILE FX FY: prints "R G B" of the pixel at fractions (FX, FY) of an 8-bit RGB(A) PNG.
+# read_png() is also imported by tests/bad_input/run_corpus.py.
 import struct, sys, zlib
 
 def read_png(path):
@@ -28,6 +29,7 @@ def read_png(path):
         rows.append(line); prev = line
     return w, h, bpp, rows
 
-w, h, bpp, rows = read_png(sys.argv[1])
-x, y = int(float(sys.argv[2]) * (w - 1)), int(float(sys.argv[3]) * (h - 1))
-print(*rows[y][x * bpp:x * bpp + 3])
+if __name__ == "__main__":
+    w, h, bpp, rows = read_png(sys.argv[1])
+    x, y = int(float(sys.argv[2]) * (w - 1)), int(float(sys.argv[3]) * (h - 1))
+    print(*rows[y][x * bpp:x * bpp + 3])
