@@ -31,6 +31,7 @@ int modeOf(DebugView v) {
         case DebugView::WorldPosition: return 9;
         case DebugView::EyeVector: return 10;
         case DebugView::DepthFitted: return 11;
+        case DebugView::Tangent: return 12;
         default: return 0;
     }
 }
@@ -121,6 +122,7 @@ glm::vec2 sceneDepthRange(const FrameData& frame) {
 GBufferChannels channelsForView(DebugView view) {
     GBufferChannels c;
     c.texcoord = view == DebugView::Texcoords;
+    c.tangent = view == DebugView::Tangent;
     return c;
 }
 
@@ -144,8 +146,8 @@ fg::ResourceId addDebugViewPass(fg::FrameGraph& graph, DebugViewPass& state, con
     const Data& d = graph.addPass<Data>(
         std::string("debug_view"), fg::PassKind::Compute,
         [&](fg::PassBuilder& b, Data& data) {
-            if (mode == 7 || mode == 8) {
-                fg::ResourceId ch = shadowMap ? shadowMap->depth : gbuffer.texcoord;
+            if (mode == 7 || mode == 8 || mode == 12) {
+                fg::ResourceId ch = shadowMap ? shadowMap->depth : mode == 12 ? gbuffer.tangent : gbuffer.texcoord;
                 if (!ch.valid())
                     throw Error(std::string("debug view '") + viewName(view) + "': the G-buffer lacks its channel");
                 data.channel = b.read(ch, fg::Usage::Sampled);

@@ -80,6 +80,7 @@ GBuffer addGBufferPass(fg::FrameGraph& graph, GBufferPass& state, const FrameDat
                 out.position = b.createIfRead("gbuffer.position", {w, h, GL_RGBA32F}, colour);
             out.specular = b.createIfRead("gbuffer.specular", {w, h, gbufferSpecularFormat(layout.normal)}, colour);
             if (channels.texcoord) out.texcoord = b.createIfRead("gbuffer.texcoord", {w, h, GL_RG32F}, colour);
+            if (channels.tangent) out.tangent = b.createIfRead("gbuffer.tangent", {w, h, GL_RGBA16F}, colour);
         },
         [&state, frame, layout](const GBuffer& out, const fg::PassResources& res) {
             programForLayout(state.program, state.layout, frame, [&](const std::vector<std::string>& defines) {
@@ -88,14 +89,16 @@ GBuffer addGBufferPass(fg::FrameGraph& graph, GBufferPass& state, const FrameDat
             if (!state.fbo) state.fbo = gl::makeFramebuffer("gbuffer");
             const GLuint fbo = state.fbo.id();
             glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, res.texture(out.depth), 0);
-            const fg::ResourceId colour[5] = {out.normal, out.diffuse, out.position, out.specular, out.texcoord};
-            GLenum buffers[5];
-            for (int i = 0; i < 5; ++i) {
+            constexpr int kTargets = 6;
+            const fg::ResourceId colour[kTargets] = {out.normal,   out.diffuse,  out.position,
+                                                     out.specular, out.texcoord, out.tangent};
+            GLenum buffers[kTargets];
+            for (int i = 0; i < kTargets; ++i) {
                 GLuint tex = colour[i].valid() ? res.texture(colour[i]) : 0;
                 glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0 + i, tex, 0);
                 buffers[i] = tex ? GL_COLOR_ATTACHMENT0 + i : GL_NONE;
             }
-            glNamedFramebufferDrawBuffers(fbo, 5, buffers);
+            glNamedFramebufferDrawBuffers(fbo, kTargets, buffers);
             gl::ScopedFramebuffer bind(fbo, frame.width, frame.height);
             gl::ScopedEnable depthTest(GL_DEPTH_TEST, true);
             gl::ScopedEnable cull(GL_CULL_FACE, false);  // thin walls and open meshes are two-sided
@@ -107,7 +110,7 @@ GBuffer addGBufferPass(fg::FrameGraph& graph, GBufferPass& state, const FrameDat
             const GLuint zeroU[4] = {0, 0, 0, 0};
             const GLenum normalFormat = gbufferNormalFormat(layout.normal);
             const bool integerNormal = normalFormat == GL_R16UI || normalFormat == GL_R32UI;  // octahedral
-            for (int i = 0; i < 5; ++i) {
+            for (int i = 0; i < kTargets; ++i) {
                 if (buffers[i] == GL_NONE) continue;
                 if (i == 0 && integerNormal) glClearNamedFramebufferuiv(fbo, GL_COLOR, i, zeroU);
                 else glClearNamedFramebufferfv(fbo, GL_COLOR, i, zero);

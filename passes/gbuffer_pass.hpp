@@ -12,10 +12,11 @@ namespace lp {
 struct GBufferChannels {
     bool position = true;  // only when the position mode stores positions
     bool texcoord = false;
+    bool tangent = false;  // only for the tangent view
 };
 
 struct GBuffer {
-    fg::ResourceId depth, normal, diffuse, position, specular, texcoord;  // position invalid when rebuilt
+    fg::ResourceId depth, normal, diffuse, position, specular, texcoord, tangent;  // position invalid when rebuilt
 };
 
 struct GBufferPass {

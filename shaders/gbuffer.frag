@@ -28,6 +28,7 @@ layout(location = 2) out vec4 outPosition;
 #endif
 layout(location = 3) out vec4 outSpecular;
 layout(location = 4) out vec4 outTexcoord;
+layout(location = 5) out vec4 outTangent;  // the tangent view: eye-space tangent x 0.5 + 0.5, handedness
 
 void main() {
     vec3 N = vNormal;
@@ -63,4 +64,8 @@ void main() {
 #endif
     outSpecular = vec4(clamp(uSpecular, 0.0, 1.0), shininess);
     outTexcoord = vec4(vUv, 0.0, 0.0);
+    // The interpolated tangent made orthogonal to the shading normal (the frame bump mapping uses).
+    vec3 T = vTangent.xyz - N * dot(N, vTangent.xyz);
+    float tl = length(T);
+    outTangent = vec4(tl > 1e-20 ? T / tl * 0.5 + 0.5 : vec3(0.5), vTangent.w < 0.0 ? 0.0 : 1.0);
 }

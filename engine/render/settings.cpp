@@ -23,6 +23,7 @@ const char* viewName(DebugView v) {
         case DebugView::WorldPosition: return "world-position";
         case DebugView::EyeVector: return "eye-vector";
         case DebugView::DepthFitted: return "depth-fitted";
+        case DebugView::Tangent: return "tangent";
         case DebugView::InvalidPixels: return "invalid-pixels";
         case DebugView::ExposureEv: return "exposure-ev";
     }
@@ -33,7 +34,7 @@ std::vector<DebugView> allViews() {
     return {DebugView::Final,     DebugView::Depth,    DebugView::Normals,   DebugView::Diffuse, DebugView::Position,
             DebugView::Shininess, DebugView::Specular, DebugView::Texcoords, DebugView::Lighting,
             DebugView::Environment, DebugView::Irradiance, DebugView::Prefiltered, DebugView::Dfg,
-            DebugView::WorldPosition, DebugView::EyeVector, DebugView::DepthFitted,
+            DebugView::WorldPosition, DebugView::EyeVector, DebugView::DepthFitted, DebugView::Tangent,
             DebugView::InvalidPixels, DebugView::ExposureEv};
 }
 

@@ -16,7 +16,7 @@ enum class DebugView {
     Environment, Irradiance, Prefiltered, Dfg,  // environment views (passes/ibl_pass)
     ShadowMap,  // light-space depth of light settings.shadows.debugLight's shadow map
     LightRanges, LightsPerTile,  // overlays on the final image (local_light_pass)
-    WorldPosition, EyeVector, DepthFitted,  // more G-buffer views (seed 003; depth over the scene's range)
+    WorldPosition, EyeVector, DepthFitted, Tangent,  // more G-buffer views (seed 003; depth over the scene's range)
     InvalidPixels, ExposureEv  // the HDR buffer inspected (passes/hdr_view_pass): NaN/Inf, EV false colour
 };
 // overlay views (not in allViews(): they are the final image with the local lights'

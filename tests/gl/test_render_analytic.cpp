@@ -352,3 +352,26 @@ TEST(RenderAnalytic, ExposureEvViewOfALitPlaneIsOneBand) {
         EXPECT_EQ(img.rgba[i + 2], 0);
     }
 }
+
+TEST(RenderAnalytic, TangentViewEncodesThePlanesTangent) {
+    // The plane's tangent (along +u), through the view into eye space, encoded t x 0.5 + 0.5.
+    Scene s = planeScene({0, 5, 0}, {0, 0, 0}, {0, 0, -1}, glm::vec3(0.5f), glm::vec3(0.0f), 1.0f);
+    const glm::vec3 worldTangent = glm::normalize(glm::mat3(s.models[0].transform) * glm::vec3(s.models[0].mesh.vertices[0].tangent));
+    const glm::vec3 eye = glm::normalize(glm::mat3(s.camera.view()) * worldTangent);
+    Renderer r(s);
+    RenderSettings settings;
+    settings.width = 32;
+    settings.height = 32;
+    settings.view = DebugView::Tangent;
+    r.render(settings);
+    bool tangentTarget = false;
+    for (const auto& res : r.graph().resources()) tangentTarget = tangentTarget || (res.name == "gbuffer.tangent" && res.live);
+    EXPECT_TRUE(tangentTarget);
+    Image8 img = r.readDisplay();
+    for (size_t i = 0; i < img.rgba.size(); i += 4)
+        for (int c = 0; c < 3; ++c) ASSERT_NEAR(img.rgba[i + size_t(c)], (eye[c] * 0.5 + 0.5) * 255.0, 1.5) << c;
+    // Any other view leaves the tangent target out.
+    settings.view = DebugView::Normals;
+    r.render(settings);
+    for (const auto& res : r.graph().resources()) EXPECT_FALSE(res.name == "gbuffer.tangent" && res.live);
+}
