@@ -8,16 +8,8 @@
 set -uo pipefail
 lp=$1 scene=$2 out=$3
 rm -rf "$out" && mkdir -p "$out/cwd"
-for cmd in Xvfb xdotool python3; do command -v $cmd >/dev/null || { echo "missing $cmd"; exit 1; }; done
-# -displayfd: Xvfb picks a free display number (other tests may run Xvfb at the same time).
-Xvfb -displayfd 3 -screen 0 1280x720x24 -nolisten tcp 3>"$out/display" >"$out/xvfb.log" 2>&1 &
-xvfb=$!
-viewer=
-trap 'kill $viewer $xvfb 2>/dev/null; wait 2>/dev/null' EXIT
-for i in $(seq 50); do [ -s "$out/display" ] && break; sleep 0.1; done
-export DISPLAY=:$(cat "$out/display")
-for i in $(seq 50); do xdotool getmouselocation >/dev/null 2>&1 && break; sleep 0.1; done
-export LIGHTPASS_CONFIG_DIR="$out/config"  # never the user's own ~/.config
+. "$(dirname "$0")/xvfb_lib.sh"
+start_xvfb 1280x720x24 "$out"
 rows="$out/rows.txt"
 log=
 start_viewer() {  # start_viewer LOG: from a working directory of its own, to see that nothing lands there

@@ -8,17 +8,9 @@ set -uo pipefail
 lp=$1 scene=$2 shaders=$3 out=$4
 here=$(cd "$(dirname "$0")" && pwd)
 rm -rf "$out" && mkdir -p "$out"
-for cmd in Xvfb xdotool python3; do command -v $cmd >/dev/null || { echo "missing $cmd"; exit 1; }; done
 cp -r "$shaders" "$out/shaders"
-# -displayfd: Xvfb picks a free display number (other tests may run Xvfb at the same time).
-Xvfb -displayfd 3 -screen 0 640x480x24 -nolisten tcp 3>"$out/display" >"$out/xvfb.log" 2>&1 &
-xvfb=$!
-viewer=
-trap 'kill $viewer $xvfb 2>/dev/null; wait 2>/dev/null' EXIT
-for i in $(seq 50); do [ -s "$out/display" ] && break; sleep 0.1; done
-export DISPLAY=:$(cat "$out/display")
-for i in $(seq 50); do xdotool getmouselocation >/dev/null 2>&1 && break; sleep 0.1; done
-export LIGHTPASS_CONFIG_DIR="$out/config"  # the panel's imgui.ini: never the user's own ~/.config
+. "$(dirname "$0")/xvfb_lib.sh"
+start_xvfb 640x480x24 "$out"
 LIGHTPASS_SHADER_DIR="$out/shaders" "$lp" view "$scene" --size 200x150 --screenshot-dir "$out" --hide-panel \
   >"$out/viewer.log" 2>&1 &
 viewer=$!
