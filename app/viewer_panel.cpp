@@ -256,6 +256,18 @@ void drawViewerPanel(ViewerState& st, Renderer& renderer, const Scene& scene, co
     if (ImGui::CollapsingHeader("scene", ImGuiTreeNodeFlags_DefaultOpen)) {
         filePicker("scene file", files.scenes, st.sceneFile, st.sceneRequest, nullptr);
         filePicker("environment", files.environments, scene.environment.map, st.environmentRequest, "plain colour");
+        // Seed 003's flat lighting, per material: shown as its colour, no light adds to it.
+        if (ImGui::TreeNode("flat-lit materials")) {
+            const std::vector<GpuMaterial>& materials = renderer.sceneGpu().materials;
+            for (size_t i = 0; i < materials.size(); ++i) {
+                const GpuMaterial& m = materials[i];
+                bool flat = m.flat;
+                ImGui::PushID(int(i));
+                if (ImGui::Checkbox(m.name.c_str(), &flat)) renderer.setMaterialFlat(i, flat);
+                ImGui::PopID();
+            }
+            ImGui::TreePop();
+        }
         if (!st.sceneError.empty()) {
             ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.45f, 0.4f, 1.0f));
             ImGui::TextWrapped("%s", st.sceneError.c_str());

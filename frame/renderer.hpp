@@ -28,6 +28,8 @@ public:
     // The environment cubes and IBL bakes (imported into each frame's graph), e.g. to time a fresh bake.
     EnvironmentCache& environments() { return passes_.environments; }
     const SceneGpu& sceneGpu() const { return *gpu_; }
+    // Switches a material (index into sceneGpu().materials) flat-lit or lit from the next frame.
+    void setMaterialFlat(size_t material, bool flat) { gpu_->materials.at(material).flat = flat; }
     const gl::ShaderLibrary& shaders() const { return shaders_; }
     // Drops every pass's programs and GPU state so the next frame rebuilds them from the current
     // shader files (hot reload; environments are baked again).

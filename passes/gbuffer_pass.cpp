@@ -130,6 +130,7 @@ GBuffer addGBufferPass(fg::FrameGraph& graph, GBufferPass& state, const FrameDat
             const GLint locHasD = glGetUniformLocation(prog, "uHasDiffuseMap");
             const GLint locHasB = glGetUniformLocation(prog, "uHasBumpMap");
             const GLint locBs = glGetUniformLocation(prog, "uBumpScale");
+            const GLint locFlat = glGetUniformLocation(prog, "uFlat");
             for (const auto& mesh : frame.gpu->meshes) {
                 glm::mat4 mv = frame.view * mesh.model;
                 glm::mat3 nm = glm::inverseTranspose(glm::mat3(mv));
@@ -144,6 +145,7 @@ GBuffer addGBufferPass(fg::FrameGraph& graph, GBufferPass& state, const FrameDat
                     glProgramUniform1i(prog, locHasD, m.diffuseMap != 0);
                     glProgramUniform1i(prog, locHasB, m.bumpMap != 0);
                     glProgramUniform1f(prog, locBs, m.bumpScale);
+                    glProgramUniform1i(prog, locFlat, m.flat);
                     glBindTextureUnit(0, m.diffuseMap);
                     glBindTextureUnit(1, m.bumpMap);
                     glDrawElements(GL_TRIANGLES, GLsizei(d.indexCount), GL_UNSIGNED_INT,

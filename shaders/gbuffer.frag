@@ -12,6 +12,7 @@ uniform vec3 uDiffuse;
 uniform vec3 uSpecular;
 uniform float uShininess;
 uniform bool uHasDiffuseMap;
+uniform bool uFlat;  // flat-lit material: diffuse alpha 0 tells the light passes to leave it alone
 uniform bool uHasBumpMap;
 uniform float uBumpScale;
 layout(binding = 0) uniform sampler2D uDiffuseMap;  // sRGB texture: sampled as linear
@@ -58,7 +59,7 @@ void main() {
 #else
     outNormal = gbufferEncodeNormal(N, shininess);
 #endif
-    outDiffuse = vec4(clamp(albedo, 0.0, 1.0), 1.0);
+    outDiffuse = vec4(clamp(albedo, 0.0, 1.0), uFlat ? 0.0 : 1.0);
 #ifndef LP_GBUFFER_POSITION_FROM_DEPTH
     outPosition = vec4(vPosition, 1.0);
 #endif

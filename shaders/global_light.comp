@@ -66,6 +66,10 @@ void main() {
         imageStore(uHdr, p, vec4(0.0));  // background: the sky pass fills it
         return;
     }
+    if (!uLightingOnly && gbufferIsFlat(p)) {  // flat-lit: its colour, no light
+        imageStore(uHdr, p, vec4(gbufferDiffuse(p), 1.0));
+        return;
+    }
     vec3 N = gbufferNormal(p);
     vec3 P = gbufferPosition(p);
     vec4 spec = vec4(gbufferSpecular(p), gbufferShininess(p));

@@ -26,6 +26,7 @@ void main() {
     ivec2 size = imageSize(uHdr);
     if (p.x >= size.x || p.y >= size.y) return;
     if (gbufferIsBackground(p)) return;
+    if (!uLightingOnly && gbufferIsFlat(p)) return;  // flat-lit: no light adds to it
     vec3 N = gbufferNormal(p);
     vec3 P = gbufferPosition(p);
     vec4 spec = vec4(gbufferSpecular(p), gbufferShininess(p));

@@ -15,6 +15,7 @@ layout(location = 0) out vec4 oColor;
 void main() {
     ivec2 p = ivec2(gl_FragCoord.xy);
     if (gbufferIsBackground(p)) discard;  // background: no surface to light
+    if (!uLightingOnly && gbufferIsFlat(p)) discard;  // flat-lit: no light adds to it
     vec3 N = gbufferNormal(p);
     vec3 P = gbufferPosition(p);
     vec4 spec = vec4(gbufferSpecular(p), gbufferShininess(p));

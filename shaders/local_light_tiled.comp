@@ -61,7 +61,8 @@ void main() {
         sTotal = 0u;
     }
     barrier();
-    bool surface = inside && !gbufferIsBackground(p);
+    // Flat-lit pixels are no surface to light (and widen no tile's depth bounds).
+    bool surface = inside && !gbufferIsBackground(p) && (uLightingOnly || !gbufferIsFlat(p));
     vec3 P = vec3(0.0);
     if (surface) {
         P = gbufferPosition(p);

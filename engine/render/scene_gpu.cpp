@@ -73,6 +73,8 @@ SceneGpu::SceneGpu(const Scene& scene) {
             g.specular = m.specular;
             g.shininess = m.shininess;
             g.bumpScale = m.bumpScale;
+            g.flat = m.flat;
+            g.name = model.name + "/" + m.name;
             if (!m.diffuseMap.empty()) g.diffuseMap = texture(m.diffuseMap, true);
             if (!m.bumpMap.empty()) g.bumpMap = texture(m.bumpMap, false);
             materials.push_back(g);

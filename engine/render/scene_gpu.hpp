@@ -20,6 +20,8 @@ struct GpuMaterial {
     GLuint diffuseMap = 0;  // 0: none
     GLuint bumpMap = 0;
     float bumpScale = 1.0f;
+    bool flat = false;  // Material::flat; the viewer's panel switches it
+    std::string name;   // the model's and the material's name, "cornell_box/light"
 };
 
 struct GpuDraw {

@@ -27,6 +27,8 @@ struct Material {
     std::filesystem::path diffuseMap;  // map_Kd (sRGB)
     std::filesystem::path bumpMap;     // map_Bump / bump / norm (linear)
     float bumpScale = 1.0f;            // -bm
+    // Flat-lit (seed 003): shown as its diffuse colour, untouched by any light (lamps, light globes).
+    bool flat = false;
 };
 
 struct SubMesh {

@@ -78,6 +78,7 @@ struct ModelInstance {
     std::optional<glm::vec3> diffuseOverride;
     std::optional<glm::vec3> specularOverride;
     std::optional<float> shininessOverride;
+    std::optional<bool> flatOverride;  // "material": {"flat": true}: every material of the model flat-lit
     MeshData mesh;  // filled by the loader
 };
 

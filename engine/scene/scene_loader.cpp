@@ -180,7 +180,8 @@ void parseModel(const Reader& r, const json& j, const std::string& w, const fs::
     if (j.contains("material")) {
         const json& mat = j["material"];
         const std::string mw = w + ".material";
-        r.onlyKnown(mat, mw, {"diffuse", "specular", "shininess"});
+        r.onlyKnown(mat, mw, {"diffuse", "specular", "shininess", "flat"});
+        if (mat.contains("flat")) m.flatOverride = r.boolean(mat, "flat", mw, false);
         if (mat.contains("diffuse")) m.diffuseOverride = r.color(mat, "diffuse", mw, glm::vec3(0.0f));
         if (mat.contains("specular")) m.specularOverride = r.color(mat, "specular", mw, glm::vec3(0.0f));
         if (mat.contains("shininess")) {
@@ -241,6 +242,7 @@ void loadMesh(const Reader& r, ModelInstance& m, const std::string& where) {
         }
         if (m.specularOverride) mat.specular = *m.specularOverride;
         if (m.shininessOverride) mat.shininess = *m.shininessOverride;
+        if (m.flatOverride) mat.flat = *m.flatOverride;
     }
 }
 

@@ -1,7 +1,7 @@
 // The G-buffer's texture bindings, its layouts, and the one API every pass reads it through.
 //   depth     D32F      window depth: standard (near 0, far 1) or reversed-Z (near 1, far 0)
 //   normal    depends on the normal format (below)
-//   diffuse   RGBA8     diffuse albedo (linear)
+//   diffuse   RGBA8     diffuse albedo (linear); alpha 0 marks a flat-lit material
 //   position  RGBA32F   eye-space position in xyz; absent when positions are rebuilt from depth
 //   specular  RGBA16F   specular colour in rgb, Blinn-Phong shininess in a
 //             (RGBA8, colour only, for the seed-packed formats, which keep shininess with the normal)
@@ -138,6 +138,9 @@ vec3 gbufferPosition(ivec2 p) {
 }
 
 vec3 gbufferDiffuse(ivec2 p) { return texelFetch(uGbufferDiffuse, p, 0).rgb; }
+// A flat-lit material (Material::flat): its radiance is its diffuse colour and no light adds to it.
+// Needs the diffuse target bound (the lighting view does not read it: there every surface is lit).
+bool gbufferIsFlat(ivec2 p) { return texelFetch(uGbufferDiffuse, p, 0).a < 0.5; }
 vec3 gbufferSpecular(ivec2 p) { return texelFetch(uGbufferSpecular, p, 0).rgb; }
 float gbufferShininess(ivec2 p) {
 #ifdef LP_GBUFFER_SHININESS_IN_NORMAL

@@ -375,3 +375,39 @@ TEST(RenderAnalytic, TangentViewEncodesThePlanesTangent) {
     r.render(settings);
     for (const auto& res : r.graph().resources()) EXPECT_FALSE(res.name == "gbuffer.tangent" && res.live);
 }
+
+// A flat-lit material (seed 003) shows its diffuse colour whatever lights the scene: suns, ambient,
+// local lights in every method, IBL. The same plane not flat is lit.
+TEST(RenderAnalytic, FlatLitMaterialIsItsColourUnderEveryLight) {
+    Scene s = planeScene({0, 5, 0}, {0, 0, 0}, {0, 0, -1}, glm::vec3(0.3f, 0.5f, 0.7f), glm::vec3(0.2f), 32.0f);
+    PointLight point;
+    point.position = glm::vec3(0.0f, 1.0f, 0.0f);
+    point.range = 6.0f;
+    point.intensity = 5.0f;
+    s.pointLights.push_back(point);
+    s.environment.map = test::repoPath("hdr/sky.exr");
+    s.environment.ibl = true;
+    for (bool flat : {true, false})
+        for (LocalLightMethod method : {LocalLightMethod::Tiled, LocalLightMethod::Volumes}) {
+            for (auto& m : s.models[0].mesh.materials) m.flat = flat;
+            Renderer r(s);
+            RenderSettings settings;
+            settings.width = 24;
+            settings.height = 24;
+            settings.keepHdr = true;
+            settings.localLights.method = method;
+            settings.environment = test::smallIblBake(16);
+            r.render(settings);
+            ASSERT_TRUE(r.graph().isLive("local_lights"));
+            ASSERT_TRUE(r.graph().isLive("ibl"));
+            const ImageF hdr = r.readHdr();
+            double worst = 0.0;
+            for (size_t i = 0; i < hdr.rgba.size(); i += 4)
+                for (int c = 0; c < 3; ++c)
+                    worst = std::max(worst, std::abs(double(hdr.rgba[i + size_t(c)]) - double(glm::vec3(0.3f, 0.5f, 0.7f)[c])));
+            // The colour through the RGBA8 diffuse target (one 8-bit step: drivers may round
+            // x.5 either way), then fp16 (half an ulp at 0.7).
+            if (flat) EXPECT_LE(worst, 1.0 / 255.0 + 5e-4) << localLightMethodName(method);
+            else EXPECT_GT(worst, 0.05) << localLightMethodName(method);       // lit: not its colour
+        }
+}

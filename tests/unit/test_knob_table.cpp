@@ -325,6 +325,7 @@ TEST(ViewerPanel, KnobWidgetsComeOnlyFromTheTable) {
     const std::map<std::string, std::string> nonKnobWidgets = {
         {"knobLabel", "knobWidget(): the table-driven widget itself"},
         {"p.name.c_str()", "the passes table's switches (--disable-pass)"},
+        {"m.name.c_str()", "the materials' flat-lit switches (scene field models[].material.flat)"},
         {"pickerLabel", "the scene and environment file pickers (files, not settings)"},
         {"\"debug view\"", "--view, a command flag"},
         {"\"with panel\"", "--screenshot-ui, a viewer option"},

@@ -124,3 +124,14 @@ TEST(SceneLoader, GalleryLoadsTheStanfordModels) {
     for (const auto& m : s.models) triangles += m.mesh.indices.size() / 3;
     EXPECT_GT(triangles, 250000u);  // bunny 69k + dragon 100k + buddha 113k
 }
+
+// models[].material.flat: every material of the model flat-lit (seed 003); a bool, nothing else.
+TEST(SceneLoader, MaterialFlatMarksTheModelsMaterials) {
+    Scene s = parseScene(R"({"models": [{"primitive": "cube", "material": {"flat": true}},
+                                       {"primitive": "plane"}]})", "test.json", false);
+    ASSERT_EQ(s.models.size(), 2u);
+    for (const Material& m : s.models[0].mesh.materials) EXPECT_TRUE(m.flat);
+    for (const Material& m : s.models[1].mesh.materials) EXPECT_FALSE(m.flat);
+    const std::string e = errorFor(R"({"models": [{"primitive": "cube", "material": {"flat": "yes"}}]})");
+    EXPECT_NE(e.find("test.json: models[0].material.flat"), std::string::npos) << e;
+}
