@@ -494,9 +494,10 @@ std::vector<KnobEntry> makeKnobTable() {
     }
     {
         KnobEntry k = boolKnob("globes", [](auto& s) -> auto& { return s.localLights.globes; });
-        k.flags = {setsFlag("--globes", 1)};
-        k.help = "draw each local light as a small flat-lit globe";
-        k.panel = {PanelSection::Lighting, PanelWidget::Checkbox, "light globes", ""};
+        k.field.sceneValue = [](const Scene& scene) { return double(scene.lightGlobes); };
+        k.flags = {setsFlag("--globes", 1), setsFlag("--no-globes", 0)};
+        k.help = "draw each local light as a small flat-lit globe; the scene's is lightGlobes";
+        k.panel = {PanelSection::Lighting, PanelWidget::Combo, "light globes", ""};
         t.push_back(std::move(k));
     }
     {

@@ -290,7 +290,7 @@ void drawRanges(LocalLightPass& state, const FrameData& frame, const std::vector
 fg::ResourceId addLocalLightOverlayPasses(fg::FrameGraph& graph, LocalLightPass& state, const FrameData& frame,
                                           const GBuffer& gbuffer, fg::ResourceId hdr) {
     const RenderSettings& s = *frame.settings;
-    if (s.localLights.globes) {
+    if (s.localLights.globes.value_or(frame.scene->lightGlobes)) {
         hdr = graph.addPass<OverlayData>(
                        "light_globes", fg::PassKind::Raster,
                        [&](fg::PassBuilder& b, OverlayData& data) {

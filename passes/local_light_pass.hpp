@@ -39,7 +39,7 @@ struct LocalLightPass {
 fg::ResourceId addLocalLightPass(fg::FrameGraph& graph, LocalLightPass& state, const FrameData& frame,
                                  const GBuffer& gbuffer, fg::ResourceId hdr, bool lightingOnly);
 
-// After the sky: "light_globes" (settings.localLights.globes) and the overlay views
+// After the sky: "light_globes" (settings.localLights.globes, else the scene's lightGlobes) and the overlay views
 // ("light_ranges", "lights_per_tile") over the finished HDR image.
 fg::ResourceId addLocalLightOverlayPasses(fg::FrameGraph& graph, LocalLightPass& state, const FrameData& frame,
                                           const GBuffer& gbuffer, fg::ResourceId hdr);

@@ -72,7 +72,7 @@ struct LocalLightSettings {     // ranged point lights
     LocalLightMethod method = LocalLightMethod::Tiled;
     bool scissor = true;        // scissor method: off draws every light full screen ('x' toggles)
     int lightCount = -1;        // -1: the scene's lights; N: the first N, plus generated demo lights up to N
-    bool globes = false;        // small flat-lit spheres at the lights
+    std::optional<bool> globes; // small flat-lit spheres at the lights; unset: the scene's lightGlobes
     bool specular = true;       // local lights add a specular term
     bool specularOutsideRange = false;  // diffuse limited by range, specular (1/d^2 only) not
     float rangeScale = 1.0f;    // --light-range-scale: each light's range x this (< 1 cuts lights short; a sweep knob)

@@ -90,6 +90,7 @@ struct Scene {
     std::vector<PointLight> pointLights;
     Environment environment;
     glm::vec3 ambient{0.03f};  // constant ambient radiance in BRDF mode
+    bool lightGlobes = false;  // "lightGlobes": draw each point light as a small flat-lit globe (seed 003)
     Effects effects;
 
     // World-space bounds of every model (after transforms).

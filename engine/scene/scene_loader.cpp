@@ -274,7 +274,7 @@ Scene parseScene(const std::string& text, const fs::path& origin, bool loadMeshe
         if (pos == std::string::npos && what.find("] ") != std::string::npos) pos = what.find("] ") + 2;
         throw Error(origin.string() + ": invalid JSON: " + (pos == std::string::npos ? what : what.substr(pos)));
     }
-    r.onlyKnown(root, "", {"camera", "models", "lights", "environment", "ambient", "effects", "description"});
+    r.onlyKnown(root, "", {"camera", "models", "lights", "environment", "ambient", "effects", "description", "lightGlobes"});
     if (root.contains("description") && !root["description"].is_string()) r.fail("description", "expected a string");
     Scene scene;
     scene.file = origin;
@@ -306,6 +306,7 @@ Scene parseScene(const std::string& text, const fs::path& origin, bool loadMeshe
         if (scene.environment.ibl && scene.environment.map.empty()) r.fail("environment.ibl", "true needs environment.map (an .hdr or .exr)");
     }
     if (root.contains("ambient")) scene.ambient = r.color(root, "ambient", "", scene.ambient);
+    scene.lightGlobes = r.boolean(root, "lightGlobes", "", scene.lightGlobes);
     if (root.contains("effects")) {
         const json& fx = root["effects"];
         r.onlyKnown(fx, "effects", {"bloom", "toon"});

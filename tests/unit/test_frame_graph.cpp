@@ -457,3 +457,27 @@ TEST(FrameBuilder, EnvironmentTexturesAreImportedAndWrittenByTheBake) {
     // Imported lookups are not streamed: they are not in the floor's bytes.
     EXPECT_EQ(g.passTrafficBytes("ibl_bake"), 0u);
 }
+
+// Light globes (seed 003): the scene's lightGlobes turns them on, --globes / --no-globes override it.
+TEST(FrameBuilder, LightGlobesFollowTheSceneUnlessOverridden) {
+    Scene s = oneLightScene();
+    s.pointLights.push_back(PointLight{});
+    s.pointLights.back().range = 5.0f;
+    auto globes = [&](bool sceneOn, std::optional<bool> setting) {
+        s.lightGlobes = sceneOn;
+        RenderSettings settings;
+        settings.width = 64;
+        settings.height = 48;
+        settings.localLights.globes = setting;
+        FrameData frame = makeFrameData(s, settings, 0.0f);
+        FrameGraph g;
+        PassStates passes;
+        buildFrameGraph(g, passes, frame);
+        g.compile();
+        return g.isLive("light_globes");
+    };
+    EXPECT_FALSE(globes(false, std::nullopt));
+    EXPECT_TRUE(globes(true, std::nullopt));
+    EXPECT_FALSE(globes(true, false));
+    EXPECT_TRUE(globes(false, true));
+}

@@ -135,3 +135,10 @@ TEST(SceneLoader, MaterialFlatMarksTheModelsMaterials) {
     const std::string e = errorFor(R"({"models": [{"primitive": "cube", "material": {"flat": "yes"}}]})");
     EXPECT_NE(e.find("test.json: models[0].material.flat"), std::string::npos) << e;
 }
+
+TEST(SceneLoader, LightGlobesIsABool) {
+    EXPECT_TRUE(parseScene(R"({"lightGlobes": true})", "test.json", false).lightGlobes);
+    EXPECT_FALSE(parseScene(R"({})", "test.json", false).lightGlobes);
+    EXPECT_NE(errorFor(R"({"lightGlobes": 1})").find("lightGlobes: expected true or false"), std::string::npos)
+        << errorFor(R"({"lightGlobes": 1})");
+}
