@@ -90,6 +90,30 @@ float parseFloat(const std::string& flag, const std::string& v) {
     }
 }
 
+// "px,py,pz,tx,ty,tz[,fov]": six or seven finite numbers, a target apart from the position, a fov in (0, 180).
+void parseCamera(Options& o, const std::string& flag, const std::string& v) {
+    std::vector<float> n;
+    size_t start = 0;
+    while (start <= v.size()) {
+        const size_t comma = v.find(',', start);
+        const std::string part = v.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+        try {
+            n.push_back(parseFloat(flag, part));
+        } catch (const Error&) {
+            throw Error(flag + " " + v + ": expected px,py,pz,tx,ty,tz[,fov] as finite numbers");
+        }
+        if (comma == std::string::npos) break;
+        start = comma + 1;
+    }
+    if (n.size() != 6 && n.size() != 7) throw Error(flag + " " + v + ": expected px,py,pz,tx,ty,tz[,fov] (6 or 7 numbers)");
+    const glm::vec3 position(n[0], n[1], n[2]), target(n[3], n[4], n[5]);
+    if (glm::length(target - position) <= 0.0f) throw Error(flag + " " + v + ": the target equals the position");
+    if (n.size() == 7 && !(n[6] > 0.0f && n[6] < 180.0f)) throw Error(flag + " " + v + ": fov must be in (0, 180) degrees");
+    o.cameraPosition = position;
+    o.cameraTarget = target;
+    if (n.size() == 7) o.cameraFov = n[6];
+}
+
 std::string viewList(const std::vector<DebugView>& views, const std::string& separator = " | ") {
     std::string s;
     for (DebugView v : views) s += (s.empty() ? "" : separator) + std::string(viewName(v));
@@ -126,6 +150,18 @@ std::vector<CommandFlag> makeCommandFlags() {
              if (!view) throw Error("--view " + v + ": unknown view (" + viewList(everyView(), ", ") + ")");
              o.view = *view;
          }},
+        {{"--time"}, "T", "render: seconds on the scene's clock of the first timed frame (orbits follow; default 0)",
+         [](Options& o, V a, V v) {
+             o.time = parseFloat(a, v);
+             if (std::fabs(o.time) > 1e6) throw Error(a + " " + v + ": expected seconds in [-1e6, 1e6]");
+         }},
+        {{"--fps"}, "F", "render: frame i is at --time + i / F (default 0: every frame at --time)",
+         [](Options& o, V a, V v) {
+             o.fps = parseFloat(a, v);
+             if (!(o.fps >= 0.0 && o.fps <= 1e4)) throw Error(a + " " + v + ": expected frames per second in [0, 10000]");
+         }},
+        {{"--camera"}, "P,T[,F]", "camera position px,py,pz, target tx,ty,tz and optionally vertical fov (degrees)",
+         [](Options& o, V a, V v) { parseCamera(o, a, v); }},
         {{"--frames"}, "N", "frames to render and time (default 1; the image is the last frame)",
          [](Options& o, V a, V v) { o.frames = parseInt(a, v, 1, 100000); }},
         {{"--warmup"}, "N", "untimed frames before timing (default 5 when --frames > 1, else 0; sweep and bench: 10)",

@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include <glm/glm.hpp>
+
 #include "engine/render/settings.hpp"
 
 namespace lp::app {
@@ -23,6 +25,12 @@ struct Options {
     DebugView view = DebugView::Final;
     int frames = 1;
     int warmup = 5;
+    // --time T, --fps F: timed frame i is at T + i / F seconds (F 0: every frame at T); warm-up at T.
+    double time = 0.0;
+    double fps = 0.0;
+    // --camera px,py,pz,tx,ty,tz[,fov]: replaces the scene's camera position, target (and fov).
+    std::optional<glm::vec3> cameraPosition, cameraTarget;
+    std::optional<float> cameraFov;
     float exposure = 0.0f;  // = base.exposureEV (the --exposure knob), for the viewer's start
     bool vsync = true;
     bool floors = false;

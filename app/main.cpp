@@ -29,9 +29,18 @@
 namespace lp::app {
 namespace {
 
-Scene loadFromOptions(const Options& o) { return o.model.empty() ? loadScene(o.scene) : sceneForModel(o.model); }
+Scene loadFromOptions(const Options& o) {
+    Scene scene = o.model.empty() ? loadScene(o.scene) : sceneForModel(o.model);
+    if (o.cameraPosition) scene.camera.position = *o.cameraPosition;
+    if (o.cameraTarget) scene.camera.target = *o.cameraTarget;
+    if (o.cameraFov) scene.camera.fovYDegrees = *o.cameraFov;
+    return scene;
+}
 
 RenderSettings settingsFromOptions(const Options& o) { return renderSettings(o); }
+
+// --time / --fps: when timed frame i is on the scene's clock.
+double frameTime(const Options& o, int i) { return o.fps > 0.0 ? o.time + double(i) / o.fps : o.time; }
 
 int commandInfo() {
     auto ctx = gl::createHeadlessContext();
@@ -55,7 +64,7 @@ int commandGraph(const Options& o) {
     if (!o.dot.empty()) requireWritableOutput(o.dot);
     Scene scene = loadFromOptions(o);
     RenderSettings settings = settingsFromOptions(o);
-    FrameData frame = makeFrameData(scene, settings, 0.0f);
+    FrameData frame = makeFrameData(scene, settings, float(o.time));
     fg::FrameGraph graph;
     PassStates passes;  // never executed: describing a graph needs no GPU
     buildFrameGraph(graph, passes, frame);
@@ -99,8 +108,8 @@ int commandRender(const Options& o) {
     requireFrameFitsGpu(*ctx, scene, settings);
     Renderer renderer(scene);
     try {
-        for (int i = 0; i < o.warmup; ++i) renderer.render(settings, 0.0f, false);
-        for (int i = 0; i < o.frames; ++i) renderer.render(settings, 0.0f, true);
+        for (int i = 0; i < o.warmup; ++i) renderer.render(settings, float(o.time), false);
+        for (int i = 0; i < o.frames; ++i) renderer.render(settings, float(frameTime(o, i)), true);
     } catch (const Error& e) {  // what the checks above could not foresee still names the size
         if (std::string(e.what()).rfind("GL out of memory", 0) != 0) throw;
         throw Error("--size " + std::to_string(settings.width) + "x" + std::to_string(settings.height) + ": " + e.what());
@@ -132,6 +141,7 @@ int commandRender(const Options& o) {
     j["render_scale"] = settings.renderScale;
     j["frames"] = o.frames;
     j["view"] = viewName(settings.view);
+    j["time_s"] = {{"first", frameTime(o, 0)}, {"last", frameTime(o, o.frames - 1)}, {"fps", o.fps}};
     for (const auto& name : timers.passOrder()) {
         const auto& s = timers.samples(name);
         double lo = *std::min_element(s.begin(), s.end()), hi = *std::max_element(s.begin(), s.end());
