@@ -111,13 +111,11 @@ FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const Fr
 void checkDisabledPasses(const fg::FrameGraph& graph, const std::set<std::string>& disabled) {
     const std::vector<fg::PassDecision> candidates = graph.explain();
     for (const std::string& name : disabled) {
-        bool known = false;
+        auto named = [&](const fg::PassDecision& d) { return d.name == name; };
+        if (std::any_of(candidates.begin(), candidates.end(), named)) continue;
         std::string list;
-        for (const fg::PassDecision& d : candidates) {
-            known = known || d.name == name;
-            list += (list.empty() ? "" : ", ") + d.name;
-        }
-        if (!known) throw Error("--disable-pass " + name + ": no such pass in this frame (" + list + ")");
+        for (const fg::PassDecision& d : candidates) list += (list.empty() ? "" : ", ") + d.name;
+        throw Error("--disable-pass " + name + ": no such pass in this frame (" + list + ")");
     }
 }
 

@@ -13,15 +13,6 @@ struct Data {
     EnvironmentTextures environment;
     fg::ResourceId hdr;
 };
-
-int log2Floor(int v) {
-    int l = 0;
-    while (v > 1) {
-        v >>= 1;
-        ++l;
-    }
-    return l;
-}
 }  // namespace
 
 bool isEnvironmentView(DebugView view) {
@@ -36,7 +27,7 @@ EnvironmentTextures importEnvironment(fg::FrameGraph& graph, const FrameData& fr
         return frame.environments->get(*frame.scene, frame.settings->environment, *frame.shaders, withBake);
     };
     EnvironmentTextures t;
-    t.cube = graph.importTexture("environment.cube", {s.cubeSize, s.cubeSize, GL_RGBA16F, log2Floor(s.cubeSize) + 1, true},
+    t.cube = graph.importTexture("environment.cube", {s.cubeSize, s.cubeSize, GL_RGBA16F, environmentCubeLevels(s), true},
                                  [baked] { return baked(false).cube.id(); });
     if (!bake) return t;
     t.irradiance = graph.importTexture("ibl.irradiance", {s.irradianceSize, s.irradianceSize, GL_RGBA16F, 1, true},

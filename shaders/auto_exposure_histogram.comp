@@ -3,6 +3,7 @@
 // the pixels' places inside their bins in fixed point, so the average is exact within a bin).
 // Per work group in shared memory first, then one atomic per bin into the image.
 #include "common/exposure.glsl"
+#include "common/hdr_inspect.glsl"
 
 layout(local_size_x = 16, local_size_y = 16) in;
 layout(binding = 0) uniform sampler2D uHdr;
@@ -22,7 +23,7 @@ void main() {
     ivec2 size = textureSize(uHdr, 0);
     if (p.x < size.x && p.y < size.y) {
         vec3 c = texelFetch(uHdr, p, 0).rgb;
-        float position = exposureBinPosition(dot(c, vec3(0.2126, 0.7152, 0.0722)));
+        float position = exposureBinPosition(hdrLuminance(c));
         if (position >= 0.0) {
             int bin = int(position);
             atomicAdd(sCount[bin], 1u);

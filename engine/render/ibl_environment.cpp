@@ -155,6 +155,8 @@ ImageF uniformImage(glm::vec3 c) {
 
 }  // namespace
 
+int environmentCubeLevels(const EnvironmentSettings& s) { return log2Int(s.cubeSize) + 1; }
+
 void validateEnvironmentSettings(const EnvironmentSettings& s) {
     auto need = [](bool ok, const std::string& msg) {
         if (!ok) throw Error("environment settings: " + msg);
@@ -214,7 +216,7 @@ size_t EnvironmentCache::gpuBytes() const {
 
 void EnvironmentCache::makeCube(BakedEnvironment& env, const Scene& scene, const EnvironmentSettings& s,
                                 const gl::ShaderLibrary& shaders, const std::string& key) {
-    const int levels = log2Int(s.cubeSize) + 1;
+    const int levels = environmentCubeLevels(s);
     env.cube = gl::makeTextureCube(GL_RGBA16F, s.cubeSize, levels, "ibl.environment");
     const bool useDisk = env.hasMap && !s.cacheDir.empty();
     const fs::path file = useDisk ? cacheFile(s.cacheDir, "cube", key) : fs::path();

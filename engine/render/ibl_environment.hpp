@@ -59,6 +59,9 @@ private:
     gl::Program toCube_, prefilter_, irradiance_, dfgProgram_;
 };
 
+// Mip levels of the environment cubemap under `s` (a full chain of its face size).
+int environmentCubeLevels(const EnvironmentSettings& s);
+
 // Throws lp::Error naming the field when the bake settings are unusable (sizes, sample counts).
 void validateEnvironmentSettings(const EnvironmentSettings& s);
 

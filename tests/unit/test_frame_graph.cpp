@@ -151,18 +151,23 @@ Scene oneLightScene() {
     return s;
 }
 
-FrameGraph buildFor(const Scene& scene, DebugView view, bool keepHdr = false) {
-    RenderSettings settings;
-    settings.width = 320;
-    settings.height = 200;
-    settings.view = view;
-    settings.keepHdr = keepHdr;
+// The compiled graph of `scene` under `settings` (described only: nothing executes).
+FrameGraph buildWith(const Scene& scene, const RenderSettings& settings) {
     FrameData frame = makeFrameData(scene, settings, 0.0f);
     FrameGraph g;
     PassStates passes;
     buildFrameGraph(g, passes, frame);
     g.compile();
     return g;
+}
+
+FrameGraph buildFor(const Scene& scene, DebugView view, bool keepHdr = false) {
+    RenderSettings settings;
+    settings.width = 320;
+    settings.height = 200;
+    settings.view = view;
+    settings.keepHdr = keepHdr;
+    return buildWith(scene, settings);
 }
 }  // namespace
 
@@ -377,11 +382,7 @@ TEST(FrameBuilder, PassesDeclareTheirKindAndTheBarriersFollow) {
         settings.width = 320;
         settings.height = 200;
         settings.localLights.method = method;
-        FrameData frame = makeFrameData(s, settings, 0.0f);
-        FrameGraph g;
-        PassStates passes;
-        buildFrameGraph(g, passes, frame);
-        g.compile();
+        FrameGraph g = buildWith(s, settings);
         ASSERT_TRUE(g.isLive("local_lights")) << g.explainText();
         EXPECT_EQ(g.passKind("gbuffer"), fg::PassKind::Raster);
         EXPECT_EQ(g.passKind("shadow_map_0"), fg::PassKind::Raster);
@@ -410,11 +411,7 @@ TEST(FrameBuilder, BloomScratchIsAGraphTransientCountedInMemory) {
         settings.post.bloom = true;
         settings.post.bloomMethod = method;
         settings.post.backend = PostSettings::Backend::Glsl;
-        FrameData frame = makeFrameData(s, settings, 0.0f);
-        FrameGraph g;
-        PassStates passes;
-        buildFrameGraph(g, passes, frame);
-        g.compile();
+        FrameGraph g = buildWith(s, settings);
         std::vector<std::string> scratch;
         size_t scratchBytes = 0;
         for (const auto& r : g.resources())
@@ -440,11 +437,7 @@ TEST(FrameBuilder, EnvironmentTexturesAreImportedAndWrittenByTheBake) {
     RenderSettings settings;
     settings.width = 64;
     settings.height = 48;
-    FrameData frame = makeFrameData(s, settings, 0.0f);
-    FrameGraph g;
-    PassStates passes;
-    buildFrameGraph(g, passes, frame);
-    g.compile();
+    FrameGraph g = buildWith(s, settings);
     const auto order = g.executionOrder();
     ASSERT_FALSE(order.empty());
     EXPECT_EQ(order.front(), "ibl_bake");  // first: ibl and sky read what it writes
@@ -469,11 +462,7 @@ TEST(FrameBuilder, LightGlobesFollowTheSceneUnlessOverridden) {
         settings.width = 64;
         settings.height = 48;
         settings.localLights.globes = setting;
-        FrameData frame = makeFrameData(s, settings, 0.0f);
-        FrameGraph g;
-        PassStates passes;
-        buildFrameGraph(g, passes, frame);
-        g.compile();
+        FrameGraph g = buildWith(s, settings);
         return g.isLive("light_globes");
     };
     EXPECT_FALSE(globes(false, std::nullopt));
