@@ -1,6 +1,7 @@
 #version 450
 #include "common/tonemap.glsl"
 // The normal format and position mode come from gbuffer_layout.glsl's #defines.
+#include "common/ibl.glsl"
 #include "common/gbuffer_layout.glsl"
 
 in vec3 vPosition;
@@ -53,7 +54,8 @@ void main() {
     }
     vec3 albedo = uDiffuse;
     if (uHasDiffuseMap) albedo *= texture(uDiffuseMap, vUv).rgb;
-    float shininess = clamp(uShininess, 0.0, 10000.0);
+    // Up to the IBL's roughness floor (0.02); the analytic BRDFs clamp to 10000 themselves.
+    float shininess = gbufferEncodeShininess(clamp(uShininess, 0.0, LP_IBL_MAX_SHININESS));
 #ifdef LP_GBUFFER_NORMAL_OCT
     outNormal = gbufferEncodeNormalOct(N);
 #else

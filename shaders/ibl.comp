@@ -1,7 +1,7 @@
 #version 450
 // Image-based lighting added into the HDR buffer: diffuse kd (1 - Fss) E / pi from the SH (or the
-// irradiance cube) and specular prefiltered(R, roughness) * Fss, Fss = F0 A + B from the DFG LUT
-// (F0 = the material's specular colour). The (1 - Fss) keeps a white surface in a white
+// irradiance cube) and specular prefiltered(R, roughness) * Fss, Fss = F0 A + f90 B from the DFG LUT
+// (F0 = the material's specular colour, f90 as in the analytic GGX: Ks = 0 is exactly Lambertian). The (1 - Fss) keeps a white surface in a white
 // environment at exactly the environment's radiance (white furnace).
 #include "common/ibl.glsl"
 #include "common/tonemap.glsl"
@@ -42,8 +42,8 @@ void main() {
     vec3 Nw = normalize(uEyeToWorld * N), Rw = normalize(uEyeToWorld * R);
     vec3 E = uDiffuseFromCube ? textureLod(uIrradiance, Nw, 0.0).rgb : shIrradiance(uSh, Nw);
     vec2 ab = textureLod(uDfg, vec2(NdotV, roughness), 0.0).rg;
-    vec3 fss = spec.rgb * ab.x + ab.y;
-    vec3 prefiltered = textureLod(uPrefiltered, Rw, roughness * uMaxLod).rgb;
+    vec3 fss = splitSumReflectance(spec.rgb, ab);
+    vec3 prefiltered = textureLod(uPrefiltered, Rw, prefilteredLodFromRoughness(roughness, uMaxLod)).rgb;
     vec3 c = uIntensity * (kd * (1.0 - fss) * E / LP_IBL_PI + prefiltered * fss);
     vec3 hdr = imageLoad(uHdr, p).rgb;
     imageStore(uHdr, p, vec4(sanitizeHdr(hdr + c), 1.0));
