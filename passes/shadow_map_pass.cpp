@@ -32,6 +32,9 @@ ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const
         map.frustum = fitShadowFrustum(frame, frame.scene->directionalLights[size_t(light)].direction);
         const ShadowFrustum& fr = map.frustum;
         const std::string name = "shadow_map_" + std::to_string(light);
+        // A small scene needs fewer cascades than asked for: say which were dropped and why.
+        if (const std::string why = droppedCascadesReason(fr, frame.settings->shadows.cascades); !why.empty())
+            graph.skipPass(name + " cascades", why);
         const fg::TextureDesc desc{fr.tileSize * fr.columns, fr.tileSize * fr.rows, GL_DEPTH_COMPONENT32F};
         const Data& data = graph.addPass<Data>(
             name, fg::PassKind::Raster,
