@@ -149,22 +149,32 @@ ShadowFrustum fitShadowFrustum(const FrameData& frame, glm::vec3 lightDirection)
     const double tanY = 1.0 / double(frame.projection[1][1]), tanX = 1.0 / double(frame.projection[0][0]);
     const double k2 = tanX * tanX + tanY * tanY;
 
-    // The camera depth range worth covering: the view depths of the scene's bounds inside the view
-    // frustum (visibleDepthRange), snapped outwards to a 2^(1/4) grid so that moving or turning
-    // changes the splits only when the range crosses a grid step.
+    // The camera depth range worth covering: [near, far] clipped to the scene's depth range. For
+    // stable texels the clip uses the scene's bounding sphere (turning the camera changes nothing)
+    // and snaps to a 2^(1/4) grid (moving changes the splits only when it crosses a grid step).
     const double nearPlane = std::max(double(frame.nearPlane), 1e-6);
     const double farPlane = std::max(double(frame.farPlane), nearPlane * (1.0 + 1e-6));
+    const glm::dvec3 sceneCentre = 0.5 * (lo + hi);
+    const double sceneRadius = 0.5 * glm::length(hi - lo);
+    const double centreDistance = glm::length(glm::dvec3(eyeToWorld[3]) - sceneCentre);
     auto snapDown = [](double z) { return std::exp2(std::floor(std::log2(z) * 4.0) / 4.0); };
     auto snapUp = [](double z) { return std::exp2(std::ceil(std::log2(z) * 4.0) / 4.0); };
     double zNear = nearPlane, zFar = farPlane;
-    if (const auto visible = visibleDepthRange(lo, hi, view, nearPlane, farPlane, tanX, tanY)) {
-        zNear = std::max(nearPlane, snapDown(visible->x));
-        zFar = std::min(farPlane, snapUp(visible->y));
-    }
-    if (!(zFar > zNear * (1.0 + 1e-6))) zNear = nearPlane, zFar = farPlane;  // scene out of view: any splits do
+    if (centreDistance - sceneRadius > nearPlane) zNear = std::max(nearPlane, snapDown(centreDistance - sceneRadius));
+    if (centreDistance + sceneRadius < farPlane) zFar = std::min(farPlane, snapUp(centreDistance + sceneRadius));
+    // The depths where the scene is actually visible: its bounds clipped by the view frustum. A
+    // cascade whose slice lies wholly outside them serves no pixel and is dropped (its neighbours
+    // take its depths); the slices themselves stay on the stable range above.
+    const std::optional<glm::dvec2> visible = visibleDepthRange(lo, hi, view, nearPlane, farPlane, tanX, tanY);
+    if (!(zFar > zNear * (1.0 + 1e-6)) || !visible) zNear = nearPlane, zFar = farPlane;  // scene out of view: any splits do
     const std::vector<double> splits = practicalSplits(zNear, zFar, settings.cascades, settings.splitLambda);
-    out.visibleNear = zNear;
-    out.visibleFar = zFar;
+    out.visibleNear = visible ? visible->x : zNear;
+    out.visibleFar = visible ? visible->y : zFar;
+    auto rangeText = [](double a, double b) {
+        char t[64];
+        std::snprintf(t, sizeof t, "%.3g..%.3g m", a, b);
+        return std::string(t);
+    };
     const glm::dvec3 camPos(eyeToWorld[3]);
     const glm::dvec3 camForward = -glm::normalize(glm::dvec3(eyeToWorld[2]));
 
@@ -175,6 +185,19 @@ ShadowFrustum fitShadowFrustum(const FrameData& frame, glm::vec3 lightDirection)
 
     for (int c = 0; c < settings.cascades; ++c) {
         const double a = splits[size_t(c)], b = splits[size_t(c) + 1];
+        if (visible && c + 1 < settings.cascades && b < visible->x) {
+            out.dropped.push_back("cascade " + std::to_string(c + 1) + " (view depth " + rangeText(a, b) +
+                                  ") is nearer than the visible scene (" + rangeText(visible->x, visible->y) + ")");
+            continue;
+        }
+        if (visible && !out.cascades.empty() && a > visible->y) {
+            out.cascades.back().splitFar = std::numeric_limits<float>::max();
+            out.dropped.push_back("cascade" + std::string(settings.cascades - c > 1 ? "s " : " ") + std::to_string(c + 1) +
+                                  (settings.cascades - c > 1 ? ".." + std::to_string(settings.cascades) : std::string()) +
+                                  " (from view depth " + rangeText(a, splits.back()) + ") lie beyond the visible scene (" +
+                                  rangeText(visible->x, visible->y) + ")");
+            break;
+        }
         // Smallest sphere around the slice's 8 corners: centre on the view axis at depth s.
         double s = std::clamp(0.5 * (a + b) * (1.0 + k2), a, b);
         const double radius = std::max(std::sqrt((s - a) * (s - a) + a * a * k2), std::sqrt((b - s) * (b - s) + b * b * k2));
@@ -207,7 +230,14 @@ ShadowFrustum fitShadowFrustum(const FrameData& frame, glm::vec3 lightDirection)
         cascade.texelWorld = float(texel);
         cascade.depthRange = float(farZ - nearZ);
         out.cascades.push_back(cascade);
-        if (last) break;
+        if (last) {
+            if (c + 1 < settings.cascades)
+                out.dropped.push_back("cascade" + std::string(settings.cascades - c > 2 ? "s " : " ") + std::to_string(c + 2) +
+                                      (settings.cascades - c > 2 ? ".." + std::to_string(settings.cascades) : std::string()) +
+                                      " of " + std::to_string(settings.cascades) + " dropped: cascade " + std::to_string(c + 1) +
+                                      "'s square already covers the whole scene; later ones would be identical tiles");
+            break;
+        }
     }
     const glm::ivec2 used = shadowAtlasGrid(int(out.cascades.size()));
     out.columns = used.x;
@@ -216,14 +246,10 @@ ShadowFrustum fitShadowFrustum(const FrameData& frame, glm::vec3 lightDirection)
 }
 
 std::string droppedCascadesReason(const ShadowFrustum& f, int requested) {
-    const int kept = int(f.cascades.size());
-    if (kept >= requested) return "";
-    char range[96];
-    std::snprintf(range, sizeof range, "%.3g..%.3g m", f.visibleNear, f.visibleFar);
-    return "cascade" + std::string(requested - kept > 1 ? "s " : " ") + std::to_string(kept + 1) +
-           (requested - kept > 1 ? ".." + std::to_string(requested) : std::string()) + " of " + std::to_string(requested) +
-           " dropped: cascade " + std::to_string(kept) + "'s square already covers the whole scene (visible depth " + range +
-           "); later ones would be identical tiles";
+    if (int(f.cascades.size()) >= requested) return "";
+    std::string why;
+    for (const std::string& d : f.dropped) why += (why.empty() ? "" : "; ") + d;
+    return why;
 }
 
 }  // namespace lp

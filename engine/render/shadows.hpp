@@ -3,8 +3,9 @@
 // orthographic frusta (CPU math, no GL, so unit tests and 'lightpass graph' can use it).
 //
 // Each cascade covers one slice [splitNear, splitFar] of the camera's view depth, itself clipped to
-// the depth range of the scene's bounds inside the view frustum. A cascade whose square spans the
-// whole scene is the last one (fewer cascades than asked for: a small scene gets one or two). Its square is the slice's bounding sphere (so its
+// the depth range the scene's bounds occupy. Cascades are dropped (fewer than asked for) where the
+// slice holds no part of the scene visible in the frustum, and after a cascade whose square already
+// spans the whole scene (a small scene gets one). Its square is the slice's bounding sphere (so its
 // size, hence its texel size, does not change as the camera turns or moves: no shimmering), shrunk
 // to the scene's light-space extent when the scene is smaller, kept inside the scene's extent, and
 // its centre snapped to whole texels. Depth spans the whole scene bounds along the light, so
@@ -41,7 +42,8 @@ struct ShadowFrustum {
     // Tile layout of the cascades in the shadow-map atlas: cascade c at column c % columns, row c / columns.
     int columns = 1, rows = 1;
     int tileSize = 0;
-    double visibleNear = 0.0, visibleFar = 0.0;  // the view-depth range the splits divide
+    double visibleNear = 0.0, visibleFar = 0.0;  // view depths of the scene's bounds inside the frustum
+    std::vector<std::string> dropped;            // why each cascade not made was dropped
 };
 
 // Indices into scene.directionalLights of the lights that get a shadow map this frame: those with
