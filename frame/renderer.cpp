@@ -14,6 +14,7 @@ void Renderer::render(const RenderSettings& settings, float time, bool timed) {
     if (!(settings.renderScale >= kMinRenderScale && settings.renderScale <= 1.0f))
         throw Error("render scale " + std::to_string(settings.renderScale) + " is outside [0.25, 1]");
     FrameData frame = makeFrameData(*scene_, settings, time);
+    applyMotion(frame, history_, jitterPixels_);
     frame.gpu = gpu_.get();
     frame.shaders = &shaders_;
     graph_ = fg::FrameGraph();
@@ -24,6 +25,7 @@ void Renderer::render(const RenderSettings& settings, float time, bool timed) {
     if (timed) timers_.endFrame();
     width_ = settings.width;
     height_ = settings.height;
+    history_ = motionHistoryOf(frame);
 }
 
 void Renderer::resetPasses() {
