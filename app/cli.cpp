@@ -8,6 +8,7 @@
 #include "engine/core/paths.hpp"
 #include "frame/frame_builder.hpp"
 #include "frame/knobs.hpp"
+#include "engine/scene/scene_loader.hpp"
 
 namespace lp::app {
 
@@ -51,7 +52,7 @@ usage:
 viewer keys (seed 001):
   1 depth  2 normals  3 diffuse  4 eye-space position  5 lighting  6 shininess  7 toon on/off
   8 bloom buffer alone  9 velocity  0 standard view  r reset camera  x toggle scissor  W/S/A/D/Q/Z move
-  mouse drag: look  +/- exposure  Tab panel  h help  F12 screenshot  Esc quit
+  mouse drag: look  p follow the camera path  +/- exposure  Tab panel  h help  F12 screenshot  Esc quit
   (the panel also picks scenes and environments, and shaders/ edits reload while it runs)
 )";
     return text;
@@ -150,18 +151,22 @@ std::vector<CommandFlag> makeCommandFlags() {
              if (!view) throw Error("--view " + v + ": unknown view (" + viewList(everyView(), ", ") + ")");
              o.view = *view;
          }},
-        {{"--time"}, "T", "render: seconds on the scene's clock of the first timed frame (orbits follow; default 0)",
+        {{"--time"}, "T", "render, bench: seconds on the scene's clock of the first timed frame (orbits and camera paths follow; default 0)",
          [](Options& o, V a, V v) {
              o.time = parseFloat(a, v);
              if (std::fabs(o.time) > 1e6) throw Error(a + " " + v + ": expected seconds in [-1e6, 1e6]");
          }},
-        {{"--fps"}, "F", "render: frame i is at --time + i / F, untimed frames at --time - 1 / F (default 0: every frame at --time)",
+        {{"--fps"}, "F", "render, bench: frame i is at --time + i / F, untimed frames at --time - 1 / F (default 0: every frame at --time)",
          [](Options& o, V a, V v) {
              o.fps = parseFloat(a, v);
              if (!(o.fps >= 0.0 && o.fps <= 1e4)) throw Error(a + " " + v + ": expected frames per second in [0, 10000]");
          }},
         {{"--camera"}, "P,T[,F]", "camera position px,py,pz, target tx,ty,tz and optionally vertical fov (degrees)",
          [](Options& o, V a, V v) { parseCamera(o, a, v); }},
+        {{"--camera-path"}, "F",
+         "JSON file of camera keyframes ({\"keys\": [{\"time\", \"position\", \"target\", \"fov\"}, ...], \"loop\"}; "
+         "replaces the scene's cameraPath; --camera overrides it)",
+         [](Options& o, V, V v) { o.cameraPath = v; }},
         {{"--frames"}, "N", "frames to render and time (default 1; the image is the last frame)",
          [](Options& o, V a, V v) { o.frames = parseInt(a, v, 1, 100000); }},
         {{"--warmup"}, "N", "untimed frames before timing (default 5 when --frames > 1, else 0; sweep and bench: 10)",
@@ -287,6 +292,16 @@ RenderSettings renderSettings(const Options& o) {
     s.view = o.view;
     s.keepHdr = !o.exr.empty();
     return s;
+}
+
+Scene sceneFromOptions(const Options& o) {
+    Scene scene = o.model.empty() ? loadScene(o.scene) : sceneForModel(o.model);
+    if (!o.cameraPath.empty()) scene.cameraPath = loadCameraPath(o.cameraPath);
+    if (o.cameraPosition) scene.cameraPath.reset();  // --camera fixes the camera
+    if (o.cameraPosition) scene.camera.position = *o.cameraPosition;
+    if (o.cameraTarget) scene.camera.target = *o.cameraTarget;
+    if (o.cameraFov) scene.camera.fovYDegrees = *o.cameraFov;
+    return scene;
 }
 
 double frameTime(const Options& o, int i) { return o.fps > 0.0 ? o.time + double(i) / o.fps : o.time; }

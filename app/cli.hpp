@@ -8,6 +8,7 @@
 #include <glm/glm.hpp>
 
 #include "engine/render/settings.hpp"
+#include "engine/scene/scene.hpp"
 
 namespace lp::app {
 
@@ -31,6 +32,7 @@ struct Options {
     // --camera px,py,pz,tx,ty,tz[,fov]: replaces the scene's camera position, target (and fov).
     std::optional<glm::vec3> cameraPosition, cameraTarget;
     std::optional<float> cameraFov;
+    std::string cameraPath;  // --camera-path F: a JSON file holding a "cameraPath" object (--camera wins)
     float exposure = 0.0f;  // = base.exposureEV (the --exposure knob), for the viewer's start
     bool vsync = true;
     bool floors = false;
@@ -65,6 +67,9 @@ Options parseArgs(const std::vector<std::string>& args);
 // The frame settings the options describe (size, view, exposure, feature flags).
 RenderSettings renderSettings(const Options& options);
 
+// The scene the options name (--scene or --model), with --camera-path's path and --camera's camera
+// applied (--camera removes any path: it fixes the camera).
+Scene sceneFromOptions(const Options& options);
 // --time / --fps: when timed frame i is on the scene's clock (T + i / F; T without --fps).
 double frameTime(const Options& options, int i);
 // When the untimed frames before the timed ones are: T - 1 / F with --fps (so the first timed frame

@@ -29,13 +29,7 @@
 namespace lp::app {
 namespace {
 
-Scene loadFromOptions(const Options& o) {
-    Scene scene = o.model.empty() ? loadScene(o.scene) : sceneForModel(o.model);
-    if (o.cameraPosition) scene.camera.position = *o.cameraPosition;
-    if (o.cameraTarget) scene.camera.target = *o.cameraTarget;
-    if (o.cameraFov) scene.camera.fovYDegrees = *o.cameraFov;
-    return scene;
-}
+Scene loadFromOptions(const Options& o) { return sceneFromOptions(o); }
 
 RenderSettings settingsFromOptions(const Options& o) { return renderSettings(o); }
 
@@ -106,7 +100,7 @@ int commandRender(const Options& o) {
     Renderer renderer(scene);
     try {
         // With --fps the untimed frames are one frame step before --time: the first timed frame's
-        // previous frame (motion vectors) is then where the clock puts it.
+        // previous frame (motion vectors, motion blur) is then where the clock puts it.
         for (int i = 0; i < warmupFrames(o, o.warmup); ++i) renderer.render(settings, float(warmupTime(o)), false);
         for (int i = 0; i < o.frames; ++i) renderer.render(settings, float(frameTime(o, i)), true);
     } catch (const Error& e) {  // what the checks above could not foresee still names the size

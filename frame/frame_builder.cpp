@@ -72,7 +72,11 @@ FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const Fr
     } else {
         graph.skipPass("ibl_bake", hasMap ? "nothing in this view samples the environment" : "scene has no environment map");
     }
-    GBuffer gbuffer = addGBufferPass(graph, passes.gbuffer, frame, channelsForView(s.view));
+    // Motion vectors only for a pass that reads them (the velocity view, motion blur).
+    const std::string motionBlurSkip = motionBlurSkipReason(frame);
+    GBufferChannels channels = channelsForView(s.view);
+    channels.velocity = channels.velocity || motionBlurSkip.empty();
+    GBuffer gbuffer = addGBufferPass(graph, passes.gbuffer, frame, channels);
     // one depth pass per shadow-casting directional light; global_lights and the shadowmap view read them.
     const ShadowMaps shadowMaps = addShadowMapPasses(graph, passes.shadowMaps, frame);
     fg::ResourceId hdr = addGlobalLightPass(graph, passes.globalLights, frame, gbuffer, shadowMaps, lightingView);
@@ -85,6 +89,9 @@ FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const Fr
     // globes and the light-ranges / lights-per-tile overlays, over the sky too.
     if (!lightingView && localSkip.empty() && localLightCount(scene, s.localLights) > 0)
         hdr = addLocalLightOverlayPasses(graph, passes.localLights, frame, gbuffer, hdr);
+    // Motion blur on the HDR buffer, before bloom and the tone map.
+    if (motionBlurSkip.empty()) hdr = addMotionBlurPasses(graph, passes.motionBlur, frame, gbuffer, hdr);
+    else graph.skipPass("motion_blur", motionBlurSkip);
     hdr = addPostPasses(graph, passes.post, frame, gbuffer, hdr);  // bloom, toon (not in the lighting view)
     if (scaled) hdr = addUpscalePass(graph, passes.upscale, frame, hdr, UpscaleInput::Hdr);
     else graph.skipPass("upscale", "render scale 1: the frame is rendered at the output size");
@@ -132,17 +139,18 @@ FrameData makeFrameData(const Scene& scene, const RenderSettings& settings, floa
     f.height = size.y;
     f.outputWidth = settings.width;
     f.outputHeight = settings.height;
-    f.view = scene.camera.view();
-    f.unjitteredProjection = scene.camera.projection(float(settings.width) / float(std::max(settings.height, 1)));
+    const Camera camera = scene.cameraAt(time);  // the camera path's, when the scene has one
+    f.view = camera.view();
+    f.unjitteredProjection = camera.projection(float(settings.width) / float(std::max(settings.height, 1)));
     f.projection = f.unjitteredProjection;
     f.previousViewProjection = f.unjitteredProjection * f.view;
-    f.nearPlane = scene.camera.nearPlane;
-    f.farPlane = scene.camera.farPlane;
+    f.nearPlane = camera.nearPlane;
+    f.farPlane = camera.farPlane;
     f.time = time;
     f.previousTime = time;
     glm::vec3 lo, hi;
     scene.bounds(lo, hi);
-    f.sceneExtent = std::max(glm::length(0.5f * (lo + hi) - scene.camera.position) + 0.5f * glm::length(hi - lo), 1e-3f);
+    f.sceneExtent = std::max(glm::length(0.5f * (lo + hi) - camera.position) + 0.5f * glm::length(hi - lo), 1e-3f);
     f.scene = &scene;
     f.settings = &settings;
     return f;

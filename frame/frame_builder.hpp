@@ -15,6 +15,7 @@
 #include "passes/hdr_view_pass.hpp"
 #include "passes/ibl_pass.hpp"
 #include "passes/local_light_pass.hpp"
+#include "passes/motion_blur_pass.hpp"
 #include "passes/sky_pass.hpp"
 #include "passes/tonemap_pass.hpp"
 #include "passes/upscale_pass.hpp"
@@ -32,6 +33,7 @@ struct PassStates {
     ShadowMapPass shadowMaps;  // the depth-only program and framebuffer
     IblPass ibl;
     LocalLightPass localLights;
+    MotionBlurPass motionBlur;
     PostPasses post;
     UpscalePass upscale;
     HdrViewPass hdrView;

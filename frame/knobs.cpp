@@ -434,6 +434,35 @@ std::vector<KnobEntry> makeKnobTable() {
         k.panel = {PanelSection::Post, PanelWidget::Slider, "normal edge", "%.2f"};
         t.push_back(std::move(k));
     }
+    // ---- motion blur (passes/motion_blur_pass) ----
+    {
+        KnobEntry k = boolKnob("motion-blur", [](auto& s) -> auto& { return s.motionBlur.enabled; });
+        k.flags = {setsFlag("--motion-blur", 1)};
+        k.help = "motion blur from the G-buffer's motion vectors (McGuire et al. 2012), before bloom; "
+                 "skipped when nothing moves";
+        k.panel = {PanelSection::Post, PanelWidget::Checkbox, "motion blur", ""};
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = intKnob("motion-blur-samples", [](auto& s) -> auto& { return s.motionBlur.samples; }, 2, 64);
+        k.flags = {valueFlag("--motion-blur-samples")};
+        k.help = "motion blur: gather taps per pixel along the neighbourhood's blur";
+        k.panel = {PanelSection::Post, PanelWidget::Slider, "blur samples", ""};
+        // Needs a moving camera: sweep it on the clock, e.g. --scene cornell-flythrough --time 1 --fps 30.
+        k.sweep = {{"4", "8", "16", "32"}, false,
+                   "motion blur gather taps per pixel (--motion-blur-samples, motion blur on); 32 is the "
+                   "reference. Not monotone: the taps' per-pixel noise differs between counts",
+                   [](RenderSettings& s, double) { s.motionBlur.enabled = true; }};
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = floatKnob("motion-blur-shutter", [](auto& s) -> auto& { return s.motionBlur.shutter; },
+                                {0.0, 1.0, true});
+        k.flags = {valueFlag("--motion-blur-shutter")};
+        k.help = "motion blur: fraction of the frame interval the shutter is open (0.5: a 180-degree shutter)";
+        k.panel = {PanelSection::Post, PanelWidget::Slider, "shutter", "%.2f"};
+        t.push_back(std::move(k));
+    }
     {
         KnobEntry k = choiceKnob("post-backend", [](auto& s) -> auto& { return s.post.backend; },
                                  std::vector<PostSettings::Backend>{PostSettings::Backend::Auto, PostSettings::Backend::Cuda,

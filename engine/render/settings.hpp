@@ -116,6 +116,12 @@ struct PostSettings {           // bloom and toon (engine/post/post_config.hpp r
     Backend backend = Backend::Auto;
 };
 
+struct MotionBlurSettings {     // passes/motion_blur_pass (McGuire et al. 2012)
+    bool enabled = false;       // --motion-blur
+    int samples = 16;           // --motion-blur-samples: gather taps per pixel
+    float shutter = 0.5f;       // --motion-blur-shutter: fraction of the frame interval the shutter is open
+};
+
 inline constexpr float kMinRenderScale = 0.25f;  // --render-scale's lower bound
 
 struct RenderSettings {
@@ -137,6 +143,7 @@ struct RenderSettings {
     LocalLightSettings localLights;
     EnvironmentSettings environment;
     PostSettings post;
+    MotionBlurSettings motionBlur;
     GBufferSettings gbuffer;     // normal format and position mode (--gbuffer, --gbuffer-position)
 };
 

@@ -9,6 +9,7 @@
 
 #include <glm/glm.hpp>
 
+#include "engine/scene/camera_path.hpp"
 #include "engine/scene/mesh.hpp"
 
 namespace lp {
@@ -92,6 +93,12 @@ struct Scene {
     glm::vec3 ambient{0.03f};  // constant ambient radiance in BRDF mode
     bool lightGlobes = false;  // "lightGlobes": draw each point light as a small flat-lit globe (seed 003)
     Effects effects;
+    // "cameraPath" / --camera-path: when set, frames at time t use cameraAt(t) instead of `camera`
+    // (up, near and far stay the camera's). --camera removes it.
+    std::optional<CameraPath> cameraPath;
+
+    // The camera of a frame at `time`: the path's position, target and fov there, or `camera`.
+    Camera cameraAt(double time) const;
 
     // World-space bounds of every model (after transforms).
     void bounds(glm::vec3& lo, glm::vec3& hi) const;

@@ -127,6 +127,17 @@ struct Reader {
     }
 };
 
+json parseJson(const std::string& text, const fs::path& origin) {
+    try {
+        return json::parse(text);
+    } catch (const json::exception& e) {  // parse_error, and out_of_range for numbers such as 1e400
+        std::string what = e.what();
+        auto pos = what.find("parse error");
+        if (pos == std::string::npos && what.find("] ") != std::string::npos) pos = what.find("] ") + 2;
+        throw Error(origin.string() + ": invalid JSON: " + (pos == std::string::npos ? what : what.substr(pos)));
+    }
+}
+
 fs::path resolve(const fs::path& base, const std::string& p) {
     fs::path path(p);
     return path.is_absolute() ? path : (base / path).lexically_normal();
@@ -150,6 +161,38 @@ void parseCamera(const Reader& r, const json& j, Camera& cam) {
                                formatNumber(kMaxDepthRatio) + " (the depth buffer cannot resolve it)");
     if (glm::length(cam.target - cam.position) <= 0.0f) r.fail(w + ".target", "equals the position");
     cam.up = r.unit(cam.up, w + ".up");
+}
+
+// "cameraPath": {"keys": [{"time", "position", "target", "fov"}, ...], "loop": false}; `w` names it.
+CameraPath parseCameraPath(const Reader& r, const json& j, const std::string& w) {
+    r.onlyKnown(j, w, {"keys", "loop"});
+    if (!j.contains("keys")) r.fail(w + ".keys", "missing (an array of at least two keys)");
+    const json& keys = j["keys"];
+    if (!keys.is_array()) r.fail(w + ".keys", "expected an array of at least two keys");
+    if (keys.size() < 2) r.fail(w + ".keys", "has " + std::to_string(keys.size()) + " key(s); a path needs at least two");
+    CameraPath path;
+    path.loop = r.boolean(j, "loop", w, false);
+    for (size_t i = 0; i < keys.size(); ++i) {
+        const std::string wk = w + ".keys[" + std::to_string(i) + "]";
+        const json& k = keys[i];
+        r.onlyKnown(k, wk, {"time", "position", "target", "fov"});
+        for (const char* field : {"time", "position", "target", "fov"})
+            if (!k.contains(field)) r.fail(wk + "." + field, "missing");
+        CameraKey key;
+        key.time = r.number(k["time"], wk + ".time");
+        if (std::abs(key.time) > 1e9) r.fail(wk + ".time", formatNumber(key.time) + " is outside [-1e9, 1e9] s");
+        key.position = r.point(k, "position", wk, key.position);
+        key.target = r.point(k, "target", wk, key.target);
+        key.fovYDegrees = r.number(k["fov"], wk + ".fov");
+        if (!(key.fovYDegrees > 0.0f && key.fovYDegrees < 180.0f))
+            r.fail(wk + ".fov", formatNumber(key.fovYDegrees) + " is outside (0, 180) degrees");
+        if (!(glm::length(glm::dvec3(key.target) - glm::dvec3(key.position)) > 0.0)) r.fail(wk + ".target", "equals the position");
+        if (i > 0 && !(key.time > path.keys.back().time))
+            r.fail(wk + ".time", formatNumber(key.time) + " is not after keys[" + std::to_string(i - 1) + "].time (" +
+                                     formatNumber(path.keys.back().time) + "): key times must increase");
+        path.keys.push_back(key);
+    }
+    return path;
 }
 
 void parseModel(const Reader& r, const json& j, const std::string& w, const fs::path& base, ModelInstance& m) {
@@ -265,22 +308,16 @@ void requirePlacedWithinRange(const Reader& r, const ModelInstance& m, const std
 
 Scene parseScene(const std::string& text, const fs::path& origin, bool loadMeshes) {
     Reader r{origin.string()};
-    json root;
-    try {
-        root = json::parse(text);
-    } catch (const json::exception& e) {  // parse_error, and out_of_range for numbers such as 1e400
-        std::string what = e.what();
-        auto pos = what.find("parse error");
-        if (pos == std::string::npos && what.find("] ") != std::string::npos) pos = what.find("] ") + 2;
-        throw Error(origin.string() + ": invalid JSON: " + (pos == std::string::npos ? what : what.substr(pos)));
-    }
-    r.onlyKnown(root, "", {"camera", "models", "lights", "environment", "ambient", "effects", "description", "lightGlobes"});
+    const json root = parseJson(text, origin);
+    r.onlyKnown(root, "", {"camera", "cameraPath", "models", "lights", "environment", "ambient", "effects", "description",
+                           "lightGlobes"});
     if (root.contains("description") && !root["description"].is_string()) r.fail("description", "expected a string");
     Scene scene;
     scene.file = origin;
     const fs::path base = origin.has_parent_path() ? origin.parent_path() : fs::path(".");
     bool hasCamera = root.contains("camera");
     if (hasCamera) parseCamera(r, root["camera"], scene.camera);
+    if (root.contains("cameraPath")) scene.cameraPath = parseCameraPath(r, root["cameraPath"], "cameraPath");
     if (root.contains("models")) {
         if (!root["models"].is_array()) r.fail("models", "expected an array");
         for (size_t i = 0; i < root["models"].size(); ++i) {
@@ -345,6 +382,15 @@ Scene parseScene(const std::string& text, const fs::path& origin, bool loadMeshe
         if (!hasCamera) frameCamera(scene);
     }
     return scene;
+}
+
+CameraPath parseCameraPathFile(const std::string& text, const fs::path& origin) {
+    Reader r{origin.string()};
+    return parseCameraPath(r, parseJson(text, origin), "cameraPath");
+}
+
+CameraPath loadCameraPath(const fs::path& file) {
+    return parseCameraPathFile(readFileChecked(file, kMaxTextFileBytes, "a camera path file", true), file);
 }
 
 Scene loadScene(const fs::path& file) {

@@ -329,6 +329,7 @@ TEST(ViewerPanel, KnobWidgetsComeOnlyFromTheTable) {
         {"pickerLabel", "the scene and environment file pickers (files, not settings)"},
         {"\"debug view\"", "--view, a command flag"},
         {"\"with panel\"", "--screenshot-ui, a viewer option"},
+        {"\"follow camera path (p)\"", "whether the viewer's camera follows the scene's cameraPath (viewer state, 'p')"},
     };
     const std::regex widget(
         R"(ImGui::(Checkbox\w*|RadioButton|Combo|BeginCombo|ListBox|BeginListBox|Slider\w*|VSlider\w*|Drag\w*|Input\w*|ColorEdit\w*|ColorPicker\w*)\s*\()");

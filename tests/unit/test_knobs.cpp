@@ -12,7 +12,7 @@ TEST(Knobs, EveryQualityKnobIsRegisteredAndDescribed) {
     const std::set<std::string> expected = {"gbuffer-format", "gbuffer-position", "shadow-size", "shadow-pcf",
                                             "shadow-cascades", "ibl-samples", "ibl-face-size", "ibl-diffuse",
                                             "bloom-kernel", "bloom-method", "local-light-method", "light-range-cutoff",
-                                            "render-scale"};
+                                            "render-scale", "motion-blur-samples"};
     std::set<std::string> names;
     for (const Knob& k : allKnobs()) {
         EXPECT_TRUE(names.insert(k.name).second) << "duplicate knob " << k.name;
@@ -29,6 +29,14 @@ TEST(Knobs, EveryQualityKnobIsRegisteredAndDescribed) {
 // Spot checks that values reach the settings and that the reference is the best value.
 TEST(Knobs, ValuesSetWhatTheyNameAndTheReferenceIsLast) {
     RenderSettings s;
+    const Knob* blur = findKnob("motion-blur-samples");
+    ASSERT_NE(blur, nullptr);
+    blur->values.front().apply(s);
+    EXPECT_EQ(s.motionBlur.samples, 4);
+    EXPECT_TRUE(s.motionBlur.enabled);  // a sample count means nothing with the blur off
+    blur->values.back().apply(s);
+    EXPECT_EQ(s.motionBlur.samples, 32);
+    s = RenderSettings{};
     const Knob* size = findKnob("shadow-size");
     ASSERT_NE(size, nullptr);
     size->values.front().apply(s);

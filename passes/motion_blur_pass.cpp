@@ -1,0 +1,110 @@
+#include "passes/motion_blur_pass.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "engine/gl/shader.hpp"
+#include "engine/gl/state.hpp"
+
+namespace lp {
+
+namespace {
+struct TileData {
+    fg::ResourceId velocity, tiles;
+};
+struct GatherData {
+    fg::ResourceId hdr, velocity, depth, neighbors, out;
+};
+}  // namespace
+
+int motionBlurTileSize(int renderHeight) { return std::max(8, int(std::lround(renderHeight / 36.0))); }
+
+std::string motionBlurSkipReason(const FrameData& frame) {
+    const MotionBlurSettings& s = frame.settings->motionBlur;
+    if (!s.enabled) return "motion blur is off (--motion-blur)";
+    if (!frame.hasPrevious) return "no previous frame (first frame or a camera cut): nothing moves";
+    // Models are static and light globes are drawn after the G-buffer: only the camera moves pixels.
+    if (frame.previousViewProjection == frame.unjitteredProjection * frame.view)
+        return "the camera did not move since the previous frame: nothing moves";
+    return "";
+}
+
+fg::ResourceId addMotionBlurPasses(fg::FrameGraph& graph, MotionBlurPass& state, const FrameData& frame,
+                                   const GBuffer& gbuffer, fg::ResourceId hdr) {
+    const int k = motionBlurTileSize(frame.height);
+    const int tilesX = (frame.width + k - 1) / k, tilesY = (frame.height + k - 1) / k;
+    const MotionBlurSettings settings = frame.settings->motionBlur;
+    constexpr fg::Usage sampled = fg::Usage::Sampled, store = fg::Usage::ImageStore;
+
+    const TileData& tiles = graph.addPass<TileData>(
+        "motion_blur_tiles", fg::PassKind::Compute,
+        [&](fg::PassBuilder& b, TileData& d) {
+            d.velocity = b.read(gbuffer.velocity, sampled);
+            d.tiles = b.create("motion_blur.tiles", {tilesX, tilesY, GL_RG16F}, store);
+        },
+        [&state, frame, k, tilesX, tilesY, settings](const TileData& d, const fg::PassResources& res) {
+            if (!state.tiles) state.tiles = frame.shaders->compute("motion_blur_tiles.comp");
+            const GLuint prog = state.tiles.id();
+            glProgramUniform1i(prog, glGetUniformLocation(prog, "uTileSize"), k);
+            glProgramUniform1f(prog, glGetUniformLocation(prog, "uShutter"), settings.shutter);
+            glBindTextureUnit(0, res.texture(d.velocity));
+            glBindImageTexture(0, res.texture(d.tiles), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG16F);
+            glUseProgram(prog);
+            glDispatchCompute(GLuint(tilesX), GLuint(tilesY), 1);  // one work group per tile
+            glUseProgram(0);
+            glBindTextureUnit(0, 0);
+            glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG16F);
+        });
+    const fg::ResourceId tileMax = tiles.tiles;
+
+    const TileData& neighbors = graph.addPass<TileData>(
+        "motion_blur_neighbors", fg::PassKind::Compute,
+        [&](fg::PassBuilder& b, TileData& d) {
+            d.velocity = b.read(tileMax, sampled);
+            d.tiles = b.create("motion_blur.neighbors", {tilesX, tilesY, GL_RG16F}, store);
+        },
+        [&state, frame, tilesX, tilesY](const TileData& d, const fg::PassResources& res) {
+            if (!state.neighbors) state.neighbors = frame.shaders->compute("motion_blur_neighbors.comp");
+            glBindTextureUnit(0, res.texture(d.velocity));
+            glBindImageTexture(0, res.texture(d.tiles), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG16F);
+            glUseProgram(state.neighbors.id());
+            gl::dispatch2D(tilesX, tilesY);
+            glUseProgram(0);
+            glBindTextureUnit(0, 0);
+            glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG16F);
+        });
+    const fg::ResourceId neighborMax = neighbors.tiles;
+
+    const GatherData& gather = graph.addPass<GatherData>(
+        "motion_blur", fg::PassKind::Compute,
+        [&](fg::PassBuilder& b, GatherData& d) {
+            d.hdr = b.read(hdr, sampled);
+            d.velocity = b.read(gbuffer.velocity, sampled);
+            d.depth = b.read(gbuffer.depth, sampled);
+            d.neighbors = b.read(neighborMax, sampled);
+            d.out = b.create("hdr.motion_blur", {frame.width, frame.height, GL_RGBA16F}, store);
+        },
+        [&state, frame, k, settings](const GatherData& d, const fg::PassResources& res) {
+            if (!state.gather) state.gather = frame.shaders->compute("motion_blur.comp");
+            const GLuint prog = state.gather.id();
+            glProgramUniform1i(prog, glGetUniformLocation(prog, "uTileSize"), k);
+            glProgramUniform1i(prog, glGetUniformLocation(prog, "uSamples"), settings.samples);
+            glProgramUniform1f(prog, glGetUniformLocation(prog, "uShutter"), settings.shutter);
+            glProgramUniform2f(prog, glGetUniformLocation(prog, "uNearFar"), frame.nearPlane, frame.farPlane);
+            glProgramUniform1i(prog, glGetUniformLocation(prog, "uReversedZ"),
+                               frame.settings->gbuffer.position == GBufferPositionMode::ReversedZ);
+            glBindTextureUnit(0, res.texture(d.hdr));
+            glBindTextureUnit(1, res.texture(d.velocity));
+            glBindTextureUnit(2, res.texture(d.depth));
+            glBindTextureUnit(3, res.texture(d.neighbors));
+            glBindImageTexture(0, res.texture(d.out), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+            glUseProgram(prog);
+            gl::dispatch2D(frame.width, frame.height);
+            glUseProgram(0);
+            for (GLuint u = 0; u < 4; ++u) glBindTextureUnit(u, 0);
+            glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+        });
+    return gather.out;
+}
+
+}  // namespace lp
