@@ -13,7 +13,7 @@ struct TileData {
     fg::ResourceId velocity, tiles;
 };
 struct GatherData {
-    fg::ResourceId hdr, velocity, depth, neighbors, out;
+    fg::ResourceId source, velocity, depth, neighbors, hdr;
 };
 }  // namespace
 
@@ -77,12 +77,15 @@ fg::ResourceId addMotionBlurPasses(fg::FrameGraph& graph, MotionBlurPass& state,
 
     const GatherData& gather = graph.addPass<GatherData>(
         "motion_blur", fg::PassKind::Compute,
+        // The gather reads around each pixel, so it reads a copy of the HDR buffer and writes the
+        // buffer itself: switched off (--disable-pass motion_blur), the frame passes through unblurred.
         [&](fg::PassBuilder& b, GatherData& d) {
-            d.hdr = b.read(hdr, sampled);
             d.velocity = b.read(gbuffer.velocity, sampled);
             d.depth = b.read(gbuffer.depth, sampled);
             d.neighbors = b.read(neighborMax, sampled);
-            d.out = b.create("hdr.motion_blur", {frame.width, frame.height, GL_RGBA16F}, store);
+            d.source = b.create("motion_blur.source", {frame.width, frame.height, GL_RGBA16F},
+                                fg::Usage::Transfer | sampled);
+            d.hdr = b.write(hdr, fg::Usage::Transfer | store);
         },
         [&state, frame, k, settings](const GatherData& d, const fg::PassResources& res) {
             if (!state.gather) state.gather = frame.shaders->compute("motion_blur.comp");
@@ -93,18 +96,20 @@ fg::ResourceId addMotionBlurPasses(fg::FrameGraph& graph, MotionBlurPass& state,
             glProgramUniform2f(prog, glGetUniformLocation(prog, "uNearFar"), frame.nearPlane, frame.farPlane);
             glProgramUniform1i(prog, glGetUniformLocation(prog, "uReversedZ"),
                                frame.settings->gbuffer.position == GBufferPositionMode::ReversedZ);
-            glBindTextureUnit(0, res.texture(d.hdr));
+            glCopyImageSubData(res.texture(d.hdr), GL_TEXTURE_2D, 0, 0, 0, 0, res.texture(d.source), GL_TEXTURE_2D, 0,
+                               0, 0, 0, frame.width, frame.height, 1);
+            glBindTextureUnit(0, res.texture(d.source));
             glBindTextureUnit(1, res.texture(d.velocity));
             glBindTextureUnit(2, res.texture(d.depth));
             glBindTextureUnit(3, res.texture(d.neighbors));
-            glBindImageTexture(0, res.texture(d.out), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+            glBindImageTexture(0, res.texture(d.hdr), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
             glUseProgram(prog);
             gl::dispatch2D(frame.width, frame.height);
             glUseProgram(0);
             for (GLuint u = 0; u < 4; ++u) glBindTextureUnit(u, 0);
             glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
         });
-    return gather.out;
+    return gather.hdr;
 }
 
 }  // namespace lp

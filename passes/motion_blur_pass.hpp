@@ -23,7 +23,7 @@ int motionBlurTileSize(int renderHeight);
 // Why the frame gets no motion blur (off, nothing moves), or empty when it does.
 std::string motionBlurSkipReason(const FrameData& frame);
 
-// The blurred HDR buffer (a new RGBA16F texture).
+// The blurred HDR buffer: a new version of `hdr` (the gather reads a copy, motion_blur.source).
 fg::ResourceId addMotionBlurPasses(fg::FrameGraph& graph, MotionBlurPass& state, const FrameData& frame,
                                    const GBuffer& gbuffer, fg::ResourceId hdr);
 

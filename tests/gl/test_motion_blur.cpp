@@ -163,7 +163,7 @@ TEST(MotionBlur, CommonMathMatchesThePaper) {
 }
 
 // Through the renderer: a still camera skips motion blur with its reason and the image is the same
-// as without it; a moving camera runs it and changes the image.
+// as without it; a moving camera runs it and changes the image; switched off, it passes the frame through.
 TEST(MotionBlur, RendererSkipsItWhenNothingMovesAndRunsItWhenTheCameraDoes) {
     Scene scene;
     ModelInstance m;
@@ -197,6 +197,16 @@ TEST(MotionBlur, RendererSkipsItWhenNothingMovesAndRunsItWhenTheCameraDoes) {
         if (d.name == "motion_blur") runs = d.runs;
     EXPECT_TRUE(runs);
     EXPECT_NE(plain.readDisplay().rgba, blurred.readDisplay().rgba);
+    // Switched off (--disable-pass motion_blur, the panel's checkbox): the frame passes through, and
+    // the tile passes that only fed it are culled.
+    RenderSettings off = on;
+    off.disabledPasses = {"motion_blur"};
+    scene.camera.position.x += 0.3f;
+    scene.camera.target.x += 0.3f;
+    plain.render(settings, 0.3f, false);
+    blurred.render(off, 0.3f, false);
+    EXPECT_EQ(plain.readDisplay().rgba, blurred.readDisplay().rgba);
+    EXPECT_FALSE(blurred.graph().isLive("motion_blur_tiles"));
 }
 
 }  // namespace
