@@ -110,7 +110,7 @@ int runBench(const Options& o, const std::vector<std::string>& args) {
     const std::string out = o.timingsJson.empty() ? "bench.json" : o.timingsJson;
     requireWritableOutput(out);
 
-    Scene scene = o.model.empty() ? loadScene(o.scene) : sceneForModel(o.model);
+    Scene scene = o.model.empty() ? loadScene(o.scene) : sceneForModel(o.model, o.modelZUp);
     auto ctx = gl::createHeadlessContext();
     logInfo("bench on " + ctx->info().renderer + (ctx->isSoftware() ? " (software rasteriser: times are not meaningful)" : ""));
     for (const auto& s : settings) requireFrameFitsGpu(*ctx, scene, s);

@@ -30,7 +30,7 @@ namespace lp::app {
 namespace {
 
 Scene loadFromOptions(const Options& o) {
-    Scene scene = o.model.empty() ? loadScene(o.scene) : sceneForModel(o.model);
+    Scene scene = o.model.empty() ? loadScene(o.scene) : sceneForModel(o.model, o.modelZUp);
     if (o.cameraPosition) scene.camera.position = *o.cameraPosition;
     if (o.cameraTarget) scene.camera.target = *o.cameraTarget;
     if (o.cameraFov) scene.camera.fovYDegrees = *o.cameraFov;

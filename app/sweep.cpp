@@ -61,7 +61,7 @@ int runSweep(const Options& o) {
         knobs.push_back(std::move(*k));
     }
     const fs::path outDir = o.outDir.empty() ? fs::path("sweep") : fs::path(o.outDir);
-    Scene scene = o.model.empty() ? loadScene(o.scene) : sceneForModel(o.model);
+    Scene scene = o.model.empty() ? loadScene(o.scene) : sceneForModel(o.model, o.modelZUp);
     // The folders (each knob's images go in its own), made and checked writable before any rendering;
     // after the scene loaded, so a bad scene leaves no empty folders behind.
     std::error_code ec;

@@ -212,7 +212,7 @@ void writePanelRows(const std::string& path, const std::string& text) {
 }  // namespace
 
 int runViewer(const Options& o) {
-    auto scene = std::make_unique<Scene>(o.model.empty() ? loadScene(o.scene) : sceneForModel(o.model));
+    auto scene = std::make_unique<Scene>(o.model.empty() ? loadScene(o.scene) : sceneForModel(o.model, o.modelZUp));
     gl::ContextOptions co;
     co.width = o.width;
     co.height = o.height;
@@ -275,7 +275,7 @@ int runViewer(const Options& o) {
         if (st.sceneRequest) {
             try {
                 const auto& file = *st.sceneRequest;
-                auto next = std::make_unique<Scene>(file.extension() == ".obj" ? sceneForModel(file) : loadScene(file));
+                auto next = std::make_unique<Scene>(isModelPath(file) ? sceneForModel(file) : loadScene(file));
                 renderer.reset();  // it points at the old scene
                 scene = std::move(next);
                 renderer = std::make_unique<Renderer>(*scene, shaders);

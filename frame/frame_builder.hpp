@@ -9,6 +9,7 @@
 #include "engine/render/frame_data.hpp"
 #include "passes/auto_exposure_pass.hpp"
 #include "passes/debug_view_pass.hpp"
+#include "passes/emission_pass.hpp"
 #include "passes/gbuffer_pass.hpp"
 #include "passes/post_pass.hpp"
 #include "passes/global_light_pass.hpp"
@@ -32,6 +33,7 @@ struct PassStates {
     ShadowMapPass shadowMaps;  // the depth-only program and framebuffer
     IblPass ibl;
     LocalLightPass localLights;
+    EmissionPass emission;
     PostPasses post;
     UpscalePass upscale;
     HdrViewPass hdrView;

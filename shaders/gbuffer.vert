@@ -12,6 +12,8 @@ out vec3 vPosition;   // eye space
 out vec3 vNormal;     // eye space
 out vec2 vUv;
 out vec4 vTangent;    // eye space xyz, handedness w
+// The emission pass draws with this shader again and tests GL_EQUAL against the G-buffer depth.
+invariant gl_Position;
 
 void main() {
     vec4 p = uModelView * vec4(inPosition, 1.0);
