@@ -24,6 +24,9 @@ Files (all small):
                            KHR_materials_emissive_strength 4: radiance (4, 2, 1)
   lights.gltf              a quad lit by a directional, a point (range 5) and a spot light, and a camera
   emissive_panel.glb       (models/) the emissive quad again, for scenes/pbr-spheres.json
+  viking_room.glb          (models/, only when ../shared/assets/viking-room is there; not committed:
+                           CC BY 4.0, nigelgoh) the Vulkan tutorial's Z-up OBJ as a glTF, turned Y-up
+                           by its node's rotation, its texture embedded
   pbr_spheres.glb          (models/) 2 rows of 5 spheres: dielectric and metal, roughness
                            0.2, 0.4, 0.6, 0.8, 1.0
 """
@@ -261,6 +264,44 @@ def pbr_spheres():
     b.save_glb(os.path.join(MODELS, "pbr_spheres.glb"))
 
 
+def viking_room():
+    src = os.path.join(ROOT, "..", "shared", "assets", "viking-room")
+    if not os.path.exists(os.path.join(src, "viking_room.obj")):
+        print("no ../shared/assets/viking-room: viking_room.glb not made")
+        return
+    V, T, N, verts, I, seen = [], [], [], [], [], {}
+    for line in open(os.path.join(src, "viking_room.obj")):
+        p = line.split()
+        if not p:
+            continue
+        if p[0] == "v":
+            V.append([float(x) for x in p[1:4]])
+        elif p[0] == "vt":
+            T.append([float(p[1]), 1.0 - float(p[2])])  # OBJ v up, glTF v down
+        elif p[0] == "vn":
+            N.append([float(x) for x in p[1:4]])
+        elif p[0] == "f":
+            corners = []
+            for c in p[1:]:
+                key = tuple(int(x) - 1 for x in c.split("/"))
+                if key not in seen:
+                    seen[key] = len(verts)
+                    verts.append(key)
+                corners.append(seen[key])
+            for k in range(1, len(corners) - 1):
+                I += [corners[0], corners[k], corners[k + 1]]
+    b = Builder()
+    attrs = dict(POSITION=b.floats([V[v] for v, _, _ in verts], g.VEC3, bounds=True),
+                 TEXCOORD_0=b.floats([T[t] for _, t, _ in verts], g.VEC2), NORMAL=b.floats([N[n] for _, _, n in verts], g.VEC3))
+    img = np.asarray(Image.open(os.path.join(src, "viking_room.png")).convert("RGBA"))
+    t = b.image(img)
+    b.material(name="Texture1", pbrMetallicRoughness=g.PbrMetallicRoughness(baseColorTexture=g.TextureInfo(index=t), metallicFactor=0, roughnessFactor=0.8),
+               doubleSided=True)
+    s = math.sqrt(0.5)
+    b.node(mesh=b.mesh([g.Primitive(attributes=g.Attributes(**attrs), indices=b.indices(I, U32), material=0)]), rotation=[-s, 0, 0, s])
+    b.save_glb(os.path.join(MODELS, "viking_room.glb"))
+
+
 forms()
 hierarchy()
 normal_plane(True, "normal_plane.glb")
@@ -269,4 +310,5 @@ alpha_mask()
 emissive()
 lights()
 pbr_spheres()
+viking_room()
 print("wrote", OUT, "and", os.path.join(MODELS, "pbr_spheres.glb"))
