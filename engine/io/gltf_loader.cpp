@@ -8,6 +8,7 @@
 #include <set>
 
 #include <glm/gtc/matrix_inverse.hpp>
+#include <nlohmann/json.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
@@ -340,7 +341,22 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
             if (c == '\n') c = ' ';
         return s;
     };
-    if (!ok) throw Error(file + ": " + (err.empty() ? std::string("could not be parsed as glTF") : firstLine(err)));
+    if (!ok) {
+        // tinygltf names a missing buffer file but not the buffer: name it as the file does.
+        if (!binary) {
+            const nlohmann::json root = nlohmann::json::parse(bytes, nullptr, false);
+            if (root.is_object() && root.contains("buffers") && root["buffers"].is_array())
+                for (size_t i = 0; i < root["buffers"].size(); ++i) {
+                    const auto& b = root["buffers"][i];
+                    if (!b.is_object() || !b.contains("uri") || !b["uri"].is_string()) continue;
+                    const std::string uri = b["uri"].get<std::string>();
+                    std::error_code ec;
+                    if (uri.rfind("data:", 0) != 0 && !fs::exists(fs::path(baseDir) / uri, ec))
+                        throw Error(file + ": buffers[" + std::to_string(i) + "]: " + (fs::path(baseDir) / uri).string() + ": file not found");
+                }
+        }
+        throw Error(file + ": " + (err.empty() ? std::string("could not be parsed as glTF") : firstLine(err)));
+    }
     Loader L{model, file, report};
     if (!warnText.empty()) {
         const std::string msg = file + ": " + firstLine(warnText);

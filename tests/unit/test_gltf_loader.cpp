@@ -214,7 +214,7 @@ TEST(GltfLoader, BadInputNamesFileAndElement) {
     expectError("missing_buffer.gltf",
                 R"({"asset": {"version": "2.0"}, "buffers": [{"byteLength": 42, "uri": "nothere.bin"}], "bufferViews": )" + kViews +
                     R"(, "accessors": [)" + kPositions + R"(], "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}], "nodes": [{"mesh": 0}]})",
-                "nothere.bin");
+                "buffers[0]: " + (t.dir / "nothere.bin").string() + ": file not found");
     expectError("accessor_past_end.gltf", triangleGltf(R"([{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3"}])", kViews, 42),
                 "meshes[0].primitives[0].attributes.POSITION (accessors[0]): 4 elements from byte 0 run past the end of bufferViews[0]");
     expectError("view_past_buffer.gltf",
