@@ -1,5 +1,7 @@
 #include "app/cli.hpp"
 
+#include "engine/scene/scene_loader.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -17,19 +19,19 @@ std::string helpText() {
 
 usage:
   lightpass                         open the viewer on scenes/cornell.json (needs a display)
-  lightpass view FILE               open the viewer on a scene (.json) or a model (.obj)
-  lightpass render (--scene F | --model F.obj) --out F.png [options]
+  lightpass view FILE               open the viewer on a scene (.json) or a model (.obj, .gltf, .glb)
+  lightpass render (--scene F | --model F) --out F.png [options]
                                     render headless (EGL; NVIDIA if present, else Mesa llvmpipe)
                                     and print each pass's GPU time (median over the frames)
-  lightpass graph (--scene F | --model F.obj) [--view V] [--dot F.dot] [--explain]
+  lightpass graph (--scene F | --model F) [--view V] [--dot F.dot] [--explain]
                                     print the frame graph: passes that run, passes culled and
                                     why, what each reads and writes, transient textures
-  lightpass sweep (--scene F | --model F.obj) --knob K [--knob K2 ...] [--out-dir D]
+  lightpass sweep (--scene F | --model F) --knob K [--knob K2 ...] [--out-dir D]
                                     render every value of each quality knob; GPU ms per pass
                                     and error against the knob's best value -> D/sweep.csv,
                                     D/sweep.md and images (bench/sweep_report.py adds FLIP
                                     and a Pareto plot); --knob A+B sweeps every combination
-  lightpass bench (--scene F | --model F.obj) --vary 'FLAG V1,V2,..' [--vary ...] [flags]
+  lightpass bench (--scene F | --model F) --vary 'FLAG V1,V2,..' [--vary ...] [flags]
                                     one process renders every combination of the --vary axes
                                     (an axis is 'FLAG V1,V2' or 'FLAGS A|FLAGS B'), GPU ms per
                                     pass (median of --frames after --warmup, default 10) and
@@ -129,8 +131,13 @@ std::vector<CommandFlag> makeCommandFlags() {
          [](Options& o, V, V) { o.command = "version"; }},
         {{"--scene"}, "F", "scene file (JSON, see README); a bundled one by name from anywhere (cornell, gallery, ...)",
          [](Options& o, V, V v) { o.scene = resolveDataPath(v); }},
-        {{"--model"}, "F.obj", "any OBJ, framed by the camera, with a key and a fill light",
+        {{"--model"}, "F", "any OBJ or glTF (.gltf, .glb), framed by the camera (or the glTF's first camera), with a key and a fill light (or the glTF's lights)",
          [](Options& o, V, V v) { o.model = v; }},
+        {{"--up"}, "y|z", "the --model file's up axis: z turns a Z-up model (Blender, CAD, the Vulkan tutorial's viking room) to Y-up",
+         [](Options& o, V a, V v) {
+             if (v != "y" && v != "z") throw Error(a + " " + v + ": expected y or z");
+             o.modelZUp = v == "z";
+         }},
         {{"--out"}, "F.png", "tone-mapped image (written to a temporary name, then renamed)",
          [](Options& o, V, V v) { o.out = v; }},
         {{"--exr"}, "F.exr", "the linear HDR buffer before tone mapping (float32 EXR)", [](Options& o, V, V v) { o.exr = v; }},
@@ -243,9 +250,9 @@ Options parseArgs(const std::vector<std::string>& args) {
             o.command != "sweep" && o.command != "bench")
             throw Error("unknown command '" + o.command + "' (render, graph, view, sweep, bench, info; see --help)");
         if (o.command == "view") {
-            if (i >= args.size() || args[i].rfind("-", 0) == 0) throw Error("view: expected a .json scene or .obj model");
+            if (i >= args.size() || args[i].rfind("-", 0) == 0) throw Error("view: expected a .json scene or an .obj, .gltf or .glb model");
             std::string f = args[i++];
-            (std::filesystem::path(f).extension() == ".obj" ? o.model : o.scene) = f;
+            (isModelPath(f) ? o.model : o.scene) = f;
             o.command = "viewer";
         }
     }
@@ -272,7 +279,7 @@ Options parseArgs(const std::vector<std::string>& args) {
     if (!o.scene.empty() && !o.model.empty()) throw Error("give --scene or --model, not both");
     if ((o.command == "sweep" || o.command == "bench") && !o.warmupGiven) o.warmup = 10;
     if (o.command == "render" || o.command == "graph" || o.command == "sweep" || o.command == "bench") {
-        if (o.scene.empty() && o.model.empty()) throw Error(o.command + ": --scene F or --model F.obj is required");
+        if (o.scene.empty() && o.model.empty()) throw Error(o.command + ": --scene F or --model F is required");
     }
     if (o.command == "render" && o.out.empty() && o.exr.empty()) throw Error("render: --out F.png (or --exr F.exr) is required");
     if (!o.out.empty() && std::filesystem::path(o.out).extension() != ".png")
@@ -295,7 +302,7 @@ RenderSettings renderSettings(const Options& o) {
 }
 
 Scene sceneFromOptions(const Options& o) {
-    Scene scene = o.model.empty() ? loadScene(o.scene) : sceneForModel(o.model);
+    Scene scene = o.model.empty() ? loadScene(o.scene) : sceneForModel(o.model, o.modelZUp);
     if (!o.cameraPath.empty()) scene.cameraPath = loadCameraPath(o.cameraPath);
     if (o.cameraPosition) scene.cameraPath.reset();  // --camera fixes the camera
     if (o.cameraPosition) scene.camera.position = *o.cameraPosition;

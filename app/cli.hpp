@@ -16,6 +16,7 @@ struct Options {
     std::string command;  // "viewer", "render", "graph", "info", "help"
     std::string scene;
     std::string model;
+    bool modelZUp = false;  // --up z: the --model file is Z-up (turned to Y-up on load)
     std::string out;
     std::string exr;
     std::string dot;

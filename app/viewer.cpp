@@ -284,7 +284,7 @@ int runViewer(const Options& o) {
         if (st.sceneRequest) {
             try {
                 const auto& file = *st.sceneRequest;
-                auto next = std::make_unique<Scene>(file.extension() == ".obj" ? sceneForModel(file) : loadScene(file));
+                auto next = std::make_unique<Scene>(isModelPath(file) ? sceneForModel(file) : loadScene(file));
                 renderer.reset();  // it points at the old scene
                 scene = std::move(next);
                 renderer = std::make_unique<Renderer>(*scene, shaders);

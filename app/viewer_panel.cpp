@@ -192,8 +192,8 @@ void filePicker(const char* pickerLabel, const std::vector<fs::path>& files, con
 
 PickerFiles findPickerFiles(const fs::path& repositoryRoot) {
     PickerFiles files;
-    for (const fs::path& dir : {repositoryRoot / "scenes", repositoryRoot / "../shared/assets"})
-        for (auto& f : filesWithExtensions(dir, {".json", ".obj"})) files.scenes.push_back(f);
+    for (const fs::path& dir : {repositoryRoot / "scenes", repositoryRoot / "models", repositoryRoot / "../shared/assets"})
+        for (auto& f : filesWithExtensions(dir, {".json", ".obj", ".gltf", ".glb"})) files.scenes.push_back(f);
     for (const fs::path& dir : {repositoryRoot / "hdr", repositoryRoot / "../shared/assets"})
         for (auto& f : filesWithExtensions(dir, {".exr", ".hdr"})) files.environments.push_back(f);
     return files;

@@ -84,6 +84,8 @@ FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const Fr
     else graph.skipPass("ibl", hasMap ? "IBL is off (environment.ibl false, no --ibl)" : "scene has no environment map");
     if (localSkip.empty()) hdr = addLocalLightPass(graph, passes.localLights, frame, gbuffer, hdr, lightingView);
     else graph.skipPass("local_lights", localSkip);
+    if (!lightingView && sceneHasEmission(frame)) hdr = addEmissionPass(graph, passes.emission, frame, gbuffer, hdr);
+    else graph.skipPass("emission", lightingView ? "the lighting view shows light alone" : "no material of the scene emits");
     if (skyAdded) hdr = addSkyPass(graph, passes.sky, frame, gbuffer.depth, hasMap ? environment.cube : fg::ResourceId{}, hdr);
     else graph.skipPass("sky", lightingView ? "the lighting view shows light alone" : "scene has no environment (black, no map)");
     // globes and the light-ranges / lights-per-tile overlays, over the sky too.

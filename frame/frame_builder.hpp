@@ -9,6 +9,7 @@
 #include "engine/render/frame_data.hpp"
 #include "passes/auto_exposure_pass.hpp"
 #include "passes/debug_view_pass.hpp"
+#include "passes/emission_pass.hpp"
 #include "passes/gbuffer_pass.hpp"
 #include "passes/post_pass.hpp"
 #include "passes/global_light_pass.hpp"
@@ -34,6 +35,7 @@ struct PassStates {
     IblPass ibl;
     LocalLightPass localLights;
     MotionBlurPass motionBlur;
+    EmissionPass emission;
     PostPasses post;
     UpscalePass upscale;
     HdrViewPass hdrView;

@@ -165,13 +165,14 @@ GBuffer addGBufferPass(fg::FrameGraph& graph, GBufferPass& state, const FrameDat
             const GLint locPreviousClip = glGetUniformLocation(prog, "uPreviousClipFromModel");
             const GLint locMV = glGetUniformLocation(prog, "uModelView");
             const GLint locN = glGetUniformLocation(prog, "uNormalMatrix");
-            const GLint locKd = glGetUniformLocation(prog, "uDiffuse");
-            const GLint locKs = glGetUniformLocation(prog, "uSpecular");
-            const GLint locNs = glGetUniformLocation(prog, "uShininess");
-            const GLint locHasD = glGetUniformLocation(prog, "uHasDiffuseMap");
-            const GLint locHasB = glGetUniformLocation(prog, "uHasBumpMap");
-            const GLint locBs = glGetUniformLocation(prog, "uBumpScale");
-            const GLint locFlat = glGetUniformLocation(prog, "uFlat");
+            auto loc = [prog](const char* name) { return glGetUniformLocation(prog, name); };
+            const GLint locKd = loc("uDiffuse"), locOpacity = loc("uOpacity"), locKs = loc("uSpecular"), locMetal = loc("uMetallic");
+            const GLint locNs = loc("uShininess"), locRough = loc("uRoughness");
+            const GLint locHasD = loc("uHasDiffuseMap"), locHasB = loc("uHasBumpMap"), locBs = loc("uBumpScale");
+            const GLint locHasN = loc("uHasNormalMap"), locNs2 = loc("uNormalScale"), locHasMR = loc("uHasMetalRoughMap");
+            const GLint locHasO = loc("uHasOcclusionMap"), locOs = loc("uOcclusionStrength");
+            const GLint locMask = loc("uAlphaMask"), locCutoff = loc("uAlphaCutoff"), locTwoSided = loc("uDoubleSided");
+            const GLint locFlat = loc("uFlat");
             for (const auto& mesh : frame.gpu->meshes) {
                 glm::mat4 mv = frame.view * mesh.model;
                 glm::mat3 nm = glm::inverseTranspose(glm::mat3(mv));
@@ -186,21 +187,34 @@ GBuffer addGBufferPass(fg::FrameGraph& graph, GBufferPass& state, const FrameDat
                 for (const auto& d : mesh.draws) {
                     const GpuMaterial& m = frame.gpu->materials[size_t(d.material)];
                     glProgramUniform3fv(prog, locKd, 1, glm::value_ptr(m.diffuse));
+                    glProgramUniform1f(prog, locOpacity, m.opacity);
                     glProgramUniform3fv(prog, locKs, 1, glm::value_ptr(m.specular));
+                    glProgramUniform1f(prog, locMetal, m.metallic);
                     glProgramUniform1f(prog, locNs, m.shininess);
+                    glProgramUniform1f(prog, locRough, m.roughness);
                     glProgramUniform1i(prog, locHasD, m.diffuseMap != 0);
                     glProgramUniform1i(prog, locHasB, m.bumpMap != 0);
                     glProgramUniform1f(prog, locBs, m.bumpScale);
+                    glProgramUniform1i(prog, locHasN, m.normalMap != 0);
+                    glProgramUniform1f(prog, locNs2, m.normalScale);
+                    glProgramUniform1i(prog, locHasMR, m.metallicRoughnessMap != 0);
+                    glProgramUniform1i(prog, locHasO, m.occlusionMap != 0);
+                    glProgramUniform1f(prog, locOs, m.occlusionStrength);
+                    glProgramUniform1i(prog, locMask, m.alphaMask);
+                    glProgramUniform1f(prog, locCutoff, m.alphaCutoff);
+                    glProgramUniform1i(prog, locTwoSided, m.doubleSided);
                     glProgramUniform1i(prog, locFlat, m.flat);
                     glBindTextureUnit(0, m.diffuseMap);
                     glBindTextureUnit(1, m.bumpMap);
+                    glBindTextureUnit(2, m.normalMap);
+                    glBindTextureUnit(3, m.metallicRoughnessMap);
+                    glBindTextureUnit(4, m.occlusionMap);
                     glDrawElements(GL_TRIANGLES, GLsizei(d.indexCount), GL_UNSIGNED_INT,
                                    reinterpret_cast<const void*>(size_t(d.firstIndex) * sizeof(uint32_t)));
                 }
             }
             glBindVertexArray(0);
-            glBindTextureUnit(0, 0);
-            glBindTextureUnit(1, 0);
+            for (GLuint u = 0; u < 5; ++u) glBindTextureUnit(u, 0);
             glUseProgram(0);
         });
 }

@@ -19,6 +19,8 @@ uniform mat4 uPreviousClipFromModel;
 out vec4 vCurrentClip;
 out vec4 vPreviousClip;
 #endif
+// The emission pass draws with this shader again and tests GL_EQUAL against the G-buffer depth.
+invariant gl_Position;
 
 void main() {
     vec4 p = uModelView * vec4(inPosition, 1.0);

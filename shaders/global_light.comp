@@ -77,7 +77,7 @@ void main() {
     vec3 ks = spec.rgb;
     float pl = length(P);
     vec3 V = pl > 0.0 ? -P / pl : vec3(0.0, 0.0, 1.0);
-    vec3 c = uAmbient * kd;
+    vec3 c = uAmbient * kd * (uLightingOnly ? 1.0 : gbufferOcclusion(p));  // occlusion darkens ambient light only
     for (int i = 0; i < uLightCount; ++i) {
         vec3 L = uLightDirEye[i];
         float nl = dot(N, L);

@@ -44,7 +44,8 @@ void main() {
     vec2 ab = textureLod(uDfg, vec2(NdotV, roughness), 0.0).rg;
     vec3 fss = spec.rgb * ab.x + ab.y;
     vec3 prefiltered = textureLod(uPrefiltered, Rw, roughness * uMaxLod).rgb;
-    vec3 c = uIntensity * (kd * (1.0 - fss) * E / LP_IBL_PI + prefiltered * fss);
+    float occlusion = uLightingOnly ? 1.0 : gbufferOcclusion(p);  // the material's ambient occlusion
+    vec3 c = uIntensity * occlusion * (kd * (1.0 - fss) * E / LP_IBL_PI + prefiltered * fss);
     vec3 hdr = imageLoad(uHdr, p).rgb;
     imageStore(uHdr, p, vec4(sanitizeHdr(hdr + c), 1.0));
 }

@@ -70,10 +70,11 @@ struct Effects {
     ToonEffect toon;
 };
 
-// One placed model: a mesh loaded from OBJ or made by a primitive generator.
+// One placed model: a mesh loaded from OBJ or glTF, or made by a primitive generator.
 struct ModelInstance {
     std::string name;
-    std::filesystem::path obj;  // empty for primitives
+    std::filesystem::path obj;   // empty for primitives and glTF
+    std::filesystem::path gltf;  // .gltf / .glb; empty for primitives and OBJ
     std::string primitive;      // "plane" | "sphere" | "cube" | ""
     glm::mat4 transform{1.0f};
     std::optional<glm::vec3> diffuseOverride;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -12,6 +13,7 @@
 #include "engine/core/error.hpp"
 #include "engine/core/log.hpp"
 #include "engine/io/file_check.hpp"
+#include "engine/io/gltf_loader.hpp"
 #include "engine/io/obj_loader.hpp"
 #include "engine/scene/primitives.hpp"
 
@@ -196,15 +198,21 @@ CameraPath parseCameraPath(const Reader& r, const json& j, const std::string& w)
 }
 
 void parseModel(const Reader& r, const json& j, const std::string& w, const fs::path& base, ModelInstance& m) {
-    r.onlyKnown(j, w, {"name", "obj", "primitive", "translate", "rotate", "scale", "material"});
+    r.onlyKnown(j, w, {"name", "obj", "gltf", "primitive", "translate", "rotate", "scale", "up", "material"});
     m.name = r.string(j, "name", w);
     std::string obj = r.string(j, "obj", w);
+    std::string gltf = r.string(j, "gltf", w);
     m.primitive = r.string(j, "primitive", w);
-    if (obj.empty() == m.primitive.empty()) r.fail(w, "needs exactly one of \"obj\" or \"primitive\"");
+    if (int(!obj.empty()) + int(!gltf.empty()) + int(!m.primitive.empty()) != 1)
+        r.fail(w, "needs exactly one of \"obj\", \"gltf\" or \"primitive\"");
     if (!m.primitive.empty() && m.primitive != "plane" && m.primitive != "sphere" && m.primitive != "cube")
         r.fail(w + ".primitive", "unknown primitive '" + m.primitive + "' (plane, sphere, cube)");
     if (!obj.empty()) m.obj = resolve(base, obj);
-    if (m.name.empty()) m.name = obj.empty() ? m.primitive : fs::path(obj).stem().string();
+    if (!gltf.empty()) {
+        m.gltf = resolve(base, gltf);
+        if (!isGltfPath(m.gltf)) r.fail(w + ".gltf", gltf + ": expected a .gltf or .glb file");
+    }
+    if (m.name.empty()) m.name = !obj.empty() ? fs::path(obj).stem().string() : !gltf.empty() ? fs::path(gltf).stem().string() : m.primitive;
     glm::vec3 t = r.point(j, "translate", w, glm::vec3(0.0f));
     glm::vec3 rot = r.vec3(j, "rotate", w, glm::vec3(0.0f));
     glm::vec3 s = r.vec3(j, "scale", w, glm::vec3(1.0f));
@@ -220,6 +228,9 @@ void parseModel(const Reader& r, const json& j, const std::string& w, const fs::
     x = glm::rotate(x, glm::radians(rot.x), glm::vec3(1, 0, 0));
     x = glm::rotate(x, glm::radians(rot.z), glm::vec3(0, 0, 1));
     m.transform = glm::scale(x, s);
+    const std::string up = r.string(j, "up", w);
+    if (!up.empty() && up != "y" && up != "z") r.fail(w + ".up", "'" + up + "': expected \"y\" or \"z\"");
+    if (up == "z") m.transform = m.transform * zUpToYUp();  // turned Y-up first, then placed
     if (j.contains("material")) {
         const json& mat = j["material"];
         const std::string mw = w + ".material";
@@ -265,11 +276,35 @@ void parseLight(const Reader& r, const json& j, const std::string& w, Scene& sce
     }
 }
 
-void loadMesh(const Reader& r, ModelInstance& m, const std::string& where) {
+// The glTF's lights join the scene's, placed by the model's transform.
+void addGltfLights(const GltfContent& g, const glm::mat4& transform, Scene& scene) {
+    for (DirectionalLight d : g.directionalLights) {
+        const glm::vec3 dir = glm::mat3(transform) * d.direction;
+        if (!(glm::length(dir) > 0.0f)) continue;
+        d.direction = glm::normalize(dir);
+        scene.directionalLights.push_back(d);
+    }
+    for (PointLight p : g.pointLights) {
+        p.position = glm::vec3(transform * glm::vec4(p.position, 1.0f));
+        p.orbitCenter = p.position;
+        scene.pointLights.push_back(p);
+    }
+}
+
+void loadMesh(const Reader& r, ModelInstance& m, const std::string& where, Scene& scene) {
     if (!m.primitive.empty()) {
         if (m.primitive == "plane") m.mesh = makePlane(1.0f, 8);
         else if (m.primitive == "sphere") m.mesh = makeSphere(0.5f, 64, 32);
         else m.mesh = makeCube(1.0f);
+    } else if (!m.gltf.empty()) {
+        if (!fs::exists(m.gltf)) r.fail(where + ".gltf", m.gltf.string() + ": file not found");
+        try {
+            GltfContent g = loadGltf(m.gltf);
+            m.mesh = std::move(g.mesh);
+            addGltfLights(g, m.transform, scene);
+        } catch (const Error& e) {  // "<scene>: models[i].gltf: <gltf>: <element>: <what>"
+            r.fail(where + ".gltf", e.what());
+        }
     } else {
         if (!fs::exists(m.obj)) r.fail(where + ".obj", m.obj.string() + ": file not found");
         try {
@@ -371,7 +406,7 @@ Scene parseScene(const std::string& text, const fs::path& origin, bool loadMeshe
     if (loadMeshes) {
         for (size_t i = 0; i < scene.models.size(); ++i) {
             try {
-                loadMesh(r, scene.models[i], "models[" + std::to_string(i) + "]");
+                loadMesh(r, scene.models[i], "models[" + std::to_string(i) + "]", scene);
                 requirePlacedWithinRange(r, scene.models[i], "models[" + std::to_string(i) + "]");
             } catch (const Error& e) {
                 std::string msg = e.what();
@@ -420,15 +455,42 @@ void frameCamera(Scene& scene) {
     scene.camera.farPlane = distance + radius * 3.0f;
 }
 
-Scene sceneForModel(const fs::path& obj) {
+bool isModelPath(const fs::path& file) {
+    std::string ext = file.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return ext == ".obj" || isGltfPath(file);
+}
+
+glm::mat4 zUpToYUp() { return glm::rotate(glm::mat4(1.0f), glm::radians(-90.0f), glm::vec3(1, 0, 0)); }
+
+Scene sceneForModel(const fs::path& file, bool zUp) {
     Scene scene;
-    scene.file = obj;
+    scene.file = file;
     ModelInstance m;
-    m.name = obj.stem().string();
-    m.obj = obj;
-    if (!fs::exists(obj)) throw Error(obj.string() + ": file not found");
-    m.mesh = loadObj(obj);
+    m.name = file.stem().string();
+    if (zUp) m.transform = zUpToYUp();
+    if (!fs::exists(file)) throw Error(file.string() + ": file not found");
+    std::optional<Camera> fileCamera;
+    bool fileLights = false;
+    if (isGltfPath(file)) {
+        m.gltf = file;
+        GltfContent g = loadGltf(file);
+        m.mesh = std::move(g.mesh);
+        addGltfLights(g, m.transform, scene);
+        fileLights = !g.directionalLights.empty() || !g.pointLights.empty();
+        if (!g.cameras.empty()) fileCamera = g.cameras.front();
+    } else {
+        m.obj = file;
+        m.mesh = loadObj(file);
+    }
     scene.models.push_back(std::move(m));
+    // The viewer's key and fill light, unless the file brings its own (a glTF's KHR_lights_punctual).
+    if (fileLights) {
+        scene.ambient = glm::vec3(0.05f);
+        frameCamera(scene);
+        if (fileCamera) scene.camera = *fileCamera;
+        return scene;
+    }
     DirectionalLight key;
     key.direction = glm::normalize(glm::vec3(-0.4f, -1.0f, -0.6f));
     key.intensity = 3.0f;
@@ -440,6 +502,7 @@ Scene sceneForModel(const fs::path& obj) {
     scene.directionalLights = {key, fill};
     scene.ambient = glm::vec3(0.05f);
     frameCamera(scene);
+    if (fileCamera) scene.camera = *fileCamera;  // a glTF's first camera
     return scene;
 }
 
