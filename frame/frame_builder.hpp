@@ -16,6 +16,7 @@
 #include "passes/ibl_pass.hpp"
 #include "passes/local_light_pass.hpp"
 #include "passes/sky_pass.hpp"
+#include "passes/spot_shadow_pass.hpp"
 #include "passes/tonemap_pass.hpp"
 #include "passes/upscale_pass.hpp"
 
@@ -30,6 +31,7 @@ struct PassStates {
     ToneMapPass tonemap;
     DebugViewPass debugView;
     ShadowMapPass shadowMaps;  // the depth-only program and framebuffer
+    SpotShadowPass spotShadows;
     IblPass ibl;
     LocalLightPass localLights;
     PostPasses post;
