@@ -23,8 +23,10 @@ bool sphereIntersectsFrustum(const glm::mat4& viewProjection, glm::vec3 center, 
 int localLightsInView(const FrameData& frame) {
     const glm::mat4 viewProjection = frame.projection * frame.view;
     int visible = 0;
-    for (const PointLight& l : localLightsForFrame(*frame.scene, frame.settings->localLights, frame.time))
-        visible += (l.range <= 0.0f || sphereIntersectsFrustum(viewProjection, l.position, l.range)) ? 1 : 0;
+    for (const PointLight& l : localLightsForFrame(*frame.scene, frame.settings->localLights, frame.time)) {
+        const BoundingSphere b = localLightBounds(l);
+        visible += (b.radius <= 0.0f || sphereIntersectsFrustum(viewProjection, b.center, b.radius)) ? 1 : 0;
+    }
     return visible;
 }
 
@@ -82,13 +84,19 @@ FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const Fr
     fg::ResourceId hdr = addGlobalLightPass(graph, passes.globalLights, frame, gbuffer, shadowMaps, lightingView);
     if (iblAdded) hdr = addIblPass(graph, passes.ibl, frame, gbuffer, environment, hdr, lightingView);
     else graph.skipPass("ibl", hasMap ? "IBL is off (environment.ibl false, no --ibl)" : "scene has no environment map");
-    if (localSkip.empty()) hdr = addLocalLightPass(graph, passes.localLights, frame, gbuffer, hdr, lightingView);
-    else graph.skipPass("local_lights", localSkip);
+    if (localSkip.empty()) {
+        // one perspective depth map per shadow-casting spot, read by local_lights.
+        const SpotShadowMaps spotShadows = addSpotShadowPass(graph, passes.spotShadows, frame);
+        hdr = addLocalLightPass(graph, passes.localLights, frame, gbuffer, hdr, lightingView, spotShadows);
+    } else {
+        graph.skipPass("local_lights", localSkip);
+        graph.skipPass("spot_shadows", localSkip);
+    }
     if (!lightingView && sceneHasEmission(frame)) hdr = addEmissionPass(graph, passes.emission, frame, gbuffer, hdr);
     else graph.skipPass("emission", lightingView ? "the lighting view shows light alone" : "no material of the scene emits");
     if (skyAdded) hdr = addSkyPass(graph, passes.sky, frame, gbuffer.depth, hasMap ? environment.cube : fg::ResourceId{}, hdr);
     else graph.skipPass("sky", lightingView ? "the lighting view shows light alone" : "scene has no environment (black, no map)");
-    // globes and the light-ranges / lights-per-tile overlays, over the sky too.
+    // globes and the light-ranges / lights-per-tile / lights-per-cluster overlays, over the sky too.
     if (!lightingView && localSkip.empty() && localLightCount(scene, s.localLights) > 0)
         hdr = addLocalLightOverlayPasses(graph, passes.localLights, frame, gbuffer, hdr);
     // Motion blur on the HDR buffer, before bloom and the tone map.

@@ -18,6 +18,7 @@
 #include "passes/local_light_pass.hpp"
 #include "passes/motion_blur_pass.hpp"
 #include "passes/sky_pass.hpp"
+#include "passes/spot_shadow_pass.hpp"
 #include "passes/tonemap_pass.hpp"
 #include "passes/upscale_pass.hpp"
 
@@ -32,6 +33,7 @@ struct PassStates {
     ToneMapPass tonemap;
     DebugViewPass debugView;
     ShadowMapPass shadowMaps;  // the depth-only program and framebuffer
+    SpotShadowPass spotShadows;
     IblPass ibl;
     LocalLightPass localLights;
     MotionBlurPass motionBlur;

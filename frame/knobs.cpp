@@ -7,6 +7,7 @@
 
 #include "engine/core/error.hpp"
 #include "engine/post/post_config.hpp"
+#include "engine/render/local_lights.hpp"
 
 namespace lp {
 
@@ -483,15 +484,13 @@ std::vector<KnobEntry> makeKnobTable() {
     }
     {
         KnobEntry k = choiceKnob("local-light-method", [](auto& s) -> auto& { return s.localLights.method; },
-                                 std::vector<LocalLightMethod>{LocalLightMethod::Fullscreen, LocalLightMethod::Scissor,
-                                                               LocalLightMethod::Volumes, LocalLightMethod::Tiled},
-                                 localLightMethodName);
+                                 allLocalLightMethods(), localLightMethodName);
         k.flags = {valueFlag("--local-lights")};
         k.choiceNoun = "method";
-        k.help = "how local lights are drawn; all four give the same image";
+        k.help = "how local lights are drawn; all five give the same image";
         k.panel = {PanelSection::Lighting, PanelWidget::Combo, "method", ""};
-        k.sweep = {{"tiled", "volumes", "scissor", "fullscreen"}, false,
-                   "local-light method (--local-lights): tiled, volumes, scissor, fullscreen (reference). The "
+        k.sweep = {{"tiled", "clustered", "volumes", "scissor", "fullscreen"}, false,
+                   "local-light method (--local-lights): tiled, clustered, volumes, scissor, fullscreen (reference). The "
                    "same image by design: errors should be ~0 (fp16 sums in different orders), so not monotone",
                    nullptr};
         t.push_back(std::move(k));
@@ -550,6 +549,36 @@ std::vector<KnobEntry> makeKnobTable() {
                    "each local light's range x this (--light-range-scale): lights stop sooner, fewer pixels per "
                    "light; 1 (the full range) is the reference",
                    nullptr};
+        t.push_back(std::move(k));
+    }
+
+    {
+        KnobEntry k = intKnob("cluster-size", [](auto& s) -> auto& { return s.localLights.clusterSize; }, 8, 256);
+        k.flags = {valueFlag("--cluster-size")};
+        k.help = "clustered method: froxel tile side in pixels";
+        k.panel = {PanelSection::Lighting, PanelWidget::Slider, "cluster size (px)", ""};
+        k.sweep = {{"16", "32", "64", "128"}, false,
+                   "froxel tile side in pixels (--cluster-size, switches --local-lights clustered on): smaller tiles, "
+                   "shorter light lists, more froxels to build; the same image by design, so not monotone",
+                   [](RenderSettings& s, double) { s.localLights.method = LocalLightMethod::Clustered; }};
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = intKnob("cluster-slices", [](auto& s) -> auto& { return s.localLights.clusterSlices; }, 1, 64);
+        k.flags = {valueFlag("--cluster-slices")};
+        k.help = "clustered method: exponential depth slices between the camera's near and far planes";
+        k.panel = {PanelSection::Lighting, PanelWidget::Slider, "cluster slices", ""};
+        k.sweep = {{"8", "16", "24", "32", "64"}, false,
+                   "exponential depth slices of the froxel grid (--cluster-slices, switches --local-lights clustered "
+                   "on): the same image by design, so not monotone",
+                   [](RenderSettings& s, double) { s.localLights.method = LocalLightMethod::Clustered; }};
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = intKnob("cluster-slice", [](auto& s) -> auto& { return s.localLights.clusterSlice; }, -1, 63);
+        k.flags = {valueFlag("--cluster-slice")};
+        k.help = "lights-per-cluster view: show this depth slice; -1 the most lights over all slices";
+        k.panel = {PanelSection::Lighting, PanelWidget::Slider, "cluster slice shown", ""};
         t.push_back(std::move(k));
     }
 

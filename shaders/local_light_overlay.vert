@@ -1,5 +1,5 @@
 #version 450
-// Overlays: mode 0 light volumes (icosphere x range, drawn as wireframe), mode 1 light
+// Overlays: mode 0 light volumes (icosphere x bounding sphere, drawn as wireframe), mode 1 light
 // globes (icosphere x uGlobeScale x range), mode 2 the outline of light uLightIndex's scissor
 // rectangle (uRectNdc = x0, y0, x1, y1; gl_VertexID 0..3 as a line loop).
 #include "common/local_light.glsl"
@@ -21,7 +21,7 @@ void main() {
         int v = gl_VertexID & 3;
         gl_Position = vec4(v == 0 || v == 3 ? uRectNdc.x : uRectNdc.z, v < 2 ? uRectNdc.y : uRectNdc.w, 0.0, 1.0);
     } else {
-        vec4 pr = uLights[light].positionRange;
+        vec4 pr = uMode == 1 ? uLights[light].positionRange : uLights[light].bound;
         float s = uMode == 1 ? uGlobeScale * pr.w : pr.w;
         gl_Position = uProjection * vec4(pr.xyz + aPosition * s, 1.0);
     }

@@ -20,6 +20,7 @@ const char* viewName(DebugView v) {
         case DebugView::ShadowMap: return "shadowmap";
         case DebugView::LightRanges: return "light-ranges";
         case DebugView::LightsPerTile: return "lights-per-tile";
+        case DebugView::LightsPerCluster: return "lights-per-cluster";
         case DebugView::WorldPosition: return "world-position";
         case DebugView::EyeVector: return "eye-vector";
         case DebugView::DepthFitted: return "depth-fitted";
@@ -57,8 +58,12 @@ std::optional<DebugView> parseView(const std::string& name) {
     return std::nullopt;
 }
 
-std::vector<DebugView> localLightViews() { return {DebugView::LightRanges, DebugView::LightsPerTile}; }
-bool isLocalLightView(DebugView v) { return v == DebugView::LightRanges || v == DebugView::LightsPerTile; }
+std::vector<DebugView> localLightViews() {
+    return {DebugView::LightRanges, DebugView::LightsPerTile, DebugView::LightsPerCluster};
+}
+bool isLocalLightView(DebugView v) {
+    return v == DebugView::LightRanges || v == DebugView::LightsPerTile || v == DebugView::LightsPerCluster;
+}
 
 const char* brdfName(Brdf brdf) { return brdf == Brdf::Ggx ? "ggx" : "blinn-phong"; }
 

@@ -15,7 +15,7 @@ enum class DebugView {
     Final, Depth, Normals, Diffuse, Position, Shininess, Specular, Texcoords, Lighting,
     Environment, Irradiance, Prefiltered, Dfg,  // environment views (passes/ibl_pass)
     ShadowMap,  // light-space depth of light settings.shadows.debugLight's shadow map
-    LightRanges, LightsPerTile,  // overlays on the final image (local_light_pass)
+    LightRanges, LightsPerTile, LightsPerCluster,  // overlays on the final image (local_light_pass)
     WorldPosition, EyeVector, DepthFitted, Tangent,  // more G-buffer views (seed 003; depth over the scene's range)
     InvalidPixels, ExposureEv,  // the HDR buffer inspected (passes/hdr_view_pass): NaN/Inf, EV false colour
     Velocity  // gbuffer.velocity: screen-space motion as hue (direction) and brightness (length)
@@ -64,11 +64,11 @@ struct ShadowSettings {         // directional-light shadow maps (passes/shadow_
         return std::nullopt;
     }
 };
-// how ranged point lights are drawn; all four give the same image (see README).
-enum class LocalLightMethod { Fullscreen, Scissor, Volumes, Tiled };
+// how local lights (points and spots) are drawn; all five give the same image (see README).
+enum class LocalLightMethod { Fullscreen, Scissor, Volumes, Tiled, Clustered };
 const char* localLightMethodName(LocalLightMethod method);  // defined in engine/render/local_lights.cpp
 std::optional<LocalLightMethod> parseLocalLightMethod(const std::string& name);
-struct LocalLightSettings {     // ranged point lights
+struct LocalLightSettings {     // local lights: ranged point lights and spots
     bool enabled = true;
     LocalLightMethod method = LocalLightMethod::Tiled;
     bool scissor = true;        // scissor method: off draws every light full screen ('x' toggles)
@@ -77,6 +77,9 @@ struct LocalLightSettings {     // ranged point lights
     bool specular = true;       // local lights add a specular term
     bool specularOutsideRange = false;  // diffuse limited by range, specular (1/d^2 only) not
     float rangeScale = 1.0f;    // --light-range-scale: each light's range x this (< 1 cuts lights short; a sweep knob)
+    int clusterSize = 32;       // clustered: froxel tile side in pixels
+    int clusterSlices = 24;     // clustered: exponential depth slices between the near and far planes
+    int clusterSlice = -1;      // lights-per-cluster view: this slice, -1 the most over all slices
 };
 enum class ToneMapOperator { Lightpass, Aces, PbrNeutral, Agx };
 enum class IrradianceSource { SphericalHarmonics, Cubemap };

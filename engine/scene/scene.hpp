@@ -33,6 +33,16 @@ struct DirectionalLight {
     bool castsShadows = true;
 };
 
+// The cone of a spot light: the point light's shading times a falloff that is 1 within innerDegrees
+// of the axis and 0 past outerDegrees (common/local_light.glsl's lpSpotFalloff).
+struct SpotCone {
+    glm::vec3 direction{0.0f, -1.0f, 0.0f};  // unit, world space: where the spot points
+    float innerDegrees = 20.0f;              // half-angles from the axis, 0 <= inner <= outer < 90
+    float outerDegrees = 30.0f;
+    bool castsShadow = false;                // one perspective shadow map (passes/spot_shadow_pass)
+};
+
+// A local light: a ranged point light, or a spot when `spot` is set.
 struct PointLight {
     glm::vec3 position{0.0f};
     glm::vec3 color{1.0f};
@@ -41,6 +51,7 @@ struct PointLight {
     // Demo animation: orbit around `orbitCenter` about +Y at `orbitSpeed` radians per second.
     glm::vec3 orbitCenter{0.0f};
     float orbitSpeed = 0.0f;
+    std::optional<SpotCone> spot;
 };
 
 struct Environment {
@@ -89,7 +100,7 @@ struct Scene {
     Camera camera;
     std::vector<ModelInstance> models;
     std::vector<DirectionalLight> directionalLights;
-    std::vector<PointLight> pointLights;
+    std::vector<PointLight> pointLights;  // the local lights, points and spots, in file order
     Environment environment;
     glm::vec3 ambient{0.03f};  // constant ambient radiance in BRDF mode
     bool lightGlobes = false;  // "lightGlobes": draw each point light as a small flat-lit globe (seed 003)

@@ -257,8 +257,13 @@ void parseLight(const Reader& r, const json& j, const std::string& w, Scene& sce
         l.intensity = r.bounded(j, "intensity", w, l.intensity, 0.0f, kMaxIntensity);
         l.castsShadows = r.boolean(j, "shadows", w, l.castsShadows);
         scene.directionalLights.push_back(l);
-    } else if (type == "point") {
-        r.onlyKnown(j, w, {"type", "position", "color", "intensity", "range", "orbit"});
+    } else if (type == "point" || type == "spot") {
+        const bool spot = type == "spot";
+        if (spot)
+            r.onlyKnown(j, w, {"type", "position", "direction", "color", "intensity", "range", "innerAngle",
+                               "outerAngle", "castsShadow", "orbit"});
+        else
+            r.onlyKnown(j, w, {"type", "position", "color", "intensity", "range", "orbit"});
         PointLight l;
         l.position = r.point(j, "position", w, l.position);
         l.color = r.color(j, "color", w, l.color);
@@ -270,9 +275,24 @@ void parseLight(const Reader& r, const json& j, const std::string& w, Scene& sce
             l.orbitCenter = r.point(j["orbit"], "center", ow, l.position);
             l.orbitSpeed = r.bounded(j["orbit"], "speed", ow, 0.5f, -1e6f, 1e6f);
         }
+        if (spot) {
+            SpotCone c;
+            c.direction = r.unit(r.vec3(j, "direction", w, c.direction), w + ".direction");
+            c.innerDegrees = r.number(j, "innerAngle", w, c.innerDegrees);
+            c.outerDegrees = r.number(j, "outerAngle", w, c.outerDegrees);
+            if (c.innerDegrees < 0.0f) r.fail(w + ".innerAngle", formatNumber(c.innerDegrees) + " degrees: must be >= 0");
+            if (!(c.outerDegrees > 0.0f && c.outerDegrees < 90.0f))
+                r.fail(w + ".outerAngle", formatNumber(c.outerDegrees) + " degrees: must be in (0, 90)");
+            if (c.outerDegrees < c.innerDegrees)
+                r.fail(w + ".outerAngle", formatNumber(c.outerDegrees) + " degrees is less than innerAngle " +
+                                              formatNumber(c.innerDegrees));
+            c.castsShadow = r.boolean(j, "castsShadow", w, c.castsShadow);
+            l.spot = c;
+        }
         scene.pointLights.push_back(l);
     } else {
-        r.fail(w + ".type", type.empty() ? "missing (directional or point)" : "unknown light type '" + type + "' (directional, point)");
+        r.fail(w + ".type", type.empty() ? "missing (directional, point or spot)"
+                                         : "unknown light type '" + type + "' (directional, point, spot)");
     }
 }
 

@@ -211,7 +211,7 @@ TEST(KnobTable, ErrorsKeepTheirWording) {
         {{"render", "--pcf", "7x7"}, "--pcf 7x7: unknown filter (off, 3x3, 5x5, poisson)"},
         {{"render", "--brdf", "x"}, "--brdf x: unknown BRDF (blinn-phong, ggx)"},
         {{"render", "--tonemap", "x"}, "--tonemap x: unknown operator (lightpass, aces, pbr-neutral, agx)"},
-        {{"render", "--local-lights", "x"}, "--local-lights x: unknown method (fullscreen, scissor, volumes, tiled)"},
+        {{"render", "--local-lights", "x"}, "--local-lights x: unknown method (fullscreen, scissor, volumes, tiled, clustered)"},
         {{"render", "--gbuffer", "oct12"},
          "--gbuffer oct12: unknown format (unpacked, seed-packed, seed-packed-signed, two-angle, oct16, oct24, oct32)"},
         {{"render", "--gbuffer-position", "far"}, "--gbuffer-position far: unknown mode (stored, depth, reversed-z)"},
@@ -265,7 +265,7 @@ TEST(KnobTable, SweepKnobsAreTableEntries) {
     EXPECT_EQ(labels("bloom-kernel"), (std::vector<std::string>{"5", "10", "25", "50", "100"}));
     EXPECT_EQ(labels("bloom-method"), (std::vector<std::string>{"mip-chain", "separable"}));
     EXPECT_EQ(labels("ibl-diffuse"), (std::vector<std::string>{"sh", "cubemap"}));
-    EXPECT_EQ(labels("local-light-method"), (std::vector<std::string>{"tiled", "volumes", "scissor", "fullscreen"}));
+    EXPECT_EQ(labels("local-light-method"), (std::vector<std::string>{"tiled", "clustered", "volumes", "scissor", "fullscreen"}));
     EXPECT_EQ(labels("gbuffer-format"), (std::vector<std::string>{"oct16", "oct24", "oct32", "seed-packed",
                                                                   "seed-packed-signed", "two-angle", "unpacked"}));
     // ibl-face-size also halves the prefiltered cube, as --env-size with --ibl-specular-size would.
