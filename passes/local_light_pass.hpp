@@ -24,9 +24,12 @@ struct LocalLightPass {
     gl::Program heatmapProgram;   // local_light_tiled.comp with LP_TILE_HEATMAP
     gl::Program sanitizeProgram;  // local_light_sanitize.comp
     gl::Program overlayProgram;   // local_light_overlay.vert/.frag: globes, volumes, rectangles
+    gl::Program globeVelocityProgram;  // the same with LP_GLOBE_VELOCITY: globes and their motion vectors
     GBufferSettings layout;       // the G-buffer layout the fragment, tiled and heatmap programs were compiled for
     gl::Framebuffer fbo;
     gl::Buffer lights;            // SSBO of GpuLocalLight
+    gl::Buffer globeMotion;       // SSBO of each light's world centre now and at the previous frame's time
+    size_t globeMotionCapacity = 0;
     size_t lightCapacity = 0;
     gl::Buffer volumeMesh, globeMesh;
     gl::VertexArray volumeVao, globeVao;
@@ -40,8 +43,10 @@ fg::ResourceId addLocalLightPass(fg::FrameGraph& graph, LocalLightPass& state, c
                                  const GBuffer& gbuffer, fg::ResourceId hdr, bool lightingOnly);
 
 // After the sky: "light_globes" (settings.localLights.globes, else the scene's lightGlobes) and the overlay views
-// ("light_ranges", "lights_per_tile") over the finished HDR image.
+// ("light_ranges", "lights_per_tile") over the finished HDR image. When the frame has gbuffer.velocity,
+// the globes also write their motion into it (their lights orbit): gbuffer.velocity becomes that new
+// version, for the passes that read motion after them.
 fg::ResourceId addLocalLightOverlayPasses(fg::FrameGraph& graph, LocalLightPass& state, const FrameData& frame,
-                                          const GBuffer& gbuffer, fg::ResourceId hdr);
+                                          GBuffer& gbuffer, fg::ResourceId hdr);
 
 }  // namespace lp
