@@ -95,6 +95,7 @@ void setMat4(GLuint prog, const char* name, const glm::mat4& m) {
 void unbindAll(const LocalLightPass& state) {
     if (state.fbo) {
         glNamedFramebufferTexture(state.fbo.id(), GL_COLOR_ATTACHMENT0, 0, 0);
+        glNamedFramebufferTexture(state.fbo.id(), GL_COLOR_ATTACHMENT1, 0, 0);
         glNamedFramebufferTexture(state.fbo.id(), GL_DEPTH_ATTACHMENT, 0, 0);
     }
     for (GLuint u = 0; u < 6; ++u) glBindTextureUnit(u, 0);
@@ -327,14 +328,55 @@ namespace {
 struct OverlayData {
     GBuffer in;
     fg::ResourceId hdr;
+    fg::ResourceId velocity;  // the globes' motion over gbuffer.velocity; invalid without the target
 };
 
-void drawGlobes(LocalLightPass& state, const FrameData& frame, int count, GLuint hdrTexture, GLuint depthTexture) {
-    const GLuint prog = state.overlayProgram.id();
+// Each light's world-space centre at the frame's time and at the previous frame's time (the orbit
+// function of time gives both; without a previous frame previousTime = time) into binding 1.
+void uploadGlobeMotion(LocalLightPass& state, const FrameData& frame) {
+    const LocalLightSettings& s = frame.settings->localLights;
+    const std::vector<PointLight> now = localLightsForFrame(*frame.scene, s, frame.time);
+    const std::vector<PointLight> before = localLightsForFrame(*frame.scene, s, frame.previousTime);
+    std::vector<glm::vec4> motion;
+    motion.reserve(2 * now.size());
+    for (size_t i = 0; i < now.size(); ++i) {
+        motion.emplace_back(now[i].position, 1.0f);
+        motion.emplace_back(i < before.size() ? before[i].position : now[i].position, 1.0f);
+    }
+    if (motion.size() > state.globeMotionCapacity || !state.globeMotion) {
+        state.globeMotionCapacity = std::max<size_t>(motion.size(), 128);
+        state.globeMotion = gl::makeBuffer(GLsizeiptr(state.globeMotionCapacity * sizeof(glm::vec4)), nullptr,
+                                           GL_DYNAMIC_STORAGE_BIT, "light_globes.motion");
+    }
+    if (!motion.empty())
+        glNamedBufferSubData(state.globeMotion.id(), 0, GLsizeiptr(motion.size() * sizeof(glm::vec4)), motion.data());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, state.globeMotion.id());
+}
+
+// The globes into the HDR buffer and, when velocityTexture is not 0, their motion vectors into it,
+// under the same depth test.
+void drawGlobes(LocalLightPass& state, const FrameData& frame, int count, GLuint hdrTexture, GLuint depthTexture,
+                GLuint velocityTexture) {
+    const bool velocity = velocityTexture != 0;
+    if (velocity && !state.globeVelocityProgram)
+        state.globeVelocityProgram =
+            frame.shaders->graphics("local_light_overlay.vert", "local_light_overlay.frag", {"LP_GLOBE_VELOCITY"});
+    const GLuint prog = velocity ? state.globeVelocityProgram.id() : state.overlayProgram.id();
     const GLuint fbo = state.fbo.id();
     glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, hdrTexture, 0);
+    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT1, velocityTexture, 0);
     glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, depthTexture, 0);  // read only: depth mask off
-    glNamedFramebufferDrawBuffer(fbo, GL_COLOR_ATTACHMENT0);
+    const GLenum buffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+    glNamedFramebufferDrawBuffers(fbo, velocity ? 2 : 1, buffers);
+    if (velocity) {
+        uploadGlobeMotion(state, frame);
+        // Unjittered, like the G-buffer's: the same product, so a still light under a still camera gives 0.
+        setMat4(prog, "uViewProjection", frame.unjitteredProjection * frame.view);
+        setMat4(prog, "uPreviousViewProjection", frame.previousViewProjection);
+        const glm::mat3 worldFromEye = glm::transpose(glm::mat3(frame.view));
+        glProgramUniformMatrix3fv(prog, glGetUniformLocation(prog, "uWorldFromEyeRotation"), 1, GL_FALSE,
+                                  glm::value_ptr(worldFromEye));
+    }
     gl::ScopedRasterState saved;
     gl::ScopedFramebuffer bind(fbo, frame.width, frame.height);
     gl::ScopedEnable blend(GL_BLEND, false);
@@ -354,6 +396,7 @@ void drawGlobes(LocalLightPass& state, const FrameData& frame, int count, GLuint
     setMat4(prog, "uProjection", gbufferDepthProjection(frame));
     glBindVertexArray(state.globeVao.id());
     glDrawArraysInstanced(GL_TRIANGLES, 0, state.globeVertices, count);
+    glNamedFramebufferDrawBuffer(fbo, GL_COLOR_ATTACHMENT0);
 }
 
 // The light-ranges view: the volumes method's icospheres as wireframes, every other method's
@@ -401,24 +444,28 @@ void drawRanges(LocalLightPass& state, const FrameData& frame, const std::vector
 }  // namespace
 
 fg::ResourceId addLocalLightOverlayPasses(fg::FrameGraph& graph, LocalLightPass& state, const FrameData& frame,
-                                          const GBuffer& gbuffer, fg::ResourceId hdr) {
+                                          GBuffer& gbuffer, fg::ResourceId hdr) {
     const RenderSettings& s = *frame.settings;
     if (s.localLights.globes.value_or(frame.scene->lightGlobes)) {
-        hdr = graph.addPass<OverlayData>(
-                       "light_globes", fg::PassKind::Raster,
-                       [&](fg::PassBuilder& b, OverlayData& data) {
-                           data.in = gbuffer;
-                           b.read(gbuffer.depth, fg::Usage::DepthTest);
-                           data.hdr = b.write(hdr, fg::Usage::ColorAttachment);
-                       },
-                       [&state, frame](const OverlayData& data, const fg::PassResources& res) {
-                           ensureState(state, frame, state.spotShadowVariant);
-                           std::vector<PointLight> lights = uploadLights(state, frame);
-                           drawGlobes(state, frame, int(lights.size()), res.texture(data.hdr),
-                                      res.texture(data.in.depth));
-                           unbindAll(state);
-                       })
-                  .hdr;
+        const OverlayData& globes = graph.addPass<OverlayData>(
+            "light_globes", fg::PassKind::Raster,
+            [&](fg::PassBuilder& b, OverlayData& data) {
+                data.in = gbuffer;
+                b.read(gbuffer.depth, fg::Usage::DepthTest);
+                data.hdr = b.write(hdr, fg::Usage::ColorAttachment);
+                // Only when a later pass reads motion (the G-buffer made the target for it).
+                if (gbuffer.velocity.valid()) data.velocity = b.write(gbuffer.velocity, fg::Usage::ColorAttachment);
+            },
+            [&state, frame](const OverlayData& data, const fg::PassResources& res) {
+                ensureState(state, frame, state.spotShadowVariant);
+                std::vector<PointLight> lights = uploadLights(state, frame);
+                const GLuint velocity = data.velocity.valid() ? res.texture(data.velocity) : 0;
+                drawGlobes(state, frame, int(lights.size()), res.texture(data.hdr), res.texture(data.in.depth),
+                           velocity);
+                unbindAll(state);
+            });
+        hdr = globes.hdr;
+        if (globes.velocity.valid()) gbuffer.velocity = globes.velocity;
     }
     if (s.view == DebugView::LightRanges) {
         hdr = graph.addPass<OverlayData>(

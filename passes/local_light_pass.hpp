@@ -42,12 +42,15 @@ struct LocalLightPass {
     size_t clusterCapacity = 0;       // clusters the buffers hold
     bool clusterBuilt = false;        // clusterOverflow holds a finished build's count
     int lastOverflowWarned = 0;
+    gl::Program globeVelocityProgram;  // the same with LP_GLOBE_VELOCITY: globes and their motion vectors
     GBufferSettings layout;       // the G-buffer layout the fragment, tiled and heatmap programs were compiled for
     bool spotShadowVariant = false;  // ... and whether with LP_SPOT_SHADOWS (only frames with a shadowed spot)
     gl::Buffer spotShadows;       // SSBO of LpSpotShadow (binding 4)
     size_t spotShadowCapacity = 0;
     gl::Framebuffer fbo;
     gl::Buffer lights;            // SSBO of GpuLocalLight
+    gl::Buffer globeMotion;       // SSBO of each light's world centre now and at the previous frame's time
+    size_t globeMotionCapacity = 0;
     size_t lightCapacity = 0;
     gl::Buffer volumeMesh, globeMesh;
     gl::VertexArray volumeVao, globeVao;
@@ -62,8 +65,10 @@ fg::ResourceId addLocalLightPass(fg::FrameGraph& graph, LocalLightPass& state, c
                                  const SpotShadowMaps& spotShadows);
 
 // After the sky: "light_globes" (settings.localLights.globes, else the scene's lightGlobes) and the overlay views
-// ("light_ranges", "lights_per_tile") over the finished HDR image.
+// ("light_ranges", "lights_per_tile") over the finished HDR image. When the frame has gbuffer.velocity,
+// the globes also write their motion into it (their lights orbit): gbuffer.velocity becomes that new
+// version, for the passes that read motion after them.
 fg::ResourceId addLocalLightOverlayPasses(fg::FrameGraph& graph, LocalLightPass& state, const FrameData& frame,
-                                          const GBuffer& gbuffer, fg::ResourceId hdr);
+                                          GBuffer& gbuffer, fg::ResourceId hdr);
 
 }  // namespace lp

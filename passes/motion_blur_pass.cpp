@@ -5,6 +5,7 @@
 
 #include "engine/gl/shader.hpp"
 #include "engine/gl/state.hpp"
+#include "engine/render/local_lights.hpp"
 
 namespace lp {
 
@@ -17,15 +18,28 @@ struct GatherData {
 };
 }  // namespace
 
+namespace {
+// Whether light globes are drawn and one of their lights is elsewhere than at the previous frame's time.
+bool globesMoved(const FrameData& frame) {
+    const LocalLightSettings& s = frame.settings->localLights;
+    if (!s.globes.value_or(frame.scene->lightGlobes) || frame.time == frame.previousTime) return false;
+    const std::vector<PointLight> now = localLightsForFrame(*frame.scene, s, frame.time);
+    const std::vector<PointLight> before = localLightsForFrame(*frame.scene, s, frame.previousTime);
+    for (size_t i = 0; i < now.size() && i < before.size(); ++i)
+        if (now[i].position != before[i].position) return true;
+    return false;
+}
+}  // namespace
+
 int motionBlurTileSize(int renderHeight) { return std::max(8, int(std::lround(renderHeight / 36.0))); }
 
 std::string motionBlurSkipReason(const FrameData& frame) {
     const MotionBlurSettings& s = frame.settings->motionBlur;
     if (!s.enabled) return "motion blur is off (--motion-blur)";
     if (!frame.hasPrevious) return "no previous frame (first frame or a camera cut): nothing moves";
-    // Models are static and light globes are drawn after the G-buffer: only the camera moves pixels.
-    if (frame.previousViewProjection == frame.unjitteredProjection * frame.view)
-        return "the camera did not move since the previous frame: nothing moves";
+    // Models are static: only the camera and the globes of orbiting lights move pixels.
+    if (frame.previousViewProjection == frame.unjitteredProjection * frame.view && !globesMoved(frame))
+        return "the camera did not move since the previous frame and no light globe moved: nothing moves";
     return "";
 }
 

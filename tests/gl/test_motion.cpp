@@ -2,16 +2,19 @@
 // matrices; jitter moves the image but not the velocity; the velocity view's colours.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "engine/graph/texture_pool.hpp"
+#include "engine/render/local_lights.hpp"
 #include "engine/render/motion.hpp"
 #include "engine/render/scene_gpu.hpp"
 #include "engine/scene/primitives.hpp"
 #include "frame/renderer.hpp"
 #include "passes/gbuffer_pass.hpp"
+#include "passes/local_light_pass.hpp"
 #include "tests/gl/gl_fixture.hpp"
 
 namespace lp {
@@ -227,6 +230,159 @@ TEST(Motion, VelocityTargetExistsOnlyWhenSomethingReadsIt) {
     EXPECT_FALSE(hasVelocity(DebugView::Final));
     EXPECT_FALSE(hasVelocity(DebugView::Normals));
     EXPECT_TRUE(hasVelocity(DebugView::Velocity));
+}
+
+// ---- light globes -------------------------------------------------------------------------------
+
+// motionScene with globes: an orbiting light (3 rad/s about +Y through (0, 1.2, 1)) and a still one,
+// both in front of the geometry.
+Scene globeScene() {
+    Scene s = motionScene();
+    s.lightGlobes = true;
+    PointLight orbiting;
+    orbiting.position = {0.7f, 1.2f, 1.0f};
+    orbiting.orbitCenter = {0.0f, 1.2f, 1.0f};
+    orbiting.orbitSpeed = 3.0f;
+    orbiting.range = 6.0f;
+    PointLight still;
+    still.position = {-0.9f, 1.3f, 1.2f};
+    still.range = 6.0f;
+    s.pointLights = {orbiting, still};
+    return s;
+}
+
+// The G-buffer (with velocity), a cleared HDR buffer and the globe pass; gbuffer.velocity as the
+// globe pass leaves it.
+VelocityImage renderGlobeVelocity(const Scene& scene, FrameData frame) {
+    SceneGpu gpu(scene);
+    gl::ShaderLibrary shaders;
+    frame.gpu = &gpu;
+    frame.shaders = &shaders;
+    GBufferPass gbufferState;
+    LocalLightPass lightState;
+    fg::FrameGraph graph;
+    fg::TexturePool pool;
+    GBufferChannels channels;
+    channels.velocity = true;
+    GBuffer g = addGBufferPass(graph, gbufferState, frame, channels);
+    const fg::ResourceId gbufferVelocity = g.velocity;
+    struct HdrData {
+        fg::ResourceId hdr;
+    };
+    const fg::ResourceId hdr = graph.addPass<HdrData>(
+        "test_hdr", fg::PassKind::Raster,
+        [&](fg::PassBuilder& b, HdrData& d) {
+            d.hdr = b.create("hdr", {frame.width, frame.height, GL_RGBA16F}, fg::Usage::Transfer);
+        },
+        [](const HdrData& d, const fg::PassResources& res) {
+            const float zero[4] = {0, 0, 0, 0};
+            glClearTexImage(res.texture(d.hdr), 0, GL_RGBA, GL_FLOAT, zero);
+        }).hdr;
+    addLocalLightOverlayPasses(graph, lightState, frame, g, hdr);
+    EXPECT_NE(g.velocity.version, gbufferVelocity.version);  // the globes wrote a new version
+    graph.markOutput(g.velocity);
+    graph.compile();
+    graph.execute(pool);
+    gl::checkErrors("globe velocity test frame");
+    VelocityImage out;
+    out.width = frame.width;
+    out.height = frame.height;
+    const size_t n = size_t(frame.width) * size_t(frame.height);
+    out.velocity.resize(n);
+    glGetTextureImage(graph.outputTexture(g.velocity), 0, GL_RG, GL_FLOAT, GLsizei(n * sizeof(glm::vec2)),
+                      out.velocity.data());
+    return out;
+}
+
+// The expected motion at the pixel that holds a globe's centre now: the globe's surface point under
+// that pixel's centre (a ray against the sphere of radius 0.04 x range, the globe's size), which
+// moves rigidly with the light from its position at the previous frame's time.
+struct GlobeExpectation {
+    glm::ivec2 pixel;
+    glm::dvec2 velocity;    // uv_current - uv_previous
+    glm::dvec2 cameraOnly;  // the same surface point held still: the camera's motion alone
+};
+GlobeExpectation expectGlobe(const FrameData& frame, const PointLight& light) {
+    const glm::dmat4 current = glm::dmat4(frame.unjitteredProjection) * glm::dmat4(frame.view);
+    const glm::dmat4 previous(frame.previousViewProjection);
+    const glm::dvec3 centre(orbitPosition(light, frame.time));
+    const glm::dvec3 before(orbitPosition(light, frame.previousTime));
+    const glm::dvec4 c = glm::dmat4(frame.projection) * glm::dmat4(frame.view) * glm::dvec4(centre, 1.0);  // rasterised
+    GlobeExpectation e;
+    e.pixel = glm::ivec2(glm::floor((glm::dvec2(c) / c.w * 0.5 + 0.5) * glm::dvec2(frame.width, frame.height)));
+    const glm::dmat4 rasterInverse = glm::inverse(glm::dmat4(frame.projection) * glm::dmat4(frame.view));
+    const glm::dvec2 ndc((e.pixel.x + 0.5) / frame.width * 2.0 - 1.0, (e.pixel.y + 0.5) / frame.height * 2.0 - 1.0);
+    const glm::dvec4 n = rasterInverse * glm::dvec4(ndc, -1.0, 1.0), f = rasterInverse * glm::dvec4(ndc, 1.0, 1.0);
+    const glm::dvec3 origin = glm::dvec3(n) / n.w, dir = glm::normalize(glm::dvec3(f) / f.w - origin);
+    const double radius = 0.04 * light.range;
+    const glm::dvec3 oc = origin - centre;
+    const double bHalf = glm::dot(oc, dir), disc = bHalf * bHalf - (glm::dot(oc, oc) - radius * radius);
+    EXPECT_GT(disc, 0.0);
+    const glm::dvec3 p = origin + (-bHalf - std::sqrt(std::max(disc, 0.0))) * dir;
+    // The moving point p(t) = p + (centre(t) - centre): the previous matrix composed with that shift.
+    e.velocity = velocityOfPoint(current, previous * glm::translate(glm::dmat4(1.0), before - centre), p);
+    e.cameraOnly = velocityOfPoint(current, previous, p);
+    return e;
+}
+
+// An orbiting light's globe carries the orbit's motion (plus the camera's), a still light's the
+// camera's alone, measured at each globe's centre pixel against the CPU reference. Jittered frames:
+// the velocity stays unjittered.
+TEST(Motion, LightGlobesWriteTheirOrbitMotion) {
+    Scene scene = globeScene();
+    RenderSettings settings;
+    settings.width = 96;
+    settings.height = 72;
+    const FrameData first = frameAfter(scene, settings, nullptr, glm::vec2(0.3f, -0.2f), 0.5f);
+    scene.camera.position += glm::vec3(0.1f, 0.05f, 0.0f);
+    scene.camera.target += glm::vec3(0.1f, 0.05f, 0.0f);
+    const FrameData second = frameAfter(scene, settings, &first, glm::vec2(-0.25f, 0.4f), 0.6f);
+    ASSERT_TRUE(second.hasPrevious);
+    const VelocityImage img = renderGlobeVelocity(scene, second);
+    const glm::dvec2 size(second.outputWidth, second.outputHeight);
+    const GlobeExpectation orbiting = expectGlobe(second, scene.pointLights[0]);
+    const GlobeExpectation still = expectGlobe(second, scene.pointLights[1]);
+    // RG16F and the icosphere's flat faces against the true sphere: 0.05 output pixels.
+    const double tolerance = 0.05;
+    const glm::dvec2 got(img.at(orbiting.pixel.x, orbiting.pixel.y));
+    EXPECT_LT(glm::length((got - orbiting.velocity) * size), tolerance)
+        << "got " << got.x * size.x << ", " << got.y * size.y << " px, expected " << orbiting.velocity.x * size.x
+        << ", " << orbiting.velocity.y * size.y;
+    EXPECT_GT(glm::length((orbiting.velocity - orbiting.cameraOnly) * size), 2.0);  // the orbit shows
+    const glm::dvec2 gotStill(img.at(still.pixel.x, still.pixel.y));
+    EXPECT_LT(glm::length((gotStill - still.cameraOnly) * size), tolerance);
+    EXPECT_GT(glm::length(still.cameraOnly * size), 0.5);  // the camera moved
+    // Without a previous frame every globe stands still.
+    const VelocityImage cut = renderGlobeVelocity(scene, frameAfter(scene, settings, nullptr, glm::vec2(0.0f), 0.6f));
+    for (const glm::vec2& v : cut.velocity) ASSERT_EQ(v, glm::vec2(0.0f));
+}
+
+// Through the frame builder: motion blur runs for an orbiting light's globe under a still camera, and
+// the globes write velocity before the blur reads it.
+TEST(Motion, MotionBlurRunsForMovingGlobesUnderAStillCamera) {
+    const Scene scene = globeScene();
+    RenderSettings settings = smallSettings();
+    settings.motionBlur.enabled = true;
+    Renderer renderer(scene);
+    renderer.render(settings, 0.5f, false);
+    renderer.render(settings, 0.6f, false);
+    const std::vector<std::string> order = renderer.graph().executionOrder();
+    const auto at = [&](const char* name) { return std::find(order.begin(), order.end(), name) - order.begin(); };
+    ASSERT_LT(at("light_globes"), std::ptrdiff_t(order.size()));
+    EXPECT_LT(at("light_globes"), at("motion_blur_tiles"));
+    EXPECT_LT(at("motion_blur_tiles"), std::ptrdiff_t(order.size()));
+    bool readsGlobeVelocity = false;  // the blur's tiles read the version the globes wrote
+    for (const fg::PassReport& r : renderer.graph().report())
+        if (r.name == "motion_blur_tiles")
+            for (const std::string& read : r.reads) readsGlobeVelocity |= read.rfind("gbuffer.velocity@", 0) == 0;
+    EXPECT_TRUE(readsGlobeVelocity);
+    Scene still = scene;
+    still.pointLights[0].orbitSpeed = 0.0f;
+    Renderer stillRenderer(still);
+    stillRenderer.render(settings, 0.5f, false);
+    stillRenderer.render(settings, 0.6f, false);
+    for (const auto& d : stillRenderer.graph().explain())
+        if (d.name == "motion_blur") EXPECT_FALSE(d.runs);
 }
 
 // shaders/common/velocity.glsl on the driver: the clip-space difference against the double reference,
