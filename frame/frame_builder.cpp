@@ -57,6 +57,7 @@ FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const Fr
     const bool skyAdded = !lightingView && (skyWanted || s.allPasses);
     const std::string localSkip = s.allPasses ? "" : localLightSkipReason(frame);
     const bool scaled = frame.width != frame.outputWidth || frame.height != frame.outputHeight;
+    const bool supersampled = s.aa.method == AntiAliasing::Ssaa;
 
     // The environment's cubes are made (and, for IBL, baked) in the frame where they changed.
     const bool environmentView = isEnvironmentView(s.view);  // shows the cubes or the LUT themselves
@@ -86,12 +87,21 @@ FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const Fr
     if (!lightingView && localSkip.empty() && localLightCount(scene, s.localLights) > 0)
         hdr = addLocalLightOverlayPasses(graph, passes.localLights, frame, gbuffer, hdr);
     hdr = addPostPasses(graph, passes.post, frame, gbuffer, hdr);  // bloom, toon (not in the lighting view)
-    if (scaled) hdr = addUpscalePass(graph, passes.upscale, frame, hdr, UpscaleInput::Hdr);
-    else graph.skipPass("upscale", "render scale 1: the frame is rendered at the output size");
+    if (scaled && !supersampled) hdr = addUpscalePass(graph, passes.upscale, frame, hdr, UpscaleInput::Hdr);
+    else graph.skipPass("upscale", supersampled ? "--aa ssaa: the frame is rendered above the output size"
+                                                : "render scale 1: the frame is rendered at the output size");
+    if (supersampled) hdr = addDownsamplePass(graph, passes.downsample, frame, hdr, s.aa.ssaaScale);
+    else graph.skipPass("ssaa_downsample", "anti-aliasing is " + std::string(antiAliasingName(s.aa.method)) + ", not ssaa");
     fg::ResourceId exposure;
     if (s.autoExposure) exposure = addAutoExposurePass(graph, passes.autoExposure, frame, hdr);
     else graph.skipPass("auto_exposure", "manual exposure (--auto-exposure picks it from a histogram)");
-    fg::ResourceId display = addToneMapPass(graph, passes.tonemap, frame, hdr, exposure);
+    // With FXAA after it, the tone map keeps its result in RGBA16F and FXAA does the one 8-bit
+    // quantisation (and its dither).
+    const bool fxaa = s.aa.method == AntiAliasing::Fxaa;
+    fg::ResourceId display = addToneMapPass(graph, passes.tonemap, frame, hdr, exposure,
+                                            fxaa ? ToneMapTarget::Float16 : ToneMapTarget::Display8);
+    if (fxaa) display = addFxaaPass(graph, passes.fxaa, frame, display);
+    else graph.skipPass("fxaa", "anti-aliasing is " + std::string(antiAliasingName(s.aa.method)) + ", not fxaa");
     if (isHdrView(s.view)) display = addHdrViewPass(graph, passes.hdrView, frame, hdr, s.view);  // culls tonemap
     if (channelView) {
         display = addDebugViewPass(graph, passes.debugView, frame, gbuffer, shadowMaps, environment, s.view);
@@ -120,14 +130,18 @@ void checkDisabledPasses(const fg::FrameGraph& graph, const std::set<std::string
 }
 
 glm::ivec2 scaledRenderSize(int outputWidth, int outputHeight, float renderScale) {
-    const float scale = std::isfinite(renderScale) ? std::clamp(renderScale, 0.0f, 1.0f) : 1.0f;
+    const float scale = std::isfinite(renderScale) ? std::clamp(renderScale, 0.0f, float(kMaxSsaaScale)) : 1.0f;
     return {std::max(1, int(std::lround(double(outputWidth) * scale))),
             std::max(1, int(std::lround(double(outputHeight) * scale)))};
 }
 
+float internalRenderScale(const RenderSettings& settings) {
+    return settings.aa.method == AntiAliasing::Ssaa ? float(settings.aa.ssaaScale) : settings.renderScale;
+}
+
 FrameData makeFrameData(const Scene& scene, const RenderSettings& settings, float time) {
     FrameData f;
-    const glm::ivec2 size = scaledRenderSize(settings.width, settings.height, settings.renderScale);
+    const glm::ivec2 size = scaledRenderSize(settings.width, settings.height, internalRenderScale(settings));
     f.width = size.x;
     f.height = size.y;
     f.outputWidth = settings.width;

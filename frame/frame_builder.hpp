@@ -9,6 +9,8 @@
 #include "engine/render/frame_data.hpp"
 #include "passes/auto_exposure_pass.hpp"
 #include "passes/debug_view_pass.hpp"
+#include "passes/downsample_pass.hpp"
+#include "passes/fxaa_pass.hpp"
 #include "passes/gbuffer_pass.hpp"
 #include "passes/post_pass.hpp"
 #include "passes/global_light_pass.hpp"
@@ -34,6 +36,8 @@ struct PassStates {
     LocalLightPass localLights;
     PostPasses post;
     UpscalePass upscale;
+    DownsamplePass downsample;
+    FxaaPass fxaa;
     HdrViewPass hdrView;
     AutoExposurePass autoExposure;
     // Environment cubes, IBL bakes and the DFG LUT, kept across frames; imported into the graph
@@ -42,7 +46,7 @@ struct PassStates {
 };
 
 struct FrameOutputs {
-    fg::ResourceId display;  // RGBA8, what is shown or saved as PNG
+    fg::ResourceId display;  // RGBA8, what is shown or saved as PNG (dithered unless --no-dither)
     fg::ResourceId hdr;      // RGBA16F linear radiance (valid when the view has one)
 };
 
@@ -61,8 +65,12 @@ bool sphereIntersectsFrustum(const glm::mat4& viewProjection, glm::vec3 center, 
 // How many of the frame's local lights (orbits applied at frame.time) reach into the view.
 int localLightsInView(const FrameData& frame);
 
-// The size the G-buffer and lighting run at: round(output x renderScale), at least 1 x 1.
+// The size the G-buffer and lighting run at: round(output x renderScale), at least 1 x 1
+// (renderScale up to kMaxSsaaScale).
 glm::ivec2 scaledRenderSize(int outputWidth, int outputHeight, float renderScale);
+// The scale the G-buffer, lighting and post effects run at: --ssaa-scale with --aa ssaa (the
+// supersampled image is filtered down to the output), else --render-scale.
+float internalRenderScale(const RenderSettings& settings);
 
 // Camera matrices, planes and sizes for a frame of `scene` under `settings`.
 FrameData makeFrameData(const Scene& scene, const RenderSettings& settings, float time);

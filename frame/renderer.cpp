@@ -13,6 +13,8 @@ void Renderer::render(const RenderSettings& settings, float time, bool timed) {
     if (settings.width <= 0 || settings.height <= 0) throw Error("render size must be positive");
     if (!(settings.renderScale >= kMinRenderScale && settings.renderScale <= 1.0f))
         throw Error("render scale " + std::to_string(settings.renderScale) + " is outside [0.25, 1]");
+    if (!(settings.aa.ssaaScale >= 2 && settings.aa.ssaaScale <= kMaxSsaaScale))
+        throw Error("SSAA scale " + std::to_string(settings.aa.ssaaScale) + " is outside [2, 4]");
     FrameData frame = makeFrameData(*scene_, settings, time);
     frame.gpu = gpu_.get();
     frame.shaders = &shaders_;
