@@ -51,7 +51,7 @@ usage:
     text += R"(
 viewer keys (seed 001):
   1 depth  2 normals  3 diffuse  4 eye-space position  5 lighting  6 shininess  7 toon on/off
-  8 bloom buffer alone  0 standard view  r reset camera  x toggle scissor  W/S/A/D/Q/Z move
+  8 bloom buffer alone  9 velocity  0 standard view  r reset camera  x toggle scissor  W/S/A/D/Q/Z move
   mouse drag: look  +/- exposure  Tab panel  h help  F12 screenshot  Esc quit
   (the panel also picks scenes and environments, and shaders/ edits reload while it runs)
 )";
@@ -159,7 +159,7 @@ std::vector<CommandFlag> makeCommandFlags() {
              o.time = parseFloat(a, v);
              if (std::fabs(o.time) > 1e6) throw Error(a + " " + v + ": expected seconds in [-1e6, 1e6]");
          }},
-        {{"--fps"}, "F", "render, sweep: timed frame i is at --time + i / F (default 0: every frame at --time)",
+        {{"--fps"}, "F", "render, sweep: timed frame i is at --time + i / F, untimed frames at --time - 1 / F (default 0: every frame at --time)",
          [](Options& o, V a, V v) {
              o.fps = parseFloat(a, v);
              if (!(o.fps >= 0.0 && o.fps <= 1e4)) throw Error(a + " " + v + ": expected frames per second in [0, 10000]");
@@ -294,5 +294,9 @@ RenderSettings renderSettings(const Options& o) {
         logWarn("--aa ssaa renders at --ssaa-scale " + std::to_string(s.aa.ssaaScale) + "; --render-scale is not used");
     return s;
 }
+
+double frameTime(const Options& o, int i) { return o.fps > 0.0 ? o.time + double(i) / o.fps : o.time; }
+double warmupTime(const Options& o) { return o.fps > 0.0 ? o.time - 1.0 / o.fps : o.time; }
+int warmupFrames(const Options& o, int warmup) { return o.fps > 0.0 ? std::max(warmup, 1) : warmup; }
 
 }  // namespace lp::app

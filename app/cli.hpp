@@ -64,6 +64,14 @@ const std::vector<CommandFlag>& commandFlags();
 Options parseArgs(const std::vector<std::string>& args);
 // The frame settings the options describe (size, view, exposure, feature flags).
 RenderSettings renderSettings(const Options& options);
+
+// --time / --fps: when timed frame i is on the scene's clock (T + i / F; T without --fps).
+double frameTime(const Options& options, int i);
+// When the untimed frames before the timed ones are: T - 1 / F with --fps (so the first timed frame
+// has a previous frame one step earlier: its motion vectors), else T.
+double warmupTime(const Options& options);
+// Untimed frames before the timed ones: --warmup, at least one with --fps (the previous frame).
+int warmupFrames(const Options& options, int warmup);
 std::string helpText();
 // "WxH", plus " (rendered at wxh, render scale S)" below render scale 1: for table headers.
 std::string sizeLabel(const RenderSettings& settings);

@@ -39,9 +39,6 @@ Scene loadFromOptions(const Options& o) {
 
 RenderSettings settingsFromOptions(const Options& o) { return renderSettings(o); }
 
-// --time / --fps: when timed frame i is on the scene's clock.
-double frameTime(const Options& o, int i) { return o.fps > 0.0 ? o.time + double(i) / o.fps : o.time; }
-
 int commandInfo() {
     auto ctx = gl::createHeadlessContext();
     const auto& info = ctx->info();
@@ -108,7 +105,9 @@ int commandRender(const Options& o) {
     requireFrameFitsGpu(*ctx, scene, settings);
     Renderer renderer(scene);
     try {
-        for (int i = 0; i < o.warmup; ++i) renderer.render(settings, float(o.time), false);
+        // With --fps the untimed frames are one frame step before --time: the first timed frame's
+        // previous frame (motion vectors) is then where the clock puts it.
+        for (int i = 0; i < warmupFrames(o, o.warmup); ++i) renderer.render(settings, float(warmupTime(o)), false);
         for (int i = 0; i < o.frames; ++i) renderer.render(settings, float(frameTime(o, i)), true);
     } catch (const Error& e) {  // what the checks above could not foresee still names the size
         if (std::string(e.what()).rfind("GL out of memory", 0) != 0) throw;

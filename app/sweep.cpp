@@ -88,8 +88,9 @@ int runSweep(const Options& o) {
     for (const Knob& knob : knobs)
         for (const KnobValue& v : knob.values) requireFrameFitsGpu(*ctx, scene, settingsFor(v));
     Renderer renderer(scene);
-    // --time T / --fps F as for render: warm-up frames at T, timed frame i at T + i / F (a moving
-    // camera or orbit moves through the timed frames; temporal methods carry their history along).
+    // --time T / --fps F as for render: warm-up frames at T - 1 / F (at T without --fps), timed frame
+    // i at T + i / F (a moving camera or orbit moves through the timed frames; temporal methods carry
+    // their history along).
     auto frameTime = [&](int i) { return o.fps > 0.0 ? o.time + double(i) / o.fps : o.time; };
     // Every image, the CSV and the Markdown are renamed into place together at the end.
     OutputFiles outputs;
@@ -117,7 +118,7 @@ int runSweep(const Options& o) {
             // Each value bakes its IBL afresh in its first (untimed) frame: the bake is a one-off cost,
             // not part of frame_ms, reported as ibl_bake_gpu_ms where a bake ran.
             renderer.environments().forgetBakes();
-            for (int i = 0; i < std::max(o.warmup, 1); ++i) renderer.render(s, float(o.time), false);
+            for (int i = 0; i < std::max(o.warmup, 1); ++i) renderer.render(s, float(warmupTime(o)), false);
             const double bakeMs = renderer.environments().lastBakeGpuMs();
             renderer.timers().clear();
             for (int i = 0; i < o.frames; ++i) renderer.render(s, float(frameTime(i)), true);

@@ -48,6 +48,7 @@ void keyCallback(GLFWwindow* window, int key, int, int action, int) {
         case GLFW_KEY_4: setView(DebugView::Position); break;
         case GLFW_KEY_5: setView(DebugView::Lighting); break;
         case GLFW_KEY_6: setView(DebugView::Shininess); break;
+        case GLFW_KEY_9: setView(DebugView::Velocity); break;
         case GLFW_KEY_7:  // toon on/off over the standard view
             s.view = DebugView::Final;
             s.post.toon = !st->toonShown;
@@ -301,6 +302,7 @@ int runViewer(const Options& o) {
         ImGui_ImplOpenGL3_NewFrame();
         ImGui_ImplGlfw_NewFrame();
         ImGui::NewFrame();
+        if (st.resetCamera) renderer->cutMotion();  // a jump: no motion vectors across it
         moveCamera(window, st, scene->camera, dt);
         glm::ivec2 fb = ctx->framebufferSize();
         if (fb.x <= 0 || fb.y <= 0) {  // minimised

@@ -15,7 +15,7 @@ namespace fs = std::filesystem;
 
 const char* const kViewerHelp =
     "1 depth   2 eye-space normals   3 diffuse colour   4 eye-space position\n"
-    "5 lighting only   6 shininess   7 toon on/off   8 bloom buffer alone\n"
+    "5 lighting only   6 shininess   7 toon on/off   8 bloom buffer alone   9 velocity\n"
     "0 standard view (toon and bloom-only back to the start)\n"
     "r reset camera   x toggle scissor (local lights, scissor method)\n"
     "W/S forward/back   A/D left/right   Q/Z up/down   left-drag look\n"

@@ -147,10 +147,13 @@ FrameData makeFrameData(const Scene& scene, const RenderSettings& settings, floa
     f.outputWidth = settings.width;
     f.outputHeight = settings.height;
     f.view = scene.camera.view();
-    f.projection = scene.camera.projection(float(settings.width) / float(std::max(settings.height, 1)));
+    f.unjitteredProjection = scene.camera.projection(float(settings.width) / float(std::max(settings.height, 1)));
+    f.projection = f.unjitteredProjection;
+    f.previousViewProjection = f.unjitteredProjection * f.view;
     f.nearPlane = scene.camera.nearPlane;
     f.farPlane = scene.camera.farPlane;
     f.time = time;
+    f.previousTime = time;
     glm::vec3 lo, hi;
     scene.bounds(lo, hi);
     f.sceneExtent = std::max(glm::length(0.5f * (lo + hi) - scene.camera.position) + 0.5f * glm::length(hi - lo), 1e-3f);

@@ -16,6 +16,7 @@ void Renderer::render(const RenderSettings& settings, float time, bool timed) {
     if (!(settings.aa.ssaaScale >= 2 && settings.aa.ssaaScale <= kMaxSsaaScale))
         throw Error("SSAA scale " + std::to_string(settings.aa.ssaaScale) + " is outside [2, 4]");
     FrameData frame = makeFrameData(*scene_, settings, time);
+    applyMotion(frame, history_, jitterPixels_);
     frame.gpu = gpu_.get();
     frame.shaders = &shaders_;
     graph_ = fg::FrameGraph();
@@ -26,6 +27,7 @@ void Renderer::render(const RenderSettings& settings, float time, bool timed) {
     if (timed) timers_.endFrame();
     width_ = settings.width;
     height_ = settings.height;
+    history_ = motionHistoryOf(frame);
 }
 
 void Renderer::resetPasses() {

@@ -17,6 +17,10 @@ struct DebugViewPass {
     GBufferSettings layout, environmentLayout;  // the G-buffer layouts the programs were compiled for
 };
 
+// The velocity view is at full brightness for motion of this many output pixels per frame (linear
+// below; shaders/common/velocity.glsl velocityViewColour).
+inline constexpr float kVelocityViewFullScalePixels = 16.0f;
+
 // The eye depths the scene's bounds span from frame's camera, within near..far (the depth-fitted
 // view maps them to 0..1); near..far when the bounds give no range.
 glm::vec2 sceneDepthRange(const FrameData& frame);

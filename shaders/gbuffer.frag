@@ -2,6 +2,7 @@
 #include "common/tonemap.glsl"
 // The normal format and position mode come from gbuffer_layout.glsl's #defines.
 #include "common/gbuffer_layout.glsl"
+#include "common/velocity.glsl"
 
 in vec3 vPosition;
 in vec3 vNormal;
@@ -30,6 +31,11 @@ layout(location = 2) out vec4 outPosition;
 layout(location = 3) out vec4 outSpecular;
 layout(location = 4) out vec4 outTexcoord;
 layout(location = 5) out vec4 outTangent;  // the tangent view: eye-space tangent x 0.5 + 0.5, handedness
+#ifdef LP_GBUFFER_VELOCITY
+in vec4 vCurrentClip;
+in vec4 vPreviousClip;
+layout(location = 6) out vec2 outVelocity;  // uv_current - uv_previous, unjittered (common/velocity.glsl)
+#endif
 
 void main() {
     vec3 N = vNormal;
@@ -69,4 +75,7 @@ void main() {
     vec3 T = vTangent.xyz - N * dot(N, vTangent.xyz);
     float tl = length(T);
     outTangent = vec4(tl > 1e-20 ? T / tl * 0.5 + 0.5 : vec3(0.5), vTangent.w < 0.0 ? 0.0 : 1.0);
+#ifdef LP_GBUFFER_VELOCITY
+    outVelocity = velocityFromClip(vCurrentClip, vPreviousClip);
+#endif
 }

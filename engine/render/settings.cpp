@@ -26,6 +26,7 @@ const char* viewName(DebugView v) {
         case DebugView::Tangent: return "tangent";
         case DebugView::InvalidPixels: return "invalid-pixels";
         case DebugView::ExposureEv: return "exposure-ev";
+        case DebugView::Velocity: return "velocity";
     }
     return "final";
 }
@@ -35,7 +36,7 @@ std::vector<DebugView> allViews() {
             DebugView::Shininess, DebugView::Specular, DebugView::Texcoords, DebugView::Lighting,
             DebugView::Environment, DebugView::Irradiance, DebugView::Prefiltered, DebugView::Dfg,
             DebugView::WorldPosition, DebugView::EyeVector, DebugView::DepthFitted, DebugView::Tangent,
-            DebugView::InvalidPixels, DebugView::ExposureEv};
+            DebugView::InvalidPixels, DebugView::ExposureEv, DebugView::Velocity};
 }
 
 std::vector<DebugView> everyView() {

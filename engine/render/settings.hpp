@@ -17,7 +17,8 @@ enum class DebugView {
     ShadowMap,  // light-space depth of light settings.shadows.debugLight's shadow map
     LightRanges, LightsPerTile,  // overlays on the final image (local_light_pass)
     WorldPosition, EyeVector, DepthFitted, Tangent,  // more G-buffer views (seed 003; depth over the scene's range)
-    InvalidPixels, ExposureEv  // the HDR buffer inspected (passes/hdr_view_pass): NaN/Inf, EV false colour
+    InvalidPixels, ExposureEv,  // the HDR buffer inspected (passes/hdr_view_pass): NaN/Inf, EV false colour
+    Velocity  // gbuffer.velocity: screen-space motion as hue (direction) and brightness (length)
 };
 // overlay views (not in allViews(): they are the final image with the local lights'
 // bounds or per-tile light counts drawn over it).

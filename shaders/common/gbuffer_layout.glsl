@@ -6,6 +6,8 @@
 //   specular  RGBA16F   specular colour in rgb, Blinn-Phong shininess in a
 //             (RGBA8, colour only, for the seed-packed formats, which keep shininess with the normal)
 //   texcoord  RG32F     texture coordinates (only when a debug view asks for them)
+//   velocity  RG16F     uv_current - uv_previous, unjittered (only when a pass reads motion;
+//                       common/velocity.glsl); read as a plain sampler by the passes that use it
 // The layout is chosen by the #defines a program is compiled with (lp::gbufferDefines):
 //   LP_GBUFFER_NORMAL_UNPACKED (default)  RGBA32F  xyz
 //   LP_GBUFFER_NORMAL_SEED_PACKED         RGBA16F  (x, y, shininess); z = sqrt(1 - x² - y²) >= 0
