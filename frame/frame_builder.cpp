@@ -6,6 +6,7 @@
 
 #include "engine/core/error.hpp"
 #include "engine/render/local_lights.hpp"
+#include "frame/knobs.hpp"
 
 namespace lp {
 
@@ -29,6 +30,13 @@ int localLightsInView(const FrameData& frame) {
 }
 
 namespace {
+// A view of one G-buffer channel (or the environment), not of the lit image.
+bool isChannelView(DebugView view) {
+    return view != DebugView::Final && view != DebugView::Lighting &&
+           !isLocalLightView(view) &&  // overlays on the final image
+           !isHdrView(view);           // the final HDR buffer inspected
+}
+
 // Why the frame needs no local-light pass (nor tiling, globes, overlays); empty when it does.
 std::string localLightSkipReason(const FrameData& frame) {
     const LocalLightSettings& s = frame.settings->localLights;
@@ -45,9 +53,7 @@ FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const Fr
     frame.environments = &passes.environments;
     const RenderSettings& s = *frame.settings;
     const Scene& scene = *frame.scene;
-    const bool channelView = s.view != DebugView::Final && s.view != DebugView::Lighting &&
-                             !isLocalLightView(s.view) &&  // overlays on the final image
-                             !isHdrView(s.view);           // the final HDR buffer inspected
+    const bool channelView = isChannelView(s.view);
     const bool lightingView = s.view == DebugView::Lighting;
     const bool hasMap = !scene.environment.map.empty();
     const bool iblWanted = s.environment.ibl.value_or(scene.environment.ibl) && hasMap;
@@ -73,7 +79,10 @@ FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const Fr
     } else {
         graph.skipPass("ibl_bake", hasMap ? "nothing in this view samples the environment" : "scene has no environment map");
     }
-    GBuffer gbuffer = addGBufferPass(graph, passes.gbuffer, frame, channelsForView(s.view));
+    const bool taa = temporalAntiAliasing(s);
+    GBufferChannels channels = channelsForView(s.view);
+    channels.velocity = channels.velocity || taa;
+    GBuffer gbuffer = addGBufferPass(graph, passes.gbuffer, frame, channels);
     // one depth pass per shadow-casting directional light; global_lights and the shadowmap view read them.
     const ShadowMaps shadowMaps = addShadowMapPasses(graph, passes.shadowMaps, frame);
     fg::ResourceId hdr = addGlobalLightPass(graph, passes.globalLights, frame, gbuffer, shadowMaps, lightingView);
@@ -92,6 +101,9 @@ FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const Fr
                                                 : "render scale 1: the frame is rendered at the output size");
     if (supersampled) hdr = addDownsamplePass(graph, passes.downsample, frame, hdr, s.aa.ssaaScale);
     else graph.skipPass("ssaa_downsample", "anti-aliasing is " + std::string(antiAliasingName(s.aa.method)) + ", not ssaa");
+    if (taa) hdr = addTaaPass(graph, passes.taa, frame, hdr, gbuffer.velocity, settingsSignature(s));
+    else graph.skipPass("taa", s.aa.method == AntiAliasing::Taa ? "a G-buffer view is not anti-aliased"
+                                                                : "anti-aliasing is " + std::string(antiAliasingName(s.aa.method)) + ", not taa");
     fg::ResourceId exposure;
     if (s.autoExposure) exposure = addAutoExposurePass(graph, passes.autoExposure, frame, hdr);
     else graph.skipPass("auto_exposure", "manual exposure (--auto-exposure picks it from a histogram)");
@@ -133,6 +145,18 @@ glm::ivec2 scaledRenderSize(int outputWidth, int outputHeight, float renderScale
     const float scale = std::isfinite(renderScale) ? std::clamp(renderScale, 0.0f, float(kMaxSsaaScale)) : 1.0f;
     return {std::max(1, int(std::lround(double(outputWidth) * scale))),
             std::max(1, int(std::lround(double(outputHeight) * scale)))};
+}
+
+bool temporalAntiAliasing(const RenderSettings& settings) {
+    return settings.aa.method == AntiAliasing::Taa && !isChannelView(settings.view);
+}
+
+std::string settingsSignature(const RenderSettings& settings) {
+    std::string text = std::string(viewName(settings.view)) + " " + std::to_string(settings.width) + "x" +
+                       std::to_string(settings.height);
+    for (const KnobEntry& k : knobTable()) text += " " + k.name + "=" + formatKnobValue(k, k.field.get(settings));
+    for (const std::string& pass : settings.disabledPasses) text += " -" + pass;
+    return text;
 }
 
 float internalRenderScale(const RenderSettings& settings) {

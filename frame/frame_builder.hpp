@@ -18,6 +18,7 @@
 #include "passes/ibl_pass.hpp"
 #include "passes/local_light_pass.hpp"
 #include "passes/sky_pass.hpp"
+#include "passes/taa_pass.hpp"
 #include "passes/tonemap_pass.hpp"
 #include "passes/upscale_pass.hpp"
 
@@ -38,6 +39,7 @@ struct PassStates {
     UpscalePass upscale;
     DownsamplePass downsample;
     FxaaPass fxaa;
+    TaaPass taa;  // holds the TAA history across frames (imported into each frame's graph)
     HdrViewPass hdrView;
     AutoExposurePass autoExposure;
     // Environment cubes, IBL bakes and the DFG LUT, kept across frames; imported into the graph
@@ -71,6 +73,12 @@ glm::ivec2 scaledRenderSize(int outputWidth, int outputHeight, float renderScale
 // The scale the G-buffer, lighting and post effects run at: --ssaa-scale with --aa ssaa (the
 // supersampled image is filtered down to the output), else --render-scale.
 float internalRenderScale(const RenderSettings& settings);
+
+// Whether the frame runs the taa pass (and so is jittered): --aa taa in a view of the lit image
+// (final, lighting, the overlays and HDR views; not a G-buffer channel).
+bool temporalAntiAliasing(const RenderSettings& settings);
+// Every knob's value and the view, as text: TAA's history is reset when it changes.
+std::string settingsSignature(const RenderSettings& settings);
 
 // Camera matrices, planes and sizes for a frame of `scene` under `settings`.
 FrameData makeFrameData(const Scene& scene, const RenderSettings& settings, float time);

@@ -95,7 +95,9 @@ void iblOn(RenderSettings& s, double) { s.environment.ibl = true; }
 void bloomOn(RenderSettings& s, double) { s.post.bloom = true; }  // the method stays --bloom-method's
 
 // The --aa choices a user is offered (each one implemented).
-std::vector<AntiAliasing> offeredAntiAliasing() { return {AntiAliasing::Off, AntiAliasing::Fxaa, AntiAliasing::Ssaa}; }
+std::vector<AntiAliasing> offeredAntiAliasing() {
+    return {AntiAliasing::Off, AntiAliasing::Fxaa, AntiAliasing::Taa, AntiAliasing::Ssaa};
+}
 
 std::vector<KnobEntry> makeKnobTable() {
     std::vector<KnobEntry> t;
@@ -545,16 +547,17 @@ std::vector<KnobEntry> makeKnobTable() {
                                  antiAliasingName);
         k.flags = {valueFlag("--aa")};
         k.choiceNoun = "anti-aliasing";
-        k.help = "anti-aliasing: fxaa filters the tone-mapped image (FXAA 3.11); ssaa renders at --ssaa-scale x "
-                 "the size in each axis and box-filters the HDR image down (--render-scale is then not used)";
+        k.help = "anti-aliasing: fxaa filters the tone-mapped image (FXAA 3.11); taa blends Halton-jittered frames "
+                 "through the motion vectors; ssaa renders at --ssaa-scale x the size in each axis and box-filters "
+                 "the HDR image down (--render-scale is then not used)";
         k.panel = {PanelSection::View, PanelWidget::Combo, "anti-aliasing", ""};
-        k.sweep = {{"off", "fxaa"}, false,
-                   "anti-aliasing (--aa): off, fxaa, then ssaa at 2x2 and 3x3 samples a pixel, against ssaa 4x4 "
-                   "(reference). Not monotone: fxaa changes only the tone-mapped image, so its HDR error is off's "
-                   "(FLIP from bench/sweep_report.py sees it)",
+        k.sweep = {{"off", "fxaa", "taa"}, false,
+                   "anti-aliasing (--aa): off, fxaa, taa (after the warm-up and timed frames), then ssaa at 2x2 and "
+                   "3x3 samples a pixel, against ssaa 4x4 (reference). Not monotone: fxaa changes only the "
+                   "tone-mapped image, so its HDR error is off's (FLIP from bench/sweep_report.py sees it)",
                    nullptr};
         for (int scale : {2, 3, kMaxSsaaScale})
-            k.sweep.extraValues.push_back({"ssaa" + std::to_string(scale), [scale](RenderSettings& s) {
+            k.sweepExtraValues.push_back({"ssaa" + std::to_string(scale), [scale](RenderSettings& s) {
                                                s.aa.method = AntiAliasing::Ssaa;
                                                s.aa.ssaaScale = scale;
                                            }});
@@ -569,6 +572,23 @@ std::vector<KnobEntry> makeKnobTable() {
                    "samples per axis of --aa ssaa (--ssaa-scale), box-filtered to the output; 4 (16 samples a "
                    "pixel) is the reference",
                    [](RenderSettings& s, double) { s.aa.method = AntiAliasing::Ssaa; }};
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = floatKnob("taa-history-weight", [](auto& s) -> auto& { return s.aa.taaHistoryWeight; },
+                                {0.01, 1.0});
+        k.flags = {valueFlag("--taa-history-weight")};
+        k.help = "with --aa taa: the current frame's weight in the blend with the history (smaller: smoother, "
+                 "slower to converge and to follow changes)";
+        k.panel = {PanelSection::View, PanelWidget::Slider, "TAA current weight", "%.2f"};
+        k.sweep = {{"0.5", "0.25", "0.1", "0.05"}, false,
+                   "the current frame's weight in TAA's blend (--taa-history-weight, switches --aa taa on), against "
+                   "ssaa 4x4 (reference); not monotone (a smaller weight converges slower)",
+                   [](RenderSettings& s, double) { s.aa.method = AntiAliasing::Taa; }};
+        k.sweepExtraValues.push_back({"ssaa4", [](RenderSettings& s) {
+                                           s.aa.method = AntiAliasing::Ssaa;
+                                           s.aa.ssaaScale = kMaxSsaaScale;
+                                       }});
         t.push_back(std::move(k));
     }
     {
@@ -656,7 +676,7 @@ std::vector<Knob> makeSweepKnobs() {
                                     if (entry->sweep.alsoSet) entry->sweep.alsoSet(s, v);
                                 }});
         }
-        for (const KnobValue& extra : e.sweep.extraValues) k.values.push_back(extra);
+        for (const KnobValue& extra : e.sweepExtraValues) k.values.push_back(extra);
         knobs.push_back(std::move(k));
     }
     return knobs;

@@ -71,9 +71,6 @@ struct KnobSweep {
     std::string description;
     // What a swept value switches on besides the field (shadows, IBL, bloom), given the value.
     std::function<void(RenderSettings&, double)> alsoSet;
-    // Points swept after `values` that set more than this knob's field (aa: "ssaa2" is --aa ssaa
-    // --ssaa-scale 2); when there are any, the last of them is the reference.
-    std::vector<KnobValue> extraValues;
 };
 
 struct KnobEntry {
@@ -87,6 +84,9 @@ struct KnobEntry {
     std::string help;                  // --help's words; range and default are appended
     KnobPanel panel;
     KnobSweep sweep;                   // no values: not a sweep knob
+    // Points swept after sweep.values that set more than this knob's field (aa: "ssaa2" is --aa ssaa
+    // --ssaa-scale 2); when there are any, the last of them is the reference.
+    std::vector<KnobValue> sweepExtraValues;
 };
 
 const std::vector<KnobEntry>& knobTable();

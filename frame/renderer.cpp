@@ -16,7 +16,8 @@ void Renderer::render(const RenderSettings& settings, float time, bool timed) {
     if (!(settings.aa.ssaaScale >= 2 && settings.aa.ssaaScale <= kMaxSsaaScale))
         throw Error("SSAA scale " + std::to_string(settings.aa.ssaaScale) + " is outside [2, 4]");
     FrameData frame = makeFrameData(*scene_, settings, time);
-    applyMotion(frame, history_, jitterPixels_);
+    // TAA jitters every frame through its Halton phases; otherwise the jitter setJitterPixels chose.
+    applyMotion(frame, history_, temporalAntiAliasing(settings) ? taaJitterPixels(taaFrames_++) : jitterPixels_);
     frame.gpu = gpu_.get();
     frame.shaders = &shaders_;
     graph_ = fg::FrameGraph();

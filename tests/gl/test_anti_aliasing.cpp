@@ -414,3 +414,104 @@ TEST(DitherRender, ToneMapDithersTheDisplayUnlessSwitchedOff) {
         }
     }
 }
+
+// ---- TAA ---------------------------------------------------------------------------------------
+
+// The resolve's parts: motion agreement within max(0.5 px, 20%), clipping into the neighbourhood's
+// box (a history inside it is kept, one outside is moved onto its boundary towards the centre), and
+// the luma-weighted blend (weight 1: the current frame; equal colours: unchanged).
+TEST(ShaderTaa, RejectsDisagreeingMotionClipsAndBlends) {
+    auto agree = runGlsl({"common/taa.glsl"}, "return vec4(taaMotionAgrees(x.xy, x.zw) ? 1.0 : 0.0);",
+                         {glm::vec4(0, 0, 0, 0), glm::vec4(0, 0, 0.4f, 0), glm::vec4(0, 0, 3, 0), glm::vec4(10, 0, 11.5f, 0),
+                          glm::vec4(10, 0, 13, 0), glm::vec4(0, 0, -5, 2)});
+    const float expected[] = {1, 1, 0, 1, 0, 0};
+    for (size_t i = 0; i < std::size(expected); ++i) EXPECT_EQ(agree[i].x, expected[i]) << i;
+
+    const std::string neighbourhood = R"(
+        TaaNeighbourhood n;
+        n.mean = rgbToYCoCg(vec3(0.5)); n.sigma = vec3(0.1, 0.05, 0.05);
+        n.lo = n.mean - vec3(0.3); n.hi = n.mean + vec3(0.3);
+    )";
+    auto clipped = runGlsl({"common/taa.glsl"}, neighbourhood + "return vec4(rgbToYCoCg(taaClipHistory(x.xyz, n)), 0.0);",
+                           {glm::vec4(0.55f, 0.55f, 0.55f, 0), glm::vec4(1.0f, 1.0f, 1.0f, 0), glm::vec4(0.5f, 0.9f, 0.5f, 0)});
+    EXPECT_NEAR(clipped[0].x, 0.55f, 1e-5);  // inside: kept
+    EXPECT_NEAR(clipped[1].x, 0.6f, 1e-5);   // grey 1.0: luma clipped to mean + sigma
+    EXPECT_NEAR(clipped[1].y, 0.0f, 1e-5);
+    for (const glm::vec4& c : clipped) {
+        EXPECT_LE(std::abs(c.x - 0.5f), 0.1f + 1e-5f);
+        EXPECT_LE(std::abs(c.y), 0.05f + 1e-5f);
+        EXPECT_LE(std::abs(c.z), 0.05f + 1e-5f);
+    }
+    auto blended = runGlsl({"common/taa.glsl"}, "return vec4(taaBlend(vec3(x.x), vec3(x.y), x.z), 0.0);",
+                           {glm::vec4(0.3f, 0.3f, 0.1f, 0), glm::vec4(2.0f, 0.0f, 1.0f, 0), glm::vec4(1.0f, 0.0f, 0.5f, 0)});
+    EXPECT_NEAR(blended[0].x, 0.3f, 1e-6);
+    EXPECT_NEAR(blended[1].x, 2.0f, 1e-6);
+    EXPECT_NEAR(blended[2].x, 0.5 / 2.0 / (0.5 / 2.0 + 0.5), 1e-5);  // the bright sample weighs 1 / (1 + 1)
+}
+
+namespace {
+double rmse(const ImageF& a, const ImageF& b) {
+    double sq = 0.0;
+    for (size_t i = 0; i < a.rgba.size(); i += 4) sq += (a.rgba[i] - b.rgba[i]) * (a.rgba[i] - b.rgba[i]);
+    return std::sqrt(sq / double(a.rgba.size() / 4));
+}
+}  // namespace
+
+// --aa taa with a still camera: the jittered frames accumulate towards the 4x4 SSAA image of the
+// half-plane edge. After 48 frames the HDR RMSE against it is below 0.03 and under 70% of the
+// unfiltered image's (0.027 against 0.042 on llvmpipe): the exponential blend (current weight 0.1)
+// weighs the 16 jitter phases unevenly, and the clip to the current neighbourhood holds edge pixels
+// back, so TAA approaches SSAA without reaching it.
+TEST(TaaRender, StillCameraConvergesToSsaa) {
+    const int w = 48, h = 32;
+    const HalfPlaneScene hp(33.0, 0.0137);
+    Renderer ref(hp.scene);
+    ref.render(aaSettings(w, h, AntiAliasing::Ssaa, 4));
+    const ImageF reference = ref.readHdr();
+    Renderer off(hp.scene);
+    off.render(aaSettings(w, h, AntiAliasing::Off));
+    const double errorOff = rmse(off.readHdr(), reference);
+    Renderer taa(hp.scene);
+    const RenderSettings s = aaSettings(w, h, AntiAliasing::Taa);
+    for (int i = 0; i < 48; ++i) taa.render(s, 0.0f, false);
+    EXPECT_TRUE(taa.graph().isLive("taa"));
+    const double errorTaa = rmse(taa.readHdr(), reference);
+    std::printf("HDR RMSE against SSAA 4x4: off %.4f, taa after 48 frames %.4f\n", errorOff, errorTaa);
+    EXPECT_LT(errorTaa, 0.03);
+    EXPECT_LT(errorTaa, 0.7 * errorOff);
+}
+
+// A moving object leaves no trail: the camera slides sideways for 12 frames, so the plane's edge
+// sweeps across the image (the background it uncovers has another motion than the plane had). Every
+// pixel more than 1.5 px from the edge's current position holds the current side's value (0 or 1
+// within 0.02), none of the plane's old colour lingers behind it.
+TEST(TaaRender, MovingEdgeLeavesNoTrail) {
+    const int w = 48, h = 32;
+    HalfPlaneScene hp(33.0, 0.0137);
+    Renderer taa(hp.scene);
+    const RenderSettings s = aaSettings(w, h, AntiAliasing::Taa);
+    for (int i = 0; i < 16; ++i) taa.render(s, 0.0f, false);  // a converged history
+    for (int i = 1; i <= 12; ++i) {
+        hp.scene.camera.position.x = 0.05f * float(i);  // about 0.5 px a frame
+        hp.scene.camera.target.x = 0.05f * float(i);
+        taa.render(s, 0.0f, false);
+    }
+    const std::vector<double> exact = hp.coverage(w, h);
+    const ImageF img = taa.readHdr();
+    int checked = 0;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            bool nearEdge = false;  // within 1.5 px of a partly covered pixel
+            for (int dy = -2; dy <= 2 && !nearEdge; ++dy)
+                for (int dx = -2; dx <= 2 && !nearEdge; ++dx) {
+                    const int xx = std::clamp(x + dx, 0, w - 1), yy = std::clamp(y + dy, 0, h - 1);
+                    const double c = exact[size_t(yy) * w + xx];
+                    nearEdge = c > 0.0 && c < 1.0;
+                }
+            if (nearEdge) continue;
+            const double e = exact[size_t(y) * w + x];
+            EXPECT_NEAR(img.rgba[(size_t(y) * w + x) * 4], e, 0.02) << x << "," << y;
+            ++checked;
+        }
+    EXPECT_GT(checked, w * h / 2);
+}

@@ -12,7 +12,7 @@ TEST(Knobs, EveryQualityKnobIsRegisteredAndDescribed) {
     const std::set<std::string> expected = {"gbuffer-format", "gbuffer-position", "shadow-size", "shadow-pcf",
                                             "shadow-cascades", "ibl-samples", "ibl-face-size", "ibl-diffuse",
                                             "bloom-kernel", "bloom-method", "local-light-method", "light-range-cutoff",
-                                            "render-scale", "aa", "ssaa-scale"};
+                                            "render-scale", "aa", "ssaa-scale", "taa-history-weight"};
     std::set<std::string> names;
     for (const Knob& k : allKnobs()) {
         EXPECT_TRUE(names.insert(k.name).second) << "duplicate knob " << k.name;
@@ -117,17 +117,18 @@ TEST(Knobs, ProductOfKnobsSweepsEveryCombination) {
     EXPECT_FALSE(knobByName("+shadow-size").has_value());
 }
 
-// --aa: off and fxaa, then SSAA at 2x2 and 3x3 samples, against SSAA 4x4 (the reference, last).
+// --aa: off, fxaa and taa, then SSAA at 2x2 and 3x3 samples, against SSAA 4x4 (the reference, last).
 // --ssaa-scale's values switch SSAA on. Every value is a setting the renderer accepts.
 TEST(Knobs, AntiAliasingSweepEndsAtSsaa4x4) {
     const Knob* aa = findKnob("aa");
     ASSERT_NE(aa, nullptr);
     std::vector<std::string> labels;
     for (const KnobValue& v : aa->values) labels.push_back(v.label);
-    EXPECT_EQ(labels, (std::vector<std::string>{"off", "fxaa", "ssaa2", "ssaa3", "ssaa4"}));
+    EXPECT_EQ(labels, (std::vector<std::string>{"off", "fxaa", "taa", "ssaa2", "ssaa3", "ssaa4"}));
     EXPECT_FALSE(aa->monotone);
     const std::vector<std::pair<AntiAliasing, int>> expected = {
-        {AntiAliasing::Off, 2}, {AntiAliasing::Fxaa, 2}, {AntiAliasing::Ssaa, 2}, {AntiAliasing::Ssaa, 3}, {AntiAliasing::Ssaa, 4}};
+        {AntiAliasing::Off, 2}, {AntiAliasing::Fxaa, 2}, {AntiAliasing::Taa, 2},
+        {AntiAliasing::Ssaa, 2}, {AntiAliasing::Ssaa, 3}, {AntiAliasing::Ssaa, 4}};
     for (size_t i = 0; i < aa->values.size(); ++i) {
         RenderSettings s;
         aa->values[i].apply(s);
