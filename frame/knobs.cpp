@@ -567,7 +567,6 @@ std::vector<KnobEntry> makeKnobTable() {
         KnobEntry k = intKnob("ssaa-scale", [](auto& s) -> auto& { return s.aa.ssaaScale; }, 2, kMaxSsaaScale);
         k.flags = {valueFlag("--ssaa-scale")};
         k.help = "with --aa ssaa: render at S x the output size in each axis, S x S samples a pixel";
-        k.panel = {PanelSection::View, PanelWidget::Slider, "SSAA scale", "%dx"};
         k.sweep = {{"2", "3", "4"}, true,
                    "samples per axis of --aa ssaa (--ssaa-scale), box-filtered to the output; 4 (16 samples a "
                    "pixel) is the reference",
@@ -580,7 +579,6 @@ std::vector<KnobEntry> makeKnobTable() {
         k.flags = {valueFlag("--taa-history-weight")};
         k.help = "with --aa taa: the current frame's weight in the blend with the history (smaller: smoother, "
                  "slower to converge and to follow changes)";
-        k.panel = {PanelSection::View, PanelWidget::Slider, "TAA current weight", "%.2f"};
         k.sweep = {{"0.5", "0.25", "0.1", "0.05"}, false,
                    "the current frame's weight in TAA's blend (--taa-history-weight, switches --aa taa on), against "
                    "ssaa 4x4 (reference); not monotone (a smaller weight converges slower)",

@@ -27,9 +27,8 @@ void main() {
     float ev = uExposureEV + (uAutoExposure ? texelFetch(uExposure, ivec2(0), 0).r : 0.0);
     vec3 c = applyExposure(texelFetch(uHdr, p, 0).rgb, ev);
     vec3 encoded = linearToSrgb(applyToneMap(c, uOperator));
-#ifdef LP_TONEMAP_FLOAT_TARGET
-    imageStore(uLdr, p, vec4(encoded, 1.0));
-#else
-    imageStore(uLdr, p, vec4(quantize8(encoded, p, uDither), 1.0));
+#ifndef LP_TONEMAP_FLOAT_TARGET
+    encoded = quantize8(encoded, p, uDither);
 #endif
+    imageStore(uLdr, p, vec4(encoded, 1.0));
 }
