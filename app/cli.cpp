@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "engine/core/error.hpp"
+#include "engine/core/log.hpp"
 #include "engine/core/paths.hpp"
 #include "frame/frame_builder.hpp"
 #include "frame/knobs.hpp"
@@ -62,8 +63,11 @@ viewer keys (seed 001):
 
 std::string sizeLabel(const RenderSettings& s) {
     std::string label = std::to_string(s.width) + "x" + std::to_string(s.height);
-    const glm::ivec2 r = scaledRenderSize(s.width, s.height, s.renderScale);
+    const glm::ivec2 r = scaledRenderSize(s.width, s.height, internalRenderScale(s));
     if (r.x == s.width && r.y == s.height) return label;
+    if (s.aa.method == AntiAliasing::Ssaa)
+        return label + " (rendered at " + std::to_string(r.x) + "x" + std::to_string(r.y) + ", SSAA " +
+               std::to_string(s.aa.ssaaScale) + "x" + std::to_string(s.aa.ssaaScale) + ")";
     char scale[16];
     std::snprintf(scale, sizeof scale, "%.2f", double(s.renderScale));
     return label + " (rendered at " + std::to_string(r.x) + "x" + std::to_string(r.y) + ", render scale " + scale + ")";
@@ -158,12 +162,12 @@ std::vector<CommandFlag> makeCommandFlags() {
              if (!view) throw Error("--view " + v + ": unknown view (" + viewList(everyView(), ", ") + ")");
              o.view = *view;
          }},
-        {{"--time"}, "T", "render, bench: seconds on the scene's clock of the first timed frame (orbits and camera paths follow; default 0)",
+        {{"--time"}, "T", "render, bench, sweep: seconds on the scene's clock of the first timed frame (orbits and camera paths follow; default 0)",
          [](Options& o, V a, V v) {
              o.time = parseFloat(a, v);
              if (std::fabs(o.time) > 1e6) throw Error(a + " " + v + ": expected seconds in [-1e6, 1e6]");
          }},
-        {{"--fps"}, "F", "render, bench: frame i is at --time + i / F, untimed frames at --time - 1 / F (default 0: every frame at --time)",
+        {{"--fps"}, "F", "render, bench, sweep: frame i is at --time + i / F, untimed frames at --time - 1 / F (default 0: every frame at --time)",
          [](Options& o, V a, V v) {
              o.fps = parseFloat(a, v);
              if (!(o.fps >= 0.0 && o.fps <= 1e4)) throw Error(a + " " + v + ": expected frames per second in [0, 10000]");
@@ -298,6 +302,8 @@ RenderSettings renderSettings(const Options& o) {
     s.height = o.height;
     s.view = o.view;
     s.keepHdr = !o.exr.empty();
+    if (s.aa.method == AntiAliasing::Ssaa && s.renderScale != 1.0f)
+        logWarn("--aa ssaa renders at --ssaa-scale " + std::to_string(s.aa.ssaaScale) + "; --render-scale is not used");
     return s;
 }
 

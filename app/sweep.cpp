@@ -88,6 +88,9 @@ int runSweep(const Options& o) {
     for (const Knob& knob : knobs)
         for (const KnobValue& v : knob.values) requireFrameFitsGpu(*ctx, scene, settingsFor(v));
     Renderer renderer(scene);
+    // --time T / --fps F as for render: warm-up frames at T - 1 / F (at T without --fps), timed frame
+    // i at T + i / F (a moving camera or orbit moves through the timed frames; temporal methods carry
+    // their history along).
     // Every image, the CSV and the Markdown are renamed into place together at the end.
     OutputFiles outputs;
 
@@ -99,7 +102,7 @@ int runSweep(const Options& o) {
     for (size_t ki = 0; ki < knobs.size(); ++ki) {
         const Knob& knob = knobs[ki];
         const fs::path dir = outDir / knob.name;
-        // The reference: the knob's best value.
+        // The reference: the knob's best value, at the time of the last timed frame.
         RenderSettings refSettings = settingsFor(knob.values.back());
         // On the scene's clock as render puts it (--time, --fps): the reference and every value end on
         // the same frame, with the same previous frame (motion blur, camera paths).

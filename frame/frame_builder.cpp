@@ -6,6 +6,7 @@
 
 #include "engine/core/error.hpp"
 #include "engine/render/local_lights.hpp"
+#include "frame/knobs.hpp"
 
 namespace lp {
 
@@ -31,6 +32,13 @@ int localLightsInView(const FrameData& frame) {
 }
 
 namespace {
+// A view of one G-buffer channel (or the environment), not of the lit image.
+bool isChannelView(DebugView view) {
+    return view != DebugView::Final && view != DebugView::Lighting &&
+           !isLocalLightView(view) &&  // overlays on the final image
+           !isHdrView(view);           // the final HDR buffer inspected
+}
+
 // Why the frame needs no local-light pass (nor tiling, globes, overlays); empty when it does.
 std::string localLightSkipReason(const FrameData& frame) {
     const LocalLightSettings& s = frame.settings->localLights;
@@ -47,9 +55,7 @@ FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const Fr
     frame.environments = &passes.environments;
     const RenderSettings& s = *frame.settings;
     const Scene& scene = *frame.scene;
-    const bool channelView = s.view != DebugView::Final && s.view != DebugView::Lighting &&
-                             !isLocalLightView(s.view) &&  // overlays on the final image
-                             !isHdrView(s.view);           // the final HDR buffer inspected
+    const bool channelView = isChannelView(s.view);
     const bool lightingView = s.view == DebugView::Lighting;
     const bool hasMap = !scene.environment.map.empty();
     const bool iblWanted = s.environment.ibl.value_or(scene.environment.ibl) && hasMap;
@@ -59,6 +65,7 @@ FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const Fr
     const bool skyAdded = !lightingView && (skyWanted || s.allPasses);
     const std::string localSkip = s.allPasses ? "" : localLightSkipReason(frame);
     const bool scaled = frame.width != frame.outputWidth || frame.height != frame.outputHeight;
+    const bool supersampled = s.aa.method == AntiAliasing::Ssaa;
 
     // The environment's cubes are made (and, for IBL, baked) in the frame where they changed.
     const bool environmentView = isEnvironmentView(s.view);  // shows the cubes or the LUT themselves
@@ -74,10 +81,11 @@ FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const Fr
     } else {
         graph.skipPass("ibl_bake", hasMap ? "nothing in this view samples the environment" : "scene has no environment map");
     }
-    // Motion vectors only for a pass that reads them (the velocity view, motion blur).
+    // Motion vectors only for a pass that reads them (the velocity view, motion blur, TAA).
     const std::string motionBlurSkip = motionBlurSkipReason(frame);
+    const bool taa = temporalAntiAliasing(s);
     GBufferChannels channels = channelsForView(s.view);
-    channels.velocity = channels.velocity || motionBlurSkip.empty();
+    channels.velocity = channels.velocity || motionBlurSkip.empty() || taa;
     GBuffer gbuffer = addGBufferPass(graph, passes.gbuffer, frame, channels);
     // one depth pass per shadow-casting directional light; global_lights and the shadowmap view read them.
     const ShadowMaps shadowMaps = addShadowMapPasses(graph, passes.shadowMaps, frame);
@@ -103,12 +111,24 @@ FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const Fr
     if (motionBlurSkip.empty()) hdr = addMotionBlurPasses(graph, passes.motionBlur, frame, gbuffer, hdr);
     else graph.skipPass("motion_blur", motionBlurSkip);
     hdr = addPostPasses(graph, passes.post, frame, gbuffer, hdr);  // bloom, toon (not in the lighting view)
-    if (scaled) hdr = addUpscalePass(graph, passes.upscale, frame, hdr, UpscaleInput::Hdr);
-    else graph.skipPass("upscale", "render scale 1: the frame is rendered at the output size");
+    if (scaled && !supersampled) hdr = addUpscalePass(graph, passes.upscale, frame, hdr, UpscaleInput::Hdr);
+    else graph.skipPass("upscale", supersampled ? "--aa ssaa: the frame is rendered above the output size"
+                                                : "render scale 1: the frame is rendered at the output size");
+    if (supersampled) hdr = addDownsamplePass(graph, passes.downsample, frame, hdr, s.aa.ssaaScale);
+    else graph.skipPass("ssaa_downsample", "anti-aliasing is " + std::string(antiAliasingName(s.aa.method)) + ", not ssaa");
+    if (taa) hdr = addTaaPass(graph, passes.taa, frame, hdr, gbuffer.velocity, settingsSignature(s));
+    else graph.skipPass("taa", s.aa.method == AntiAliasing::Taa ? "a G-buffer view is not anti-aliased"
+                                                                : "anti-aliasing is " + std::string(antiAliasingName(s.aa.method)) + ", not taa");
     fg::ResourceId exposure;
     if (s.autoExposure) exposure = addAutoExposurePass(graph, passes.autoExposure, frame, hdr);
     else graph.skipPass("auto_exposure", "manual exposure (--auto-exposure picks it from a histogram)");
-    fg::ResourceId display = addToneMapPass(graph, passes.tonemap, frame, hdr, exposure);
+    // With FXAA after it, the tone map keeps its result in RGBA16F and FXAA does the one 8-bit
+    // quantisation (and its dither).
+    const bool fxaa = s.aa.method == AntiAliasing::Fxaa;
+    fg::ResourceId display = addToneMapPass(graph, passes.tonemap, frame, hdr, exposure,
+                                            fxaa ? ToneMapTarget::Float16 : ToneMapTarget::Display8);
+    if (fxaa) display = addFxaaPass(graph, passes.fxaa, frame, display);
+    else graph.skipPass("fxaa", "anti-aliasing is " + std::string(antiAliasingName(s.aa.method)) + ", not fxaa");
     if (isHdrView(s.view)) display = addHdrViewPass(graph, passes.hdrView, frame, hdr, s.view);  // culls tonemap
     if (channelView) {
         display = addDebugViewPass(graph, passes.debugView, frame, gbuffer, shadowMaps, environment, s.view);
@@ -137,14 +157,30 @@ void checkDisabledPasses(const fg::FrameGraph& graph, const std::set<std::string
 }
 
 glm::ivec2 scaledRenderSize(int outputWidth, int outputHeight, float renderScale) {
-    const float scale = std::isfinite(renderScale) ? std::clamp(renderScale, 0.0f, 1.0f) : 1.0f;
+    const float scale = std::isfinite(renderScale) ? std::clamp(renderScale, 0.0f, float(kMaxSsaaScale)) : 1.0f;
     return {std::max(1, int(std::lround(double(outputWidth) * scale))),
             std::max(1, int(std::lround(double(outputHeight) * scale)))};
 }
 
+bool temporalAntiAliasing(const RenderSettings& settings) {
+    return settings.aa.method == AntiAliasing::Taa && !isChannelView(settings.view);
+}
+
+std::string settingsSignature(const RenderSettings& settings) {
+    std::string text = std::string(viewName(settings.view)) + " " + std::to_string(settings.width) + "x" +
+                       std::to_string(settings.height);
+    for (const KnobEntry& k : knobTable()) text += " " + k.name + "=" + formatKnobValue(k, k.field.get(settings));
+    for (const std::string& pass : settings.disabledPasses) text += " -" + pass;
+    return text;
+}
+
+float internalRenderScale(const RenderSettings& settings) {
+    return settings.aa.method == AntiAliasing::Ssaa ? float(settings.aa.ssaaScale) : settings.renderScale;
+}
+
 FrameData makeFrameData(const Scene& scene, const RenderSettings& settings, float time) {
     FrameData f;
-    const glm::ivec2 size = scaledRenderSize(settings.width, settings.height, settings.renderScale);
+    const glm::ivec2 size = scaledRenderSize(settings.width, settings.height, internalRenderScale(settings));
     f.width = size.x;
     f.height = size.y;
     f.outputWidth = settings.width;

@@ -95,6 +95,11 @@ void shadowsOn(RenderSettings& s, double) { s.shadows.enabled = true; }
 void iblOn(RenderSettings& s, double) { s.environment.ibl = true; }
 void bloomOn(RenderSettings& s, double) { s.post.bloom = true; }  // the method stays --bloom-method's
 
+// The --aa choices a user is offered (each one implemented).
+std::vector<AntiAliasing> offeredAntiAliasing() {
+    return {AntiAliasing::Off, AntiAliasing::Fxaa, AntiAliasing::Taa, AntiAliasing::Ssaa};
+}
+
 std::vector<KnobEntry> makeKnobTable() {
     std::vector<KnobEntry> t;
     // [knobs] one entry per user-facing setting, grouped by feature area. The order is --help's,
@@ -596,6 +601,61 @@ std::vector<KnobEntry> makeKnobTable() {
         t.push_back(std::move(k));
     }
     {
+        KnobEntry k = choiceKnob("aa", [](auto& s) -> auto& { return s.aa.method; }, offeredAntiAliasing(),
+                                 antiAliasingName);
+        k.flags = {valueFlag("--aa")};
+        k.choiceNoun = "anti-aliasing";
+        k.help = "anti-aliasing: fxaa filters the tone-mapped image (FXAA 3.11); taa blends Halton-jittered frames "
+                 "through the motion vectors; ssaa renders at --ssaa-scale x the size in each axis and box-filters "
+                 "the HDR image down (--render-scale is then not used)";
+        k.panel = {PanelSection::View, PanelWidget::Combo, "anti-aliasing", ""};
+        k.sweep = {{"off", "fxaa", "taa"}, false,
+                   "anti-aliasing (--aa): off, fxaa, taa (after the warm-up and timed frames), then ssaa at 2x2 and "
+                   "3x3 samples a pixel, against ssaa 4x4 (reference). Not monotone: fxaa changes only the "
+                   "tone-mapped image, so its HDR error is off's (FLIP from bench/sweep_report.py sees it)",
+                   nullptr};
+        for (int scale : {2, 3, kMaxSsaaScale})
+            k.sweepExtraValues.push_back({"ssaa" + std::to_string(scale), [scale](RenderSettings& s) {
+                                               s.aa.method = AntiAliasing::Ssaa;
+                                               s.aa.ssaaScale = scale;
+                                           }});
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = intKnob("ssaa-scale", [](auto& s) -> auto& { return s.aa.ssaaScale; }, 2, kMaxSsaaScale);
+        k.flags = {valueFlag("--ssaa-scale")};
+        k.help = "with --aa ssaa: render at S x the output size in each axis, S x S samples a pixel";
+        k.sweep = {{"2", "3", "4"}, true,
+                   "samples per axis of --aa ssaa (--ssaa-scale), box-filtered to the output; 4 (16 samples a "
+                   "pixel) is the reference",
+                   [](RenderSettings& s, double) { s.aa.method = AntiAliasing::Ssaa; }};
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = floatKnob("taa-history-weight", [](auto& s) -> auto& { return s.aa.taaHistoryWeight; },
+                                {0.01, 1.0});
+        k.flags = {valueFlag("--taa-history-weight")};
+        k.help = "with --aa taa: the current frame's weight in the blend with the history (smaller: smoother, "
+                 "slower to converge and to follow changes)";
+        k.sweep = {{"0.5", "0.25", "0.1", "0.05"}, false,
+                   "the current frame's weight in TAA's blend (--taa-history-weight, switches --aa taa on), against "
+                   "ssaa 4x4 (reference); not monotone (a smaller weight converges slower)",
+                   [](RenderSettings& s, double) { s.aa.method = AntiAliasing::Taa; }};
+        k.sweepExtraValues.push_back({"ssaa4", [](RenderSettings& s) {
+                                           s.aa.method = AntiAliasing::Ssaa;
+                                           s.aa.ssaaScale = kMaxSsaaScale;
+                                       }});
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = boolKnob("dither", [](auto& s) -> auto& { return s.aa.dither; });
+        k.flags = {setsFlag("--dither", 1), setsFlag("--no-dither", 0)};
+        k.help = "triangular-PDF noise of +-1 LSB before the 8-bit quantisation of the displayed / saved image "
+                 "(breaks up banding, keeps the mean)";
+        k.panel = {PanelSection::View, PanelWidget::Checkbox, "dither", ""};
+        t.push_back(std::move(k));
+    }
+    {
         KnobEntry k = floatKnob("exposure", [](auto& s) -> auto& { return s.exposureEV; }, {-16.0, 16.0});
         k.flags = {valueFlag("--exposure")};
         k.help = "exposure in stops before the tone map (with --auto-exposure: the compensation added to it)";
@@ -672,6 +732,7 @@ std::vector<Knob> makeSweepKnobs() {
                                     if (entry->sweep.alsoSet) entry->sweep.alsoSet(s, v);
                                 }});
         }
+        for (const KnobValue& extra : e.sweepExtraValues) k.values.push_back(extra);
         knobs.push_back(std::move(k));
     }
     return knobs;

@@ -23,6 +23,7 @@ public:
     void render(const RenderSettings& settings, float time = 0.0f, bool timed = true);
 
     // Sub-pixel jitter (output pixels, +x right, +y up) of the frames rendered from now on; 0 by default.
+    // With --aa taa the frames take TAA's Halton jitter instead (taaJitterPixels).
     void setJitterPixels(glm::vec2 jitterPixels) { jitterPixels_ = jitterPixels; }
     glm::vec2 jitterPixels() const { return jitterPixels_; }
     // A camera cut: the next frame has no previous frame (its velocity is 0 everywhere).
@@ -62,6 +63,7 @@ private:
     FrameOutputs outputs_;
     int width_ = 0, height_ = 0;
     glm::vec2 jitterPixels_{0.0f};
+    uint64_t taaFrames_ = 0;  // TAA frames rendered: the next one's jitter phase
     MotionHistory history_;
 };
 

@@ -89,4 +89,14 @@ std::optional<ToneMapOperator> parseToneMap(const std::string& name) {
     return std::nullopt;
 }
 
+const char* antiAliasingName(AntiAliasing aa) {
+    switch (aa) {
+        case AntiAliasing::Off: return "off";
+        case AntiAliasing::Fxaa: return "fxaa";
+        case AntiAliasing::Taa: return "taa";
+        case AntiAliasing::Ssaa: return "ssaa";
+    }
+    return "off";
+}
+
 }  // namespace lp

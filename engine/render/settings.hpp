@@ -127,12 +127,27 @@ struct MotionBlurSettings {     // passes/motion_blur_pass (McGuire et al. 2012)
 
 inline constexpr float kMinRenderScale = 0.25f;  // --render-scale's lower bound
 
+// Anti-aliasing (--aa). ssaa renders at --ssaa-scale S times the output size in each axis (S x S
+// samples a pixel) and box-filters the HDR image down before the tone map; fxaa filters the
+// tone-mapped image; taa blends jittered frames through the motion vectors.
+enum class AntiAliasing { Off, Fxaa, Taa, Ssaa };
+const char* antiAliasingName(AntiAliasing aa);
+inline constexpr int kMaxSsaaScale = 4;
+struct AntiAliasSettings {
+    AntiAliasing method = AntiAliasing::Off;
+    int ssaaScale = 2;              // --ssaa-scale: samples per axis with --aa ssaa (2..4)
+    float taaHistoryWeight = 0.1f;  // --taa-history-weight: the current frame's weight in the TAA blend
+    bool dither = true;             // triangular-PDF noise of +-1 LSB before every 8-bit quantisation
+};
+
 struct RenderSettings {
     int width = 1280;
     int height = 720;
     // --render-scale: the G-buffer, lighting and post effects run at round(size x renderScale)
-    // (0.25..1) and are upsampled bilinearly to width x height before the tone map.
+    // (0.25..1) and are upsampled bilinearly to width x height before the tone map. With --aa ssaa
+    // they run at ssaaScale x the size instead (internalRenderScale() in frame/frame_builder.hpp).
     float renderScale = 1.0f;
+    AntiAliasSettings aa;
     DebugView view = DebugView::Final;
     float exposureEV = 0.0f;     // manual exposure; with autoExposure the compensation added to it
     bool autoExposure = false;   // --auto-exposure: the histogram pass picks the exposure per frame

@@ -217,6 +217,9 @@ TEST(KnobTable, ErrorsKeepTheirWording) {
         {{"render", "--gbuffer-position", "far"}, "--gbuffer-position far: unknown mode (stored, depth, reversed-z)"},
         {{"render", "--render-scale", "0.1"}, "--render-scale 0.1: expected a number in [0.25, 1]"},
         {{"render", "--render-scale", "nan"}, "--render-scale nan: expected a finite number"},
+        {{"render", "--aa", "msaa"}, "--aa msaa: unknown anti-aliasing (off, fxaa, taa, ssaa)"},
+        {{"render", "--ssaa-scale", "5"}, "--ssaa-scale 5: expected a whole number in [2, 4]"},
+        {{"render", "--ssaa-scale", "1"}, "--ssaa-scale 1: expected a whole number in [2, 4]"},
         {{"render", "--light-range-scale", "2"}, "--light-range-scale 2: expected a number in [0.01, 1]"},
         {{"render", "--shadow-split-lambda", "2"}, "--shadow-split-lambda 2: expected a number in [0, 1]"},
         {{"render", "--bloom-clamp", "0"}, "--bloom-clamp 0: expected a positive number"},
@@ -243,8 +246,8 @@ TEST(KnobTable, SweepKnobsAreTableEntries) {
         SCOPED_TRACE(knob.name);
         EXPECT_EQ(knob.description, entry->sweep.description);
         EXPECT_EQ(knob.monotone, entry->sweep.monotone);
-        ASSERT_EQ(knob.values.size(), entry->sweep.values.size());
-        for (size_t i = 0; i < knob.values.size(); ++i) {
+        ASSERT_EQ(knob.values.size(), entry->sweep.values.size() + entry->sweepExtraValues.size());
+        for (size_t i = 0; i < entry->sweep.values.size(); ++i) {
             // In range (the CLI would take it), and applying it sets the knob's field to it.
             const double v = parseKnobValue(*entry, "--" + entry->name, entry->sweep.values[i]);
             if (entry->type == KnobType::Int || entry->type == KnobType::Float) EXPECT_TRUE(entry->range.contains(v));
