@@ -22,7 +22,8 @@ Files (all small):
                            alpha 0 and right half alpha 255 (half drawn)
   emissive.gltf            a black quad facing +Z with emissiveFactor (1, 0.5, 0.25) and
                            KHR_materials_emissive_strength 4: radiance (4, 2, 1)
-  lights.gltf              a quad lit by a directional, a point (range 5) and a spot light, and a camera
+  lights.gltf              a quad lit by a directional, a point (range 5) and a spot light (under a
+                           rotated parent: at (2, 3, 0), pointing at (-1, -1, 0)/sqrt 2), and a camera
   emissive_panel.glb       (models/) the emissive quad again, for scenes/pbr-spheres.json
   viking_room.glb          (models/, only when ../shared/assets/viking-room is there; not committed:
                            CC BY 4.0, nigelgoh) the Vulkan tutorial's Z-up OBJ as a glTF, turned Y-up
@@ -223,7 +224,11 @@ def lights():
     s = math.sqrt(0.5)
     b.node(rotation=[-s, 0, 0, s], extensions={"KHR_lights_punctual": {"light": 0}})  # -Z turned to -Y: straight down
     b.node(translation=[0, 2, 0], extensions={"KHR_lights_punctual": {"light": 1}})
-    b.node(translation=[1, 3, 0], rotation=[-s, 0, 0, s], extensions={"KHR_lights_punctual": {"light": 2}})
+    # The spot under a parent (T (1, 0, 0), R 90 deg about +Y): its own T (0, 3, 1), R -45 deg about +X
+    # points its -Z at (0, -1, -1)/sqrt 2; in the world it sits at (2, 3, 0) and points at (-1, -1, 0)/sqrt 2.
+    c45, s45 = math.cos(math.pi / 8), math.sin(math.pi / 8)
+    spot = b.node(root=False, translation=[0, 3, 1], rotation=[-s45, 0, 0, c45], extensions={"KHR_lights_punctual": {"light": 2}})
+    b.node(translation=[1, 0, 0], rotation=[0, s, 0, s], children=[spot])
     b.gltf.cameras = [g.Camera(type="perspective", perspective=g.Perspective(yfov=0.8, znear=0.1, zfar=50.0, aspectRatio=1.5))]
     b.node(camera=0, translation=[0, 1, 6])  # looking down -Z at the origin's height 1
     b.save_gltf_embedded(os.path.join(OUT, "lights.gltf"))

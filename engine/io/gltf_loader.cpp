@@ -6,6 +6,7 @@
 #include <cstring>
 #include <functional>
 #include <set>
+#include <sstream>
 
 #include <glm/gtc/matrix_inverse.hpp>
 #include <nlohmann/json.hpp>
@@ -29,6 +30,12 @@ bool isGltfPath(const fs::path& path) {
 }
 
 namespace {
+
+std::string formatNumber(double v) {
+    std::ostringstream s;
+    s << v;
+    return s.str();
+}
 
 // Extensions this loader understands; a file that requires any other is refused (the spec's rule).
 const std::set<std::string> kSupportedExtensions = {"KHR_lights_punctual", "KHR_materials_emissive_strength"};
@@ -525,7 +532,28 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
             if (!isChild[i]) roots.push_back(int(i));
     }
     std::vector<bool> onPath(model.nodes.size(), false);
-    size_t spotLights = 0;
+    // glTF cone half-angles (radians, 0 <= inner < outer <= pi/2) as the renderer's (degrees, outer < 90).
+    auto spotCone = [&](const tinygltf::SpotLight& s, const glm::vec3& direction, const std::string& lw) {
+        const double inner = s.innerConeAngle, outer = s.outerConeAngle;
+        if (!std::isfinite(inner) || !std::isfinite(outer))
+            L.fail(lw + ".spot", "innerConeAngle and outerConeAngle must be finite");
+        if (inner < 0.0) L.fail(lw + ".spot.innerConeAngle", formatNumber(inner) + " rad: must be >= 0");
+        if (!(outer > inner))
+            L.fail(lw + ".spot.outerConeAngle", formatNumber(outer) + " rad must be greater than innerConeAngle " + formatNumber(inner));
+        if (!std::isfinite(direction.x + direction.y + direction.z)) L.fail(lw, "the spot's node has no -Z direction (a zero scale)");
+        SpotCone c;
+        c.direction = direction;
+        c.outerDegrees = float(glm::degrees(outer));
+        c.innerDegrees = float(glm::degrees(inner));
+        // The renderer's cone stays below a hemisphere; glTF allows up to pi/2.
+        constexpr float kMaxOuterDegrees = 89.0f;
+        if (c.outerDegrees > kMaxOuterDegrees) {
+            L.warn(lw + ".spot.outerConeAngle", formatNumber(c.outerDegrees) + " degrees clamped to " + formatNumber(kMaxOuterDegrees));
+            c.outerDegrees = kMaxOuterDegrees;
+            c.innerDegrees = std::min(c.innerDegrees, c.outerDegrees);
+        }
+        return c;
+    };
     std::function<void(int, const glm::mat4&, const std::string&)> visit = [&](int n, const glm::mat4& parent, const std::string& from) {
         if (n < 0 || size_t(n) >= model.nodes.size()) L.fail(from, "node " + std::to_string(n) + " does not exist (" + std::to_string(model.nodes.size()) + " nodes)");
         const std::string w = "nodes[" + std::to_string(n) + "]";
@@ -590,10 +618,7 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
                 const float brightest = intensity * std::max({color.x, color.y, color.z, 1e-6f});
                 p.range = (std::isfinite(l.range) && l.range > 0.0) ? float(l.range) : std::max(std::sqrt(brightest / 1e-3f), 1e-3f);
                 p.orbitCenter = origin;
-                if (l.type == "spot") {
-                    ++spotLights;
-                    L.warn(lw, "spot light " + (l.name.empty() ? std::to_string(li) : "'" + l.name + "'") + " loaded as a point light");
-                }
+                if (l.type == "spot") p.spot = spotCone(l.spot, forward, lw);
                 out.pointLights.push_back(p);
             } else {
                 L.warn(lw, "unknown light type '" + l.type + "'; ignored");
@@ -603,7 +628,6 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
         onPath[size_t(n)] = false;
     };
     for (int r : roots) visit(r, glm::mat4(1.0f), sceneIndex >= 0 ? "scenes[" + std::to_string(sceneIndex) + "].nodes" : "nodes");
-    (void)spotLights;
 
     if (report.droppedDegenerate || report.droppedNonFinite) {
         const std::string msg = file + ": dropped " + std::to_string(report.droppedDegenerate) + " degenerate and " +

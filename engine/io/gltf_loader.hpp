@@ -18,7 +18,7 @@ struct GltfContent {
     MeshData mesh;
     std::vector<Camera> cameras;  // perspective cameras placed by their nodes, in file order
     std::vector<DirectionalLight> directionalLights;
-    std::vector<PointLight> pointLights;  // point lights, and spot lights as point lights (warned)
+    std::vector<PointLight> pointLights;  // point lights, and spot lights (`spot` set: the node's -Z, the cone)
 };
 
 // Throws lp::Error("<path>: <element>: <what>"), the element as the file names it

@@ -307,6 +307,11 @@ void addGltfLights(const GltfContent& g, const glm::mat4& transform, Scene& scen
     for (PointLight p : g.pointLights) {
         p.position = glm::vec3(transform * glm::vec4(p.position, 1.0f));
         p.orbitCenter = p.position;
+        if (p.spot) {
+            const glm::vec3 dir = glm::mat3(transform) * p.spot->direction;
+            if (!(glm::length(dir) > 0.0f)) continue;
+            p.spot->direction = glm::normalize(dir);
+        }
         scene.pointLights.push_back(p);
     }
 }

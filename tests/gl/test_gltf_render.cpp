@@ -189,3 +189,51 @@ TEST(GltfRender, SingleSidedMaterialsHideBackFaces) {
     for (Material& m : s.models[0].mesh.materials) m.doubleSided = true;
     EXPECT_NEAR(centre(s).x, 4.0f, 4e-3f);
 }
+
+// A glTF spot (node at (0, 1, 0) turned -90 deg about +X: its -Z points down; cone 0.3 / 0.5 rad) over
+// a white plane seen from above: the centre, on the axis, is lit; points beyond the outer angle
+// (28.6 deg, 0.55 m from the foot) on either side are exactly black.
+TEST(GltfRender, GltfSpotLightsItsConeOnly) {
+    const fs::path dir = tempDir();
+    const double s = std::sqrt(0.5);
+    std::ofstream(dir / "spot.gltf")
+        << R"({"asset": {"version": "2.0"}, "extensionsUsed": ["KHR_lights_punctual"],
+              "extensions": {"KHR_lights_punctual": {"lights": [{"type": "spot", "intensity": 2, "range": 5,
+                             "spot": {"innerConeAngle": 0.3, "outerConeAngle": 0.5}}]}},
+              "buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}],
+              "bufferViews": [{"buffer": 0, "byteLength": 36}],
+              "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"}],
+              "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+              "nodes": [{"mesh": 0, "translation": [0, -5, 0]},
+                        {"translation": [0, 1, 0], "rotation": [)"
+        << -s << ", 0, 0, " << s << R"(], "extensions": {"KHR_lights_punctual": {"light": 0}}}],
+              "scenes": [{"nodes": [0, 1]}], "scene": 0})";
+    const GltfContent g = loadGltf(dir / "spot.gltf");
+    ASSERT_EQ(g.pointLights.size(), 1u);
+    MeshData plane = loadObj(objPlane(dir, "newmtl m\nKd 1 1 1\n"));
+    Scene scene = modelScene(std::move(plane));
+    scene.pointLights = g.pointLights;
+    scene.camera.position = {0.0f, 3.0f, 0.0f};
+    scene.camera.target = {0.0f, 0.0f, 0.0f};
+    scene.camera.up = {0.0f, 0.0f, -1.0f};  // image right is +X
+    scene.camera.fovYDegrees = 30.0f;
+    scene.camera.nearPlane = 0.1f;
+    scene.camera.farPlane = 10.0f;
+    const int w = 48, h = 48;
+    Renderer r(scene);
+    RenderSettings settings;
+    settings.width = w;
+    settings.height = h;
+    settings.keepHdr = true;
+    r.render(settings);
+    const ImageF hdr = r.readHdr();
+    auto at = [&](int x, int y) { return hdr.rgba[(size_t(y) * size_t(w) + size_t(x)) * 4]; };
+    // Column c's centre lies at x = ((c + 0.5) / 24 - 1) * 3 tan 15 deg on the plane: columns 4 and 43 at
+    // |x| = 0.64 m, 32.7 deg off the axis, outside the cone.
+    EXPECT_GT(at(w / 2, h / 2), 0.1f);
+    EXPECT_EQ(at(4, h / 2), 0.0f);
+    EXPECT_EQ(at(43, h / 2), 0.0f);
+    EXPECT_EQ(at(w / 2, 4), 0.0f);
+    EXPECT_EQ(at(w / 2, 43), 0.0f);
+    fs::remove_all(dir);
+}

@@ -126,7 +126,7 @@ TEST(GltfLoader, NodeTransformsComposeParentTimesTRS) {
 }
 
 // Lights and cameras: the directional light points down its node's -Z, the point light keeps its range,
-// the spot light comes in as a point light with a warning naming it.
+// the spot light (under a rotated parent) keeps its world position, its node's -Z and its cone.
 TEST(GltfLoader, LightsAndCameras) {
     MeshLoadReport report;
     const GltfContent g = loadGltf(kData / "lights.gltf", &report);
@@ -136,10 +136,18 @@ TEST(GltfLoader, LightsAndCameras) {
     ASSERT_EQ(g.pointLights.size(), 2u);
     EXPECT_NEAR(g.pointLights[0].range, 5.0f, 1e-6f);
     EXPECT_NEAR(g.pointLights[0].position.y, 2.0f, 1e-6f);
-    EXPECT_NEAR(g.pointLights[1].intensity, 20.0f, 1e-6f);
-    bool spotWarned = false;
-    for (const auto& w : report.warnings) spotWarned |= w.find("spot light 'torch' loaded as a point light") != std::string::npos;
-    EXPECT_TRUE(spotWarned);
+    EXPECT_FALSE(g.pointLights[0].spot.has_value());
+    // The spot: parent T (1, 0, 0) R 90 deg about +Y > child T (0, 3, 1) R -45 deg about +X.
+    const PointLight& spot = g.pointLights[1];
+    EXPECT_NEAR(spot.intensity, 20.0f, 1e-6f);  // candela on the axis, as for points
+    EXPECT_NEAR(glm::distance(spot.position, glm::vec3(2, 3, 0)), 0.0f, 1e-5f);
+    ASSERT_TRUE(spot.spot.has_value());
+    const glm::vec3 expectedAxis = glm::normalize(glm::vec3(-1, -1, 0));
+    EXPECT_NEAR(glm::distance(spot.spot->direction, expectedAxis), 0.0f, 1e-5f);
+    EXPECT_NEAR(spot.spot->innerDegrees, glm::degrees(0.2f), 1e-4f);
+    EXPECT_NEAR(spot.spot->outerDegrees, glm::degrees(0.5f), 1e-4f);
+    EXPECT_FALSE(spot.spot->castsShadow);
+    for (const auto& w : report.warnings) EXPECT_EQ(w.find("spot"), std::string::npos) << w;
     ASSERT_EQ(g.cameras.size(), 1u);
     EXPECT_NEAR(g.cameras[0].fovYDegrees, glm::degrees(0.8f), 1e-3f);
     EXPECT_NEAR(g.cameras[0].position.z, 6.0f, 1e-6f);
@@ -190,6 +198,13 @@ TEST(GltfLoader, SceneFileModelsGltf) {
     EXPECT_EQ(s.directionalLights.size(), 2u);  // the file's and the glTF's
     ASSERT_EQ(s.pointLights.size(), 2u);
     EXPECT_NEAR(s.pointLights[0].position.y, 12.0f, 1e-5f);  // placed by the model's transform
+    // The model's rotation turns the spot's axis: 90 deg about +Y takes (-1, -1, 0)/sqrt 2 to (0, -1, 1)/sqrt 2.
+    const std::string turned = R"({"models": [{"gltf": ")" + (kData / "lights.gltf").string() + R"(", "rotate": [0, 90, 0]}]})";
+    const Scene r = parseScene(turned, t.dir / "s.json");
+    ASSERT_EQ(r.pointLights.size(), 2u);
+    ASSERT_TRUE(r.pointLights[1].spot.has_value());
+    EXPECT_NEAR(glm::distance(r.pointLights[1].spot->direction, glm::normalize(glm::vec3(0, -1, 1))), 0.0f, 1e-5f);
+    EXPECT_NEAR(glm::distance(r.pointLights[1].position, glm::vec3(0, 3, -2)), 0.0f, 1e-5f);
     EXPECT_THROW(parseScene(R"({"models": [{"gltf": "a.glb", "obj": "b.obj"}]})", t.dir / "s.json"), Error);
     try {
         parseScene(R"({"models": [{"gltf": "a.txt"}]})", t.dir / "s.json");
@@ -236,6 +251,37 @@ TEST(GltfLoader, BadInputNamesFileAndElement) {
                          R"("nodes": [{"mesh": 0, "children": [1]}, {"children": [0]}])"),
                 "the node hierarchy has a cycle");
     expectError("not_json.gltf", "{\"asset\": ", "");
+    // Spot cones: lights[2] of three, on the triangle's node.
+    auto spotGltf = [&](const std::string& cone) {
+        return replaced(triangleGltf("[" + kPositions + "]", kViews, 42,
+                                     R"("extensionsUsed": ["KHR_lights_punctual"], "extensions": {"KHR_lights_punctual": {"lights": [{"type": "point"}, {"type": "point"}, {"type": "spot", "spot": {)" +
+                                         cone + "}}]}},"),
+                        R"("nodes": [{"mesh": 0}])", R"("nodes": [{"mesh": 0, "extensions": {"KHR_lights_punctual": {"light": 2}}}])");
+    };
+    expectError("spot_outer_below_inner.gltf", spotGltf(R"("innerConeAngle": 0.5, "outerConeAngle": 0.3)"),
+                "extensions.KHR_lights_punctual.lights[2].spot.outerConeAngle: 0.3 rad must be greater than innerConeAngle 0.5");
+    expectError("spot_equal.gltf", spotGltf(R"("innerConeAngle": 0.4, "outerConeAngle": 0.4)"), "lights[2].spot.outerConeAngle");
+    expectError("spot_negative_inner.gltf", spotGltf(R"("innerConeAngle": -0.1, "outerConeAngle": 0.4)"),
+                "lights[2].spot.innerConeAngle: -0.1 rad: must be >= 0");
+    // JSON has no NaN; an overflowing number is the way a file carries a non-finite angle.
+    const std::string nanErr = loadError(t.write("spot_nan.gltf", spotGltf(R"("innerConeAngle": 0.1, "outerConeAngle": 1e999)")));
+    EXPECT_EQ(nanErr.rfind((t.dir / "spot_nan.gltf").string() + ": ", 0), 0u) << nanErr;
+    EXPECT_EQ(nanErr.find('\n'), std::string::npos) << nanErr;
+    // Defaults (0 and pi/4), and glTF's widest cone pi/2 clamped below a hemisphere with a warning.
+    const GltfContent d = loadGltf(t.write("spot_default.gltf", spotGltf("")));
+    ASSERT_EQ(d.pointLights.size(), 1u);
+    ASSERT_TRUE(d.pointLights[0].spot.has_value());
+    EXPECT_NEAR(d.pointLights[0].spot->innerDegrees, 0.0f, 1e-6f);
+    EXPECT_NEAR(d.pointLights[0].spot->outerDegrees, 45.0f, 1e-4f);
+    EXPECT_NEAR(glm::distance(d.pointLights[0].spot->direction, glm::vec3(0, 0, -1)), 0.0f, 1e-6f);
+    MeshLoadReport wide;
+    const GltfContent w = loadGltf(t.write("spot_wide.gltf", spotGltf(R"("innerConeAngle": 1.5707963, "outerConeAngle": 1.5707964)")), &wide);
+    ASSERT_TRUE(w.pointLights.at(0).spot.has_value());
+    EXPECT_FLOAT_EQ(w.pointLights[0].spot->outerDegrees, 89.0f);
+    EXPECT_FLOAT_EQ(w.pointLights[0].spot->innerDegrees, 89.0f);
+    bool clampWarned = false;
+    for (const auto& m : wide.warnings) clampWarned |= m.find("lights[2].spot.outerConeAngle: 90 degrees clamped to 89") != std::string::npos;
+    EXPECT_TRUE(clampWarned);
     // A missing texture is the documented fallback: the file loads, the texture is a checker later.
     const std::string withTexture = triangleGltf("[" + kPositions + "]", kViews, 42,
                                                  R"("images": [{"uri": "missing.png"}], "textures": [{"source": 0}], "materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}],)",
