@@ -7,6 +7,7 @@
 // adds every candidate regardless (to measure what the scene-driven graph saves).
 #include "engine/graph/frame_graph.hpp"
 #include "engine/render/frame_data.hpp"
+#include "passes/ambient_occlusion_pass.hpp"
 #include "passes/auto_exposure_pass.hpp"
 #include "passes/debug_view_pass.hpp"
 #include "passes/gbuffer_pass.hpp"
@@ -36,6 +37,7 @@ struct PassStates {
     UpscalePass upscale;
     HdrViewPass hdrView;
     AutoExposurePass autoExposure;
+    AmbientOcclusionPass ambientOcclusion;
     // Environment cubes, IBL bakes and the DFG LUT, kept across frames; imported into the graph
     // (written there by ibl_bake in the frame where they change).
     EnvironmentCache environments;

@@ -26,6 +26,7 @@ const char* viewName(DebugView v) {
         case DebugView::Tangent: return "tangent";
         case DebugView::InvalidPixels: return "invalid-pixels";
         case DebugView::ExposureEv: return "exposure-ev";
+        case DebugView::Ao: return "ao";
     }
     return "final";
 }
@@ -35,7 +36,7 @@ std::vector<DebugView> allViews() {
             DebugView::Shininess, DebugView::Specular, DebugView::Texcoords, DebugView::Lighting,
             DebugView::Environment, DebugView::Irradiance, DebugView::Prefiltered, DebugView::Dfg,
             DebugView::WorldPosition, DebugView::EyeVector, DebugView::DepthFitted, DebugView::Tangent,
-            DebugView::InvalidPixels, DebugView::ExposureEv};
+            DebugView::InvalidPixels, DebugView::ExposureEv, DebugView::Ao};
 }
 
 std::vector<DebugView> everyView() {
@@ -82,5 +83,7 @@ std::optional<ToneMapOperator> parseToneMap(const std::string& name) {
         if (name == toneMapName(op)) return op;
     return std::nullopt;
 }
+
+const char* aoResolutionName(AoResolution r) { return r == AoResolution::Half ? "half" : "full"; }
 
 }  // namespace lp
