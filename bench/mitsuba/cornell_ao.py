@@ -7,7 +7,7 @@ IBL lights every surface with the whole environment it faces; the box lets the s
 open front only, which is what ambient occlusion has to recover. Renders lightpass with --no-ao and
 with --ao under a few settings, and Mitsuba 3 (`path`, max depth 2: camera -> surface -> environment,
 with visibility but no interreflection, the same light transport as lightpass's single-bounce IBL;
-and, for reference, max depth 8 with the interreflections lightpass does not model), and writes the
+--depths 2 8 adds max depth 8, with the interreflections lightpass does not model), and writes the
 relative RMSE over the box's pixels to cornell_ao.md and cornell_ao.csv.
 
 Materials are Lambertian (the OBJ's Kd, the spheres' diffuse colours, specular 0) so both renderers
@@ -32,10 +32,11 @@ MAP = REPO / "hdr/sky.exr"
 # lightpass variants: a label and the flags added to `lightpass render`.
 VARIANTS = [
     ("AO off", ["--no-ao"]),
-    ("AO on (defaults: half size, 0.5 m, 2 x 4)", ["--ao"]),
+    ("AO on (defaults: half size, 1 m, 2 x 4)", ["--ao"]),
     ("AO on, full size", ["--ao", "--ao-resolution", "full"]),
-    ("AO on, 1 m radius", ["--ao", "--ao-radius", "1"]),
-    ("AO on, full size, 1 m, 4 x 8", ["--ao", "--ao-resolution", "full", "--ao-radius", "1", "--ao-directions", "4",
+    ("AO on, 0.5 m radius", ["--ao", "--ao-radius", "0.5"]),
+    ("AO on, 2 m radius", ["--ao", "--ao-radius", "2"]),
+    ("AO on, full size, 2 m, 4 x 8", ["--ao", "--ao-resolution", "full", "--ao-radius", "2", "--ao-directions", "4",
                                       "--ao-steps", "8"]),
 ]
 
@@ -185,8 +186,8 @@ def main():
     ap.add_argument("--scenes", default=str(REPO / "bench/mitsuba/scenes"))
     ap.add_argument("--work", default="/tmp/lightpass-mitsuba")
     ap.add_argument("--mitsuba-only", action="store_true", help="render (and keep) the references, no lightpass")
-    ap.add_argument("--depths", type=int, nargs="+", default=[2, 8],
-                    help="Mitsuba max depths (2: lightpass's transport; higher adds interreflection)")
+    ap.add_argument("--depths", type=int, nargs="+", default=[2],
+                    help="Mitsuba max depths (2: lightpass's transport; e.g. 2 8 adds a reference with interreflection)")
     args = ap.parse_args()
     try:
         width, height = (int(v) for v in args.size.split("x"))

@@ -105,7 +105,7 @@ enum class AoResolution { Full, Half };
 const char* aoResolutionName(AoResolution r);
 struct AoSettings {
     bool enabled = true;        // --ao / --no-ao
-    float radius = 0.5f;        // view-space search radius, metres
+    float radius = 1.0f;        // view-space search radius, metres
     int directions = 2;         // slice directions per pixel (rotated per pixel over a 4x4 tile)
     int steps = 4;              // depth samples per side of each slice
     AoResolution resolution = AoResolution::Half;  // half: computed at half size, depth-aware upsample
