@@ -40,7 +40,10 @@ void main() {
     float falloffRange = 0.4 * uRadius;
     float rotation = aoTileNoise(q);
     float jitter = aoTileNoise(ivec2(q.y + 1, q.x + 2));
-    float visibility = 0.0;
+    // The same slices with nothing above the tangent plane: the estimate is divided by it, so a
+    // surface open to the sky reads exactly 1 whatever the slice count (off the view axis a slice's
+    // open value |Np| (cos n + n sin n) is not 1; only its mean over all azimuths is).
+    float visibility = 0.0, open = 0.0;
     for (int d = 0; d < uDirections; ++d) {
         float psi = (float(d) + rotation) * LP_AO_PI / float(uDirections);
         vec3 w = gtaoSliceDirection(V, psi);
@@ -75,7 +78,8 @@ void main() {
         float h0 = -acos(clamp(horizonCos[0], -1.0, 1.0));
         float h1 = acos(clamp(horizonCos[1], -1.0, 1.0));
         visibility += gtaoSliceVisibility(h0, h1, n, npLength);
+        open += gtaoSliceVisibility(n - LP_AO_HALF_PI, n + LP_AO_HALF_PI, n, npLength);
     }
-    float ao = clamp(visibility / float(uDirections), 0.0, 1.0);
+    float ao = open > 1e-6 ? clamp(visibility / open, 0.0, 1.0) : 1.0;
     imageStore(uRaw, q, vec4(ao, depth, 0.0, 0.0));
 }
