@@ -48,6 +48,19 @@ std::string localLightSkipReason(const FrameData& frame) {
     if (localLightsInView(frame) == 0) return "all " + std::to_string(count) + " local lights are out of view";
     return "";
 }
+
+// Why the frame needs no ambient-occlusion pass; empty when it does. AO darkens indirect light only
+// (IBL, the constant ambient), so without any there is nothing for it to do. The ao view shows it
+// regardless; --all-passes adds it without indirect light, but not against --no-ao.
+std::string ambientOcclusionSkipReason(const FrameData& frame, bool iblAdded) {
+    const RenderSettings& s = *frame.settings;
+    if (s.view == DebugView::Ao) return "";
+    if (!s.ao.enabled) return "ambient occlusion is off (--no-ao)";
+    if (s.allPasses) return "";
+    const bool ambient = glm::any(glm::greaterThan(frame.scene->ambient, glm::vec3(0.0f)));
+    if (!iblAdded && !ambient) return "no indirect light to occlude (IBL off, ambient 0)";
+    return "";
+}
 }  // namespace
 
 FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const FrameData& frameIn) {
@@ -89,8 +102,17 @@ FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const Fr
     GBuffer gbuffer = addGBufferPass(graph, passes.gbuffer, frame, channels);
     // one depth pass per shadow-casting directional light; global_lights and the shadowmap view read them.
     const ShadowMaps shadowMaps = addShadowMapPasses(graph, passes.shadowMaps, frame);
-    fg::ResourceId hdr = addGlobalLightPass(graph, passes.globalLights, frame, gbuffer, shadowMaps, lightingView);
-    if (iblAdded) hdr = addIblPass(graph, passes.ibl, frame, gbuffer, environment, hdr, lightingView);
+    // Occlusion of the indirect light (ambient, IBL); the light passes read it, the ao view shows it.
+    const std::string aoSkip = ambientOcclusionSkipReason(frame, iblAdded);
+    fg::ResourceId ao;
+    if (aoSkip.empty()) {
+        ao = addAmbientOcclusionPasses(graph, passes.ambientOcclusion, frame, gbuffer);
+    } else {
+        graph.skipPass("ao", aoSkip);
+        graph.skipPass("ao_denoise", aoSkip);
+    }
+    fg::ResourceId hdr = addGlobalLightPass(graph, passes.globalLights, frame, gbuffer, shadowMaps, lightingView, ao);
+    if (iblAdded) hdr = addIblPass(graph, passes.ibl, frame, gbuffer, environment, hdr, lightingView, ao);
     else graph.skipPass("ibl", hasMap ? "IBL is off (environment.ibl false, no --ibl)" : "scene has no environment map");
     if (localSkip.empty()) {
         // one perspective depth map per shadow-casting spot, read by local_lights.
@@ -131,7 +153,7 @@ FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const Fr
     else graph.skipPass("fxaa", "anti-aliasing is " + std::string(antiAliasingName(s.aa.method)) + ", not fxaa");
     if (isHdrView(s.view)) display = addHdrViewPass(graph, passes.hdrView, frame, hdr, s.view);  // culls tonemap
     if (channelView) {
-        display = addDebugViewPass(graph, passes.debugView, frame, gbuffer, shadowMaps, environment, s.view);
+        display = addDebugViewPass(graph, passes.debugView, frame, gbuffer, shadowMaps, environment, s.view, ao);
         if (scaled) display = addUpscalePass(graph, passes.upscale, frame, display, UpscaleInput::DebugView);
     }
 

@@ -7,6 +7,7 @@
 // adds every candidate regardless (to measure what the scene-driven graph saves).
 #include "engine/graph/frame_graph.hpp"
 #include "engine/render/frame_data.hpp"
+#include "passes/ambient_occlusion_pass.hpp"
 #include "passes/auto_exposure_pass.hpp"
 #include "passes/debug_view_pass.hpp"
 #include "passes/emission_pass.hpp"
@@ -48,6 +49,7 @@ struct PassStates {
     TaaPass taa;  // holds the TAA history across frames (imported into each frame's graph)
     HdrViewPass hdrView;
     AutoExposurePass autoExposure;
+    AmbientOcclusionPass ambientOcclusion;
     // Environment cubes, IBL bakes and the DFG LUT, kept across frames; imported into the graph
     // (written there by ibl_bake in the frame where they change).
     EnvironmentCache environments;

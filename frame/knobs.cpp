@@ -93,7 +93,8 @@ const KnobRange kNonNegative{0.0, kNoMax};
 // Sweep side effects: a swept value switches on the feature it measures.
 void shadowsOn(RenderSettings& s, double) { s.shadows.enabled = true; }
 void iblOn(RenderSettings& s, double) { s.environment.ibl = true; }
-void bloomOn(RenderSettings& s, double) { s.post.bloom = true; }  // the method stays --bloom-method's
+void bloomOn(RenderSettings& s, double) { s.post.bloom = true; }
+void aoOn(RenderSettings& s, double) { s.ao.enabled = true; }  // the method stays --bloom-method's
 
 // The --aa choices a user is offered (each one implemented).
 std::vector<AntiAliasing> offeredAntiAliasing() {
@@ -318,6 +319,64 @@ std::vector<KnobEntry> makeKnobTable() {
         KnobEntry k = intKnob("dfg-samples", [](auto& s) -> auto& { return s.environment.dfgSamples; }, 1, 65536);
         k.flags = {valueFlag("--dfg-samples")};
         k.help = "GGX samples per DFG LUT texel";
+        t.push_back(std::move(k));
+    }
+
+    // ---- ambient occlusion (indirect light only; passes/ambient_occlusion_pass) ----
+    {
+        KnobEntry k = boolKnob("ao", [](auto& s) -> auto& { return s.ao.enabled; });
+        k.flags = {setsFlag("--ao", 1), setsFlag("--no-ao", 0)};
+        k.help = "screen-space ambient occlusion (GTAO) of the IBL and constant ambient, never of direct "
+                 "light; runs only where the frame has indirect light";
+        k.panel = {PanelSection::Lighting, PanelWidget::Checkbox, "ambient occlusion", ""};
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = floatKnob("ao-radius", [](auto& s) -> auto& { return s.ao.radius; }, {0.0, 100.0, true});
+        k.flags = {valueFlag("--ao-radius")};
+        k.help = "AO search radius in view-space metres";
+        k.panel = {PanelSection::Lighting, PanelWidget::LogSlider, "AO radius", "%.2f m"};
+        k.sweep = {{"0.125", "0.25", "0.5", "1", "2"}, false,
+                   "AO search radius in metres (--ao-radius, AO on): occluders further away are ignored; 2 m "
+                   "is the reference. Not monotone: sampling gets sparser as the radius grows",
+                   aoOn};
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = intKnob("ao-directions", [](auto& s) -> auto& { return s.ao.directions; }, 1, 16);
+        k.flags = {valueFlag("--ao-directions")};
+        k.help = "AO slice directions per pixel (rotated over a 4x4 pixel tile)";
+        k.panel = {PanelSection::Lighting, PanelWidget::Slider, "AO directions", ""};
+        k.sweep = {{"1", "2", "4", "8"}, true,
+                   "AO slice directions per pixel (--ao-directions, AO on); 8 is the reference", aoOn};
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = intKnob("ao-steps", [](auto& s) -> auto& { return s.ao.steps; }, 1, 32);
+        k.flags = {valueFlag("--ao-steps")};
+        k.help = "AO depth samples per side of each slice";
+        k.panel = {PanelSection::Lighting, PanelWidget::Slider, "AO steps", ""};
+        k.sweep = {{"2", "4", "8", "16"}, true, "AO samples per side of a slice (--ao-steps, AO on); 16 is the reference",
+                   aoOn};
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = choiceKnob("ao-resolution", [](auto& s) -> auto& { return s.ao.resolution; },
+                                 std::vector<AoResolution>{AoResolution::Half, AoResolution::Full}, aoResolutionName);
+        k.flags = {valueFlag("--ao-resolution")};
+        k.choiceNoun = "resolution";
+        k.help = "AO computed at half size (depth-aware upsample) or at the full G-buffer size";
+        k.panel = {PanelSection::Lighting, PanelWidget::Combo, "AO resolution", ""};
+        k.sweep = {{"half", "full"}, true, "AO resolution (--ao-resolution, AO on): half size upsampled by depth, "
+                                           "or full size (reference)",
+                   aoOn};
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = floatKnob("ao-intensity", [](auto& s) -> auto& { return s.ao.intensity; }, {0.0, 8.0});
+        k.flags = {valueFlag("--ao-intensity")};
+        k.help = "exponent on the AO (1: the physical value, 0: no occlusion)";
+        k.panel = {PanelSection::Lighting, PanelWidget::Slider, "AO intensity", "%.2f"};
         t.push_back(std::move(k));
     }
 

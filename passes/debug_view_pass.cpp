@@ -33,6 +33,7 @@ int modeOf(DebugView v) {
         case DebugView::DepthFitted: return 11;
         case DebugView::Tangent: return 12;
         case DebugView::Velocity: return 13;
+        case DebugView::Ao: return 14;
         default: return 0;
     }
 }
@@ -130,7 +131,7 @@ GBufferChannels channelsForView(DebugView view) {
 
 fg::ResourceId addDebugViewPass(fg::FrameGraph& graph, DebugViewPass& state, const FrameData& frame,
                                 const GBuffer& gbuffer, const ShadowMaps& shadowMaps,
-                                const EnvironmentTextures& environment, DebugView view) {
+                                const EnvironmentTextures& environment, DebugView view, fg::ResourceId ao) {
     if (isEnvironmentView(view)) return addEnvironmentViewPass(graph, state, frame, gbuffer, environment, view);
     const int mode = modeOf(view);
     if (mode == 0) throw Error(std::string("debug view '") + viewName(view) + "' is not a G-buffer channel");
@@ -148,10 +149,11 @@ fg::ResourceId addDebugViewPass(fg::FrameGraph& graph, DebugViewPass& state, con
     const Data& d = graph.addPass<Data>(
         std::string("debug_view"), fg::PassKind::Compute,
         [&](fg::PassBuilder& b, Data& data) {
-            if (mode == 7 || mode == 8 || mode == 12 || mode == 13) {
+            if (mode == 7 || mode == 8 || mode == 12 || mode == 13 || mode == 14) {
                 fg::ResourceId ch = shadowMap     ? shadowMap->depth
                                     : mode == 12 ? gbuffer.tangent
                                     : mode == 13 ? gbuffer.velocity
+                                    : mode == 14 ? ao
                                                  : gbuffer.texcoord;
                 if (!ch.valid())
                     throw Error(std::string("debug view '") + viewName(view) + "': the G-buffer lacks its channel");

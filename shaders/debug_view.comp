@@ -7,11 +7,12 @@
 #include "common/velocity.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(binding = 12) uniform sampler2D uChannel;  // texcoords (7), the shadow-map atlas (8), tangents (12), velocity (13)
+layout(binding = 12) uniform sampler2D uChannel;  // texcoords (7), the shadow-map atlas (8), tangents (12), velocity (13), AO (14)
 layout(rgba8, binding = 0) uniform writeonly image2D uLdr;
 
 // 1 depth, 2 normals, 3 diffuse, 4 position, 5 shininess, 6 specular, 7 texcoords, 8 shadow map,
-// 9 world position, 10 eye vector, 11 depth fitted to the scene's range, 12 tangent, 13 velocity
+// 9 world position, 10 eye vector, 11 depth fitted to the scene's range, 12 tangent, 13 velocity, 14 ambient
+// occlusion (1 white = unoccluded; the sky is 1)
 uniform int uMode;
 uniform float uNear;
 uniform float uFar;
@@ -52,6 +53,10 @@ void main() {
     }
     if (uMode == 7) {
         imageStore(uLdr, p, vec4(fract(texelFetch(uChannel, p, 0).xy), 0.0, 1.0));
+        return;
+    }
+    if (uMode == 14) {
+        imageStore(uLdr, p, vec4(vec3(texelFetch(uChannel, p, 0).r), 1.0));
         return;
     }
     if (uMode == 12) {  // stored encoded by the G-buffer (t x 0.5 + 0.5); the background is cleared to 0

@@ -28,6 +28,7 @@ const char* viewName(DebugView v) {
         case DebugView::InvalidPixels: return "invalid-pixels";
         case DebugView::ExposureEv: return "exposure-ev";
         case DebugView::Velocity: return "velocity";
+        case DebugView::Ao: return "ao";
     }
     return "final";
 }
@@ -37,7 +38,7 @@ std::vector<DebugView> allViews() {
             DebugView::Shininess, DebugView::Specular, DebugView::Texcoords, DebugView::Lighting,
             DebugView::Environment, DebugView::Irradiance, DebugView::Prefiltered, DebugView::Dfg,
             DebugView::WorldPosition, DebugView::EyeVector, DebugView::DepthFitted, DebugView::Tangent,
-            DebugView::InvalidPixels, DebugView::ExposureEv, DebugView::Velocity};
+            DebugView::InvalidPixels, DebugView::ExposureEv, DebugView::Velocity, DebugView::Ao};
 }
 
 std::vector<DebugView> everyView() {
@@ -98,5 +99,6 @@ const char* antiAliasingName(AntiAliasing aa) {
     }
     return "off";
 }
+const char* aoResolutionName(AoResolution r) { return r == AoResolution::Half ? "half" : "full"; }
 
 }  // namespace lp

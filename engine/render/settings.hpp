@@ -18,7 +18,8 @@ enum class DebugView {
     LightRanges, LightsPerTile, LightsPerCluster,  // overlays on the final image (local_light_pass)
     WorldPosition, EyeVector, DepthFitted, Tangent,  // more G-buffer views (seed 003; depth over the scene's range)
     InvalidPixels, ExposureEv,  // the HDR buffer inspected (passes/hdr_view_pass): NaN/Inf, EV false colour
-    Velocity  // gbuffer.velocity: screen-space motion as hue (direction) and brightness (length)
+    Velocity,  // gbuffer.velocity: screen-space motion as hue (direction) and brightness (length)
+    Ao  // the ambient-occlusion target (passes/ambient_occlusion_pass)
 };
 // overlay views (not in allViews(): they are the final image with the local lights'
 // bounds or per-tile light counts drawn over it).
@@ -101,6 +102,19 @@ struct EnvironmentSettings {    // environment, skybox, image-based lighting, to
     int debugMip = 0;           // the 'prefiltered' debug view shows this mip
     std::string cacheDir;       // non-empty: baked environments are also cached on disk here
 };
+// Screen-space ambient occlusion (GTAO, passes/ambient_occlusion_pass): darkens only indirect light
+// (IBL diffuse and the constant ambient; IBL specular through specular occlusion), never the suns or
+// local lights. The frame builder runs it only where indirect light exists.
+enum class AoResolution { Full, Half };
+const char* aoResolutionName(AoResolution r);
+struct AoSettings {
+    bool enabled = true;        // --ao / --no-ao
+    float radius = 1.0f;        // view-space search radius, metres
+    int directions = 2;         // slice directions per pixel (rotated per pixel over a 4x4 tile)
+    int steps = 4;              // depth samples per side of each slice
+    AoResolution resolution = AoResolution::Half;  // half: computed at half size, depth-aware upsample
+    float intensity = 1.0f;     // AO^intensity (1: the physical value)
+};
 struct PostSettings {           // bloom and toon (engine/post/post_config.hpp resolves them)
     enum class BloomMethod { Separable, MipChain };
     enum class Backend { Auto, Cuda, Glsl };  // auto: CUDA on an NVIDIA GL context with a CUDA device
@@ -160,6 +174,7 @@ struct RenderSettings {
     ShadowSettings shadows;
     LocalLightSettings localLights;
     EnvironmentSettings environment;
+    AoSettings ao;
     PostSettings post;
     MotionBlurSettings motionBlur;
     GBufferSettings gbuffer;     // normal format and position mode (--gbuffer, --gbuffer-position)

@@ -87,36 +87,45 @@ TEST(SceneDrivenGraph, TableOfScenesAndSettings) {
     };
     const std::vector<Row> rows = {
         {"cornell", "defaults", [](RenderSettings&) {},
-         {"ibl_bake", "gbuffer", "shadow_map_0", "global_lights", "local_lights", "sky", "tonemap"}, lit},
+         {"ibl_bake", "gbuffer", "ao", "ao_denoise", "shadow_map_0", "global_lights", "local_lights", "sky", "tonemap"}, lit},
         {"cornell", "positions rebuilt from depth",
          [](RenderSettings& s) { s.gbuffer.position = GBufferPositionMode::Depth; },
-         {"ibl_bake", "gbuffer", "shadow_map_0", "global_lights", "local_lights", "sky", "tonemap"},
+         {"ibl_bake", "gbuffer", "ao", "ao_denoise", "shadow_map_0", "global_lights", "local_lights", "sky", "tonemap"},
          {"depth", "normal", "diffuse", "specular"}},
         {"cornell", "lighting view (no albedo, no sky)", [](RenderSettings& s) { s.view = DebugView::Lighting; },
-         {"gbuffer", "shadow_map_0", "global_lights", "local_lights", "tonemap"},
+         {"gbuffer", "ao", "ao_denoise", "shadow_map_0", "global_lights", "local_lights", "tonemap"},
          {"depth", "normal", "position", "specular"}},
         {"cornell", "--no-shadows", [](RenderSettings& s) { s.shadows.enabled = false; },
-         {"ibl_bake", "gbuffer", "global_lights", "local_lights", "sky", "tonemap"}, lit},
+         {"ibl_bake", "gbuffer", "ao", "ao_denoise", "global_lights", "local_lights", "sky", "tonemap"}, lit},
         {"cornell", "--no-local-lights", [](RenderSettings& s) { s.localLights.enabled = false; },
-         {"ibl_bake", "gbuffer", "shadow_map_0", "global_lights", "sky", "tonemap"}, lit},
+         {"ibl_bake", "gbuffer", "ao", "ao_denoise", "shadow_map_0", "global_lights", "sky", "tonemap"}, lit},
         {"cornell", "--ibl --bloom --toon",
          [](RenderSettings& s) {
              s.environment.ibl = true;
              s.post.bloom = true;
              s.post.toon = true;
          },
-         {"ibl_bake", "gbuffer", "shadow_map_0", "global_lights", "ibl", "local_lights", "sky", "bloom",
+         {"ibl_bake", "gbuffer", "ao", "ao_denoise", "shadow_map_0", "global_lights", "ibl", "local_lights", "sky", "bloom",
           "bloom_composite", "toon", "tonemap"},
          lit},
         {"cornell", "texcoords view", [](RenderSettings& s) { s.view = DebugView::Texcoords; },
          {"gbuffer", "debug_view"}, {"depth", "texcoord"}},
-        {"unlit", "defaults", [](RenderSettings&) {}, {"gbuffer", "global_lights", "tonemap"}, lit},
+        {"unlit", "defaults", [](RenderSettings&) {}, {"gbuffer", "ao", "ao_denoise", "global_lights", "tonemap"}, lit},
         {"unlit", "--all-passes", [](RenderSettings& s) { s.allPasses = true; },
-         {"ibl_bake", "gbuffer", "global_lights", "ibl", "local_lights", "sky", "bloom", "bloom_composite", "tonemap"},
+         {"ibl_bake", "gbuffer", "ao", "ao_denoise", "global_lights", "ibl", "local_lights", "sky", "bloom", "bloom_composite",
+          "tonemap"},
          lit},
         {"ibl-spheres", "defaults", [](RenderSettings&) {},
-         {"ibl_bake", "gbuffer", "global_lights", "ibl", "sky", "tonemap"}, lit},
-        {"lights-4k", "defaults", [](RenderSettings&) {}, {"gbuffer", "global_lights", "local_lights", "tonemap"}, lit},
+         {"ibl_bake", "gbuffer", "ao", "ao_denoise", "global_lights", "ibl", "sky", "tonemap"}, lit},
+        {"cornell", "--no-ao", [](RenderSettings& s) { s.ao.enabled = false; },
+         {"ibl_bake", "gbuffer", "shadow_map_0", "global_lights", "local_lights", "sky", "tonemap"}, lit},
+        {"cornell", "ao view (computed regardless of --no-ao)",
+         [](RenderSettings& s) {
+             s.view = DebugView::Ao;
+             s.ao.enabled = false;
+         },
+         {"gbuffer", "ao", "ao_denoise", "debug_view"}, {"depth", "normal", "position", "specular"}},
+        {"lights-4k", "defaults", [](RenderSettings&) {}, {"gbuffer", "ao", "ao_denoise", "global_lights", "local_lights", "tonemap"}, lit},
     };
     for (const Row& row : rows) {
         RenderSettings s = small();
@@ -166,6 +175,7 @@ TEST(SceneDrivenGraph, TogglingAnEffectChangesExactlyItsPasses) {
         {"ibl", [](RenderSettings& s, bool on) { s.environment.ibl = on; }, {"ibl"}, "ibl"},
         {"bloom", [](RenderSettings& s, bool on) { s.post.bloom = on; }, {"bloom", "bloom_composite"}, "bloom"},
         {"toon", [](RenderSettings& s, bool on) { s.post.toon = on; }, {"toon"}, "toon"},
+        {"ambient occlusion", [](RenderSettings& s, bool on) { s.ao.enabled = on; }, {"ao", "ao_denoise"}, "ao"},
     };
     for (const Toggle& t : toggles) {
         RenderSettings on = small(), off = small();
@@ -189,9 +199,12 @@ TEST(SceneDrivenGraph, SkippedPassesAllocateNothing) {
     s.allPasses = true;
     const Built all = build(bundledScene("unlit"), s);
     auto bytes = [](GLenum format) { return fg::TextureDesc{320, 180, format}.bytes(); };
-    // depth, normal, diffuse, position, specular; hdr; ldr.final: nothing for shadows, lights, sky, IBL.
+    const size_t halfBytes = fg::TextureDesc{160, 90, GL_RG16F}.bytes();
+    // depth, normal, diffuse, position, specular; the AO's half-size raw and full-size target (its
+    // ambient is lit); hdr; ldr.final: nothing for shadows, lights, sky, IBL.
     EXPECT_EQ(normal.transientBytes, bytes(GL_DEPTH_COMPONENT32F) + bytes(gbufferNormalFormat(s.gbuffer.normal)) +
                                          bytes(GL_RGBA8) + bytes(GL_RGBA32F) + bytes(gbufferSpecularFormat(s.gbuffer.normal)) +
+                                         halfBytes + bytes(GL_R8) +
                                          bytes(GL_RGBA16F) + bytes(GL_RGBA8));
     EXPECT_GT(all.transientBytes, normal.transientBytes);  // bloom's buffers
 
@@ -219,10 +232,41 @@ TEST(SceneDrivenGraph, LocalLightsAllOutOfViewSkipThePass) {
     scene.camera.target = scene.camera.position + (scene.camera.position - scene.camera.target);
     EXPECT_EQ(localLightsInView(makeFrameData(scene, s, 0.0f)), 0);
     const Built b = build(scene, s);
-    EXPECT_EQ(b.runs, (Names{"gbuffer", "global_lights", "tonemap"}));
+    EXPECT_EQ(b.runs, (Names{"gbuffer", "ao", "ao_denoise", "global_lights", "tonemap"}));
     EXPECT_EQ(b.reasons.at("local_lights"), "skipped: all 4096 local lights are out of view");
     s.allPasses = true;
     EXPECT_TRUE(build(scene, s).runs.count("local_lights"));
+}
+
+// Ambient occlusion runs only where there is indirect light to occlude: IBL or a non-zero ambient.
+TEST(SceneDrivenGraph, AmbientOcclusionOnlyWithIndirectLight) {
+    Scene scene = bundledScene("lights-4k");  // no environment map; ambient 0.005
+    RenderSettings s = small();
+    EXPECT_TRUE(build(scene, s).runs.count("ao"));
+    scene.ambient = glm::vec3(0.0f);
+    const Built dark = build(scene, s);
+    EXPECT_FALSE(dark.runs.count("ao"));
+    EXPECT_FALSE(dark.runs.count("ao_denoise"));
+    EXPECT_EQ(dark.reasons.at("ao"), "skipped: no indirect light to occlude (IBL off, ambient 0)");
+    EXPECT_EQ(dark.reasons.at("ao_denoise"), "skipped: no indirect light to occlude (IBL off, ambient 0)");
+    scene.ambient = glm::vec3(0.0f, 0.0f, 1e-3f);  // one channel is enough
+    EXPECT_TRUE(build(scene, s).runs.count("ao_denoise"));
+
+    // IBL alone (ibl-spheres has ambient 0) calls for it; IBL off there leaves nothing indirect.
+    RenderSettings ibl = small();
+    EXPECT_TRUE(build(bundledScene("ibl-spheres"), ibl).runs.count("ao"));
+    ibl.environment.ibl = false;
+    EXPECT_EQ(build(bundledScene("ibl-spheres"), ibl).reasons.at("ao"),
+              "skipped: no indirect light to occlude (IBL off, ambient 0)");
+
+    RenderSettings off = small();
+    off.ao.enabled = false;
+    EXPECT_EQ(build(bundledScene("cornell"), off).reasons.at("ao"), "skipped: ambient occlusion is off (--no-ao)");
+    off.allPasses = true;  // --all-passes does not override an explicit --no-ao
+    EXPECT_FALSE(build(bundledScene("cornell"), off).runs.count("ao"));
+    scene.ambient = glm::vec3(0.0f);
+    s.allPasses = true;  // but adds it without indirect light
+    EXPECT_TRUE(build(scene, s).runs.count("ao"));
 }
 
 // Spheres against a 90-degree frustum looking down -Z (near 1, far 10): the distance to a side
