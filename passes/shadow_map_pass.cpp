@@ -67,14 +67,7 @@ ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const
                 for (size_t c = 0; c < fr.cascades.size(); ++c) {
                     glViewport(GLint(c % size_t(fr.columns)) * fr.tileSize, GLint(c / size_t(fr.columns)) * fr.tileSize,
                                fr.tileSize, fr.tileSize);
-                    for (const auto& mesh : frame.gpu->meshes) {
-                        const glm::mat4 mvp = fr.cascades[c].worldToClip * mesh.model;
-                        glProgramUniformMatrix4fv(prog, locMvp, 1, GL_FALSE, glm::value_ptr(mvp));
-                        glBindVertexArray(mesh.vao.id());
-                        for (const auto& draw : mesh.draws)
-                            glDrawElements(GL_TRIANGLES, GLsizei(draw.indexCount), GL_UNSIGNED_INT,
-                                           reinterpret_cast<const void*>(size_t(draw.firstIndex) * sizeof(uint32_t)));
-                    }
+                    drawShadowCasters(frame, prog, locMvp, fr.cascades[c].worldToClip);
                 }
                 glBindVertexArray(0);
                 glUseProgram(0);
@@ -84,6 +77,17 @@ ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const
         maps.push_back(std::move(map));
     }
     return maps;
+}
+
+void drawShadowCasters(const FrameData& frame, GLuint prog, GLint locMvp, const glm::mat4& worldToClip) {
+    for (const auto& mesh : frame.gpu->meshes) {
+        const glm::mat4 mvp = worldToClip * mesh.model;
+        glProgramUniformMatrix4fv(prog, locMvp, 1, GL_FALSE, glm::value_ptr(mvp));
+        glBindVertexArray(mesh.vao.id());
+        for (const auto& draw : mesh.draws)
+            glDrawElements(GL_TRIANGLES, GLsizei(draw.indexCount), GL_UNSIGNED_INT,
+                           reinterpret_cast<const void*>(size_t(draw.firstIndex) * sizeof(uint32_t)));
+    }
 }
 
 }  // namespace lp

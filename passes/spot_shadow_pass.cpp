@@ -1,4 +1,5 @@
 #include "passes/spot_shadow_pass.hpp"
+#include "passes/shadow_map_pass.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -97,14 +98,7 @@ SpotShadowMaps addSpotShadowPass(fg::FrameGraph& graph, SpotShadowPass& state, c
             glUseProgram(prog);
             for (size_t t = 0; t < matrices.size(); ++t) {
                 glViewport(GLint(t % size_t(columns)) * tile, GLint(t / size_t(columns)) * tile, tile, tile);
-                for (const auto& mesh : frame.gpu->meshes) {
-                    const glm::mat4 mvp = matrices[t] * mesh.model;
-                    glProgramUniformMatrix4fv(prog, locMvp, 1, GL_FALSE, glm::value_ptr(mvp));
-                    glBindVertexArray(mesh.vao.id());
-                    for (const auto& draw : mesh.draws)
-                        glDrawElements(GL_TRIANGLES, GLsizei(draw.indexCount), GL_UNSIGNED_INT,
-                                       reinterpret_cast<const void*>(size_t(draw.firstIndex) * sizeof(uint32_t)));
-                }
+                drawShadowCasters(frame, prog, locMvp, matrices[t]);
             }
             glBindVertexArray(0);
             glUseProgram(0);
