@@ -110,7 +110,7 @@ int runBench(const Options& o, const std::vector<std::string>& args) {
     const std::string out = o.timingsJson.empty() ? "bench.json" : o.timingsJson;
     requireWritableOutput(out);
 
-    Scene scene = o.model.empty() ? loadScene(o.scene) : sceneForModel(o.model);
+    Scene scene = sceneFromOptions(o);
     auto ctx = gl::createHeadlessContext();
     logInfo("bench on " + ctx->info().renderer + (ctx->isSoftware() ? " (software rasteriser: times are not meaningful)" : ""));
     for (const auto& s : settings) requireFrameFitsGpu(*ctx, scene, s);
@@ -133,17 +133,19 @@ int runBench(const Options& o, const std::vector<std::string>& args) {
         // --max-seconds per variant (a quarter of it for warm-up), never fewer than --min-frames.
         int frames = o.frames, warmup = o.warmup;
         if (o.maxSeconds > 0) {
-            renderer.render(s, 0.0f, false);  // first frame of a setting compiles programs, fills caches
+            renderer.render(s, float(warmupTime(o)), false);  // first frame of a setting compiles programs, fills caches
             glFinish();
             auto t0 = std::chrono::steady_clock::now();
-            renderer.render(s, 0.0f, false);
+            renderer.render(s, float(warmupTime(o)), false);
             glFinish();
             const double secs = std::max(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 1e-6);
             frames = std::min(o.frames, std::max(o.minFrames, int(o.maxSeconds / secs)));
             warmup = std::min(o.warmup, std::max(1, int(0.25 * o.maxSeconds / secs)));
         }
-        for (int i = 0; i < warmup; ++i) renderer.render(s, 0.0f, false);
-        for (int i = 0; i < frames; ++i) renderer.render(s, 0.0f, true);
+        // --time / --fps as render takes them (a camera path then moves between timed frames).
+        renderer.cutMotion();  // a new variant: no motion from the last one's frames
+        for (int i = 0; i < warmupFrames(o, warmup); ++i) renderer.render(s, float(warmupTime(o)), false);
+        for (int i = 0; i < frames; ++i) renderer.render(s, float(frameTime(o, i)), true);
         glFinish();
         renderer.timers().flush();
         nlohmann::json run;

@@ -1,13 +1,17 @@
 #include "app/cli.hpp"
 
+#include "engine/scene/scene_loader.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 
 #include "engine/core/error.hpp"
+#include "engine/core/log.hpp"
 #include "engine/core/paths.hpp"
 #include "frame/frame_builder.hpp"
 #include "frame/knobs.hpp"
+#include "engine/scene/scene_loader.hpp"
 
 namespace lp::app {
 
@@ -16,19 +20,19 @@ std::string helpText() {
 
 usage:
   lightpass                         open the viewer on scenes/cornell.json (needs a display)
-  lightpass view FILE               open the viewer on a scene (.json) or a model (.obj)
-  lightpass render (--scene F | --model F.obj) --out F.png [options]
+  lightpass view FILE               open the viewer on a scene (.json) or a model (.obj, .gltf, .glb)
+  lightpass render (--scene F | --model F) --out F.png [options]
                                     render headless (EGL; NVIDIA if present, else Mesa llvmpipe)
                                     and print each pass's GPU time (median over the frames)
-  lightpass graph (--scene F | --model F.obj) [--view V] [--dot F.dot] [--explain]
+  lightpass graph (--scene F | --model F) [--view V] [--dot F.dot] [--explain]
                                     print the frame graph: passes that run, passes culled and
                                     why, what each reads and writes, transient textures
-  lightpass sweep (--scene F | --model F.obj) --knob K [--knob K2 ...] [--out-dir D]
+  lightpass sweep (--scene F | --model F) --knob K [--knob K2 ...] [--out-dir D]
                                     render every value of each quality knob; GPU ms per pass
                                     and error against the knob's best value -> D/sweep.csv,
                                     D/sweep.md and images (bench/sweep_report.py adds FLIP
                                     and a Pareto plot); --knob A+B sweeps every combination
-  lightpass bench (--scene F | --model F.obj) --vary 'FLAG V1,V2,..' [--vary ...] [flags]
+  lightpass bench (--scene F | --model F) --vary 'FLAG V1,V2,..' [--vary ...] [flags]
                                     one process renders every combination of the --vary axes
                                     (an axis is 'FLAG V1,V2' or 'FLAGS A|FLAGS B'), GPU ms per
                                     pass (median of --frames after --warmup, default 10) and
@@ -50,8 +54,8 @@ usage:
     text += R"(
 viewer keys (seed 001):
   1 depth  2 normals  3 diffuse  4 eye-space position  5 lighting  6 shininess  7 toon on/off
-  8 bloom buffer alone  0 standard view  r reset camera  x toggle scissor  W/S/A/D/Q/Z move
-  mouse drag: look  +/- exposure  Tab panel  h help  F12 screenshot  Esc quit
+  8 bloom buffer alone  9 velocity  0 standard view  r reset camera  x toggle scissor  W/S/A/D/Q/Z move
+  mouse drag: look  p follow the camera path  +/- exposure  Tab panel  h help  F12 screenshot  Esc quit
   (the panel also picks scenes and environments, and shaders/ edits reload while it runs)
 )";
     return text;
@@ -59,8 +63,11 @@ viewer keys (seed 001):
 
 std::string sizeLabel(const RenderSettings& s) {
     std::string label = std::to_string(s.width) + "x" + std::to_string(s.height);
-    const glm::ivec2 r = scaledRenderSize(s.width, s.height, s.renderScale);
+    const glm::ivec2 r = scaledRenderSize(s.width, s.height, internalRenderScale(s));
     if (r.x == s.width && r.y == s.height) return label;
+    if (s.aa.method == AntiAliasing::Ssaa)
+        return label + " (rendered at " + std::to_string(r.x) + "x" + std::to_string(r.y) + ", SSAA " +
+               std::to_string(s.aa.ssaaScale) + "x" + std::to_string(s.aa.ssaaScale) + ")";
     char scale[16];
     std::snprintf(scale, sizeof scale, "%.2f", double(s.renderScale));
     return label + " (rendered at " + std::to_string(r.x) + "x" + std::to_string(r.y) + ", render scale " + scale + ")";
@@ -128,8 +135,13 @@ std::vector<CommandFlag> makeCommandFlags() {
          [](Options& o, V, V) { o.command = "version"; }},
         {{"--scene"}, "F", "scene file (JSON, see README); a bundled one by name from anywhere (cornell, gallery, ...)",
          [](Options& o, V, V v) { o.scene = resolveDataPath(v); }},
-        {{"--model"}, "F.obj", "any OBJ, framed by the camera, with a key and a fill light",
+        {{"--model"}, "F", "any OBJ or glTF (.gltf, .glb), framed by the camera (or the glTF's first camera), with a key and a fill light (or the glTF's lights)",
          [](Options& o, V, V v) { o.model = v; }},
+        {{"--up"}, "y|z", "the --model file's up axis: z turns a Z-up model (Blender, CAD, the Vulkan tutorial's viking room) to Y-up",
+         [](Options& o, V a, V v) {
+             if (v != "y" && v != "z") throw Error(a + " " + v + ": expected y or z");
+             o.modelZUp = v == "z";
+         }},
         {{"--out"}, "F.png", "tone-mapped image (written to a temporary name, then renamed)",
          [](Options& o, V, V v) { o.out = v; }},
         {{"--exr"}, "F.exr", "the linear HDR buffer before tone mapping (float32 EXR)", [](Options& o, V, V v) { o.exr = v; }},
@@ -150,18 +162,22 @@ std::vector<CommandFlag> makeCommandFlags() {
              if (!view) throw Error("--view " + v + ": unknown view (" + viewList(everyView(), ", ") + ")");
              o.view = *view;
          }},
-        {{"--time"}, "T", "render: seconds on the scene's clock of the first timed frame (orbits follow; default 0)",
+        {{"--time"}, "T", "render, bench, sweep: seconds on the scene's clock of the first timed frame (orbits and camera paths follow; default 0)",
          [](Options& o, V a, V v) {
              o.time = parseFloat(a, v);
              if (std::fabs(o.time) > 1e6) throw Error(a + " " + v + ": expected seconds in [-1e6, 1e6]");
          }},
-        {{"--fps"}, "F", "render: frame i is at --time + i / F (default 0: every frame at --time)",
+        {{"--fps"}, "F", "render, bench, sweep: frame i is at --time + i / F, untimed frames at --time - 1 / F (default 0: every frame at --time)",
          [](Options& o, V a, V v) {
              o.fps = parseFloat(a, v);
              if (!(o.fps >= 0.0 && o.fps <= 1e4)) throw Error(a + " " + v + ": expected frames per second in [0, 10000]");
          }},
         {{"--camera"}, "P,T[,F]", "camera position px,py,pz, target tx,ty,tz and optionally vertical fov (degrees)",
          [](Options& o, V a, V v) { parseCamera(o, a, v); }},
+        {{"--camera-path"}, "F",
+         "JSON file of camera keyframes ({\"keys\": [{\"time\", \"position\", \"target\", \"fov\"}, ...], \"loop\"}; "
+         "replaces the scene's cameraPath; --camera overrides it)",
+         [](Options& o, V, V v) { o.cameraPath = v; }},
         {{"--frames"}, "N", "frames to render and time (default 1; the image is the last frame)",
          [](Options& o, V a, V v) { o.frames = parseInt(a, v, 1, 100000); }},
         {{"--warmup"}, "N", "untimed frames before timing (default 5 when --frames > 1, else 0; sweep and bench: 10)",
@@ -238,9 +254,9 @@ Options parseArgs(const std::vector<std::string>& args) {
             o.command != "sweep" && o.command != "bench")
             throw Error("unknown command '" + o.command + "' (render, graph, view, sweep, bench, info; see --help)");
         if (o.command == "view") {
-            if (i >= args.size() || args[i].rfind("-", 0) == 0) throw Error("view: expected a .json scene or .obj model");
+            if (i >= args.size() || args[i].rfind("-", 0) == 0) throw Error("view: expected a .json scene or an .obj, .gltf or .glb model");
             std::string f = args[i++];
-            (std::filesystem::path(f).extension() == ".obj" ? o.model : o.scene) = f;
+            (isModelPath(f) ? o.model : o.scene) = f;
             o.command = "viewer";
         }
     }
@@ -267,7 +283,7 @@ Options parseArgs(const std::vector<std::string>& args) {
     if (!o.scene.empty() && !o.model.empty()) throw Error("give --scene or --model, not both");
     if ((o.command == "sweep" || o.command == "bench") && !o.warmupGiven) o.warmup = 10;
     if (o.command == "render" || o.command == "graph" || o.command == "sweep" || o.command == "bench") {
-        if (o.scene.empty() && o.model.empty()) throw Error(o.command + ": --scene F or --model F.obj is required");
+        if (o.scene.empty() && o.model.empty()) throw Error(o.command + ": --scene F or --model F is required");
     }
     if (o.command == "render" && o.out.empty() && o.exr.empty()) throw Error("render: --out F.png (or --exr F.exr) is required");
     if (!o.out.empty() && std::filesystem::path(o.out).extension() != ".png")
@@ -286,7 +302,23 @@ RenderSettings renderSettings(const Options& o) {
     s.height = o.height;
     s.view = o.view;
     s.keepHdr = !o.exr.empty();
+    if (s.aa.method == AntiAliasing::Ssaa && s.renderScale != 1.0f)
+        logWarn("--aa ssaa renders at --ssaa-scale " + std::to_string(s.aa.ssaaScale) + "; --render-scale is not used");
     return s;
 }
+
+Scene sceneFromOptions(const Options& o) {
+    Scene scene = o.model.empty() ? loadScene(o.scene) : sceneForModel(o.model, o.modelZUp);
+    if (!o.cameraPath.empty()) scene.cameraPath = loadCameraPath(o.cameraPath);
+    if (o.cameraPosition) scene.cameraPath.reset();  // --camera fixes the camera
+    if (o.cameraPosition) scene.camera.position = *o.cameraPosition;
+    if (o.cameraTarget) scene.camera.target = *o.cameraTarget;
+    if (o.cameraFov) scene.camera.fovYDegrees = *o.cameraFov;
+    return scene;
+}
+
+double frameTime(const Options& o, int i) { return o.fps > 0.0 ? o.time + double(i) / o.fps : o.time; }
+double warmupTime(const Options& o) { return o.fps > 0.0 ? o.time - 1.0 / o.fps : o.time; }
+int warmupFrames(const Options& o, int warmup) { return o.fps > 0.0 ? std::max(warmup, 1) : warmup; }
 
 }  // namespace lp::app

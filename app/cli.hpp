@@ -8,6 +8,7 @@
 #include <glm/glm.hpp>
 
 #include "engine/render/settings.hpp"
+#include "engine/scene/scene.hpp"
 
 namespace lp::app {
 
@@ -15,6 +16,7 @@ struct Options {
     std::string command;  // "viewer", "render", "graph", "info", "help"
     std::string scene;
     std::string model;
+    bool modelZUp = false;  // --up z: the --model file is Z-up (turned to Y-up on load)
     std::string out;
     std::string exr;
     std::string dot;
@@ -31,6 +33,7 @@ struct Options {
     // --camera px,py,pz,tx,ty,tz[,fov]: replaces the scene's camera position, target (and fov).
     std::optional<glm::vec3> cameraPosition, cameraTarget;
     std::optional<float> cameraFov;
+    std::string cameraPath;  // --camera-path F: a JSON file holding a "cameraPath" object (--camera wins)
     float exposure = 0.0f;  // = base.exposureEV (the --exposure knob), for the viewer's start
     bool vsync = true;
     bool floors = false;
@@ -64,6 +67,17 @@ const std::vector<CommandFlag>& commandFlags();
 Options parseArgs(const std::vector<std::string>& args);
 // The frame settings the options describe (size, view, exposure, feature flags).
 RenderSettings renderSettings(const Options& options);
+
+// The scene the options name (--scene or --model), with --camera-path's path and --camera's camera
+// applied (--camera removes any path: it fixes the camera).
+Scene sceneFromOptions(const Options& options);
+// --time / --fps: when timed frame i is on the scene's clock (T + i / F; T without --fps).
+double frameTime(const Options& options, int i);
+// When the untimed frames before the timed ones are: T - 1 / F with --fps (so the first timed frame
+// has a previous frame one step earlier: its motion vectors), else T.
+double warmupTime(const Options& options);
+// Untimed frames before the timed ones: --warmup, at least one with --fps (the previous frame).
+int warmupFrames(const Options& options, int warmup);
 std::string helpText();
 // "WxH", plus " (rendered at wxh, render scale S)" below render scale 1: for table headers.
 std::string sizeLabel(const RenderSettings& settings);

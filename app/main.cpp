@@ -29,18 +29,9 @@
 namespace lp::app {
 namespace {
 
-Scene loadFromOptions(const Options& o) {
-    Scene scene = o.model.empty() ? loadScene(o.scene) : sceneForModel(o.model);
-    if (o.cameraPosition) scene.camera.position = *o.cameraPosition;
-    if (o.cameraTarget) scene.camera.target = *o.cameraTarget;
-    if (o.cameraFov) scene.camera.fovYDegrees = *o.cameraFov;
-    return scene;
-}
+Scene loadFromOptions(const Options& o) { return sceneFromOptions(o); }
 
 RenderSettings settingsFromOptions(const Options& o) { return renderSettings(o); }
-
-// --time / --fps: when timed frame i is on the scene's clock.
-double frameTime(const Options& o, int i) { return o.fps > 0.0 ? o.time + double(i) / o.fps : o.time; }
 
 int commandInfo() {
     auto ctx = gl::createHeadlessContext();
@@ -108,7 +99,9 @@ int commandRender(const Options& o) {
     requireFrameFitsGpu(*ctx, scene, settings);
     Renderer renderer(scene);
     try {
-        for (int i = 0; i < o.warmup; ++i) renderer.render(settings, float(o.time), false);
+        // With --fps the untimed frames are one frame step before --time: the first timed frame's
+        // previous frame (motion vectors, motion blur) is then where the clock puts it.
+        for (int i = 0; i < warmupFrames(o, o.warmup); ++i) renderer.render(settings, float(warmupTime(o)), false);
         for (int i = 0; i < o.frames; ++i) renderer.render(settings, float(frameTime(o, i)), true);
     } catch (const Error& e) {  // what the checks above could not foresee still names the size
         if (std::string(e.what()).rfind("GL out of memory", 0) != 0) throw;
@@ -139,6 +132,8 @@ int commandRender(const Options& o) {
     j["width"] = settings.width;
     j["height"] = settings.height;
     j["render_scale"] = settings.renderScale;
+    j["aa"] = antiAliasingName(settings.aa.method);
+    if (settings.aa.method == AntiAliasing::Ssaa) j["ssaa_scale"] = settings.aa.ssaaScale;
     j["frames"] = o.frames;
     j["view"] = viewName(settings.view);
     j["time_s"] = {{"first", frameTime(o, 0)}, {"last", frameTime(o, o.frames - 1)}, {"fps", o.fps}};

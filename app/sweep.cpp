@@ -61,7 +61,7 @@ int runSweep(const Options& o) {
         knobs.push_back(std::move(*k));
     }
     const fs::path outDir = o.outDir.empty() ? fs::path("sweep") : fs::path(o.outDir);
-    Scene scene = o.model.empty() ? loadScene(o.scene) : sceneForModel(o.model);
+    Scene scene = sceneFromOptions(o);
     // The folders (each knob's images go in its own), made and checked writable before any rendering;
     // after the scene loaded, so a bad scene leaves no empty folders behind.
     std::error_code ec;
@@ -88,6 +88,9 @@ int runSweep(const Options& o) {
     for (const Knob& knob : knobs)
         for (const KnobValue& v : knob.values) requireFrameFitsGpu(*ctx, scene, settingsFor(v));
     Renderer renderer(scene);
+    // --time T / --fps F as for render: warm-up frames at T - 1 / F (at T without --fps), timed frame
+    // i at T + i / F (a moving camera or orbit moves through the timed frames; temporal methods carry
+    // their history along).
     // Every image, the CSV and the Markdown are renamed into place together at the end.
     OutputFiles outputs;
 
@@ -99,9 +102,12 @@ int runSweep(const Options& o) {
     for (size_t ki = 0; ki < knobs.size(); ++ki) {
         const Knob& knob = knobs[ki];
         const fs::path dir = outDir / knob.name;
-        // The reference: the knob's best value.
+        // The reference: the knob's best value, at the time of the last timed frame.
         RenderSettings refSettings = settingsFor(knob.values.back());
-        for (int i = 0; i <= o.warmup; ++i) renderer.render(refSettings, 0.0f, false);
+        // On the scene's clock as render puts it (--time, --fps): the reference and every value end on
+        // the same frame, with the same previous frame (motion blur, camera paths).
+        for (int i = 0; i < warmupFrames(o, o.warmup + 1); ++i) renderer.render(refSettings, float(warmupTime(o)), false);
+        for (int i = 0; o.fps > 0.0 && i < o.frames; ++i) renderer.render(refSettings, float(frameTime(o, i)), false);
         const ImageF reference = renderer.readHdr();
         outputs.addPng(dir / "reference.png", renderer.readDisplay());
         outputs.addExr(dir / "reference.exr", reference);
@@ -114,10 +120,10 @@ int runSweep(const Options& o) {
             // Each value bakes its IBL afresh in its first (untimed) frame: the bake is a one-off cost,
             // not part of frame_ms, reported as ibl_bake_gpu_ms where a bake ran.
             renderer.environments().forgetBakes();
-            for (int i = 0; i < std::max(o.warmup, 1); ++i) renderer.render(s, 0.0f, false);
+            for (int i = 0; i < std::max(o.warmup, 1); ++i) renderer.render(s, float(warmupTime(o)), false);
             const double bakeMs = renderer.environments().lastBakeGpuMs();
             renderer.timers().clear();
-            for (int i = 0; i < o.frames; ++i) renderer.render(s, 0.0f, true);
+            for (int i = 0; i < o.frames; ++i) renderer.render(s, float(frameTime(o, i)), true);
             glFinish();
             renderer.timers().flush();
             Row row;

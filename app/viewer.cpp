@@ -48,6 +48,7 @@ void keyCallback(GLFWwindow* window, int key, int, int action, int) {
         case GLFW_KEY_4: setView(DebugView::Position); break;
         case GLFW_KEY_5: setView(DebugView::Lighting); break;
         case GLFW_KEY_6: setView(DebugView::Shininess); break;
+        case GLFW_KEY_9: setView(DebugView::Velocity); break;
         case GLFW_KEY_7:  // toon on/off over the standard view
             s.view = DebugView::Final;
             s.post.toon = !st->toonShown;
@@ -66,6 +67,7 @@ void keyCallback(GLFWwindow* window, int key, int, int action, int) {
             setView(DebugView::Final);
             break;
         case GLFW_KEY_R: st->resetCamera = true; break;
+        case GLFW_KEY_P: st->togglePath = true; break;
         case GLFW_KEY_X:
             s.localLights.scissor = !s.localLights.scissor;
             say(std::string("scissor ") + (s.localLights.scissor ? "on" : "off"));
@@ -81,7 +83,9 @@ void keyCallback(GLFWwindow* window, int key, int, int action, int) {
 }
 
 // Fly camera: W/S forward/back, A/D strafe, Q/Z up/down; drag with the left button to look.
-void moveCamera(GLFWwindow* window, ViewerState& st, Camera& cam, float dt) {
+// Returns whether the user moved or turned it.
+bool moveCamera(GLFWwindow* window, ViewerState& st, Camera& cam, float dt) {
+    bool moved = false;
     if (st.resetCamera) cam = st.home;
     st.resetCamera = false;
     const ImGuiIO& io = ImGui::GetIO();
@@ -98,6 +102,7 @@ void moveCamera(GLFWwindow* window, ViewerState& st, Camera& cam, float dt) {
         if (glfwGetKey(window, GLFW_KEY_Z) == GLFW_PRESS) move -= cam.up;
         cam.position += move * speed;
         cam.target += move * speed;
+        moved = move != glm::vec3(0.0f);
     }
     double x, y;
     glfwGetCursorPos(window, &x, &y);
@@ -109,10 +114,12 @@ void moveCamera(GLFWwindow* window, ViewerState& st, Camera& cam, float dt) {
         r = glm::rotate(r, pitch, right);
         glm::vec3 nd = glm::vec3(r * glm::vec4(dir, 0.0f));
         if (std::abs(glm::dot(glm::normalize(nd), glm::normalize(cam.up))) < 0.99f) cam.target = cam.position + nd;
+        moved = moved || x != st.lastX || y != st.lastY;
     }
     st.dragging = down;
     st.lastX = x;
     st.lastY = y;
+    return moved;
 }
 
 void say(const std::string& line) {
@@ -212,7 +219,7 @@ void writePanelRows(const std::string& path, const std::string& text) {
 }  // namespace
 
 int runViewer(const Options& o) {
-    auto scene = std::make_unique<Scene>(o.model.empty() ? loadScene(o.scene) : sceneForModel(o.model));
+    auto scene = std::make_unique<Scene>(sceneFromOptions(o));
     gl::ContextOptions co;
     co.width = o.width;
     co.height = o.height;
@@ -230,6 +237,8 @@ int runViewer(const Options& o) {
     st.startToon = o.base.post.toon;
     st.startBloom = o.base.post.bloom;
     st.home = scene->camera;
+    st.cameraPath = scene->cameraPath;
+    st.followPath = st.cameraPath.has_value();
     st.sceneFile = o.model.empty() ? std::filesystem::path(o.scene) : std::filesystem::path(o.model);
     if (!o.screenshotDir.empty()) st.screenshotDir = o.screenshotDir;
     st.showPanel = !o.hidePanel;
@@ -275,11 +284,13 @@ int runViewer(const Options& o) {
         if (st.sceneRequest) {
             try {
                 const auto& file = *st.sceneRequest;
-                auto next = std::make_unique<Scene>(file.extension() == ".obj" ? sceneForModel(file) : loadScene(file));
+                auto next = std::make_unique<Scene>(isModelPath(file) ? sceneForModel(file) : loadScene(file));
                 renderer.reset();  // it points at the old scene
                 scene = std::move(next);
                 renderer = std::make_unique<Renderer>(*scene, shaders);
                 st.home = scene->camera;
+                st.cameraPath = scene->cameraPath;
+                st.followPath = st.cameraPath.has_value();
                 st.passRows.clear();  // the new scene's candidates, in its order
                 st.sceneError.clear();
                 st.sceneFile = file;
@@ -301,7 +312,24 @@ int runViewer(const Options& o) {
         ImGui_ImplOpenGL3_NewFrame();
         ImGui_ImplGlfw_NewFrame();
         ImGui::NewFrame();
-        moveCamera(window, st, scene->camera, dt);
+        if (st.togglePath) {
+            st.togglePath = false;
+            if (st.cameraPath) {
+                st.followPath = !st.followPath;
+                renderer->cutMotion();  // the camera jumps onto (or stays off) the path
+                say(std::string("camera path ") + (st.followPath ? "on" : "off"));
+            }
+        }
+        if (st.resetCamera) renderer->cutMotion();  // a jump: no motion vectors across it
+        // Following, the camera is the path's at the viewer's clock (the time orbits use); the
+        // user's moves start from there and stop following.
+        scene->cameraPath = st.followPath ? st.cameraPath : std::nullopt;
+        if (st.followPath) scene->camera = scene->cameraAt(now);
+        if (moveCamera(window, st, scene->camera, dt) && st.followPath) {
+            st.followPath = false;
+            scene->cameraPath.reset();
+            say("camera path off (p follows it again)");
+        }
         glm::ivec2 fb = ctx->framebufferSize();
         if (fb.x <= 0 || fb.y <= 0) {  // minimised
             ImGui::EndFrame();

@@ -15,9 +15,9 @@ namespace fs = std::filesystem;
 
 const char* const kViewerHelp =
     "1 depth   2 eye-space normals   3 diffuse colour   4 eye-space position\n"
-    "5 lighting only   6 shininess   7 toon on/off   8 bloom buffer alone\n"
+    "5 lighting only   6 shininess   7 toon on/off   8 bloom buffer alone   9 velocity\n"
     "0 standard view (toon and bloom-only back to the start)\n"
-    "r reset camera   x toggle scissor (local lights, scissor method)\n"
+    "r reset camera   p follow the camera path   x toggle scissor (local lights, scissor method)\n"
     "W/S forward/back   A/D left/right   Q/Z up/down   left-drag look\n"
     "+/- exposure   Tab hide/show panel   h this help   F12 screenshot   Esc quit";
 
@@ -192,8 +192,8 @@ void filePicker(const char* pickerLabel, const std::vector<fs::path>& files, con
 
 PickerFiles findPickerFiles(const fs::path& repositoryRoot) {
     PickerFiles files;
-    for (const fs::path& dir : {repositoryRoot / "scenes", repositoryRoot / "../shared/assets"})
-        for (auto& f : filesWithExtensions(dir, {".json", ".obj"})) files.scenes.push_back(f);
+    for (const fs::path& dir : {repositoryRoot / "scenes", repositoryRoot / "models", repositoryRoot / "../shared/assets"})
+        for (auto& f : filesWithExtensions(dir, {".json", ".obj", ".gltf", ".glb"})) files.scenes.push_back(f);
     for (const fs::path& dir : {repositoryRoot / "hdr", repositoryRoot / "../shared/assets"})
         for (auto& f : filesWithExtensions(dir, {".exr", ".hdr"})) files.environments.push_back(f);
     return files;
@@ -248,9 +248,13 @@ void drawViewerPanel(ViewerState& st, Renderer& renderer, const Scene& scene, co
             ImGui::EndCombo();
         }
         knobWidgets(PanelSection::View, st.settings, scene);
+        if (st.cameraPath) {  // the scene's camera path on the viewer's clock; moving by hand stops it
+            bool follow = st.followPath;
+            if (ImGui::Checkbox("follow camera path (p)", &follow)) st.togglePath = true;
+        }
     }
     if (ImGui::CollapsingHeader("lighting", ImGuiTreeNodeFlags_DefaultOpen)) drawLighting(st, scene);
-    if (ImGui::CollapsingHeader("bloom and toon", ImGuiTreeNodeFlags_DefaultOpen))
+    if (ImGui::CollapsingHeader("bloom, toon and motion blur", ImGuiTreeNodeFlags_DefaultOpen))
         knobWidgets(PanelSection::Post, st.settings, scene);
 
     if (ImGui::CollapsingHeader("scene", ImGuiTreeNodeFlags_DefaultOpen)) {

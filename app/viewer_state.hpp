@@ -26,6 +26,11 @@ struct ViewerState {
     bool screenshotRequested = false;
     bool screenshotWithPanel = false;  // --screenshot-ui: F12 captures the window, panel included
     bool resetCamera = false;
+    // The scene's camera path (scene file or --camera-path) and whether the camera follows it on the
+    // viewer's clock; moving the camera by hand stops following, 'p' / the panel's checkbox toggle it.
+    std::optional<CameraPath> cameraPath;
+    bool followPath = false;
+    bool togglePath = false;  // 'p' or the checkbox asked; the frame loop applies it
     bool toonShown = false;         // toon as the last frame resolved it (scene or flag), for '7'
     bool dragging = false;
     double lastX = 0, lastY = 0;

@@ -6,6 +6,7 @@
 
 #include "engine/core/error.hpp"
 #include "engine/render/local_lights.hpp"
+#include "frame/knobs.hpp"
 
 namespace lp {
 
@@ -23,12 +24,21 @@ bool sphereIntersectsFrustum(const glm::mat4& viewProjection, glm::vec3 center, 
 int localLightsInView(const FrameData& frame) {
     const glm::mat4 viewProjection = frame.projection * frame.view;
     int visible = 0;
-    for (const PointLight& l : localLightsForFrame(*frame.scene, frame.settings->localLights, frame.time))
-        visible += (l.range <= 0.0f || sphereIntersectsFrustum(viewProjection, l.position, l.range)) ? 1 : 0;
+    for (const PointLight& l : localLightsForFrame(*frame.scene, frame.settings->localLights, frame.time)) {
+        const BoundingSphere b = localLightBounds(l);
+        visible += (b.radius <= 0.0f || sphereIntersectsFrustum(viewProjection, b.center, b.radius)) ? 1 : 0;
+    }
     return visible;
 }
 
 namespace {
+// A view of one G-buffer channel (or the environment), not of the lit image.
+bool isChannelView(DebugView view) {
+    return view != DebugView::Final && view != DebugView::Lighting &&
+           !isLocalLightView(view) &&  // overlays on the final image
+           !isHdrView(view);           // the final HDR buffer inspected
+}
+
 // Why the frame needs no local-light pass (nor tiling, globes, overlays); empty when it does.
 std::string localLightSkipReason(const FrameData& frame) {
     const LocalLightSettings& s = frame.settings->localLights;
@@ -38,6 +48,19 @@ std::string localLightSkipReason(const FrameData& frame) {
     if (localLightsInView(frame) == 0) return "all " + std::to_string(count) + " local lights are out of view";
     return "";
 }
+
+// Why the frame needs no ambient-occlusion pass; empty when it does. AO darkens indirect light only
+// (IBL, the constant ambient), so without any there is nothing for it to do. The ao view shows it
+// regardless; --all-passes adds it without indirect light, but not against --no-ao.
+std::string ambientOcclusionSkipReason(const FrameData& frame, bool iblAdded) {
+    const RenderSettings& s = *frame.settings;
+    if (s.view == DebugView::Ao) return "";
+    if (!s.ao.enabled) return "ambient occlusion is off (--no-ao)";
+    if (s.allPasses) return "";
+    const bool ambient = glm::any(glm::greaterThan(frame.scene->ambient, glm::vec3(0.0f)));
+    if (!iblAdded && !ambient) return "no indirect light to occlude (IBL off, ambient 0)";
+    return "";
+}
 }  // namespace
 
 FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const FrameData& frameIn) {
@@ -45,9 +68,7 @@ FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const Fr
     frame.environments = &passes.environments;
     const RenderSettings& s = *frame.settings;
     const Scene& scene = *frame.scene;
-    const bool channelView = s.view != DebugView::Final && s.view != DebugView::Lighting &&
-                             !isLocalLightView(s.view) &&  // overlays on the final image
-                             !isHdrView(s.view);           // the final HDR buffer inspected
+    const bool channelView = isChannelView(s.view);
     const bool lightingView = s.view == DebugView::Lighting;
     const bool hasMap = !scene.environment.map.empty();
     const bool iblWanted = s.environment.ibl.value_or(scene.environment.ibl) && hasMap;
@@ -57,6 +78,7 @@ FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const Fr
     const bool skyAdded = !lightingView && (skyWanted || s.allPasses);
     const std::string localSkip = s.allPasses ? "" : localLightSkipReason(frame);
     const bool scaled = frame.width != frame.outputWidth || frame.height != frame.outputHeight;
+    const bool supersampled = s.aa.method == AntiAliasing::Ssaa;
 
     // The environment's cubes are made (and, for IBL, baked) in the frame where they changed.
     const bool environmentView = isEnvironmentView(s.view);  // shows the cubes or the LUT themselves
@@ -72,29 +94,66 @@ FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const Fr
     } else {
         graph.skipPass("ibl_bake", hasMap ? "nothing in this view samples the environment" : "scene has no environment map");
     }
-    GBuffer gbuffer = addGBufferPass(graph, passes.gbuffer, frame, channelsForView(s.view));
+    // Motion vectors only for a pass that reads them (the velocity view, motion blur, TAA).
+    const std::string motionBlurSkip = motionBlurSkipReason(frame);
+    const bool taa = temporalAntiAliasing(s);
+    GBufferChannels channels = channelsForView(s.view);
+    channels.velocity = channels.velocity || motionBlurSkip.empty() || taa;
+    GBuffer gbuffer = addGBufferPass(graph, passes.gbuffer, frame, channels);
     // one depth pass per shadow-casting directional light; global_lights and the shadowmap view read them.
     const ShadowMaps shadowMaps = addShadowMapPasses(graph, passes.shadowMaps, frame);
-    fg::ResourceId hdr = addGlobalLightPass(graph, passes.globalLights, frame, gbuffer, shadowMaps, lightingView);
-    if (iblAdded) hdr = addIblPass(graph, passes.ibl, frame, gbuffer, environment, hdr, lightingView);
+    // Occlusion of the indirect light (ambient, IBL); the light passes read it, the ao view shows it.
+    const std::string aoSkip = ambientOcclusionSkipReason(frame, iblAdded);
+    fg::ResourceId ao;
+    if (aoSkip.empty()) {
+        ao = addAmbientOcclusionPasses(graph, passes.ambientOcclusion, frame, gbuffer);
+    } else {
+        graph.skipPass("ao", aoSkip);
+        graph.skipPass("ao_denoise", aoSkip);
+    }
+    fg::ResourceId hdr = addGlobalLightPass(graph, passes.globalLights, frame, gbuffer, shadowMaps, lightingView, ao);
+    if (iblAdded) hdr = addIblPass(graph, passes.ibl, frame, gbuffer, environment, hdr, lightingView, ao);
     else graph.skipPass("ibl", hasMap ? "IBL is off (environment.ibl false, no --ibl)" : "scene has no environment map");
-    if (localSkip.empty()) hdr = addLocalLightPass(graph, passes.localLights, frame, gbuffer, hdr, lightingView);
-    else graph.skipPass("local_lights", localSkip);
+    if (localSkip.empty()) {
+        // one perspective depth map per shadow-casting spot, read by local_lights.
+        const SpotShadowMaps spotShadows = addSpotShadowPass(graph, passes.spotShadows, frame);
+        hdr = addLocalLightPass(graph, passes.localLights, frame, gbuffer, hdr, lightingView, spotShadows);
+    } else {
+        graph.skipPass("local_lights", localSkip);
+        graph.skipPass("spot_shadows", localSkip);
+    }
+    if (!lightingView && sceneHasEmission(frame)) hdr = addEmissionPass(graph, passes.emission, frame, gbuffer, hdr);
+    else graph.skipPass("emission", lightingView ? "the lighting view shows light alone" : "no material of the scene emits");
     if (skyAdded) hdr = addSkyPass(graph, passes.sky, frame, gbuffer.depth, hasMap ? environment.cube : fg::ResourceId{}, hdr);
     else graph.skipPass("sky", lightingView ? "the lighting view shows light alone" : "scene has no environment (black, no map)");
-    // globes and the light-ranges / lights-per-tile overlays, over the sky too.
+    // globes and the light-ranges / lights-per-tile / lights-per-cluster overlays, over the sky too.
     if (!lightingView && localSkip.empty() && localLightCount(scene, s.localLights) > 0)
         hdr = addLocalLightOverlayPasses(graph, passes.localLights, frame, gbuffer, hdr);
+    // Motion blur on the HDR buffer, before bloom and the tone map.
+    if (motionBlurSkip.empty()) hdr = addMotionBlurPasses(graph, passes.motionBlur, frame, gbuffer, hdr);
+    else graph.skipPass("motion_blur", motionBlurSkip);
     hdr = addPostPasses(graph, passes.post, frame, gbuffer, hdr);  // bloom, toon (not in the lighting view)
-    if (scaled) hdr = addUpscalePass(graph, passes.upscale, frame, hdr, UpscaleInput::Hdr);
-    else graph.skipPass("upscale", "render scale 1: the frame is rendered at the output size");
+    if (scaled && !supersampled) hdr = addUpscalePass(graph, passes.upscale, frame, hdr, UpscaleInput::Hdr);
+    else graph.skipPass("upscale", supersampled ? "--aa ssaa: the frame is rendered above the output size"
+                                                : "render scale 1: the frame is rendered at the output size");
+    if (supersampled) hdr = addDownsamplePass(graph, passes.downsample, frame, hdr, s.aa.ssaaScale);
+    else graph.skipPass("ssaa_downsample", "anti-aliasing is " + std::string(antiAliasingName(s.aa.method)) + ", not ssaa");
+    if (taa) hdr = addTaaPass(graph, passes.taa, frame, hdr, gbuffer.velocity, settingsSignature(s));
+    else graph.skipPass("taa", s.aa.method == AntiAliasing::Taa ? "a G-buffer view is not anti-aliased"
+                                                                : "anti-aliasing is " + std::string(antiAliasingName(s.aa.method)) + ", not taa");
     fg::ResourceId exposure;
     if (s.autoExposure) exposure = addAutoExposurePass(graph, passes.autoExposure, frame, hdr);
     else graph.skipPass("auto_exposure", "manual exposure (--auto-exposure picks it from a histogram)");
-    fg::ResourceId display = addToneMapPass(graph, passes.tonemap, frame, hdr, exposure);
+    // With FXAA after it, the tone map keeps its result in RGBA16F and FXAA does the one 8-bit
+    // quantisation (and its dither).
+    const bool fxaa = s.aa.method == AntiAliasing::Fxaa;
+    fg::ResourceId display = addToneMapPass(graph, passes.tonemap, frame, hdr, exposure,
+                                            fxaa ? ToneMapTarget::Float16 : ToneMapTarget::Display8);
+    if (fxaa) display = addFxaaPass(graph, passes.fxaa, frame, display);
+    else graph.skipPass("fxaa", "anti-aliasing is " + std::string(antiAliasingName(s.aa.method)) + ", not fxaa");
     if (isHdrView(s.view)) display = addHdrViewPass(graph, passes.hdrView, frame, hdr, s.view);  // culls tonemap
     if (channelView) {
-        display = addDebugViewPass(graph, passes.debugView, frame, gbuffer, shadowMaps, environment, s.view);
+        display = addDebugViewPass(graph, passes.debugView, frame, gbuffer, shadowMaps, environment, s.view, ao);
         if (scaled) display = addUpscalePass(graph, passes.upscale, frame, display, UpscaleInput::DebugView);
     }
 
@@ -120,26 +179,46 @@ void checkDisabledPasses(const fg::FrameGraph& graph, const std::set<std::string
 }
 
 glm::ivec2 scaledRenderSize(int outputWidth, int outputHeight, float renderScale) {
-    const float scale = std::isfinite(renderScale) ? std::clamp(renderScale, 0.0f, 1.0f) : 1.0f;
+    const float scale = std::isfinite(renderScale) ? std::clamp(renderScale, 0.0f, float(kMaxSsaaScale)) : 1.0f;
     return {std::max(1, int(std::lround(double(outputWidth) * scale))),
             std::max(1, int(std::lround(double(outputHeight) * scale)))};
 }
 
+bool temporalAntiAliasing(const RenderSettings& settings) {
+    return settings.aa.method == AntiAliasing::Taa && !isChannelView(settings.view);
+}
+
+std::string settingsSignature(const RenderSettings& settings) {
+    std::string text = std::string(viewName(settings.view)) + " " + std::to_string(settings.width) + "x" +
+                       std::to_string(settings.height);
+    for (const KnobEntry& k : knobTable()) text += " " + k.name + "=" + formatKnobValue(k, k.field.get(settings));
+    for (const std::string& pass : settings.disabledPasses) text += " -" + pass;
+    return text;
+}
+
+float internalRenderScale(const RenderSettings& settings) {
+    return settings.aa.method == AntiAliasing::Ssaa ? float(settings.aa.ssaaScale) : settings.renderScale;
+}
+
 FrameData makeFrameData(const Scene& scene, const RenderSettings& settings, float time) {
     FrameData f;
-    const glm::ivec2 size = scaledRenderSize(settings.width, settings.height, settings.renderScale);
+    const glm::ivec2 size = scaledRenderSize(settings.width, settings.height, internalRenderScale(settings));
     f.width = size.x;
     f.height = size.y;
     f.outputWidth = settings.width;
     f.outputHeight = settings.height;
-    f.view = scene.camera.view();
-    f.projection = scene.camera.projection(float(settings.width) / float(std::max(settings.height, 1)));
-    f.nearPlane = scene.camera.nearPlane;
-    f.farPlane = scene.camera.farPlane;
+    const Camera camera = scene.cameraAt(time);  // the camera path's, when the scene has one
+    f.view = camera.view();
+    f.unjitteredProjection = camera.projection(float(settings.width) / float(std::max(settings.height, 1)));
+    f.projection = f.unjitteredProjection;
+    f.previousViewProjection = f.unjitteredProjection * f.view;
+    f.nearPlane = camera.nearPlane;
+    f.farPlane = camera.farPlane;
     f.time = time;
+    f.previousTime = time;
     glm::vec3 lo, hi;
     scene.bounds(lo, hi);
-    f.sceneExtent = std::max(glm::length(0.5f * (lo + hi) - scene.camera.position) + 0.5f * glm::length(hi - lo), 1e-3f);
+    f.sceneExtent = std::max(glm::length(0.5f * (lo + hi) - camera.position) + 0.5f * glm::length(hi - lo), 1e-3f);
     f.scene = &scene;
     f.settings = &settings;
     return f;

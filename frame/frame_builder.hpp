@@ -7,15 +7,22 @@
 // adds every candidate regardless (to measure what the scene-driven graph saves).
 #include "engine/graph/frame_graph.hpp"
 #include "engine/render/frame_data.hpp"
+#include "passes/ambient_occlusion_pass.hpp"
 #include "passes/auto_exposure_pass.hpp"
 #include "passes/debug_view_pass.hpp"
+#include "passes/emission_pass.hpp"
+#include "passes/downsample_pass.hpp"
+#include "passes/fxaa_pass.hpp"
 #include "passes/gbuffer_pass.hpp"
 #include "passes/post_pass.hpp"
 #include "passes/global_light_pass.hpp"
 #include "passes/hdr_view_pass.hpp"
 #include "passes/ibl_pass.hpp"
 #include "passes/local_light_pass.hpp"
+#include "passes/motion_blur_pass.hpp"
 #include "passes/sky_pass.hpp"
+#include "passes/spot_shadow_pass.hpp"
+#include "passes/taa_pass.hpp"
 #include "passes/tonemap_pass.hpp"
 #include "passes/upscale_pass.hpp"
 
@@ -30,19 +37,26 @@ struct PassStates {
     ToneMapPass tonemap;
     DebugViewPass debugView;
     ShadowMapPass shadowMaps;  // the depth-only program and framebuffer
+    SpotShadowPass spotShadows;
     IblPass ibl;
     LocalLightPass localLights;
+    MotionBlurPass motionBlur;
+    EmissionPass emission;
     PostPasses post;
     UpscalePass upscale;
+    DownsamplePass downsample;
+    FxaaPass fxaa;
+    TaaPass taa;  // holds the TAA history across frames (imported into each frame's graph)
     HdrViewPass hdrView;
     AutoExposurePass autoExposure;
+    AmbientOcclusionPass ambientOcclusion;
     // Environment cubes, IBL bakes and the DFG LUT, kept across frames; imported into the graph
     // (written there by ibl_bake in the frame where they change).
     EnvironmentCache environments;
 };
 
 struct FrameOutputs {
-    fg::ResourceId display;  // RGBA8, what is shown or saved as PNG
+    fg::ResourceId display;  // RGBA8, what is shown or saved as PNG (dithered unless --no-dither)
     fg::ResourceId hdr;      // RGBA16F linear radiance (valid when the view has one)
 };
 
@@ -61,8 +75,18 @@ bool sphereIntersectsFrustum(const glm::mat4& viewProjection, glm::vec3 center, 
 // How many of the frame's local lights (orbits applied at frame.time) reach into the view.
 int localLightsInView(const FrameData& frame);
 
-// The size the G-buffer and lighting run at: round(output x renderScale), at least 1 x 1.
+// The size the G-buffer and lighting run at: round(output x renderScale), at least 1 x 1
+// (renderScale up to kMaxSsaaScale).
 glm::ivec2 scaledRenderSize(int outputWidth, int outputHeight, float renderScale);
+// The scale the G-buffer, lighting and post effects run at: --ssaa-scale with --aa ssaa (the
+// supersampled image is filtered down to the output), else --render-scale.
+float internalRenderScale(const RenderSettings& settings);
+
+// Whether the frame runs the taa pass (and so is jittered): --aa taa in a view of the lit image
+// (final, lighting, the overlays and HDR views; not a G-buffer channel).
+bool temporalAntiAliasing(const RenderSettings& settings);
+// Every knob's value and the view, as text: TAA's history is reset when it changes.
+std::string settingsSignature(const RenderSettings& settings);
 
 // Camera matrices, planes and sizes for a frame of `scene` under `settings`.
 FrameData makeFrameData(const Scene& scene, const RenderSettings& settings, float time);

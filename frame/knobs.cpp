@@ -7,6 +7,7 @@
 
 #include "engine/core/error.hpp"
 #include "engine/post/post_config.hpp"
+#include "engine/render/local_lights.hpp"
 
 namespace lp {
 
@@ -92,7 +93,13 @@ const KnobRange kNonNegative{0.0, kNoMax};
 // Sweep side effects: a swept value switches on the feature it measures.
 void shadowsOn(RenderSettings& s, double) { s.shadows.enabled = true; }
 void iblOn(RenderSettings& s, double) { s.environment.ibl = true; }
-void bloomOn(RenderSettings& s, double) { s.post.bloom = true; }  // the method stays --bloom-method's
+void bloomOn(RenderSettings& s, double) { s.post.bloom = true; }
+void aoOn(RenderSettings& s, double) { s.ao.enabled = true; }  // the method stays --bloom-method's
+
+// The --aa choices a user is offered (each one implemented).
+std::vector<AntiAliasing> offeredAntiAliasing() {
+    return {AntiAliasing::Off, AntiAliasing::Fxaa, AntiAliasing::Taa, AntiAliasing::Ssaa};
+}
 
 std::vector<KnobEntry> makeKnobTable() {
     std::vector<KnobEntry> t;
@@ -315,6 +322,64 @@ std::vector<KnobEntry> makeKnobTable() {
         t.push_back(std::move(k));
     }
 
+    // ---- ambient occlusion (indirect light only; passes/ambient_occlusion_pass) ----
+    {
+        KnobEntry k = boolKnob("ao", [](auto& s) -> auto& { return s.ao.enabled; });
+        k.flags = {setsFlag("--ao", 1), setsFlag("--no-ao", 0)};
+        k.help = "screen-space ambient occlusion (GTAO) of the IBL and constant ambient, never of direct "
+                 "light; runs only where the frame has indirect light";
+        k.panel = {PanelSection::Lighting, PanelWidget::Checkbox, "ambient occlusion", ""};
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = floatKnob("ao-radius", [](auto& s) -> auto& { return s.ao.radius; }, {0.0, 100.0, true});
+        k.flags = {valueFlag("--ao-radius")};
+        k.help = "AO search radius in view-space metres";
+        k.panel = {PanelSection::Lighting, PanelWidget::LogSlider, "AO radius", "%.2f m"};
+        k.sweep = {{"0.125", "0.25", "0.5", "1", "2"}, false,
+                   "AO search radius in metres (--ao-radius, AO on): occluders further away are ignored; 2 m "
+                   "is the reference. Not monotone: sampling gets sparser as the radius grows",
+                   aoOn};
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = intKnob("ao-directions", [](auto& s) -> auto& { return s.ao.directions; }, 1, 16);
+        k.flags = {valueFlag("--ao-directions")};
+        k.help = "AO slice directions per pixel (rotated over a 4x4 pixel tile)";
+        k.panel = {PanelSection::Lighting, PanelWidget::Slider, "AO directions", ""};
+        k.sweep = {{"1", "2", "4", "8"}, true,
+                   "AO slice directions per pixel (--ao-directions, AO on); 8 is the reference", aoOn};
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = intKnob("ao-steps", [](auto& s) -> auto& { return s.ao.steps; }, 1, 32);
+        k.flags = {valueFlag("--ao-steps")};
+        k.help = "AO depth samples per side of each slice";
+        k.panel = {PanelSection::Lighting, PanelWidget::Slider, "AO steps", ""};
+        k.sweep = {{"2", "4", "8", "16"}, true, "AO samples per side of a slice (--ao-steps, AO on); 16 is the reference",
+                   aoOn};
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = choiceKnob("ao-resolution", [](auto& s) -> auto& { return s.ao.resolution; },
+                                 std::vector<AoResolution>{AoResolution::Half, AoResolution::Full}, aoResolutionName);
+        k.flags = {valueFlag("--ao-resolution")};
+        k.choiceNoun = "resolution";
+        k.help = "AO computed at half size (depth-aware upsample) or at the full G-buffer size";
+        k.panel = {PanelSection::Lighting, PanelWidget::Combo, "AO resolution", ""};
+        k.sweep = {{"half", "full"}, true, "AO resolution (--ao-resolution, AO on): half size upsampled by depth, "
+                                           "or full size (reference)",
+                   aoOn};
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = floatKnob("ao-intensity", [](auto& s) -> auto& { return s.ao.intensity; }, {0.0, 8.0});
+        k.flags = {valueFlag("--ao-intensity")};
+        k.help = "exponent on the AO (1: the physical value, 0: no occlusion)";
+        k.panel = {PanelSection::Lighting, PanelWidget::Slider, "AO intensity", "%.2f"};
+        t.push_back(std::move(k));
+    }
+
     // ---- bloom and toon (unset optional values take the scene's effects) ----
     {
         KnobEntry k = boolKnob("bloom", [](auto& s) -> auto& { return s.post.bloom; });
@@ -434,6 +499,35 @@ std::vector<KnobEntry> makeKnobTable() {
         k.panel = {PanelSection::Post, PanelWidget::Slider, "normal edge", "%.2f"};
         t.push_back(std::move(k));
     }
+    // ---- motion blur (passes/motion_blur_pass) ----
+    {
+        KnobEntry k = boolKnob("motion-blur", [](auto& s) -> auto& { return s.motionBlur.enabled; });
+        k.flags = {setsFlag("--motion-blur", 1)};
+        k.help = "motion blur from the G-buffer's motion vectors (McGuire et al. 2012), before bloom; "
+                 "skipped when nothing moves";
+        k.panel = {PanelSection::Post, PanelWidget::Checkbox, "motion blur", ""};
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = intKnob("motion-blur-samples", [](auto& s) -> auto& { return s.motionBlur.samples; }, 2, 64);
+        k.flags = {valueFlag("--motion-blur-samples")};
+        k.help = "motion blur: gather taps per pixel along the neighbourhood's blur";
+        k.panel = {PanelSection::Post, PanelWidget::Slider, "blur samples", ""};
+        // Needs a moving camera: sweep it on the clock, e.g. --scene cornell-flythrough --time 1 --fps 30.
+        k.sweep = {{"4", "8", "16", "32"}, false,
+                   "motion blur gather taps per pixel (--motion-blur-samples, motion blur on); 32 is the "
+                   "reference. Not monotone: the taps' per-pixel noise differs between counts",
+                   [](RenderSettings& s, double) { s.motionBlur.enabled = true; }};
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = floatKnob("motion-blur-shutter", [](auto& s) -> auto& { return s.motionBlur.shutter; },
+                                {0.0, 1.0, true});
+        k.flags = {valueFlag("--motion-blur-shutter")};
+        k.help = "motion blur: fraction of the frame interval the shutter is open (0.5: a 180-degree shutter)";
+        k.panel = {PanelSection::Post, PanelWidget::Slider, "shutter", "%.2f"};
+        t.push_back(std::move(k));
+    }
     {
         KnobEntry k = choiceKnob("post-backend", [](auto& s) -> auto& { return s.post.backend; },
                                  std::vector<PostSettings::Backend>{PostSettings::Backend::Auto, PostSettings::Backend::Cuda,
@@ -454,15 +548,13 @@ std::vector<KnobEntry> makeKnobTable() {
     }
     {
         KnobEntry k = choiceKnob("local-light-method", [](auto& s) -> auto& { return s.localLights.method; },
-                                 std::vector<LocalLightMethod>{LocalLightMethod::Fullscreen, LocalLightMethod::Scissor,
-                                                               LocalLightMethod::Volumes, LocalLightMethod::Tiled},
-                                 localLightMethodName);
+                                 allLocalLightMethods(), localLightMethodName);
         k.flags = {valueFlag("--local-lights")};
         k.choiceNoun = "method";
-        k.help = "how local lights are drawn; all four give the same image";
+        k.help = "how local lights are drawn; all five give the same image";
         k.panel = {PanelSection::Lighting, PanelWidget::Combo, "method", ""};
-        k.sweep = {{"tiled", "volumes", "scissor", "fullscreen"}, false,
-                   "local-light method (--local-lights): tiled, volumes, scissor, fullscreen (reference). The "
+        k.sweep = {{"tiled", "clustered", "volumes", "scissor", "fullscreen"}, false,
+                   "local-light method (--local-lights): tiled, clustered, volumes, scissor, fullscreen (reference). The "
                    "same image by design: errors should be ~0 (fp16 sums in different orders), so not monotone",
                    nullptr};
         t.push_back(std::move(k));
@@ -524,6 +616,36 @@ std::vector<KnobEntry> makeKnobTable() {
         t.push_back(std::move(k));
     }
 
+    {
+        KnobEntry k = intKnob("cluster-size", [](auto& s) -> auto& { return s.localLights.clusterSize; }, 8, 256);
+        k.flags = {valueFlag("--cluster-size")};
+        k.help = "clustered method: froxel tile side in pixels";
+        k.panel = {PanelSection::Lighting, PanelWidget::Slider, "cluster size (px)", ""};
+        k.sweep = {{"16", "32", "64", "128"}, false,
+                   "froxel tile side in pixels (--cluster-size, switches --local-lights clustered on): smaller tiles, "
+                   "shorter light lists, more froxels to build; the same image by design, so not monotone",
+                   [](RenderSettings& s, double) { s.localLights.method = LocalLightMethod::Clustered; }};
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = intKnob("cluster-slices", [](auto& s) -> auto& { return s.localLights.clusterSlices; }, 1, 64);
+        k.flags = {valueFlag("--cluster-slices")};
+        k.help = "clustered method: exponential depth slices between the camera's near and far planes";
+        k.panel = {PanelSection::Lighting, PanelWidget::Slider, "cluster slices", ""};
+        k.sweep = {{"8", "16", "24", "32", "64"}, false,
+                   "exponential depth slices of the froxel grid (--cluster-slices, switches --local-lights clustered "
+                   "on): the same image by design, so not monotone",
+                   [](RenderSettings& s, double) { s.localLights.method = LocalLightMethod::Clustered; }};
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = intKnob("cluster-slice", [](auto& s) -> auto& { return s.localLights.clusterSlice; }, -1, 63);
+        k.flags = {valueFlag("--cluster-slice")};
+        k.help = "lights-per-cluster view: show this depth slice; -1 the most lights over all slices";
+        k.panel = {PanelSection::Lighting, PanelWidget::Slider, "cluster slice shown", ""};
+        t.push_back(std::move(k));
+    }
+
     // ---- resolution, exposure, measuring ----
     {
         KnobEntry k = floatKnob("render-scale", [](auto& s) -> auto& { return s.renderScale; }, {kMinRenderScale, 1.0});
@@ -535,6 +657,61 @@ std::vector<KnobEntry> makeKnobTable() {
                    "G-buffer, lighting and post effects at this fraction of the output size (--render-scale), "
                    "upsampled bilinearly before the tone map; 1 is the reference",
                    nullptr};
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = choiceKnob("aa", [](auto& s) -> auto& { return s.aa.method; }, offeredAntiAliasing(),
+                                 antiAliasingName);
+        k.flags = {valueFlag("--aa")};
+        k.choiceNoun = "anti-aliasing";
+        k.help = "anti-aliasing: fxaa filters the tone-mapped image (FXAA 3.11); taa blends Halton-jittered frames "
+                 "through the motion vectors; ssaa renders at --ssaa-scale x the size in each axis and box-filters "
+                 "the HDR image down (--render-scale is then not used)";
+        k.panel = {PanelSection::View, PanelWidget::Combo, "anti-aliasing", ""};
+        k.sweep = {{"off", "fxaa", "taa"}, false,
+                   "anti-aliasing (--aa): off, fxaa, taa (after the warm-up and timed frames), then ssaa at 2x2 and "
+                   "3x3 samples a pixel, against ssaa 4x4 (reference). Not monotone: fxaa changes only the "
+                   "tone-mapped image, so its HDR error is off's (FLIP from bench/sweep_report.py sees it)",
+                   nullptr};
+        for (int scale : {2, 3, kMaxSsaaScale})
+            k.sweepExtraValues.push_back({"ssaa" + std::to_string(scale), [scale](RenderSettings& s) {
+                                               s.aa.method = AntiAliasing::Ssaa;
+                                               s.aa.ssaaScale = scale;
+                                           }});
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = intKnob("ssaa-scale", [](auto& s) -> auto& { return s.aa.ssaaScale; }, 2, kMaxSsaaScale);
+        k.flags = {valueFlag("--ssaa-scale")};
+        k.help = "with --aa ssaa: render at S x the output size in each axis, S x S samples a pixel";
+        k.sweep = {{"2", "3", "4"}, true,
+                   "samples per axis of --aa ssaa (--ssaa-scale), box-filtered to the output; 4 (16 samples a "
+                   "pixel) is the reference",
+                   [](RenderSettings& s, double) { s.aa.method = AntiAliasing::Ssaa; }};
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = floatKnob("taa-history-weight", [](auto& s) -> auto& { return s.aa.taaHistoryWeight; },
+                                {0.01, 1.0});
+        k.flags = {valueFlag("--taa-history-weight")};
+        k.help = "with --aa taa: the current frame's weight in the blend with the history (smaller: smoother, "
+                 "slower to converge and to follow changes)";
+        k.sweep = {{"0.5", "0.25", "0.1", "0.05"}, false,
+                   "the current frame's weight in TAA's blend (--taa-history-weight, switches --aa taa on), against "
+                   "ssaa 4x4 (reference); not monotone (a smaller weight converges slower)",
+                   [](RenderSettings& s, double) { s.aa.method = AntiAliasing::Taa; }};
+        k.sweepExtraValues.push_back({"ssaa4", [](RenderSettings& s) {
+                                           s.aa.method = AntiAliasing::Ssaa;
+                                           s.aa.ssaaScale = kMaxSsaaScale;
+                                       }});
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = boolKnob("dither", [](auto& s) -> auto& { return s.aa.dither; });
+        k.flags = {setsFlag("--dither", 1), setsFlag("--no-dither", 0)};
+        k.help = "triangular-PDF noise of +-1 LSB before the 8-bit quantisation of the displayed / saved image "
+                 "(breaks up banding, keeps the mean)";
+        k.panel = {PanelSection::View, PanelWidget::Checkbox, "dither", ""};
         t.push_back(std::move(k));
     }
     {
@@ -614,6 +791,7 @@ std::vector<Knob> makeSweepKnobs() {
                                     if (entry->sweep.alsoSet) entry->sweep.alsoSet(s, v);
                                 }});
         }
+        for (const KnobValue& extra : e.sweepExtraValues) k.values.push_back(extra);
         knobs.push_back(std::move(k));
     }
     return knobs;

@@ -59,6 +59,12 @@ struct KnobPanel {
     std::string format;  // slider printf format; "%d" / "%.2f" where empty
 };
 
+// One swept setting: its label in the tables and what it sets.
+struct KnobValue {
+    std::string label;
+    std::function<void(RenderSettings&)> apply;
+};
+
 struct KnobSweep {
     std::vector<std::string> values;  // in the flag's syntax, cheapest first; the last is the reference
     bool monotone = true;             // error should fall as the value rises (tests check it)
@@ -78,6 +84,9 @@ struct KnobEntry {
     std::string help;                  // --help's words; range and default are appended
     KnobPanel panel;
     KnobSweep sweep;                   // no values: not a sweep knob
+    // Points swept after sweep.values that set more than this knob's field (aa: "ssaa2" is --aa ssaa
+    // --ssaa-scale 2); when there are any, the last of them is the reference.
+    std::vector<KnobValue> sweepExtraValues;
 };
 
 const std::vector<KnobEntry>& knobTable();
@@ -98,10 +107,6 @@ std::string knobHelpText();
 std::string helpLine(const std::string& flags, const std::string& text);
 
 // ---- the sweep: the table's entries that have sweep values ----
-struct KnobValue {
-    std::string label;
-    std::function<void(RenderSettings&)> apply;
-};
 
 struct Knob {
     std::string name;

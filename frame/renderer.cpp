@@ -13,7 +13,11 @@ void Renderer::render(const RenderSettings& settings, float time, bool timed) {
     if (settings.width <= 0 || settings.height <= 0) throw Error("render size must be positive");
     if (!(settings.renderScale >= kMinRenderScale && settings.renderScale <= 1.0f))
         throw Error("render scale " + std::to_string(settings.renderScale) + " is outside [0.25, 1]");
+    if (!(settings.aa.ssaaScale >= 2 && settings.aa.ssaaScale <= kMaxSsaaScale))
+        throw Error("SSAA scale " + std::to_string(settings.aa.ssaaScale) + " is outside [2, 4]");
     FrameData frame = makeFrameData(*scene_, settings, time);
+    // TAA jitters every frame through its Halton phases; otherwise the jitter setJitterPixels chose.
+    applyMotion(frame, history_, temporalAntiAliasing(settings) ? taaJitterPixels(taaFrames_++) : jitterPixels_);
     frame.gpu = gpu_.get();
     frame.shaders = &shaders_;
     graph_ = fg::FrameGraph();
@@ -24,6 +28,7 @@ void Renderer::render(const RenderSettings& settings, float time, bool timed) {
     if (timed) timers_.endFrame();
     width_ = settings.width;
     height_ = settings.height;
+    history_ = motionHistoryOf(frame);
 }
 
 void Renderer::resetPasses() {

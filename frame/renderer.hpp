@@ -8,6 +8,7 @@
 #include "engine/graph/texture_pool.hpp"
 #include "engine/io/image_io.hpp"
 #include "frame/frame_builder.hpp"
+#include "engine/render/motion.hpp"
 #include "engine/render/scene_gpu.hpp"
 
 namespace lp {
@@ -17,8 +18,18 @@ public:
     // `scene` must outlive the renderer. Needs a current GL 4.5 context.
     Renderer(const Scene& scene, gl::ShaderLibrary shaders = gl::ShaderLibrary());
 
-    // Builds, compiles and executes one frame; timings go to timers() when `timed`.
+    // Builds, compiles and executes one frame; timings go to timers() when `timed`. The frame's
+    // motion is measured against the previous frame this renderer rendered (engine/render/motion.hpp).
     void render(const RenderSettings& settings, float time = 0.0f, bool timed = true);
+
+    // Sub-pixel jitter (output pixels, +x right, +y up) of the frames rendered from now on; 0 by default.
+    // With --aa taa the frames take TAA's Halton jitter instead (taaJitterPixels).
+    void setJitterPixels(glm::vec2 jitterPixels) { jitterPixels_ = jitterPixels; }
+    glm::vec2 jitterPixels() const { return jitterPixels_; }
+    // A camera cut: the next frame has no previous frame (its velocity is 0 everywhere).
+    void cutMotion() { history_ = MotionHistory{}; }
+    // What the last rendered frame left for the next (its unjittered view-projection, time, size).
+    const MotionHistory& motionHistory() const { return history_; }
 
     const fg::FrameGraph& graph() const { return graph_; }
     gl::GpuTimerRing& timers() { return timers_; }
@@ -51,6 +62,9 @@ private:
     fg::FrameGraph graph_;
     FrameOutputs outputs_;
     int width_ = 0, height_ = 0;
+    glm::vec2 jitterPixels_{0.0f};
+    uint64_t taaFrames_ = 0;  // TAA frames rendered: the next one's jitter phase
+    MotionHistory history_;
 };
 
 }  // namespace lp

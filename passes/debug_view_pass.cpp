@@ -32,6 +32,8 @@ int modeOf(DebugView v) {
         case DebugView::EyeVector: return 10;
         case DebugView::DepthFitted: return 11;
         case DebugView::Tangent: return 12;
+        case DebugView::Velocity: return 13;
+        case DebugView::Ao: return 14;
         default: return 0;
     }
 }
@@ -123,12 +125,13 @@ GBufferChannels channelsForView(DebugView view) {
     GBufferChannels c;
     c.texcoord = view == DebugView::Texcoords;
     c.tangent = view == DebugView::Tangent;
+    c.velocity = view == DebugView::Velocity;
     return c;
 }
 
 fg::ResourceId addDebugViewPass(fg::FrameGraph& graph, DebugViewPass& state, const FrameData& frame,
                                 const GBuffer& gbuffer, const ShadowMaps& shadowMaps,
-                                const EnvironmentTextures& environment, DebugView view) {
+                                const EnvironmentTextures& environment, DebugView view, fg::ResourceId ao) {
     if (isEnvironmentView(view)) return addEnvironmentViewPass(graph, state, frame, gbuffer, environment, view);
     const int mode = modeOf(view);
     if (mode == 0) throw Error(std::string("debug view '") + viewName(view) + "' is not a G-buffer channel");
@@ -146,8 +149,12 @@ fg::ResourceId addDebugViewPass(fg::FrameGraph& graph, DebugViewPass& state, con
     const Data& d = graph.addPass<Data>(
         std::string("debug_view"), fg::PassKind::Compute,
         [&](fg::PassBuilder& b, Data& data) {
-            if (mode == 7 || mode == 8 || mode == 12) {
-                fg::ResourceId ch = shadowMap ? shadowMap->depth : mode == 12 ? gbuffer.tangent : gbuffer.texcoord;
+            if (mode == 7 || mode == 8 || mode == 12 || mode == 13 || mode == 14) {
+                fg::ResourceId ch = shadowMap     ? shadowMap->depth
+                                    : mode == 12 ? gbuffer.tangent
+                                    : mode == 13 ? gbuffer.velocity
+                                    : mode == 14 ? ao
+                                                 : gbuffer.texcoord;
                 if (!ch.valid())
                     throw Error(std::string("debug view '") + viewName(view) + "': the G-buffer lacks its channel");
                 data.channel = b.read(ch, fg::Usage::Sampled);
@@ -168,6 +175,9 @@ fg::ResourceId addDebugViewPass(fg::FrameGraph& graph, DebugViewPass& state, con
             glProgramUniform1f(prog, glGetUniformLocation(prog, "uFar"), frame.farPlane);
             glProgramUniform1f(prog, glGetUniformLocation(prog, "uPositionScale"), 1.0f / frame.sceneExtent);
             glProgramUniform2i(prog, glGetUniformLocation(prog, "uShadowGrid"), grid.x, grid.y);
+            glProgramUniform2f(prog, glGetUniformLocation(prog, "uOutputSize"), float(frame.outputWidth),
+                               float(frame.outputHeight));
+            glProgramUniform1f(prog, glGetUniformLocation(prog, "uVelocityFullScale"), kVelocityViewFullScalePixels);
             const glm::mat4 eyeToWorld = glm::inverse(frame.view);
             glProgramUniformMatrix4fv(prog, glGetUniformLocation(prog, "uEyeToWorld"), 1, GL_FALSE,
                                       glm::value_ptr(eyeToWorld));

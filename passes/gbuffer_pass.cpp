@@ -1,5 +1,7 @@
 #include "passes/gbuffer_pass.hpp"
 
+#include <algorithm>
+
 #include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
@@ -81,17 +83,26 @@ GBuffer addGBufferPass(fg::FrameGraph& graph, GBufferPass& state, const FrameDat
             out.specular = b.createIfRead("gbuffer.specular", {w, h, gbufferSpecularFormat(layout.normal)}, colour);
             if (channels.texcoord) out.texcoord = b.createIfRead("gbuffer.texcoord", {w, h, GL_RG32F}, colour);
             if (channels.tangent) out.tangent = b.createIfRead("gbuffer.tangent", {w, h, GL_RGBA16F}, colour);
+            if (channels.velocity) out.velocity = b.createIfRead("gbuffer.velocity", {w, h, GL_RG16F}, colour);
         },
         [&state, frame, layout](const GBuffer& out, const fg::PassResources& res) {
-            programForLayout(state.program, state.layout, frame, [&](const std::vector<std::string>& defines) {
-                return frame.shaders->graphics("gbuffer.vert", "gbuffer.frag", defines);
-            });
+            const bool velocity = out.velocity.valid() && res.texture(out.velocity) != 0;
+            const gl::Program& program =
+                velocity ? programForLayout(state.velocityProgram, state.velocityLayout, frame,
+                                            [&](std::vector<std::string> defines) {
+                                                defines.push_back("LP_GBUFFER_VELOCITY");
+                                                return frame.shaders->graphics("gbuffer.vert", "gbuffer.frag", defines);
+                                            })
+                         : programForLayout(state.program, state.layout, frame, [&](const std::vector<std::string>& defines) {
+                               return frame.shaders->graphics("gbuffer.vert", "gbuffer.frag", defines);
+                           });
             if (!state.fbo) state.fbo = gl::makeFramebuffer("gbuffer");
             const GLuint fbo = state.fbo.id();
             glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, res.texture(out.depth), 0);
-            constexpr int kTargets = 6;
-            const fg::ResourceId colour[kTargets] = {out.normal,   out.diffuse,  out.position,
-                                                     out.specular, out.texcoord, out.tangent};
+            constexpr int kTargets = 7;
+            constexpr int kVelocityTarget = 6;  // location 6 in gbuffer.frag and the background program
+            const fg::ResourceId colour[kTargets] = {out.normal,   out.diffuse, out.position, out.specular,
+                                                     out.texcoord, out.tangent, out.velocity};
             GLenum buffers[kTargets];
             for (int i = 0; i < kTargets; ++i) {
                 GLuint tex = colour[i].valid() ? res.texture(colour[i]) : 0;
@@ -118,43 +129,92 @@ GBuffer addGBufferPass(fg::FrameGraph& graph, GBufferPass& state, const FrameDat
             const float farDepth = layout.position == GBufferPositionMode::ReversedZ ? 0.0f : 1.0f;
             glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &farDepth);
 
-            const GLuint prog = state.program.id();
+            const glm::mat4 viewProjection = frame.unjitteredProjection * frame.view;  // velocity is unjittered
+            if (velocity) {
+                // The background first, into the velocity target alone; meshes then overwrite it.
+                if (!state.backgroundVelocity)
+                    state.backgroundVelocity = frame.shaders->graphics("gbuffer_background_velocity.vert",
+                                                                       "gbuffer_background_velocity.frag");
+                const GLuint bg = state.backgroundVelocity.id();
+                const glm::mat4 rotation = frame.unjitteredProjection * glm::mat4(glm::mat3(frame.view));
+                const glm::vec2 jitterNdc =
+                    2.0f * frame.jitterPixels / glm::vec2(std::max(frame.outputWidth, 1), std::max(frame.outputHeight, 1));
+                glProgramUniform2fv(bg, glGetUniformLocation(bg, "uJitterNdc"), 1, glm::value_ptr(jitterNdc));
+                glProgramUniformMatrix4fv(bg, glGetUniformLocation(bg, "uInverseRotationProjection"), 1, GL_FALSE,
+                                          glm::value_ptr(glm::inverse(rotation)));
+                glProgramUniformMatrix4fv(bg, glGetUniformLocation(bg, "uViewProjection"), 1, GL_FALSE,
+                                          glm::value_ptr(viewProjection));
+                glProgramUniformMatrix4fv(bg, glGetUniformLocation(bg, "uPreviousViewProjection"), 1, GL_FALSE,
+                                          glm::value_ptr(frame.previousViewProjection));
+                GLenum only[kTargets];
+                for (int i = 0; i < kTargets; ++i) only[i] = i == kVelocityTarget ? buffers[i] : GL_NONE;
+                glNamedFramebufferDrawBuffers(fbo, kTargets, only);
+                gl::ScopedEnable noDepth(GL_DEPTH_TEST, false);
+                glUseProgram(bg);
+                if (!state.emptyVao) state.emptyVao = gl::makeVertexArray("gbuffer.background_velocity");
+                glBindVertexArray(state.emptyVao.id());
+                glDrawArrays(GL_TRIANGLES, 0, 3);
+                glNamedFramebufferDrawBuffers(fbo, kTargets, buffers);
+            }
+
+            const GLuint prog = program.id();
             glUseProgram(prog);
             glProgramUniformMatrix4fv(prog, glGetUniformLocation(prog, "uProjection"), 1, GL_FALSE,
                                       glm::value_ptr(gbufferDepthProjection(frame)));
+            const GLint locClip = glGetUniformLocation(prog, "uClipFromModel");
+            const GLint locPreviousClip = glGetUniformLocation(prog, "uPreviousClipFromModel");
             const GLint locMV = glGetUniformLocation(prog, "uModelView");
             const GLint locN = glGetUniformLocation(prog, "uNormalMatrix");
-            const GLint locKd = glGetUniformLocation(prog, "uDiffuse");
-            const GLint locKs = glGetUniformLocation(prog, "uSpecular");
-            const GLint locNs = glGetUniformLocation(prog, "uShininess");
-            const GLint locHasD = glGetUniformLocation(prog, "uHasDiffuseMap");
-            const GLint locHasB = glGetUniformLocation(prog, "uHasBumpMap");
-            const GLint locBs = glGetUniformLocation(prog, "uBumpScale");
-            const GLint locFlat = glGetUniformLocation(prog, "uFlat");
+            auto loc = [prog](const char* name) { return glGetUniformLocation(prog, name); };
+            const GLint locKd = loc("uDiffuse"), locOpacity = loc("uOpacity"), locKs = loc("uSpecular"), locMetal = loc("uMetallic");
+            const GLint locNs = loc("uShininess"), locRough = loc("uRoughness");
+            const GLint locHasD = loc("uHasDiffuseMap"), locHasB = loc("uHasBumpMap"), locBs = loc("uBumpScale");
+            const GLint locHasN = loc("uHasNormalMap"), locNs2 = loc("uNormalScale"), locHasMR = loc("uHasMetalRoughMap");
+            const GLint locHasO = loc("uHasOcclusionMap"), locOs = loc("uOcclusionStrength");
+            const GLint locMask = loc("uAlphaMask"), locCutoff = loc("uAlphaCutoff"), locTwoSided = loc("uDoubleSided");
+            const GLint locFlat = loc("uFlat");
             for (const auto& mesh : frame.gpu->meshes) {
                 glm::mat4 mv = frame.view * mesh.model;
                 glm::mat3 nm = glm::inverseTranspose(glm::mat3(mv));
                 glProgramUniformMatrix4fv(prog, locMV, 1, GL_FALSE, glm::value_ptr(mv));
                 glProgramUniformMatrix3fv(prog, locN, 1, GL_FALSE, glm::value_ptr(nm));
+                if (velocity) {  // models are static: the previous model matrix is the current one
+                    const glm::mat4 clip = viewProjection * mesh.model, previous = frame.previousViewProjection * mesh.model;
+                    glProgramUniformMatrix4fv(prog, locClip, 1, GL_FALSE, glm::value_ptr(clip));
+                    glProgramUniformMatrix4fv(prog, locPreviousClip, 1, GL_FALSE, glm::value_ptr(previous));
+                }
                 glBindVertexArray(mesh.vao.id());
                 for (const auto& d : mesh.draws) {
                     const GpuMaterial& m = frame.gpu->materials[size_t(d.material)];
                     glProgramUniform3fv(prog, locKd, 1, glm::value_ptr(m.diffuse));
+                    glProgramUniform1f(prog, locOpacity, m.opacity);
                     glProgramUniform3fv(prog, locKs, 1, glm::value_ptr(m.specular));
+                    glProgramUniform1f(prog, locMetal, m.metallic);
                     glProgramUniform1f(prog, locNs, m.shininess);
+                    glProgramUniform1f(prog, locRough, m.roughness);
                     glProgramUniform1i(prog, locHasD, m.diffuseMap != 0);
                     glProgramUniform1i(prog, locHasB, m.bumpMap != 0);
                     glProgramUniform1f(prog, locBs, m.bumpScale);
+                    glProgramUniform1i(prog, locHasN, m.normalMap != 0);
+                    glProgramUniform1f(prog, locNs2, m.normalScale);
+                    glProgramUniform1i(prog, locHasMR, m.metallicRoughnessMap != 0);
+                    glProgramUniform1i(prog, locHasO, m.occlusionMap != 0);
+                    glProgramUniform1f(prog, locOs, m.occlusionStrength);
+                    glProgramUniform1i(prog, locMask, m.alphaMask);
+                    glProgramUniform1f(prog, locCutoff, m.alphaCutoff);
+                    glProgramUniform1i(prog, locTwoSided, m.doubleSided);
                     glProgramUniform1i(prog, locFlat, m.flat);
                     glBindTextureUnit(0, m.diffuseMap);
                     glBindTextureUnit(1, m.bumpMap);
+                    glBindTextureUnit(2, m.normalMap);
+                    glBindTextureUnit(3, m.metallicRoughnessMap);
+                    glBindTextureUnit(4, m.occlusionMap);
                     glDrawElements(GL_TRIANGLES, GLsizei(d.indexCount), GL_UNSIGNED_INT,
                                    reinterpret_cast<const void*>(size_t(d.firstIndex) * sizeof(uint32_t)));
                 }
             }
             glBindVertexArray(0);
-            glBindTextureUnit(0, 0);
-            glBindTextureUnit(1, 0);
+            for (GLuint u = 0; u < 5; ++u) glBindTextureUnit(u, 0);
             glUseProgram(0);
         });
 }

@@ -13,15 +13,23 @@ struct GBufferChannels {
     bool position = true;  // only when the position mode stores positions
     bool texcoord = false;
     bool tangent = false;  // only for the tangent view
+    // gbuffer.velocity (RG16F, uv_current - uv_previous; engine/render/motion.hpp): only when a pass
+    // reads motion (the velocity view, motion blur, temporal AA).
+    bool velocity = false;
 };
 
 struct GBuffer {
     fg::ResourceId depth, normal, diffuse, position, specular, texcoord, tangent;  // position invalid when rebuilt
+    fg::ResourceId velocity;  // invalid unless GBufferChannels::velocity
 };
 
 struct GBufferPass {
     gl::Program program;
     GBufferSettings layout;  // what `program` was compiled for
+    gl::Program velocityProgram;  // the same with LP_GBUFFER_VELOCITY: also writes motion vectors
+    GBufferSettings velocityLayout;
+    gl::Program backgroundVelocity;  // motion of the background at infinity (camera rotation)
+    gl::VertexArray emptyVao;        // its full-screen triangle has no vertex buffer
     gl::Framebuffer fbo;
 };
 

@@ -17,6 +17,7 @@ constexpr GLuint kShadowMapUnit = 8;      // matches the uShadowMap binding in g
 struct Data {
     GBuffer in;
     std::vector<fg::ResourceId> shadowMaps;  // parallel to GlobalLightPass::shadowMaps
+    fg::ResourceId ao;                       // invalid: no ambient occlusion
     fg::ResourceId hdr;
 };
 
@@ -59,13 +60,15 @@ void setShadowUniforms(GLuint prog, const FrameData& frame, const ShadowMaps& ma
 }  // namespace
 
 fg::ResourceId addGlobalLightPass(fg::FrameGraph& graph, GlobalLightPass& state, const FrameData& frame,
-                                  const GBuffer& gbuffer, const ShadowMaps& shadowMaps, bool lightingOnly) {
+                                  const GBuffer& gbuffer, const ShadowMaps& shadowMaps, bool lightingOnly,
+                                  fg::ResourceId ao) {
     const Data& d = graph.addPass<Data>(
         "global_lights", fg::PassKind::Compute,
         [&](fg::PassBuilder& b, Data& data) {
             data.in = gbuffer;
             readGBuffer(b, gbuffer, !lightingOnly);
             for (const auto& m : shadowMaps) data.shadowMaps.push_back(b.read(m.depth, fg::Usage::Sampled));
+            if (ao.valid()) data.ao = b.read(ao, fg::Usage::Sampled);
             data.hdr = b.create("hdr", {frame.width, frame.height, GL_RGBA16F}, fg::Usage::ImageStore);
         },
         [&state, frame, lightingOnly, shadowMaps](const Data& data, const fg::PassResources& res) {
@@ -91,17 +94,20 @@ fg::ResourceId addGlobalLightPass(fg::FrameGraph& graph, GlobalLightPass& state,
             }
             glProgramUniform3fv(prog, loc(prog, "uAmbient"), 1, glm::value_ptr(frame.scene->ambient));
             glProgramUniform1i(prog, loc(prog, "uLightingOnly"), lightingOnly);
+            glProgramUniform1i(prog, loc(prog, "uAmbientOcclusion"), data.ao.valid());
             glProgramUniform1i(prog, loc(prog, "uBrdf"), frame.settings->brdf == Brdf::Ggx ? 1 : 0);
             setShadowUniforms(prog, frame, shadowMaps, count);
             bindGBuffer(prog, res, data.in, frame, !lightingOnly);
             for (size_t i = 0; i < data.shadowMaps.size(); ++i)
                 glBindTextureUnit(kShadowMapUnit + GLuint(i), res.texture(data.shadowMaps[i]));
+            if (data.ao.valid()) glBindTextureUnit(kAoTextureUnit, res.texture(data.ao));
             glBindImageTexture(0, res.texture(data.hdr), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
             glUseProgram(prog);
             gl::dispatch2D(frame.width, frame.height);
             glUseProgram(0);
             unbindGBuffer();
             for (size_t i = 0; i < data.shadowMaps.size(); ++i) glBindTextureUnit(kShadowMapUnit + GLuint(i), 0);
+            if (data.ao.valid()) glBindTextureUnit(kAoTextureUnit, 0);
             glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
         });
     return d.hdr;

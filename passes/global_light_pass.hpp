@@ -5,6 +5,7 @@
 #include "engine/gl/handles.hpp"
 #include "engine/graph/frame_graph.hpp"
 #include "engine/render/frame_data.hpp"
+#include "passes/ambient_occlusion_pass.hpp"
 #include "passes/gbuffer_pass.hpp"
 #include "passes/shadow_map_pass.hpp"
 
@@ -17,7 +18,10 @@ struct GlobalLightPass {
 
 // `shadowMaps`: this frame's maps (addShadowMapPasses); lights without one are unshadowed.
 // `lightingOnly` (the lighting debug view) lights a white albedo and does not read the diffuse target.
+// `ao`: the ambient-occlusion target (passes/ambient_occlusion_pass), which darkens the constant
+// ambient only; invalid: no occlusion.
 fg::ResourceId addGlobalLightPass(fg::FrameGraph& graph, GlobalLightPass& state, const FrameData& frame,
-                                  const GBuffer& gbuffer, const ShadowMaps& shadowMaps, bool lightingOnly);
+                                  const GBuffer& gbuffer, const ShadowMaps& shadowMaps, bool lightingOnly,
+                                  fg::ResourceId ao = {});
 
 }  // namespace lp

@@ -11,6 +11,7 @@ namespace {
 struct Data {
     GBuffer in;
     EnvironmentTextures environment;
+    fg::ResourceId ao;  // invalid: no ambient occlusion
     fg::ResourceId hdr;
 };
 }  // namespace
@@ -57,7 +58,8 @@ EnvironmentTextures addIblBakePass(fg::FrameGraph& graph, const FrameData& frame
 }
 
 fg::ResourceId addIblPass(fg::FrameGraph& graph, IblPass& state, const FrameData& frame, const GBuffer& gbuffer,
-                          const EnvironmentTextures& environment, fg::ResourceId hdr, bool lightingOnly) {
+                          const EnvironmentTextures& environment, fg::ResourceId hdr, bool lightingOnly,
+                          fg::ResourceId ao) {
     const Data& d = graph.addPass<Data>(
         "ibl", fg::PassKind::Compute,
         [&](fg::PassBuilder& b, Data& data) {
@@ -66,6 +68,7 @@ fg::ResourceId addIblPass(fg::FrameGraph& graph, IblPass& state, const FrameData
             data.environment.irradiance = b.read(environment.irradiance, fg::Usage::Sampled);
             data.environment.prefiltered = b.read(environment.prefiltered, fg::Usage::Sampled);
             data.environment.dfg = b.read(environment.dfg, fg::Usage::Sampled);
+            if (ao.valid()) data.ao = b.read(ao, fg::Usage::Sampled);
             data.hdr = b.write(hdr, fg::Usage::ImageLoadStore);
         },
         [&state, frame, lightingOnly](const Data& data, const fg::PassResources& res) {
@@ -84,16 +87,18 @@ fg::ResourceId addIblPass(fg::FrameGraph& graph, IblPass& state, const FrameData
             glProgramUniform1f(prog, glGetUniformLocation(prog, "uIntensity"), frame.scene->environment.intensity);
             glProgramUniform1f(prog, glGetUniformLocation(prog, "uMaxLod"), float(env.prefiltered.levels - 1));
             glProgramUniform1i(prog, glGetUniformLocation(prog, "uLightingOnly"), lightingOnly);
+            glProgramUniform1i(prog, glGetUniformLocation(prog, "uAmbientOcclusion"), data.ao.valid());
             gl::ScopedEnable seamless(GL_TEXTURE_CUBE_MAP_SEAMLESS, true);
             bindGBuffer(prog, res, data.in, frame, !lightingOnly);
             glBindTextureUnit(7, res.texture(data.environment.irradiance));
             glBindTextureUnit(8, res.texture(data.environment.prefiltered));
             glBindTextureUnit(9, res.texture(data.environment.dfg));
+            if (data.ao.valid()) glBindTextureUnit(kAoTextureUnit, res.texture(data.ao));
             glBindImageTexture(0, res.texture(data.hdr), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
             glUseProgram(prog);
             gl::dispatch2D(frame.width, frame.height);
             glUseProgram(0);
-            for (GLuint u : {0u, 1u, 2u, 3u, 4u, 7u, 8u, 9u}) glBindTextureUnit(u, 0);
+            for (GLuint u : {0u, 1u, 2u, 3u, 4u, 7u, 8u, 9u, GLuint(kAoTextureUnit)}) glBindTextureUnit(u, 0);
             glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
         });
     return d.hdr;

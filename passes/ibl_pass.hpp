@@ -7,6 +7,7 @@
 #include "engine/graph/frame_graph.hpp"
 #include "engine/render/frame_data.hpp"
 #include "engine/render/ibl_environment.hpp"
+#include "passes/ambient_occlusion_pass.hpp"
 #include "passes/gbuffer_pass.hpp"
 
 namespace lp {
@@ -33,7 +34,10 @@ EnvironmentTextures importEnvironment(fg::FrameGraph& graph, const FrameData& fr
 EnvironmentTextures addIblBakePass(fg::FrameGraph& graph, const FrameData& frame, const EnvironmentTextures& in,
                                    bool bake);
 
+// `ao`: the ambient-occlusion target: the diffuse IBL is multiplied by it and the specular by the
+// specular occlusion derived from it (common/ambient_occlusion.glsl); invalid: no occlusion.
 fg::ResourceId addIblPass(fg::FrameGraph& graph, IblPass& state, const FrameData& frame, const GBuffer& gbuffer,
-                          const EnvironmentTextures& environment, fg::ResourceId hdr, bool lightingOnly);
+                          const EnvironmentTextures& environment, fg::ResourceId hdr, bool lightingOnly,
+                          fg::ResourceId ao = {});
 
 }  // namespace lp

@@ -7,6 +7,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "engine/gl/shader.hpp"
+#include "engine/core/log.hpp"
 #include "engine/gl/state.hpp"
 #include "engine/render/local_lights.hpp"
 
@@ -18,6 +19,7 @@ constexpr float kGlobeScale = 0.04f;    // globe radius as a fraction of the lig
 constexpr float kGlobeRadiance = 8.0f;  // flat radiance of a globe (brightest channel)
 constexpr float kOverlayRadiance = 3.0f;
 constexpr float kHeatMax = 32.0f;       // lights per tile shown as red
+constexpr float kClusterHeatMax = 64.0f;  // lights per cluster shown as red
 
 int specularMode(const LocalLightSettings& s) {
     if (!s.specular) return 0;                 // LP_LOCAL_SPECULAR_OFF
@@ -36,19 +38,25 @@ void makeMesh(const std::vector<glm::vec3>& tris, const std::string& name, gl::B
     vertices = int(tris.size());
 }
 
-void ensureState(LocalLightPass& state, const FrameData& frame) {
-    // The programs that read the G-buffer follow its layout (recompiled when it changes).
+void ensureState(LocalLightPass& state, const FrameData& frame, bool spotShadows = false) {
+    // The programs that read the G-buffer follow its layout (recompiled when it changes), and
+    // sample spot shadow maps only in frames that have one.
     const GBufferSettings& layout = frame.settings->gbuffer;
-    if (!state.fbo || state.layout != layout) {
+    if (!state.fbo || state.layout != layout || state.spotShadowVariant != spotShadows) {
         std::vector<std::string> defines = gbufferDefines(layout);
+        if (spotShadows) defines.push_back("LP_SPOT_SHADOWS");
+        state.spotShadowVariant = spotShadows;
         state.fragmentProgram = frame.shaders->graphics("local_light.vert", "local_light.frag", defines);
         state.tiledProgram = frame.shaders->compute("local_light_tiled.comp", defines);
+        state.clusteredProgram = frame.shaders->compute("local_light_clustered.comp", defines);
         defines.push_back("LP_TILE_HEATMAP");
         state.heatmapProgram = frame.shaders->compute("local_light_tiled.comp", defines);
         state.layout = layout;
     }
     if (state.fbo) return;
     state.sanitizeProgram = frame.shaders->compute("local_light_sanitize.comp");
+    state.clusterBuildProgram = frame.shaders->compute("light_clusters.comp");
+    state.clusterViewProgram = frame.shaders->compute("light_clusters_view.comp");
     state.overlayProgram = frame.shaders->graphics("local_light_overlay.vert", "local_light_overlay.frag");
     makeMesh(circumscribingIcosphere(1), "local_light.volume", state.volumeMesh, state.volumeVao, state.volumeVertices);
     makeMesh(circumscribingIcosphere(2), "local_light.globe", state.globeMesh, state.globeVao, state.globeVertices);
@@ -56,13 +64,16 @@ void ensureState(LocalLightPass& state, const FrameData& frame) {
 }
 
 // Uploads the frame's lights (eye space) into the SSBO at binding 0; returns them.
-std::vector<PointLight> uploadLights(LocalLightPass& state, const FrameData& frame) {
+// With spot shadow maps, each shadowed light's record names its atlas tile.
+std::vector<PointLight> uploadLights(LocalLightPass& state, const FrameData& frame,
+                                     const SpotShadowMaps* spotShadows = nullptr) {
     std::vector<PointLight> lights = localLightsForFrame(*frame.scene, frame.settings->localLights, frame.time);
+    std::vector<int> layer(lights.size(), -1);
+    if (spotShadows)
+        for (size_t t = 0; t < spotShadows->light.size(); ++t) layer[size_t(spotShadows->light[t])] = int(t);
     std::vector<GpuLocalLight> gpu;
     gpu.reserve(lights.size());
-    for (const auto& l : lights)
-        gpu.push_back({glm::vec4(glm::vec3(frame.view * glm::vec4(l.position, 1.0f)), l.range),
-                       glm::vec4(l.color * l.intensity, 0.0f)});
+    for (size_t i = 0; i < lights.size(); ++i) gpu.push_back(gpuLocalLight(lights[i], frame.view, layer[i]));
     if (gpu.size() > state.lightCapacity || !state.lights) {
         state.lightCapacity = std::max<size_t>(gpu.size(), 64);
         state.lights = gl::makeBuffer(GLsizeiptr(state.lightCapacity * sizeof(GpuLocalLight)), nullptr,
@@ -84,11 +95,12 @@ void setMat4(GLuint prog, const char* name, const glm::mat4& m) {
 void unbindAll(const LocalLightPass& state) {
     if (state.fbo) {
         glNamedFramebufferTexture(state.fbo.id(), GL_COLOR_ATTACHMENT0, 0, 0);
+        glNamedFramebufferTexture(state.fbo.id(), GL_COLOR_ATTACHMENT1, 0, 0);
         glNamedFramebufferTexture(state.fbo.id(), GL_DEPTH_ATTACHMENT, 0, 0);
     }
-    for (GLuint u = 0; u < 5; ++u) glBindTextureUnit(u, 0);
+    for (GLuint u = 0; u < 6; ++u) glBindTextureUnit(u, 0);
     glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
+    for (GLuint b = 0; b < 5; ++b) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, 0);
     glBindVertexArray(0);
     glUseProgram(0);
 }
@@ -96,7 +108,91 @@ void unbindAll(const LocalLightPass& state) {
 struct LightData {
     GBuffer in;
     fg::ResourceId hdr;
+    fg::ResourceId spotShadows;  // the atlas, when some spot casts a shadow
 };
+
+constexpr GLuint kSpotShadowUnit = 5;  // layout(binding = 5) in common/local_light.glsl
+
+// One LpSpotShadow (common/local_light.glsl) per atlas tile into the SSBO at binding 4, the atlas at
+// unit 5.
+struct GpuSpotShadow {
+    glm::mat4 eyeToClip;
+    glm::vec4 tile, depth, bias;
+};
+void bindSpotShadows(LocalLightPass& state, const FrameData& frame, const SpotShadowMaps& maps, GLuint atlas) {
+    const ShadowSettings& ss = frame.settings->shadows;
+    const glm::mat4 eyeToWorld = glm::inverse(frame.view);
+    std::vector<GpuSpotShadow> gpu;
+    for (size_t t = 0; t < maps.light.size(); ++t) {
+        GpuSpotShadow g;
+        g.eyeToClip = maps.worldToClip[t] * eyeToWorld;
+        g.tile = glm::vec4(float(int(t) % maps.columns * maps.tileSize), float(int(t) / maps.columns * maps.tileSize),
+                           float(maps.tileSize), maps.texelSlope[t]);
+        g.depth = glm::vec4(maps.nearPlane[t], maps.farPlane[t], float(int(ss.filter)), ss.normalBias);
+        g.bias = glm::vec4(ss.depthBias, 0.0f, 0.0f, 0.0f);
+        gpu.push_back(g);
+    }
+    if (gpu.size() > state.spotShadowCapacity || !state.spotShadows) {
+        state.spotShadowCapacity = std::max<size_t>(gpu.size(), 4);
+        state.spotShadows = gl::makeBuffer(GLsizeiptr(state.spotShadowCapacity * sizeof(GpuSpotShadow)), nullptr,
+                                           GL_DYNAMIC_STORAGE_BIT, "spot_shadows.ssbo");
+    }
+    glNamedBufferSubData(state.spotShadows.id(), 0, GLsizeiptr(gpu.size() * sizeof(GpuSpotShadow)), gpu.data());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, state.spotShadows.id());
+    glBindTextureUnit(kSpotShadowUnit, atlas);
+}
+
+void setClusterUniforms(GLuint prog, const ClusterGrid& g) {
+    glProgramUniform3i(prog, glGetUniformLocation(prog, "uClusterGrid"), g.tilesX, g.tilesY, g.slices);
+    setInt(prog, "uClusterTileSize", g.tileSize);
+    setFloat(prog, "uClusterNear", g.nearPlane);
+    setFloat(prog, "uClusterFar", g.farPlane);
+}
+
+// Builds the froxel grid's light lists from the lights in the SSBO at binding 0 (uploadLights);
+// leaves the counts at binding 1 and the lists at binding 2, visible to the next dispatches.
+void buildClusters(LocalLightPass& state, const FrameData& frame, int lightCount) {
+    const LocalLightSettings& s = frame.settings->localLights;
+    const ClusterGrid g = makeClusterGrid(frame.width, frame.height, s.clusterSize, s.clusterSlices, frame.nearPlane,
+                                          frame.farPlane);
+    // The previous build's overflow count: long finished, so reading it does not wait on this frame.
+    if (state.clusterBuilt) {
+        GLuint overflow = 0;
+        glGetNamedBufferSubData(state.clusterOverflow.id(), 0, sizeof(GLuint), &overflow);
+        state.stats.clustersOverflowing = int(overflow);
+        if (int(overflow) != state.lastOverflowWarned && overflow > 0)
+            logWarn("clustered: " + std::to_string(overflow) + " of " + std::to_string(state.clusterGrid.count()) +
+                    " clusters touch more than " + std::to_string(kMaxLightsPerCluster) +
+                    " lights; the lights past the first " + std::to_string(kMaxLightsPerCluster) +
+                    " are dropped there (lower --cluster-size or raise --cluster-slices)");
+        state.lastOverflowWarned = int(overflow);
+    }
+    const size_t clusters = size_t(g.count());
+    if (clusters > state.clusterCapacity || !state.clusterCounts) {
+        state.clusterCapacity = clusters;
+        state.clusterCounts = gl::makeBuffer(GLsizeiptr(clusters * sizeof(GLuint)), nullptr, 0, "clusters.counts");
+        state.clusterLists = gl::makeBuffer(GLsizeiptr(clusters * kMaxLightsPerCluster * sizeof(GLuint)), nullptr, 0,
+                                            "clusters.lights");
+    }
+    if (!state.clusterOverflow)
+        state.clusterOverflow = gl::makeBuffer(sizeof(GLuint), nullptr, GL_DYNAMIC_STORAGE_BIT, "clusters.overflow");
+    const GLuint zero = 0;
+    glNamedBufferSubData(state.clusterOverflow.id(), 0, sizeof(GLuint), &zero);
+    state.clusterGrid = g;
+    state.clusterBuilt = true;
+    state.stats.clusters = g.count();
+    const GLuint prog = state.clusterBuildProgram.id();
+    setClusterUniforms(prog, g);
+    setInt(prog, "uLightCount", lightCount);
+    setMat4(prog, "uProjection", frame.projection);
+    glProgramUniform2i(prog, glGetUniformLocation(prog, "uImageSize"), frame.width, frame.height);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, state.clusterCounts.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, state.clusterLists.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, state.clusterOverflow.id());
+    glUseProgram(prog);
+    glDispatchCompute(GLuint((clusters + 63) / 64), 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+}
 
 // The fullscreen, scissor and volumes methods: additive blending into an FBO holding the HDR texture.
 void drawFragmentMethod(LocalLightPass& state, const FrameData& frame, const std::vector<PointLight>& lights,
@@ -144,9 +240,10 @@ void drawFragmentMethod(LocalLightPass& state, const FrameData& frame, const std
         const GLint locFirst = glGetUniformLocation(prog, "uFirstLight");
         for (int i = 0; i < count; ++i) {
             if (useScissor) {
-                const glm::vec3 eye = glm::vec3(frame.view * glm::vec4(lights[size_t(i)].position, 1.0f));
-                ScissorRect r = sphereScissorRect(eye, lights[size_t(i)].range, frame.projection, frame.nearPlane,
-                                                  frame.width, frame.height);
+                const BoundingSphere b = localLightBounds(lights[size_t(i)]);
+                const glm::vec3 eye = glm::vec3(frame.view * glm::vec4(b.center, 1.0f));
+                ScissorRect r = sphereScissorRect(eye, b.radius, frame.projection, frame.nearPlane, frame.width,
+                                                  frame.height);
                 if (r.empty()) {
                     ++st.offscreen;
                     continue;
@@ -163,23 +260,27 @@ void drawFragmentMethod(LocalLightPass& state, const FrameData& frame, const std
 }  // namespace
 
 fg::ResourceId addLocalLightPass(fg::FrameGraph& graph, LocalLightPass& state, const FrameData& frame,
-                                 const GBuffer& gbuffer, fg::ResourceId hdr, bool lightingOnly) {
-    // Tiled: one compute pass adding into the HDR buffer in place. The other methods blend light
+                                 const GBuffer& gbuffer, fg::ResourceId hdr, bool lightingOnly,
+                                 const SpotShadowMaps& spotShadows) {
+    // Tiled and clustered: compute adding into the HDR buffer in place. The other methods blend light
     // geometry into it, then clamp it in place (image load/store).
-    const bool tiled = frame.settings->localLights.method == LocalLightMethod::Tiled;
+    const bool tiled = frame.settings->localLights.method == LocalLightMethod::Tiled ||
+                       frame.settings->localLights.method == LocalLightMethod::Clustered;
     const LightData& d = graph.addPass<LightData>(
         "local_lights", tiled ? fg::PassKind::Compute : fg::PassKind::Raster,
         [&](fg::PassBuilder& b, LightData& data) {
             data.in = gbuffer;
             readGBuffer(b, gbuffer, !lightingOnly);
             data.hdr = b.write(hdr, tiled ? fg::Usage::ImageLoadStore : fg::Usage::Blend | fg::Usage::ImageLoadStore);
+            if (spotShadows.any()) data.spotShadows = b.read(spotShadows.depth, fg::Usage::Sampled);
         },
-        [&state, frame, lightingOnly](const LightData& data, const fg::PassResources& res) {
-            ensureState(state, frame);
+        [&state, frame, lightingOnly, spotShadows](const LightData& data, const fg::PassResources& res) {
+            ensureState(state, frame, spotShadows.any());
             const LocalLightSettings& s = frame.settings->localLights;
             state.stats = LocalLightStats{};
             state.stats.method = s.method;
-            std::vector<PointLight> lights = uploadLights(state, frame);
+            std::vector<PointLight> lights = uploadLights(state, frame, &spotShadows);
+            if (spotShadows.any()) bindSpotShadows(state, frame, spotShadows, res.texture(data.spotShadows));
             state.stats.requested = int(lights.size());
             const GLuint hdrTexture = res.texture(data.hdr);
             if (s.method == LocalLightMethod::Tiled) {
@@ -193,6 +294,19 @@ fg::ResourceId addLocalLightPass(fg::FrameGraph& graph, LocalLightPass& state, c
                 glBindImageTexture(0, hdrTexture, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
                 glUseProgram(prog);
                 gl::dispatch2D(frame.width, frame.height, kTileSize);
+                state.stats.drawn = int(lights.size());
+            } else if (s.method == LocalLightMethod::Clustered) {
+                buildClusters(state, frame, int(lights.size()));
+                const GLuint prog = state.clusteredProgram.id();
+                bindGBuffer(prog, res, data.in, frame, !lightingOnly);
+                setClusterUniforms(prog, state.clusterGrid);
+                setInt(prog, "uLightCount", int(lights.size()));
+                setInt(prog, "uUnbounded", unbounded(s));
+                setInt(prog, "uLightingOnly", lightingOnly);
+                setInt(prog, "uSpecularMode", specularMode(s));
+                glBindImageTexture(0, hdrTexture, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
+                glUseProgram(prog);
+                gl::dispatch2D(frame.width, frame.height);
                 state.stats.drawn = int(lights.size());
             } else {
                 const GLuint prog = state.fragmentProgram.id();
@@ -214,14 +328,56 @@ namespace {
 struct OverlayData {
     GBuffer in;
     fg::ResourceId hdr;
+    fg::ResourceId velocity;  // the globes' motion over gbuffer.velocity; invalid without the target
 };
 
-void drawGlobes(LocalLightPass& state, const FrameData& frame, int count, GLuint hdrTexture, GLuint depthTexture) {
-    const GLuint prog = state.overlayProgram.id();
+// Each light's world-space centre at the frame's time and at the previous frame's time (the orbit
+// function of time gives both; without a previous frame previousTime = time) into binding 1.
+void uploadGlobeMotion(LocalLightPass& state, const FrameData& frame) {
+    const LocalLightSettings& s = frame.settings->localLights;
+    const std::vector<PointLight> now = localLightsForFrame(*frame.scene, s, frame.time);
+    const std::vector<PointLight> before = localLightsForFrame(*frame.scene, s, frame.previousTime);
+    std::vector<glm::vec4> motion;
+    motion.reserve(2 * now.size());
+    for (size_t i = 0; i < now.size(); ++i) {
+        motion.emplace_back(now[i].position, 1.0f);
+        motion.emplace_back(i < before.size() ? before[i].position : now[i].position, 1.0f);
+    }
+    if (motion.size() > state.globeMotionCapacity || !state.globeMotion) {
+        state.globeMotionCapacity = std::max<size_t>(motion.size(), 128);
+        state.globeMotion = gl::makeBuffer(GLsizeiptr(state.globeMotionCapacity * sizeof(glm::vec4)), nullptr,
+                                           GL_DYNAMIC_STORAGE_BIT, "light_globes.motion");
+    }
+    if (!motion.empty())
+        glNamedBufferSubData(state.globeMotion.id(), 0, GLsizeiptr(motion.size() * sizeof(glm::vec4)), motion.data());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, state.globeMotion.id());
+}
+
+// The globes into the HDR buffer and, when velocityTexture is not 0, their motion vectors into it,
+// under the same depth test.
+void drawGlobes(LocalLightPass& state, const FrameData& frame, int count, GLuint hdrTexture, GLuint depthTexture,
+                GLuint velocityTexture) {
+    const bool velocity = velocityTexture != 0;
+    if (velocity && !state.globeVelocityProgram)
+        state.globeVelocityProgram =
+            frame.shaders->graphics("local_light_overlay.vert", "local_light_overlay.frag",
+                                    std::vector<std::string>{"LP_GLOBE_VELOCITY"});
+    const GLuint prog = velocity ? state.globeVelocityProgram.id() : state.overlayProgram.id();
     const GLuint fbo = state.fbo.id();
     glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, hdrTexture, 0);
+    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT1, velocityTexture, 0);
     glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, depthTexture, 0);  // read only: depth mask off
-    glNamedFramebufferDrawBuffer(fbo, GL_COLOR_ATTACHMENT0);
+    const GLenum buffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+    glNamedFramebufferDrawBuffers(fbo, velocity ? 2 : 1, buffers);
+    if (velocity) {
+        uploadGlobeMotion(state, frame);
+        // Unjittered, like the G-buffer's: the same product, so a still light under a still camera gives 0.
+        setMat4(prog, "uViewProjection", frame.unjitteredProjection * frame.view);
+        setMat4(prog, "uPreviousViewProjection", frame.previousViewProjection);
+        const glm::mat3 worldFromEye = glm::transpose(glm::mat3(frame.view));
+        glProgramUniformMatrix3fv(prog, glGetUniformLocation(prog, "uWorldFromEyeRotation"), 1, GL_FALSE,
+                                  glm::value_ptr(worldFromEye));
+    }
     gl::ScopedRasterState saved;
     gl::ScopedFramebuffer bind(fbo, frame.width, frame.height);
     gl::ScopedEnable blend(GL_BLEND, false);
@@ -241,6 +397,7 @@ void drawGlobes(LocalLightPass& state, const FrameData& frame, int count, GLuint
     setMat4(prog, "uProjection", gbufferDepthProjection(frame));
     glBindVertexArray(state.globeVao.id());
     glDrawArraysInstanced(GL_TRIANGLES, 0, state.globeVertices, count);
+    glNamedFramebufferDrawBuffer(fbo, GL_COLOR_ATTACHMENT0);
 }
 
 // The light-ranges view: the volumes method's icospheres as wireframes, every other method's
@@ -273,9 +430,9 @@ void drawRanges(LocalLightPass& state, const FrameData& frame, const std::vector
     const GLint locLight = glGetUniformLocation(prog, "uLightIndex");
     const float w = float(frame.width), h = float(frame.height);
     for (size_t i = 0; i < lights.size(); ++i) {
-        const glm::vec3 eye = glm::vec3(frame.view * glm::vec4(lights[i].position, 1.0f));
-        ScissorRect r = sphereScissorRect(eye, lights[i].range, frame.projection, frame.nearPlane, frame.width,
-                                          frame.height);
+        const BoundingSphere b = localLightBounds(lights[i]);
+        const glm::vec3 eye = glm::vec3(frame.view * glm::vec4(b.center, 1.0f));
+        ScissorRect r = sphereScissorRect(eye, b.radius, frame.projection, frame.nearPlane, frame.width, frame.height);
         if (r.empty()) continue;
         // Through the centres of the rectangle's outermost pixels, so every edge is visible.
         glProgramUniform4f(prog, locRect, (float(r.x) + 0.5f) / w * 2.0f - 1.0f, (float(r.y) + 0.5f) / h * 2.0f - 1.0f,
@@ -288,24 +445,28 @@ void drawRanges(LocalLightPass& state, const FrameData& frame, const std::vector
 }  // namespace
 
 fg::ResourceId addLocalLightOverlayPasses(fg::FrameGraph& graph, LocalLightPass& state, const FrameData& frame,
-                                          const GBuffer& gbuffer, fg::ResourceId hdr) {
+                                          GBuffer& gbuffer, fg::ResourceId hdr) {
     const RenderSettings& s = *frame.settings;
     if (s.localLights.globes.value_or(frame.scene->lightGlobes)) {
-        hdr = graph.addPass<OverlayData>(
-                       "light_globes", fg::PassKind::Raster,
-                       [&](fg::PassBuilder& b, OverlayData& data) {
-                           data.in = gbuffer;
-                           b.read(gbuffer.depth, fg::Usage::DepthTest);
-                           data.hdr = b.write(hdr, fg::Usage::ColorAttachment);
-                       },
-                       [&state, frame](const OverlayData& data, const fg::PassResources& res) {
-                           ensureState(state, frame);
-                           std::vector<PointLight> lights = uploadLights(state, frame);
-                           drawGlobes(state, frame, int(lights.size()), res.texture(data.hdr),
-                                      res.texture(data.in.depth));
-                           unbindAll(state);
-                       })
-                  .hdr;
+        const OverlayData& globes = graph.addPass<OverlayData>(
+            "light_globes", fg::PassKind::Raster,
+            [&](fg::PassBuilder& b, OverlayData& data) {
+                data.in = gbuffer;
+                b.read(gbuffer.depth, fg::Usage::DepthTest);
+                data.hdr = b.write(hdr, fg::Usage::ColorAttachment);
+                // Only when a later pass reads motion (the G-buffer made the target for it).
+                if (gbuffer.velocity.valid()) data.velocity = b.write(gbuffer.velocity, fg::Usage::ColorAttachment);
+            },
+            [&state, frame](const OverlayData& data, const fg::PassResources& res) {
+                ensureState(state, frame, state.spotShadowVariant);
+                std::vector<PointLight> lights = uploadLights(state, frame);
+                const GLuint velocity = data.velocity.valid() ? res.texture(data.velocity) : 0;
+                drawGlobes(state, frame, int(lights.size()), res.texture(data.hdr), res.texture(data.in.depth),
+                           velocity);
+                unbindAll(state);
+            });
+        hdr = globes.hdr;
+        if (globes.velocity.valid()) gbuffer.velocity = globes.velocity;
     }
     if (s.view == DebugView::LightRanges) {
         hdr = graph.addPass<OverlayData>(
@@ -314,7 +475,7 @@ fg::ResourceId addLocalLightOverlayPasses(fg::FrameGraph& graph, LocalLightPass&
                            data.hdr = b.write(hdr, fg::Usage::ColorAttachment);
                        },
                        [&state, frame](const OverlayData& data, const fg::PassResources& res) {
-                           ensureState(state, frame);
+                           ensureState(state, frame, state.spotShadowVariant);
                            std::vector<PointLight> lights = uploadLights(state, frame);
                            drawRanges(state, frame, lights, res.texture(data.hdr));
                            unbindAll(state);
@@ -330,7 +491,7 @@ fg::ResourceId addLocalLightOverlayPasses(fg::FrameGraph& graph, LocalLightPass&
                            data.hdr = b.write(hdr, fg::Usage::ImageLoadStore);
                        },
                        [&state, frame](const OverlayData& data, const fg::PassResources& res) {
-                           ensureState(state, frame);
+                           ensureState(state, frame, state.spotShadowVariant);
                            std::vector<PointLight> lights = uploadLights(state, frame);
                            const LocalLightSettings& ls = frame.settings->localLights;
                            const GLuint prog = state.heatmapProgram.id();
@@ -343,6 +504,29 @@ fg::ResourceId addLocalLightOverlayPasses(fg::FrameGraph& graph, LocalLightPass&
                            glBindImageTexture(0, res.texture(data.hdr), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
                            glUseProgram(prog);
                            gl::dispatch2D(frame.width, frame.height, kTileSize);
+                           unbindAll(state);
+                       })
+                  .hdr;
+    }
+    if (s.view == DebugView::LightsPerCluster) {
+        hdr = graph.addPass<OverlayData>(
+                       "lights_per_cluster", fg::PassKind::Compute,
+                       [&](fg::PassBuilder& b, OverlayData& data) {
+                           data.hdr = b.write(hdr, fg::Usage::ImageLoadStore);
+                       },
+                       [&state, frame](const OverlayData& data, const fg::PassResources& res) {
+                           ensureState(state, frame, state.spotShadowVariant);
+                           // Built here from this frame's lights, whichever method shaded them.
+                           std::vector<PointLight> lights = uploadLights(state, frame);
+                           buildClusters(state, frame, int(lights.size()));
+                           const GLuint prog = state.clusterViewProgram.id();
+                           setClusterUniforms(prog, state.clusterGrid);
+                           setInt(prog, "uSlice", frame.settings->localLights.clusterSlice);
+                           setFloat(prog, "uHeatMax", kClusterHeatMax);
+                           setFloat(prog, "uExposure", frame.settings->exposureEV);
+                           glBindImageTexture(0, res.texture(data.hdr), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
+                           glUseProgram(prog);
+                           gl::dispatch2D(frame.width, frame.height);
                            unbindAll(state);
                        })
                   .hdr;

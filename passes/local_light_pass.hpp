@@ -1,11 +1,15 @@
 #pragma once
-// Ranged point lights added into the HDR buffer, by one of four methods that give the
-// same image (settings.localLights.method): fullscreen, scissor, volumes, tiled. Plus the overlays:
-// light globes, the light-ranges view and the lights-per-tile heat map.
+// Local lights (ranged points and spots) added into the HDR buffer, by one of five methods that give
+// the same image (settings.localLights.method): fullscreen, scissor, volumes, tiled, clustered. Plus
+// the overlays: light globes, the light-ranges view and the lights-per-tile and lights-per-cluster
+// heat maps. The clustered method builds its froxel grid (light_clusters.comp) in the same pass,
+// just before shading from it.
 #include "engine/gl/handles.hpp"
 #include "engine/graph/frame_graph.hpp"
 #include "engine/render/frame_data.hpp"
+#include "engine/render/light_clusters.hpp"
 #include "passes/gbuffer_pass.hpp"
+#include "passes/spot_shadow_pass.hpp"
 
 namespace lp {
 
@@ -16,6 +20,10 @@ struct LocalLightStats {
     int drawn = 0;       // lights the method shaded: draw calls, instances, or lights the tiles binned from
     int offscreen = 0;   // scissor method: lights skipped because their rectangle was empty
     int fullScreen = 0;  // scissor method: lights drawn full screen (camera inside / near plane crossed)
+    int clusters = 0;    // clustered method: froxels in the grid
+    // clustered method: froxels of the previous grid build that held more than kMaxLightsPerCluster
+    // lights (read back one build late, so the frame does not wait for the GPU); -1 before any.
+    int clustersOverflowing = -1;
 };
 
 struct LocalLightPass {
@@ -24,9 +32,25 @@ struct LocalLightPass {
     gl::Program heatmapProgram;   // local_light_tiled.comp with LP_TILE_HEATMAP
     gl::Program sanitizeProgram;  // local_light_sanitize.comp
     gl::Program overlayProgram;   // local_light_overlay.vert/.frag: globes, volumes, rectangles
+    gl::Program clusterBuildProgram;  // light_clusters.comp
+    gl::Program clusteredProgram;     // local_light_clustered.comp
+    gl::Program clusterViewProgram;   // light_clusters_view.comp
+    ClusterGrid clusterGrid;          // the grid the last build made
+    gl::Buffer clusterCounts;         // uint per cluster: lights touching it (uncapped)
+    gl::Buffer clusterLists;          // kMaxLightsPerCluster uints per cluster: light indices
+    gl::Buffer clusterOverflow;       // one uint: clusters past the cap in the last build
+    size_t clusterCapacity = 0;       // clusters the buffers hold
+    bool clusterBuilt = false;        // clusterOverflow holds a finished build's count
+    int lastOverflowWarned = 0;
+    gl::Program globeVelocityProgram;  // the same with LP_GLOBE_VELOCITY: globes and their motion vectors
     GBufferSettings layout;       // the G-buffer layout the fragment, tiled and heatmap programs were compiled for
+    bool spotShadowVariant = false;  // ... and whether with LP_SPOT_SHADOWS (only frames with a shadowed spot)
+    gl::Buffer spotShadows;       // SSBO of LpSpotShadow (binding 4)
+    size_t spotShadowCapacity = 0;
     gl::Framebuffer fbo;
     gl::Buffer lights;            // SSBO of GpuLocalLight
+    gl::Buffer globeMotion;       // SSBO of each light's world centre now and at the previous frame's time
+    size_t globeMotionCapacity = 0;
     size_t lightCapacity = 0;
     gl::Buffer volumeMesh, globeMesh;
     gl::VertexArray volumeVao, globeVao;
@@ -35,13 +59,16 @@ struct LocalLightPass {
 };
 
 // Adds the "local_lights" pass (read-modify-write of hdr). Whether the frame needs it (lights on,
-// some in view) is the frame builder's decision.
+// some in view) is the frame builder's decision. With spotShadows.any() it also samples their atlas.
 fg::ResourceId addLocalLightPass(fg::FrameGraph& graph, LocalLightPass& state, const FrameData& frame,
-                                 const GBuffer& gbuffer, fg::ResourceId hdr, bool lightingOnly);
+                                 const GBuffer& gbuffer, fg::ResourceId hdr, bool lightingOnly,
+                                 const SpotShadowMaps& spotShadows);
 
 // After the sky: "light_globes" (settings.localLights.globes, else the scene's lightGlobes) and the overlay views
-// ("light_ranges", "lights_per_tile") over the finished HDR image.
+// ("light_ranges", "lights_per_tile") over the finished HDR image. When the frame has gbuffer.velocity,
+// the globes also write their motion into it (their lights orbit): gbuffer.velocity becomes that new
+// version, for the passes that read motion after them.
 fg::ResourceId addLocalLightOverlayPasses(fg::FrameGraph& graph, LocalLightPass& state, const FrameData& frame,
-                                          const GBuffer& gbuffer, fg::ResourceId hdr);
+                                          GBuffer& gbuffer, fg::ResourceId hdr);
 
 }  // namespace lp

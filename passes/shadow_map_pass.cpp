@@ -42,7 +42,8 @@ ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const
             [&state, frame, fr](const Data& out, const fg::PassResources& res) {
                 const fg::ResourceId depth = out.depth;
                 if (!state.program) {
-                    state.program = frame.shaders->graphics("shadow_depth.vert", "shadow_depth.geom", "shadow_depth.frag");
+                    state.program = frame.shaders->graphics("shadow_depth.vert", "shadow_depth.geom", "shadow_depth.frag",
+                                                            {"LP_SHADOW_CONSERVATIVE"});
                     state.fbo = gl::makeFramebuffer("shadow_map");
                 }
                 const GLuint fbo = state.fbo.id();
@@ -76,14 +77,7 @@ ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const
                     const GLint y = GLint(c / size_t(fr.columns)) * fr.tileSize;
                     glViewport(x, y, fr.tileSize, fr.tileSize);
                     glProgramUniform4f(prog, locViewport, float(x), float(y), float(fr.tileSize), float(fr.tileSize));
-                    for (const auto& mesh : frame.gpu->meshes) {
-                        const glm::mat4 mvp = fr.cascades[c].worldToClip * mesh.model;
-                        glProgramUniformMatrix4fv(prog, locMvp, 1, GL_FALSE, glm::value_ptr(mvp));
-                        glBindVertexArray(mesh.vao.id());
-                        for (const auto& draw : mesh.draws)
-                            glDrawElements(GL_TRIANGLES, GLsizei(draw.indexCount), GL_UNSIGNED_INT,
-                                           reinterpret_cast<const void*>(size_t(draw.firstIndex) * sizeof(uint32_t)));
-                    }
+                    drawShadowCasters(frame, prog, locMvp, fr.cascades[c].worldToClip);
                 }
                 glBindVertexArray(0);
                 glUseProgram(0);
@@ -93,6 +87,17 @@ ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const
         maps.push_back(std::move(map));
     }
     return maps;
+}
+
+void drawShadowCasters(const FrameData& frame, GLuint prog, GLint locMvp, const glm::mat4& worldToClip) {
+    for (const auto& mesh : frame.gpu->meshes) {
+        const glm::mat4 mvp = worldToClip * mesh.model;
+        glProgramUniformMatrix4fv(prog, locMvp, 1, GL_FALSE, glm::value_ptr(mvp));
+        glBindVertexArray(mesh.vao.id());
+        for (const auto& draw : mesh.draws)
+            glDrawElements(GL_TRIANGLES, GLsizei(draw.indexCount), GL_UNSIGNED_INT,
+                           reinterpret_cast<const void*>(size_t(draw.firstIndex) * sizeof(uint32_t)));
+    }
 }
 
 }  // namespace lp

@@ -26,4 +26,8 @@ using ShadowMaps = std::vector<LightShadowMap>;
 
 ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const FrameData& frame);
 
+// Draws every mesh of the frame's scene with `prog` (bound), its uniform `locMvp` set to
+// worldToClip x model: the caster loop the sun cascades and the spot shadow maps share.
+void drawShadowCasters(const FrameData& frame, GLuint prog, GLint locMvp, const glm::mat4& worldToClip);
+
 }  // namespace lp

@@ -13,23 +13,30 @@ constexpr GLuint kExposureUnit = 7;  // uExposure in tonemap.comp
 }  // namespace
 
 fg::ResourceId addToneMapPass(fg::FrameGraph& graph, ToneMapPass& state, const FrameData& frame, fg::ResourceId hdr,
-                              fg::ResourceId autoExposure) {
+                              fg::ResourceId autoExposure, ToneMapTarget target) {
+    const bool floatTarget = target == ToneMapTarget::Float16;
+    const GLenum format = floatTarget ? GL_RGBA16F : GL_RGBA8;
     const Data& d = graph.addPass<Data>(
         "tonemap", fg::PassKind::Compute,
         [&](fg::PassBuilder& b, Data& data) {
             data.hdr = b.read(hdr, fg::Usage::Sampled);
             if (autoExposure.valid()) data.exposure = b.read(autoExposure, fg::Usage::Sampled);
-            data.ldr = b.create("ldr.final", {frame.outputWidth, frame.outputHeight, GL_RGBA8}, fg::Usage::ImageStore);
+            data.ldr = b.create(floatTarget ? "ldr.tonemapped" : "ldr.final", {frame.outputWidth, frame.outputHeight, format},
+                                fg::Usage::ImageStore);
         },
-        [&state, frame](const Data& data, const fg::PassResources& res) {
-            if (!state.program) state.program = frame.shaders->compute("tonemap.comp");
-            const GLuint prog = state.program.id();
+        [&state, frame, floatTarget, format](const Data& data, const fg::PassResources& res) {
+            gl::Program& program = floatTarget ? state.floatProgram : state.program;
+            if (!program)
+                program = frame.shaders->compute("tonemap.comp", floatTarget ? std::vector<std::string>{"LP_TONEMAP_FLOAT_TARGET"}
+                                                                             : std::vector<std::string>{});
+            const GLuint prog = program.id();
             glProgramUniform1f(prog, glGetUniformLocation(prog, "uExposureEV"), frame.settings->exposureEV);
             glProgramUniform1i(prog, glGetUniformLocation(prog, "uOperator"), int(frame.settings->environment.toneMap));
             glProgramUniform1i(prog, glGetUniformLocation(prog, "uAutoExposure"), data.exposure.valid());
+            glProgramUniform1i(prog, glGetUniformLocation(prog, "uDither"), frame.settings->aa.dither);
             if (data.exposure.valid()) glBindTextureUnit(kExposureUnit, res.texture(data.exposure));
-            gl::dispatchTextureToImage(prog, 6, res.texture(data.hdr), res.texture(data.ldr), GL_RGBA8,
-                                       frame.outputWidth, frame.outputHeight);
+            gl::dispatchTextureToImage(prog, 6, res.texture(data.hdr), res.texture(data.ldr), format, frame.outputWidth,
+                                       frame.outputHeight);
             if (data.exposure.valid()) glBindTextureUnit(kExposureUnit, 0);
         });
     return d.ldr;

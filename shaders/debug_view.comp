@@ -4,13 +4,15 @@
 // the README.
 #define LP_GBUFFER_READ
 #include "common/gbuffer_layout.glsl"
+#include "common/velocity.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(binding = 12) uniform sampler2D uChannel;  // texcoords (7), the shadow-map atlas (8), tangents (12)
+layout(binding = 12) uniform sampler2D uChannel;  // texcoords (7), the shadow-map atlas (8), tangents (12), velocity (13), AO (14)
 layout(rgba8, binding = 0) uniform writeonly image2D uLdr;
 
 // 1 depth, 2 normals, 3 diffuse, 4 position, 5 shininess, 6 specular, 7 texcoords, 8 shadow map,
-// 9 world position, 10 eye vector, 11 depth fitted to the scene's range, 12 tangent
+// 9 world position, 10 eye vector, 11 depth fitted to the scene's range, 12 tangent, 13 velocity, 14 ambient
+// occlusion (1 white = unoccluded; the sky is 1)
 uniform int uMode;
 uniform float uNear;
 uniform float uFar;
@@ -20,6 +22,8 @@ uniform mat4 uEyeToWorld;      // modes 9, 10
 uniform vec3 uSceneCenter;     // mode 9: the scene's bounds, mapped into [0, 1]
 uniform float uSceneHalfSize;  // mode 9: half the longest side of the bounds
 uniform vec2 uDepthRange;      // mode 11: eye depth of the scene's nearest and farthest bound
+uniform vec2 uOutputSize;      // mode 13: velocity (uv per frame) x this = output pixels per frame
+uniform float uVelocityFullScale;  // mode 13: output pixels per frame shown at full brightness
 
 void main() {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
@@ -51,8 +55,17 @@ void main() {
         imageStore(uLdr, p, vec4(fract(texelFetch(uChannel, p, 0).xy), 0.0, 1.0));
         return;
     }
+    if (uMode == 14) {
+        imageStore(uLdr, p, vec4(vec3(texelFetch(uChannel, p, 0).r), 1.0));
+        return;
+    }
     if (uMode == 12) {  // stored encoded by the G-buffer (t x 0.5 + 0.5); the background is cleared to 0
         imageStore(uLdr, p, vec4(texelFetch(uChannel, p, 0).rgb, 1.0));
+        return;
+    }
+    if (uMode == 13) {  // motion: hue is its direction, brightness its length (common/velocity.glsl)
+        vec2 v = texelFetch(uChannel, p, 0).xy * uOutputSize;
+        imageStore(uLdr, p, vec4(velocityViewColour(v, uVelocityFullScale), 1.0));
         return;
     }
     bool background = gbufferIsBackground(p);

@@ -12,6 +12,15 @@ out vec3 vPosition;   // eye space
 out vec3 vNormal;     // eye space
 out vec2 vUv;
 out vec4 vTangent;    // eye space xyz, handedness w
+#ifdef LP_GBUFFER_VELOCITY
+// Unjittered clip positions this frame and the previous one (common/velocity.glsl).
+uniform mat4 uClipFromModel;
+uniform mat4 uPreviousClipFromModel;
+out vec4 vCurrentClip;
+out vec4 vPreviousClip;
+#endif
+// The emission pass draws with this shader again and tests GL_EQUAL against the G-buffer depth.
+invariant gl_Position;
 
 void main() {
     vec4 p = uModelView * vec4(inPosition, 1.0);
@@ -20,4 +29,8 @@ void main() {
     vTangent = vec4(mat3(uModelView) * inTangent.xyz, inTangent.w);
     vUv = inUv;
     gl_Position = uProjection * p;
+#ifdef LP_GBUFFER_VELOCITY
+    vCurrentClip = uClipFromModel * vec4(inPosition, 1.0);
+    vPreviousClip = uPreviousClipFromModel * vec4(inPosition, 1.0);
+#endif
 }

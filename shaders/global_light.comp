@@ -1,6 +1,6 @@
 #version 450
 // Directional lights with the chosen analytic BRDF (normalised Blinn-Phong or GGX), cascaded shadow
-// maps, plus a constant ambient, into the HDR buffer.
+// maps, plus a constant ambient (times the ambient occlusion, when on), into the HDR buffer.
 #include "common/brdf.glsl"
 #include "common/shadow.glsl"
 #include "common/tonemap.glsl"
@@ -18,6 +18,9 @@ uniform vec3 uLightIrradiance[MAX_LIGHTS];
 uniform vec3 uAmbient;
 uniform bool uLightingOnly;  // debug: white albedo, so the image shows light alone
 uniform int uBrdf;           // LP_BRDF_BLINN_PHONG | LP_BRDF_GGX
+// Ambient occlusion (passes/ambient_occlusion_pass): indirect light only, so the ambient term alone.
+layout(binding = 14) uniform sampler2D uAo;
+uniform bool uAmbientOcclusion;
 
 // Shadows (engine/render/shadows.hpp): up to 4 shadowed lights, each an atlas of up to 4 cascades.
 const int MAX_SHADOWED = 4;
@@ -77,7 +80,8 @@ void main() {
     vec3 ks = spec.rgb;
     float pl = length(P);
     vec3 V = pl > 0.0 ? -P / pl : vec3(0.0, 0.0, 1.0);
-    vec3 c = uAmbient * kd;
+    float ao = uAmbientOcclusion ? texelFetch(uAo, p, 0).r : 1.0;
+    vec3 c = uAmbient * kd * ao * (uLightingOnly ? 1.0 : gbufferOcclusion(p));  // occlusion darkens ambient light only
     for (int i = 0; i < uLightCount; ++i) {
         vec3 L = uLightDirEye[i];
         float nl = dot(N, L);

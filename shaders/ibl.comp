@@ -1,8 +1,11 @@
 #version 450
 // Image-based lighting added into the HDR buffer: diffuse kd (1 - Fss) E / pi from the SH (or the
 // irradiance cube) and specular prefiltered(R, roughness) * Fss, Fss = F0 A + f90 B from the DFG LUT
-// (F0 = the material's specular colour, f90 as in the analytic GGX: Ks = 0 is exactly Lambertian). The (1 - Fss) keeps a white surface in a white
-// environment at exactly the environment's radiance (white furnace).
+// (F0 = the material's specular colour, f90 as in the analytic GGX: Ks = 0 is exactly Lambertian).
+// The (1 - Fss) keeps a white surface in a white environment at exactly the environment's radiance
+// (white furnace). With ambient occlusion on, the diffuse term is multiplied by the AO and the
+// specular by the specular occlusion derived from it.
+#include "common/ambient_occlusion.glsl"
 #include "common/ibl.glsl"
 #include "common/tonemap.glsl"
 #define LP_GBUFFER_READ
@@ -20,6 +23,8 @@ uniform mat3 uEyeToWorld;
 uniform float uIntensity;
 uniform float uMaxLod;        // prefiltered levels - 1
 uniform bool uLightingOnly;   // debug: white albedo
+layout(binding = 14) uniform sampler2D uAo;  // passes/ambient_occlusion_pass
+uniform bool uAmbientOcclusion;
 
 void main() {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
@@ -44,7 +49,10 @@ void main() {
     vec2 ab = textureLod(uDfg, vec2(NdotV, roughness), 0.0).rg;
     vec3 fss = splitSumReflectance(spec.rgb, ab);
     vec3 prefiltered = textureLod(uPrefiltered, Rw, prefilteredLodFromRoughness(roughness, uMaxLod)).rgb;
-    vec3 c = uIntensity * (kd * (1.0 - fss) * E / LP_IBL_PI + prefiltered * fss);
+    float occlusion = uLightingOnly ? 1.0 : gbufferOcclusion(p);  // the material's ambient occlusion
+    float ao = (uAmbientOcclusion ? texelFetch(uAo, p, 0).r : 1.0) * occlusion;
+    float specularAo = uAmbientOcclusion ? specularOcclusion(NdotV, ao, roughness * roughness) : occlusion;
+    vec3 c = uIntensity * (ao * kd * (1.0 - fss) * E / LP_IBL_PI + specularAo * prefiltered * fss);
     vec3 hdr = imageLoad(uHdr, p).rgb;
     imageStore(uHdr, p, vec4(sanitizeHdr(hdr + c), 1.0));
 }

@@ -1,10 +1,12 @@
 #version 450
 // Tiled method in one compute pass: each 16x16 work group finds its tile's eye-depth
-// bounds from the G-buffer, bins the lights whose range sphere touches the tile's frustum (four side
-// planes and the depth bounds) into shared memory, 256 lights at a time, and shades its pixels with
+// bounds from the G-buffer, bins the lights whose bounding sphere (the range sphere, a spot's cone
+// sphere) touches the tile's frustum (four side planes and the depth bounds) into shared memory, 256
+// lights at a time, and shades its pixels with
 // that list. With LP_TILE_HEATMAP it instead paints the per-tile count over the finished image.
 #include "common/local_light.glsl"
 #include "common/tonemap.glsl"
+#include "common/heatmap.glsl"
 #define LP_GBUFFER_READ
 #include "common/gbuffer_layout.glsl"
 
@@ -37,17 +39,6 @@ bool touchesTile(vec3 c, float r, vec2 lo, vec2 hi, float d0, float d1) {
     for (int i = 0; i < 4; ++i)
         if (dot(planes[i], c) < -r * length(planes[i])) return false;
     return true;
-}
-
-vec3 heatColour(float t) {  // blue -> cyan -> green -> yellow -> red
-    t = clamp(t, 0.0, 1.0);
-    return clamp(vec3(1.5 - abs(4.0 * t - 3.0), 1.5 - abs(4.0 * t - 2.0), 1.5 - abs(4.0 * t - 1.0)), 0.0, 1.0);
-}
-
-// HDR value that the lightpass tone map (at uExposure) turns into display-linear y.
-vec3 untonemap(vec3 y) {
-    vec3 x = pow(clamp(y, 0.0, 0.995), vec3(1.0 / 1.2));
-    return x / (1.0 - x) * exp2(-uExposure);
 }
 
 void main() {
@@ -94,7 +85,7 @@ void main() {
             barrier();
             int i = base + int(lid);
             if (i < uLightCount) {
-                vec4 pr = uLights[i].positionRange;
+                vec4 pr = uLights[i].bound;
                 // 0.1% + 1 um margin: float rounding must never drop a light that reaches the tile.
                 if (uUnbounded || touchesTile(pr.xyz, pr.w * 1.001 + 1e-6, tileLo, tileHi, d0, d1))
                     sList[atomicAdd(sCount, 1u)] = uint(i);
@@ -105,8 +96,7 @@ void main() {
             if (surface)
                 for (uint k = 0u; k < n; ++k) {
                     LpLocalLight l = uLights[sList[k]];
-                    sum += lpLocalLightRadiance(l.positionRange.xyz, l.positionRange.w, l.intensity.rgb, P, N, V, kd,
-                                                spec.rgb, spec.a, uSpecularMode);
+                    sum += lpShadeLocalLight(l, P, N, V, kd, spec.rgb, spec.a, uSpecularMode);
                 }
 #endif
             if (lid == 0u) sTotal += n;
@@ -117,7 +107,7 @@ void main() {
 #ifdef LP_TILE_HEATMAP
     vec3 scene = tonemapLightpass(applyExposure(imageLoad(uHdr, p).rgb, uExposure));
     vec3 y = sTotal == 0u ? 0.5 * scene : mix(scene, heatColour(float(sTotal) / uHeatMax), 0.6);
-    imageStore(uHdr, p, vec4(sanitizeHdr(untonemap(y)), 1.0));
+    imageStore(uHdr, p, vec4(sanitizeHdr(heatUntonemap(y, uExposure)), 1.0));
 #else
     if (surface) imageStore(uHdr, p, vec4(sanitizeHdr(imageLoad(uHdr, p).rgb + sum), 1.0));
 #endif

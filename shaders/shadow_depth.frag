@@ -5,6 +5,9 @@
 // face, so a texel that it only partly covers still occludes the receiver behind that part. Faces
 // towards the light are the lit receivers themselves: they keep the centre depth that the receivers'
 // plane bias (shadow.glsl) expects, so a flat lit surface never shadows itself.
+// Without LP_SHADOW_CONSERVATIVE (the spot lights' perspective maps, drawn without the geometry
+// shader) it writes the rasterised depth and the pass's polygon offset gives the slope bias.
+#ifdef LP_SHADOW_CONSERVATIVE
 flat in vec4 vTexelBounds;
 flat in vec2 vDepthRange;
 flat in int vFacesAway;
@@ -19,3 +22,6 @@ void main() {
     float depth = vFacesAway == 1 ? gl_FragCoord.z - 0.5 * (dx + dy) : gl_FragCoord.z + uSlopeBias * max(dx, dy);
     gl_FragDepth = clamp(depth, vDepthRange.x, vDepthRange.y);
 }
+#else
+void main() {}
+#endif

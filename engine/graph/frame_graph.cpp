@@ -610,10 +610,16 @@ bool FrameGraph::hasPass(const std::string& passName) const {
 
 GLuint FrameGraph::outputTexture(const std::string& resourceName) const {
     for (int i = int(resources_.size()) - 1; i >= 0; --i)
-        if (resources_[i].name == resourceName) return resources_[i].live ? resources_[i].texture : 0;
+        if (resources_[i].name == resourceName)
+            return !resources_[i].live ? 0 : resources_[i].importedLater ? resources_[i].importedLater() : resources_[i].texture;
     return 0;
 }
-GLuint FrameGraph::outputTexture(ResourceId id) const { return resourceOf(id).texture; }
+// A lazily imported texture (importTexture's function form, e.g. a history kept across frames) is
+// asked for its texture, as passes do.
+GLuint FrameGraph::outputTexture(ResourceId id) const {
+    const auto& r = resourceOf(id);
+    return r.importedLater ? r.importedLater() : r.texture;
+}
 
 namespace {
 std::string join(const std::vector<std::string>& v) {

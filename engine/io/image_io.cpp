@@ -216,7 +216,10 @@ void sanitize(const fs::path& path, ImageF& img) {
 }  // namespace
 
 Image8 loadImage8(const fs::path& path) {
-    const std::string bytes = readFileChecked(path, kMaxImageFileBytes, "an image file");
+    return decodeImage8(readFileChecked(path, kMaxImageFileBytes, "an image file"), path);
+}
+
+Image8 decodeImage8(const std::string& bytes, const fs::path& path) {
     if (bytes.compare(0, 8, "\x89PNG\r\n\x1a\n") == 0) {
         const std::string damage = pngDamage(bytes);
         if (!damage.empty()) fail(path, damage);
@@ -285,6 +288,15 @@ Image8 makeCheckerImage(int size, int cells) {
 Image8 loadTextureOrChecker(const fs::path& path) {
     try {
         return loadImage8(path);
+    } catch (const Error& e) {
+        logWarn(std::string(e.what()) + "; using a checker texture");
+        return makeCheckerImage();
+    }
+}
+
+Image8 decodeTextureOrChecker(const std::string& bytes, const fs::path& label) {
+    try {
+        return decodeImage8(bytes, label);
     } catch (const Error& e) {
         logWarn(std::string(e.what()) + "; using a checker texture");
         return makeCheckerImage();

@@ -24,10 +24,13 @@ struct ImageF {
 // PNG/JPG/TGA/BMP (anything stb_image reads), expanded to RGBA. A file the decoder needed more bytes
 // of than it has is "truncated", a PNG chunk whose CRC does not match "corrupt": errors, never garbage.
 Image8 loadImage8(const std::filesystem::path& path);
+// The same from an encoded image in memory (a glTF's embedded image); `label` names it in errors.
+Image8 decodeImage8(const std::string& bytes, const std::filesystem::path& label);
 // Magenta/black checker: the deliberately ugly stand-in for a texture that failed to load.
 Image8 makeCheckerImage(int size = 64, int cells = 8);
 // loadImage8, or one warning and the checker: a missing texture should not stop a render.
 Image8 loadTextureOrChecker(const std::filesystem::path& path);
+Image8 decodeTextureOrChecker(const std::string& bytes, const std::filesystem::path& label);
 
 // .hdr (Radiance; a truncated file is an error, not zero-filled) or .exr (any compression, read as
 // float32; the display window is the image, texels outside the data window are 0, and a display window

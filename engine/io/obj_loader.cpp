@@ -29,10 +29,10 @@ glm::vec3 colorOr(const tinyobj::real_t c[3], glm::vec3 fallback, const std::str
     return glm::max(glm::vec3(c[0], c[1], c[2]), glm::vec3(0.0f));
 }
 
-fs::path texturePath(const fs::path& dir, const std::string& name) {
+TextureRef texturePath(const fs::path& dir, const std::string& name) {
     if (name.empty()) return {};
     fs::path p(name);
-    return p.is_absolute() ? p : (dir / p).lexically_normal();
+    return TextureRef::file(p.is_absolute() ? p : (dir / p).lexically_normal());
 }
 
 Material convertMaterial(const tinyobj::material_t& m, const fs::path& dir, const std::string& file,
@@ -45,11 +45,27 @@ Material convertMaterial(const tinyobj::material_t& m, const fs::path& dir, cons
     out.emission = colorOr(m.emission, out.emission, "Ke", bad);
     if (std::isfinite(m.shininess)) out.shininess = std::clamp(float(m.shininess), 0.0f, 10000.0f);
     else bad.push_back("Ns");
+    out.roughness = roughnessFromShininess(out.shininess);
     out.diffuseMap = texturePath(dir, m.diffuse_texname);
-    std::string bump = !m.bump_texname.empty() ? m.bump_texname : m.normal_texname;
-    out.bumpMap = texturePath(dir, bump);
-    const auto& opt = !m.bump_texname.empty() ? m.bump_texopt : m.normal_texopt;
-    if (!bump.empty() && std::isfinite(opt.bump_multiplier)) out.bumpScale = opt.bump_multiplier;
+    out.emissiveMap = texturePath(dir, m.emissive_texname);
+    // "norm" is a tangent-space normal map; "bump" / "map_Bump" a height map (the MTL conversion in
+    // the README). tinyobjloader keeps them apart: normal_texname and bump_texname.
+    out.normalMap = texturePath(dir, m.normal_texname);
+    if (!m.normal_texname.empty() && std::isfinite(m.normal_texopt.bump_multiplier))
+        out.normalScale = m.normal_texopt.bump_multiplier;
+    out.bumpMap = texturePath(dir, m.bump_texname);
+    if (!m.bump_texname.empty() && std::isfinite(m.bump_texopt.bump_multiplier)) out.bumpScale = m.bump_texopt.bump_multiplier;
+    // d (tinyobjloader turns Tr into d = 1 - Tr): below 1 the material is see-through, which the
+    // deferred path draws as MASK at the default cutoff until a forward path exists.
+    if (std::isfinite(m.dissolve)) out.opacity = std::clamp(float(m.dissolve), 0.0f, 1.0f);
+    else bad.push_back("d");
+    if (out.opacity < 1.0f) {
+        out.alphaMode = AlphaMode::Mask;
+        std::string msg = file + ": material '" + m.name + "': d " + std::to_string(out.opacity) +
+                          " (blended transparency) is drawn as alpha MASK with cutoff 0.5 (no forward path yet)";
+        report.warnings.push_back(msg);
+        logWarn(msg);
+    }
     if (!bad.empty()) {
         std::string list;
         for (const auto& b : bad) list += (list.empty() ? "" : ", ") + b;
@@ -58,17 +74,6 @@ Material convertMaterial(const tinyobj::material_t& m, const fs::path& dir, cons
         logWarn(msg);
     }
     return out;
-}
-
-// Judged by the triangle's own size, never the model's: its area over its longest edge squared (in
-// double, so edges of 1e20 do not overflow) is about the sine of its smallest angle. Below 1e-10 it
-// is a sliver no rasteriser can shade; a 5 mm face beside a 20 km one keeps its angles and survives.
-bool degenerate(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
-    const glm::dvec3 da(a), db(b), dc(c);
-    const glm::dvec3 e0 = db - da, e1 = dc - da, e2 = dc - db;
-    const double area2 = glm::length(glm::cross(e0, e1));
-    const double longest2 = std::max({glm::dot(e0, e0), glm::dot(e1, e1), glm::dot(e2, e2)});
-    return !(area2 > 1e-10 * longest2) || !std::isfinite(area2);
 }
 
 // Reads each "mtllib" through the regular-file check, so a FIFO or folder named there is an error
@@ -232,7 +237,7 @@ MeshData loadObj(const fs::path& path, MeshLoadReport* reportOut) {
                 return glm::vec3(p[0], p[1], p[2]);
             };
             if (tri[0].vertex_index == tri[1].vertex_index || tri[1].vertex_index == tri[2].vertex_index ||
-                tri[0].vertex_index == tri[2].vertex_index || degenerate(pos(0), pos(1), pos(2))) {
+                tri[0].vertex_index == tri[2].vertex_index || degenerateTriangle(pos(0), pos(1), pos(2))) {
                 ++report.droppedDegenerate;
                 continue;
             }

@@ -1,6 +1,8 @@
 #pragma once
 // Per-frame inputs every pass sees. `gpu` and `shaders` are null when the graph is only built to be
 // described (lightpass graph, unit tests): setup code must not touch them, execute code may.
+#include <cstdint>
+
 #include <glm/glm.hpp>
 
 #include "engine/render/settings.hpp"
@@ -19,7 +21,20 @@ struct FrameData {
     int outputWidth = 0;    // the size of the displayed / saved image (the tone map's target)
     int outputHeight = 0;
     glm::mat4 view{1.0f};
+    // The projection everything is rasterised and reconstructed with: unjitteredProjection shifted by
+    // jitterPixels (engine/render/motion.hpp; equal to it when the jitter is 0).
     glm::mat4 projection{1.0f};
+    glm::mat4 unjitteredProjection{1.0f};  // the camera's own; velocity is computed from it
+    glm::vec2 jitterPixels{0.0f};          // sub-pixel offset in output pixels, +x right, +y up
+    // The previous frame (Renderer keeps it): its unjittered projection x view and its scene time
+    // (orbits at previousTime give the lights' previous positions). Without one (first frame, camera
+    // cut, resize) hasPrevious is false, previousViewProjection = unjitteredProjection x view and
+    // previousTime = time, so every velocity is 0. Models are static: their previous model matrix is
+    // their current one.
+    glm::mat4 previousViewProjection{1.0f};
+    float previousTime = 0.0f;
+    bool hasPrevious = false;
+    uint64_t frameIndex = 0;  // frames this renderer rendered before this one since its last cut
     float nearPlane = 0.1f;
     float farPlane = 100.0f;
     float time = 0.0f;

@@ -15,12 +15,14 @@ const char* localLightMethodName(LocalLightMethod m) {
         case LocalLightMethod::Scissor: return "scissor";
         case LocalLightMethod::Volumes: return "volumes";
         case LocalLightMethod::Tiled: return "tiled";
+        case LocalLightMethod::Clustered: return "clustered";
     }
     return "tiled";
 }
 
 std::vector<LocalLightMethod> allLocalLightMethods() {
-    return {LocalLightMethod::Fullscreen, LocalLightMethod::Scissor, LocalLightMethod::Volumes, LocalLightMethod::Tiled};
+    return {LocalLightMethod::Fullscreen, LocalLightMethod::Scissor, LocalLightMethod::Volumes, LocalLightMethod::Tiled,
+            LocalLightMethod::Clustered};
 }
 
 std::optional<LocalLightMethod> parseLocalLightMethod(const std::string& name) {
@@ -40,6 +42,39 @@ float hash01(uint32_t x) {
     return float(x >> 8) * (1.0f / 16777216.0f);
 }
 }  // namespace
+
+BoundingSphere localLightBounds(const PointLight& light) {
+    if (!light.spot) return {light.position, light.range};
+    const double a = glm::radians(double(light.spot->outerDegrees));
+    const double r = light.range;
+    const glm::dvec3 axis(light.spot->direction);
+    double along, radius;
+    if (a <= M_PI / 4.0) {
+        along = radius = r / (2.0 * std::cos(a));
+    } else {
+        along = r * std::cos(a);
+        radius = r * std::sin(a);
+    }
+    return {glm::vec3(glm::dvec3(light.position) + along * axis), float(radius)};
+}
+
+GpuLocalLight gpuLocalLight(const PointLight& l, const glm::mat4& view, int shadowLayer) {
+    GpuLocalLight g;
+    g.positionRange = glm::vec4(glm::vec3(view * glm::vec4(l.position, 1.0f)), l.range);
+    float cosInner = -1.5f, cosOuter = -2.0f;  // a point light: lpSpotFalloff is exactly 1 everywhere
+    glm::vec3 axis(0.0f, 0.0f, -1.0f);
+    if (l.spot) {
+        cosInner = float(std::cos(glm::radians(double(l.spot->innerDegrees))));
+        cosOuter = float(std::cos(glm::radians(double(l.spot->outerDegrees))));
+        axis = glm::normalize(glm::vec3(view * glm::vec4(l.spot->direction, 0.0f)));
+    }
+    g.intensity = glm::vec4(l.color * l.intensity, cosInner);
+    g.directionCos = glm::vec4(axis, cosOuter);
+    const BoundingSphere b = localLightBounds(l);
+    g.bound = glm::vec4(glm::vec3(view * glm::vec4(b.center, 1.0f)), b.radius);
+    g.shadow = glm::vec4(float(shadowLayer), 0.0f, 0.0f, 0.0f);
+    return g;
+}
 
 std::vector<PointLight> generateDemoLights(glm::vec3 lo, glm::vec3 hi, int count) {
     std::vector<PointLight> out;
@@ -95,6 +130,10 @@ std::vector<PointLight> localLightsForFrame(const Scene& scene, const LocalLight
         lights.insert(lights.end(), demo.begin(), demo.end());
     }
     for (auto& l : lights) {
+        if (l.spot && l.orbitSpeed != 0.0f) {  // the spot turns with its orbit
+            const glm::mat4 turn = glm::rotate(glm::mat4(1.0f), l.orbitSpeed * time, glm::vec3(0.0f, 1.0f, 0.0f));
+            l.spot->direction = glm::normalize(glm::vec3(turn * glm::vec4(l.spot->direction, 0.0f)));
+        }
         l.position = orbitPosition(l, time);
         l.orbitSpeed = 0.0f;
         l.range *= settings.rangeScale;  // --light-range-scale: shading and every method's bounds agree

@@ -18,9 +18,25 @@ std::vector<LocalLightMethod> allLocalLightMethods();
 // One light as the shaders' SSBO holds it (std430, common/local_light.glsl's LpLocalLight).
 struct GpuLocalLight {
     glm::vec4 positionRange;  // eye-space position, range
-    glm::vec4 intensity;      // colour x radiant intensity
+    glm::vec4 intensity;      // rgb colour x radiant intensity, w cos(inner angle) (a point light: -1.5)
+    glm::vec4 directionCos;   // eye-space spot axis, w cos(outer angle) (a point light: -2, so no falloff)
+    glm::vec4 bound;          // eye-space bounding sphere of all the light reaches: centre, radius
+    glm::vec4 shadow;         // x: layer of the spot shadow map array, -1 none; yzw unused
 };
-static_assert(sizeof(GpuLocalLight) == 32, "std430 layout of LpLocalLight");
+static_assert(sizeof(GpuLocalLight) == 80, "std430 layout of LpLocalLight");
+
+// A sphere holding every point a light reaches. A point light: its range sphere. A spot: the bounding
+// sphere of its spherical sector (Wronski, "Cull that cone", 2017): for an outer angle a <= 45 deg the
+// sphere through the apex and the cap's rim, centre R / (2 cos a) along the axis; above, the sphere
+// about the rim's centre R cos a along the axis, radius R sin a. Either is at most R.
+struct BoundingSphere {
+    glm::vec3 center{0.0f};
+    float radius = 0.0f;
+};
+BoundingSphere localLightBounds(const PointLight& light);
+
+// The light as the shaders read it: eye space under `view`, shadowLayer -1 when it casts none.
+GpuLocalLight gpuLocalLight(const PointLight& light, const glm::mat4& view, int shadowLayer);
 
 // `count` deterministic demo lights spread through the box [lo, hi] (position and colour seeded by the
 // index): ranges shrink as count grows so that about 8 lights overlap a point of the box.

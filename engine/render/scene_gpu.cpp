@@ -9,11 +9,12 @@
 
 namespace lp {
 
-GLuint SceneGpu::texture(const std::filesystem::path& path, bool srgb) {
-    const std::string key = path.string() + (srgb ? "#srgb" : "#linear");
+GLuint SceneGpu::texture(const TextureRef& ref, bool srgb) {
+    const std::string key = ref.key + (srgb ? "#srgb" : "#linear");
     auto it = textures_.find(key);
     if (it != textures_.end()) return it->second.id();
-    Image8 img = loadTextureOrChecker(path);
+    const std::filesystem::path path = ref.encoded ? std::filesystem::path(ref.key) : ref.path;
+    Image8 img = ref.encoded ? decodeTextureOrChecker(*ref.encoded, path) : loadTextureOrChecker(path);
     // Over the GPU's texture limits: halved until it fits, with a warning (README "Bad input").
     if (const gl::TextureFit fit = gl::fitTexture(srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, img.width, img.height); fit.halvings > 0) {
         const int w = img.width, h = img.height;
@@ -70,13 +71,26 @@ SceneGpu::SceneGpu(const Scene& scene) {
         for (const auto& m : mesh.materials) {
             GpuMaterial g;
             g.diffuse = m.diffuse;
+            g.opacity = m.opacity;
             g.specular = m.specular;
+            g.metallic = m.metallic;
             g.shininess = m.shininess;
+            g.roughness = m.roughness;
+            g.emission = m.emission;
             g.bumpScale = m.bumpScale;
+            g.normalScale = m.normalScale;
+            g.occlusionStrength = m.occlusionStrength;
+            g.alphaMask = m.alphaMode != AlphaMode::Opaque;
+            g.alphaCutoff = m.alphaCutoff;
+            g.doubleSided = m.doubleSided;
             g.flat = m.flat;
             g.name = model.name + "/" + m.name;
             if (!m.diffuseMap.empty()) g.diffuseMap = texture(m.diffuseMap, true);
             if (!m.bumpMap.empty()) g.bumpMap = texture(m.bumpMap, false);
+            if (!m.normalMap.empty()) g.normalMap = texture(m.normalMap, false);
+            if (!m.metallicRoughnessMap.empty()) g.metallicRoughnessMap = texture(m.metallicRoughnessMap, false);
+            if (!m.occlusionMap.empty()) g.occlusionMap = texture(m.occlusionMap, false);
+            if (!m.emissiveMap.empty()) g.emissiveMap = texture(m.emissiveMap, true);
             materials.push_back(g);
         }
         for (const auto& sm : mesh.subMeshes) gm.draws.push_back({sm.firstIndex, sm.indexCount, base + sm.material});

@@ -14,14 +14,28 @@
 namespace lp {
 
 struct GpuMaterial {
-    glm::vec3 diffuse{0.8f};
-    glm::vec3 specular{0.04f};
+    glm::vec3 diffuse{0.8f};  // base colour
+    float opacity = 1.0f;
+    glm::vec3 specular{0.04f};  // dielectric F0
+    float metallic = 0.0f;
     float shininess = 32.0f;
+    float roughness = 0.5f;
+    glm::vec3 emission{0.0f};
     GLuint diffuseMap = 0;  // 0: none
     GLuint bumpMap = 0;
     float bumpScale = 1.0f;
+    GLuint normalMap = 0;
+    float normalScale = 1.0f;
+    GLuint metallicRoughnessMap = 0;
+    GLuint occlusionMap = 0;
+    float occlusionStrength = 1.0f;
+    GLuint emissiveMap = 0;
+    bool alphaMask = false;
+    float alphaCutoff = 0.5f;
+    bool doubleSided = true;
     bool flat = false;  // Material::flat; the viewer's panel switches it
     std::string name;   // the model's and the material's name, "cornell_box/light"
+    bool emissive() const { return emission.x > 0.0f || emission.y > 0.0f || emission.z > 0.0f; }
 };
 
 struct GpuDraw {
@@ -49,7 +63,7 @@ public:
     size_t triangleCount = 0;
 
 private:
-    GLuint texture(const std::filesystem::path& path, bool srgb);
+    GLuint texture(const TextureRef& ref, bool srgb);
     std::map<std::string, gl::Texture> textures_;
 };
 

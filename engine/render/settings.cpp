@@ -20,12 +20,15 @@ const char* viewName(DebugView v) {
         case DebugView::ShadowMap: return "shadowmap";
         case DebugView::LightRanges: return "light-ranges";
         case DebugView::LightsPerTile: return "lights-per-tile";
+        case DebugView::LightsPerCluster: return "lights-per-cluster";
         case DebugView::WorldPosition: return "world-position";
         case DebugView::EyeVector: return "eye-vector";
         case DebugView::DepthFitted: return "depth-fitted";
         case DebugView::Tangent: return "tangent";
         case DebugView::InvalidPixels: return "invalid-pixels";
         case DebugView::ExposureEv: return "exposure-ev";
+        case DebugView::Velocity: return "velocity";
+        case DebugView::Ao: return "ao";
     }
     return "final";
 }
@@ -35,7 +38,7 @@ std::vector<DebugView> allViews() {
             DebugView::Shininess, DebugView::Specular, DebugView::Texcoords, DebugView::Lighting,
             DebugView::Environment, DebugView::Irradiance, DebugView::Prefiltered, DebugView::Dfg,
             DebugView::WorldPosition, DebugView::EyeVector, DebugView::DepthFitted, DebugView::Tangent,
-            DebugView::InvalidPixels, DebugView::ExposureEv};
+            DebugView::InvalidPixels, DebugView::ExposureEv, DebugView::Velocity, DebugView::Ao};
 }
 
 std::vector<DebugView> everyView() {
@@ -56,8 +59,12 @@ std::optional<DebugView> parseView(const std::string& name) {
     return std::nullopt;
 }
 
-std::vector<DebugView> localLightViews() { return {DebugView::LightRanges, DebugView::LightsPerTile}; }
-bool isLocalLightView(DebugView v) { return v == DebugView::LightRanges || v == DebugView::LightsPerTile; }
+std::vector<DebugView> localLightViews() {
+    return {DebugView::LightRanges, DebugView::LightsPerTile, DebugView::LightsPerCluster};
+}
+bool isLocalLightView(DebugView v) {
+    return v == DebugView::LightRanges || v == DebugView::LightsPerTile || v == DebugView::LightsPerCluster;
+}
 
 const char* brdfName(Brdf brdf) { return brdf == Brdf::Ggx ? "ggx" : "blinn-phong"; }
 
@@ -82,5 +89,16 @@ std::optional<ToneMapOperator> parseToneMap(const std::string& name) {
         if (name == toneMapName(op)) return op;
     return std::nullopt;
 }
+
+const char* antiAliasingName(AntiAliasing aa) {
+    switch (aa) {
+        case AntiAliasing::Off: return "off";
+        case AntiAliasing::Fxaa: return "fxaa";
+        case AntiAliasing::Taa: return "taa";
+        case AntiAliasing::Ssaa: return "ssaa";
+    }
+    return "off";
+}
+const char* aoResolutionName(AoResolution r) { return r == AoResolution::Half ? "half" : "full"; }
 
 }  // namespace lp

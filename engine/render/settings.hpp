@@ -15,9 +15,11 @@ enum class DebugView {
     Final, Depth, Normals, Diffuse, Position, Shininess, Specular, Texcoords, Lighting,
     Environment, Irradiance, Prefiltered, Dfg,  // environment views (passes/ibl_pass)
     ShadowMap,  // light-space depth of light settings.shadows.debugLight's shadow map
-    LightRanges, LightsPerTile,  // overlays on the final image (local_light_pass)
+    LightRanges, LightsPerTile, LightsPerCluster,  // overlays on the final image (local_light_pass)
     WorldPosition, EyeVector, DepthFitted, Tangent,  // more G-buffer views (seed 003; depth over the scene's range)
-    InvalidPixels, ExposureEv  // the HDR buffer inspected (passes/hdr_view_pass): NaN/Inf, EV false colour
+    InvalidPixels, ExposureEv,  // the HDR buffer inspected (passes/hdr_view_pass): NaN/Inf, EV false colour
+    Velocity,  // gbuffer.velocity: screen-space motion as hue (direction) and brightness (length)
+    Ao  // the ambient-occlusion target (passes/ambient_occlusion_pass)
 };
 // overlay views (not in allViews(): they are the final image with the local lights'
 // bounds or per-tile light counts drawn over it).
@@ -63,11 +65,11 @@ struct ShadowSettings {         // directional-light shadow maps (passes/shadow_
         return std::nullopt;
     }
 };
-// how ranged point lights are drawn; all four give the same image (see README).
-enum class LocalLightMethod { Fullscreen, Scissor, Volumes, Tiled };
+// how local lights (points and spots) are drawn; all five give the same image (see README).
+enum class LocalLightMethod { Fullscreen, Scissor, Volumes, Tiled, Clustered };
 const char* localLightMethodName(LocalLightMethod method);  // defined in engine/render/local_lights.cpp
 std::optional<LocalLightMethod> parseLocalLightMethod(const std::string& name);
-struct LocalLightSettings {     // ranged point lights
+struct LocalLightSettings {     // local lights: ranged point lights and spots
     bool enabled = true;
     LocalLightMethod method = LocalLightMethod::Tiled;
     bool scissor = true;        // scissor method: off draws every light full screen ('x' toggles)
@@ -76,6 +78,9 @@ struct LocalLightSettings {     // ranged point lights
     bool specular = true;       // local lights add a specular term
     bool specularOutsideRange = false;  // diffuse limited by range, specular (1/d^2 only) not
     float rangeScale = 1.0f;    // --light-range-scale: each light's range x this (< 1 cuts lights short; a sweep knob)
+    int clusterSize = 32;       // clustered: froxel tile side in pixels
+    int clusterSlices = 24;     // clustered: exponential depth slices between the near and far planes
+    int clusterSlice = -1;      // lights-per-cluster view: this slice, -1 the most over all slices
 };
 enum class ToneMapOperator { Lightpass, Aces, PbrNeutral, Agx };
 enum class IrradianceSource { SphericalHarmonics, Cubemap };
@@ -97,6 +102,19 @@ struct EnvironmentSettings {    // environment, skybox, image-based lighting, to
     int debugMip = 0;           // the 'prefiltered' debug view shows this mip
     std::string cacheDir;       // non-empty: baked environments are also cached on disk here
 };
+// Screen-space ambient occlusion (GTAO, passes/ambient_occlusion_pass): darkens only indirect light
+// (IBL diffuse and the constant ambient; IBL specular through specular occlusion), never the suns or
+// local lights. The frame builder runs it only where indirect light exists.
+enum class AoResolution { Full, Half };
+const char* aoResolutionName(AoResolution r);
+struct AoSettings {
+    bool enabled = true;        // --ao / --no-ao
+    float radius = 1.0f;        // view-space search radius, metres
+    int directions = 2;         // slice directions per pixel (rotated per pixel over a 4x4 tile)
+    int steps = 4;              // depth samples per side of each slice
+    AoResolution resolution = AoResolution::Half;  // half: computed at half size, depth-aware upsample
+    float intensity = 1.0f;     // AO^intensity (1: the physical value)
+};
 struct PostSettings {           // bloom and toon (engine/post/post_config.hpp resolves them)
     enum class BloomMethod { Separable, MipChain };
     enum class Backend { Auto, Cuda, Glsl };  // auto: CUDA on an NVIDIA GL context with a CUDA device
@@ -115,14 +133,35 @@ struct PostSettings {           // bloom and toon (engine/post/post_config.hpp r
     Backend backend = Backend::Auto;
 };
 
+struct MotionBlurSettings {     // passes/motion_blur_pass (McGuire et al. 2012)
+    bool enabled = false;       // --motion-blur
+    int samples = 16;           // --motion-blur-samples: gather taps per pixel
+    float shutter = 0.5f;       // --motion-blur-shutter: fraction of the frame interval the shutter is open
+};
+
 inline constexpr float kMinRenderScale = 0.25f;  // --render-scale's lower bound
+
+// Anti-aliasing (--aa). ssaa renders at --ssaa-scale S times the output size in each axis (S x S
+// samples a pixel) and box-filters the HDR image down before the tone map; fxaa filters the
+// tone-mapped image; taa blends jittered frames through the motion vectors.
+enum class AntiAliasing { Off, Fxaa, Taa, Ssaa };
+const char* antiAliasingName(AntiAliasing aa);
+inline constexpr int kMaxSsaaScale = 4;
+struct AntiAliasSettings {
+    AntiAliasing method = AntiAliasing::Off;
+    int ssaaScale = 2;              // --ssaa-scale: samples per axis with --aa ssaa (2..4)
+    float taaHistoryWeight = 0.1f;  // --taa-history-weight: the current frame's weight in the TAA blend
+    bool dither = true;             // triangular-PDF noise of +-1 LSB before every 8-bit quantisation
+};
 
 struct RenderSettings {
     int width = 1280;
     int height = 720;
     // --render-scale: the G-buffer, lighting and post effects run at round(size x renderScale)
-    // (0.25..1) and are upsampled bilinearly to width x height before the tone map.
+    // (0.25..1) and are upsampled bilinearly to width x height before the tone map. With --aa ssaa
+    // they run at ssaaScale x the size instead (internalRenderScale() in frame/frame_builder.hpp).
     float renderScale = 1.0f;
+    AntiAliasSettings aa;
     DebugView view = DebugView::Final;
     float exposureEV = 0.0f;     // manual exposure; with autoExposure the compensation added to it
     bool autoExposure = false;   // --auto-exposure: the histogram pass picks the exposure per frame
@@ -135,7 +174,9 @@ struct RenderSettings {
     ShadowSettings shadows;
     LocalLightSettings localLights;
     EnvironmentSettings environment;
+    AoSettings ao;
     PostSettings post;
+    MotionBlurSettings motionBlur;
     GBufferSettings gbuffer;     // normal format and position mode (--gbuffer, --gbuffer-position)
 };
 

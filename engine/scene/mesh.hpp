@@ -1,7 +1,8 @@
 #pragma once
-// CPU-side mesh and material data, as loaded from OBJ/MTL or made by the primitive generators.
+// CPU-side mesh and material data, as loaded from OBJ/MTL or glTF or made by the primitive generators.
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -16,20 +17,65 @@ struct Vertex {
     glm::vec4 tangent{1.0f, 0.0f, 0.0f, 1.0f};  // xyz tangent, w = handedness (+1/-1) for the bitangent
 };
 
-// MTL-style material. Colours are linear RGB. Texture paths are absolute (resolved by the loader
-// against the MTL file's folder) or empty.
+// A texture: a file, or an image embedded in a glTF (encoded bytes, decoded when uploaded). `key`
+// identifies it for sharing ("<file>" or "<gltf>#images[3]").
+struct TextureRef {
+    std::filesystem::path path;
+    std::shared_ptr<const std::string> encoded;
+    std::string key;
+    bool empty() const { return path.empty() && !encoded; }
+    void clear() { *this = TextureRef{}; }
+    static TextureRef file(const std::filesystem::path& p) {
+        TextureRef t;
+        t.path = p;
+        t.key = p.string();
+        return t;
+    }
+};
+
+enum class AlphaMode { Opaque, Mask, Blend };
+
+// The one material model of both formats: metallic-roughness (glTF 2.0), with the dielectric F0
+// (`specular`) kept as a colour so that MTL's Ks maps onto it exactly. What the lights see per texel:
+//   kd = base (1 - metallic), F0 = mix(specular, base, metallic), GGX alpha = roughness^2,
+//   Blinn-Phong exponent n = 2 / alpha^2 - 2 (the Beckmann equivalence alpha = sqrt(2 / (n + 2))).
+// MTL: base = Kd, specular = Ks, metallic 0, n = Ns; glTF: specular 0.04, n from roughnessFactor.
+// Colours are linear RGB. Texture coordinates use v = 0 at the bottom of the image (glTF's are flipped
+// on load).
 struct Material {
     std::string name = "default";
-    glm::vec3 diffuse{0.8f};    // Kd
-    glm::vec3 specular{0.04f};  // Ks
-    float shininess = 32.0f;    // Ns (Blinn-Phong exponent), clamped to [0, 10000]
-    glm::vec3 emission{0.0f};   // Ke
-    std::filesystem::path diffuseMap;  // map_Kd (sRGB)
-    std::filesystem::path bumpMap;     // map_Bump / bump / norm (linear)
-    float bumpScale = 1.0f;            // -bm
+    glm::vec3 diffuse{0.8f};    // base colour: Kd, or baseColorFactor.rgb
+    float opacity = 1.0f;       // baseColorFactor.a, or MTL d (1 - Tr)
+    glm::vec3 specular{0.04f};  // dielectric F0: Ks, or 0.04 for glTF
+    float metallic = 0.0f;      // metallicFactor (MTL: 0)
+    float shininess = 32.0f;    // Ns (Blinn-Phong exponent), clamped to [0, 10000]; glTF: from roughness
+    float roughness = 0.5f;     // perceptual roughness: roughnessFactor, or from Ns (used with metallicRoughnessMap)
+    glm::vec3 emission{0.0f};   // Ke, or emissiveFactor x KHR_materials_emissive_strength: radiance added
+    TextureRef diffuseMap;            // map_Kd / baseColorTexture (sRGB; its alpha multiplies opacity)
+    TextureRef metallicRoughnessMap;  // glTF: roughness in g, metallic in b (linear)
+    TextureRef normalMap;             // MTL norm / glTF normalTexture: tangent-space normal (linear)
+    float normalScale = 1.0f;         // normalTexture.scale / norm -bm: scales the map's x and y
+    TextureRef bumpMap;               // MTL map_Bump / bump: height map in r (linear)
+    float bumpScale = 1.0f;           // -bm
+    TextureRef occlusionMap;          // glTF occlusionTexture: r darkens ambient and IBL light only
+    float occlusionStrength = 1.0f;
+    TextureRef emissiveMap;           // map_Ke / emissiveTexture (sRGB), multiplies `emission`
+    AlphaMode alphaMode = AlphaMode::Opaque;
+    float alphaCutoff = 0.5f;         // MASK: texels with alpha below it are not drawn
+    bool doubleSided = true;          // MTL: always (thin walls); glTF: doubleSided
     // Flat-lit (seed 003): shown as its diffuse colour, untouched by any light (lamps, light globes).
     bool flat = false;
 };
+
+// Smallest perceptual roughness a material can have (GGX alpha = r^2 = 4e-4). The G-buffer's
+// shininess channel holds it (shaders/common/gbuffer_layout.glsl gbufferEncodeShininess).
+constexpr float kMinRoughness = 0.02f;
+
+// The Blinn-Phong exponent equivalent to a perceptual roughness (alpha = r^2 = sqrt(2 / (n + 2))),
+// r clamped to [kMinRoughness, 1] (n from 0 to 1.25e7), and back. The analytic BRDFs clamp n to
+// 10000 themselves (r >= 0.119, shaders/common/brdf.glsl); image-based lighting reaches the floor.
+float shininessFromRoughness(float roughness);
+float roughnessFromShininess(float shininess);
 
 struct SubMesh {
     uint32_t firstIndex = 0;

@@ -1,5 +1,6 @@
 #include "engine/scene/mesh_ops.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -75,6 +76,28 @@ void computeBounds(MeshData& mesh) {
         mesh.boundsMax = glm::max(mesh.boundsMax, v.position);
     }
     if (mesh.boundsMin.x > mesh.boundsMax.x) mesh.boundsMin = mesh.boundsMax = glm::vec3(0.0f);  // none finite
+}
+
+}  // namespace lp
+
+namespace lp {
+
+float shininessFromRoughness(float roughness) {
+    const double r = std::clamp(double(roughness), double(kMinRoughness), 1.0);
+    return float(2.0 / (r * r * r * r) - 2.0);  // alpha = r^2
+}
+
+float roughnessFromShininess(float shininess) {
+    const double n = std::clamp(double(shininess), 0.0, double(shininessFromRoughness(kMinRoughness)));
+    return float(std::sqrt(std::sqrt(2.0 / (n + 2.0))));
+}
+
+bool degenerateTriangle(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
+    const glm::dvec3 da(a), db(b), dc(c);
+    const glm::dvec3 e0 = db - da, e1 = dc - da, e2 = dc - db;
+    const double area2 = glm::length(glm::cross(e0, e1));
+    const double longest2 = std::max({glm::dot(e0, e0), glm::dot(e1, e1), glm::dot(e2, e2)});
+    return !(area2 > 1e-10 * longest2) || !std::isfinite(area2);
 }
 
 }  // namespace lp

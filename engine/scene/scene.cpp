@@ -18,6 +18,16 @@ glm::mat4 Camera::projection(float aspect) const {
     return glm::perspective(glm::radians(fovYDegrees), aspect, nearPlane, farPlane);
 }
 
+Camera Scene::cameraAt(double time) const {
+    Camera c = camera;
+    if (!cameraPath) return c;
+    const CameraKey k = cameraPathAt(*cameraPath, time);
+    c.position = k.position;
+    c.target = k.target;
+    c.fovYDegrees = k.fovYDegrees;
+    return c;
+}
+
 void Scene::bounds(glm::vec3& lo, glm::vec3& hi) const {
     lo = glm::vec3(std::numeric_limits<float>::max());
     hi = glm::vec3(std::numeric_limits<float>::lowest());

@@ -9,6 +9,7 @@
 
 #include <glm/glm.hpp>
 
+#include "engine/scene/camera_path.hpp"
 #include "engine/scene/mesh.hpp"
 
 namespace lp {
@@ -32,6 +33,16 @@ struct DirectionalLight {
     bool castsShadows = true;
 };
 
+// The cone of a spot light: the point light's shading times a falloff that is 1 within innerDegrees
+// of the axis and 0 past outerDegrees (common/local_light.glsl's lpSpotFalloff).
+struct SpotCone {
+    glm::vec3 direction{0.0f, -1.0f, 0.0f};  // unit, world space: where the spot points
+    float innerDegrees = 20.0f;              // half-angles from the axis, 0 <= inner <= outer < 90
+    float outerDegrees = 30.0f;
+    bool castsShadow = false;                // one perspective shadow map (passes/spot_shadow_pass)
+};
+
+// A local light: a ranged point light, or a spot when `spot` is set.
 struct PointLight {
     glm::vec3 position{0.0f};
     glm::vec3 color{1.0f};
@@ -40,6 +51,7 @@ struct PointLight {
     // Demo animation: orbit around `orbitCenter` about +Y at `orbitSpeed` radians per second.
     glm::vec3 orbitCenter{0.0f};
     float orbitSpeed = 0.0f;
+    std::optional<SpotCone> spot;
 };
 
 struct Environment {
@@ -69,10 +81,11 @@ struct Effects {
     ToonEffect toon;
 };
 
-// One placed model: a mesh loaded from OBJ or made by a primitive generator.
+// One placed model: a mesh loaded from OBJ or glTF, or made by a primitive generator.
 struct ModelInstance {
     std::string name;
-    std::filesystem::path obj;  // empty for primitives
+    std::filesystem::path obj;   // empty for primitives and glTF
+    std::filesystem::path gltf;  // .gltf / .glb; empty for primitives and OBJ
     std::string primitive;      // "plane" | "sphere" | "cube" | ""
     glm::mat4 transform{1.0f};
     std::optional<glm::vec3> diffuseOverride;
@@ -87,11 +100,17 @@ struct Scene {
     Camera camera;
     std::vector<ModelInstance> models;
     std::vector<DirectionalLight> directionalLights;
-    std::vector<PointLight> pointLights;
+    std::vector<PointLight> pointLights;  // the local lights, points and spots, in file order
     Environment environment;
     glm::vec3 ambient{0.03f};  // constant ambient radiance in BRDF mode
     bool lightGlobes = false;  // "lightGlobes": draw each point light as a small flat-lit globe (seed 003)
     Effects effects;
+    // "cameraPath" / --camera-path: when set, frames at time t use cameraAt(t) instead of `camera`
+    // (up, near and far stay the camera's). --camera removes it.
+    std::optional<CameraPath> cameraPath;
+
+    // The camera of a frame at `time`: the path's position, target and fov there, or `camera`.
+    Camera cameraAt(double time) const;
 
     // World-space bounds of every model (after transforms).
     void bounds(glm::vec3& lo, glm::vec3& hi) const;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -11,8 +12,8 @@
 
 #include "engine/core/error.hpp"
 #include "engine/core/log.hpp"
-#include "engine/scene/material_roughness.hpp"
 #include "engine/io/file_check.hpp"
+#include "engine/io/gltf_loader.hpp"
 #include "engine/io/obj_loader.hpp"
 #include "engine/scene/primitives.hpp"
 
@@ -128,6 +129,17 @@ struct Reader {
     }
 };
 
+json parseJson(const std::string& text, const fs::path& origin) {
+    try {
+        return json::parse(text);
+    } catch (const json::exception& e) {  // parse_error, and out_of_range for numbers such as 1e400
+        std::string what = e.what();
+        auto pos = what.find("parse error");
+        if (pos == std::string::npos && what.find("] ") != std::string::npos) pos = what.find("] ") + 2;
+        throw Error(origin.string() + ": invalid JSON: " + (pos == std::string::npos ? what : what.substr(pos)));
+    }
+}
+
 fs::path resolve(const fs::path& base, const std::string& p) {
     fs::path path(p);
     return path.is_absolute() ? path : (base / path).lexically_normal();
@@ -153,16 +165,54 @@ void parseCamera(const Reader& r, const json& j, Camera& cam) {
     cam.up = r.unit(cam.up, w + ".up");
 }
 
+// "cameraPath": {"keys": [{"time", "position", "target", "fov"}, ...], "loop": false}; `w` names it.
+CameraPath parseCameraPath(const Reader& r, const json& j, const std::string& w) {
+    r.onlyKnown(j, w, {"keys", "loop"});
+    if (!j.contains("keys")) r.fail(w + ".keys", "missing (an array of at least two keys)");
+    const json& keys = j["keys"];
+    if (!keys.is_array()) r.fail(w + ".keys", "expected an array of at least two keys");
+    if (keys.size() < 2) r.fail(w + ".keys", "has " + std::to_string(keys.size()) + " key(s); a path needs at least two");
+    CameraPath path;
+    path.loop = r.boolean(j, "loop", w, false);
+    for (size_t i = 0; i < keys.size(); ++i) {
+        const std::string wk = w + ".keys[" + std::to_string(i) + "]";
+        const json& k = keys[i];
+        r.onlyKnown(k, wk, {"time", "position", "target", "fov"});
+        for (const char* field : {"time", "position", "target", "fov"})
+            if (!k.contains(field)) r.fail(wk + "." + field, "missing");
+        CameraKey key;
+        key.time = r.number(k["time"], wk + ".time");
+        if (std::abs(key.time) > 1e9) r.fail(wk + ".time", formatNumber(key.time) + " is outside [-1e9, 1e9] s");
+        key.position = r.point(k, "position", wk, key.position);
+        key.target = r.point(k, "target", wk, key.target);
+        key.fovYDegrees = r.number(k["fov"], wk + ".fov");
+        if (!(key.fovYDegrees > 0.0f && key.fovYDegrees < 180.0f))
+            r.fail(wk + ".fov", formatNumber(key.fovYDegrees) + " is outside (0, 180) degrees");
+        if (!(glm::length(glm::dvec3(key.target) - glm::dvec3(key.position)) > 0.0)) r.fail(wk + ".target", "equals the position");
+        if (i > 0 && !(key.time > path.keys.back().time))
+            r.fail(wk + ".time", formatNumber(key.time) + " is not after keys[" + std::to_string(i - 1) + "].time (" +
+                                     formatNumber(path.keys.back().time) + "): key times must increase");
+        path.keys.push_back(key);
+    }
+    return path;
+}
+
 void parseModel(const Reader& r, const json& j, const std::string& w, const fs::path& base, ModelInstance& m) {
-    r.onlyKnown(j, w, {"name", "obj", "primitive", "translate", "rotate", "scale", "material"});
+    r.onlyKnown(j, w, {"name", "obj", "gltf", "primitive", "translate", "rotate", "scale", "up", "material"});
     m.name = r.string(j, "name", w);
     std::string obj = r.string(j, "obj", w);
+    std::string gltf = r.string(j, "gltf", w);
     m.primitive = r.string(j, "primitive", w);
-    if (obj.empty() == m.primitive.empty()) r.fail(w, "needs exactly one of \"obj\" or \"primitive\"");
+    if (int(!obj.empty()) + int(!gltf.empty()) + int(!m.primitive.empty()) != 1)
+        r.fail(w, "needs exactly one of \"obj\", \"gltf\" or \"primitive\"");
     if (!m.primitive.empty() && m.primitive != "plane" && m.primitive != "sphere" && m.primitive != "cube")
         r.fail(w + ".primitive", "unknown primitive '" + m.primitive + "' (plane, sphere, cube)");
     if (!obj.empty()) m.obj = resolve(base, obj);
-    if (m.name.empty()) m.name = obj.empty() ? m.primitive : fs::path(obj).stem().string();
+    if (!gltf.empty()) {
+        m.gltf = resolve(base, gltf);
+        if (!isGltfPath(m.gltf)) r.fail(w + ".gltf", gltf + ": expected a .gltf or .glb file");
+    }
+    if (m.name.empty()) m.name = !obj.empty() ? fs::path(obj).stem().string() : !gltf.empty() ? fs::path(gltf).stem().string() : m.primitive;
     glm::vec3 t = r.point(j, "translate", w, glm::vec3(0.0f));
     glm::vec3 rot = r.vec3(j, "rotate", w, glm::vec3(0.0f));
     glm::vec3 s = r.vec3(j, "scale", w, glm::vec3(1.0f));
@@ -178,6 +228,9 @@ void parseModel(const Reader& r, const json& j, const std::string& w, const fs::
     x = glm::rotate(x, glm::radians(rot.x), glm::vec3(1, 0, 0));
     x = glm::rotate(x, glm::radians(rot.z), glm::vec3(0, 0, 1));
     m.transform = glm::scale(x, s);
+    const std::string up = r.string(j, "up", w);
+    if (!up.empty() && up != "y" && up != "z") r.fail(w + ".up", "'" + up + "': expected \"y\" or \"z\"");
+    if (up == "z") m.transform = m.transform * zUpToYUp();  // turned Y-up first, then placed
     if (j.contains("material")) {
         const json& mat = j["material"];
         const std::string mw = w + ".material";
@@ -211,8 +264,13 @@ void parseLight(const Reader& r, const json& j, const std::string& w, Scene& sce
         l.intensity = r.bounded(j, "intensity", w, l.intensity, 0.0f, kMaxIntensity);
         l.castsShadows = r.boolean(j, "shadows", w, l.castsShadows);
         scene.directionalLights.push_back(l);
-    } else if (type == "point") {
-        r.onlyKnown(j, w, {"type", "position", "color", "intensity", "range", "orbit"});
+    } else if (type == "point" || type == "spot") {
+        const bool spot = type == "spot";
+        if (spot)
+            r.onlyKnown(j, w, {"type", "position", "direction", "color", "intensity", "range", "innerAngle",
+                               "outerAngle", "castsShadow", "orbit"});
+        else
+            r.onlyKnown(j, w, {"type", "position", "color", "intensity", "range", "orbit"});
         PointLight l;
         l.position = r.point(j, "position", w, l.position);
         l.color = r.color(j, "color", w, l.color);
@@ -224,17 +282,61 @@ void parseLight(const Reader& r, const json& j, const std::string& w, Scene& sce
             l.orbitCenter = r.point(j["orbit"], "center", ow, l.position);
             l.orbitSpeed = r.bounded(j["orbit"], "speed", ow, 0.5f, -1e6f, 1e6f);
         }
+        if (spot) {
+            SpotCone c;
+            c.direction = r.unit(r.vec3(j, "direction", w, c.direction), w + ".direction");
+            c.innerDegrees = r.number(j, "innerAngle", w, c.innerDegrees);
+            c.outerDegrees = r.number(j, "outerAngle", w, c.outerDegrees);
+            if (c.innerDegrees < 0.0f) r.fail(w + ".innerAngle", formatNumber(c.innerDegrees) + " degrees: must be >= 0");
+            if (!(c.outerDegrees > 0.0f && c.outerDegrees < 90.0f))
+                r.fail(w + ".outerAngle", formatNumber(c.outerDegrees) + " degrees: must be in (0, 90)");
+            if (c.outerDegrees < c.innerDegrees)
+                r.fail(w + ".outerAngle", formatNumber(c.outerDegrees) + " degrees is less than innerAngle " +
+                                              formatNumber(c.innerDegrees));
+            c.castsShadow = r.boolean(j, "castsShadow", w, c.castsShadow);
+            l.spot = c;
+        }
         scene.pointLights.push_back(l);
     } else {
-        r.fail(w + ".type", type.empty() ? "missing (directional or point)" : "unknown light type '" + type + "' (directional, point)");
+        r.fail(w + ".type", type.empty() ? "missing (directional, point or spot)"
+                                         : "unknown light type '" + type + "' (directional, point, spot)");
     }
 }
 
-void loadMesh(const Reader& r, ModelInstance& m, const std::string& where) {
+// The glTF's lights join the scene's, placed by the model's transform.
+void addGltfLights(const GltfContent& g, const glm::mat4& transform, Scene& scene) {
+    for (DirectionalLight d : g.directionalLights) {
+        const glm::vec3 dir = glm::mat3(transform) * d.direction;
+        if (!(glm::length(dir) > 0.0f)) continue;
+        d.direction = glm::normalize(dir);
+        scene.directionalLights.push_back(d);
+    }
+    for (PointLight p : g.pointLights) {
+        p.position = glm::vec3(transform * glm::vec4(p.position, 1.0f));
+        p.orbitCenter = p.position;
+        if (p.spot) {
+            const glm::vec3 dir = glm::mat3(transform) * p.spot->direction;
+            if (!(glm::length(dir) > 0.0f)) continue;
+            p.spot->direction = glm::normalize(dir);
+        }
+        scene.pointLights.push_back(p);
+    }
+}
+
+void loadMesh(const Reader& r, ModelInstance& m, const std::string& where, Scene& scene) {
     if (!m.primitive.empty()) {
         if (m.primitive == "plane") m.mesh = makePlane(1.0f, 8);
         else if (m.primitive == "sphere") m.mesh = makeSphere(0.5f, 64, 32);
         else m.mesh = makeCube(1.0f);
+    } else if (!m.gltf.empty()) {
+        if (!fs::exists(m.gltf)) r.fail(where + ".gltf", m.gltf.string() + ": file not found");
+        try {
+            GltfContent g = loadGltf(m.gltf);
+            m.mesh = std::move(g.mesh);
+            addGltfLights(g, m.transform, scene);
+        } catch (const Error& e) {  // "<scene>: models[i].gltf: <gltf>: <element>: <what>"
+            r.fail(where + ".gltf", e.what());
+        }
     } else {
         if (!fs::exists(m.obj)) r.fail(where + ".obj", m.obj.string() + ": file not found");
         try {
@@ -273,22 +375,16 @@ void requirePlacedWithinRange(const Reader& r, const ModelInstance& m, const std
 
 Scene parseScene(const std::string& text, const fs::path& origin, bool loadMeshes) {
     Reader r{origin.string()};
-    json root;
-    try {
-        root = json::parse(text);
-    } catch (const json::exception& e) {  // parse_error, and out_of_range for numbers such as 1e400
-        std::string what = e.what();
-        auto pos = what.find("parse error");
-        if (pos == std::string::npos && what.find("] ") != std::string::npos) pos = what.find("] ") + 2;
-        throw Error(origin.string() + ": invalid JSON: " + (pos == std::string::npos ? what : what.substr(pos)));
-    }
-    r.onlyKnown(root, "", {"camera", "models", "lights", "environment", "ambient", "effects", "description", "lightGlobes"});
+    const json root = parseJson(text, origin);
+    r.onlyKnown(root, "", {"camera", "cameraPath", "models", "lights", "environment", "ambient", "effects", "description",
+                           "lightGlobes"});
     if (root.contains("description") && !root["description"].is_string()) r.fail("description", "expected a string");
     Scene scene;
     scene.file = origin;
     const fs::path base = origin.has_parent_path() ? origin.parent_path() : fs::path(".");
     bool hasCamera = root.contains("camera");
     if (hasCamera) parseCamera(r, root["camera"], scene.camera);
+    if (root.contains("cameraPath")) scene.cameraPath = parseCameraPath(r, root["cameraPath"], "cameraPath");
     if (root.contains("models")) {
         if (!root["models"].is_array()) r.fail("models", "expected an array");
         for (size_t i = 0; i < root["models"].size(); ++i) {
@@ -342,7 +438,7 @@ Scene parseScene(const std::string& text, const fs::path& origin, bool loadMeshe
     if (loadMeshes) {
         for (size_t i = 0; i < scene.models.size(); ++i) {
             try {
-                loadMesh(r, scene.models[i], "models[" + std::to_string(i) + "]");
+                loadMesh(r, scene.models[i], "models[" + std::to_string(i) + "]", scene);
                 requirePlacedWithinRange(r, scene.models[i], "models[" + std::to_string(i) + "]");
             } catch (const Error& e) {
                 std::string msg = e.what();
@@ -353,6 +449,15 @@ Scene parseScene(const std::string& text, const fs::path& origin, bool loadMeshe
         if (!hasCamera) frameCamera(scene);
     }
     return scene;
+}
+
+CameraPath parseCameraPathFile(const std::string& text, const fs::path& origin) {
+    Reader r{origin.string()};
+    return parseCameraPath(r, parseJson(text, origin), "cameraPath");
+}
+
+CameraPath loadCameraPath(const fs::path& file) {
+    return parseCameraPathFile(readFileChecked(file, kMaxTextFileBytes, "a camera path file", true), file);
 }
 
 Scene loadScene(const fs::path& file) {
@@ -382,15 +487,42 @@ void frameCamera(Scene& scene) {
     scene.camera.farPlane = distance + radius * 3.0f;
 }
 
-Scene sceneForModel(const fs::path& obj) {
+bool isModelPath(const fs::path& file) {
+    std::string ext = file.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return ext == ".obj" || isGltfPath(file);
+}
+
+glm::mat4 zUpToYUp() { return glm::rotate(glm::mat4(1.0f), glm::radians(-90.0f), glm::vec3(1, 0, 0)); }
+
+Scene sceneForModel(const fs::path& file, bool zUp) {
     Scene scene;
-    scene.file = obj;
+    scene.file = file;
     ModelInstance m;
-    m.name = obj.stem().string();
-    m.obj = obj;
-    if (!fs::exists(obj)) throw Error(obj.string() + ": file not found");
-    m.mesh = loadObj(obj);
+    m.name = file.stem().string();
+    if (zUp) m.transform = zUpToYUp();
+    if (!fs::exists(file)) throw Error(file.string() + ": file not found");
+    std::optional<Camera> fileCamera;
+    bool fileLights = false;
+    if (isGltfPath(file)) {
+        m.gltf = file;
+        GltfContent g = loadGltf(file);
+        m.mesh = std::move(g.mesh);
+        addGltfLights(g, m.transform, scene);
+        fileLights = !g.directionalLights.empty() || !g.pointLights.empty();
+        if (!g.cameras.empty()) fileCamera = g.cameras.front();
+    } else {
+        m.obj = file;
+        m.mesh = loadObj(file);
+    }
     scene.models.push_back(std::move(m));
+    // The viewer's key and fill light, unless the file brings its own (a glTF's KHR_lights_punctual).
+    if (fileLights) {
+        scene.ambient = glm::vec3(0.05f);
+        frameCamera(scene);
+        if (fileCamera) scene.camera = *fileCamera;
+        return scene;
+    }
     DirectionalLight key;
     key.direction = glm::normalize(glm::vec3(-0.4f, -1.0f, -0.6f));
     key.intensity = 3.0f;
@@ -402,6 +534,7 @@ Scene sceneForModel(const fs::path& obj) {
     scene.directionalLights = {key, fill};
     scene.ambient = glm::vec3(0.05f);
     frameCamera(scene);
+    if (fileCamera) scene.camera = *fileCamera;  // a glTF's first camera
     return scene;
 }
 

@@ -8,12 +8,23 @@
 
 namespace lp {
 
-// Parses the file and loads every model it names (OBJ or primitive).
+// Parses the file and loads every model it names (OBJ, glTF or primitive); a glTF's lights join the
+// scene's lights, placed by the model's transform.
 Scene loadScene(const std::filesystem::path& file);
 // Parses JSON text; `origin` names the file in errors and anchors relative paths.
 Scene parseScene(const std::string& json, const std::filesystem::path& origin, bool loadMeshes = true);
-// A model-viewer scene: the OBJ, a camera framed on its bounds, a key and a fill light.
-Scene sceneForModel(const std::filesystem::path& obj);
+// A camera path file (--camera-path): the scene file's "cameraPath" object alone. Errors name the
+// file and the key ("p.json: cameraPath.keys[2].time: ...").
+CameraPath loadCameraPath(const std::filesystem::path& file);
+CameraPath parseCameraPathFile(const std::string& json, const std::filesystem::path& origin);
+// A model-viewer scene: the OBJ or glTF (by extension), a camera framed on its bounds (or the glTF's
+// first camera), a key and a fill light (or the glTF's own lights).
+// zUp: the file is Z-up and is turned to Y-up (a -90 degree rotation about +X).
+Scene sceneForModel(const std::filesystem::path& file, bool zUp = false);
+// The rotation that turns a Z-up model Y-up: (x, y, z) -> (x, z, -y).
+glm::mat4 zUpToYUp();
+// A model file sceneForModel opens (.obj, .gltf, .glb, any case), not a scene file.
+bool isModelPath(const std::filesystem::path& file);
 // Places the camera so the bounds fill the view (looking from +Z, slightly above).
 void frameCamera(Scene& scene);
 

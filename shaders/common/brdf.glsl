@@ -46,6 +46,14 @@ float ggxAlphaFromShininess(float shininess) {
     return max(sqrt(2.0 / (n + 2.0)), LP_GGX_MIN_ALPHA);
 }
 
+// A perceptual roughness r (GGX alpha = r^2) as the Blinn-Phong exponent with the same alpha,
+// n = 2 / alpha^2 - 2, clamped to [0, 10000] (r >= 0.119); lp::shininessFromRoughness on the CPU.
+float shininessFromRoughness(float roughness) {
+    float r = clamp(roughness, 0.0, 1.0);
+    float a2 = r * r * r * r;
+    return a2 <= 2.0 / 10002.0 ? 10000.0 : clamp(2.0 / a2 - 2.0, 0.0, 10000.0);
+}
+
 // D(h) = alpha^2 / (pi ((N.H)^2 (alpha^2 - 1) + 1)^2), written with |N x H|^2 = 1 - (N.H)^2 from
 // the cross product: near the peak 1 - nh*nh cancels to rounding noise far above alpha^2.
 float ggxDistribution(vec3 N, vec3 H, float alpha) {

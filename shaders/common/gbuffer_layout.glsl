@@ -1,11 +1,15 @@
 // The G-buffer's texture bindings, its layouts, and the one API every pass reads it through.
 //   depth     D32F      window depth: standard (near 0, far 1) or reversed-Z (near 1, far 0)
 //   normal    depends on the normal format (below)
-//   diffuse   RGBA8     diffuse albedo (linear); alpha 0 marks a flat-lit material
+//   diffuse   RGBA8     diffuse albedo kd = base (1 - metallic) (linear); alpha 0 marks a flat-lit
+//                       material, else holds the material's ambient occlusion (>= 1/255)
 //   position  RGBA32F   eye-space position in xyz; absent when positions are rebuilt from depth
-//   specular  RGBA16F   specular colour in rgb, Blinn-Phong shininess in a (gbufferEncodeShininess)
+//   specular  RGBA16F   F0 = mix(dielectric F0, base, metallic) in rgb, Blinn-Phong shininess in a
+//                       (gbufferEncodeShininess; the roughness's exponent: GGX alpha = sqrt(2 / (n + 2)))
 //             (RGBA8, colour only, for the seed-packed formats, which keep shininess with the normal)
 //   texcoord  RG32F     texture coordinates (only when a debug view asks for them)
+//   velocity  RG16F     uv_current - uv_previous, unjittered (only when a pass reads motion;
+//                       common/velocity.glsl); read as a plain sampler by the passes that use it
 // The layout is chosen by the #defines a program is compiled with (lp::gbufferDefines):
 //   LP_GBUFFER_NORMAL_UNPACKED (default)  RGBA32F  xyz
 //   LP_GBUFFER_NORMAL_SEED_PACKED         RGBA16F  (x, y, shininess); z = sqrt(1 - x² - y²) >= 0
@@ -92,6 +96,9 @@ vec3 gbufferDecodeNormal(vec4 t) {
 }
 #endif
 
+// Ambient occlusion in the diffuse target's alpha, kept above 0 (0 marks flat-lit materials).
+float gbufferEncodeOcclusion(float occlusion) { return max(clamp(occlusion, 0.0, 1.0), 1.0 / 255.0); }
+
 // ---- decoding (every pass that reads the G-buffer) ---------------------------------------------
 #ifdef LP_GBUFFER_READ
 layout(binding = LP_BIND_DEPTH) uniform sampler2D uGbufferDepth;
@@ -149,7 +156,9 @@ vec3 gbufferPosition(ivec2 p) {
 vec3 gbufferDiffuse(ivec2 p) { return texelFetch(uGbufferDiffuse, p, 0).rgb; }
 // A flat-lit material (Material::flat): its radiance is its diffuse colour and no light adds to it.
 // Needs the diffuse target bound (the lighting view does not read it: there every surface is lit).
-bool gbufferIsFlat(ivec2 p) { return texelFetch(uGbufferDiffuse, p, 0).a < 0.5; }
+bool gbufferIsFlat(ivec2 p) { return texelFetch(uGbufferDiffuse, p, 0).a < 0.5 / 255.0; }
+// The material's ambient occlusion (1 without an occlusion map): scales ambient and IBL light only.
+float gbufferOcclusion(ivec2 p) { return texelFetch(uGbufferDiffuse, p, 0).a; }
 vec3 gbufferSpecular(ivec2 p) { return texelFetch(uGbufferSpecular, p, 0).rgb; }
 float gbufferShininess(ivec2 p) {
 #ifdef LP_GBUFFER_SHININESS_IN_NORMAL

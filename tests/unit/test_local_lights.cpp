@@ -203,8 +203,60 @@ TEST(LocalLightGraph, OverlayViewsDrawOverTheFinalImage) {
     EXPECT_LT(pos("sky"), pos("light_globes"));  // globes show against the background too
     EXPECT_EQ(parseView("light-ranges"), DebugView::LightRanges);
     EXPECT_EQ(parseView("lights-per-tile"), DebugView::LightsPerTile);
+    EXPECT_EQ(parseView("lights-per-cluster"), DebugView::LightsPerCluster);
+    r.view = DebugView::LightsPerCluster;
+    EXPECT_TRUE(has(order(sceneWithLights(3), r), "lights_per_cluster"));
+    EXPECT_EQ(parseLocalLightMethod("clustered"), LocalLightMethod::Clustered);
     for (LocalLightMethod m : allLocalLightMethods()) EXPECT_EQ(parseLocalLightMethod(localLightMethodName(m)), m);
     EXPECT_FALSE(parseLocalLightMethod("deferred"));
 }
 
+}  // namespace
+
+namespace {
+// Every point of a spot's spherical sector (within the range, within the outer angle of the axis)
+// lies in localLightBounds, and the bound is no larger than the range sphere.
+TEST(LocalLightBounds, SpotBoundingSphereHoldsTheWholeCone) {
+    for (float outer : {1.0f, 20.0f, 44.9f, 45.0f, 45.1f, 60.0f, 89.0f}) {
+        PointLight l;
+        l.position = {0.5f, 2.0f, -1.0f};
+        l.range = 3.0f;
+        l.spot = SpotCone{glm::normalize(glm::vec3(0.3f, -1.0f, 0.2f)), 0.0f, outer, false};
+        const BoundingSphere b = localLightBounds(l);
+        EXPECT_LE(b.radius, l.range * (1.0f + 1e-6f)) << outer;
+        const glm::dvec3 axis(l.spot->direction);
+        const glm::dvec3 u = glm::normalize(glm::cross(axis, glm::dvec3(1, 0, 0))), v = glm::cross(axis, u);
+        double worst = 0.0;
+        for (int i = 0; i <= 40; ++i)          // distance from the apex, 0..R
+            for (int j = 0; j <= 20; ++j)      // angle from the axis, 0..outer
+                for (int k = 0; k < 16; ++k) {  // around the axis
+                    const double d = l.range * i / 40.0, a = glm::radians(double(outer)) * j / 20.0, t = M_PI * k / 8.0;
+                    const glm::dvec3 p = glm::dvec3(l.position) +
+                                         d * (std::cos(a) * axis + std::sin(a) * (std::cos(t) * u + std::sin(t) * v));
+                    worst = std::max(worst, glm::length(p - glm::dvec3(b.center)) - b.radius);
+                }
+        EXPECT_LE(worst, 1e-5 * l.range) << "outer " << outer;
+    }
+    PointLight point;
+    point.range = 2.0f;
+    EXPECT_EQ(localLightBounds(point).radius, 2.0f);
+}
+
+// The GPU record: a point light's cone encoding gives no falloff; a spot's axis in eye space.
+TEST(LocalLightSelection, GpuRecordEncodesTheCone) {
+    PointLight p;
+    p.range = 2.0f;
+    GpuLocalLight g = gpuLocalLight(p, glm::mat4(1.0f), -1);
+    EXPECT_LT(g.directionCos.w, -1.0f);
+    EXPECT_LT(g.intensity.w, -1.0f);
+    EXPECT_EQ(g.bound, glm::vec4(0.0f, 0.0f, 0.0f, 2.0f));
+    EXPECT_EQ(g.shadow.x, -1.0f);
+    p.spot = SpotCone{{1.0f, 0.0f, 0.0f}, 30.0f, 60.0f, true};
+    const glm::mat4 view = glm::rotate(glm::mat4(1.0f), glm::radians(90.0f), glm::vec3(0, 1, 0));
+    g = gpuLocalLight(p, view, 2);
+    EXPECT_NEAR(g.directionCos.z, -1.0f, 1e-6f);  // +X world is -Z after this rotation
+    EXPECT_NEAR(g.directionCos.w, 0.5f, 1e-6f);
+    EXPECT_NEAR(g.intensity.w, std::sqrt(3.0f) / 2.0f, 1e-6f);
+    EXPECT_EQ(g.shadow.x, 2.0f);
+}
 }  // namespace

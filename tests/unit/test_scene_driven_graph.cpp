@@ -87,36 +87,45 @@ TEST(SceneDrivenGraph, TableOfScenesAndSettings) {
     };
     const std::vector<Row> rows = {
         {"cornell", "defaults", [](RenderSettings&) {},
-         {"ibl_bake", "gbuffer", "shadow_map_0", "global_lights", "local_lights", "sky", "tonemap"}, lit},
+         {"ibl_bake", "gbuffer", "ao", "ao_denoise", "shadow_map_0", "global_lights", "local_lights", "sky", "tonemap"}, lit},
         {"cornell", "positions rebuilt from depth",
          [](RenderSettings& s) { s.gbuffer.position = GBufferPositionMode::Depth; },
-         {"ibl_bake", "gbuffer", "shadow_map_0", "global_lights", "local_lights", "sky", "tonemap"},
+         {"ibl_bake", "gbuffer", "ao", "ao_denoise", "shadow_map_0", "global_lights", "local_lights", "sky", "tonemap"},
          {"depth", "normal", "diffuse", "specular"}},
         {"cornell", "lighting view (no albedo, no sky)", [](RenderSettings& s) { s.view = DebugView::Lighting; },
-         {"gbuffer", "shadow_map_0", "global_lights", "local_lights", "tonemap"},
+         {"gbuffer", "ao", "ao_denoise", "shadow_map_0", "global_lights", "local_lights", "tonemap"},
          {"depth", "normal", "position", "specular"}},
         {"cornell", "--no-shadows", [](RenderSettings& s) { s.shadows.enabled = false; },
-         {"ibl_bake", "gbuffer", "global_lights", "local_lights", "sky", "tonemap"}, lit},
+         {"ibl_bake", "gbuffer", "ao", "ao_denoise", "global_lights", "local_lights", "sky", "tonemap"}, lit},
         {"cornell", "--no-local-lights", [](RenderSettings& s) { s.localLights.enabled = false; },
-         {"ibl_bake", "gbuffer", "shadow_map_0", "global_lights", "sky", "tonemap"}, lit},
+         {"ibl_bake", "gbuffer", "ao", "ao_denoise", "shadow_map_0", "global_lights", "sky", "tonemap"}, lit},
         {"cornell", "--ibl --bloom --toon",
          [](RenderSettings& s) {
              s.environment.ibl = true;
              s.post.bloom = true;
              s.post.toon = true;
          },
-         {"ibl_bake", "gbuffer", "shadow_map_0", "global_lights", "ibl", "local_lights", "sky", "bloom",
+         {"ibl_bake", "gbuffer", "ao", "ao_denoise", "shadow_map_0", "global_lights", "ibl", "local_lights", "sky", "bloom",
           "bloom_composite", "toon", "tonemap"},
          lit},
         {"cornell", "texcoords view", [](RenderSettings& s) { s.view = DebugView::Texcoords; },
          {"gbuffer", "debug_view"}, {"depth", "texcoord"}},
-        {"unlit", "defaults", [](RenderSettings&) {}, {"gbuffer", "global_lights", "tonemap"}, lit},
+        {"unlit", "defaults", [](RenderSettings&) {}, {"gbuffer", "ao", "ao_denoise", "global_lights", "tonemap"}, lit},
         {"unlit", "--all-passes", [](RenderSettings& s) { s.allPasses = true; },
-         {"ibl_bake", "gbuffer", "global_lights", "ibl", "local_lights", "sky", "bloom", "bloom_composite", "tonemap"},
+         {"ibl_bake", "gbuffer", "ao", "ao_denoise", "global_lights", "ibl", "local_lights", "sky", "bloom", "bloom_composite",
+          "tonemap"},
          lit},
         {"ibl-spheres", "defaults", [](RenderSettings&) {},
-         {"ibl_bake", "gbuffer", "global_lights", "ibl", "sky", "tonemap"}, lit},
-        {"lights-4k", "defaults", [](RenderSettings&) {}, {"gbuffer", "global_lights", "local_lights", "tonemap"}, lit},
+         {"ibl_bake", "gbuffer", "ao", "ao_denoise", "global_lights", "ibl", "sky", "tonemap"}, lit},
+        {"cornell", "--no-ao", [](RenderSettings& s) { s.ao.enabled = false; },
+         {"ibl_bake", "gbuffer", "shadow_map_0", "global_lights", "local_lights", "sky", "tonemap"}, lit},
+        {"cornell", "ao view (computed regardless of --no-ao)",
+         [](RenderSettings& s) {
+             s.view = DebugView::Ao;
+             s.ao.enabled = false;
+         },
+         {"gbuffer", "ao", "ao_denoise", "debug_view"}, {"depth", "normal", "position", "specular"}},
+        {"lights-4k", "defaults", [](RenderSettings&) {}, {"gbuffer", "ao", "ao_denoise", "global_lights", "local_lights", "tonemap"}, lit},
     };
     for (const Row& row : rows) {
         RenderSettings s = small();
@@ -166,6 +175,7 @@ TEST(SceneDrivenGraph, TogglingAnEffectChangesExactlyItsPasses) {
         {"ibl", [](RenderSettings& s, bool on) { s.environment.ibl = on; }, {"ibl"}, "ibl"},
         {"bloom", [](RenderSettings& s, bool on) { s.post.bloom = on; }, {"bloom", "bloom_composite"}, "bloom"},
         {"toon", [](RenderSettings& s, bool on) { s.post.toon = on; }, {"toon"}, "toon"},
+        {"ambient occlusion", [](RenderSettings& s, bool on) { s.ao.enabled = on; }, {"ao", "ao_denoise"}, "ao"},
     };
     for (const Toggle& t : toggles) {
         RenderSettings on = small(), off = small();
@@ -189,9 +199,12 @@ TEST(SceneDrivenGraph, SkippedPassesAllocateNothing) {
     s.allPasses = true;
     const Built all = build(bundledScene("unlit"), s);
     auto bytes = [](GLenum format) { return fg::TextureDesc{320, 180, format}.bytes(); };
-    // depth, normal, diffuse, position, specular; hdr; ldr.final: nothing for shadows, lights, sky, IBL.
+    const size_t halfBytes = fg::TextureDesc{160, 90, GL_RG16F}.bytes();
+    // depth, normal, diffuse, position, specular; the AO's half-size raw and full-size target (its
+    // ambient is lit); hdr; ldr.final: nothing for shadows, lights, sky, IBL.
     EXPECT_EQ(normal.transientBytes, bytes(GL_DEPTH_COMPONENT32F) + bytes(gbufferNormalFormat(s.gbuffer.normal)) +
                                          bytes(GL_RGBA8) + bytes(GL_RGBA32F) + bytes(gbufferSpecularFormat(s.gbuffer.normal)) +
+                                         halfBytes + bytes(GL_R8) +
                                          bytes(GL_RGBA16F) + bytes(GL_RGBA8));
     EXPECT_GT(all.transientBytes, normal.transientBytes);  // bloom's buffers
 
@@ -219,10 +232,41 @@ TEST(SceneDrivenGraph, LocalLightsAllOutOfViewSkipThePass) {
     scene.camera.target = scene.camera.position + (scene.camera.position - scene.camera.target);
     EXPECT_EQ(localLightsInView(makeFrameData(scene, s, 0.0f)), 0);
     const Built b = build(scene, s);
-    EXPECT_EQ(b.runs, (Names{"gbuffer", "global_lights", "tonemap"}));
+    EXPECT_EQ(b.runs, (Names{"gbuffer", "ao", "ao_denoise", "global_lights", "tonemap"}));
     EXPECT_EQ(b.reasons.at("local_lights"), "skipped: all 4096 local lights are out of view");
     s.allPasses = true;
     EXPECT_TRUE(build(scene, s).runs.count("local_lights"));
+}
+
+// Ambient occlusion runs only where there is indirect light to occlude: IBL or a non-zero ambient.
+TEST(SceneDrivenGraph, AmbientOcclusionOnlyWithIndirectLight) {
+    Scene scene = bundledScene("lights-4k");  // no environment map; ambient 0.005
+    RenderSettings s = small();
+    EXPECT_TRUE(build(scene, s).runs.count("ao"));
+    scene.ambient = glm::vec3(0.0f);
+    const Built dark = build(scene, s);
+    EXPECT_FALSE(dark.runs.count("ao"));
+    EXPECT_FALSE(dark.runs.count("ao_denoise"));
+    EXPECT_EQ(dark.reasons.at("ao"), "skipped: no indirect light to occlude (IBL off, ambient 0)");
+    EXPECT_EQ(dark.reasons.at("ao_denoise"), "skipped: no indirect light to occlude (IBL off, ambient 0)");
+    scene.ambient = glm::vec3(0.0f, 0.0f, 1e-3f);  // one channel is enough
+    EXPECT_TRUE(build(scene, s).runs.count("ao_denoise"));
+
+    // IBL alone (ibl-spheres has ambient 0) calls for it; IBL off there leaves nothing indirect.
+    RenderSettings ibl = small();
+    EXPECT_TRUE(build(bundledScene("ibl-spheres"), ibl).runs.count("ao"));
+    ibl.environment.ibl = false;
+    EXPECT_EQ(build(bundledScene("ibl-spheres"), ibl).reasons.at("ao"),
+              "skipped: no indirect light to occlude (IBL off, ambient 0)");
+
+    RenderSettings off = small();
+    off.ao.enabled = false;
+    EXPECT_EQ(build(bundledScene("cornell"), off).reasons.at("ao"), "skipped: ambient occlusion is off (--no-ao)");
+    off.allPasses = true;  // --all-passes does not override an explicit --no-ao
+    EXPECT_FALSE(build(bundledScene("cornell"), off).runs.count("ao"));
+    scene.ambient = glm::vec3(0.0f);
+    s.allPasses = true;  // but adds it without indirect light
+    EXPECT_TRUE(build(scene, s).runs.count("ao"));
 }
 
 // Spheres against a 90-degree frustum looking down -Z (near 1, far 10): the distance to a side
@@ -301,4 +345,143 @@ TEST(SceneDrivenGraph, ScaledRenderSizeRoundsAndNeverReachesZero) {
     EXPECT_EQ(scaledRenderSize(1920, 1080, 0.75f), glm::ivec2(1440, 810));
     EXPECT_EQ(scaledRenderSize(3, 1, 0.25f), glm::ivec2(1, 1));
     EXPECT_EQ(scaledRenderSize(64, 64, std::nanf("")), glm::ivec2(64, 64));  // not finite: full size
+}
+
+// --aa ssaa: the G-buffer, lighting and post effects run at S x the output size, the downsample pass
+// brings the HDR buffer to the output size (no upscale pass), and --render-scale is not used.
+TEST(SceneDrivenGraph, SsaaRendersAboveTheOutputSizeAndDownsamples) {
+    RenderSettings s = small();  // 320 x 180
+    s.post.bloom = true;
+    s.renderScale = 0.5f;  // not used with ssaa
+    s.aa.method = AntiAliasing::Ssaa;
+    for (int scale : {2, 3, 4}) {
+        s.aa.ssaaScale = scale;
+        EXPECT_FLOAT_EQ(internalRenderScale(s), float(scale));
+        Names runs;
+        auto sizes = liveSizes(bundledScene("cornell"), s, &runs);
+        EXPECT_TRUE(runs.count("ssaa_downsample")) << scale;
+        EXPECT_FALSE(runs.count("upscale")) << scale;
+        EXPECT_FALSE(runs.count("fxaa")) << scale;
+        EXPECT_EQ(sizes["gbuffer.depth"], glm::ivec2(320 * scale, 180 * scale)) << scale;
+        EXPECT_EQ(sizes["hdr"], glm::ivec2(320 * scale, 180 * scale)) << scale;
+        EXPECT_EQ(sizes["bloom"], glm::ivec2(320 * scale, 180 * scale)) << scale;
+        EXPECT_EQ(sizes["hdr.output"], glm::ivec2(320, 180)) << scale;
+        EXPECT_EQ(sizes["ldr.final"], glm::ivec2(320, 180)) << scale;
+    }
+    Built built = build(bundledScene("cornell"), s);
+    EXPECT_NE(built.reasons["upscale"].find("--aa ssaa"), std::string::npos) << built.reasons["upscale"];
+    // A debug view at ssaa is brought to the output size by the nearest-texel pass.
+    s.view = DebugView::Normals;
+    Names runs;
+    auto sizes = liveSizes(bundledScene("cornell"), s, &runs);
+    EXPECT_TRUE(runs.count("upscale_debug"));
+    EXPECT_EQ(sizes["ldr.debug.output"], glm::ivec2(320, 180));
+    // Off: the render scale applies again, and neither AA pass runs (each skipped with its reason).
+    s = small();
+    EXPECT_FLOAT_EQ(internalRenderScale(s), 1.0f);
+    built = build(bundledScene("cornell"), s);
+    EXPECT_FALSE(built.runs.count("ssaa_downsample"));
+    EXPECT_FALSE(built.runs.count("fxaa"));
+    EXPECT_NE(built.reasons["ssaa_downsample"].find("not ssaa"), std::string::npos);
+    EXPECT_NE(built.reasons["fxaa"].find("not fxaa"), std::string::npos);
+}
+
+// --aa fxaa: the tone map writes RGBA16F (no quantisation there) and the fxaa pass the RGBA8 display
+// image at the output size, also at render scale < 1.
+TEST(SceneDrivenGraph, FxaaFollowsAFloatToneMap) {
+    RenderSettings s = small();
+    s.aa.method = AntiAliasing::Fxaa;
+    for (float scale : {1.0f, 0.5f}) {
+        s.renderScale = scale;
+        FrameData frame = makeFrameData(bundledScene("cornell"), s, 0.0f);
+        fg::FrameGraph graph;
+        PassStates passes;
+        buildFrameGraph(graph, passes, frame);
+        graph.compile();
+        EXPECT_TRUE(graph.isLive("fxaa"));
+        EXPECT_TRUE(graph.isLive("tonemap"));
+        EXPECT_EQ(graph.isLive("upscale"), scale < 1.0f);
+        std::map<std::string, fg::TextureDesc> live;
+        for (const fg::ResourceReport& r : graph.resources())
+            if (r.live) live[r.name] = r.desc;
+        ASSERT_TRUE(live.count("ldr.tonemapped"));
+        EXPECT_EQ(live["ldr.tonemapped"].format, GLenum(GL_RGBA16F));
+        EXPECT_EQ(live["ldr.final"].format, GLenum(GL_RGBA8));
+        EXPECT_EQ(live["ldr.final"].width, 320);
+    }
+}
+
+// --aa taa: the G-buffer writes velocity, the taa pass reads it with the imported history and its
+// result goes to the tone map; a G-buffer view is not anti-aliased (nor jittered).
+TEST(SceneDrivenGraph, TaaReadsVelocityAndImportsItsHistory) {
+    RenderSettings s = small();
+    s.aa.method = AntiAliasing::Taa;
+    EXPECT_TRUE(temporalAntiAliasing(s));
+    Built built = build(bundledScene("cornell"), s);
+    EXPECT_TRUE(built.runs.count("taa"));
+    EXPECT_TRUE(built.gbuffer.count("velocity"));
+    EXPECT_FALSE(built.runs.count("fxaa"));
+    EXPECT_FALSE(built.runs.count("ssaa_downsample"));
+    s.view = DebugView::Normals;
+    EXPECT_FALSE(temporalAntiAliasing(s));
+    built = build(bundledScene("cornell"), s);
+    EXPECT_FALSE(built.runs.count("taa"));
+    EXPECT_NE(built.reasons["taa"].find("G-buffer view"), std::string::npos) << built.reasons["taa"];
+    s = small();
+    built = build(bundledScene("cornell"), s);
+    EXPECT_FALSE(built.gbuffer.count("velocity"));  // only TAA (or the velocity view) asks for it
+    EXPECT_NE(built.reasons["taa"].find("not taa"), std::string::npos);
+}
+
+// Halton(2,3): the known first terms, 16 distinct phases inside the pixel, centred on average.
+TEST(SceneDrivenGraph, TaaJitterIsHalton23In16Phases) {
+    EXPECT_DOUBLE_EQ(halton(1, 2), 0.5);
+    EXPECT_DOUBLE_EQ(halton(2, 2), 0.25);
+    EXPECT_DOUBLE_EQ(halton(3, 2), 0.75);
+    EXPECT_DOUBLE_EQ(halton(1, 3), 1.0 / 3.0);
+    EXPECT_DOUBLE_EQ(halton(2, 3), 2.0 / 3.0);
+    EXPECT_DOUBLE_EQ(halton(4, 3), 1.0 / 9.0 + 1.0 / 3.0);
+    std::set<std::pair<float, float>> phases;
+    glm::dvec2 mean(0.0);
+    for (uint64_t i = 0; i < 16; ++i) {
+        const glm::vec2 j = taaJitterPixels(i);
+        EXPECT_GE(j.x, -0.5f);
+        EXPECT_LT(j.x, 0.5f);
+        EXPECT_GE(j.y, -0.5f);
+        EXPECT_LT(j.y, 0.5f);
+        phases.insert({j.x, j.y});
+        mean += glm::dvec2(j) / 16.0;
+        EXPECT_EQ(taaJitterPixels(i + 16), j);  // 16 phases repeat
+    }
+    EXPECT_EQ(phases.size(), 16u);
+    EXPECT_LT(std::abs(mean.x), 0.05);
+    EXPECT_LT(std::abs(mean.y), 0.05);
+}
+
+// The history is used only by the next frame of the same size and settings with a previous frame.
+TEST(SceneDrivenGraph, TaaHistoryResetsOnCutResizeAndSettingChange) {
+    RenderSettings s = small();
+    s.aa.method = AntiAliasing::Taa;
+    FrameData frame = makeFrameData(bundledScene("cornell"), s, 0.0f);
+    frame.hasPrevious = true;
+    TaaPass state;
+    state.latest = 0;
+    state.size = {frame.outputWidth, frame.outputHeight};
+    state.signature = settingsSignature(s);
+    EXPECT_TRUE(taaHistoryUsable(state, frame, settingsSignature(s)));
+    FrameData cut = frame;
+    cut.hasPrevious = false;  // a camera cut, the first frame, a rewind
+    EXPECT_FALSE(taaHistoryUsable(state, cut, settingsSignature(s)));
+    state.size = {frame.outputWidth + 1, frame.outputHeight};  // a resize
+    EXPECT_FALSE(taaHistoryUsable(state, frame, settingsSignature(s)));
+    state.size = {frame.outputWidth, frame.outputHeight};
+    RenderSettings changed = s;
+    changed.exposureEV = 1.0f;
+    EXPECT_NE(settingsSignature(changed), settingsSignature(s));
+    EXPECT_FALSE(taaHistoryUsable(state, frame, settingsSignature(changed)));
+    changed = s;
+    changed.aa.taaHistoryWeight = 0.2f;
+    EXPECT_NE(settingsSignature(changed), settingsSignature(s));
+    state.latest = -1;  // nothing resolved yet
+    EXPECT_FALSE(taaHistoryUsable(state, frame, settingsSignature(s)));
 }

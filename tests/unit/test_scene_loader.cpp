@@ -7,7 +7,6 @@
 #include <sstream>
 
 #include "engine/core/error.hpp"
-#include "engine/scene/material_roughness.hpp"
 #include "engine/scene/scene_loader.hpp"
 
 using namespace lp;
@@ -66,7 +65,7 @@ TEST(SceneLoader, ErrorsNameFileAndField) {
               std::string::npos);
     EXPECT_NE(errorFor(R"({"models": [{"primitive": "torus"}]})").find("unknown primitive 'torus'"), std::string::npos);
     EXPECT_NE(errorFor(R"({"models": [{}]})").find("exactly one of"), std::string::npos);
-    EXPECT_NE(errorFor(R"({"lights": [{"type": "spot"}]})").find("lights[0].type: unknown light type 'spot'"), std::string::npos);
+    EXPECT_NE(errorFor(R"({"lights": [{"type": "area"}]})").find("lights[0].type: unknown light type 'area' (directional, point, spot)"), std::string::npos);
     EXPECT_NE(errorFor(R"({"lights": [{"type": "point", "range": 0}]})").find("lights[0].range: must be > 0"), std::string::npos);
     EXPECT_NE(errorFor(R"({"lights": [{"type": "directional", "direction": [0, 0, 0]}]})").find("zero vector"), std::string::npos);
     EXPECT_NE(errorFor(R"({"lights": [{"type": "point", "color": [-1, 0, 0]}]})").find(">= 0"), std::string::npos);
@@ -168,4 +167,45 @@ TEST(SceneLoader, MaterialRoughnessSetsTheEquivalentShininess) {
     }
     EXPECT_NE(errorFor(R"({"models": [{"primitive": "cube", "material": {"roughness": "smooth"}}]})").find("material.roughness"),
               std::string::npos);
+}
+
+TEST(SceneLoader, SpotLightFields) {
+    Scene s = parseScene(R"({"lights": [
+      {"type": "spot", "position": [0, 2, 0], "direction": [0, -2, 0], "color": [1, 0.5, 0.25], "intensity": 3,
+       "range": 4, "innerAngle": 10, "outerAngle": 25, "castsShadow": true},
+      {"type": "spot", "position": [1, 2, 0]},
+      {"type": "point", "position": [0, 1, 0]}]})",
+                         "test.json", false);
+    ASSERT_EQ(s.pointLights.size(), 3u);
+    ASSERT_TRUE(s.pointLights[0].spot.has_value());
+    const SpotCone& c = *s.pointLights[0].spot;
+    EXPECT_EQ(c.direction, glm::vec3(0.0f, -1.0f, 0.0f));  // normalised
+    EXPECT_EQ(c.innerDegrees, 10.0f);
+    EXPECT_EQ(c.outerDegrees, 25.0f);
+    EXPECT_TRUE(c.castsShadow);
+    EXPECT_EQ(s.pointLights[0].range, 4.0f);
+    ASSERT_TRUE(s.pointLights[1].spot.has_value());  // defaults: straight down, 20 / 30 degrees, no shadow
+    EXPECT_EQ(s.pointLights[1].spot->outerDegrees, 30.0f);
+    EXPECT_FALSE(s.pointLights[1].spot->castsShadow);
+    EXPECT_FALSE(s.pointLights[2].spot.has_value());
+}
+
+TEST(SceneLoader, SpotLightErrorsNameFileAndLight) {
+    auto spot = [](const std::string& fields) {
+        return errorFor(R"({"lights": [{"type": "point"}, {"type": "spot", )" + fields + "}]}");
+    };
+    EXPECT_EQ(spot(R"("direction": [0, 0, 0])"), "test.json: lights[1].direction: is the zero vector");
+    EXPECT_EQ(spot(R"("innerAngle": 30, "outerAngle": 20)"),
+              "test.json: lights[1].outerAngle: 20 degrees is less than innerAngle 30");
+    EXPECT_EQ(spot(R"("outerAngle": 90)"), "test.json: lights[1].outerAngle: 90 degrees: must be in (0, 90)");
+    EXPECT_EQ(spot(R"("outerAngle": 0, "innerAngle": 0)"), "test.json: lights[1].outerAngle: 0 degrees: must be in (0, 90)");
+    EXPECT_EQ(spot(R"("innerAngle": -5)"), "test.json: lights[1].innerAngle: -5 degrees: must be >= 0");
+    EXPECT_EQ(spot(R"("innerAngle": "wide")"), "test.json: lights[1].innerAngle: expected a number");
+    EXPECT_EQ(spot(R"("castsShadow": 1)"), "test.json: lights[1].castsShadow: expected true or false");
+    EXPECT_NE(spot(R"("cone": 3)").find("test.json: lights[1].cone: unknown field"), std::string::npos);
+    // A point light takes no spot fields.
+    EXPECT_NE(errorFor(R"({"lights": [{"type": "point", "direction": [0, -1, 0]}]})").find("lights[0].direction: unknown field"),
+              std::string::npos);
+    // NaN cannot be written in JSON; a huge number is the non-finite case a file can hold.
+    EXPECT_EQ(spot(R"("outerAngle": 1e400)").find("test.json: invalid JSON"), 0u);
 }

@@ -1,0 +1,644 @@
+#include "engine/io/gltf_loader.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstring>
+#include <functional>
+#include <set>
+#include <sstream>
+
+#include <glm/gtc/matrix_inverse.hpp>
+#include <nlohmann/json.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <tiny_gltf.h>
+
+#include "engine/core/error.hpp"
+#include "engine/core/log.hpp"
+#include "engine/io/file_check.hpp"
+#include "engine/scene/mesh_ops.hpp"
+
+namespace lp {
+namespace fs = std::filesystem;
+
+bool isGltfPath(const fs::path& path) {
+    std::string ext = path.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return ext == ".gltf" || ext == ".glb";
+}
+
+namespace {
+
+std::string formatNumber(double v) {
+    std::ostringstream s;
+    s << v;
+    return s.str();
+}
+
+// Extensions this loader understands; a file that requires any other is refused (the spec's rule).
+const std::set<std::string> kSupportedExtensions = {"KHR_lights_punctual", "KHR_materials_emissive_strength"};
+constexpr size_t kMaxElements = size_t(1) << 28;  // accessor count limit: 268M elements
+
+// tinygltf reads external buffers and images through these: the same regular-file check as every
+// other input (a FIFO named as a buffer would block the read forever).
+bool fileExists(const std::string& path, void*) {
+    std::error_code ec;
+    return fs::exists(path, ec);
+}
+std::string expandPath(const std::string& path, void*) { return path; }
+bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void*) {
+    try {
+        const std::string bytes = readFileChecked(path, kMaxImageFileBytes, "a glTF buffer or image");
+        out->assign(bytes.begin(), bytes.end());
+        return true;
+    } catch (const Error& e) {
+        if (err) *err += e.what();
+        return false;
+    }
+}
+bool writeWholeFile(std::string*, const std::string&, const std::vector<unsigned char>&, void*) { return false; }
+
+// Images are decoded when they are uploaded (SceneGpu), so that a bad one becomes a checker with a
+// warning: tinygltf only hands over the encoded bytes (embedded or data: URIs).
+bool keepEncodedImage(tinygltf::Image* image, const int, std::string*, std::string*, int, int, const unsigned char* bytes,
+                      int size, void*) {
+    image->image.assign(bytes, bytes + size);
+    image->as_is = true;
+    return true;
+}
+
+struct Loader {
+    const tinygltf::Model& model;
+    std::string file;
+    MeshLoadReport& report;
+
+    [[noreturn]] void fail(const std::string& where, const std::string& what) const { throw Error(file + ": " + where + ": " + what); }
+    void warn(const std::string& where, const std::string& what) const {
+        const std::string msg = file + ": " + where + ": " + what;
+        report.warnings.push_back(msg);
+        logWarn(msg);
+    }
+
+    static int componentCount(int type) {
+        switch (type) {
+            case TINYGLTF_TYPE_SCALAR: return 1;
+            case TINYGLTF_TYPE_VEC2: return 2;
+            case TINYGLTF_TYPE_VEC3: return 3;
+            case TINYGLTF_TYPE_VEC4: return 4;
+            case TINYGLTF_TYPE_MAT2: return 4;
+            case TINYGLTF_TYPE_MAT3: return 9;
+            case TINYGLTF_TYPE_MAT4: return 16;
+        }
+        return 0;
+    }
+    static int componentSize(int type) {
+        switch (type) {
+            case TINYGLTF_COMPONENT_TYPE_BYTE:
+            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
+            case TINYGLTF_COMPONENT_TYPE_SHORT:
+            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
+            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+            case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
+        }
+        return 0;
+    }
+
+    // The accessor's bytes, checked to lie inside its buffer view and buffer: tinygltf checks neither.
+    struct View {
+        const unsigned char* data = nullptr;  // nullptr: no buffer view (all zeros, per the spec)
+        size_t stride = 0, count = 0;
+        int components = 0, componentType = 0;
+        bool normalized = false;
+    };
+    View view(int index, const std::string& where, const std::set<int>& types, const std::set<int>& componentTypes) const {
+        const std::string aw = where + " (accessors[" + std::to_string(index) + "])";
+        if (index < 0 || size_t(index) >= model.accessors.size())
+            fail(where, "accessor " + std::to_string(index) + " does not exist (" + std::to_string(model.accessors.size()) + " accessors)");
+        const tinygltf::Accessor& a = model.accessors[size_t(index)];
+        if (a.sparse.isSparse) fail(aw, "sparse accessors are not supported");
+        if (!types.count(a.type)) fail(aw, "unexpected type " + std::to_string(a.type) + " for this attribute");
+        if (!componentTypes.count(a.componentType))
+            fail(aw, "unexpected componentType " + std::to_string(a.componentType) + " for this attribute");
+        if (a.count > kMaxElements) fail(aw, "count " + std::to_string(a.count) + " is over the limit");
+        View v;
+        v.components = componentCount(a.type);
+        v.componentType = a.componentType;
+        v.normalized = a.normalized;
+        v.count = a.count;
+        const size_t elementSize = size_t(v.components) * size_t(componentSize(a.componentType));
+        v.stride = elementSize;
+        if (a.bufferView < 0) return v;
+        if (size_t(a.bufferView) >= model.bufferViews.size())
+            fail(aw, "bufferView " + std::to_string(a.bufferView) + " does not exist (" + std::to_string(model.bufferViews.size()) + " buffer views)");
+        const tinygltf::BufferView& bv = model.bufferViews[size_t(a.bufferView)];
+        const std::string bw = "bufferViews[" + std::to_string(a.bufferView) + "]";
+        if (bv.buffer < 0 || size_t(bv.buffer) >= model.buffers.size())
+            fail(bw, "buffer " + std::to_string(bv.buffer) + " does not exist (" + std::to_string(model.buffers.size()) + " buffers)");
+        const tinygltf::Buffer& buffer = model.buffers[size_t(bv.buffer)];
+        if (bv.byteOffset > buffer.data.size() || bv.byteLength > buffer.data.size() - bv.byteOffset)
+            fail(bw, "bytes " + std::to_string(bv.byteOffset) + "+" + std::to_string(bv.byteLength) + " run past the end of buffers[" +
+                         std::to_string(bv.buffer) + "] (" + std::to_string(buffer.data.size()) + " bytes)");
+        if (bv.byteStride) {
+            if (bv.byteStride < elementSize) fail(bw, "byteStride " + std::to_string(bv.byteStride) + " is smaller than an element");
+            v.stride = bv.byteStride;
+        }
+        if (a.count > 0) {
+            const size_t last = a.byteOffset + v.stride * (a.count - 1) + elementSize;  // < 2^28 * 2^8 + ..., no overflow
+            if (a.byteOffset > bv.byteLength || last > bv.byteLength)
+                fail(aw, std::to_string(a.count) + " elements from byte " + std::to_string(a.byteOffset) + " run past the end of " + bw +
+                             " (" + std::to_string(bv.byteLength) + " bytes)");
+        }
+        v.data = buffer.data.data() + bv.byteOffset + a.byteOffset;
+        return v;
+    }
+
+    static float component(const View& v, size_t element, int c) {
+        if (!v.data) return 0.0f;
+        const unsigned char* p = v.data + v.stride * element + size_t(c) * size_t(componentSize(v.componentType));
+        switch (v.componentType) {
+            case TINYGLTF_COMPONENT_TYPE_FLOAT: {
+                float f;
+                std::memcpy(&f, p, 4);
+                return f;
+            }
+            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return v.normalized ? float(*p) / 255.0f : float(*p);
+            case TINYGLTF_COMPONENT_TYPE_BYTE: {
+                const float x = float(int8_t(*p));
+                return v.normalized ? std::max(x / 127.0f, -1.0f) : x;
+            }
+            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+                uint16_t s;
+                std::memcpy(&s, p, 2);
+                return v.normalized ? float(s) / 65535.0f : float(s);
+            }
+            case TINYGLTF_COMPONENT_TYPE_SHORT: {
+                int16_t s;
+                std::memcpy(&s, p, 2);
+                return v.normalized ? std::max(float(s) / 32767.0f, -1.0f) : float(s);
+            }
+            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
+                uint32_t u;
+                std::memcpy(&u, p, 4);
+                return float(u);
+            }
+        }
+        return 0.0f;
+    }
+    static uint32_t index(const View& v, size_t element) {
+        if (!v.data) return 0;
+        const unsigned char* p = v.data + v.stride * element;
+        switch (v.componentType) {
+            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return *p;
+            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+                uint16_t s;
+                std::memcpy(&s, p, 2);
+                return s;
+            }
+            default: {
+                uint32_t u;
+                std::memcpy(&u, p, 4);
+                return u;
+            }
+        }
+    }
+
+    TextureRef texture(int textureIndex, int texCoord, const std::string& where) const {
+        if (textureIndex < 0) return {};
+        if (size_t(textureIndex) >= model.textures.size()) {
+            warn(where, "texture " + std::to_string(textureIndex) + " does not exist; ignored");
+            return {};
+        }
+        if (texCoord != 0) warn(where, "uses TEXCOORD_" + std::to_string(texCoord) + "; only TEXCOORD_0 is read");
+        const tinygltf::Texture& t = model.textures[size_t(textureIndex)];
+        const std::string iw = "textures[" + std::to_string(textureIndex) + "]";
+        if (t.source < 0 || size_t(t.source) >= model.images.size()) {
+            warn(iw, "image " + std::to_string(t.source) + " does not exist; using a checker texture");
+            TextureRef r;
+            r.encoded = std::make_shared<const std::string>();  // decodes to the checker, with a warning
+            r.key = file + "#" + iw;
+            return r;
+        }
+        const tinygltf::Image& image = model.images[size_t(t.source)];
+        TextureRef r;
+        r.key = file + "#images[" + std::to_string(t.source) + "]";
+        if (!image.image.empty()) {
+            r.encoded = std::make_shared<const std::string>(image.image.begin(), image.image.end());
+        } else if (!image.uri.empty() && image.uri.rfind("data:", 0) != 0) {
+            // Not read (missing or unreadable, tinygltf warned): SceneGpu loads the file or warns and
+            // uses the checker. URIs are percent-encoded.
+            std::string decoded;
+            for (size_t i = 0; i < image.uri.size(); ++i) {
+                if (image.uri[i] == '%' && i + 2 < image.uri.size() && std::isxdigit((unsigned char)image.uri[i + 1]) &&
+                    std::isxdigit((unsigned char)image.uri[i + 2])) {
+                    decoded += char(std::stoi(image.uri.substr(i + 1, 2), nullptr, 16));
+                    i += 2;
+                } else {
+                    decoded += image.uri[i];
+                }
+            }
+            const fs::path p = fs::path(file).parent_path() / decoded;
+            r = TextureRef::file(p.lexically_normal());
+        } else {
+            r.encoded = std::make_shared<const std::string>();
+        }
+        return r;
+    }
+
+    Material material(int index) const {
+        Material out;
+        out.specular = glm::vec3(0.04f);
+        out.doubleSided = false;
+        if (index < 0) {  // the spec's default material
+            out.name = "default";
+            out.diffuse = glm::vec3(1.0f);
+            out.metallic = 1.0f;
+            out.roughness = 1.0f;
+            out.shininess = shininessFromRoughness(1.0f);
+            return out;
+        }
+        const tinygltf::Material& m = model.materials[size_t(index)];
+        const std::string w = "materials[" + std::to_string(index) + "]";
+        out.name = m.name.empty() ? w : m.name;
+        const auto& pbr = m.pbrMetallicRoughness;
+        auto finite01 = [&](double v, double fallback, const std::string& field) {
+            if (!std::isfinite(v)) {
+                warn(w + "." + field, "not finite; using " + std::to_string(fallback));
+                return float(fallback);
+            }
+            return float(std::clamp(v, 0.0, 1.0));
+        };
+        if (pbr.baseColorFactor.size() == 4) {
+            for (int c = 0; c < 3; ++c) out.diffuse[c] = finite01(pbr.baseColorFactor[size_t(c)], 1.0, "pbrMetallicRoughness.baseColorFactor");
+            out.opacity = finite01(pbr.baseColorFactor[3], 1.0, "pbrMetallicRoughness.baseColorFactor");
+        } else {
+            out.diffuse = glm::vec3(1.0f);
+        }
+        out.metallic = finite01(pbr.metallicFactor, 1.0, "pbrMetallicRoughness.metallicFactor");
+        out.roughness = finite01(pbr.roughnessFactor, 1.0, "pbrMetallicRoughness.roughnessFactor");
+        out.shininess = shininessFromRoughness(out.roughness);
+        out.diffuseMap = texture(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, w + ".pbrMetallicRoughness.baseColorTexture");
+        out.metallicRoughnessMap = texture(pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
+                                           w + ".pbrMetallicRoughness.metallicRoughnessTexture");
+        out.normalMap = texture(m.normalTexture.index, m.normalTexture.texCoord, w + ".normalTexture");
+        out.normalScale = std::isfinite(m.normalTexture.scale) ? float(m.normalTexture.scale) : 1.0f;
+        out.occlusionMap = texture(m.occlusionTexture.index, m.occlusionTexture.texCoord, w + ".occlusionTexture");
+        out.occlusionStrength = finite01(m.occlusionTexture.strength, 1.0, "occlusionTexture.strength");
+        out.emissiveMap = texture(m.emissiveTexture.index, m.emissiveTexture.texCoord, w + ".emissiveTexture");
+        float strength = 1.0f;
+        auto ext = m.extensions.find("KHR_materials_emissive_strength");
+        if (ext != m.extensions.end() && ext->second.Has("emissiveStrength")) {
+            const double s = ext->second.Get("emissiveStrength").GetNumberAsDouble();
+            if (std::isfinite(s) && s >= 0.0 && s <= 1e9) strength = float(s);
+            else warn(w + ".extensions.KHR_materials_emissive_strength", "emissiveStrength must be in [0, 1e9]; using 1");
+        }
+        if (m.emissiveFactor.size() == 3)
+            for (int c = 0; c < 3; ++c) {
+                const double e = m.emissiveFactor[size_t(c)];
+                out.emission[c] = std::isfinite(e) ? float(std::clamp(e, 0.0, 1.0)) * strength : 0.0f;
+            }
+        out.doubleSided = m.doubleSided;
+        out.alphaCutoff = std::isfinite(m.alphaCutoff) ? float(std::max(m.alphaCutoff, 0.0)) : 0.5f;
+        if (m.alphaMode == "MASK") {
+            out.alphaMode = AlphaMode::Mask;
+        } else if (m.alphaMode == "BLEND") {
+            out.alphaMode = AlphaMode::Mask;
+            out.alphaCutoff = 0.5f;
+            warn(w, "material '" + out.name + "': alphaMode BLEND is drawn as MASK with cutoff 0.5 (no forward path yet)");
+        }
+        return out;
+    }
+
+    static glm::mat4 localMatrix(const tinygltf::Node& n) {
+        if (n.matrix.size() == 16) {
+            glm::dmat4 m;
+            for (int i = 0; i < 16; ++i) glm::value_ptr(m)[i] = n.matrix[size_t(i)];  // column-major, like glm
+            return glm::mat4(m);
+        }
+        glm::dvec3 t(0.0), s(1.0);
+        glm::dquat r(1.0, 0.0, 0.0, 0.0);  // w, x, y, z
+        if (n.translation.size() == 3) t = glm::dvec3(n.translation[0], n.translation[1], n.translation[2]);
+        if (n.scale.size() == 3) s = glm::dvec3(n.scale[0], n.scale[1], n.scale[2]);
+        if (n.rotation.size() == 4) r = glm::normalize(glm::dquat(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2]));
+        return glm::mat4(glm::translate(glm::dmat4(1.0), t) * glm::mat4_cast(r) * glm::scale(glm::dmat4(1.0), s));
+    }
+};
+
+}  // namespace
+
+GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
+    MeshLoadReport report;
+    const std::string file = path.string();
+    const std::string bytes = readFileChecked(path, kMaxImageFileBytes, "a glTF file");
+    tinygltf::TinyGLTF gltf;
+    gltf.SetFsCallbacks({&fileExists, &expandPath, &readWholeFile, &writeWholeFile, nullptr});
+    gltf.SetImageLoader(&keepEncodedImage, nullptr);
+    tinygltf::Model model;
+    std::string err, warnText;
+    const std::string baseDir = path.has_parent_path() ? path.parent_path().string() : std::string(".");
+    const bool binary = bytes.size() >= 4 && bytes.compare(0, 4, "glTF") == 0;
+    if (bytes.size() > 0xFFFFFFFFull) throw Error(file + ": over 4 GiB");
+    const bool ok = binary ? gltf.LoadBinaryFromMemory(&model, &err, &warnText, reinterpret_cast<const unsigned char*>(bytes.data()),
+                                                      unsigned(bytes.size()), baseDir)
+                           : gltf.LoadASCIIFromString(&model, &err, &warnText, bytes.data(), unsigned(bytes.size()), baseDir);
+    auto firstLine = [](std::string s) {
+        while (!s.empty() && (s.back() == '\n' || s.back() == ' ')) s.pop_back();
+        for (char& c : s)
+            if (c == '\n') c = ' ';
+        return s;
+    };
+    if (!ok) {
+        // tinygltf names a missing buffer file but not the buffer: name it as the file does.
+        if (!binary) {
+            const nlohmann::json root = nlohmann::json::parse(bytes, nullptr, false);
+            if (root.is_object() && root.contains("buffers") && root["buffers"].is_array())
+                for (size_t i = 0; i < root["buffers"].size(); ++i) {
+                    const auto& b = root["buffers"][i];
+                    if (!b.is_object() || !b.contains("uri") || !b["uri"].is_string()) continue;
+                    const std::string uri = b["uri"].get<std::string>();
+                    std::error_code ec;
+                    if (uri.rfind("data:", 0) != 0 && !fs::exists(fs::path(baseDir) / uri, ec))
+                        throw Error(file + ": buffers[" + std::to_string(i) + "]: " + (fs::path(baseDir) / uri).string() + ": file not found");
+                }
+        }
+        throw Error(file + ": " + (err.empty() ? std::string("could not be parsed as glTF") : firstLine(err)));
+    }
+    Loader L{model, file, report};
+    if (!warnText.empty()) {
+        const std::string msg = file + ": " + firstLine(warnText);
+        report.warnings.push_back(msg);
+        logWarn(msg);
+    }
+    for (const auto& e : model.extensionsRequired)
+        if (!kSupportedExtensions.count(e)) L.fail("extensionsRequired", e + " is not supported (supported: KHR_lights_punctual, KHR_materials_emissive_strength)");
+
+    GltfContent out;
+    MeshData& mesh = out.mesh;
+    mesh.name = path.stem().string();
+    std::vector<int> materialSlot(model.materials.size() + 1, -1);  // glTF material (+1: default) -> mesh.materials
+    auto materialFor = [&](int index) {
+        if (index >= int(model.materials.size()))
+            L.fail("materials", "material " + std::to_string(index) + " does not exist (" + std::to_string(model.materials.size()) + " materials)");
+        int& slot = materialSlot[size_t(index + 1)];
+        if (slot < 0) {
+            slot = int(mesh.materials.size());
+            mesh.materials.push_back(L.material(index));
+        }
+        return slot;
+    };
+
+    auto addPrimitive = [&](int meshIndex, int primIndex, const glm::mat4& world) {
+        const tinygltf::Primitive& prim = model.meshes[size_t(meshIndex)].primitives[size_t(primIndex)];
+        const std::string w = "meshes[" + std::to_string(meshIndex) + "].primitives[" + std::to_string(primIndex) + "]";
+        if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != TINYGLTF_MODE_TRIANGLE_STRIP && prim.mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+            L.warn(w, "mode " + std::to_string(prim.mode) + " (points or lines) is not drawn");
+            return;
+        }
+        auto attr = prim.attributes.find("POSITION");
+        if (attr == prim.attributes.end()) L.fail(w, "has no POSITION attribute");
+        const std::set<int> fl = {TINYGLTF_COMPONENT_TYPE_FLOAT};
+        const auto pos = L.view(attr->second, w + ".attributes.POSITION", {TINYGLTF_TYPE_VEC3}, fl);
+        const size_t vertexCount = pos.count;
+        auto optional = [&](const char* name, int type, const std::set<int>& componentTypes, Loader::View& v) {
+            auto it = prim.attributes.find(name);
+            if (it == prim.attributes.end()) return false;
+            v = L.view(it->second, w + ".attributes." + name, {type}, componentTypes);
+            if (v.count != vertexCount)
+                L.fail(w + ".attributes." + name, std::to_string(v.count) + " elements, but POSITION has " + std::to_string(vertexCount));
+            return true;
+        };
+        Loader::View nrm, uv, tan;
+        const bool hasNormals = optional("NORMAL", TINYGLTF_TYPE_VEC3, fl, nrm);
+        const bool hasUv = optional("TEXCOORD_0", TINYGLTF_TYPE_VEC2,
+                                    {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT}, uv);
+        const bool hasTangents = optional("TANGENT", TINYGLTF_TYPE_VEC4, fl, tan);
+
+        // Triangle list, as vertex numbers of this primitive.
+        std::vector<uint32_t> corners;
+        if (prim.indices >= 0) {
+            const auto idx = L.view(prim.indices, w + ".indices", {TINYGLTF_TYPE_SCALAR},
+                                    {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
+                                     TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT});
+            corners.resize(idx.count);
+            for (size_t i = 0; i < idx.count; ++i) {
+                corners[i] = Loader::index(idx, i);
+                if (corners[i] >= vertexCount)
+                    L.fail(w + ".indices", "index " + std::to_string(corners[i]) + " at position " + std::to_string(i) +
+                                               " is beyond the " + std::to_string(vertexCount) + " vertices");
+            }
+        } else {
+            corners.resize(vertexCount);
+            for (size_t i = 0; i < vertexCount; ++i) corners[i] = uint32_t(i);
+        }
+        std::vector<uint32_t> tris;
+        if (prim.mode == TINYGLTF_MODE_TRIANGLES) {
+            tris.assign(corners.begin(), corners.begin() + ptrdiff_t(corners.size() / 3 * 3));
+        } else if (prim.mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+            for (size_t i = 2; i < corners.size(); ++i) {
+                const bool odd = (i & 1) != 0;
+                tris.insert(tris.end(), {corners[i - 2 + (odd ? 1 : 0)], corners[i - 1 - (odd ? 1 : 0)], corners[i]});
+            }
+        } else {
+            for (size_t i = 2; i < corners.size(); ++i) tris.insert(tris.end(), {corners[0], corners[i - 1], corners[i]});
+        }
+
+        const glm::mat3 linear(world);
+        const glm::mat3 normalMatrix = glm::inverseTranspose(linear);
+        const bool mirrored = glm::determinant(linear) < 0.0f;
+        MeshData part;
+        part.vertices.resize(vertexCount);
+        for (size_t v = 0; v < vertexCount; ++v) {
+            Vertex& vx = part.vertices[v];
+            const glm::vec3 p(Loader::component(pos, v, 0), Loader::component(pos, v, 1), Loader::component(pos, v, 2));
+            vx.position = glm::vec3(world * glm::vec4(p, 1.0f));
+            if (hasNormals) {
+                const glm::vec3 n = normalMatrix * glm::vec3(Loader::component(nrm, v, 0), Loader::component(nrm, v, 1), Loader::component(nrm, v, 2));
+                const float len = glm::length(n);
+                vx.normal = (len > 0.0f && std::isfinite(len)) ? n / len : glm::vec3(0.0f, 1.0f, 0.0f);
+            }
+            if (hasUv) {
+                const glm::vec2 t(Loader::component(uv, v, 0), Loader::component(uv, v, 1));
+                if (std::isfinite(t.x) && std::isfinite(t.y)) vx.uv = glm::vec2(t.x, 1.0f - t.y);  // v = 0 at the bottom
+            }
+            if (hasTangents) {
+                // glTF's bitangent cross(N, T) w points up the image (its normal maps' +Y), which is
+                // +v after the flip: w is kept. A mirroring transform flips the frame's handedness.
+                const glm::vec3 t = linear * glm::vec3(Loader::component(tan, v, 0), Loader::component(tan, v, 1), Loader::component(tan, v, 2));
+                const float w4 = Loader::component(tan, v, 3);
+                const float len = glm::length(t);
+                const float hand = (w4 < 0.0f ? -1.0f : 1.0f) * (mirrored ? -1.0f : 1.0f);
+                vx.tangent = (len > 0.0f && std::isfinite(len)) ? glm::vec4(t / len, hand) : glm::vec4(anyPerpendicular(vx.normal), 1.0f);
+            }
+        }
+        // Triangles: non-finite and degenerate ones dropped (as for OBJ); a mirroring transform
+        // reverses the winding so that front faces stay front faces.
+        for (size_t i = 0; i + 2 < tris.size(); i += 3) {
+            uint32_t a = tris[i], b = tris[i + 1], c = tris[i + 2];
+            const glm::vec3 &pa = part.vertices[a].position, &pb = part.vertices[b].position, &pc = part.vertices[c].position;
+            if (!std::isfinite(pa.x + pa.y + pa.z + pb.x + pb.y + pb.z + pc.x + pc.y + pc.z)) {
+                ++report.droppedNonFinite;
+                continue;
+            }
+            if (a == b || b == c || a == c || degenerateTriangle(pa, pb, pc)) {
+                ++report.droppedDegenerate;
+                continue;
+            }
+            if (mirrored) std::swap(b, c);
+            part.indices.insert(part.indices.end(), {a, b, c});
+        }
+        if (part.indices.empty()) return;
+        if (!hasNormals) {
+            // The spec's rule: flat normals. Each triangle gets its own three vertices.
+            MeshData flat;
+            for (size_t i = 0; i + 2 < part.indices.size(); i += 3) {
+                const Vertex &a = part.vertices[part.indices[i]], &b = part.vertices[part.indices[i + 1]], &c = part.vertices[part.indices[i + 2]];
+                const glm::vec3 n = glm::normalize(glm::cross(b.position - a.position, c.position - a.position));
+                for (const Vertex* src : {&a, &b, &c}) {
+                    Vertex vx = *src;
+                    vx.normal = n;
+                    flat.indices.push_back(uint32_t(flat.vertices.size()));
+                    flat.vertices.push_back(vx);
+                }
+            }
+            part.vertices = std::move(flat.vertices);
+            part.indices = std::move(flat.indices);
+            report.generatedNormals = true;
+        }
+        if (!hasTangents) {
+            computeTangents(part);
+            report.generatedTangents = true;
+        }
+        const int mat = materialFor(prim.material);
+        const uint32_t base = uint32_t(mesh.vertices.size());
+        if (mesh.vertices.size() + part.vertices.size() > 0xFFFFFFFFull) L.fail(w, "too many vertices in the file");
+        mesh.subMeshes.push_back(SubMesh{uint32_t(mesh.indices.size()), uint32_t(part.indices.size()), mat});
+        for (uint32_t i : part.indices) mesh.indices.push_back(base + i);
+        mesh.vertices.insert(mesh.vertices.end(), part.vertices.begin(), part.vertices.end());
+    };
+
+    // The scene's nodes, depth first; a node met twice on one path is a cycle.
+    std::vector<int> roots;
+    int sceneIndex = model.defaultScene >= 0 ? model.defaultScene : (model.scenes.empty() ? -1 : 0);
+    if (sceneIndex >= int(model.scenes.size())) L.fail("scene", std::to_string(sceneIndex) + " does not exist");
+    if (sceneIndex >= 0) {
+        roots = model.scenes[size_t(sceneIndex)].nodes;
+    } else {
+        std::vector<bool> isChild(model.nodes.size(), false);
+        for (const auto& n : model.nodes)
+            for (int c : n.children)
+                if (c >= 0 && size_t(c) < model.nodes.size()) isChild[size_t(c)] = true;
+        for (size_t i = 0; i < model.nodes.size(); ++i)
+            if (!isChild[i]) roots.push_back(int(i));
+    }
+    std::vector<bool> onPath(model.nodes.size(), false);
+    // glTF cone half-angles (radians, 0 <= inner < outer <= pi/2) as the renderer's (degrees, outer < 90).
+    auto spotCone = [&](const tinygltf::SpotLight& s, const glm::vec3& direction, const std::string& lw) {
+        const double inner = s.innerConeAngle, outer = s.outerConeAngle;
+        if (!std::isfinite(inner) || !std::isfinite(outer))
+            L.fail(lw + ".spot", "innerConeAngle and outerConeAngle must be finite");
+        if (inner < 0.0) L.fail(lw + ".spot.innerConeAngle", formatNumber(inner) + " rad: must be >= 0");
+        if (!(outer > inner))
+            L.fail(lw + ".spot.outerConeAngle", formatNumber(outer) + " rad must be greater than innerConeAngle " + formatNumber(inner));
+        if (!std::isfinite(direction.x + direction.y + direction.z)) L.fail(lw, "the spot's node has no -Z direction (a zero scale)");
+        SpotCone c;
+        c.direction = direction;
+        c.outerDegrees = float(glm::degrees(outer));
+        c.innerDegrees = float(glm::degrees(inner));
+        // The renderer's cone stays below a hemisphere; glTF allows up to pi/2.
+        constexpr float kMaxOuterDegrees = 89.0f;
+        if (c.outerDegrees > kMaxOuterDegrees) {
+            L.warn(lw + ".spot.outerConeAngle", formatNumber(c.outerDegrees) + " degrees clamped to " + formatNumber(kMaxOuterDegrees));
+            c.outerDegrees = kMaxOuterDegrees;
+            c.innerDegrees = std::min(c.innerDegrees, c.outerDegrees);
+        }
+        return c;
+    };
+    std::function<void(int, const glm::mat4&, const std::string&)> visit = [&](int n, const glm::mat4& parent, const std::string& from) {
+        if (n < 0 || size_t(n) >= model.nodes.size()) L.fail(from, "node " + std::to_string(n) + " does not exist (" + std::to_string(model.nodes.size()) + " nodes)");
+        const std::string w = "nodes[" + std::to_string(n) + "]";
+        if (onPath[size_t(n)]) L.fail(w, "is its own ancestor (the node hierarchy has a cycle)");
+        onPath[size_t(n)] = true;
+        const tinygltf::Node& node = model.nodes[size_t(n)];
+        const glm::mat4 world = parent * Loader::localMatrix(node);
+        for (int i = 0; i < 16; ++i)
+            if (!std::isfinite(glm::value_ptr(world)[i])) L.fail(w, "transform is not finite");
+        if (node.mesh >= 0) {
+            if (size_t(node.mesh) >= model.meshes.size())
+                L.fail(w + ".mesh", std::to_string(node.mesh) + " does not exist (" + std::to_string(model.meshes.size()) + " meshes)");
+            if (node.skin >= 0) L.warn(w, "skinning is not supported; drawn in its bind pose");
+            for (size_t p = 0; p < model.meshes[size_t(node.mesh)].primitives.size(); ++p) addPrimitive(node.mesh, int(p), world);
+        }
+        const glm::vec3 origin(world[3]);
+        const glm::vec3 forward = glm::normalize(glm::mat3(world) * glm::vec3(0, 0, -1));
+        if (node.camera >= 0) {
+            if (size_t(node.camera) >= model.cameras.size()) L.fail(w + ".camera", std::to_string(node.camera) + " does not exist");
+            const tinygltf::Camera& c = model.cameras[size_t(node.camera)];
+            if (c.type != "perspective") {
+                L.warn("cameras[" + std::to_string(node.camera) + "]", "type '" + c.type + "' is not supported (perspective only); ignored");
+            } else {
+                Camera cam;
+                cam.position = origin;
+                cam.target = origin + forward;
+                cam.up = glm::normalize(glm::mat3(world) * glm::vec3(0, 1, 0));
+                const double fov = glm::degrees(c.perspective.yfov);
+                cam.fovYDegrees = (std::isfinite(fov) && fov > 0.5 && fov < 179.0) ? float(fov) : 45.0f;
+                if (std::isfinite(c.perspective.znear) && c.perspective.znear > 1e-6) cam.nearPlane = float(c.perspective.znear);
+                cam.farPlane = (std::isfinite(c.perspective.zfar) && c.perspective.zfar > cam.nearPlane) ? float(c.perspective.zfar)
+                                                                                                       : cam.nearPlane * 1e5f;
+                cam.farPlane = std::min(cam.farPlane, cam.nearPlane * 1e6f);
+                if (std::isfinite(glm::dot(cam.position, cam.up)) && std::isfinite(forward.x + forward.y + forward.z))
+                    out.cameras.push_back(cam);
+            }
+        }
+        auto lightExt = node.extensions.find("KHR_lights_punctual");
+        if (lightExt != node.extensions.end() && lightExt->second.Has("light")) {
+            const int li = lightExt->second.Get("light").GetNumberAsInt();
+            const std::string lw = "extensions.KHR_lights_punctual.lights[" + std::to_string(li) + "]";
+            if (li < 0 || size_t(li) >= model.lights.size()) L.fail(w + ".extensions.KHR_lights_punctual.light", std::to_string(li) + " does not exist");
+            const tinygltf::Light& l = model.lights[size_t(li)];
+            glm::vec3 color(1.0f);
+            if (l.color.size() == 3) color = glm::vec3(float(l.color[0]), float(l.color[1]), float(l.color[2]));
+            const float intensity = float(l.intensity);
+            if (!std::isfinite(color.x + color.y + color.z + intensity) || glm::any(glm::lessThan(color, glm::vec3(0.0f))) || intensity < 0.0f ||
+                intensity > 1e9f)
+                L.fail(lw, "colour and intensity must be finite and >= 0 (intensity <= 1e9)");
+            if (l.type == "directional") {
+                DirectionalLight d;
+                d.direction = forward;
+                d.color = color;
+                d.intensity = intensity;  // lux: irradiance at normal incidence
+                out.directionalLights.push_back(d);
+            } else if (l.type == "point" || l.type == "spot") {
+                PointLight p;
+                p.position = origin;
+                p.color = color;
+                p.intensity = intensity;  // candela: radiant intensity, irradiance = I / d^2
+                // No range: where I max(colour) / d^2 falls to 1e-3 (the window then hides the rest).
+                const float brightest = intensity * std::max({color.x, color.y, color.z, 1e-6f});
+                p.range = (std::isfinite(l.range) && l.range > 0.0) ? float(l.range) : std::max(std::sqrt(brightest / 1e-3f), 1e-3f);
+                p.orbitCenter = origin;
+                if (l.type == "spot") p.spot = spotCone(l.spot, forward, lw);
+                out.pointLights.push_back(p);
+            } else {
+                L.warn(lw, "unknown light type '" + l.type + "'; ignored");
+            }
+        }
+        for (int c : node.children) visit(c, world, w + ".children");
+        onPath[size_t(n)] = false;
+    };
+    for (int r : roots) visit(r, glm::mat4(1.0f), sceneIndex >= 0 ? "scenes[" + std::to_string(sceneIndex) + "].nodes" : "nodes");
+
+    if (report.droppedDegenerate || report.droppedNonFinite) {
+        const std::string msg = file + ": dropped " + std::to_string(report.droppedDegenerate) + " degenerate and " +
+                                std::to_string(report.droppedNonFinite) + " non-finite triangles";
+        report.warnings.push_back(msg);
+        logWarn(msg);
+    }
+    if (mesh.indices.empty()) throw Error(file + ": no triangles (in the scene's nodes)");
+    computeBounds(mesh);
+    if (reportOut) *reportOut = report;
+    return out;
+}
+
+}  // namespace lp

@@ -1,0 +1,35 @@
+#pragma once
+// glTF 2.0 (.gltf + .bin, .glb) through tinygltf, into the same MeshData the OBJ loader makes, plus the
+// file's cameras and KHR_lights_punctual lights.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "engine/scene/mesh.hpp"
+#include "engine/scene/scene.hpp"
+
+namespace lp {
+
+struct GltfContent {
+    // Every triangle primitive of the file's scene (its default scene, else scenes[0], else every root
+    // node), each node's world transform (parent x translation x rotation x scale, or its matrix) baked
+    // into positions, normals and tangents. Texture v is flipped to the OBJ convention (v = 0 at the
+    // bottom of the image), with tangents to match.
+    MeshData mesh;
+    std::vector<Camera> cameras;  // perspective cameras placed by their nodes, in file order
+    std::vector<DirectionalLight> directionalLights;
+    std::vector<PointLight> pointLights;  // point lights, and spot lights (`spot` set: the node's -Z, the cone)
+};
+
+// Throws lp::Error("<path>: <element>: <what>"), the element as the file names it
+// ("meshes[2].primitives[0].indices", "accessors[5]", "extensionsRequired"), for what cannot be drawn
+// right: a file tinygltf cannot parse, a missing buffer, an accessor or buffer view beyond its buffer,
+// an index beyond the vertices, a required extension this loader lacks, a node cycle, no triangles.
+// Warns (naming the element) and goes on for a missing or bad texture (checker), non-triangle
+// primitives, orthographic cameras, spot lights (as points), BLEND materials (as MASK).
+GltfContent loadGltf(const std::filesystem::path& path, MeshLoadReport* report = nullptr);
+
+// ".gltf" or ".glb" (any case).
+bool isGltfPath(const std::filesystem::path& path);
+
+}  // namespace lp

@@ -1,0 +1,111 @@
+#include "passes/spot_shadow_pass.hpp"
+#include "passes/shadow_map_pass.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "engine/core/log.hpp"
+#include "engine/gl/shader.hpp"
+#include "engine/gl/state.hpp"
+#include "engine/render/local_lights.hpp"
+#include "engine/render/scene_gpu.hpp"
+
+namespace lp {
+
+namespace {
+struct Data {
+    fg::ResourceId depth;
+};
+}  // namespace
+
+SpotShadowMaps addSpotShadowPass(fg::FrameGraph& graph, SpotShadowPass& state, const FrameData& frame) {
+    SpotShadowMaps maps;
+    const RenderSettings& s = *frame.settings;
+    const std::vector<PointLight> lights = localLightsForFrame(*frame.scene, s.localLights, frame.time);
+    int casting = 0;
+    for (const auto& l : lights) casting += (l.spot && l.spot->castsShadow) ? 1 : 0;
+    if (casting == 0) {
+        graph.skipPass("spot_shadows", "no spot light casts a shadow");
+        return maps;
+    }
+    if (!s.shadows.enabled) {
+        graph.skipPass("spot_shadows", "shadows are off (--no-shadows)");
+        return maps;
+    }
+    for (size_t i = 0; i < lights.size() && int(maps.light.size()) < kMaxSpotShadows; ++i) {
+        const PointLight& l = lights[i];
+        if (!l.spot || !l.spot->castsShadow) continue;
+        // The frustum holds the outer cone (+1 degree so PCF taps at the edge stay inside the tile);
+        // its depth runs from 0.5% of the range (at least 1 mm) to the range, where the light ends.
+        const float fovY = 2.0f * std::min(l.spot->outerDegrees + 1.0f, 89.5f);
+        const float nearPlane = std::max(0.005f * l.range, 1e-3f), farPlane = std::max(l.range, nearPlane * 2.0f);
+        const glm::vec3 dir = l.spot->direction;
+        const glm::vec3 up = std::abs(dir.y) > 0.99f ? glm::vec3(1.0f, 0.0f, 0.0f) : glm::vec3(0.0f, 1.0f, 0.0f);
+        const glm::mat4 view = glm::lookAt(l.position, l.position + dir, up);
+        maps.worldToClip.push_back(glm::perspective(glm::radians(fovY), 1.0f, nearPlane, farPlane) * view);
+        maps.light.push_back(int(i));
+        maps.nearPlane.push_back(nearPlane);
+        maps.farPlane.push_back(farPlane);
+        maps.texelSlope.push_back(0.0f);  // set below, once the tile size is known
+    }
+    const int n = int(maps.light.size());
+    maps.columns = int(std::ceil(std::sqrt(double(n))));
+    const int rows = (n + maps.columns - 1) / maps.columns;
+    // Tiles of half the sun's map size: a spot covers far less of the scene than a sun's cascade.
+    maps.tileSize = std::clamp(s.shadows.size / 2, 64, 4096 / maps.columns);
+    for (int t = 0; t < n; ++t) {
+        const PointLight& l = lights[size_t(maps.light[size_t(t)])];
+        const float halfFov = glm::radians(std::min(l.spot->outerDegrees + 1.0f, 89.5f));
+        maps.texelSlope[size_t(t)] = 2.0f * std::tan(halfFov) / float(maps.tileSize);
+    }
+    if (casting > n)
+        logWarn("spot_shadows: " + std::to_string(casting - n) + " shadow-casting spots past the first " +
+                std::to_string(kMaxSpotShadows) + " are unshadowed");
+    const fg::TextureDesc desc{maps.tileSize * maps.columns, maps.tileSize * rows, GL_DEPTH_COMPONENT32F};
+    const std::vector<glm::mat4> matrices = maps.worldToClip;
+    const int columns = maps.columns, tile = maps.tileSize;
+    const Data& data = graph.addPass<Data>(
+        "spot_shadows", fg::PassKind::Raster,
+        [&](fg::PassBuilder& b, Data& out) { out.depth = b.create("spot_shadows.depth", desc, fg::Usage::DepthAttachment); },
+        [&state, frame, matrices, columns, tile](const Data& out, const fg::PassResources& res) {
+            if (!state.program) {
+                state.program = frame.shaders->graphics("shadow_depth.vert", "shadow_depth.frag");
+                state.fbo = gl::makeFramebuffer("spot_shadows");
+            }
+            const GLuint fbo = state.fbo.id();
+            glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, res.texture(out.depth), 0);
+            glNamedFramebufferDrawBuffer(fbo, GL_NONE);
+            glNamedFramebufferReadBuffer(fbo, GL_NONE);
+            const fg::TextureDesc& d = res.desc(out.depth);
+            gl::ScopedFramebuffer bind(fbo, d.width, d.height);
+            gl::ScopedEnable depthTest(GL_DEPTH_TEST, true);
+            gl::ScopedEnable cull(GL_CULL_FACE, false);  // thin walls and open meshes cast from both sides
+            gl::ScopedEnable blend(GL_BLEND, false);
+            gl::ScopedEnable offset(GL_POLYGON_OFFSET_FILL, true);
+            gl::ScopedEnable clamp(GL_DEPTH_CLAMP, true);  // casters before the near plane still cast
+            gl::ScopedRasterState saved;
+            glDepthFunc(GL_LESS);
+            glDepthMask(GL_TRUE);
+            glPolygonOffset(frame.settings->shadows.slopeBias, 0.0f);
+            const float one = 1.0f;
+            glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &one);
+            const GLuint prog = state.program.id();
+            const GLint locMvp = glGetUniformLocation(prog, "uModelToClip");
+            glUseProgram(prog);
+            for (size_t t = 0; t < matrices.size(); ++t) {
+                glViewport(GLint(t % size_t(columns)) * tile, GLint(t / size_t(columns)) * tile, tile, tile);
+                drawShadowCasters(frame, prog, locMvp, matrices[t]);
+            }
+            glBindVertexArray(0);
+            glUseProgram(0);
+            glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, 0, 0);
+        });
+    maps.depth = data.depth;
+    return maps;
+}
+
+}  // namespace lp

@@ -1,0 +1,30 @@
+#version 450
+// Emitted radiance added to the HDR buffer (passes/emission_pass): where the G-buffer's depth equals
+// this surface's, the material's emission times its emissive texture. The same alpha MASK and
+// single-sided tests as gbuffer.frag, so exactly the texels the G-buffer kept emit.
+in vec3 vPosition;
+in vec3 vNormal;
+in vec2 vUv;
+in vec4 vTangent;
+
+uniform vec3 uEmission;  // linear radiance (emissiveFactor x strength, or Ke)
+uniform bool uHasEmissiveMap;
+uniform float uOpacity;
+uniform bool uHasDiffuseMap;
+uniform bool uAlphaMask;
+uniform float uAlphaCutoff;
+uniform bool uDoubleSided;
+layout(binding = 0) uniform sampler2D uDiffuseMap;   // sRGB: its alpha decides MASK
+layout(binding = 1) uniform sampler2D uEmissiveMap;  // sRGB: sampled as linear
+
+layout(location = 0) out vec4 outHdr;
+
+void main() {
+    if (!uDoubleSided && !gl_FrontFacing) discard;
+    float alpha = uOpacity;
+    if (uHasDiffuseMap) alpha *= texture(uDiffuseMap, vUv).a;
+    if (uAlphaMask && alpha < uAlphaCutoff) discard;
+    vec3 e = max(uEmission, vec3(0.0));
+    if (uHasEmissiveMap) e *= texture(uEmissiveMap, vUv).rgb;
+    outHdr = vec4(e, 0.0);
+}

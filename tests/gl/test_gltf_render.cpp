@@ -1,0 +1,239 @@
+// glTF and MTL materials rendered: a normal-mapped plane shades as its analytic normal (glTF with and
+// without tangents, MTL norm), an MTL bump map as the height field's normal, emission adds exactly
+// its radiance, alpha MASK drops exactly the texels below the cutoff.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "engine/io/gltf_loader.hpp"
+#include "engine/io/image_io.hpp"
+#include "engine/io/obj_loader.hpp"
+#include "frame/renderer.hpp"
+#include "tests/gl/gl_fixture.hpp"
+
+using namespace lp;
+namespace fs = std::filesystem;
+
+namespace {
+
+const double kPi = 3.14159265358979;
+
+fs::path dataPath(const std::string& name) { return fs::path(test::repoPath("tests/data/gltf/" + name)); }
+
+Scene modelScene(MeshData mesh) {
+    Scene s;
+    ModelInstance m;
+    m.name = "model";
+    m.mesh = std::move(mesh);
+    s.models.push_back(std::move(m));
+    s.ambient = glm::vec3(0.0f);
+    s.environment.color = glm::vec3(0.0f);
+    return s;
+}
+
+// HDR radiance at the centre pixel of a w x h render.
+glm::vec3 centre(const Scene& s, int w = 48, int h = 48) {
+    Renderer r(s);
+    RenderSettings settings;
+    settings.width = w;
+    settings.height = h;
+    settings.keepHdr = true;
+    r.render(settings);
+    const ImageF hdr = r.readHdr();
+    const size_t i = (size_t(h / 2) * size_t(w) + size_t(w / 2)) * 4;
+    return {hdr.rgba[i], hdr.rgba[i + 1], hdr.rgba[i + 2]};
+}
+
+// A 2 x 2 plane at y = 0 seen from straight above, lit by one sun from `toLight` (no shadows, no
+// ambient), Lambertian white: the centre's radiance is E / pi * max(N.L, 0).
+double lambertAtCentre(MeshData mesh, glm::vec3 toLight) {
+    for (Material& m : mesh.materials) {
+        m.diffuse = glm::vec3(1.0f);
+        m.specular = glm::vec3(0.0f);
+        m.metallic = 0.0f;
+    }
+    Scene s = modelScene(std::move(mesh));
+    s.camera.position = {0.0f, 3.0f, 0.0f};
+    s.camera.target = {0.0f, 0.0f, 0.0f};
+    s.camera.up = {0.0f, 0.0f, -1.0f};
+    s.camera.fovYDegrees = 30.0f;
+    s.camera.nearPlane = 0.1f;
+    s.camera.farPlane = 10.0f;
+    DirectionalLight sun;
+    sun.direction = -glm::normalize(toLight);
+    sun.intensity = 2.0f;
+    sun.castsShadows = false;
+    s.directionalLights.push_back(sun);
+    return centre(s).x;
+}
+
+void expectShadesAsNormal(const MeshData& mesh, glm::dvec3 normal, const std::string& what) {
+    // Two lights: one tells the tangent's sign, one the bitangent's.
+    for (glm::vec3 L : {glm::vec3(0.8f, 0.6f, 0.0f), glm::vec3(0.0f, 0.6f, -0.8f), glm::vec3(-0.6f, 0.8f, 0.0f)}) {
+        const double expected = 2.0 / kPi * std::max(glm::dot(glm::normalize(normal), glm::dvec3(L)), 0.0);
+        EXPECT_NEAR(lambertAtCentre(mesh, L), expected, 0.02 * 2.0 / kPi + 0.02 * expected)
+            << what << ", light from " << L.x << " " << L.y << " " << L.z;
+    }
+}
+
+fs::path tempDir() {
+    const fs::path d = fs::temp_directory_path() / ("lp_gltf_gl_" + std::to_string(::getpid()) + "_" +
+                                                    ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(d);
+    fs::create_directories(d);
+    return d;
+}
+
+// A 2 x 2 OBJ plane at y = 0: u along +X, v along -Z (OBJ v up the image), with material `mtl`.
+fs::path objPlane(const fs::path& dir, const std::string& mtl) {
+    std::ofstream(dir / "plane.mtl") << mtl;
+    std::ofstream(dir / "plane.obj") << "mtllib plane.mtl\nusemtl m\n"
+                                        "v -1 0 1\nv 1 0 1\nv 1 0 -1\nv -1 0 -1\n"
+                                        "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvn 0 1 0\n"
+                                        "f 1/1/1 2/2/1 3/3/1\nf 1/1/1 3/3/1 4/4/1\n";
+    return dir / "plane.obj";
+}
+
+Image8 constantImage(int w, int h, glm::u8vec4 texel) {
+    Image8 img{w, h, {}};
+    for (int i = 0; i < w * h; ++i) img.rgba.insert(img.rgba.end(), {texel.x, texel.y, texel.z, texel.w});
+    return img;
+}
+
+}  // namespace
+
+// The plane's normal map holds tangent-space (0.36, 0.48, 0.8); with the tangent +X and the
+// bitangent -Z (up the image), the shading normal is (0.36, 0.8, -0.48).
+TEST(GltfRender, NormalMappedPlaneShadesAsItsAnalyticNormal) {
+    const glm::dvec3 n(0.36, 0.8, -0.48);
+    expectShadesAsNormal(loadGltf(dataPath("normal_plane.glb")).mesh, n, "glTF with tangents");
+    expectShadesAsNormal(loadGltf(dataPath("normal_plane_notangent.glb")).mesh, n, "glTF, generated tangents");
+}
+
+// MTL: "norm" is read as a tangent-space normal map (the same normal as above), "bump" as a height map:
+// a ramp rising 8/255 per texel along +u tilts the normal towards -X by the height step.
+TEST(GltfRender, MtlNormIsANormalMapAndBumpIsAHeightMap) {
+    const fs::path dir = tempDir();
+    writePng(dir / "n.png", constantImage(8, 8, {173, 189, 230, 255}));  // round((n * 0.5 + 0.5) * 255)
+    MeshData normMapped = loadObj(objPlane(dir, "newmtl m\nKd 1 1 1\nnorm n.png\n"));
+    ASSERT_FALSE(normMapped.materials[0].normalMap.empty());
+    expectShadesAsNormal(normMapped, glm::dvec3(0.36, 0.8, -0.48), "MTL norm");
+
+    Image8 ramp{16, 16, {}};
+    for (int y = 0; y < 16; ++y)
+        for (int x = 0; x < 16; ++x) ramp.rgba.insert(ramp.rgba.end(), {uint8_t(8 * x), uint8_t(8 * x), uint8_t(8 * x), 255});
+    writePng(dir / "h.png", ramp);
+    fs::remove(dir / "plane.obj");
+    MeshData bumped = loadObj(objPlane(dir, "newmtl m\nKd 1 1 1\nbump h.png\n"));
+    ASSERT_FALSE(bumped.materials[0].bumpMap.empty());
+    ASSERT_TRUE(bumped.materials[0].normalMap.empty());
+    // gbuffer.frag: N - 4 scale ((h(u+1) - h(u-1)) T + ...), h in [0, 1]: a step of 2 texels = 16/255.
+    const double slope = 4.0 * 16.0 / 255.0;
+    expectShadesAsNormal(bumped, glm::dvec3(-slope, 1.0, 0.0), "MTL bump");
+    fs::remove_all(dir);
+}
+
+// An emissive panel (emissiveFactor (1, 0.5, 0.25) x strength 4) in the dark: exactly (4, 2, 1).
+TEST(GltfRender, EmissionAddsExactlyItsRadiance) {
+    Scene s = modelScene(loadGltf(dataPath("emissive.gltf")).mesh);
+    s.camera.position = {0.0f, 0.0f, 2.0f};
+    s.camera.target = {0.0f, 0.0f, 0.0f};
+    const glm::vec3 c = centre(s);
+    EXPECT_NEAR(c.x, 4.0f, 4e-3f);
+    EXPECT_NEAR(c.y, 2.0f, 2e-3f);
+    EXPECT_NEAR(c.z, 1.0f, 1e-3f);
+    // And on top of reflected light: a grey panel under ambient 0.5 gives 0.5 kd + emission.
+    for (Material& m : s.models[0].mesh.materials) m.diffuse = glm::vec3(0.5f);
+    s.ambient = glm::vec3(0.5f);
+    const glm::vec3 lit = centre(s);
+    EXPECT_NEAR(lit.x, 4.0f + 0.25f, 1e-2f);
+    EXPECT_NEAR(lit.z, 1.0f + 0.25f, 1e-2f);
+}
+
+// alpha_mask.gltf: quads at x = 0, 1.5, 3 (1 x 1, y 0..1), MASK at cutoff 0.5: base alpha 0.3 (not
+// drawn), 0.7 (drawn), and a texture whose left half is alpha 0 (that half not drawn).
+TEST(GltfRender, AlphaMaskDropsTexelsBelowTheCutoff) {
+    Scene s = modelScene(loadGltf(dataPath("alpha_mask.gltf")).mesh);
+    s.ambient = glm::vec3(1.0f);  // white base, ambient 1: radiance 1 where drawn, 0 (black sky) elsewhere
+    s.camera.position = {2.0f, 0.5f, 6.0f};
+    s.camera.target = {2.0f, 0.5f, 0.0f};
+    s.camera.fovYDegrees = 45.0f;
+    const int w = 96, h = 48;
+    Renderer r(s);
+    RenderSettings settings;
+    settings.width = w;
+    settings.height = h;
+    settings.keepHdr = true;
+    r.render(settings);
+    const ImageF hdr = r.readHdr();
+    const glm::mat4 vp = s.camera.projection(float(w) / float(h)) * s.camera.view();
+    auto at = [&](float x, float y) {
+        const glm::vec4 c = vp * glm::vec4(x, y, 0.0f, 1.0f);
+        const int px = int((c.x / c.w * 0.5f + 0.5f) * float(w)), py = int((0.5f - c.y / c.w * 0.5f) * float(h));
+        return hdr.rgba[(size_t(py) * size_t(w) + size_t(px)) * 4];
+    };
+    EXPECT_NEAR(at(0.5f, 0.5f), 0.0f, 1e-4f) << "alpha 0.3 is below the cutoff";
+    EXPECT_NEAR(at(2.0f, 0.5f), 1.0f, 1e-2f) << "alpha 0.7 is above it";
+    EXPECT_NEAR(at(3.25f, 0.5f), 0.0f, 1e-4f) << "the texture's transparent half";
+    EXPECT_NEAR(at(3.75f, 0.5f), 1.0f, 1e-2f) << "the texture's opaque half";
+}
+
+// Single-sided glTF materials are not drawn from behind; MTL (double-sided) ones are.
+TEST(GltfRender, SingleSidedMaterialsHideBackFaces) {
+    Scene s = modelScene(loadGltf(dataPath("emissive.gltf")).mesh);
+    s.camera.position = {0.0f, 0.0f, -2.0f};  // behind the panel (it faces +Z)
+    s.camera.target = {0.0f, 0.0f, 0.0f};
+    EXPECT_NEAR(centre(s).x, 0.0f, 1e-4f);
+    for (Material& m : s.models[0].mesh.materials) m.doubleSided = true;
+    EXPECT_NEAR(centre(s).x, 4.0f, 4e-3f);
+}
+
+// A glTF spot (node at (0, 1, 0) turned -90 deg about +X: its -Z points down; cone 0.3 / 0.5 rad) over
+// a white plane seen from above: the centre, on the axis, is lit; points beyond the outer angle
+// (28.6 deg, 0.55 m from the foot) on either side are exactly black.
+TEST(GltfRender, GltfSpotLightsItsConeOnly) {
+    const fs::path dir = tempDir();
+    const double s = std::sqrt(0.5);
+    std::ofstream(dir / "spot.gltf")
+        << R"({"asset": {"version": "2.0"}, "extensionsUsed": ["KHR_lights_punctual"],
+              "extensions": {"KHR_lights_punctual": {"lights": [{"type": "spot", "intensity": 2, "range": 5,
+                             "spot": {"innerConeAngle": 0.3, "outerConeAngle": 0.5}}]}},
+              "buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}],
+              "bufferViews": [{"buffer": 0, "byteLength": 36}],
+              "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"}],
+              "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+              "nodes": [{"mesh": 0, "translation": [0, -5, 0]},
+                        {"translation": [0, 1, 0], "rotation": [)"
+        << -s << ", 0, 0, " << s << R"(], "extensions": {"KHR_lights_punctual": {"light": 0}}}],
+              "scenes": [{"nodes": [0, 1]}], "scene": 0})";
+    const GltfContent g = loadGltf(dir / "spot.gltf");
+    ASSERT_EQ(g.pointLights.size(), 1u);
+    MeshData plane = loadObj(objPlane(dir, "newmtl m\nKd 1 1 1\n"));
+    Scene scene = modelScene(std::move(plane));
+    scene.pointLights = g.pointLights;
+    scene.camera.position = {0.0f, 3.0f, 0.0f};
+    scene.camera.target = {0.0f, 0.0f, 0.0f};
+    scene.camera.up = {0.0f, 0.0f, -1.0f};  // image right is +X
+    scene.camera.fovYDegrees = 30.0f;
+    scene.camera.nearPlane = 0.1f;
+    scene.camera.farPlane = 10.0f;
+    const int w = 48, h = 48;
+    Renderer r(scene);
+    RenderSettings settings;
+    settings.width = w;
+    settings.height = h;
+    settings.keepHdr = true;
+    r.render(settings);
+    const ImageF hdr = r.readHdr();
+    auto at = [&](int x, int y) { return hdr.rgba[(size_t(y) * size_t(w) + size_t(x)) * 4]; };
+    // Column c's centre lies at x = ((c + 0.5) / 24 - 1) * 3 tan 15 deg on the plane: columns 4 and 43 at
+    // |x| = 0.64 m, 32.7 deg off the axis, outside the cone.
+    EXPECT_GT(at(w / 2, h / 2), 0.1f);
+    EXPECT_EQ(at(4, h / 2), 0.0f);
+    EXPECT_EQ(at(43, h / 2), 0.0f);
+    EXPECT_EQ(at(w / 2, 4), 0.0f);
+    EXPECT_EQ(at(w / 2, 43), 0.0f);
+    fs::remove_all(dir);
+}

@@ -1,0 +1,343 @@
+// glTF 2.0 loading: every primitive form, node transforms, materials, lights and cameras, and bad
+// input (each error names the file and the element). Assets: tests/data/gltf (scripts/make_gltf_assets.py).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "engine/core/error.hpp"
+#include "engine/io/gltf_loader.hpp"
+#include "engine/io/obj_loader.hpp"
+#include "engine/scene/scene_loader.hpp"
+
+using namespace lp;
+namespace fs = std::filesystem;
+
+namespace {
+
+const fs::path kData = fs::path(LIGHTPASS_SOURCE_DIR) / "tests/data/gltf";
+
+// Temporary folder of hand-written files, removed at the end of the test.
+struct TempDir {
+    fs::path dir;
+    TempDir() {
+        dir = fs::temp_directory_path() / ("lp_gltf_" + std::to_string(::getpid()) + "_" +
+                                           ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::remove_all(dir);
+        fs::create_directories(dir);
+    }
+    ~TempDir() { fs::remove_all(dir); }
+    fs::path write(const std::string& name, const std::string& text) const {
+        std::ofstream(dir / name, std::ios::binary) << text;
+        return dir / name;
+    }
+};
+
+std::string loadError(const fs::path& p) {
+    try {
+        loadGltf(p);
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "";
+}
+
+// A one-triangle glTF around a buffer given as a data: URI of `bytes` and the accessor JSON given.
+std::string triangleGltf(const std::string& accessors, const std::string& bufferViews, size_t bufferBytes,
+                         const std::string& extra = "", const std::string& primitive = "\"attributes\": {\"POSITION\": 0}") {
+    // 36 bytes of float positions (0,0,0) (1,0,0) (0,1,0), then 6 bytes of u16 indices 0 1 2.
+    static const char* kB64 = "AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAABAAIA";
+    return std::string("{\"asset\": {\"version\": \"2.0\"}, ") + extra +
+           "\"buffers\": [{\"byteLength\": " + std::to_string(bufferBytes) + ", \"uri\": \"data:application/octet-stream;base64," + kB64 + "\"}]," +
+           "\"bufferViews\": " + bufferViews + ", \"accessors\": " + accessors +
+           ", \"meshes\": [{\"primitives\": [{" + primitive + "}]}], \"nodes\": [{\"mesh\": 0}], \"scenes\": [{\"nodes\": [0]}], \"scene\": 0}";
+}
+const std::string kViews = R"([{"buffer": 0, "byteOffset": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 6}])";
+const std::string kPositions = R"({"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"})";
+
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+    const size_t at = text.find(from);
+    if (at != std::string::npos) text.replace(at, from.size(), to);
+    return text;
+}
+
+}  // namespace
+
+// Seven primitive forms (u8, u16, u32 indices, none, interleaved, strip, fan), each a unit quad of
+// two triangles at x = 3 i: all load, from .gltf + .bin and from .glb alike.
+TEST(GltfLoader, EveryPrimitiveFormLoads) {
+    for (const char* name : {"forms.gltf", "forms.glb"}) {
+        SCOPED_TRACE(name);
+        const GltfContent g = loadGltf(kData / name);
+        const MeshData& m = g.mesh;
+        ASSERT_EQ(m.subMeshes.size(), 7u);
+        EXPECT_EQ(m.indices.size(), 7u * 6u);
+        for (size_t i = 0; i < m.subMeshes.size(); ++i) {
+            const SubMesh& s = m.subMeshes[i];
+            EXPECT_EQ(s.indexCount, 6u) << "primitive " << i;
+            double area = 0.0;
+            glm::vec3 lo(1e9f), hi(-1e9f);
+            for (uint32_t k = s.firstIndex; k < s.firstIndex + s.indexCount; k += 3) {
+                const glm::vec3 a = m.vertices[m.indices[k]].position, b = m.vertices[m.indices[k + 1]].position,
+                                c = m.vertices[m.indices[k + 2]].position;
+                const glm::vec3 n = glm::cross(b - a, c - a);
+                area += 0.5 * glm::length(n);
+                EXPECT_GT(n.z, 0.0f) << "primitive " << i << " triangle faces away from +Z";  // winding kept
+                for (const glm::vec3& p : {a, b, c}) lo = glm::min(lo, p), hi = glm::max(hi, p);
+            }
+            EXPECT_NEAR(area, 1.0, 1e-6) << "primitive " << i;
+            EXPECT_NEAR(lo.x, 3.0f * float(i), 1e-6f);
+            EXPECT_NEAR(hi.x, 3.0f * float(i) + 1.0f, 1e-6f);
+            for (uint32_t k = s.firstIndex; k < s.firstIndex + s.indexCount; ++k)
+                EXPECT_NEAR(m.vertices[m.indices[k]].normal.z, 1.0f, 1e-6f);
+        }
+        EXPECT_NEAR(m.boundsMax.x, 19.0f, 1e-6f);
+        // glTF v runs down the image; the loader flips it to the OBJ convention (v = 0 at the bottom):
+        // the quad's top corner (y = 1) has glTF v 0, so v = 1 here.
+        for (const Vertex& v : m.vertices)
+            if (v.position.y == 1.0f && v.position.x == 0.0f) EXPECT_NEAR(v.uv.y, 1.0f, 1e-6f);
+        ASSERT_EQ(m.materials.size(), 1u);
+        EXPECT_NEAR(m.materials[0].diffuse.x, 0.8f, 1e-6f);
+        EXPECT_FALSE(m.materials[0].doubleSided);
+    }
+}
+
+// parent T (10,0,0) R (90 deg about +Y) S 2 > child T (1,0,0): the child's origin lands at
+// T_p R_p S_p T_c 0 = (10, 0, -2); any other order puts it elsewhere.
+TEST(GltfLoader, NodeTransformsComposeParentTimesTRS) {
+    const GltfContent g = loadGltf(kData / "hierarchy.gltf");
+    ASSERT_EQ(g.mesh.vertices.size(), 3u);  // no normals: flat normals, 3 vertices for 1 triangle
+    const glm::mat4 expected = glm::translate(glm::mat4(1.0f), glm::vec3(10, 0, 0)) *
+                               glm::rotate(glm::mat4(1.0f), glm::radians(90.0f), glm::vec3(0, 1, 0)) *
+                               glm::scale(glm::mat4(1.0f), glm::vec3(2.0f)) * glm::translate(glm::mat4(1.0f), glm::vec3(1, 0, 0));
+    const glm::vec3 local[3] = {{0, 0, 0}, {0.5f, 0, 0}, {0, 0.5f, 0}};
+    bool foundOrigin = false;
+    for (const Vertex& v : g.mesh.vertices) {
+        bool matched = false;
+        for (const glm::vec3& p : local) matched |= glm::length(v.position - glm::vec3(expected * glm::vec4(p, 1.0f))) < 1e-5f;
+        EXPECT_TRUE(matched) << v.position.x << " " << v.position.y << " " << v.position.z;
+        foundOrigin |= glm::length(v.position - glm::vec3(10, 0, -2)) < 1e-5f;
+        EXPECT_NEAR(glm::length(v.normal), 1.0f, 1e-5f);
+    }
+    EXPECT_TRUE(foundOrigin);
+}
+
+// Lights and cameras: the directional light points down its node's -Z, the point light keeps its range,
+// the spot light (under a rotated parent) keeps its world position, its node's -Z and its cone.
+TEST(GltfLoader, LightsAndCameras) {
+    MeshLoadReport report;
+    const GltfContent g = loadGltf(kData / "lights.gltf", &report);
+    ASSERT_EQ(g.directionalLights.size(), 1u);
+    EXPECT_NEAR(g.directionalLights[0].direction.y, -1.0f, 1e-5f);
+    EXPECT_NEAR(g.directionalLights[0].intensity, 2.0f, 1e-6f);
+    ASSERT_EQ(g.pointLights.size(), 2u);
+    EXPECT_NEAR(g.pointLights[0].range, 5.0f, 1e-6f);
+    EXPECT_NEAR(g.pointLights[0].position.y, 2.0f, 1e-6f);
+    EXPECT_FALSE(g.pointLights[0].spot.has_value());
+    // The spot: parent T (1, 0, 0) R 90 deg about +Y > child T (0, 3, 1) R -45 deg about +X.
+    const PointLight& spot = g.pointLights[1];
+    EXPECT_NEAR(spot.intensity, 20.0f, 1e-6f);  // candela on the axis, as for points
+    EXPECT_NEAR(glm::distance(spot.position, glm::vec3(2, 3, 0)), 0.0f, 1e-5f);
+    ASSERT_TRUE(spot.spot.has_value());
+    const glm::vec3 expectedAxis = glm::normalize(glm::vec3(-1, -1, 0));
+    EXPECT_NEAR(glm::distance(spot.spot->direction, expectedAxis), 0.0f, 1e-5f);
+    EXPECT_NEAR(spot.spot->innerDegrees, glm::degrees(0.2f), 1e-4f);
+    EXPECT_NEAR(spot.spot->outerDegrees, glm::degrees(0.5f), 1e-4f);
+    EXPECT_FALSE(spot.spot->castsShadow);
+    for (const auto& w : report.warnings) EXPECT_EQ(w.find("spot"), std::string::npos) << w;
+    ASSERT_EQ(g.cameras.size(), 1u);
+    EXPECT_NEAR(g.cameras[0].fovYDegrees, glm::degrees(0.8f), 1e-3f);
+    EXPECT_NEAR(g.cameras[0].position.z, 6.0f, 1e-6f);
+    EXPECT_LT(g.cameras[0].target.z, 6.0f);  // looks down -Z
+
+    // As a model: its lights replace the key and fill light, its camera the framed one.
+    const Scene s = sceneForModel(kData / "lights.gltf");
+    EXPECT_EQ(s.directionalLights.size(), 1u);
+    EXPECT_EQ(s.pointLights.size(), 2u);
+    EXPECT_NEAR(s.camera.position.z, 6.0f, 1e-6f);
+}
+
+// Materials: emission with KHR_materials_emissive_strength, alpha MASK, the normal texture.
+TEST(GltfLoader, Materials) {
+    const MeshData e = loadGltf(kData / "emissive.gltf").mesh;
+    ASSERT_EQ(e.materials.size(), 1u);
+    EXPECT_NEAR(e.materials[0].emission.x, 4.0f, 1e-6f);
+    EXPECT_NEAR(e.materials[0].emission.y, 2.0f, 1e-6f);
+    EXPECT_NEAR(e.materials[0].emission.z, 1.0f, 1e-6f);
+    const MeshData a = loadGltf(kData / "alpha_mask.gltf").mesh;
+    ASSERT_EQ(a.materials.size(), 3u);
+    for (const Material& m : a.materials) EXPECT_EQ(m.alphaMode, AlphaMode::Mask);
+    EXPECT_NEAR(a.materials[0].opacity, 0.3f, 1e-6f);
+    EXPECT_FALSE(a.materials[2].diffuseMap.empty());
+    EXPECT_TRUE(a.materials[2].diffuseMap.encoded != nullptr);  // embedded in the buffer
+    const MeshData n = loadGltf(kData / "normal_plane.glb").mesh;
+    ASSERT_FALSE(n.materials[0].normalMap.empty());
+    // The file's tangent (+X, w +1): with v flipped, the bitangent cross(N, T) w is -Z, up the image.
+    for (const Vertex& v : n.vertices) {
+        EXPECT_NEAR(v.tangent.x, 1.0f, 1e-6f);
+        EXPECT_GT(glm::dot(glm::cross(v.normal, glm::vec3(v.tangent)) * v.tangent.w, glm::vec3(0, 0, -1)), 0.99f);
+    }
+    // Generated tangents give the same frame.
+    const MeshData g = loadGltf(kData / "normal_plane_notangent.glb").mesh;
+    for (const Vertex& v : g.vertices) {
+        EXPECT_NEAR(v.tangent.x, 1.0f, 1e-5f);
+        EXPECT_GT(glm::dot(glm::cross(v.normal, glm::vec3(v.tangent)) * v.tangent.w, glm::vec3(0, 0, -1)), 0.99f);
+    }
+}
+
+TEST(GltfLoader, SceneFileModelsGltf) {
+    TempDir t;
+    const std::string scene = R"({"models": [{"gltf": ")" + (kData / "lights.gltf").string() +
+                              R"(", "translate": [0, 10, 0]}], "lights": [{"type": "directional"}]})";
+    const Scene s = parseScene(scene, t.dir / "s.json");
+    ASSERT_EQ(s.models.size(), 1u);
+    EXPECT_EQ(s.models[0].name, "lights");
+    EXPECT_EQ(s.directionalLights.size(), 2u);  // the file's and the glTF's
+    ASSERT_EQ(s.pointLights.size(), 2u);
+    EXPECT_NEAR(s.pointLights[0].position.y, 12.0f, 1e-5f);  // placed by the model's transform
+    // The model's rotation turns the spot's axis: 90 deg about +Y takes (-1, -1, 0)/sqrt 2 to (0, -1, 1)/sqrt 2.
+    const std::string turned = R"({"models": [{"gltf": ")" + (kData / "lights.gltf").string() + R"(", "rotate": [0, 90, 0]}]})";
+    const Scene r = parseScene(turned, t.dir / "s.json");
+    ASSERT_EQ(r.pointLights.size(), 2u);
+    ASSERT_TRUE(r.pointLights[1].spot.has_value());
+    EXPECT_NEAR(glm::distance(r.pointLights[1].spot->direction, glm::normalize(glm::vec3(0, -1, 1))), 0.0f, 1e-5f);
+    EXPECT_NEAR(glm::distance(r.pointLights[1].position, glm::vec3(0, 3, -2)), 0.0f, 1e-5f);
+    EXPECT_THROW(parseScene(R"({"models": [{"gltf": "a.glb", "obj": "b.obj"}]})", t.dir / "s.json"), Error);
+    try {
+        parseScene(R"({"models": [{"gltf": "a.txt"}]})", t.dir / "s.json");
+        FAIL();
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("models[0].gltf: a.txt: expected a .gltf or .glb file"), std::string::npos) << e.what();
+    }
+}
+
+// Bad input: one-line errors naming the file and the element.
+TEST(GltfLoader, BadInputNamesFileAndElement) {
+    TempDir t;
+    auto expectError = [&](const std::string& name, const std::string& text, const std::string& fragment) {
+        const fs::path p = t.write(name, text);
+        const std::string err = loadError(p);
+        EXPECT_EQ(err.rfind(p.string() + ": ", 0), 0u) << name << ": " << err;
+        EXPECT_NE(err.find(fragment), std::string::npos) << name << ": " << err;
+        EXPECT_EQ(err.find('\n'), std::string::npos) << err;
+    };
+    // The well-formed base loads.
+    EXPECT_NO_THROW(loadGltf(t.write("ok.gltf", triangleGltf("[" + kPositions + "]", kViews, 42))));
+    expectError("missing_buffer.gltf",
+                R"({"asset": {"version": "2.0"}, "buffers": [{"byteLength": 42, "uri": "nothere.bin"}], "bufferViews": )" + kViews +
+                    R"(, "accessors": [)" + kPositions + R"(], "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}], "nodes": [{"mesh": 0}]})",
+                "buffers[0]: " + (t.dir / "nothere.bin").string() + ": file not found");
+    expectError("accessor_past_end.gltf", triangleGltf(R"([{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3"}])", kViews, 42),
+                "meshes[0].primitives[0].attributes.POSITION (accessors[0]): 4 elements from byte 0 run past the end of bufferViews[0]");
+    expectError("view_past_buffer.gltf",
+                triangleGltf("[" + kPositions + "]", R"([{"buffer": 0, "byteOffset": 8, "byteLength": 36}])", 42),
+                "bufferViews[0]: bytes 8+36 run past the end of buffers[0]");
+    expectError("no_accessor.gltf", triangleGltf("[" + kPositions + "]", kViews, 42, "", R"("attributes": {"POSITION": 7})"),
+                "meshes[0].primitives[0].attributes.POSITION: accessor 7 does not exist");
+    expectError("bad_index.gltf",
+                replaced(triangleGltf("[" + kPositions + R"(, {"bufferView": 1, "componentType": 5123, "count": 3, "type": "SCALAR"}])", kViews,
+                                      42, "", R"("attributes": {"POSITION": 0}, "indices": 1)"),
+                         "AAABAAIA", "AAABAAkA"),
+                "meshes[0].primitives[0].indices: index 9 at position 2 is beyond the 3 vertices");
+    expectError("required_ext.gltf", triangleGltf("[" + kPositions + "]", kViews, 42, R"("extensionsRequired": ["KHR_draco_mesh_compression"],)"),
+                "extensionsRequired: KHR_draco_mesh_compression is not supported");
+    expectError("wrong_type.gltf", triangleGltf(R"([{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC2"}])", kViews, 42),
+                "unexpected type");
+    expectError("cycle.gltf",
+                replaced(triangleGltf("[" + kPositions + "]", kViews, 42), R"("nodes": [{"mesh": 0}])",
+                         R"("nodes": [{"mesh": 0, "children": [1]}, {"children": [0]}])"),
+                "the node hierarchy has a cycle");
+    expectError("not_json.gltf", "{\"asset\": ", "");
+    // Spot cones: lights[2] of three, on the triangle's node.
+    auto spotGltf = [&](const std::string& cone) {
+        return replaced(triangleGltf("[" + kPositions + "]", kViews, 42,
+                                     R"("extensionsUsed": ["KHR_lights_punctual"], "extensions": {"KHR_lights_punctual": {"lights": [{"type": "point"}, {"type": "point"}, {"type": "spot", "spot": {)" +
+                                         cone + "}}]}},"),
+                        R"("nodes": [{"mesh": 0}])", R"("nodes": [{"mesh": 0, "extensions": {"KHR_lights_punctual": {"light": 2}}}])");
+    };
+    expectError("spot_outer_below_inner.gltf", spotGltf(R"("innerConeAngle": 0.5, "outerConeAngle": 0.3)"),
+                "extensions.KHR_lights_punctual.lights[2].spot.outerConeAngle: 0.3 rad must be greater than innerConeAngle 0.5");
+    expectError("spot_equal.gltf", spotGltf(R"("innerConeAngle": 0.4, "outerConeAngle": 0.4)"), "lights[2].spot.outerConeAngle");
+    expectError("spot_negative_inner.gltf", spotGltf(R"("innerConeAngle": -0.1, "outerConeAngle": 0.4)"),
+                "lights[2].spot.innerConeAngle: -0.1 rad: must be >= 0");
+    // JSON has no NaN; an overflowing number is the way a file carries a non-finite angle.
+    const std::string nanErr = loadError(t.write("spot_nan.gltf", spotGltf(R"("innerConeAngle": 0.1, "outerConeAngle": 1e999)")));
+    EXPECT_EQ(nanErr.rfind((t.dir / "spot_nan.gltf").string() + ": ", 0), 0u) << nanErr;
+    EXPECT_EQ(nanErr.find('\n'), std::string::npos) << nanErr;
+    // Defaults (0 and pi/4), and glTF's widest cone pi/2 clamped below a hemisphere with a warning.
+    const GltfContent d = loadGltf(t.write("spot_default.gltf", spotGltf("")));
+    ASSERT_EQ(d.pointLights.size(), 1u);
+    ASSERT_TRUE(d.pointLights[0].spot.has_value());
+    EXPECT_NEAR(d.pointLights[0].spot->innerDegrees, 0.0f, 1e-6f);
+    EXPECT_NEAR(d.pointLights[0].spot->outerDegrees, 45.0f, 1e-4f);
+    EXPECT_NEAR(glm::distance(d.pointLights[0].spot->direction, glm::vec3(0, 0, -1)), 0.0f, 1e-6f);
+    MeshLoadReport wide;
+    const GltfContent w = loadGltf(t.write("spot_wide.gltf", spotGltf(R"("innerConeAngle": 1.5707963, "outerConeAngle": 1.5707964)")), &wide);
+    ASSERT_TRUE(w.pointLights.at(0).spot.has_value());
+    EXPECT_FLOAT_EQ(w.pointLights[0].spot->outerDegrees, 89.0f);
+    EXPECT_FLOAT_EQ(w.pointLights[0].spot->innerDegrees, 89.0f);
+    bool clampWarned = false;
+    for (const auto& m : wide.warnings) clampWarned |= m.find("lights[2].spot.outerConeAngle: 90 degrees clamped to 89") != std::string::npos;
+    EXPECT_TRUE(clampWarned);
+    // A missing texture is the documented fallback: the file loads, the texture is a checker later.
+    const std::string withTexture = triangleGltf("[" + kPositions + "]", kViews, 42,
+                                                 R"("images": [{"uri": "missing.png"}], "textures": [{"source": 0}], "materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}],)",
+                                                 R"("attributes": {"POSITION": 0}, "material": 0)");
+    const GltfContent g = loadGltf(t.write("missing_texture.gltf", withTexture));
+    ASSERT_EQ(g.mesh.materials.size(), 1u);
+    EXPECT_EQ(g.mesh.materials[0].diffuseMap.path, t.dir / "missing.png");
+}
+
+// MTL: "norm" is a tangent-space normal map, "bump" a height map, Ke emission, d opacity.
+TEST(GltfLoader, MtlConvertsOntoTheSameMaterialModel) {
+    TempDir t;
+    t.write("m.mtl", "newmtl a\nKd 0.5 0.25 0.125\nKs 0.1 0.2 0.3\nNs 100\nKe 2 3 4\nnorm -bm 0.5 n.png\nbump h.png\nd 0.4\n");
+    const fs::path obj = t.write("m.obj", "mtllib m.mtl\nusemtl a\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    const MeshData m = loadObj(obj);
+    const Material& a = m.materials[0];
+    EXPECT_EQ(a.normalMap.path, t.dir / "n.png");
+    EXPECT_NEAR(a.normalScale, 0.5f, 1e-6f);
+    EXPECT_EQ(a.bumpMap.path, t.dir / "h.png");
+    EXPECT_NEAR(a.emission.z, 4.0f, 1e-6f);
+    EXPECT_NEAR(a.specular.y, 0.2f, 1e-6f);
+    EXPECT_EQ(a.metallic, 0.0f);
+    EXPECT_NEAR(a.opacity, 0.4f, 1e-6f);
+    EXPECT_EQ(a.alphaMode, AlphaMode::Mask);
+    EXPECT_NEAR(shininessFromRoughness(a.roughness), 100.0f, 0.05f);
+    EXPECT_TRUE(a.doubleSided);
+}
+
+TEST(GltfLoader, RoughnessShininessRoundTrip) {
+    for (float n : {0.0f, 1.0f, 32.0f, 1000.0f, 10000.0f, 1e6f}) EXPECT_NEAR(shininessFromRoughness(roughnessFromShininess(n)), n, 1e-3f * (n + 1.0f));
+    EXPECT_EQ(shininessFromRoughness(1.0f), 0.0f);
+    EXPECT_NEAR(shininessFromRoughness(0.1f), 19998.0f, 0.1f);  // past the analytic BRDFs' 10000: IBL reaches it
+    EXPECT_NEAR(shininessFromRoughness(0.0f), 1.25e7f, 10.0f);  // the floor, roughness 0.02
+    EXPECT_EQ(shininessFromRoughness(0.0f), shininessFromRoughness(kMinRoughness));
+}
+
+// --up z and a scene file's "up": "z" turn a Z-up model Y-up, (x, y, z) -> (x, z, -y), before placing it.
+TEST(GltfLoader, ZUpModelsAreTurnedYUp) {
+    glm::vec3 lo, hi;
+    const Scene yUp = sceneForModel(kData / "forms.gltf");
+    yUp.bounds(lo, hi);
+    EXPECT_NEAR(hi.y, 1.0f, 1e-5f);
+    const Scene zUp = sceneForModel(kData / "forms.gltf", true);
+    zUp.bounds(lo, hi);
+    EXPECT_NEAR(hi.y, 0.0f, 1e-5f);  // the quads' y (0..1) became -z
+    EXPECT_NEAR(lo.z, -1.0f, 1e-5f);
+    TempDir t;
+    const Scene s = parseScene(R"({"models": [{"gltf": ")" + (kData / "forms.gltf").string() + R"(", "up": "z", "translate": [0, 5, 0]}]})",
+                               t.dir / "s.json");
+    s.bounds(lo, hi);
+    EXPECT_NEAR(lo.y, 5.0f, 1e-5f);
+    EXPECT_NEAR(lo.z, -1.0f, 1e-5f);
+    try {
+        parseScene(R"({"models": [{"primitive": "cube", "up": "x"}]})", t.dir / "s.json");
+        FAIL();
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("models[0].up: 'x': expected \"y\" or \"z\""), std::string::npos) << e.what();
+    }
+}
