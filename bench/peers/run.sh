@@ -9,8 +9,9 @@
 #   3. bench/peers/filament.py at both sizes                -> OUTDIR/peers_filament_NAME_WxH.json
 #   4. bench/peers/summarize_peers.py                      -> OUTDIR/peers.md
 # Filament needs Python >= 3.12 and the wheels folder (bench/peers/README.md): PEERS_PYTHON (default:
-# the first python3.1x >= 3.12 on PATH), PEERS_WHEELS (default: peers-wheels beside or above
-# LIGHTPASS). Without them lightpass is still timed and the table says so.
+# the first python3.1x >= 3.12 on PATH, else the one carried in peers-wheels/python), PEERS_WHEELS
+# (default: peers-wheels beside or above LIGHTPASS). Without them lightpass is still timed and the
+# table leaves Filament's columns empty.
 # PEERS_FRAMES (200), PEERS_WARMUP (30), PEERS_SIZES ("1920x1080 3840x2160") shorten a trial run.
 # WORK (PEERS_WORK, default $TMPDIR/lightpass-peers-work) keeps the converted scenes (the gallery GLB
 # is 7 MB) and one image per renderer and scene at the first size, out of the results folder.
@@ -22,6 +23,12 @@ mkdir -p "$out" "$work"
 lp_dir=$(cd "$(dirname "$lp")" && pwd)
 
 # ---- Python >= 3.12 with filly and numpy, from the carried wheels (unpacked: no venv or pip needed)
+wheels=${PEERS_WHEELS:-}
+if [ -z "$wheels" ]; then
+  for c in "$lp_dir/peers-wheels" "$lp_dir/../peers-wheels"; do
+    if ls "$c"/filly-*.whl >/dev/null 2>&1; then wheels=$(cd "$c" && pwd); break; fi
+  done
+fi
 py=${PEERS_PYTHON:-}
 if [ -z "$py" ]; then
   for c in python3.12 python3.13 python3.14 python3; do
@@ -30,16 +37,16 @@ if [ -z "$py" ]; then
     fi
   done
 fi
-wheels=${PEERS_WHEELS:-}
-if [ -z "$wheels" ]; then
-  for c in "$lp_dir/peers-wheels" "$lp_dir/../peers-wheels"; do
-    if ls "$c"/filly-*.whl >/dev/null 2>&1; then wheels=$(cd "$c" && pwd); break; fi
-  done
+if [ -z "$py" ] && [ -n "$wheels" ] && [ -x "$wheels/python/bin/python3.12" ]; then
+  # The CPython 3.12 that make_wheels.sh --python carried: its libpython and libraries beside it.
+  py=$wheels/python/bin/python3.12
+  export LD_LIBRARY_PATH="$wheels/python/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
 fi
 filament_ok=1
 if [ -z "$py" ]; then
   echo "peers: Filament needs Python >= 3.12 (the filly wheel is cp312-abi3) and none is on PATH" \
-       "(python3 is $(python3 --version 2>&1)); set PEERS_PYTHON=/path/to/python3.12. Timing lightpass only." >&2
+       "(python3 is $(python3 --version 2>&1)) nor carried in peers-wheels/python (make_wheels.sh --python PREFIX);" \
+       "set PEERS_PYTHON=/path/to/python3.12. Timing lightpass only." >&2
   filament_ok=0
 elif [ -z "$wheels" ] || ! ls "$wheels"/filly-*.whl >/dev/null 2>&1; then
   echo "peers: no filly wheel: expected peers-wheels/ beside $lp (bench/peers/make_wheels.sh makes it) or" \

@@ -37,7 +37,7 @@ def read_results(out_dir, names):
         if os.path.isfile(lp_path):
             d = load(lp_path)
             device = device or d.get("device")
-            flags.add(d.get("common_flags", ""))
+            flags.add(shown_flags(d.get("common_flags", "")))
             for run in d.get("runs", []):
                 frame = run.get("passes", {}).get("frame")
                 if frame and "width" in run and "height" in run:
@@ -50,6 +50,19 @@ def read_results(out_dir, names):
             entry["filament"][(d["width"], d["height"])] = d
         results[name] = entry
     return results, device, sorted(flags)
+
+
+def shown_flags(common):
+    """lightpass's common flags without the per-scene path and the quiet switch."""
+    words, out, i = common.split(), [], 0
+    while i < len(words):
+        if words[i] in ("--scene", "--timings-json"):
+            i += 2
+            continue
+        if words[i] not in ("-q", "--quiet"):
+            out.append(words[i])
+        i += 1
+    return " ".join(out)
 
 
 def scene_label(name, entry):
