@@ -83,6 +83,7 @@ names=()
 for spec in "gallery scenes/gallery.json --suns 1 --points 0" "cornell scenes/cornell.json --suns 1"; do
   read -r name scene conv <<< "$spec"
   echo "== peers: $name"
+  rm -f "$out/peers_lightpass_$name.json" "$out"/peers_filament_"$name"_*.json  # no stale numbers in the table
   if ! "$conv_py" bench/peers/scene_to_glb.py "$scene" --out-dir "$work" --name "$name" $conv; then
     echo "peers: converting $scene failed" >&2; continue
   fi
