@@ -2,12 +2,12 @@
 # The GPU benchmarks of lightpass in one go, each as one `lightpass bench` process (one scene load,
 # every variant timed in turn; medians after warm-up; floors measured on the same GPU).
 #   bench/gpu_suite.sh LIGHTPASS OUTDIR [PART ...]
-# PART: lights shadows ibl post frame sweep products scale scene (default: all). Needs ../shared/assets for the gallery scene and
+# PART: lights shadows ibl post frame sweep products scale scene peers (default: all). Needs ../shared/assets for the gallery scene and
 # the Poly Haven maps. Tables: bench/summarize_bench.py OUTDIR/<part>.json (see bench/results/*/README.md).
 set -uo pipefail
 lp=$1 out=$2
 shift 2
-parts=${*:-lights shadows ibl post frame sweep products scale scene}
+parts=${*:-lights shadows ibl post frame sweep products scale scene peers}
 mkdir -p "$out"
 maps="hdr/sky.exr"
 for m in ../shared/assets/hdri-polyhaven-1k/*.hdr ../shared/assets/hdri-polyhaven-1k/*.exr; do [ -f "$m" ] && maps="$maps $m"; done
@@ -77,6 +77,8 @@ PY
         --timings-json "$out/render_scale.json" ;;
     scene)  # scene-driven graph against every pass forced on
       bench/scene_driven.sh "$lp" 1920x1080 200 30 "$out/scene_driven" ;;
+    peers)  # lightpass against Filament (filly wheel from peers-wheels/ beside the bundle): OUTDIR/peers.md
+      bench/peers/run.sh "$lp" "$out" ;;
     *) echo "unknown part $part" >&2; exit 2 ;;
   esac
 done
