@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <random>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -422,6 +423,50 @@ TEST(VisibilityBuffer, FinalImageMatchesClassicOnEveryBundledScene) {
         EXPECT_TRUE(r.graph().isLive("gbuffer_resolve"));
         const HdrError e = compareHdr(visibility, classic);
         std::printf("  %-22s HDR relative error mean %.2e max %.2e\n", name.c_str(), e.mean, e.max);
+        EXPECT_TRUE(e.finite);
+        EXPECT_LT(e.mean, 2e-3);
+        EXPECT_LT(e.max, 0.1);
+    }
+}
+
+// The settings that change what the G-buffer is asked for or at what size, on the moving camera of
+// cornell-flythrough (frames at 30 fps, so motion vectors, motion blur and TAA's history run): other
+// normal formats and rebuilt positions (reversed-Z included), SSAA, render scale, TAA's jitter and
+// history, motion blur, each local-light method that reads the G-buffer differently.
+TEST(VisibilityBuffer, SettingsThatShapeTheGBufferMatchClassic) {
+    const Scene scene = loadScene(test::repoPath("scenes/cornell-flythrough.json"));
+    struct Variant {
+        const char* name;
+        std::function<void(RenderSettings&)> set;
+        const char* pass = nullptr;  // a pass the variant must run
+    };
+    const Variant variants[] = {
+        {"oct16 + reversed-z", [](RenderSettings& s) { s.gbuffer.normal = GBufferNormalFormat::Oct16;
+                                                       s.gbuffer.position = GBufferPositionMode::ReversedZ; }},
+        {"seed-packed-signed + depth", [](RenderSettings& s) { s.gbuffer.normal = GBufferNormalFormat::SeedPackedSigned;
+                                                               s.gbuffer.position = GBufferPositionMode::Depth; }},
+        {"two-angle", [](RenderSettings& s) { s.gbuffer.normal = GBufferNormalFormat::TwoAngle; }},
+        {"ssaa 2", [](RenderSettings& s) { s.aa.method = AntiAliasing::Ssaa; }},
+        {"render scale 0.5", [](RenderSettings& s) { s.renderScale = 0.5f; }},
+        {"taa", [](RenderSettings& s) { s.aa.method = AntiAliasing::Taa; }, "taa"},
+        {"motion blur", [](RenderSettings& s) { s.motionBlur.enabled = true; }, "motion_blur"},
+        {"clustered lights", [](RenderSettings& s) { s.localLights.method = LocalLightMethod::Clustered; }, "local_lights"},
+        {"volumes", [](RenderSettings& s) { s.localLights.method = LocalLightMethod::Volumes; }, "local_lights"},
+    };
+    auto run = [&](const Variant& v, GBufferMode mode) {
+        Renderer r(scene);
+        RenderSettings s = frameSettings(mode);
+        s.keepHdr = true;
+        v.set(s);
+        for (int i = 0; i < 4; ++i) r.render(s, 1.0f + float(i) / 30.0f, false);  // a history for motion and TAA
+        if (mode == GBufferMode::Visibility) EXPECT_TRUE(r.graph().isLive("gbuffer_resolve"));
+        if (v.pass) EXPECT_TRUE(r.graph().isLive(v.pass)) << v.pass;
+        return r.readHdr();
+    };
+    for (const Variant& v : variants) {
+        SCOPED_TRACE(v.name);
+        const HdrError e = compareHdr(run(v, GBufferMode::Visibility), run(v, GBufferMode::Classic));
+        std::printf("  %-28s HDR relative error mean %.2e max %.2e\n", v.name, e.mean, e.max);
         EXPECT_TRUE(e.finite);
         EXPECT_LT(e.mean, 2e-3);
         EXPECT_LT(e.max, 0.1);
