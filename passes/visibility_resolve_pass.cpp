@@ -71,6 +71,7 @@ void buildGeometry(VisibilityResolvePass& state, const SceneGpu& gpu) {
     state.materials = gl::makeBuffer(GLsizeiptr(std::max<size_t>(gpu.materials.size(), 1) * sizeof(MaterialRecord)),
                                      nullptr, GL_DYNAMIC_STORAGE_BIT, "gbuffer_resolve.materials");
     state.geometryOf = &gpu;
+    state.geometryTriangles = gpu.triangleCount;
 }
 
 std::vector<std::string> imageDefines(const GBufferSettings& layout) {
@@ -119,7 +120,7 @@ GBuffer addVisibilityResolvePass(fg::FrameGraph& graph, VisibilityResolvePass& s
         },
         [&state, frame](const Data& d, const fg::PassResources& res) {
             const SceneGpu& gpu = *frame.gpu;
-            if (state.geometryOf != &gpu) {
+            if (state.geometryOf != &gpu || state.geometryTriangles != gpu.triangleCount) {
                 buildGeometry(state, gpu);
                 state.texturedMaterials.clear();
                 for (size_t i = 0; i < gpu.materials.size(); ++i)

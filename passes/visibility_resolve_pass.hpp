@@ -18,7 +18,10 @@ namespace lp {
 struct VisibilityResolvePass {
     gl::Program program;
     GBufferSettings layout;  // what `program` was compiled for
-    const SceneGpu* geometryOf = nullptr;  // the scene the storage buffers below hold
+    // The scene the storage buffers below hold (its address and triangle count: a scene loaded later
+    // at the same address is told apart by its size).
+    const SceneGpu* geometryOf = nullptr;
+    size_t geometryTriangles = 0;
     gl::Buffer vertices, indices, draws, meshes, materials;
     uint32_t drawCount = 0;
     std::vector<int> texturedMaterials;  // one dispatch each, with its maps bound
