@@ -2,12 +2,12 @@
 # The GPU benchmarks of lightpass in one go, each as one `lightpass bench` process (one scene load,
 # every variant timed in turn; medians after warm-up; floors measured on the same GPU).
 #   bench/gpu_suite.sh LIGHTPASS OUTDIR [PART ...]
-# PART: lights shadows ibl post frame sweep products scale scene peers (default: all). Needs ../shared/assets for the gallery scene and
+# PART: lights shadows ibl post frame sweep products scale scene peers visibility (default: all). Needs ../shared/assets for the gallery scene and
 # the Poly Haven maps. Tables: bench/summarize_bench.py OUTDIR/<part>.json (see bench/results/*/README.md).
 set -uo pipefail
 lp=$1 out=$2
 shift 2
-parts=${*:-lights shadows ibl post frame sweep products scale scene peers}
+parts=${*:-lights shadows ibl post frame sweep products scale scene peers visibility}
 mkdir -p "$out"
 maps="hdr/sky.exr"
 for m in ../shared/assets/hdri-polyhaven-1k/*.hdr ../shared/assets/hdri-polyhaven-1k/*.exr; do [ -f "$m" ] && maps="$maps $m"; done
@@ -75,6 +75,17 @@ PY
       "$lp" bench --scene scenes/gallery.json --frames 100 --warmup 10 --floors \
         --vary '--render-scale 0.25,0.5,0.75,1' --vary '--size 1920x1080,3840x2160' \
         --timings-json "$out/render_scale.json" ;;
+    visibility)  # the G-buffer stage, classic raster against the visibility buffer (bench/visibility.sh's runs)
+      for s in gallery cornell; do
+        "$lp" bench --scene scenes/$s.json --frames 100 --warmup 10 --floors --max-seconds 4 --min-frames 10 \
+          --vary '--gbuffer-mode classic,visibility' \
+          --vary '--gbuffer unpacked --gbuffer-position stored|--gbuffer oct32 --gbuffer-position depth' \
+          --vary '--size 1920x1080,3840x2160' --timings-json "$out/visibility_$s.json"
+      done
+      "$lp" sweep --scene scenes/gallery.json --size 3840x2160 --frames 100 --knob gbuffer-mode \
+        --out-dir "$out/sweep_gbuffer_mode"
+      python3 bench/summarize_visibility.py "$out/visibility_gallery.json" "$out/visibility_cornell.json" \
+        --sweep "$out/sweep_gbuffer_mode/sweep.csv" > "$out/visibility.md" ;;
     scene)  # scene-driven graph against every pass forced on
       bench/scene_driven.sh "$lp" 1920x1080 200 30 "$out/scene_driven" ;;
     peers)  # lightpass against Filament (filly wheel from peers-wheels/ beside the bundle): OUTDIR/peers.md

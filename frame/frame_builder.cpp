@@ -99,7 +99,17 @@ FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const Fr
     const bool taa = temporalAntiAliasing(s);
     GBufferChannels channels = channelsForView(s.view);
     channels.velocity = channels.velocity || motionBlurSkip.empty() || taa;
-    GBuffer gbuffer = addGBufferPass(graph, passes.gbuffer, frame, channels);
+    // The G-buffer: rasterised target by target, or a visibility buffer resolved into the same targets.
+    GBuffer gbuffer;
+    if (s.gbuffer.mode == GBufferMode::Visibility) {
+        graph.skipPass("gbuffer", "--gbuffer-mode visibility: gbuffer_visibility and gbuffer_resolve make the G-buffer");
+        const VisibilityBuffer visibility = addVisibilityPass(graph, passes.visibility, frame);
+        gbuffer = addVisibilityResolvePass(graph, passes.visibilityResolve, frame, visibility, channels);
+    } else {
+        gbuffer = addGBufferPass(graph, passes.gbuffer, frame, channels);
+        graph.skipPass("gbuffer_visibility", "--gbuffer-mode classic (visibility buffer off)");
+        graph.skipPass("gbuffer_resolve", "--gbuffer-mode classic (visibility buffer off)");
+    }
     // one depth pass per shadow-casting directional light; global_lights and the shadowmap view read them.
     const ShadowMaps shadowMaps = addShadowMapPasses(graph, passes.shadowMaps, frame);
     // Occlusion of the indirect light (ambient, IBL); the light passes read it, the ao view shows it.

@@ -25,6 +25,8 @@
 #include "passes/taa_pass.hpp"
 #include "passes/tonemap_pass.hpp"
 #include "passes/upscale_pass.hpp"
+#include "passes/visibility_pass.hpp"
+#include "passes/visibility_resolve_pass.hpp"
 
 namespace lp {
 
@@ -32,6 +34,8 @@ namespace lp {
 // that outlive a frame, which each frame's graph imports.
 struct PassStates {
     GBufferPass gbuffer;
+    VisibilityPass visibility;          // --gbuffer-mode visibility: gbuffer_visibility
+    VisibilityResolvePass visibilityResolve;  // and gbuffer_resolve
     GlobalLightPass globalLights;
     SkyPass sky;
     ToneMapPass tonemap;

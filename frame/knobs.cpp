@@ -136,6 +136,21 @@ std::vector<KnobEntry> makeKnobTable() {
                    nullptr};
         t.push_back(std::move(k));
     }
+    {
+        KnobEntry k = choiceKnob("gbuffer-mode", [](auto& s) -> auto& { return s.gbuffer.mode; }, allGBufferModes(),
+                                 gbufferModeName);
+        k.flags = {valueFlag("--gbuffer-mode")};
+        k.choiceNoun = "mode";
+        k.help = "classic: the G-buffer pass rasterises every target; visibility: depth and a triangle id are "
+                 "rasterised and a compute pass rebuilds the same targets (README \"Visibility buffer\")";
+        k.panel = {PanelSection::View, PanelWidget::Combo, "G-buffer mode", ""};
+        k.sweep = {{"visibility", "classic"},
+                   false,
+                   "how the G-buffer is made (--gbuffer-mode): a visibility buffer resolved by compute, or the "
+                   "classic raster (reference). The same targets by design: the error is ~0",
+                   nullptr};
+        t.push_back(std::move(k));
+    }
 
     // ---- shadows ----
     {

@@ -8,7 +8,5 @@ uniform mat4 uViewProjection;                // unjittered, current
 uniform mat4 uPreviousViewProjection;        // unjittered, previous frame
 layout(location = 6) out vec2 outVelocity;
 void main() {
-    vec4 e = uInverseRotationProjection * vec4(vNdc - uJitterNdc, 1.0, 1.0);
-    vec4 direction = vec4(e.xyz / e.w, 0.0);
-    outVelocity = velocityFromClip(uViewProjection * direction, uPreviousViewProjection * direction);
+    outVelocity = backgroundVelocity(vNdc, uJitterNdc, uInverseRotationProjection, uViewProjection, uPreviousViewProjection);
 }

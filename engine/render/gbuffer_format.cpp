@@ -46,6 +46,12 @@ std::optional<GBufferPositionMode> parseGBufferPosition(const std::string& name)
     return std::nullopt;
 }
 
+const char* gbufferModeName(GBufferMode mode) {
+    return mode == GBufferMode::Visibility ? "visibility" : "classic";
+}
+
+std::vector<GBufferMode> allGBufferModes() { return {GBufferMode::Classic, GBufferMode::Visibility}; }
+
 std::string gbufferFormatNames() {
     std::string s;
     for (GBufferNormalFormat f : allGBufferFormats()) s += (s.empty() ? "" : ", ") + std::string(gbufferFormatName(f));

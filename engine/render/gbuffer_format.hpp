@@ -23,10 +23,20 @@ enum class GBufferPositionMode {
     ReversedZ,  // rebuilt from a reversed-Z D32F depth buffer (near 1, far 0, GL_GREATER)
 };
 
+// How the G-buffer is made (--gbuffer-mode): rasterising every material attribute, or a visibility
+// buffer (depth and a triangle id) resolved into the same targets by a compute pass.
+enum class GBufferMode {
+    Classic,     // the gbuffer pass writes every target from its fragment shader
+    Visibility,  // gbuffer_visibility writes depth + R32UI id; gbuffer_resolve rebuilds the targets
+};
+
 struct GBufferSettings {
     GBufferNormalFormat normal = GBufferNormalFormat::Unpacked;
     GBufferPositionMode position = GBufferPositionMode::Stored;
-    bool operator==(const GBufferSettings& o) const { return normal == o.normal && position == o.position; }
+    GBufferMode mode = GBufferMode::Classic;
+    bool operator==(const GBufferSettings& o) const {
+        return normal == o.normal && position == o.position && mode == o.mode;
+    }
     bool operator!=(const GBufferSettings& o) const { return !(*this == o); }
 };
 
@@ -36,6 +46,8 @@ std::vector<GBufferNormalFormat> allGBufferFormats();
 const char* gbufferPositionName(GBufferPositionMode mode);
 std::optional<GBufferPositionMode> parseGBufferPosition(const std::string& name);
 std::vector<GBufferPositionMode> allGBufferPositionModes();
+const char* gbufferModeName(GBufferMode mode);
+std::vector<GBufferMode> allGBufferModes();
 std::string gbufferFormatNames();    // "unpacked, seed-packed, ..." for errors and help
 std::string gbufferPositionNames();
 

@@ -13,6 +13,15 @@ vec2 velocityFromClip(vec4 currentClip, vec4 previousClip) {
     return any(isnan(v)) ? vec2(0.0) : clamp(v, vec2(-4.0), vec2(4.0));
 }
 
+// Velocity of the background at jittered NDC `ndc`: a direction at infinity, which only the camera's
+// rotation moves. inverseRotationProjection = inverse(unjittered projection x view's rotation).
+vec2 backgroundVelocity(vec2 ndc, vec2 jitterNdc, mat4 inverseRotationProjection, mat4 viewProjection,
+                        mat4 previousViewProjection) {
+    vec4 e = inverseRotationProjection * vec4(ndc - jitterNdc, 1.0, 1.0);
+    vec4 direction = vec4(e.xyz / e.w, 0.0);
+    return velocityFromClip(viewProjection * direction, previousViewProjection * direction);
+}
+
 // The velocity view: direction as hue (right red, up yellow-green, left cyan, down violet) and
 // length as brightness, linear up to full brightness at fullScalePixels; zero motion is black.
 vec3 velocityViewColour(vec2 velocityPixels, float fullScalePixels) {

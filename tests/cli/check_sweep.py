@@ -4,7 +4,9 @@ columns, the reference (last) row has error 0, every image was written and finit
 knob's table, stderr has a progress line per value, and for a monotone knob the HDR RMSE never
 rises as the value moves towards the reference (equal is allowed).
 With --positive COLUMN, that column must be > 0 in every row of the knob (e.g. ibl_bake_gpu_ms).
-  check_sweep.py OUTDIR STDERR_FILE KNOB VALUES [--monotone] [--positive COLUMN]"""
+With --max-rmse E, every row's HDR RMSE must be at most E (a knob that gives the same image by design).
+With --timed-in VALUE:COLUMN, that value's row must have COLUMN > 0 (a pass only that value runs).
+  check_sweep.py OUTDIR STDERR_FILE KNOB VALUES [--monotone] [--positive COLUMN] [--max-rmse E] [--timed-in V:C]"""
 import csv
 import os
 import sys
@@ -12,6 +14,8 @@ import sys
 out_dir, progress_file, knob, values = sys.argv[1], sys.argv[2], sys.argv[3], int(sys.argv[4])
 monotone = "--monotone" in sys.argv[5:]
 positive = [sys.argv[i + 1] for i in range(5, len(sys.argv) - 1) if sys.argv[i] == "--positive"]
+max_rmse = [float(sys.argv[i + 1]) for i in range(5, len(sys.argv) - 1) if sys.argv[i] == "--max-rmse"]
+timed_in = [sys.argv[i + 1].split(":", 1) for i in range(5, len(sys.argv) - 1) if sys.argv[i] == "--timed-in"]
 
 with open(os.path.join(out_dir, "sweep.csv")) as f:
     reader = csv.DictReader(f)
@@ -35,6 +39,13 @@ for column in positive:
     assert column in columns, f"no {column} column (have {columns})"
     for r in rows:
         assert float(r[column]) > 0.0, f"{r['value']}: {column} = {r[column]}"
+for bound in max_rmse:
+    for r in rows:
+        assert float(r["rmse"]) <= bound, f"{r['value']}: RMSE {r['rmse']} above {bound}"
+for value, column in timed_in:
+    assert column in columns, f"no {column} column (have {columns})"
+    row = [r for r in rows if r["value"] == value]
+    assert row and float(row[0][column] or 0) > 0.0, f"{value}: {column} not timed"
 if monotone:
     for a, b, ea, eb in zip(rows, rows[1:], rmse, rmse[1:]):
         assert eb <= ea * (1.0 + 1e-9), f"RMSE rises from {a['value']} ({ea}) to {b['value']} ({eb})"

@@ -126,6 +126,26 @@ TEST(SceneDrivenGraph, TableOfScenesAndSettings) {
          },
          {"gbuffer", "ao", "ao_denoise", "debug_view"}, {"depth", "normal", "position", "specular"}},
         {"lights-4k", "defaults", [](RenderSettings&) {}, {"gbuffer", "ao", "ao_denoise", "global_lights", "local_lights", "tonemap"}, lit},
+        // The visibility buffer: the same targets (plus the id target), made by two passes.
+        {"cornell", "--gbuffer-mode visibility",
+         [](RenderSettings& s) { s.gbuffer.mode = GBufferMode::Visibility; },
+         {"ibl_bake", "gbuffer_visibility", "gbuffer_resolve", "ao", "ao_denoise", "shadow_map_0", "global_lights",
+          "local_lights", "sky", "tonemap"},
+         {"depth", "normal", "diffuse", "position", "specular", "visibility"}},
+        {"cornell", "--gbuffer-mode visibility, positions from depth",
+         [](RenderSettings& s) {
+             s.gbuffer.mode = GBufferMode::Visibility;
+             s.gbuffer.position = GBufferPositionMode::Depth;
+         },
+         {"ibl_bake", "gbuffer_visibility", "gbuffer_resolve", "ao", "ao_denoise", "shadow_map_0", "global_lights",
+          "local_lights", "sky", "tonemap"},
+         {"depth", "normal", "diffuse", "specular", "visibility"}},
+        {"cornell", "--gbuffer-mode visibility, texcoords view",
+         [](RenderSettings& s) {
+             s.gbuffer.mode = GBufferMode::Visibility;
+             s.view = DebugView::Texcoords;
+         },
+         {"gbuffer_visibility", "gbuffer_resolve", "debug_view"}, {"depth", "texcoord", "visibility"}},
     };
     for (const Row& row : rows) {
         RenderSettings s = small();
@@ -484,4 +504,36 @@ TEST(SceneDrivenGraph, TaaHistoryResetsOnCutResizeAndSettingChange) {
     EXPECT_NE(settingsSignature(changed), settingsSignature(s));
     state.latest = -1;  // nothing resolved yet
     EXPECT_FALSE(taaHistoryUsable(state, frame, settingsSignature(s)));
+}
+
+// --gbuffer-mode: each mode's passes run and the other's are skipped with the reason; the resolve's
+// image stores are followed by the barrier the lighting passes' texture fetches need, and nothing
+// needs one before the resolve (it samples a colour attachment).
+TEST(SceneDrivenGraph, GBufferModeChoosesItsPassesAndBarriers) {
+    for (GBufferMode mode : allGBufferModes()) {
+        RenderSettings s = small();
+        s.gbuffer.mode = mode;
+        FrameData frame = makeFrameData(bundledScene("cornell"), s, 0.0f);
+        fg::FrameGraph graph;
+        PassStates passes;
+        buildFrameGraph(graph, passes, frame);
+        graph.compile();
+        std::map<std::string, std::string> reasons;
+        for (const fg::PassDecision& d : graph.explain())
+            if (!d.runs) reasons[d.name] = d.reason;
+        const bool visibility = mode == GBufferMode::Visibility;
+        SCOPED_TRACE(gbufferModeName(mode));
+        for (const char* pass : {"gbuffer_visibility", "gbuffer_resolve"}) {
+            EXPECT_EQ(graph.isLive(pass), visibility) << pass;
+            if (!visibility) EXPECT_NE(reasons[pass].find("--gbuffer-mode classic"), std::string::npos) << reasons[pass];
+        }
+        EXPECT_EQ(graph.isLive("gbuffer"), !visibility);
+        if (visibility) {
+            EXPECT_NE(reasons["gbuffer"].find("--gbuffer-mode visibility"), std::string::npos) << reasons["gbuffer"];
+            EXPECT_EQ(graph.passKind("gbuffer_resolve"), fg::PassKind::Compute);
+            EXPECT_EQ(graph.passKind("gbuffer_visibility"), fg::PassKind::Raster);
+            EXPECT_EQ(graph.barriersBefore("gbuffer_resolve"), 0u);
+            EXPECT_NE((graph.barriersBefore("ao") | graph.barriersBefore("global_lights")) & GL_TEXTURE_FETCH_BARRIER_BIT, 0u);
+        }
+    }
 }

@@ -1,0 +1,206 @@
+#include "passes/visibility_resolve_pass.hpp"
+
+#include <algorithm>
+#include <cstddef>
+
+#include <glm/gtc/matrix_inverse.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "engine/gl/shader.hpp"
+#include "engine/render/scene_gpu.hpp"
+
+namespace lp {
+
+namespace {
+
+// std430 records of visibility_resolve.comp.
+struct MeshRecord {
+    glm::mat4 modelView, normalMatrix, clipFromModel, previousClipFromModel;
+};
+struct MaterialRecord {
+    glm::vec4 diffuseOpacity, specularMetallic, shininessRoughnessBumpNormal, occlusionCutoff;
+    glm::uvec4 flags;
+};
+enum MaterialFlag : uint32_t {
+    DiffuseMap = 1, BumpMap = 2, NormalMap = 4, MetalRoughMap = 8, OcclusionMap = 16, AlphaMask = 32, Flat = 64
+};
+constexpr uint32_t kAnyMap = 31;
+
+uint32_t materialFlags(const GpuMaterial& m) {
+    return (m.diffuseMap ? DiffuseMap : 0u) | (m.bumpMap ? BumpMap : 0u) | (m.normalMap ? NormalMap : 0u) |
+           (m.metallicRoughnessMap ? MetalRoughMap : 0u) | (m.occlusionMap ? OcclusionMap : 0u) |
+           (m.alphaMask ? AlphaMask : 0u) | (m.flat ? Flat : 0u);
+}
+
+GLint bufferSize(GLuint buffer) {
+    GLint size = 0;
+    glGetNamedBufferParameteriv(buffer, GL_BUFFER_SIZE, &size);
+    return size;
+}
+
+// The scene's geometry as storage buffers: every mesh's vertices and indices back to back (copied on
+// the GPU) and the draw table. Once per scene.
+void buildGeometry(VisibilityResolvePass& state, const SceneGpu& gpu) {
+    std::vector<uint32_t> indexCounts, vertexCounts;
+    GLsizeiptr vertexBytes = 0, indexBytes = 0;
+    for (const GpuMesh& m : gpu.meshes) {
+        const GLint vb = bufferSize(m.vertices.id()), ib = bufferSize(m.indices.id());
+        vertexCounts.push_back(uint32_t(vb / GLint(sizeof(Vertex))));
+        indexCounts.push_back(uint32_t(ib / GLint(sizeof(uint32_t))));
+        vertexBytes += vb;
+        indexBytes += ib;
+    }
+    // Empty storage buffers are not allowed: at least one element each.
+    state.vertices = gl::makeBuffer(std::max<GLsizeiptr>(vertexBytes, 16), nullptr, 0, "gbuffer_resolve.vertices");
+    state.indices = gl::makeBuffer(std::max<GLsizeiptr>(indexBytes, 16), nullptr, 0, "gbuffer_resolve.indices");
+    GLintptr vo = 0, io = 0;
+    for (const GpuMesh& m : gpu.meshes) {
+        const GLint vb = bufferSize(m.vertices.id()), ib = bufferSize(m.indices.id());
+        if (vb > 0) glCopyNamedBufferSubData(m.vertices.id(), state.vertices.id(), 0, vo, vb);
+        if (ib > 0) glCopyNamedBufferSubData(m.indices.id(), state.indices.id(), 0, io, ib);
+        vo += vb;
+        io += ib;
+    }
+    std::vector<VisibilityDrawRecord> records = visibilityDrawRecords(gpu, indexCounts, vertexCounts);
+    state.drawCount = uint32_t(records.size());
+    if (records.empty()) records.emplace_back();
+    state.draws = gl::makeBuffer(GLsizeiptr(records.size() * sizeof(VisibilityDrawRecord)), records.data(), 0,
+                                 "gbuffer_resolve.draws");
+    state.meshes = gl::makeBuffer(GLsizeiptr(std::max<size_t>(gpu.meshes.size(), 1) * sizeof(MeshRecord)), nullptr,
+                                  GL_DYNAMIC_STORAGE_BIT, "gbuffer_resolve.meshes");
+    state.materials = gl::makeBuffer(GLsizeiptr(std::max<size_t>(gpu.materials.size(), 1) * sizeof(MaterialRecord)),
+                                     nullptr, GL_DYNAMIC_STORAGE_BIT, "gbuffer_resolve.materials");
+    state.geometryOf = &gpu;
+    state.geometryTriangles = gpu.triangleCount;
+}
+
+std::vector<std::string> imageDefines(const GBufferSettings& layout) {
+    std::vector<std::string> d = gbufferDefines(layout);
+    switch (gbufferNormalFormat(layout.normal)) {
+        case GL_RGBA16F: d.push_back("LP_NORMAL_IMAGE_FORMAT rgba16f"); d.push_back("LP_NORMAL_IMAGE image2D"); break;
+        case GL_RG32F: d.push_back("LP_NORMAL_IMAGE_FORMAT rg32f"); d.push_back("LP_NORMAL_IMAGE image2D"); break;
+        case GL_R16UI: d.push_back("LP_NORMAL_IMAGE_FORMAT r16ui"); d.push_back("LP_NORMAL_IMAGE uimage2D"); break;
+        case GL_R32UI: d.push_back("LP_NORMAL_IMAGE_FORMAT r32ui"); d.push_back("LP_NORMAL_IMAGE uimage2D"); break;
+        default: d.push_back("LP_NORMAL_IMAGE_FORMAT rgba32f"); d.push_back("LP_NORMAL_IMAGE image2D"); break;
+    }
+    d.push_back(gbufferSpecularFormat(layout.normal) == GL_RGBA8 ? "LP_SPECULAR_IMAGE_FORMAT rgba8"
+                                                                 : "LP_SPECULAR_IMAGE_FORMAT rgba16f");
+    d.push_back("LP_VERTEX_FLOATS " + std::to_string(sizeof(Vertex) / sizeof(float)));
+    return d;
+}
+
+}  // namespace
+
+GBuffer addVisibilityResolvePass(fg::FrameGraph& graph, VisibilityResolvePass& state, const FrameData& frame,
+                                 const VisibilityBuffer& visibility, GBufferChannels channels) {
+    static_assert(offsetof(Vertex, normal) == 3 * sizeof(float) && offsetof(Vertex, uv) == 6 * sizeof(float) &&
+                      offsetof(Vertex, tangent) == 8 * sizeof(float),
+                  "visibility_resolve.comp reads vertices as floats at these offsets");
+    const int w = frame.width, h = frame.height;
+    const GBufferSettings layout = frame.settings->gbuffer;
+    struct Data {
+        GBuffer out;
+        fg::ResourceId ids;
+    };
+    const Data& data = graph.addPass<Data>(
+        "gbuffer_resolve", fg::PassKind::Compute,
+        [&](fg::PassBuilder& b, Data& d) {
+            constexpr fg::Usage store = fg::Usage::ImageStore;
+            d.ids = b.read(visibility.ids, fg::Usage::Sampled);
+            GBuffer& out = d.out;
+            out.depth = visibility.depth;  // written by gbuffer_visibility, not touched here
+            out.normal = b.createIfRead("gbuffer.normal", {w, h, gbufferNormalFormat(layout.normal)}, store);
+            out.diffuse = b.createIfRead("gbuffer.diffuse", {w, h, GL_RGBA8}, store);
+            if (channels.position && !positionFromDepth(layout.position))
+                out.position = b.createIfRead("gbuffer.position", {w, h, GL_RGBA32F}, store);
+            out.specular = b.createIfRead("gbuffer.specular", {w, h, gbufferSpecularFormat(layout.normal)}, store);
+            if (channels.texcoord) out.texcoord = b.createIfRead("gbuffer.texcoord", {w, h, GL_RG32F}, store);
+            if (channels.tangent) out.tangent = b.createIfRead("gbuffer.tangent", {w, h, GL_RGBA16F}, store);
+            if (channels.velocity) out.velocity = b.createIfRead("gbuffer.velocity", {w, h, GL_RG16F}, store);
+        },
+        [&state, frame](const Data& d, const fg::PassResources& res) {
+            const SceneGpu& gpu = *frame.gpu;
+            if (state.geometryOf != &gpu || state.geometryTriangles != gpu.triangleCount) {
+                buildGeometry(state, gpu);
+                state.texturedMaterials.clear();
+                for (size_t i = 0; i < gpu.materials.size(); ++i)
+                    if (materialFlags(gpu.materials[i]) & kAnyMap) state.texturedMaterials.push_back(int(i));
+            }
+            const GLuint prog = programForLayout(state.program, state.layout, frame, [&](const std::vector<std::string>&) {
+                                    return frame.shaders->compute("visibility_resolve.comp",
+                                                                  imageDefines(frame.settings->gbuffer));
+                                }).id();
+            // Per frame: the meshes' transforms (the view moves) and the materials (the viewer switches flat).
+            const glm::mat4 viewProjection = frame.unjitteredProjection * frame.view;  // velocity is unjittered
+            std::vector<MeshRecord> meshes;
+            for (const GpuMesh& m : gpu.meshes) {
+                const glm::mat4 mv = frame.view * m.model;
+                meshes.push_back({mv, glm::mat4(glm::inverseTranspose(glm::mat3(mv))), viewProjection * m.model,
+                                  frame.previousViewProjection * m.model});
+            }
+            if (!meshes.empty())
+                glNamedBufferSubData(state.meshes.id(), 0, GLsizeiptr(meshes.size() * sizeof(MeshRecord)), meshes.data());
+            std::vector<MaterialRecord> materials;
+            for (const GpuMaterial& m : gpu.materials)
+                materials.push_back({glm::vec4(m.diffuse, m.opacity), glm::vec4(m.specular, m.metallic),
+                                     glm::vec4(m.shininess, m.roughness, m.bumpScale, m.normalScale),
+                                     glm::vec4(m.occlusionStrength, m.alphaCutoff, 0.0f, 0.0f),
+                                     glm::uvec4(materialFlags(m), 0u, 0u, 0u)});
+            if (!materials.empty())
+                glNamedBufferSubData(state.materials.id(), 0, GLsizeiptr(materials.size() * sizeof(MaterialRecord)),
+                                     materials.data());
+
+            const GBuffer& out = d.out;
+            const fg::ResourceId targets[7] = {out.normal,   out.diffuse, out.position, out.specular,
+                                               out.texcoord, out.tangent, out.velocity};
+            GLuint bound = 0;
+            for (GLuint i = 0; i < 7; ++i) {
+                const GLuint tex = targets[i].valid() ? res.texture(targets[i]) : 0;
+                if (!tex) continue;
+                glBindImageTexture(i, tex, 0, GL_FALSE, 0, GL_WRITE_ONLY, res.desc(targets[i]).format);
+                bound |= 1u << i;
+            }
+            auto loc = [prog](const char* name) { return glGetUniformLocation(prog, name); };
+            glProgramUniform1ui(prog, loc("uTargets"), bound);
+            glProgramUniform1ui(prog, loc("uDrawCount"), state.drawCount);
+            glProgramUniformMatrix4fv(prog, loc("uInverseProjection"), 1, GL_FALSE,
+                                      glm::value_ptr(glm::inverse(frame.projection)));
+            const glm::mat4 rotation = frame.unjitteredProjection * glm::mat4(glm::mat3(frame.view));
+            const glm::vec2 jitterNdc =
+                2.0f * frame.jitterPixels / glm::vec2(std::max(frame.outputWidth, 1), std::max(frame.outputHeight, 1));
+            glProgramUniform2fv(prog, loc("uJitterNdc"), 1, glm::value_ptr(jitterNdc));
+            glProgramUniformMatrix4fv(prog, loc("uInverseRotationProjection"), 1, GL_FALSE,
+                                      glm::value_ptr(glm::inverse(rotation)));
+            glProgramUniformMatrix4fv(prog, loc("uViewProjection"), 1, GL_FALSE, glm::value_ptr(viewProjection));
+            glProgramUniformMatrix4fv(prog, loc("uPreviousViewProjection"), 1, GL_FALSE,
+                                      glm::value_ptr(frame.previousViewProjection));
+            const GLuint buffers[5] = {state.vertices.id(), state.indices.id(), state.draws.id(), state.meshes.id(),
+                                       state.materials.id()};
+            for (GLuint i = 0; i < 5; ++i) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, buffers[i]);
+            glBindTextureUnit(5, res.texture(d.ids));
+            glUseProgram(prog);
+            const GLint filter = loc("uMaterialFilter");
+            const GLuint groupsX = GLuint((frame.width + 7) / 8), groupsY = GLuint((frame.height + 7) / 8);
+            // Untextured materials and the background; then each textured material with its maps.
+            // The dispatches write disjoint pixels, so no barrier lies between them.
+            glProgramUniform1i(prog, filter, -1);
+            glDispatchCompute(groupsX, groupsY, 1);
+            for (int material : state.texturedMaterials) {
+                const GpuMaterial& m = gpu.materials[size_t(material)];
+                glProgramUniform1i(prog, filter, material);
+                glBindTextureUnit(0, m.diffuseMap);
+                glBindTextureUnit(1, m.bumpMap);
+                glBindTextureUnit(2, m.normalMap);
+                glBindTextureUnit(3, m.metallicRoughnessMap);
+                glBindTextureUnit(4, m.occlusionMap);
+                glDispatchCompute(groupsX, groupsY, 1);
+            }
+            for (GLuint u = 0; u < 6; ++u) glBindTextureUnit(u, 0);
+            for (GLuint i = 0; i < 7; ++i) glBindImageTexture(i, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+            for (GLuint i = 0; i < 5; ++i) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, 0);
+            glUseProgram(0);
+        });
+    return data.out;
+}
+
+}  // namespace lp

@@ -1,0 +1,33 @@
+#pragma once
+// gbuffer_resolve (--gbuffer-mode visibility): the compute half of the visibility-buffer G-buffer.
+// Reads gbuffer.visibility (passes/visibility_pass) and writes the same targets, formats and values
+// the classic gbuffer pass writes (normal, diffuse, position, specular, texcoord, tangent, velocity:
+// whichever some pass reads), by image stores; gbuffer.depth passes through from the raster half.
+// The scene's vertex and index buffers are concatenated once into storage buffers, with a draw table
+// and, per frame, the meshes' transforms and the materials (shaders/visibility_resolve.comp).
+#include <vector>
+
+#include "engine/gl/handles.hpp"
+#include "engine/graph/frame_graph.hpp"
+#include "engine/render/frame_data.hpp"
+#include "passes/gbuffer_pass.hpp"
+#include "passes/visibility_pass.hpp"
+
+namespace lp {
+
+struct VisibilityResolvePass {
+    gl::Program program;
+    GBufferSettings layout;  // what `program` was compiled for
+    // The scene the storage buffers below hold (its address and triangle count: a scene loaded later
+    // at the same address is told apart by its size).
+    const SceneGpu* geometryOf = nullptr;
+    size_t geometryTriangles = 0;
+    gl::Buffer vertices, indices, draws, meshes, materials;
+    uint32_t drawCount = 0;
+    std::vector<int> texturedMaterials;  // one dispatch each, with its maps bound
+};
+
+GBuffer addVisibilityResolvePass(fg::FrameGraph& graph, VisibilityResolvePass& state, const FrameData& frame,
+                                 const VisibilityBuffer& visibility, GBufferChannels channels);
+
+}  // namespace lp

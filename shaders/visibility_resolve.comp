@@ -1,0 +1,208 @@
+#version 450
+// gbuffer_resolve: turns the visibility buffer back into the G-buffer targets gbuffer.frag writes.
+// Per pixel: the id gives the triangle (common/visibility.glsl) and its draw (binary search over the
+// draws' first triangles); its three vertices come from the scene's concatenated vertex and index
+// buffers; the pixel's ray through the current (jittered) projection meets the triangle at
+// perspective-correct barycentrics, and the rays of the pixel's neighbours in its 2x2 quad give the
+// uv derivatives dFdxFine / dFdyFine would, so textures are sampled with the raster's footprint. The material is
+// evaluated by common/material.glsl, the function gbuffer.frag calls.
+// Dispatched once with uMaterialFilter = -1 (every pixel of an untextured material, and the
+// background), then once per textured material with its maps on units 0..4 (no bindless textures in
+// GL 4.5 core): each pixel is written by exactly one dispatch.
+// Defines: the G-buffer layout's (gbufferDefines), LP_NORMAL_IMAGE_FORMAT / LP_NORMAL_IMAGE (the normal
+// target's image format and type), LP_SPECULAR_IMAGE_FORMAT, LP_VERTEX_FLOATS (floats per vertex).
+#include "common/gbuffer_layout.glsl"
+#include "common/velocity.glsl"
+#include "common/material.glsl"
+#include "common/visibility.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+layout(binding = 5) uniform usampler2D uVisibility;  // R32UI ids
+
+layout(binding = 0, LP_NORMAL_IMAGE_FORMAT) uniform writeonly LP_NORMAL_IMAGE uNormalOut;
+layout(binding = 1, rgba8) uniform writeonly image2D uDiffuseOut;
+#ifndef LP_GBUFFER_POSITION_FROM_DEPTH
+layout(binding = 2, rgba32f) uniform writeonly image2D uPositionOut;
+#endif
+layout(binding = 3, LP_SPECULAR_IMAGE_FORMAT) uniform writeonly image2D uSpecularOut;
+layout(binding = 4, rg32f) uniform writeonly image2D uTexcoordOut;
+layout(binding = 5, rgba16f) uniform writeonly image2D uTangentOut;
+layout(binding = 6, rg16f) uniform writeonly image2D uVelocityOut;
+// Bit i set: target i (normal, diffuse, position, specular, texcoord, tangent, velocity) is bound.
+uniform uint uTargets;
+uniform int uMaterialFilter;   // -1: untextured materials and the background; else this material only
+uniform uint uDrawCount;
+uniform mat4 uInverseProjection;  // inverse of the jittered projection the ids were rasterised with
+// Background velocity (common/velocity.glsl's backgroundVelocity).
+uniform vec2 uJitterNdc;
+uniform mat4 uInverseRotationProjection;
+uniform mat4 uViewProjection;
+uniform mat4 uPreviousViewProjection;
+
+const uint LP_TARGET_NORMAL = 1u, LP_TARGET_DIFFUSE = 2u, LP_TARGET_POSITION = 4u, LP_TARGET_SPECULAR = 8u;
+const uint LP_TARGET_TEXCOORD = 16u, LP_TARGET_TANGENT = 32u, LP_TARGET_VELOCITY = 64u;
+
+// lp::VisibilityDrawRecord
+struct DrawRecord {
+    uint firstTriangle;
+    uint firstIndex;
+    uint vertexBase;
+    uint mesh;
+    int material;
+    uint indexCount;
+    uint pad0;
+    uint pad1;
+};
+// Per mesh, per frame: eye-space transforms and the unjittered clip transforms of the velocity.
+struct MeshRecord {
+    mat4 modelView;
+    mat4 normalMatrix;  // inverse transpose of modelView's 3x3, in the upper 3x3
+    mat4 clipFromModel;
+    mat4 previousClipFromModel;
+};
+// lp::GpuMaterial
+struct MaterialRecord {
+    vec4 diffuseOpacity;
+    vec4 specularMetallic;
+    vec4 shininessRoughnessBumpNormal;  // shininess, roughness, bump scale, normal scale
+    vec4 occlusionCutoff;               // occlusion strength, alpha cutoff
+    uvec4 flags;                        // x: LP_MATERIAL_* bits
+};
+const uint LP_MATERIAL_DIFFUSE_MAP = 1u, LP_MATERIAL_BUMP_MAP = 2u, LP_MATERIAL_NORMAL_MAP = 4u;
+const uint LP_MATERIAL_METAL_ROUGH_MAP = 8u, LP_MATERIAL_OCCLUSION_MAP = 16u, LP_MATERIAL_ALPHA_MASK = 32u;
+const uint LP_MATERIAL_FLAT = 64u, LP_MATERIAL_ANY_MAP = 31u;
+
+layout(std430, binding = 0) readonly buffer Vertices { float vertices[]; };
+layout(std430, binding = 1) readonly buffer Indices { uint indices[]; };
+layout(std430, binding = 2) readonly buffer Draws { DrawRecord draws[]; };
+layout(std430, binding = 3) readonly buffer Meshes { MeshRecord meshes[]; };
+layout(std430, binding = 4) readonly buffer Materials { MaterialRecord materials[]; };
+
+// The last draw whose first triangle is <= triangle.
+uint findDraw(uint triangle) {
+    uint lo = 0u, hi = uDrawCount - 1u;
+    while (lo < hi) {
+        uint mid = (lo + hi + 1u) >> 1;
+        if (draws[mid].firstTriangle <= triangle) lo = mid;
+        else hi = mid - 1u;
+    }
+    return lo;
+}
+
+vec3 vertexPosition(uint v) { uint b = v * uint(LP_VERTEX_FLOATS); return vec3(vertices[b], vertices[b + 1u], vertices[b + 2u]); }
+vec3 vertexNormal(uint v) { uint b = v * uint(LP_VERTEX_FLOATS) + 3u; return vec3(vertices[b], vertices[b + 1u], vertices[b + 2u]); }
+vec2 vertexUv(uint v) { uint b = v * uint(LP_VERTEX_FLOATS) + 6u; return vec2(vertices[b], vertices[b + 1u]); }
+vec4 vertexTangent(uint v) {
+    uint b = v * uint(LP_VERTEX_FLOATS) + 8u;
+    return vec4(vertices[b], vertices[b + 1u], vertices[b + 2u], vertices[b + 3u]);
+}
+
+// The eye-space direction of the ray through window position `window` (pixels).
+vec3 eyeRay(vec2 window, vec2 size) {
+    vec4 far = uInverseProjection * vec4(window / size * 2.0 - 1.0, 1.0, 1.0);
+    return far.xyz / far.w;
+}
+
+MaterialInputs materialInputs(MaterialRecord r) {
+    uint f = r.flags.x;
+    return MaterialInputs(r.diffuseOpacity.rgb, r.diffuseOpacity.a, r.specularMetallic.rgb, r.specularMetallic.a,
+                          r.shininessRoughnessBumpNormal.x, r.shininessRoughnessBumpNormal.y,
+                          r.shininessRoughnessBumpNormal.z, r.shininessRoughnessBumpNormal.w, r.occlusionCutoff.x,
+                          r.occlusionCutoff.y, (f & LP_MATERIAL_DIFFUSE_MAP) != 0u, (f & LP_MATERIAL_BUMP_MAP) != 0u,
+                          (f & LP_MATERIAL_NORMAL_MAP) != 0u, (f & LP_MATERIAL_METAL_ROUGH_MAP) != 0u,
+                          (f & LP_MATERIAL_OCCLUSION_MAP) != 0u, (f & LP_MATERIAL_ALPHA_MASK) != 0u,
+                          (f & LP_MATERIAL_FLAT) != 0u);
+}
+
+void storeNormal(ivec2 p, vec3 n, float shininess) {
+#ifdef LP_GBUFFER_NORMAL_OCT
+    imageStore(uNormalOut, p, uvec4(gbufferEncodeNormalOct(n), 0u, 0u, 0u));
+#else
+    imageStore(uNormalOut, p, gbufferEncodeNormal(n, shininess));
+#endif
+}
+
+// What the classic pass leaves where no mesh is drawn: its clear values, and the background's motion.
+void storeBackground(ivec2 p, vec2 size) {
+#ifdef LP_GBUFFER_NORMAL_OCT
+    if ((uTargets & LP_TARGET_NORMAL) != 0u) imageStore(uNormalOut, p, uvec4(0u));
+#else
+    if ((uTargets & LP_TARGET_NORMAL) != 0u) imageStore(uNormalOut, p, vec4(0.0));
+#endif
+    if ((uTargets & LP_TARGET_DIFFUSE) != 0u) imageStore(uDiffuseOut, p, vec4(0.0));
+#ifndef LP_GBUFFER_POSITION_FROM_DEPTH
+    if ((uTargets & LP_TARGET_POSITION) != 0u) imageStore(uPositionOut, p, vec4(0.0));
+#endif
+    if ((uTargets & LP_TARGET_SPECULAR) != 0u) imageStore(uSpecularOut, p, vec4(0.0));
+    if ((uTargets & LP_TARGET_TEXCOORD) != 0u) imageStore(uTexcoordOut, p, vec4(0.0));
+    if ((uTargets & LP_TARGET_TANGENT) != 0u) imageStore(uTangentOut, p, vec4(0.0));
+    if ((uTargets & LP_TARGET_VELOCITY) != 0u) {
+        vec2 ndc = (vec2(p) + 0.5) / size * 2.0 - 1.0;
+        vec2 v = backgroundVelocity(ndc, uJitterNdc, uInverseRotationProjection, uViewProjection, uPreviousViewProjection);
+        imageStore(uVelocityOut, p, vec4(v, 0.0, 0.0));
+    }
+}
+
+void main() {
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 isize = textureSize(uVisibility, 0);
+    if (any(greaterThanEqual(p, isize))) return;
+    vec2 size = vec2(isize);
+    uint id = texelFetch(uVisibility, p, 0).r;
+    if (id == LP_VISIBILITY_EMPTY) {
+        if (uMaterialFilter < 0) storeBackground(p, size);
+        return;
+    }
+    uint triangle = visibilityTriangle(id);
+    DrawRecord d = draws[findDraw(triangle)];
+    MaterialRecord mr = materials[d.material];
+    bool textured = (mr.flags.x & LP_MATERIAL_ANY_MAP) != 0u;
+    if (uMaterialFilter < 0 ? textured : d.material != uMaterialFilter) return;
+
+    uint first = d.firstIndex + 3u * (triangle - d.firstTriangle);
+    uint i0 = indices[first] + d.vertexBase, i1 = indices[first + 1u] + d.vertexBase, i2 = indices[first + 2u] + d.vertexBase;
+    MeshRecord mesh = meshes[d.mesh];
+    vec3 o0 = vertexPosition(i0), o1 = vertexPosition(i1), o2 = vertexPosition(i2);
+    vec3 e0 = (mesh.modelView * vec4(o0, 1.0)).xyz;
+    vec3 e1 = (mesh.modelView * vec4(o1, 1.0)).xyz;
+    vec3 e2 = (mesh.modelView * vec4(o2, 1.0)).xyz;
+
+    // The pixel's ray, and the rays of its partners in its 2x2 quad along x and y: the differences
+    // are dFdxFine / dFdyFine of the uv (gbuffer.frag's derivatives), extended over the triangle's
+    // plane as the raster's helper invocations are.
+    vec2 window = vec2(p) + 0.5;
+    bvec2 odd = bvec2((p.x & 1) != 0, (p.y & 1) != 0);
+    vec3 b = rayTriangleBarycentrics(vec3(0.0), eyeRay(window, size), e0, e1, e2);
+    vec3 bx = rayTriangleBarycentrics(vec3(0.0), eyeRay(window + vec2(odd.x ? -1.0 : 1.0, 0.0), size), e0, e1, e2);
+    vec3 by = rayTriangleBarycentrics(vec3(0.0), eyeRay(window + vec2(0.0, odd.y ? -1.0 : 1.0), size), e0, e1, e2);
+
+    vec2 t0 = vertexUv(i0), t1 = vertexUv(i1), t2 = vertexUv(i2);
+    vec2 uv = b.x * t0 + b.y * t1 + b.z * t2;
+    vec2 uvX = bx.x * t0 + bx.y * t1 + bx.z * t2, uvY = by.x * t0 + by.y * t1 + by.z * t2;
+    vec2 uvDx = odd.x ? uv - uvX : uvX - uv;
+    vec2 uvDy = odd.y ? uv - uvY : uvY - uv;
+    vec3 normal = mat3(mesh.normalMatrix) * (b.x * vertexNormal(i0) + b.y * vertexNormal(i1) + b.z * vertexNormal(i2));
+    vec4 tangentObject = b.x * vertexTangent(i0) + b.y * vertexTangent(i1) + b.z * vertexTangent(i2);
+    vec4 tangent = vec4(mat3(mesh.modelView) * tangentObject.xyz, tangentObject.w);
+
+    MaterialInputs m = materialInputs(mr);
+    vec4 base = materialBaseColor(m, uv, uvDx, uvDy);
+    MaterialSample g = materialEvaluate(m, base, SurfaceInputs(normal, tangent, uv, uvDx, uvDy,
+                                                               eyeTriangleFrontFacing(e0, e1, e2)));
+    g.shininess = gbufferEncodeShininess(g.shininess);  // the half-float channel's encoding (to the 0.02 floor)
+    if ((uTargets & LP_TARGET_NORMAL) != 0u) storeNormal(p, g.normal, g.shininess);
+    if ((uTargets & LP_TARGET_DIFFUSE) != 0u)
+        imageStore(uDiffuseOut, p, vec4(g.kd, m.flatLit ? 0.0 : gbufferEncodeOcclusion(g.occlusion)));
+#ifndef LP_GBUFFER_POSITION_FROM_DEPTH
+    if ((uTargets & LP_TARGET_POSITION) != 0u) imageStore(uPositionOut, p, vec4(b.x * e0 + b.y * e1 + b.z * e2, 1.0));
+#endif
+    if ((uTargets & LP_TARGET_SPECULAR) != 0u) imageStore(uSpecularOut, p, vec4(g.f0, g.shininess));
+    if ((uTargets & LP_TARGET_TEXCOORD) != 0u) imageStore(uTexcoordOut, p, vec4(uv, 0.0, 0.0));
+    if ((uTargets & LP_TARGET_TANGENT) != 0u) imageStore(uTangentOut, p, g.tangentView);
+    if ((uTargets & LP_TARGET_VELOCITY) != 0u) {
+        vec4 object = vec4(b.x * o0 + b.y * o1 + b.z * o2, 1.0);
+        vec2 v = velocityFromClip(mesh.clipFromModel * object, mesh.previousClipFromModel * object);
+        imageStore(uVelocityOut, p, vec4(v, 0.0, 0.0));
+    }
+}
