@@ -22,6 +22,8 @@ void Renderer::render(const RenderSettings& settings, float time, bool timed) {
     frame.shaders = &shaders_;
     graph_ = fg::FrameGraph();
     outputs_ = buildFrameGraph(graph_, passes_, frame);
+    // Textures the CUDA passes touch come from CUDA's shared memory when CUDA runs on shared textures.
+    pool_.setExternalSource(passes_.post.backend.externalTextureSource());
     graph_.compile();
     if (timed) timers_.beginFrame();
     graph_.execute(pool_, timed ? &timers_ : nullptr);
