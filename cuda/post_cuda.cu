@@ -177,6 +177,7 @@ PostInterop::PostInterop() : impl_(std::make_unique<Impl>()) {}
 PostInterop::~PostInterop() = default;
 
 int PostInterop::registeredCount() const { return impl_->registry.size(); }
+void PostInterop::forgetTexture(GLuint texture) { impl_->registry.forget(texture); }
 
 std::string PostInterop::useSharedTextures() {
     std::string problem = sharedTexturesProblem();

@@ -56,6 +56,8 @@ public:
     void beginFrame(unsigned long frame);
     // Textures registered now (tests: registration happens once per texture).
     int registeredCount() const;
+    // Before deleting a texture outside the pool: drops its map/unmap registration.
+    void forgetTexture(GLuint texture);
     // Makes textures through a shared-texture source from now on when they work here; returns why
     // not otherwise (and stays on map/unmap). Needs the GL context current.
     std::string useSharedTextures();

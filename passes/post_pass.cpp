@@ -18,12 +18,19 @@ namespace {
 // A texture for the start-up measurement: shared like the pool would make it when CUDA runs on
 // shared textures, else ordinary.
 struct MeasureTexture {
+    cuda::PostInterop& interop;
     gl::Texture plain;
     std::shared_ptr<fg::ExternalTexture> shared;
-    MeasureTexture(fg::ExternalTextureSource* source, const fg::TextureDesc& d, const std::string& label) {
-        if (source) shared = source->make(d, label);
+    MeasureTexture(cuda::PostInterop& cu, const fg::TextureDesc& d, const std::string& label) : interop(cu) {
+        if (fg::ExternalTextureSource* source = cu.sharedTextureSource()) shared = source->make(d, label);
         if (!shared) plain = gl::makeTexture2D(d.format, d.width, d.height, d.levels, label);
     }
+    // Its id may come back for a pool texture of the same size: no stale map/unmap registration.
+    ~MeasureTexture() {
+        if (plain) interop.forgetTexture(plain.id());
+    }
+    MeasureTexture(const MeasureTexture&) = delete;
+    MeasureTexture& operator=(const MeasureTexture&) = delete;
     GLuint id() const { return shared ? shared->texture() : plain.id(); }
 };
 
@@ -71,14 +78,13 @@ post::BackendTimes measureEffect(PostPasses& st, const FrameData& frame, const p
                                  post::PostEffect effect) {
     const int w = frame.width, h = frame.height;
     cuda::PostInterop& cu = *st.backend.interop;
-    fg::ExternalTextureSource* source = cu.sharedTextureSource();
     const float hdrFill[4] = {1.5f, 0.75f, 3.0f, 1.0f};  // above the threshold: the bloom does its work
-    MeasureTexture hdr(source, {w, h, GL_RGBA16F}, "post_measure.hdr");
+    MeasureTexture hdr(cu, {w, h, GL_RGBA16F}, "post_measure.hdr");
     glClearTexImage(hdr.id(), 0, GL_RGBA, GL_FLOAT, hdrFill);
     post::BackendTimes t;
     const post::BloomParams& p = config.bloomParams;
     if (effect == post::PostEffect::Bloom || effect == post::PostEffect::Composite) {
-        MeasureTexture bloom(source, {w, h, GL_RGBA16F}, "post_measure.bloom");
+        MeasureTexture bloom(cu, {w, h, GL_RGBA16F}, "post_measure.bloom");
         glClearTexImage(bloom.id(), 0, GL_RGBA, GL_FLOAT, hdrFill);
         if (effect == post::PostEffect::Bloom) {
             const BloomScratchDescs d = bloomScratchDescs(p, w, h);
@@ -103,8 +109,8 @@ post::BackendTimes measureEffect(PostPasses& st, const FrameData& frame, const p
     }
     // Toon on the default G-buffer layout (what its CUDA kernel reads): a flat surface at depth 2.
     const float position[4] = {0.0f, 0.0f, -2.0f, 1.0f}, normal[4] = {0.0f, 0.0f, 1.0f, 0.0f}, depth = 0.5f;
-    MeasureTexture pos(source, {w, h, GL_RGBA32F}, "post_measure.position");
-    MeasureTexture nrm(source, {w, h, GL_RGBA32F}, "post_measure.normal");
+    MeasureTexture pos(cu, {w, h, GL_RGBA32F}, "post_measure.position");
+    MeasureTexture nrm(cu, {w, h, GL_RGBA32F}, "post_measure.normal");
     gl::Texture dep = gl::makeTexture2D(GL_DEPTH_COMPONENT32F, w, h, 1, "post_measure.depth");
     glClearTexImage(pos.id(), 0, GL_RGBA, GL_FLOAT, position);
     glClearTexImage(nrm.id(), 0, GL_RGBA, GL_FLOAT, normal);
