@@ -78,7 +78,7 @@ int commandInfo() {
         const std::string shared = problem.empty() ? cuda::sharedTexturesProblem() : problem;
         if (shared.empty())
             std::printf("interop:  external memory (GL memory objects on CUDA allocations, shared once; no "
-                        "per-frame map/unmap)\n");
+                        "per-frame map/unmap; %s)\n", cuda::sharedTexturesLayoutName().c_str());
         else
             std::printf("interop:  map/unmap per use (external memory unavailable: %s)\n", shared.c_str());
     } else {

@@ -116,9 +116,9 @@ __global__ void writeSurfaceKernel(Surface s, int width, int height) {
 
 // GL writes a pattern CUDA must read back, then CUDA writes one GL must read back, on a texture
 // whose width and height are no multiple of any tile. Values are integers below 2048: exact in fp16.
-std::string roundTrip(GLenum format, unsigned arrayFlags) {
+std::string roundTrip(GLenum format, const SharedTexture::Layout& layout) {
     constexpr int kW = 67, kH = 35;
-    std::unique_ptr<SharedTexture> t = SharedTexture::make(format, kW, kH, "shared_texture_check", arrayFlags);
+    std::unique_ptr<SharedTexture> t = SharedTexture::make(format, kW, kH, "shared_texture_check", layout);
     std::vector<float> pattern(size_t(kW) * kH * 4), back(pattern.size());
     for (int y = 0; y < kH; ++y)
         for (int x = 0; x < kW; ++x) {
@@ -156,7 +156,7 @@ std::string roundTrip(GLenum format, unsigned arrayFlags) {
 
 struct StartupCheck {
     std::string problem;
-    unsigned arrayFlags = 0;
+    SharedTexture::Layout layout;
 };
 
 StartupCheck runStartupCheck() {
@@ -169,20 +169,23 @@ StartupCheck runStartupCheck() {
                             CUdevice(currentDevice())) != CUDA_SUCCESS ||
         !posixFd)
         return {"the CUDA device cannot export allocations as file descriptors"};
-    // The color-attachment flag first: the post textures are render targets in GL too.
+    // The color-attachment flag first (the post textures are render targets in GL too), and a
+    // plain memory object before a dedicated one; the first that round-trips both formats is used.
     std::string why;
-    for (unsigned flags : {unsigned(cudaArraySurfaceLoadStore | cudaArrayColorAttachment),
-                           unsigned(cudaArraySurfaceLoadStore)}) {
-        try {
-            why = roundTrip(GL_RGBA16F, flags);
-            if (why.empty()) why = roundTrip(GL_RGBA32F, flags);
-        } catch (const Error& e) {
-            why = e.what();
+    for (bool dedicated : {false, true})
+        for (unsigned flags : {unsigned(cudaArraySurfaceLoadStore | cudaArrayColorAttachment),
+                               unsigned(cudaArraySurfaceLoadStore)}) {
+            const SharedTexture::Layout layout{flags, dedicated};
+            try {
+                why = roundTrip(GL_RGBA16F, layout);
+                if (why.empty()) why = roundTrip(GL_RGBA32F, layout);
+            } catch (const Error& e) {
+                why = e.what();
+            }
+            while (glGetError() != GL_NO_ERROR) {
+            }
+            if (why.empty()) return {{}, layout};
         }
-        while (glGetError() != GL_NO_ERROR) {
-        }
-        if (why.empty()) return {{}, flags};
-    }
     return {"start-up round trip: " + why};
 }
 
@@ -195,8 +198,16 @@ const StartupCheck& startupCheck() {
 
 std::string sharedTexturesProblem() { return startupCheck().problem; }
 
+std::string sharedTexturesLayoutName() {
+    const StartupCheck& c = startupCheck();
+    if (!c.problem.empty()) return {};
+    return std::string("CUDA view with surface load/store") +
+           (c.layout.arrayFlags & cudaArrayColorAttachment ? " + color attachment" : "") +
+           (c.layout.dedicated ? ", dedicated memory objects" : ", memory objects not dedicated");
+}
+
 std::unique_ptr<SharedTexture> SharedTexture::make(GLenum format, int width, int height, const std::string& label,
-                                                   unsigned arrayFlags) {
+                                                   const Layout& layout) {
     if (format != GL_RGBA16F && format != GL_RGBA32F) throw Error("shared texture '" + label + "': unsupported format");
     const DriverApi& api = driverApi();
     if (!api.problem.empty()) throw Error(api.problem);
@@ -213,6 +224,10 @@ std::unique_ptr<SharedTexture> SharedTexture::make(GLenum format, int width, int
     while (glGetError() != GL_NO_ERROR) {  // earlier errors are not this texture's
     }
     glCreateMemoryObjectsEXT(1, &t->memoryObject_);
+    if (layout.dedicated) {
+        const GLint yes = GL_TRUE;
+        glMemoryObjectParameterivEXT(t->memoryObject_, GL_DEDICATED_MEMORY_OBJECT_EXT, &yes);
+    }
     int fd = exportFd(allocation);
     glImportMemoryFdEXT(t->memoryObject_, GLuint64(bytes), GL_HANDLE_TYPE_OPAQUE_FD_EXT, fd);  // GL owns fd now
     if (glGetError() != GL_NO_ERROR) {
@@ -233,6 +248,7 @@ std::unique_ptr<SharedTexture> SharedTexture::make(GLenum format, int width, int
     memory.type = cudaExternalMemoryHandleTypeOpaqueFd;
     memory.handle.fd = exportFd(allocation);
     memory.size = bytes;
+    memory.flags = layout.dedicated ? cudaExternalMemoryDedicated : 0;
     cudaError_t err = cudaImportExternalMemory(&t->external_, &memory);  // CUDA owns the fd on success
     if (err != cudaSuccess) close(memory.handle.fd);
     check(err, "cudaImportExternalMemory");
@@ -241,7 +257,7 @@ std::unique_ptr<SharedTexture> SharedTexture::make(GLenum format, int width, int
     const int bits = format == GL_RGBA32F ? 32 : 16;
     view.formatDesc = cudaCreateChannelDesc(bits, bits, bits, bits, cudaChannelFormatKindFloat);
     view.extent = make_cudaExtent(size_t(width), size_t(height), 0);
-    view.flags = arrayFlags;
+    view.flags = layout.arrayFlags;
     view.numLevels = 1;
     check(cudaExternalMemoryGetMappedMipmappedArray(&t->mipmapped_, t->external_, &view),
           "cudaExternalMemoryGetMappedMipmappedArray");
@@ -273,7 +289,7 @@ std::shared_ptr<fg::ExternalTexture> SharedTextures::make(const fg::TextureDesc&
     if ((desc.format != GL_RGBA16F && desc.format != GL_RGBA32F) || desc.levels != 1 || desc.cube) return nullptr;
     const StartupCheck& ok = startupCheck();
     if (!ok.problem.empty()) return nullptr;
-    std::shared_ptr<SharedTexture> t = SharedTexture::make(desc.format, desc.width, desc.height, label, ok.arrayFlags);
+    std::shared_ptr<SharedTexture> t = SharedTexture::make(desc.format, desc.width, desc.height, label, ok.layout);
     made_.erase(std::remove_if(made_.begin(), made_.end(), [](const auto& w) { return w.expired(); }), made_.end());
     made_.push_back(t);
     return t;

@@ -33,10 +33,15 @@ public:
     SharedTexture& operator=(const SharedTexture&) = delete;
     GLuint texture() const override { return texture_; }
     cudaSurfaceObject_t surface() const { return surface_; }
-    // RGBA16F or RGBA32F, one level; throws lp::Error naming the failing call. `arrayFlags`: the
-    // cudaArray* flags of the CUDA view (the start-up check picks them).
+    // What the start-up check settles: the cudaArray* flags of the CUDA view, and whether GL and CUDA
+    // treat the memory as dedicated to the one texture.
+    struct Layout {
+        unsigned arrayFlags = 0;
+        bool dedicated = false;
+    };
+    // RGBA16F or RGBA32F, one level; throws lp::Error naming the failing call.
     static std::unique_ptr<SharedTexture> make(GLenum format, int width, int height, const std::string& label,
-                                               unsigned arrayFlags);
+                                               const Layout& layout);
 
 private:
     SharedTexture() = default;

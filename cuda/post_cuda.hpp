@@ -26,6 +26,9 @@ std::string postDeviceProblem();
 // CUDA allocations exportable as file descriptors, and a start-up round trip through small textures
 // that agrees texel for texel), else why not. Needs the GL context current; runs once per process.
 std::string sharedTexturesProblem();
+// Which layout the start-up round trip settled on ("CUDA view with surface load/store + color
+// attachment, memory objects not dedicated"); empty when shared textures do not work.
+std::string sharedTexturesLayoutName();
 
 struct PostTiming {
     double kernelMs = 0.0;   // CUDA events around the kernels of the previous call of the same kind
