@@ -36,6 +36,7 @@ void Renderer::render(const RenderSettings& settings, float time, bool timed) {
 void Renderer::resetPasses() {
     graph_ = fg::FrameGraph();  // the old graph's passes point into the old states
     outputs_ = {};
+    pool_.setExternalSource(nullptr);  // the post backend that made the shared textures goes too
     passes_ = PassStates{};
 }
 

@@ -67,6 +67,9 @@ void TexturePool::setExternalSource(ExternalTextureSource* source) {
     entries_.erase(std::remove_if(entries_.begin(), entries_.end(),
                                   [](const Entry& e) { return e.external && !e.inUse; }),
                    entries_.end());
+    // One still held is orphaned: never handed out again (a later source may live at the old address).
+    for (Entry& e : entries_)
+        if (e.external) e.source = nullptr;
 }
 
 size_t TexturePool::externalCount() const {
