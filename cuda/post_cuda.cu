@@ -97,8 +97,6 @@ struct DeviceImage {
     }
 };
 
-}  // namespace
-
 // The host waits until GL has done every command issued so far (what the kernels read was
 // written by them); a fence, not glFinish, so nothing beyond this point is drained.
 void waitForGl() {
@@ -108,6 +106,8 @@ void waitForGl() {
     if (r == GL_TIMEOUT_EXPIRED || r == GL_WAIT_FAILED)
         throw Error("GL fence before the CUDA post kernels: " + std::string(r == GL_TIMEOUT_EXPIRED ? "timed out" : "failed"));
 }
+
+}  // namespace
 
 struct PostInterop::Impl {
     GlImageRegistry registry;

@@ -34,7 +34,8 @@ struct PostTiming {
     double kernelMs = 0.0;   // CUDA events around the kernels of the previous call of the same kind
                              // (read without waiting; 0 on the first call)
     double interopMs = 0.0;  // host time of cudaGraphicsMapResources + UnmapResources, or on shared
-                             // textures the host's waits for GL and for CUDA beyond the kernels
+                             // textures the host's waits for GL (GL work still in flight included)
+                             // and for CUDA beyond the kernels
     bool shared = false;     // ran on shared textures (no map/unmap)
 };
 
