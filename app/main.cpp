@@ -2,6 +2,8 @@
 // non-zero exit code.
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
+#include <functional>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -15,6 +17,8 @@
 #include "app/viewer.hpp"
 #include "engine/core/error.hpp"
 #include "engine/core/paths.hpp"
+#include "engine/post/backend_timings.hpp"
+#include "engine/post/post_config.hpp"
 #include "passes/post_backend.hpp"
 #include "engine/core/log.hpp"
 #include "engine/gl/context.hpp"
@@ -24,12 +28,39 @@
 #include "engine/scene/scene_loader.hpp"
 #ifdef LIGHTPASS_HAVE_CUDA
 #include "cuda/device_info.hpp"
+#include "cuda/post_cuda.hpp"
 #endif
 
 namespace lp::app {
 namespace {
 
 Scene loadFromOptions(const Options& o) { return sceneFromOptions(o); }
+
+// The choices `--post-backend auto` cached (engine/post/backend_timings.hpp) whose key fields
+// (gpu, driver, size, kernel, method, interop, effect) pass `keep`.
+void printCachedPostChoices(const char* title, bool showGpu,
+                            const std::function<bool(const std::vector<std::string>&)>& keep) {
+    const std::filesystem::path file = post::timingCachePath([](const char* v) { return std::getenv(v); });
+    if (file.empty()) {
+        std::printf("%s: no cache folder ($LIGHTPASS_CACHE_DIR, $XDG_CACHE_HOME and $HOME unset)\n", title);
+        return;
+    }
+    const post::CacheRead read = post::readTimingCache(file);
+    std::printf("%s (%s):\n", title, file.string().c_str());
+    if (!read.warning.empty()) std::printf("  %s\n", read.warning.c_str());
+    int shown = 0;
+    for (const auto& [text, t] : read.entries) {
+        std::vector<std::string> key;
+        std::stringstream in(text);
+        for (std::string field; std::getline(in, field, '|');) key.push_back(field);
+        if (key.size() != 7 || !keep(key)) continue;
+        std::printf("  %-9s %s %s %s, %s interop: cuda %.3f ms, glsl %.3f ms -> %s%s\n", key[6].c_str(),
+                    key[2].c_str(), key[3].c_str(), key[4].c_str(), key[5].c_str(), t.cudaMs, t.glslMs,
+                    post::cudaWins(t) ? "cuda" : "glsl", showGpu ? (" (" + key[0] + ", " + key[1] + ")").c_str() : "");
+        ++shown;
+    }
+    if (!shown) std::printf("  none yet: the first run with --post-backend auto measures (--post-remeasure again)\n");
+}
 
 RenderSettings settingsFromOptions(const Options& o) { return renderSettings(o); }
 
@@ -41,13 +72,24 @@ int commandInfo() {
     if (ctx->isSoftware()) std::printf("note:     software rasteriser: GPU timings are not meaningful here\n");
 #ifdef LIGHTPASS_HAVE_CUDA
     cuda::DeviceInfo cu = cuda::queryDevice();
-    if (cu.available)
+    if (cu.available) {
         std::printf("cuda:     %s (compute %d.%d)\n", cu.name.c_str(), cu.computeMajor, cu.computeMinor);
-    else
+        const std::string problem = PostBackend::cudaProblem();
+        const std::string shared = problem.empty() ? cuda::sharedTexturesProblem() : problem;
+        if (shared.empty())
+            std::printf("interop:  external memory (GL memory objects on CUDA allocations, shared once; no "
+                        "per-frame map/unmap; %s)\n", cuda::sharedTexturesLayoutName().c_str());
+        else
+            std::printf("interop:  map/unmap per use (external memory unavailable: %s)\n", shared.c_str());
+    } else {
         std::printf("cuda:     unavailable (%s): post effects use GLSL\n", cu.reason.c_str());
+    }
 #else
     std::printf("cuda:     not built (no CUDA toolkit at build time): post effects use GLSL\n");
 #endif
+    printCachedPostChoices("post backend auto, cached on this GPU", false, [&](const std::vector<std::string>& key) {
+        return key[0] == info.renderer && key[1] == info.version;
+    });
     return 0;
 }
 
@@ -64,6 +106,15 @@ int commandGraph(const Options& o) {
     std::printf("frame graph for %s, view '%s', %s\n", (o.model.empty() ? o.scene : o.model).c_str(),
                 viewName(settings.view), sizeLabel(settings).c_str());
     std::fputs((o.explain ? graph.explainText() : graph.describe()).c_str(), stdout);
+    if (o.explain) {  // what auto would choose where it measured this size and kernel (any GPU)
+        post::PostConfig config = post::resolvePostConfig(scene.effects, settings.post, frame.farPlane);
+        const int kernel = post::bloomKernelAtRenderSize(config.bloomParams.kernel, frame.width, frame.outputWidth);
+        const std::string size = std::to_string(frame.width) + "x" + std::to_string(frame.height);
+        printCachedPostChoices("post backend auto, cached for this size and kernel", true, [&](const std::vector<std::string>& key) {
+            return key[2] == size && key[3] == "kernel " + std::to_string(kernel) &&
+                   key[4] == post::bloomMethodName(config.bloomParams.method);
+        });
+    }
     if (!o.dot.empty()) {
         OutputFiles outputs;
         outputs.add(o.dot, graph.toDot());

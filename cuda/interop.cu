@@ -39,6 +39,17 @@ void GlImageRegistry::beginFrame(unsigned long frame) {
     }
 }
 
+void GlImageRegistry::forget(GLuint texture) {
+    auto it = std::find_if(entries_.begin(), entries_.end(), [&](const Entry& e) { return e.texture == texture; });
+    if (it == entries_.end()) return;
+    cudaError_t err = cudaGraphicsUnregisterResource(it->resource);  // callers may be destructors: no throw
+    if (err != cudaSuccess) {
+        std::fprintf(stderr, "warning: CUDA cudaGraphicsUnregisterResource: %s\n", cudaGetErrorString(err));
+        cudaGetLastError();
+    }
+    entries_.erase(it);
+}
+
 cudaGraphicsResource_t GlImageRegistry::resource(GLuint texture, int width, int height) {
     auto it = std::find_if(entries_.begin(), entries_.end(), [&](const Entry& e) { return e.texture == texture; });
     if (it != entries_.end()) {

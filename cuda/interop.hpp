@@ -26,6 +26,9 @@ public:
     // The registration of `texture` (width x height), made on first use and redone when the size
     // of that id changed.
     cudaGraphicsResource_t resource(GLuint texture, int width, int height);
+    // Drops the registration of `texture` now: for a texture about to be deleted outside the pool
+    // (its id could come back at the same size before the entry aged out). Warns, never throws.
+    void forget(GLuint texture);
     static constexpr unsigned long kMaxIdleFrames = 2;
     int size() const { return int(entries_.size()); }
 

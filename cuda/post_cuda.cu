@@ -2,9 +2,11 @@
 // and the device-buffer runs the tests use.
 #include "cuda/post_cuda.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <initializer_list>
 
+#include "cuda/external_memory.hpp"
 #include "cuda/interop.hpp"
 #include "cuda/post_kernels.cuh"
 
@@ -54,6 +56,13 @@ public:
         check(cudaEventRecord(end_, stream), "cudaEventRecord");
         pending_ = true;
     }
+    // After the host waited for the stream past end(): this call's kernel time, read now.
+    double current() {
+        float ms = 0.0f;
+        check(cudaEventElapsedTime(&ms, begin_, end_), "cudaEventElapsedTime");
+        pending_ = false;
+        return double(ms);
+    }
 
 private:
     cudaEvent_t begin_ = nullptr, end_ = nullptr;
@@ -88,33 +97,78 @@ struct DeviceImage {
     }
 };
 
+// The host waits until GL has done every command issued so far (what the kernels read was
+// written by them); a fence, not glFinish, so nothing beyond this point is drained.
+void waitForGl() {
+    GLsync fence = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+    const GLenum r = glClientWaitSync(fence, GL_SYNC_FLUSH_COMMANDS_BIT, GLuint64(10) * 1000000000ull);
+    glDeleteSync(fence);
+    if (r == GL_TIMEOUT_EXPIRED || r == GL_WAIT_FAILED)
+        throw Error("GL fence before the CUDA post kernels: " + std::string(r == GL_TIMEOUT_EXPIRED ? "timed out" : "failed"));
+}
+
 }  // namespace
 
 struct PostInterop::Impl {
     GlImageRegistry registry;
+    std::unique_ptr<SharedTextures> shared;  // null: every texture is mapped
     BloomWorkspace workspace;
     LaggedEventTimer bloomTimer, compositeTimer, toonTimer;
     cudaStream_t stream = nullptr;
-    Impl() { check(cudaStreamCreate(&stream), "cudaStreamCreate"); }
-    ~Impl() { cudaStreamDestroy(stream); }
+    cudaEvent_t done = nullptr;
+    Impl() {
+        check(cudaStreamCreate(&stream), "cudaStreamCreate");
+        check(cudaEventCreateWithFlags(&done, cudaEventDisableTiming), "cudaEventCreate");
+    }
+    ~Impl() {
+        cudaEventDestroy(done);
+        cudaStreamDestroy(stream);
+    }
 
-    // Maps the GL textures, runs `kernels(mapped)` timed by `timer`, unmaps; map and unmap are the
-    // interop time.
+    // Runs `kernels(surfaces)` on the textures timed by `timer`: on their shared surfaces when the
+    // shared-texture source made them all, else mapped for the call.
     template <class Kernels>
-    PostTiming runMapped(std::initializer_list<GLuint> textures, int width, int height, LaggedEventTimer& timer,
-                         Kernels&& kernels) {
+    PostTiming run(std::initializer_list<GLuint> textures, int width, int height, LaggedEventTimer& timer,
+                   Kernels&& kernels) {
+        std::vector<cudaSurfaceObject_t> surfaces;
+        for (GLuint texture : textures)
+            if (cudaSurfaceObject_t s = shared ? shared->surfaceOf(texture) : 0) surfaces.push_back(s);
+        if (surfaces.size() == textures.size()) return runShared(surfaces, timer, kernels);
         std::vector<cudaGraphicsResource_t> resources;
         for (GLuint texture : textures) resources.push_back(registry.resource(texture, width, height));
         PostTiming t;
         auto t0 = Clock::now();
         MappedSurfaces mapped(std::move(resources), stream);
         t.interopMs = msSince(t0);
+        for (size_t i = 0; i < textures.size(); ++i) surfaces.push_back(mapped.surface(i));
         t.kernelMs = timer.begin(stream);
-        kernels(mapped);
+        kernels(surfaces.data());
         timer.end(stream);
         auto t1 = Clock::now();
         mapped.unmap();
         t.interopMs += msSince(t1);
+        return t;
+    }
+
+    // No semaphore can be shared between GL and CUDA without Vulkan (cuda/external_memory.hpp), so
+    // the host orders the two: GL's work done before the kernels, the kernels done before GL goes
+    // on. The interop time is both waits less the kernels' own time.
+    template <class Kernels>
+    PostTiming runShared(const std::vector<cudaSurfaceObject_t>& surfaces, LaggedEventTimer& timer, Kernels&& kernels) {
+        PostTiming t;
+        t.shared = true;
+        auto t0 = Clock::now();
+        waitForGl();
+        t.interopMs = msSince(t0);
+        timer.begin(stream);  // nothing pending: the previous call was read at its end
+        kernels(surfaces.data());
+        timer.end(stream);
+        auto t1 = Clock::now();
+        check(cudaEventRecord(done, stream), "cudaEventRecord");
+        check(cudaEventSynchronize(done), "cudaEventSynchronize");
+        const double waited = msSince(t1);
+        t.kernelMs = timer.current();
+        t.interopMs += std::max(0.0, waited - t.kernelMs);
         return t;
     }
 };
@@ -123,30 +177,39 @@ PostInterop::PostInterop() : impl_(std::make_unique<Impl>()) {}
 PostInterop::~PostInterop() = default;
 
 int PostInterop::registeredCount() const { return impl_->registry.size(); }
+void PostInterop::forgetTexture(GLuint texture) { impl_->registry.forget(texture); }
+
+std::string PostInterop::useSharedTextures() {
+    std::string problem = sharedTexturesProblem();
+    if (problem.empty() && !impl_->shared) impl_->shared = std::make_unique<SharedTextures>();
+    return problem;
+}
+
+fg::ExternalTextureSource* PostInterop::sharedTextureSource() { return impl_->shared.get(); }
 void PostInterop::beginFrame(unsigned long frame) { impl_->registry.beginFrame(frame); }
 
 PostTiming PostInterop::bloom(GLuint hdr, GLuint bloom, int width, int height, const post::BloomParams& p) {
-    return impl_->runMapped({hdr, bloom}, width, height, impl_->bloomTimer, [&](const MappedSurfaces& m) {
-        bloomSurfaceToSurface(m.surface(0), m.surface(1), width, height, p, impl_->workspace, impl_->stream);
+    return impl_->run({hdr, bloom}, width, height, impl_->bloomTimer, [&](const cudaSurfaceObject_t* s) {
+        bloomSurfaceToSurface(s[0], s[1], width, height, p, impl_->workspace, impl_->stream);
     });
 }
 
 PostTiming PostInterop::bloomComposite(GLuint hdr, GLuint bloom, int width, int height, const post::BloomParams& p) {
-    return impl_->runMapped({hdr, bloom}, width, height, impl_->bloomTimer, [&](const MappedSurfaces& m) {
-        bloomCompositeSurfaces(m.surface(0), m.surface(1), width, height, p, impl_->workspace, impl_->stream);
+    return impl_->run({hdr, bloom}, width, height, impl_->bloomTimer, [&](const cudaSurfaceObject_t* s) {
+        bloomCompositeSurfaces(s[0], s[1], width, height, p, impl_->workspace, impl_->stream);
     });
 }
 
 PostTiming PostInterop::composite(GLuint hdr, GLuint bloom, int width, int height, float strength) {
-    return impl_->runMapped({hdr, bloom}, width, height, impl_->compositeTimer, [&](const MappedSurfaces& m) {
-        compositeSurfaces(m.surface(0), m.surface(1), width, height, strength, impl_->stream);
+    return impl_->run({hdr, bloom}, width, height, impl_->compositeTimer, [&](const cudaSurfaceObject_t* s) {
+        compositeSurfaces(s[0], s[1], width, height, strength, impl_->stream);
     });
 }
 
 PostTiming PostInterop::toon(GLuint hdr, GLuint position, GLuint normal, int width, int height,
                              const post::ToonParams& p) {
-    return impl_->runMapped({hdr, position, normal}, width, height, impl_->toonTimer, [&](const MappedSurfaces& m) {
-        toonSurfaces(m.surface(0), m.surface(1), m.surface(2), width, height, p, impl_->stream);
+    return impl_->run({hdr, position, normal}, width, height, impl_->toonTimer, [&](const cudaSurfaceObject_t* s) {
+        toonSurfaces(s[0], s[1], s[2], width, height, p, impl_->stream);
     });
 }
 

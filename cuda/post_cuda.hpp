@@ -2,9 +2,10 @@
 // Bloom and toon in CUDA, the plain-C++ face of cuda/bloom.cu, cuda/toon.cu and
 // cuda/interop.cu (only built with a CUDA toolkit: LIGHTPASS_HAVE_CUDA).
 //
-// Two entry points: PostInterop works on GL textures (registered once with
-// cudaGraphicsGLRegisterImage, mapped per call, read and written through surfaces) and is what the
-// passes use; the *OnDevice functions take host images, run the same kernels on device buffers and
+// Two entry points: PostInterop works on GL textures and is what the passes use. Textures made by
+// its shared-texture source (cuda/external_memory.hpp: GL memory objects on CUDA allocations, one
+// surface each for their lifetime) are used as they are, ordered by a GL fence and a CUDA event;
+// any other texture is registered once with cudaGraphicsGLRegisterImage and mapped per call; the *OnDevice functions take host images, run the same kernels on device buffers and
 // copy back, so the kernels can be tested against the CPU reference without a GL context.
 #include <memory>
 #include <string>
@@ -13,15 +14,29 @@
 #include "engine/io/image_io.hpp"
 #include "engine/post/post_params.hpp"
 
+namespace lp::fg {
+struct ExternalTextureSource;
+}
+
 namespace lp::cuda {
 
 // Empty when a CUDA device can run the kernels, else why not ("cudaGetDeviceCount: ...").
 std::string postDeviceProblem();
+// Empty when GL and CUDA can share textures through external memory here (GL_EXT_memory_object_fd,
+// CUDA allocations exportable as file descriptors, and a start-up round trip through small textures
+// that agrees texel for texel), else why not. Needs the GL context current; runs once per process.
+std::string sharedTexturesProblem();
+// Which layout the start-up round trip settled on ("CUDA view with surface load/store + color
+// attachment, memory objects not dedicated"); empty when shared textures do not work.
+std::string sharedTexturesLayoutName();
 
 struct PostTiming {
     double kernelMs = 0.0;   // CUDA events around the kernels of the previous call of the same kind
                              // (read without waiting; 0 on the first call)
-    double interopMs = 0.0;  // host time of cudaGraphicsMapResources + UnmapResources
+    double interopMs = 0.0;  // host time of cudaGraphicsMapResources + UnmapResources, or on shared
+                             // textures the host's waits for GL (GL work still in flight included)
+                             // and for CUDA beyond the kernels
+    bool shared = false;     // ran on shared textures (no map/unmap)
 };
 
 class PostInterop {
@@ -45,6 +60,13 @@ public:
     void beginFrame(unsigned long frame);
     // Textures registered now (tests: registration happens once per texture).
     int registeredCount() const;
+    // Before deleting a texture outside the pool: drops its map/unmap registration.
+    void forgetTexture(GLuint texture);
+    // Makes textures through a shared-texture source from now on when they work here; returns why
+    // not otherwise (and stays on map/unmap). Needs the GL context current.
+    std::string useSharedTextures();
+    // Where the texture pool gets the textures the CUDA passes touch; null on the map/unmap path.
+    fg::ExternalTextureSource* sharedTextureSource();
 
 private:
     struct Impl;

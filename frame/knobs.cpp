@@ -549,7 +549,26 @@ std::vector<KnobEntry> makeKnobTable() {
                                                                     PostSettings::Backend::Glsl},
                                  post::backendName);
         k.flags = {valueFlag("--post-backend")};
-        k.help = "who runs bloom and toon; auto: CUDA on an NVIDIA GPU";
+        k.help = "who runs bloom, the bloom composite and toon; auto: per effect, whichever of CUDA and GLSL "
+                 "measured faster at start-up on this GPU at this size and kernel (cached, see --post-remeasure)";
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = choiceKnob("cuda-interop", [](auto& s) -> auto& { return s.post.cudaInterop; },
+                                 std::vector<PostSettings::CudaInterop>{PostSettings::CudaInterop::Auto,
+                                                                        PostSettings::CudaInterop::External,
+                                                                        PostSettings::CudaInterop::Map},
+                                 post::cudaInteropName);
+        k.flags = {valueFlag("--cuda-interop")};
+        k.help = "how the CUDA post effects reach GL textures: external (GL memory objects on CUDA memory, shared "
+                 "once), map (map/unmap per use); auto: external where the driver supports it, else map";
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = boolKnob("post-remeasure", [](auto& s) -> auto& { return s.post.remeasure; });
+        k.flags = {setsFlag("--post-remeasure", 1)};
+        k.help = "--post-backend auto: time CUDA and GLSL again instead of reading the cache "
+                 "($LIGHTPASS_CACHE_DIR or ~/.cache/lightpass/post_backend_timings.json), and rewrite it";
         t.push_back(std::move(k));
     }
 

@@ -22,6 +22,8 @@ void Renderer::render(const RenderSettings& settings, float time, bool timed) {
     frame.shaders = &shaders_;
     graph_ = fg::FrameGraph();
     outputs_ = buildFrameGraph(graph_, passes_, frame);
+    // Textures the CUDA passes touch come from CUDA's shared memory when CUDA runs on shared textures.
+    pool_.setExternalSource(passes_.post.backend.externalTextureSource());
     graph_.compile();
     if (timed) timers_.beginFrame();
     graph_.execute(pool_, timed ? &timers_ : nullptr);
@@ -34,6 +36,7 @@ void Renderer::render(const RenderSettings& settings, float time, bool timed) {
 void Renderer::resetPasses() {
     graph_ = fg::FrameGraph();  // the old graph's passes point into the old states
     outputs_ = {};
+    pool_.setExternalSource(nullptr);  // the post backend that made the shared textures goes too
     passes_ = PassStates{};
 }
 

@@ -155,12 +155,13 @@ void runBloomCompositeGlsl(BloomPass& st, const gl::ShaderLibrary& shaders, GLui
     unbind();
 }
 
-BloomResult addBloomPass(fg::FrameGraph& graph, BloomPass& state, PostBackend& backend, bool cuda, bool fuse,
-                         const FrameData& frame, const post::PostConfig& config, fg::ResourceId hdr) {
+BloomResult addBloomPass(fg::FrameGraph& graph, BloomPass& state, PostBackend& backend, const PostBackendChoice& choice,
+                         bool fuse, const FrameData& frame, const post::PostConfig& config, fg::ResourceId hdr) {
     const post::BloomParams params = config.bloomParams;
     const unsigned long frameIndex = backend.frameIndex;
     const fg::TextureDesc bloomDesc{frame.width, frame.height, GL_RGBA16F};
-    fuse = fuse && cuda;
+    const bool cuda = choice.bloom;
+    fuse = fuse && choice.bloom && choice.composite;
     const Data* made = nullptr;
     if (cuda) {
         made = &graph.addPass<Data>(
@@ -218,14 +219,16 @@ BloomResult addBloomPass(fg::FrameGraph& graph, BloomPass& state, PostBackend& b
                              frame.height, params);
             });
     }
+    const bool cudaComposite = choice.composite;
     const Data& composited = graph.addPass<Data>(
-        "bloom_composite", cuda ? fg::PassKind::Cuda : fg::PassKind::Compute,
+        "bloom_composite", cudaComposite ? fg::PassKind::Cuda : fg::PassKind::Compute,
         [&](fg::PassBuilder& b, Data& data) {
-            const fg::Usage how = cuda ? fg::Usage::Cuda : fg::Usage::Sampled;
+            const fg::Usage how = cudaComposite ? fg::Usage::Cuda : fg::Usage::Sampled;
             data.bloom = b.read(made->bloom, how);
-            data.hdr = b.write(hdr, cuda ? fg::Usage::Cuda : fg::Usage::ImageLoadStore);
+            data.hdr = b.write(hdr, cudaComposite ? fg::Usage::Cuda : fg::Usage::ImageLoadStore);
         },
-        [&state, &backend, frame, params, cuda, frameIndex](const Data& data, const fg::PassResources& res) {
+        [&state, &backend, frame, params, cuda = cudaComposite, frameIndex](const Data& data,
+                                                                            const fg::PassResources& res) {
             const GLuint hdrTex = res.texture(data.hdr), bloomTex = res.texture(data.bloom);
             if (cuda) {
                 backend.beginFrame(frameIndex);

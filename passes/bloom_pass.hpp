@@ -1,9 +1,9 @@
 #pragma once
 // Bloom: "bloom" makes the bloom buffer from the HDR buffer (bright pass + separable Gaussian,
 // or the Jimenez mip chain), "bloom_composite" adds strength x bloom into the HDR buffer. Each runs
-// in CUDA or GLSL compute per PostBackend, chosen before the graph is built. With CUDA, when the
-// composite is wanted, one fused "bloom" pass does both (one GL<->CUDA map fewer) and declares that
-// it writes the HDR buffer. The GLSL path's scratch textures are graph transients (pooled).
+// in CUDA or GLSL compute per PostBackend (per step), chosen before the graph is built. When both
+// run in CUDA and the composite is wanted, one fused "bloom" pass does both (one launch and one
+// GL<->CUDA hand-over fewer) and declares that it writes the HDR buffer. The GLSL path's scratch textures are graph transients (pooled).
 #include "engine/gl/handles.hpp"
 #include "engine/graph/frame_graph.hpp"
 #include "engine/post/post_config.hpp"
@@ -24,10 +24,11 @@ struct BloomResult {
     fg::ResourceId bloom;  // the bloom buffer alone (RGBA16F, before strength)
 };
 
-// `cuda`: the post backend chose CUDA. `fuse` (CUDA only): one pass does bloom and composite;
-// otherwise bloom_composite is its own pass (culled when only the bloom buffer is shown).
-BloomResult addBloomPass(fg::FrameGraph& graph, BloomPass& state, PostBackend& backend, bool cuda, bool fuse,
-                         const FrameData& frame, const post::PostConfig& config, fg::ResourceId hdr);
+// `cuda.bloom` / `cuda.composite`: the post backend chose CUDA for that step. `fuse` (both in CUDA
+// only): one pass does bloom and composite; otherwise bloom_composite is its own pass (culled when
+// only the bloom buffer is shown), and either step may run in CUDA with the other in GLSL.
+BloomResult addBloomPass(fg::FrameGraph& graph, BloomPass& state, PostBackend& backend, const PostBackendChoice& cuda,
+                         bool fuse, const FrameData& frame, const post::PostConfig& config, fg::ResourceId hdr);
 
 // The scratch textures of the GLSL path: separable uses `bright` and `blurH` (full size, RGBA16F),
 // the mip chain `mips` (bloomScratchDescs gives their sizes).

@@ -1,5 +1,8 @@
 #include "passes/post_backend.hpp"
 
+#include <cstdio>
+#include <cstdlib>
+
 #include "engine/core/error.hpp"
 #include "engine/core/log.hpp"
 #include "engine/gl/gl.hpp"
@@ -14,7 +17,20 @@ class PostInterop {};  // never made without CUDA; complete so unique_ptr can de
 
 namespace lp {
 
-PostBackend::PostBackend() = default;
+PostBackendChoice chooseByTimes(const std::map<post::PostEffect, post::BackendTimes>& times) {
+    PostBackendChoice c;
+    for (const auto& [effect, t] : times) {
+        const bool cuda = post::cudaWins(t);
+        switch (effect) {
+            case post::PostEffect::Bloom: c.bloom = cuda; break;
+            case post::PostEffect::Composite: c.composite = cuda; break;
+            case post::PostEffect::Toon: c.toon = cuda; break;
+        }
+    }
+    return c;
+}
+
+PostBackend::PostBackend() : cacheFile(post::timingCachePath([](const char* v) { return std::getenv(v); })) {}
 PostBackend::~PostBackend() = default;
 PostBackend::PostBackend(PostBackend&&) noexcept = default;
 PostBackend& PostBackend::operator=(PostBackend&&) noexcept = default;
@@ -48,10 +64,18 @@ void PostBackend::beginFrame(unsigned long frame) {
 #endif
 }
 
-bool PostBackend::useCuda(PostSettings::Backend requested) {
-    if (resolved_ && requested == requested_) return cuda_;
+fg::ExternalTextureSource* PostBackend::externalTextureSource() {
+#ifdef LIGHTPASS_HAVE_CUDA
+    if (interop && cuda_) return interop->sharedTextureSource();
+#endif
+    return nullptr;
+}
+
+bool PostBackend::cudaUsable(PostSettings::Backend requested, PostSettings::CudaInterop interopMode) {
+    if (resolved_ && requested == requested_ && interopMode == requestedInterop_) return cuda_;
     resolved_ = true;
     requested_ = requested;
+    requestedInterop_ = interopMode;
     cuda_ = false;
     if (requested == PostSettings::Backend::Glsl) return false;
     const std::string problem = cudaProblem();
@@ -62,10 +86,73 @@ bool PostBackend::useCuda(PostSettings::Backend requested) {
         return false;
     }
 #ifdef LIGHTPASS_HAVE_CUDA
-    if (!interop) interop = std::make_unique<cuda::PostInterop>();
+    // A change of interop mode starts the CUDA side afresh (the pool drops the old shared textures).
+    if (interop && interopMadeFor_ != interopMode) interop.reset();
+    if (!interop) {
+        interopMadeFor_ = interopMode;
+        interop = std::make_unique<cuda::PostInterop>();
+        std::string why = "--cuda-interop map";
+        if (interopMode != PostSettings::CudaInterop::Map) why = interop->useSharedTextures();
+        if (why.empty()) {
+            interopPath_ = "external";
+            logInfo("post effects: CUDA on shared textures (GL_EXT_memory_object_fd on CUDA allocations, made "
+                    "once; ordered by a GL fence and a CUDA event)");
+        } else {
+            if (interopMode == PostSettings::CudaInterop::External) throw Error("--cuda-interop external: " + why);
+            interopPath_ = "map";
+            logInfo("post effects: CUDA through per-use map/unmap (shared textures unavailable: " + why + ")");
+        }
+    }
     cuda_ = true;
 #endif
     return cuda_;
+}
+
+PostBackendChoice PostBackend::autoChoice(const post::TimingKey& base, const std::vector<post::PostEffect>& effects,
+                                          bool remeasure,
+                                          const std::function<post::BackendTimes(post::PostEffect)>& measure) {
+    const std::string decidedKey = base.text() + (remeasure ? "|remeasure" : "");
+    if (auto it = decided_.find(decidedKey); it != decided_.end()) return it->second;
+    if (!cacheRead_ && !cacheFile.empty()) {
+        post::CacheRead read = post::readTimingCache(cacheFile);
+        if (!read.warning.empty()) logWarn(read.warning);
+        cache_ = std::move(read.entries);
+    }
+    cacheRead_ = true;
+    std::map<post::PostEffect, post::BackendTimes> times;
+    std::string report;
+    bool wrote = false;
+    for (post::PostEffect effect : effects) {
+        post::TimingKey key = base;
+        key.effect = effect;
+        const std::string text = key.text();
+        auto cached = cache_.find(text);
+        const bool measureNow = cached == cache_.end() || (remeasure && !remeasured_.count(text));
+        post::BackendTimes t = measureNow ? measure(effect) : cached->second;
+        if (measureNow) {
+            remeasured_.insert(text);
+            if (t.measured()) {
+                cache_[text] = t;
+                wrote = true;
+            }
+        }
+        times[effect] = t;
+        char line[160];
+        std::snprintf(line, sizeof line, "%s%s %s (cuda %.3f ms, glsl %.3f ms, %s)", report.empty() ? "" : ", ",
+                      post::postEffectName(effect), post::cudaWins(t) ? "cuda" : "glsl", t.cudaMs, t.glslMs,
+                      measureNow ? "measured" : "cached");
+        report += line;
+    }
+    if (wrote && !cacheFile.empty()) {
+        const std::string warning = post::writeTimingCache(cacheFile, cache_);
+        if (!warning.empty()) logWarn(warning);
+    }
+    if (!effects.empty())
+        logInfo("post backend auto at " + std::to_string(base.width) + "x" + std::to_string(base.height) +
+                ", bloom kernel " + std::to_string(base.kernel) + ": " + report);
+    const PostBackendChoice choice = chooseByTimes(times);
+    decided_[decidedKey] = choice;
+    return choice;
 }
 
 }  // namespace lp

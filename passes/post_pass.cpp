@@ -1,12 +1,172 @@
 #include "passes/post_pass.hpp"
 
+#include <algorithm>
+#include <variant>
+
+#include "engine/gl/handles.hpp"
+#include "engine/graph/texture_pool.hpp"
+
+#ifdef LIGHTPASS_HAVE_CUDA
+#include "cuda/post_cuda.hpp"
+#endif
+
 namespace lp {
 
-bool postRunsInCuda(PostBackend& backend, const FrameData& frame, PostSettings::Backend requested) {
+namespace {
+
+#ifdef LIGHTPASS_HAVE_CUDA
+// A texture for the start-up measurement: shared like the pool would make it when CUDA runs on
+// shared textures, else ordinary.
+struct MeasureTexture {
+    cuda::PostInterop& interop;
+    gl::Texture plain;
+    std::shared_ptr<fg::ExternalTexture> shared;
+    MeasureTexture(cuda::PostInterop& cu, const fg::TextureDesc& d, const std::string& label) : interop(cu) {
+        if (fg::ExternalTextureSource* source = cu.sharedTextureSource()) shared = source->make(d, label);
+        if (!shared) plain = gl::makeTexture2D(d.format, d.width, d.height, d.levels, label);
+    }
+    // Its id may come back for a pool texture of the same size: no stale map/unmap registration.
+    ~MeasureTexture() {
+        if (plain) interop.forgetTexture(plain.id());
+    }
+    MeasureTexture(const MeasureTexture&) = delete;
+    MeasureTexture& operator=(const MeasureTexture&) = delete;
+    GLuint id() const { return shared ? shared->texture() : plain.id(); }
+};
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v.empty() ? 0.0 : v[v.size() / 2];
+}
+
+constexpr int kMeasureRuns = 7;
+
+// GPU ms per run of `work`: a GL timer query around kMeasureRuns runs after one untimed run, a
+// barrier after each as the graph would issue before the next pass.
+template <typename Work>
+double glslMs(Work&& work) {
+    work();
+    glMemoryBarrier(GL_ALL_BARRIER_BITS);
+    gl::Query query = gl::makeQuery(GL_TIME_ELAPSED);
+    glBeginQuery(GL_TIME_ELAPSED, query.id());
+    for (int i = 0; i < kMeasureRuns; ++i) {
+        work();
+        glMemoryBarrier(GL_ALL_BARRIER_BITS);
+    }
+    glEndQuery(GL_TIME_ELAPSED);
+    GLuint64 ns = 0;
+    glGetQueryObjectui64v(query.id(), GL_QUERY_RESULT, &ns);
+    return double(ns) * 1e-6 / kMeasureRuns;
+}
+
+// ms per run of a CUDA call as a frame pays it: its kernels (CUDA events) plus its interop (map
+// and unmap, or the waits of the shared path), medians over kMeasureRuns after one untimed run.
+template <typename Call>
+double cudaMs(Call&& call) {
+    call();
+    std::vector<double> kernels, interop;
+    for (int i = 0; i < kMeasureRuns + 1; ++i) {
+        const cuda::PostTiming t = call();
+        if (i > 0 || t.shared) kernels.push_back(t.kernelMs);  // the map path reports the previous call
+        if (i < kMeasureRuns) interop.push_back(t.interopMs);
+    }
+    glFinish();
+    return median(kernels) + median(interop);
+}
+
+post::BackendTimes measureEffect(PostPasses& st, const FrameData& frame, const post::PostConfig& config,
+                                 post::PostEffect effect) {
+    const int w = frame.width, h = frame.height;
+    cuda::PostInterop& cu = *st.backend.interop;
+    const float hdrFill[4] = {1.5f, 0.75f, 3.0f, 1.0f};  // above the threshold: the bloom does its work
+    MeasureTexture hdr(cu, {w, h, GL_RGBA16F}, "post_measure.hdr");
+    glClearTexImage(hdr.id(), 0, GL_RGBA, GL_FLOAT, hdrFill);
+    post::BackendTimes t;
+    const post::BloomParams& p = config.bloomParams;
+    if (effect == post::PostEffect::Bloom || effect == post::PostEffect::Composite) {
+        MeasureTexture bloom(cu, {w, h, GL_RGBA16F}, "post_measure.bloom");
+        glClearTexImage(bloom.id(), 0, GL_RGBA, GL_FLOAT, hdrFill);
+        if (effect == post::PostEffect::Bloom) {
+            const BloomScratchDescs d = bloomScratchDescs(p, w, h);
+            std::vector<gl::Texture> scratch;
+            BloomScratch s;
+            if (d.bright.width > 0) {
+                scratch.push_back(gl::makeTexture2D(d.bright.format, d.bright.width, d.bright.height, 1, "post_measure.bright"));
+                scratch.push_back(gl::makeTexture2D(d.blurH.format, d.blurH.width, d.blurH.height, 1, "post_measure.blur_h"));
+                s.bright = scratch[0].id();
+                s.blurH = scratch[1].id();
+            } else {
+                scratch.push_back(gl::makeTexture2D(d.mips.format, d.mips.width, d.mips.height, d.mips.levels, "post_measure.mips"));
+                s.mips = scratch[0].id();
+            }
+            t.glslMs = glslMs([&] { runBloomGlsl(st.bloom, *frame.shaders, s, hdr.id(), bloom.id(), w, h, p); });
+            t.cudaMs = cudaMs([&] { return cu.bloom(hdr.id(), bloom.id(), w, h, p); });
+        } else {
+            t.glslMs = glslMs([&] { runBloomCompositeGlsl(st.bloom, *frame.shaders, hdr.id(), bloom.id(), w, h, p.strength); });
+            t.cudaMs = cudaMs([&] { return cu.composite(hdr.id(), bloom.id(), w, h, p.strength); });
+        }
+        return t;
+    }
+    // Toon on the default G-buffer layout (what its CUDA kernel reads): a flat surface at depth 2.
+    const float position[4] = {0.0f, 0.0f, -2.0f, 1.0f}, normal[4] = {0.0f, 0.0f, 1.0f, 0.0f}, depth = 0.5f;
+    MeasureTexture pos(cu, {w, h, GL_RGBA32F}, "post_measure.position");
+    MeasureTexture nrm(cu, {w, h, GL_RGBA32F}, "post_measure.normal");
+    gl::Texture dep = gl::makeTexture2D(GL_DEPTH_COMPONENT32F, w, h, 1, "post_measure.depth");
+    glClearTexImage(pos.id(), 0, GL_RGBA, GL_FLOAT, position);
+    glClearTexImage(nrm.id(), 0, GL_RGBA, GL_FLOAT, normal);
+    glClearTexImage(dep.id(), 0, GL_DEPTH_COMPONENT, GL_FLOAT, &depth);
+    const glm::mat4& proj = frame.projection;
+    const ToonGBufferTextures g{dep.id(), nrm.id(), pos.id(), GBufferSettings{},
+                                glm::vec4(frame.nearPlane, frame.farPlane, 1.0f / proj[1][1], proj[1][1] / proj[0][0])};
+    t.glslMs = glslMs([&] { runToonGlsl(st.toon, *frame.shaders, hdr.id(), g, w, h, config.toonParams); });
+    t.cudaMs = cudaMs([&] { return cu.toon(hdr.id(), pos.id(), nrm.id(), w, h, config.toonParams); });
+    return t;
+}
+#endif
+
+std::string glString(GLenum name) {
+    const char* s = reinterpret_cast<const char*>(glGetString(name));
+    return s ? s : "";
+}
+
+}  // namespace
+
+post::TimingKey postTimingKey(const FrameData& frame, const post::PostConfig& config, const std::string& interop) {
+    post::TimingKey key;
+    key.gpu = glString(GL_RENDERER);
+    key.driver = glString(GL_VERSION);  // NVIDIA's names the driver: "4.6.0 NVIDIA 550.54.15"
+    key.width = frame.width;
+    key.height = frame.height;
+    key.kernel = config.bloomParams.kernel;
+    key.method = post::bloomMethodName(config.bloomParams.method);
+    key.interop = interop;
+    return key;
+}
+
+PostBackendChoice postBackendChoice(PostPasses& state, const FrameData& frame, const post::PostConfig& config) {
+    const PostSettings::Backend requested = config.backend;
     // Without a GL context (the graph only described: 'lightpass graph', unit tests) nothing can be
     // asked of the driver: an explicit --post-backend cuda is shown as CUDA, auto as GLSL.
-    if (!frame.shaders) return requested == PostSettings::Backend::Cuda && PostBackend::compiledWithCuda();
-    return backend.useCuda(requested);
+    if (!frame.shaders) {
+        const bool cuda = requested == PostSettings::Backend::Cuda && PostBackend::compiledWithCuda();
+        return {cuda, cuda, cuda};
+    }
+    if (!(config.bloom || config.toon)) return {};
+    if (!state.backend.cudaUsable(requested, frame.settings->post.cudaInterop)) return {};
+    if (requested == PostSettings::Backend::Cuda) return {true, true, true};
+#ifdef LIGHTPASS_HAVE_CUDA
+    std::vector<post::PostEffect> effects;
+    if (config.bloom) effects.push_back(post::PostEffect::Bloom);
+    if (config.bloom && !config.bloomOnly) effects.push_back(post::PostEffect::Composite);
+    // The CUDA toon reads the default G-buffer layout only: other layouts run the GLSL toon anyway.
+    if (config.toon && frame.settings->gbuffer == GBufferSettings{}) effects.push_back(post::PostEffect::Toon);
+    return state.backend.autoChoice(postTimingKey(frame, config, state.backend.interopPath()), effects,
+                                    frame.settings->post.remeasure, [&](post::PostEffect effect) {
+                                        return measureEffect(state, frame, config, effect);
+                                    });
+#else
+    return {};
+#endif
 }
 
 fg::ResourceId addPostPasses(fg::FrameGraph& graph, PostPasses& state, const FrameData& frame, const GBuffer& gbuffer,
@@ -19,10 +179,10 @@ fg::ResourceId addPostPasses(fg::FrameGraph& graph, PostPasses& state, const Fra
     config.bloomParams.kernel = post::bloomKernelAtRenderSize(config.bloomParams.kernel, frame.width, frame.outputWidth);
     ++state.backend.frameIndex;  // every built frame, so CUDA registrations age even when culled
     if (frame.settings->view == DebugView::Lighting) return hdr;  // light alone: no post effects
-    const bool cuda = (config.bloom || config.toon) && postRunsInCuda(state.backend, frame, config.backend);
+    const PostBackendChoice cuda = postBackendChoice(state, frame, config);
     if (config.bloom) {
-        // CUDA fuses the composite into bloom's last kernel (one GL<->CUDA map fewer) unless the
-        // bloom view shows the bloom alone or the user switched bloom_composite off on its own.
+        // CUDA fuses the composite into bloom's last kernel when both run in CUDA, unless the bloom
+        // view shows the bloom alone or the user switched bloom_composite off on its own.
         const bool fuse = !config.bloomOnly && !frame.settings->disabledPasses.count("bloom_composite");
         BloomResult bloom = addBloomPass(graph, state.bloom, state.backend, cuda, fuse, frame, config, hdr);
         if (config.bloomOnly) return bloom.bloom;
@@ -32,8 +192,8 @@ fg::ResourceId addPostPasses(fg::FrameGraph& graph, PostPasses& state, const Fra
                                                            : "off in the scene (effects.bloom.enabled) and no --bloom");
     }
     if (config.toon)
-        hdr = addToonPass(graph, state.toon, state.backend, cuda, frame, config, gbuffer, hdr);
-    else if (!config.toon)
+        hdr = addToonPass(graph, state.toon, state.backend, cuda.toon, frame, config, gbuffer, hdr);
+    else
         graph.skipPass("toon", frame.settings->post.toon ? "switched off (--no-toon)"
                                                          : "off in the scene (effects.toon.enabled) and no --toon");
     return hdr;

@@ -22,8 +22,11 @@ struct PostPasses {
 fg::ResourceId addPostPasses(fg::FrameGraph& graph, PostPasses& state, const FrameData& frame, const GBuffer& gbuffer,
                              fg::ResourceId hdr);
 
-// Whether bloom and toon run in CUDA this frame: decided before their passes are added, so the
-// graph knows each pass's kind and what it touches.
-bool postRunsInCuda(PostBackend& backend, const FrameData& frame, PostSettings::Backend requested);
+// Per effect, whether it runs in CUDA this frame: decided before the passes are added, so the graph
+// knows each pass's kind and what it touches. `auto` measures both backends at this size and kernel
+// the first time (or reads the cache; see PostBackend::autoChoice).
+PostBackendChoice postBackendChoice(PostPasses& state, const FrameData& frame, const post::PostConfig& config);
+// The cache key of a measurement on this GL context (GPU, driver, size, kernel, method, interop).
+post::TimingKey postTimingKey(const FrameData& frame, const post::PostConfig& config, const std::string& interop);
 
 }  // namespace lp

@@ -373,15 +373,16 @@ void FrameGraph::assignLifetimes() {
             if (passes_[reader].live) readByLive[v.resource] = 1;
     for (int i = 0; i < int(order_.size()); ++i) {
         const Pass& p = passes_[order_[i]];
-        auto touch = [&](int v) {
+        auto touch = [&](int v, Usage how) {
             Resource& r = resources_[versions_[v].resource];
             if (r.optional && !r.output && !readByLive[versions_[v].resource]) return;
             r.live = true;
+            r.cuda = r.cuda || any(how, Usage::Cuda);
             if (r.first < 0) r.first = i;
             r.last = std::max(r.last, i);
         };
-        for (int v : p.reads) touch(v);
-        for (int v : p.writes) touch(v);
+        for (size_t k = 0; k < p.reads.size(); ++k) touch(p.reads[k], p.readUsage[k]);
+        for (size_t k = 0; k < p.writes.size(); ++k) touch(p.writes[k], p.writeUsage[k]);
     }
     for (auto& r : resources_)
         if (r.output && r.live) r.last = int(order_.size());
@@ -534,7 +535,7 @@ void FrameGraph::execute(TexturePool& pool, gl::GpuTimerRing* timers) {
     for (auto& r : resources_) r.texture = r.isImported ? r.imported : 0;
     for (int i = 0; i < int(order_.size()); ++i) {
         for (auto& r : resources_)
-            if (r.live && !r.isImported && r.first == i) r.texture = pool.acquire(r.desc, r.name);
+            if (r.live && !r.isImported && r.first == i) r.texture = pool.acquire(r.desc, r.name, r.cuda);
         Pass& p = passes_[order_[i]];
         {
             gl::DebugGroup group(p.name);

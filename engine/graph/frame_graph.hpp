@@ -221,6 +221,7 @@ private:
         bool live = false;
         bool output = false;
         bool optional = false;  // createIfRead: dropped when nothing live reads it
+        bool cuda = false;      // a live pass touches it with Usage::Cuda (the pool may share it)
     };
     struct Version {
         int resource = -1;

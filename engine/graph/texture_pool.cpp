@@ -22,14 +22,33 @@ void TexturePool::beginFrame() {
     }
 }
 
-GLuint TexturePool::acquire(const TextureDesc& desc, const std::string& label) {
-    for (auto& e : entries_) {
-        if (!e.inUse && e.desc == desc) {
-            e.inUse = true;
-            e.usedThisFrame = true;
-            e.idleFrames = 0;
-            gl::label(GL_TEXTURE, e.texture.id(), label);
-            return e.texture.id();
+GLuint TexturePool::acquire(const TextureDesc& desc, const std::string& label, bool external) {
+    // An external request prefers an external texture but takes an ordinary one when the source
+    // cannot share this description; an ordinary request never takes an external one.
+    external = external && externalSource_;
+    for (int pass = 0; pass < 2; ++pass) {
+        for (auto& e : entries_) {
+            const bool fromSource = e.external && e.source == externalSource_;  // never an old source's
+            const bool match = pass == 0 ? (external ? fromSource : !e.external) : (external && !e.external);
+            if (!e.inUse && e.desc == desc && match) {
+                e.inUse = true;
+                e.usedThisFrame = true;
+                e.idleFrames = 0;
+                gl::label(GL_TEXTURE, e.id(), label);
+                return e.id();
+            }
+        }
+        if (pass == 0 && external) {
+            std::shared_ptr<ExternalTexture> made = externalSource_->make(desc, label);
+            if (!made) continue;  // not shareable: an ordinary texture
+            Entry e;
+            e.desc = desc;
+            e.external = std::move(made);
+            e.source = externalSource_;
+            e.inUse = e.usedThisFrame = true;
+            ++created_;
+            entries_.push_back(std::move(e));
+            return entries_.back().id();
         }
     }
     Entry e;
@@ -42,9 +61,24 @@ GLuint TexturePool::acquire(const TextureDesc& desc, const std::string& label) {
     return entries_.back().texture.id();
 }
 
+void TexturePool::setExternalSource(ExternalTextureSource* source) {
+    if (source == externalSource_) return;
+    externalSource_ = source;
+    entries_.erase(std::remove_if(entries_.begin(), entries_.end(),
+                                  [](const Entry& e) { return e.external && !e.inUse; }),
+                   entries_.end());
+    // One still held is orphaned: never handed out again (a later source may live at the old address).
+    for (Entry& e : entries_)
+        if (e.external) e.source = nullptr;
+}
+
+size_t TexturePool::externalCount() const {
+    return size_t(std::count_if(entries_.begin(), entries_.end(), [](const Entry& e) { return bool(e.external); }));
+}
+
 void TexturePool::release(GLuint texture) {
     for (auto& e : entries_)
-        if (e.texture.id() == texture) e.inUse = false;
+        if (e.id() == texture) e.inUse = false;
 }
 
 void TexturePool::endFrame(int keepUnusedFrames) {

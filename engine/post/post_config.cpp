@@ -41,6 +41,15 @@ std::optional<BloomMethod> parseBloomMethod(const std::string& name) {
     return std::nullopt;
 }
 
+const char* cudaInteropName(PostSettings::CudaInterop i) {
+    switch (i) {
+        case PostSettings::CudaInterop::External: return "external";
+        case PostSettings::CudaInterop::Map: return "map";
+        case PostSettings::CudaInterop::Auto: break;
+    }
+    return "auto";
+}
+
 const char* backendName(PostSettings::Backend b) {
     switch (b) {
         case PostSettings::Backend::Cuda: return "cuda";

@@ -30,5 +30,6 @@ const char* bloomMethodName(BloomMethod m);
 std::optional<BloomMethod> parseBloomMethod(const std::string& name);  // "separable" | "mip-chain"
 const char* backendName(PostSettings::Backend b);
 std::optional<PostSettings::Backend> parseBackend(const std::string& name);  // "auto" | "cuda" | "glsl"
+const char* cudaInteropName(PostSettings::CudaInterop i);                     // "auto" | "external" | "map"
 
 }  // namespace lp::post

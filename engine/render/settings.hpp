@@ -131,6 +131,11 @@ struct PostSettings {           // bloom and toon (engine/post/post_config.hpp r
     std::optional<float> toonEdge;   // depth-edge threshold
     float toonNormalEdge = 0.5f;     // normal-edge threshold (sin of half the crease angle)
     Backend backend = Backend::Auto;
+    // How CUDA reaches the GL textures: external (GL memory objects on CUDA allocations, shared once),
+    // map (cudaGraphicsMapResources per use), auto: external where it works here, else map.
+    enum class CudaInterop { Auto, External, Map };
+    CudaInterop cudaInterop = CudaInterop::Auto;
+    bool remeasure = false;  // --post-remeasure: auto measures again instead of reading its cache
 };
 
 struct MotionBlurSettings {     // passes/motion_blur_pass (McGuire et al. 2012)

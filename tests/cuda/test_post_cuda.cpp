@@ -10,6 +10,7 @@
 #include "cuda/post_cuda.hpp"
 #include "engine/gl/context.hpp"
 #include "engine/gl/handles.hpp"
+#include "engine/graph/texture_pool.hpp"
 #include "engine/post/post_reference.hpp"
 
 using namespace lp;
@@ -189,4 +190,61 @@ TEST(CudaInterop, FusedBloomCompositeOnGlTexturesMatchesReference) {
     const ImageF refBloom = post::bloomBuffer(hdrIn, p, Storage::Float);
     EXPECT_LE(maxRelError(gotBloom, refBloom), 2.0 / 1024.0);
     EXPECT_LE(maxRelError(gotHdr, post::compositeBloom(hdrIn, refBloom, p.strength)), 2.0 / 1024.0);
+}
+
+// Shared textures (external memory, no map/unmap): bloom + composite and toon on textures the
+// shared-texture source made match the CPU reference within 2 fp16 ulps, nothing is registered for
+// mapping, and each call reports that it ran shared. Skips, with the reason, where GL and CUDA
+// cannot share memory (no GL_EXT_memory_object_fd, or the start-up round trip disagreed).
+TEST(CudaSharedTextures, BloomCompositeAndToonMatchReferenceWithoutMapping) {
+    if (skipWithoutDevice()) GTEST_SKIP() << "no CUDA device: " << cuda::postDeviceProblem();
+    std::unique_ptr<gl::GpuContext> ctx = gl::createHeadlessContext();
+    if (!ctx->isNvidia()) GTEST_SKIP() << "the headless GL context is not NVIDIA (" << ctx->info().renderer << ")";
+    cuda::PostInterop interop;
+    const std::string problem = interop.useSharedTextures();
+    if (!problem.empty()) GTEST_SKIP() << "shared textures unavailable here: " << problem;
+    fg::ExternalTextureSource* source = interop.sharedTextureSource();
+    ASSERT_NE(source, nullptr);
+    const ImageF hdrIn = randomHdr(8);
+    const BloomParams p = params(5, BloomMethod::Separable);
+    std::shared_ptr<fg::ExternalTexture> hdr = source->make({kW, kH, GL_RGBA16F}, "test.shared_hdr");
+    std::shared_ptr<fg::ExternalTexture> bloom = source->make({kW, kH, GL_RGBA16F}, "test.shared_bloom");
+    ASSERT_TRUE(hdr && bloom);
+    glTextureSubImage2D(hdr->texture(), 0, 0, 0, kW, kH, GL_RGBA, GL_FLOAT, hdrIn.rgba.data());
+    const cuda::PostTiming t = interop.bloomComposite(hdr->texture(), bloom->texture(), kW, kH, p);
+    EXPECT_TRUE(t.shared);
+    EXPECT_EQ(interop.registeredCount(), 0);
+    ImageF gotBloom = makeImage(kW, kH), gotHdr = makeImage(kW, kH);
+    glGetTextureImage(bloom->texture(), 0, GL_RGBA, GL_FLOAT, GLsizei(gotBloom.rgba.size() * 4), gotBloom.rgba.data());
+    glGetTextureImage(hdr->texture(), 0, GL_RGBA, GL_FLOAT, GLsizei(gotHdr.rgba.size() * 4), gotHdr.rgba.data());
+    const ImageF refBloom = post::bloomBuffer(hdrIn, p, Storage::Float);
+    EXPECT_LE(maxRelError(gotBloom, refBloom), 2.0 / 1024.0);
+    EXPECT_LE(maxRelError(gotHdr, post::compositeBloom(hdrIn, refBloom, p.strength)), 2.0 / 1024.0);
+
+    // Toon in place on a shared HDR texture, reading shared RGBA32F G-buffer targets.
+    ImageF position = makeImage(kW, kH), normal = makeImage(kW, kH);
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x) {
+            position.rgba[(size_t(y) * kW + size_t(x)) * 4 + 2] = x < 32 ? -2.0f : -4.0f;
+            normal.rgba[(size_t(y) * kW + size_t(x)) * 4 + 2] = 1.0f;
+        }
+    std::shared_ptr<fg::ExternalTexture> pos = source->make({kW, kH, GL_RGBA32F}, "test.shared_position");
+    std::shared_ptr<fg::ExternalTexture> nrm = source->make({kW, kH, GL_RGBA32F}, "test.shared_normal");
+    glTextureSubImage2D(hdr->texture(), 0, 0, 0, kW, kH, GL_RGBA, GL_FLOAT, hdrIn.rgba.data());
+    glTextureSubImage2D(pos->texture(), 0, 0, 0, kW, kH, GL_RGBA, GL_FLOAT, position.rgba.data());
+    glTextureSubImage2D(nrm->texture(), 0, 0, 0, kW, kH, GL_RGBA, GL_FLOAT, normal.rgba.data());
+    post::ToonParams tp;
+    EXPECT_TRUE(interop.toon(hdr->texture(), pos->texture(), nrm->texture(), kW, kH, tp).shared);
+    ImageF gotToon = makeImage(kW, kH);
+    glGetTextureImage(hdr->texture(), 0, GL_RGBA, GL_FLOAT, GLsizei(gotToon.rgba.size() * 4), gotToon.rgba.data());
+    const ImageF refToon = post::toonImage(hdrIn, position, normal, tp);
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x)
+            EXPECT_EQ(gotToon.rgba[(size_t(y) * kW + size_t(x)) * 4] == 0.0f, x == 31 || x == 32) << x << "," << y;
+    int mismatched = 0;
+    for (size_t i = 0; i < gotToon.rgba.size(); ++i)
+        if (i % 4 != 3 && std::fabs(gotToon.rgba[i] - refToon.rgba[i]) > (std::fabs(refToon.rgba[i]) + 1e-3) * 2.0 / 1024.0)
+            ++mismatched;
+    EXPECT_LE(mismatched, kW * kH / 100);
+    EXPECT_EQ(interop.registeredCount(), 0);
 }

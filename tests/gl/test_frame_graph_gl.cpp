@@ -190,3 +190,77 @@ TEST(FrameGraphGl, DefaultSceneRendersEveryViewWithoutNan) {
         EXPECT_TRUE(nonBlack) << viewName(v);
     }
 }
+
+namespace {
+// Stands in for CUDA's shared textures: ordinary textures, counted, RGBA16F only.
+struct CountingSource final : fg::ExternalTextureSource {
+    struct Made final : fg::ExternalTexture {
+        gl::Texture t;
+        GLuint texture() const override { return t.id(); }
+    };
+    std::vector<GLuint> made;
+    std::shared_ptr<fg::ExternalTexture> make(const fg::TextureDesc& d, const std::string& label) override {
+        if (d.format != GL_RGBA16F) return nullptr;
+        auto m = std::make_shared<Made>();
+        m->t = gl::makeTexture2D(d.format, d.width, d.height, d.levels, label);
+        made.push_back(m->t.id());
+        return m;
+    }
+};
+}  // namespace
+
+// Resources a live pass touches with Usage::Cuda come from the pool's external source (once, then
+// reused across frames); others, and formats the source declines, stay ordinary; a different source
+// drops the old shared textures.
+TEST(FrameGraphGl, CudaTouchedResourcesComeFromTheExternalSource) {
+    const long objectsBefore = gl::liveObjectCount();
+    {
+        CountingSource source;
+        fg::TexturePool pool;
+        pool.setExternalSource(&source);
+        const fg::TextureDesc half{16, 8, GL_RGBA16F}, full{16, 8, GL_RGBA32F};
+        GLuint hdrTex = 0, plainTex = 0, posTex = 0;
+        for (int frame = 0; frame < 3; ++frame) {
+            fg::FrameGraph g;
+            fg::ResourceId hdr, plain, pos;
+            g.addPass("light", fg::PassKind::Compute, [&](fg::PassBuilder& p) {
+                hdr = p.create("hdr", half, fg::Usage::ImageStore);
+                plain = p.create("plain", half, fg::Usage::ImageStore);
+                pos = p.create("position", full, fg::Usage::ImageStore);
+            }, nullptr);
+            fg::ResourceId out;
+            g.addPass("post", fg::PassKind::Cuda, [&](fg::PassBuilder& p) {
+                out = p.write(hdr, fg::Usage::Cuda);
+                p.read(pos, fg::Usage::Cuda);
+                p.read(plain, fg::Usage::Sampled);
+            }, [&](const fg::PassResources& r) {
+                hdrTex = r.texture(out);
+                plainTex = r.texture(plain);
+                posTex = r.texture(pos);
+            });
+            g.markOutput(out);
+            g.compile();
+            g.execute(pool);
+        }
+        ASSERT_EQ(source.made.size(), 1u);  // the RGBA16F HDR buffer, once for three frames
+        EXPECT_EQ(hdrTex, source.made[0]);
+        EXPECT_NE(plainTex, source.made[0]);
+        EXPECT_NE(posTex, 0u);  // RGBA32F declined: an ordinary texture
+        EXPECT_EQ(pool.externalCount(), 1u);
+        // A new source: the shared HDR buffer is still held (the last frame's output, readable until
+        // the next frame), so it goes once idle; ordinary textures take its place meanwhile.
+        pool.setExternalSource(nullptr);
+        for (int frame = 0; frame < 5; ++frame) {
+            fg::FrameGraph g;
+            fg::ResourceId hdr;
+            g.addPass("post", fg::PassKind::Cuda, [&](fg::PassBuilder& p) { hdr = p.create("hdr", half, fg::Usage::Cuda); },
+                      [&](const fg::PassResources& r) { EXPECT_NE(r.texture(hdr), source.made[0]); });
+            g.markOutput(hdr);
+            g.compile();
+            g.execute(pool);
+        }
+        EXPECT_EQ(pool.externalCount(), 0u);
+        EXPECT_EQ(source.made.size(), 1u);
+    }
+    EXPECT_EQ(gl::liveObjectCount(), objectsBefore);
+}

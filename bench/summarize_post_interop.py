@@ -1,0 +1,71 @@
+#!/usr/bin/env python3
+"""Markdown table of bench/post_interop.sh's runs (OUTDIR/{variant}_{effect}_k{K}_{W}x{H}.json).
+
+Per run and pass: 'frame ms' is the pass's GL-timed median (what the frame pays: for CUDA passes the
+host's interop work and syncs are inside it), 'kernels ms' the CUDA events around the kernels,
+'interop ms' the host time of map+unmap (map path) or of the fence/event waits beyond the kernels
+(external path), the floor (bytes the pass must move / measured compute copy bandwidth) and
+measured/floor for both. Then the targets: CUDA (external) bloom+composite at kernel 5 1080p no
+slower than GLSL, and CUDA <= 1.5x its floor at kernel 100 4K."""
+import glob
+import json
+import os
+import sys
+
+
+def fmt(x, suffix=""):
+    return "-" if x is None else f"{x:.4f}{suffix}"
+
+
+def passes_of(effect):
+    return ["toon"] if effect == "toon" else ["bloom", "bloom_composite"]
+
+
+def main(outdir):
+    runs = {}
+    device = None
+    for path in sorted(glob.glob(os.path.join(outdir, "*_*_k*_*x*.json"))):
+        variant, effect, kernel, size = os.path.basename(path)[:-5].split("_")
+        run = json.load(open(path))
+        device = device or run.get("device")
+        runs[(variant, effect, kernel, size)] = run
+    print(f"Device: {device}. Medians over the frames; floor = bytes moved / measured compute copy bandwidth.\n")
+    print("| variant | effect | kernel | size | pass | frame ms | kernels ms | interop ms | floor ms | frame/floor | kernels/floor |")
+    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
+    totals = {}
+    for (variant, effect, kernel, size), run in sorted(runs.items(), key=lambda kv: (kv[0][2], kv[0][3], kv[0][1], kv[0][0])):
+        p = run["passes"]
+        tot = [0.0, 0.0, 0.0]
+        for name in passes_of(effect):
+            if name not in p:
+                continue
+            frame = p[name]["median_ms"]
+            kern = p.get(f"{name} (cuda kernels)", {}).get("median_ms")
+            inter = p.get(f"{name} (cuda interop)", {}).get("median_ms")
+            fl = p[name].get("floor_ms")
+            ratio = lambda x: f"{x / fl:.2f}x" if x is not None and fl else "-"
+            print(f"| {variant} | {effect} | {kernel[1:]} | {size} | {name} | {fmt(frame)} | {fmt(kern)} | {fmt(inter)} | "
+                  f"{fmt(fl)} | {ratio(frame)} | {ratio(kern)} |")
+            tot[0] += frame
+            tot[1] += kern if kern is not None else frame
+            tot[2] += fl or 0.0
+        totals[(variant, effect, kernel, size)] = tot
+    print("\nTargets (bloom + composite, all passes summed):\n")
+    for kernel, size in sorted({(k, s) for (_, e, k, s) in totals if e == "bloom"}):
+        g = totals.get(("glsl", "bloom", kernel, size))
+        for variant in ("cuda-external", "cuda-map", "auto"):
+            c = totals.get((variant, "bloom", kernel, size))
+            if not c or not g:
+                continue
+            print(f"- {kernel[1:]} px {size} {variant}: frame {c[0]:.4f} ms vs GLSL {g[0]:.4f} ms "
+                  f"({'no slower' if c[0] <= g[0] else 'slower'}); kernels {c[1]:.4f} ms = "
+                  f"{c[1] / c[2]:.2f}x floor {c[2]:.4f} ms; frame = {c[0] / c[2]:.2f}x floor" if c[2] else "")
+    choices = os.path.join(outdir, "auto_choices.txt")
+    if os.path.exists(choices):
+        print("\nWhat --post-backend auto measured and chose:\n")
+        for line in open(choices):
+            print("    " + line.rstrip())
+
+
+if __name__ == "__main__":
+    main(sys.argv[1] if len(sys.argv) > 1 else "bench/results/post_interop")
