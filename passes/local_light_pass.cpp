@@ -155,10 +155,15 @@ void buildClusters(LocalLightPass& state, const FrameData& frame, int lightCount
     const LocalLightSettings& s = frame.settings->localLights;
     const ClusterGrid g = makeClusterGrid(frame.width, frame.height, s.clusterSize, s.clusterSlices, frame.nearPlane,
                                           frame.farPlane);
-    // The previous build's overflow count: long finished, so reading it does not wait on this frame.
-    if (state.clusterBuilt) {
+    // The newest finished build's overflow count (never waits: see OverflowSlot).
+    for (int back = 1; back <= int(state.clusterOverflow.size()); ++back) {
+        auto& slot = state.clusterOverflow[size_t((state.nextOverflowSlot - back + 3 * int(state.clusterOverflow.size())) %
+                                                  int(state.clusterOverflow.size()))];
+        if (!slot.done || !slot.done.signaled()) continue;
+        if (slot.read) break;
         GLuint overflow = 0;
-        glGetNamedBufferSubData(state.clusterOverflow.id(), 0, sizeof(GLuint), &overflow);
+        glGetNamedBufferSubData(slot.count.id(), 0, sizeof(GLuint), &overflow);
+        slot.read = true;
         state.stats.clustersOverflowing = int(overflow);
         if (int(overflow) != state.lastOverflowWarned && overflow > 0)
             logWarn("clustered: " + std::to_string(overflow) + " of " + std::to_string(state.clusterGrid.count()) +
@@ -166,6 +171,7 @@ void buildClusters(LocalLightPass& state, const FrameData& frame, int lightCount
                     " lights; the lights past the first " + std::to_string(kMaxLightsPerCluster) +
                     " are dropped there (lower --cluster-size or raise --cluster-slices)");
         state.lastOverflowWarned = int(overflow);
+        break;
     }
     const size_t clusters = size_t(g.count());
     if (clusters > state.clusterCapacity || !state.clusterCounts) {
@@ -174,12 +180,12 @@ void buildClusters(LocalLightPass& state, const FrameData& frame, int lightCount
         state.clusterLists = gl::makeBuffer(GLsizeiptr(clusters * kMaxLightsPerCluster * sizeof(GLuint)), nullptr, 0,
                                             "clusters.lights");
     }
-    if (!state.clusterOverflow)
-        state.clusterOverflow = gl::makeBuffer(sizeof(GLuint), nullptr, GL_DYNAMIC_STORAGE_BIT, "clusters.overflow");
+    auto& slot = state.clusterOverflow[size_t(state.nextOverflowSlot)];
+    state.nextOverflowSlot = (state.nextOverflowSlot + 1) % int(state.clusterOverflow.size());
+    if (!slot.count) slot.count = gl::makeBuffer(sizeof(GLuint), nullptr, 0, "clusters.overflow");
     const GLuint zero = 0;
-    glNamedBufferSubData(state.clusterOverflow.id(), 0, sizeof(GLuint), &zero);
+    glClearNamedBufferData(slot.count.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
     state.clusterGrid = g;
-    state.clusterBuilt = true;
     state.stats.clusters = g.count();
     const GLuint prog = state.clusterBuildProgram.id();
     setClusterUniforms(prog, g);
@@ -188,10 +194,12 @@ void buildClusters(LocalLightPass& state, const FrameData& frame, int lightCount
     glProgramUniform2i(prog, glGetUniformLocation(prog, "uImageSize"), frame.width, frame.height);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, state.clusterCounts.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, state.clusterLists.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, state.clusterOverflow.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, slot.count.id());
     glUseProgram(prog);
-    glDispatchCompute(GLuint((clusters + 63) / 64), 1, 1);
+    glDispatchCompute(GLuint(g.tilesX), GLuint(g.tilesY), 1);  // a work group per tile, an invocation per slice
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    slot.done = gl::Fence::insert();
+    slot.read = false;
 }
 
 // The fullscreen, scissor and volumes methods: additive blending into an FBO holding the HDR texture.

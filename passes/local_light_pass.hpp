@@ -7,6 +7,8 @@
 #include "engine/gl/handles.hpp"
 #include "engine/graph/frame_graph.hpp"
 #include "engine/render/frame_data.hpp"
+#include <array>
+
 #include "engine/render/light_clusters.hpp"
 #include "passes/gbuffer_pass.hpp"
 #include "passes/spot_shadow_pass.hpp"
@@ -38,9 +40,16 @@ struct LocalLightPass {
     ClusterGrid clusterGrid;          // the grid the last build made
     gl::Buffer clusterCounts;         // uint per cluster: lights touching it (uncapped)
     gl::Buffer clusterLists;          // kMaxLightsPerCluster uints per cluster: light indices
-    gl::Buffer clusterOverflow;       // one uint: clusters past the cap in the last build
+    // One uint per build: clusters past the cap. A ring, each slot read back only once its fence
+    // has signaled, so the warning never makes the CPU (or the pass's GPU timer) wait on a build.
+    struct OverflowSlot {
+        gl::Buffer count;
+        gl::Fence done;     // after the build that wrote `count`
+        bool read = false;  // its count is in stats already
+    };
+    std::array<OverflowSlot, 3> clusterOverflow;
+    int nextOverflowSlot = 0;
     size_t clusterCapacity = 0;       // clusters the buffers hold
-    bool clusterBuilt = false;        // clusterOverflow holds a finished build's count
     int lastOverflowWarned = 0;
     gl::Program globeVelocityProgram;  // the same with LP_GLOBE_VELOCITY: globes and their motion vectors
     GBufferSettings layout;       // the G-buffer layout the fragment, tiled and heatmap programs were compiled for

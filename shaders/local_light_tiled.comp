@@ -27,20 +27,6 @@ shared uint sMinDist, sMaxDist;  // float bits of positive eye distances (order-
 shared uint sCount, sTotal;
 shared uint sList[LP_BATCH];
 
-// Does the sphere (eye-space centre c, radius r) touch the tile between NDC x in [x0, x1], y in [y0, y1]
-// and eye distance [d0, d1]? Conservative: a sphere near a frustum corner may pass (it then adds 0).
-bool touchesTile(vec3 c, float r, vec2 lo, vec2 hi, float d0, float d1) {
-    float dist = -c.z;
-    if (dist + r < d0 || dist - r > d1) return false;
-    float p00 = uProjection[0][0], p20 = uProjection[2][0], p11 = uProjection[1][1], p21 = uProjection[2][1];
-    // x_ndc >= lo.x  <=>  p00 x + (p20 + lo.x) z >= 0 (with z < 0); likewise for the other sides.
-    vec3 planes[4] = vec3[4](vec3(p00, 0.0, p20 + lo.x), vec3(-p00, 0.0, -(p20 + hi.x)),
-                             vec3(0.0, p11, p21 + lo.y), vec3(0.0, -p11, -(p21 + hi.y)));
-    for (int i = 0; i < 4; ++i)
-        if (dot(planes[i], c) < -r * length(planes[i])) return false;
-    return true;
-}
-
 void main() {
     ivec2 size = imageSize(uHdr);
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
@@ -87,7 +73,7 @@ void main() {
             if (i < uLightCount) {
                 vec4 pr = uLights[i].bound;
                 // 0.1% + 1 um margin: float rounding must never drop a light that reaches the tile.
-                if (uUnbounded || touchesTile(pr.xyz, pr.w * 1.001 + 1e-6, tileLo, tileHi, d0, d1))
+                if (uUnbounded || sphereTouchesTileFrustum(pr.xyz, pr.w * 1.001 + 1e-6, tileLo, tileHi, d0, d1, uProjection))
                     sList[atomicAdd(sCount, 1u)] = uint(i);
             }
             barrier();

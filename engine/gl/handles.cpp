@@ -181,4 +181,29 @@ DebugGroup::DebugGroup(const std::string& name) {
 }
 DebugGroup::~DebugGroup() { glPopDebugGroup(); }
 
+Fence Fence::insert() {
+    Fence f;
+    f.sync_ = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+    return f;
+}
+
+Fence::~Fence() {
+    if (sync_) glDeleteSync(sync_);
+}
+
+Fence& Fence::operator=(Fence&& other) noexcept {
+    if (this != &other) {
+        if (sync_) glDeleteSync(sync_);
+        sync_ = other.sync_;
+        other.sync_ = nullptr;
+    }
+    return *this;
+}
+
+bool Fence::signaled() const {
+    if (!sync_) return false;
+    const GLenum r = glClientWaitSync(sync_, GL_SYNC_FLUSH_COMMANDS_BIT, 0);
+    return r == GL_ALREADY_SIGNALED || r == GL_CONDITION_SATISFIED;
+}
+
 }  // namespace lp::gl

@@ -82,6 +82,25 @@ VertexArray makeVertexArray(const std::string& name);
 Sampler makeSampler(const std::string& name);
 Query makeQuery(GLenum target);
 
+// A fence after the commands issued so far (glFenceSync), deleted with its owner. signaled() never
+// waits: results read only once their fence has signaled cost the CPU no stall and leave no idle gap
+// inside the GPU timer of the pass that reads them.
+class Fence {
+public:
+    Fence() = default;
+    static Fence insert();
+    ~Fence();
+    Fence(Fence&& other) noexcept : sync_(other.sync_) { other.sync_ = nullptr; }
+    Fence& operator=(Fence&& other) noexcept;
+    Fence(const Fence&) = delete;
+    Fence& operator=(const Fence&) = delete;
+    bool signaled() const;
+    explicit operator bool() const { return sync_ != nullptr; }
+
+private:
+    GLsync sync_ = nullptr;
+};
+
 // Number of mip levels of a full chain for a width x height image.
 int fullMipCount(int width, int height);
 // Bytes per texel of the internal formats lightpass uses (for memory accounting and floors).

@@ -15,6 +15,8 @@ ClusterGrid makeClusterGrid(int width, int height, int tileSize, int slices, flo
     g.height = std::max(height, 1);
     g.tilesX = (g.width + g.tileSize - 1) / g.tileSize;
     g.tilesY = (g.height + g.tileSize - 1) / g.tileSize;
+    if (slices > kMaxClusterSlices)
+        throw Error("clustered: " + std::to_string(slices) + " depth slices: at most " + std::to_string(kMaxClusterSlices));
     g.slices = std::max(slices, 1);
     g.nearPlane = nearPlane;
     g.farPlane = std::max(farPlane, nearPlane * 1.001f);
@@ -56,6 +58,24 @@ EyeBox froxelBox(const ClusterGrid& g, const glm::mat4& projection, int x, int y
     return b;
 }
 
+bool lightTouchesTileColumn(const GpuLocalLight& l, const ClusterGrid& g, const glm::mat4& projection, int x, int y,
+                            double margin) {
+    const glm::dvec3 c(l.bound);
+    const double r = double(l.bound.w) * (1.0 + margin) + 1e-6;
+    const double dist = -c.z;
+    if (dist + r < double(g.nearPlane) || dist - r > double(g.farPlane)) return false;
+    const double x0 = double(x * g.tileSize) / g.width * 2.0 - 1.0;
+    const double x1 = double(std::min((x + 1) * g.tileSize, g.width)) / g.width * 2.0 - 1.0;
+    const double y0 = double(y * g.tileSize) / g.height * 2.0 - 1.0;
+    const double y1 = double(std::min((y + 1) * g.tileSize, g.height)) / g.height * 2.0 - 1.0;
+    const double p00 = projection[0][0], p20 = projection[2][0], p11 = projection[1][1], p21 = projection[2][1];
+    // x_ndc >= x0  <=>  p00 x + (p20 + x0) z >= 0 (with z < 0); likewise for the other sides.
+    const glm::dvec3 planes[4] = {{p00, 0.0, p20 + x0}, {-p00, 0.0, -(p20 + x1)}, {0.0, p11, p21 + y0}, {0.0, -p11, -(p21 + y1)}};
+    for (const glm::dvec3& n : planes)
+        if (glm::dot(n, c) < -r * glm::length(n)) return false;
+    return true;
+}
+
 bool lightTouchesFroxel(const GpuLocalLight& l, const EyeBox& box, double margin) {
     const glm::dvec3 c(l.bound);
     const double r = double(l.bound.w) * (1.0 + margin) + 1e-6;
@@ -84,7 +104,9 @@ std::vector<std::vector<int>> referenceClusterLists(const ClusterGrid& g, const 
                 const EyeBox box = froxelBox(g, projection, x, y, k);
                 auto& list = lists[size_t(g.index(x, y, k))];
                 for (size_t i = 0; i < lights.size(); ++i)
-                    if (lightTouchesFroxel(lights[i], box, margin)) list.push_back(int(i));
+                    if (lightTouchesTileColumn(lights[i], g, projection, x, y, margin) &&
+                        lightTouchesFroxel(lights[i], box, margin))
+                        list.push_back(int(i));
             }
     return lists;
 }

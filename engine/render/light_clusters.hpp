@@ -5,8 +5,9 @@
 //
 // The grid: screen tiles of tileSize pixels x `slices` depth slices between the camera's near and
 // far planes, slice k covering eye distances [near (far/near)^(k/S), near (far/near)^((k+1)/S)].
-// A light is listed in a froxel when its bounding sphere touches the froxel's eye-space box and, for
-// a spot, its cone touches the sphere around that box (Wronski, "Cull that cone", 2017). Each
+// A light is listed in a froxel when its bounding sphere touches the tile's frustum between the near
+// and far planes (the build's first, per-tile, test), touches the froxel's eye-space box and, for a
+// spot, its cone touches the sphere around that box (Wronski, "Cull that cone", 2017). Each
 // froxel lists at most kMaxLightsPerCluster lights, the lowest indices first; lights past the cap are
 // dropped there (counted, warned about, and shown magenta in the lights-per-cluster view).
 #include <vector>
@@ -18,6 +19,8 @@
 namespace lp {
 
 constexpr int kMaxLightsPerCluster = 256;
+// light_clusters.comp gives each slice of a tile one invocation of a 64-wide work group.
+constexpr int kMaxClusterSlices = 64;
 // The largest light-index list the grid may allocate (clusters x cap x 4 bytes).
 constexpr double kMaxClusterListBytes = 1024.0 * 1024.0 * 1024.0;
 
@@ -47,11 +50,17 @@ struct EyeBox {
 // the slice's two depths. `projection` is the camera's (possibly off-centre) perspective.
 EyeBox froxelBox(const ClusterGrid& grid, const glm::mat4& projection, int x, int y, int k);
 
+// Does `light`'s bounding sphere touch tile (x, y)'s frustum between the grid's near and far planes
+// (its four side planes through the eye)? `margin` as below.
+bool lightTouchesTileColumn(const GpuLocalLight& light, const ClusterGrid& grid, const glm::mat4& projection, int x,
+                            int y, double margin);
+
 // Does `light` (eye space, as the shaders read it) reach into `box`? Conservative: true for every
 // light that does; `margin` grows the light's bounds by that fraction (the shader uses 1e-3).
 bool lightTouchesFroxel(const GpuLocalLight& light, const EyeBox& box, double margin);
 
-// Per cluster, the indices of the lights lightTouchesFroxel lists (uncapped), in index order.
+// Per cluster, the indices of the lights that pass lightTouchesTileColumn and lightTouchesFroxel
+// (uncapped), in index order.
 std::vector<std::vector<int>> referenceClusterLists(const ClusterGrid& grid, const glm::mat4& projection,
                                                     const std::vector<GpuLocalLight>& lights, double margin);
 

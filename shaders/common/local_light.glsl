@@ -15,6 +15,22 @@ struct LpLocalLight {
     vec4 shadow;         // x: layer of the spot shadow map array, < 0 none
 };
 
+// Does the sphere (eye-space centre c, radius r) touch the screen tile between NDC x in [lo.x, hi.x],
+// y in [lo.y, hi.y] and eye distances [d0, d1] of the perspective `projection`? Its four side planes
+// through the eye and the two depths; conservative: a sphere near a frustum corner may pass. The
+// tiled method's culling and the clustered grid's first, per-tile, test (lp::lightTouchesTileColumn).
+bool sphereTouchesTileFrustum(vec3 c, float r, vec2 lo, vec2 hi, float d0, float d1, mat4 projection) {
+    float dist = -c.z;
+    if (dist + r < d0 || dist - r > d1) return false;
+    float p00 = projection[0][0], p20 = projection[2][0], p11 = projection[1][1], p21 = projection[2][1];
+    // x_ndc >= lo.x  <=>  p00 x + (p20 + lo.x) z >= 0 (with z < 0); likewise for the other sides.
+    vec3 planes[4] = vec3[4](vec3(p00, 0.0, p20 + lo.x), vec3(-p00, 0.0, -(p20 + hi.x)),
+                             vec3(0.0, p11, p21 + lo.y), vec3(0.0, -p11, -(p21 + hi.y)));
+    for (int i = 0; i < 4; ++i)
+        if (dot(planes[i], c) < -r * length(planes[i])) return false;
+    return true;
+}
+
 const int LP_LOCAL_SPECULAR_OFF = 0;      // diffuse only
 const int LP_LOCAL_SPECULAR_RANGED = 1;   // diffuse and specular both limited by the range window
 const int LP_LOCAL_SPECULAR_UNRANGED = 2; // seed 003's extra mode: specular keeps 1/d^2 past the range
