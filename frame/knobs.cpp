@@ -224,6 +224,26 @@ std::vector<KnobEntry> makeKnobTable() {
         t.push_back(std::move(k));
     }
     {
+        KnobEntry k = boolKnob("shadow-culling", [](auto& s) -> auto& { return s.shadows.cullCasters; });
+        k.flags = {setsFlag("--shadow-culling", 1), setsFlag("--no-shadow-culling", 0)};
+        k.help = "each sun cascade draws only the caster clusters whose bounds reach its tile";
+        k.panel = {PanelSection::Shadows, PanelWidget::Checkbox, "cull casters", ""};
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = choiceKnob("shadow-raster", [](auto& s) -> auto& { return s.shadows.raster; },
+                                 std::vector<ShadowSettings::Raster>{ShadowSettings::Raster::Conservative,
+                                                                     ShadowSettings::Raster::Plain,
+                                                                     ShadowSettings::Raster::Split},
+                                 ShadowSettings::rasterName);
+        k.flags = {valueFlag("--shadow-raster")};
+        k.choiceNoun = "raster";
+        k.help = "sun cascades' caster raster: conservative (no crease leaks), plain (early-Z, leaks at creases) "
+                 "or split (faces towards the light plain, faces away conservative)";
+        k.panel = {PanelSection::Shadows, PanelWidget::Combo, "caster raster", ""};
+        t.push_back(std::move(k));
+    }
+    {
         KnobEntry k = intKnob("shadow-light", [](auto& s) -> auto& { return s.shadows.debugLight; }, 0, 1000000);
         k.flags = {valueFlag("--shadow-light")};
         k.help = "--view shadowmap shows this directional light's shadow map";

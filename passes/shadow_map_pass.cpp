@@ -5,6 +5,7 @@
 #include "engine/gl/shader.hpp"
 #include "engine/gl/state.hpp"
 #include "engine/render/scene_gpu.hpp"
+#include "engine/render/shadow_casters.hpp"
 
 namespace lp {
 
@@ -26,6 +27,12 @@ ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const
     else if (casting > kMaxShadowedLights)
         graph.skipPass("shadow_map", std::to_string(casting - kMaxShadowedLights) + " shadow-casting lights past the first " +
                                          std::to_string(kMaxShadowedLights) + " are unshadowed");
+    // Caster clusters: made once at load with the GPU meshes; 'lightpass graph' (no GPU) makes them here.
+    std::vector<CasterCluster> localClusters;
+    if (!frame.gpu && frame.settings->shadows.enabled && casting > 0) localClusters = buildCasterClusters(*frame.scene);
+    const std::vector<CasterCluster>& clusters = frame.gpu ? frame.gpu->casterClusters : localClusters;
+    size_t sceneTriangles = 0;
+    for (const CasterCluster& c : clusters) sceneTriangles += c.indexCount / 3;
     for (int light : shadowCastingLights(frame)) {
         LightShadowMap map;
         map.light = light;
@@ -35,17 +42,35 @@ ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const
         // A small scene needs fewer cascades than asked for: say which were dropped and why.
         if (const std::string why = droppedCascadesReason(fr, frame.settings->shadows.cascades); !why.empty())
             graph.skipPass(name + " cascades", why);
+        // Each cascade's casters, culled to its tile (one texel of margin for the conservative growth).
+        std::vector<CasterList> casters;
+        for (size_t c = 0; c < fr.cascades.size(); ++c) {
+            casters.push_back(cullCasters(clusters, *frame.scene, fr.cascades[c].worldToClip, 2.0f / float(fr.tileSize),
+                                          frame.settings->shadows.cullCasters));
+            const CasterList& l = casters.back();
+            graph.notePass(name, "cascade " + std::to_string(c) + ": " + std::to_string(l.draws.size()) + " draws, " +
+                                     std::to_string(l.clusters) + " of " + std::to_string(clusters.size()) + " clusters, " +
+                                     std::to_string(l.triangles) + " of " + std::to_string(sceneTriangles) + " triangles (" +
+                                     ShadowSettings::rasterName(frame.settings->shadows.raster) + " raster" +
+                                     (frame.settings->shadows.cullCasters ? "" : ", culling off") + ")");
+        }
         const fg::TextureDesc desc{fr.tileSize * fr.columns, fr.tileSize * fr.rows, GL_DEPTH_COMPONENT32F};
         const Data& data = graph.addPass<Data>(
             name, fg::PassKind::Raster,
             [&](fg::PassBuilder& b, Data& out) { out.depth = b.create(name + ".depth", desc, fg::Usage::DepthAttachment); },
-            [&state, frame, fr](const Data& out, const fg::PassResources& res) {
+            [&state, frame, fr, casters](const Data& out, const fg::PassResources& res) {
                 const fg::ResourceId depth = out.depth;
-                if (!state.program) {
+                using Raster = ShadowSettings::Raster;
+                const Raster raster = frame.settings->shadows.raster;
+                if (!state.fbo) state.fbo = gl::makeFramebuffer("shadow_map");
+                if (raster == Raster::Conservative && !state.program)
                     state.program = frame.shaders->graphics("shadow_depth.vert", "shadow_depth.geom", "shadow_depth.frag",
                                                             {"LP_SHADOW_CONSERVATIVE"});
-                    state.fbo = gl::makeFramebuffer("shadow_map");
-                }
+                if (raster == Raster::Split && !state.awayProgram)
+                    state.awayProgram = frame.shaders->graphics("shadow_depth.vert", "shadow_depth.geom", "shadow_depth.frag",
+                                                                {"LP_SHADOW_CONSERVATIVE", "LP_SHADOW_AWAY_ONLY"});
+                if (raster != Raster::Conservative && !state.plainProgram)
+                    state.plainProgram = frame.shaders->graphics("shadow_depth.vert", "shadow_depth.frag");
                 const GLuint fbo = state.fbo.id();
                 glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, res.texture(depth), 0);
                 glNamedFramebufferDrawBuffer(fbo, GL_NONE);
@@ -56,28 +81,52 @@ ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const
                 gl::ScopedEnable cull(GL_CULL_FACE, false);  // thin walls and open meshes cast from both sides
                 gl::ScopedEnable blend(GL_BLEND, false);
                 gl::ScopedEnable clamp(GL_DEPTH_CLAMP, true);  // casters past the light's near plane still cast
-                gl::ScopedRasterState saved;  // depth function and mask
+                gl::ScopedEnable offset(GL_POLYGON_OFFSET_FILL, false);
+                gl::ScopedRasterState saved;  // depth function and mask, polygon offset, cull face
                 glDepthFunc(GL_LESS);
                 glDepthMask(GL_TRUE);
+                // Plain draws: the slope bias is the polygon offset's factor (as the spot maps').
+                glPolygonOffset(frame.settings->shadows.slopeBias, 0.0f);
                 const float one = 1.0f;
                 glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &one);
 
-                const GLuint prog = state.program.id();
-                const GLint locMvp = glGetUniformLocation(prog, "uModelToClip");
-                const GLint locViewport = glGetUniformLocation(prog, "uViewport");
                 GLint clipDepth = GL_NEGATIVE_ONE_TO_ONE;
                 glGetIntegerv(GL_CLIP_DEPTH_MODE, &clipDepth);
-                glProgramUniform1i(prog, glGetUniformLocation(prog, "uDepthZeroToOne"), clipDepth == GL_ZERO_TO_ONE ? 1 : 0);
-                // Slope-scaled bias against acne, for the faces towards the light only (shadow_depth.frag);
-                // the constant part is the receiver's (see shadow.glsl).
-                glProgramUniform1f(prog, glGetUniformLocation(prog, "uSlopeBias"), frame.settings->shadows.slopeBias);
-                glUseProgram(prog);
+                const GLuint conservativeProg = raster == Raster::Conservative ? state.program.id()
+                                                : raster == Raster::Split      ? state.awayProgram.id()
+                                                                               : 0;
+                if (conservativeProg) {
+                    glProgramUniform1i(conservativeProg, glGetUniformLocation(conservativeProg, "uDepthZeroToOne"),
+                                       clipDepth == GL_ZERO_TO_ONE ? 1 : 0);
+                    // Slope-scaled bias against acne, for the faces towards the light only (shadow_depth.frag);
+                    // the constant part is the receiver's (see shadow.glsl).
+                    glProgramUniform1f(conservativeProg, glGetUniformLocation(conservativeProg, "uSlopeBias"),
+                                       frame.settings->shadows.slopeBias);
+                }
+                const GLuint plainProg = raster == Raster::Conservative ? 0 : state.plainProgram.id();
                 for (size_t c = 0; c < fr.cascades.size(); ++c) {
                     const GLint x = GLint(c % size_t(fr.columns)) * fr.tileSize;
                     const GLint y = GLint(c / size_t(fr.columns)) * fr.tileSize;
                     glViewport(x, y, fr.tileSize, fr.tileSize);
-                    glProgramUniform4f(prog, locViewport, float(x), float(y), float(fr.tileSize), float(fr.tileSize));
-                    drawShadowCasters(frame, prog, locMvp, fr.cascades[c].worldToClip);
+                    if (plainProg) {
+                        // Split: only the faces towards the light (counter-clockwise in the light's window,
+                        // as shadow_depth.geom's orientation), which need neither growth nor gl_FragDepth.
+                        glUseProgram(plainProg);
+                        glEnable(GL_POLYGON_OFFSET_FILL);
+                        if (raster == Raster::Split) glEnable(GL_CULL_FACE);
+                        glCullFace(GL_BACK);
+                        drawCasterList(frame, plainProg, glGetUniformLocation(plainProg, "uModelToClip"),
+                                       fr.cascades[c].worldToClip, casters[c]);
+                        glDisable(GL_POLYGON_OFFSET_FILL);
+                        glDisable(GL_CULL_FACE);
+                    }
+                    if (conservativeProg) {
+                        glUseProgram(conservativeProg);
+                        glProgramUniform4f(conservativeProg, glGetUniformLocation(conservativeProg, "uViewport"), float(x),
+                                           float(y), float(fr.tileSize), float(fr.tileSize));
+                        drawCasterList(frame, conservativeProg, glGetUniformLocation(conservativeProg, "uModelToClip"),
+                                       fr.cascades[c].worldToClip, casters[c]);
+                    }
                 }
                 glBindVertexArray(0);
                 glUseProgram(0);
@@ -87,6 +136,22 @@ ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const
         maps.push_back(std::move(map));
     }
     return maps;
+}
+
+void drawCasterList(const FrameData& frame, GLuint prog, GLint locMvp, const glm::mat4& worldToClip, const CasterList& casters) {
+    int boundModel = -1;
+    for (const CasterDraw& draw : casters.draws) {
+        if (draw.model < 0 || size_t(draw.model) >= frame.gpu->meshes.size()) continue;
+        const GpuMesh& mesh = frame.gpu->meshes[size_t(draw.model)];
+        if (draw.model != boundModel) {
+            const glm::mat4 mvp = worldToClip * mesh.model;
+            glProgramUniformMatrix4fv(prog, locMvp, 1, GL_FALSE, glm::value_ptr(mvp));
+            glBindVertexArray(mesh.vao.id());
+            boundModel = draw.model;
+        }
+        glDrawElements(GL_TRIANGLES, GLsizei(draw.indexCount), GL_UNSIGNED_INT,
+                       reinterpret_cast<const void*>(size_t(draw.firstIndex) * sizeof(uint32_t)));
+    }
 }
 
 void drawShadowCasters(const FrameData& frame, GLuint prog, GLint locMvp, const glm::mat4& worldToClip) {

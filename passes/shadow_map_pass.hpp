@@ -2,18 +2,23 @@
 // One depth-only raster pass per shadow-casting directional light ("shadow_map_<i>",
 // i = the light's index in the scene). Each creates a D32F atlas "shadow_map_<i>.depth" holding its
 // cascades as square tiles (see engine/render/shadows.hpp), drawn with slope-scaled depth bias.
+// Each cascade draws only the caster clusters that can reach its tile (--shadow-culling, counts in
+// 'lightpass graph --explain'), conservatively grown or plain (--shadow-raster).
 // No shadow-casting light, or shadows switched off: no pass at all.
 #include <vector>
 
 #include "engine/gl/handles.hpp"
 #include "engine/graph/frame_graph.hpp"
 #include "engine/render/frame_data.hpp"
+#include "engine/render/shadow_casters.hpp"
 #include "engine/render/shadows.hpp"
 
 namespace lp {
 
 struct ShadowMapPass {
-    gl::Program program;
+    gl::Program program;       // conservative casters (shadow_depth.geom)
+    gl::Program plainProgram;  // --shadow-raster plain, and split's faces towards the light
+    gl::Program awayProgram;   // --shadow-raster split: conservative, faces away from the light only
     gl::Framebuffer fbo;
 };
 
@@ -29,5 +34,8 @@ ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const
 // Draws every mesh of the frame's scene with `prog` (bound), its uniform `locMvp` set to
 // worldToClip x model: the caster loop the sun cascades and the spot shadow maps share.
 void drawShadowCasters(const FrameData& frame, GLuint prog, GLint locMvp, const glm::mat4& worldToClip);
+
+// Draws one cascade's culled caster list (engine/render/shadow_casters.hpp) the same way.
+void drawCasterList(const FrameData& frame, GLuint prog, GLint locMvp, const glm::mat4& worldToClip, const CasterList& casters);
 
 }  // namespace lp

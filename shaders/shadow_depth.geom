@@ -27,6 +27,10 @@ void main() {
     }
     float area = cross2(p[1] - p[0], p[2] - p[0]);
     if (area == 0.0) return;  // edge-on to the light: its neighbours' grown edges cover it
+#ifdef LP_SHADOW_AWAY_ONLY
+    // --shadow-raster split: the faces towards the light are drawn plainly in a draw of their own.
+    if (area > 0.0) return;
+#endif
     float orientation = sign(area);
 
     // Edge i runs from p[i] to p[i+1]; its outward normal n and offset c (n.x = c inside, pushed out).

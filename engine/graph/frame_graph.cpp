@@ -165,6 +165,8 @@ void FrameGraph::disablePass(const std::string& passName) {
     compiled_ = false;
 }
 
+void FrameGraph::notePass(const std::string& passName, const std::string& note) { notes_.emplace_back(passName, note); }
+
 void FrameGraph::skipPass(const std::string& passName, const std::string& reason) {
     skipped_.emplace_back(passName, reason);
     candidates_.emplace_back(false, int(skipped_.size()) - 1);
@@ -464,13 +466,15 @@ std::vector<PassDecision> FrameGraph::explain() const {
     std::vector<PassDecision> out;
     for (const auto& [added, index] : candidates_) {
         if (!added) {
-            out.push_back({skipped_[size_t(index)].first, false, "skipped: " + skipped_[size_t(index)].second});
+            out.push_back({skipped_[size_t(index)].first, false, "skipped: " + skipped_[size_t(index)].second, {}});
             continue;
         }
         const Pass& p = passes_[size_t(index)];
-        PassDecision d{p.name, p.live && !p.disabled, ""};
+        PassDecision d{p.name, p.live && !p.disabled, "", {}};
         if (index < int(report_.size()) && !d.runs) d.reason = report_[size_t(index)].reason;
         if (p.disabled && p.live) d.reason = report_[size_t(index)].reason;  // runs as a clear / pass-through
+        for (const auto& [name, note] : notes_)
+            if (name == p.name) d.notes.push_back(note);
         out.push_back(d);
     }
     return out;
@@ -479,9 +483,11 @@ std::vector<PassDecision> FrameGraph::explain() const {
 std::string FrameGraph::explainText() const {
     std::ostringstream out;
     out << "candidate passes:\n";
-    for (const PassDecision& d : explain())
+    for (const PassDecision& d : explain()) {
         out << "  " << (d.runs ? "runs     " : "-        ") << d.name << (d.reason.empty() ? "" : "  (" + d.reason + ")")
             << "\n";
+        for (const std::string& note : d.notes) out << "             " << note << "\n";
+    }
     return out.str();
 }
 

@@ -96,6 +96,7 @@ SceneGpu::SceneGpu(const Scene& scene) {
         for (const auto& sm : mesh.subMeshes) gm.draws.push_back({sm.firstIndex, sm.indexCount, base + sm.material});
         meshes.push_back(std::move(gm));
     }
+    casterClusters = buildCasterClusters(scene);
 }
 
 }  // namespace lp

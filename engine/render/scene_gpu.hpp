@@ -9,6 +9,7 @@
 #include <glm/glm.hpp>
 
 #include "engine/gl/handles.hpp"
+#include "engine/render/shadow_casters.hpp"
 #include "engine/scene/scene.hpp"
 
 namespace lp {
@@ -58,6 +59,7 @@ public:
     explicit SceneGpu(const Scene& scene);
     std::vector<GpuMesh> meshes;
     std::vector<GpuMaterial> materials;
+    std::vector<CasterCluster> casterClusters;  // meshes[i] is CasterCluster::model i (shadow caster culling)
     size_t geometryBytes = 0;
     size_t textureBytes = 0;
     size_t triangleCount = 0;

@@ -49,6 +49,16 @@ struct ShadowSettings {         // directional-light shadow maps (passes/shadow_
     float slopeBias = 1.0f;     // glPolygonOffset factor of the depth pass
     float normalBias = 1.0f;    // receiver offset along its normal, in shadow texels (scaled by 1 - N.L)
     int debugLight = 0;         // the shadowmap view shows this directional light's map
+    bool cullCasters = true;    // each cascade draws only the caster clusters that can reach its tile
+    // How the sun cascades rasterise casters: conservative (grown by half a texel, nearest depth over
+    // the texel for faces away from the light: no leak along closed creases, but gl_FragDepth turns
+    // early depth testing off), plain (hardware depth at texel centres plus polygon offset), or split
+    // (faces towards the light plain with early depth testing, faces away from it conservative).
+    enum class Raster { Conservative, Plain, Split };
+    Raster raster = Raster::Conservative;
+    static const char* rasterName(Raster r) {
+        return r == Raster::Plain ? "plain" : r == Raster::Split ? "split" : "conservative";
+    }
 
     static const char* filterName(Filter f) {
         switch (f) {

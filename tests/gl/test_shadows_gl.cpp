@@ -506,14 +506,17 @@ Scene cornerScene() {
 // and ends) keep a margin of 2.5 texels; the crease gets none. Coarse 128-texel maps make the old
 // leak (texels past the wall's silhouette holding no caster) a few pixels wide here. The filtered
 // lookups still let a little light in next to the crease (README, shadow maps): not checked here.
+// Both leak-free caster rasters: conservative, and split (only the faces away from the light grown).
 TEST(ShadowRender, ConcaveCornerDoesNotLeakAlongTheCrease) {
     const int w = 128, h = 96;
     Scene s = cornerScene();
     const glm::dvec3 toLight = -glm::normalize(glm::dvec3(s.directionalLights[0].direction));
     const double ambient = double(s.ambient.x) * std::round(0.6 * 255.0) / 255.0;
+    for (auto raster : {ShadowSettings::Raster::Conservative, ShadowSettings::Raster::Split})
     for (bool zeroBias : {true, false})
         for (auto f : {ShadowSettings::Filter::Off}) {
             RenderSettings settings;
+            settings.shadows.raster = raster;
             settings.shadows.size = 128;
             settings.shadows.cascades = 1;
             settings.shadows.filter = f;
@@ -546,7 +549,7 @@ TEST(ShadowRender, ConcaveCornerDoesNotLeakAlongTheCrease) {
                     if (err > 2e-3) ++leaks;
                 }
             const std::string what = std::string(zeroBias ? "biases 0" : "default biases") + ", filter " +
-                                     ShadowSettings::filterName(f);
+                                     ShadowSettings::filterName(f) + ", raster " + ShadowSettings::rasterName(raster);
             EXPECT_GT(checked, 300) << what;
             EXPECT_GT(nearCrease, 10) << what;
             EXPECT_EQ(leaks, 0) << "lit pixels in the wall's shadow, " << what << " (worst relative " << worst << ")";

@@ -1,0 +1,77 @@
+#include "engine/render/shadow_casters.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace lp {
+
+std::vector<CasterCluster> buildCasterClusters(const Scene& scene, uint32_t trianglesPerCluster) {
+    std::vector<CasterCluster> clusters;
+    const uint32_t perCluster = std::max<uint32_t>(trianglesPerCluster, 1u) * 3u;
+    for (size_t m = 0; m < scene.models.size(); ++m) {
+        const MeshData& mesh = scene.models[m].mesh;
+        for (const SubMesh& sm : mesh.subMeshes) {
+            const uint32_t end = std::min<uint32_t>(sm.firstIndex + sm.indexCount, uint32_t(mesh.indices.size()));
+            for (uint32_t first = sm.firstIndex; first < end; first += perCluster) {
+                CasterCluster c;
+                c.model = int(m);
+                c.firstIndex = first;
+                c.indexCount = std::min(perCluster, end - first);
+                glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+                for (uint32_t i = first; i < first + c.indexCount; ++i) {
+                    const uint32_t v = mesh.indices[i];
+                    if (v >= mesh.vertices.size()) continue;
+                    const glm::vec3 p = mesh.vertices[v].position;
+                    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) continue;
+                    lo = glm::min(lo, p);
+                    hi = glm::max(hi, p);
+                }
+                if (lo.x > hi.x) lo = hi = glm::vec3(0.0f);  // nothing finite: a point, culled like one
+                c.boundsMin = lo;
+                c.boundsMax = hi;
+                clusters.push_back(c);
+            }
+        }
+    }
+    return clusters;
+}
+
+bool casterBoxMayCast(const glm::mat4& objectToClip, glm::vec3 lo, glm::vec3 hi, float margin) {
+    glm::vec3 cmin(std::numeric_limits<float>::max()), cmax(-std::numeric_limits<float>::max());
+    for (int c = 0; c < 8; ++c) {
+        const glm::vec4 p(c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z, 1.0f);
+        const glm::vec4 q = objectToClip * p;
+        const glm::vec3 ndc = glm::vec3(q) / q.w;  // orthographic: w = 1
+        cmin = glm::min(cmin, ndc);
+        cmax = glm::max(cmax, ndc);
+    }
+    const float edge = 1.0f + margin;
+    if (cmax.x < -edge || cmin.x > edge || cmax.y < -edge || cmin.y > edge) return false;
+    return cmin.z <= 1.0f;  // a box wholly past the far plane is behind every receiver of the tile
+}
+
+CasterList cullCasters(const std::vector<CasterCluster>& clusters, const Scene& scene, const glm::mat4& worldToClip,
+                       float margin, bool cull) {
+    CasterList list;
+    int lastModel = -1;
+    glm::mat4 objectToClip(1.0f);
+    for (const CasterCluster& c : clusters) {
+        if (c.model < 0 || size_t(c.model) >= scene.models.size()) continue;
+        if (c.model != lastModel) {
+            objectToClip = worldToClip * scene.models[size_t(c.model)].transform;
+            lastModel = c.model;
+        }
+        if (cull && !casterBoxMayCast(objectToClip, c.boundsMin, c.boundsMax, margin)) continue;
+        ++list.clusters;
+        list.triangles += c.indexCount / 3;
+        if (!list.draws.empty() && list.draws.back().model == c.model &&
+            list.draws.back().firstIndex + list.draws.back().indexCount == c.firstIndex)
+            list.draws.back().indexCount += c.indexCount;
+        else
+            list.draws.push_back({c.model, c.firstIndex, c.indexCount});
+    }
+    return list;
+}
+
+}  // namespace lp

@@ -1,0 +1,132 @@
+// Caster culling on the driver: each sun cascade draws only the clusters that reach its tile, and
+// its depth atlas is bit for bit the one drawn with every caster, for both caster rasters.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "engine/graph/texture_pool.hpp"
+#include "engine/render/scene_gpu.hpp"
+#include "engine/render/shadow_casters.hpp"
+#include "engine/scene/primitives.hpp"
+#include "frame/renderer.hpp"
+#include "passes/shadow_map_pass.hpp"
+#include "tests/gl/gl_fixture.hpp"
+
+using namespace lp;
+
+namespace {
+
+// A 40 m floor and a row of spheres going away from the camera: the near cascades see the first
+// spheres only, the far ones all of them.
+Scene rowOfSpheres() {
+    Scene s;
+    ModelInstance floor;
+    floor.name = "floor";
+    floor.mesh = makePlane(40.0f, 4);
+    s.models.push_back(std::move(floor));
+    for (int i = 0; i < 8; ++i) {
+        ModelInstance ball;
+        ball.name = "ball" + std::to_string(i);
+        ball.mesh = makeSphere(0.5f, 16, 8);
+        ball.transform = glm::translate(glm::mat4(1.0f), glm::vec3(0.6f * float(i % 2), 0.5f, -1.5f - 2.5f * float(i)));
+        s.models.push_back(std::move(ball));
+    }
+    DirectionalLight sun;
+    sun.direction = glm::normalize(glm::vec3(0.3f, -1.0f, 0.2f));
+    s.directionalLights.push_back(sun);
+    s.camera.position = glm::vec3(0.0f, 1.5f, 2.0f);
+    s.camera.target = glm::vec3(0.0f, 0.5f, -6.0f);
+    s.camera.nearPlane = 0.05f;
+    s.camera.farPlane = 40.0f;
+    return s;
+}
+
+// The sun's depth atlas, drawn by the shadow map pass alone.
+std::vector<float> shadowAtlas(const Scene& scene, const RenderSettings& settings) {
+    SceneGpu gpu(scene);
+    gl::ShaderLibrary shaders;
+    FrameData frame = makeFrameData(scene, settings, 0.0f);
+    frame.gpu = &gpu;
+    frame.shaders = &shaders;
+    ShadowMapPass state;
+    fg::FrameGraph graph;
+    fg::TexturePool pool;
+    const ShadowMaps maps = addShadowMapPasses(graph, state, frame);
+    EXPECT_EQ(maps.size(), 1u);
+    if (maps.empty()) return {};
+    graph.markOutput(maps[0].depth);
+    graph.compile();
+    graph.execute(pool);
+    const int side = maps[0].frustum.tileSize;
+    const size_t n = size_t(side * maps[0].frustum.columns) * size_t(side * maps[0].frustum.rows);
+    std::vector<float> depth(n);
+    glGetTextureImage(graph.outputTexture(maps[0].depth), 0, GL_DEPTH_COMPONENT, GL_FLOAT, GLsizei(n * sizeof(float)),
+                      depth.data());
+    return depth;
+}
+
+}  // namespace
+
+TEST(ShadowCasterCulling, AtlasIsUnchangedWithCullingOnAndOff) {
+    const Scene s = rowOfSpheres();
+    RenderSettings settings;
+    settings.width = 64;
+    settings.height = 48;
+    settings.shadows.size = 128;
+    settings.shadows.cascades = 4;
+
+    // The test means something only if the near cascade leaves spheres out.
+    const FrameData frame = makeFrameData(s, settings, 0.0f);
+    const ShadowFrustum fr = fitShadowFrustum(frame, s.directionalLights[0].direction);
+    ASSERT_GE(fr.cascades.size(), 2u);
+    const std::vector<CasterCluster> clusters = buildCasterClusters(s);
+    const CasterList nearest = cullCasters(clusters, s, fr.cascades[0].worldToClip, 2.0f / float(fr.tileSize), true);
+    EXPECT_LT(nearest.clusters + 2, clusters.size()) << "the near cascade should cull several spheres";
+
+    for (auto raster : {ShadowSettings::Raster::Conservative, ShadowSettings::Raster::Plain, ShadowSettings::Raster::Split}) {
+        RenderSettings on = settings, off = settings;
+        on.shadows.raster = off.shadows.raster = raster;
+        off.shadows.cullCasters = false;
+        const std::vector<float> culled = shadowAtlas(s, on), all = shadowAtlas(s, off);
+        ASSERT_EQ(culled.size(), all.size());
+        size_t differ = 0, casters = 0;
+        for (size_t i = 0; i < all.size(); ++i) {
+            differ += culled[i] != all[i] ? 1 : 0;
+            casters += all[i] < 1.0f ? 1 : 0;
+        }
+        EXPECT_EQ(differ, 0u) << ShadowSettings::rasterName(raster);
+        EXPECT_GT(casters, all.size() / 2) << "the floor covers every tile";
+    }
+}
+
+// The plain and split rasters (--shadow-raster plain|split) draw the same casters: with no slope
+// bias, away from silhouettes they hold the same nearest surface as the conservative one (1e-3 of
+// the depth range), and split never holds a farther one than plain (its faces away from the light
+// are only grown and pulled nearer).
+TEST(ShadowCasterCulling, PlainAndSplitRastersSeeTheSameCasters) {
+    const Scene s = rowOfSpheres();
+    RenderSettings settings;
+    settings.width = 64;
+    settings.height = 48;
+    settings.shadows.size = 128;
+    settings.shadows.cascades = 2;
+    settings.shadows.slopeBias = 0.0f;
+    RenderSettings plain = settings, split = settings;
+    plain.shadows.raster = ShadowSettings::Raster::Plain;
+    split.shadows.raster = ShadowSettings::Raster::Split;
+    const std::vector<float> a = shadowAtlas(s, settings), b = shadowAtlas(s, plain), c = shadowAtlas(s, split);
+    ASSERT_EQ(a.size(), b.size());
+    ASSERT_EQ(a.size(), c.size());
+    size_t closePlain = 0, closeSplit = 0, splitFarther = 0;
+    for (size_t i = 0; i < a.size(); ++i) {
+        ASSERT_TRUE(std::isfinite(b[i]) && std::isfinite(c[i]));
+        closePlain += std::abs(a[i] - b[i]) < 1e-3f ? 1 : 0;
+        closeSplit += std::abs(a[i] - c[i]) < 1e-3f ? 1 : 0;
+        splitFarther += c[i] > b[i] + 1e-5f ? 1 : 0;
+    }
+    EXPECT_GT(closePlain, a.size() * 9 / 10);
+    EXPECT_GT(closeSplit, a.size() * 9 / 10);
+    EXPECT_EQ(splitFarther, 0u);
+}
