@@ -46,7 +46,7 @@ void main() {
     vec3 R = specularDominantDirection(N, 2.0 * dot(N, V) * N - V, roughness * roughness);
     vec3 Nw = normalize(uEyeToWorld * N), Rw = normalize(uEyeToWorld * R);
     vec3 E = uDiffuseFromCube ? textureLod(uIrradiance, Nw, 0.0).rgb : shIrradiance(uSh, Nw);
-    vec2 ab = textureLod(uDfg, vec2(NdotV, roughness), 0.0).rg;
+    vec2 ab = textureLod(uDfg, dfgLutCoordinate(NdotV, roughness, textureSize(uDfg, 0).x), 0.0).rg;
     vec3 fss = splitSumReflectance(spec.rgb, ab);
     vec3 prefiltered = textureLod(uPrefiltered, Rw, prefilteredLodFromRoughness(roughness, uMaxLod)).rgb;
     float occlusion = uLightingOnly ? 1.0 : gbufferOcclusion(p);  // the material's ambient occlusion

@@ -43,7 +43,8 @@ void main() {
     vec3 c;
     if (uMode == 4) {
         vec2 uv = background ? (vec2(p) + 0.5) / vec2(size)
-                             : vec2(clamp(dot(N, V), 0.0, 1.0), roughnessFromShininess(gbufferShininess(p)));
+                             : dfgLutCoordinate(clamp(dot(N, V), 0.0, 1.0), roughnessFromShininess(gbufferShininess(p)),
+                                                textureSize(uDfg, 0).x);
         imageStore(uLdr, p, vec4(textureLod(uDfg, uv, 0.0).rg, 0.0, 1.0));
         return;
     }

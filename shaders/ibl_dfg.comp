@@ -1,6 +1,6 @@
 #version 450
-// The split-sum DFG LUT: texel (x, y) holds (A, B) at N.V = (x + 0.5) / size and perceptual
-// roughness (y + 0.5) / size, so a linear lookup at (N.V, roughness) needs no remapping.
+// The split-sum DFG LUT: texel (x, y) holds (A, B) at N.V = x / (size - 1) and perceptual
+// roughness y / (size - 1) (dfgLutTexelParameters); readers look up with dfgLutCoordinate.
 #include "common/ibl.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -11,6 +11,6 @@ uniform int uSamples;
 void main() {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     if (p.x >= uSize || p.y >= uSize) return;
-    vec2 c = (vec2(p) + 0.5) / float(uSize);
+    vec2 c = dfgLutTexelParameters(p, uSize);
     imageStore(uLut, p, vec4(dfgIntegrate(c.x, c.y, uint(uSamples)), 0.0, 0.0));
 }

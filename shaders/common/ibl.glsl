@@ -131,6 +131,16 @@ vec2 dfgIntegrate(float NdotV, float roughness, uint samples) {
     return ab / float(samples);
 }
 
+// The DFG LUT's grid includes its ends: texel i of `size` holds the parameter i / (size - 1), and a
+// lookup maps [0, 1] onto the texel centres, so N.V and roughness 0 and 1 are stored, not clamped
+// half a texel in (at 32^2, roughness 1 used to read the row of 0.984: +3% white-furnace albedo at alpha 1).
+vec2 dfgLutTexelParameters(ivec2 texel, int size) {
+    return vec2(texel) / float(max(size - 1, 1));
+}
+vec2 dfgLutCoordinate(float NdotV, float roughness, int size) {
+    return (clamp(vec2(NdotV, roughness), 0.0, 1.0) * float(size - 1) + 0.5) / float(size);
+}
+
 // Where a GGX lobe of roughness alpha around the mirror direction R gathers most of its energy:
 // it leans from R (smooth) towards N (rough). Filament's fit, mix(R, N, alpha^2): Frostbite's
 // (Lagarde & de Rousiers 2014) bends near-mirror lobes too far, which moved a sharp sun's reflection

@@ -3,9 +3,11 @@
 // tone-map operators. Bake sizes and sample counts are kept small (llvmpipe).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <map>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -160,6 +162,80 @@ TEST(Ibl, WhiteFurnaceSphereReflectsTheEnvironmentExactly) {
     }
     std::filesystem::remove(mapPath);
   }
+}
+
+// White furnace with a GGX sphere (diffuse 0, specular 1: F0 = f90 = 1) at alpha 0.5 and 1: every
+// pixel reflects the directional albedo of lightpass's own BRDF (height-correlated Smith) at its N.V,
+// here the double-precision A + B. Bound: the sphere mean within 0.5% of the exact mean (issue #16's
+// furnace target), each pixel within 2% (the 32^2 LUT's bilinear and Hammersley error). The Mitsuba
+// comparison's +2-5% at alpha 0.71-1 is its separable Smith (bench/results/mitsuba/issue16).
+TEST(Ibl, WhiteFurnaceGgxSphereReflectsItsExactAlbedo) {
+    const auto mapPath = tempPath("furnace-ggx.exr");
+    ImageF white;
+    white.width = 128;
+    white.height = 64;
+    white.rgba.assign(size_t(128 * 64 * 4), 1.0f);
+    writeExr(mapPath, white);
+    for (float shininess : {6.0f, 0.0f}) {  // alpha = sqrt(2 / (n + 2)): 0.5 and 1
+        Scene scene;
+        ModelInstance m;
+        m.name = "sphere";
+        m.primitive = "sphere";
+        m.mesh = makeSphere(0.5f, 64, 32);
+        for (auto& mat : m.mesh.materials) {
+            mat.diffuse = glm::vec3(0.0f);
+            mat.specular = glm::vec3(1.0f);
+            mat.shininess = shininess;
+        }
+        scene.models.push_back(std::move(m));
+        scene.ambient = glm::vec3(0.0f);
+        scene.environment.map = mapPath;
+        scene.camera.position = glm::vec3(0.0f, 0.0f, 2.5f);
+        scene.camera.target = glm::vec3(0.0f);
+        scene.camera.fovYDegrees = 40.0f;
+        scene.camera.nearPlane = 0.1f;
+        scene.camera.farPlane = 10.0f;
+        Renderer r(scene);
+        RenderSettings s;
+        s.width = 48;
+        s.height = 36;
+        s.keepHdr = true;
+        s.environment = lp::test::smallIblBake(512);
+        s.disabledPasses.insert("global_lights");
+        r.render(s, 0.0f, false);
+        ASSERT_TRUE(r.graph().isLive("ibl"));
+        ImageF hdr = r.readHdr();
+        const double roughness = std::sqrt(std::sqrt(2.0 / (shininess + 2.0)));
+        const glm::dmat4 inv = glm::inverse(glm::dmat4(scene.camera.projection(48.0f / 36.0f)) * glm::dmat4(scene.camera.view()));
+        double sum = 0.0, sumExact = 0.0;
+        int onSphere = 0;
+        std::map<long, double> albedoAt;  // the image is symmetric: each N.V once
+        for (int y = 0; y < 36; ++y)
+            for (int x = 0; x < 48; ++x) {
+                const double nx = (x + 0.5) / 48 * 2.0 - 1.0, ny = 1.0 - (y + 0.5) / 36 * 2.0;
+                glm::dvec4 a = inv * glm::dvec4(nx, ny, -1.0, 1.0), b = inv * glm::dvec4(nx, ny, 1.0, 1.0);
+                glm::dvec3 o = glm::dvec3(a) / a.w, d = glm::normalize(glm::dvec3(b) / b.w - o);
+                const double bq = glm::dot(o, d), c = glm::dot(o, o) - 0.45 * 0.45;
+                if (bq * bq - c <= 0.0) continue;
+                const double t = -bq - std::sqrt(bq * bq - (glm::dot(o, o) - 0.25));
+                const double nv = std::clamp(-glm::dot((o + t * d) / 0.5, d), 1e-4, 1.0);
+                const long key = std::lround(nv * 1e7);
+                if (!albedoAt.count(key)) {
+                    const glm::dvec2 ab = dfgReference(nv, roughness);
+                    albedoAt[key] = ab.x + ab.y;
+                }
+                const double exact = albedoAt[key];
+                const float* p = &hdr.rgba[(size_t(y) * 48 + size_t(x)) * 4];
+                EXPECT_NEAR(p[1], exact, 0.02 * exact) << "pixel " << x << "," << y << " N.V " << nv << " n " << shininess;
+                sum += p[1];
+                sumExact += exact;
+                ++onSphere;
+            }
+        ASSERT_GT(onSphere, 100);
+        EXPECT_NEAR(sum / sumExact, 1.0, 0.005) << "shininess " << shininess;
+        RecordProperty("mean_rel_error_n" + std::to_string(int(shininess)), std::to_string(sum / sumExact - 1.0));
+    }
+    std::filesystem::remove(mapPath);
 }
 
 // GGX with F0 = 1: the split sum's white-environment reflectance A + B is at most 1 (a microfacet
@@ -380,6 +456,126 @@ TEST(Ibl, PrefilteredChainDoesNotLoseASmallLamp) {
             EXPECT_NEAR(p[0] / want.x, 1.0, 0.07) << "mip " << level << " (roughness " << roughness << ") texel " << t.x << "," << t.y;
         }
     }
+    std::filesystem::remove(mapPath);
+}
+
+// A rough GGX sphere (Ks = 1, alpha 0.5) under a 2 x 2-texel lamp of 5000 behind the camera (issue
+// #16's lamp50k case, small) against the exact split sum on the CPU: per pixel, the prefiltered
+// integral sum L D(h) (R'.l)+ dOmega / sum D (R'.l)+ dOmega over the source cube's texels along
+// lightpass's dominant direction R' = normalize(mix(R, N, alpha^2)), times A + B from the
+// double-precision DFG. What this pins is lightpass's chain (filtered importance sampling, the
+// levels, their trilinear blend and face sizes, the LUT, the lookup direction). Measured: -2.3%
+// over the sphere, -4.9% over N.V >= 0.7 (where the lamp's reflection is: alpha 0.5 is read as a
+// blend of the alpha 0.31 level, 8^2 here, and the alpha 1 level; at 256^2, the default, -2.0% /
+// -4.2%; 8 levels instead of 6 make the faces of those levels smaller and the error -7% / -13%).
+// Bound: 3% over the sphere, 6% over N.V >= 0.7. The split sum itself is 12% below the exact
+// integral of the BRDF over the sphere under this light (recorded, not bounded; see
+// bench/mitsuba/split_sum_budget.py for the lamp50k sphere).
+TEST(Ibl, RoughSphereUnderASmallLampMatchesTheExactSplitSum) {
+    const glm::dvec3 lampDir = glm::normalize(glm::dvec3(0.2, 0.45, 0.85));
+    const auto mapPath = tempPath("lamp-sphere.exr");
+    writeExr(mapPath, lampMap(lampDir));
+    const float shininess = 6.0f;  // alpha = sqrt(2 / (n + 2)) = 0.5
+    Scene scene;
+    ModelInstance m;
+    m.name = "sphere";
+    m.primitive = "sphere";
+    m.mesh = makeSphere(0.5f, 64, 32);
+    for (auto& mat : m.mesh.materials) {
+        mat.diffuse = glm::vec3(0.0f);
+        mat.specular = glm::vec3(1.0f);
+        mat.shininess = shininess;
+    }
+    scene.models.push_back(std::move(m));
+    scene.ambient = glm::vec3(0.0f);
+    scene.environment.map = mapPath;
+    scene.camera.position = glm::vec3(0.0f, 0.0f, 2.5f);
+    scene.camera.target = glm::vec3(0.0f);
+    scene.camera.fovYDegrees = 40.0f;
+    scene.camera.nearPlane = 0.1f;
+    scene.camera.farPlane = 10.0f;
+    Renderer r(scene);
+    RenderSettings s;
+    s.width = 40;
+    s.height = 30;
+    s.keepHdr = true;
+    s.ao.enabled = false;
+    s.environment = smallBake();
+    s.environment.cubeSize = 128;
+    s.environment.specularSize = 128;  // level 4 (alpha 0.31) 8^2: coarser faces flatten its lobe's peak
+    s.environment.specularLevels = 6;
+    s.environment.specularSamples = EnvironmentSettings{}.specularSamples;
+    s.environment.dfgSize = 64;
+    s.environment.dfgSamples = 1024;
+    s.disabledPasses.insert("global_lights");
+    r.render(s, 0.0f, false);
+    ASSERT_TRUE(r.graph().isLive("ibl"));
+    const ImageF hdr = r.readHdr();
+
+    gl::ShaderLibrary shaders;
+    EnvironmentCache cache;
+    const BakedEnvironment& env = cache.get(scene, s.environment, shaders, false);
+    const auto source = readCubeLevel(env.cube, 0);
+    const int n = 128;
+    std::vector<glm::dvec3> dirs;
+    std::vector<double> radiance, omega;
+    for (int f = 0; f < 6; ++f)
+        for (int j = 0; j < n; ++j)
+            for (int i = 0; i < n; ++i) {
+                dirs.push_back(cubeTexelDir(f, i, j, n));
+                radiance.push_back(source[((size_t(f) * n + j) * n + i) * 4 + 1]);
+                omega.push_back(texelSolidAngle(i, j, n));
+            }
+    const double roughness = std::sqrt(std::sqrt(2.0 / (shininess + 2.0))), alpha = roughness * roughness, a2 = alpha * alpha;
+    auto ggxD = [&](double nh) {
+        const double dd = nh * nh * (a2 - 1.0) + 1.0;
+        return a2 / (kPi * dd * dd);
+    };
+    const glm::dmat4 inv = glm::inverse(glm::dmat4(scene.camera.projection(40.0f / 30.0f)) * glm::dmat4(scene.camera.view()));
+    double got = 0.0, want = 0.0, exact = 0.0, gotCore = 0.0, wantCore = 0.0;
+    int onSphere = 0;
+    std::map<long, double> albedoAt;
+    for (int y = 0; y < 30; ++y)
+        for (int x = 0; x < 40; ++x) {
+            const double nx = (x + 0.5) / 40 * 2.0 - 1.0, ny = 1.0 - (y + 0.5) / 30 * 2.0;
+            glm::dvec4 a = inv * glm::dvec4(nx, ny, -1.0, 1.0), b = inv * glm::dvec4(nx, ny, 1.0, 1.0);
+            const glm::dvec3 o = glm::dvec3(a) / a.w, d = glm::normalize(glm::dvec3(b) / b.w - o);
+            const double bq = glm::dot(o, d);
+            if (bq * bq - (glm::dot(o, o) - 0.45 * 0.45) <= 0.0) continue;  // away from the silhouette
+            const glm::dvec3 N = (o + (-bq - std::sqrt(bq * bq - (glm::dot(o, o) - 0.25))) * d) / 0.5, V = -d;
+            const double nv = std::clamp(glm::dot(N, V), 1e-4, 1.0);
+            const glm::dvec3 R = 2.0 * nv * N - V, Rd = glm::normalize(glm::mix(R, N, a2));
+            double sum = 0.0, weight = 0.0, direct = 0.0;
+            for (size_t t = 0; t < dirs.size(); ++t) {
+                const double rl = glm::dot(Rd, dirs[t]);
+                if (rl > 0.0) {
+                    const double w = ggxD(std::sqrt((1.0 + rl) / 2.0)) * rl * omega[t];
+                    sum += w * radiance[t];
+                    weight += w;
+                }
+                const double nl = glm::dot(N, dirs[t]);
+                if (nl > 0.0) {  // the BRDF itself (F = 1, height-correlated Smith)
+                    const glm::dvec3 h = glm::normalize(V + dirs[t]);
+                    const double vis = 0.5 / (nl * std::sqrt(nv * nv * (1.0 - a2) + a2) + nv * std::sqrt(nl * nl * (1.0 - a2) + a2));
+                    direct += radiance[t] * ggxD(glm::dot(N, h)) * vis * nl * omega[t];
+                }
+            }
+            const long key = std::lround(nv * 1e7);
+            if (!albedoAt.count(key)) {
+                const glm::dvec2 ab = dfgReference(nv, roughness);
+                albedoAt[key] = ab.x + ab.y;
+            }
+            const double splitSum = sum / weight * albedoAt[key];
+            const double pixel = hdr.rgba[(size_t(y) * 40 + size_t(x)) * 4 + 1];
+            ASSERT_TRUE(std::isfinite(pixel));
+            got += pixel, want += splitSum, exact += direct, ++onSphere;
+            if (nv >= 0.7) gotCore += pixel, wantCore += splitSum;
+        }
+    ASSERT_GT(onSphere, 100);
+    EXPECT_NEAR(got / want, 1.0, 0.03) << "whole sphere";
+    EXPECT_NEAR(gotCore / wantCore, 1.0, 0.06) << "N.V >= 0.7";
+    RecordProperty("lightpass_over_split_sum", std::to_string(got / want) + " / " + std::to_string(gotCore / wantCore));
+    RecordProperty("split_sum_over_exact", std::to_string(want / exact));
     std::filesystem::remove(mapPath);
 }
 
