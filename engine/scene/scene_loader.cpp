@@ -234,7 +234,7 @@ void parseModel(const Reader& r, const json& j, const std::string& w, const fs::
     if (j.contains("material")) {
         const json& mat = j["material"];
         const std::string mw = w + ".material";
-        r.onlyKnown(mat, mw, {"diffuse", "specular", "shininess", "flat"});
+        r.onlyKnown(mat, mw, {"diffuse", "specular", "shininess", "flat", "opacity"});
         if (mat.contains("flat")) m.flatOverride = r.boolean(mat, "flat", mw, false);
         if (mat.contains("diffuse")) m.diffuseOverride = r.color(mat, "diffuse", mw, glm::vec3(0.0f));
         if (mat.contains("specular")) m.specularOverride = r.color(mat, "specular", mw, glm::vec3(0.0f));
@@ -242,6 +242,11 @@ void parseModel(const Reader& r, const json& j, const std::string& w, const fs::
             float n = r.number(mat["shininess"], mw + ".shininess");
             if (n < 0.0f || n > 10000.0f) r.fail(mw + ".shininess", "must be in [0, 10000]");
             m.shininessOverride = n;
+        }
+        if (mat.contains("opacity")) {
+            float a = r.number(mat["opacity"], mw + ".opacity");
+            if (!(a >= 0.0f && a <= 1.0f)) r.fail(mw + ".opacity", "must be in [0, 1]");
+            m.opacityOverride = a;
         }
     }
 }
@@ -346,6 +351,10 @@ void loadMesh(const Reader& r, ModelInstance& m, const std::string& where, Scene
         if (m.specularOverride) mat.specular = *m.specularOverride;
         if (m.shininessOverride) mat.shininess = *m.shininessOverride;
         if (m.flatOverride) mat.flat = *m.flatOverride;
+        if (m.opacityOverride) {
+            mat.opacity = *m.opacityOverride;
+            mat.alphaMode = mat.opacity < 1.0f ? AlphaMode::Blend : AlphaMode::Opaque;
+        }
     }
 }
 
