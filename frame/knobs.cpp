@@ -224,6 +224,10 @@ std::vector<KnobEntry> makeKnobTable() {
         k.help = "how opaque surfaces are lit: deferred (G-buffer, then light passes) or forward+ (depth pre-pass, "
                  "then one forward pass over the clustered light lists)";
         k.panel = {PanelSection::Lighting, PanelWidget::Combo, "render path", ""};
+        k.sweep = {{"forward+", "deferred"}, false,
+                   "render path (--render-path): forward+ against deferred (reference). The same shading by design: "
+                   "the error is the G-buffer's rounding and fp16 sums between the deferred passes, so not monotone",
+                   nullptr};
         t.push_back(std::move(k));
     }
     {
