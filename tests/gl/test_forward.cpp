@@ -300,3 +300,34 @@ TEST(Transparency, BundledGlassSceneRendersFiniteAndBlended) {
         for (float v : img.rgba) ASSERT_TRUE(std::isfinite(v));
     }
 }
+
+// Every view renders in forward+ (no GL error, no state-check failure). The G-buffer channel views
+// read what the depth pre-pass writes for them, the same raster and material code as the G-buffer
+// pass, so they are byte-identical to the deferred path's; the ao view too (its inputs are those
+// channels); the lighting view agrees like the final image.
+TEST(ForwardPlus, EveryViewRendersAndChannelViewsMatchDeferred) {
+    const Scene scene = loadScene(test::repoPath("scenes/cornell.json"));
+    const std::vector<DebugView> same = {DebugView::Depth,     DebugView::Normals,       DebugView::Diffuse,
+                                         DebugView::Position,  DebugView::Shininess,     DebugView::Specular,
+                                         DebugView::Texcoords, DebugView::WorldPosition, DebugView::EyeVector,
+                                         DebugView::DepthFitted, DebugView::Tangent,     DebugView::Ao};
+    for (DebugView view : everyView()) {
+        SCOPED_TRACE(viewName(view));
+        RenderSettings d = small(RenderPath::Deferred), f = small(RenderPath::ForwardPlus);
+        d.keepHdr = f.keepHdr = false;
+        d.view = f.view = view;
+        Renderer rd(scene), rf(scene);
+        rd.render(d, 0.0f, false);
+        rf.render(f, 0.0f, false);
+        const Image8 a = rd.readDisplay(), b = rf.readDisplay();
+        ASSERT_EQ(a.rgba.size(), b.rgba.size());
+        if (std::find(same.begin(), same.end(), view) != same.end()) {
+            EXPECT_TRUE(a.rgba == b.rgba) << "the channel differs between the paths";
+            continue;
+        }
+        if (view != DebugView::Lighting) continue;
+        double diff = 0.0;
+        for (size_t i = 0; i < a.rgba.size(); ++i) diff += std::abs(int(a.rgba[i]) - int(b.rgba[i]));
+        EXPECT_LT(diff / double(a.rgba.size()), 1.0) << "mean 8-bit difference of the lighting view";
+    }
+}
