@@ -269,8 +269,8 @@ std::vector<KnobEntry> makeKnobTable() {
         KnobEntry k = intKnob("ibl-samples", [](auto& s) -> auto& { return s.environment.specularSamples; }, 1, 65536);
         k.flags = {valueFlag("--ibl-samples")};
         k.help = "GGX samples per prefiltered texel";
-        k.sweep = {{"16", "64", "256", "1024"}, true,
-                   "GGX samples per prefiltered texel (--ibl-samples, with --ibl); 1024 is the reference", iblOn};
+        k.sweep = {{"64", "256", "1024", "4096"}, true,
+                   "GGX samples per prefiltered texel (--ibl-samples, with --ibl); 4096 is the reference", iblOn};
         t.push_back(std::move(k));
     }
     {
@@ -307,7 +307,7 @@ std::vector<KnobEntry> makeKnobTable() {
     {
         KnobEntry k = intKnob("ibl-specular-levels", [](auto& s) -> auto& { return s.environment.specularLevels; }, 1, 13);
         k.flags = {valueFlag("--ibl-specular-levels")};
-        k.help = "prefiltered mips, roughness m/(N-1) at mip m";
+        k.help = "prefiltered mips; roughness r is read at mip (N-1) r (2-r)";
         t.push_back(std::move(k));
     }
     {

@@ -379,7 +379,8 @@ void drawGlobes(LocalLightPass& state, const FrameData& frame, int count, GLuint
     const bool velocity = velocityTexture != 0;
     if (velocity && !state.globeVelocityProgram)
         state.globeVelocityProgram =
-            frame.shaders->graphics("local_light_overlay.vert", "local_light_overlay.frag", {"LP_GLOBE_VELOCITY"});
+            frame.shaders->graphics("local_light_overlay.vert", "local_light_overlay.frag",
+                                    std::vector<std::string>{"LP_GLOBE_VELOCITY"});
     const GLuint prog = velocity ? state.globeVelocityProgram.id() : state.overlayProgram.id();
     const GLuint fbo = state.fbo.id();
     glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, hdrTexture, 0);

@@ -32,6 +32,9 @@ ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const
         map.frustum = fitShadowFrustum(frame, frame.scene->directionalLights[size_t(light)].direction);
         const ShadowFrustum& fr = map.frustum;
         const std::string name = "shadow_map_" + std::to_string(light);
+        // A small scene needs fewer cascades than asked for: say which were dropped and why.
+        if (const std::string why = droppedCascadesReason(fr, frame.settings->shadows.cascades); !why.empty())
+            graph.skipPass(name + " cascades", why);
         const fg::TextureDesc desc{fr.tileSize * fr.columns, fr.tileSize * fr.rows, GL_DEPTH_COMPONENT32F};
         const Data& data = graph.addPass<Data>(
             name, fg::PassKind::Raster,
@@ -39,7 +42,8 @@ ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const
             [&state, frame, fr](const Data& out, const fg::PassResources& res) {
                 const fg::ResourceId depth = out.depth;
                 if (!state.program) {
-                    state.program = frame.shaders->graphics("shadow_depth.vert", "shadow_depth.frag");
+                    state.program = frame.shaders->graphics("shadow_depth.vert", "shadow_depth.geom", "shadow_depth.frag",
+                                                            {"LP_SHADOW_CONSERVATIVE"});
                     state.fbo = gl::makeFramebuffer("shadow_map");
                 }
                 const GLuint fbo = state.fbo.id();
@@ -51,22 +55,28 @@ ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const
                 gl::ScopedEnable depthTest(GL_DEPTH_TEST, true);
                 gl::ScopedEnable cull(GL_CULL_FACE, false);  // thin walls and open meshes cast from both sides
                 gl::ScopedEnable blend(GL_BLEND, false);
-                gl::ScopedEnable offset(GL_POLYGON_OFFSET_FILL, true);
                 gl::ScopedEnable clamp(GL_DEPTH_CLAMP, true);  // casters past the light's near plane still cast
-                gl::ScopedRasterState saved;  // depth function and mask, polygon offset
+                gl::ScopedRasterState saved;  // depth function and mask
                 glDepthFunc(GL_LESS);
                 glDepthMask(GL_TRUE);
-                // Slope-scaled bias against acne; the constant part is the receiver's (see shadow.glsl).
-                glPolygonOffset(frame.settings->shadows.slopeBias, 0.0f);
                 const float one = 1.0f;
                 glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &one);
 
                 const GLuint prog = state.program.id();
                 const GLint locMvp = glGetUniformLocation(prog, "uModelToClip");
+                const GLint locViewport = glGetUniformLocation(prog, "uViewport");
+                GLint clipDepth = GL_NEGATIVE_ONE_TO_ONE;
+                glGetIntegerv(GL_CLIP_DEPTH_MODE, &clipDepth);
+                glProgramUniform1i(prog, glGetUniformLocation(prog, "uDepthZeroToOne"), clipDepth == GL_ZERO_TO_ONE ? 1 : 0);
+                // Slope-scaled bias against acne, for the faces towards the light only (shadow_depth.frag);
+                // the constant part is the receiver's (see shadow.glsl).
+                glProgramUniform1f(prog, glGetUniformLocation(prog, "uSlopeBias"), frame.settings->shadows.slopeBias);
                 glUseProgram(prog);
                 for (size_t c = 0; c < fr.cascades.size(); ++c) {
-                    glViewport(GLint(c % size_t(fr.columns)) * fr.tileSize, GLint(c / size_t(fr.columns)) * fr.tileSize,
-                               fr.tileSize, fr.tileSize);
+                    const GLint x = GLint(c % size_t(fr.columns)) * fr.tileSize;
+                    const GLint y = GLint(c / size_t(fr.columns)) * fr.tileSize;
+                    glViewport(x, y, fr.tileSize, fr.tileSize);
+                    glProgramUniform4f(prog, locViewport, float(x), float(y), float(fr.tileSize), float(fr.tileSize));
                     drawShadowCasters(frame, prog, locMvp, fr.cascades[c].worldToClip);
                 }
                 glBindVertexArray(0);

@@ -1,6 +1,7 @@
 #version 450
 #include "common/tonemap.glsl"
 // The normal format and position mode come from gbuffer_layout.glsl's #defines.
+#include "common/ibl.glsl"
 #include "common/gbuffer_layout.glsl"
 #include "common/velocity.glsl"
 #include "common/material.glsl"
@@ -39,16 +40,17 @@ void main() {
 #else
     LpSurface surface = lpEvaluateSurface(vNormal, vTangent, vUv, gl_FrontFacing);
     vec3 N = surface.N;
+    float shininess = gbufferEncodeShininess(surface.shininess);
 #ifdef LP_GBUFFER_NORMAL_OCT
     outNormal = gbufferEncodeNormalOct(N);
 #else
-    outNormal = gbufferEncodeNormal(N, surface.shininess);
+    outNormal = gbufferEncodeNormal(N, shininess);
 #endif
     outDiffuse = vec4(surface.kd, uFlat ? 0.0 : gbufferEncodeOcclusion(surface.occlusion));
 #ifndef LP_GBUFFER_POSITION_FROM_DEPTH
     outPosition = vec4(vPosition, 1.0);
 #endif
-    outSpecular = vec4(surface.f0, surface.shininess);
+    outSpecular = vec4(surface.f0, shininess);
     outTexcoord = vec4(vUv, 0.0, 0.0);
     vec3 Tn = vTangent.xyz - N * dot(N, vTangent.xyz);
     float tn = length(Tn);

@@ -1,9 +1,10 @@
 #version 450
 // Image-based lighting added into the HDR buffer: diffuse kd (1 - Fss) E / pi from the SH (or the
-// irradiance cube) and specular prefiltered(R, roughness) * Fss, Fss = F0 A + B from the DFG LUT
-// (F0 = the material's specular colour). The (1 - Fss) keeps a white surface in a white
-// environment at exactly the environment's radiance (white furnace). With ambient occlusion on, the
-// diffuse term is multiplied by the AO and the specular by the specular occlusion derived from it.
+// irradiance cube) and specular prefiltered(R, roughness) * Fss, Fss = F0 A + f90 B from the DFG LUT
+// (F0 = the material's specular colour, f90 as in the analytic GGX: Ks = 0 is exactly Lambertian).
+// The (1 - Fss) keeps a white surface in a white environment at exactly the environment's radiance
+// (white furnace). With ambient occlusion on, the diffuse term is multiplied by the AO and the
+// specular by the specular occlusion derived from it. The math is common/ibl_shading.glsl's.
 #include "common/ibl_shading.glsl"
 #include "common/tonemap.glsl"
 #define LP_GBUFFER_READ

@@ -145,9 +145,9 @@ def read_rgb(path):
     return np.array(mi.Bitmap(str(path)).convert(mi.Bitmap.PixelFormat.RGB, mi.Struct.Type.Float32, False))
 
 
-def run_lightpass(lightpass, scene_path, exr_path, width, height):
+def run_lightpass(lightpass, scene_path, exr_path, width, height, extra=()):
     cmd = [str(lightpass), "render", "--scene", str(scene_path), "--ibl", "--brdf", "ggx", "--exr", str(exr_path),
-           "--out", str(exr_path.with_suffix(".png")), "--size", f"{width}x{height}", "--frames", "1"]
+           "--out", str(exr_path.with_suffix(".png")), "--size", f"{width}x{height}", "--frames", "1", *extra]
     t0 = time.perf_counter()
     proc = subprocess.run(cmd, capture_output=True, text=True)
     seconds = time.perf_counter() - t0
@@ -165,7 +165,7 @@ def write_comparison(path, lp, ref):
     mi.Bitmap(stacked, mi.Bitmap.PixelFormat.RGB).write(str(path))
 
 
-def compare(lp, ref, masks, core):
+def compare(lp, ref, masks, core, furnace=False):
     rows = []
     for name, _, kind, p, _ in spheres():
         m = masks[name]
@@ -180,6 +180,8 @@ def compare(lp, ref, masks, core):
             "rel_rmse": float(np.sqrt(np.mean((a - b) ** 2)) / mean_ref) if mean_ref > 0 else float("nan"),
             "rel_mean_error_core": float((ca.mean() - cb.mean()) / cb.mean()) if cb.mean() > 0 else float("nan"),
         })
+        # Under a uniform map of radiance 1 (furnace.hdr) a Lambertian sphere's exact radiance is its albedo.
+        rows[-1]["rel_error_exact"] = (mean_lp - p) / p if (furnace and kind == "lambert") else float("nan")
     return rows
 
 
@@ -194,6 +196,9 @@ def main():
     ap.add_argument("--out", default=str(REPO / "bench/results/mitsuba"))
     ap.add_argument("--scenes", default=str(REPO / "bench/mitsuba/scenes"), help="where the lightpass scenes go")
     ap.add_argument("--work", default="/tmp/lightpass-mitsuba", help="where both renders' EXRs go")
+    ap.add_argument("--reuse-reference", action="store_true",
+                    help="reuse a Mitsuba composite already in --work for the same map, size, spp and variant")
+    ap.add_argument("--lightpass-args", default="", help="extra lightpass flags, e.g. '--ibl-samples 1024'")
     args = ap.parse_args()
     try:
         width, height = (int(v) for v in args.size.split("x"))
@@ -221,12 +226,14 @@ def main():
         scene_path = scenes / f"{stem}.json"
         lightpass_scene(m, scene_path)
         lp_exr = work / f"{stem}_lightpass.exr"
-        lp_seconds = run_lightpass(args.lightpass, scene_path, lp_exr, width, height)
+        lp_seconds = run_lightpass(args.lightpass, scene_path, lp_exr, width, height, args.lightpass_args.split())
         # One Mitsuba render per sphere, alone in the environment: lightpass's IBL has no visibility
         # term (nothing occludes the environment), so neighbours must not occlude it here either.
         # The composite takes each sphere's pixels (with a margin) from its own render.
         ref_seconds, composite = 0.0, None
-        for name, *_ in spheres():
+        mi_exr = work / f"{stem}_mitsuba_{width}x{height}_{args.spp}spp_{args.variant}.exr"
+        reuse = args.reuse_reference and mi_exr.is_file()
+        for name, *_ in ([] if reuse else spheres()):
             scene = mitsuba_scene(m, width, height, args.spp, name)
             t0 = time.perf_counter()
             img = np.array(mi.render(scene, spp=args.spp))
@@ -234,11 +241,11 @@ def main():
             if composite is None:
                 composite = img.copy()
             composite[sphere_masks_full[name]] = img[sphere_masks_full[name]]
-        mi_exr = work / f"{stem}_mitsuba.exr"
-        mi.Bitmap(composite).write(str(mi_exr))
+        if not reuse:
+            mi.Bitmap(composite).write(str(mi_exr))
         lp, ref = read_rgb(lp_exr), read_rgb(mi_exr)
         write_comparison(out / f"{stem}.png", lp, ref)
-        rows = compare(lp, ref, masks, core)
+        rows = compare(lp, ref, masks, core, furnace=stem.startswith("furnace"))
         for r in rows:
             r["map"] = stem
         all_rows += rows
@@ -253,7 +260,7 @@ def main():
               f"relative RMSE {timing[-1]['rel_rmse_all']:.3f}", flush=True)
 
     fields = ["map", "sphere", "kind", "param", "pixels", "mean_lightpass", "mean_mitsuba", "rel_mean_error", "rmse",
-              "rel_rmse", "rel_mean_error_core"]
+              "rel_rmse", "rel_mean_error_core", "rel_error_exact"]
     with open(out / "spheres.csv", "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=fields)
         w.writeheader()
@@ -283,6 +290,13 @@ def main():
             r = next(r for r in all_rows if r["map"] == t["map"] and r["sphere"] == name)
             cells.append(f"{r['rel_mean_error']:+.3f} / {r['rel_mean_error_core']:+.3f} ({r['rel_rmse']:.3f})")
         lines.append(f"| {name} | " + " | ".join(cells) + " |")
+    furnace_rows = [r for r in all_rows if r["map"].startswith("furnace") and r["kind"] == "lambert"]
+    if furnace_rows:
+        lines += ["", "White furnace (uniform radiance 1): Lambertian sphere mean against its exact albedo "
+                  "(lightpass − albedo) / albedo:", "", "| sphere | albedo | lightpass mean | rel. error |",
+                  "| --- | ---: | ---: | ---: |"]
+        for r in furnace_rows:
+            lines.append(f"| {r['sphere']} | {r['param']:.4f} | {r['mean_lightpass']:.4f} | {r['rel_error_exact']:+.4f} |")
     (out / "summary.md").write_text("\n".join(lines) + "\n")
     print(f"wrote {out / 'summary.md'}, {out / 'spheres.csv'}, {out / 'maps.csv'}")
 

@@ -150,10 +150,21 @@ Program ShaderLibrary::graphics(const std::string& vertexPath, const std::string
     return program;
 }
 
+Program ShaderLibrary::graphics(const std::string& vertexPath, const std::string& geometryPath,
+                                const std::string& fragmentPath, const std::vector<std::string>& defines) const {
+    Shader vs = compileStage(GL_VERTEX_SHADER, preprocess(vertexPath, defines), vertexPath);
+    Shader gs = compileStage(GL_GEOMETRY_SHADER, preprocess(geometryPath, defines), geometryPath);
+    Shader fs = compileStage(GL_FRAGMENT_SHADER, preprocess(fragmentPath, defines), fragmentPath);
+    Program program = link({&vs, &gs, &fs}, vertexPath + "+" + geometryPath + "+" + fragmentPath);
+    remember({{vertexPath, geometryPath, fragmentPath}, defines});
+    return program;
+}
+
 Program ShaderLibrary::build(const ProgramRecipe& recipe) const {
     if (recipe.stages.size() == 1) return compute(recipe.stages[0], recipe.defines);
     if (recipe.stages.size() == 2) return graphics(recipe.stages[0], recipe.stages[1], recipe.defines);
-    throw Error("program recipe needs 1 (compute) or 2 (vertex, fragment) stages");
+    if (recipe.stages.size() == 3) return graphics(recipe.stages[0], recipe.stages[1], recipe.stages[2], recipe.defines);
+    throw Error("program recipe needs 1 (compute), 2 (vertex, fragment) or 3 (vertex, geometry, fragment) stages");
 }
 
 void ShaderLibrary::remember(ProgramRecipe recipe) const {

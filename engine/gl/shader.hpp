@@ -12,7 +12,7 @@ namespace lp::gl {
 
 // What one compute()/graphics() call built: enough to build it again (shader hot reload).
 struct ProgramRecipe {
-    std::vector<std::string> stages;  // one compute file, or vertex + fragment files
+    std::vector<std::string> stages;  // one compute file, or vertex (+ geometry) + fragment files
     std::vector<std::string> defines;
     bool operator==(const ProgramRecipe& o) const { return stages == o.stages && defines == o.defines; }
 };
@@ -36,6 +36,8 @@ public:
     // Throws lp::Error whose first line names file:line of the first error in the original source.
     Program compute(const std::string& path, const std::vector<std::string>& defines = {}) const;
     Program graphics(const std::string& vertexPath, const std::string& fragmentPath,
+                     const std::vector<std::string>& defines = {}) const;
+    Program graphics(const std::string& vertexPath, const std::string& geometryPath, const std::string& fragmentPath,
                      const std::vector<std::string>& defines = {}) const;
     // A compute program from source text (whose #includes resolve from the root); `name` labels it
     // in errors. The shader tests build their harness kernels this way.

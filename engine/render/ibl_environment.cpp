@@ -59,12 +59,12 @@ std::string sourceKey(const Scene& scene) {
 }
 
 std::string cubeKey(const Scene& scene, const EnvironmentSettings& s) {
-    return sourceKey(scene) + "|cube=" + std::to_string(s.cubeSize);
+    return sourceKey(scene) + "|cube=" + std::to_string(s.cubeSize) + "|mips=solid-angle";
 }
 
 std::string bakeKeyOf(const std::string& cube, const EnvironmentSettings& s) {
     return cube + "|spec=" + std::to_string(s.specularSize) + "x" + std::to_string(s.specularLevels) + "x" +
-           std::to_string(s.specularSamples) + "|irr=" + std::to_string(s.irradianceSize) + "x" +
+           std::to_string(s.specularSamples) + "|lod=perceptual|irr=" + std::to_string(s.irradianceSize) + "x" +
            std::to_string(s.irradianceSamples);
 }
 
@@ -156,6 +156,28 @@ ImageF uniformImage(glm::vec3 c) {
 }  // namespace
 
 int environmentCubeLevels(const EnvironmentSettings& s) { return log2Int(s.cubeSize) + 1; }
+
+float prefilteredLevelRoughness(int level, int levels) {
+    if (levels <= 1) return 0.0f;
+    const double t = double(level) / double(levels - 1);
+    return float(1.0 - std::sqrt(std::max(1.0 - t, 0.0)));
+}
+
+void EnvironmentCache::generateCubeMips(const gl::Texture& cube, const gl::ShaderLibrary& shaders) {
+    if (!downsample_) downsample_ = shaders.compute("ibl_cube_downsample.comp");
+    const GLuint prog = downsample_.id();
+    glUseProgram(prog);
+    for (int level = 1; level < cube.levels; ++level) {
+        const int finer = std::max(cube.width >> (level - 1), 1);
+        glProgramUniform1i(prog, glGetUniformLocation(prog, "uFinerSize"), finer);
+        glBindImageTexture(0, cube.id(), level - 1, GL_TRUE, 0, GL_READ_ONLY, GL_RGBA16F);
+        glBindImageTexture(1, cube.id(), level, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+        dispatchCube(std::max(finer / 2, 1));
+    }
+    glUseProgram(0);
+    glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA16F);
+    glBindImageTexture(1, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+}
 
 void validateEnvironmentSettings(const EnvironmentSettings& s) {
     auto need = [](bool ok, const std::string& msg) {
@@ -256,7 +278,7 @@ void EnvironmentCache::makeCube(BakedEnvironment& env, const Scene& scene, const
     glUseProgram(0);
     glBindTextureUnit(0, 0);
     glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    glGenerateTextureMipmap(env.cube.id());
+    generateCubeMips(env.cube, shaders);
     gl::checkErrors("converting the environment map to a cubemap");
     if (env.hasMap) {
         glFinish();
@@ -321,7 +343,7 @@ void EnvironmentCache::bakeIbl(BakedEnvironment& env, const Scene& scene, const 
     glUseProgram(prog);
     for (int level = 1; level < s.specularLevels; ++level) {
         const int size = std::max(s.specularSize >> level, 1);
-        const float roughness = float(level) / float(s.specularLevels - 1);
+        const float roughness = prefilteredLevelRoughness(level, s.specularLevels);
         glProgramUniform1i(prog, glGetUniformLocation(prog, "uSize"), size);
         glProgramUniform1f(prog, glGetUniformLocation(prog, "uRoughness"), roughness);
         glBindImageTexture(0, env.prefiltered.id(), level, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);

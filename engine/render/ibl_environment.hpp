@@ -26,7 +26,7 @@ struct BakedEnvironment {
     double bakeGpuMs = 0.0;     // GPU time of the last bake (timestamp queries)
     std::array<glm::vec3, 9> sh{};  // SH of radiance
     gl::Texture irradiance;     // E(n), W/m^2
-    gl::Texture prefiltered;    // mip m: GGX roughness m / (levels - 1); mip 0 is a copy of a cube mip
+    gl::Texture prefiltered;    // mip m: roughness prefilteredLevelRoughness(m, levels); mip 0 is a copy of a cube mip
 };
 
 class EnvironmentCache {
@@ -49,6 +49,8 @@ public:
 private:
     void makeCube(BakedEnvironment& env, const Scene& scene, const EnvironmentSettings& s,
                   const gl::ShaderLibrary& shaders, const std::string& key);
+    // Levels 1.. of `cube` from level 0, solid-angle weighted (shaders/ibl_cube_downsample.comp).
+    void generateCubeMips(const gl::Texture& cube, const gl::ShaderLibrary& shaders);
     void bakeIbl(BakedEnvironment& env, const Scene& scene, const EnvironmentSettings& s,
                  const gl::ShaderLibrary& shaders, const std::string& key);
 
@@ -56,8 +58,12 @@ private:
     gl::Texture dfg_;
     std::string dfgKey_;
     double lastBakeGpuMs_ = 0.0;
-    gl::Program toCube_, prefilter_, irradiance_, dfgProgram_;
+    gl::Program toCube_, downsample_, prefilter_, irradiance_, dfgProgram_;
 };
+
+// Perceptual roughness of prefiltered mip `level` of `levels`: Filament's mapping, the inverse of
+// lod = (levels - 1) r (2 - r) (shaders/common/ibl.glsl prefilteredLodFromRoughness).
+float prefilteredLevelRoughness(int level, int levels);
 
 // Mip levels of the environment cubemap under `s` (a full chain of its face size).
 int environmentCubeLevels(const EnvironmentSettings& s);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <string>
 
@@ -53,6 +54,18 @@ glm::dvec3 clampCoordinate(glm::dvec3 p) {
     return p;
 }
 
+// Sutherland-Hodgman: the part of convex polygon `poly` where dot(plane.xyz, p) + plane.w >= 0.
+std::vector<glm::dvec3> clipPolygon(const std::vector<glm::dvec3>& poly, glm::dvec4 plane) {
+    std::vector<glm::dvec3> out;
+    for (size_t i = 0; i < poly.size(); ++i) {
+        const glm::dvec3 &a = poly[i], &b = poly[(i + 1) % poly.size()];
+        const double da = glm::dot(glm::dvec3(plane), a) + plane.w, db = glm::dot(glm::dvec3(plane), b) + plane.w;
+        if (da >= 0.0) out.push_back(a);
+        if ((da >= 0.0) != (db >= 0.0)) out.push_back(a + (b - a) * (da / (da - db)));
+    }
+    return out;
+}
+
 glm::mat4 toFloat(const glm::dmat4& m) {
     glm::mat4 f(m);
     for (int c = 0; c < 4; ++c)
@@ -62,6 +75,29 @@ glm::mat4 toFloat(const glm::dmat4& m) {
 }
 
 }  // namespace
+
+std::optional<glm::dvec2> visibleDepthRange(glm::dvec3 lo, glm::dvec3 hi, const glm::dmat4& view, double nearPlane,
+                                            double farPlane, double tanX, double tanY) {
+    // Eye space looks down -z; the frustum is d = -z in [near, far], |x| <= d tanX, |y| <= d tanY.
+    const glm::dvec4 planes[6] = {{0, 0, -1, -nearPlane}, {0, 0, 1, farPlane}, {-1, 0, -tanX, 0},
+                                  {1, 0, -tanX, 0},        {0, -1, -tanY, 0},  {0, 1, -tanY, 0}};
+    auto corner = [&](int c) {
+        return glm::dvec3(view * glm::dvec4((c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z, 1.0));
+    };
+    static const int faces[6][4] = {{0, 2, 6, 4}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 3, 7, 6}, {0, 1, 3, 2}, {4, 5, 7, 6}};
+    double dMin = std::numeric_limits<double>::max(), dMax = std::numeric_limits<double>::lowest();
+    for (const auto& face : faces) {
+        std::vector<glm::dvec3> poly{corner(face[0]), corner(face[1]), corner(face[2]), corner(face[3])};
+        for (const glm::dvec4& plane : planes)
+            if (!poly.empty()) poly = clipPolygon(poly, plane);
+        for (const glm::dvec3& p : poly) dMin = std::min(dMin, -p.z), dMax = std::max(dMax, -p.z);
+    }
+    // The camera inside the box: the near plane's own window is inside the bounds too.
+    const glm::dvec3 eye(glm::inverse(view)[3]);
+    if (glm::all(glm::greaterThanEqual(eye, lo)) && glm::all(glm::lessThanEqual(eye, hi))) dMin = nearPlane;
+    if (!(dMin <= dMax)) return std::nullopt;
+    return glm::dvec2(std::max(dMin, nearPlane), std::min(dMax, farPlane));
+}
 
 ShadowFrustum fitShadowFrustum(const FrameData& frame, glm::vec3 lightDirection) {
     const ShadowSettings& settings = frame.settings->shadows;
@@ -102,16 +138,16 @@ ShadowFrustum fitShadowFrustum(const FrameData& frame, glm::vec3 lightDirection)
     const glm::dmat4 eyeToWorld = glm::inverse(view);
     out.eyeToLight = glm::mat3(glm::dmat3(lightView) * glm::dmat3(eyeToWorld));
     glm::dvec3 lsLo(std::numeric_limits<double>::max()), lsHi(std::numeric_limits<double>::lowest());
-    double camLo = std::numeric_limits<double>::max(), camHi = std::numeric_limits<double>::lowest();
     for (int c = 0; c < 8; ++c) {
         glm::dvec4 p((c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z, 1.0);
         glm::dvec3 ls(lightView * p);
         lsLo = glm::min(lsLo, ls);
         lsHi = glm::max(lsHi, ls);
-        const double depth = -(view * p).z;
-        camLo = std::min(camLo, depth);
-        camHi = std::max(camHi, depth);
     }
+
+    // Symmetric perspective: tangents of the half angles from the projection.
+    const double tanY = 1.0 / double(frame.projection[1][1]), tanX = 1.0 / double(frame.projection[0][0]);
+    const double k2 = tanX * tanX + tanY * tanY;
 
     // The camera depth range worth covering: [near, far] clipped to the scene's depth range. For
     // stable texels the clip uses the scene's bounding sphere (turning the camera changes nothing)
@@ -126,13 +162,19 @@ ShadowFrustum fitShadowFrustum(const FrameData& frame, glm::vec3 lightDirection)
     double zNear = nearPlane, zFar = farPlane;
     if (centreDistance - sceneRadius > nearPlane) zNear = std::max(nearPlane, snapDown(centreDistance - sceneRadius));
     if (centreDistance + sceneRadius < farPlane) zFar = std::min(farPlane, snapUp(centreDistance + sceneRadius));
-    if (!(zFar > zNear * (1.0 + 1e-6)) || camHi < nearPlane || camLo > farPlane)
-        zNear = nearPlane, zFar = farPlane;  // scene out of view: any splits do
+    // The depths where the scene is actually visible: its bounds clipped by the view frustum. A
+    // cascade whose slice lies wholly outside them serves no pixel and is dropped (its neighbours
+    // take its depths); the slices themselves stay on the stable range above.
+    const std::optional<glm::dvec2> visible = visibleDepthRange(lo, hi, view, nearPlane, farPlane, tanX, tanY);
+    if (!(zFar > zNear * (1.0 + 1e-6)) || !visible) zNear = nearPlane, zFar = farPlane;  // scene out of view: any splits do
     const std::vector<double> splits = practicalSplits(zNear, zFar, settings.cascades, settings.splitLambda);
-
-    // Symmetric perspective: tangents of the half angles from the projection.
-    const double tanY = 1.0 / double(frame.projection[1][1]), tanX = 1.0 / double(frame.projection[0][0]);
-    const double k2 = tanX * tanX + tanY * tanY;
+    out.visibleNear = visible ? visible->x : zNear;
+    out.visibleFar = visible ? visible->y : zFar;
+    auto rangeText = [](double a, double b) {
+        char t[64];
+        std::snprintf(t, sizeof t, "%.3g..%.3g m", a, b);
+        return std::string(t);
+    };
     const glm::dvec3 camPos(eyeToWorld[3]);
     const glm::dvec3 camForward = -glm::normalize(glm::dvec3(eyeToWorld[2]));
 
@@ -143,13 +185,29 @@ ShadowFrustum fitShadowFrustum(const FrameData& frame, glm::vec3 lightDirection)
 
     for (int c = 0; c < settings.cascades; ++c) {
         const double a = splits[size_t(c)], b = splits[size_t(c) + 1];
+        if (visible && c + 1 < settings.cascades && b < visible->x) {
+            out.dropped.push_back("cascade " + std::to_string(c + 1) + " (view depth " + rangeText(a, b) +
+                                  ") is nearer than the visible scene (" + rangeText(visible->x, visible->y) + ")");
+            continue;
+        }
+        if (visible && !out.cascades.empty() && a > visible->y) {
+            out.cascades.back().splitFar = std::numeric_limits<float>::max();
+            out.dropped.push_back("cascade" + std::string(settings.cascades - c > 1 ? "s " : " ") + std::to_string(c + 1) +
+                                  (settings.cascades - c > 1 ? ".." + std::to_string(settings.cascades) : std::string()) +
+                                  " (from view depth " + rangeText(a, splits.back()) + ") lie beyond the visible scene (" +
+                                  rangeText(visible->x, visible->y) + ")");
+            break;
+        }
         // Smallest sphere around the slice's 8 corners: centre on the view axis at depth s.
         double s = std::clamp(0.5 * (a + b) * (1.0 + k2), a, b);
         const double radius = std::max(std::sqrt((s - a) * (s - a) + a * a * k2), std::sqrt((b - s) * (b - s) + b * b * k2));
         const glm::dvec3 centre = camPos + camForward * s;
 
         // Square side: the sphere's diameter, or the scene's light-space extent when smaller.
-        // The extra 2 texels leave room for the texel snap below.
+        // The extra 2 texels leave room for the texel snap below. A square that spans the whole
+        // scene serves every depth behind it too: it is the last cascade (the later ones would be
+        // identical tiles of the same square, drawn for nothing).
+        const bool coversScene = 2.0 * radius >= sceneSide;
         double side = std::max(std::min(2.0 * radius, sceneSide), tiny);
         const double texel = side / double(settings.size - 2);
         side = texel * settings.size;
@@ -167,12 +225,31 @@ ShadowFrustum fitShadowFrustum(const FrameData& frame, glm::vec3 lightDirection)
         cascade.worldToClip = toFloat(proj * lightView);
         cascade.eyeToClip = toFloat(proj * lightView * eyeToWorld);
         cascade.splitNear = float(a);
-        cascade.splitFar = c + 1 == settings.cascades ? std::numeric_limits<float>::max() : float(b);
+        const bool last = c + 1 == settings.cascades || coversScene;
+        cascade.splitFar = last ? std::numeric_limits<float>::max() : float(b);
         cascade.texelWorld = float(texel);
         cascade.depthRange = float(farZ - nearZ);
         out.cascades.push_back(cascade);
+        if (last) {
+            if (c + 1 < settings.cascades)
+                out.dropped.push_back("cascade" + std::string(settings.cascades - c > 2 ? "s " : " ") + std::to_string(c + 2) +
+                                      (settings.cascades - c > 2 ? ".." + std::to_string(settings.cascades) : std::string()) +
+                                      " of " + std::to_string(settings.cascades) + " dropped: cascade " + std::to_string(c + 1) +
+                                      "'s square already covers the whole scene; later ones would be identical tiles");
+            break;
+        }
     }
+    const glm::ivec2 used = shadowAtlasGrid(int(out.cascades.size()));
+    out.columns = used.x;
+    out.rows = used.y;
     return out;
+}
+
+std::string droppedCascadesReason(const ShadowFrustum& f, int requested) {
+    if (int(f.cascades.size()) >= requested) return "";
+    std::string why;
+    for (const std::string& d : f.dropped) why += (why.empty() ? "" : "; ") + d;
+    return why;
 }
 
 }  // namespace lp

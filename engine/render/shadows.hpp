@@ -3,13 +3,17 @@
 // orthographic frusta (CPU math, no GL, so unit tests and 'lightpass graph' can use it).
 //
 // Each cascade covers one slice [splitNear, splitFar] of the camera's view depth, itself clipped to
-// the depth range the scene's bounds occupy. Its square is the slice's bounding sphere (so its
+// the depth range the scene's bounds occupy. Cascades are dropped (fewer than asked for) where the
+// slice holds no part of the scene visible in the frustum, and after a cascade whose square already
+// spans the whole scene (a small scene gets one). Its square is the slice's bounding sphere (so its
 // size, hence its texel size, does not change as the camera turns or moves: no shimmering), shrunk
 // to the scene's light-space extent when the scene is smaller, kept inside the scene's extent, and
 // its centre snapped to whole texels. Depth spans the whole scene bounds along the light, so
 // casters outside the view still cast. Everything is computed in double precision from bounds
 // clamped to +-kMaxShadowCoordinate, so huge scenes give finite matrices (Filament PR #6314).
 #include <array>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -38,6 +42,8 @@ struct ShadowFrustum {
     // Tile layout of the cascades in the shadow-map atlas: cascade c at column c % columns, row c / columns.
     int columns = 1, rows = 1;
     int tileSize = 0;
+    double visibleNear = 0.0, visibleFar = 0.0;  // view depths of the scene's bounds inside the frustum
+    std::vector<std::string> dropped;            // why each cascade not made was dropped
 };
 
 // Indices into scene.directionalLights of the lights that get a shadow map this frame: those with
@@ -47,6 +53,16 @@ std::vector<int> shadowCastingLights(const FrameData& frame);
 // The cascades for `lightDirection` (travel direction, need not be unit) and `frame`'s camera.
 // Throws lp::Error for a zero or non-finite direction or out-of-range settings.
 ShadowFrustum fitShadowFrustum(const FrameData& frame, glm::vec3 lightDirection);
+
+// Why fitShadowFrustum made fewer cascades than `requested` (empty when it did not): for the
+// frame graph's skipped list ('lightpass graph --explain').
+std::string droppedCascadesReason(const ShadowFrustum& frustum, int requested);
+
+// View depths [min, max] of the part of box [lo, hi] inside the camera's frustum (eye space from
+// `view`, symmetric perspective of half-angle tangents tanX, tanY), clamped to [near, far]; none
+// when no part of the box is in view.
+std::optional<glm::dvec2> visibleDepthRange(glm::dvec3 lo, glm::dvec3 hi, const glm::dmat4& view, double nearPlane,
+                                            double farPlane, double tanX, double tanY);
 
 // Camera view-depth split distances (cascades + 1 values, first = near, last = far) by the
 // practical scheme: lambda * logarithmic + (1 - lambda) * linear.

@@ -67,8 +67,13 @@ struct Material {
     bool flat = false;
 };
 
+// Smallest perceptual roughness a material can have (GGX alpha = r^2 = 4e-4). The G-buffer's
+// shininess channel holds it (shaders/common/gbuffer_layout.glsl gbufferEncodeShininess).
+constexpr float kMinRoughness = 0.02f;
+
 // The Blinn-Phong exponent equivalent to a perceptual roughness (alpha = r^2 = sqrt(2 / (n + 2))),
-// clamped to [0, 10000] (r >= 0.119), and back.
+// r clamped to [kMinRoughness, 1] (n from 0 to 1.25e7), and back. The analytic BRDFs clamp n to
+// 10000 themselves (r >= 0.119, shaders/common/brdf.glsl); image-based lighting reaches the floor.
 float shininessFromRoughness(float roughness);
 float roughnessFromShininess(float shininess);
 

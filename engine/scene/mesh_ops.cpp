@@ -83,14 +83,12 @@ void computeBounds(MeshData& mesh) {
 namespace lp {
 
 float shininessFromRoughness(float roughness) {
-    const double r = std::clamp(double(roughness), 0.0, 1.0);
-    const double alpha2 = r * r * r * r;  // alpha = r^2
-    if (alpha2 <= 2.0 / 10002.0) return 10000.0f;
-    return float(std::clamp(2.0 / alpha2 - 2.0, 0.0, 10000.0));
+    const double r = std::clamp(double(roughness), double(kMinRoughness), 1.0);
+    return float(2.0 / (r * r * r * r) - 2.0);  // alpha = r^2
 }
 
 float roughnessFromShininess(float shininess) {
-    const double n = std::clamp(double(shininess), 0.0, 10000.0);
+    const double n = std::clamp(double(shininess), 0.0, double(shininessFromRoughness(kMinRoughness)));
     return float(std::sqrt(std::sqrt(2.0 / (n + 2.0))));
 }
 

@@ -234,7 +234,7 @@ void parseModel(const Reader& r, const json& j, const std::string& w, const fs::
     if (j.contains("material")) {
         const json& mat = j["material"];
         const std::string mw = w + ".material";
-        r.onlyKnown(mat, mw, {"diffuse", "specular", "shininess", "flat", "opacity"});
+        r.onlyKnown(mat, mw, {"diffuse", "specular", "shininess", "roughness", "flat", "opacity"});
         if (mat.contains("flat")) m.flatOverride = r.boolean(mat, "flat", mw, false);
         if (mat.contains("diffuse")) m.diffuseOverride = r.color(mat, "diffuse", mw, glm::vec3(0.0f));
         if (mat.contains("specular")) m.specularOverride = r.color(mat, "specular", mw, glm::vec3(0.0f));
@@ -242,6 +242,13 @@ void parseModel(const Reader& r, const json& j, const std::string& w, const fs::
             float n = r.number(mat["shininess"], mw + ".shininess");
             if (n < 0.0f || n > 10000.0f) r.fail(mw + ".shininess", "must be in [0, 10000]");
             m.shininessOverride = n;
+        }
+        if (mat.contains("roughness")) {
+            if (mat.contains("shininess")) r.fail(mw + ".roughness", "give either roughness or shininess, not both");
+            const float rough = r.number(mat["roughness"], mw + ".roughness");
+            if (!(rough >= kMinRoughness && rough <= 1.0f))
+                r.fail(mw + ".roughness", formatNumber(rough) + ": must be in [" + formatNumber(kMinRoughness) + ", 1]");
+            m.shininessOverride = shininessFromRoughness(rough);
         }
         if (mat.contains("opacity")) {
             float a = r.number(mat["opacity"], mw + ".opacity");

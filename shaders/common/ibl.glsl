@@ -36,6 +36,25 @@ vec3 cubeTexelDirection(int face, ivec2 texel, int size) {
     return cubeDirection(face, (vec2(texel) + 0.5) / float(size) * 2.0 - 1.0);
 }
 
+// Solid angle of texel `texel` of a cube face of `size` x `size` (every face alike). Exact
+// (the area element integrated, atan(xy / sqrt(x^2 + y^2 + 1)) at the corners) on small faces; on
+// faces of 64 and more the midpoint rule h^2 / (1 + s^2 + t^2)^1.5 (relative error below 1e-3),
+// since the four-corner difference cancels to float noise there.
+float cubeTexelSolidAngle(ivec2 texel, int size) {
+    float h = 2.0 / float(size);
+    vec2 lo = vec2(texel) * h - 1.0, hi = lo + h;
+    if (size >= 64) {
+        vec2 c = 0.5 * (lo + hi);
+        float r2 = 1.0 + dot(c, c);
+        return h * h / (r2 * sqrt(r2));
+    }
+    float a00 = atan(lo.x * lo.y, sqrt(dot(lo, lo) + 1.0));
+    float a01 = atan(lo.x * hi.y, sqrt(lo.x * lo.x + hi.y * hi.y + 1.0));
+    float a10 = atan(hi.x * lo.y, sqrt(hi.x * hi.x + lo.y * lo.y + 1.0));
+    float a11 = atan(hi.x * hi.y, sqrt(dot(hi, hi) + 1.0));
+    return a00 - a01 - a10 + a11;
+}
+
 // Rotation of the environment about +Y by `radians` (world direction -> map direction uses -angle).
 vec3 rotateY(vec3 d, float radians) {
     float c = cos(radians), s = sin(radians);
@@ -122,11 +141,40 @@ vec3 specularDominantDirection(vec3 N, vec3 R, float alpha) {
     return l > 0.0 ? d / l : N;
 }
 
+// Prefiltered chain: which mip holds perceptual roughness r, and back (Filament's perceptual
+// mapping, lod = maxLod * r (2 - r)). Levels are dense where the lobe changes fastest (near-mirror):
+// with 6 levels they hold r = 0, 0.106, 0.225, 0.368, 0.553, 1 instead of steps of 0.2, whose blend
+// of a mirror and an r = 0.2 lobe pulled lamps above the horizon into a smooth plane at grazing angles.
+float prefilteredLodFromRoughness(float r, float maxLod) {
+    r = clamp(r, 0.0, 1.0);
+    return maxLod * r * (2.0 - r);
+}
+float roughnessOfPrefilteredLod(float lod, float maxLod) {
+    return maxLod > 0.0 ? 1.0 - sqrt(max(1.0 - lod / maxLod, 0.0)) : 0.0;
+}
+
+// The split sum's specular reflectance F0 A + f90 B, with f90 as the analytic GGX's Schlick term
+// (shaders/common/brdf.glsl: clamp(50 mean(F0), 0, 1)), so that Ks = 0 reflects nothing and the
+// material is exactly Lambertian under IBL as under the suns.
+vec3 splitSumReflectance(vec3 f0, vec2 ab) {
+    float f90 = clamp(50.0 * dot(f0, vec3(1.0 / 3.0)), 0.0, 1.0);
+    return f0 * ab.x + f90 * ab.y;
+}
+
 // Perceptual roughness for an energy-normalised Blinn-Phong exponent (Walter et al. 2007:
-// alpha = sqrt(2 / (n + 2))); n = 0 gives the roughest lobe, 1.
+// alpha = sqrt(2 / (n + 2))); n = 0 gives the roughest lobe, 1. The floor is roughness 0.02
+// (n = 1.25e7, a scene's `roughness: 0.02`); the analytic BRDFs keep n <= 10000 (shaders/common/brdf.glsl).
+const float LP_IBL_MAX_SHININESS = 12499998.0;
 float roughnessFromShininess(float n) {
-    float alpha = sqrt(2.0 / (clamp(n, 0.0, 10000.0) + 2.0));
+    float alpha = sqrt(2.0 / (clamp(n, 0.0, LP_IBL_MAX_SHININESS) + 2.0));
     return sqrt(alpha);
+}
+
+// The inverse for a roughness texture (glTF metallic-roughness): n = 2 / r^4 - 2 down to the floor
+// r = 0.02, past the analytic BRDFs' 10000 (brdf.glsl's shininessFromRoughness stops at r = 0.119).
+float shininessFromRoughnessToFloor(float roughness) {
+    float r = clamp(roughness, 0.02, 1.0);
+    return min(2.0 / (r * r * r * r) - 2.0, LP_IBL_MAX_SHININESS);
 }
 
 // Irradiance from 9 SH coefficients of radiance (Ramamoorthi & Hanrahan 2001): E(n) =

@@ -1,6 +1,7 @@
 // Image-based lighting of one surface point, shared by the deferred ibl pass and the forward passes:
 // diffuse kd (1 - Fss) E / pi from the SH (or the irradiance cube) and specular
-// prefiltered(R, roughness) * Fss, Fss = F0 A + B from the DFG LUT. The samplers are the includer's
+// prefiltered(R, roughness) * Fss, Fss = F0 A + f90 B from the DFG LUT (splitSumReflectance), the
+// prefiltered mip from the perceptual roughness (prefilteredLodFromRoughness). The samplers are the includer's
 // (their units differ between passes); the environment's other inputs are these uniforms.
 #ifndef LP_IBL_SHADING_GLSL
 #define LP_IBL_SHADING_GLSL
@@ -27,8 +28,8 @@ vec3 lpIblRadiance(samplerCube irradiance, samplerCube prefilteredMap, sampler2D
     vec3 Nw = normalize(uEyeToWorld * N), Rw = normalize(uEyeToWorld * R);
     vec3 E = uDiffuseFromCube ? textureLod(irradiance, Nw, 0.0).rgb : shIrradiance(uSh, Nw);
     vec2 ab = textureLod(dfg, vec2(NdotV, roughness), 0.0).rg;
-    vec3 fss = f0 * ab.x + ab.y;
-    vec3 prefiltered = textureLod(prefilteredMap, Rw, roughness * uMaxLod).rgb;
+    vec3 fss = splitSumReflectance(f0, ab);
+    vec3 prefiltered = textureLod(prefilteredMap, Rw, prefilteredLodFromRoughness(roughness, uMaxLod)).rgb;
     float ao = screenAo * occlusion;
     float specularAo = aoOn ? specularOcclusion(NdotV, ao, roughness * roughness) : occlusion;
     return uIntensity * (ao * kd * (1.0 - fss) * E / LP_IBL_PI + specularAo * prefiltered * fss);

@@ -5,6 +5,7 @@
 #ifndef LP_MATERIAL_GLSL
 #define LP_MATERIAL_GLSL
 #include "common/brdf.glsl"
+#include "common/ibl.glsl"
 #include "common/normal_map.glsl"
 
 uniform vec3 uDiffuse;     // base colour
@@ -35,7 +36,7 @@ struct LpSurface {
     vec3 N;           // shading normal, eye space, unit, facing the viewer's side for two-sided
     vec3 kd;          // diffuse colour (base x (1 - metallic))
     vec3 f0;          // specular colour
-    float shininess;  // Blinn-Phong exponent
+    float shininess;  // Blinn-Phong exponent (up to the IBL's roughness floor; the G-buffer encodes it)
     float occlusion;  // the material's ambient occlusion (1: none)
     float alpha;      // base alpha (opacity x texture alpha)
 };
@@ -79,11 +80,12 @@ LpSurface lpEvaluateSurface(vec3 vNormal, vec4 vTangent, vec2 vUv, bool frontFac
         if (bl > 1e-20) N = bent / bl;
     }
     float metallic = clamp(uMetallic, 0.0, 1.0);
-    float shininess = clamp(uShininess, 0.0, 10000.0);
+    // Up to the IBL's roughness floor (0.02); the analytic BRDFs clamp to 10000 themselves.
+    float shininess = clamp(uShininess, 0.0, LP_IBL_MAX_SHININESS);
     if (uHasMetalRoughMap) {
         vec4 mr = texture(uMetalRoughMap, vUv);
         metallic = clamp(metallic * mr.b, 0.0, 1.0);
-        shininess = shininessFromRoughness(uRoughness * mr.g);
+        shininess = shininessFromRoughnessToFloor(uRoughness * mr.g);
     }
     vec3 baseColor = clamp(base.rgb, 0.0, 1.0);
     s.N = N;

@@ -20,14 +20,25 @@ vec2 shadowReceiverGradient(vec3 nLight, float texelOverRange) {
     return nLight.xy / max(nLight.z, 0.01) * texelOverRange;
 }
 
-// 1 where texel t (clamped into the tile) does not occlude the receiver, else 0.
-float shadowTexelLit(sampler2D map, ivec2 t, ivec2 tileMin, ivec2 tileMax, vec2 pos, float z, vec2 grad, float bias) {
+// Texel compare results: lit, occluded, or no caster at all in that texel (cleared to 1.0).
+const float LP_SHADOW_NO_CASTER = -1.0;
+
+// 1 where texel t (clamped into the tile) does not occlude the receiver, 0 where it does,
+// LP_SHADOW_NO_CASTER where it holds no caster (casters cover every texel they touch:
+// shadow_depth.geom).
+float shadowTexelCompare(sampler2D map, ivec2 t, ivec2 tileMin, ivec2 tileMax, vec2 pos, float z, vec2 grad, float bias) {
     ivec2 tc = clamp(t, tileMin, tileMax);
     float stored = texelFetch(map, tc, 0).r;
-    // Cleared texels (1.0: no caster) never occlude, even where the receiver's plane, extrapolated
-    // to the texel, lies past the far end of the depth range.
+    if (stored >= 1.0) return LP_SHADOW_NO_CASTER;
     float expected = z + dot(grad, vec2(tc) + 0.5 - pos) - bias;
-    return (expected <= stored || stored >= 1.0) ? 1.0 : 0.0;
+    return expected <= stored ? 1.0 : 0.0;
+}
+
+// 1 where texel t does not occlude the receiver, else 0. Cleared texels (no caster) never occlude,
+// even where the receiver's plane, extrapolated to the texel, lies past the far end of the range.
+float shadowTexelLit(sampler2D map, ivec2 t, ivec2 tileMin, ivec2 tileMax, vec2 pos, float z, vec2 grad, float bias) {
+    float r = shadowTexelCompare(map, t, tileMin, tileMax, pos, z, grad, bias);
+    return r == LP_SHADOW_NO_CASTER ? 1.0 : r;
 }
 
 // 16-tap Poisson disc (max radius 1.29), scaled to LP_SHADOW_POISSON_RADIUS texels and rotated per
@@ -90,13 +101,20 @@ float shadowFilter(sampler2D map, int filterMode, vec2 pos, ivec2 tileMin, ivec2
     float angle = 6.28318531 * interleavedGradientNoise(pixel);
     float c = cos(angle), s = sin(angle);
     mat2 rotation = mat2(c, s, -s, c);
+    // A tap on a texel with no caster lies past the silhouette of everything the light sees; the
+    // receiver is itself a caster, so such a tap only reaches past an edge where the receiver meets
+    // another caster (a concave corner) or ends. It says nothing about the light there: it takes the
+    // answer of the receiver's own texel, so a crease in shadow stays in shadow under any kernel.
+    float own = shadowTexelLit(map, ivec2(floor(pos)), tileMin, tileMax, pos, z, grad, bias);
+    if (filterMode == LP_SHADOW_FILTER_OFF) return own;
     float sum = 0.0;
     int n = shadowTapCount(filterMode);
     for (int k = 0; k < n; ++k) {
         ivec2 texel;
         float weight;
         shadowTap(filterMode, k, pos, rotation, texel, weight);
-        sum += weight * shadowTexelLit(map, texel, tileMin, tileMax, pos, z, grad, bias);
+        float r = shadowTexelCompare(map, texel, tileMin, tileMax, pos, z, grad, bias);
+        sum += weight * (r == LP_SHADOW_NO_CASTER ? own : r);
     }
     return sum;
 }

@@ -311,10 +311,11 @@ TEST(GltfLoader, MtlConvertsOntoTheSameMaterialModel) {
 }
 
 TEST(GltfLoader, RoughnessShininessRoundTrip) {
-    for (float n : {0.0f, 1.0f, 32.0f, 1000.0f, 10000.0f}) EXPECT_NEAR(shininessFromRoughness(roughnessFromShininess(n)), n, 1e-3f * (n + 1.0f));
+    for (float n : {0.0f, 1.0f, 32.0f, 1000.0f, 10000.0f, 1e6f}) EXPECT_NEAR(shininessFromRoughness(roughnessFromShininess(n)), n, 1e-3f * (n + 1.0f));
     EXPECT_EQ(shininessFromRoughness(1.0f), 0.0f);
-    EXPECT_EQ(shininessFromRoughness(0.0f), 10000.0f);
-    EXPECT_EQ(shininessFromRoughness(0.1f), 10000.0f);  // below 0.119: the exponent's limit
+    EXPECT_NEAR(shininessFromRoughness(0.1f), 19998.0f, 0.1f);  // past the analytic BRDFs' 10000: IBL reaches it
+    EXPECT_NEAR(shininessFromRoughness(0.0f), 1.25e7f, 10.0f);  // the floor, roughness 0.02
+    EXPECT_EQ(shininessFromRoughness(0.0f), shininessFromRoughness(kMinRoughness));
 }
 
 // --up z and a scene file's "up": "z" turn a Z-up model Y-up, (x, y, z) -> (x, z, -y), before placing it.

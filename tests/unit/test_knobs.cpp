@@ -71,7 +71,7 @@ TEST(Knobs, ValuesSetWhatTheyNameAndTheReferenceIsLast) {
     const Knob* samples = findKnob("ibl-samples");
     samples->values.back().apply(s);
     EXPECT_EQ(s.environment.ibl, true);
-    EXPECT_EQ(s.environment.specularSamples, 1024);
+    EXPECT_EQ(s.environment.specularSamples, 4096);
 
     const Knob* scale = findKnob("render-scale");
     scale->values.front().apply(s);
@@ -117,7 +117,7 @@ TEST(Knobs, ProductOfKnobsSweepsEveryCombination) {
     std::optional<Knob> three = knobByName("ibl-samples+ibl-face-size+ibl-diffuse");
     ASSERT_TRUE(three.has_value());
     EXPECT_EQ(three->values.size(), 4u * 4u * 2u);
-    EXPECT_EQ(three->values.back().label, "1024/512/cubemap");
+    EXPECT_EQ(three->values.back().label, "4096/512/cubemap");
 
     EXPECT_EQ(knobByName("render-scale")->values.size(), 4u);  // a single name is the knob itself
     EXPECT_FALSE(knobByName("shadow-size+bogus").has_value());

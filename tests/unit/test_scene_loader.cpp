@@ -1,6 +1,7 @@
 // Scene files: the bundled scenes load; every malformed field is an error naming file and field.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -141,6 +142,31 @@ TEST(SceneLoader, LightGlobesIsABool) {
     EXPECT_FALSE(parseScene(R"({})", "test.json", false).lightGlobes);
     EXPECT_NE(errorFor(R"({"lightGlobes": 1})").find("lightGlobes: expected true or false"), std::string::npos)
         << errorFor(R"({"lightGlobes": 1})");
+}
+
+// material.roughness: perceptual GGX roughness in [0.02, 1], stored as the Blinn-Phong exponent of
+// the same width (alpha = r^2 = sqrt(2 / (n + 2))); exclusive with shininess; one-line errors.
+TEST(SceneLoader, MaterialRoughnessSetsTheEquivalentShininess) {
+    for (float r : {1.0f, 0.5f, 0.119f, 0.02f}) {
+        const std::string json = R"({"models": [{"primitive": "cube", "material": {"roughness": )" + std::to_string(r) + "}}]}";
+        Scene s = parseScene(json, "test.json", false);
+        for (const Material& m : s.models[0].mesh.materials) {
+            const double alpha = std::sqrt(2.0 / (double(m.shininess) + 2.0));
+            EXPECT_NEAR(std::sqrt(alpha), r, 1e-4 * r) << r;
+        }
+    }
+    EXPECT_FLOAT_EQ(shininessFromRoughness(1.0f), 0.0f);
+    EXPECT_NEAR(shininessFromRoughness(kMinRoughness), 1.25e7f, 10.0f);
+    const std::string both = errorFor(R"({"models": [{"primitive": "cube", "material": {"roughness": 0.5, "shininess": 8}}]})");
+    EXPECT_NE(both.find("test.json: models[0].material.roughness: give either roughness or shininess, not both"), std::string::npos) << both;
+    EXPECT_EQ(both.find('\n'), std::string::npos);
+    for (const char* bad : {"0.01", "1.5", "-0.2", "0"}) {
+        const std::string e = errorFor(std::string(R"({"models": [{"primitive": "cube", "material": {"roughness": )") + bad + "}}]}");
+        EXPECT_NE(e.find("models[0].material.roughness"), std::string::npos) << bad << ": " << e;
+        EXPECT_NE(e.find("must be in [0.02, 1]"), std::string::npos) << bad << ": " << e;
+    }
+    EXPECT_NE(errorFor(R"({"models": [{"primitive": "cube", "material": {"roughness": "smooth"}}]})").find("material.roughness"),
+              std::string::npos);
 }
 
 TEST(SceneLoader, SpotLightFields) {

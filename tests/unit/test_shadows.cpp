@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -227,4 +228,87 @@ TEST(ShadowCascades, BadSettingsAreOneLineErrors) {
     settings.shadows.cascades = 2;
     settings.shadows.size = 8;
     EXPECT_THROW(fitShadowFrustum(frame, glm::vec3(0, -1, 0)), Error);
+}
+
+// The depth range the cascades split is the part of the scene's bounds inside the view frustum:
+// a 1 m box 5 m ahead spans view depths 4.5..5.5; a box behind the camera or off to the side is out
+// of view; with the camera inside the box the range starts at the near plane; a long box is cut by
+// the far plane and the frustum's sides.
+TEST(ShadowCascades, VisibleDepthRangeIsTheBoundsInsideTheFrustum) {
+    const glm::dmat4 view = glm::lookAt(glm::dvec3(0, 0, 0), glm::dvec3(0, 0, -1), glm::dvec3(0, 1, 0));
+    const double t = std::tan(glm::radians(30.0));
+    auto ahead = visibleDepthRange(glm::dvec3(-0.5, -0.5, -5.5), glm::dvec3(0.5, 0.5, -4.5), view, 0.1, 100.0, t, t);
+    ASSERT_TRUE(ahead);
+    EXPECT_NEAR(ahead->x, 4.5, 1e-9);
+    EXPECT_NEAR(ahead->y, 5.5, 1e-9);
+    EXPECT_FALSE(visibleDepthRange(glm::dvec3(-0.5, -0.5, 4.5), glm::dvec3(0.5, 0.5, 5.5), view, 0.1, 100.0, t, t));
+    EXPECT_FALSE(visibleDepthRange(glm::dvec3(20, -0.5, -5.5), glm::dvec3(21, 0.5, -4.5), view, 0.1, 100.0, t, t));
+    auto inside = visibleDepthRange(glm::dvec3(-1, -1, -3), glm::dvec3(1, 1, 1), view, 0.1, 100.0, t, t);
+    ASSERT_TRUE(inside);
+    EXPECT_NEAR(inside->x, 0.1, 1e-9);
+    EXPECT_NEAR(inside->y, 3.0, 1e-9);
+    // A corridor 1000 m long starting 1 m ahead: its end face is in view at d = 1, its walls (|x|,
+    // |y| = 2) enter the frustum (half-width 0.577 d) at d = 3.46 and stay to the far plane.
+    auto corridor = visibleDepthRange(glm::dvec3(-2, -2, -1000), glm::dvec3(2, 2, -1), view, 0.1, 100.0, t, t);
+    ASSERT_TRUE(corridor);
+    EXPECT_NEAR(corridor->x, 1.0, 1e-9);
+    EXPECT_NEAR(corridor->y, 100.0, 1e-9);
+}
+
+// A small scene (a 0.56 m box seen from 0.8 m, the Cornell box's proportions) fills the first
+// cascade's square: asking for 4 cascades gives 1, the atlas is one tile, the graph says which were
+// dropped and why, and that cascade serves every depth. Cascades past the visible depths are
+// dropped too. A large open scene keeps all 4.
+TEST(ShadowCascades, SmallSceneGetsFewerCascades) {
+    Scene s = boundsScene(glm::vec3(0.0f), glm::vec3(0.556f, 0.549f, 0.559f), {true});
+    s.camera.position = glm::vec3(0.278f, 0.273f, -0.8f);
+    s.camera.target = glm::vec3(0.278f, 0.273f, 0.0f);
+    s.camera.fovYDegrees = 39.3f;
+    s.camera.nearPlane = 0.05f;
+    s.camera.farPlane = 3.0f;
+    RenderSettings settings = small();
+    settings.shadows.cascades = 4;
+    FrameData frame = makeFrameData(s, settings, 0.0f);
+    ShadowFrustum fr = fitShadowFrustum(frame, s.directionalLights[0].direction);
+    ASSERT_EQ(fr.cascades.size(), 1u);
+    EXPECT_EQ(fr.columns * fr.rows, 1);
+    EXPECT_EQ(fr.cascades[0].splitFar, std::numeric_limits<float>::max());
+    // The box is visible from its open front (0.8 m) to the back wall (1.359 m). The splits start at
+    // the bounding sphere's nearest depth (0.598 m, snapped down to 2^(-3/4)): the first slice,
+    // 0.595..0.795 m, holds nothing visible and goes; the second already spans the scene.
+    EXPECT_NEAR(fr.visibleNear, 0.8, 1e-6);
+    EXPECT_NEAR(fr.visibleFar, 1.359, 1e-6);
+    EXPECT_LE(fr.cascades[0].splitNear, 0.8f);
+    const std::string why = droppedCascadesReason(fr, 4);
+    EXPECT_NE(why.find("cascade 1 (view depth 0.595..0.795 m) is nearer than the visible scene"), std::string::npos) << why;
+    EXPECT_NE(why.find("cascades 3..4 of 4 dropped: cascade 2's square already covers the whole scene"), std::string::npos) << why;
+    FrameGraph g;
+    PassStates passes;
+    buildFrameGraph(g, passes, frame);
+    g.compile();
+    EXPECT_NE(g.describe().find("shadow_map_0 cascades: skipped: cascade 1 (view depth"), std::string::npos) << g.describe();
+
+    // A corridor (2 x 2 x 64 m) seen from inside, looking at its end wall 4 m away: the bounding
+    // sphere's depth range reaches 60 m, but nothing past 4 m is visible, so the cascades whose
+    // slices start beyond it are dropped and the last one kept serves every depth.
+    Scene corridor = boundsScene(glm::vec3(-1, -1, -4), glm::vec3(1, 1, 60), {true});
+    corridor.camera.position = glm::vec3(0.0f);
+    corridor.camera.target = glm::vec3(0, 0, -1);
+    corridor.camera.nearPlane = 0.1f;
+    corridor.camera.farPlane = 200.0f;
+    FrameData corridorFrame = makeFrameData(corridor, settings, 0.0f);
+    ShadowFrustum cf = fitShadowFrustum(corridorFrame, corridor.directionalLights[0].direction);
+    ASSERT_GE(cf.cascades.size(), 1u);
+    ASSERT_LT(cf.cascades.size(), 4u);
+    EXPECT_LE(cf.cascades.back().splitNear, 4.0f);
+    EXPECT_EQ(cf.cascades.back().splitFar, std::numeric_limits<float>::max());
+    EXPECT_NEAR(cf.visibleFar, 4.0, 1e-6);
+    EXPECT_NE(droppedCascadesReason(cf, 4).find("beyond the visible scene"), std::string::npos) << droppedCascadesReason(cf, 4);
+
+    Scene big = boundsScene(glm::vec3(-50, 0, -50), glm::vec3(50, 5, 50), {true});
+    big.camera.farPlane = 80.0f;
+    FrameData bigFrame = makeFrameData(big, settings, 0.0f);
+    ShadowFrustum bigFr = fitShadowFrustum(bigFrame, big.directionalLights[0].direction);
+    EXPECT_EQ(bigFr.cascades.size(), 4u);
+    EXPECT_EQ(droppedCascadesReason(bigFr, 4), "");
 }
