@@ -99,14 +99,23 @@ FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const Fr
     const bool taa = temporalAntiAliasing(s);
     GBufferChannels channels = channelsForView(s.view);
     channels.velocity = channels.velocity || motionBlurSkip.empty() || taa;
-    // The G-buffer: rasterised target by target, or a visibility buffer resolved into the same targets.
+    // The G-buffer: rasterised target by target, a visibility buffer resolved into the same targets,
+    // or (forward+) a depth pre-pass that writes only what later passes read.
+    const bool forwardPlus = s.renderPath == RenderPath::ForwardPlus;
     GBuffer gbuffer;
-    if (s.gbuffer.mode == GBufferMode::Visibility) {
+    if (forwardPlus) {
+        gbuffer = addDepthPrepass(graph, passes.gbuffer, frame, channels);
+        graph.skipPass("gbuffer", "forward+: the depth pre-pass writes depth (and what later passes read)");
+        graph.skipPass("gbuffer_visibility", "forward+: the depth pre-pass replaces the G-buffer");
+        graph.skipPass("gbuffer_resolve", "forward+: the depth pre-pass replaces the G-buffer");
+    } else if (s.gbuffer.mode == GBufferMode::Visibility) {
         graph.skipPass("gbuffer", "--gbuffer-mode visibility: gbuffer_visibility and gbuffer_resolve make the G-buffer");
+        graph.skipPass("depth_prepass", "render path deferred (--render-path forward+ uses a depth pre-pass)");
         const VisibilityBuffer visibility = addVisibilityPass(graph, passes.visibility, frame);
         gbuffer = addVisibilityResolvePass(graph, passes.visibilityResolve, frame, visibility, channels);
     } else {
         gbuffer = addGBufferPass(graph, passes.gbuffer, frame, channels);
+        graph.skipPass("depth_prepass", "render path deferred (--render-path forward+ uses a depth pre-pass)");
         graph.skipPass("gbuffer_visibility", "--gbuffer-mode classic (visibility buffer off)");
         graph.skipPass("gbuffer_resolve", "--gbuffer-mode classic (visibility buffer off)");
     }
@@ -121,21 +130,43 @@ FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const Fr
         graph.skipPass("ao", aoSkip);
         graph.skipPass("ao_denoise", aoSkip);
     }
-    fg::ResourceId hdr = addGlobalLightPass(graph, passes.globalLights, frame, gbuffer, shadowMaps, lightingView, ao);
-    if (iblAdded) hdr = addIblPass(graph, passes.ibl, frame, gbuffer, environment, hdr, lightingView, ao);
-    else graph.skipPass("ibl", hasMap ? "IBL is off (environment.ibl false, no --ibl)" : "scene has no environment map");
+    // What lights forward-shaded surfaces: forward+'s opaque pass and the transparent pass.
+    ForwardLighting forwardLighting;
+    forwardLighting.shadowMaps = shadowMaps;
+    if (iblAdded) forwardLighting.environment = environment;
+    forwardLighting.lightingOnly = lightingView;
+    // one perspective depth map per shadow-casting spot, read by local_lights and the forward passes.
+    SpotShadowMaps spotShadows;
     if (localSkip.empty()) {
-        // one perspective depth map per shadow-casting spot, read by local_lights.
-        const SpotShadowMaps spotShadows = addSpotShadowPass(graph, passes.spotShadows, frame);
-        hdr = addLocalLightPass(graph, passes.localLights, frame, gbuffer, hdr, lightingView, spotShadows);
+        spotShadows = addSpotShadowPass(graph, passes.spotShadows, frame);
+        forwardLighting.localLights = true;
+        forwardLighting.spotShadows = spotShadows;
     } else {
-        graph.skipPass("local_lights", localSkip);
         graph.skipPass("spot_shadows", localSkip);
     }
-    if (!lightingView && sceneHasEmission(frame)) hdr = addEmissionPass(graph, passes.emission, frame, gbuffer, hdr);
-    else graph.skipPass("emission", lightingView ? "the lighting view shows light alone" : "no material of the scene emits");
+    fg::ResourceId hdr;
+    if (forwardPlus) {
+        ForwardLighting opaque = forwardLighting;
+        opaque.ao = ao;
+        hdr = addForwardOpaquePass(graph, passes.forward, passes.localLights, frame, gbuffer, opaque);
+        const std::string why = "forward+: forward_opaque shades the opaque surfaces";
+        for (const char* pass : {"global_lights", "ibl", "local_lights", "emission"}) graph.skipPass(pass, why);
+    } else {
+        graph.skipPass("forward_opaque", "render path deferred (--render-path forward+)");
+        hdr = addGlobalLightPass(graph, passes.globalLights, frame, gbuffer, shadowMaps, lightingView, ao);
+        if (iblAdded) hdr = addIblPass(graph, passes.ibl, frame, gbuffer, environment, hdr, lightingView, ao);
+        else graph.skipPass("ibl", hasMap ? "IBL is off (environment.ibl false, no --ibl)" : "scene has no environment map");
+        if (localSkip.empty()) hdr = addLocalLightPass(graph, passes.localLights, frame, gbuffer, hdr, lightingView, spotShadows);
+        else graph.skipPass("local_lights", localSkip);
+        if (!lightingView && sceneHasEmission(frame)) hdr = addEmissionPass(graph, passes.emission, frame, gbuffer, hdr);
+        else graph.skipPass("emission", lightingView ? "the lighting view shows light alone" : "no material of the scene emits");
+    }
     if (skyAdded) hdr = addSkyPass(graph, passes.sky, frame, gbuffer.depth, hasMap ? environment.cube : fg::ResourceId{}, hdr);
     else graph.skipPass("sky", lightingView ? "the lighting view shows light alone" : "scene has no environment (black, no map)");
+    // Alpha-blended surfaces over the opaque frame and the sky, back to front.
+    if (lightingView) graph.skipPass("transparent", "the lighting view shows the opaque surfaces' light alone");
+    else if (!sceneHasTransparency(scene)) graph.skipPass("transparent", "no material of the scene is alpha-blended");
+    else hdr = addTransparentPass(graph, passes.transparent, passes.localLights, frame, gbuffer.depth, hdr, forwardLighting);
     // globes and the light-ranges / lights-per-tile / lights-per-cluster overlays, over the sky too.
     if (!lightingView && localSkip.empty() && localLightCount(scene, s.localLights) > 0)
         hdr = addLocalLightOverlayPasses(graph, passes.localLights, frame, gbuffer, hdr);

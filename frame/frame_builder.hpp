@@ -12,6 +12,7 @@
 #include "passes/debug_view_pass.hpp"
 #include "passes/emission_pass.hpp"
 #include "passes/downsample_pass.hpp"
+#include "passes/forward_pass.hpp"
 #include "passes/fxaa_pass.hpp"
 #include "passes/gbuffer_pass.hpp"
 #include "passes/post_pass.hpp"
@@ -24,6 +25,7 @@
 #include "passes/spot_shadow_pass.hpp"
 #include "passes/taa_pass.hpp"
 #include "passes/tonemap_pass.hpp"
+#include "passes/transparent_pass.hpp"
 #include "passes/upscale_pass.hpp"
 #include "passes/visibility_pass.hpp"
 #include "passes/visibility_resolve_pass.hpp"
@@ -44,6 +46,8 @@ struct PassStates {
     SpotShadowPass spotShadows;
     IblPass ibl;
     LocalLightPass localLights;
+    ForwardPass forward;          // forward+'s forward_opaque
+    TransparentPass transparent;  // alpha-blended surfaces, both render paths
     MotionBlurPass motionBlur;
     EmissionPass emission;
     PostPasses post;

@@ -252,6 +252,20 @@ std::vector<KnobEntry> makeKnobTable() {
 
     // ---- lighting model, environment, image-based lighting, tone map ----
     {
+        KnobEntry k = choiceKnob("render-path", [](auto& s) -> auto& { return s.renderPath; },
+                                 std::vector<RenderPath>{RenderPath::Deferred, RenderPath::ForwardPlus}, renderPathName);
+        k.flags = {valueFlag("--render-path")};
+        k.choiceNoun = "render path";
+        k.help = "how opaque surfaces are lit: deferred (G-buffer, then light passes) or forward+ (depth pre-pass, "
+                 "then one forward pass over the clustered light lists)";
+        k.panel = {PanelSection::Lighting, PanelWidget::Combo, "render path", ""};
+        k.sweep = {{"forward+", "deferred"}, false,
+                   "render path (--render-path): forward+ against deferred (reference). The same shading by design: "
+                   "the error is the G-buffer's rounding and fp16 sums between the deferred passes, so not monotone",
+                   nullptr};
+        t.push_back(std::move(k));
+    }
+    {
         KnobEntry k = choiceKnob("brdf", [](auto& s) -> auto& { return s.brdf; },
                                  std::vector<Brdf>{Brdf::BlinnPhong, Brdf::Ggx}, brdfName);
         k.flags = {valueFlag("--brdf")};

@@ -18,7 +18,8 @@ struct Data {
 bool sceneHasEmission(const FrameData& frame) {
     for (const ModelInstance& model : frame.scene->models)
         for (const Material& m : model.mesh.materials)
-            if (glm::any(glm::greaterThan(m.emission, glm::vec3(0.0f)))) return true;
+            // Blended surfaces add their emission in the transparent pass.
+            if (m.alphaMode != AlphaMode::Blend && glm::any(glm::greaterThan(m.emission, glm::vec3(0.0f)))) return true;
     return false;
 }
 
@@ -62,7 +63,10 @@ fg::ResourceId addEmissionPass(fg::FrameGraph& graph, EmissionPass& state, const
             const GLint locCutoff = loc("uAlphaCutoff"), locTwoSided = loc("uDoubleSided");
             for (const auto& mesh : frame.gpu->meshes) {
                 bool any = false;
-                for (const auto& dr : mesh.draws) any |= frame.gpu->materials[size_t(dr.material)].emissive();
+                for (const auto& dr : mesh.draws) {
+                    const GpuMaterial& m = frame.gpu->materials[size_t(dr.material)];
+                    any |= m.emissive() && !m.alphaBlend;
+                }
                 if (!any) continue;
                 const glm::mat4 mv = frame.view * mesh.model;
                 const glm::mat3 nm = glm::inverseTranspose(glm::mat3(mv));
@@ -71,7 +75,7 @@ fg::ResourceId addEmissionPass(fg::FrameGraph& graph, EmissionPass& state, const
                 glBindVertexArray(mesh.vao.id());
                 for (const auto& dr : mesh.draws) {
                     const GpuMaterial& m = frame.gpu->materials[size_t(dr.material)];
-                    if (!m.emissive()) continue;
+                    if (!m.emissive() || m.alphaBlend) continue;  // not in the G-buffer's depth
                     glProgramUniform3fv(prog, locE, 1, glm::value_ptr(m.emission));
                     glProgramUniform1i(prog, locHasE, m.emissiveMap != 0);
                     glProgramUniform1f(prog, locOpacity, m.opacity);

@@ -68,11 +68,15 @@ void unbindGBuffer() {
     for (GLuint u = 0; u < 5; ++u) glBindTextureUnit(u, 0);
 }
 
-GBuffer addGBufferPass(fg::FrameGraph& graph, GBufferPass& state, const FrameData& frame, GBufferChannels channels) {
+namespace {
+// The G-buffer pass, or (named depth_prepass) forward+'s pre-pass: the same raster of the opaque
+// draws into whichever targets later passes read.
+GBuffer addGeometryPass(fg::FrameGraph& graph, GBufferPass& state, const FrameData& frame, GBufferChannels channels,
+                        const char* name) {
     const int w = frame.width, h = frame.height;
     const GBufferSettings layout = frame.settings->gbuffer;
     return graph.addPass<GBuffer>(
-        "gbuffer", fg::PassKind::Raster,
+        name, fg::PassKind::Raster,
         [&](fg::PassBuilder& b, GBuffer& out) {
             constexpr fg::Usage colour = fg::Usage::ColorAttachment;
             out.depth = b.create("gbuffer.depth", {w, h, GL_DEPTH_COMPONENT32F}, fg::Usage::DepthAttachment);
@@ -87,15 +91,23 @@ GBuffer addGBufferPass(fg::FrameGraph& graph, GBufferPass& state, const FrameDat
         },
         [&state, frame, layout](const GBuffer& out, const fg::PassResources& res) {
             const bool velocity = out.velocity.valid() && res.texture(out.velocity) != 0;
+            // No material channel is read (forward+ without AO or a channel view): depth and motion only.
+            bool depthOnly = true;
+            for (fg::ResourceId c : {out.normal, out.diffuse, out.position, out.specular, out.texcoord, out.tangent})
+                depthOnly = depthOnly && (!c.valid() || res.texture(c) == 0);
+            auto variant = [&](gl::Program& program, GBufferSettings& builtFor, bool withVelocity,
+                               bool withDepthOnly) -> const gl::Program& {
+                return programForLayout(program, builtFor, frame, [&](std::vector<std::string> defines) {
+                    if (withVelocity) defines.push_back("LP_GBUFFER_VELOCITY");
+                    if (withDepthOnly) defines.push_back("LP_GBUFFER_DEPTH_ONLY");
+                    return frame.shaders->graphics("gbuffer.vert", "gbuffer.frag", defines);
+                });
+            };
             const gl::Program& program =
-                velocity ? programForLayout(state.velocityProgram, state.velocityLayout, frame,
-                                            [&](std::vector<std::string> defines) {
-                                                defines.push_back("LP_GBUFFER_VELOCITY");
-                                                return frame.shaders->graphics("gbuffer.vert", "gbuffer.frag", defines);
-                                            })
-                         : programForLayout(state.program, state.layout, frame, [&](const std::vector<std::string>& defines) {
-                               return frame.shaders->graphics("gbuffer.vert", "gbuffer.frag", defines);
-                           });
+                depthOnly ? (velocity ? variant(state.depthOnlyVelocityProgram, state.depthOnlyVelocityLayout, true, true)
+                                      : variant(state.depthOnlyProgram, state.depthOnlyLayout, false, true))
+                          : (velocity ? variant(state.velocityProgram, state.velocityLayout, true, false)
+                                      : variant(state.program, state.layout, false, false));
             if (!state.fbo) state.fbo = gl::makeFramebuffer("gbuffer");
             const GLuint fbo = state.fbo.id();
             glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, res.texture(out.depth), 0);
@@ -186,6 +198,7 @@ GBuffer addGBufferPass(fg::FrameGraph& graph, GBufferPass& state, const FrameDat
                 glBindVertexArray(mesh.vao.id());
                 for (const auto& d : mesh.draws) {
                     const GpuMaterial& m = frame.gpu->materials[size_t(d.material)];
+                    if (m.alphaBlend) continue;  // blended: the transparent pass draws it after the opaque frame
                     glProgramUniform3fv(prog, locKd, 1, glm::value_ptr(m.diffuse));
                     glProgramUniform1f(prog, locOpacity, m.opacity);
                     glProgramUniform3fv(prog, locKs, 1, glm::value_ptr(m.specular));
@@ -217,6 +230,16 @@ GBuffer addGBufferPass(fg::FrameGraph& graph, GBufferPass& state, const FrameDat
             for (GLuint u = 0; u < 5; ++u) glBindTextureUnit(u, 0);
             glUseProgram(0);
         });
+}
+
+}  // namespace
+
+GBuffer addGBufferPass(fg::FrameGraph& graph, GBufferPass& state, const FrameData& frame, GBufferChannels channels) {
+    return addGeometryPass(graph, state, frame, channels, "gbuffer");
+}
+
+GBuffer addDepthPrepass(fg::FrameGraph& graph, GBufferPass& state, const FrameData& frame, GBufferChannels channels) {
+    return addGeometryPass(graph, state, frame, channels, "depth_prepass");
 }
 
 }  // namespace lp

@@ -28,12 +28,21 @@ struct GBufferPass {
     GBufferSettings layout;  // what `program` was compiled for
     gl::Program velocityProgram;  // the same with LP_GBUFFER_VELOCITY: also writes motion vectors
     GBufferSettings velocityLayout;
+    gl::Program depthOnlyProgram;  // LP_GBUFFER_DEPTH_ONLY: no material channel is read (forward+'s pre-pass)
+    GBufferSettings depthOnlyLayout;
+    gl::Program depthOnlyVelocityProgram;
+    GBufferSettings depthOnlyVelocityLayout;
     gl::Program backgroundVelocity;  // motion of the background at infinity (camera rotation)
     gl::VertexArray emptyVao;        // its full-screen triangle has no vertex buffer
     gl::Framebuffer fbo;
 };
 
+// "gbuffer": the opaque draws (alpha-blended ones are the transparent pass's) into the targets read.
 GBuffer addGBufferPass(fg::FrameGraph& graph, GBufferPass& state, const FrameData& frame, GBufferChannels channels);
+// "depth_prepass": forward+'s depth pre-pass, the same raster under another name. With no material
+// channel read it runs gbuffer.frag's depth-only variant (depth, and motion when read); a pass that
+// reads a channel (ambient occlusion: depth and normals; a channel view) makes it write that channel.
+GBuffer addDepthPrepass(fg::FrameGraph& graph, GBufferPass& state, const FrameData& frame, GBufferChannels channels);
 
 // GL internal formats of the targets under a layout (README "G-buffer formats").
 GLenum gbufferNormalFormat(GBufferNormalFormat format);

@@ -59,6 +59,29 @@ void setShadowUniforms(GLuint prog, const FrameData& frame, const ShadowMaps& ma
 }
 }  // namespace
 
+int setSunUniforms(GLuint prog, const FrameData& frame, const ShadowMaps& shadowMaps) {
+    const auto& lights = frame.scene->directionalLights;
+    if (int(lights.size()) > kMaxLights)
+        logWarn("only the first " + std::to_string(kMaxLights) + " of " + std::to_string(lights.size()) +
+                " directional lights are drawn");
+    const int count = std::min<int>(int(lights.size()), kMaxLights);
+    std::vector<glm::vec3> dirs, irr;
+    for (int i = 0; i < count; ++i) {
+        glm::vec3 toLight = -lights[size_t(i)].direction;
+        dirs.push_back(glm::normalize(glm::mat3(frame.view) * toLight));
+        irr.push_back(lights[size_t(i)].color * lights[size_t(i)].intensity);
+    }
+    glProgramUniform1i(prog, loc(prog, "uLightCount"), count);
+    if (count > 0) {
+        glProgramUniform3fv(prog, loc(prog, "uLightDirEye"), count, glm::value_ptr(dirs[0]));
+        glProgramUniform3fv(prog, loc(prog, "uLightIrradiance"), count, glm::value_ptr(irr[0]));
+    }
+    glProgramUniform3fv(prog, loc(prog, "uAmbient"), 1, glm::value_ptr(frame.scene->ambient));
+    glProgramUniform1i(prog, loc(prog, "uBrdf"), frame.settings->brdf == Brdf::Ggx ? 1 : 0);
+    setShadowUniforms(prog, frame, shadowMaps, count);
+    return count;
+}
+
 fg::ResourceId addGlobalLightPass(fg::FrameGraph& graph, GlobalLightPass& state, const FrameData& frame,
                                   const GBuffer& gbuffer, const ShadowMaps& shadowMaps, bool lightingOnly,
                                   fg::ResourceId ao) {
@@ -76,27 +99,9 @@ fg::ResourceId addGlobalLightPass(fg::FrameGraph& graph, GlobalLightPass& state,
                 return frame.shaders->compute("global_light.comp", defines);
             });
             const GLuint prog = state.program.id();
-            const auto& lights = frame.scene->directionalLights;
-            if (int(lights.size()) > kMaxLights)
-                logWarn("only the first " + std::to_string(kMaxLights) + " of " + std::to_string(lights.size()) +
-                        " directional lights are drawn");
-            const int count = std::min<int>(int(lights.size()), kMaxLights);
-            std::vector<glm::vec3> dirs, irr;
-            for (int i = 0; i < count; ++i) {
-                glm::vec3 toLight = -lights[size_t(i)].direction;
-                dirs.push_back(glm::normalize(glm::mat3(frame.view) * toLight));
-                irr.push_back(lights[size_t(i)].color * lights[size_t(i)].intensity);
-            }
-            glProgramUniform1i(prog, loc(prog, "uLightCount"), count);
-            if (count > 0) {
-                glProgramUniform3fv(prog, loc(prog, "uLightDirEye"), count, glm::value_ptr(dirs[0]));
-                glProgramUniform3fv(prog, loc(prog, "uLightIrradiance"), count, glm::value_ptr(irr[0]));
-            }
-            glProgramUniform3fv(prog, loc(prog, "uAmbient"), 1, glm::value_ptr(frame.scene->ambient));
+            setSunUniforms(prog, frame, shadowMaps);
             glProgramUniform1i(prog, loc(prog, "uLightingOnly"), lightingOnly);
             glProgramUniform1i(prog, loc(prog, "uAmbientOcclusion"), data.ao.valid());
-            glProgramUniform1i(prog, loc(prog, "uBrdf"), frame.settings->brdf == Brdf::Ggx ? 1 : 0);
-            setShadowUniforms(prog, frame, shadowMaps, count);
             bindGBuffer(prog, res, data.in, frame, !lightingOnly);
             for (size_t i = 0; i < data.shadowMaps.size(); ++i)
                 glBindTextureUnit(kShadowMapUnit + GLuint(i), res.texture(data.shadowMaps[i]));

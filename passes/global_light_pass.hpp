@@ -24,4 +24,9 @@ fg::ResourceId addGlobalLightPass(fg::FrameGraph& graph, GlobalLightPass& state,
                                   const GBuffer& gbuffer, const ShadowMaps& shadowMaps, bool lightingOnly,
                                   fg::ResourceId ao = {});
 
+// The suns' uniforms of common/sun_light.glsl on `prog` (directions, irradiance, ambient, BRDF,
+// cascades); returns the number of suns drawn. The caller binds the shadow atlases of `shadowMaps`
+// to the program's LP_SUN_SHADOW_UNIT + slot.
+int setSunUniforms(GLuint prog, const FrameData& frame, const ShadowMaps& shadowMaps);
+
 }  // namespace lp

@@ -57,6 +57,16 @@ EnvironmentTextures addIblBakePass(fg::FrameGraph& graph, const FrameData& frame
         });
 }
 
+void setIblUniforms(GLuint prog, const FrameData& frame, const BakedEnvironment& env) {
+    const EnvironmentSettings& s = frame.settings->environment;
+    glProgramUniform3fv(prog, glGetUniformLocation(prog, "uSh"), 9, glm::value_ptr(env.sh[0]));
+    glProgramUniform1i(prog, glGetUniformLocation(prog, "uDiffuseFromCube"), s.diffuse == IrradianceSource::Cubemap);
+    glProgramUniformMatrix3fv(prog, glGetUniformLocation(prog, "uEyeToWorld"), 1, GL_FALSE,
+                              glm::value_ptr(glm::transpose(glm::mat3(frame.view))));
+    glProgramUniform1f(prog, glGetUniformLocation(prog, "uIntensity"), frame.scene->environment.intensity);
+    glProgramUniform1f(prog, glGetUniformLocation(prog, "uMaxLod"), float(env.prefiltered.levels - 1));
+}
+
 fg::ResourceId addIblPass(fg::FrameGraph& graph, IblPass& state, const FrameData& frame, const GBuffer& gbuffer,
                           const EnvironmentTextures& environment, fg::ResourceId hdr, bool lightingOnly,
                           fg::ResourceId ao) {
@@ -72,20 +82,14 @@ fg::ResourceId addIblPass(fg::FrameGraph& graph, IblPass& state, const FrameData
             data.hdr = b.write(hdr, fg::Usage::ImageLoadStore);
         },
         [&state, frame, lightingOnly](const Data& data, const fg::PassResources& res) {
-            const EnvironmentSettings& s = frame.settings->environment;
             // CPU data of the bake (SH coefficients); its textures come through the graph.
-            const BakedEnvironment& env = frame.environments->get(*frame.scene, s, *frame.shaders, true);
+            const BakedEnvironment& env =
+                frame.environments->get(*frame.scene, frame.settings->environment, *frame.shaders, true);
             programForLayout(state.program, state.layout, frame, [&](const std::vector<std::string>& defines) {
                 return frame.shaders->compute("ibl.comp", defines);
             });
             const GLuint prog = state.program.id();
-            glProgramUniform3fv(prog, glGetUniformLocation(prog, "uSh"), 9, glm::value_ptr(env.sh[0]));
-            glProgramUniform1i(prog, glGetUniformLocation(prog, "uDiffuseFromCube"),
-                               s.diffuse == IrradianceSource::Cubemap);
-            glProgramUniformMatrix3fv(prog, glGetUniformLocation(prog, "uEyeToWorld"), 1, GL_FALSE,
-                                      glm::value_ptr(glm::transpose(glm::mat3(frame.view))));
-            glProgramUniform1f(prog, glGetUniformLocation(prog, "uIntensity"), frame.scene->environment.intensity);
-            glProgramUniform1f(prog, glGetUniformLocation(prog, "uMaxLod"), float(env.prefiltered.levels - 1));
+            setIblUniforms(prog, frame, env);
             glProgramUniform1i(prog, glGetUniformLocation(prog, "uLightingOnly"), lightingOnly);
             glProgramUniform1i(prog, glGetUniformLocation(prog, "uAmbientOcclusion"), data.ao.valid());
             gl::ScopedEnable seamless(GL_TEXTURE_CUBE_MAP_SEAMLESS, true);

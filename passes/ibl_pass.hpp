@@ -36,6 +36,10 @@ EnvironmentTextures addIblBakePass(fg::FrameGraph& graph, const FrameData& frame
 
 // `ao`: the ambient-occlusion target: the diffuse IBL is multiplied by it and the specular by the
 // specular occlusion derived from it (common/ambient_occlusion.glsl); invalid: no occlusion.
+// The environment's uniforms of common/ibl_shading.glsl on `prog` (SH, eye-to-world, intensity,
+// prefiltered levels) from the baked environment `env`.
+void setIblUniforms(GLuint prog, const FrameData& frame, const BakedEnvironment& env);
+
 fg::ResourceId addIblPass(fg::FrameGraph& graph, IblPass& state, const FrameData& frame, const GBuffer& gbuffer,
                           const EnvironmentTextures& environment, fg::ResourceId hdr, bool lightingOnly,
                           fg::ResourceId ao = {});

@@ -267,6 +267,25 @@ void drawFragmentMethod(LocalLightPass& state, const FrameData& frame, const std
 }
 }  // namespace
 
+int bindClusteredLightLists(LocalLightPass& state, GLuint prog, const FrameData& frame,
+                            const SpotShadowMaps& spotShadows, GLuint spotAtlas) {
+    ensureState(state, frame, spotShadows.any());
+    const LocalLightSettings& s = frame.settings->localLights;
+    const std::vector<PointLight> lights = uploadLights(state, frame, &spotShadows);
+    if (spotShadows.any()) bindSpotShadows(state, frame, spotShadows, spotAtlas);
+    buildClusters(state, frame, int(lights.size()));
+    setClusterUniforms(prog, state.clusterGrid);
+    setInt(prog, "uLocalLightCount", int(lights.size()));
+    setInt(prog, "uUnbounded", unbounded(s));
+    setInt(prog, "uSpecularMode", specularMode(s));
+    return int(lights.size());
+}
+
+void unbindClusteredLightLists() {
+    for (GLuint b = 0; b < 5; ++b) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, 0);
+    glBindTextureUnit(kSpotShadowUnit, 0);
+}
+
 fg::ResourceId addLocalLightPass(fg::FrameGraph& graph, LocalLightPass& state, const FrameData& frame,
                                  const GBuffer& gbuffer, fg::ResourceId hdr, bool lightingOnly,
                                  const SpotShadowMaps& spotShadows) {

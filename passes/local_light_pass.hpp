@@ -73,6 +73,15 @@ fg::ResourceId addLocalLightPass(fg::FrameGraph& graph, LocalLightPass& state, c
                                  const GBuffer& gbuffer, fg::ResourceId hdr, bool lightingOnly,
                                  const SpotShadowMaps& spotShadows);
 
+// For the forward passes (passes/forward_pass, passes/transparent_pass), inside their execute: uploads
+// the frame's lights (SSBO 0), builds the clustered method's froxel grid from them (counts SSBO 1,
+// lists SSBO 2; the same build and buffers as the clustered local_lights pass) and, when a spot casts
+// a shadow, binds their records (SSBO 4) and `spotAtlas` (unit 5). Sets `prog`'s cluster uniforms and
+// uLocalLightCount, uUnbounded, uSpecularMode. Returns the number of lights.
+int bindClusteredLightLists(LocalLightPass& state, GLuint prog, const FrameData& frame,
+                            const SpotShadowMaps& spotShadows, GLuint spotAtlas);
+void unbindClusteredLightLists();
+
 // After the sky: "light_globes" (settings.localLights.globes, else the scene's lightGlobes) and the overlay views
 // ("light_ranges", "lights_per_tile") over the finished HDR image. When the frame has gbuffer.velocity,
 // the globes also write their motion into it (their lights orbit): gbuffer.velocity becomes that new

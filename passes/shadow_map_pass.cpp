@@ -159,9 +159,11 @@ void drawShadowCasters(const FrameData& frame, GLuint prog, GLint locMvp, const 
         const glm::mat4 mvp = worldToClip * mesh.model;
         glProgramUniformMatrix4fv(prog, locMvp, 1, GL_FALSE, glm::value_ptr(mvp));
         glBindVertexArray(mesh.vao.id());
-        for (const auto& draw : mesh.draws)
+        for (const auto& draw : mesh.draws) {
+            if (frame.gpu->materials[size_t(draw.material)].alphaBlend) continue;  // blended surfaces cast no shadow
             glDrawElements(GL_TRIANGLES, GLsizei(draw.indexCount), GL_UNSIGNED_INT,
                            reinterpret_cast<const void*>(size_t(draw.firstIndex) * sizeof(uint32_t)));
+        }
     }
 }
 

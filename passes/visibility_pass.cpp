@@ -87,6 +87,10 @@ VisibilityBuffer addVisibilityPass(fg::FrameGraph& graph, VisibilityPass& state,
                 glBindVertexArray(mesh.vao.id());
                 for (const auto& d : mesh.draws) {
                     const GpuMaterial& m = frame.gpu->materials[size_t(d.material)];
+                    if (m.alphaBlend) {  // the transparent pass draws it; its triangles keep their numbers
+                        firstTriangle += d.indexCount / 3;
+                        continue;
+                    }
                     const GLuint prog = m.alphaMask ? masked : opaque;
                     if (prog != current) glUseProgram(current = prog);
                     glProgramUniform1ui(prog, m.alphaMask ? maskedFirst : opaqueFirst, firstTriangle);

@@ -3,32 +3,12 @@
 // The normal format and position mode come from gbuffer_layout.glsl's #defines.
 #include "common/gbuffer_layout.glsl"
 #include "common/velocity.glsl"
-#include "common/material.glsl"
+#include "common/material_uniforms.glsl"
 
 in vec3 vPosition;
 in vec3 vNormal;
 in vec2 vUv;
 in vec4 vTangent;
-
-// The material (lp::Material), evaluated by common/material.glsl (shared with the visibility resolve).
-uniform vec3 uDiffuse;
-uniform float uOpacity;
-uniform vec3 uSpecular;
-uniform float uMetallic;
-uniform float uShininess;
-uniform float uRoughness;
-uniform bool uHasDiffuseMap;
-uniform bool uHasMetalRoughMap;
-uniform bool uHasNormalMap;
-uniform float uNormalScale;
-uniform bool uHasOcclusionMap;
-uniform float uOcclusionStrength;
-uniform bool uAlphaMask;
-uniform float uAlphaCutoff;
-uniform bool uDoubleSided;   // single-sided: back faces are not drawn
-uniform bool uFlat;
-uniform bool uHasBumpMap;
-uniform float uBumpScale;
 
 #ifdef LP_GBUFFER_NORMAL_OCT
 layout(location = 0) out uint outNormal;
@@ -48,12 +28,6 @@ in vec4 vPreviousClip;
 layout(location = 6) out vec2 outVelocity;  // uv_current - uv_previous, unjittered (common/velocity.glsl)
 #endif
 
-MaterialInputs materialFromUniforms() {
-    return MaterialInputs(uDiffuse, uOpacity, uSpecular, uMetallic, uShininess, uRoughness, uBumpScale, uNormalScale,
-                          uOcclusionStrength, uAlphaCutoff, uHasDiffuseMap, uHasBumpMap, uHasNormalMap,
-                          uHasMetalRoughMap, uHasOcclusionMap, uAlphaMask, uFlat);
-}
-
 void main() {
     // Derivatives before any discard (they need the whole quad).
     vec2 uvDx = dFdxFine(vUv), uvDy = dFdyFine(vUv);
@@ -61,6 +35,13 @@ void main() {
     MaterialInputs m = materialFromUniforms();
     vec4 base = materialBaseColor(m, vUv, uvDx, uvDy);
     if (materialAlphaRejects(m, base)) discard;
+#ifdef LP_GBUFFER_DEPTH_ONLY
+    // The forward+ depth pre-pass: depth (and motion) only; the forward pass shades the material.
+#ifdef LP_GBUFFER_VELOCITY
+    outVelocity = velocityFromClip(vCurrentClip, vPreviousClip);
+#endif
+    return;
+#else
     MaterialSample g = materialEvaluate(m, base, SurfaceInputs(vNormal, vTangent, vUv, uvDx, uvDy, gl_FrontFacing));
     g.shininess = gbufferEncodeShininess(g.shininess);  // the half-float channel's encoding (to the 0.02 floor)
 #ifdef LP_GBUFFER_NORMAL_OCT
@@ -77,5 +58,6 @@ void main() {
     outTangent = g.tangentView;
 #ifdef LP_GBUFFER_VELOCITY
     outVelocity = velocityFromClip(vCurrentClip, vPreviousClip);
+#endif
 #endif
 }

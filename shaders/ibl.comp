@@ -4,9 +4,8 @@
 // (F0 = the material's specular colour, f90 as in the analytic GGX: Ks = 0 is exactly Lambertian).
 // The (1 - Fss) keeps a white surface in a white environment at exactly the environment's radiance
 // (white furnace). With ambient occlusion on, the diffuse term is multiplied by the AO and the
-// specular by the specular occlusion derived from it.
-#include "common/ambient_occlusion.glsl"
-#include "common/ibl.glsl"
+// specular by the specular occlusion derived from it. The math is common/ibl_shading.glsl's.
+#include "common/ibl_shading.glsl"
 #include "common/tonemap.glsl"
 #define LP_GBUFFER_READ
 #include "common/gbuffer_layout.glsl"
@@ -17,11 +16,6 @@ layout(binding = 8) uniform samplerCube uPrefiltered;
 layout(binding = 9) uniform sampler2D uDfg;
 layout(rgba16f, binding = 0) uniform image2D uHdr;
 
-uniform vec3 uSh[9];
-uniform bool uDiffuseFromCube;
-uniform mat3 uEyeToWorld;
-uniform float uIntensity;
-uniform float uMaxLod;        // prefiltered levels - 1
 uniform bool uLightingOnly;   // debug: white albedo
 layout(binding = 14) uniform sampler2D uAo;  // passes/ambient_occlusion_pass
 uniform bool uAmbientOcclusion;
@@ -38,21 +32,10 @@ void main() {
     vec3 kd = uLightingOnly ? vec3(1.0) : gbufferDiffuse(p);
     float pl = length(P);
     vec3 V = pl > 0.0 ? -P / pl : vec3(0.0, 0.0, 1.0);
-    float NdotV = clamp(dot(N, V), 0.0, 1.0);
-    float roughness = roughnessFromShininess(spec.a);
-    // The prefiltered chain assumes N = V = R; for rough lobes the reflected energy leans from R
-    // towards N (Frostbite's dominant direction, Lagarde & de Rousiers 2014), which matters at grazing
-    // angles where R skims the horizon of the map.
-    vec3 R = specularDominantDirection(N, 2.0 * dot(N, V) * N - V, roughness * roughness);
-    vec3 Nw = normalize(uEyeToWorld * N), Rw = normalize(uEyeToWorld * R);
-    vec3 E = uDiffuseFromCube ? textureLod(uIrradiance, Nw, 0.0).rgb : shIrradiance(uSh, Nw);
-    vec2 ab = textureLod(uDfg, dfgLutCoordinate(NdotV, roughness, textureSize(uDfg, 0).x), 0.0).rg;
-    vec3 fss = splitSumReflectance(spec.rgb, ab);
-    vec3 prefiltered = textureLod(uPrefiltered, Rw, prefilteredLodFromRoughness(roughness, uMaxLod)).rgb;
     float occlusion = uLightingOnly ? 1.0 : gbufferOcclusion(p);  // the material's ambient occlusion
-    float ao = (uAmbientOcclusion ? texelFetch(uAo, p, 0).r : 1.0) * occlusion;
-    float specularAo = uAmbientOcclusion ? specularOcclusion(NdotV, ao, roughness * roughness) : occlusion;
-    vec3 c = uIntensity * (ao * kd * (1.0 - fss) * E / LP_IBL_PI + specularAo * prefiltered * fss);
+    float screenAo = uAmbientOcclusion ? texelFetch(uAo, p, 0).r : 1.0;
+    vec3 c = lpIblRadiance(uIrradiance, uPrefiltered, uDfg, N, V, kd, spec.rgb, spec.a, occlusion, screenAo,
+                           uAmbientOcclusion);
     vec3 hdr = imageLoad(uHdr, p).rgb;
     imageStore(uHdr, p, vec4(sanitizeHdr(hdr + c), 1.0));
 }

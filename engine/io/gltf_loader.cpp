@@ -303,9 +303,7 @@ struct Loader {
         if (m.alphaMode == "MASK") {
             out.alphaMode = AlphaMode::Mask;
         } else if (m.alphaMode == "BLEND") {
-            out.alphaMode = AlphaMode::Mask;
-            out.alphaCutoff = 0.5f;
-            warn(w, "material '" + out.name + "': alphaMode BLEND is drawn as MASK with cutoff 0.5 (no forward path yet)");
+            out.alphaMode = AlphaMode::Blend;  // drawn by the transparent pass
         }
         return out;
     }

@@ -55,17 +55,11 @@ Material convertMaterial(const tinyobj::material_t& m, const fs::path& dir, cons
         out.normalScale = m.normal_texopt.bump_multiplier;
     out.bumpMap = texturePath(dir, m.bump_texname);
     if (!m.bump_texname.empty() && std::isfinite(m.bump_texopt.bump_multiplier)) out.bumpScale = m.bump_texopt.bump_multiplier;
-    // d (tinyobjloader turns Tr into d = 1 - Tr): below 1 the material is see-through, which the
-    // deferred path draws as MASK at the default cutoff until a forward path exists.
+    // d (tinyobjloader turns Tr into d = 1 - Tr): below 1 the material is see-through, drawn
+    // alpha-blended by the transparent pass.
     if (std::isfinite(m.dissolve)) out.opacity = std::clamp(float(m.dissolve), 0.0f, 1.0f);
     else bad.push_back("d");
-    if (out.opacity < 1.0f) {
-        out.alphaMode = AlphaMode::Mask;
-        std::string msg = file + ": material '" + m.name + "': d " + std::to_string(out.opacity) +
-                          " (blended transparency) is drawn as alpha MASK with cutoff 0.5 (no forward path yet)";
-        report.warnings.push_back(msg);
-        logWarn(msg);
-    }
+    if (out.opacity < 1.0f) out.alphaMode = AlphaMode::Blend;
     if (!bad.empty()) {
         std::string list;
         for (const auto& b : bad) list += (list.empty() ? "" : ", ") + b;

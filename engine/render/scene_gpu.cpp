@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <limits>
 
 #include "engine/core/log.hpp"
 #include "engine/gl/limits.hpp"
@@ -80,7 +81,8 @@ SceneGpu::SceneGpu(const Scene& scene) {
             g.bumpScale = m.bumpScale;
             g.normalScale = m.normalScale;
             g.occlusionStrength = m.occlusionStrength;
-            g.alphaMask = m.alphaMode != AlphaMode::Opaque;
+            g.alphaMask = m.alphaMode == AlphaMode::Mask;
+            g.alphaBlend = m.alphaMode == AlphaMode::Blend;
             g.alphaCutoff = m.alphaCutoff;
             g.doubleSided = m.doubleSided;
             g.flat = m.flat;
@@ -93,7 +95,17 @@ SceneGpu::SceneGpu(const Scene& scene) {
             if (!m.emissiveMap.empty()) g.emissiveMap = texture(m.emissiveMap, true);
             materials.push_back(g);
         }
-        for (const auto& sm : mesh.subMeshes) gm.draws.push_back({sm.firstIndex, sm.indexCount, base + sm.material});
+        for (const auto& sm : mesh.subMeshes) {
+            // The centre of the draw's bounding box: the transparent pass sorts draws by its view depth.
+            glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+            for (uint32_t i = sm.firstIndex; i < sm.firstIndex + sm.indexCount && i < mesh.indices.size(); ++i) {
+                const glm::vec3& p = mesh.vertices[mesh.indices[i]].position;
+                lo = glm::min(lo, p);
+                hi = glm::max(hi, p);
+            }
+            const glm::vec3 centre = sm.indexCount > 0 ? 0.5f * (lo + hi) : glm::vec3(0.0f);
+            gm.draws.push_back({sm.firstIndex, sm.indexCount, base + sm.material, centre});
+        }
         meshes.push_back(std::move(gm));
     }
     casterClusters = buildCasterClusters(scene);

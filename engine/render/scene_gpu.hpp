@@ -32,6 +32,7 @@ struct GpuMaterial {
     float occlusionStrength = 1.0f;
     GLuint emissiveMap = 0;
     bool alphaMask = false;
+    bool alphaBlend = false;  // BLEND / MTL d < 1: drawn by the transparent pass, not into the G-buffer
     float alphaCutoff = 0.5f;
     bool doubleSided = true;
     bool flat = false;  // Material::flat; the viewer's panel switches it
@@ -43,6 +44,7 @@ struct GpuDraw {
     uint32_t firstIndex = 0;
     uint32_t indexCount = 0;
     int material = 0;  // into SceneGpu::materials
+    glm::vec3 centre{0.0f};  // model space, the centre of the draw's bounding box
 };
 
 struct GpuMesh {

@@ -66,6 +66,14 @@ bool isLocalLightView(DebugView v) {
     return v == DebugView::LightRanges || v == DebugView::LightsPerTile || v == DebugView::LightsPerCluster;
 }
 
+const char* renderPathName(RenderPath path) { return path == RenderPath::ForwardPlus ? "forward+" : "deferred"; }
+
+std::optional<RenderPath> parseRenderPath(const std::string& name) {
+    for (RenderPath p : {RenderPath::Deferred, RenderPath::ForwardPlus})
+        if (name == renderPathName(p)) return p;
+    return std::nullopt;
+}
+
 const char* brdfName(Brdf brdf) { return brdf == Brdf::Ggx ? "ggx" : "blinn-phong"; }
 
 std::optional<Brdf> parseBrdf(const std::string& name) {

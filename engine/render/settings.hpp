@@ -31,6 +31,13 @@ enum class Brdf { BlinnPhong, Ggx };
 const char* brdfName(Brdf brdf);
 std::optional<Brdf> parseBrdf(const std::string& name);
 
+// How opaque surfaces are lit (--render-path): deferred (G-buffer, then the light passes) or
+// forward+ (a depth pre-pass, then one forward pass shading each fragment from the clustered light
+// lists). Transparent surfaces are drawn forward in both.
+enum class RenderPath { Deferred, ForwardPlus };
+const char* renderPathName(RenderPath path);
+std::optional<RenderPath> parseRenderPath(const std::string& name);
+
 const char* viewName(DebugView view);
 std::optional<DebugView> parseView(const std::string& name);
 std::vector<DebugView> allViews();
@@ -181,6 +188,7 @@ struct RenderSettings {
     float exposureEV = 0.0f;     // manual exposure; with autoExposure the compensation added to it
     bool autoExposure = false;   // --auto-exposure: the histogram pass picks the exposure per frame
     Brdf brdf = Brdf::BlinnPhong;  // analytic BRDF of the light passes
+    RenderPath renderPath = RenderPath::Deferred;  // --render-path
     bool keepHdr = false;        // keep the HDR buffer as an output (EXR dumps)
     // --all-passes: add every candidate pass even where the scene does not call for it (shadow maps
     // for every sun, local lights with none in view, a colour sky, bloom at strength 0); measuring only.

@@ -12,6 +12,10 @@ std::vector<CasterCluster> buildCasterClusters(const Scene& scene, uint32_t tria
     for (size_t m = 0; m < scene.models.size(); ++m) {
         const MeshData& mesh = scene.models[m].mesh;
         for (const SubMesh& sm : mesh.subMeshes) {
+            // Alpha-blended surfaces cast no shadow (the transparent pass draws them; scene_gpu's alphaBlend).
+            if (sm.material >= 0 && size_t(sm.material) < mesh.materials.size() &&
+                mesh.materials[size_t(sm.material)].alphaMode == AlphaMode::Blend)
+                continue;
             const uint32_t end = std::min<uint32_t>(sm.firstIndex + sm.indexCount, uint32_t(mesh.indices.size()));
             for (uint32_t first = sm.firstIndex; first < end; first += perCluster) {
                 CasterCluster c;

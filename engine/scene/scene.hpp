@@ -92,6 +92,8 @@ struct ModelInstance {
     std::optional<glm::vec3> specularOverride;
     std::optional<float> shininessOverride;
     std::optional<bool> flatOverride;  // "material": {"flat": true}: every material of the model flat-lit
+    // "material": {"opacity": a}: every material's opacity; below 1 it is alpha-blended (transparent pass)
+    std::optional<float> opacityOverride;
     MeshData mesh;  // filled by the loader
 };
 

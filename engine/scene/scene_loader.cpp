@@ -234,7 +234,7 @@ void parseModel(const Reader& r, const json& j, const std::string& w, const fs::
     if (j.contains("material")) {
         const json& mat = j["material"];
         const std::string mw = w + ".material";
-        r.onlyKnown(mat, mw, {"diffuse", "specular", "shininess", "roughness", "flat"});
+        r.onlyKnown(mat, mw, {"diffuse", "specular", "shininess", "roughness", "flat", "opacity"});
         if (mat.contains("flat")) m.flatOverride = r.boolean(mat, "flat", mw, false);
         if (mat.contains("diffuse")) m.diffuseOverride = r.color(mat, "diffuse", mw, glm::vec3(0.0f));
         if (mat.contains("specular")) m.specularOverride = r.color(mat, "specular", mw, glm::vec3(0.0f));
@@ -249,6 +249,11 @@ void parseModel(const Reader& r, const json& j, const std::string& w, const fs::
             if (!(rough >= kMinRoughness && rough <= 1.0f))
                 r.fail(mw + ".roughness", formatNumber(rough) + ": must be in [" + formatNumber(kMinRoughness) + ", 1]");
             m.shininessOverride = shininessFromRoughness(rough);
+        }
+        if (mat.contains("opacity")) {
+            float a = r.number(mat["opacity"], mw + ".opacity");
+            if (!(a >= 0.0f && a <= 1.0f)) r.fail(mw + ".opacity", "must be in [0, 1]");
+            m.opacityOverride = a;
         }
     }
 }
@@ -353,6 +358,10 @@ void loadMesh(const Reader& r, ModelInstance& m, const std::string& where, Scene
         if (m.specularOverride) mat.specular = *m.specularOverride;
         if (m.shininessOverride) mat.shininess = *m.shininessOverride;
         if (m.flatOverride) mat.flat = *m.flatOverride;
+        if (m.opacityOverride) {
+            mat.opacity = *m.opacityOverride;
+            mat.alphaMode = mat.opacity < 1.0f ? AlphaMode::Blend : AlphaMode::Opaque;
+        }
     }
 }
 

@@ -8,8 +8,8 @@ set -uo pipefail
 lp=$1 scene=$2 out=$3
 rm -rf "$out" && mkdir -p "$out"
 . "$(dirname "$0")/xvfb_lib.sh"
-start_xvfb 640x560x24 "$out"
-"$lp" view "$scene" --size 600x520 --screenshot-dir "$out" --hide-panel --panel-rows-out "$out/rows.txt" \
+start_xvfb 640x720x24 "$out"  # tall enough for the passes table down to "sky"
+"$lp" view "$scene" --size 600x680 --screenshot-dir "$out" --hide-panel --panel-rows-out "$out/rows.txt" \
   >"$out/viewer.log" 2>&1 &
 viewer=$!
 wait_for() {  # wait_for PATTERN FILE (an extended regular expression)

@@ -305,7 +305,7 @@ TEST(GltfLoader, MtlConvertsOntoTheSameMaterialModel) {
     EXPECT_NEAR(a.specular.y, 0.2f, 1e-6f);
     EXPECT_EQ(a.metallic, 0.0f);
     EXPECT_NEAR(a.opacity, 0.4f, 1e-6f);
-    EXPECT_EQ(a.alphaMode, AlphaMode::Mask);
+    EXPECT_EQ(a.alphaMode, AlphaMode::Blend);  // d < 1: alpha-blended by the transparent pass
     EXPECT_NEAR(shininessFromRoughness(a.roughness), 100.0f, 0.05f);
     EXPECT_TRUE(a.doubleSided);
 }

@@ -146,6 +146,26 @@ TEST(SceneDrivenGraph, TableOfScenesAndSettings) {
              s.view = DebugView::Texcoords;
          },
          {"gbuffer_visibility", "gbuffer_resolve", "debug_view"}, {"depth", "texcoord", "visibility"}},
+        // forward+: the pre-pass writes what later passes read: depth, plus AO's normals and specular.
+        {"cornell", "forward+", [](RenderSettings& s) { s.renderPath = RenderPath::ForwardPlus; },
+         {"ibl_bake", "depth_prepass", "ao", "ao_denoise", "shadow_map_0", "forward_opaque", "sky", "tonemap"},
+         {"depth", "normal", "position", "specular"}},
+        {"cornell", "forward+ --no-ao (depth alone)",
+         [](RenderSettings& s) {
+             s.renderPath = RenderPath::ForwardPlus;
+             s.ao.enabled = false;
+         },
+         {"ibl_bake", "depth_prepass", "shadow_map_0", "forward_opaque", "sky", "tonemap"}, {"depth"}},
+        {"cornell", "forward+ --aa taa (depth and motion)",
+         [](RenderSettings& s) {
+             s.renderPath = RenderPath::ForwardPlus;
+             s.ao.enabled = false;
+             s.aa.method = AntiAliasing::Taa;
+         },
+         {"ibl_bake", "depth_prepass", "shadow_map_0", "forward_opaque", "sky", "taa", "tonemap"}, {"depth", "velocity"}},
+        {"glass", "defaults (transparent pass)", [](RenderSettings&) {},
+         {"gbuffer", "ao", "ao_denoise", "shadow_map_0", "global_lights", "local_lights", "sky", "transparent", "tonemap"},
+         lit},
     };
     for (const Row& row : rows) {
         RenderSettings s = small();

@@ -1,0 +1,181 @@
+#include "passes/forward_pass.hpp"
+
+#include <glm/gtc/matrix_inverse.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "engine/gl/shader.hpp"
+#include "engine/gl/state.hpp"
+#include "passes/ambient_occlusion_pass.hpp"
+#include "passes/global_light_pass.hpp"
+
+namespace lp {
+
+namespace {
+constexpr GLuint kSunShadowUnit = 10;  // LP_SUN_SHADOW_UNIT in forward.frag
+constexpr GLuint kEmissiveUnit = 6;    // uEmissiveMap in forward.frag
+constexpr GLuint kIblUnits[3] = {7, 8, 9};
+
+GLint loc(GLuint prog, const char* name) { return glGetUniformLocation(prog, name); }
+
+struct OpaqueData {
+    fg::ResourceId depth;
+    ForwardLightingReads reads;
+    fg::ResourceId hdr;
+};
+}  // namespace
+
+ForwardLightingReads declareForwardLighting(fg::PassBuilder& b, const ForwardLighting& lighting) {
+    ForwardLightingReads r;
+    for (const auto& m : lighting.shadowMaps) r.shadowMaps.push_back(b.read(m.depth, fg::Usage::Sampled));
+    if (lighting.environment.irradiance.valid()) {
+        r.irradiance = b.read(lighting.environment.irradiance, fg::Usage::Sampled);
+        r.prefiltered = b.read(lighting.environment.prefiltered, fg::Usage::Sampled);
+        r.dfg = b.read(lighting.environment.dfg, fg::Usage::Sampled);
+    }
+    if (lighting.ao.valid()) r.ao = b.read(lighting.ao, fg::Usage::Sampled);
+    if (lighting.localLights && lighting.spotShadows.any())
+        r.spotAtlas = b.read(lighting.spotShadows.depth, fg::Usage::Sampled);
+    return r;
+}
+
+void bindForwardLighting(ForwardPass& state, LocalLightPass& localLights, const FrameData& frame,
+                         const ForwardLighting& lighting, const ForwardLightingReads& reads,
+                         const fg::PassResources& res, const std::vector<std::string>& defines) {
+    const bool spotShadows = lighting.localLights && lighting.spotShadows.any();
+    if (!state.program || state.spotShadowVariant != spotShadows) {
+        std::vector<std::string> d = defines;
+        if (spotShadows) d.push_back("LP_SPOT_SHADOWS");
+        state.program = frame.shaders->graphics("gbuffer.vert", "forward.frag", d);
+        state.spotShadowVariant = spotShadows;
+    }
+    const GLuint prog = state.program.id();
+    setSunUniforms(prog, frame, lighting.shadowMaps);
+    for (size_t i = 0; i < reads.shadowMaps.size(); ++i)
+        glBindTextureUnit(kSunShadowUnit + GLuint(i), res.texture(reads.shadowMaps[i]));
+    const bool ibl = reads.irradiance.valid();
+    glProgramUniform1i(prog, loc(prog, "uIbl"), ibl);
+    if (ibl) {
+        setIblUniforms(prog, frame, frame.environments->get(*frame.scene, frame.settings->environment, *frame.shaders, true));
+        glBindTextureUnit(kIblUnits[0], res.texture(reads.irradiance));
+        glBindTextureUnit(kIblUnits[1], res.texture(reads.prefiltered));
+        glBindTextureUnit(kIblUnits[2], res.texture(reads.dfg));
+    }
+    glProgramUniform1i(prog, loc(prog, "uAmbientOcclusion"), reads.ao.valid());
+    if (reads.ao.valid()) glBindTextureUnit(kAoTextureUnit, res.texture(reads.ao));
+    glProgramUniform1i(prog, loc(prog, "uLightingOnly"), lighting.lightingOnly);
+    glProgramUniform1i(prog, loc(prog, "uLocalLightCount"), 0);
+    if (lighting.localLights)
+        bindClusteredLightLists(localLights, prog, frame, lighting.spotShadows,
+                                spotShadows ? res.texture(reads.spotAtlas) : 0);
+    glProgramUniformMatrix4fv(prog, loc(prog, "uProjection"), 1, GL_FALSE, glm::value_ptr(gbufferDepthProjection(frame)));
+}
+
+void unbindForwardLighting() {
+    unbindClusteredLightLists();
+    for (GLuint u = 0; u < 4; ++u) glBindTextureUnit(kSunShadowUnit + u, 0);
+    for (GLuint u : kIblUnits) glBindTextureUnit(u, 0);
+    glBindTextureUnit(kAoTextureUnit, 0);
+}
+
+ForwardMaterialUniforms::ForwardMaterialUniforms(GLuint prog)
+    : kd(loc(prog, "uDiffuse")), opacity(loc(prog, "uOpacity")), ks(loc(prog, "uSpecular")),
+      metallic(loc(prog, "uMetallic")), shininess(loc(prog, "uShininess")), roughness(loc(prog, "uRoughness")),
+      hasDiffuse(loc(prog, "uHasDiffuseMap")), hasBump(loc(prog, "uHasBumpMap")), bumpScale(loc(prog, "uBumpScale")),
+      hasNormal(loc(prog, "uHasNormalMap")), normalScale(loc(prog, "uNormalScale")),
+      hasMetalRough(loc(prog, "uHasMetalRoughMap")), hasOcclusion(loc(prog, "uHasOcclusionMap")),
+      occlusionStrength(loc(prog, "uOcclusionStrength")), mask(loc(prog, "uAlphaMask")),
+      cutoff(loc(prog, "uAlphaCutoff")), twoSided(loc(prog, "uDoubleSided")), flat(loc(prog, "uFlat")),
+      emission(loc(prog, "uEmission")), hasEmissive(loc(prog, "uHasEmissiveMap")) {}
+
+void ForwardMaterialUniforms::set(GLuint prog, const GpuMaterial& m) const {
+    glProgramUniform3fv(prog, kd, 1, glm::value_ptr(m.diffuse));
+    glProgramUniform1f(prog, opacity, m.opacity);
+    glProgramUniform3fv(prog, ks, 1, glm::value_ptr(m.specular));
+    glProgramUniform1f(prog, metallic, m.metallic);
+    glProgramUniform1f(prog, shininess, m.shininess);
+    glProgramUniform1f(prog, roughness, m.roughness);
+    glProgramUniform1i(prog, hasDiffuse, m.diffuseMap != 0);
+    glProgramUniform1i(prog, hasBump, m.bumpMap != 0);
+    glProgramUniform1f(prog, bumpScale, m.bumpScale);
+    glProgramUniform1i(prog, hasNormal, m.normalMap != 0);
+    glProgramUniform1f(prog, normalScale, m.normalScale);
+    glProgramUniform1i(prog, hasMetalRough, m.metallicRoughnessMap != 0);
+    glProgramUniform1i(prog, hasOcclusion, m.occlusionMap != 0);
+    glProgramUniform1f(prog, occlusionStrength, m.occlusionStrength);
+    glProgramUniform1i(prog, mask, m.alphaMask);
+    glProgramUniform1f(prog, cutoff, m.alphaCutoff);
+    glProgramUniform1i(prog, twoSided, m.doubleSided);
+    glProgramUniform1i(prog, flat, m.flat);
+    glProgramUniform3fv(prog, emission, 1, glm::value_ptr(m.emission));
+    glProgramUniform1i(prog, hasEmissive, m.emissiveMap != 0);
+    glBindTextureUnit(0, m.diffuseMap);
+    glBindTextureUnit(1, m.bumpMap);
+    glBindTextureUnit(2, m.normalMap);
+    glBindTextureUnit(3, m.metallicRoughnessMap);
+    glBindTextureUnit(4, m.occlusionMap);
+    glBindTextureUnit(kEmissiveUnit, m.emissiveMap);
+}
+
+void unbindMaterialTextures() {
+    for (GLuint u = 0; u < 5; ++u) glBindTextureUnit(u, 0);
+    glBindTextureUnit(kEmissiveUnit, 0);
+}
+
+fg::ResourceId addForwardOpaquePass(fg::FrameGraph& graph, ForwardPass& state, LocalLightPass& localLights,
+                                    const FrameData& frame, const GBuffer& depthPrepass, const ForwardLighting& lighting) {
+    const OpaqueData& d = graph.addPass<OpaqueData>(
+        "forward_opaque", fg::PassKind::Raster,
+        [&](fg::PassBuilder& b, OpaqueData& data) {
+            data.depth = b.read(depthPrepass.depth, fg::Usage::DepthTest);
+            data.reads = declareForwardLighting(b, lighting);
+            data.hdr = b.create("hdr", {frame.width, frame.height, GL_RGBA16F}, fg::Usage::ColorAttachment);
+        },
+        [&state, &localLights, frame, lighting](const OpaqueData& data, const fg::PassResources& res) {
+            if (!state.fbo) state.fbo = gl::makeFramebuffer("forward");
+            const GLuint fbo = state.fbo.id();
+            glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, res.texture(data.hdr), 0);
+            glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, res.texture(data.depth), 0);
+            glNamedFramebufferDrawBuffer(fbo, GL_COLOR_ATTACHMENT0);
+            const float zero[4] = {0, 0, 0, 0};
+            glClearNamedFramebufferfv(fbo, GL_COLOR, 0, zero);  // background: the sky pass fills it
+            bindForwardLighting(state, localLights, frame, lighting, data.reads, res, {});
+            const GLuint prog = state.program.id();
+            {
+                gl::ScopedFramebuffer bind(fbo, frame.width, frame.height);
+                gl::ScopedEnable depthTest(GL_DEPTH_TEST, true);
+                gl::ScopedEnable cull(GL_CULL_FACE, false);  // two-sided, as in the G-buffer pass
+                gl::ScopedEnable blend(GL_BLEND, false);
+                gl::ScopedEnable seamless(GL_TEXTURE_CUBE_MAP_SEAMLESS, true);
+                gl::ScopedRasterState saved;
+                setGBufferDepthTest(frame.settings->gbuffer);  // the pre-pass's clip control
+                glDepthFunc(GL_EQUAL);  // each visible fragment once: the one the pre-pass kept
+                glDepthMask(GL_FALSE);
+                glUseProgram(prog);
+                const ForwardMaterialUniforms material(prog);
+                const GLint locMV = loc(prog, "uModelView"), locN = loc(prog, "uNormalMatrix");
+                for (const auto& mesh : frame.gpu->meshes) {
+                    const glm::mat4 mv = frame.view * mesh.model;
+                    const glm::mat3 nm = glm::inverseTranspose(glm::mat3(mv));
+                    glProgramUniformMatrix4fv(prog, locMV, 1, GL_FALSE, glm::value_ptr(mv));
+                    glProgramUniformMatrix3fv(prog, locN, 1, GL_FALSE, glm::value_ptr(nm));
+                    glBindVertexArray(mesh.vao.id());
+                    for (const auto& dr : mesh.draws) {
+                        const GpuMaterial& m = frame.gpu->materials[size_t(dr.material)];
+                        if (m.alphaBlend) continue;  // the transparent pass draws it
+                        material.set(prog, m);
+                        glDrawElements(GL_TRIANGLES, GLsizei(dr.indexCount), GL_UNSIGNED_INT,
+                                       reinterpret_cast<const void*>(size_t(dr.firstIndex) * sizeof(uint32_t)));
+                    }
+                }
+                glBindVertexArray(0);
+                glUseProgram(0);
+            }
+            unbindMaterialTextures();
+            unbindForwardLighting();
+            glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, 0, 0);
+            glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, 0, 0);
+        });
+    return d.hdr;
+}
+
+}  // namespace lp

@@ -1,0 +1,105 @@
+#include "passes/transparent_pass.hpp"
+
+#include <algorithm>
+
+#include <glm/gtc/matrix_inverse.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "engine/gl/shader.hpp"
+#include "engine/gl/state.hpp"
+
+namespace lp {
+
+namespace {
+struct Data {
+    fg::ResourceId depth;
+    ForwardLightingReads reads;
+    fg::ResourceId hdr;
+};
+}  // namespace
+
+bool sceneHasTransparency(const Scene& scene) {
+    for (const ModelInstance& model : scene.models)
+        for (const Material& m : model.mesh.materials)
+            if (m.alphaMode == AlphaMode::Blend) return true;
+    return false;
+}
+
+std::vector<TransparentDraw> sortTransparentDraws(const SceneGpu& gpu, const glm::mat4& view) {
+    std::vector<TransparentDraw> draws;
+    for (size_t i = 0; i < gpu.meshes.size(); ++i) {
+        const GpuMesh& mesh = gpu.meshes[i];
+        for (size_t j = 0; j < mesh.draws.size(); ++j) {
+            if (!gpu.materials[size_t(mesh.draws[j].material)].alphaBlend) continue;
+            const glm::vec4 eye = view * mesh.model * glm::vec4(mesh.draws[j].centre, 1.0f);
+            draws.push_back({int(i), int(j), -eye.z});
+        }
+    }
+    std::stable_sort(draws.begin(), draws.end(),
+                     [](const TransparentDraw& a, const TransparentDraw& b) { return a.viewDepth > b.viewDepth; });
+    return draws;
+}
+
+fg::ResourceId addTransparentPass(fg::FrameGraph& graph, TransparentPass& state, LocalLightPass& localLights,
+                                  const FrameData& frame, fg::ResourceId depth, fg::ResourceId hdr,
+                                  const ForwardLighting& lighting) {
+    ForwardLighting withoutAo = lighting;
+    withoutAo.ao = {};
+    const Data& d = graph.addPass<Data>(
+        "transparent", fg::PassKind::Raster,
+        [&](fg::PassBuilder& b, Data& data) {
+            data.depth = b.read(depth, fg::Usage::DepthTest);
+            data.reads = declareForwardLighting(b, withoutAo);
+            data.hdr = b.write(hdr, fg::Usage::Blend);
+        },
+        [&state, &localLights, frame, withoutAo](const Data& data, const fg::PassResources& res) {
+            ForwardPass& forward = state.forward;
+            if (!forward.fbo) forward.fbo = gl::makeFramebuffer("transparent");
+            const GLuint fbo = forward.fbo.id();
+            glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, res.texture(data.hdr), 0);
+            glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, res.texture(data.depth), 0);
+            glNamedFramebufferDrawBuffer(fbo, GL_COLOR_ATTACHMENT0);
+            bindForwardLighting(forward, localLights, frame, withoutAo, data.reads, res, {"LP_FORWARD_TRANSPARENT"});
+            const GLuint prog = forward.program.id();
+            const std::vector<TransparentDraw> order = sortTransparentDraws(*frame.gpu, frame.view);
+            {
+                gl::ScopedFramebuffer bind(fbo, frame.width, frame.height);
+                gl::ScopedEnable depthTest(GL_DEPTH_TEST, true);
+                gl::ScopedEnable cull(GL_CULL_FACE, false);  // two-sided unless the material says not
+                gl::ScopedEnable blend(GL_BLEND, true);
+                gl::ScopedEnable seamless(GL_TEXTURE_CUBE_MAP_SEAMLESS, true);
+                gl::ScopedRasterState saved;
+                setGBufferDepthTest(frame.settings->gbuffer);  // LESS, or GREATER for reversed-Z
+                glDepthMask(GL_FALSE);
+                // Premultiplied "over" on colour; the HDR alpha (1 on surfaces) is kept.
+                glBlendEquation(GL_FUNC_ADD);
+                glBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
+                glUseProgram(prog);
+                const ForwardMaterialUniforms material(prog);
+                const GLint locMV = glGetUniformLocation(prog, "uModelView");
+                const GLint locN = glGetUniformLocation(prog, "uNormalMatrix");
+                for (const TransparentDraw& t : order) {
+                    const GpuMesh& mesh = frame.gpu->meshes[size_t(t.mesh)];
+                    const GpuDraw& dr = mesh.draws[size_t(t.draw)];
+                    const glm::mat4 mv = frame.view * mesh.model;
+                    const glm::mat3 nm = glm::inverseTranspose(glm::mat3(mv));
+                    glProgramUniformMatrix4fv(prog, locMV, 1, GL_FALSE, glm::value_ptr(mv));
+                    glProgramUniformMatrix3fv(prog, locN, 1, GL_FALSE, glm::value_ptr(nm));
+                    material.set(prog, frame.gpu->materials[size_t(dr.material)]);
+                    glBindVertexArray(mesh.vao.id());
+                    glDrawElements(GL_TRIANGLES, GLsizei(dr.indexCount), GL_UNSIGNED_INT,
+                                   reinterpret_cast<const void*>(size_t(dr.firstIndex) * sizeof(uint32_t)));
+                }
+                state.drawn = int(order.size());
+                glBindVertexArray(0);
+                glUseProgram(0);
+            }
+            unbindMaterialTextures();
+            unbindForwardLighting();
+            glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, 0, 0);
+            glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, 0, 0);
+        });
+    return d.hdr;
+}
+
+}  // namespace lp

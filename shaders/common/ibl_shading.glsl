@@ -1,0 +1,38 @@
+// Image-based lighting of one surface point, shared by the deferred ibl pass and the forward passes:
+// diffuse kd (1 - Fss) E / pi from the SH (or the irradiance cube) and specular
+// prefiltered(R, roughness) * Fss, Fss = F0 A + f90 B from the DFG LUT (splitSumReflectance), the
+// prefiltered mip from the perceptual roughness (prefilteredLodFromRoughness). The samplers are the includer's
+// (their units differ between passes); the environment's other inputs are these uniforms.
+#ifndef LP_IBL_SHADING_GLSL
+#define LP_IBL_SHADING_GLSL
+#include "common/ambient_occlusion.glsl"
+#include "common/ibl.glsl"
+
+uniform vec3 uSh[9];
+uniform bool uDiffuseFromCube;
+uniform mat3 uEyeToWorld;
+uniform float uIntensity;
+uniform float uMaxLod;        // prefiltered levels - 1
+
+// Radiance the environment reflects at a point with eye-space normal N and view direction V.
+// `occlusion`: the material's; `screenAo`: the ambient-occlusion pass's (1 without it), and whether
+// that pass ran (then the specular term is darkened by the specular occlusion derived from both).
+vec3 lpIblRadiance(samplerCube irradiance, samplerCube prefilteredMap, sampler2D dfg, vec3 N, vec3 V, vec3 kd,
+                   vec3 f0, float shininess, float occlusion, float screenAo, bool aoOn) {
+    float NdotV = clamp(dot(N, V), 0.0, 1.0);
+    float roughness = roughnessFromShininess(shininess);
+    // The prefiltered chain assumes N = V = R; for rough lobes the reflected energy leans from R
+    // towards N (Frostbite's dominant direction, Lagarde & de Rousiers 2014), which matters at grazing
+    // angles where R skims the horizon of the map.
+    vec3 R = specularDominantDirection(N, 2.0 * dot(N, V) * N - V, roughness * roughness);
+    vec3 Nw = normalize(uEyeToWorld * N), Rw = normalize(uEyeToWorld * R);
+    vec3 E = uDiffuseFromCube ? textureLod(irradiance, Nw, 0.0).rgb : shIrradiance(uSh, Nw);
+    vec2 ab = textureLod(dfg, dfgLutCoordinate(NdotV, roughness, textureSize(dfg, 0).x), 0.0).rg;
+    vec3 fss = splitSumReflectance(f0, ab);
+    vec3 prefiltered = textureLod(prefilteredMap, Rw, prefilteredLodFromRoughness(roughness, uMaxLod)).rgb;
+    float ao = screenAo * occlusion;
+    float specularAo = aoOn ? specularOcclusion(NdotV, ao, roughness * roughness) : occlusion;
+    return uIntensity * (ao * kd * (1.0 - fss) * E / LP_IBL_PI + specularAo * prefiltered * fss);
+}
+
+#endif

@@ -1,0 +1,65 @@
+// The material of a draw as uniforms (lp::Material, set per draw by the raster passes: the G-buffer,
+// the forward+ pre-pass and shading, the transparent pass) on top of common/material.glsl's shared
+// evaluation (the visibility resolve feeds the same functions from an SSBO instead).
+#ifndef LP_MATERIAL_UNIFORMS_GLSL
+#define LP_MATERIAL_UNIFORMS_GLSL
+#include "common/material.glsl"
+
+uniform vec3 uDiffuse;     // base colour
+uniform float uOpacity;    // base alpha
+uniform vec3 uSpecular;    // dielectric F0
+uniform float uMetallic;
+uniform float uShininess;  // Blinn-Phong exponent of the roughness factor (used without a roughness map)
+uniform float uRoughness;  // perceptual roughness factor (multiplies the map's g)
+uniform bool uHasDiffuseMap;
+uniform bool uHasMetalRoughMap;
+uniform bool uHasNormalMap;
+uniform float uNormalScale;
+uniform bool uHasOcclusionMap;
+uniform float uOcclusionStrength;
+uniform bool uAlphaMask;     // MASK: texels with alpha below uAlphaCutoff are not drawn
+uniform float uAlphaCutoff;
+uniform bool uDoubleSided;   // single-sided: back faces are not drawn
+uniform bool uFlat;          // flat-lit material: shown as its diffuse colour, untouched by light
+uniform bool uHasBumpMap;
+uniform float uBumpScale;
+
+MaterialInputs materialFromUniforms() {
+    return MaterialInputs(uDiffuse, uOpacity, uSpecular, uMetallic, uShininess, uRoughness, uBumpScale, uNormalScale,
+                          uOcclusionStrength, uAlphaCutoff, uHasDiffuseMap, uHasBumpMap, uHasNormalMap,
+                          uHasMetalRoughMap, uHasOcclusionMap, uAlphaMask, uFlat);
+}
+
+// The surface the forward passes shade.
+struct LpSurface {
+    vec3 N;           // shading normal, eye space, unit, facing the viewer's side for two-sided
+    vec3 kd;          // diffuse colour (base x (1 - metallic))
+    vec3 f0;          // specular colour
+    float shininess;  // Blinn-Phong exponent (up to the IBL's roughness floor)
+    float occlusion;  // the material's ambient occlusion (1: none)
+    float alpha;      // base alpha (opacity x texture alpha)
+};
+
+// Whether the fragment is dropped: a back face of a single-sided material, or MASK below the cutoff.
+// uvDx, uvDy: the uv derivatives, taken before any discard (they need the whole quad).
+bool lpMaterialDiscards(vec2 uv, vec2 uvDx, vec2 uvDy, bool frontFacing) {
+    if (!uDoubleSided && !frontFacing) return true;
+    MaterialInputs m = materialFromUniforms();
+    return materialAlphaRejects(m, materialBaseColor(m, uv, uvDx, uvDy));
+}
+
+LpSurface lpEvaluateSurface(vec3 normal, vec4 tangent, vec2 uv, vec2 uvDx, vec2 uvDy, bool frontFacing) {
+    MaterialInputs m = materialFromUniforms();
+    vec4 base = materialBaseColor(m, uv, uvDx, uvDy);
+    MaterialSample g = materialEvaluate(m, base, SurfaceInputs(normal, tangent, uv, uvDx, uvDy, frontFacing));
+    LpSurface s;
+    s.N = g.normal;
+    s.kd = g.kd;
+    s.f0 = g.f0;
+    s.shininess = g.shininess;
+    s.occlusion = g.occlusion;
+    s.alpha = clamp(base.a, 0.0, 1.0);
+    return s;
+}
+
+#endif

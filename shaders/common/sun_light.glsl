@@ -1,0 +1,76 @@
+// Directional lights (suns) with their cascaded shadow maps: the uniforms passes/global_light_pass
+// sets (setSunUniforms) and the light they reflect, shared by the deferred global_lights pass and the
+// forward passes so both shade a surface the same way. The shadow atlases sit on units
+// LP_SUN_SHADOW_UNIT .. + 3 (8 unless the includer defines it first).
+#ifndef LP_SUN_LIGHT_GLSL
+#define LP_SUN_LIGHT_GLSL
+#include "common/brdf.glsl"
+#include "common/shadow.glsl"
+
+#ifndef LP_SUN_SHADOW_UNIT
+#define LP_SUN_SHADOW_UNIT 8
+#endif
+
+const int MAX_LIGHTS = 16;
+uniform int uLightCount;
+uniform vec3 uLightDirEye[MAX_LIGHTS];   // towards the light, eye space, unit
+uniform vec3 uLightIrradiance[MAX_LIGHTS];
+uniform vec3 uAmbient;
+uniform int uBrdf;           // LP_BRDF_BLINN_PHONG | LP_BRDF_GGX
+
+// Shadows (engine/render/shadows.hpp): up to 4 shadowed lights, each an atlas of up to 4 cascades.
+const int MAX_SHADOWED = 4;
+const int MAX_CASCADES = 4;
+layout(binding = LP_SUN_SHADOW_UNIT) uniform sampler2D uShadowMap[MAX_SHADOWED];  // D32F atlases
+uniform int uLightShadowSlot[MAX_LIGHTS];                 // -1: unshadowed
+uniform int uShadowCascadeCount[MAX_SHADOWED];
+uniform mat4 uShadowEyeToClip[MAX_SHADOWED * MAX_CASCADES];
+uniform vec4 uShadowCascade[MAX_SHADOWED * MAX_CASCADES];   // split far (view depth), texel (world), texel / depth range
+uniform mat3 uShadowEyeToLight[MAX_SHADOWED];
+uniform int uShadowColumns;
+uniform int uShadowTileSize;
+uniform int uShadowFilter;       // LP_SHADOW_FILTER_*
+uniform float uShadowDepthBias;  // shadow texels of depth
+uniform float uShadowNormalBias; // shadow texels along N, times (1 - N.L)
+
+// Fraction of light `slot`'s light reaching eye-space point P with normal N (N.L = nl > 0).
+float shadowVisibility(int slot, vec3 P, vec3 N, float nl, vec2 pixel) {
+    float viewDepth = -P.z;
+    for (int c = 0; c < uShadowCascadeCount[slot]; ++c) {
+        int k = slot * MAX_CASCADES + c;
+        vec4 info = uShadowCascade[k];
+        if (viewDepth > info.x) continue;
+        // Normal offset: move the lookup off the surface, more where the light grazes it.
+        vec3 Po = P + N * (uShadowNormalBias * info.y * (1.0 - nl));
+        vec3 ndc = (uShadowEyeToClip[k] * vec4(Po, 1.0)).xyz;  // orthographic: w = 1
+        vec2 uv = ndc.xy * 0.5 + 0.5;
+        if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) continue;  // try a wider cascade
+        float z = ndc.z * 0.5 + 0.5;
+        if (z >= 1.0) return 1.0;  // beyond every caster
+        ivec2 tileMin = ivec2(c % uShadowColumns, c / uShadowColumns) * uShadowTileSize;
+        ivec2 tileMax = tileMin + ivec2(uShadowTileSize - 1);
+        vec2 pos = vec2(tileMin) + uv * float(uShadowTileSize);
+        vec2 grad = shadowReceiverGradient(uShadowEyeToLight[slot] * N, info.z);
+        return shadowFilter(uShadowMap[slot], uShadowFilter, pos, tileMin, tileMax, z, grad,
+                            uShadowDepthBias * info.z, pixel);
+    }
+    return 1.0;  // outside every cascade: nothing there casts
+}
+
+// Radiance the suns reflect at eye-space P (normal N, view direction V), shadows included; `pixel`
+// (integer pixel coordinates) seeds the filters' per-pixel rotation. Ambient not included.
+vec3 lpSunRadiance(vec3 P, vec3 N, vec3 V, vec3 kd, vec3 ks, float shininess, vec2 pixel) {
+    vec3 c = vec3(0.0);
+    for (int i = 0; i < uLightCount; ++i) {
+        vec3 L = uLightDirEye[i];
+        float nl = dot(N, L);
+        if (nl <= 0.0) continue;
+        float visible = 1.0;
+        int slot = uLightShadowSlot[i];
+        if (slot >= 0) visible = shadowVisibility(slot, P, N, nl, pixel);
+        if (visible > 0.0) c += visible * brdfRadiance(uBrdf, N, V, L, kd, ks, shininess, uLightIrradiance[i]);
+    }
+    return c;
+}
+
+#endif
