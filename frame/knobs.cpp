@@ -219,12 +219,14 @@ std::vector<KnobEntry> makeKnobTable() {
         KnobEntry k = choiceKnob("shadow-raster", [](auto& s) -> auto& { return s.shadows.raster; },
                                  std::vector<ShadowSettings::Raster>{ShadowSettings::Raster::Conservative,
                                                                      ShadowSettings::Raster::Plain,
-                                                                     ShadowSettings::Raster::Split},
+                                                                     ShadowSettings::Raster::Split,
+                                                                     ShadowSettings::Raster::Compute},
                                  ShadowSettings::rasterName);
         k.flags = {valueFlag("--shadow-raster")};
         k.choiceNoun = "raster";
         k.help = "sun cascades' caster raster: conservative (no crease leaks), plain (early-Z, leaks at creases) "
-                 "or split (faces towards the light plain, faces away conservative)";
+                 "split (faces towards the light plain, faces away conservative) or compute (plain's depths from a "
+                 "compute rasteriser, large triangles on the hardware)";
         k.panel = {PanelSection::Shadows, PanelWidget::Combo, "caster raster", ""};
         t.push_back(std::move(k));
     }

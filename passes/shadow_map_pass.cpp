@@ -1,5 +1,7 @@
 #include "passes/shadow_map_pass.hpp"
 
+#include <algorithm>
+
 #include <glm/gtc/type_ptr.hpp>
 
 #include "engine/gl/shader.hpp"
@@ -13,6 +15,102 @@ namespace {
 struct Data {
     fg::ResourceId depth;
 };
+
+struct DrawArraysCommand {
+    GLuint count, instanceCount, first, baseInstance;
+};
+
+// --shadow-raster compute, inside the pass's framebuffer (the atlas bound as its depth, cleared to
+// 1, depth clamp and the polygon offset factor set): every cascade's culled casters through
+// shadow_raster.comp into the R32UI image, that image into the atlas, then each cascade's large
+// triangles drawn plainly over it with the depth test.
+void drawCascadesByCompute(ShadowMapPass& state, const FrameData& frame, const ShadowFrustum& fr,
+                           const std::vector<CasterList>& casters, int width, int height, bool depthZeroToOne) {
+    if (!state.rasterProgram) state.rasterProgram = frame.shaders->compute("shadow_raster.comp");
+    if (!state.resolveProgram) state.resolveProgram = frame.shaders->graphics("fullscreen.vert", "shadow_raster_resolve.frag");
+    if (!state.largeProgram) state.largeProgram = frame.shaders->graphics("shadow_raster_large.vert", "shadow_depth.frag");
+    if (!state.emptyVao) state.emptyVao = gl::makeVertexArray("shadow_map.compute_raster");
+    if (!state.depthBits || state.depthBits.width != width || state.depthBits.height != height)
+        state.depthBits = gl::makeTexture2D(GL_R32UI, width, height, 1, "shadow_map.depth_bits");
+    // Every caster of a cascade may be large: one region of that many vertices per cascade.
+    std::vector<DrawArraysCommand> commands(fr.cascades.size());
+    size_t needed = 0;
+    for (size_t c = 0; c < fr.cascades.size(); ++c) {
+        commands[c] = {0, 1, GLuint(needed), 0};
+        needed += 3 * casters[c].triangles;
+    }
+    needed = std::max<size_t>(needed, 3);
+    if (needed > state.largeCapacity) {
+        state.largeVertices = gl::makeBuffer(GLsizeiptr(needed * sizeof(glm::vec4)), nullptr, 0, "shadow_map.large_vertices");
+        state.largeCapacity = needed;
+    }
+    if (!state.largeDraws)
+        state.largeDraws = gl::makeBuffer(GLsizeiptr(kMaxShadowCascades * sizeof(DrawArraysCommand)), nullptr,
+                                          GL_DYNAMIC_STORAGE_BIT, "shadow_map.large_draws");
+    glNamedBufferSubData(state.largeDraws.id(), 0, GLsizeiptr(commands.size() * sizeof(DrawArraysCommand)), commands.data());
+    const GLuint cleared = 0x3f800000u;  // the bits of 1.0f: no caster
+    glClearTexImage(state.depthBits.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &cleared);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+
+    const GLuint prog = state.rasterProgram.id();
+    glUseProgram(prog);
+    glBindImageTexture(0, state.depthBits.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, state.largeDraws.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, state.largeVertices.id());
+    glProgramUniform1i(prog, glGetUniformLocation(prog, "uTileSize"), fr.tileSize);
+    glProgramUniform1i(prog, glGetUniformLocation(prog, "uDepthZeroToOne"), depthZeroToOne ? 1 : 0);
+    glProgramUniform1f(prog, glGetUniformLocation(prog, "uSlopeBias"), frame.settings->shadows.slopeBias);
+    glProgramUniform1f(prog, glGetUniformLocation(prog, "uLargeTexels"), kComputeRasterMaxTexels);
+    const GLint locMvp = glGetUniformLocation(prog, "uModelToClip");
+    const GLint locFirst = glGetUniformLocation(prog, "uFirstIndex");
+    const GLint locCount = glGetUniformLocation(prog, "uTriangleCount");
+    for (size_t c = 0; c < fr.cascades.size(); ++c) {
+        glProgramUniform2i(prog, glGetUniformLocation(prog, "uTileOrigin"), GLint(c % size_t(fr.columns)) * fr.tileSize,
+                           GLint(c / size_t(fr.columns)) * fr.tileSize);
+        glProgramUniform1i(prog, glGetUniformLocation(prog, "uCascade"), GLint(c));
+        for (const CasterDraw& draw : casters[c].draws) {
+            if (draw.model < 0 || size_t(draw.model) >= frame.gpu->meshes.size()) continue;
+            const GpuMesh& mesh = frame.gpu->meshes[size_t(draw.model)];
+            const glm::mat4 mvp = fr.cascades[c].worldToClip * mesh.model;
+            glProgramUniformMatrix4fv(prog, locMvp, 1, GL_FALSE, glm::value_ptr(mvp));
+            glProgramUniform1ui(prog, locFirst, draw.firstIndex);
+            const GLuint triangles = draw.indexCount / 3;
+            glProgramUniform1ui(prog, locCount, triangles);
+            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, mesh.vertices.id());
+            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, mesh.indices.id());
+            glDispatchCompute((triangles + 63) / 64, 1, 1);
+        }
+    }
+    glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+    for (GLuint b = 0; b < 4; ++b) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, 0);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+
+    // The bits into the atlas: every texel written, the depth test off.
+    glBindVertexArray(state.emptyVao.id());
+    glViewport(0, 0, width, height);
+    glDepthFunc(GL_ALWAYS);
+    glUseProgram(state.resolveProgram.id());
+    glBindTextureUnit(0, state.depthBits.id());
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glBindTextureUnit(0, 0);
+    glDepthFunc(GL_LESS);
+
+    // The large triangles: the plain path (polygon offset, depth clamp), one indirect draw per cascade.
+    glUseProgram(state.largeProgram.id());
+    glEnable(GL_POLYGON_OFFSET_FILL);
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, state.largeDraws.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, state.largeVertices.id());
+    for (size_t c = 0; c < fr.cascades.size(); ++c) {
+        glViewport(GLint(c % size_t(fr.columns)) * fr.tileSize, GLint(c / size_t(fr.columns)) * fr.tileSize, fr.tileSize,
+                   fr.tileSize);
+        glDrawArraysIndirect(GL_TRIANGLES, reinterpret_cast<const void*>(c * sizeof(DrawArraysCommand)));
+    }
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, 0);
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+    glDisable(GL_POLYGON_OFFSET_FILL);
+    glBindVertexArray(0);
+    glUseProgram(0);
+}
 
 }  // namespace
 
@@ -69,7 +167,7 @@ ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const
                 if (raster == Raster::Split && !state.awayProgram)
                     state.awayProgram = frame.shaders->graphics("shadow_depth.vert", "shadow_depth.geom", "shadow_depth.frag",
                                                                 {"LP_SHADOW_CONSERVATIVE", "LP_SHADOW_AWAY_ONLY"});
-                if (raster != Raster::Conservative && !state.plainProgram)
+                if ((raster == Raster::Plain || raster == Raster::Split) && !state.plainProgram)
                     state.plainProgram = frame.shaders->graphics("shadow_depth.vert", "shadow_depth.frag");
                 const GLuint fbo = state.fbo.id();
                 glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, res.texture(depth), 0);
@@ -102,6 +200,11 @@ ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const
                     // the constant part is the receiver's (see shadow.glsl).
                     glProgramUniform1f(conservativeProg, glGetUniformLocation(conservativeProg, "uSlopeBias"),
                                        frame.settings->shadows.slopeBias);
+                }
+                if (raster == Raster::Compute) {
+                    drawCascadesByCompute(state, frame, fr, casters, d.width, d.height, clipDepth == GL_ZERO_TO_ONE);
+                    glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, 0, 0);
+                    return;
                 }
                 const GLuint plainProg = raster == Raster::Conservative ? 0 : state.plainProgram.id();
                 for (size_t c = 0; c < fr.cascades.size(); ++c) {
