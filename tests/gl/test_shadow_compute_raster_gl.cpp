@@ -9,9 +9,11 @@
 #include <random>
 
 #include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
 
 #include "engine/graph/texture_pool.hpp"
 #include "engine/render/scene_gpu.hpp"
+#include "engine/scene/mesh_ops.hpp"
 #include "engine/scene/primitives.hpp"
 #include "frame/renderer.hpp"
 #include "passes/shadow_map_pass.hpp"
@@ -152,4 +154,92 @@ TEST(ShadowComputeRaster, LargeTrianglesAndCascadeTilesMatchThePlainRaster) {
     settings.shadows.size = 96;
     settings.shadows.cascades = 4;
     expectSameAtlas(s, settings, "floor, 4 cascades");
+}
+
+// Edges exactly through texel centres, where the fill rule decides: a tilted grid of 2x2-texel
+// squares, each split along a diagonal, with every vertex on a texel centre of the cascade (placed
+// through the inverse of the cascade's matrix; two cubes at the corners fix the scene's bounds, so
+// the grid does not move the cascade). Both rasters cover the same texels, and the top-left rule
+// (left and bottom edges in GL's window y) gives exactly the half-open square: 2n x 2n texels.
+TEST(ShadowComputeRaster, EdgesThroughTexelCentresFollowTheFillRule) {
+    Scene s;
+    for (int i = 0; i < 2; ++i) {
+        ModelInstance corner;
+        corner.name = "corner" + std::to_string(i);
+        corner.mesh = makeCube(0.2f);
+        corner.transform = glm::translate(glm::mat4(1.0f), i == 0 ? glm::vec3(-2.0f, 0.0f, -2.0f) : glm::vec3(2.0f, 1.5f, 2.0f));
+        s.models.push_back(std::move(corner));
+    }
+    DirectionalLight sun;
+    sun.direction = glm::normalize(glm::vec3(0.2f, -1.0f, 0.1f));
+    s.directionalLights.push_back(sun);
+    s.camera.position = glm::vec3(0.0f, 6.0f, 6.0f);
+    s.camera.target = glm::vec3(0.0f);
+    s.camera.nearPlane = 0.1f;
+    s.camera.farPlane = 30.0f;
+    RenderSettings settings;
+    settings.width = 64;
+    settings.height = 48;
+    settings.shadows.size = 128;
+    settings.shadows.cascades = 1;
+    settings.shadows.slopeBias = 1.0f;
+    const ShadowFrustum before = fitShadowFrustum(makeFrameData(s, settings, 0.0f), sun.direction);
+    ASSERT_EQ(before.cascades.size(), 1u);
+    const int tile = before.tileSize;
+    const glm::dmat4 clipToWorld = glm::inverse(glm::dmat4(before.cascades[0].worldToClip));
+
+    const int n = 6, x0 = 40, y0 = 50;  // n x n squares of 2 texels from texel centre (x0, y0) + 0.5
+    ModelInstance grid;
+    grid.name = "grid";
+    for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n; ++i) {
+            const double wx = x0 + 0.5 + 2.0 * i, wy = y0 + 0.5 + 2.0 * j;
+            const double z = 0.1 * double(i) / n + 0.05 * double(j) / n - 0.2;  // tilted, inside the depth range
+            const glm::dvec4 w = clipToWorld * glm::dvec4(2.0 * wx / tile - 1.0, 2.0 * wy / tile - 1.0, z, 1.0);
+            Vertex v;
+            v.position = glm::vec3(glm::dvec3(w) / w.w);
+            grid.mesh.vertices.push_back(v);
+        }
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            const uint32_t a = uint32_t(j * (n + 1) + i), b = a + 1, c = a + uint32_t(n + 1), d = c + 1;
+            // Alternate the diagonal and the winding: every edge orientation occurs.
+            if ((i + j) % 2 == 0) grid.mesh.indices.insert(grid.mesh.indices.end(), {a, b, d, a, d, c});
+            else grid.mesh.indices.insert(grid.mesh.indices.end(), {a, c, b, b, c, d});
+        }
+    grid.mesh.materials = {Material{}};
+    grid.mesh.subMeshes = {SubMesh{0, uint32_t(grid.mesh.indices.size()), 0}};
+    computeBounds(grid.mesh);
+    s.models.push_back(std::move(grid));
+    const ShadowFrustum after = fitShadowFrustum(makeFrameData(s, settings, 0.0f), sun.direction);
+    ASSERT_EQ(after.cascades.size(), 1u);
+    ASSERT_EQ(after.tileSize, tile);
+    for (int k = 0; k < 16; ++k)
+        ASSERT_EQ(glm::value_ptr(after.cascades[0].worldToClip)[k], glm::value_ptr(before.cascades[0].worldToClip)[k]);
+
+    RenderSettings plain = settings, compute = settings;
+    plain.shadows.raster = ShadowSettings::Raster::Plain;
+    compute.shadows.raster = ShadowSettings::Raster::Compute;
+    const std::vector<float> a = shadowAtlas(s, plain), b = shadowAtlas(s, compute);
+    ASSERT_EQ(a.size(), size_t(tile) * size_t(tile));
+    ASSERT_EQ(b.size(), a.size());
+    auto coveredInSquare = [&](const std::vector<float>& atlas) {
+        size_t inside = 0, outside = 0;
+        for (int y = y0 - 3; y < y0 + 2 * n + 3; ++y)
+            for (int x = x0 - 3; x < x0 + 2 * n + 3; ++x) {
+                const bool covered = atlas[size_t(y) * size_t(tile) + size_t(x)] < 1.0f;
+                const bool expected = x >= x0 && x < x0 + 2 * n && y >= y0 && y < y0 + 2 * n;
+                inside += covered && expected ? 1 : 0;
+                outside += covered && !expected ? 1 : 0;
+            }
+        return std::make_pair(inside, outside);
+    };
+    const auto hardware = coveredInSquare(a), software = coveredInSquare(b);
+    EXPECT_EQ(hardware.first, size_t(4 * n * n)) << "plain: texels of the half-open square covered";
+    EXPECT_EQ(hardware.second, 0u) << "plain: texels outside it covered";
+    EXPECT_EQ(software.first, size_t(4 * n * n)) << "compute";
+    EXPECT_EQ(software.second, 0u) << "compute";
+    size_t differ = 0;
+    for (size_t i = 0; i < a.size(); ++i) differ += (a[i] < 1.0f) != (b[i] < 1.0f) ? 1 : 0;
+    EXPECT_EQ(differ, 0u);
 }
