@@ -8,8 +8,8 @@
 # measured/floor (--floors), the triangles each cascade drew ('graph --explain' at t = 1 s, the
 # first timed frame) and the frame. From the repository root on the GPU machine:
 #   bench/shadow_cost.sh BUNDLE OUTDIR    (BUNDLE: run, gl_tests, lib/; needs ../shared/assets)
-# Writes OUTDIR/shadow_cost.json (lightpass bench), OUTDIR/explain_*.txt and OUTDIR/shadow_cost.md
-# (bench/summarize_shadow_cost.py).
+# Writes OUTDIR/shadow_cost.json (lightpass bench), OUTDIR/explain_*.txt, OUTDIR/shadow_cost.md
+# (bench/summarize_shadow_cost.py) and OUTDIR/auto_choice.txt (what --shadow-raster auto measured and chose).
 set -u
 B=$(cd "$1" && pwd); R=$2; mkdir -p $R
 S=scenes/gallery-flythrough.json
@@ -22,6 +22,9 @@ COMMON="--shadow-size 2048 --shadow-cascades 4"
 for cull in shadow-culling no-shadow-culling; do for raster in conservative split plain compute; do
   $B/run graph --scene $S --size 1920x1080 --time 1 $COMMON --$cull --shadow-raster $raster --explain > $R/explain_${cull}_$raster.txt 2>&1
 done; done
+# --shadow-raster auto's own start-up measurement on this GPU (a fresh cache), beside the table.
+LIGHTPASS_CACHE_DIR=$R/auto_cache $B/run render --scene $S --size 1920x1080 --time 1 $COMMON --shadow-raster auto \
+  --out $R/auto.png 2>&1 | grep "shadow raster auto" | tee $R/auto_choice.txt
 $B/run bench --scene $S --time 1 --fps 60 --frames 300 --warmup 30 --floors --size 1920x1080 $COMMON \
   --vary '--shadow-culling|--no-shadow-culling' --vary '--shadow-raster conservative,split,plain,compute' \
   --timings-json $R/shadow_cost.json -q > /dev/null 2> $R/bench_progress.txt || { echo "bench failed"; tail -3 $R/bench_progress.txt; }

@@ -220,13 +220,15 @@ std::vector<KnobEntry> makeKnobTable() {
                                  std::vector<ShadowSettings::Raster>{ShadowSettings::Raster::Conservative,
                                                                      ShadowSettings::Raster::Plain,
                                                                      ShadowSettings::Raster::Split,
-                                                                     ShadowSettings::Raster::Compute},
+                                                                     ShadowSettings::Raster::Compute,
+                                                                     ShadowSettings::Raster::Auto},
                                  ShadowSettings::rasterName);
         k.flags = {valueFlag("--shadow-raster")};
         k.choiceNoun = "raster";
-        k.help = "sun cascades' caster raster: conservative (no crease leaks), plain (early-Z, leaks at creases) "
-                 "split (faces towards the light plain, faces away conservative) or compute (plain's depths from a "
-                 "compute rasteriser, large triangles on the hardware)";
+        k.help = "sun cascades' caster raster: conservative (no crease leaks), plain (early-Z, leaks at creases), "
+                 "split (faces towards the light plain, faces away conservative), compute (plain's depths from a "
+                 "compute rasteriser, large triangles on the hardware) or auto (the fastest on this GPU, measured once "
+                 "and cached)";
         k.panel = {PanelSection::Shadows, PanelWidget::Combo, "caster raster", ""};
         t.push_back(std::move(k));
     }

@@ -1,15 +1,36 @@
 #include "passes/shadow_map_pass.hpp"
 
 #include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include "engine/core/log.hpp"
 #include "engine/gl/shader.hpp"
 #include "engine/gl/state.hpp"
 #include "engine/render/scene_gpu.hpp"
 #include "engine/render/shadow_casters.hpp"
 
 namespace lp {
+
+std::string shadowRasterCacheKey() {
+    auto str = [](GLenum name) {
+        const GLubyte* v = glGetString(name);
+        return v ? std::string(reinterpret_cast<const char*>(v)) : std::string("?");
+    };
+    return str(GL_VENDOR) + " / " + str(GL_RENDERER) + " / " + str(GL_VERSION);
+}
+
+std::filesystem::path shadowRasterCachePath() {
+    if (const char* dir = std::getenv("LIGHTPASS_CACHE_DIR"); dir && *dir) return std::filesystem::path(dir) / "shadow_raster.txt";
+    if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg)
+        return std::filesystem::path(xdg) / "lightpass" / "shadow_raster.txt";
+    if (const char* home = std::getenv("HOME"); home && *home)
+        return std::filesystem::path(home) / ".cache" / "lightpass" / "shadow_raster.txt";
+    return std::filesystem::path("lightpass_shadow_raster.txt");
+}
 
 namespace {
 struct Data {
@@ -112,6 +133,172 @@ void drawCascadesByCompute(ShadowMapPass& state, const FrameData& frame, const S
     glUseProgram(0);
 }
 
+// Draws the cascades' casters into the atlas `depthTexture` (width x height) with `raster` (not Auto).
+void drawAtlas(ShadowMapPass& state, const FrameData& frame, const ShadowFrustum& fr, const std::vector<CasterList>& casters,
+               ShadowSettings::Raster raster, GLuint depthTexture, int width, int height) {
+    using Raster = ShadowSettings::Raster;
+        if (!state.fbo) state.fbo = gl::makeFramebuffer("shadow_map");
+        if (raster == Raster::Conservative && !state.program)
+            state.program = frame.shaders->graphics("shadow_depth.vert", "shadow_depth.geom", "shadow_depth.frag",
+                                                    {"LP_SHADOW_CONSERVATIVE"});
+        if (raster == Raster::Split && !state.awayProgram)
+            state.awayProgram = frame.shaders->graphics("shadow_depth.vert", "shadow_depth.geom", "shadow_depth.frag",
+                                                        {"LP_SHADOW_CONSERVATIVE", "LP_SHADOW_AWAY_ONLY"});
+        if ((raster == Raster::Plain || raster == Raster::Split) && !state.plainProgram)
+            state.plainProgram = frame.shaders->graphics("shadow_depth.vert", "shadow_depth.frag");
+        const GLuint fbo = state.fbo.id();
+        glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, depthTexture, 0);
+        glNamedFramebufferDrawBuffer(fbo, GL_NONE);
+        glNamedFramebufferReadBuffer(fbo, GL_NONE);
+        gl::ScopedFramebuffer bind(fbo, width, height);
+        gl::ScopedEnable depthTest(GL_DEPTH_TEST, true);
+        gl::ScopedEnable cull(GL_CULL_FACE, false);  // thin walls and open meshes cast from both sides
+        gl::ScopedEnable blend(GL_BLEND, false);
+        gl::ScopedEnable clamp(GL_DEPTH_CLAMP, true);  // casters past the light's near plane still cast
+        gl::ScopedEnable offset(GL_POLYGON_OFFSET_FILL, false);
+        gl::ScopedRasterState saved;  // depth function and mask, polygon offset, cull face
+        glDepthFunc(GL_LESS);
+        glDepthMask(GL_TRUE);
+        // Plain draws: the slope bias is the polygon offset's factor (as the spot maps').
+        glPolygonOffset(frame.settings->shadows.slopeBias, 0.0f);
+        const float one = 1.0f;
+        glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &one);
+
+        GLint clipDepth = GL_NEGATIVE_ONE_TO_ONE;
+        glGetIntegerv(GL_CLIP_DEPTH_MODE, &clipDepth);
+        const GLuint conservativeProg = raster == Raster::Conservative ? state.program.id()
+                                        : raster == Raster::Split      ? state.awayProgram.id()
+                                                                       : 0;
+        if (conservativeProg) {
+            glProgramUniform1i(conservativeProg, glGetUniformLocation(conservativeProg, "uDepthZeroToOne"),
+                               clipDepth == GL_ZERO_TO_ONE ? 1 : 0);
+            // Slope-scaled bias against acne, for the faces towards the light only (shadow_depth.frag);
+            // the constant part is the receiver's (see shadow.glsl).
+            glProgramUniform1f(conservativeProg, glGetUniformLocation(conservativeProg, "uSlopeBias"),
+                               frame.settings->shadows.slopeBias);
+        }
+        if (raster == Raster::Compute) {
+            drawCascadesByCompute(state, frame, fr, casters, width, height, clipDepth == GL_ZERO_TO_ONE);
+            glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, 0, 0);
+            return;
+        }
+        const GLuint plainProg = raster == Raster::Conservative ? 0 : state.plainProgram.id();
+        for (size_t c = 0; c < fr.cascades.size(); ++c) {
+            const GLint x = GLint(c % size_t(fr.columns)) * fr.tileSize;
+            const GLint y = GLint(c / size_t(fr.columns)) * fr.tileSize;
+            glViewport(x, y, fr.tileSize, fr.tileSize);
+            if (plainProg) {
+                // Split: only the faces towards the light (counter-clockwise in the light's window,
+                // as shadow_depth.geom's orientation), which need neither growth nor gl_FragDepth.
+                glUseProgram(plainProg);
+                glEnable(GL_POLYGON_OFFSET_FILL);
+                if (raster == Raster::Split) glEnable(GL_CULL_FACE);
+                glCullFace(GL_BACK);
+                drawCasterList(frame, plainProg, glGetUniformLocation(plainProg, "uModelToClip"),
+                               fr.cascades[c].worldToClip, casters[c]);
+                glDisable(GL_POLYGON_OFFSET_FILL);
+                glDisable(GL_CULL_FACE);
+            }
+            if (conservativeProg) {
+                glUseProgram(conservativeProg);
+                glProgramUniform4f(conservativeProg, glGetUniformLocation(conservativeProg, "uViewport"), float(x),
+                                   float(y), float(fr.tileSize), float(fr.tileSize));
+                drawCasterList(frame, conservativeProg, glGetUniformLocation(conservativeProg, "uModelToClip"),
+                               fr.cascades[c].worldToClip, casters[c]);
+            }
+        }
+        glBindVertexArray(0);
+        glUseProgram(0);
+        glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, 0, 0);
+}
+
+// --shadow-raster auto: the raster cached for this GPU, else the fastest of the four measured on this
+// first frame's cascades (each drawn once to compile, then kAutoRuns times between GL timestamps;
+// the median counts) and cached. Bad cache lines are ignored with a warning and rewritten.
+constexpr int kAutoRuns = 5;
+constexpr ShadowSettings::Raster kMeasuredRasters[] = {ShadowSettings::Raster::Conservative, ShadowSettings::Raster::Plain,
+                                                       ShadowSettings::Raster::Split, ShadowSettings::Raster::Compute};
+
+bool rasterFromName(const std::string& name, ShadowSettings::Raster& out) {
+    for (ShadowSettings::Raster r : kMeasuredRasters)
+        if (name == ShadowSettings::rasterName(r)) {
+            out = r;
+            return true;
+        }
+    return false;
+}
+
+template <typename DrawFn>
+ShadowSettings::Raster resolveAutoRaster(ShadowMapPass& state, DrawFn&& draw) {
+    if (state.autoResolved) return state.autoRaster;
+    state.autoResolved = true;
+    const std::string key = shadowRasterCacheKey();
+    const std::filesystem::path path = shadowRasterCachePath();
+    std::vector<std::string> kept;  // other GPUs' lines
+    {
+        std::ifstream in(path);
+        std::string line;
+        while (std::getline(in, line)) {
+            const size_t tab = line.find('\t');
+            if (tab == std::string::npos || line.substr(tab + 1) != key) {
+                if (!line.empty()) kept.push_back(line);
+                continue;
+            }
+            ShadowSettings::Raster cached;
+            if (rasterFromName(line.substr(0, tab), cached)) {
+                state.autoRaster = cached;
+                state.autoReport = std::string("shadow raster auto: ") + ShadowSettings::rasterName(cached) + " (cached in " +
+                                   path.string() + ")";
+                logInfo(state.autoReport);
+                return cached;
+            }
+            logWarn(path.string() + ": unknown shadow raster '" + line.substr(0, tab) + "' for this GPU; measuring again");
+        }
+    }
+    std::string times;
+    double best = 0.0;
+    for (ShadowSettings::Raster r : kMeasuredRasters) {
+        draw(r);  // compiles the programs, makes the buffers
+        std::vector<double> ms;
+        for (int i = 0; i < kAutoRuns; ++i) {
+            gl::Query begin = gl::makeQuery(GL_TIMESTAMP), end = gl::makeQuery(GL_TIMESTAMP);
+            glQueryCounter(begin.id(), GL_TIMESTAMP);
+            draw(r);
+            glQueryCounter(end.id(), GL_TIMESTAMP);
+            GLuint64 t0 = 0, t1 = 0;
+            glGetQueryObjectui64v(begin.id(), GL_QUERY_RESULT, &t0);
+            glGetQueryObjectui64v(end.id(), GL_QUERY_RESULT, &t1);
+            ms.push_back(double(t1 - t0) * 1e-6);
+        }
+        std::sort(ms.begin(), ms.end());
+        const double median = ms[ms.size() / 2];
+        times += std::string(times.empty() ? "" : ", ") + ShadowSettings::rasterName(r) + " " + std::to_string(median) + " ms";
+        if (r == kMeasuredRasters[0] || median < best) {
+            best = median;
+            state.autoRaster = r;
+        }
+    }
+    state.autoReport = std::string("shadow raster auto: ") + ShadowSettings::rasterName(state.autoRaster) + " (measured: " +
+                       times + "; cached in " + path.string() + ")";
+    logInfo(state.autoReport);
+    // Written beside and renamed over the cache: a failed write leaves the old file whole.
+    std::error_code ec;
+    std::filesystem::create_directories(path.parent_path(), ec);
+    const std::filesystem::path temporary = path.string() + ".tmp";
+    {
+        std::ofstream out(temporary, std::ios::trunc);
+        for (const std::string& line : kept) out << line << '\n';
+        out << ShadowSettings::rasterName(state.autoRaster) << '\t' << key << '\n';
+        if (!out) ec = std::make_error_code(std::errc::io_error);
+    }
+    if (!ec) std::filesystem::rename(temporary, path, ec);
+    if (ec) {
+        std::filesystem::remove(temporary, ec);
+        logWarn(path.string() + ": could not write the shadow raster cache; auto measures again next start");
+    }
+    return state.autoRaster;
+}
+
 }  // namespace
 
 ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const FrameData& frame) {
@@ -157,83 +344,13 @@ ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const
             name, fg::PassKind::Raster,
             [&](fg::PassBuilder& b, Data& out) { out.depth = b.create(name + ".depth", desc, fg::Usage::DepthAttachment); },
             [&state, frame, fr, casters](const Data& out, const fg::PassResources& res) {
-                const fg::ResourceId depth = out.depth;
-                using Raster = ShadowSettings::Raster;
-                const Raster raster = frame.settings->shadows.raster;
-                if (!state.fbo) state.fbo = gl::makeFramebuffer("shadow_map");
-                if (raster == Raster::Conservative && !state.program)
-                    state.program = frame.shaders->graphics("shadow_depth.vert", "shadow_depth.geom", "shadow_depth.frag",
-                                                            {"LP_SHADOW_CONSERVATIVE"});
-                if (raster == Raster::Split && !state.awayProgram)
-                    state.awayProgram = frame.shaders->graphics("shadow_depth.vert", "shadow_depth.geom", "shadow_depth.frag",
-                                                                {"LP_SHADOW_CONSERVATIVE", "LP_SHADOW_AWAY_ONLY"});
-                if ((raster == Raster::Plain || raster == Raster::Split) && !state.plainProgram)
-                    state.plainProgram = frame.shaders->graphics("shadow_depth.vert", "shadow_depth.frag");
-                const GLuint fbo = state.fbo.id();
-                glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, res.texture(depth), 0);
-                glNamedFramebufferDrawBuffer(fbo, GL_NONE);
-                glNamedFramebufferReadBuffer(fbo, GL_NONE);
-                const fg::TextureDesc& d = res.desc(depth);
-                gl::ScopedFramebuffer bind(fbo, d.width, d.height);
-                gl::ScopedEnable depthTest(GL_DEPTH_TEST, true);
-                gl::ScopedEnable cull(GL_CULL_FACE, false);  // thin walls and open meshes cast from both sides
-                gl::ScopedEnable blend(GL_BLEND, false);
-                gl::ScopedEnable clamp(GL_DEPTH_CLAMP, true);  // casters past the light's near plane still cast
-                gl::ScopedEnable offset(GL_POLYGON_OFFSET_FILL, false);
-                gl::ScopedRasterState saved;  // depth function and mask, polygon offset, cull face
-                glDepthFunc(GL_LESS);
-                glDepthMask(GL_TRUE);
-                // Plain draws: the slope bias is the polygon offset's factor (as the spot maps').
-                glPolygonOffset(frame.settings->shadows.slopeBias, 0.0f);
-                const float one = 1.0f;
-                glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &one);
-
-                GLint clipDepth = GL_NEGATIVE_ONE_TO_ONE;
-                glGetIntegerv(GL_CLIP_DEPTH_MODE, &clipDepth);
-                const GLuint conservativeProg = raster == Raster::Conservative ? state.program.id()
-                                                : raster == Raster::Split      ? state.awayProgram.id()
-                                                                               : 0;
-                if (conservativeProg) {
-                    glProgramUniform1i(conservativeProg, glGetUniformLocation(conservativeProg, "uDepthZeroToOne"),
-                                       clipDepth == GL_ZERO_TO_ONE ? 1 : 0);
-                    // Slope-scaled bias against acne, for the faces towards the light only (shadow_depth.frag);
-                    // the constant part is the receiver's (see shadow.glsl).
-                    glProgramUniform1f(conservativeProg, glGetUniformLocation(conservativeProg, "uSlopeBias"),
-                                       frame.settings->shadows.slopeBias);
-                }
-                if (raster == Raster::Compute) {
-                    drawCascadesByCompute(state, frame, fr, casters, d.width, d.height, clipDepth == GL_ZERO_TO_ONE);
-                    glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, 0, 0);
-                    return;
-                }
-                const GLuint plainProg = raster == Raster::Conservative ? 0 : state.plainProgram.id();
-                for (size_t c = 0; c < fr.cascades.size(); ++c) {
-                    const GLint x = GLint(c % size_t(fr.columns)) * fr.tileSize;
-                    const GLint y = GLint(c / size_t(fr.columns)) * fr.tileSize;
-                    glViewport(x, y, fr.tileSize, fr.tileSize);
-                    if (plainProg) {
-                        // Split: only the faces towards the light (counter-clockwise in the light's window,
-                        // as shadow_depth.geom's orientation), which need neither growth nor gl_FragDepth.
-                        glUseProgram(plainProg);
-                        glEnable(GL_POLYGON_OFFSET_FILL);
-                        if (raster == Raster::Split) glEnable(GL_CULL_FACE);
-                        glCullFace(GL_BACK);
-                        drawCasterList(frame, plainProg, glGetUniformLocation(plainProg, "uModelToClip"),
-                                       fr.cascades[c].worldToClip, casters[c]);
-                        glDisable(GL_POLYGON_OFFSET_FILL);
-                        glDisable(GL_CULL_FACE);
-                    }
-                    if (conservativeProg) {
-                        glUseProgram(conservativeProg);
-                        glProgramUniform4f(conservativeProg, glGetUniformLocation(conservativeProg, "uViewport"), float(x),
-                                           float(y), float(fr.tileSize), float(fr.tileSize));
-                        drawCasterList(frame, conservativeProg, glGetUniformLocation(conservativeProg, "uModelToClip"),
-                                       fr.cascades[c].worldToClip, casters[c]);
-                    }
-                }
-                glBindVertexArray(0);
-                glUseProgram(0);
-                glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, 0, 0);
+                const fg::TextureDesc& d = res.desc(out.depth);
+                ShadowSettings::Raster raster = frame.settings->shadows.raster;
+                if (raster == ShadowSettings::Raster::Auto)
+                    raster = resolveAutoRaster(state, [&](ShadowSettings::Raster r) {
+                        drawAtlas(state, frame, fr, casters, r, res.texture(out.depth), d.width, d.height);
+                    });
+                drawAtlas(state, frame, fr, casters, raster, res.texture(out.depth), d.width, d.height);
             });
         map.depth = data.depth;
         maps.push_back(std::move(map));

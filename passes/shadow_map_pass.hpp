@@ -6,8 +6,11 @@
 // 'lightpass graph --explain'), conservatively grown, plain, or by the compute rasteriser
 // (--shadow-raster compute: shadow_raster.comp writes an R32UI image private to this pass, which a
 // full-atlas draw turns into the D32F atlas; triangles whose window box exceeds
-// kComputeRasterMaxTexels in x or y are drawn by the hardware plain path after it).
+// kComputeRasterMaxTexels in x or y are drawn by the hardware plain path after it), or auto: the
+// fastest of the four on this GPU, measured once on the first frame and cached per GPU.
 // No shadow-casting light, or shadows switched off: no pass at all.
+#include <filesystem>
+#include <string>
 #include <vector>
 
 #include "engine/gl/handles.hpp"
@@ -34,7 +37,16 @@ struct ShadowMapPass {
     gl::Buffer largeVertices;    // clip-space vertices of the large triangles, one region per cascade
     size_t largeCapacity = 0;    // vertices
     gl::Buffer largeDraws;       // one DrawArraysIndirectCommand per cascade
+    // --shadow-raster auto: resolved on the first frame drawn (from the cache, or measured)
+    bool autoResolved = false;
+    ShadowSettings::Raster autoRaster = ShadowSettings::Raster::Conservative;
+    std::string autoReport;  // the line logged: the choice, the measured times or "cached", the file
 };
+
+// --shadow-raster auto's cache: one line per GPU, "<raster>\t<GL_VENDOR / GL_RENDERER / GL_VERSION>",
+// in $LIGHTPASS_CACHE_DIR/shadow_raster.txt, else $XDG_CACHE_HOME/lightpass/, else ~/.cache/lightpass/.
+std::string shadowRasterCacheKey();
+std::filesystem::path shadowRasterCachePath();
 
 struct LightShadowMap {
     int light = -1;          // index into scene.directionalLights

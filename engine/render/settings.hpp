@@ -57,10 +57,13 @@ struct ShadowSettings {         // directional-light shadow maps (passes/shadow_
     // compute (plain's depths and coverage from a compute rasteriser, atomicMin into an R32UI image;
     // triangles wider or taller than kComputeRasterMaxTexels (passes/shadow_map_pass.hpp) go to the
     // hardware plain path).
-    enum class Raster { Conservative, Plain, Split, Compute };
+    // auto: the fastest of those four on this GPU (measured once, cached; passes/shadow_map_pass.hpp).
+    enum class Raster { Conservative, Plain, Split, Compute, Auto };
     Raster raster = Raster::Conservative;
     static const char* rasterName(Raster r) {
-        return r == Raster::Plain ? "plain" : r == Raster::Split ? "split" : r == Raster::Compute ? "compute" : "conservative";
+        return r == Raster::Plain ? "plain" : r == Raster::Split ? "split" : r == Raster::Compute ? "compute"
+               : r == Raster::Auto  ? "auto"
+                                    : "conservative";
     }
 
     static const char* filterName(Filter f) {

@@ -5,13 +5,20 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <random>
+
+#include <unistd.h>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
 #include "engine/graph/texture_pool.hpp"
+#include "engine/core/log.hpp"
 #include "engine/render/scene_gpu.hpp"
 #include "engine/scene/mesh_ops.hpp"
 #include "engine/scene/primitives.hpp"
@@ -55,13 +62,14 @@ Scene randomCasters(bool floor) {
     return s;
 }
 
-std::vector<float> shadowAtlas(const Scene& scene, const RenderSettings& settings) {
+std::vector<float> shadowAtlas(const Scene& scene, const RenderSettings& settings, ShadowMapPass* kept = nullptr) {
     SceneGpu gpu(scene);
     gl::ShaderLibrary shaders;
     FrameData frame = makeFrameData(scene, settings, 0.0f);
     frame.gpu = &gpu;
     frame.shaders = &shaders;
-    ShadowMapPass state;
+    ShadowMapPass local;
+    ShadowMapPass& state = kept ? *kept : local;
     fg::FrameGraph graph;
     fg::TexturePool pool;
     const ShadowMaps maps = addShadowMapPasses(graph, state, frame);
@@ -242,4 +250,96 @@ TEST(ShadowComputeRaster, EdgesThroughTexelCentresFollowTheFillRule) {
     size_t differ = 0;
     for (size_t i = 0; i < a.size(); ++i) differ += (a[i] < 1.0f) != (b[i] < 1.0f) ? 1 : 0;
     EXPECT_EQ(differ, 0u);
+}
+
+namespace {
+
+std::string readFile(const std::filesystem::path& p) {
+    std::ifstream in(p);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+
+// LIGHTPASS_CACHE_DIR set to a fresh directory for one test, restored after it.
+struct ScopedCacheDir {
+    std::filesystem::path dir;
+    std::string previous;
+    bool had = false;
+    explicit ScopedCacheDir(const std::string& name) {
+        dir = std::filesystem::temp_directory_path() / ("lightpass_test_" + name + "_" + std::to_string(::getpid()));
+        std::filesystem::remove_all(dir);
+        std::filesystem::create_directories(dir);
+        if (const char* p = std::getenv("LIGHTPASS_CACHE_DIR")) {
+            had = true;
+            previous = p;
+        }
+        ::setenv("LIGHTPASS_CACHE_DIR", dir.c_str(), 1);
+    }
+    ~ScopedCacheDir() {
+        had ? void(::setenv("LIGHTPASS_CACHE_DIR", previous.c_str(), 1)) : void(::unsetenv("LIGHTPASS_CACHE_DIR"));
+        std::filesystem::remove_all(dir);
+    }
+};
+
+RenderSettings autoTestSettings(ShadowSettings::Raster raster) {
+    RenderSettings settings;
+    settings.width = 64;
+    settings.height = 48;
+    settings.shadows.size = 64;
+    settings.shadows.cascades = 2;
+    settings.shadows.raster = raster;
+    return settings;
+}
+
+}  // namespace
+
+// --shadow-raster auto without a cache: measures the four rasters once, draws with the fastest
+// (its atlas is that raster's), and caches the choice under this GPU's key.
+TEST(ShadowRasterAuto, MeasuresOnceAndCachesTheChoicePerGpu) {
+    ScopedCacheDir cache("auto_measure");
+    const Scene s = randomCasters(true);
+    ShadowMapPass state;
+    const std::vector<float> autoAtlas = shadowAtlas(s, autoTestSettings(ShadowSettings::Raster::Auto), &state);
+    ASSERT_TRUE(state.autoResolved);
+    ASSERT_NE(state.autoRaster, ShadowSettings::Raster::Auto);
+    EXPECT_NE(state.autoReport.find("measured: conservative"), std::string::npos) << state.autoReport;
+    EXPECT_NE(state.autoReport.find("compute"), std::string::npos) << state.autoReport;
+    EXPECT_EQ(shadowRasterCachePath(), cache.dir / "shadow_raster.txt");
+    EXPECT_EQ(readFile(cache.dir / "shadow_raster.txt"),
+              std::string(ShadowSettings::rasterName(state.autoRaster)) + "\t" + shadowRasterCacheKey() + "\n");
+    EXPECT_EQ(autoAtlas, shadowAtlas(s, autoTestSettings(state.autoRaster)));
+    // A second frame of the same pass does not measure again.
+    const std::string report = state.autoReport;
+    shadowAtlas(s, autoTestSettings(ShadowSettings::Raster::Auto), &state);
+    EXPECT_EQ(state.autoReport, report);
+}
+
+// A cached choice for this GPU is used as is (no measurement), other GPUs' lines are left alone.
+TEST(ShadowRasterAuto, UsesTheCachedChoiceForThisGpu) {
+    ScopedCacheDir cache("auto_cached");
+    const std::string contents = "plain\tSome Other GPU / 1.0\nsplit\t" + shadowRasterCacheKey() + "\n";
+    std::ofstream(cache.dir / "shadow_raster.txt") << contents;
+    const Scene s = randomCasters(true);
+    ShadowMapPass state;
+    const std::vector<float> autoAtlas = shadowAtlas(s, autoTestSettings(ShadowSettings::Raster::Auto), &state);
+    EXPECT_EQ(state.autoRaster, ShadowSettings::Raster::Split);
+    EXPECT_NE(state.autoReport.find("cached in"), std::string::npos) << state.autoReport;
+    EXPECT_EQ(state.autoReport.find("measured"), std::string::npos) << state.autoReport;
+    EXPECT_EQ(readFile(cache.dir / "shadow_raster.txt"), contents);
+    EXPECT_EQ(autoAtlas, shadowAtlas(s, autoTestSettings(ShadowSettings::Raster::Split)));
+}
+
+// An unknown raster name in this GPU's line: a warning, a new measurement, the line replaced.
+TEST(ShadowRasterAuto, BadCacheLineIsMeasuredAgainAndReplaced) {
+    ScopedCacheDir cache("auto_bad");
+    std::ofstream(cache.dir / "shadow_raster.txt") << "plain\tSome Other GPU / 1.0\nbogus\t" + shadowRasterCacheKey() + "\n";
+    const int warnings = warningCount();
+    ShadowMapPass state;
+    shadowAtlas(randomCasters(true), autoTestSettings(ShadowSettings::Raster::Auto), &state);
+    EXPECT_GT(warningCount(), warnings);
+    EXPECT_NE(state.autoReport.find("measured"), std::string::npos) << state.autoReport;
+    EXPECT_EQ(readFile(cache.dir / "shadow_raster.txt"), "plain\tSome Other GPU / 1.0\n" +
+                                                             std::string(ShadowSettings::rasterName(state.autoRaster)) + "\t" +
+                                                             shadowRasterCacheKey() + "\n");
 }
