@@ -234,12 +234,16 @@ std::vector<KnobEntry> makeKnobTable() {
         KnobEntry k = choiceKnob("shadow-raster", [](auto& s) -> auto& { return s.shadows.raster; },
                                  std::vector<ShadowSettings::Raster>{ShadowSettings::Raster::Conservative,
                                                                      ShadowSettings::Raster::Plain,
-                                                                     ShadowSettings::Raster::Split},
+                                                                     ShadowSettings::Raster::Split,
+                                                                     ShadowSettings::Raster::Compute,
+                                                                     ShadowSettings::Raster::Auto},
                                  ShadowSettings::rasterName);
         k.flags = {valueFlag("--shadow-raster")};
         k.choiceNoun = "raster";
-        k.help = "sun cascades' caster raster: conservative (no crease leaks), plain (early-Z, leaks at creases) "
-                 "or split (faces towards the light plain, faces away conservative)";
+        k.help = "sun cascades' caster raster: conservative (no crease leaks), plain (early-Z, leaks at creases), "
+                 "split (faces towards the light plain, faces away conservative), compute (plain's depths from a "
+                 "compute rasteriser, large triangles on the hardware) or auto (the fastest on this GPU, measured once "
+                 "and cached)";
         k.panel = {PanelSection::Shadows, PanelWidget::Combo, "caster raster", ""};
         t.push_back(std::move(k));
     }

@@ -1,7 +1,13 @@
 #include "passes/shadow_map_pass.hpp"
 
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
 #include <glm/gtc/type_ptr.hpp>
 
+#include "engine/core/log.hpp"
 #include "engine/gl/shader.hpp"
 #include "engine/gl/state.hpp"
 #include "engine/render/scene_gpu.hpp"
@@ -9,10 +15,289 @@
 
 namespace lp {
 
+std::string shadowRasterCacheKey() {
+    auto str = [](GLenum name) {
+        const GLubyte* v = glGetString(name);
+        return v ? std::string(reinterpret_cast<const char*>(v)) : std::string("?");
+    };
+    return str(GL_VENDOR) + " / " + str(GL_RENDERER) + " / " + str(GL_VERSION);
+}
+
+std::filesystem::path shadowRasterCachePath() {
+    if (const char* dir = std::getenv("LIGHTPASS_CACHE_DIR"); dir && *dir) return std::filesystem::path(dir) / "shadow_raster.txt";
+    if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg)
+        return std::filesystem::path(xdg) / "lightpass" / "shadow_raster.txt";
+    if (const char* home = std::getenv("HOME"); home && *home)
+        return std::filesystem::path(home) / ".cache" / "lightpass" / "shadow_raster.txt";
+    return std::filesystem::path("lightpass_shadow_raster.txt");
+}
+
 namespace {
 struct Data {
     fg::ResourceId depth;
 };
+
+struct DrawArraysCommand {
+    GLuint count, instanceCount, first, baseInstance;
+};
+
+// --shadow-raster compute, inside the pass's framebuffer (the atlas bound as its depth, cleared to
+// 1, depth clamp and the polygon offset factor set): every cascade's culled casters through
+// shadow_raster.comp into the R32UI image, that image into the atlas, then each cascade's large
+// triangles drawn plainly over it with the depth test.
+void drawCascadesByCompute(ShadowMapPass& state, const FrameData& frame, const ShadowFrustum& fr,
+                           const std::vector<CasterList>& casters, int width, int height, bool depthZeroToOne) {
+    if (!state.rasterProgram) state.rasterProgram = frame.shaders->compute("shadow_raster.comp");
+    if (!state.resolveProgram) state.resolveProgram = frame.shaders->graphics("fullscreen.vert", "shadow_raster_resolve.frag");
+    if (!state.largeProgram) state.largeProgram = frame.shaders->graphics("shadow_raster_large.vert", "shadow_depth.frag");
+    if (!state.emptyVao) state.emptyVao = gl::makeVertexArray("shadow_map.compute_raster");
+    if (!state.depthBits || state.depthBits.width != width || state.depthBits.height != height)
+        state.depthBits = gl::makeTexture2D(GL_R32UI, width, height, 1, "shadow_map.depth_bits");
+    // Every caster of a cascade may be large: one region of that many vertices per cascade.
+    std::vector<DrawArraysCommand> commands(fr.cascades.size());
+    size_t needed = 0;
+    for (size_t c = 0; c < fr.cascades.size(); ++c) {
+        commands[c] = {0, 1, GLuint(needed), 0};
+        needed += 3 * casters[c].triangles;
+    }
+    needed = std::max<size_t>(needed, 3);
+    if (needed > state.largeCapacity) {
+        state.largeVertices = gl::makeBuffer(GLsizeiptr(needed * sizeof(glm::vec4)), nullptr, 0, "shadow_map.large_vertices");
+        state.largeCapacity = needed;
+    }
+    if (!state.largeDraws)
+        state.largeDraws = gl::makeBuffer(GLsizeiptr(kMaxShadowCascades * sizeof(DrawArraysCommand)), nullptr,
+                                          GL_DYNAMIC_STORAGE_BIT, "shadow_map.large_draws");
+    glNamedBufferSubData(state.largeDraws.id(), 0, GLsizeiptr(commands.size() * sizeof(DrawArraysCommand)), commands.data());
+    const GLuint cleared = 0x3f800000u;  // the bits of 1.0f: no caster
+    glClearTexImage(state.depthBits.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &cleared);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+
+    const GLuint prog = state.rasterProgram.id();
+    glUseProgram(prog);
+    glBindImageTexture(0, state.depthBits.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, state.largeDraws.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, state.largeVertices.id());
+    glProgramUniform1i(prog, glGetUniformLocation(prog, "uTileSize"), fr.tileSize);
+    glProgramUniform1i(prog, glGetUniformLocation(prog, "uDepthZeroToOne"), depthZeroToOne ? 1 : 0);
+    glProgramUniform1f(prog, glGetUniformLocation(prog, "uSlopeBias"), frame.settings->shadows.slopeBias);
+    glProgramUniform1f(prog, glGetUniformLocation(prog, "uLargeTexels"), kComputeRasterMaxTexels);
+    const GLint locMvp = glGetUniformLocation(prog, "uModelToClip");
+    const GLint locFirst = glGetUniformLocation(prog, "uFirstIndex");
+    const GLint locCount = glGetUniformLocation(prog, "uTriangleCount");
+    for (size_t c = 0; c < fr.cascades.size(); ++c) {
+        glProgramUniform2i(prog, glGetUniformLocation(prog, "uTileOrigin"), GLint(c % size_t(fr.columns)) * fr.tileSize,
+                           GLint(c / size_t(fr.columns)) * fr.tileSize);
+        glProgramUniform1i(prog, glGetUniformLocation(prog, "uCascade"), GLint(c));
+        for (const CasterDraw& draw : casters[c].draws) {
+            if (draw.model < 0 || size_t(draw.model) >= frame.gpu->meshes.size()) continue;
+            const GpuMesh& mesh = frame.gpu->meshes[size_t(draw.model)];
+            const glm::mat4 mvp = fr.cascades[c].worldToClip * mesh.model;
+            glProgramUniformMatrix4fv(prog, locMvp, 1, GL_FALSE, glm::value_ptr(mvp));
+            glProgramUniform1ui(prog, locFirst, draw.firstIndex);
+            const GLuint triangles = draw.indexCount / 3;
+            glProgramUniform1ui(prog, locCount, triangles);
+            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, mesh.vertices.id());
+            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, mesh.indices.id());
+            glDispatchCompute((triangles + 63) / 64, 1, 1);
+        }
+    }
+    glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+    for (GLuint b = 0; b < 4; ++b) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, 0);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+
+    // The bits into the atlas: every texel written, the depth test off.
+    glBindVertexArray(state.emptyVao.id());
+    glViewport(0, 0, width, height);
+    glDepthFunc(GL_ALWAYS);
+    glUseProgram(state.resolveProgram.id());
+    glBindTextureUnit(0, state.depthBits.id());
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glBindTextureUnit(0, 0);
+    glDepthFunc(GL_LESS);
+
+    // The large triangles: the plain path (polygon offset, depth clamp), one indirect draw per cascade.
+    glUseProgram(state.largeProgram.id());
+    glEnable(GL_POLYGON_OFFSET_FILL);
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, state.largeDraws.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, state.largeVertices.id());
+    for (size_t c = 0; c < fr.cascades.size(); ++c) {
+        glViewport(GLint(c % size_t(fr.columns)) * fr.tileSize, GLint(c / size_t(fr.columns)) * fr.tileSize, fr.tileSize,
+                   fr.tileSize);
+        glDrawArraysIndirect(GL_TRIANGLES, reinterpret_cast<const void*>(c * sizeof(DrawArraysCommand)));
+    }
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, 0);
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+    glDisable(GL_POLYGON_OFFSET_FILL);
+    glBindVertexArray(0);
+    glUseProgram(0);
+}
+
+// Draws the cascades' casters into the atlas `depthTexture` (width x height) with `raster` (not Auto).
+void drawAtlas(ShadowMapPass& state, const FrameData& frame, const ShadowFrustum& fr, const std::vector<CasterList>& casters,
+               ShadowSettings::Raster raster, GLuint depthTexture, int width, int height) {
+    using Raster = ShadowSettings::Raster;
+        if (!state.fbo) state.fbo = gl::makeFramebuffer("shadow_map");
+        if (raster == Raster::Conservative && !state.program)
+            state.program = frame.shaders->graphics("shadow_depth.vert", "shadow_depth.geom", "shadow_depth.frag",
+                                                    {"LP_SHADOW_CONSERVATIVE"});
+        if (raster == Raster::Split && !state.awayProgram)
+            state.awayProgram = frame.shaders->graphics("shadow_depth.vert", "shadow_depth.geom", "shadow_depth.frag",
+                                                        {"LP_SHADOW_CONSERVATIVE", "LP_SHADOW_AWAY_ONLY"});
+        if ((raster == Raster::Plain || raster == Raster::Split) && !state.plainProgram)
+            state.plainProgram = frame.shaders->graphics("shadow_depth.vert", "shadow_depth.frag");
+        const GLuint fbo = state.fbo.id();
+        glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, depthTexture, 0);
+        glNamedFramebufferDrawBuffer(fbo, GL_NONE);
+        glNamedFramebufferReadBuffer(fbo, GL_NONE);
+        gl::ScopedFramebuffer bind(fbo, width, height);
+        gl::ScopedEnable depthTest(GL_DEPTH_TEST, true);
+        gl::ScopedEnable cull(GL_CULL_FACE, false);  // thin walls and open meshes cast from both sides
+        gl::ScopedEnable blend(GL_BLEND, false);
+        gl::ScopedEnable clamp(GL_DEPTH_CLAMP, true);  // casters past the light's near plane still cast
+        gl::ScopedEnable offset(GL_POLYGON_OFFSET_FILL, false);
+        gl::ScopedRasterState saved;  // depth function and mask, polygon offset, cull face
+        glDepthFunc(GL_LESS);
+        glDepthMask(GL_TRUE);
+        // Plain draws: the slope bias is the polygon offset's factor (as the spot maps').
+        glPolygonOffset(frame.settings->shadows.slopeBias, 0.0f);
+        const float one = 1.0f;
+        glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &one);
+
+        GLint clipDepth = GL_NEGATIVE_ONE_TO_ONE;
+        glGetIntegerv(GL_CLIP_DEPTH_MODE, &clipDepth);
+        const GLuint conservativeProg = raster == Raster::Conservative ? state.program.id()
+                                        : raster == Raster::Split      ? state.awayProgram.id()
+                                                                       : 0;
+        if (conservativeProg) {
+            glProgramUniform1i(conservativeProg, glGetUniformLocation(conservativeProg, "uDepthZeroToOne"),
+                               clipDepth == GL_ZERO_TO_ONE ? 1 : 0);
+            // Slope-scaled bias against acne, for the faces towards the light only (shadow_depth.frag);
+            // the constant part is the receiver's (see shadow.glsl).
+            glProgramUniform1f(conservativeProg, glGetUniformLocation(conservativeProg, "uSlopeBias"),
+                               frame.settings->shadows.slopeBias);
+        }
+        if (raster == Raster::Compute) {
+            drawCascadesByCompute(state, frame, fr, casters, width, height, clipDepth == GL_ZERO_TO_ONE);
+            glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, 0, 0);
+            return;
+        }
+        const GLuint plainProg = raster == Raster::Conservative ? 0 : state.plainProgram.id();
+        for (size_t c = 0; c < fr.cascades.size(); ++c) {
+            const GLint x = GLint(c % size_t(fr.columns)) * fr.tileSize;
+            const GLint y = GLint(c / size_t(fr.columns)) * fr.tileSize;
+            glViewport(x, y, fr.tileSize, fr.tileSize);
+            if (plainProg) {
+                // Split: only the faces towards the light (counter-clockwise in the light's window,
+                // as shadow_depth.geom's orientation), which need neither growth nor gl_FragDepth.
+                glUseProgram(plainProg);
+                glEnable(GL_POLYGON_OFFSET_FILL);
+                if (raster == Raster::Split) glEnable(GL_CULL_FACE);
+                glCullFace(GL_BACK);
+                drawCasterList(frame, plainProg, glGetUniformLocation(plainProg, "uModelToClip"),
+                               fr.cascades[c].worldToClip, casters[c]);
+                glDisable(GL_POLYGON_OFFSET_FILL);
+                glDisable(GL_CULL_FACE);
+            }
+            if (conservativeProg) {
+                glUseProgram(conservativeProg);
+                glProgramUniform4f(conservativeProg, glGetUniformLocation(conservativeProg, "uViewport"), float(x),
+                                   float(y), float(fr.tileSize), float(fr.tileSize));
+                drawCasterList(frame, conservativeProg, glGetUniformLocation(conservativeProg, "uModelToClip"),
+                               fr.cascades[c].worldToClip, casters[c]);
+            }
+        }
+        glBindVertexArray(0);
+        glUseProgram(0);
+        glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, 0, 0);
+}
+
+// --shadow-raster auto: the raster cached for this GPU, else the fastest of the four measured on this
+// first frame's cascades (each drawn once to compile, then kAutoRuns times between GL timestamps;
+// the median counts) and cached. Bad cache lines are ignored with a warning and rewritten.
+constexpr int kAutoRuns = 5;
+constexpr ShadowSettings::Raster kMeasuredRasters[] = {ShadowSettings::Raster::Conservative, ShadowSettings::Raster::Plain,
+                                                       ShadowSettings::Raster::Split, ShadowSettings::Raster::Compute};
+
+bool rasterFromName(const std::string& name, ShadowSettings::Raster& out) {
+    for (ShadowSettings::Raster r : kMeasuredRasters)
+        if (name == ShadowSettings::rasterName(r)) {
+            out = r;
+            return true;
+        }
+    return false;
+}
+
+template <typename DrawFn>
+ShadowSettings::Raster resolveAutoRaster(ShadowMapPass& state, DrawFn&& draw) {
+    if (state.autoResolved) return state.autoRaster;
+    state.autoResolved = true;
+    const std::string key = shadowRasterCacheKey();
+    const std::filesystem::path path = shadowRasterCachePath();
+    std::vector<std::string> kept;  // other GPUs' lines
+    {
+        std::ifstream in(path);
+        std::string line;
+        while (std::getline(in, line)) {
+            const size_t tab = line.find('\t');
+            if (tab == std::string::npos || line.substr(tab + 1) != key) {
+                if (!line.empty()) kept.push_back(line);
+                continue;
+            }
+            ShadowSettings::Raster cached;
+            if (rasterFromName(line.substr(0, tab), cached)) {
+                state.autoRaster = cached;
+                state.autoReport = std::string("shadow raster auto: ") + ShadowSettings::rasterName(cached) + " (cached in " +
+                                   path.string() + ")";
+                logInfo(state.autoReport);
+                return cached;
+            }
+            logWarn(path.string() + ": unknown shadow raster '" + line.substr(0, tab) + "' for this GPU; measuring again");
+        }
+    }
+    std::string times;
+    double best = 0.0;
+    for (ShadowSettings::Raster r : kMeasuredRasters) {
+        draw(r);  // compiles the programs, makes the buffers
+        std::vector<double> ms;
+        for (int i = 0; i < kAutoRuns; ++i) {
+            gl::Query begin = gl::makeQuery(GL_TIMESTAMP), end = gl::makeQuery(GL_TIMESTAMP);
+            glQueryCounter(begin.id(), GL_TIMESTAMP);
+            draw(r);
+            glQueryCounter(end.id(), GL_TIMESTAMP);
+            GLuint64 t0 = 0, t1 = 0;
+            glGetQueryObjectui64v(begin.id(), GL_QUERY_RESULT, &t0);
+            glGetQueryObjectui64v(end.id(), GL_QUERY_RESULT, &t1);
+            ms.push_back(double(t1 - t0) * 1e-6);
+        }
+        std::sort(ms.begin(), ms.end());
+        const double median = ms[ms.size() / 2];
+        times += std::string(times.empty() ? "" : ", ") + ShadowSettings::rasterName(r) + " " + std::to_string(median) + " ms";
+        if (r == kMeasuredRasters[0] || median < best) {
+            best = median;
+            state.autoRaster = r;
+        }
+    }
+    state.autoReport = std::string("shadow raster auto: ") + ShadowSettings::rasterName(state.autoRaster) + " (measured: " +
+                       times + "; cached in " + path.string() + ")";
+    logInfo(state.autoReport);
+    // Written beside and renamed over the cache: a failed write leaves the old file whole.
+    std::error_code ec;
+    std::filesystem::create_directories(path.parent_path(), ec);
+    const std::filesystem::path temporary = path.string() + ".tmp";
+    {
+        std::ofstream out(temporary, std::ios::trunc);
+        for (const std::string& line : kept) out << line << '\n';
+        out << ShadowSettings::rasterName(state.autoRaster) << '\t' << key << '\n';
+        if (!out) ec = std::make_error_code(std::errc::io_error);
+    }
+    if (!ec) std::filesystem::rename(temporary, path, ec);
+    if (ec) {
+        std::filesystem::remove(temporary, ec);
+        logWarn(path.string() + ": could not write the shadow raster cache; auto measures again next start");
+    }
+    return state.autoRaster;
+}
 
 }  // namespace
 
@@ -59,78 +344,13 @@ ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const
             name, fg::PassKind::Raster,
             [&](fg::PassBuilder& b, Data& out) { out.depth = b.create(name + ".depth", desc, fg::Usage::DepthAttachment); },
             [&state, frame, fr, casters](const Data& out, const fg::PassResources& res) {
-                const fg::ResourceId depth = out.depth;
-                using Raster = ShadowSettings::Raster;
-                const Raster raster = frame.settings->shadows.raster;
-                if (!state.fbo) state.fbo = gl::makeFramebuffer("shadow_map");
-                if (raster == Raster::Conservative && !state.program)
-                    state.program = frame.shaders->graphics("shadow_depth.vert", "shadow_depth.geom", "shadow_depth.frag",
-                                                            {"LP_SHADOW_CONSERVATIVE"});
-                if (raster == Raster::Split && !state.awayProgram)
-                    state.awayProgram = frame.shaders->graphics("shadow_depth.vert", "shadow_depth.geom", "shadow_depth.frag",
-                                                                {"LP_SHADOW_CONSERVATIVE", "LP_SHADOW_AWAY_ONLY"});
-                if (raster != Raster::Conservative && !state.plainProgram)
-                    state.plainProgram = frame.shaders->graphics("shadow_depth.vert", "shadow_depth.frag");
-                const GLuint fbo = state.fbo.id();
-                glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, res.texture(depth), 0);
-                glNamedFramebufferDrawBuffer(fbo, GL_NONE);
-                glNamedFramebufferReadBuffer(fbo, GL_NONE);
-                const fg::TextureDesc& d = res.desc(depth);
-                gl::ScopedFramebuffer bind(fbo, d.width, d.height);
-                gl::ScopedEnable depthTest(GL_DEPTH_TEST, true);
-                gl::ScopedEnable cull(GL_CULL_FACE, false);  // thin walls and open meshes cast from both sides
-                gl::ScopedEnable blend(GL_BLEND, false);
-                gl::ScopedEnable clamp(GL_DEPTH_CLAMP, true);  // casters past the light's near plane still cast
-                gl::ScopedEnable offset(GL_POLYGON_OFFSET_FILL, false);
-                gl::ScopedRasterState saved;  // depth function and mask, polygon offset, cull face
-                glDepthFunc(GL_LESS);
-                glDepthMask(GL_TRUE);
-                // Plain draws: the slope bias is the polygon offset's factor (as the spot maps').
-                glPolygonOffset(frame.settings->shadows.slopeBias, 0.0f);
-                const float one = 1.0f;
-                glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &one);
-
-                GLint clipDepth = GL_NEGATIVE_ONE_TO_ONE;
-                glGetIntegerv(GL_CLIP_DEPTH_MODE, &clipDepth);
-                const GLuint conservativeProg = raster == Raster::Conservative ? state.program.id()
-                                                : raster == Raster::Split      ? state.awayProgram.id()
-                                                                               : 0;
-                if (conservativeProg) {
-                    glProgramUniform1i(conservativeProg, glGetUniformLocation(conservativeProg, "uDepthZeroToOne"),
-                                       clipDepth == GL_ZERO_TO_ONE ? 1 : 0);
-                    // Slope-scaled bias against acne, for the faces towards the light only (shadow_depth.frag);
-                    // the constant part is the receiver's (see shadow.glsl).
-                    glProgramUniform1f(conservativeProg, glGetUniformLocation(conservativeProg, "uSlopeBias"),
-                                       frame.settings->shadows.slopeBias);
-                }
-                const GLuint plainProg = raster == Raster::Conservative ? 0 : state.plainProgram.id();
-                for (size_t c = 0; c < fr.cascades.size(); ++c) {
-                    const GLint x = GLint(c % size_t(fr.columns)) * fr.tileSize;
-                    const GLint y = GLint(c / size_t(fr.columns)) * fr.tileSize;
-                    glViewport(x, y, fr.tileSize, fr.tileSize);
-                    if (plainProg) {
-                        // Split: only the faces towards the light (counter-clockwise in the light's window,
-                        // as shadow_depth.geom's orientation), which need neither growth nor gl_FragDepth.
-                        glUseProgram(plainProg);
-                        glEnable(GL_POLYGON_OFFSET_FILL);
-                        if (raster == Raster::Split) glEnable(GL_CULL_FACE);
-                        glCullFace(GL_BACK);
-                        drawCasterList(frame, plainProg, glGetUniformLocation(plainProg, "uModelToClip"),
-                                       fr.cascades[c].worldToClip, casters[c]);
-                        glDisable(GL_POLYGON_OFFSET_FILL);
-                        glDisable(GL_CULL_FACE);
-                    }
-                    if (conservativeProg) {
-                        glUseProgram(conservativeProg);
-                        glProgramUniform4f(conservativeProg, glGetUniformLocation(conservativeProg, "uViewport"), float(x),
-                                           float(y), float(fr.tileSize), float(fr.tileSize));
-                        drawCasterList(frame, conservativeProg, glGetUniformLocation(conservativeProg, "uModelToClip"),
-                                       fr.cascades[c].worldToClip, casters[c]);
-                    }
-                }
-                glBindVertexArray(0);
-                glUseProgram(0);
-                glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, 0, 0);
+                const fg::TextureDesc& d = res.desc(out.depth);
+                ShadowSettings::Raster raster = frame.settings->shadows.raster;
+                if (raster == ShadowSettings::Raster::Auto)
+                    raster = resolveAutoRaster(state, [&](ShadowSettings::Raster r) {
+                        drawAtlas(state, frame, fr, casters, r, res.texture(out.depth), d.width, d.height);
+                    });
+                drawAtlas(state, frame, fr, casters, raster, res.texture(out.depth), d.width, d.height);
             });
         map.depth = data.depth;
         maps.push_back(std::move(map));

@@ -3,8 +3,14 @@
 // i = the light's index in the scene). Each creates a D32F atlas "shadow_map_<i>.depth" holding its
 // cascades as square tiles (see engine/render/shadows.hpp), drawn with slope-scaled depth bias.
 // Each cascade draws only the caster clusters that can reach its tile (--shadow-culling, counts in
-// 'lightpass graph --explain'), conservatively grown or plain (--shadow-raster).
+// 'lightpass graph --explain'), conservatively grown, plain, or by the compute rasteriser
+// (--shadow-raster compute: shadow_raster.comp writes an R32UI image private to this pass, which a
+// full-atlas draw turns into the D32F atlas; triangles whose window box exceeds
+// kComputeRasterMaxTexels in x or y are drawn by the hardware plain path after it), or auto: the
+// fastest of the four on this GPU, measured once on the first frame and cached per GPU.
 // No shadow-casting light, or shadows switched off: no pass at all.
+#include <filesystem>
+#include <string>
 #include <vector>
 
 #include "engine/gl/handles.hpp"
@@ -15,12 +21,32 @@
 
 namespace lp {
 
+constexpr float kComputeRasterMaxTexels = 64.0f;
+
 struct ShadowMapPass {
     gl::Program program;       // conservative casters (shadow_depth.geom)
     gl::Program plainProgram;  // --shadow-raster plain, and split's faces towards the light
     gl::Program awayProgram;   // --shadow-raster split: conservative, faces away from the light only
     gl::Framebuffer fbo;
+    // --shadow-raster compute
+    gl::Program rasterProgram;   // shadow_raster.comp
+    gl::Program resolveProgram;  // R32UI bits -> D32F atlas
+    gl::Program largeProgram;    // the large triangles, plainly
+    gl::VertexArray emptyVao;
+    gl::Texture depthBits;       // R32UI, the atlas's size
+    gl::Buffer largeVertices;    // clip-space vertices of the large triangles, one region per cascade
+    size_t largeCapacity = 0;    // vertices
+    gl::Buffer largeDraws;       // one DrawArraysIndirectCommand per cascade
+    // --shadow-raster auto: resolved on the first frame drawn (from the cache, or measured)
+    bool autoResolved = false;
+    ShadowSettings::Raster autoRaster = ShadowSettings::Raster::Conservative;
+    std::string autoReport;  // the line logged: the choice, the measured times or "cached", the file
 };
+
+// --shadow-raster auto's cache: one line per GPU, "<raster>\t<GL_VENDOR / GL_RENDERER / GL_VERSION>",
+// in $LIGHTPASS_CACHE_DIR/shadow_raster.txt, else $XDG_CACHE_HOME/lightpass/, else ~/.cache/lightpass/.
+std::string shadowRasterCacheKey();
+std::filesystem::path shadowRasterCachePath();
 
 struct LightShadowMap {
     int light = -1;          // index into scene.directionalLights

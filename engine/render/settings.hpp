@@ -60,11 +60,17 @@ struct ShadowSettings {         // directional-light shadow maps (passes/shadow_
     // How the sun cascades rasterise casters: conservative (grown by half a texel, nearest depth over
     // the texel for faces away from the light: no leak along closed creases, but gl_FragDepth turns
     // early depth testing off), plain (hardware depth at texel centres plus polygon offset), or split
-    // (faces towards the light plain with early depth testing, faces away from it conservative).
-    enum class Raster { Conservative, Plain, Split };
+    // (faces towards the light plain with early depth testing, faces away from it conservative), or
+    // compute (plain's depths and coverage from a compute rasteriser, atomicMin into an R32UI image;
+    // triangles wider or taller than kComputeRasterMaxTexels (passes/shadow_map_pass.hpp) go to the
+    // hardware plain path).
+    // auto: the fastest of those four on this GPU (measured once, cached; passes/shadow_map_pass.hpp).
+    enum class Raster { Conservative, Plain, Split, Compute, Auto };
     Raster raster = Raster::Conservative;
     static const char* rasterName(Raster r) {
-        return r == Raster::Plain ? "plain" : r == Raster::Split ? "split" : "conservative";
+        return r == Raster::Plain ? "plain" : r == Raster::Split ? "split" : r == Raster::Compute ? "compute"
+               : r == Raster::Auto  ? "auto"
+                                    : "conservative";
     }
 
     static const char* filterName(Filter f) {

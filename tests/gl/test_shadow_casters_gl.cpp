@@ -85,7 +85,8 @@ TEST(ShadowCasterCulling, AtlasIsUnchangedWithCullingOnAndOff) {
     const CasterList nearest = cullCasters(clusters, s, fr.cascades[0].worldToClip, 2.0f / float(fr.tileSize), true);
     EXPECT_LT(nearest.clusters + 2, clusters.size()) << "the near cascade should cull several spheres";
 
-    for (auto raster : {ShadowSettings::Raster::Conservative, ShadowSettings::Raster::Plain, ShadowSettings::Raster::Split}) {
+    for (auto raster : {ShadowSettings::Raster::Conservative, ShadowSettings::Raster::Plain, ShadowSettings::Raster::Split,
+                        ShadowSettings::Raster::Compute}) {
         RenderSettings on = settings, off = settings;
         on.shadows.raster = off.shadows.raster = raster;
         off.shadows.cullCasters = false;
