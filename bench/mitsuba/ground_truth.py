@@ -135,8 +135,9 @@ def ggx_albedo(nv, alpha, separable=False, n=512):
     return float(np.sum(np.where(ok, g2 * vh / (nv * hz), 0.0)) / (n * n))
 
 
-def sphere_nv(width, height):
-    """N.V of the true sphere at every pixel (0 off every sphere), for the furnace's exact albedo."""
+def sphere_nv(width, height, grid=None):
+    """N.V of the true sphere at every pixel (0 off every sphere), for the furnace's exact albedo.
+    `grid`: the (name, centre, ...) tuples of the spheres (default: this grid's)."""
     pos = np.array(CAMERA["position"], float)
     fwd = np.array(CAMERA["target"], float) - pos
     fwd /= np.linalg.norm(fwd)
@@ -149,7 +150,7 @@ def sphere_nv(width, height):
     d = fwd[None, None, :] + xs[None, :, None] * right[None, None, :] + ys[:, None, None] * up[None, None, :]
     d /= np.linalg.norm(d, axis=2, keepdims=True)
     nv = np.zeros((height, width))
-    for _, c, _, _, _ in spheres():
+    for _, c, *_ in (grid if grid is not None else spheres()):
         oc = pos - np.array(c, float)
         b = np.einsum("hwc,c->hw", d, oc)
         disc = b * b - (oc @ oc - RADIUS ** 2)
@@ -160,7 +161,7 @@ def sphere_nv(width, height):
     return nv
 
 
-def sphere_masks(width, height, shrink=0.9, min_nv=0.0):
+def sphere_masks(width, height, shrink=0.9, min_nv=0.0, grid=None):
     """Per sphere, the pixels whose centre ray hits it within `shrink` of its radius (0.9: away from
     the tessellated silhouette) where N.V >= min_nv (of the true sphere), from the same pinhole camera
     as both renderers use. The spheres don't overlap on screen."""
@@ -177,7 +178,7 @@ def sphere_masks(width, height, shrink=0.9, min_nv=0.0):
     d = fwd[None, None, :] + xs[None, :, None] * right[None, None, :] + ys[:, None, None] * up[None, None, :]
     d /= np.linalg.norm(d, axis=2, keepdims=True)
     masks = {}
-    for name, c, _, _, _ in spheres():
+    for name, c, *_ in (grid if grid is not None else spheres()):
         oc = pos - np.array(c, float)
         b = np.einsum("hwc,c->hw", d, oc)
         inside = b * b - (oc @ oc - (shrink * RADIUS) ** 2) > 0

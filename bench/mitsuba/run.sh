@@ -4,6 +4,7 @@
 # the arguments given, e.g.
 #   bench/mitsuba/run.sh --size 256x144 --spp 256
 #   bench/mitsuba/run.sh --maps hdr/sky.exr --spp 64
+#   bench/mitsuba/run.sh principled --spp 128   (metallic-roughness spheres vs Mitsuba's principled: principled.py)
 #   bench/mitsuba/run.sh cornell --size 256x256 --spp 512   (the IBL-lit Cornell box, AO off / on: cornell_ao.py)
 # lightpass must be built (build/app/lightpass, or --lightpass PATH).
 set -euo pipefail
@@ -18,5 +19,9 @@ cd "$repo"
 if [ "${1:-}" = cornell ]; then
     shift
     exec "$venv/bin/python" bench/mitsuba/cornell_ao.py "$@"
+fi
+if [ "${1:-}" = principled ]; then
+    shift
+    exec "$venv/bin/python" bench/mitsuba/principled.py "$@"
 fi
 exec "$venv/bin/python" bench/mitsuba/ground_truth.py "$@"

@@ -7,8 +7,16 @@ namespace lp {
 // Area-weighted vertex normals: the sum of unnormalised face cross products over the faces that
 // share each vertex. A vertex with no area around it gets +Y. Never NaN.
 void computeNormals(MeshData& mesh);
-// Per-vertex tangents from UVs (Lengyel), Gram-Schmidt against the normal, w = handedness. Where
-// UVs are absent or degenerate, any unit tangent perpendicular to the normal (Duff et al. 2017).
+// MikkTSpace-compatible tangents (Mikkelsen 2008; the rules of the reference mikktspace.c at its
+// default 180-degree threshold), so that a normal map baked for glTF shades without seams:
+// vertices are identified by position, normal and uv (bit for bit); each triangle's tangent is the
+// unit direction of increasing u; at each vertex, the triangles of one UV orientation connected
+// through edges at the vertex form a group whose tangent is the sum of their tangents projected into
+// the vertex's tangent plane, weighted by the corner angles there, normalised; w = +1 where the UV
+// mapping keeps the winding, -1 where it mirrors it (the bitangent cross(N, T) w points along +v).
+// A vertex whose corners fall into different groups is split (mesh.vertices grows, indices are
+// rewritten). Triangles with no UV area join their neighbours' group; a vertex with no usable UV
+// mapping gets any unit tangent perpendicular to its normal (Duff et al. 2017).
 void computeTangents(MeshData& mesh);
 void computeBounds(MeshData& mesh);  // of the finite positions (none: zero)
 // A unit vector perpendicular to unit n, continuous except on a measure-zero set, never 0/0

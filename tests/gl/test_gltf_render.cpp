@@ -10,6 +10,8 @@
 #include "engine/io/gltf_loader.hpp"
 #include "engine/io/image_io.hpp"
 #include "engine/io/obj_loader.hpp"
+#include "engine/scene/mesh_ops.hpp"
+#include "engine/scene/primitives.hpp"
 #include "frame/renderer.hpp"
 #include "tests/gl/gl_fixture.hpp"
 
@@ -236,4 +238,62 @@ TEST(GltfRender, GltfSpotLightsItsConeOnly) {
     EXPECT_EQ(at(w / 2, 4), 0.0f);
     EXPECT_EQ(at(w / 2, 43), 0.0f);
     fs::remove_all(dir);
+}
+
+// A UV sphere (64 x 32, seam at u = 0 / 1 facing +X) with a constant tilted normal map (the plane's
+// (0.36, 0.48, 0.8)), white Lambertian under one sun, seen with the seam down the middle of the image.
+// Its tangents generated (MikkTSpace rules, computeTangents) against the generator's analytic dp/du
+// (continuous, what a file's tangents would hold): every sphere pixel within 2% of the brightest, and
+// across the seam the step between the two columns either side of it within 2% as well (the
+// analytic render's own step there is the smooth gradient).
+TEST(GltfRender, GeneratedTangentsShadeAUvSphereWithoutASeam) {
+    auto render = [](MeshData mesh, bool normalMapped = true) {
+        Material m;
+        m.diffuse = glm::vec3(1.0f);
+        m.specular = glm::vec3(0.0f);
+        TextureRef normal;
+        normal.encoded = std::make_shared<const std::string>(encodePng(constantImage(8, 8, {173, 189, 230, 255})));
+        normal.key = "tilted-normal";
+        if (normalMapped) m.normalMap = normal;
+        mesh.materials = {m};
+        mesh.subMeshes = {SubMesh{0, uint32_t(mesh.indices.size()), 0}};
+        Scene s = modelScene(std::move(mesh));
+        s.camera.position = {4.0f, 0.0f, 0.0f};
+        s.camera.target = {0.0f, 0.0f, 0.0f};
+        s.camera.fovYDegrees = 35.0f;
+        DirectionalLight sun;
+        sun.direction = -glm::normalize(glm::vec3(1.0f, 0.5f, 0.3f));
+        sun.intensity = 2.0f;
+        sun.castsShadows = false;
+        s.directionalLights.push_back(sun);
+        Renderer r(s);
+        RenderSettings settings;
+        settings.width = 64;
+        settings.height = 64;
+        settings.keepHdr = true;
+        r.render(settings);
+        return r.readHdr();
+    };
+    const MeshData analytic = makeSphere(1.0f, 64, 32);
+    MeshData generated = analytic;
+    computeTangents(generated);
+    const ImageF a = render(analytic), g = render(generated);
+    float peak = 0.0f;
+    for (size_t i = 0; i < a.rgba.size(); i += 4) peak = std::max(peak, a.rgba[i]);
+    ASSERT_GT(peak, 0.3f);
+    // The map matters: without it the shading moves by far more than the bounds below.
+    const ImageF plain = render(analytic, false);
+    double tilt = 0.0;
+    for (size_t i = 0; i < a.rgba.size(); i += 4) tilt = std::max(tilt, double(std::abs(a.rgba[i] - plain.rgba[i])));
+    EXPECT_GT(tilt, 0.2 * peak);
+    double worst = 0.0;
+    for (size_t i = 0; i < a.rgba.size(); i += 4) worst = std::max(worst, double(std::abs(a.rgba[i] - g.rgba[i])));
+    EXPECT_LT(worst, 0.02 * peak);
+    // The seam projects onto the image's middle columns (31 | 32), rows within the sphere's middle half.
+    for (int y = 20; y < 44; ++y) {
+        auto at = [&](const ImageF& img, int x) { return img.rgba[(size_t(y) * 64 + size_t(x)) * 4]; };
+        const float stepGenerated = at(g, 32) - at(g, 31), stepAnalytic = at(a, 32) - at(a, 31);
+        EXPECT_NEAR(stepGenerated, stepAnalytic, 0.02f * peak) << "row " << y;
+        EXPECT_GT(at(g, 31), 0.0f) << "row " << y;
+    }
 }
