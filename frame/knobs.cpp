@@ -599,7 +599,7 @@ std::vector<KnobEntry> makeKnobTable() {
                                  post::cudaInteropName);
         k.flags = {valueFlag("--cuda-interop")};
         k.help = "how the CUDA post effects reach GL textures: external (GL memory objects on CUDA memory, shared "
-                 "once), map (map/unmap per use); auto: external where the driver supports it, else map";
+                 "once; experimental: wrong toon outlines on the H100), map (map/unmap per use); auto: map";
         t.push_back(std::move(k));
     }
     {

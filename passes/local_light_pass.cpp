@@ -6,6 +6,7 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include "engine/core/error.hpp"
 #include "engine/gl/shader.hpp"
 #include "engine/core/log.hpp"
 #include "engine/gl/state.hpp"
@@ -161,8 +162,7 @@ void buildClusters(LocalLightPass& state, const FrameData& frame, int lightCount
                                                   int(state.clusterOverflow.size()))];
         if (!slot.done || !slot.done.signaled()) continue;
         if (slot.read) break;
-        GLuint overflow = 0;
-        glGetNamedBufferSubData(slot.count.id(), 0, sizeof(GLuint), &overflow);
+        const GLuint overflow = *slot.mapped;  // coherent, and the fence says the build is done
         slot.read = true;
         state.stats.clustersOverflowing = int(overflow);
         if (int(overflow) != state.lastOverflowWarned && overflow > 0)
@@ -182,7 +182,14 @@ void buildClusters(LocalLightPass& state, const FrameData& frame, int lightCount
     }
     auto& slot = state.clusterOverflow[size_t(state.nextOverflowSlot)];
     state.nextOverflowSlot = (state.nextOverflowSlot + 1) % int(state.clusterOverflow.size());
-    if (!slot.count) slot.count = gl::makeBuffer(sizeof(GLuint), nullptr, 0, "clusters.overflow");
+    if (!slot.count) {
+        // Persistently mapped (coherent): the count is read from memory once its fence has signaled,
+        // never through glGetBufferSubData, which some drivers serialise with the whole queue.
+        const GLbitfield access = GL_MAP_READ_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT;
+        slot.count = gl::makeBuffer(sizeof(GLuint), nullptr, access, "clusters.overflow");
+        slot.mapped = static_cast<const GLuint*>(glMapNamedBufferRange(slot.count.id(), 0, sizeof(GLuint), access));
+        if (!slot.mapped) throw Error("clustered: cannot map the overflow counter (glMapNamedBufferRange failed)");
+    }
     const GLuint zero = 0;
     glClearNamedBufferData(slot.count.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
     state.clusterGrid = g;

@@ -4,11 +4,11 @@
 // the overlays: light globes, the light-ranges view and the lights-per-tile and lights-per-cluster
 // heat maps. The clustered method builds its froxel grid (light_clusters.comp) in the same pass,
 // just before shading from it.
+#include <array>
+
 #include "engine/gl/handles.hpp"
 #include "engine/graph/frame_graph.hpp"
 #include "engine/render/frame_data.hpp"
-#include <array>
-
 #include "engine/render/light_clusters.hpp"
 #include "passes/gbuffer_pass.hpp"
 #include "passes/spot_shadow_pass.hpp"
@@ -44,6 +44,7 @@ struct LocalLightPass {
     // has signaled, so the warning never makes the CPU (or the pass's GPU timer) wait on a build.
     struct OverflowSlot {
         gl::Buffer count;
+        const GLuint* mapped = nullptr;  // `count`, persistently mapped: read without a GL call
         gl::Fence done;     // after the build that wrote `count`
         bool read = false;  // its count is in stats already
     };

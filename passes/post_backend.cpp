@@ -91,8 +91,13 @@ bool PostBackend::cudaUsable(PostSettings::Backend requested, PostSettings::Cuda
     if (!interop) {
         interopMadeFor_ = interopMode;
         interop = std::make_unique<cuda::PostInterop>();
-        std::string why = "--cuda-interop map";
-        if (interopMode != PostSettings::CudaInterop::Map) why = interop->useSharedTextures();
+        // auto stays on map/unmap: on the H100 (driver 580) the shared textures pass their start-up
+        // round trip but toon's outlines come out wrong on them (CudaSharedTextures test), and the host
+        // waits on a GL fence that order them cost more than map/unmap (bench/results/post_interop).
+        std::string why = interopMode == PostSettings::CudaInterop::Map
+                              ? "--cuda-interop map"
+                              : "--cuda-interop auto uses map/unmap; --cuda-interop external tries shared textures";
+        if (interopMode == PostSettings::CudaInterop::External) why = interop->useSharedTextures();
         if (why.empty()) {
             interopPath_ = "external";
             logInfo("post effects: CUDA on shared textures (GL_EXT_memory_object_fd on CUDA allocations, made "

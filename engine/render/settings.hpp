@@ -155,7 +155,7 @@ struct PostSettings {           // bloom and toon (engine/post/post_config.hpp r
     float toonNormalEdge = 0.5f;     // normal-edge threshold (sin of half the crease angle)
     Backend backend = Backend::Auto;
     // How CUDA reaches the GL textures: external (GL memory objects on CUDA allocations, shared once),
-    // map (cudaGraphicsMapResources per use), auto: external where it works here, else map.
+    // map (cudaGraphicsMapResources per use), auto: map (external is experimental: README).
     enum class CudaInterop { Auto, External, Map };
     CudaInterop cudaInterop = CudaInterop::Auto;
     bool remeasure = false;  // --post-remeasure: auto measures again instead of reading its cache
