@@ -78,6 +78,9 @@ conv_py=python3
 vary_sizes=$(echo $sizes | tr ' ' ',')
 lp_flags=(--frames "$frames" --warmup "$warmup" --ibl --shadow-cascades 1 --shadow-size 2048 --no-bloom --aa off
           --no-ao --no-dither --tonemap aces)
+# PEERS_LIGHTPASS_FLAGS: more lightpass flags for the same matched work (e.g. --gbuffer-mode visibility).
+read -r -a more_flags <<< "${PEERS_LIGHTPASS_FLAGS:-}"
+lp_flags+=("${more_flags[@]}")
 names=()
 # NAME SCENE CONVERTER-FLAGS (the light subset: the issue's "gallery, 1 sun" and "cornell, 1 sun, 3 points")
 for spec in "gallery scenes/gallery.json --suns 1 --points 0" "cornell scenes/cornell.json --suns 1"; do
