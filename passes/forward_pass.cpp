@@ -78,41 +78,12 @@ void unbindForwardLighting() {
 }
 
 ForwardMaterialUniforms::ForwardMaterialUniforms(GLuint prog)
-    : kd(loc(prog, "uDiffuse")), opacity(loc(prog, "uOpacity")), ks(loc(prog, "uSpecular")),
-      metallic(loc(prog, "uMetallic")), shininess(loc(prog, "uShininess")), roughness(loc(prog, "uRoughness")),
-      hasDiffuse(loc(prog, "uHasDiffuseMap")), hasBump(loc(prog, "uHasBumpMap")), bumpScale(loc(prog, "uBumpScale")),
-      hasNormal(loc(prog, "uHasNormalMap")), normalScale(loc(prog, "uNormalScale")),
-      hasMetalRough(loc(prog, "uHasMetalRoughMap")), hasOcclusion(loc(prog, "uHasOcclusionMap")),
-      occlusionStrength(loc(prog, "uOcclusionStrength")), mask(loc(prog, "uAlphaMask")),
-      cutoff(loc(prog, "uAlphaCutoff")), twoSided(loc(prog, "uDoubleSided")), flat(loc(prog, "uFlat")),
-      emission(loc(prog, "uEmission")), hasEmissive(loc(prog, "uHasEmissiveMap")) {}
+    : material(prog), emission(loc(prog, "uEmission")), hasEmissive(loc(prog, "uHasEmissiveMap")) {}
 
 void ForwardMaterialUniforms::set(GLuint prog, const GpuMaterial& m) const {
-    glProgramUniform3fv(prog, kd, 1, glm::value_ptr(m.diffuse));
-    glProgramUniform1f(prog, opacity, m.opacity);
-    glProgramUniform3fv(prog, ks, 1, glm::value_ptr(m.specular));
-    glProgramUniform1f(prog, metallic, m.metallic);
-    glProgramUniform1f(prog, shininess, m.shininess);
-    glProgramUniform1f(prog, roughness, m.roughness);
-    glProgramUniform1i(prog, hasDiffuse, m.diffuseMap != 0);
-    glProgramUniform1i(prog, hasBump, m.bumpMap != 0);
-    glProgramUniform1f(prog, bumpScale, m.bumpScale);
-    glProgramUniform1i(prog, hasNormal, m.normalMap != 0);
-    glProgramUniform1f(prog, normalScale, m.normalScale);
-    glProgramUniform1i(prog, hasMetalRough, m.metallicRoughnessMap != 0);
-    glProgramUniform1i(prog, hasOcclusion, m.occlusionMap != 0);
-    glProgramUniform1f(prog, occlusionStrength, m.occlusionStrength);
-    glProgramUniform1i(prog, mask, m.alphaMask);
-    glProgramUniform1f(prog, cutoff, m.alphaCutoff);
-    glProgramUniform1i(prog, twoSided, m.doubleSided);
-    glProgramUniform1i(prog, flat, m.flat);
+    material.set(prog, m);
     glProgramUniform3fv(prog, emission, 1, glm::value_ptr(m.emission));
     glProgramUniform1i(prog, hasEmissive, m.emissiveMap != 0);
-    glBindTextureUnit(0, m.diffuseMap);
-    glBindTextureUnit(1, m.bumpMap);
-    glBindTextureUnit(2, m.normalMap);
-    glBindTextureUnit(3, m.metallicRoughnessMap);
-    glBindTextureUnit(4, m.occlusionMap);
     glBindTextureUnit(kEmissiveUnit, m.emissiveMap);
 }
 

@@ -56,8 +56,8 @@ void unbindForwardLighting();
 struct ForwardMaterialUniforms {
     explicit ForwardMaterialUniforms(GLuint prog);
     void set(GLuint prog, const GpuMaterial& m) const;  // also binds the material's textures (units 0..4, 6)
-    GLint kd, opacity, ks, metallic, shininess, roughness, hasDiffuse, hasBump, bumpScale, hasNormal, normalScale,
-        hasMetalRough, hasOcclusion, occlusionStrength, mask, cutoff, twoSided, flat, emission, hasEmissive;
+    MaterialUniforms material;  // the G-buffer's (passes/gbuffer_pass)
+    GLint emission, hasEmissive;
 };
 void unbindMaterialTextures();
 

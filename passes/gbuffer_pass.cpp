@@ -28,6 +28,42 @@ GLenum gbufferSpecularFormat(GBufferNormalFormat format) {
     return shininessInNormalTarget(format) ? GL_RGBA8 : GL_RGBA16F;
 }
 
+MaterialUniforms::MaterialUniforms(GLuint prog) {
+    auto loc = [prog](const char* name) { return glGetUniformLocation(prog, name); };
+    kd = loc("uDiffuse"); opacity = loc("uOpacity"); ks = loc("uSpecular"); metallic = loc("uMetallic");
+    shininess = loc("uShininess"); roughness = loc("uRoughness"); hasDiffuse = loc("uHasDiffuseMap");
+    hasBump = loc("uHasBumpMap"); bumpScale = loc("uBumpScale"); hasNormal = loc("uHasNormalMap");
+    normalScale = loc("uNormalScale"); hasMetalRough = loc("uHasMetalRoughMap"); hasOcclusion = loc("uHasOcclusionMap");
+    occlusionStrength = loc("uOcclusionStrength"); mask = loc("uAlphaMask"); cutoff = loc("uAlphaCutoff");
+    twoSided = loc("uDoubleSided"); flat = loc("uFlat");
+}
+
+void MaterialUniforms::set(GLuint prog, const GpuMaterial& m) const {
+    glProgramUniform3fv(prog, kd, 1, glm::value_ptr(m.diffuse));
+    glProgramUniform1f(prog, opacity, m.opacity);
+    glProgramUniform3fv(prog, ks, 1, glm::value_ptr(m.specular));
+    glProgramUniform1f(prog, metallic, m.metallic);
+    glProgramUniform1f(prog, shininess, m.shininess);
+    glProgramUniform1f(prog, roughness, m.roughness);
+    glProgramUniform1i(prog, hasDiffuse, m.diffuseMap != 0);
+    glProgramUniform1i(prog, hasBump, m.bumpMap != 0);
+    glProgramUniform1f(prog, bumpScale, m.bumpScale);
+    glProgramUniform1i(prog, hasNormal, m.normalMap != 0);
+    glProgramUniform1f(prog, normalScale, m.normalScale);
+    glProgramUniform1i(prog, hasMetalRough, m.metallicRoughnessMap != 0);
+    glProgramUniform1i(prog, hasOcclusion, m.occlusionMap != 0);
+    glProgramUniform1f(prog, occlusionStrength, m.occlusionStrength);
+    glProgramUniform1i(prog, mask, m.alphaMask);
+    glProgramUniform1f(prog, cutoff, m.alphaCutoff);
+    glProgramUniform1i(prog, twoSided, m.doubleSided);
+    glProgramUniform1i(prog, flat, m.flat);
+    glBindTextureUnit(0, m.diffuseMap);
+    glBindTextureUnit(1, m.bumpMap);
+    glBindTextureUnit(2, m.normalMap);
+    glBindTextureUnit(3, m.metallicRoughnessMap);
+    glBindTextureUnit(4, m.occlusionMap);
+}
+
 glm::mat4 gbufferDepthProjection(const FrameData& frame) {
     glm::mat4 p = frame.projection;
     if (frame.settings->gbuffer.position != GBufferPositionMode::ReversedZ) return p;
@@ -177,14 +213,7 @@ GBuffer addGeometryPass(fg::FrameGraph& graph, GBufferPass& state, const FrameDa
             const GLint locPreviousClip = glGetUniformLocation(prog, "uPreviousClipFromModel");
             const GLint locMV = glGetUniformLocation(prog, "uModelView");
             const GLint locN = glGetUniformLocation(prog, "uNormalMatrix");
-            auto loc = [prog](const char* name) { return glGetUniformLocation(prog, name); };
-            const GLint locKd = loc("uDiffuse"), locOpacity = loc("uOpacity"), locKs = loc("uSpecular"), locMetal = loc("uMetallic");
-            const GLint locNs = loc("uShininess"), locRough = loc("uRoughness");
-            const GLint locHasD = loc("uHasDiffuseMap"), locHasB = loc("uHasBumpMap"), locBs = loc("uBumpScale");
-            const GLint locHasN = loc("uHasNormalMap"), locNs2 = loc("uNormalScale"), locHasMR = loc("uHasMetalRoughMap");
-            const GLint locHasO = loc("uHasOcclusionMap"), locOs = loc("uOcclusionStrength");
-            const GLint locMask = loc("uAlphaMask"), locCutoff = loc("uAlphaCutoff"), locTwoSided = loc("uDoubleSided");
-            const GLint locFlat = loc("uFlat");
+            const MaterialUniforms material(prog);
             for (const auto& mesh : frame.gpu->meshes) {
                 glm::mat4 mv = frame.view * mesh.model;
                 glm::mat3 nm = glm::inverseTranspose(glm::mat3(mv));
@@ -199,29 +228,7 @@ GBuffer addGeometryPass(fg::FrameGraph& graph, GBufferPass& state, const FrameDa
                 for (const auto& d : mesh.draws) {
                     const GpuMaterial& m = frame.gpu->materials[size_t(d.material)];
                     if (m.alphaBlend) continue;  // blended: the transparent pass draws it after the opaque frame
-                    glProgramUniform3fv(prog, locKd, 1, glm::value_ptr(m.diffuse));
-                    glProgramUniform1f(prog, locOpacity, m.opacity);
-                    glProgramUniform3fv(prog, locKs, 1, glm::value_ptr(m.specular));
-                    glProgramUniform1f(prog, locMetal, m.metallic);
-                    glProgramUniform1f(prog, locNs, m.shininess);
-                    glProgramUniform1f(prog, locRough, m.roughness);
-                    glProgramUniform1i(prog, locHasD, m.diffuseMap != 0);
-                    glProgramUniform1i(prog, locHasB, m.bumpMap != 0);
-                    glProgramUniform1f(prog, locBs, m.bumpScale);
-                    glProgramUniform1i(prog, locHasN, m.normalMap != 0);
-                    glProgramUniform1f(prog, locNs2, m.normalScale);
-                    glProgramUniform1i(prog, locHasMR, m.metallicRoughnessMap != 0);
-                    glProgramUniform1i(prog, locHasO, m.occlusionMap != 0);
-                    glProgramUniform1f(prog, locOs, m.occlusionStrength);
-                    glProgramUniform1i(prog, locMask, m.alphaMask);
-                    glProgramUniform1f(prog, locCutoff, m.alphaCutoff);
-                    glProgramUniform1i(prog, locTwoSided, m.doubleSided);
-                    glProgramUniform1i(prog, locFlat, m.flat);
-                    glBindTextureUnit(0, m.diffuseMap);
-                    glBindTextureUnit(1, m.bumpMap);
-                    glBindTextureUnit(2, m.normalMap);
-                    glBindTextureUnit(3, m.metallicRoughnessMap);
-                    glBindTextureUnit(4, m.occlusionMap);
+                    material.set(prog, m);
                     glDrawElements(GL_TRIANGLES, GLsizei(d.indexCount), GL_UNSIGNED_INT,
                                    reinterpret_cast<const void*>(size_t(d.firstIndex) * sizeof(uint32_t)));
                 }

@@ -44,6 +44,16 @@ GBuffer addGBufferPass(fg::FrameGraph& graph, GBufferPass& state, const FrameDat
 // reads a channel (ambient occlusion: depth and normals; a channel view) makes it write that channel.
 GBuffer addDepthPrepass(fg::FrameGraph& graph, GBufferPass& state, const FrameData& frame, GBufferChannels channels);
 
+// The material uniforms of common/material_uniforms.glsl in a program (the G-buffer raster, the
+// forward passes): their locations, looked up once per program.
+struct GpuMaterial;
+struct MaterialUniforms {
+    explicit MaterialUniforms(GLuint prog);
+    void set(GLuint prog, const GpuMaterial& m) const;  // also binds the material's textures (units 0..4)
+    GLint kd, opacity, ks, metallic, shininess, roughness, hasDiffuse, hasBump, bumpScale, hasNormal, normalScale,
+        hasMetalRough, hasOcclusion, occlusionStrength, mask, cutoff, twoSided, flat;
+};
+
 // GL internal formats of the targets under a layout (README "G-buffer formats").
 GLenum gbufferNormalFormat(GBufferNormalFormat format);
 GLenum gbufferSpecularFormat(GBufferNormalFormat format);
