@@ -78,7 +78,15 @@ void unbindForwardLighting() {
 }
 
 ForwardMaterialUniforms::ForwardMaterialUniforms(GLuint prog)
-    : material(prog), emission(loc(prog, "uEmission")), hasEmissive(loc(prog, "uHasEmissiveMap")) {}
+    : material(prog), emission(loc(prog, "uEmission")), hasEmissive(loc(prog, "uHasEmissiveMap")),
+      modelView(loc(prog, "uModelView")), normalMatrix(loc(prog, "uNormalMatrix")) {}
+
+void ForwardMaterialUniforms::setModel(GLuint prog, const glm::mat4& view, const glm::mat4& model) const {
+    const glm::mat4 mv = view * model;
+    const glm::mat3 nm = glm::inverseTranspose(glm::mat3(mv));
+    glProgramUniformMatrix4fv(prog, modelView, 1, GL_FALSE, glm::value_ptr(mv));
+    glProgramUniformMatrix3fv(prog, normalMatrix, 1, GL_FALSE, glm::value_ptr(nm));
+}
 
 void ForwardMaterialUniforms::set(GLuint prog, const GpuMaterial& m) const {
     material.set(prog, m);
@@ -87,9 +95,12 @@ void ForwardMaterialUniforms::set(GLuint prog, const GpuMaterial& m) const {
     glBindTextureUnit(kEmissiveUnit, m.emissiveMap);
 }
 
-void unbindMaterialTextures() {
+void finishForwardDraws(GLuint fbo) {
     for (GLuint u = 0; u < 5; ++u) glBindTextureUnit(u, 0);
     glBindTextureUnit(kEmissiveUnit, 0);
+    unbindForwardLighting();
+    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, 0, 0);
+    glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, 0, 0);
 }
 
 fg::ResourceId addForwardOpaquePass(fg::FrameGraph& graph, ForwardPass& state, LocalLightPass& localLights,
@@ -123,12 +134,8 @@ fg::ResourceId addForwardOpaquePass(fg::FrameGraph& graph, ForwardPass& state, L
                 glDepthMask(GL_FALSE);
                 glUseProgram(prog);
                 const ForwardMaterialUniforms material(prog);
-                const GLint locMV = loc(prog, "uModelView"), locN = loc(prog, "uNormalMatrix");
                 for (const auto& mesh : frame.gpu->meshes) {
-                    const glm::mat4 mv = frame.view * mesh.model;
-                    const glm::mat3 nm = glm::inverseTranspose(glm::mat3(mv));
-                    glProgramUniformMatrix4fv(prog, locMV, 1, GL_FALSE, glm::value_ptr(mv));
-                    glProgramUniformMatrix3fv(prog, locN, 1, GL_FALSE, glm::value_ptr(nm));
+                    material.setModel(prog, frame.view, mesh.model);
                     glBindVertexArray(mesh.vao.id());
                     for (const auto& dr : mesh.draws) {
                         const GpuMaterial& m = frame.gpu->materials[size_t(dr.material)];
@@ -141,10 +148,7 @@ fg::ResourceId addForwardOpaquePass(fg::FrameGraph& graph, ForwardPass& state, L
                 glBindVertexArray(0);
                 glUseProgram(0);
             }
-            unbindMaterialTextures();
-            unbindForwardLighting();
-            glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, 0, 0);
-            glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, 0, 0);
+            finishForwardDraws(fbo);
         });
     return d.hdr;
 }

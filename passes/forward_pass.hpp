@@ -56,10 +56,14 @@ void unbindForwardLighting();
 struct ForwardMaterialUniforms {
     explicit ForwardMaterialUniforms(GLuint prog);
     void set(GLuint prog, const GpuMaterial& m) const;  // also binds the material's textures (units 0..4, 6)
+    // uModelView and uNormalMatrix of a mesh drawn with `view`.
+    void setModel(GLuint prog, const glm::mat4& view, const glm::mat4& model) const;
     MaterialUniforms material;  // the G-buffer's (passes/gbuffer_pass)
-    GLint emission, hasEmissive;
+    GLint emission, hasEmissive, modelView, normalMatrix;
 };
-void unbindMaterialTextures();
+// After a forward pass's draws: unbinds the material textures and bindForwardLighting's bindings, and
+// detaches the pass's targets from `fbo`.
+void finishForwardDraws(GLuint fbo);
 
 // Adds "forward_opaque": creates the HDR buffer (cleared to 0: the background is the sky pass's) and
 // shades the opaque draws where their depth equals `depthPrepass.depth`.

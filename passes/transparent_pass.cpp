@@ -2,8 +2,6 @@
 
 #include <algorithm>
 
-#include <glm/gtc/matrix_inverse.hpp>
-#include <glm/gtc/type_ptr.hpp>
 
 #include "engine/gl/shader.hpp"
 #include "engine/gl/state.hpp"
@@ -76,15 +74,10 @@ fg::ResourceId addTransparentPass(fg::FrameGraph& graph, TransparentPass& state,
                 glBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
                 glUseProgram(prog);
                 const ForwardMaterialUniforms material(prog);
-                const GLint locMV = glGetUniformLocation(prog, "uModelView");
-                const GLint locN = glGetUniformLocation(prog, "uNormalMatrix");
                 for (const TransparentDraw& t : order) {
                     const GpuMesh& mesh = frame.gpu->meshes[size_t(t.mesh)];
                     const GpuDraw& dr = mesh.draws[size_t(t.draw)];
-                    const glm::mat4 mv = frame.view * mesh.model;
-                    const glm::mat3 nm = glm::inverseTranspose(glm::mat3(mv));
-                    glProgramUniformMatrix4fv(prog, locMV, 1, GL_FALSE, glm::value_ptr(mv));
-                    glProgramUniformMatrix3fv(prog, locN, 1, GL_FALSE, glm::value_ptr(nm));
+                    material.setModel(prog, frame.view, mesh.model);
                     material.set(prog, frame.gpu->materials[size_t(dr.material)]);
                     glBindVertexArray(mesh.vao.id());
                     glDrawElements(GL_TRIANGLES, GLsizei(dr.indexCount), GL_UNSIGNED_INT,
@@ -94,10 +87,7 @@ fg::ResourceId addTransparentPass(fg::FrameGraph& graph, TransparentPass& state,
                 glBindVertexArray(0);
                 glUseProgram(0);
             }
-            unbindMaterialTextures();
-            unbindForwardLighting();
-            glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, 0, 0);
-            glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, 0, 0);
+            finishForwardDraws(fbo);
         });
     return d.hdr;
 }
