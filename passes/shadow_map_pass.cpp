@@ -8,6 +8,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "engine/core/log.hpp"
+#include "engine/gl/raster_probe.hpp"
 #include "engine/gl/shader.hpp"
 #include "engine/gl/state.hpp"
 #include "engine/render/scene_gpu.hpp"
@@ -82,6 +83,10 @@ void drawCascadesByCompute(ShadowMapPass& state, const FrameData& frame, const S
     glProgramUniform1i(prog, glGetUniformLocation(prog, "uDepthZeroToOne"), depthZeroToOne ? 1 : 0);
     glProgramUniform1f(prog, glGetUniformLocation(prog, "uSlopeBias"), frame.settings->shadows.slopeBias);
     glProgramUniform1f(prog, glGetUniformLocation(prog, "uLargeTexels"), kComputeRasterMaxTexels);
+    if (!state.rasterModel) state.rasterModel = gl::probeRasterInterpolation(*frame.shaders);
+    // Edge functions of 32-bit integers: at most 8 sub-texel bits keep uLargeTexels' triangles exact.
+    glProgramUniform1i(prog, glGetUniformLocation(prog, "uSubTexel"), 1 << std::min(state.rasterModel->subpixelBits, 8));
+    glProgramUniform1i(prog, glGetUniformLocation(prog, "uSnappedDepthPlane"), state.rasterModel->fromSnappedVertices);
     const GLint locMvp = glGetUniformLocation(prog, "uModelToClip");
     const GLint locFirst = glGetUniformLocation(prog, "uFirstIndex");
     const GLint locCount = glGetUniformLocation(prog, "uTriangleCount");

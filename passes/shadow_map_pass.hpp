@@ -10,10 +10,12 @@
 // fastest of the four on this GPU, measured once on the first frame and cached per GPU.
 // No shadow-casting light, or shadows switched off: no pass at all.
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "engine/gl/handles.hpp"
+#include "engine/gl/raster_probe.hpp"
 #include "engine/graph/frame_graph.hpp"
 #include "engine/render/frame_data.hpp"
 #include "engine/render/shadow_casters.hpp"
@@ -37,6 +39,7 @@ struct ShadowMapPass {
     gl::Buffer largeVertices;    // clip-space vertices of the large triangles, one region per cascade
     size_t largeCapacity = 0;    // vertices
     gl::Buffer largeDraws;       // one DrawArraysIndirectCommand per cascade
+    std::optional<gl::RasterInterpolation> rasterModel;  // probed on the first compute raster
     // --shadow-raster auto: resolved on the first frame drawn (from the cache, or measured)
     bool autoResolved = false;
     ShadowSettings::Raster autoRaster = ShadowSettings::Raster::Conservative;

@@ -130,6 +130,7 @@ GBuffer addVisibilityResolvePass(fg::FrameGraph& graph, VisibilityResolvePass& s
                                     return frame.shaders->compute("visibility_resolve.comp",
                                                                   imageDefines(frame.settings->gbuffer));
                                 }).id();
+            if (!state.rasterModel) state.rasterModel = gl::probeRasterInterpolation(*frame.shaders);
             // Per frame: the meshes' transforms (the view moves) and the materials (the viewer switches flat).
             const glm::mat4 viewProjection = frame.unjitteredProjection * frame.view;  // velocity is unjittered
             std::vector<MeshRecord> meshes;
@@ -165,6 +166,10 @@ GBuffer addVisibilityResolvePass(fg::FrameGraph& graph, VisibilityResolvePass& s
             glProgramUniform1ui(prog, loc("uDrawCount"), state.drawCount);
             glProgramUniformMatrix4fv(prog, loc("uInverseProjection"), 1, GL_FALSE,
                                       glm::value_ptr(glm::inverse(frame.projection)));
+            glProgramUniformMatrix4fv(prog, loc("uProjection"), 1, GL_FALSE, glm::value_ptr(frame.projection));
+            glProgramUniform1f(prog, loc("uSubpixelSnap"), state.rasterModel->snapScale());
+            glProgramUniform1i(prog, loc("uDepthZeroToOne"),
+                               frame.settings->gbuffer.position == GBufferPositionMode::ReversedZ);
             const glm::mat4 rotation = frame.unjitteredProjection * glm::mat4(glm::mat3(frame.view));
             const glm::vec2 jitterNdc =
                 2.0f * frame.jitterPixels / glm::vec2(std::max(frame.outputWidth, 1), std::max(frame.outputHeight, 1));

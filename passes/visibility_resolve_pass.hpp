@@ -5,9 +5,11 @@
 // whichever some pass reads), by image stores; gbuffer.depth passes through from the raster half.
 // The scene's vertex and index buffers are concatenated once into storage buffers, with a draw table
 // and, per frame, the meshes' transforms and the materials (shaders/visibility_resolve.comp).
+#include <optional>
 #include <vector>
 
 #include "engine/gl/handles.hpp"
+#include "engine/gl/raster_probe.hpp"
 #include "engine/graph/frame_graph.hpp"
 #include "engine/render/frame_data.hpp"
 #include "passes/gbuffer_pass.hpp"
@@ -25,6 +27,7 @@ struct VisibilityResolvePass {
     gl::Buffer vertices, indices, draws, meshes, materials;
     uint32_t drawCount = 0;
     std::vector<int> texturedMaterials;  // one dispatch each, with its maps bound
+    std::optional<gl::RasterInterpolation> rasterModel;  // probed on the first resolve
 };
 
 GBuffer addVisibilityResolvePass(fg::FrameGraph& graph, VisibilityResolvePass& state, const FrameData& frame,

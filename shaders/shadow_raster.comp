@@ -1,6 +1,6 @@
 #version 450
 // --shadow-raster compute: one invocation per caster triangle of one cascade's draw. It covers the
-// texel centres inside the triangle with the hardware's rules (8-bit sub-texel snapped vertices,
+// texel centres inside the triangle with the hardware's rules (vertices snapped to its sub-texel grid,
 // exact integer edge functions, top-left fill rule in memory rows, which are GL's window y), and
 // writes the plain path's depth there: the plane's depth at the texel centre plus the slope bias
 // (glPolygonOffset's factor x max |dz/dx|, |dz/dy|), clamped to [0, 1] as depth clamp does, by
@@ -30,8 +30,9 @@ uniform int uCascade;
 uniform int uDepthZeroToOne;
 uniform float uSlopeBias;
 uniform float uLargeTexels;
+uniform bool uSnappedDepthPlane;  // engine/gl/raster_probe: the raster interpolates from snapped vertices
 
-const int kSubTexel = 256;  // 8 bits of sub-texel precision, as GL hardware snaps vertices
+uniform int uSubTexel;  // 2^GL_SUBPIXEL_BITS: the sub-texel grid the hardware snaps vertices to
 
 vec4 clipPosition(uint index) {
     uint b = index * 12u;
@@ -75,8 +76,8 @@ void main() {
     ivec2 last2 = min(ivec2(floor(hi - 0.5)), ivec2(uTileSize - 1));
     if (any(greaterThan(first2, last2))) return;
 
-    ivec2 v0 = ivec2(round(w0.xy * float(kSubTexel))), v1 = ivec2(round(w1.xy * float(kSubTexel))),
-          v2 = ivec2(round(w2.xy * float(kSubTexel)));
+    ivec2 v0 = ivec2(round(w0.xy * float(uSubTexel))), v1 = ivec2(round(w1.xy * float(uSubTexel))),
+          v2 = ivec2(round(w2.xy * float(uSubTexel)));
     int area = edgeValue(v0, v1, v2);
     if (area == 0) return;  // degenerate after snapping: the hardware draws nothing
     if (area < 0) {  // both windings cast (no culling): make it counter-clockwise
@@ -86,7 +87,14 @@ void main() {
     }
     bool z01 = edgeIncludesZero(v0, v1), z12 = edgeIncludesZero(v1, v2), z20 = edgeIncludesZero(v2, v0);
 
-    // Depth plane from the unsnapped window positions (as the hardware interpolates).
+    // The depth plane through the window positions the hardware interpolates from: the snapped ones
+    // where engine/gl/raster_probe measured that it does (NVIDIA), else the given ones (llvmpipe).
+    if (uSnappedDepthPlane) {
+        ivec2 a = area < 0 ? v2 : v1, c = area < 0 ? v1 : v2;  // undo the winding swap above
+        w0.xy = vec2(v0) / float(uSubTexel);
+        w1.xy = vec2(a) / float(uSubTexel);
+        w2.xy = vec2(c) / float(uSubTexel);
+    }
     vec3 e1 = w1 - w0, e2 = w2 - w0;
     float det = e1.x * e2.y - e2.x * e1.y;
     if (det == 0.0) return;
@@ -96,7 +104,7 @@ void main() {
 
     for (int y = first2.y; y <= last2.y; ++y) {
         for (int x = first2.x; x <= last2.x; ++x) {
-            ivec2 p = ivec2(x, y) * kSubTexel + kSubTexel / 2;
+            ivec2 p = ivec2(x, y) * uSubTexel + uSubTexel / 2;
             if (!inside(edgeValue(v0, v1, p), z01) || !inside(edgeValue(v1, v2, p), z12) ||
                 !inside(edgeValue(v2, v0, p), z20))
                 continue;

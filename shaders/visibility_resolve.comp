@@ -34,6 +34,11 @@ uniform uint uTargets;
 uniform int uMaterialFilter;   // -1: untextured materials and the background; else this material only
 uniform uint uDrawCount;
 uniform mat4 uInverseProjection;  // inverse of the jittered projection the ids were rasterised with
+uniform mat4 uProjection;         // that projection
+// 2^GL_SUBPIXEL_BITS where the rasteriser interpolates from vertices snapped to that grid
+// (engine/gl/raster_probe), else 0: the pixel's ray through the exact triangle.
+uniform float uSubpixelSnap;
+uniform bool uDepthZeroToOne;     // clip control 0..1 (reversed-Z): the near clip plane is z = 0, else z = -w
 // Background velocity (common/velocity.glsl's backgroundVelocity).
 uniform vec2 uJitterNdc;
 uniform mat4 uInverseRotationProjection;
@@ -102,6 +107,63 @@ vec4 vertexTangent(uint v) {
 vec3 eyeRay(vec2 window, vec2 size) {
     vec4 far = uInverseProjection * vec4(window / size * 2.0 - 1.0, 1.0, 1.0);
     return far.xyz / far.w;
+}
+
+vec2 snappedWindow(vec4 c, vec2 size) { return round((c.xy / c.w * 0.5 + 0.5) * size * uSubpixelSnap) / uSubpixelSnap; }
+
+// The rasteriser's own arithmetic where it interpolates from snapped vertices: the triangle clipped
+// to the depth planes (-w or 0 <= z <= w, as GL clips without depth clamp; a fan from the first
+// vertex, as clippers emit it), each vertex's window position snapped to the sub-pixel grid, and the
+// perspective-correct weights of the piece that holds the pixel, turned back into the whole
+// triangle's. The quad partners use the same piece's plane, as helper invocations do. False when no
+// piece holds the pixel (rounding at a piece's edge): the caller then takes the exact ray.
+bool snappedBarycentrics(vec4 c0, vec4 c1, vec4 c2, vec2 window, vec2 partnerX, vec2 partnerY, vec2 size,
+                         out vec3 b, out vec3 bx, out vec3 by) {
+    vec4 clip[5];
+    vec3 weight[5];
+    int n = 3;
+    clip[0] = c0; clip[1] = c1; clip[2] = c2;
+    weight[0] = vec3(1.0, 0.0, 0.0); weight[1] = vec3(0.0, 1.0, 0.0); weight[2] = vec3(0.0, 0.0, 1.0);
+    for (int plane = 0; plane < 2; ++plane) {
+        vec4 inClip[5];
+        vec3 inWeight[5];
+        int m = n;
+        for (int i = 0; i < 5; ++i) {
+            inClip[i] = clip[i];
+            inWeight[i] = weight[i];
+        }
+        n = 0;
+        for (int i = 0; i < m; ++i) {
+            vec4 a = inClip[i], c = inClip[(i + 1) % m];
+            float da = plane == 0 ? (uDepthZeroToOne ? a.z : a.z + a.w) : a.w - a.z;
+            float dc = plane == 0 ? (uDepthZeroToOne ? c.z : c.z + c.w) : c.w - c.z;
+            if (da >= 0.0 && n < 5) {
+                clip[n] = a;
+                weight[n] = inWeight[i];
+                ++n;
+            }
+            if ((da >= 0.0) != (dc >= 0.0) && n < 5) {
+                float t = da / (da - dc);
+                clip[n] = mix(a, c, t);
+                weight[n] = mix(inWeight[i], inWeight[(i + 1) % m], t);
+                ++n;
+            }
+        }
+    }
+    if (n < 3) return false;
+    vec2 s0 = snappedWindow(clip[0], size);
+    for (int k = 1; k + 1 < n; ++k) {
+        vec2 s1 = snappedWindow(clip[k], size), s2 = snappedWindow(clip[k + 1], size);
+        vec3 w = vec3(clip[0].w, clip[k].w, clip[k + 1].w);
+        vec3 l = windowBarycentrics(window, s0, s1, s2, w);
+        if (any(lessThan(l, vec3(0.0)))) continue;
+        mat3 toTriangle = mat3(weight[0], weight[k], weight[k + 1]);
+        b = toTriangle * l;
+        bx = toTriangle * windowBarycentrics(partnerX, s0, s1, s2, w);
+        by = toTriangle * windowBarycentrics(partnerY, s0, s1, s2, w);
+        return true;
+    }
+    return false;
 }
 
 MaterialInputs materialInputs(MaterialRecord r) {
@@ -173,9 +235,14 @@ void main() {
     // plane as the raster's helper invocations are.
     vec2 window = vec2(p) + 0.5;
     bvec2 odd = bvec2((p.x & 1) != 0, (p.y & 1) != 0);
-    vec3 b = rayTriangleBarycentrics(vec3(0.0), eyeRay(window, size), e0, e1, e2);
-    vec3 bx = rayTriangleBarycentrics(vec3(0.0), eyeRay(window + vec2(odd.x ? -1.0 : 1.0, 0.0), size), e0, e1, e2);
-    vec3 by = rayTriangleBarycentrics(vec3(0.0), eyeRay(window + vec2(0.0, odd.y ? -1.0 : 1.0), size), e0, e1, e2);
+    vec2 partnerX = window + vec2(odd.x ? -1.0 : 1.0, 0.0), partnerY = window + vec2(0.0, odd.y ? -1.0 : 1.0);
+    vec4 c0 = uProjection * vec4(e0, 1.0), c1 = uProjection * vec4(e1, 1.0), c2 = uProjection * vec4(e2, 1.0);
+    vec3 b, bx, by;
+    if (uSubpixelSnap <= 0.0 || !snappedBarycentrics(c0, c1, c2, window, partnerX, partnerY, size, b, bx, by)) {
+        b = rayTriangleBarycentrics(vec3(0.0), eyeRay(window, size), e0, e1, e2);
+        bx = rayTriangleBarycentrics(vec3(0.0), eyeRay(partnerX, size), e0, e1, e2);
+        by = rayTriangleBarycentrics(vec3(0.0), eyeRay(partnerY, size), e0, e1, e2);
+    }
 
     vec2 t0 = vertexUv(i0), t1 = vertexUv(i1), t2 = vertexUv(i2);
     vec2 uv = b.x * t0 + b.y * t1 + b.z * t2;

@@ -30,6 +30,17 @@ vec3 rayTriangleBarycentrics(vec3 origin, vec3 dir, vec3 v0, vec3 v1, vec3 v2) {
     return vec3(1.0 - u - v, u, v);
 }
 
+// GL's perspective-correct interpolation weights at window position q of the triangle whose
+// vertices lie at window positions s0, s1, s2 with clip w clipW: the 2-D barycentrics divided by w,
+// normalised. With the rasteriser's snapped window positions it reproduces what a rasteriser that
+// interpolates from its snapped vertices (engine/gl/raster_probe) gives the fragment at q.
+vec3 windowBarycentrics(vec2 q, vec2 s0, vec2 s1, vec2 s2, vec3 clipW) {
+    vec2 a = s0 - q, b = s1 - q, c = s2 - q;
+    vec3 l = vec3(b.x * c.y - b.y * c.x, c.x * a.y - c.y * a.x, a.x * b.y - a.y * b.x) / clipW;
+    float sum = l.x + l.y + l.z;
+    return sum != 0.0 ? l / sum : vec3(1.0, 0.0, 0.0);
+}
+
 // Whether the triangle v0 v1 v2 (eye space) faces the eye at the origin with counter-clockwise
 // winding, i.e. gl_FrontFacing under a projection that does not mirror (GL_CCW front faces).
 bool eyeTriangleFrontFacing(vec3 v0, vec3 v1, vec3 v2) { return dot(cross(v1 - v0, v2 - v0), v0) < 0.0; }
