@@ -216,12 +216,16 @@ void drawCascadesByCompute(ShadowMapPass& state, const FrameData& frame, const S
         glViewport(0, 0, width, height);
         glDrawArrays(GL_TRIANGLES, 0, 3);
     }
+    glEnable(GL_SCISSOR_TEST);  // tiles kept from an earlier frame (--shadow-cache) stay untouched
     for (size_t c = 0; c < fr.cascades.size() && !all; ++c) {
         if (!redraw[c]) continue;
         glViewport(GLint(c % size_t(fr.columns)) * fr.tileSize, GLint(c / size_t(fr.columns)) * fr.tileSize, fr.tileSize,
                    fr.tileSize);
+        glScissor(GLint(c % size_t(fr.columns)) * fr.tileSize, GLint(c / size_t(fr.columns)) * fr.tileSize, fr.tileSize,
+                  fr.tileSize);
         glDrawArrays(GL_TRIANGLES, 0, 3);
     }
+    glDisable(GL_SCISSOR_TEST);
     glBindTextureUnit(0, 0);
     glDepthFunc(GL_LESS);
 
@@ -230,12 +234,16 @@ void drawCascadesByCompute(ShadowMapPass& state, const FrameData& frame, const S
     glEnable(GL_POLYGON_OFFSET_FILL);
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, state.largeDraws.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, state.largeVertices.id());
+    glEnable(GL_SCISSOR_TEST);
     for (size_t c = 0; c < fr.cascades.size(); ++c) {
         if (!redraw[c]) continue;
         glViewport(GLint(c % size_t(fr.columns)) * fr.tileSize, GLint(c / size_t(fr.columns)) * fr.tileSize, fr.tileSize,
                    fr.tileSize);
+        glScissor(GLint(c % size_t(fr.columns)) * fr.tileSize, GLint(c / size_t(fr.columns)) * fr.tileSize, fr.tileSize,
+                  fr.tileSize);
         glDrawArraysIndirect(GL_TRIANGLES, reinterpret_cast<const void*>(c * sizeof(DrawArraysCommand)));
     }
+    glDisable(GL_SCISSOR_TEST);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, 0);
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
     glDisable(GL_POLYGON_OFFSET_FILL);
@@ -300,16 +308,21 @@ void drawAtlas(ShadowMapPass& state, const FrameData& frame, const ShadowFrustum
                                frame.settings->shadows.slopeBias);
         }
         if (raster == Raster::Compute) {
+            gl::ScopedEnable scissor(GL_SCISSOR_TEST, false);  // drawCascadesByCompute scissors per tile
             drawCascadesByCompute(state, frame, fr, casters, width, height, clipDepth == GL_ZERO_TO_ONE, redraw);
             glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, 0, 0);
             return;
         }
         const GLuint plainProg = raster == Raster::Conservative ? 0 : state.plainProgram.id();
+        // Each cascade's fragments stay in its tile whatever a driver's guard band does: a kept
+        // neighbour (--shadow-cache) must not receive this frame's casters.
+        gl::ScopedEnable scissor(GL_SCISSOR_TEST, true);
         for (size_t c = 0; c < fr.cascades.size(); ++c) {
             if (!redraw[c]) continue;  // kept from an earlier frame (--shadow-cache)
             const GLint x = GLint(c % size_t(fr.columns)) * fr.tileSize;
             const GLint y = GLint(c / size_t(fr.columns)) * fr.tileSize;
             glViewport(x, y, fr.tileSize, fr.tileSize);
+            glScissor(x, y, fr.tileSize, fr.tileSize);
             if (plainProg) {
                 // Split: only the faces towards the light (counter-clockwise in the light's window,
                 // as shadow_depth.geom's orientation), which need neither growth nor gl_FragDepth.
