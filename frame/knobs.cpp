@@ -266,6 +266,12 @@ std::vector<KnobEntry> makeKnobTable() {
                  "moves in steps of that much (0: one texel): a moving camera redraws cached cascades less often, at "
                  "that fraction less shadow-map resolution";
         k.panel = {PanelSection::Shadows, PanelWidget::Slider, "origin step", "%.3f"};
+        k.sweep = {{"0.25", "0.125", "0.0625", "0"},
+                   true,
+                   "room a sun cascade's square leaves for the camera (--shadow-origin-step), as a fraction of its side: "
+                   "that much less resolution, fewer redraws with --shadow-cache on a moving camera; 0 (a one-texel grid) "
+                   "is the reference",
+                   shadowsOn};
         t.push_back(std::move(k));
     }
     {
