@@ -501,9 +501,9 @@ ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const
                                      (redraw[c] ? "redrawn (" + why[c] + ")" : std::string("kept (unchanged)")));
         }
         ShadowMapPass* s = &state;
-        fg::ResourceId kept0;
+        fg::ResourceId keptAtlas;
         if (caching)  // the kept atlas, made (cleared to 1: no caster) when first asked for or resized
-            kept0 = graph.importTexture(name + ".depth", desc, [s, light, desc]() -> GLuint {
+            keptAtlas = graph.importTexture(name + ".depth", desc, [s, light, desc]() -> GLuint {
                 ShadowAtlasCache& a = s->atlases[light];
                 if (!a.depth || a.width != desc.width || a.height != desc.height) {
                     a = ShadowAtlasCache{};
@@ -519,7 +519,7 @@ ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const
         const Data& data = graph.addPass<Data>(
             name, fg::PassKind::Raster,
             [&](fg::PassBuilder& b, Data& out) {
-                out.depth = caching ? b.write(kept0, fg::Usage::DepthAttachment)
+                out.depth = caching ? b.write(keptAtlas, fg::Usage::DepthAttachment)
                                     : b.create(name + ".depth", desc, fg::Usage::DepthAttachment);
             },
             [s, frame, fr, casters, caching, light, keys, redraw, casterKey](const Data& out, const fg::PassResources& res) {
