@@ -1,6 +1,8 @@
 #include "app/bench.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <iterator>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -145,6 +147,7 @@ int runBench(const Options& o, const std::vector<std::string>& args) {
         // --time / --fps as render takes them (a camera path then moves between timed frames).
         renderer.cutMotion();  // a new variant: no motion from the last one's frames
         for (int i = 0; i < warmupFrames(o, warmup); ++i) renderer.render(s, float(warmupTime(o)), false);
+        renderer.resetShadowCacheStats();  // the timed frames' cascade tiles only
         for (int i = 0; i < frames; ++i) renderer.render(s, float(frameTime(o, i)), true);
         glFinish();
         renderer.timers().flush();
@@ -155,12 +158,24 @@ int runBench(const Options& o, const std::vector<std::string>& args) {
         run["render_scale"] = s.renderScale;
         run["frames"] = frames;
         run["transient_texture_bytes"] = renderer.pool().totalBytes();
+        const ShadowCacheStats& cache = renderer.shadowCacheStats();
+        if (cache.drawn + cache.kept > 0)
+            run["shadow_cache"] = {{"tiles_drawn", cache.drawn}, {"tiles_kept", cache.kept},
+                                   {"hit_rate", double(cache.kept) / double(cache.kept + cache.drawn)},
+                                   {"kept_per_cascade", std::vector<uint64_t>(std::begin(cache.keptPerCascade), std::end(cache.keptPerCascade))},
+                                   {"drawn_per_cascade", std::vector<uint64_t>(std::begin(cache.drawnPerCascade), std::end(cache.drawnPerCascade))}};
         const auto& timers = renderer.timers();
         std::fprintf(stderr, "[%zu/%zu] %-50s frame %9.4f ms (%d frames)\n", vi + 1, variants.size(),
                      join(variants[vi]).c_str(), timers.median("frame"), frames);
         for (const auto& name : timers.passOrder()) {
             if (timers.samples(name).empty()) continue;
             run["passes"][name]["median_ms"] = timers.median(name);
+            // Mean and max too: a cached pass (--shadow-cache) is cheap most frames and costly on a few.
+            const auto& samples = timers.samples(name);
+            double sum = 0.0, most = 0.0;
+            for (double ms : samples) sum += ms, most = std::max(most, ms);
+            run["passes"][name]["mean_ms"] = sum / double(samples.size());
+            run["passes"][name]["max_ms"] = most;
             const size_t bytes = renderer.graph().passTrafficBytes(name);
             if (o.floors && bytes > 0) {
                 const fg::PassKind kind = renderer.graph().passKind(name);  // what the pass declared

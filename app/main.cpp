@@ -6,6 +6,7 @@
 #include <functional>
 #include <fstream>
 #include <iostream>
+#include <iterator>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -153,6 +154,7 @@ int commandRender(const Options& o) {
         // With --fps the untimed frames are one frame step before --time: the first timed frame's
         // previous frame (motion vectors, motion blur) is then where the clock puts it.
         for (int i = 0; i < warmupFrames(o, o.warmup); ++i) renderer.render(settings, float(warmupTime(o)), false);
+        renderer.resetShadowCacheStats();  // the timed frames' cascade tiles only
         for (int i = 0; i < o.frames; ++i) renderer.render(settings, float(frameTime(o, i)), true);
     } catch (const Error& e) {  // what the checks above could not foresee still names the size
         if (std::string(e.what()).rfind("GL out of memory", 0) != 0) throw;
@@ -212,8 +214,18 @@ int commandRender(const Options& o) {
     // GPU memory of textures: the pool (every transient, shadow maps included, after reuse) and
     // what outlives frames outside it (environment cubes, IBL bakes).
     const size_t poolBytes = renderer.pool().totalBytes(), persistentBytes = renderer.persistentTextureBytes();
-    say("texture memory: %.2f MiB pooled transients + %.2f MiB persistent (environment, IBL)\n",
+    say("texture memory: %.2f MiB pooled transients + %.2f MiB persistent (environment, IBL, kept shadow atlases)\n",
                 poolBytes / 1048576.0, persistentBytes / 1048576.0);
+    const ShadowCacheStats& cache = renderer.shadowCacheStats();
+    if (cache.drawn + cache.kept > 0) {
+        say("shadow cascades: %llu of %llu tiles kept from an earlier frame, %llu drawn (--shadow-cache %s)\n",
+            (unsigned long long)cache.kept, (unsigned long long)(cache.kept + cache.drawn), (unsigned long long)cache.drawn,
+            settings.shadows.cache ? "on" : "off");
+        j["shadow_cache"] = {{"tiles_drawn", cache.drawn}, {"tiles_kept", cache.kept},
+                             {"hit_rate", double(cache.kept) / double(cache.kept + cache.drawn)},
+                                   {"kept_per_cascade", std::vector<uint64_t>(std::begin(cache.keptPerCascade), std::end(cache.keptPerCascade))},
+                                   {"drawn_per_cascade", std::vector<uint64_t>(std::begin(cache.drawnPerCascade), std::end(cache.drawnPerCascade))}};
+    }
     j["memory"] = {{"pool_bytes", poolBytes}, {"persistent_bytes", persistentBytes},
                    {"total_bytes", poolBytes + persistentBytes},
                    {"graph_transient_bytes", renderer.graph().liveTransientBytes()}};

@@ -1,21 +1,32 @@
 #!/usr/bin/env python3
-"""Turns bench/shadow_cost.sh's `lightpass bench` JSON into a Markdown table: per variant (caster
-culling on/off x caster raster), each sun's shadow pass and their sum with the floor (bytes the
-pass must move over the fragment fill rate) and measured/floor, the frame, and the triangles the
-cascades drew at t = 1 s (from OUTDIR/explain_<culling>_<raster>.txt). The target: the sum <= 2 ms."""
+"""Turns bench/shadow_cost.sh's `lightpass bench` JSON files into Markdown tables: per variant
+(--shadow-cache, --shadow-origin-step, caster culling, caster raster) the shadow passes' GPU ms summed
+over the suns (median, mean and the sum of the per-pass maxima: a cached pass is cheap on most
+frames and costly on the few that redraw, so the mean is what the target is judged on), the mean against the floor of drawing every atlas texel every frame (the atlases' depth
+bytes at the fragment fill rate) and measured/floor, the share of cascade tiles kept from an earlier
+frame (all cascades, then cascade 0..3), the frame, and the triangles each cascade drew at t = 1 s
+(from OUTDIR/explain_<culling>_<raster>.txt). The target (issue #19): the sum <= 2 ms.
+
+usage: summarize_shadow_cost.py BENCH.json [BENCH.json ...] [--outdir OUTDIR]"""
 import json
 import os
 import re
 import sys
 
+TARGET_MS = 2.0
+
+
+def flag(flags, name, default):
+    m = re.search(r"--" + name + r" (\S+)", flags)
+    return m.group(1) if m else default
+
 
 def triangles(outdir, flags):
-    """'a+b+c+d / total' per light from the explain file of this variant, or '-'."""
+    """'a+b+c+d' per light from the explain file of this variant, or '-'."""
     cull = "no-shadow-culling" if "--no-shadow-culling" in flags else "shadow-culling"
-    m = re.search(r"--shadow-raster (\w+)", flags)
-    raster = m.group(1) if m else "conservative"
+    raster = flag(flags, "shadow-raster", "conservative")
     path = os.path.join(outdir, f"explain_{cull}_{raster}.txt")
-    if not os.path.exists(path):
+    if not outdir or not os.path.exists(path):
         return "-"
     per_light = {}
     total = None
@@ -34,31 +45,77 @@ def triangles(outdir, flags):
     return "; ".join(f"{'+'.join(v)}" for _, v in sorted(per_light.items())) + f" of {total}"
 
 
-def main(path, outdir):
+def atlas_floor_ms(d, run, lights):
+    """Every texel of every sun's atlas drawn once a frame, at the measured fragment fill."""
+    gbps = d.get("bandwidth", {}).get("fragment_GBps")
+    if not gbps or not lights:
+        return None
+    flags = d.get("common_flags", "") + " " + run["flags"]
+    size = int(flag(flags, "shadow-size", "2048"))
+    cascades = int(flag(flags, "shadow-cascades", "4"))
+    columns, rows = (2 if cascades > 1 else 1), (2 if cascades > 2 else 1)
+    return lights * (columns * size) * (rows * size) * 4 / (gbps * 1e9) * 1e3
+
+
+def hit_rates(run):
+    c = run.get("shadow_cache")
+    if not c:
+        return "-", "-"
+    total = f"{100 * c['hit_rate']:.0f}%"
+    per = c.get("kept_per_cascade"), c.get("drawn_per_cascade")
+    if not per[0]:
+        return total, "-"
+    each = [f"{100 * k / (k + n):.0f}" if k + n else "-" for k, n in zip(*per)]
+    return total, "/".join(each)
+
+
+def table(path, outdir):
     d = json.load(open(path))
-    bw = d.get("bandwidth", {})
-    print(f"Device: {d.get('device')}. Scene {d.get('scene')}, camera on its path, 60 fps from t = 1 s, "
-          f"two suns x 4 cascades of 2048^2, 1920x1080. Median GPU ms over the frames; in brackets the "
-          f"floor (ms, fragment fill {bw.get('fragment_GBps', 0):.0f} GB/s) and measured/floor. "
-          f"Target: shadow passes <= 2 ms.\n")
-    print("| culling | raster | shadow_map passes | sum | frame | triangles drawn per cascade at t = 1 s |")
-    print("| --- | --- | --- | ---: | ---: | --- |")
+    common = d.get("common_flags", "")
+    print(f"`{os.path.basename(path)}`: {d.get('device')}, {d.get('scene')}, common flags `{common}`\n")
+    print("| cache | origin step | culling | raster | shadow_map passes median ms | sum median | sum mean | "
+          "sum of maxima | mean × atlas floor | tiles kept | kept per cascade % | frame median | mean ≤ 2 ms | "
+          "triangles per cascade at t = 1 s |")
+    print("| --- | ---: | --- | --- | --- | ---: | ---: | ---: | ---: | ---: | --- | ---: | --- | --- |")
     for run in d["runs"]:
         p = run["passes"]
-        flags = run["flags"]
-        cull = "off" if "--no-shadow-culling" in flags else "on"
-        m = re.search(r"--shadow-raster (\w+)", flags)
-        raster = m.group(1) if m else "conservative"
+        flags = common + " " + run["flags"]
         shadow = sorted((k, v) for k, v in p.items() if k.startswith("shadow_map"))
         ms = sum(v["median_ms"] for _, v in shadow)
-        floors = [v.get("floor_ms") for _, v in shadow]
-        floor = sum(floors) if shadow and all(floors) else None
-        each = ", ".join(f"{k} {v['median_ms']:.3f}" for k, v in shadow) or "-"
-        total = f"{ms:.3f} ({floor:.3f}, {ms / floor:.1f}x)" if floor else f"{ms:.3f}"
+        mean = sum(v.get("mean_ms", v["median_ms"]) for _, v in shadow)
+        most = sum(v.get("max_ms", v["median_ms"]) for _, v in shadow)
+        floor = atlas_floor_ms(d, run, len(shadow))
+        each = ", ".join(f"{k[len('shadow_map_'):]}: {v['median_ms']:.3f}" for k, v in shadow) or "-"
         frame = p.get("frame", {}).get("median_ms")
-        print(f"| {cull} | {raster} | {each} | {total} | {'-' if frame is None else f'{frame:.3f}'} | "
+        kept, per = hit_rates(run)
+        print(f"| {flag(flags, 'shadow-cache', 'on')} | {flag(flags, 'shadow-origin-step', '0.0625')} | "
+              f"{'off' if '--no-shadow-culling' in flags else 'on'} | {flag(flags, 'shadow-raster', 'conservative')} | "
+              f"{each} | {ms:.3f} | {mean:.3f} | {most:.3f} | {f'{mean / floor:.2f}× of {floor:.2f}' if floor else '-'} | "
+              f"{kept} | {per} | {'-' if frame is None else f'{frame:.3f}'} | "
+              f"{'yes' if shadow and mean <= TARGET_MS else 'no'} | "
               f"{triangles(outdir, flags)} |")
+    print()
+
+
+def main(argv):
+    outdir = None
+    if "--outdir" in argv:
+        i = argv.index("--outdir")
+        outdir = argv[i + 1]
+        argv = argv[:i] + argv[i + 2:]
+    if not argv:
+        sys.exit(__doc__)
+    print("Sun cascades on the gallery flythrough (camera on its path, 60 fps from t = 1 s: a new camera every "
+          "frame), two suns x 4 cascades of 2048^2, 1920x1080; median GPU ms. 'atlas floor': every texel of "
+          "both atlases written once a frame at the measured fragment fill (what a full redraw cannot beat; "
+          "kept tiles can). 'tiles kept': cascade tiles reused from an earlier frame (--shadow-cache), "
+          f"exact: a tile is kept only when nothing it depends on changed. Target: sum <= {TARGET_MS} ms.\n")
+    for path in argv:
+        if os.path.exists(path):
+            table(path, outdir if outdir else os.path.dirname(path))
+        else:
+            print(f"`{path}`: missing (that bench failed)\n")
 
 
 if __name__ == "__main__":
-    main(sys.argv[1], sys.argv[2] if len(sys.argv) > 2 else os.path.dirname(sys.argv[1]))
+    main(sys.argv[1:])

@@ -8,6 +8,7 @@
 #include "engine/core/error.hpp"
 #include "engine/post/post_config.hpp"
 #include "engine/render/local_lights.hpp"
+#include "engine/render/shadows.hpp"
 
 namespace lp {
 
@@ -245,6 +246,32 @@ std::vector<KnobEntry> makeKnobTable() {
                  "compute rasteriser, large triangles on the hardware) or auto (the fastest on this GPU, measured once "
                  "and cached)";
         k.panel = {PanelSection::Shadows, PanelWidget::Combo, "caster raster", ""};
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = choiceKnob("shadow-cache", [](auto& s) -> auto& { return s.shadows.cache; }, std::vector<bool>{true, false},
+                                 [](bool on) { return on ? "on" : "off"; });
+        k.flags = {valueFlag("--shadow-cache")};
+        k.help = "keep each sun's shadow atlas across frames and redraw a cascade only when its light matrix, the "
+                 "casters, the caster raster or the slope bias changed";
+        k.choiceNoun = "setting";
+        k.panel = {PanelSection::Shadows, PanelWidget::Combo, "cascade cache", ""};
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = floatKnob("shadow-origin-step", [](auto& s) -> auto& { return s.shadows.originStep; },
+                                {0.0, double(kMaxShadowOriginStep)});
+        k.flags = {valueFlag("--shadow-origin-step")};
+        k.help = "each sun cascade's square is this fraction of its side larger than its slice needs, and its origin "
+                 "moves in steps of that much (0: one texel): a moving camera redraws cached cascades less often, at "
+                 "that fraction less shadow-map resolution";
+        k.panel = {PanelSection::Shadows, PanelWidget::Slider, "origin step", "%.3f"};
+        k.sweep = {{"0.25", "0.125", "0.0625", "0"},
+                   true,
+                   "room a sun cascade's square leaves for the camera (--shadow-origin-step), as a fraction of its side: "
+                   "that much less resolution, fewer redraws with --shadow-cache on a moving camera; 0 (a one-texel grid) "
+                   "is the reference",
+                   shadowsOn};
         t.push_back(std::move(k));
     }
     {

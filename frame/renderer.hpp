@@ -34,8 +34,12 @@ public:
     const fg::FrameGraph& graph() const { return graph_; }
     gl::GpuTimerRing& timers() { return timers_; }
     const fg::TexturePool& pool() const { return pool_; }
-    // GPU bytes of the textures that outlive a frame outside the pool: environment cubes, IBL bakes, DFG LUT.
-    size_t persistentTextureBytes() const { return passes_.environments.gpuBytes(); }
+    // GPU bytes of the textures that outlive a frame outside the pool: environment cubes, IBL bakes,
+    // DFG LUT, and the suns' kept shadow atlases (--shadow-cache).
+    size_t persistentTextureBytes() const { return passes_.environments.gpuBytes() + passes_.shadowMaps.cacheBytes(); }
+    // Sun cascade tiles drawn and kept (--shadow-cache) since the last resetShadowCacheStats().
+    const ShadowCacheStats& shadowCacheStats() const { return passes_.shadowMaps.cacheStats; }
+    void resetShadowCacheStats() { passes_.shadowMaps.cacheStats = {}; }
     // The environment cubes and IBL bakes (imported into each frame's graph), e.g. to time a fresh bake.
     EnvironmentCache& environments() { return passes_.environments; }
     const SceneGpu& sceneGpu() const { return *gpu_; }

@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 
 #include <glm/gtc/type_ptr.hpp>
 
@@ -33,6 +35,102 @@ std::filesystem::path shadowRasterCachePath() {
     return std::filesystem::path("lightpass_shadow_raster.txt");
 }
 
+bool ShadowTileKey::operator==(const ShadowTileKey& o) const {
+    // Bit for bit: a matrix that differs in any bit may move a caster's depth by an ulp.
+    return std::memcmp(&worldToClip, &o.worldToClip, sizeof worldToClip) == 0 && tileSize == o.tileSize &&
+           column == o.column && row == o.row && raster == o.raster &&
+           std::memcmp(&slopeBias, &o.slopeBias, sizeof slopeBias) == 0 && cullCasters == o.cullCasters;
+}
+
+size_t ShadowMapPass::cacheBytes() const {
+    size_t bytes = 0;
+    for (const auto& [light, atlas] : atlases)
+        if (atlas.depth) bytes += size_t(atlas.width) * size_t(atlas.height) * sizeof(float);
+    return bytes;
+}
+
+namespace {
+// FNV-1a over raw bytes.
+struct Fnv1a {
+    uint64_t h = 1469598103934665603ull;
+    void add(const void* data, size_t n) {
+        const auto* p = static_cast<const unsigned char*>(data);
+        for (size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 1099511628211ull;
+    }
+    template <typename T>
+    void add(const T& v) {
+        add(&v, sizeof v);
+    }
+};
+}  // namespace
+
+uint64_t casterSignature(const FrameData& frame) {
+    Fnv1a f;
+    if (!frame.gpu) {  // 'lightpass graph': nothing is drawn; the scene's transforms stand in
+        for (const ModelInstance& m : frame.scene->models) f.add(m.transform);
+        return f.h;
+    }
+    const SceneGpu& gpu = *frame.gpu;
+    f.add(&gpu);
+    f.add(gpu.meshes.size());
+    for (const GpuMesh& mesh : gpu.meshes) {
+        f.add(mesh.model);
+        f.add(mesh.vao.id());
+        f.add(mesh.vertices.id());
+        f.add(mesh.indices.id());
+    }
+    for (const GpuMaterial& m : gpu.materials) f.add(m.alphaBlend);
+    f.add(gpu.casterClusters.size());
+    for (const CasterCluster& c : gpu.casterClusters) {
+        f.add(c.model);
+        f.add(c.firstIndex);
+        f.add(c.indexCount);
+    }
+    return f.h;
+}
+
+std::vector<ShadowTileKey> shadowTileKeys(const ShadowFrustum& fr, const ShadowSettings& settings,
+                                          ShadowSettings::Raster resolvedRaster) {
+    std::vector<ShadowTileKey> keys(fr.cascades.size());
+    for (size_t c = 0; c < keys.size(); ++c) {
+        keys[c].worldToClip = fr.cascades[c].worldToClip;
+        keys[c].tileSize = fr.tileSize;
+        keys[c].column = int(c % size_t(fr.columns));
+        keys[c].row = int(c / size_t(fr.columns));
+        keys[c].raster = resolvedRaster;
+        keys[c].slopeBias = settings.slopeBias;
+        keys[c].cullCasters = settings.cullCasters;
+    }
+    return keys;
+}
+
+std::vector<std::string> shadowTilesToDraw(const ShadowAtlasCache* cache, int width, int height, uint64_t casters,
+                                           const std::vector<ShadowTileKey>& keys) {
+    std::string all;
+    if (!cache || !cache->depth || cache->width == 0) all = "nothing kept yet";
+    else if (cache->width != width || cache->height != height) all = "atlas size changed";
+    else if (cache->casters != casters) all = "casters changed";
+    std::vector<std::string> why(keys.size(), all);
+    if (!all.empty()) return why;
+    for (size_t c = 0; c < keys.size(); ++c) {
+        const ShadowTileKey& k = keys[c];
+        if (c >= cache->tiles.size() || !cache->tiles[c]) {
+            why[c] = "tile not drawn yet";
+            continue;
+        }
+        const ShadowTileKey& old = *cache->tiles[c];
+        if (old == k) continue;
+        if (old.raster != k.raster) why[c] = "caster raster changed";
+        else if (old.slopeBias != k.slopeBias) why[c] = "slope bias changed";
+        else if (old.cullCasters != k.cullCasters) why[c] = "caster culling changed";
+        else if (old.tileSize != k.tileSize) why[c] = "tile size changed";
+        else if (glm::mat3(old.worldToClip) == glm::mat3(k.worldToClip) && old.worldToClip[3].z == k.worldToClip[3].z)
+            why[c] = "square moved";  // same light, size and depth range: only the texel-snapped origin
+        else why[c] = "light matrix changed";
+    }
+    return why;
+}
+
 namespace {
 struct Data {
     fg::ResourceId depth;
@@ -47,7 +145,8 @@ struct DrawArraysCommand {
 // shadow_raster.comp into the R32UI image, that image into the atlas, then each cascade's large
 // triangles drawn plainly over it with the depth test.
 void drawCascadesByCompute(ShadowMapPass& state, const FrameData& frame, const ShadowFrustum& fr,
-                           const std::vector<CasterList>& casters, int width, int height, bool depthZeroToOne) {
+                           const std::vector<CasterList>& casters, int width, int height, bool depthZeroToOne,
+                           const std::vector<bool>& redraw) {
     if (!state.rasterProgram) state.rasterProgram = frame.shaders->compute("shadow_raster.comp");
     if (!state.resolveProgram) state.resolveProgram = frame.shaders->graphics("fullscreen.vert", "shadow_raster_resolve.frag");
     if (!state.largeProgram) state.largeProgram = frame.shaders->graphics("shadow_raster_large.vert", "shadow_depth.frag");
@@ -59,7 +158,7 @@ void drawCascadesByCompute(ShadowMapPass& state, const FrameData& frame, const S
     size_t needed = 0;
     for (size_t c = 0; c < fr.cascades.size(); ++c) {
         commands[c] = {0, 1, GLuint(needed), 0};
-        needed += 3 * casters[c].triangles;
+        if (redraw[c]) needed += 3 * casters[c].triangles;
     }
     needed = std::max<size_t>(needed, 3);
     if (needed > state.largeCapacity) {
@@ -91,6 +190,7 @@ void drawCascadesByCompute(ShadowMapPass& state, const FrameData& frame, const S
     const GLint locFirst = glGetUniformLocation(prog, "uFirstIndex");
     const GLint locCount = glGetUniformLocation(prog, "uTriangleCount");
     for (size_t c = 0; c < fr.cascades.size(); ++c) {
+        if (!redraw[c]) continue;  // kept from an earlier frame (--shadow-cache)
         glProgramUniform2i(prog, glGetUniformLocation(prog, "uTileOrigin"), GLint(c % size_t(fr.columns)) * fr.tileSize,
                            GLint(c / size_t(fr.columns)) * fr.tileSize);
         glProgramUniform1i(prog, glGetUniformLocation(prog, "uCascade"), GLint(c));
@@ -111,13 +211,26 @@ void drawCascadesByCompute(ShadowMapPass& state, const FrameData& frame, const S
     for (GLuint b = 0; b < 4; ++b) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, 0);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
 
-    // The bits into the atlas: every texel written, the depth test off.
+    // The bits into the atlas: every texel of the redrawn tiles written, the depth test off.
     glBindVertexArray(state.emptyVao.id());
-    glViewport(0, 0, width, height);
     glDepthFunc(GL_ALWAYS);
     glUseProgram(state.resolveProgram.id());
     glBindTextureUnit(0, state.depthBits.id());
-    glDrawArrays(GL_TRIANGLES, 0, 3);
+    const bool all = std::all_of(redraw.begin(), redraw.end(), [](bool r) { return r; });
+    if (all) {
+        glViewport(0, 0, width, height);
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+    }
+    glEnable(GL_SCISSOR_TEST);  // tiles kept from an earlier frame (--shadow-cache) stay untouched
+    for (size_t c = 0; c < fr.cascades.size() && !all; ++c) {
+        if (!redraw[c]) continue;
+        glViewport(GLint(c % size_t(fr.columns)) * fr.tileSize, GLint(c / size_t(fr.columns)) * fr.tileSize, fr.tileSize,
+                   fr.tileSize);
+        glScissor(GLint(c % size_t(fr.columns)) * fr.tileSize, GLint(c / size_t(fr.columns)) * fr.tileSize, fr.tileSize,
+                  fr.tileSize);
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+    }
+    glDisable(GL_SCISSOR_TEST);
     glBindTextureUnit(0, 0);
     glDepthFunc(GL_LESS);
 
@@ -126,11 +239,16 @@ void drawCascadesByCompute(ShadowMapPass& state, const FrameData& frame, const S
     glEnable(GL_POLYGON_OFFSET_FILL);
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, state.largeDraws.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, state.largeVertices.id());
+    glEnable(GL_SCISSOR_TEST);
     for (size_t c = 0; c < fr.cascades.size(); ++c) {
+        if (!redraw[c]) continue;
         glViewport(GLint(c % size_t(fr.columns)) * fr.tileSize, GLint(c / size_t(fr.columns)) * fr.tileSize, fr.tileSize,
                    fr.tileSize);
+        glScissor(GLint(c % size_t(fr.columns)) * fr.tileSize, GLint(c / size_t(fr.columns)) * fr.tileSize, fr.tileSize,
+                  fr.tileSize);
         glDrawArraysIndirect(GL_TRIANGLES, reinterpret_cast<const void*>(c * sizeof(DrawArraysCommand)));
     }
+    glDisable(GL_SCISSOR_TEST);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, 0);
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
     glDisable(GL_POLYGON_OFFSET_FILL);
@@ -138,9 +256,11 @@ void drawCascadesByCompute(ShadowMapPass& state, const FrameData& frame, const S
     glUseProgram(0);
 }
 
-// Draws the cascades' casters into the atlas `depthTexture` (width x height) with `raster` (not Auto).
+// Draws the cascades' casters into the atlas `depthTexture` (width x height) with `raster` (not Auto),
+// only the tiles of the cascades `redraw` marks (each cleared first; all of them: the whole atlas
+// cleared); the other tiles are left as they are.
 void drawAtlas(ShadowMapPass& state, const FrameData& frame, const ShadowFrustum& fr, const std::vector<CasterList>& casters,
-               ShadowSettings::Raster raster, GLuint depthTexture, int width, int height) {
+               ShadowSettings::Raster raster, GLuint depthTexture, int width, int height, const std::vector<bool>& redraw) {
     using Raster = ShadowSettings::Raster;
         if (!state.fbo) state.fbo = gl::makeFramebuffer("shadow_map");
         if (raster == Raster::Conservative && !state.program)
@@ -167,7 +287,17 @@ void drawAtlas(ShadowMapPass& state, const FrameData& frame, const ShadowFrustum
         // Plain draws: the slope bias is the polygon offset's factor (as the spot maps').
         glPolygonOffset(frame.settings->shadows.slopeBias, 0.0f);
         const float one = 1.0f;
-        glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &one);
+        if (std::all_of(redraw.begin(), redraw.end(), [](bool r) { return r; })) {
+            glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &one);
+        } else {
+            gl::ScopedEnable scissor(GL_SCISSOR_TEST, true);
+            for (size_t c = 0; c < fr.cascades.size(); ++c)
+                if (redraw[c]) {
+                    glScissor(GLint(c % size_t(fr.columns)) * fr.tileSize, GLint(c / size_t(fr.columns)) * fr.tileSize,
+                              fr.tileSize, fr.tileSize);
+                    glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &one);
+                }
+        }
 
         GLint clipDepth = GL_NEGATIVE_ONE_TO_ONE;
         glGetIntegerv(GL_CLIP_DEPTH_MODE, &clipDepth);
@@ -183,15 +313,21 @@ void drawAtlas(ShadowMapPass& state, const FrameData& frame, const ShadowFrustum
                                frame.settings->shadows.slopeBias);
         }
         if (raster == Raster::Compute) {
-            drawCascadesByCompute(state, frame, fr, casters, width, height, clipDepth == GL_ZERO_TO_ONE);
+            gl::ScopedEnable scissor(GL_SCISSOR_TEST, false);  // drawCascadesByCompute scissors per tile
+            drawCascadesByCompute(state, frame, fr, casters, width, height, clipDepth == GL_ZERO_TO_ONE, redraw);
             glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, 0, 0);
             return;
         }
         const GLuint plainProg = raster == Raster::Conservative ? 0 : state.plainProgram.id();
+        // Each cascade's fragments stay in its tile whatever a driver's guard band does: a kept
+        // neighbour (--shadow-cache) must not receive this frame's casters.
+        gl::ScopedEnable scissor(GL_SCISSOR_TEST, true);
         for (size_t c = 0; c < fr.cascades.size(); ++c) {
+            if (!redraw[c]) continue;  // kept from an earlier frame (--shadow-cache)
             const GLint x = GLint(c % size_t(fr.columns)) * fr.tileSize;
             const GLint y = GLint(c / size_t(fr.columns)) * fr.tileSize;
             glViewport(x, y, fr.tileSize, fr.tileSize);
+            glScissor(x, y, fr.tileSize, fr.tileSize);
             if (plainProg) {
                 // Split: only the faces towards the light (counter-clockwise in the light's window,
                 // as shadow_depth.geom's orientation), which need neither growth nor gl_FragDepth.
@@ -323,7 +459,19 @@ ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const
     const std::vector<CasterCluster>& clusters = frame.gpu ? frame.gpu->casterClusters : localClusters;
     size_t sceneTriangles = 0;
     for (const CasterCluster& c : clusters) sceneTriangles += c.indexCount / 3;
-    for (int light : shadowCastingLights(frame)) {
+    const bool caching = frame.settings->shadows.cache;
+    const std::vector<int> shadowed = shadowCastingLights(frame);
+    // Kept atlases of lights no longer shadowed (or every one, with the cache off) are let go.
+    for (auto it = state.atlases.begin(); it != state.atlases.end();)
+        it = (!caching || std::find(shadowed.begin(), shadowed.end(), it->first) == shadowed.end()) ? state.atlases.erase(it)
+                                                                                                     : std::next(it);
+    const uint64_t casterKey = caching ? casterSignature(frame) : 0;
+    // The raster this frame draws with where it is already known (auto: once measured).
+    const ShadowSettings::Raster knownRaster = frame.settings->shadows.raster != ShadowSettings::Raster::Auto
+                                                   ? frame.settings->shadows.raster
+                                               : state.autoResolved ? state.autoRaster
+                                                                    : ShadowSettings::Raster::Auto;
+    for (int light : shadowed) {
         LightShadowMap map;
         map.light = light;
         map.frustum = fitShadowFrustum(frame, frame.scene->directionalLights[size_t(light)].direction);
@@ -332,6 +480,18 @@ ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const
         // A small scene needs fewer cascades than asked for: say which were dropped and why.
         if (const std::string why = droppedCascadesReason(fr, frame.settings->shadows.cascades); !why.empty())
             graph.skipPass(name + " cascades", why);
+        const fg::TextureDesc desc{fr.tileSize * fr.columns, fr.tileSize * fr.rows, GL_DEPTH_COMPONENT32F};
+        // --shadow-cache: which tiles the kept atlas already holds (empty reason: kept).
+        const std::vector<ShadowTileKey> keys = shadowTileKeys(fr, frame.settings->shadows, knownRaster);
+        const auto kept = state.atlases.find(light);
+        std::vector<std::string> why =
+            caching ? shadowTilesToDraw(kept == state.atlases.end() ? nullptr : &kept->second, desc.width, desc.height,
+                                        casterKey, keys)
+                    : std::vector<std::string>(fr.cascades.size(), "cache off");
+        if (knownRaster == ShadowSettings::Raster::Auto)
+            for (std::string& w : why) w = "first frame of --shadow-raster auto";
+        std::vector<bool> redraw(fr.cascades.size());
+        for (size_t c = 0; c < redraw.size(); ++c) redraw[c] = !why[c].empty();
         // Each cascade's casters, culled to its tile (one texel of margin for the conservative growth).
         std::vector<CasterList> casters;
         for (size_t c = 0; c < fr.cascades.size(); ++c) {
@@ -342,20 +502,58 @@ ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const
                                      std::to_string(l.clusters) + " of " + std::to_string(clusters.size()) + " clusters, " +
                                      std::to_string(l.triangles) + " of " + std::to_string(sceneTriangles) + " triangles (" +
                                      ShadowSettings::rasterName(frame.settings->shadows.raster) + " raster" +
-                                     (frame.settings->shadows.cullCasters ? "" : ", culling off") + ")");
+                                     (frame.settings->shadows.cullCasters ? "" : ", culling off") + "); " +
+                                     (redraw[c] ? "redrawn (" + why[c] + ")" : std::string("kept (unchanged)")));
         }
-        const fg::TextureDesc desc{fr.tileSize * fr.columns, fr.tileSize * fr.rows, GL_DEPTH_COMPONENT32F};
+        ShadowMapPass* s = &state;
+        fg::ResourceId keptAtlas;
+        if (caching)  // the kept atlas, made (cleared to 1: no caster) when first asked for or resized
+            keptAtlas = graph.importTexture(name + ".depth", desc, [s, light, desc]() -> GLuint {
+                ShadowAtlasCache& a = s->atlases[light];
+                if (!a.depth || a.width != desc.width || a.height != desc.height) {
+                    a = ShadowAtlasCache{};
+                    a.light = light;
+                    a.depth = gl::makeTexture2D(GL_DEPTH_COMPONENT32F, desc.width, desc.height, 1, "shadow_map.kept_atlas");
+                    a.width = desc.width;
+                    a.height = desc.height;
+                    const float one = 1.0f;
+                    glClearTexImage(a.depth.id(), 0, GL_DEPTH_COMPONENT, GL_FLOAT, &one);
+                }
+                return a.depth.id();
+            });
         const Data& data = graph.addPass<Data>(
             name, fg::PassKind::Raster,
-            [&](fg::PassBuilder& b, Data& out) { out.depth = b.create(name + ".depth", desc, fg::Usage::DepthAttachment); },
-            [&state, frame, fr, casters](const Data& out, const fg::PassResources& res) {
+            [&](fg::PassBuilder& b, Data& out) {
+                out.depth = caching ? b.write(keptAtlas, fg::Usage::DepthAttachment)
+                                    : b.create(name + ".depth", desc, fg::Usage::DepthAttachment);
+            },
+            [s, frame, fr, casters, caching, light, keys, redraw, casterKey](const Data& out, const fg::PassResources& res) {
                 const fg::TextureDesc& d = res.desc(out.depth);
+                const GLuint texture = res.texture(out.depth);
                 ShadowSettings::Raster raster = frame.settings->shadows.raster;
+                const std::vector<bool> everyTile(fr.cascades.size(), true);
                 if (raster == ShadowSettings::Raster::Auto)
-                    raster = resolveAutoRaster(state, [&](ShadowSettings::Raster r) {
-                        drawAtlas(state, frame, fr, casters, r, res.texture(out.depth), d.width, d.height);
+                    raster = resolveAutoRaster(*s, [&](ShadowSettings::Raster r) {
+                        drawAtlas(*s, frame, fr, casters, r, texture, d.width, d.height, everyTile);
                     });
-                drawAtlas(state, frame, fr, casters, raster, res.texture(out.depth), d.width, d.height);
+                drawAtlas(*s, frame, fr, casters, raster, texture, d.width, d.height, redraw);
+                const size_t drawn = size_t(std::count(redraw.begin(), redraw.end(), true));
+                s->cacheStats.drawn += drawn;
+                s->cacheStats.kept += redraw.size() - drawn;
+                for (size_t c = 0; c < redraw.size() && c < size_t(kMaxShadowCascades); ++c)
+                    ++(redraw[c] ? s->cacheStats.drawnPerCascade[c] : s->cacheStats.keptPerCascade[c]);
+                if (!caching) return;
+                // What the tiles now hold. A new caster set or a whole-atlas clear (every tile
+                // drawn) leaves tiles past this frame's cascades unknown.
+                ShadowAtlasCache& a = s->atlases[light];
+                if (a.casters != casterKey || drawn == redraw.size()) a.tiles.assign(a.tiles.size(), std::nullopt);
+                a.casters = casterKey;
+                if (a.tiles.size() < keys.size()) a.tiles.resize(keys.size());
+                for (size_t c = 0; c < keys.size(); ++c)
+                    if (redraw[c]) {
+                        a.tiles[c] = keys[c];
+                        a.tiles[c]->raster = raster;
+                    }
             });
         map.depth = data.depth;
         maps.push_back(std::move(map));

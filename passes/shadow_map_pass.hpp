@@ -9,7 +9,19 @@
 // kComputeRasterMaxTexels in x or y are drawn by the hardware plain path after it), or auto: the
 // fastest of the four on this GPU, measured once on the first frame and cached per GPU.
 // No shadow-casting light, or shadows switched off: no pass at all.
+//
+// --shadow-cache on (the default): each light's atlas is a persistent texture of ShadowMapPass,
+// imported into every frame's graph (as TAA's history is), and a cascade's tile is redrawn only when
+// what it would hold changed: its key (ShadowTileKey: the light's world-to-clip matrix bit for bit,
+// which carries the sun direction, the texel-snapped square and the depth range; the tile's place
+// and size; the resolved raster; the slope bias; culling) or the casters (casterSignature: the scene
+// on the GPU, every mesh's model matrix and which materials cast). A kept tile is exactly what a
+// redraw would write: nothing a tile's depth depends on is outside its key. 'lightpass graph
+// --explain' and the pass notes say per cascade "redrawn (why)" or "kept"; render and bench count
+// them (ShadowCacheStats). --shadow-cache off: a transient atlas, every cascade drawn every frame.
+#include <cstdint>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -24,6 +36,31 @@
 namespace lp {
 
 constexpr float kComputeRasterMaxTexels = 64.0f;
+
+// What one atlas tile holds: equal keys (and equal casters) give bit-identical depth.
+struct ShadowTileKey {
+    glm::mat4 worldToClip{1.0f};
+    int tileSize = 0, column = 0, row = 0;
+    ShadowSettings::Raster raster = ShadowSettings::Raster::Conservative;  // resolved (never Auto)
+    float slopeBias = 0.0f;
+    bool cullCasters = true;
+    bool operator==(const ShadowTileKey& o) const;
+};
+
+// One light's kept atlas and what each of its tiles holds (none: unknown, e.g. never drawn).
+struct ShadowAtlasCache {
+    int light = -1;
+    gl::Texture depth;  // D32F, width x height
+    int width = 0, height = 0;
+    uint64_t casters = 0;  // casterSignature the tiles were drawn with
+    std::vector<std::optional<ShadowTileKey>> tiles;
+};
+
+// Cascade tiles drawn and kept since the counters were last reset (render and bench report them).
+struct ShadowCacheStats {
+    uint64_t drawn = 0, kept = 0;
+    uint64_t drawnPerCascade[kMaxShadowCascades] = {}, keptPerCascade[kMaxShadowCascades] = {};
+};
 
 struct ShadowMapPass {
     gl::Program program;       // conservative casters (shadow_depth.geom)
@@ -44,7 +81,22 @@ struct ShadowMapPass {
     bool autoResolved = false;
     ShadowSettings::Raster autoRaster = ShadowSettings::Raster::Conservative;
     std::string autoReport;  // the line logged: the choice, the measured times or "cached", the file
+    // --shadow-cache on: one kept atlas per shadowed light
+    std::map<int, ShadowAtlasCache> atlases;  // by light index
+    ShadowCacheStats cacheStats;
+    size_t cacheBytes() const;  // GPU bytes of the kept atlases
 };
+
+// A hash of what every cascade's casters are: the SceneGpu, each mesh's model matrix and buffers,
+// which materials are alpha-blended (those cast no shadow) and the caster clusters.
+uint64_t casterSignature(const FrameData& frame);
+
+// Per cascade of `frustum`: why its tile must be drawn this frame, or empty when `cache` already
+// holds exactly what it would draw (keys from shadowTileKeys).
+std::vector<std::string> shadowTilesToDraw(const ShadowAtlasCache* cache, int width, int height, uint64_t casters,
+                                           const std::vector<ShadowTileKey>& keys);
+std::vector<ShadowTileKey> shadowTileKeys(const ShadowFrustum& frustum, const ShadowSettings& settings,
+                                          ShadowSettings::Raster resolvedRaster);
 
 // --shadow-raster auto's cache: one line per GPU, "<raster>\t<GL_VENDOR / GL_RENDERER / GL_VERSION>",
 // in $LIGHTPASS_CACHE_DIR/shadow_raster.txt, else $XDG_CACHE_HOME/lightpass/, else ~/.cache/lightpass/.

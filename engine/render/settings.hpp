@@ -57,6 +57,13 @@ struct ShadowSettings {         // directional-light shadow maps (passes/shadow_
     float normalBias = 1.0f;    // receiver offset along its normal, in shadow texels (scaled by 1 - N.L)
     int debugLight = 0;         // the shadowmap view shows this directional light's map
     bool cullCasters = true;    // each cascade draws only the caster clusters that can reach its tile
+    // Keep each light's atlas across frames and redraw a cascade's tile only when what it would hold
+    // changed (its light matrix, the casters, the raster or slope bias); passes/shadow_map_pass.hpp.
+    bool cache = true;
+    // Room each cascade's square leaves for the camera to move in, as a fraction of its side: the
+    // square is that much larger than its slice needs and its origin moves in steps of that much (at
+    // least one texel), so a moving camera redraws it less often (engine/render/shadows.hpp).
+    float originStep = 0.0625f;
     // How the sun cascades rasterise casters: conservative (grown by half a texel, nearest depth over
     // the texel for faces away from the light: no leak along closed creases, but gl_FragDepth turns
     // early depth testing off), plain (hardware depth at texel centres plus polygon offset), or split

@@ -36,6 +36,10 @@ std::vector<double> practicalSplits(double nearDist, double farDist, int cascade
 
 glm::ivec2 shadowAtlasGrid(int cascades) { return {cascades > 1 ? 2 : 1, cascades > 2 ? 2 : 1}; }
 
+int originStepTexels(const ShadowSettings& settings) {
+    return std::max(1, int(std::floor(double(settings.originStep) * settings.size)));
+}
+
 namespace {
 
 void checkSettings(const ShadowSettings& s) {
@@ -46,6 +50,9 @@ void checkSettings(const ShadowSettings& s) {
         throw Error("shadows: split lambda " + std::to_string(s.splitLambda) + " is outside [0, 1]");
     for (float b : {s.depthBias, s.slopeBias, s.normalBias})
         if (!std::isfinite(b) || b < 0.0f) throw Error("shadows: biases must be finite and >= 0");
+    if (!(s.originStep >= 0.0f && s.originStep <= kMaxShadowOriginStep))
+        throw Error("shadows: origin step " + std::to_string(s.originStep) + " is outside [0, " +
+                    std::to_string(kMaxShadowOriginStep) + "]");
 }
 
 glm::dvec3 clampCoordinate(glm::dvec3 p) {
@@ -203,20 +210,36 @@ ShadowFrustum fitShadowFrustum(const FrameData& frame, glm::vec3 lightDirection)
         const double radius = std::max(std::sqrt((s - a) * (s - a) + a * a * k2), std::sqrt((b - s) * (b - s) + b * b * k2));
         const glm::dvec3 centre = camPos + camForward * s;
 
-        // Square side: the sphere's diameter, or the scene's light-space extent when smaller.
-        // The extra 2 texels leave room for the texel snap below. A square that spans the whole
-        // scene serves every depth behind it too: it is the last cascade (the later ones would be
-        // identical tiles of the same square, drawn for nothing).
+        // Square side: the sphere's diameter, or the scene's light-space extent when smaller,
+        // plus room for the origin snap below: (step + 1) texels, the step being --shadow-origin-step
+        // of the tile (at least one texel). A square that spans the whole scene serves every depth
+        // behind it too: it is the last cascade (the later ones would be identical tiles of the
+        // same square, drawn for nothing).
         const bool coversScene = 2.0 * radius >= sceneSide;
-        double side = std::max(std::min(2.0 * radius, sceneSide), tiny);
-        const double texel = side / double(settings.size - 2);
-        side = texel * settings.size;
+        // Rounded up to a 2^(1/8) grid: a camera path that zooms (fov) or the split points' grid
+        // changes the slice's sphere a little every frame; the square's size, and so its matrix,
+        // changes only when the sphere crosses a step (at most 9% of resolution, 4.5% on average).
+        const double needed = std::exp2(std::ceil(std::log2(std::max(std::min(2.0 * radius, sceneSide), tiny)) * 8.0) / 8.0);
+        const int stepTexels = originStepTexels(settings);
+        const double texel = needed / double(settings.size - 1 - stepTexels);
+        const double side = texel * settings.size, half = 0.5 * side, step = stepTexels * texel;
 
-        glm::dvec2 ctr(glm::dvec3(lightView * glm::dvec4(centre, 1.0)));
-        for (int i = 0; i < 2; ++i) {  // keep the square over the scene where it can be
-            const double slo = lsLo[i] + 0.5 * side, shi = lsHi[i] - 0.5 * side;
-            ctr[i] = slo <= shi ? std::clamp(ctr[i], slo, shi) : 0.5 * (lsLo[i] + lsHi[i]);
-            ctr[i] = std::floor(ctr[i] / texel + 0.5) * texel;  // whole texels: stable under motion
+        // The origin: on a grid of `step` (whole texels), so it stays put while the camera moves
+        // within a step and the cascade's tile (--shadow-cache) can be kept. Of the grid points
+        // whose square holds the slice's sphere clipped to the scene's light-space bounds, the one
+        // nearest the sphere's centre kept over the scene: a square pinned against the scene's edge,
+        // or wider than the scene, does not move at all.
+        const glm::dvec2 sphere(glm::dvec3(lightView * glm::dvec4(centre, 1.0)));
+        glm::dvec2 ctr;
+        for (int i = 0; i < 2; ++i) {
+            const double nLo = std::min(std::max(sphere[i] - radius, lsLo[i]), lsHi[i]);
+            const double nHi = std::max(std::min(sphere[i] + radius, lsHi[i]), nLo);
+            const double slo = lsLo[i] + half, shi = lsHi[i] - half;
+            const double want = std::clamp(slo <= shi ? std::clamp(sphere[i], slo, shi) : 0.5 * (lsLo[i] + lsHi[i]),
+                                           nHi - half, nLo + half);
+            const double below = std::floor(want / step) * step, above = below + step;
+            const bool belowFits = below >= nHi - half, aboveFits = above <= nLo + half;
+            ctr[i] = belowFits && (!aboveFits || want - below <= above - want) ? below : aboveFits ? above : want;
         }
 
         const glm::dmat4 proj = glm::ortho(ctr.x - 0.5 * side, ctr.x + 0.5 * side, ctr.y - 0.5 * side,

@@ -8,8 +8,12 @@
 // spans the whole scene (a small scene gets one). Its square is the slice's bounding sphere (so its
 // size, hence its texel size, does not change as the camera turns or moves: no shimmering), shrunk
 // to the scene's light-space extent when the scene is smaller, kept inside the scene's extent, and
-// its centre snapped to whole texels. Depth spans the whole scene bounds along the light, so
-// casters outside the view still cast. Everything is computed in double precision from bounds
+// grown by ShadowSettings::originStep so that its origin can sit on a grid of that step (whole
+// texels): the square moves only when the camera's slice leaves it, and not at all when it is
+// pinned against the scene's edge or wider than the scene. Depth spans the whole scene bounds along
+// the light, so casters outside the view still cast and depth values do not depend on the camera.
+// The matrices change only when the square moves, the split grid steps (see below) or the scene
+// or light does: what the shadow cache (passes/shadow_map_pass.hpp) relies on. Everything is computed in double precision from bounds
 // clamped to +-kMaxShadowCoordinate, so huge scenes give finite matrices (Filament PR #6314).
 #include <array>
 #include <optional>
@@ -25,6 +29,7 @@ namespace lp {
 constexpr int kMaxShadowCascades = 4;
 constexpr int kMaxShadowedLights = 4;  // shadow maps the global-light shader binds
 constexpr double kMaxShadowCoordinate = 1e18;
+constexpr float kMaxShadowOriginStep = 0.25f;  // of the tile: the square then is 4/3 of what it needs
 
 struct ShadowCascade {
     glm::mat4 worldToClip{1.0f};  // light orthographic projection * light view
@@ -70,5 +75,8 @@ std::vector<double> practicalSplits(double nearDist, double farDist, int cascade
 
 // Atlas tile grid for `cascades` tiles: 1 -> 1x1, 2 -> 2x1, 3..4 -> 2x2.
 glm::ivec2 shadowAtlasGrid(int cascades);
+
+// The grid step of a cascade's origin in texels: --shadow-origin-step of the tile, at least 1.
+int originStepTexels(const ShadowSettings& settings);
 
 }  // namespace lp

@@ -248,20 +248,27 @@ TEST(SceneDrivenGraph, SkippedPassesAllocateNothing) {
                                          bytes(GL_RGBA16F) + bytes(GL_RGBA8));
     EXPECT_GT(all.transientBytes, normal.transientBytes);  // bloom's buffers
 
-    // cornell with shadows off: exactly the shadow atlas less.
-    RenderSettings on = small(), off = small();
-    off.shadows.enabled = false;
-    FrameData frame = makeFrameData(bundledScene("cornell"), on, 0.0f);
-    fg::FrameGraph g;
-    PassStates passes;
-    buildFrameGraph(g, passes, frame);
-    g.compile();
-    size_t shadowBytes = 0;
-    for (const auto& r : g.resources())
-        if (r.name.rfind("shadow_map_", 0) == 0 && r.live) shadowBytes += r.desc.bytes();
-    ASSERT_GT(shadowBytes, 0u);
-    EXPECT_EQ(build(bundledScene("cornell"), on).transientBytes - build(bundledScene("cornell"), off).transientBytes,
-              shadowBytes);
+    // cornell with shadows off: exactly the shadow atlas less when it is transient (--shadow-cache
+    // off); with the cache on the atlas is kept outside the graph (imported) and costs no transient.
+    for (bool cache : {false, true}) {
+        RenderSettings on = small(), off = small();
+        on.shadows.cache = off.shadows.cache = cache;
+        off.shadows.enabled = false;
+        FrameData frame = makeFrameData(bundledScene("cornell"), on, 0.0f);
+        fg::FrameGraph g;
+        PassStates passes;
+        buildFrameGraph(g, passes, frame);
+        g.compile();
+        size_t shadowBytes = 0;
+        for (const auto& r : g.resources())
+            if (r.name.rfind("shadow_map_", 0) == 0 && r.live) {
+                shadowBytes += r.desc.bytes();
+                EXPECT_EQ(r.imported, cache) << r.name;
+            }
+        ASSERT_GT(shadowBytes, 0u);
+        EXPECT_EQ(build(bundledScene("cornell"), on).transientBytes - build(bundledScene("cornell"), off).transientBytes,
+                  cache ? 0u : shadowBytes);
+    }
 }
 
 TEST(SceneDrivenGraph, LocalLightsAllOutOfViewSkipThePass) {

@@ -3,7 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
+#include <string>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -135,15 +137,11 @@ TEST(ShadowCascades, PracticalSplitsInterpolateLinearAndLog) {
     EXPECT_EQ(mid.back(), 100.0);
 }
 
-// Coverage: every point of the camera's view volume that lies inside the scene bounds falls inside
-// its cascade's orthographic box (|x|, |y| <= 1, z in [-1, 1]) - checked on a 9x9x33 grid.
-TEST(ShadowCascades, CascadesCoverTheVisibleSceneInsideTheirBoxes) {
-    Scene s = boundsScene(glm::vec3(-50, 0, -50), glm::vec3(50, 5, 50), {true});
-    s.camera.farPlane = 80.0f;
-    RenderSettings settings = small();
+// Every point of the camera's view volume that lies inside [lo, hi] falls inside its cascade's
+// orthographic box (|x|, |y| <= 1, z in [-1, 1]) - checked on a 9x9x33 grid; returns the points checked.
+int expectCascadesCover(const Scene& s, const RenderSettings& settings, glm::vec3 lo, glm::vec3 hi, const std::string& what) {
     FrameData frame = makeFrameData(s, settings, 0.0f);
     ShadowFrustum fr = fitShadowFrustum(frame, s.directionalLights[0].direction);
-    ASSERT_EQ(fr.cascades.size(), 4u);
     const glm::mat4 invVp = glm::inverse(frame.projection * frame.view);
     int inside = 0;
     for (int iz = 0; iz <= 32; ++iz)
@@ -152,19 +150,75 @@ TEST(ShadowCascades, CascadesCoverTheVisibleSceneInsideTheirBoxes) {
                 glm::vec4 ndc(ix / 4.0f - 1.0f, iy / 4.0f - 1.0f, iz / 16.0f - 1.0f, 1.0f);
                 glm::vec4 w = invVp * ndc;
                 glm::vec3 p = glm::vec3(w) / w.w;
-                if (glm::any(glm::lessThan(p, glm::vec3(-50, 0, -50))) || glm::any(glm::greaterThan(p, glm::vec3(50, 5, 50))))
-                    continue;
+                if (glm::any(glm::lessThan(p, lo)) || glm::any(glm::greaterThan(p, hi))) continue;
                 const float depth = -(frame.view * glm::vec4(p, 1.0f)).z;
                 size_t c = 0;
                 while (c + 1 < fr.cascades.size() && depth > fr.cascades[c].splitFar) ++c;
                 glm::vec4 clip = fr.cascades[c].worldToClip * glm::vec4(p, 1.0f);
-                EXPECT_LE(std::abs(clip.x), 1.0f + 1e-4f) << "cascade " << c << " depth " << depth;
-                EXPECT_LE(std::abs(clip.y), 1.0f + 1e-4f) << "cascade " << c << " depth " << depth;
-                EXPECT_LE(std::abs(clip.z), 1.0f) << "cascade " << c;
+                EXPECT_LE(std::abs(clip.x), 1.0f + 1e-4f) << what << ": cascade " << c << " depth " << depth;
+                EXPECT_LE(std::abs(clip.y), 1.0f + 1e-4f) << what << ": cascade " << c << " depth " << depth;
+                EXPECT_LE(std::abs(clip.z), 1.0f) << what << ": cascade " << c;
                 ++inside;
             }
-    EXPECT_GT(inside, 500);
     for (size_t c = 1; c < fr.cascades.size(); ++c) EXPECT_GE(fr.cascades[c].texelWorld, fr.cascades[c - 1].texelWorld);
+    return inside;
+}
+
+// Coverage, with the origin on a one-texel grid and on coarser ones (--shadow-origin-step), from the
+// middle of a large scene and from near its edge (where squares are pinned against it).
+TEST(ShadowCascades, CascadesCoverTheVisibleSceneInsideTheirBoxes) {
+    const glm::vec3 lo(-50, 0, -50), hi(50, 5, 50);
+    Scene s = boundsScene(lo, hi, {true});
+    s.camera.farPlane = 80.0f;
+    RenderSettings settings = small();
+    ASSERT_EQ(fitShadowFrustum(makeFrameData(s, settings, 0.0f), s.directionalLights[0].direction).cascades.size(), 4u);
+    for (float step : {0.0f, 0.0625f, 0.25f}) {
+        settings.shadows.originStep = step;
+        s.camera.position = glm::vec3(0, 4, 12);
+        s.camera.target = glm::vec3(0);
+        EXPECT_GT(expectCascadesCover(s, settings, lo, hi, "middle, step " + std::to_string(step)), 500);
+        s.camera.position = glm::vec3(47, 3, 46);
+        s.camera.target = glm::vec3(30, 0, 20);
+        EXPECT_GT(expectCascadesCover(s, settings, lo, hi, "edge, step " + std::to_string(step)), 500);
+    }
+}
+
+// What --shadow-cache relies on: walking and zooming (a camera path's fov) leaves most cascades'
+// matrices bit for bit as they were the frame before, with the origin step; with a one-texel grid
+// the near cascade moves nearly every frame. A square wider than the scene never moves.
+TEST(ShadowCascades, SquaresStayPutWhileTheCameraWalksAndZooms) {
+    const glm::vec3 lo(-50, 0, -50), hi(50, 5, 50);
+    auto keptShare = [&](float step) {
+        Scene s = boundsScene(lo, hi, {true});
+        s.camera.farPlane = 80.0f;
+        RenderSettings settings = small();
+        settings.shadows.originStep = step;
+        std::vector<glm::mat4> previous;
+        std::vector<int> kept(kMaxShadowCascades, 0), frames(kMaxShadowCascades, 0);
+        for (int i = 0; i < 120; ++i) {
+            s.camera.position = glm::vec3(0.03f * float(i), 4.0f, 12.0f - 0.05f * float(i));
+            s.camera.target = s.camera.position + glm::vec3(0.1f, -4.0f, -12.0f);
+            s.camera.fovYDegrees = 45.0f + 0.05f * float(i);
+            FrameData frame = makeFrameData(s, settings, 0.0f);
+            const ShadowFrustum fr = fitShadowFrustum(frame, s.directionalLights[0].direction);
+            EXPECT_EQ(fr.cascades.size(), 4u);
+            for (size_t c = 0; c < fr.cascades.size() && i > 0; ++c) {
+                ++frames[c];
+                kept[c] += c < previous.size() && std::memcmp(&previous[c], &fr.cascades[c].worldToClip, sizeof(glm::mat4)) == 0;
+            }
+            previous.clear();
+            for (const auto& c : fr.cascades) previous.push_back(c.worldToClip);
+        }
+        std::vector<double> share;
+        for (int c = 0; c < kMaxShadowCascades; ++c) share.push_back(frames[c] ? double(kept[c]) / frames[c] : 0.0);
+        return share;
+    };
+    const std::vector<double> stepped = keptShare(0.0625f), texel = keptShare(0.0f);
+    for (int c = 0; c < kMaxShadowCascades; ++c) {
+        EXPECT_GE(stepped[size_t(c)], 0.6) << "cascade " << c;
+        EXPECT_GE(stepped[size_t(c)], texel[size_t(c)]) << "cascade " << c;
+    }
+    EXPECT_LE(texel[0], 0.2) << "the near cascade on a one-texel grid should move nearly every frame";
 }
 
 // Stability: turning the camera, and moving it within one 2^(1/4) step of its distance to the

@@ -1,0 +1,203 @@
+// --shadow-cache: a kept cascade tile is exactly what a redraw would write. The same frames are
+// drawn by one ShadowMapPass kept across them (cache on) and by a fresh one with the cache off; their
+// cascade tiles must agree bit for bit while the camera moves, the sun turns or a caster moves, and
+// the cache must have kept some tiles and redrawn others (or the comparison proves nothing).
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <random>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "engine/graph/texture_pool.hpp"
+#include "engine/render/scene_gpu.hpp"
+#include "engine/scene/primitives.hpp"
+#include "frame/frame_builder.hpp"
+#include "passes/shadow_map_pass.hpp"
+#include "tests/gl/gl_fixture.hpp"
+
+using namespace lp;
+
+namespace {
+
+// A 12 m floor with boxes and spheres spread over it under a tilted sun; the camera looks along
+// the row from one end, so the near cascades cover part of it and the far ones the rest.
+Scene castersOnAFloor() {
+    Scene s;
+    ModelInstance floor;
+    floor.name = "floor";
+    floor.mesh = makePlane(12.0f, 4);
+    s.models.push_back(std::move(floor));
+    std::mt19937 rng(77);
+    std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+    for (int i = 0; i < 10; ++i) {
+        ModelInstance m;
+        m.name = "caster" + std::to_string(i);
+        m.mesh = i % 2 == 0 ? makeSphere(0.3f + 0.05f * float(i % 3), 12, 8) : makeCube(0.6f);
+        m.transform = glm::translate(glm::mat4(1.0f), glm::vec3(4.0f * unit(rng), 0.5f + 0.3f * unit(rng), 5.0f * unit(rng))) *
+                      glm::rotate(glm::mat4(1.0f), 3.0f * unit(rng), glm::normalize(glm::vec3(unit(rng), 1.0f, unit(rng))));
+        s.models.push_back(std::move(m));
+    }
+    DirectionalLight sun;
+    sun.direction = glm::normalize(glm::vec3(0.4f, -1.0f, 0.3f));
+    s.directionalLights.push_back(sun);
+    s.camera.position = glm::vec3(0.0f, 1.6f, 6.0f);
+    s.camera.target = glm::vec3(0.0f, 0.6f, 0.0f);
+    s.camera.nearPlane = 0.1f;
+    s.camera.farPlane = 40.0f;
+    return s;
+}
+
+RenderSettings smallCascades(ShadowSettings::Raster raster) {
+    RenderSettings s;
+    s.width = 64;
+    s.height = 48;
+    s.shadows.size = 256;
+    s.shadows.cascades = 4;
+    s.shadows.raster = raster;
+    return s;
+}
+
+// The cascade tiles of light 0's atlas, tile by tile (the atlas's unused tile left out).
+struct Tiles {
+    std::vector<std::vector<float>> depth;
+};
+
+// Draws one frame's shadow passes with `state` and reads back the cascade tiles.
+Tiles drawTiles(const Scene& scene, const SceneGpu& gpu, const RenderSettings& settings, ShadowMapPass& state,
+                fg::TexturePool& pool, std::vector<std::string>* notes = nullptr) {
+    gl::ShaderLibrary shaders;
+    FrameData frame = makeFrameData(scene, settings, 0.0f);
+    frame.gpu = &gpu;
+    frame.shaders = &shaders;
+    fg::FrameGraph graph;
+    const ShadowMaps maps = addShadowMapPasses(graph, state, frame);
+    EXPECT_EQ(maps.size(), 1u);
+    if (maps.empty()) return {};
+    graph.markOutput(maps[0].depth);
+    graph.compile();
+    graph.execute(pool);
+    if (notes)
+        for (const auto& d : graph.explain())
+            if (d.name == "shadow_map_0") *notes = d.notes;
+    const ShadowFrustum& fr = maps[0].frustum;
+    Tiles t;
+    for (size_t c = 0; c < fr.cascades.size(); ++c) {
+        std::vector<float> tile(size_t(fr.tileSize) * size_t(fr.tileSize));
+        glGetTextureSubImage(graph.outputTexture(maps[0].depth), 0, int(c % size_t(fr.columns)) * fr.tileSize,
+                             int(c / size_t(fr.columns)) * fr.tileSize, 0, fr.tileSize, fr.tileSize, 1, GL_DEPTH_COMPONENT,
+                             GL_FLOAT, GLsizei(tile.size() * sizeof(float)), tile.data());
+        t.depth.push_back(std::move(tile));
+    }
+    return t;
+}
+
+// The same frame drawn from scratch: a fresh pass state, the cache off.
+Tiles redrawnTiles(const Scene& scene, const SceneGpu& gpu, RenderSettings settings) {
+    settings.shadows.cache = false;
+    ShadowMapPass fresh;
+    fg::TexturePool pool;
+    return drawTiles(scene, gpu, settings, fresh, pool);
+}
+
+void expectSameTiles(const Tiles& kept, const Tiles& redrawn, const std::string& what) {
+    ASSERT_EQ(kept.depth.size(), redrawn.depth.size()) << what;
+    for (size_t c = 0; c < kept.depth.size(); ++c) {
+        ASSERT_EQ(kept.depth[c].size(), redrawn.depth[c].size());
+        size_t differing = 0, casters = 0;
+        for (size_t i = 0; i < kept.depth[c].size(); ++i) {
+            differing += std::memcmp(&kept.depth[c][i], &redrawn.depth[c][i], sizeof(float)) != 0 ? 1 : 0;
+            casters += redrawn.depth[c][i] < 1.0f ? 1 : 0;
+        }
+        EXPECT_EQ(differing, 0u) << what << ": cascade " << c << " differs from a full redraw in " << differing << " texels";
+        EXPECT_GT(casters, 0u) << what << ": cascade " << c << " holds no caster (the comparison would prove little)";
+    }
+}
+
+size_t countNotes(const std::vector<std::string>& notes, const std::string& text) {
+    size_t n = 0;
+    for (const std::string& note : notes) n += note.find(text) != std::string::npos ? 1 : 0;
+    return n;
+}
+
+}  // namespace
+
+// The camera walks along the row: every frame's kept atlas equals a full redraw, and along the walk
+// some tiles were kept and some redrawn. Every raster, since each draws tiles its own way.
+TEST(ShadowCache, KeptTilesEqualAFullRedrawOnAMovingCamera) {
+    for (ShadowSettings::Raster raster : {ShadowSettings::Raster::Plain, ShadowSettings::Raster::Conservative,
+                                          ShadowSettings::Raster::Split, ShadowSettings::Raster::Compute}) {
+        const std::string name = ShadowSettings::rasterName(raster);
+        Scene scene = castersOnAFloor();
+        SceneGpu gpu(scene);
+        const RenderSettings settings = smallCascades(raster);
+        ShadowMapPass state;
+        fg::TexturePool pool;
+        std::vector<std::string> notes;
+        drawTiles(scene, gpu, settings, state, pool, &notes);
+        EXPECT_EQ(countNotes(notes, "redrawn (nothing kept yet)"), notes.size()) << name;
+        const uint64_t firstDrawn = state.cacheStats.drawn;
+        EXPECT_EQ(state.cacheStats.kept, 0u);
+        // The same camera again: everything kept.
+        drawTiles(scene, gpu, settings, state, pool, &notes);
+        EXPECT_EQ(countNotes(notes, "kept (unchanged)"), notes.size()) << name;
+        EXPECT_EQ(state.cacheStats.drawn, firstDrawn) << name;
+        for (int step = 1; step <= 6; ++step) {
+            scene.camera.position += glm::vec3(0.02f, 0.0f, -0.35f);
+            scene.camera.target += glm::vec3(0.02f, 0.0f, -0.35f);
+            const Tiles kept = drawTiles(scene, gpu, settings, state, pool);
+            expectSameTiles(kept, redrawnTiles(scene, gpu, settings), name + " step " + std::to_string(step));
+        }
+        EXPECT_GT(state.cacheStats.kept, firstDrawn) << name << ": the walk kept (almost) nothing";
+        EXPECT_GT(state.cacheStats.drawn, firstDrawn) << name << ": the walk redrew nothing: the camera did not move the cascades";
+    }
+}
+
+// What a tile's depth depends on outside the camera invalidates it: the sun's direction, a caster's
+// transform, the slope bias and the raster. Each change redraws, and the result equals a full redraw.
+TEST(ShadowCache, SunGeometryAndSettingsInvalidate) {
+    Scene scene = castersOnAFloor();
+    SceneGpu gpu(scene);
+    RenderSettings settings = smallCascades(ShadowSettings::Raster::Plain);
+    ShadowMapPass state;
+    fg::TexturePool pool;
+    std::vector<std::string> notes;
+    drawTiles(scene, gpu, settings, state, pool);
+    drawTiles(scene, gpu, settings, state, pool, &notes);
+    ASSERT_EQ(countNotes(notes, "kept (unchanged)"), notes.size());
+
+    auto expectRedrawn = [&](const std::string& what, const std::string& reason) {
+        const Tiles kept = drawTiles(scene, gpu, settings, state, pool, &notes);
+        EXPECT_EQ(countNotes(notes, "redrawn (" + reason + ")"), notes.size()) << what << ": " << notes[0];
+        expectSameTiles(kept, redrawnTiles(scene, gpu, settings), what);
+        drawTiles(scene, gpu, settings, state, pool, &notes);  // unchanged again: kept
+        EXPECT_EQ(countNotes(notes, "kept (unchanged)"), notes.size()) << what << " (the frame after)";
+    };
+    scene.directionalLights[0].direction = glm::normalize(glm::vec3(0.45f, -1.0f, 0.3f));
+    expectRedrawn("sun turned", "light matrix changed");
+    // A caster moves (its GPU model matrix, what the pass draws with) by a few centimetres.
+    const glm::mat4 nudge = glm::translate(glm::mat4(1.0f), glm::vec3(0.05f, 0.0f, 0.0f));
+    gpu.meshes[3].model = nudge * gpu.meshes[3].model;
+    scene.models[3].transform = nudge * scene.models[3].transform;
+    expectRedrawn("a caster moved", "casters changed");
+    settings.shadows.slopeBias = 2.0f;
+    expectRedrawn("slope bias", "slope bias changed");
+    settings.shadows.raster = ShadowSettings::Raster::Conservative;
+    expectRedrawn("raster", "caster raster changed");
+}
+
+// --shadow-cache off: every cascade drawn every frame, and said so.
+TEST(ShadowCache, OffDrawsEveryCascadeEveryFrame) {
+    Scene scene = castersOnAFloor();
+    SceneGpu gpu(scene);
+    RenderSettings settings = smallCascades(ShadowSettings::Raster::Plain);
+    settings.shadows.cache = false;
+    ShadowMapPass state;
+    fg::TexturePool pool;
+    std::vector<std::string> notes;
+    for (int i = 0; i < 2; ++i) drawTiles(scene, gpu, settings, state, pool, &notes);
+    EXPECT_EQ(countNotes(notes, "redrawn (cache off)"), notes.size());
+    EXPECT_EQ(state.cacheStats.kept, 0u);
+    EXPECT_EQ(state.cacheStats.drawn, 2 * notes.size());
+    EXPECT_TRUE(state.atlases.empty());
+}
