@@ -395,30 +395,60 @@ void FrameGraph::assignLifetimes() {
 // before a pass covers every dirty resource. Everything else (attachments, clears, CUDA's map and
 // unmap) GL orders by itself. After the last pass, the outputs get the bits of whatever the
 // application does with them (readback, blit, sampling).
+//
+// Image stores are incoherent in the other direction too (write after read): a GPU may start a
+// dispatch that image-stores a texture while an earlier command still reads it (NVIDIA overlaps
+// consecutive dispatches), so a pass that image-stores a texture gets a barrier when a command since
+// the last barrier may have read that texture: the resource itself (read by a shader since; an
+// imported one, such as a history, by the previous frame), or, for a transient's first write, any
+// texture the pool may hand out again that was released since (the pool aliases transients; at the
+// start of the frame the previous frame released them all). Measured on an H100: without it the visibility resolve rewrote the G-buffer
+// while the previous frame's tiled lights were still reading it.
 void FrameGraph::planBarriers() {
     std::vector<char> dirty(resources_.size(), 0);
     std::vector<GLbitfield> covered(resources_.size(), 0);
+    std::vector<char> readSinceBarrier(resources_.size(), 0);
+    for (size_t r = 0; r < resources_.size(); ++r) readSinceBarrier[r] = resources_[r].isImported;  // last frame's
+    std::vector<char> writtenThisFrame(resources_.size(), 0);
+    bool releasedSinceBarrier = true;                           // the previous frame released all
     auto issue = [&](GLbitfield bits) {
-        for (size_t r = 0; r < resources_.size(); ++r)
+        if (!bits) return;
+        for (size_t r = 0; r < resources_.size(); ++r) {
             if (dirty[r]) covered[r] |= bits;
+            readSinceBarrier[r] = 0;
+        }
+        releasedSinceBarrier = false;
     };
     for (auto& p : passes_) p.barrierBefore = 0;
-    for (int pi : order_) {
-        Pass& p = passes_[pi];
+    for (int i = 0; i < int(order_.size()); ++i) {
+        Pass& p = passes_[order_[i]];
         GLbitfield bits = 0;
         auto need = [&](int version, Usage how) {
             const int r = versions_[version].resource;
             if (dirty[r]) bits |= barrierBitsFor(how) & ~covered[r];
         };
-        for (size_t i = 0; i < p.reads.size(); ++i) need(p.reads[i], p.readUsage[i]);
-        for (size_t i = 0; i < p.writes.size(); ++i) need(p.writes[i], p.writeUsage[i]);
+        for (size_t k = 0; k < p.reads.size(); ++k) need(p.reads[k], p.readUsage[k]);
+        for (size_t k = 0; k < p.writes.size(); ++k) need(p.writes[k], p.writeUsage[k]);
+        for (size_t k = 0; k < p.writes.size(); ++k) {
+            if (!any(p.writeUsage[k], Usage::ImageStore)) continue;
+            const int r = versions_[p.writes[k]].resource;
+            const bool fresh = !writtenThisFrame[r] && !resources_[r].isImported;
+            if (readSinceBarrier[r] || (fresh && releasedSinceBarrier)) bits |= GL_SHADER_IMAGE_ACCESS_BARRIER_BIT;
+        }
         p.barrierBefore = bits;
         issue(bits);
-        for (size_t i = 0; i < p.writes.size(); ++i) {
-            const int r = versions_[p.writes[i]].resource;
-            dirty[r] = any(p.writeUsage[i], Usage::ImageStore);
+        // Shader reads (texture fetches, image loads); fixed-function ones GL orders itself.
+        for (size_t k = 0; k < p.reads.size(); ++k)
+            if (any(p.readUsage[k], Usage::Sampled | Usage::ImageLoad)) readSinceBarrier[versions_[p.reads[k]].resource] = 1;
+        for (size_t k = 0; k < p.writes.size(); ++k) {
+            const int r = versions_[p.writes[k]].resource;
+            dirty[r] = any(p.writeUsage[k], Usage::ImageStore);
             covered[r] = 0;
+            writtenThisFrame[r] = 1;
+            if (any(p.writeUsage[k], Usage::Sampled | Usage::ImageLoad)) readSinceBarrier[r] = 1;
         }
+        for (size_t r = 0; r < resources_.size(); ++r)
+            if (resources_[r].live && resources_[r].last == i && !resources_[r].isImported) releasedSinceBarrier = true;
     }
     finalBarrier_ = 0;
     const GLbitfield external = GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |

@@ -351,13 +351,50 @@ TEST(FrameGraphBarriers, OneBarrierCoversEveryEarlierStoreAndIsNotRepeated) {
               nullptr);
     g.markOutput("out");
     g.compile();
-    EXPECT_EQ(g.barriersBefore("A"), 0u);
+    // A's store may reuse a texture the previous frame still reads (write after read); B's cannot:
+    // nothing was read or released since A's barrier.
+    EXPECT_EQ(g.barriersBefore("A"), GLbitfield(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT));
     EXPECT_EQ(g.barriersBefore("B"), 0u);
     EXPECT_EQ(g.barriersBefore("readsBoth"), GLbitfield(GL_TEXTURE_FETCH_BARRIER_BIT));
-    EXPECT_EQ(g.barriersBefore("readsAAgain"), 0u);  // already covered
+    // Its reads are covered; but "out" may reuse b's texture, which readsBoth fetched and released.
+    EXPECT_EQ(g.barriersBefore("readsAAgain"), GLbitfield(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT));
     // The output was stored by a shader: what the application does next (readback, blit) is covered.
     EXPECT_NE(g.barriersAfterFrame() & GL_TEXTURE_UPDATE_BARRIER_BIT, 0u);
     EXPECT_NE(g.barriersAfterFrame() & GL_FRAMEBUFFER_BARRIER_BIT, 0u);
+}
+
+// Write after read: a shader's image stores may overtake an earlier command's texture fetches of the
+// same texture unless a barrier lies between (an H100 overlaps consecutive dispatches).
+TEST(FrameGraphBarriers, ImageStoresAfterShaderReadsOfTheirTextureGetABarrier) {
+    using fg::Usage;
+    FrameGraph g;
+    ResourceId a, b;
+    g.addPass("store", fg::PassKind::Compute, [&](PassBuilder& p) { a = p.create("a", kDesc, Usage::ImageStore); }, nullptr);
+    g.addPass("fetch", fg::PassKind::Compute,
+              [&](PassBuilder& p) {
+                  p.read(a, Usage::Sampled);
+                  b = p.create("b", kDesc, Usage::ColorAttachment);
+              },
+              nullptr);
+    g.addPass("restore", fg::PassKind::Compute, [&](PassBuilder& p) { a = p.write(a, Usage::ImageStore); }, nullptr);
+    g.addPass("draw", fg::PassKind::Raster,
+              [&](PassBuilder& p) {
+                  p.read(a, Usage::Sampled);
+                  b = p.write(b, Usage::ColorAttachment);
+              },
+              nullptr);
+    g.markOutput(b);
+    g.compile();
+    EXPECT_EQ(g.barriersBefore("fetch"), GLbitfield(GL_TEXTURE_FETCH_BARRIER_BIT));
+    EXPECT_EQ(g.barriersBefore("restore"), GLbitfield(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT));
+    EXPECT_EQ(g.barriersBefore("draw"), GLbitfield(GL_TEXTURE_FETCH_BARRIER_BIT));
+    // An imported texture (a history) was read by the previous frame: its first store waits too.
+    FrameGraph h;
+    const ResourceId history = h.importTexture("history", kDesc, GLuint(7));
+    h.addPass("keep", fg::PassKind::Compute, [&](PassBuilder& p) { p.write(history, Usage::ImageStore); }, nullptr);
+    h.markOutput(history);
+    h.compile();
+    EXPECT_EQ(h.barriersBefore("keep"), GLbitfield(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT));
 }
 
 TEST(FrameGraphBarriers, DescribeAndDotShowKindsBarriersAndUsages) {
