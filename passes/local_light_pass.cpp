@@ -193,13 +193,20 @@ ClusterGrid beginClusterBuild(LocalLightPass& state, const FrameData& frame) {
     if (!slot.count) {
         // Persistently mapped (coherent): the count is read from memory once its fence has signaled,
         // never through glGetBufferSubData, which some drivers serialise with the whole queue.
-        const GLbitfield access = GL_MAP_READ_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT;
+        const GLbitfield access = GL_MAP_READ_BIT | GL_MAP_WRITE_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT;
         slot.count = gl::makeBuffer(sizeof(GLuint), nullptr, access, "clusters.overflow");
-        slot.mapped = static_cast<const GLuint*>(glMapNamedBufferRange(slot.count.id(), 0, sizeof(GLuint), access));
+        slot.mapped = static_cast<GLuint*>(glMapNamedBufferRange(slot.count.id(), 0, sizeof(GLuint), access));
         if (!slot.mapped) throw Error("clustered: cannot map the overflow counter (glMapNamedBufferRange failed)");
     }
-    const GLuint zero = 0;
-    glClearNamedBufferData(slot.count.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    // Zeroed through the mapping once the GPU is done with the slot's last build (coherent: the
+    // build issued next sees it), so the pass issues no clear command; a slot still in flight (the
+    // CPU a whole ring of builds ahead) is cleared on the GPU, in order.
+    if (!slot.done || slot.done.signaled()) {
+        *slot.mapped = 0u;
+    } else {
+        const GLuint zero = 0;
+        glClearNamedBufferData(slot.count.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    }
     state.clusterGrid = g;
     state.stats.clusters = g.count();
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, state.clusterCounts.id());

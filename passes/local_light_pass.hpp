@@ -47,11 +47,11 @@ struct LocalLightPass {
     // has signaled, so the warning never makes the CPU (or the pass's GPU timer) wait on a build.
     struct OverflowSlot {
         gl::Buffer count;
-        const GLuint* mapped = nullptr;  // `count`, persistently mapped: read without a GL call
+        GLuint* mapped = nullptr;  // `count`, persistently mapped: read and zeroed without a GL call
         gl::Fence done;     // after the build that wrote `count`
         bool read = false;  // its count is in stats already
     };
-    std::array<OverflowSlot, 3> clusterOverflow;
+    std::array<OverflowSlot, 8> clusterOverflow;  // up to three builds a frame (forward, transparent, view)
     int nextOverflowSlot = 0;
     size_t clusterCapacity = 0;       // clusters the buffers hold
     int lastOverflowWarned = 0;

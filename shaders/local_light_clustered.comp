@@ -52,9 +52,8 @@ shared uint sMinDist[LP_SLICES], sMaxDist[LP_SLICES];  // float bits of eye dist
 shared uint sOccupied[2];  // a bit per slice holding a pixel
 shared vec4 sBoxLo[LP_SLICES], sBoxHi[LP_SLICES];  // each occupied slice's tight eye-space box
 shared uint sMask[LP_SLICES * LP_WORDS];  // per slice, a bit per light of the batch touching it
+shared uint sWords[LP_SLICES];  // per slice, a bit per word of sMask that is not 0
 shared uint sListed[LP_SLICES];  // lights listed so far per slice (uncapped)
-
-bool occupied(uvec2 occ, int j) { return ((j < 32 ? occ.x : occ.y) & (1u << (j & 31))) != 0u; }
 
 void main() {
     uint lid = gl_LocalInvocationIndex;
@@ -65,8 +64,9 @@ void main() {
         sMinDist[j] = floatBitsToUint(3.0e38);
         sMaxDist[j] = 0u;
         sListed[j] = 0u;
+        sWords[j] = 0u;
     }
-    for (uint w = lid; w < uint(LP_SLICES * LP_WORDS); w += uint(LP_BATCH)) sMask[w] = 0u;
+    for (uint w = lid; w < uint(slices * LP_WORDS); w += uint(LP_BATCH)) sMask[w] = 0u;
     if (lid < 2u) sOccupied[lid] = 0u;
     barrier();
 
@@ -87,23 +87,26 @@ void main() {
             float d = max(-P[k].z, 0.0);
             int j = clusterSliceOf(d);
             slice[k] = j;
-            atomicMin(sMinDist[j], floatBitsToUint(d));
-            atomicMax(sMaxDist[j], floatBitsToUint(d));
-            atomicOr(sOccupied[j >> 5], 1u << (j & 31));
+            // Most pixels of a slice cannot move its range: a (possibly stale) read first spares
+            // their atomics on the one shared word they all hit.
+            uint bits = floatBitsToUint(d);
+            if (bits < sMinDist[j]) atomicMin(sMinDist[j], bits);
+            if (bits > sMaxDist[j]) atomicMax(sMaxDist[j], bits);
         }
     }
     barrier();
-    uvec2 occ = uvec2(sOccupied[0], sOccupied[1]);  // uniform across the group
-    bool anySurface = (occ.x | occ.y) != 0u;
     vec2 ndcLo, ndcHi;
     clusterTileNdc(tile, uImageSize, ndcLo, ndcHi);
-    if (lid < uint(slices) && occupied(occ, int(lid))) {
+    if (lid < uint(slices) && sMinDist[lid] <= sMaxDist[lid]) {
         vec3 lo, hi;
         clusterTileBox(ndcLo, ndcHi, uintBitsToFloat(sMinDist[lid]), uintBitsToFloat(sMaxDist[lid]), uProjection, lo, hi);
         sBoxLo[lid] = vec4(lo, 0.0);
         sBoxHi[lid] = vec4(hi, 0.0);
+        atomicOr(sOccupied[lid >> 5], 1u << (lid & 31u));
     }
     barrier();
+    uvec2 occ = uvec2(sOccupied[0], sOccupied[1]);  // uniform across the group
+    bool anySurface = (occ.x | occ.y) != 0u;
     // The tile's depth bounds: the nearest occupied slice's nearest pixel to the farthest's farthest.
     float tileNear = 0.0, tileFar = 0.0;
     if (anySurface) {
@@ -135,6 +138,7 @@ void main() {
         for (int first = 0; first < uLightCount; first += LP_BATCH) {
             // 2. This invocation's light against the tile, then against each occupied slice.
             int i = first + int(lid);
+            bool touches = false;  // some occupied slice
             if (i < uLightCount) {
                 vec4 b = uLights[i].bound;
                 float r = b.w * (1.0 + LP_CLUSTER_MARGIN) + 1e-6;
@@ -145,18 +149,23 @@ void main() {
                             int j = 32 * h + findLSB(bits);
                             if (sphereTouchesTileFrustum(b.xyz, r, ndcLo, ndcHi, uintBitsToFloat(sMinDist[j]),
                                                          uintBitsToFloat(sMaxDist[j]), uProjection) &&
-                                clusterLightTouchesBox(b, apex, axis, sBoxLo[j].xyz, sBoxHi[j].xyz))
+                                clusterLightTouchesBox(b, apex, axis, sBoxLo[j].xyz, sBoxHi[j].xyz)) {
                                 atomicOr(sMask[j * LP_WORDS + int(word)], bit);
+                                atomicOr(sWords[j], 1u << word);
+                                touches = true;
+                            }
                         }
                 }
             }
             barrier();
             int batch = min(LP_BATCH, uLightCount - first);
 #ifndef LP_CLUSTER_BUILD_ONLY
-            // 3. Each pixel: the lights of its slice, in index order.
+            // 3. Each pixel: the lights of its slice, in index order (only the words holding any).
+            uint batchWords = (1u << uint((batch + 31) / 32)) - 1u;
             for (int k = 0; k < LP_PIXELS; ++k) {
                 if (!surface[k]) continue;
-                for (int w = 0; w < LP_WORDS && 32 * w < batch; ++w) {
+                for (uint words = uUnbounded ? batchWords : sWords[slice[k]]; words != 0u; words &= words - 1u) {
+                    int w = findLSB(words);
                     uint bits = sMask[slice[k] * LP_WORDS + w];
                     if (uUnbounded) bits = batch - 32 * w >= 32 ? ~0u : (1u << uint(batch - 32 * w)) - 1u;
                     for (; bits != 0u; bits &= bits - 1u)
@@ -167,7 +176,7 @@ void main() {
 #endif
             // 4. This invocation's light into the list of each slice it touches, after the lights
             // listed there before it (earlier batches, lower bits).
-            if (i < uLightCount)
+            if (touches)
                 for (int h = 0; h < 2; ++h)
                     for (uint bits = occ[h]; bits != 0u; bits &= bits - 1u) {
                         int j = 32 * h + findLSB(bits);
@@ -180,9 +189,13 @@ void main() {
                     }
             uint added = 0u;
             if (lid < uint(slices))
-                for (int w = 0; w < LP_WORDS; ++w) added += uint(bitCount(sMask[int(lid) * LP_WORDS + w]));
+                for (uint words = sWords[lid]; words != 0u; words &= words - 1u)
+                    added += uint(bitCount(sMask[int(lid) * LP_WORDS + findLSB(words)]));
             barrier();
-            if (lid < uint(slices)) sListed[lid] += added;
+            if (lid < uint(slices)) {
+                sListed[lid] += added;
+                sWords[lid] = 0u;
+            }
             for (uint w = lid; w < uint(slices * LP_WORDS); w += uint(LP_BATCH)) sMask[w] = 0u;
             barrier();
         }
