@@ -561,7 +561,7 @@ fg::ResourceId addLocalLightOverlayPasses(fg::FrameGraph& graph, LocalLightPass&
                        "lights_per_tile", fg::PassKind::Compute,
                        [&](fg::PassBuilder& b, OverlayData& data) {
                            data.in = gbuffer;
-                           readGBuffer(b, gbuffer, false);
+                           readGBuffer(b, gbuffer, true);  // the diffuse target's alpha marks flat-lit pixels
                            data.hdr = b.write(hdr, fg::Usage::ImageLoadStore);
                        },
                        [&state, frame](const OverlayData& data, const fg::PassResources& res) {
@@ -569,12 +569,13 @@ fg::ResourceId addLocalLightOverlayPasses(fg::FrameGraph& graph, LocalLightPass&
                            std::vector<PointLight> lights = uploadLights(state, frame);
                            const LocalLightSettings& ls = frame.settings->localLights;
                            const GLuint prog = state.heatmapProgram.id();
+                           setInt(prog, "uLightingOnly", 0);
                            setInt(prog, "uLightCount", int(lights.size()));
                            setMat4(prog, "uProjection", frame.projection);
                            setInt(prog, "uUnbounded", unbounded(ls));
                            setFloat(prog, "uHeatMax", kHeatMax);
                            setFloat(prog, "uExposure", frame.settings->exposureEV);
-                           bindGBuffer(prog, res, data.in, frame, false);
+                           bindGBuffer(prog, res, data.in, frame, true);
                            glBindImageTexture(0, res.texture(data.hdr), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
                            glUseProgram(prog);
                            gl::dispatch2D(frame.width, frame.height, kTileSize);
@@ -590,7 +591,7 @@ fg::ResourceId addLocalLightOverlayPasses(fg::FrameGraph& graph, LocalLightPass&
                        [&](fg::PassBuilder& b, OverlayData& data) {
                            if (tightClusters) {
                                data.in = gbuffer;
-                               readGBuffer(b, gbuffer, false);
+                               readGBuffer(b, gbuffer, true);  // the diffuse target's alpha marks flat-lit pixels
                            }
                            data.hdr = b.write(hdr, fg::Usage::ImageLoadStore);
                        },
@@ -602,7 +603,7 @@ fg::ResourceId addLocalLightOverlayPasses(fg::FrameGraph& graph, LocalLightPass&
                            std::vector<PointLight> lights = uploadLights(state, frame);
                            if (tightClusters) {
                                const GLuint build = state.clusterTightBuildProgram.id();
-                               bindGBuffer(build, res, data.in, frame, false);
+                               bindGBuffer(build, res, data.in, frame, true);
                                setInt(build, "uLightingOnly", 0);
                                buildTightClusters(state, frame, build, int(lights.size()));
                            } else {

@@ -20,7 +20,8 @@
 namespace lp {
 
 constexpr int kMaxLightsPerCluster = 256;
-// light_clusters.comp gives each slice of a tile one invocation of a 64-wide work group.
+// light_clusters.comp and local_light_clustered.comp give each slice of a tile one invocation of
+// their work group (at least 64 invocations).
 constexpr int kMaxClusterSlices = 64;
 // The largest light-index list the grid may allocate (clusters x cap x 4 bytes).
 constexpr double kMaxClusterListBytes = 1024.0 * 1024.0 * 1024.0;

@@ -758,6 +758,16 @@ TEST(ClusteredLights, TightFroxelsListEveryLightReachingTheirPixels) {
         }
     }
     EXPECT_GT(reached, 1000);
+    // The lights-per-cluster view builds the same tight grid (from the G-buffer, without shading).
+    RenderSettings view = r;
+    view.view = DebugView::LightsPerCluster;
+    rig.renderHdr(view);
+    const ClusterReadback shown = readClusters(rig.passes.localLights);
+    for (int c = 0; c < g.count(); ++c) {
+        ASSERT_EQ(shown.counts[size_t(c)], gpu.counts[size_t(c)]) << "cluster " << c;
+        for (GLuint n = 0; n < gpu.counts[size_t(c)]; ++n)
+            ASSERT_EQ(shown.lists[size_t(c) * kMaxLightsPerCluster + n], gpu.lists[size_t(c) * kMaxLightsPerCluster + n]);
+    }
     // And the image: the tiled method's within FourMethodsGiveTheSameImage's bound.
     const std::vector<float> tiled = rig.renderHdr(smallSettings(LocalLightMethod::Tiled));
     std::vector<int> k = lightsPerPixel(s, smallSettings(LocalLightMethod::Scissor));
