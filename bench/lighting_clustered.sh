@@ -1,18 +1,28 @@
 #!/bin/bash
-# Deferred local lights, tiled against clustered, on the GPU: light counts 1..16384 at 1080p and 4K,
-# on the gallery (needs ../shared/assets) and on scenes/depth-discontinuity.json (near pillars
-# against a far wall: the case per-tile depth bounds handle worst). From the repository root:
+# Local-light culling on the GPU, one run: deferred tiled, deferred clustered (16- and 32-pixel froxel
+# tiles; 16 is the default) and forward+ (which reads the clustered lists), light counts 1..16384 at
+# 1080p and 4K, on three scenes: the gallery (needs ../shared/assets; continuous surfaces, where
+# tiled's per-tile depth bounds are already tight), scenes/depth-discontinuity.json (thin pillars
+# against a wall 40 m away: the tiles on a pillar's edge span 1-40 m) and scenes/fence.json (a 5 cm
+# fence 1.5 m away before a corridor 40 m long: nearly every tile spans near and far). From the
+# repository root:
 #   bench/lighting_clustered.sh BUNDLE OUTDIR    (BUNDLE: run, lib/)
-# Writes OUTDIR/clustered_<scene>.json (lightpass bench) and OUTDIR/lighting_clustered.md (the table).
+# SCENES="fence" (a subset of the three) runs only those; the tables cover every clustered_<scene>.json
+# already in OUTDIR, so a run split over several calls still ends with the whole table.
+# Writes OUTDIR/clustered_<scene>.json (lightpass bench), OUTDIR/clustered_<scene>.log and
+# OUTDIR/lighting_clustered.md (the tables: local_lights ms, measured/floor, clustered/tiled, the
+# frame with forward+, and issue #18's targets).
 set -u
 B=$(cd "$1" && pwd); R=$2; mkdir -p "$R"
 nvidia-smi --query-gpu=name,driver_version --format=csv,noheader > "$R/device.txt" 2>/dev/null
 $B/run --version
-for s in gallery depth-discontinuity; do
+for s in ${SCENES:-gallery depth-discontinuity fence}; do
   $B/run bench --scene scenes/$s.json --frames 100 --warmup 10 --floors --max-seconds 3 --min-frames 3 \
-    --vary '--local-lights tiled,clustered' --vary '--light-count 1,16,256,1024,4096,16384' \
-    --vary '--size 1920x1080,3840x2160' --timings-json "$R/clustered_$s.json" -q > "$R/clustered_$s.log" 2>&1 \
+    --vary '--local-lights tiled|--local-lights clustered --cluster-size 16|--local-lights clustered --cluster-size 32|--render-path forward+' \
+    --vary '--light-count 1,16,256,1024,4096,16384' --vary '--size 1920x1080,3840x2160' \
+    --timings-json "$R/clustered_$s.json" -q > "$R/clustered_$s.log" 2>&1 \
     || echo "bench $s failed (see $R/clustered_$s.log)"
 done
-python3 bench/summarize_clustered.py "$R"/clustered_gallery.json "$R"/clustered_depth-discontinuity.json \
-  | tee "$R/lighting_clustered.md"
+tables=()
+for s in gallery depth-discontinuity fence; do [ -f "$R/clustered_$s.json" ] && tables+=("$R/clustered_$s.json"); done
+python3 bench/summarize_clustered.py "${tables[@]}" | tee "$R/lighting_clustered.md"

@@ -1,10 +1,21 @@
 #!/usr/bin/env python3
-"""bench/lighting_clustered.sh's table: per scene and size, the local_lights pass's median GPU ms for
-the tiled and clustered methods at each light count, each with measured/floor (the floor: the bytes
-the pass must move once, over the measured bandwidth), and clustered/tiled."""
+"""bench/lighting_clustered.sh's tables. Per scene and size:
+1. the local_lights pass's median GPU ms for deferred tiled and clustered (16- and 32-pixel froxel
+   tiles), each with measured/floor (the floor: the bytes the pass must move once, over the measured
+   bandwidth), and clustered/tiled;
+2. the whole frame and the opaque geometry + lighting passes for deferred tiled, deferred clustered
+   (16 px) and forward+ (deferred: gbuffer, global_lights, ibl, local_lights, emission; forward+:
+   depth_prepass, forward_opaque), and forward+ / deferred clustered (frame);
+then issue #18's targets: clustered (16 px, the default) <= tiled in every cell, and >= 2x faster
+than tiled where tiles span near and far (the depth-discontinuity and fence scenes)."""
 import json
 import re
 import sys
+
+DEFERRED = ("gbuffer", "global_lights", "ibl", "local_lights", "emission")
+FORWARD = ("depth_prepass", "forward_opaque")
+LOCAL = ("tiled", "clustered 16", "clustered 32")
+SPANNING = ("depth-discontinuity", "fence")  # scenes whose tiles span near and far
 
 
 def flag(flags, name):
@@ -12,35 +23,114 @@ def flag(flags, name):
     return m.group(1) if m else None
 
 
+def variant(flags):
+    if flag(flags, "render-path") == "forward+":
+        return "forward+"
+    method = flag(flags, "local-lights") or "?"
+    if method == "clustered":
+        return f"clustered {flag(flags, 'cluster-size') or '16'}"
+    return method
+
+
+def size_key(s):
+    return int(s.split("x")[0])
+
+
+def load(path):
+    d = json.load(open(path))
+    cells = {}
+    for run in d["runs"]:
+        p = run["passes"]
+        v = variant(run["flags"])
+        local = p.get("local_lights")
+        shading = sum(p[n]["median_ms"] for n in (FORWARD if v == "forward+" else DEFERRED) if n in p)
+        key = (f"{run['width']}x{run['height']}", int(flag(run["flags"], "light-count")), v)
+        cells[key] = {
+            "local": local["median_ms"] if local else None,
+            "floor": local.get("floor_ms") if local else None,
+            "frame": p.get("frame", {}).get("median_ms"),
+            "shading": shading,
+            "frames": run.get("frames"),
+        }
+    return d, cells
+
+
+def ratio(a, b):
+    return a / b if a is not None and b else None
+
+
+def fmt(x, digits=3):
+    return "-" if x is None else f"{x:.{digits}g}"
+
+
 def main(paths):
+    targets = []
     for path in paths:
-        d = json.load(open(path))
-        cells = {}
-        for run in d["runs"]:
-            p = run["passes"].get("local_lights")
-            if not p:
-                continue
-            key = (f"{run['width']}x{run['height']}", int(flag(run["flags"], "light-count")), flag(run["flags"], "local-lights"))
-            cells[key] = (p["median_ms"], p.get("floor_ms"), run.get("frames"))
-        print(f"## {d.get('scene', path)}\n\nDevice: {d.get('device', '?')}\n")
-        for size in sorted({k[0] for k in cells}, key=lambda s: int(s.split("x")[0])):
+        try:
+            d, cells = load(path)
+        except (OSError, ValueError, KeyError) as e:
+            print(f"## {path}\n\nnot readable: {e}\n")
+            continue
+        scene = d.get("scene", path)
+        print(f"## {scene}\n\nDevice: {d.get('device', '?')}\n")
+        sizes = sorted({k[0] for k in cells}, key=size_key)
+        for size in sizes:
+            counts = sorted({k[1] for k in cells if k[0] == size})
             print(f"**{size}**: `local_lights` GPU ms (frames) · measured/floor\n")
-            print("| lights | tiled | clustered | clustered / tiled |")
-            print("|---:|---:|---:|---:|")
-            for n in sorted({k[1] for k in cells if k[0] == size}):
+            print("| lights | " + " | ".join(LOCAL) + " | clustered 16 / tiled | clustered 32 / tiled |")
+            print("|---:|" + "---:|" * (len(LOCAL) + 2))
+            for n in counts:
                 row = []
-                for m in ("tiled", "clustered"):
-                    c = cells.get((size, n, m))
-                    if not c:
+                for v in LOCAL:
+                    c = cells.get((size, n, v))
+                    if not c or c["local"] is None:
                         row.append("-")
                         continue
-                    ms, floor, frames = c
-                    ratio = f" · {ms / floor:.3g}×" if floor else ""
-                    row.append(f"{ms:.3f} ({frames}){ratio}")
-                t, c = cells.get((size, n, "tiled")), cells.get((size, n, "clustered"))
-                row.append(f"{c[0] / t[0]:.3g}" if t and c and t[0] > 0 else "-")
+                    floor = f" · {c['local'] / c['floor']:.3g}×" if c["floor"] else ""
+                    row.append(f"{c['local']:.3f} ({c['frames']}){floor}")
+                t = cells.get((size, n, "tiled"), {}).get("local")
+                for v in ("clustered 16", "clustered 32"):
+                    c = cells.get((size, n, v), {}).get("local")
+                    row.append(fmt(ratio(c, t)))
+                    if v == "clustered 16" and c is not None and t:
+                        targets.append((scene, size, n, c / t))
                 print(f"| {n} | " + " | ".join(row) + " |")
             print()
+            order = ("tiled", "clustered 16", "forward+")
+            print(f"**{size}**: GPU ms, frame / opaque geometry + lighting (deferred tiled, deferred clustered "
+                  "16 px, forward+)\n")
+            print("| lights | deferred tiled | deferred clustered | forward+ | forward+ / deferred clustered (frame) |")
+            print("|---:|---:|---:|---:|---:|")
+            for n in counts:
+                row = []
+                for v in order:
+                    c = cells.get((size, n, v))
+                    row.append(f"{c['frame']:.3f} / {c['shading']:.3f}" if c and c["frame"] is not None else "-")
+                f, c = cells.get((size, n, "forward+")), cells.get((size, n, "clustered 16"))
+                row.append(fmt(ratio(f and f["frame"], c and c["frame"])))
+                print(f"| {n} | " + " | ".join(row) + " |")
+            print()
+    if not targets:
+        return
+    print("## Issue #18's targets (clustered 16 px against tiled, `local_lights` ms)\n")
+    print("| scene | size | clustered / tiled, worst (lights) | tiled / clustered at 1024 · 4096 · 16384 lights |")
+    print("|---|---|---:|---:|")
+    for scene in dict.fromkeys(t[0] for t in targets):
+        for size in sorted({t[1] for t in targets if t[0] == scene}, key=size_key):
+            rows = [t for t in targets if t[0] == scene and t[1] == size]
+            worst = max(rows, key=lambda t: t[3])
+            speed = {t[2]: 1.0 / t[3] for t in rows if t[3] > 0}
+            big = " · ".join(f"{speed[n]:.2f}×" if n in speed else "-" for n in (1024, 4096, 16384))
+            print(f"| {scene} | {size} | {worst[3]:.3g} ({worst[2]}) | {big} |")
+    worst = max(targets, key=lambda t: t[3])
+    print(f"\n- clustered <= tiled everywhere: {'met' if worst[3] <= 1.0 else 'not met'} "
+          f"(worst {worst[3]:.3g}: {worst[0]} {worst[1]}, {worst[2]} lights)")
+    spanning = [t for t in targets if any(s in t[0] for s in SPANNING) and t[2] >= 256]
+    if spanning:
+        least = max(spanning, key=lambda t: t[3])
+        print(f"- >= 2x faster where tiles span near and far (depth-discontinuity and fence, 256 lights and more): "
+              f"{'met' if least[3] <= 0.5 else 'not met'} (least {1.0 / least[3]:.2f}×: {least[0]} {least[1]}, "
+              f"{least[2]} lights)")
 
 
 if __name__ == "__main__":

@@ -43,13 +43,21 @@ void ensureState(LocalLightPass& state, const FrameData& frame, bool spotShadows
     // The programs that read the G-buffer follow its layout (recompiled when it changes), and
     // sample spot shadow maps only in frames that have one.
     const GBufferSettings& layout = frame.settings->gbuffer;
-    if (!state.fbo || state.layout != layout || state.spotShadowVariant != spotShadows) {
+    // The fused clustered programs are compiled for the grid's tile size (their work-group shape).
+    const int clusterTile = frame.settings->localLights.clusterSize;
+    if (!state.fbo || state.layout != layout || state.spotShadowVariant != spotShadows ||
+        state.clusterTileCompiled != clusterTile) {
         std::vector<std::string> defines = gbufferDefines(layout);
         if (spotShadows) defines.push_back("LP_SPOT_SHADOWS");
         state.spotShadowVariant = spotShadows;
         state.fragmentProgram = frame.shaders->graphics("local_light.vert", "local_light.frag", defines);
         state.tiledProgram = frame.shaders->compute("local_light_tiled.comp", defines);
-        state.clusteredProgram = frame.shaders->compute("local_light_clustered.comp", defines);
+        std::vector<std::string> clustered = defines;
+        clustered.push_back("LP_CLUSTER_TILE " + std::to_string(clusterTile));
+        state.clusteredProgram = frame.shaders->compute("local_light_clustered.comp", clustered);
+        clustered.push_back("LP_CLUSTER_BUILD_ONLY");
+        state.clusterTightBuildProgram = frame.shaders->compute("local_light_clustered.comp", clustered);
+        state.clusterTileCompiled = clusterTile;
         defines.push_back("LP_TILE_HEATMAP");
         state.heatmapProgram = frame.shaders->compute("local_light_tiled.comp", defines);
         state.layout = layout;
@@ -150,9 +158,10 @@ void setClusterUniforms(GLuint prog, const ClusterGrid& g) {
     setFloat(prog, "uClusterFar", g.farPlane);
 }
 
-// Builds the froxel grid's light lists from the lights in the SSBO at binding 0 (uploadLights);
-// leaves the counts at binding 1 and the lists at binding 2, visible to the next dispatches.
-void buildClusters(LocalLightPass& state, const FrameData& frame, int lightCount) {
+// Readies the froxel grid for a build from the lights in the SSBO at binding 0 (uploadLights): reads
+// the newest finished build's overflow count, sizes the buffers, binds the counts (1), lists (2) and
+// a cleared overflow counter (3). The caller dispatches a build, then finishClusterBuild.
+ClusterGrid beginClusterBuild(LocalLightPass& state, const FrameData& frame) {
     const LocalLightSettings& s = frame.settings->localLights;
     const ClusterGrid g = makeClusterGrid(frame.width, frame.height, s.clusterSize, s.clusterSlices, frame.nearPlane,
                                           frame.farPlane);
@@ -168,8 +177,8 @@ void buildClusters(LocalLightPass& state, const FrameData& frame, int lightCount
         if (int(overflow) != state.lastOverflowWarned && overflow > 0)
             logWarn("clustered: " + std::to_string(overflow) + " of " + std::to_string(state.clusterGrid.count()) +
                     " clusters touch more than " + std::to_string(kMaxLightsPerCluster) +
-                    " lights; the lights past the first " + std::to_string(kMaxLightsPerCluster) +
-                    " are dropped there (lower --cluster-size or raise --cluster-slices)");
+                    " lights; their lists (forward shading, the lights-per-cluster view) keep the first " +
+                    std::to_string(kMaxLightsPerCluster) + " (lower --cluster-size or raise --cluster-slices)");
         state.lastOverflowWarned = int(overflow);
         break;
     }
@@ -181,32 +190,67 @@ void buildClusters(LocalLightPass& state, const FrameData& frame, int lightCount
                                             "clusters.lights");
     }
     auto& slot = state.clusterOverflow[size_t(state.nextOverflowSlot)];
-    state.nextOverflowSlot = (state.nextOverflowSlot + 1) % int(state.clusterOverflow.size());
     if (!slot.count) {
         // Persistently mapped (coherent): the count is read from memory once its fence has signaled,
         // never through glGetBufferSubData, which some drivers serialise with the whole queue.
-        const GLbitfield access = GL_MAP_READ_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT;
+        const GLbitfield access = GL_MAP_READ_BIT | GL_MAP_WRITE_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT;
         slot.count = gl::makeBuffer(sizeof(GLuint), nullptr, access, "clusters.overflow");
-        slot.mapped = static_cast<const GLuint*>(glMapNamedBufferRange(slot.count.id(), 0, sizeof(GLuint), access));
+        slot.mapped = static_cast<GLuint*>(glMapNamedBufferRange(slot.count.id(), 0, sizeof(GLuint), access));
         if (!slot.mapped) throw Error("clustered: cannot map the overflow counter (glMapNamedBufferRange failed)");
     }
-    const GLuint zero = 0;
-    glClearNamedBufferData(slot.count.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    // Zeroed through the mapping once the GPU is done with the slot's last build (coherent: the
+    // build issued next sees it), so the pass issues no clear command; a slot still in flight (the
+    // CPU a whole ring of builds ahead) is cleared on the GPU, in order.
+    if (!slot.done || slot.done.signaled()) {
+        *slot.mapped = 0u;
+    } else {
+        const GLuint zero = 0;
+        glClearNamedBufferData(slot.count.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    }
     state.clusterGrid = g;
     state.stats.clusters = g.count();
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, state.clusterCounts.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, state.clusterLists.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, slot.count.id());
+    return g;
+}
+
+// After the build's dispatch: its lists visible to the next dispatches and draws, its overflow slot
+// fenced.
+void finishClusterBuild(LocalLightPass& state) {
+    auto& slot = state.clusterOverflow[size_t(state.nextOverflowSlot)];
+    state.nextOverflowSlot = (state.nextOverflowSlot + 1) % int(state.clusterOverflow.size());
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    slot.done = gl::Fence::insert();
+    slot.read = false;
+}
+
+// Builds the whole grid's light lists (light_clusters.comp: every froxel whole, for the forward
+// passes and transparent surfaces); leaves the counts at binding 1 and the lists at binding 2.
+void buildClusters(LocalLightPass& state, const FrameData& frame, int lightCount) {
+    const ClusterGrid g = beginClusterBuild(state, frame);
     const GLuint prog = state.clusterBuildProgram.id();
     setClusterUniforms(prog, g);
     setInt(prog, "uLightCount", lightCount);
     setMat4(prog, "uProjection", frame.projection);
     glProgramUniform2i(prog, glGetUniformLocation(prog, "uImageSize"), frame.width, frame.height);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, state.clusterCounts.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, state.clusterLists.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, slot.count.id());
     glUseProgram(prog);
     glDispatchCompute(GLuint(g.tilesX), GLuint(g.tilesY), 1);  // a work group per tile, an invocation per slice
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-    slot.done = gl::Fence::insert();
-    slot.read = false;
+    finishClusterBuild(state);
+}
+
+// The clustered method's fused pass (local_light_clustered.comp, `prog`: shading, or the build-only
+// variant): a work group per tile builds the grid's lists tightened to the G-buffer's depth and
+// (unless build-only) shades its pixels from them. The G-buffer is bound by the caller.
+void buildTightClusters(LocalLightPass& state, const FrameData& frame, GLuint prog, int lightCount) {
+    const ClusterGrid g = beginClusterBuild(state, frame);
+    setClusterUniforms(prog, g);
+    setInt(prog, "uLightCount", lightCount);
+    setMat4(prog, "uProjection", frame.projection);
+    glProgramUniform2i(prog, glGetUniformLocation(prog, "uImageSize"), frame.width, frame.height);
+    glUseProgram(prog);
+    glDispatchCompute(GLuint(g.tilesX), GLuint(g.tilesY), 1);
+    finishClusterBuild(state);
 }
 
 // The fullscreen, scissor and volumes methods: additive blending into an FBO holding the HDR texture.
@@ -330,17 +374,13 @@ fg::ResourceId addLocalLightPass(fg::FrameGraph& graph, LocalLightPass& state, c
                 gl::dispatch2D(frame.width, frame.height, kTileSize);
                 state.stats.drawn = int(lights.size());
             } else if (s.method == LocalLightMethod::Clustered) {
-                buildClusters(state, frame, int(lights.size()));
                 const GLuint prog = state.clusteredProgram.id();
                 bindGBuffer(prog, res, data.in, frame, !lightingOnly);
-                setClusterUniforms(prog, state.clusterGrid);
-                setInt(prog, "uLightCount", int(lights.size()));
                 setInt(prog, "uUnbounded", unbounded(s));
                 setInt(prog, "uLightingOnly", lightingOnly);
                 setInt(prog, "uSpecularMode", specularMode(s));
                 glBindImageTexture(0, hdrTexture, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
-                glUseProgram(prog);
-                gl::dispatch2D(frame.width, frame.height);
+                buildTightClusters(state, frame, prog, int(lights.size()));
                 state.stats.drawn = int(lights.size());
             } else {
                 const GLuint prog = state.fragmentProgram.id();
@@ -521,7 +561,7 @@ fg::ResourceId addLocalLightOverlayPasses(fg::FrameGraph& graph, LocalLightPass&
                        "lights_per_tile", fg::PassKind::Compute,
                        [&](fg::PassBuilder& b, OverlayData& data) {
                            data.in = gbuffer;
-                           readGBuffer(b, gbuffer, false);
+                           readGBuffer(b, gbuffer, true);  // the diffuse target's alpha marks flat-lit pixels
                            data.hdr = b.write(hdr, fg::Usage::ImageLoadStore);
                        },
                        [&state, frame](const OverlayData& data, const fg::PassResources& res) {
@@ -529,12 +569,13 @@ fg::ResourceId addLocalLightOverlayPasses(fg::FrameGraph& graph, LocalLightPass&
                            std::vector<PointLight> lights = uploadLights(state, frame);
                            const LocalLightSettings& ls = frame.settings->localLights;
                            const GLuint prog = state.heatmapProgram.id();
+                           setInt(prog, "uLightingOnly", 0);
                            setInt(prog, "uLightCount", int(lights.size()));
                            setMat4(prog, "uProjection", frame.projection);
                            setInt(prog, "uUnbounded", unbounded(ls));
                            setFloat(prog, "uHeatMax", kHeatMax);
                            setFloat(prog, "uExposure", frame.settings->exposureEV);
-                           bindGBuffer(prog, res, data.in, frame, false);
+                           bindGBuffer(prog, res, data.in, frame, true);
                            glBindImageTexture(0, res.texture(data.hdr), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
                            glUseProgram(prog);
                            gl::dispatch2D(frame.width, frame.height, kTileSize);
@@ -543,16 +584,31 @@ fg::ResourceId addLocalLightOverlayPasses(fg::FrameGraph& graph, LocalLightPass&
                   .hdr;
     }
     if (s.view == DebugView::LightsPerCluster) {
+        const bool tightClusters =
+            s.renderPath == RenderPath::Deferred && s.localLights.method == LocalLightMethod::Clustered;
         hdr = graph.addPass<OverlayData>(
                        "lights_per_cluster", fg::PassKind::Compute,
                        [&](fg::PassBuilder& b, OverlayData& data) {
+                           if (tightClusters) {
+                               data.in = gbuffer;
+                               readGBuffer(b, gbuffer, true);  // the diffuse target's alpha marks flat-lit pixels
+                           }
                            data.hdr = b.write(hdr, fg::Usage::ImageLoadStore);
                        },
-                       [&state, frame](const OverlayData& data, const fg::PassResources& res) {
+                       [&state, frame, tightClusters](const OverlayData& data, const fg::PassResources& res) {
                            ensureState(state, frame, state.spotShadowVariant);
-                           // Built here from this frame's lights, whichever method shaded them.
+                           // Built here from this frame's lights as the frame's opaque surfaces used
+                           // them: tightened to the G-buffer's depth for the deferred clustered
+                           // method, whole froxels otherwise (the forward passes' lists).
                            std::vector<PointLight> lights = uploadLights(state, frame);
-                           buildClusters(state, frame, int(lights.size()));
+                           if (tightClusters) {
+                               const GLuint build = state.clusterTightBuildProgram.id();
+                               bindGBuffer(build, res, data.in, frame, true);
+                               setInt(build, "uLightingOnly", 0);
+                               buildTightClusters(state, frame, build, int(lights.size()));
+                           } else {
+                               buildClusters(state, frame, int(lights.size()));
+                           }
                            const GLuint prog = state.clusterViewProgram.id();
                            setClusterUniforms(prog, state.clusterGrid);
                            setInt(prog, "uSlice", frame.settings->localLights.clusterSlice);

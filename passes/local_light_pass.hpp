@@ -2,8 +2,9 @@
 // Local lights (ranged points and spots) added into the HDR buffer, by one of five methods that give
 // the same image (settings.localLights.method): fullscreen, scissor, volumes, tiled, clustered. Plus
 // the overlays: light globes, the light-ranges view and the lights-per-tile and lights-per-cluster
-// heat maps. The clustered method builds its froxel grid (light_clusters.comp) in the same pass,
-// just before shading from it.
+// heat maps. The clustered method builds its froxel grid's lists, tightened to the G-buffer's depth,
+// and shades from them in one dispatch (local_light_clustered.comp); the forward passes build whole
+// froxels (light_clusters.comp) into the same grid buffers.
 #include <array>
 
 #include "engine/gl/handles.hpp"
@@ -35,7 +36,9 @@ struct LocalLightPass {
     gl::Program sanitizeProgram;  // local_light_sanitize.comp
     gl::Program overlayProgram;   // local_light_overlay.vert/.frag: globes, volumes, rectangles
     gl::Program clusterBuildProgram;  // light_clusters.comp
-    gl::Program clusteredProgram;     // local_light_clustered.comp
+    gl::Program clusteredProgram;     // local_light_clustered.comp: tight lists and shading, fused
+    gl::Program clusterTightBuildProgram;  // the same with LP_CLUSTER_BUILD_ONLY (lights-per-cluster view)
+    int clusterTileCompiled = 0;      // the tile size (--cluster-size) those two were compiled for
     gl::Program clusterViewProgram;   // light_clusters_view.comp
     ClusterGrid clusterGrid;          // the grid the last build made
     gl::Buffer clusterCounts;         // uint per cluster: lights touching it (uncapped)
@@ -44,11 +47,11 @@ struct LocalLightPass {
     // has signaled, so the warning never makes the CPU (or the pass's GPU timer) wait on a build.
     struct OverflowSlot {
         gl::Buffer count;
-        const GLuint* mapped = nullptr;  // `count`, persistently mapped: read without a GL call
+        GLuint* mapped = nullptr;  // `count`, persistently mapped: read and zeroed without a GL call
         gl::Fence done;     // after the build that wrote `count`
         bool read = false;  // its count is in stats already
     };
-    std::array<OverflowSlot, 3> clusterOverflow;
+    std::array<OverflowSlot, 8> clusterOverflow;  // up to three builds a frame (forward, transparent, view)
     int nextOverflowSlot = 0;
     size_t clusterCapacity = 0;       // clusters the buffers hold
     int lastOverflowWarned = 0;

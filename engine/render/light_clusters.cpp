@@ -39,15 +39,22 @@ int clusterSliceOf(const ClusterGrid& g, double d) {
     return int(std::clamp(std::floor(s), 0.0, double(g.slices - 1)));
 }
 
-EyeBox froxelBox(const ClusterGrid& g, const glm::mat4& projection, int x, int y, int k) {
+namespace {
+// Tile (x, y)'s NDC rectangle (the last tile stops at the image's edge).
+void tileNdc(const ClusterGrid& g, int x, int y, double& x0, double& x1, double& y0, double& y1) {
+    x0 = double(x * g.tileSize) / g.width * 2.0 - 1.0;
+    x1 = double(std::min((x + 1) * g.tileSize, g.width)) / g.width * 2.0 - 1.0;
+    y0 = double(y * g.tileSize) / g.height * 2.0 - 1.0;
+    y1 = double(std::min((y + 1) * g.tileSize, g.height)) / g.height * 2.0 - 1.0;
+}
+}  // namespace
+
+EyeBox tileBox(const ClusterGrid& g, const glm::mat4& projection, int x, int y, double d0, double d1) {
     const double p00 = projection[0][0], p20 = projection[2][0], p11 = projection[1][1], p21 = projection[2][1];
-    // The tile's NDC rectangle (the last tile stops at the image's edge).
-    const double x0 = double(x * g.tileSize) / g.width * 2.0 - 1.0;
-    const double x1 = double(std::min((x + 1) * g.tileSize, g.width)) / g.width * 2.0 - 1.0;
-    const double y0 = double(y * g.tileSize) / g.height * 2.0 - 1.0;
-    const double y1 = double(std::min((y + 1) * g.tileSize, g.height)) / g.height * 2.0 - 1.0;
+    double x0, x1, y0, y1;
+    tileNdc(g, x, y, x0, x1, y0, y1);
     EyeBox b{glm::dvec3(1e300), glm::dvec3(-1e300)};
-    for (double d : {clusterSliceStart(g, k), clusterSliceStart(g, k + 1)})
+    for (double d : {d0, d1})
         for (double nx : {x0, x1})
             for (double ny : {y0, y1}) {
                 // x_ndc = (p00 x + p20 z) / -z at z = -d.
@@ -58,22 +65,29 @@ EyeBox froxelBox(const ClusterGrid& g, const glm::mat4& projection, int x, int y
     return b;
 }
 
-bool lightTouchesTileColumn(const GpuLocalLight& l, const ClusterGrid& g, const glm::mat4& projection, int x, int y,
-                            double margin) {
+EyeBox froxelBox(const ClusterGrid& g, const glm::mat4& projection, int x, int y, int k) {
+    return tileBox(g, projection, x, y, clusterSliceStart(g, k), clusterSliceStart(g, k + 1));
+}
+
+bool lightTouchesTileDepthRange(const GpuLocalLight& l, const ClusterGrid& g, const glm::mat4& projection, int x,
+                                int y, double d0, double d1, double margin) {
     const glm::dvec3 c(l.bound);
     const double r = double(l.bound.w) * (1.0 + margin) + 1e-6;
     const double dist = -c.z;
-    if (dist + r < double(g.nearPlane) || dist - r > double(g.farPlane)) return false;
-    const double x0 = double(x * g.tileSize) / g.width * 2.0 - 1.0;
-    const double x1 = double(std::min((x + 1) * g.tileSize, g.width)) / g.width * 2.0 - 1.0;
-    const double y0 = double(y * g.tileSize) / g.height * 2.0 - 1.0;
-    const double y1 = double(std::min((y + 1) * g.tileSize, g.height)) / g.height * 2.0 - 1.0;
+    if (dist + r < d0 || dist - r > d1) return false;
+    double x0, x1, y0, y1;
+    tileNdc(g, x, y, x0, x1, y0, y1);
     const double p00 = projection[0][0], p20 = projection[2][0], p11 = projection[1][1], p21 = projection[2][1];
     // x_ndc >= x0  <=>  p00 x + (p20 + x0) z >= 0 (with z < 0); likewise for the other sides.
     const glm::dvec3 planes[4] = {{p00, 0.0, p20 + x0}, {-p00, 0.0, -(p20 + x1)}, {0.0, p11, p21 + y0}, {0.0, -p11, -(p21 + y1)}};
     for (const glm::dvec3& n : planes)
         if (glm::dot(n, c) < -r * glm::length(n)) return false;
     return true;
+}
+
+bool lightTouchesTileColumn(const GpuLocalLight& l, const ClusterGrid& g, const glm::mat4& projection, int x, int y,
+                            double margin) {
+    return lightTouchesTileDepthRange(l, g, projection, x, y, double(g.nearPlane), double(g.farPlane), margin);
 }
 
 bool lightTouchesFroxel(const GpuLocalLight& l, const EyeBox& box, double margin) {
@@ -105,6 +119,39 @@ std::vector<std::vector<int>> referenceClusterLists(const ClusterGrid& g, const 
                 auto& list = lists[size_t(g.index(x, y, k))];
                 for (size_t i = 0; i < lights.size(); ++i)
                     if (lightTouchesTileColumn(lights[i], g, projection, x, y, margin) &&
+                        lightTouchesFroxel(lights[i], box, margin))
+                        list.push_back(int(i));
+            }
+    return lists;
+}
+
+std::vector<FroxelDepth> occupiedFroxelDepths(const ClusterGrid& g, const std::vector<double>& eyeDistance) {
+    std::vector<FroxelDepth> depths(size_t(g.count()));
+    for (int py = 0; py < g.height; ++py)
+        for (int px = 0; px < g.width; ++px) {
+            const double e = eyeDistance[size_t(py) * size_t(g.width) + size_t(px)];
+            if (std::isnan(e)) continue;
+            const double d = std::max(e, 0.0);
+            FroxelDepth& f = depths[size_t(g.index(px / g.tileSize, py / g.tileSize, clusterSliceOf(g, d)))];
+            f.nearest = std::min(f.nearest, d);
+            f.farthest = std::max(f.farthest, d);
+        }
+    return depths;
+}
+
+std::vector<std::vector<int>> referenceTightClusterLists(const ClusterGrid& g, const glm::mat4& projection,
+                                                         const std::vector<GpuLocalLight>& lights,
+                                                         const std::vector<FroxelDepth>& depths, double margin) {
+    std::vector<std::vector<int>> lists(size_t(g.count()));
+    for (int k = 0; k < g.slices; ++k)
+        for (int y = 0; y < g.tilesY; ++y)
+            for (int x = 0; x < g.tilesX; ++x) {
+                const FroxelDepth& f = depths[size_t(g.index(x, y, k))];
+                if (!f.occupied()) continue;
+                const EyeBox box = tileBox(g, projection, x, y, f.nearest, f.farthest);
+                auto& list = lists[size_t(g.index(x, y, k))];
+                for (size_t i = 0; i < lights.size(); ++i)
+                    if (lightTouchesTileDepthRange(lights[i], g, projection, x, y, f.nearest, f.farthest, margin) &&
                         lightTouchesFroxel(lights[i], box, margin))
                         list.push_back(int(i));
             }

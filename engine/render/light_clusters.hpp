@@ -9,7 +9,8 @@
 // and far planes (the build's first, per-tile, test), touches the froxel's eye-space box and, for a
 // spot, its cone touches the sphere around that box (Wronski, "Cull that cone", 2017). Each
 // froxel lists at most kMaxLightsPerCluster lights, the lowest indices first; lights past the cap are
-// dropped there (counted, warned about, and shown magenta in the lights-per-cluster view).
+// dropped there (counted, warned about, and shown magenta in the lights-per-cluster view). The
+// deferred clustered method lists tight froxels instead (referenceTightClusterLists below).
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -19,7 +20,8 @@
 namespace lp {
 
 constexpr int kMaxLightsPerCluster = 256;
-// light_clusters.comp gives each slice of a tile one invocation of a 64-wide work group.
+// light_clusters.comp and local_light_clustered.comp give each slice of a tile one invocation of
+// their work group (at least 64 invocations).
 constexpr int kMaxClusterSlices = 64;
 // The largest light-index list the grid may allocate (clusters x cap x 4 bytes).
 constexpr double kMaxClusterListBytes = 1024.0 * 1024.0 * 1024.0;
@@ -46,12 +48,19 @@ int clusterSliceOf(const ClusterGrid& grid, double d);
 struct EyeBox {
     glm::dvec3 lo, hi;
 };
-// Eye-space box around froxel (x, y, k): its 8 corners on the rays through the tile's corners at
-// the slice's two depths. `projection` is the camera's (possibly off-centre) perspective.
+// Eye-space box around the part of tile (x, y) between eye distances d0 and d1: its 8 corners on the
+// rays through the tile's corners at both distances. `projection` is the camera's (possibly
+// off-centre) perspective.
+EyeBox tileBox(const ClusterGrid& grid, const glm::mat4& projection, int x, int y, double d0, double d1);
+// The box around froxel (x, y, k): tileBox between the slice's two depths.
 EyeBox froxelBox(const ClusterGrid& grid, const glm::mat4& projection, int x, int y, int k);
 
-// Does `light`'s bounding sphere touch tile (x, y)'s frustum between the grid's near and far planes
-// (its four side planes through the eye)? `margin` as below.
+// Does `light`'s bounding sphere touch tile (x, y)'s frustum (its four side planes through the eye)
+// between eye distances d0 and d1? `margin` as below. The tiled method's test, and
+// shaders/common/local_light.glsl's sphereTouchesTileFrustum.
+bool lightTouchesTileDepthRange(const GpuLocalLight& light, const ClusterGrid& grid, const glm::mat4& projection,
+                                int x, int y, double d0, double d1, double margin);
+// The same between the grid's near and far planes.
 bool lightTouchesTileColumn(const GpuLocalLight& light, const ClusterGrid& grid, const glm::mat4& projection, int x,
                             int y, double margin);
 
@@ -63,5 +72,25 @@ bool lightTouchesFroxel(const GpuLocalLight& light, const EyeBox& box, double ma
 // (uncapped), in index order.
 std::vector<std::vector<int>> referenceClusterLists(const ClusterGrid& grid, const glm::mat4& projection,
                                                     const std::vector<GpuLocalLight>& lights, double margin);
+
+// Tight froxels (the deferred clustered method, shaders/local_light_clustered.comp): a froxel is
+// tightened to the eye distances of the pixels it holds. Per cluster, the nearest and farthest
+// eye distance of those pixels; none: nearest > farthest.
+struct FroxelDepth {
+    double nearest = 1e300, farthest = -1e300;
+    bool occupied() const { return nearest <= farthest; }
+};
+// From each pixel's eye distance, eyeDistance[y * width + x] (row 0 at the bottom, as GL's images),
+// NaN where the pixel holds no surface to light; negative distances count as 0, as the shader's.
+std::vector<FroxelDepth> occupiedFroxelDepths(const ClusterGrid& grid, const std::vector<double>& eyeDistance);
+
+// Per cluster, the lights a tight froxel lists (uncapped, in index order): for an occupied froxel
+// the lights that pass lightTouchesTileDepthRange between its nearest and farthest pixel (hence
+// also the whole tile's depth range, the build's first test) and lightTouchesFroxel against the box
+// around that part of the tile; for an unoccupied one none. A light that only crosses the empty
+// depth of a froxel is dropped; every light reaching one of its pixels is kept.
+std::vector<std::vector<int>> referenceTightClusterLists(const ClusterGrid& grid, const glm::mat4& projection,
+                                                         const std::vector<GpuLocalLight>& lights,
+                                                         const std::vector<FroxelDepth>& depths, double margin);
 
 }  // namespace lp

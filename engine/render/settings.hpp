@@ -108,7 +108,7 @@ struct LocalLightSettings {     // local lights: ranged point lights and spots
     bool specular = true;       // local lights add a specular term
     bool specularOutsideRange = false;  // diffuse limited by range, specular (1/d^2 only) not
     float rangeScale = 1.0f;    // --light-range-scale: each light's range x this (< 1 cuts lights short; a sweep knob)
-    int clusterSize = 32;       // clustered: froxel tile side in pixels
+    int clusterSize = 16;       // clustered: froxel tile side in pixels (the fused pass's work group)
     int clusterSlices = 24;     // clustered: exponential depth slices between the near and far planes
     int clusterSlice = -1;      // lights-per-cluster view: this slice, -1 the most over all slices
 };

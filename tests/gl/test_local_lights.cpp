@@ -560,14 +560,16 @@ std::vector<GpuLocalLight> eyeLights(const Scene& s, const RenderSettings& r) {
     return out;
 }
 
-// The GPU's lists against the double-precision reference of the same test on a 4 x 3 x 8 grid: every
-// light the reference lists (with the bounds shrunk by 1e-4) is listed, and every listed light is in
-// the reference with the bounds grown by 1e-2. And the reference itself is conservative: points
-// sampled all through each light's lit region (its sector) fall in froxels that list it.
+// The whole-froxel lists (light_clusters.comp, built here by forward+'s opaque pass) against the
+// double-precision reference of the same test on a 4 x 3 x 8 grid: every light the reference lists
+// (with the bounds shrunk by 1e-4) is listed, and every listed light is in the reference with the
+// bounds grown by 1e-2. And the reference itself is conservative: points sampled all through each
+// light's lit region (its sector) fall in froxels that list it.
 TEST(ClusteredLights, EveryLightTouchingAClusterIsInItsList) {
     Scene s = spotScene();
     Rig rig(s);
     RenderSettings r = smallSettings(LocalLightMethod::Clustered);
+    r.renderPath = RenderPath::ForwardPlus;
     r.localLights.clusterSize = 16;
     r.localLights.clusterSlices = 8;
     rig.renderHdr(r);
@@ -626,6 +628,191 @@ TEST(ClusteredLights, EveryLightTouchingAClusterIsInItsList) {
                 }
     }
     EXPECT_GT(samples, 1000);
+}
+
+// Where does the ray from the eye (the origin) along dir enter the box [lo, hi]? Its eye distance
+// (-z), or NaN when it misses.
+double rayBoxEntryDepth(glm::dvec3 dir, glm::dvec3 lo, glm::dvec3 hi) {
+    double t0 = 0.0, t1 = 1e300;
+    for (int i = 0; i < 3; ++i) {
+        if (std::abs(dir[i]) < 1e-15) {
+            if (0.0 < lo[i] || 0.0 > hi[i]) return std::nan("");
+            continue;
+        }
+        double u = lo[i] / dir[i], v = hi[i] / dir[i];
+        if (u > v) std::swap(u, v);
+        t0 = std::max(t0, u);
+        t1 = std::min(t1, v);
+    }
+    return t0 <= t1 ? -(t0 * dir.z) : std::nan("");
+}
+
+// The deferred clustered method's tight froxels on a scene of known depth: the camera at the origin
+// looking down -z at a thin pillar (front face 2 m away) before a wall 8 m away, the top rows empty,
+// 4 x 3 tiles x 8 slices (2 m in slice 4, 8 m in slice 6). Each pixel's eye distance is ray-cast
+// here; from them the CPU reference (referenceTightClusterLists) gives each froxel's list. The GPU's
+// lists hold every light of the reference with the bounds shrunk by 1e-3, and only lights of the
+// reference with the bounds and depth ranges grown by 1%; unoccupied froxels list nothing; lights
+// crossing only the empty depth between pillar and wall are dropped (they are in the whole-froxel
+// lists); every light reaching a pixel's surface point is listed in that pixel's froxel; and the
+// image equals the tiled method's within the fp16 bound.
+TEST(ClusteredLights, TightFroxelsListEveryLightReachingTheirPixels) {
+    Scene s;
+    const glm::vec3 wallLo(-20.0f, -20.0f, -8.2f), wallHi(20.0f, 2.31f, -8.0f);
+    // The pillar: NDC x from -0.75 to -0.25 at 2 m (pixels 8 to 24 of 64), the full height.
+    const glm::vec3 pillarLo(-1.1547f, -5.0f, -2.02f), pillarHi(-0.3849f, 5.0f, -2.0f);
+    for (auto [lo, hi] : {std::pair{wallLo, wallHi}, std::pair{pillarLo, pillarHi}})
+        s.models.push_back(model("cube", makeCube(1.0f),
+                                 glm::scale(glm::translate(glm::mat4(1.0f), 0.5f * (lo + hi)), hi - lo),
+                                 {0.5f, 0.5f, 0.5f}, {0.2f, 0.2f, 0.2f}, 16.0f));
+    s.camera.position = {0.0f, 0.0f, 0.0f};
+    s.camera.target = {0.0f, 0.0f, -1.0f};
+    s.camera.nearPlane = 0.1f;
+    s.camera.farPlane = 30.0f;
+    s.camera.fovYDegrees = 60.0f;
+    s.ambient = glm::vec3(0.0f);
+    // 90 lights through the view at 1-10 m, ranges 0.3-2.5 m, every third a spot.
+    uint32_t seed = 12345u;
+    auto next = [&seed] {
+        seed = seed * 1664525u + 1013904223u;
+        return double(seed >> 8) / double(1u << 24);
+    };
+    for (int i = 0; i < 90; ++i) {
+        const double d = 1.0 + 9.0 * next();
+        PointLight l;
+        l.position = glm::vec3(float((next() * 2.0 - 1.0) * 0.75 * d), float((next() * 2.0 - 1.0) * 0.58 * d), float(-d));
+        l.range = float(0.3 + 2.2 * next());
+        l.intensity = 0.2f;
+        if (i % 3 == 0)
+            l.spot = SpotCone{glm::normalize(glm::vec3(float(next() - 0.5), float(next() - 0.5), float(next() - 0.5))),
+                              15.0f, float(20.0 + 50.0 * next()), false};
+        s.pointLights.push_back(l);
+    }
+    Rig rig(s);
+    RenderSettings r = smallSettings(LocalLightMethod::Clustered);
+    r.localLights.clusterSize = 16;
+    r.localLights.clusterSlices = 8;
+    const std::vector<float> img = rig.renderHdr(r);
+    const LocalLightPass& st = rig.passes.localLights;
+    const ClusterGrid& g = st.clusterGrid;
+    ASSERT_EQ(g.count(), 96);
+    ASSERT_EQ(clusterSliceOf(g, 2.0), 4);
+    ASSERT_EQ(clusterSliceOf(g, 8.0), 6);
+    const ClusterReadback gpu = readClusters(st);
+
+    FrameData f = makeFrameData(s, r, 0.0f);
+    const glm::dmat4 proj(f.projection);
+    std::vector<double> depth(size_t(g.width) * g.height);
+    std::vector<glm::dvec3> point(depth.size());
+    for (int y = 0; y < g.height; ++y)
+        for (int x = 0; x < g.width; ++x) {
+            const glm::dvec3 dir(((x + 0.5) / g.width * 2.0 - 1.0) / proj[0][0], ((y + 0.5) / g.height * 2.0 - 1.0) / proj[1][1], -1.0);
+            double d = rayBoxEntryDepth(dir, glm::dvec3(pillarLo), glm::dvec3(pillarHi));
+            if (std::isnan(d)) d = rayBoxEntryDepth(dir, glm::dvec3(wallLo), glm::dvec3(wallHi));
+            depth[size_t(y) * g.width + x] = d;
+            point[size_t(y) * g.width + x] = dir * d;
+        }
+    const std::vector<FroxelDepth> occupied = occupiedFroxelDepths(g, depth);
+    std::vector<FroxelDepth> grown = occupied;
+    for (FroxelDepth& fd : grown)
+        if (fd.occupied()) fd = {fd.nearest * 0.99, fd.farthest * 1.01};
+    const std::vector<GpuLocalLight> lights = eyeLights(s, r);
+    const auto inner = referenceTightClusterLists(g, f.projection, lights, occupied, -1e-3);
+    const auto outer = referenceTightClusterLists(g, f.projection, lights, grown, 1e-2);
+    const auto whole = referenceClusterLists(g, f.projection, lights, 0.0);
+    int occupiedCount = 0;
+    size_t listed = 0, dropped = 0;
+    for (int c = 0; c < g.count(); ++c) {
+        const GLuint n = gpu.counts[size_t(c)];
+        ASSERT_LE(n, GLuint(kMaxLightsPerCluster));
+        std::vector<int> got(gpu.lists.begin() + long(c) * kMaxLightsPerCluster,
+                             gpu.lists.begin() + long(c) * kMaxLightsPerCluster + long(n));
+        if (!occupied[size_t(c)].occupied()) {
+            EXPECT_EQ(n, 0u) << "unoccupied cluster " << c;
+            continue;
+        }
+        ++occupiedCount;
+        EXPECT_TRUE(std::is_sorted(got.begin(), got.end())) << "cluster " << c;
+        for (int i : inner[size_t(c)])
+            EXPECT_NE(std::find(got.begin(), got.end(), i), got.end()) << "cluster " << c << " misses light " << i;
+        for (int i : got)
+            EXPECT_NE(std::find(outer[size_t(c)].begin(), outer[size_t(c)].end(), i), outer[size_t(c)].end())
+                << "cluster " << c << " lists light " << i << " that does not reach its pixels' depths";
+        for (int i : whole[size_t(c)])
+            if (std::find(got.begin(), got.end(), i) == got.end()) ++dropped;
+        listed += n;
+    }
+    // The wall (slice 6) is in all 12 tiles (up to row 35), the pillar (slice 4) in tile columns 0, 1.
+    EXPECT_EQ(occupiedCount, 12 + 6);
+    EXPECT_GT(listed, 30u) << "the grid is not trivially empty";
+    EXPECT_GT(dropped, 30u) << "tightening drops the lights in the empty depth";
+    // Every light reaching a pixel's surface point is in that pixel's froxel's list.
+    int reached = 0;
+    for (size_t px = 0; px < depth.size(); ++px) {
+        if (std::isnan(depth[px])) continue;
+        const int c = g.index(int(px % size_t(g.width)) / g.tileSize, int(px / size_t(g.width)) / g.tileSize,
+                              clusterSliceOf(g, depth[px]));
+        const GLuint n = gpu.counts[size_t(c)];
+        const GLuint* list = gpu.lists.data() + size_t(c) * kMaxLightsPerCluster;
+        for (size_t i = 0; i < lights.size(); ++i) {
+            const glm::dvec3 toPoint = point[px] - glm::dvec3(lights[i].positionRange);
+            const double dist = glm::length(toPoint);
+            if (dist >= 0.999 * lights[i].positionRange.w) continue;
+            if (lights[i].directionCos.w >= -1.0f &&
+                glm::dot(toPoint, glm::dvec3(lights[i].directionCos)) <= (lights[i].directionCos.w + 1e-4) * dist)
+                continue;
+            ++reached;
+            ASSERT_NE(std::find(list, list + n, GLuint(i)), list + n)
+                << "light " << i << " reaches pixel " << px << " but cluster " << c << " does not list it";
+        }
+    }
+    EXPECT_GT(reached, 1000);
+    // The lights-per-cluster view builds the same tight grid (from the G-buffer, without shading).
+    RenderSettings view = r;
+    view.view = DebugView::LightsPerCluster;
+    rig.renderHdr(view);
+    const ClusterReadback shown = readClusters(rig.passes.localLights);
+    for (int c = 0; c < g.count(); ++c) {
+        ASSERT_EQ(shown.counts[size_t(c)], gpu.counts[size_t(c)]) << "cluster " << c;
+        for (GLuint n = 0; n < gpu.counts[size_t(c)]; ++n)
+            ASSERT_EQ(shown.lists[size_t(c) * kMaxLightsPerCluster + n], gpu.lists[size_t(c) * kMaxLightsPerCluster + n]);
+    }
+    // And the image: the tiled method's within FourMethodsGiveTheSameImage's bound.
+    const std::vector<float> tiled = rig.renderHdr(smallSettings(LocalLightMethod::Tiled));
+    std::vector<int> k = lightsPerPixel(s, smallSettings(LocalLightMethod::Scissor));
+    int lit = 0;
+    for (size_t i = 0; i < img.size(); ++i) {
+        ASSERT_TRUE(std::isfinite(img[i]));
+        const double bound = (2.0 * (k[i / 4] + 1) * std::ldexp(1.0, -11) + 2e-3) * std::abs(tiled[i]) + 2e-6;
+        ASSERT_LE(std::abs(double(img[i]) - double(tiled[i])), bound) << "texel " << i / 4 << " channel " << i % 4;
+        if (i % 4 == 1 && tiled[i] > 1e-3f) ++lit;
+    }
+    EXPECT_GT(lit, 64 * 48 / 8);
+}
+
+// The fused clustered pass at tile sizes other than its 16 x 16 work group (a pixel per
+// invocation): smaller tiles (fewer invocations, smaller batches), larger ones (several pixels per
+// invocation, partial tiles at the image's edges), and 1, 7 or 64 slices: the fullscreen image
+// within the bound of EveryMethodGivesTheSameImageWithSpots.
+TEST(ClusteredLights, EveryTileSizeAndSliceCountGivesTheSameImage) {
+    Scene s = spotScene();
+    Rig rig(s);
+    const std::vector<float> ref = rig.renderHdr(smallSettings(LocalLightMethod::Fullscreen));
+    std::vector<int> k = lightsPerPixel(s, smallSettings(LocalLightMethod::Scissor));
+    for (int tile : {8, 12, 24, 40})
+        for (int slices : {1, 7, 64}) {
+            RenderSettings r = smallSettings(LocalLightMethod::Clustered);
+            r.localLights.clusterSize = tile;
+            r.localLights.clusterSlices = slices;
+            const std::vector<float> got = rig.renderHdr(r);
+            EXPECT_EQ(rig.passes.localLights.stats.clusters,
+                      ((64 + tile - 1) / tile) * ((48 + tile - 1) / tile) * slices);
+            for (size_t i = 0; i < got.size(); ++i) {
+                const double bound = ((k[i / 4] + 1) * std::ldexp(1.0, -11) + 1e-3) * std::abs(ref[i]) + 1e-6;
+                ASSERT_LE(std::abs(double(got[i]) - double(ref[i])), bound)
+                    << "tile " << tile << " slices " << slices << " texel " << i / 4;
+            }
+        }
 }
 
 // Past the cap: 300 lights around one point. The cluster counts all 300, lists the first 256 (lowest
