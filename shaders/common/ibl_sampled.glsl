@@ -43,6 +43,10 @@ vec3 sampleGgxVndf(vec3 Ve, float alpha, vec2 u) {
     return normalize(vec3(alpha * Nh.x, alpha * Nh.y, max(Nh.z, 0.0)));
 }
 
+// Schlick's Fc = (1 - V.H)^5. V.H can round above 1 where H is V: pow of a negative base is
+// undefined (NaN on llvmpipe, which blacked out a pixel of a Lambertian furnace sphere).
+float schlickFresnelWeight(float VdotH) { return pow(max(1.0 - VdotH, 0.0), 5.0); }
+
 // The GGX alpha the samples are drawn from: alpha narrowed by the sub-lobe at the lobe's peak (whose
 // pdf is 1 / (4 pi alpha^2)), so that samples widened by their sub-lobes span about alpha's lobe; at
 // least alpha / 10 (1 or 2 samples: a near-delta lobe would only cost float precision).
@@ -72,8 +76,7 @@ void sampledSpecularSample(int i, int samples, vec3 Ve, float alpha, float maxLo
     float solidAngle = 1.0 / (n * max(pdf, 1e-20));
     float subAlpha = min(sqrt(LP_SAMPLED_SUBLOBE_SPAN * solidAngle / (4.0 * LP_IBL_PI)), alpha);
     lod = prefilteredLodFromRoughness(sqrt(subAlpha), maxLod);
-    // V.H can round above 1 where H is V: pow of a negative base is undefined (NaN on some drivers).
-    float fc = pow(max(1.0 - VdotH, 0.0), 5.0);
+    float fc = schlickFresnelWeight(VdotH);
     weights = w * vec2(1.0 - fc, fc);
 }
 

@@ -688,6 +688,42 @@ TEST(Ibl, SampledSpecularSampleMatchesCpuReference) {
     EXPECT_LT(below, int(in.size()) / 4);  // the set reaches the grazing views' horizon, not mostly below it
 }
 
+// At the extremes (N.V 0 to 1, alpha from the 0.02 roughness floor to 1, 1 and 256 samples) every
+// sample is finite, its lod within the chain, and its weight f cos / pdf = G2 / G1 within [0, 1]
+// (masking never adds energy): a NaN here blacks out a pixel (sanitizeHdr), as Schlick's pow of a
+// negative 1 - V.H once did on a Lambertian furnace sphere.
+TEST(Ibl, SampledSpecularIsFiniteAndBoundedAtTheExtremes) {
+    std::vector<glm::vec4> in;
+    for (float nv : {0.0f, 1e-4f, 1e-3f, 0.5f, 0.999999f, 1.0f})
+        for (float alpha : {0.0004f, 0.01f, 0.3f, 1.0f})
+            for (int n : {1, 2, 256})
+                for (int i : {0, n / 2, n - 1}) in.push_back(glm::vec4(float(i), float(n), nv, alpha));
+    const std::string view = "vec3 Ve = normalize(vec3(sqrt(1.0 - x.z * x.z), 0.0, max(x.z, 1e-4)));"
+                             "vec3 L; float lod; vec2 w;"
+                             "sampledSpecularSample(int(x.x), int(x.y), Ve, x.w, 5.0, L, lod, w);";
+    auto dirLod = runGlsl({"common/ibl_sampled.glsl"}, view + "return vec4(L, lod);", in);
+    auto weights = runGlsl({"common/ibl_sampled.glsl"}, view + "return vec4(w, 0.0, 0.0);", in);
+    for (size_t k = 0; k < in.size(); ++k) {
+        const std::string at = "sample " + std::to_string(int(in[k].x)) + " of " + std::to_string(int(in[k].y)) +
+                               " N.V " + std::to_string(in[k].z) + " alpha " + std::to_string(in[k].w);
+        for (int c = 0; c < 4; ++c) ASSERT_TRUE(std::isfinite(dirLod[k][c])) << at;
+        ASSERT_TRUE(std::isfinite(weights[k].x) && std::isfinite(weights[k].y)) << at;
+        EXPECT_GE(dirLod[k].w, 0.0f) << at;
+        EXPECT_LE(dirLod[k].w, 5.0f + 1e-4f) << at;
+        EXPECT_GE(weights[k].x, 0.0f) << at;
+        EXPECT_GE(weights[k].y, 0.0f) << at;
+        EXPECT_LE(weights[k].x + weights[k].y, 1.0f + 1e-5f) << at;
+    }
+    // Schlick's weight where V.H rounds just above 1 (H = V), and across [0, 1].
+    const std::vector<glm::vec4> vh = {glm::vec4(1.0000001f), glm::vec4(1.001f), glm::vec4(1.0f), glm::vec4(0.5f),
+                                       glm::vec4(0.0f)};
+    auto fc = runGlsl({"common/ibl_sampled.glsl"}, "return vec4(schlickFresnelWeight(x.x));", vh);
+    for (size_t k = 0; k < vh.size(); ++k) {
+        ASSERT_TRUE(std::isfinite(fc[k].x)) << "V.H " << vh[k].x;
+        EXPECT_NEAR(fc[k].x, std::pow(std::max(1.0 - double(vh[k].x), 0.0), 5.0), 1e-6) << "V.H " << vh[k].x;
+    }
+}
+
 // The samples' weights are f cos / pdf of GGX sampled by its visible normals: their mean over 256
 // samples is the directional albedo A + B of the lobe they are drawn from (alpha narrowed by the
 // sub-lobe at the peak: sampledSpecularAlpha), against the double-precision DFG integral. Bound: 1%
