@@ -65,6 +65,8 @@ void setIblUniforms(GLuint prog, const FrameData& frame, const BakedEnvironment&
                               glm::value_ptr(glm::transpose(glm::mat3(frame.view))));
     glProgramUniform1f(prog, glGetUniformLocation(prog, "uIntensity"), frame.scene->environment.intensity);
     glProgramUniform1f(prog, glGetUniformLocation(prog, "uMaxLod"), float(env.prefiltered.levels - 1));
+    glProgramUniform1i(prog, glGetUniformLocation(prog, "uSpecularSamples"),
+                       s.specular == IblSpecular::Sampled ? s.specularRuntimeSamples : 0);
 }
 
 fg::ResourceId addIblPass(fg::FrameGraph& graph, IblPass& state, const FrameData& frame, const GBuffer& gbuffer,

@@ -194,6 +194,8 @@ void validateEnvironmentSettings(const EnvironmentSettings& s) {
     need(s.dfgSize >= 2 && s.dfgSize <= 1024, "DFG LUT size must be in [2, 1024]");
     need(s.dfgSamples >= 1 && s.dfgSamples <= 65536, "DFG samples must be in [1, 65536]");
     need(s.debugMip >= 0, "debug mip must be >= 0");
+    need(s.specularRuntimeSamples >= 1 && s.specularRuntimeSamples <= 256,
+         "sampled specular samples " + std::to_string(s.specularRuntimeSamples) + " must be in [1, 256]");
 }
 
 const BakedEnvironment& EnvironmentCache::get(const Scene& scene, const EnvironmentSettings& requested,

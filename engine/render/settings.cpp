@@ -82,6 +82,8 @@ std::optional<Brdf> parseBrdf(const std::string& name) {
     return std::nullopt;
 }
 
+const char* iblSpecularName(IblSpecular m) { return m == IblSpecular::Sampled ? "sampled" : "split-sum"; }
+
 const char* toneMapName(ToneMapOperator op) {
     switch (op) {
         case ToneMapOperator::Lightpass: return "lightpass";

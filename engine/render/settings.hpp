@@ -114,6 +114,10 @@ struct LocalLightSettings {     // local lights: ranged point lights and spots
 };
 enum class ToneMapOperator { Lightpass, Aces, PbrNeutral, Agx };
 enum class IrradianceSource { SphericalHarmonics, Cubemap };
+// Specular IBL: the split sum (one prefiltered lookup x the DFG LUT), or per-pixel GGX samples of the
+// prefiltered chain that follow the lobe's shape (shaders/common/ibl_sampled.glsl).
+enum class IblSpecular { SplitSum, Sampled };
+const char* iblSpecularName(IblSpecular m);
 const char* toneMapName(ToneMapOperator op);
 std::optional<ToneMapOperator> parseToneMap(const std::string& name);
 struct EnvironmentSettings {    // environment, skybox, image-based lighting, tone map operator
@@ -128,6 +132,8 @@ struct EnvironmentSettings {    // environment, skybox, image-based lighting, to
     int dfgSize = 128;          // split-sum DFG LUT is dfgSize x dfgSize RG16F
     int dfgSamples = 512;       // GGX samples per LUT texel
     IrradianceSource diffuse = IrradianceSource::SphericalHarmonics;
+    IblSpecular specular = IblSpecular::SplitSum;  // bench/results/mitsuba/issue16/sampled_specular.md
+    int specularRuntimeSamples = 64;  // per pixel, with IblSpecular::Sampled (fewer: the pattern shows in the error)
     ToneMapOperator toneMap = ToneMapOperator::Lightpass;
     int debugMip = 0;           // the 'prefiltered' debug view shows this mip
     std::string cacheDir;       // non-empty: baked environments are also cached on disk here

@@ -1,18 +1,22 @@
 // Image-based lighting of one surface point, shared by the deferred ibl pass and the forward passes:
 // diffuse kd (1 - Fss) E / pi from the SH (or the irradiance cube) and specular
 // prefiltered(R, roughness) * Fss, Fss = F0 A + f90 B from the DFG LUT (splitSumReflectance), the
-// prefiltered mip from the perceptual roughness (prefilteredLodFromRoughness). The samplers are the includer's
+// prefiltered mip from the perceptual roughness (prefilteredLodFromRoughness); or, with
+// uSpecularSamples > 0 (--ibl-specular sampled), F0 A La + f90 B Lb with La, Lb the lobe-weighted
+// radiance of that many per-pixel GGX samples (common/ibl_sampled.glsl). The samplers are the includer's
 // (their units differ between passes); the environment's other inputs are these uniforms.
 #ifndef LP_IBL_SHADING_GLSL
 #define LP_IBL_SHADING_GLSL
 #include "common/ambient_occlusion.glsl"
 #include "common/ibl.glsl"
+#include "common/ibl_sampled.glsl"
 
 uniform vec3 uSh[9];
 uniform bool uDiffuseFromCube;
 uniform mat3 uEyeToWorld;
 uniform float uIntensity;
 uniform float uMaxLod;        // prefiltered levels - 1
+uniform int uSpecularSamples;  // 0: split sum; n: the sampled specular with n samples a pixel
 
 // Radiance the environment reflects at a point with eye-space normal N and view direction V.
 // `occlusion`: the material's; `screenAo`: the ambient-occlusion pass's (1 without it), and whether
@@ -29,10 +33,15 @@ vec3 lpIblRadiance(samplerCube irradiance, samplerCube prefilteredMap, sampler2D
     vec3 E = uDiffuseFromCube ? textureLod(irradiance, Nw, 0.0).rgb : shIrradiance(uSh, Nw);
     vec2 ab = textureLod(dfg, dfgLutCoordinate(NdotV, roughness, textureSize(dfg, 0).x), 0.0).rg;
     vec3 fss = splitSumReflectance(f0, ab);
-    vec3 prefiltered = textureLod(prefilteredMap, Rw, prefilteredLodFromRoughness(roughness, uMaxLod)).rgb;
+    vec3 la, lb;
+    bool sampled = uSpecularSamples > 0 &&
+                   sampledSpecularRadiance(prefilteredMap, uMaxLod, Nw, normalize(uEyeToWorld * V), roughness * roughness,
+                                           uSpecularSamples, la, lb);
+    vec3 specular = sampled ? f0 * ab.x * la + specularF90(f0) * ab.y * lb
+                            : textureLod(prefilteredMap, Rw, prefilteredLodFromRoughness(roughness, uMaxLod)).rgb * fss;
     float ao = screenAo * occlusion;
     float specularAo = aoOn ? specularOcclusion(NdotV, ao, roughness * roughness) : occlusion;
-    return uIntensity * (ao * kd * (1.0 - fss) * E / LP_IBL_PI + specularAo * prefiltered * fss);
+    return uIntensity * (ao * kd * (1.0 - fss) * E / LP_IBL_PI + specularAo * specular);
 }
 
 #endif

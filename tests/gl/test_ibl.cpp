@@ -98,7 +98,8 @@ glm::dvec2 dfgReference(double nv, double roughness) {
 
 // White furnace: a Lambertian sphere (ks = 0) of albedo 1 and of albedo 0.5 in a uniform environment
 // of radiance 1, no lights, ambient 0. Bound: every sphere pixel's radiance is the albedo +- 0.5%,
-// with diffuse from SH and from the irradiance cube. Ks = 0 must be exactly Lambertian: the IBL's
+// with diffuse from SH and from the irradiance cube, and with either specular method (--ibl-specular
+// split-sum and sampled). Ks = 0 must be exactly Lambertian: the IBL's
 // F0 A + f90 B has f90 = 0 there, as the analytic GGX (a grey sphere used to get B at its rim, +18%).
 // (global_lights is switched off: without lights and ambient it adds 0.)
 TEST(Ibl, WhiteFurnaceSphereReflectsTheEnvironmentExactly) {
@@ -131,13 +132,15 @@ TEST(Ibl, WhiteFurnaceSphereReflectsTheEnvironmentExactly) {
     scene.camera.farPlane = 10.0f;
 
     Renderer r(scene);
-    for (IrradianceSource source : {IrradianceSource::SphericalHarmonics, IrradianceSource::Cubemap}) {
+    for (IrradianceSource source : {IrradianceSource::SphericalHarmonics, IrradianceSource::Cubemap})
+    for (IblSpecular specular : {IblSpecular::SplitSum, IblSpecular::Sampled}) {
         RenderSettings s;
         s.width = 64;
         s.height = 48;
         s.keepHdr = true;
         s.environment = smallBake();
         s.environment.diffuse = source;
+        s.environment.specular = specular;
         s.disabledPasses.insert("global_lights");
         r.render(s, 0.0f, false);
         ASSERT_TRUE(r.graph().isLive("ibl"));
@@ -156,7 +159,8 @@ TEST(Ibl, WhiteFurnaceSphereReflectsTheEnvironmentExactly) {
                 const float* p = &hdr.rgba[(size_t(y) * 64 + size_t(x)) * 4];
                 for (int ch = 0; ch < 3; ++ch)
                     EXPECT_NEAR(p[ch], albedo, 0.005 * albedo)
-                        << "pixel " << x << "," << y << " source " << int(source) << " albedo " << albedo;
+                        << "pixel " << x << "," << y << " source " << int(source) << " albedo " << albedo
+                        << " specular " << iblSpecularName(specular);
             }
         EXPECT_GT(onSphere, 200);
     }
@@ -168,7 +172,9 @@ TEST(Ibl, WhiteFurnaceSphereReflectsTheEnvironmentExactly) {
 // pixel reflects the directional albedo of lightpass's own BRDF (height-correlated Smith) at its N.V,
 // here the double-precision A + B. Bound: the sphere mean within 0.5% of the exact mean (issue #16's
 // furnace target), each pixel within 2% (the 32^2 LUT's bilinear and Hammersley error). The Mitsuba
-// comparison's +2-5% at alpha 0.71-1 is its separable Smith (bench/results/mitsuba/issue16).
+// comparison's +2-5% at alpha 0.71-1 is its separable Smith (bench/results/mitsuba/issue16). Both
+// specular methods: the sampled one (4 samples a pixel) takes its magnitude from the same LUT, so a
+// uniform environment must come out exactly as the split sum's.
 TEST(Ibl, WhiteFurnaceGgxSphereReflectsItsExactAlbedo) {
     const auto mapPath = tempPath("furnace-ggx.exr");
     ImageF white;
@@ -176,7 +182,9 @@ TEST(Ibl, WhiteFurnaceGgxSphereReflectsItsExactAlbedo) {
     white.height = 64;
     white.rgba.assign(size_t(128 * 64 * 4), 1.0f);
     writeExr(mapPath, white);
+    for (IblSpecular specular : {IblSpecular::SplitSum, IblSpecular::Sampled})
     for (float shininess : {6.0f, 0.0f}) {  // alpha = sqrt(2 / (n + 2)): 0.5 and 1
+        SCOPED_TRACE(iblSpecularName(specular));
         Scene scene;
         ModelInstance m;
         m.name = "sphere";
@@ -201,6 +209,8 @@ TEST(Ibl, WhiteFurnaceGgxSphereReflectsItsExactAlbedo) {
         s.height = 36;
         s.keepHdr = true;
         s.environment = lp::test::smallIblBake(512);
+        s.environment.specular = specular;
+        s.environment.specularRuntimeSamples = 4;  // the fewest the sampled method is meant for
         s.disabledPasses.insert("global_lights");
         r.render(s, 0.0f, false);
         ASSERT_TRUE(r.graph().isLive("ibl"));
@@ -233,7 +243,8 @@ TEST(Ibl, WhiteFurnaceGgxSphereReflectsItsExactAlbedo) {
             }
         ASSERT_GT(onSphere, 100);
         EXPECT_NEAR(sum / sumExact, 1.0, 0.005) << "shininess " << shininess;
-        RecordProperty("mean_rel_error_n" + std::to_string(int(shininess)), std::to_string(sum / sumExact - 1.0));
+        RecordProperty(std::string(iblSpecularName(specular)) + "_mean_rel_error_n" + std::to_string(int(shininess)),
+                       std::to_string(sum / sumExact - 1.0));
     }
     std::filesystem::remove(mapPath);
 }
@@ -511,6 +522,9 @@ TEST(Ibl, RoughSphereUnderASmallLampMatchesTheExactSplitSum) {
     r.render(s, 0.0f, false);
     ASSERT_TRUE(r.graph().isLive("ibl"));
     const ImageF hdr = r.readHdr();
+    s.environment.specular = IblSpecular::Sampled;  // the lobe's shape: closer to the exact integral
+    r.render(s, 0.0f, false);
+    const ImageF sampledHdr = r.readHdr();
 
     gl::ShaderLibrary shaders;
     EnvironmentCache cache;
@@ -532,7 +546,7 @@ TEST(Ibl, RoughSphereUnderASmallLampMatchesTheExactSplitSum) {
         return a2 / (kPi * dd * dd);
     };
     const glm::dmat4 inv = glm::inverse(glm::dmat4(scene.camera.projection(40.0f / 30.0f)) * glm::dmat4(scene.camera.view()));
-    double got = 0.0, want = 0.0, exact = 0.0, gotCore = 0.0, wantCore = 0.0;
+    double got = 0.0, want = 0.0, exact = 0.0, gotCore = 0.0, wantCore = 0.0, sampled = 0.0;
     int onSphere = 0;
     std::map<long, double> albedoAt;
     for (int y = 0; y < 30; ++y)
@@ -567,8 +581,9 @@ TEST(Ibl, RoughSphereUnderASmallLampMatchesTheExactSplitSum) {
             }
             const double splitSum = sum / weight * albedoAt[key];
             const double pixel = hdr.rgba[(size_t(y) * 40 + size_t(x)) * 4 + 1];
-            ASSERT_TRUE(std::isfinite(pixel));
-            got += pixel, want += splitSum, exact += direct, ++onSphere;
+            const double sampledPixel = sampledHdr.rgba[(size_t(y) * 40 + size_t(x)) * 4 + 1];
+            ASSERT_TRUE(std::isfinite(pixel) && std::isfinite(sampledPixel));
+            got += pixel, want += splitSum, exact += direct, sampled += sampledPixel, ++onSphere;
             if (nv >= 0.7) gotCore += pixel, wantCore += splitSum;
         }
     ASSERT_GT(onSphere, 100);
@@ -576,7 +591,160 @@ TEST(Ibl, RoughSphereUnderASmallLampMatchesTheExactSplitSum) {
     EXPECT_NEAR(gotCore / wantCore, 1.0, 0.06) << "N.V >= 0.7";
     RecordProperty("lightpass_over_split_sum", std::to_string(got / want) + " / " + std::to_string(gotCore / wantCore));
     RecordProperty("split_sum_over_exact", std::to_string(want / exact));
+    RecordProperty("sampled_over_exact", std::to_string(sampled / exact));
+    EXPECT_LT(std::abs(sampled / exact - 1.0), 0.5 * std::abs(got / exact - 1.0)) << "sampled specular";
     std::filesystem::remove(mapPath);
+}
+
+namespace {
+
+// sampledSpecularSample (shaders/common/ibl_sampled.glsl) in double precision: sample i of n for the
+// tangent-space view Ve and GGX alpha. Returns L (tangent space), the lod of a chain of maxLod, and the
+// (1 - Fc), Fc weights of f cos / pdf.
+struct SampledSpecularSample {
+    glm::dvec3 L;
+    double lod = 0.0;
+    glm::dvec2 weights{0.0};
+};
+double radicalInverse(unsigned bits) {
+    double r = 0.0, f = 0.5;
+    for (; bits; bits >>= 1, f *= 0.5) r += f * (bits & 1u);
+    return r;
+}
+double smithLambda(double c, double alpha) {
+    const double c2 = std::max(c * c, 1e-12);
+    return 0.5 * (std::sqrt(1.0 + alpha * alpha * (1.0 - c2) / c2) - 1.0);
+}
+double ggxDistribution(double nh, double alpha) {
+    const double a2 = alpha * alpha, d = nh * nh * (a2 - 1.0) + 1.0;
+    return a2 / (kPi * d * d);
+}
+SampledSpecularSample sampledSpecularReference(int i, int n, glm::dvec3 Ve, double alpha, double maxLod) {
+    const double span = 2.0;  // LP_SAMPLED_SUBLOBE_SPAN
+    const double peak = alpha * std::sqrt(std::min(span / n, 1.0));
+    const double sa = std::sqrt(std::max(alpha * alpha - peak * peak, 0.01 * alpha * alpha));
+    const double u0 = (i + 0.5) / n, u1 = radicalInverse(unsigned(i));
+    // Heitz 2018
+    const glm::dvec3 Vh = glm::normalize(glm::dvec3(sa * Ve.x, sa * Ve.y, Ve.z));
+    const double lensq = Vh.x * Vh.x + Vh.y * Vh.y;
+    const glm::dvec3 T1 = lensq > 0.0 ? glm::dvec3(-Vh.y, Vh.x, 0.0) / std::sqrt(lensq) : glm::dvec3(1.0, 0.0, 0.0);
+    const glm::dvec3 T2 = glm::cross(Vh, T1);
+    const double r = std::sqrt(u0), phi = 2.0 * kPi * u1;
+    const double t1 = r * std::cos(phi), s = 0.5 * (1.0 + Vh.z);
+    const double t2 = (1.0 - s) * std::sqrt(std::max(1.0 - t1 * t1, 0.0)) + s * r * std::sin(phi);
+    const glm::dvec3 Nh = t1 * T1 + t2 * T2 + std::sqrt(std::max(1.0 - t1 * t1 - t2 * t2, 0.0)) * Vh;
+    const glm::dvec3 H = glm::normalize(glm::dvec3(sa * Nh.x, sa * Nh.y, std::max(Nh.z, 0.0)));
+    SampledSpecularSample out;
+    const double vh = glm::dot(Ve, H);
+    out.L = 2.0 * vh * H - Ve;
+    if (out.L.z <= 0.0 || vh <= 0.0) return out;
+    const double nv = std::max(Ve.z, 1e-4), lv = smithLambda(nv, sa);
+    const double w = (1.0 + lv) / (1.0 + lv + smithLambda(out.L.z, sa));
+    const double pdf = ggxDistribution(H.z, sa) / ((1.0 + lv) * 4.0 * nv);
+    const double subAlpha = std::min(std::sqrt(span / (n * pdf) / (4.0 * kPi)), alpha);
+    const double sr = std::sqrt(subAlpha);
+    out.lod = maxLod * sr * (2.0 - sr);
+    const double fc = std::pow(1.0 - vh, 5.0);
+    out.weights = w * glm::dvec2(1.0 - fc, fc);
+    return out;
+}
+glm::dvec3 tangentView(double nv, double azimuth) {
+    const double st = std::sqrt(1.0 - nv * nv);
+    return {st * std::cos(azimuth), st * std::sin(azimuth), nv};
+}
+
+}  // namespace
+
+// The sampled specular's per-sample math (GGX VNDF direction, sub-lobe lod, f cos / pdf split by
+// Fresnel) on the driver against its double-precision reference above, at N.V from 1 to 0.05,
+// alpha 0.05 to 1 and 1 to 64 samples. Bounds: L within 2e-3 per component, lod within 0.01,
+// weights within 0.5% + 1e-5 (float against double on the same formulas: a wrong term is off by far more).
+TEST(Ibl, SampledSpecularSampleMatchesCpuReference) {
+    std::vector<glm::vec4> in;
+    for (float nv : {1.0f, 0.7f, 0.3f, 0.05f})
+        for (float alpha : {0.05f, 0.2f, 0.5f, 1.0f})
+            for (int n : {1, 4, 16, 64})
+                for (int i = 0; i < n; i += std::max(n / 8, 1)) in.push_back(glm::vec4(float(i), float(n), nv, alpha));
+    const std::string view = "vec3 Ve = vec3(sqrt(1.0 - x.z * x.z) * cos(0.7 * x.x), sqrt(1.0 - x.z * x.z) * sin(0.7 * x.x), x.z);"
+                             "vec3 L; float lod; vec2 w;"
+                             "sampledSpecularSample(int(x.x), int(x.y), Ve, x.w, 5.0, L, lod, w);";
+    auto dirLod = runGlsl({"common/ibl_sampled.glsl"}, view + "return vec4(L, lod);", in);
+    auto weights = runGlsl({"common/ibl_sampled.glsl"}, view + "return vec4(w, 0.0, 0.0);", in);
+    int below = 0;
+    for (size_t k = 0; k < in.size(); ++k) {
+        const double nv = double(in[k].z), az = 0.7 * double(in[k].x);
+        const SampledSpecularSample ref = sampledSpecularReference(int(in[k].x), int(in[k].y), tangentView(nv, az), in[k].w, 5.0);
+        const std::string at = "sample " + std::to_string(int(in[k].x)) + " of " + std::to_string(int(in[k].y)) +
+                               " N.V " + std::to_string(nv) + " alpha " + std::to_string(in[k].w);
+        EXPECT_NEAR(weights[k].x, ref.weights.x, 0.005 * ref.weights.x + 1e-5) << at;
+        EXPECT_NEAR(weights[k].y, ref.weights.y, 0.005 * ref.weights.y + 1e-5) << at;
+        if (ref.weights.x + ref.weights.y <= 0.0) {
+            ++below;
+            continue;
+        }
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(dirLod[k][c], ref.L[c], 2e-3) << at << " L[" << c << "]";
+        EXPECT_NEAR(dirLod[k].w, ref.lod, 0.01) << at;
+    }
+    EXPECT_LT(below, int(in.size()) / 4);  // the set reaches the grazing views' horizon, not mostly below it
+}
+
+// At the extremes (N.V 0 to 1, alpha from the 0.02 roughness floor to 1, 1 and 256 samples) every
+// sample is finite, its lod within the chain, and its weight f cos / pdf = G2 / G1 within [0, 1]
+// (masking never adds energy): a NaN here blacks out a pixel (sanitizeHdr), as Schlick's pow of a
+// negative 1 - V.H once did on a Lambertian furnace sphere.
+TEST(Ibl, SampledSpecularIsFiniteAndBoundedAtTheExtremes) {
+    std::vector<glm::vec4> in;
+    for (float nv : {0.0f, 1e-4f, 1e-3f, 0.5f, 0.999999f, 1.0f})
+        for (float alpha : {0.0004f, 0.01f, 0.3f, 1.0f})
+            for (int n : {1, 2, 256})
+                for (int i : {0, n / 2, n - 1}) in.push_back(glm::vec4(float(i), float(n), nv, alpha));
+    const std::string view = "vec3 Ve = normalize(vec3(sqrt(1.0 - x.z * x.z), 0.0, max(x.z, 1e-4)));"
+                             "vec3 L; float lod; vec2 w;"
+                             "sampledSpecularSample(int(x.x), int(x.y), Ve, x.w, 5.0, L, lod, w);";
+    auto dirLod = runGlsl({"common/ibl_sampled.glsl"}, view + "return vec4(L, lod);", in);
+    auto weights = runGlsl({"common/ibl_sampled.glsl"}, view + "return vec4(w, 0.0, 0.0);", in);
+    for (size_t k = 0; k < in.size(); ++k) {
+        const std::string at = "sample " + std::to_string(int(in[k].x)) + " of " + std::to_string(int(in[k].y)) +
+                               " N.V " + std::to_string(in[k].z) + " alpha " + std::to_string(in[k].w);
+        for (int c = 0; c < 4; ++c) ASSERT_TRUE(std::isfinite(dirLod[k][c])) << at;
+        ASSERT_TRUE(std::isfinite(weights[k].x) && std::isfinite(weights[k].y)) << at;
+        EXPECT_GE(dirLod[k].w, 0.0f) << at;
+        EXPECT_LE(dirLod[k].w, 5.0f + 1e-4f) << at;
+        EXPECT_GE(weights[k].x, 0.0f) << at;
+        EXPECT_GE(weights[k].y, 0.0f) << at;
+        EXPECT_LE(weights[k].x + weights[k].y, 1.0f + 1e-5f) << at;
+    }
+    // Schlick's weight where V.H rounds just above 1 (H = V), and across [0, 1].
+    const std::vector<glm::vec4> vh = {glm::vec4(1.0000001f), glm::vec4(1.001f), glm::vec4(1.0f), glm::vec4(0.5f),
+                                       glm::vec4(0.0f)};
+    auto fc = runGlsl({"common/ibl_sampled.glsl"}, "return vec4(schlickFresnelWeight(x.x));", vh);
+    for (size_t k = 0; k < vh.size(); ++k) {
+        ASSERT_TRUE(std::isfinite(fc[k].x)) << "V.H " << vh[k].x;
+        EXPECT_NEAR(fc[k].x, std::pow(std::max(1.0 - double(vh[k].x), 0.0), 5.0), 1e-6) << "V.H " << vh[k].x;
+    }
+}
+
+// The samples' weights are f cos / pdf of GGX sampled by its visible normals: their mean over 256
+// samples is the directional albedo A + B of the lobe they are drawn from (alpha narrowed by the
+// sub-lobe at the peak: sampledSpecularAlpha), against the double-precision DFG integral. Bound: 1%
+// (Hammersley at 256 on a smooth integrand); a wrong G or pdf term is off by tens of %.
+TEST(Ibl, SampledSpecularWeightsIntegrateToTheAlbedo) {
+    for (double nv : {1.0, 0.5, 0.15})
+        for (double alpha : {0.1, 0.35, 0.7, 1.0}) {
+            const int n = 256;
+            std::vector<glm::vec4> in;
+            for (int i = 0; i < n; ++i) in.push_back(glm::vec4(float(i), float(n), float(nv), float(alpha)));
+            auto out = runGlsl({"common/ibl_sampled.glsl"},
+                               "vec3 Ve = vec3(sqrt(1.0 - x.z * x.z), 0.0, x.z); vec3 L; float lod; vec2 w;"
+                               "sampledSpecularSample(int(x.x), int(x.y), Ve, x.w, 5.0, L, lod, w);"
+                               "return vec4(w, 0.0, 0.0);",
+                               in);
+            glm::dvec2 mean(0.0);
+            for (const glm::vec4& o : out) mean += glm::dvec2(o.x, o.y) / double(n);
+            const double peak = alpha * std::sqrt(2.0 / n), sampled = std::sqrt(alpha * alpha - peak * peak);
+            const glm::dvec2 ref = dfgReference(nv, std::sqrt(sampled));
+            EXPECT_NEAR(mean.x + mean.y, ref.x + ref.y, 0.01 * (ref.x + ref.y)) << "N.V " << nv << " alpha " << alpha;
+        }
 }
 
 // A smooth GGX plane (Ks = 1) seen at grazing angles under lamps 6-20 degrees above the horizon,
