@@ -3,8 +3,8 @@
 
 Per run and pass: 'frame ms' is the pass's GL-timed median (what the frame pays: for CUDA passes the
 host's interop work and syncs are inside it), 'kernels ms' the CUDA events around the kernels,
-'interop ms' the host time of map+unmap (map path) or of the fence/event waits beyond the kernels
-(external path), the floor (bytes the pass must move / measured compute copy bandwidth) and
+'interop ms' the host time of map+unmap (map path), of issuing the semaphore hand-overs (external
+with Vulkan semaphores) or of the fence/event waits beyond the kernels (external with host waits), the floor (bytes the pass must move / measured compute copy bandwidth) and
 measured/floor for both. Then the targets: CUDA (external) bloom+composite at kernel 5 1080p no
 slower than GLSL, and CUDA <= 1.5x its floor at kernel 100 4K."""
 import glob
@@ -29,7 +29,13 @@ def main(outdir):
         run = json.load(open(path))
         device = device or run.get("device")
         runs[(variant, effect, kernel, size)] = run
-    print(f"Device: {device}. Medians over the frames; floor = bytes moved / measured compute copy bandwidth.\n")
+    print(f"Device: {device}. Medians over the frames; floor = bytes moved / measured compute copy bandwidth.")
+    info = os.path.join(outdir, "info.txt")
+    if os.path.exists(info):
+        for line in open(info):
+            if line.startswith(("interop:", "sync:")):
+                print(f"`{line.strip()}`  ")
+    print()
     print("| variant | effect | kernel | size | pass | frame ms | kernels ms | interop ms | floor ms | frame/floor | kernels/floor |")
     print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
     totals = {}
@@ -53,7 +59,7 @@ def main(outdir):
     print("\nTargets (bloom + composite, all passes summed):\n")
     for kernel, size in sorted({(k, s) for (_, e, k, s) in totals if e == "bloom"}):
         g = totals.get(("glsl", "bloom", kernel, size))
-        for variant in ("cuda-external", "cuda-map", "auto"):
+        for variant in ("cuda-external", "cuda-map", "cuda-auto", "auto"):
             c = totals.get((variant, "bloom", kernel, size))
             if not c or not g:
                 continue
