@@ -63,9 +63,27 @@ def main(outdir):
             c = totals.get((variant, "bloom", kernel, size))
             if not c or not g:
                 continue
+            wf = lambda v: runs.get((v, "bloom", kernel, size), {}).get("passes", {}).get("frame", {}).get("median_ms")
+            if wf(variant) is not None and wf("glsl") is not None:
+                print(f"- {kernel[1:]} px {size} {variant}: whole frame {wf(variant):.4f} ms vs GLSL's {wf('glsl'):.4f} ms "
+                      f"({'no slower' if wf(variant) <= wf('glsl') else 'slower'}; the pass times below can move a "
+                      f"drain of earlier GL work into the CUDA pass)")
             print(f"- {kernel[1:]} px {size} {variant}: frame {c[0]:.4f} ms vs GLSL {g[0]:.4f} ms "
                   f"({'no slower' if c[0] <= g[0] else 'slower'}); kernels {c[1]:.4f} ms = "
                   f"{c[1] / c[2]:.2f}x floor {c[2]:.4f} ms; frame = {c[0] / c[2]:.2f}x floor" if c[2] else "")
+    # The whole frame's GPU time per run: whether a CUDA pass's cost is its own or moved from its
+    # neighbours (GL drains before a hand-over; the queues switch contexts twice per CUDA pass).
+    print("\nWhole frame GPU ms (median; same scene and post settings per row):\n")
+    variants = sorted({v for (v, _, _, _) in runs})
+    print("| effect | kernel | size | " + " | ".join(variants) + " |")
+    print("| --- | --- | --- | " + " | ".join("---:" for _ in variants) + " |")
+    for effect, kernel, size in sorted({(e, k, s) for (_, e, k, s) in runs}):
+        cells = []
+        for v in variants:
+            run = runs.get((v, effect, kernel, size))
+            frame = run["passes"].get("frame", {}).get("median_ms") if run else None
+            cells.append(fmt(frame))
+        print(f"| {effect} | {kernel[1:]} | {size} | " + " | ".join(cells) + " |")
     choices = os.path.join(outdir, "auto_choices.txt")
     if os.path.exists(choices):
         print("\nWhat --post-backend auto measured and chose:\n")
