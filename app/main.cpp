@@ -76,12 +76,21 @@ int commandInfo() {
     if (cu.available) {
         std::printf("cuda:     %s (compute %d.%d)\n", cu.name.c_str(), cu.computeMajor, cu.computeMinor);
         const std::string problem = PostBackend::cudaProblem();
-        const std::string shared = problem.empty() ? cuda::sharedTexturesProblem() : problem;
-        if (shared.empty())
+        cuda::PostInterop interop;
+        const std::string shared = problem.empty() ? interop.useSharedTextures() : problem;
+        if (shared.empty()) {
             std::printf("interop:  external memory (GL memory objects on CUDA allocations, shared once; no "
                         "per-frame map/unmap; %s)\n", cuda::sharedTexturesLayoutName().c_str());
-        else
+            if (interop.sharedSync() == cuda::SharedSync::Semaphores)
+                std::printf("sync:     %s: GL and CUDA hand the textures over on the GPU, no host wait "
+                            "(auto measures this against map/unmap at the frame's size)\n", interop.syncName().c_str());
+            else
+                std::printf("sync:     %s (Vulkan semaphores unavailable: %s; auto uses map/unmap)\n",
+                            interop.syncName().c_str(), interop.semaphoreProblem().c_str());
+        } else {
             std::printf("interop:  map/unmap per use (external memory unavailable: %s)\n", shared.c_str());
+            std::printf("sync:     map/unmap (the driver orders GL and CUDA)\n");
+        }
     } else {
         std::printf("cuda:     unavailable (%s): post effects use GLSL\n", cu.reason.c_str());
     }

@@ -1,8 +1,10 @@
 #!/bin/bash
 # CUDA post without the interop tax, on the GPU: bloom + composite at kernel 5 1920x1080 and kernel
 # 100 3840x2160 (and toon at both sizes) for CUDA on shared textures (--cuda-interop external),
-# CUDA with map/unmap per use (--cuda-interop map), GLSL compute, and what --post-backend auto
-# chose (measured afresh into OUTDIR/cache). Per pass: GL-timed ms (what the frame pays, interop and
+# CUDA with map/unmap per use (--cuda-interop map), GLSL compute, CUDA with the interop auto chose
+# (--cuda-interop auto: shared textures with Vulkan semaphores only where measured faster than
+# map/unmap), and what --post-backend auto chose (measured afresh into OUTDIR/cache). `external`
+# is ordered by Vulkan semaphores where info's `sync:` line says so, else by host waits. Per pass: GL-timed ms (what the frame pays, interop and
 # syncs included), CUDA kernel ms, interop ms, the bandwidth floor and measured/floor. Also runs the
 # CUDA tests (shared textures vs the CPU reference) and records `info`. From the repository root:
 #   bench/post_interop.sh BUNDLE OUTDIR    (BUNDLE: run, cuda_tests, lib/)
@@ -14,7 +16,7 @@ cases="k5_1920x1080 k100_3840x2160"
 if [[ "${SMOKE:-0}" == 1 ]]; then frames=3; warmup=1; cases="k5_96x64 k9_128x72"; fi
 nvidia-smi --query-gpu=name,driver_version --format=csv,noheader > "$R/device.txt" 2>/dev/null || echo "no nvidia-smi" > "$R/device.txt"
 export LIGHTPASS_CACHE_DIR=$R/cache
-"$B/run" info > "$R/info.txt" 2>&1; grep -E "^(renderer|cuda|interop):" "$R/info.txt"
+"$B/run" info > "$R/info.txt" 2>&1; grep -E "^(renderer|cuda|interop|sync):" "$R/info.txt"
 if [[ -x "$B/cuda_tests" ]]; then
   LD_LIBRARY_PATH=$B/lib "$B/cuda_tests" > "$R/cuda_tests.txt" 2>&1; tail -2 "$R/cuda_tests.txt"
 fi
@@ -22,7 +24,7 @@ cuda=1
 grep -q "^cuda:.*(compute [0-9]" "$R/info.txt" || { cuda=0; echo "(no CUDA device: CUDA rows skipped)"; }
 run() {  # name size kernel extra-args...   (auto runs keep the info lines that say what it chose)
   local name=$1 size=$2 k=$3 quiet=-q; shift 3
-  [[ $name == auto_* ]] && quiet=
+  [[ $name == auto_* || $name == cuda-auto_* ]] && quiet=
   "$B/run" render --scene scenes/cornell.json --size "$size" --frames $frames --warmup $warmup --floors $quiet \
     --bloom --bloom-kernel "$k" --timings-json "$R/$name.json" --out "$R/$name.png" "$@" > "$R/$name.log" 2>&1 \
     || { echo "render $name failed: $(tail -1 "$R/$name.log")"; rm -f "$R/$name.json"; }
@@ -34,10 +36,11 @@ for c in $cases; do
   if [[ $cuda == 1 ]]; then
     run "cuda-external_bloom_${c}" "$size" "$k" --post-backend cuda --cuda-interop external
     run "cuda-map_bloom_${c}" "$size" "$k" --post-backend cuda --cuda-interop map
+    run "cuda-auto_bloom_${c}" "$size" "$k" --post-backend cuda --cuda-interop auto --post-remeasure
     run "cuda-external_toon_${c}" "$size" "$k" --no-bloom --toon --post-backend cuda --cuda-interop external
     run "cuda-map_toon_${c}" "$size" "$k" --no-bloom --toon --post-backend cuda --cuda-interop map
     run "auto_bloom_${c}" "$size" "$k" --post-backend auto --post-remeasure
   fi
 done
-grep -h "post backend auto\|post effects:" "$R"/auto_*.log 2>/dev/null | sort -u > "$R/auto_choices.txt"
+grep -h "post backend auto\|post effects:" "$R"/auto_*.log "$R"/cuda-auto_*.log 2>/dev/null | sort -u > "$R/auto_choices.txt"
 python3 "$(dirname "$0")/summarize_post_interop.py" "$R" | tee "$R/post_interop.md"

@@ -3,8 +3,8 @@
 
 Per run and pass: 'frame ms' is the pass's GL-timed median (what the frame pays: for CUDA passes the
 host's interop work and syncs are inside it), 'kernels ms' the CUDA events around the kernels,
-'interop ms' the host time of map+unmap (map path) or of the fence/event waits beyond the kernels
-(external path), the floor (bytes the pass must move / measured compute copy bandwidth) and
+'interop ms' the host time of map+unmap (map path), of issuing the semaphore hand-overs (external
+with Vulkan semaphores) or of the fence/event waits beyond the kernels (external with host waits), the floor (bytes the pass must move / measured compute copy bandwidth) and
 measured/floor for both. Then the targets: CUDA (external) bloom+composite at kernel 5 1080p no
 slower than GLSL, and CUDA <= 1.5x its floor at kernel 100 4K."""
 import glob
@@ -29,7 +29,13 @@ def main(outdir):
         run = json.load(open(path))
         device = device or run.get("device")
         runs[(variant, effect, kernel, size)] = run
-    print(f"Device: {device}. Medians over the frames; floor = bytes moved / measured compute copy bandwidth.\n")
+    print(f"Device: {device}. Medians over the frames; floor = bytes moved / measured compute copy bandwidth.")
+    info = os.path.join(outdir, "info.txt")
+    if os.path.exists(info):
+        for line in open(info):
+            if line.startswith(("interop:", "sync:")):
+                print(f"`{line.strip()}`  ")
+    print()
     print("| variant | effect | kernel | size | pass | frame ms | kernels ms | interop ms | floor ms | frame/floor | kernels/floor |")
     print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
     totals = {}
@@ -53,13 +59,31 @@ def main(outdir):
     print("\nTargets (bloom + composite, all passes summed):\n")
     for kernel, size in sorted({(k, s) for (_, e, k, s) in totals if e == "bloom"}):
         g = totals.get(("glsl", "bloom", kernel, size))
-        for variant in ("cuda-external", "cuda-map", "auto"):
+        for variant in ("cuda-external", "cuda-map", "cuda-auto", "auto"):
             c = totals.get((variant, "bloom", kernel, size))
             if not c or not g:
                 continue
+            wf = lambda v: runs.get((v, "bloom", kernel, size), {}).get("passes", {}).get("frame", {}).get("median_ms")
+            if wf(variant) is not None and wf("glsl") is not None:
+                print(f"- {kernel[1:]} px {size} {variant}: whole frame {wf(variant):.4f} ms vs GLSL's {wf('glsl'):.4f} ms "
+                      f"({'no slower' if wf(variant) <= wf('glsl') else 'slower'}; the pass times below can move a "
+                      f"drain of earlier GL work into the CUDA pass)")
             print(f"- {kernel[1:]} px {size} {variant}: frame {c[0]:.4f} ms vs GLSL {g[0]:.4f} ms "
                   f"({'no slower' if c[0] <= g[0] else 'slower'}); kernels {c[1]:.4f} ms = "
                   f"{c[1] / c[2]:.2f}x floor {c[2]:.4f} ms; frame = {c[0] / c[2]:.2f}x floor" if c[2] else "")
+    # The whole frame's GPU time per run: whether a CUDA pass's cost is its own or moved from its
+    # neighbours (GL drains before a hand-over; the queues switch contexts twice per CUDA pass).
+    print("\nWhole frame GPU ms (median; same scene and post settings per row):\n")
+    variants = sorted({v for (v, _, _, _) in runs})
+    print("| effect | kernel | size | " + " | ".join(variants) + " |")
+    print("| --- | --- | --- | " + " | ".join("---:" for _ in variants) + " |")
+    for effect, kernel, size in sorted({(e, k, s) for (_, e, k, s) in runs}):
+        cells = []
+        for v in variants:
+            run = runs.get((v, effect, kernel, size))
+            frame = run["passes"].get("frame", {}).get("median_ms") if run else None
+            cells.append(fmt(frame))
+        print(f"| {effect} | {kernel[1:]} | {size} | " + " | ".join(cells) + " |")
     choices = os.path.join(outdir, "auto_choices.txt")
     if os.path.exists(choices):
         print("\nWhat --post-backend auto measured and chose:\n")

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "cuda/gl_cuda_semaphores.hpp"
 #include "cuda/post_kernels.cuh"
 #include "engine/core/error.hpp"
 #include "engine/gl/handles.hpp"
@@ -114,10 +115,12 @@ __global__ void writeSurfaceKernel(Surface s, int width, int height) {
     if (x < width && y < height) s.store(x, y, make_float4(float(y), float(x), float((x * 7 + y * 3) % 1024), 1.0f));
 }
 
-// GL writes a pattern CUDA must read back, then CUDA writes one GL must read back, on a texture
-// whose width and height are no multiple of any tile. Values are integers below 2048: exact in fp16.
-std::string roundTrip(GLenum format, const SharedTexture::Layout& layout) {
-    constexpr int kW = 67, kH = 35;
+// GL writes a pattern CUDA must read back, then CUDA writes one GL must read back, on a texture of
+// kW x kH. Values are integers below 2048: exact in fp16. Without `sync` the host orders the two
+// (glFinish, then cudaDeviceSynchronize); with it only the semaphores do, as in a frame: nothing
+// waits on the host between GL's upload and GL's read-back but the read-backs themselves.
+std::string roundTrip(GLenum format, const SharedTexture::Layout& layout, int kW, int kH, GlCudaSemaphores* sync,
+                      cudaStream_t stream) {
     std::unique_ptr<SharedTexture> t = SharedTexture::make(format, kW, kH, "shared_texture_check", layout);
     std::vector<float> pattern(size_t(kW) * kH * 4), back(pattern.size());
     for (int y = 0; y < kH; ++y)
@@ -130,26 +133,41 @@ std::string roundTrip(GLenum format, const SharedTexture::Layout& layout) {
         }
     glTextureSubImage2D(t->texture(), 0, 0, 0, kW, kH, GL_RGBA, GL_FLOAT, pattern.data());
     checkGl("glTextureSubImage2D");
-    glFinish();
+    const GLuint texture = t->texture();
+    if (sync) sync->glThenCuda(&texture, 1, stream);
+    else glFinish();
     float4* device = nullptr;
     check(cudaMalloc(&device, back.size() * sizeof(float)), "cudaMalloc");
     const dim3 block(16, 16), grid((kW + 15) / 16, (kH + 15) / 16);
-    if (format == GL_RGBA32F) readSurfaceKernel<<<grid, block>>>(Float4Surface{t->surface()}, device, kW, kH);
-    else readSurfaceKernel<<<grid, block>>>(Half4Surface{t->surface()}, device, kW, kH);
-    cudaError_t err = cudaMemcpy(back.data(), device, back.size() * sizeof(float), cudaMemcpyDeviceToHost);
-    cudaFree(device);
-    check(err, "cudaMemcpy (round trip)");
-    if (back != pattern) return "CUDA does not read what GL wrote";
-    if (format == GL_RGBA32F) writeSurfaceKernel<<<grid, block>>>(Float4Surface{t->surface()}, kW, kH);
-    else writeSurfaceKernel<<<grid, block>>>(Half4Surface{t->surface()}, kW, kH);
-    check(cudaDeviceSynchronize(), "cudaDeviceSynchronize (round trip)");
+    if (format == GL_RGBA32F) readSurfaceKernel<<<grid, block, 0, stream>>>(Float4Surface{t->surface()}, device, kW, kH);
+    else readSurfaceKernel<<<grid, block, 0, stream>>>(Half4Surface{t->surface()}, device, kW, kH);
+    cudaError_t err = cudaMemcpyAsync(back.data(), device, back.size() * sizeof(float), cudaMemcpyDeviceToHost, stream);
+    if (err == cudaSuccess) err = cudaStreamSynchronize(stream);
+    if (err != cudaSuccess) {
+        cudaFree(device);
+        check(err, "cudaMemcpy (round trip)");
+    }
+    if (back != pattern) {
+        if (sync) sync->cudaThenGl(&texture, 1, stream);  // keeps the semaphores paired
+        cudaStreamSynchronize(stream);
+        cudaFree(device);
+        return std::string("CUDA does not read what GL wrote (") + (format == GL_RGBA32F ? "RGBA32F " : "RGBA16F ") +
+               std::to_string(kW) + "x" + std::to_string(kH) + ")";
+    }
+    if (format == GL_RGBA32F) writeSurfaceKernel<<<grid, block, 0, stream>>>(Float4Surface{t->surface()}, kW, kH);
+    else writeSurfaceKernel<<<grid, block, 0, stream>>>(Half4Surface{t->surface()}, kW, kH);
+    if (sync) sync->cudaThenGl(&texture, 1, stream);
+    else check(cudaStreamSynchronize(stream), "cudaStreamSynchronize (round trip)");
     glGetTextureImage(t->texture(), 0, GL_RGBA, GL_FLOAT, GLsizei(back.size() * sizeof(float)), back.data());
     checkGl("glGetTextureImage");
+    cudaStreamSynchronize(stream);
+    cudaFree(device);
     for (int y = 0; y < kH; ++y)
         for (int x = 0; x < kW; ++x) {
             const float* b = &back[(size_t(y) * kW + size_t(x)) * 4];
             if (b[0] != float(y) || b[1] != float(x) || b[2] != float((x * 7 + y * 3) % 1024) || b[3] != 1.0f)
-                return "GL does not read what CUDA wrote";
+                return std::string("GL does not read what CUDA wrote (") + (format == GL_RGBA32F ? "RGBA32F " : "RGBA16F ") +
+                       std::to_string(kW) + "x" + std::to_string(kH) + ")";
         }
     return {};
 }
@@ -177,8 +195,8 @@ StartupCheck runStartupCheck() {
                                unsigned(cudaArraySurfaceLoadStore)}) {
             const SharedTexture::Layout layout{flags, dedicated};
             try {
-                why = roundTrip(GL_RGBA16F, layout);
-                if (why.empty()) why = roundTrip(GL_RGBA32F, layout);
+                why = roundTrip(GL_RGBA16F, layout, 67, 35, nullptr, nullptr);
+                if (why.empty()) why = roundTrip(GL_RGBA32F, layout, 67, 35, nullptr, nullptr);
             } catch (const Error& e) {
                 why = e.what();
             }
@@ -197,6 +215,35 @@ const StartupCheck& startupCheck() {
 }  // namespace
 
 std::string sharedTexturesProblem() { return startupCheck().problem; }
+
+std::vector<float> readSurfaceToHost(cudaSurfaceObject_t surface, bool half, int width, int height, cudaStream_t stream) {
+    std::vector<float> out(size_t(width) * size_t(height) * 4);
+    float4* device = nullptr;
+    check(cudaMalloc(&device, out.size() * sizeof(float)), "cudaMalloc");
+    const dim3 block(16, 16), grid((width + 15) / 16, (height + 15) / 16);
+    if (half) readSurfaceKernel<<<grid, block, 0, stream>>>(Half4Surface{surface}, device, width, height);
+    else readSurfaceKernel<<<grid, block, 0, stream>>>(Float4Surface{surface}, device, width, height);
+    cudaError_t err = cudaMemcpyAsync(out.data(), device, out.size() * sizeof(float), cudaMemcpyDeviceToHost, stream);
+    if (err == cudaSuccess) err = cudaStreamSynchronize(stream);
+    cudaFree(device);
+    check(err, "cudaMemcpy (surface to host)");
+    return out;
+}
+
+std::string semaphoreRoundTrip(GlCudaSemaphores& sync, cudaStream_t stream) {
+    const StartupCheck& c = startupCheck();
+    if (!c.problem.empty()) return c.problem;
+    try {
+        for (GLenum format : {GLenum(GL_RGBA16F), GLenum(GL_RGBA32F)})
+            for (auto [w, h] : {std::pair{67, 35}, std::pair{64, 48}})
+                if (std::string why = roundTrip(format, c.layout, w, h, &sync, stream); !why.empty()) return why;
+    } catch (const Error& e) {
+        while (glGetError() != GL_NO_ERROR) {
+        }
+        return e.what();
+    }
+    return {};
+}
 
 std::string sharedTexturesLayoutName() {
     const StartupCheck& c = startupCheck();

@@ -10,10 +10,10 @@
 // not made by Vulkan: sharedTexturesProblem() checks it at start-up with a round trip through small
 // textures of each format, texel for texel, and the caller falls back to map/unmap when it fails.
 //
-// Ordering: GL_EXT_semaphore imports semaphores but neither GL nor CUDA can export one (only Vulkan
-// and D3D can), so there is no semaphore to share. The post passes order the two queues with a GL
-// fence the host waits on before the kernels and a CUDA event it waits on after them: two host
-// round trips instead of the driver's map/unmap work (see PostInterop).
+// Ordering: GL and CUDA can import semaphores but neither can export one, so Vulkan makes them
+// (cuda/gl_cuda_semaphores.hpp) and the queues hand the textures over on the GPU. Where that fails
+// the post passes order the two with a GL fence the host waits on before the kernels and a CUDA
+// event it waits on after them (see PostInterop).
 #include <memory>
 #include <string>
 #include <vector>
@@ -25,6 +25,14 @@
 namespace lp::cuda {
 
 // sharedTexturesProblem() (declared in cuda/post_cuda.hpp) says whether they work here.
+
+class GlCudaSemaphores;
+// The start-up round trip again, ordered by `sync` alone, through RGBA16F and RGBA32F textures of
+// 67x35 and 64x48 in the layout the start-up check settled on: empty when texel for texel.
+std::string semaphoreRoundTrip(GlCudaSemaphores& sync, cudaStream_t stream);
+// What CUDA reads from a surface (RGBA16F when `half`, else RGBA32F), row-major RGBA floats, after
+// the work already on `stream` (which it synchronises).
+std::vector<float> readSurfaceToHost(cudaSurfaceObject_t surface, bool half, int width, int height, cudaStream_t stream);
 
 class SharedTexture final : public fg::ExternalTexture {
 public:

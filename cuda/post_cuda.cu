@@ -7,6 +7,7 @@
 #include <initializer_list>
 
 #include "cuda/external_memory.hpp"
+#include "cuda/gl_cuda_semaphores.hpp"
 #include "cuda/interop.hpp"
 #include "cuda/post_kernels.cuh"
 
@@ -25,48 +26,73 @@ std::string postDeviceProblem() {
 
 namespace {
 
-// CUDA events around the kernels of one kind of call on `stream`. The host never waits for them:
-// begin() reports the previous call's kernel time (finished by then: its unmap made GL wait for
-// it), so timing costs no CPU<->GPU round trip per pass. The first call reports 0.
+// CUDA events around the kernels of one kind of call on `stream`. The host does not wait for
+// them: begin() reports the newest finished call's kernel time among the few still tracked (0
+// before any finished), so timing costs no CPU<->GPU round trip per pass. Only when every slot is
+// still in flight (the host far ahead of the GPU) does it wait for the oldest.
 class LaggedEventTimer {
 public:
     LaggedEventTimer() {
-        check(cudaEventCreate(&begin_), "cudaEventCreate");
-        check(cudaEventCreate(&end_), "cudaEventCreate");
+        for (Slot& s : slots_) {
+            check(cudaEventCreate(&s.begin), "cudaEventCreate");
+            check(cudaEventCreate(&s.end), "cudaEventCreate");
+        }
     }
     ~LaggedEventTimer() {
-        cudaEventDestroy(begin_);
-        cudaEventDestroy(end_);
+        for (Slot& s : slots_) {
+            cudaEventDestroy(s.begin);
+            cudaEventDestroy(s.end);
+        }
     }
     LaggedEventTimer(const LaggedEventTimer&) = delete;
     LaggedEventTimer& operator=(const LaggedEventTimer&) = delete;
     double begin(cudaStream_t stream) {
-        double previous = 0.0;
-        if (pending_) {
-            check(cudaEventSynchronize(end_), "cudaEventSynchronize");
-            float ms = 0.0f;
-            check(cudaEventElapsedTime(&ms, begin_, end_), "cudaEventElapsedTime");
-            previous = double(ms);
-            pending_ = false;
+        for (int i = 0; i < kSlots; ++i) {  // oldest first, so the newest finished one is reported
+            Slot& s = slots_[(next_ + i) % kSlots];
+            if (!s.pending) continue;
+            const cudaError_t q = cudaEventQuery(s.end);
+            if (q == cudaErrorNotReady) {
+                cudaGetLastError();  // not an error: still running
+                continue;
+            }
+            check(q, "cudaEventQuery");
+            read(s);
         }
-        check(cudaEventRecord(begin_, stream), "cudaEventRecord");
-        return previous;
+        Slot& s = slots_[next_];
+        if (s.pending) {
+            check(cudaEventSynchronize(s.end), "cudaEventSynchronize");
+            read(s);
+        }
+        check(cudaEventRecord(s.begin, stream), "cudaEventRecord");
+        current_ = next_;
+        next_ = (next_ + 1) % kSlots;
+        return lastMs_;
     }
     void end(cudaStream_t stream) {
-        check(cudaEventRecord(end_, stream), "cudaEventRecord");
-        pending_ = true;
+        check(cudaEventRecord(slots_[current_].end, stream), "cudaEventRecord");
+        slots_[current_].pending = true;
     }
     // After the host waited for the stream past end(): this call's kernel time, read now.
     double current() {
-        float ms = 0.0f;
-        check(cudaEventElapsedTime(&ms, begin_, end_), "cudaEventElapsedTime");
-        pending_ = false;
-        return double(ms);
+        read(slots_[current_]);
+        return lastMs_;
     }
 
 private:
-    cudaEvent_t begin_ = nullptr, end_ = nullptr;
-    bool pending_ = false;
+    static constexpr int kSlots = 4;
+    struct Slot {
+        cudaEvent_t begin = nullptr, end = nullptr;
+        bool pending = false;
+    };
+    void read(Slot& s) {
+        float ms = 0.0f;
+        check(cudaEventElapsedTime(&ms, s.begin, s.end), "cudaEventElapsedTime");
+        lastMs_ = double(ms);
+        s.pending = false;
+    }
+    Slot slots_[kSlots];
+    int next_ = 0, current_ = 0;
+    double lastMs_ = 0.0;
 };
 
 using Clock = std::chrono::steady_clock;
@@ -112,6 +138,8 @@ void waitForGl() {
 struct PostInterop::Impl {
     GlImageRegistry registry;
     std::unique_ptr<SharedTextures> shared;  // null: every texture is mapped
+    std::unique_ptr<GlCudaSemaphores> semaphores;  // null: shared textures are ordered by host waits
+    std::string semaphoreProblem;
     BloomWorkspace workspace;
     LaggedEventTimer bloomTimer, compositeTimer, toonTimer;
     cudaStream_t stream = nullptr;
@@ -121,6 +149,8 @@ struct PostInterop::Impl {
         check(cudaEventCreateWithFlags(&done, cudaEventDisableTiming), "cudaEventCreate");
     }
     ~Impl() {
+        semaphores.reset();  // waits for what is in flight on either side
+        cudaStreamSynchronize(stream);
         cudaEventDestroy(done);
         cudaStreamDestroy(stream);
     }
@@ -133,7 +163,9 @@ struct PostInterop::Impl {
         std::vector<cudaSurfaceObject_t> surfaces;
         for (GLuint texture : textures)
             if (cudaSurfaceObject_t s = shared ? shared->surfaceOf(texture) : 0) surfaces.push_back(s);
-        if (surfaces.size() == textures.size()) return runShared(surfaces, timer, kernels);
+        if (surfaces.size() == textures.size())
+            return semaphores ? runOrderedBySemaphores(textures, surfaces, timer, kernels)
+                              : runShared(surfaces, timer, kernels);
         std::vector<cudaGraphicsResource_t> resources;
         for (GLuint texture : textures) resources.push_back(registry.resource(texture, width, height));
         PostTiming t;
@@ -150,9 +182,33 @@ struct PostInterop::Impl {
         return t;
     }
 
-    // No semaphore can be shared between GL and CUDA without Vulkan (cuda/external_memory.hpp), so
-    // the host orders the two: GL's work done before the kernels, the kernels done before GL goes
-    // on. The interop time is both waits less the kernels' own time.
+    // GL hands the textures to CUDA's stream and CUDA hands them back through the semaphores: the
+    // queues order themselves and the host goes on at once. The interop time is the host's cost of
+    // the two hand-overs (what the GPU pays shows in the pass's GL time); the kernel time is the
+    // newest finished call's, as on the map path.
+    template <class Kernels>
+    PostTiming runOrderedBySemaphores(std::initializer_list<GLuint> textures,
+                                      const std::vector<cudaSurfaceObject_t>& surfaces, LaggedEventTimer& timer,
+                                      Kernels&& kernels) {
+        PostTiming t;
+        t.shared = true;
+        t.gpuOrdered = true;
+        const int n = int(textures.size());
+        auto t0 = Clock::now();
+        semaphores->glThenCuda(textures.begin(), n, stream);
+        t.interopMs = msSince(t0);
+        t.kernelMs = timer.begin(stream);
+        kernels(surfaces.data());
+        timer.end(stream);
+        auto t1 = Clock::now();
+        semaphores->cudaThenGl(textures.begin(), n, stream);
+        t.interopMs += msSince(t1);
+        return t;
+    }
+
+    // Without semaphores (no Vulkan device or loader) the host orders the two: GL's work done
+    // before the kernels, the kernels done before GL goes on. The interop time is both waits less
+    // the kernels' own time.
     template <class Kernels>
     PostTiming runShared(const std::vector<cudaSurfaceObject_t>& surfaces, LaggedEventTimer& timer, Kernels&& kernels) {
         PostTiming t;
@@ -179,10 +235,43 @@ PostInterop::~PostInterop() = default;
 int PostInterop::registeredCount() const { return impl_->registry.size(); }
 void PostInterop::forgetTexture(GLuint texture) { impl_->registry.forget(texture); }
 
-std::string PostInterop::useSharedTextures() {
+std::string PostInterop::useSharedTextures(SharedSync preferred) {
     std::string problem = sharedTexturesProblem();
-    if (problem.empty() && !impl_->shared) impl_->shared = std::make_unique<SharedTextures>();
-    return problem;
+    if (!problem.empty()) return problem;
+    if (!impl_->shared) impl_->shared = std::make_unique<SharedTextures>();
+    if (preferred == SharedSync::HostWaits) {
+        impl_->semaphores.reset();
+        impl_->semaphoreProblem.clear();
+    } else if (!impl_->semaphores) {
+        std::string why;
+        impl_->semaphores = GlCudaSemaphores::make(why);
+        if (impl_->semaphores) why = semaphoreRoundTrip(*impl_->semaphores, impl_->stream);
+        if (!why.empty()) impl_->semaphores.reset();
+        impl_->semaphoreProblem = why;
+    }
+    return {};
+}
+
+SharedSync PostInterop::sharedSync() const { return impl_->semaphores ? SharedSync::Semaphores : SharedSync::HostWaits; }
+const std::string& PostInterop::semaphoreProblem() const { return impl_->semaphoreProblem; }
+
+std::string PostInterop::syncName() const {
+    if (!impl_->shared) return "map/unmap";
+    if (impl_->semaphores) return "Vulkan semaphores (" + impl_->semaphores->deviceName() + ")";
+    return "host waits (GL fence, CUDA event)";
+}
+
+ImageF PostInterop::readShared(GLuint texture, GLenum format, int width, int height) {
+    const cudaSurfaceObject_t surface = impl_->shared ? impl_->shared->surfaceOf(texture) : 0;
+    if (!surface) throw Error("readShared: texture " + std::to_string(texture) + " is not a shared texture");
+    if (impl_->semaphores) impl_->semaphores->glThenCuda(&texture, 1, impl_->stream);
+    else waitForGl();
+    ImageF out;
+    out.width = width;
+    out.height = height;
+    out.rgba = readSurfaceToHost(surface, format == GL_RGBA16F, width, height, impl_->stream);
+    if (impl_->semaphores) impl_->semaphores->cudaThenGl(&texture, 1, impl_->stream);
+    return out;
 }
 
 fg::ExternalTextureSource* PostInterop::sharedTextureSource() { return impl_->shared.get(); }

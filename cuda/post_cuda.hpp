@@ -4,9 +4,11 @@
 //
 // Two entry points: PostInterop works on GL textures and is what the passes use. Textures made by
 // its shared-texture source (cuda/external_memory.hpp: GL memory objects on CUDA allocations, one
-// surface each for their lifetime) are used as they are, ordered by a GL fence and a CUDA event;
-// any other texture is registered once with cudaGraphicsGLRegisterImage and mapped per call; the *OnDevice functions take host images, run the same kernels on device buffers and
-// copy back, so the kernels can be tested against the CPU reference without a GL context.
+// surface each for their lifetime) are used as they are, ordered on the GPU by semaphores Vulkan
+// makes (cuda/gl_cuda_semaphores.hpp), or where those are unavailable by host waits on a GL fence
+// and a CUDA event; any other texture is registered once with cudaGraphicsGLRegisterImage and
+// mapped per call. The *OnDevice functions take host images, run the same kernels on device buffers
+// and copy back, so the kernels can be tested against the CPU reference without a GL context.
 #include <memory>
 #include <string>
 
@@ -37,6 +39,13 @@ struct PostTiming {
                              // textures the host's waits for GL (GL work still in flight included)
                              // and for CUDA beyond the kernels
     bool shared = false;     // ran on shared textures (no map/unmap)
+    bool gpuOrdered = false; // shared, and ordered by semaphores on the GPU (no host wait)
+};
+
+// How GL and CUDA are ordered around the kernels on shared textures.
+enum class SharedSync {
+    Semaphores,  // Vulkan-made semaphores imported by both: GL signals, CUDA waits, runs, signals, GL waits
+    HostWaits,   // the host waits on a GL fence before the kernels and on a CUDA event after them
 };
 
 class PostInterop {
@@ -63,8 +72,20 @@ public:
     // Before deleting a texture outside the pool: drops its map/unmap registration.
     void forgetTexture(GLuint texture);
     // Makes textures through a shared-texture source from now on when they work here; returns why
-    // not otherwise (and stays on map/unmap). Needs the GL context current.
-    std::string useSharedTextures();
+    // not otherwise (and stays on map/unmap). Needs the GL context current. The ordering is
+    // `preferred` where it works: Semaphores falls back to HostWaits when the semaphores cannot be
+    // made or their round trip (cuda/external_memory.hpp) disagrees; semaphoreProblem() says why.
+    std::string useSharedTextures(SharedSync preferred = SharedSync::Semaphores);
+    // The ordering in use on shared textures (HostWaits also before useSharedTextures).
+    SharedSync sharedSync() const;
+    // Why the semaphores are not used ("no Vulkan loader (...)"); empty when they are or were not asked for.
+    const std::string& semaphoreProblem() const;
+    // "Vulkan semaphores (NVIDIA H100 80GB HBM3)", "host waits (GL fence, CUDA event)" or "map/unmap".
+    std::string syncName() const;
+    // What the CUDA kernels would read from a shared texture (format RGBA16F or RGBA32F) now,
+    // handed over from GL as before a kernel: tests compare it with what GL wrote. Throws for a
+    // texture the shared source did not make.
+    ImageF readShared(GLuint texture, GLenum format, int width, int height);
     // Where the texture pool gets the textures the CUDA passes touch; null on the map/unmap path.
     fg::ExternalTextureSource* sharedTextureSource();
 

@@ -656,7 +656,8 @@ std::vector<KnobEntry> makeKnobTable() {
                                  post::cudaInteropName);
         k.flags = {valueFlag("--cuda-interop")};
         k.help = "how the CUDA post effects reach GL textures: external (GL memory objects on CUDA memory, shared "
-                 "once; experimental: wrong toon outlines on the H100), map (map/unmap per use); auto: map";
+                 "once, ordered on the GPU by Vulkan semaphores, else by host waits), map (map/unmap per use); "
+                 "auto: external with semaphores where measured faster than map at start-up, else map";
         t.push_back(std::move(k));
     }
     {

@@ -3,6 +3,7 @@
 #include <string>
 
 #include "engine/core/error.hpp"
+#include "engine/gl/handles.hpp"
 
 namespace lp {
 
@@ -73,7 +74,14 @@ ImageF Renderer::readHdr() const {
     img.width = width_;
     img.height = height_;
     img.rgba.resize(size_t(width_) * height_ * 4);
-    glGetTextureImage(tex, 0, GL_RGBA, GL_FLOAT, GLsizei(img.rgba.size() * sizeof(float)), img.rgba.data());
+    // Read through a GPU copy: the HDR buffer may be a texture CUDA wrote last on shared memory, and
+    // NVIDIA's GL can answer glGetTextureImage from what it kept of an earlier read-back and upload
+    // instead of the memory CUDA wrote (tests/cuda/test_post_cuda.cpp, CudaSharedTextures).
+    GLint format = 0;
+    glGetTextureLevelParameteriv(tex, 0, GL_TEXTURE_INTERNAL_FORMAT, &format);
+    gl::Texture copy = gl::makeTexture2D(GLenum(format), width_, height_, 1, "read_hdr.copy");
+    glCopyImageSubData(tex, GL_TEXTURE_2D, 0, 0, 0, 0, copy.id(), GL_TEXTURE_2D, 0, 0, 0, 0, width_, height_, 1);
+    glGetTextureImage(copy.id(), 0, GL_RGBA, GL_FLOAT, GLsizei(img.rgba.size() * sizeof(float)), img.rgba.data());
     flipRows(img.rgba, width_, height_);
     return img;
 }

@@ -1,5 +1,6 @@
 #include "passes/post_backend.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 
@@ -28,6 +29,25 @@ PostBackendChoice chooseByTimes(const std::map<post::PostEffect, post::BackendTi
         }
     }
     return c;
+}
+
+double postEffectsMs(const std::map<post::PostEffect, post::BackendTimes>& times, bool cudaForAll) {
+    double sum = 0.0;
+    for (const auto& [effect, t] : times) {
+        if (t.cudaMs < 0.0 || (!cudaForAll && t.glslMs < 0.0)) return -1.0;
+        sum += cudaForAll ? t.cudaMs : std::min(t.cudaMs, t.glslMs);
+    }
+    return sum;
+}
+
+bool sharedInteropWins(const std::map<post::PostEffect, post::BackendTimes>& shared,
+                       const std::map<post::PostEffect, post::BackendTimes>& mapped, bool cudaForAll) {
+    if (shared.empty() || shared.size() != mapped.size()) return false;
+    for (const auto& [effect, t] : shared)
+        if (!mapped.count(effect)) return false;
+    const double viaShared = postEffectsMs(shared, cudaForAll), viaMap = postEffectsMs(mapped, cudaForAll);
+    if (viaShared < 0.0) return false;
+    return viaMap < 0.0 || viaShared < viaMap;
 }
 
 PostBackend::PostBackend() : cacheFile(post::timingCachePath([](const char* v) { return std::getenv(v); })) {}
@@ -91,21 +111,37 @@ bool PostBackend::cudaUsable(PostSettings::Backend requested, PostSettings::Cuda
     if (!interop) {
         interopMadeFor_ = interopMode;
         interop = std::make_unique<cuda::PostInterop>();
-        // auto stays on map/unmap: on the H100 (driver 580) the shared textures pass their start-up
-        // round trip but toon's outlines come out wrong on them (CudaSharedTextures test), and the host
-        // waits on a GL fence that order them cost more than map/unmap (bench/results/post_interop).
-        std::string why = interopMode == PostSettings::CudaInterop::Map
-                              ? "--cuda-interop map"
-                              : "--cuda-interop auto uses map/unmap; --cuda-interop external tries shared textures";
-        if (interopMode == PostSettings::CudaInterop::External) why = interop->useSharedTextures();
-        if (why.empty()) {
-            interopPath_ = "external";
-            logInfo("post effects: CUDA on shared textures (GL_EXT_memory_object_fd on CUDA allocations, made "
-                    "once; ordered by a GL fence and a CUDA event)");
+        interopUndecided_ = false;
+        const bool external = interopMode == PostSettings::CudaInterop::External;
+        // The fallback chain: shared textures ordered by Vulkan semaphores, then (external only) by
+        // host waits, then map/unmap; each step down is one warning line saying why.
+        const std::string why = interopMode == PostSettings::CudaInterop::Map ? "" : interop->useSharedTextures();
+        if (interopMode == PostSettings::CudaInterop::Map) {
+            interopPath_ = kInteropMap;
+            logInfo("post effects: CUDA through per-use map/unmap (--cuda-interop map)");
+        } else if (!why.empty()) {
+            if (external) throw Error("--cuda-interop external: " + why);
+            interopPath_ = kInteropMap;
+            logWarn("post effects: CUDA through per-use map/unmap (shared textures unavailable: " + why + ")");
+        } else if (interop->sharedSync() == cuda::SharedSync::Semaphores) {
+            interopPath_ = kInteropSemaphores;
+            if (external)
+                logInfo("post effects: CUDA on shared textures (GL_EXT_memory_object_fd on CUDA allocations, made "
+                        "once; ordered on the GPU by " + interop->syncName() + ")");
+            else
+                interopUndecided_ = true;  // measured against map/unmap at the first frame's size
+        } else if (external) {
+            interopPath_ = kInteropHostWaits;
+            logWarn("post effects: CUDA on shared textures ordered by host waits (Vulkan semaphores unavailable: " +
+                    interop->semaphoreProblem() + ")");
         } else {
-            if (interopMode == PostSettings::CudaInterop::External) throw Error("--cuda-interop external: " + why);
-            interopPath_ = "map";
-            logInfo("post effects: CUDA through per-use map/unmap (shared textures unavailable: " + why + ")");
+            // auto: host waits leave the GPU idle inside the pass and measured slower than
+            // map/unmap on the H100 (bench/results/post_interop), so auto does not take them.
+            const std::string semaphores = interop->semaphoreProblem();
+            interop = std::make_unique<cuda::PostInterop>();
+            interopPath_ = kInteropMap;
+            logWarn("post effects: CUDA through per-use map/unmap (Vulkan semaphores unavailable: " + semaphores +
+                    "; shared textures would need host waits)");
         }
     }
     cuda_ = true;
@@ -113,11 +149,29 @@ bool PostBackend::cudaUsable(PostSettings::Backend requested, PostSettings::Cuda
     return cuda_;
 }
 
+void PostBackend::keepSharedInterop() { interopUndecided_ = false; }
+
+void PostBackend::useMapInterop() {
+#ifdef LIGHTPASS_HAVE_CUDA
+    interop = std::make_unique<cuda::PostInterop>();  // its pool source is gone: the pool drops its textures
+#endif
+    interopPath_ = kInteropMap;
+    interopUndecided_ = false;
+}
+
 PostBackendChoice PostBackend::autoChoice(const post::TimingKey& base, const std::vector<post::PostEffect>& effects,
                                           bool remeasure,
                                           const std::function<post::BackendTimes(post::PostEffect)>& measure) {
     const std::string decidedKey = base.text() + (remeasure ? "|remeasure" : "");
     if (auto it = decided_.find(decidedKey); it != decided_.end()) return it->second;
+    const PostBackendChoice choice = chooseByTimes(effectTimes(base, effects, remeasure, measure));
+    decided_[decidedKey] = choice;
+    return choice;
+}
+
+std::map<post::PostEffect, post::BackendTimes> PostBackend::effectTimes(
+    const post::TimingKey& base, const std::vector<post::PostEffect>& effects, bool remeasure,
+    const std::function<post::BackendTimes(post::PostEffect)>& measure) {
     if (!cacheRead_ && !cacheFile.empty()) {
         post::CacheRead read = post::readTimingCache(cacheFile);
         if (!read.warning.empty()) logWarn(read.warning);
@@ -154,10 +208,8 @@ PostBackendChoice PostBackend::autoChoice(const post::TimingKey& base, const std
     }
     if (!effects.empty())
         logInfo("post backend auto at " + std::to_string(base.width) + "x" + std::to_string(base.height) +
-                ", bloom kernel " + std::to_string(base.kernel) + ": " + report);
-    const PostBackendChoice choice = chooseByTimes(times);
-    decided_[decidedKey] = choice;
-    return choice;
+                ", bloom kernel " + std::to_string(base.kernel) + ", interop " + base.interop + ": " + report);
+    return times;
 }
 
 }  // namespace lp

@@ -31,6 +31,20 @@ struct PostBackendChoice {
 // Pure: the choice from measured times (CUDA only where strictly faster, see post::cudaWins).
 PostBackendChoice chooseByTimes(const std::map<post::PostEffect, post::BackendTimes>& times);
 
+// Pure: whether CUDA on shared textures (ordered on the GPU by semaphores) beats map/unmap, from each
+// path's measured times of the same effects: the post effects' cost summed over the effects, each at
+// its CUDA time when `cudaForAll` (--post-backend cuda), else at the faster of CUDA and GLSL (what
+// auto would run). Shared only where strictly cheaper; a tie, or an effect not measured, keeps map.
+bool sharedInteropWins(const std::map<post::PostEffect, post::BackendTimes>& shared,
+                       const std::map<post::PostEffect, post::BackendTimes>& mapped, bool cudaForAll);
+// The cost sharedInteropWins compares (ms; negative when an effect was not measured).
+double postEffectsMs(const std::map<post::PostEffect, post::BackendTimes>& times, bool cudaForAll);
+
+// The timing-cache names of the interop paths (TimingKey::interop).
+inline constexpr const char* kInteropSemaphores = "external+semaphores";
+inline constexpr const char* kInteropHostWaits = "external+host-waits";
+inline constexpr const char* kInteropMap = "map";
+
 struct PostBackend {
     PostBackend();
     ~PostBackend();
@@ -47,8 +61,14 @@ struct PostBackend {
     static bool compiledWithCuda();
     // Once per frame, by whichever post pass runs first (CUDA registrations age by these frames).
     void beginFrame(unsigned long frame);
-    // "external" (shared textures) or "map" once CUDA was made; "" before.
+    // kInteropSemaphores, kInteropHostWaits (shared textures and how they are ordered) or
+    // kInteropMap once CUDA was made; "" before.
     const std::string& interopPath() const { return interopPath_; }
+    // `--cuda-interop auto` where shared textures work with semaphores: whether they or map/unmap
+    // run is measured at the first frame's size (passes/post_pass.cpp), then settled by one of these.
+    bool interopUndecided() const { return interopUndecided_; }
+    void keepSharedInterop();
+    void useMapInterop();
     // The texture pool's source of shared textures: null unless CUDA runs on the external path.
     fg::ExternalTextureSource* externalTextureSource();
 
@@ -58,6 +78,11 @@ struct PostBackend {
     PostBackendChoice autoChoice(const post::TimingKey& base, const std::vector<post::PostEffect>& effects,
                                  bool remeasure,
                                  const std::function<post::BackendTimes(post::PostEffect)>& measure);
+    // The times behind autoChoice (cached, else measured and cached), logged; no choice is remembered.
+    std::map<post::PostEffect, post::BackendTimes> effectTimes(const post::TimingKey& base,
+                                                               const std::vector<post::PostEffect>& effects,
+                                                               bool remeasure,
+                                                               const std::function<post::BackendTimes(post::PostEffect)>& measure);
     // Where the timing cache lives (post::timingCachePath of the environment); tests may set it.
     std::filesystem::path cacheFile;
 
@@ -72,6 +97,7 @@ private:
     PostSettings::Backend requested_ = PostSettings::Backend::Auto;
     PostSettings::CudaInterop requestedInterop_ = PostSettings::CudaInterop::Auto;
     std::string interopPath_;
+    bool interopUndecided_ = false;
     PostSettings::CudaInterop interopMadeFor_ = PostSettings::CudaInterop::Auto;
     bool cacheRead_ = false;
     post::TimingCache cache_;

@@ -1,8 +1,10 @@
 #include "passes/post_pass.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <variant>
 
+#include "engine/core/log.hpp"
 #include "engine/gl/handles.hpp"
 #include "engine/graph/texture_pool.hpp"
 
@@ -16,13 +18,15 @@ namespace {
 
 #ifdef LIGHTPASS_HAVE_CUDA
 // A texture for the start-up measurement: shared like the pool would make it when CUDA runs on
-// shared textures, else ordinary.
+// shared textures (and `useShared`), else ordinary (mapped per use).
 struct MeasureTexture {
     cuda::PostInterop& interop;
     gl::Texture plain;
     std::shared_ptr<fg::ExternalTexture> shared;
-    MeasureTexture(cuda::PostInterop& cu, const fg::TextureDesc& d, const std::string& label) : interop(cu) {
-        if (fg::ExternalTextureSource* source = cu.sharedTextureSource()) shared = source->make(d, label);
+    MeasureTexture(cuda::PostInterop& cu, const fg::TextureDesc& d, const std::string& label, bool useShared)
+        : interop(cu) {
+        fg::ExternalTextureSource* source = useShared ? cu.sharedTextureSource() : nullptr;
+        if (source) shared = source->make(d, label);
         if (!shared) plain = gl::makeTexture2D(d.format, d.width, d.height, d.levels, label);
     }
     // Its id may come back for a pool texture of the same size: no stale map/unmap registration.
@@ -34,17 +38,14 @@ struct MeasureTexture {
     GLuint id() const { return shared ? shared->texture() : plain.id(); }
 };
 
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v.empty() ? 0.0 : v[v.size() / 2];
-}
-
 constexpr int kMeasureRuns = 7;
 
-// GPU ms per run of `work`: a GL timer query around kMeasureRuns runs after one untimed run, a
-// barrier after each as the graph would issue before the next pass.
+// GPU ms per run of `work` as the frame pays it: a GL timer query around kMeasureRuns runs after one
+// untimed run, a barrier after each as the graph would issue before the next pass. For a CUDA call
+// the GL timeline holds everything the frame waits for: the hand-over to CUDA and back (semaphores,
+// host waits or map/unmap), and the kernels in between.
 template <typename Work>
-double glslMs(Work&& work) {
+double glTimedMs(Work&& work) {
     work();
     glMemoryBarrier(GL_ALL_BARRIER_BITS);
     gl::Query query = gl::makeQuery(GL_TIME_ELAPSED);
@@ -59,32 +60,18 @@ double glslMs(Work&& work) {
     return double(ns) * 1e-6 / kMeasureRuns;
 }
 
-// ms per run of a CUDA call as a frame pays it: its kernels (CUDA events) plus its interop (map
-// and unmap, or the waits of the shared path), medians over kMeasureRuns after one untimed run.
-template <typename Call>
-double cudaMs(Call&& call) {
-    call();
-    std::vector<double> kernels, interop;
-    for (int i = 0; i < kMeasureRuns + 1; ++i) {
-        const cuda::PostTiming t = call();
-        if (i > 0 || t.shared) kernels.push_back(t.kernelMs);  // the map path reports the previous call
-        if (i < kMeasureRuns) interop.push_back(t.interopMs);
-    }
-    glFinish();
-    return median(kernels) + median(interop);
-}
-
+// `shared`: CUDA on shared textures (where the interop has them), else on mapped ones.
 post::BackendTimes measureEffect(PostPasses& st, const FrameData& frame, const post::PostConfig& config,
-                                 post::PostEffect effect) {
+                                 post::PostEffect effect, bool shared) {
     const int w = frame.width, h = frame.height;
     cuda::PostInterop& cu = *st.backend.interop;
     const float hdrFill[4] = {1.5f, 0.75f, 3.0f, 1.0f};  // above the threshold: the bloom does its work
-    MeasureTexture hdr(cu, {w, h, GL_RGBA16F}, "post_measure.hdr");
+    MeasureTexture hdr(cu, {w, h, GL_RGBA16F}, "post_measure.hdr", shared);
     glClearTexImage(hdr.id(), 0, GL_RGBA, GL_FLOAT, hdrFill);
     post::BackendTimes t;
     const post::BloomParams& p = config.bloomParams;
     if (effect == post::PostEffect::Bloom || effect == post::PostEffect::Composite) {
-        MeasureTexture bloom(cu, {w, h, GL_RGBA16F}, "post_measure.bloom");
+        MeasureTexture bloom(cu, {w, h, GL_RGBA16F}, "post_measure.bloom", shared);
         glClearTexImage(bloom.id(), 0, GL_RGBA, GL_FLOAT, hdrFill);
         if (effect == post::PostEffect::Bloom) {
             const BloomScratchDescs d = bloomScratchDescs(p, w, h);
@@ -99,18 +86,18 @@ post::BackendTimes measureEffect(PostPasses& st, const FrameData& frame, const p
                 scratch.push_back(gl::makeTexture2D(d.mips.format, d.mips.width, d.mips.height, d.mips.levels, "post_measure.mips"));
                 s.mips = scratch[0].id();
             }
-            t.glslMs = glslMs([&] { runBloomGlsl(st.bloom, *frame.shaders, s, hdr.id(), bloom.id(), w, h, p); });
-            t.cudaMs = cudaMs([&] { return cu.bloom(hdr.id(), bloom.id(), w, h, p); });
+            t.glslMs = glTimedMs([&] { runBloomGlsl(st.bloom, *frame.shaders, s, hdr.id(), bloom.id(), w, h, p); });
+            t.cudaMs = glTimedMs([&] { cu.bloom(hdr.id(), bloom.id(), w, h, p); });
         } else {
-            t.glslMs = glslMs([&] { runBloomCompositeGlsl(st.bloom, *frame.shaders, hdr.id(), bloom.id(), w, h, p.strength); });
-            t.cudaMs = cudaMs([&] { return cu.composite(hdr.id(), bloom.id(), w, h, p.strength); });
+            t.glslMs = glTimedMs([&] { runBloomCompositeGlsl(st.bloom, *frame.shaders, hdr.id(), bloom.id(), w, h, p.strength); });
+            t.cudaMs = glTimedMs([&] { cu.composite(hdr.id(), bloom.id(), w, h, p.strength); });
         }
         return t;
     }
     // Toon on the default G-buffer layout (what its CUDA kernel reads): a flat surface at depth 2.
     const float position[4] = {0.0f, 0.0f, -2.0f, 1.0f}, normal[4] = {0.0f, 0.0f, 1.0f, 0.0f}, depth = 0.5f;
-    MeasureTexture pos(cu, {w, h, GL_RGBA32F}, "post_measure.position");
-    MeasureTexture nrm(cu, {w, h, GL_RGBA32F}, "post_measure.normal");
+    MeasureTexture pos(cu, {w, h, GL_RGBA32F}, "post_measure.position", shared);
+    MeasureTexture nrm(cu, {w, h, GL_RGBA32F}, "post_measure.normal", shared);
     gl::Texture dep = gl::makeTexture2D(GL_DEPTH_COMPONENT32F, w, h, 1, "post_measure.depth");
     glClearTexImage(pos.id(), 0, GL_RGBA, GL_FLOAT, position);
     glClearTexImage(nrm.id(), 0, GL_RGBA, GL_FLOAT, normal);
@@ -118,9 +105,33 @@ post::BackendTimes measureEffect(PostPasses& st, const FrameData& frame, const p
     const glm::mat4& proj = frame.projection;
     const ToonGBufferTextures g{dep.id(), nrm.id(), pos.id(), GBufferSettings{},
                                 glm::vec4(frame.nearPlane, frame.farPlane, 1.0f / proj[1][1], proj[1][1] / proj[0][0])};
-    t.glslMs = glslMs([&] { runToonGlsl(st.toon, *frame.shaders, hdr.id(), g, w, h, config.toonParams); });
-    t.cudaMs = cudaMs([&] { return cu.toon(hdr.id(), pos.id(), nrm.id(), w, h, config.toonParams); });
+    t.glslMs = glTimedMs([&] { runToonGlsl(st.toon, *frame.shaders, hdr.id(), g, w, h, config.toonParams); });
+    t.cudaMs = glTimedMs([&] { cu.toon(hdr.id(), pos.id(), nrm.id(), w, h, config.toonParams); });
     return t;
+}
+
+// --cuda-interop auto where shared textures work with semaphores: measures the effects on shared
+// textures and on mapped ones at this frame's size (cached like auto's times), keeps whichever
+// path is cheaper for the frame, and says so once.
+void decideInterop(PostPasses& state, const FrameData& frame, const post::PostConfig& config,
+                   const std::vector<post::PostEffect>& effects, bool cudaForAll) {
+    PostBackend& b = state.backend;
+    const bool remeasure = frame.settings->post.remeasure;
+    auto timesOn = [&](const char* interop, bool shared) {
+        return b.effectTimes(postTimingKey(frame, config, interop), effects, remeasure,
+                             [&](post::PostEffect e) { return measureEffect(state, frame, config, e, shared); });
+    };
+    const auto viaShared = timesOn(kInteropSemaphores, true);
+    const auto viaMap = timesOn(kInteropMap, false);
+    const bool shared = sharedInteropWins(viaShared, viaMap, cudaForAll);
+    char line[320];
+    std::snprintf(line, sizeof line,
+                  "post effects: --cuda-interop auto at %dx%d: %s (shared textures with %s %.3f ms, map/unmap %.3f ms)",
+                  frame.width, frame.height, shared ? "shared textures" : "map/unmap", b.interop->syncName().c_str(),
+                  postEffectsMs(viaShared, cudaForAll), postEffectsMs(viaMap, cudaForAll));
+    logInfo(line);
+    if (shared) b.keepSharedInterop();
+    else b.useMapInterop();
 }
 #endif
 
@@ -153,18 +164,22 @@ PostBackendChoice postBackendChoice(PostPasses& state, const FrameData& frame, c
     }
     if (!(config.bloom || config.toon)) return {};
     if (!state.backend.cudaUsable(requested, frame.settings->post.cudaInterop)) return {};
-    if (requested == PostSettings::Backend::Cuda) return {true, true, true};
 #ifdef LIGHTPASS_HAVE_CUDA
     std::vector<post::PostEffect> effects;
     if (config.bloom) effects.push_back(post::PostEffect::Bloom);
     if (config.bloom && !config.bloomOnly) effects.push_back(post::PostEffect::Composite);
     // The CUDA toon reads the default G-buffer layout only: other layouts run the GLSL toon anyway.
     if (config.toon && frame.settings->gbuffer == GBufferSettings{}) effects.push_back(post::PostEffect::Toon);
+    if (state.backend.interopUndecided())
+        decideInterop(state, frame, config, effects, requested == PostSettings::Backend::Cuda);
+    if (requested == PostSettings::Backend::Cuda) return {true, true, true};
+    const bool shared = state.backend.interopPath() != kInteropMap;
     return state.backend.autoChoice(postTimingKey(frame, config, state.backend.interopPath()), effects,
                                     frame.settings->post.remeasure, [&](post::PostEffect effect) {
-                                        return measureEffect(state, frame, config, effect);
+                                        return measureEffect(state, frame, config, effect, shared);
                                     });
 #else
+    if (requested == PostSettings::Backend::Cuda) return {true, true, true};
     return {};
 #endif
 }

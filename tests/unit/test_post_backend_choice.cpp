@@ -55,6 +55,29 @@ TEST(PostBackendChoice, PicksTheFasterBackendPerEffect) {
     EXPECT_TRUE(flipped.toon);
 }
 
+// --cuda-interop auto: shared textures (semaphores) only where the frame's post effects cost less on
+// them than on map/unmap; under auto each effect counts at the faster of CUDA and GLSL, under
+// --post-backend cuda at its CUDA time.
+TEST(PostBackendChoice, SharedInteropOnlyWhereMeasuredCheaper) {
+    using Times = std::map<PostEffect, BackendTimes>;
+    const Times shared{{PostEffect::Bloom, {0.09, 0.10}}, {PostEffect::Composite, {0.02, 0.03}}};
+    const Times mapped{{PostEffect::Bloom, {0.45, 0.10}}, {PostEffect::Composite, {0.30, 0.03}}};
+    EXPECT_NEAR(postEffectsMs(shared, false), 0.11, 1e-12);
+    EXPECT_NEAR(postEffectsMs(mapped, false), 0.13, 1e-12);  // auto runs GLSL for both on map
+    EXPECT_NEAR(postEffectsMs(mapped, true), 0.75, 1e-12);
+    EXPECT_TRUE(sharedInteropWins(shared, mapped, false));
+    EXPECT_TRUE(sharedInteropWins(shared, mapped, true));
+    // Shared slower in CUDA than GLSL and map: auto's frame costs the same either way (GLSL): a tie keeps map.
+    const Times slowShared{{PostEffect::Bloom, {0.74, 0.10}}, {PostEffect::Composite, {0.50, 0.03}}};
+    EXPECT_FALSE(sharedInteropWins(slowShared, mapped, false));
+    EXPECT_FALSE(sharedInteropWins(slowShared, mapped, true));  // 1.24 > 0.75
+    // Not measured on shared, or the effects differ: map.
+    EXPECT_FALSE(sharedInteropWins({{PostEffect::Bloom, {-1.0, 0.10}}, {PostEffect::Composite, {0.02, 0.03}}}, mapped, false));
+    EXPECT_FALSE(sharedInteropWins({{PostEffect::Bloom, {0.09, 0.10}}}, mapped, false));
+    EXPECT_FALSE(sharedInteropWins({}, {}, false));
+    EXPECT_LT(postEffectsMs({{PostEffect::Toon, {0.1, -1.0}}}, false), 0.0);
+}
+
 TEST(PostBackendChoice, TiesAndUnmeasuredTimesPickGlsl) {
     EXPECT_FALSE(post::cudaWins({0.2, 0.2}));
     EXPECT_FALSE(post::cudaWins({-1.0, 0.2}));
