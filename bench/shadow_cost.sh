@@ -1,9 +1,13 @@
 #!/bin/bash
 # Cost of the sun cascades on a moving camera: the gallery's two suns x 4 cascades of 2048^2 at
 # 1920x1080, on scenes/gallery-flythrough.json's camera path (frames at 60 fps from t = 1 s, so every
-# frame has a new camera and new cascades), caster culling on/off x caster raster conservative, split,
-# plain and compute (the compute rasteriser; the gl_tests log has its depth against the plain raster
-# on this driver: ulps and coverage).
+# frame has a new camera and new cascades), caster culling on/off x caster raster conservative and
+# split each grown in hardware (GL_NV_conservative_raster, --shadow-conservative hardware) and by the
+# geometry shader (--shadow-conservative geometry-shader), plain and compute (the compute rasteriser;
+# the gl_tests log has its depth against the plain raster on this driver: ulps and coverage, and the
+# crease test and the hardware raster's atlas against the geometry shader's and plain's).
+# 'lightpass info' (OUTDIR/info.txt) says whether this GPU has the hardware conservative raster; on a
+# GPU without it the hardware rows fall back to the geometry shader (the explain files say so).
 # Per variant: the shadow passes' GPU ms summed (median of 300 frames after 30), their floor and
 # measured/floor (--floors), the triangles each cascade drew ('graph --explain' at t = 1 s, the
 # first timed frame) and the frame. From the repository root on the GPU machine:
@@ -14,18 +18,29 @@ set -u
 B=$(cd "$1" && pwd); R=$2; mkdir -p $R
 S=scenes/gallery-flythrough.json
 nvidia-smi --query-gpu=name,driver_version --format=csv,noheader | tee $R/device.txt
-LD_LIBRARY_PATH=$B/lib $B/gl_tests --gtest_brief=1 --gtest_filter='ShadowCasterCulling*:ShadowComputeRaster*:ShadowRender.ConcaveCorner*' \
+$B/run info > $R/info.txt 2>&1; grep "shadow casters" $R/info.txt
+LD_LIBRARY_PATH=$B/lib $B/gl_tests --gtest_brief=1 \
+  --gtest_filter='ShadowCasterCulling*:ShadowComputeRaster*:ShadowRender.ConcaveCorner*:ShadowConservativeRaster*:ShaderShadowCasterDepth*' \
   > $R/gl_tests_shadow_cost.txt 2>&1
 tail -3 $R/gl_tests_shadow_cost.txt
 grep " ulps " $R/gl_tests_shadow_cost.txt | tee $R/compute_raster_vs_plain.txt
+grep -E "conservative raster|SKIPPED" $R/gl_tests_shadow_cost.txt | tee $R/conservative_raster_tests.txt
 COMMON="--shadow-size 2048 --shadow-cascades 4"
-for cull in shadow-culling no-shadow-culling; do for raster in conservative split plain compute; do
-  $B/run graph --scene $S --size 1920x1080 --time 1 $COMMON --$cull --shadow-raster $raster --explain > $R/explain_${cull}_$raster.txt 2>&1
+# Rasters: NAME FLAGS (the explain files and the table's rows are named by NAME).
+RASTERS=("conservative-hardware|--shadow-raster conservative --shadow-conservative hardware"
+         "conservative-geometry-shader|--shadow-raster conservative --shadow-conservative geometry-shader"
+         "split-hardware|--shadow-raster split --shadow-conservative hardware"
+         "split-geometry-shader|--shadow-raster split --shadow-conservative geometry-shader"
+         "plain|--shadow-raster plain" "compute|--shadow-raster compute")
+VARY=""
+for r in "${RASTERS[@]}"; do VARY="$VARY${VARY:+|}${r#*|}"; done
+for cull in shadow-culling no-shadow-culling; do for r in "${RASTERS[@]}"; do
+  $B/run graph --scene $S --size 1920x1080 --time 1 $COMMON --$cull ${r#*|} --explain > $R/explain_${cull}_${r%%|*}.txt 2>&1
 done; done
 # --shadow-raster auto's own start-up measurement on this GPU (a fresh cache), beside the table.
 LIGHTPASS_CACHE_DIR=$R/auto_cache $B/run render --scene $S --size 1920x1080 --time 1 $COMMON --shadow-raster auto \
   --out $R/auto.png 2>&1 | grep "shadow raster auto" | tee $R/auto_choice.txt
 $B/run bench --scene $S --time 1 --fps 60 --frames 300 --warmup 30 --floors --size 1920x1080 $COMMON \
-  --vary '--shadow-culling|--no-shadow-culling' --vary '--shadow-raster conservative,split,plain,compute' \
+  --vary '--shadow-culling|--no-shadow-culling' --vary "$VARY" \
   --timings-json $R/shadow_cost.json -q > /dev/null 2> $R/bench_progress.txt || { echo "bench failed"; tail -3 $R/bench_progress.txt; }
 python3 bench/summarize_shadow_cost.py $R/shadow_cost.json $R | tee $R/shadow_cost.md

@@ -248,6 +248,20 @@ std::vector<KnobEntry> makeKnobTable() {
         t.push_back(std::move(k));
     }
     {
+        KnobEntry k = choiceKnob("shadow-conservative", [](auto& s) -> auto& { return s.shadows.conservativeRaster; },
+                                 std::vector<ShadowSettings::ConservativeRaster>{ShadowSettings::ConservativeRaster::Auto,
+                                                                                 ShadowSettings::ConservativeRaster::Hardware,
+                                                                                 ShadowSettings::ConservativeRaster::GeometryShader},
+                                 ShadowSettings::conservativeRasterName);
+        k.flags = {valueFlag("--shadow-conservative")};
+        k.choiceNoun = "conservative raster";
+        k.help = "how conservative and split grow casters: hardware (GL_NV_conservative_raster, no geometry shader), "
+                 "geometry-shader, or auto (hardware where the GPU has GL_NV_conservative_raster and "
+                 "GL_NV_fragment_shader_barycentric)";
+        k.panel = {PanelSection::Shadows, PanelWidget::Combo, "conservative raster", ""};
+        t.push_back(std::move(k));
+    }
+    {
         KnobEntry k = intKnob("shadow-light", [](auto& s) -> auto& { return s.shadows.debugLight; }, 0, 1000000);
         k.flags = {valueFlag("--shadow-light")};
         k.help = "--view shadowmap shows this directional light's shadow map";

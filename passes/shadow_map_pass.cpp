@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 
 #include <glm/gtc/type_ptr.hpp>
 
@@ -31,6 +32,21 @@ std::filesystem::path shadowRasterCachePath() {
         return std::filesystem::path(home) / ".cache" / "lightpass" / "shadow_raster.txt";
     return std::filesystem::path("lightpass_shadow_raster.txt");
 }
+
+ConservativeRasterSupport queryConservativeRasterSupport() {
+    ConservativeRasterSupport support;
+    if (!GLAD_GL_NV_conservative_raster) support.reason = "no GL_NV_conservative_raster";
+    else if (!GLAD_GL_NV_fragment_shader_barycentric)
+        support.reason = "GL_NV_conservative_raster without GL_NV_fragment_shader_barycentric (the fragment shader needs the triangle's vertices)";
+    support.hardware = support.reason.empty();
+    return support;
+}
+
+bool usesHardwareConservative(ShadowSettings::ConservativeRaster setting, const ConservativeRasterSupport& support) {
+    return setting != ShadowSettings::ConservativeRaster::GeometryShader && support.hardware;
+}
+
+const char* conservativeRasterLabel(bool hardware) { return hardware ? "hardware" : "geometry shader"; }
 
 namespace {
 struct Data {
@@ -133,15 +149,26 @@ void drawCascadesByCompute(ShadowMapPass& state, const FrameData& frame, const S
     glUseProgram(0);
 }
 
-// Draws the cascades' casters into the atlas `depthTexture` (width x height) with `raster` (not Auto).
+// Draws the cascades' casters into the atlas `depthTexture` (width x height) with `raster` (not Auto);
+// conservative and split grow casters by GL_NV_conservative_raster where `hardware`, else by the
+// geometry shader.
 void drawAtlas(ShadowMapPass& state, const FrameData& frame, const ShadowFrustum& fr, const std::vector<CasterList>& casters,
-               ShadowSettings::Raster raster, GLuint depthTexture, int width, int height) {
+               ShadowSettings::Raster raster, bool hardware, GLuint depthTexture, int width, int height) {
     using Raster = ShadowSettings::Raster;
         if (!state.fbo) state.fbo = gl::makeFramebuffer("shadow_map");
-        if (raster == Raster::Conservative && !state.program)
+        const bool grows = raster == Raster::Conservative || raster == Raster::Split;
+        hardware = hardware && grows;
+        if (hardware && raster == Raster::Conservative && !state.hardwareTowardProgram)
+            state.hardwareTowardProgram = frame.shaders->graphics("shadow_depth.vert", "shadow_depth.frag",
+                                                                  std::vector<std::string>{"LP_SHADOW_HARDWARE_CONSERVATIVE"});
+        if (hardware && !state.hardwareAwayProgram)
+            state.hardwareAwayProgram = frame.shaders->graphics("shadow_depth.vert", "shadow_depth.frag",
+                                                                std::vector<std::string>{"LP_SHADOW_HARDWARE_CONSERVATIVE",
+                                                                                         "LP_SHADOW_FACES_AWAY"});
+        if (!hardware && raster == Raster::Conservative && !state.program)
             state.program = frame.shaders->graphics("shadow_depth.vert", "shadow_depth.geom", "shadow_depth.frag",
                                                     {"LP_SHADOW_CONSERVATIVE"});
-        if (raster == Raster::Split && !state.awayProgram)
+        if (!hardware && raster == Raster::Split && !state.awayProgram)
             state.awayProgram = frame.shaders->graphics("shadow_depth.vert", "shadow_depth.geom", "shadow_depth.frag",
                                                         {"LP_SHADOW_CONSERVATIVE", "LP_SHADOW_AWAY_ONLY"});
         if ((raster == Raster::Plain || raster == Raster::Split) && !state.plainProgram)
@@ -156,6 +183,10 @@ void drawAtlas(ShadowMapPass& state, const FrameData& frame, const ShadowFrustum
         gl::ScopedEnable blend(GL_BLEND, false);
         gl::ScopedEnable clamp(GL_DEPTH_CLAMP, true);  // casters past the light's near plane still cast
         gl::ScopedEnable offset(GL_POLYGON_OFFSET_FILL, false);
+        // GL_CONSERVATIVE_RASTERIZATION_NV exists only with the extension: off but around the hardware
+        // draws, and put back as found (the GL state check watches it where it exists).
+        std::optional<gl::ScopedEnable> conservative;
+        if (GLAD_GL_NV_conservative_raster) conservative.emplace(GL_CONSERVATIVE_RASTERIZATION_NV, false);
         gl::ScopedRasterState saved;  // depth function and mask, polygon offset, cull face
         glDepthFunc(GL_LESS);
         glDepthMask(GL_TRUE);
@@ -166,16 +197,19 @@ void drawAtlas(ShadowMapPass& state, const FrameData& frame, const ShadowFrustum
 
         GLint clipDepth = GL_NEGATIVE_ONE_TO_ONE;
         glGetIntegerv(GL_CLIP_DEPTH_MODE, &clipDepth);
-        const GLuint conservativeProg = raster == Raster::Conservative ? state.program.id()
-                                        : raster == Raster::Split      ? state.awayProgram.id()
-                                                                       : 0;
-        if (conservativeProg) {
-            glProgramUniform1i(conservativeProg, glGetUniformLocation(conservativeProg, "uDepthZeroToOne"),
-                               clipDepth == GL_ZERO_TO_ONE ? 1 : 0);
+        const GLuint conservativeProg = hardware                       ? 0
+                                        : raster == Raster::Conservative ? state.program.id()
+                                        : raster == Raster::Split        ? state.awayProgram.id()
+                                                                         : 0;
+        // Hardware: faces towards the light (conservative only; split draws them plainly), then away.
+        const GLuint hardwareProgs[2] = {hardware && raster == Raster::Conservative ? state.hardwareTowardProgram.id() : 0,
+                                         hardware ? state.hardwareAwayProgram.id() : 0};
+        for (GLuint prog : {conservativeProg, hardwareProgs[0], hardwareProgs[1]}) {
+            if (!prog) continue;
+            glProgramUniform1i(prog, glGetUniformLocation(prog, "uDepthZeroToOne"), clipDepth == GL_ZERO_TO_ONE ? 1 : 0);
             // Slope-scaled bias against acne, for the faces towards the light only (shadow_depth.frag);
             // the constant part is the receiver's (see shadow.glsl).
-            glProgramUniform1f(conservativeProg, glGetUniformLocation(conservativeProg, "uSlopeBias"),
-                               frame.settings->shadows.slopeBias);
+            glProgramUniform1f(prog, glGetUniformLocation(prog, "uSlopeBias"), frame.settings->shadows.slopeBias);
         }
         if (raster == Raster::Compute) {
             drawCascadesByCompute(state, frame, fr, casters, width, height, clipDepth == GL_ZERO_TO_ONE);
@@ -206,6 +240,26 @@ void drawAtlas(ShadowMapPass& state, const FrameData& frame, const ShadowFrustum
                 drawCasterList(frame, conservativeProg, glGetUniformLocation(conservativeProg, "uModelToClip"),
                                fr.cascades[c].worldToClip, casters[c]);
             }
+            if (hardware) {
+                // Every texel a triangle touches gets a fragment; no geometry shader, no box to clip to.
+                // Each facing in a draw of its own (the other culled, counter-clockwise in the light's
+                // window = towards it, as shadow_depth.geom), so each fragment shader knows its facing
+                // and the one towards the light can promise depth_greater.
+                glEnable(GL_CONSERVATIVE_RASTERIZATION_NV);
+                glEnable(GL_CULL_FACE);
+                for (int facing = 0; facing < 2; ++facing) {
+                    const GLuint prog = hardwareProgs[facing];
+                    if (!prog) continue;
+                    glCullFace(facing == 0 ? GL_BACK : GL_FRONT);
+                    glUseProgram(prog);
+                    glProgramUniform4f(prog, glGetUniformLocation(prog, "uViewport"), float(x), float(y),
+                                       float(fr.tileSize), float(fr.tileSize));
+                    drawCasterList(frame, prog, glGetUniformLocation(prog, "uModelToClip"), fr.cascades[c].worldToClip,
+                                   casters[c]);
+                }
+                glDisable(GL_CULL_FACE);
+                glDisable(GL_CONSERVATIVE_RASTERIZATION_NV);
+            }
         }
         glBindVertexArray(0);
         glUseProgram(0);
@@ -228,8 +282,9 @@ bool rasterFromName(const std::string& name, ShadowSettings::Raster& out) {
     return false;
 }
 
+// `hardware`: conservative and split are measured (and drawn) on the hardware conservative raster.
 template <typename DrawFn>
-ShadowSettings::Raster resolveAutoRaster(ShadowMapPass& state, DrawFn&& draw) {
+ShadowSettings::Raster resolveAutoRaster(ShadowMapPass& state, bool hardware, DrawFn&& draw) {
     if (state.autoResolved) return state.autoRaster;
     state.autoResolved = true;
     const std::string key = shadowRasterCacheKey();
@@ -279,7 +334,8 @@ ShadowSettings::Raster resolveAutoRaster(ShadowMapPass& state, DrawFn&& draw) {
         }
     }
     state.autoReport = std::string("shadow raster auto: ") + ShadowSettings::rasterName(state.autoRaster) + " (measured: " +
-                       times + "; cached in " + path.string() + ")";
+                       times + "; conservative and split on the " + conservativeRasterLabel(hardware) +
+                       " conservative raster; cached in " + path.string() + ")";
     logInfo(state.autoReport);
     // Written beside and renamed over the cache: a failed write leaves the old file whole.
     std::error_code ec;
@@ -318,6 +374,31 @@ ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const
     const std::vector<CasterCluster>& clusters = frame.gpu ? frame.gpu->casterClusters : localClusters;
     size_t sceneTriangles = 0;
     for (const CasterCluster& c : clusters) sceneTriangles += c.indexCount / 3;
+    // Which conservative raster conservative and split use: asked of the GPU once (a context is current
+    // where there is a scene on the GPU; 'lightpass graph --explain' sets it from a context of its own).
+    if (frame.gpu && !state.conservativeSupport) state.conservativeSupport = queryConservativeRasterSupport();
+    const ShadowSettings::ConservativeRaster conservativeSetting = frame.settings->shadows.conservativeRaster;
+    const bool hardware = state.conservativeSupport && usesHardwareConservative(conservativeSetting, *state.conservativeSupport);
+    if (conservativeSetting == ShadowSettings::ConservativeRaster::Hardware && state.conservativeSupport &&
+        !state.conservativeSupport->hardware && !state.warnedNoHardware) {
+        logWarn("--shadow-conservative hardware: this GPU has " + state.conservativeSupport->reason +
+                "; conservative casters use the geometry shader");
+        state.warnedNoHardware = true;
+    }
+    const ShadowSettings::Raster settingRaster = frame.settings->shadows.raster;
+    std::string rasterNote = std::string(ShadowSettings::rasterName(settingRaster)) + " raster";
+    if (settingRaster == ShadowSettings::Raster::Conservative || settingRaster == ShadowSettings::Raster::Split ||
+        settingRaster == ShadowSettings::Raster::Auto) {
+        if (!state.conservativeSupport)
+            rasterNote += conservativeSetting == ShadowSettings::ConservativeRaster::GeometryShader
+                              ? ", geometry shader conservative"
+                              : ", hardware conservative where the GPU has GL_NV_conservative_raster, else geometry shader";
+        else
+            rasterNote += std::string(", ") + conservativeRasterLabel(hardware) + " conservative" +
+                          (hardware || conservativeSetting == ShadowSettings::ConservativeRaster::GeometryShader
+                               ? ""
+                               : ": " + state.conservativeSupport->reason);
+    }
     for (int light : shadowCastingLights(frame)) {
         LightShadowMap map;
         map.light = light;
@@ -336,21 +417,21 @@ ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const
             graph.notePass(name, "cascade " + std::to_string(c) + ": " + std::to_string(l.draws.size()) + " draws, " +
                                      std::to_string(l.clusters) + " of " + std::to_string(clusters.size()) + " clusters, " +
                                      std::to_string(l.triangles) + " of " + std::to_string(sceneTriangles) + " triangles (" +
-                                     ShadowSettings::rasterName(frame.settings->shadows.raster) + " raster" +
+                                     rasterNote +
                                      (frame.settings->shadows.cullCasters ? "" : ", culling off") + ")");
         }
         const fg::TextureDesc desc{fr.tileSize * fr.columns, fr.tileSize * fr.rows, GL_DEPTH_COMPONENT32F};
         const Data& data = graph.addPass<Data>(
             name, fg::PassKind::Raster,
             [&](fg::PassBuilder& b, Data& out) { out.depth = b.create(name + ".depth", desc, fg::Usage::DepthAttachment); },
-            [&state, frame, fr, casters](const Data& out, const fg::PassResources& res) {
+            [&state, frame, fr, casters, hardware](const Data& out, const fg::PassResources& res) {
                 const fg::TextureDesc& d = res.desc(out.depth);
                 ShadowSettings::Raster raster = frame.settings->shadows.raster;
                 if (raster == ShadowSettings::Raster::Auto)
-                    raster = resolveAutoRaster(state, [&](ShadowSettings::Raster r) {
-                        drawAtlas(state, frame, fr, casters, r, res.texture(out.depth), d.width, d.height);
+                    raster = resolveAutoRaster(state, hardware, [&](ShadowSettings::Raster r) {
+                        drawAtlas(state, frame, fr, casters, r, hardware, res.texture(out.depth), d.width, d.height);
                     });
-                drawAtlas(state, frame, fr, casters, raster, res.texture(out.depth), d.width, d.height);
+                drawAtlas(state, frame, fr, casters, raster, hardware, res.texture(out.depth), d.width, d.height);
             });
         map.depth = data.depth;
         maps.push_back(std::move(map));

@@ -8,8 +8,11 @@
 // full-atlas draw turns into the D32F atlas; triangles whose window box exceeds
 // kComputeRasterMaxTexels in x or y are drawn by the hardware plain path after it), or auto: the
 // fastest of the four on this GPU, measured once on the first frame and cached per GPU.
+// Conservative and split grow casters by GL_NV_conservative_raster where the GPU has it (and
+// GL_NV_fragment_shader_barycentric), else by a geometry shader (--shadow-conservative).
 // No shadow-casting light, or shadows switched off: no pass at all.
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,8 +26,27 @@ namespace lp {
 
 constexpr float kComputeRasterMaxTexels = 64.0f;
 
+// Whether this GPU can grow shadow casters in hardware: GL_NV_conservative_raster for the coverage and
+// GL_NV_fragment_shader_barycentric for the triangle's vertices in the fragment shader (its depth
+// plane and range). `reason` says what is missing when `hardware` is false.
+struct ConservativeRasterSupport {
+    bool hardware = false;
+    std::string reason;
+};
+ConservativeRasterSupport queryConservativeRasterSupport();  // needs a current context
+// Whether --shadow-conservative `setting` takes the hardware path on a GPU with `support` (auto and
+// hardware do where it exists; hardware without it falls back to the geometry shader with a warning).
+bool usesHardwareConservative(ShadowSettings::ConservativeRaster setting, const ConservativeRasterSupport& support);
+const char* conservativeRasterLabel(bool hardware);  // "hardware" / "geometry shader"
+
 struct ShadowMapPass {
     gl::Program program;       // conservative casters (shadow_depth.geom)
+    // Hardware conservative casters (GL_CONSERVATIVE_RASTERIZATION_NV, no geometry shader): the faces
+    // towards the light (conservative only) and the faces away from it (conservative and split).
+    gl::Program hardwareTowardProgram;
+    gl::Program hardwareAwayProgram;
+    std::optional<ConservativeRasterSupport> conservativeSupport;  // asked of the GPU on the first frame
+    bool warnedNoHardware = false;
     gl::Program plainProgram;  // --shadow-raster plain, and split's faces towards the light
     gl::Program awayProgram;   // --shadow-raster split: conservative, faces away from the light only
     gl::Framebuffer fbo;
