@@ -150,14 +150,13 @@ void drawCascadesByCompute(ShadowMapPass& state, const FrameData& frame, const S
 }
 
 // Draws the cascades' casters into the atlas `depthTexture` (width x height) with `raster` (not Auto);
-// conservative and split grow casters by GL_NV_conservative_raster where `hardware`, else by the
-// geometry shader.
+// conservative and split grow casters by GL_NV_conservative_raster where state.hardwareConservative,
+// else by the geometry shader.
 void drawAtlas(ShadowMapPass& state, const FrameData& frame, const ShadowFrustum& fr, const std::vector<CasterList>& casters,
-               ShadowSettings::Raster raster, bool hardware, GLuint depthTexture, int width, int height) {
+               ShadowSettings::Raster raster, GLuint depthTexture, int width, int height) {
     using Raster = ShadowSettings::Raster;
         if (!state.fbo) state.fbo = gl::makeFramebuffer("shadow_map");
-        const bool grows = raster == Raster::Conservative || raster == Raster::Split;
-        hardware = hardware && grows;
+        const bool hardware = state.hardwareConservative && (raster == Raster::Conservative || raster == Raster::Split);
         if (hardware && raster == Raster::Conservative && !state.hardwareTowardProgram)
             state.hardwareTowardProgram = frame.shaders->graphics("shadow_depth.vert", "shadow_depth.frag",
                                                                   std::vector<std::string>{"LP_SHADOW_HARDWARE_CONSERVATIVE"});
@@ -282,9 +281,8 @@ bool rasterFromName(const std::string& name, ShadowSettings::Raster& out) {
     return false;
 }
 
-// `hardware`: conservative and split are measured (and drawn) on the hardware conservative raster.
 template <typename DrawFn>
-ShadowSettings::Raster resolveAutoRaster(ShadowMapPass& state, bool hardware, DrawFn&& draw) {
+ShadowSettings::Raster resolveAutoRaster(ShadowMapPass& state, DrawFn&& draw) {
     if (state.autoResolved) return state.autoRaster;
     state.autoResolved = true;
     const std::string key = shadowRasterCacheKey();
@@ -334,7 +332,7 @@ ShadowSettings::Raster resolveAutoRaster(ShadowMapPass& state, bool hardware, Dr
         }
     }
     state.autoReport = std::string("shadow raster auto: ") + ShadowSettings::rasterName(state.autoRaster) + " (measured: " +
-                       times + "; conservative and split on the " + conservativeRasterLabel(hardware) +
+                       times + "; conservative and split on the " + conservativeRasterLabel(state.hardwareConservative) +
                        " conservative raster; cached in " + path.string() + ")";
     logInfo(state.autoReport);
     // Written beside and renamed over the cache: a failed write leaves the old file whole.
@@ -353,6 +351,30 @@ ShadowSettings::Raster resolveAutoRaster(ShadowMapPass& state, bool hardware, Dr
         logWarn(path.string() + ": could not write the shadow raster cache; auto measures again next start");
     }
     return state.autoRaster;
+}
+
+// Sets state.hardwareConservative for this frame (the GPU asked once: a context is current where the
+// scene is on the GPU; 'lightpass graph --explain' sets state.conservativeSupport from a context of
+// its own) and returns what the cascades' notes add about it (nothing for rasters that grow none).
+std::string chooseConservativeRaster(ShadowMapPass& state, const FrameData& frame) {
+    if (frame.gpu && !state.conservativeSupport) state.conservativeSupport = queryConservativeRasterSupport();
+    const ShadowSettings::ConservativeRaster setting = frame.settings->shadows.conservativeRaster;
+    state.hardwareConservative = state.conservativeSupport && usesHardwareConservative(setting, *state.conservativeSupport);
+    if (setting == ShadowSettings::ConservativeRaster::Hardware && state.conservativeSupport &&
+        !state.conservativeSupport->hardware && !state.warnedNoHardware) {
+        logWarn("--shadow-conservative hardware: this GPU has " + state.conservativeSupport->reason +
+                "; conservative casters use the geometry shader");
+        state.warnedNoHardware = true;
+    }
+    const ShadowSettings::Raster raster = frame.settings->shadows.raster;
+    if (raster != ShadowSettings::Raster::Conservative && raster != ShadowSettings::Raster::Split &&
+        raster != ShadowSettings::Raster::Auto)
+        return "";
+    if (setting == ShadowSettings::ConservativeRaster::GeometryShader) return ", geometry shader conservative";
+    if (!state.conservativeSupport)
+        return ", hardware conservative where the GPU has GL_NV_conservative_raster, else geometry shader";
+    return state.hardwareConservative ? ", hardware conservative"
+                                      : ", geometry shader conservative: " + state.conservativeSupport->reason;
 }
 
 }  // namespace
@@ -374,31 +396,8 @@ ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const
     const std::vector<CasterCluster>& clusters = frame.gpu ? frame.gpu->casterClusters : localClusters;
     size_t sceneTriangles = 0;
     for (const CasterCluster& c : clusters) sceneTriangles += c.indexCount / 3;
-    // Which conservative raster conservative and split use: asked of the GPU once (a context is current
-    // where there is a scene on the GPU; 'lightpass graph --explain' sets it from a context of its own).
-    if (frame.gpu && !state.conservativeSupport) state.conservativeSupport = queryConservativeRasterSupport();
-    const ShadowSettings::ConservativeRaster conservativeSetting = frame.settings->shadows.conservativeRaster;
-    const bool hardware = state.conservativeSupport && usesHardwareConservative(conservativeSetting, *state.conservativeSupport);
-    if (conservativeSetting == ShadowSettings::ConservativeRaster::Hardware && state.conservativeSupport &&
-        !state.conservativeSupport->hardware && !state.warnedNoHardware) {
-        logWarn("--shadow-conservative hardware: this GPU has " + state.conservativeSupport->reason +
-                "; conservative casters use the geometry shader");
-        state.warnedNoHardware = true;
-    }
-    const ShadowSettings::Raster settingRaster = frame.settings->shadows.raster;
-    std::string rasterNote = std::string(ShadowSettings::rasterName(settingRaster)) + " raster";
-    if (settingRaster == ShadowSettings::Raster::Conservative || settingRaster == ShadowSettings::Raster::Split ||
-        settingRaster == ShadowSettings::Raster::Auto) {
-        if (!state.conservativeSupport)
-            rasterNote += conservativeSetting == ShadowSettings::ConservativeRaster::GeometryShader
-                              ? ", geometry shader conservative"
-                              : ", hardware conservative where the GPU has GL_NV_conservative_raster, else geometry shader";
-        else
-            rasterNote += std::string(", ") + conservativeRasterLabel(hardware) + " conservative" +
-                          (hardware || conservativeSetting == ShadowSettings::ConservativeRaster::GeometryShader
-                               ? ""
-                               : ": " + state.conservativeSupport->reason);
-    }
+    const std::string rasterNote = std::string(ShadowSettings::rasterName(frame.settings->shadows.raster)) + " raster" +
+                                   chooseConservativeRaster(state, frame);
     for (int light : shadowCastingLights(frame)) {
         LightShadowMap map;
         map.light = light;
@@ -424,14 +423,14 @@ ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const
         const Data& data = graph.addPass<Data>(
             name, fg::PassKind::Raster,
             [&](fg::PassBuilder& b, Data& out) { out.depth = b.create(name + ".depth", desc, fg::Usage::DepthAttachment); },
-            [&state, frame, fr, casters, hardware](const Data& out, const fg::PassResources& res) {
+            [&state, frame, fr, casters](const Data& out, const fg::PassResources& res) {
                 const fg::TextureDesc& d = res.desc(out.depth);
                 ShadowSettings::Raster raster = frame.settings->shadows.raster;
                 if (raster == ShadowSettings::Raster::Auto)
-                    raster = resolveAutoRaster(state, hardware, [&](ShadowSettings::Raster r) {
-                        drawAtlas(state, frame, fr, casters, r, hardware, res.texture(out.depth), d.width, d.height);
+                    raster = resolveAutoRaster(state, [&](ShadowSettings::Raster r) {
+                        drawAtlas(state, frame, fr, casters, r, res.texture(out.depth), d.width, d.height);
                     });
-                drawAtlas(state, frame, fr, casters, raster, hardware, res.texture(out.depth), d.width, d.height);
+                drawAtlas(state, frame, fr, casters, raster, res.texture(out.depth), d.width, d.height);
             });
         map.depth = data.depth;
         maps.push_back(std::move(map));

@@ -46,6 +46,7 @@ struct ShadowMapPass {
     gl::Program hardwareTowardProgram;
     gl::Program hardwareAwayProgram;
     std::optional<ConservativeRasterSupport> conservativeSupport;  // asked of the GPU on the first frame
+    bool hardwareConservative = false;  // this frame's conservative raster (set when its passes are added)
     bool warnedNoHardware = false;
     gl::Program plainProgram;  // --shadow-raster plain, and split's faces towards the light
     gl::Program awayProgram;   // --shadow-raster split: conservative, faces away from the light only
