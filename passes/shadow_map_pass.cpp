@@ -242,20 +242,30 @@ void drawAtlas(ShadowMapPass& state, const FrameData& frame, const ShadowFrustum
             if (hardware) {
                 // Every texel a triangle touches gets a fragment; no geometry shader, no box to clip to.
                 // Each facing in a draw of its own (the other culled, counter-clockwise in the light's
-                // window = towards it, as shadow_depth.geom), so each fragment shader knows its facing
-                // and the one towards the light can promise depth_greater.
+                // window = towards it, as shadow_depth.geom), towards the light first, so each fragment
+                // shader knows its facing and can promise depth_greater (shadow_depth.frag).
                 glEnable(GL_CONSERVATIVE_RASTERIZATION_NV);
                 glEnable(GL_CULL_FACE);
                 for (int facing = 0; facing < 2; ++facing) {
                     const GLuint prog = hardwareProgs[facing];
                     if (!prog) continue;
                     glCullFace(facing == 0 ? GL_BACK : GL_FRONT);
+                    if (facing == 1) {
+                        // Faces away write the nearest depth over the texel, up to (|dz/dx| + |dz/dy|) / 2
+                        // <= max(|dz/dx|, |dz/dy|) nearer than the centre: rasterised that much nearer
+                        // (and a quarter more, and 4 units, for the rounding between the rasteriser's
+                        // depth and the shader's plane), it stays at or in front of what they write.
+                        glEnable(GL_POLYGON_OFFSET_FILL);
+                        glPolygonOffset(-1.25f, -4.0f);
+                    }
                     glUseProgram(prog);
                     glProgramUniform4f(prog, glGetUniformLocation(prog, "uViewport"), float(x), float(y),
                                        float(fr.tileSize), float(fr.tileSize));
                     drawCasterList(frame, prog, glGetUniformLocation(prog, "uModelToClip"), fr.cascades[c].worldToClip,
                                    casters[c]);
                 }
+                glDisable(GL_POLYGON_OFFSET_FILL);
+                glPolygonOffset(frame.settings->shadows.slopeBias, 0.0f);
                 glDisable(GL_CULL_FACE);
                 glDisable(GL_CONSERVATIVE_RASTERIZATION_NV);
             }

@@ -29,18 +29,20 @@ void main() {
                                            vFacesAway == 1, uSlopeBias);
 }
 #elif defined(LP_SHADOW_HARDWARE_CONSERVATIVE)
-// One draw per facing (the other face culled), so each program can say which way its depth moves.
-// Towards the light: never nearer than the rasterised depth (max with gl_FragCoord.z: where the
-// texel's centre lies past the triangle's farthest vertex the centre depth is kept, not that
-// vertex's), so depth_greater holds and the early depth test can reject them as before. Away from
-// it: the nearest depth over the texel is nearer than the rasterised one, except where the clamp
-// to the triangle's depth range lifts it; no direction holds, so no layout is promised and the
-// depth test runs after the shader.
+// One draw per facing (the other culled), faces towards the light first, and each promises
+// depth_greater (the written depth is never nearer than the rasterised one), so the early depth
+// test can reject what lies behind what is already drawn: most faces away from the light lie behind
+// the faces towards it of their own mesh.
+// Towards the light: the maximum of the caster depth and the rasterised depth (where the texel's
+// centre lies past the triangle's farthest vertex the centre depth stays instead of that vertex's).
+// Away from it: the nearest depth over the texel, at least the triangle's nearest vertex's. That is
+// nearer than the centre, so that draw pulls its rasterised depth nearer still by polygon offset
+// (passes/shadow_map_pass.cpp: factor -1.25 >= the texel's half extent (|dz/dx| + |dz/dy|) / 2,
+// and a few units for rounding). No clamp to the farthest vertex: in a texel the triangle touches,
+// the nearest depth over the texel is at most the depth of a point of the triangle in it.
 layout(location = 0) pervertexNV in vec3 vWindow[3];
 uniform float uSlopeBias;
-#ifndef LP_SHADOW_FACES_AWAY
 layout(depth_greater) out float gl_FragDepth;
-#endif
 
 void main() {
     vec3 a = vWindow[0], b = vWindow[1], c = vWindow[2];
@@ -48,7 +50,9 @@ void main() {
     // The plane from the vertices, not dFdx/dFdy: exact, and unaffected by depth clamp.
     vec2 gradient = depthPlaneGradient(a, b, c);
 #ifdef LP_SHADOW_FACES_AWAY
-    gl_FragDepth = conservativeCasterDepth(gl_FragCoord.z, gradient, range, true, uSlopeBias);
+    // The centre's depth from the plane too: gl_FragCoord.z carries this draw's polygon offset.
+    float centre = a.z + dot(gradient, gl_FragCoord.xy - a.xy);
+    gl_FragDepth = conservativeCasterDepth(centre, gradient, vec2(range.x, 1.0), true, uSlopeBias);
 #else
     gl_FragDepth = max(conservativeCasterDepth(gl_FragCoord.z, gradient, range, false, uSlopeBias), gl_FragCoord.z);
 #endif
