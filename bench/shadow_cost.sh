@@ -13,7 +13,8 @@
 # first timed frame) and the frame. From the repository root on the GPU machine:
 #   bench/shadow_cost.sh BUNDLE OUTDIR    (BUNDLE: run, gl_tests, lib/; needs ../shared/assets)
 # Writes OUTDIR/shadow_cost.json (lightpass bench), OUTDIR/explain_*.txt, OUTDIR/shadow_cost.md
-# (bench/summarize_shadow_cost.py) and OUTDIR/auto_choice.txt (what --shadow-raster auto measured and chose).
+# (bench/summarize_shadow_cost.py), OUTDIR/auto_choice.txt (what --shadow-raster auto measured and chose)
+# and OUTDIR/shadow_cost_no_depth_write.md (the hardware rows again without their depth write).
 set -u
 B=$(cd "$1" && pwd); R=$2; mkdir -p $R
 S=scenes/gallery-flythrough.json
@@ -44,3 +45,23 @@ $B/run bench --scene $S --time 1 --fps 60 --frames 300 --warmup 30 --floors --si
   --vary '--shadow-culling|--no-shadow-culling' --vary "$VARY" \
   --timings-json $R/shadow_cost.json -q > /dev/null 2> $R/bench_progress.txt || { echo "bench failed"; tail -3 $R/bench_progress.txt; }
 python3 bench/summarize_shadow_cost.py $R/shadow_cost.json $R | tee $R/shadow_cost.md
+# What the hardware conservative raster's time is made of, culling on: the same draws (conservative
+# coverage, one draw per facing, the faces away offset nearer) with fragment shaders that write no
+# depth, from a patched copy of shaders/ through $LIGHTPASS_SHADER_DIR. A measurement only: its
+# atlas holds rasterised depths (it leaks); the difference to the rows above is the depth export and
+# what it costs the early depth test. Where the GPU lacks the hardware raster the rows fall back.
+P=$R/shaders_no_depth_write; rm -rf $P; cp -r shaders $P
+sed -i -e 's/^layout(depth_greater) out float gl_FragDepth;$//' \
+  -e 's/^    gl_FragDepth = conservativeCasterDepth(centre,/    float unwritten = conservativeCasterDepth(centre,/' \
+  -e 's/^    gl_FragDepth = max(conservativeCasterDepth(gl_FragCoord.z,/    float unwritten = max(conservativeCasterDepth(gl_FragCoord.z,/' \
+  $P/shadow_depth.frag
+if [ "$(grep -c 'float unwritten' $P/shadow_depth.frag)" = 2 ] && ! grep -q 'depth_greater) out' $P/shadow_depth.frag; then
+  LIGHTPASS_SHADER_DIR=$P $B/run bench --scene $S --time 1 --fps 60 --frames 300 --warmup 30 --floors --size 1920x1080 $COMMON \
+    --shadow-culling --vary '--shadow-raster conservative --shadow-conservative hardware|--shadow-raster split --shadow-conservative hardware' \
+    --timings-json $R/shadow_cost_no_depth_write.json -q > /dev/null 2> $R/bench_no_depth_write_progress.txt \
+    && { echo "Hardware conservative raster without the depth write (patched shaders: timing only, the atlas is wrong)"
+         python3 bench/summarize_shadow_cost.py $R/shadow_cost_no_depth_write.json $R; } | tee $R/shadow_cost_no_depth_write.md \
+    || { echo "no-depth-write bench failed"; tail -3 $R/bench_no_depth_write_progress.txt; }
+else
+  echo "shaders/shadow_depth.frag changed shape: the no-depth-write breakdown is skipped"
+fi
