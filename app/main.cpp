@@ -21,6 +21,7 @@
 #include "engine/post/backend_timings.hpp"
 #include "engine/post/post_config.hpp"
 #include "passes/post_backend.hpp"
+#include "passes/shadow_map_pass.hpp"
 #include "engine/core/log.hpp"
 #include "engine/gl/context.hpp"
 #include "engine/io/image_io.hpp"
@@ -100,6 +101,12 @@ int commandInfo() {
     printCachedPostChoices("post backend auto, cached on this GPU", false, [&](const std::vector<std::string>& key) {
         return key[0] == info.renderer && key[1] == info.version;
     });
+    const ConservativeRasterSupport conservative = queryConservativeRasterSupport();
+    if (conservative.hardware)
+        std::printf("shadow casters: conservative raster in hardware (GL_NV_conservative_raster, "
+                    "GL_NV_fragment_shader_barycentric; --shadow-conservative geometry-shader for the other)\n");
+    else
+        std::printf("shadow casters: conservative raster by geometry shader (%s)\n", conservative.reason.c_str());
     return 0;
 }
 
@@ -110,6 +117,15 @@ int commandGraph(const Options& o) {
     FrameData frame = makeFrameData(scene, settings, float(o.time));
     fg::FrameGraph graph;
     PassStates passes;  // never executed: describing a graph needs no GPU
+    if (o.explain) {
+        // Which conservative raster the shadow passes would use is the GPU's to say: asked of a
+        // headless context where one can be made, else the notes say what decides it.
+        try {
+            auto ctx = gl::createHeadlessContext();
+            passes.shadowMaps.conservativeSupport = queryConservativeRasterSupport();
+        } catch (const std::exception&) {
+        }
+    }
     buildFrameGraph(graph, passes, frame);
     graph.compile();
     checkDisabledPasses(graph, settings.disabledPasses);

@@ -1,11 +1,13 @@
 #!/usr/bin/env python3
 """Turns bench/shadow_cost.sh's `lightpass bench` JSON files into Markdown tables: per variant
-(--shadow-cache, --shadow-origin-step, caster culling, caster raster) the shadow passes' GPU ms summed
-over the suns (median, mean and the sum of the per-pass maxima: a cached pass is cheap on most
-frames and costly on the few that redraw, so the mean is what the target is judged on), the mean against the floor of drawing every atlas texel every frame (the atlases' depth
-bytes at the fragment fill rate) and measured/floor, the share of cascade tiles kept from an earlier
-frame (all cascades, then cascade 0..3), the frame, and the triangles each cascade drew at t = 1 s
-(from OUTDIR/explain_<culling>_<raster>.txt). The target (issue #19): the sum <= 2 ms.
+(--shadow-cache, --shadow-origin-step, caster culling, caster raster: conservative and split grown in
+hardware or by the geometry shader, the "grown by" column being what the pass used, from its explain
+notes) the shadow passes' GPU ms summed over the suns (median, mean and the sum of the per-pass
+maxima: a cached pass is cheap on most frames and costly on the few that redraw, so the mean is what
+the target is judged on), the mean against the floor of drawing every atlas texel every frame (the
+atlases' depth bytes at the fragment fill rate) and measured/floor, the share of cascade tiles kept
+from an earlier frame (all cascades, then cascade 0..3), the frame, and the triangles each cascade
+drew at t = 1 s (from OUTDIR/explain_<culling>_<raster>.txt). The target (issue #19): the sum <= 2 ms.
 
 usage: summarize_shadow_cost.py BENCH.json [BENCH.json ...] [--outdir OUTDIR]"""
 import json
@@ -21,12 +23,33 @@ def flag(flags, name, default):
     return m.group(1) if m else default
 
 
-def triangles(outdir, flags):
-    """'a+b+c+d' per light from the explain file of this variant, or '-'."""
+def raster_name(flags):
+    """The variant's raster as bench/shadow_cost.sh names it: conservative and split with the
+    conservative raster asked for (conservative-hardware, split-geometry-shader), else the raster."""
+    m = re.search(r"--shadow-raster (\w+)", flags)
+    raster = m.group(1) if m else "conservative"
+    c = re.search(r"--shadow-conservative ([\w-]+)", flags)
+    return f"{raster}-{c.group(1)}" if c and raster in ("conservative", "split") else raster
+
+
+def explain_path(outdir, flags):
     cull = "no-shadow-culling" if "--no-shadow-culling" in flags else "shadow-culling"
-    raster = flag(flags, "shadow-raster", "conservative")
-    path = os.path.join(outdir, f"explain_{cull}_{raster}.txt")
-    if not outdir or not os.path.exists(path):
+    return os.path.join(outdir, f"explain_{cull}_{raster_name(flags)}.txt")
+
+
+def conservative_used(outdir, flags):
+    """'hardware' / 'geometry shader' from the explain file's notes (what the pass drew with), or '-'."""
+    path = explain_path(outdir, flags)
+    if not os.path.exists(path):
+        return "-"
+    m = re.search(r"raster, (hardware|geometry shader) conservative", open(path).read())
+    return m.group(1) if m else "-"
+
+
+def triangles(outdir, flags):
+    """'a+b+c+d / total' per light from the explain file of this variant, or '-'."""
+    path = explain_path(outdir, flags)
+    if not os.path.exists(path):
         return "-"
     per_light = {}
     total = None
@@ -73,10 +96,10 @@ def table(path, outdir):
     d = json.load(open(path))
     common = d.get("common_flags", "")
     print(f"`{os.path.basename(path)}`: {d.get('device')}, {d.get('scene')}, common flags `{common}`\n")
-    print("| cache | origin step | culling | raster | shadow_map passes median ms | sum median | sum mean | "
+    print("| cache | origin step | culling | raster | grown by | shadow_map passes median ms | sum median | sum mean | "
           "sum of maxima | mean × atlas floor | tiles kept | kept per cascade % | frame median | mean ≤ 2 ms | "
           "triangles per cascade at t = 1 s |")
-    print("| --- | ---: | --- | --- | --- | ---: | ---: | ---: | ---: | ---: | --- | ---: | --- | --- |")
+    print("| --- | ---: | --- | --- | --- | --- | ---: | ---: | ---: | ---: | ---: | --- | ---: | --- | --- |")
     for run in d["runs"]:
         p = run["passes"]
         flags = common + " " + run["flags"]
@@ -89,8 +112,8 @@ def table(path, outdir):
         frame = p.get("frame", {}).get("median_ms")
         kept, per = hit_rates(run)
         print(f"| {flag(flags, 'shadow-cache', 'on')} | {flag(flags, 'shadow-origin-step', '0.0625')} | "
-              f"{'off' if '--no-shadow-culling' in flags else 'on'} | {flag(flags, 'shadow-raster', 'conservative')} | "
-              f"{each} | {ms:.3f} | {mean:.3f} | {most:.3f} | {f'{mean / floor:.2f}× of {floor:.2f}' if floor else '-'} | "
+              f"{'off' if '--no-shadow-culling' in flags else 'on'} | {raster_name(flags)} | "
+              f"{conservative_used(outdir, flags)} | {each} | {ms:.3f} | {mean:.3f} | {most:.3f} | {f'{mean / floor:.2f}× of {floor:.2f}' if floor else '-'} | "
               f"{kept} | {per} | {'-' if frame is None else f'{frame:.3f}'} | "
               f"{'yes' if shadow and mean <= TARGET_MS else 'no'} | "
               f"{triangles(outdir, flags)} |")

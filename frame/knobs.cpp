@@ -253,7 +253,7 @@ std::vector<KnobEntry> makeKnobTable() {
                                  [](bool on) { return on ? "on" : "off"; });
         k.flags = {valueFlag("--shadow-cache")};
         k.help = "keep each sun's shadow atlas across frames and redraw a cascade only when its light matrix, the "
-                 "casters, the caster raster or the slope bias changed";
+                 "casters, the caster raster (hardware or geometry-shader growth included) or the slope bias changed";
         k.choiceNoun = "setting";
         k.panel = {PanelSection::Shadows, PanelWidget::Combo, "cascade cache", ""};
         t.push_back(std::move(k));
@@ -272,6 +272,20 @@ std::vector<KnobEntry> makeKnobTable() {
                    "that much less resolution, fewer redraws with --shadow-cache on a moving camera; 0 (a one-texel grid) "
                    "is the reference",
                    shadowsOn};
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = choiceKnob("shadow-conservative", [](auto& s) -> auto& { return s.shadows.conservativeRaster; },
+                                 std::vector<ShadowSettings::ConservativeRaster>{ShadowSettings::ConservativeRaster::Auto,
+                                                                                 ShadowSettings::ConservativeRaster::Hardware,
+                                                                                 ShadowSettings::ConservativeRaster::GeometryShader},
+                                 ShadowSettings::conservativeRasterName);
+        k.flags = {valueFlag("--shadow-conservative")};
+        k.choiceNoun = "conservative raster";
+        k.help = "how conservative and split grow casters: hardware (GL_NV_conservative_raster, no geometry shader), "
+                 "geometry-shader, or auto (hardware where the GPU has GL_NV_conservative_raster and "
+                 "GL_NV_fragment_shader_barycentric)";
+        k.panel = {PanelSection::Shadows, PanelWidget::Combo, "conservative raster", ""};
         t.push_back(std::move(k));
     }
     {

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <optional>
 
 #include <glm/gtc/type_ptr.hpp>
 
@@ -35,10 +36,25 @@ std::filesystem::path shadowRasterCachePath() {
     return std::filesystem::path("lightpass_shadow_raster.txt");
 }
 
+ConservativeRasterSupport queryConservativeRasterSupport() {
+    ConservativeRasterSupport support;
+    if (!GLAD_GL_NV_conservative_raster) support.reason = "no GL_NV_conservative_raster";
+    else if (!GLAD_GL_NV_fragment_shader_barycentric)
+        support.reason = "GL_NV_conservative_raster without GL_NV_fragment_shader_barycentric (the fragment shader needs the triangle's vertices)";
+    support.hardware = support.reason.empty();
+    return support;
+}
+
+bool usesHardwareConservative(ShadowSettings::ConservativeRaster setting, const ConservativeRasterSupport& support) {
+    return setting != ShadowSettings::ConservativeRaster::GeometryShader && support.hardware;
+}
+
+const char* conservativeRasterLabel(bool hardware) { return hardware ? "hardware" : "geometry shader"; }
+
 bool ShadowTileKey::operator==(const ShadowTileKey& o) const {
     // Bit for bit: a matrix that differs in any bit may move a caster's depth by an ulp.
     return std::memcmp(&worldToClip, &o.worldToClip, sizeof worldToClip) == 0 && tileSize == o.tileSize &&
-           column == o.column && row == o.row && raster == o.raster &&
+           column == o.column && row == o.row && raster == o.raster && hardwareConservative == o.hardwareConservative &&
            std::memcmp(&slopeBias, &o.slopeBias, sizeof slopeBias) == 0 && cullCasters == o.cullCasters;
 }
 
@@ -89,8 +105,13 @@ uint64_t casterSignature(const FrameData& frame) {
     return f.h;
 }
 
+bool growsCastersInHardware(ShadowSettings::Raster resolvedRaster, bool hardwareConservative) {
+    return hardwareConservative &&
+           (resolvedRaster == ShadowSettings::Raster::Conservative || resolvedRaster == ShadowSettings::Raster::Split);
+}
+
 std::vector<ShadowTileKey> shadowTileKeys(const ShadowFrustum& fr, const ShadowSettings& settings,
-                                          ShadowSettings::Raster resolvedRaster) {
+                                          ShadowSettings::Raster resolvedRaster, bool hardwareConservative) {
     std::vector<ShadowTileKey> keys(fr.cascades.size());
     for (size_t c = 0; c < keys.size(); ++c) {
         keys[c].worldToClip = fr.cascades[c].worldToClip;
@@ -98,6 +119,7 @@ std::vector<ShadowTileKey> shadowTileKeys(const ShadowFrustum& fr, const ShadowS
         keys[c].column = int(c % size_t(fr.columns));
         keys[c].row = int(c / size_t(fr.columns));
         keys[c].raster = resolvedRaster;
+        keys[c].hardwareConservative = growsCastersInHardware(resolvedRaster, hardwareConservative);
         keys[c].slopeBias = settings.slopeBias;
         keys[c].cullCasters = settings.cullCasters;
     }
@@ -121,6 +143,8 @@ std::vector<std::string> shadowTilesToDraw(const ShadowAtlasCache* cache, int wi
         const ShadowTileKey& old = *cache->tiles[c];
         if (old == k) continue;
         if (old.raster != k.raster) why[c] = "caster raster changed";
+        else if (old.hardwareConservative != k.hardwareConservative)
+            why[c] = std::string("conservative raster changed to ") + conservativeRasterLabel(k.hardwareConservative);
         else if (old.slopeBias != k.slopeBias) why[c] = "slope bias changed";
         else if (old.cullCasters != k.cullCasters) why[c] = "caster culling changed";
         else if (old.tileSize != k.tileSize) why[c] = "tile size changed";
@@ -258,15 +282,24 @@ void drawCascadesByCompute(ShadowMapPass& state, const FrameData& frame, const S
 
 // Draws the cascades' casters into the atlas `depthTexture` (width x height) with `raster` (not Auto),
 // only the tiles of the cascades `redraw` marks (each cleared first; all of them: the whole atlas
-// cleared); the other tiles are left as they are.
+// cleared); the other tiles are left as they are. Conservative and split grow casters by
+// GL_NV_conservative_raster where state.hardwareConservative, else by the geometry shader.
 void drawAtlas(ShadowMapPass& state, const FrameData& frame, const ShadowFrustum& fr, const std::vector<CasterList>& casters,
                ShadowSettings::Raster raster, GLuint depthTexture, int width, int height, const std::vector<bool>& redraw) {
     using Raster = ShadowSettings::Raster;
         if (!state.fbo) state.fbo = gl::makeFramebuffer("shadow_map");
-        if (raster == Raster::Conservative && !state.program)
+        const bool hardware = growsCastersInHardware(raster, state.hardwareConservative);
+        if (hardware && raster == Raster::Conservative && !state.hardwareTowardProgram)
+            state.hardwareTowardProgram = frame.shaders->graphics("shadow_depth.vert", "shadow_depth.frag",
+                                                                  std::vector<std::string>{"LP_SHADOW_HARDWARE_CONSERVATIVE"});
+        if (hardware && !state.hardwareAwayProgram)
+            state.hardwareAwayProgram = frame.shaders->graphics("shadow_depth.vert", "shadow_depth.frag",
+                                                                std::vector<std::string>{"LP_SHADOW_HARDWARE_CONSERVATIVE",
+                                                                                         "LP_SHADOW_FACES_AWAY"});
+        if (!hardware && raster == Raster::Conservative && !state.program)
             state.program = frame.shaders->graphics("shadow_depth.vert", "shadow_depth.geom", "shadow_depth.frag",
                                                     {"LP_SHADOW_CONSERVATIVE"});
-        if (raster == Raster::Split && !state.awayProgram)
+        if (!hardware && raster == Raster::Split && !state.awayProgram)
             state.awayProgram = frame.shaders->graphics("shadow_depth.vert", "shadow_depth.geom", "shadow_depth.frag",
                                                         {"LP_SHADOW_CONSERVATIVE", "LP_SHADOW_AWAY_ONLY"});
         if ((raster == Raster::Plain || raster == Raster::Split) && !state.plainProgram)
@@ -281,6 +314,10 @@ void drawAtlas(ShadowMapPass& state, const FrameData& frame, const ShadowFrustum
         gl::ScopedEnable blend(GL_BLEND, false);
         gl::ScopedEnable clamp(GL_DEPTH_CLAMP, true);  // casters past the light's near plane still cast
         gl::ScopedEnable offset(GL_POLYGON_OFFSET_FILL, false);
+        // GL_CONSERVATIVE_RASTERIZATION_NV exists only with the extension: off but around the hardware
+        // draws, and put back as found (the GL state check watches it where it exists).
+        std::optional<gl::ScopedEnable> conservative;
+        if (GLAD_GL_NV_conservative_raster) conservative.emplace(GL_CONSERVATIVE_RASTERIZATION_NV, false);
         gl::ScopedRasterState saved;  // depth function and mask, polygon offset, cull face
         glDepthFunc(GL_LESS);
         glDepthMask(GL_TRUE);
@@ -301,16 +338,19 @@ void drawAtlas(ShadowMapPass& state, const FrameData& frame, const ShadowFrustum
 
         GLint clipDepth = GL_NEGATIVE_ONE_TO_ONE;
         glGetIntegerv(GL_CLIP_DEPTH_MODE, &clipDepth);
-        const GLuint conservativeProg = raster == Raster::Conservative ? state.program.id()
-                                        : raster == Raster::Split      ? state.awayProgram.id()
-                                                                       : 0;
-        if (conservativeProg) {
-            glProgramUniform1i(conservativeProg, glGetUniformLocation(conservativeProg, "uDepthZeroToOne"),
-                               clipDepth == GL_ZERO_TO_ONE ? 1 : 0);
+        const GLuint conservativeProg = hardware                       ? 0
+                                        : raster == Raster::Conservative ? state.program.id()
+                                        : raster == Raster::Split        ? state.awayProgram.id()
+                                                                         : 0;
+        // Hardware: faces towards the light (conservative only; split draws them plainly), then away.
+        const GLuint hardwareProgs[2] = {hardware && raster == Raster::Conservative ? state.hardwareTowardProgram.id() : 0,
+                                         hardware ? state.hardwareAwayProgram.id() : 0};
+        for (GLuint prog : {conservativeProg, hardwareProgs[0], hardwareProgs[1]}) {
+            if (!prog) continue;
+            glProgramUniform1i(prog, glGetUniformLocation(prog, "uDepthZeroToOne"), clipDepth == GL_ZERO_TO_ONE ? 1 : 0);
             // Slope-scaled bias against acne, for the faces towards the light only (shadow_depth.frag);
             // the constant part is the receiver's (see shadow.glsl).
-            glProgramUniform1f(conservativeProg, glGetUniformLocation(conservativeProg, "uSlopeBias"),
-                               frame.settings->shadows.slopeBias);
+            glProgramUniform1f(prog, glGetUniformLocation(prog, "uSlopeBias"), frame.settings->shadows.slopeBias);
         }
         if (raster == Raster::Compute) {
             gl::ScopedEnable scissor(GL_SCISSOR_TEST, false);  // drawCascadesByCompute scissors per tile
@@ -346,6 +386,36 @@ void drawAtlas(ShadowMapPass& state, const FrameData& frame, const ShadowFrustum
                                    float(y), float(fr.tileSize), float(fr.tileSize));
                 drawCasterList(frame, conservativeProg, glGetUniformLocation(conservativeProg, "uModelToClip"),
                                fr.cascades[c].worldToClip, casters[c]);
+            }
+            if (hardware) {
+                // Every texel a triangle touches gets a fragment; no geometry shader, no box to clip to.
+                // Each facing in a draw of its own (the other culled, counter-clockwise in the light's
+                // window = towards it, as shadow_depth.geom), towards the light first, so each fragment
+                // shader knows its facing and can promise depth_greater (shadow_depth.frag).
+                glEnable(GL_CONSERVATIVE_RASTERIZATION_NV);
+                glEnable(GL_CULL_FACE);
+                for (int facing = 0; facing < 2; ++facing) {
+                    const GLuint prog = hardwareProgs[facing];
+                    if (!prog) continue;
+                    glCullFace(facing == 0 ? GL_BACK : GL_FRONT);
+                    if (facing == 1) {
+                        // Faces away write the nearest depth over the texel, up to (|dz/dx| + |dz/dy|) / 2
+                        // <= max(|dz/dx|, |dz/dy|) nearer than the centre: rasterised that much nearer
+                        // (and a quarter more, and 4 units, for the rounding between the rasteriser's
+                        // depth and the shader's plane), it stays at or in front of what they write.
+                        glEnable(GL_POLYGON_OFFSET_FILL);
+                        glPolygonOffset(-1.25f, -4.0f);
+                    }
+                    glUseProgram(prog);
+                    glProgramUniform4f(prog, glGetUniformLocation(prog, "uViewport"), float(x), float(y),
+                                       float(fr.tileSize), float(fr.tileSize));
+                    drawCasterList(frame, prog, glGetUniformLocation(prog, "uModelToClip"), fr.cascades[c].worldToClip,
+                                   casters[c]);
+                }
+                glDisable(GL_POLYGON_OFFSET_FILL);
+                glPolygonOffset(frame.settings->shadows.slopeBias, 0.0f);
+                glDisable(GL_CULL_FACE);
+                glDisable(GL_CONSERVATIVE_RASTERIZATION_NV);
             }
         }
         glBindVertexArray(0);
@@ -420,7 +490,8 @@ ShadowSettings::Raster resolveAutoRaster(ShadowMapPass& state, DrawFn&& draw) {
         }
     }
     state.autoReport = std::string("shadow raster auto: ") + ShadowSettings::rasterName(state.autoRaster) + " (measured: " +
-                       times + "; cached in " + path.string() + ")";
+                       times + "; conservative and split on the " + conservativeRasterLabel(state.hardwareConservative) +
+                       " conservative raster; cached in " + path.string() + ")";
     logInfo(state.autoReport);
     // Written beside and renamed over the cache: a failed write leaves the old file whole.
     std::error_code ec;
@@ -438,6 +509,30 @@ ShadowSettings::Raster resolveAutoRaster(ShadowMapPass& state, DrawFn&& draw) {
         logWarn(path.string() + ": could not write the shadow raster cache; auto measures again next start");
     }
     return state.autoRaster;
+}
+
+// Sets state.hardwareConservative for this frame (the GPU asked once: a context is current where the
+// scene is on the GPU; 'lightpass graph --explain' sets state.conservativeSupport from a context of
+// its own) and returns what the cascades' notes add about it (nothing for rasters that grow none).
+std::string chooseConservativeRaster(ShadowMapPass& state, const FrameData& frame) {
+    if (frame.gpu && !state.conservativeSupport) state.conservativeSupport = queryConservativeRasterSupport();
+    const ShadowSettings::ConservativeRaster setting = frame.settings->shadows.conservativeRaster;
+    state.hardwareConservative = state.conservativeSupport && usesHardwareConservative(setting, *state.conservativeSupport);
+    if (setting == ShadowSettings::ConservativeRaster::Hardware && state.conservativeSupport &&
+        !state.conservativeSupport->hardware && !state.warnedNoHardware) {
+        logWarn("--shadow-conservative hardware: this GPU has " + state.conservativeSupport->reason +
+                "; conservative casters use the geometry shader");
+        state.warnedNoHardware = true;
+    }
+    const ShadowSettings::Raster raster = frame.settings->shadows.raster;
+    if (raster != ShadowSettings::Raster::Conservative && raster != ShadowSettings::Raster::Split &&
+        raster != ShadowSettings::Raster::Auto)
+        return "";
+    if (setting == ShadowSettings::ConservativeRaster::GeometryShader) return ", geometry shader conservative";
+    if (!state.conservativeSupport)
+        return ", hardware conservative where the GPU has GL_NV_conservative_raster, else geometry shader";
+    return state.hardwareConservative ? ", hardware conservative"
+                                      : ", geometry shader conservative: " + state.conservativeSupport->reason;
 }
 
 }  // namespace
@@ -471,6 +566,8 @@ ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const
                                                    ? frame.settings->shadows.raster
                                                : state.autoResolved ? state.autoRaster
                                                                     : ShadowSettings::Raster::Auto;
+    const std::string rasterNote = std::string(ShadowSettings::rasterName(frame.settings->shadows.raster)) + " raster" +
+                                   chooseConservativeRaster(state, frame);
     for (int light : shadowed) {
         LightShadowMap map;
         map.light = light;
@@ -482,7 +579,7 @@ ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const
             graph.skipPass(name + " cascades", why);
         const fg::TextureDesc desc{fr.tileSize * fr.columns, fr.tileSize * fr.rows, GL_DEPTH_COMPONENT32F};
         // --shadow-cache: which tiles the kept atlas already holds (empty reason: kept).
-        const std::vector<ShadowTileKey> keys = shadowTileKeys(fr, frame.settings->shadows, knownRaster);
+        const std::vector<ShadowTileKey> keys = shadowTileKeys(fr, frame.settings->shadows, knownRaster, state.hardwareConservative);
         const auto kept = state.atlases.find(light);
         std::vector<std::string> why =
             caching ? shadowTilesToDraw(kept == state.atlases.end() ? nullptr : &kept->second, desc.width, desc.height,
@@ -501,7 +598,7 @@ ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const
             graph.notePass(name, "cascade " + std::to_string(c) + ": " + std::to_string(l.draws.size()) + " draws, " +
                                      std::to_string(l.clusters) + " of " + std::to_string(clusters.size()) + " clusters, " +
                                      std::to_string(l.triangles) + " of " + std::to_string(sceneTriangles) + " triangles (" +
-                                     ShadowSettings::rasterName(frame.settings->shadows.raster) + " raster" +
+                                     rasterNote +
                                      (frame.settings->shadows.cullCasters ? "" : ", culling off") + "); " +
                                      (redraw[c] ? "redrawn (" + why[c] + ")" : std::string("kept (unchanged)")));
         }
@@ -553,6 +650,7 @@ ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const
                     if (redraw[c]) {
                         a.tiles[c] = keys[c];
                         a.tiles[c]->raster = raster;
+                        a.tiles[c]->hardwareConservative = growsCastersInHardware(raster, s->hardwareConservative);
                     }
             });
         map.depth = data.depth;

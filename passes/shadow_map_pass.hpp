@@ -8,13 +8,16 @@
 // full-atlas draw turns into the D32F atlas; triangles whose window box exceeds
 // kComputeRasterMaxTexels in x or y are drawn by the hardware plain path after it), or auto: the
 // fastest of the four on this GPU, measured once on the first frame and cached per GPU.
+// Conservative and split grow casters by GL_NV_conservative_raster where the GPU has it (and
+// GL_NV_fragment_shader_barycentric), else by a geometry shader (--shadow-conservative).
 // No shadow-casting light, or shadows switched off: no pass at all.
 //
 // --shadow-cache on (the default): each light's atlas is a persistent texture of ShadowMapPass,
 // imported into every frame's graph (as TAA's history is), and a cascade's tile is redrawn only when
 // what it would hold changed: its key (ShadowTileKey: the light's world-to-clip matrix bit for bit,
 // which carries the sun direction, the texel-snapped square and the depth range; the tile's place
-// and size; the resolved raster; the slope bias; culling) or the casters (casterSignature: the scene
+// and size; the resolved raster and, for conservative and split, whether hardware or the geometry
+// shader grew the casters; the slope bias; culling) or the casters (casterSignature: the scene
 // on the GPU, every mesh's model matrix and which materials cast). A kept tile is exactly what a
 // redraw would write: nothing a tile's depth depends on is outside its key. 'lightpass graph
 // --explain' and the pass notes say per cascade "redrawn (why)" or "kept"; render and bench count
@@ -37,11 +40,27 @@ namespace lp {
 
 constexpr float kComputeRasterMaxTexels = 64.0f;
 
+// Whether this GPU can grow shadow casters in hardware: GL_NV_conservative_raster for the coverage and
+// GL_NV_fragment_shader_barycentric for the triangle's vertices in the fragment shader (its depth
+// plane and range). `reason` says what is missing when `hardware` is false.
+struct ConservativeRasterSupport {
+    bool hardware = false;
+    std::string reason;
+};
+ConservativeRasterSupport queryConservativeRasterSupport();  // needs a current context
+// Whether --shadow-conservative `setting` takes the hardware path on a GPU with `support` (auto and
+// hardware do where it exists; hardware without it falls back to the geometry shader with a warning).
+bool usesHardwareConservative(ShadowSettings::ConservativeRaster setting, const ConservativeRasterSupport& support);
+const char* conservativeRasterLabel(bool hardware);  // "hardware" / "geometry shader"
+
 // What one atlas tile holds: equal keys (and equal casters) give bit-identical depth.
 struct ShadowTileKey {
     glm::mat4 worldToClip{1.0f};
     int tileSize = 0, column = 0, row = 0;
     ShadowSettings::Raster raster = ShadowSettings::Raster::Conservative;  // resolved (never Auto)
+    // Conservative and split only: grown by GL_NV_conservative_raster (true) or the geometry shader;
+    // the two give slightly different depth (the hardware's nearest-over-texel vs the GS's clamp).
+    bool hardwareConservative = false;
     float slopeBias = 0.0f;
     bool cullCasters = true;
     bool operator==(const ShadowTileKey& o) const;
@@ -64,6 +83,13 @@ struct ShadowCacheStats {
 
 struct ShadowMapPass {
     gl::Program program;       // conservative casters (shadow_depth.geom)
+    // Hardware conservative casters (GL_CONSERVATIVE_RASTERIZATION_NV, no geometry shader): the faces
+    // towards the light (conservative only) and the faces away from it (conservative and split).
+    gl::Program hardwareTowardProgram;
+    gl::Program hardwareAwayProgram;
+    std::optional<ConservativeRasterSupport> conservativeSupport;  // asked of the GPU on the first frame
+    bool hardwareConservative = false;  // this frame's conservative raster (set when its passes are added)
+    bool warnedNoHardware = false;
     gl::Program plainProgram;  // --shadow-raster plain, and split's faces towards the light
     gl::Program awayProgram;   // --shadow-raster split: conservative, faces away from the light only
     gl::Framebuffer fbo;
@@ -95,8 +121,12 @@ uint64_t casterSignature(const FrameData& frame);
 // holds exactly what it would draw (keys from shadowTileKeys).
 std::vector<std::string> shadowTilesToDraw(const ShadowAtlasCache* cache, int width, int height, uint64_t casters,
                                            const std::vector<ShadowTileKey>& keys);
+// hardwareConservative: this frame grows conservative and split casters by GL_NV_conservative_raster
+// (ShadowMapPass::hardwareConservative); the keys record it for those two rasters only.
 std::vector<ShadowTileKey> shadowTileKeys(const ShadowFrustum& frustum, const ShadowSettings& settings,
-                                          ShadowSettings::Raster resolvedRaster);
+                                          ShadowSettings::Raster resolvedRaster, bool hardwareConservative);
+// Whether `resolvedRaster` grows its casters by GL_NV_conservative_raster (conservative and split only).
+bool growsCastersInHardware(ShadowSettings::Raster resolvedRaster, bool hardwareConservative);
 
 // --shadow-raster auto's cache: one line per GPU, "<raster>\t<GL_VENDOR / GL_RENDERER / GL_VERSION>",
 // in $LIGHTPASS_CACHE_DIR/shadow_raster.txt, else $XDG_CACHE_HOME/lightpass/, else ~/.cache/lightpass/.

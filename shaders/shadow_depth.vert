@@ -2,4 +2,17 @@
 // Depth-only: positions into one cascade's light clip space.
 layout(location = 0) in vec3 inPosition;
 uniform mat4 uModelToClip;
-void main() { gl_Position = uModelToClip * vec4(inPosition, 1.0); }
+#ifdef LP_SHADOW_HARDWARE_CONSERVATIVE
+// The hardware conservative raster's fragment shader reads each triangle's three vertices
+// (GL_NV_fragment_shader_barycentric) as window xy (texels) and window depth.
+uniform vec4 uViewport;       // x, y, width, height of the cascade's tile in the atlas (texels)
+uniform int uDepthZeroToOne;  // 1 when clip depth is 0..1 (glClipControl), else -1..1
+layout(location = 0) out vec3 vWindow;
+#endif
+void main() {
+    gl_Position = uModelToClip * vec4(inPosition, 1.0);
+#ifdef LP_SHADOW_HARDWARE_CONSERVATIVE
+    vec3 ndc = gl_Position.xyz / gl_Position.w;  // orthographic light: w = 1
+    vWindow = vec3((ndc.xy * 0.5 + 0.5) * uViewport.zw + uViewport.xy, uDepthZeroToOne == 1 ? ndc.z : ndc.z * 0.5 + 0.5);
+#endif
+}

@@ -25,6 +25,10 @@ WatchedState captureWatchedState() {
         {GL_TEXTURE_CUBE_MAP_SEAMLESS, "GL_TEXTURE_CUBE_MAP_SEAMLESS"}, {GL_RASTERIZER_DISCARD, "GL_RASTERIZER_DISCARD"},
         {GL_FRAMEBUFFER_SRGB, "GL_FRAMEBUFFER_SRGB"}};
     for (const auto& [cap, name] : caps) s.items.emplace_back(name, glIsEnabled(cap));
+    // Only where the extension exists (asking for it elsewhere is a GL error); the shadow pass turns
+    // it on for its hardware conservative casters.
+    if (GLAD_GL_NV_conservative_raster)
+        s.items.emplace_back("GL_CONSERVATIVE_RASTERIZATION_NV", glIsEnabled(GL_CONSERVATIVE_RASTERIZATION_NV));
     addInt(s, "GL_BLEND_SRC_RGB", GL_BLEND_SRC_RGB);
     addInt(s, "GL_BLEND_DST_RGB", GL_BLEND_DST_RGB);
     addInt(s, "GL_BLEND_SRC_ALPHA", GL_BLEND_SRC_ALPHA);

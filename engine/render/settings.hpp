@@ -80,6 +80,17 @@ struct ShadowSettings {         // directional-light shadow maps (passes/shadow_
                                     : "conservative";
     }
 
+    // How conservative and split grow their casters: hardware (GL_NV_conservative_raster, the nearest
+    // depth over the texel from the triangle's depth plane in the fragment shader, needs
+    // GL_NV_fragment_shader_barycentric for its vertices; no geometry shader), geometry-shader
+    // (shadow_depth.geom, every GPU), or auto: hardware where the GPU has both extensions. hardware
+    // on a GPU without them falls back to the geometry shader with a warning.
+    enum class ConservativeRaster { Auto, Hardware, GeometryShader };
+    ConservativeRaster conservativeRaster = ConservativeRaster::Auto;
+    static const char* conservativeRasterName(ConservativeRaster c) {
+        return c == ConservativeRaster::Hardware ? "hardware" : c == ConservativeRaster::GeometryShader ? "geometry-shader" : "auto";
+    }
+
     static const char* filterName(Filter f) {
         switch (f) {
             case Filter::Off: return "off";

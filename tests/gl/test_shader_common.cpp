@@ -5,6 +5,8 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <random>
+#include <string>
 
 #include "engine/gl/handles.hpp"
 #include "tests/gl/gl_fixture.hpp"
@@ -255,4 +257,120 @@ TEST(ShaderHdrInspect, EvFalseColourBandOfKnownRadiance) {
         EXPECT_EQ(int(out[i].x), expected[i]) << "L " << in[i].x;
         if (expected[i] == 0) EXPECT_EQ(glm::vec3(out[i].y, out[i].z, out[i].w), glm::vec3(0.0f, 0.85f, 0.0f));  // green
     }
+}
+
+namespace {
+// One triangle in window space (xy in texels, depth) and a texel centre that it touches.
+struct CasterTexelCase {
+    glm::dvec3 a, b, c;
+    glm::dvec2 centre;
+};
+
+glm::dvec2 depthPlaneGradientRef(const CasterTexelCase& t) {
+    // dz = g . (p - a) through b and c: two equations in g, solved by Cramer's rule.
+    const glm::dvec2 e1 = glm::dvec2(t.b) - glm::dvec2(t.a), e2 = glm::dvec2(t.c) - glm::dvec2(t.a);
+    const double det = e1.x * e2.y - e1.y * e2.x, dz1 = t.b.z - t.a.z, dz2 = t.c.z - t.a.z;
+    if (det == 0.0) return glm::dvec2(0.0);
+    return glm::dvec2((dz1 * e2.y - dz2 * e1.y) / det, (e1.x * dz2 - e2.x * dz1) / det);
+}
+
+double planeDepth(const CasterTexelCase& t, glm::dvec2 g, glm::dvec2 p) { return t.a.z + glm::dot(g, p - glm::dvec2(t.a)); }
+
+bool insideTriangle(const CasterTexelCase& t, glm::dvec2 p) {
+    auto edge = [](glm::dvec3 u, glm::dvec3 v, glm::dvec2 q) { return (v.x - u.x) * (q.y - u.y) - (v.y - u.y) * (q.x - u.x); };
+    const double e0 = edge(t.a, t.b, p), e1 = edge(t.b, t.c, p), e2 = edge(t.c, t.a, p);
+    return (e0 >= 0 && e1 >= 0 && e2 >= 0) || (e0 <= 0 && e1 <= 0 && e2 <= 0);
+}
+}  // namespace
+
+// shaders/common/shadow_caster_depth.glsl against double precision on random triangles (xy within a
+// 64-texel box at up to 256 texels from the origin, depth in [0, 1]) and texel centres within 0.7
+// texels of them: the plane's gradient within 1e-4 relative (x 64 / area for thin ones), and the
+// depth a caster writes in the texel: faces away from the light the plane's minimum over the
+// texel's four corners, faces towards it the centre depth + slope bias x max(|dz/dx|, |dz/dy|),
+// both clamped to the triangle's depth range (within the gradient's error over the distance from
+// the first vertex). The property that closes a crease, checked on 16 x 16 points of each texel: a
+// face away from the light never writes a depth farther than any point of the triangle inside that
+// texel. A zero-area triangle has gradient 0.
+TEST(ShaderShadowCasterDepth, NearestDepthOverTheTexelMatchesTheDepthPlane) {
+    std::mt19937 rng(16);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    std::vector<CasterTexelCase> cases;
+    while (cases.size() < 400) {
+        CasterTexelCase t;
+        const glm::dvec2 origin(std::floor(unit(rng) * 192.0), std::floor(unit(rng) * 192.0));
+        const double extent = cases.size() % 4 == 0 ? 2.0 : 64.0;  // every 4th small (a few texels)
+        auto vertex = [&] { return glm::dvec3(glm::dvec2(float(origin.x + unit(rng) * extent), float(origin.y + unit(rng) * extent)),
+                                              float(unit(rng))); };
+        t.a = vertex();
+        t.b = vertex();
+        t.c = vertex();
+        if (cases.size() % 20 == 0) t.c = glm::dvec3(t.a.x, t.a.y, t.c.z);  // zero area: two vertices at one point
+        if (cases.size() % 20 == 10) t.b.y = t.c.y = t.a.y;                 // zero area: on one row
+        // A texel centre near the triangle: a point of it, moved by up to 0.7 texels.
+        const double u = unit(rng), v = unit(rng) * (1.0 - u);
+        const glm::dvec2 p = glm::dvec2(t.a) + u * (glm::dvec2(t.b) - glm::dvec2(t.a)) + v * (glm::dvec2(t.c) - glm::dvec2(t.a));
+        t.centre = glm::floor(p + glm::dvec2(unit(rng) - 0.5, unit(rng) - 0.5) * 1.4) + 0.5;
+        cases.push_back(t);
+    }
+    const float slopeBias = 1.5f;
+    std::vector<glm::vec4> in;
+    for (const CasterTexelCase& t : cases) {
+        in.push_back(glm::vec4(float(t.a.x), float(t.a.y), float(t.a.z), float(t.b.x)));
+        in.push_back(glm::vec4(float(t.b.y), float(t.b.z), float(t.c.x), float(t.c.y)));
+        in.push_back(glm::vec4(float(t.c.z), float(t.centre.x), float(t.centre.y), slopeBias));
+    }
+    const std::string body = R"(
+        uint i = gl_GlobalInvocationID.x;
+        if (i % 3u != 0u) return vec4(0.0);
+        vec4 p = inData[i], q = inData[i + 1u], r = inData[i + 2u];
+        vec3 a = p.xyz, b = vec3(p.w, q.xy), c = vec3(q.zw, r.x);
+        vec2 g = depthPlaneGradient(a, b, c);
+        float centreDepth = a.z + dot(g, r.yz - a.xy);
+        vec2 range = vec2(min(a.z, min(b.z, c.z)), max(a.z, max(b.z, c.z)));
+        return vec4(g, conservativeCasterDepth(centreDepth, g, range, true, r.w),
+                    conservativeCasterDepth(centreDepth, g, range, false, r.w));)";
+    const std::vector<glm::vec4> out = runGlsl({"common/shadow_caster_depth.glsl"}, body, in);
+    int zeroArea = 0, checkedPoints = 0;
+    for (size_t k = 0; k < cases.size(); ++k) {
+        const CasterTexelCase& t = cases[k];
+        const glm::vec4 got = out[3 * k];
+        // The reference from the float inputs the shader saw.
+        const glm::dvec2 g = depthPlaneGradientRef(t);
+        const glm::dvec2 e1 = glm::dvec2(t.b) - glm::dvec2(t.a), e2 = glm::dvec2(t.c) - glm::dvec2(t.a);
+        const double area = std::abs(e1.x * e2.y - e1.y * e2.x);
+        const double lo = std::min({t.a.z, t.b.z, t.c.z}), hi = std::max({t.a.z, t.b.z, t.c.z});
+        const std::string what = "case " + std::to_string(k) + ", area " + std::to_string(area);
+        ASSERT_TRUE(std::isfinite(got.x) && std::isfinite(got.y) && std::isfinite(got.z) && std::isfinite(got.w)) << what;
+        if (area == 0.0) {
+            ++zeroArea;
+            EXPECT_EQ(got.x, 0.0f) << what;
+            EXPECT_EQ(got.y, 0.0f) << what;
+            continue;
+        }
+        // Float's rounding of the edge products grows as the triangle thins: relative to 1 / area.
+        const double gradientTolerance = 1e-4 * (std::abs(g.x) + std::abs(g.y)) * std::max(1.0, 64.0 / area);
+        EXPECT_NEAR(got.x, g.x, gradientTolerance) << what;
+        EXPECT_NEAR(got.y, g.y, gradientTolerance) << what;
+        if (area < 1.0) continue;  // a sliver: its plane is too steep to compare within a texel
+        double corners = 1e30;
+        for (glm::dvec2 corner : {glm::dvec2(-0.5, -0.5), glm::dvec2(0.5, -0.5), glm::dvec2(-0.5, 0.5), glm::dvec2(0.5, 0.5)})
+            corners = std::min(corners, planeDepth(t, g, t.centre + corner));
+        const double away = std::clamp(corners, lo, hi);
+        const double toward = std::clamp(planeDepth(t, g, t.centre) + slopeBias * std::max(std::abs(g.x), std::abs(g.y)), lo, hi);
+        // The centre depth comes from the gradient over up to ~90 texels: its error carries.
+        const double reach = glm::length(t.centre - glm::dvec2(t.a)) + 1.0;
+        const double depthTolerance = 1e-6 + (gradientTolerance + 1e-6 * (std::abs(g.x) + std::abs(g.y))) * reach;
+        EXPECT_NEAR(got.z, away, depthTolerance) << what;
+        EXPECT_NEAR(got.w, toward, depthTolerance) << what;
+        for (int sy = 0; sy < 16; ++sy)
+            for (int sx = 0; sx < 16; ++sx) {
+                const glm::dvec2 s = t.centre + glm::dvec2((sx + 0.5) / 16.0 - 0.5, (sy + 0.5) / 16.0 - 0.5);
+                if (!insideTriangle(t, s)) continue;
+                ++checkedPoints;
+                EXPECT_LE(double(got.z), planeDepth(t, g, s) + 1e-6) << what << " at (" << s.x << ", " << s.y << ")";
+            }
+    }
+    EXPECT_GT(zeroArea, 0);
+    EXPECT_GT(checkedPoints, 10000);
 }

@@ -123,14 +123,24 @@ size_t countNotes(const std::vector<std::string>& notes, const std::string& text
 }  // namespace
 
 // The camera walks along the row: every frame's kept atlas equals a full redraw, and along the walk
-// some tiles were kept and some redrawn. Every raster, since each draws tiles its own way.
+// some tiles were kept and some redrawn. Every raster, since each draws tiles its own way; conservative
+// and split grown by the geometry shader and, where the GPU has it, by the hardware conservative raster.
 TEST(ShadowCache, KeptTilesEqualAFullRedrawOnAMovingCamera) {
+    using Conservative = ShadowSettings::ConservativeRaster;
+    std::vector<std::pair<ShadowSettings::Raster, Conservative>> cases;
     for (ShadowSettings::Raster raster : {ShadowSettings::Raster::Plain, ShadowSettings::Raster::Conservative,
-                                          ShadowSettings::Raster::Split, ShadowSettings::Raster::Compute}) {
-        const std::string name = ShadowSettings::rasterName(raster);
+                                          ShadowSettings::Raster::Split, ShadowSettings::Raster::Compute})
+        cases.emplace_back(raster, Conservative::GeometryShader);
+    if (queryConservativeRasterSupport().hardware)
+        for (ShadowSettings::Raster raster : {ShadowSettings::Raster::Conservative, ShadowSettings::Raster::Split})
+            cases.emplace_back(raster, Conservative::Hardware);
+    for (const auto& [raster, conservative] : cases) {
+        const std::string name =
+            std::string(ShadowSettings::rasterName(raster)) + " (" + ShadowSettings::conservativeRasterName(conservative) + ")";
         Scene scene = castersOnAFloor();
         SceneGpu gpu(scene);
-        const RenderSettings settings = smallCascades(raster);
+        RenderSettings settings = smallCascades(raster);
+        settings.shadows.conservativeRaster = conservative;
         ShadowMapPass state;
         fg::TexturePool pool;
         std::vector<std::string> notes;
@@ -154,7 +164,8 @@ TEST(ShadowCache, KeptTilesEqualAFullRedrawOnAMovingCamera) {
 }
 
 // What a tile's depth depends on outside the camera invalidates it: the sun's direction, a caster's
-// transform, the slope bias and the raster. Each change redraws, and the result equals a full redraw.
+// transform, the slope bias, the raster and which conservative raster grew the casters. Each change
+// redraws, and the result equals a full redraw.
 TEST(ShadowCache, SunGeometryAndSettingsInvalidate) {
     Scene scene = castersOnAFloor();
     SceneGpu gpu(scene);
@@ -184,6 +195,43 @@ TEST(ShadowCache, SunGeometryAndSettingsInvalidate) {
     expectRedrawn("slope bias", "slope bias changed");
     settings.shadows.raster = ShadowSettings::Raster::Conservative;
     expectRedrawn("raster", "caster raster changed");
+    // Hardware and geometry-shader growth write slightly different depths: switching redraws, but only
+    // where the raster actually used changes (without the hardware both settings use the shader).
+    settings.shadows.conservativeRaster = ShadowSettings::ConservativeRaster::GeometryShader;
+    if (queryConservativeRasterSupport().hardware) {
+        expectRedrawn("geometry-shader growth", "conservative raster changed to geometry shader");
+        settings.shadows.conservativeRaster = ShadowSettings::ConservativeRaster::Hardware;
+        expectRedrawn("hardware growth", "conservative raster changed to hardware");
+    } else {
+        const Tiles kept = drawTiles(scene, gpu, settings, state, pool, &notes);
+        EXPECT_EQ(countNotes(notes, "kept (unchanged)"), notes.size()) << "auto -> geometry-shader without the hardware";
+        expectSameTiles(kept, redrawnTiles(scene, gpu, settings), "auto -> geometry-shader without the hardware");
+    }
+}
+
+// The key alone: two tiles that differ only in how the casters were grown are not the same tile.
+TEST(ShadowCache, ConservativeRasterIsPartOfTheTileKey) {
+    ShadowFrustum fr;
+    fr.tileSize = 64;
+    fr.columns = 2;
+    fr.rows = 1;
+    fr.cascades.resize(2);
+    ShadowSettings settings;
+    for (ShadowSettings::Raster raster : {ShadowSettings::Raster::Conservative, ShadowSettings::Raster::Split}) {
+        ShadowAtlasCache cache;
+        cache.depth = gl::makeTexture2D(GL_DEPTH_COMPONENT32F, 128, 64, 1, "test_kept_atlas");
+        cache.width = 128;
+        cache.height = 64;
+        cache.casters = 7;
+        for (const ShadowTileKey& k : shadowTileKeys(fr, settings, raster, false)) cache.tiles.push_back(k);
+        for (const std::string& why : shadowTilesToDraw(&cache, 128, 64, 7, shadowTileKeys(fr, settings, raster, false)))
+            EXPECT_EQ(why, "");
+        for (const std::string& why : shadowTilesToDraw(&cache, 128, 64, 7, shadowTileKeys(fr, settings, raster, true)))
+            EXPECT_EQ(why, "conservative raster changed to hardware") << ShadowSettings::rasterName(raster);
+    }
+    // Plain and compute grow nothing: the hardware's presence does not touch their tiles.
+    for (ShadowSettings::Raster raster : {ShadowSettings::Raster::Plain, ShadowSettings::Raster::Compute})
+        EXPECT_EQ(shadowTileKeys(fr, settings, raster, true), shadowTileKeys(fr, settings, raster, false));
 }
 
 // --shadow-cache off: every cascade drawn every frame, and said so.

@@ -2,7 +2,9 @@
 // its depth atlas is bit for bit the one drawn with every caster, for both caster rasters.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -130,4 +132,59 @@ TEST(ShadowCasterCulling, PlainAndSplitRastersSeeTheSameCasters) {
     EXPECT_GT(closePlain, a.size() * 9 / 10);
     EXPECT_GT(closeSplit, a.size() * 9 / 10);
     EXPECT_EQ(splitFarther, 0u);
+}
+
+// The hardware conservative raster (GL_NV_conservative_raster; skipped with the reason where the GPU
+// lacks it) against the geometry-shader one and the plain raster, slope bias 0: the hardware covers
+// exactly the texels a triangle touches, which is every texel whose centre it covers (plain's) and
+// within the geometry shader's triangle grown by half a texel (clipped to its box, which reaches a
+// little past the touched texels at sharp corners). Per triangle and texel it writes the same depth
+// as the geometry shader (faces towards the light: never nearer than the centre's), so where all
+// hold a caster: geometry shader <= hardware <= plain (1e-5; 1e-4 against the geometry shader,
+// whose grown vertices carry the plane in float). Coverage: plain's texels all in the hardware's;
+// the hardware's all in the geometry shader's but for 0.1% (fill-rule ties on the grown edges).
+TEST(ShadowConservativeRaster, HardwareLiesBetweenTheGeometryShaderAndThePlainRaster) {
+    const ConservativeRasterSupport support = queryConservativeRasterSupport();
+    if (!support.hardware) GTEST_SKIP() << "no hardware conservative raster on this GPU: " << support.reason;
+    const Scene s = rowOfSpheres();
+    RenderSettings settings;
+    settings.width = 64;
+    settings.height = 48;
+    settings.shadows.size = 128;
+    settings.shadows.cascades = 2;
+    settings.shadows.slopeBias = 0.0f;
+    RenderSettings hardware = settings, geometry = settings, plain = settings;
+    hardware.shadows.conservativeRaster = ShadowSettings::ConservativeRaster::Hardware;
+    geometry.shadows.conservativeRaster = ShadowSettings::ConservativeRaster::GeometryShader;
+    plain.shadows.raster = ShadowSettings::Raster::Plain;
+    const std::vector<float> hw = shadowAtlas(s, hardware), gs = shadowAtlas(s, geometry), pl = shadowAtlas(s, plain);
+    ASSERT_EQ(hw.size(), gs.size());
+    ASSERT_EQ(hw.size(), pl.size());
+    size_t plainOnly = 0, hardwareOnly = 0, nearerThanGs = 0, fartherThanPlain = 0, equalToGs = 0, covered = 0;
+    float worstGs = 0.0f, worstPlain = 0.0f;
+    for (size_t i = 0; i < hw.size(); ++i) {
+        ASSERT_TRUE(std::isfinite(hw[i])) << i;
+        const bool h = hw[i] < 1.0f, g = gs[i] < 1.0f, p = pl[i] < 1.0f;
+        plainOnly += p && !h ? 1 : 0;
+        hardwareOnly += h && !g ? 1 : 0;
+        if (!h) continue;
+        ++covered;
+        if (g) {
+            nearerThanGs += hw[i] < gs[i] - 1e-4f ? 1 : 0;
+            worstGs = std::max(worstGs, gs[i] - hw[i]);
+            equalToGs += std::abs(hw[i] - gs[i]) <= 1e-5f ? 1 : 0;
+        }
+        if (p) {
+            fartherThanPlain += hw[i] > pl[i] + 1e-5f ? 1 : 0;
+            worstPlain = std::max(worstPlain, hw[i] - pl[i]);
+        }
+    }
+    std::printf("hardware conservative raster: %zu texels hold a caster, %zu equal to the geometry shader's (1e-5); "
+                "worst nearer than it %g, worst farther than plain %g\n",
+                covered, equalToGs, double(worstGs), double(worstPlain));
+    EXPECT_GT(covered, hw.size() / 2);
+    EXPECT_EQ(plainOnly, 0u);
+    EXPECT_LE(hardwareOnly, covered / 1000);
+    EXPECT_EQ(nearerThanGs, 0u);
+    EXPECT_EQ(fartherThanPlain, 0u);
 }

@@ -390,10 +390,11 @@ TEST(FrameGraphBarriers, ImageStoresAfterShaderReadsOfTheirTextureGetABarrier) {
     EXPECT_EQ(g.barriersBefore("draw"), GLbitfield(GL_TEXTURE_FETCH_BARRIER_BIT));
     // An imported texture (a history) was read by the previous frame: its first store waits too.
     FrameGraph h;
-    const ResourceId history = h.importTexture("history", kDesc, GLuint(7));
-    h.addPass("keep", fg::PassKind::Compute, [&](PassBuilder& p) { p.write(history, Usage::ImageStore); }, nullptr);
-    h.markOutput(history);
+    ResourceId history = h.importTexture("history", kDesc, GLuint(7));
+    h.addPass("keep", fg::PassKind::Compute, [&](PassBuilder& p) { history = p.write(history, Usage::ImageStore); }, nullptr);
+    h.markOutput(history);  // the stored version: the pass is live
     h.compile();
+    ASSERT_TRUE(h.isLive("keep"));
     EXPECT_EQ(h.barriersBefore("keep"), GLbitfield(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT));
 }
 
