@@ -2,6 +2,8 @@
 // math is engine/post/post_math.hpp, the same code the CPU reference runs. The separable blur is
 // two tiled launches (bright pass fused into the first); the weights travel as a kernel parameter,
 // which lives in the constant bank and is broadcast to the warp like __constant__ data.
+#include <algorithm>
+#include <type_traits>
 #include <vector>
 
 #include "cuda/interop.hpp"
@@ -254,21 +256,483 @@ void launchBlur(Source src, Out out, int width, int height, const Weights& w, in
     checkLaunch(Horizontal ? "blurTileKernel (horizontal)" : "blurTileKernel (vertical)");
 }
 
+// ---- The separable blur on the tensor cores, both passes in one kernel ----
+// A 1-D convolution of a 16-wide chunk is a product with a banded Toeplitz matrix of the weights:
+// out[16 x n] = T[16 x 16M] * in[16M x n], T[i][k] = w[|16m + k - i - r|] (0 off the band), M =
+// the 16-wide input chunks the band of 16 outputs touches. A block owns a 64-column stripe of
+// segment rows; per step it stages 16 more input rows (bright-passed) of the stripe plus its
+// +-r column apron, blurs them horizontally (M x 16 x 16 products per 16 x 8 outputs) into a
+// sliding window of M 16-row chunks held in registers, and from that window blurs 16 output rows
+// vertically. The horizontal result comes out of mma.sync in the accumulator layout, which is the
+// layout of the next product's A operand when the output columns are the rows of the matrix:
+// the horizontal pass computes in^T and the vertical pass multiplies it by T^T, so the
+// intermediate never leaves the registers. One warp per (16-column chunk, channel).
+//
+// Precision: fp16 operands with fp32 accumulation, each operand split as x = hi + lo / 2048
+// (hi = fp16(x), lo = fp16((x - hi) * 2048): 22 significant bits, lo scaled into fp16's normal
+// range), three products hi*hi + (lo*hi + hi*lo) / 2048 (lo*lo, 2^-22 relative, is dropped).
+// Inputs are >= 0 after the bright pass and <= kHalfMax, so every sum is of non-negative terms
+// and the error stays relative to the output, within the tests' 1e-5 of the fp32 reference.
+constexpr int kTcColChunks = 4;                  // 16-column chunks of a block's stripe
+constexpr int kTcWidth = 16 * kTcColChunks;      // output columns per block
+constexpr int kTcWarps = 3 * kTcColChunks;       // one per (chunk, channel)
+constexpr int kTcThreads = 32 * kTcWarps;
+constexpr float kLoScale = 2048.0f;
+
+// Input chunks of 16 the band of 16 outputs touches (outputs j, inputs j .. j + 2r in apron
+// coordinates).
+__host__ __device__ constexpr int tensorChunks(int radius) { return (2 * radius + 15) / 16 + 1; }
+static_assert(tensorChunks(post::kMaxRadius) <= 8, "the widest instantiation below has 8 chunks");
+
+template <int M>
+struct TensorBlurLayout {
+    static constexpr int stagedCols = 16 * (kTcColChunks + M - 1);
+    // Row stride of a staged plane in halves: stagedCols / 2 words is a multiple of 8, + 4 words
+    // makes it an odd multiple of 4, so the 8 rows x 4 column pairs a B fragment reads hit 32 banks.
+    static constexpr int rowHalves = stagedCols + 8;
+    static constexpr int planeHalves = 16 * rowHalves;  // one channel's hi or lo of 16 rows
+    static constexpr int stageHalves = 6 * planeHalves;  // 3 channels x (hi, lo)
+    static constexpr int outRow = kTcWidth + 4;          // floats; (2t * 68 + g) % 32 distinct
+    static constexpr int outFloats = 3 * 16 * outRow;
+    static constexpr int tableUint4 = 2 * M * 32;  // per table: (hi, lo) or (nt 0, nt 1) x M x lanes
+    static constexpr int loads = (16 * stagedCols + kTcThreads - 1) / kTcThreads;  // per thread per step
+    static constexpr int deferChunks = M / 2;  // ceil(r / 16) for the largest r of M chunks
+    static constexpr size_t sharedBytes = 2 * size_t(tableUint4) * 16 + 2 * size_t(stageHalves) * 2 +
+                                          (2 + size_t(deferChunks)) * size_t(outFloats) * 4;
+};
+
+// A texel as loaded, decoded only when staged (so the loads of the next rows stay in flight while
+// the current ones are multiplied).
+template <typename In>
+struct RawTexel {
+    using type = float4;
+    __device__ static type load(const In& in, int x, int y) { return in.load(x, y); }
+    __device__ static float4 decode(type v) { return v; }
+};
+template <>
+struct RawTexel<Half4Surface> {
+    using type = ushort4;
+    __device__ static type load(const Half4Surface& in, int x, int y) {
+        return surf2Dread<ushort4>(in.surface, x * int(sizeof(ushort4)), y);
+    }
+    __device__ static float4 decode(type v) {
+        return make_float4(__half2float(__ushort_as_half(v.x)), __half2float(__ushort_as_half(v.y)),
+                           __half2float(__ushort_as_half(v.z)), 1.0f);
+    }
+};
+
+__device__ inline uint32_t packHalves(__half low, __half high) {
+    return uint32_t(__half_as_ushort(low)) | (uint32_t(__half_as_ushort(high)) << 16);
+}
+__device__ inline __half hiPart(float v) { return __float2half_rn(v); }
+__device__ inline __half loPart(float v, __half hi) { return __float2half_rn((v - __half2float(hi)) * kLoScale); }
+// (a, b) as packed fp16 hi and scaled lo pairs: a in the low half.
+__device__ inline void splitPair(float a, float b, uint32_t& hi, uint32_t& lo) {
+    const __half ah = hiPart(a), bh = hiPart(b);
+    hi = packHalves(ah, bh);
+    lo = packHalves(loPart(a, ah), loPart(b, bh));
+}
+
+// d += a * b, m16n8k16, fp16 in, fp32 accumulate. Fragments (g = lane / 4, t = lane % 4):
+// a[0] = A[g][2t, 2t+1], a[1] = A[g+8][2t, 2t+1], a[2] = A[g][2t+8, 2t+9], a[3] = A[g+8][2t+8, 2t+9];
+// b0 = B[2t, 2t+1][g], b1 = B[2t+8, 2t+9][g]; d = D[g][2t], D[g][2t+1], D[g+8][2t], D[g+8][2t+1].
+__device__ inline void mma16816(float (&d)[4], const uint4& a, uint32_t b0, uint32_t b1) {
+#if defined(__CUDA_ARCH__) && __CUDA_ARCH__ >= 800
+    asm("mma.sync.aligned.m16n8k16.row.col.f32.f16.f16.f32 {%0,%1,%2,%3}, {%4,%5,%6,%7}, {%8,%9}, {%0,%1,%2,%3};\n"
+        : "+f"(d[0]), "+f"(d[1]), "+f"(d[2]), "+f"(d[3])
+        : "r"(a.x), "r"(a.y), "r"(a.z), "r"(a.w), "r"(b0), "r"(b1));
+#else
+    (void)d, (void)a, (void)b0, (void)b1;  // never launched: the host checks the binary's arch
+#endif
+}
+
+__device__ inline float tapWeight(const Weights& w, int radius, int d) {
+    d = d < 0 ? -d : d;
+    return d <= radius ? w.w[d] : 0.0f;
+}
+
+// In place (the composite writes the HDR texture the blur reads, as bloomCompositeSurfaces does):
+// a block must not overwrite HDR texels that another block has yet to stage. Blocks publish how
+// many input chunks they have staged (`progress`, one counter per block, zeroed before the launch),
+// and before a block stores an output chunk it waits until every block that reads those rows (the
+// stripes beside it in its own segment and the next) has staged them; all blocks are resident at
+// once (cooperative launch), and no block waits for more than it has staged itself, so the waits
+// end. The segment above reads this segment's first r rows at its end: those chunks are kept in
+// shared memory and stored last. Segments are at least 64 rows (> r), so only adjacent ones meet.
+struct InPlaceOrder {
+    int* progress = nullptr;  // null: the output does not alias the input, no ordering
+    int stripes = 0, segments = 0;
+};
+
+// Rows a block reads and the chunks it stages: segment `segment` of segmentRows rows.
+struct SegmentReads {
+    int first, last, steps;  // reads rows [first, last) (unclamped, apron included), in `steps` chunks
+    __device__ SegmentReads(int segment, int segmentRows, int height, int radius, int chunks) {
+        const int y0 = segment * segmentRows;
+        const int outChunks = (min(y0 + segmentRows, height) - y0 + 15) / 16;
+        first = y0 - radius;
+        last = y0 + 16 * outChunks + radius;
+        steps = outChunks + chunks - 1;
+    }
+    // Chunks it must have staged before rows [ya, yb) may change; 0 when it never reads them.
+    __device__ int chunksReading(int ya, int yb, int height) const {
+        if (yb <= max(first, 0) || ya >= min(last, height)) return 0;
+        const int upTo = yb >= height ? last : yb;  // the bottom row is read again for rows past it
+        return min((upTo - first + 15) / 16, steps);
+    }
+};
+
+template <int M, typename In, typename Out>
+__global__ void __launch_bounds__(kTcThreads, 1)
+    tensorBlurKernel(In hdr, Out out, int width, int height, Weights w, int radius, int segmentRows,
+                     post::BloomParams p, InPlaceOrder order) {
+    using L = TensorBlurLayout<M>;
+    using Raw = RawTexel<In>;
+    extern __shared__ uint4 shared[];
+    uint4* horizontalTable = shared;                // [(m * 2 + hi/lo) * 32 + lane]: T^T chunk m
+    uint4* verticalTable = shared + L::tableUint4;  // [(m * 2 + nt) * 32 + lane]: {hi b0, b1, lo b0, b1}
+    __half* stage = reinterpret_cast<__half*>(shared + 2 * L::tableUint4);
+    float* outBuffer = reinterpret_cast<float*>(stage + 2 * L::stageHalves);
+    float* deferred = outBuffer + 2 * L::outFloats;  // L::deferChunks output chunks, stored last
+
+    const int thread = int(threadIdx.x), lane = thread & 31, warp = thread >> 5;
+    const int g = lane >> 2, t = lane & 3;
+    const int chunk = warp % kTcColChunks, channel = warp / kTcColChunks;
+    const int stripe = int(blockIdx.x), segment = int(blockIdx.y);
+    const int x0 = stripe * kTcWidth, y0 = segment * segmentRows;
+    const int outChunks = (min(y0 + segmentRows, height) - y0 + 15) / 16;
+    const int steps = outChunks + M - 1;
+    // Apron rows and columns this radius needs (the chunks beyond them multiply zero weights and
+    // are not read, so that only adjacent blocks read each other's texels).
+    const int neededRows = 16 * outChunks + 2 * radius, neededCols = kTcWidth + 2 * radius;
+    // Output chunks the segment above reads (its apron), kept until the end when in place.
+    const int deferChunks = order.progress && segment > 0 ? min((radius + 15) / 16, outChunks) : 0;
+
+    auto publish = [&](int staged) {  // after a __syncthreads that follows the staging
+        if (order.progress && thread == 0) {
+            __threadfence();
+            atomicExch(&order.progress[segment * order.stripes + stripe], staged);
+        }
+    };
+    auto waitForReaders = [&](int ya, int yb) {  // then __syncthreads
+        if (!order.progress || thread != 0) return;
+        for (int sg = max(segment - 1, 0); sg <= min(segment + 1, order.segments - 1); ++sg) {
+            const SegmentReads reads(sg, segmentRows, height, radius, M);
+            const int need = reads.chunksReading(ya, yb, height);
+            if (need == 0) continue;
+            for (int st = max(stripe - 1, 0); st <= min(stripe + 1, order.stripes - 1); ++st) {
+                if (st == stripe && sg == segment) continue;
+                volatile int* counter = order.progress + sg * order.stripes + st;
+                while (*counter < need) __nanosleep(256);
+            }
+        }
+        __threadfence();
+    };
+
+    // The Toeplitz fragments, once per block. Horizontal A (16 output columns i x 16 input columns
+    // k of chunk m): T[i][k] = w(16m + k - i - r). Vertical B (16 input rows k x 8 output rows n of
+    // half nt): w(16m + k - 8nt - n - r).
+    for (int e = thread; e < M * 32; e += kTcThreads) {
+        const int m = e / 32, el = e % 32, eg = el >> 2, et = el & 3;
+        uint32_t hi[4], lo[4];
+        for (int reg = 0; reg < 4; ++reg) {
+            const int i = eg + 8 * (reg & 1), k = 2 * et + 8 * (reg >> 1);
+            splitPair(tapWeight(w, radius, 16 * m + k - i - radius), tapWeight(w, radius, 16 * m + k + 1 - i - radius),
+                      hi[reg], lo[reg]);
+        }
+        horizontalTable[(m * 2 + 0) * 32 + el] = make_uint4(hi[0], hi[1], hi[2], hi[3]);
+        horizontalTable[(m * 2 + 1) * 32 + el] = make_uint4(lo[0], lo[1], lo[2], lo[3]);
+        for (int nt = 0; nt < 2; ++nt) {
+            uint32_t bh[2], bl[2];
+            for (int reg = 0; reg < 2; ++reg) {
+                const int k = 2 * et + 8 * reg, n = 8 * nt + eg;
+                splitPair(tapWeight(w, radius, 16 * m + k - n - radius), tapWeight(w, radius, 16 * m + k + 1 - n - radius),
+                          bh[reg], bl[reg]);
+            }
+            verticalTable[(m * 2 + nt) * 32 + el] = make_uint4(bh[0], bh[1], bl[0], bl[1]);
+        }
+    }
+
+    // Staging of input chunk s (apron coordinates: row y0 - r + 16s + i, column x0 - r + c), clamped
+    // as the reference's texel(); the bright pass is applied as the texels are staged.
+    typename Raw::type pending[L::loads];
+    auto load = [&](int s) {
+#pragma unroll
+        for (int b = 0; b < L::loads; ++b) {
+            const int e = thread + b * kTcThreads;
+            const int c = e % L::stagedCols, row = 16 * s + e / L::stagedCols;
+            pending[b] = typename Raw::type{};
+            if (e < 16 * L::stagedCols && c < neededCols && row < neededRows) {
+                const int x = clampi(x0 - radius + c, 0, width - 1);
+                const int y = clampi(y0 - radius + row, 0, height - 1);
+                pending[b] = Raw::load(hdr, x, y);
+            }
+        }
+    };
+    auto commit = [&](int s) {
+        __half* buffer = stage + (s & 1) * L::stageHalves;
+#pragma unroll
+        for (int b = 0; b < L::loads; ++b) {
+            const int e = thread + b * kTcThreads;
+            if (e >= 16 * L::stagedCols) continue;
+            const Rgb c = post::brightPass(rgb(Raw::decode(pending[b])), p.threshold, p.knee, p.highlight);
+            const int at = (e / L::stagedCols) * L::rowHalves + e % L::stagedCols;
+            const float v[3] = {c.r, c.g, c.b};
+#pragma unroll
+            for (int ch = 0; ch < 3; ++ch) {
+                const __half h = hiPart(v[ch]);
+                buffer[(2 * ch) * L::planeHalves + at] = h;
+                buffer[(2 * ch + 1) * L::planeHalves + at] = loPart(v[ch], h);
+            }
+        }
+    };
+    auto storeChunk = [&](const float* rows, int jc) {  // 16 rows x 64 columns, three channel planes
+        for (int e = thread; e < 16 * kTcWidth; e += kTcThreads) {
+            const int row = e / kTcWidth, col = e % kTcWidth;
+            const int x = x0 + col, y = y0 + 16 * jc + row;
+            if (x >= width || y >= height) continue;
+            const int at = row * L::outRow + col;
+            out.store(x, y, make_float4(rows[at], rows[16 * L::outRow + at], rows[32 * L::outRow + at], 1.0f));
+        }
+    };
+    load(0);
+    commit(0);
+    __syncthreads();
+    publish(1);
+
+    uint4 windowHi[M], windowLo[M];  // the horizontal result, input chunks jc .. jc + M - 1, as A fragments
+    for (int s = 0; s < steps; ++s) {
+        const bool more = s + 1 < steps;
+        if (more) load(s + 1);
+
+        // Horizontal: this warp's 16 columns x the 16 staged rows (two n-tiles of 8 rows).
+        const __half* hiPlane = stage + (s & 1) * L::stageHalves + (2 * channel) * L::planeHalves;
+        const __half* loPlane = hiPlane + L::planeHalves;
+        float accHi[2][4] = {}, accLo[2][4] = {};
+#pragma unroll
+        for (int m = 0; m < M; ++m) {
+            const uint4 aHi = horizontalTable[(m * 2 + 0) * 32 + lane];
+            const uint4 aLo = horizontalTable[(m * 2 + 1) * 32 + lane];
+            const int col = 16 * (chunk + m) + 2 * t;
+#pragma unroll
+            for (int nt = 0; nt < 2; ++nt) {
+                const int at = (8 * nt + g) * L::rowHalves + col;
+                const uint32_t bHi0 = *reinterpret_cast<const uint32_t*>(hiPlane + at);
+                const uint32_t bHi1 = *reinterpret_cast<const uint32_t*>(hiPlane + at + 8);
+                const uint32_t bLo0 = *reinterpret_cast<const uint32_t*>(loPlane + at);
+                const uint32_t bLo1 = *reinterpret_cast<const uint32_t*>(loPlane + at + 8);
+                mma16816(accHi[nt], aHi, bHi0, bHi1);
+                mma16816(accLo[nt], aLo, bHi0, bHi1);
+                mma16816(accLo[nt], aHi, bLo0, bLo1);
+            }
+        }
+        // Slide the window and append: D of n-tile nt holds (column g / g + 8, rows 8nt + 2t, +1),
+        // the A fragment of (columns x 16 rows) wants exactly that order.
+#pragma unroll
+        for (int m = 0; m < M - 1; ++m) {
+            windowHi[m] = windowHi[m + 1];
+            windowLo[m] = windowLo[m + 1];
+        }
+        {
+            float v[2][4];
+#pragma unroll
+            for (int nt = 0; nt < 2; ++nt)
+#pragma unroll
+                for (int j = 0; j < 4; ++j) v[nt][j] = accHi[nt][j] + accLo[nt][j] * (1.0f / kLoScale);
+            uint4 hi, lo;
+            splitPair(v[0][0], v[0][1], hi.x, lo.x);
+            splitPair(v[0][2], v[0][3], hi.y, lo.y);
+            splitPair(v[1][0], v[1][1], hi.z, lo.z);
+            splitPair(v[1][2], v[1][3], hi.w, lo.w);
+            windowHi[M - 1] = hi;
+            windowLo[M - 1] = lo;
+        }
+
+        const int jc = s - (M - 1);  // output chunk the window now covers
+        const bool deferThis = jc >= 0 && jc < deferChunks;
+        float* rows = deferThis ? deferred + jc * L::outFloats : outBuffer + (jc & 1) * L::outFloats;
+        if (jc >= 0) {
+            float oHi[2][4] = {}, oLo[2][4] = {};
+#pragma unroll
+            for (int m = 0; m < M; ++m)
+#pragma unroll
+                for (int nt = 0; nt < 2; ++nt) {
+                    const uint4 b = verticalTable[(m * 2 + nt) * 32 + lane];
+                    mma16816(oHi[nt], windowHi[m], b.x, b.y);
+                    mma16816(oLo[nt], windowLo[m], b.x, b.y);
+                    mma16816(oLo[nt], windowHi[m], b.z, b.w);
+                }
+            float* plane = rows + channel * 16 * L::outRow;
+#pragma unroll
+            for (int nt = 0; nt < 2; ++nt)
+#pragma unroll
+                for (int j = 0; j < 4; ++j) {
+                    const int row = 8 * nt + 2 * t + (j & 1), col = 16 * chunk + g + 8 * (j >> 1);
+                    plane[row * L::outRow + col] = oHi[nt][j] + oLo[nt][j] * (1.0f / kLoScale);
+                }
+        }
+        if (more) commit(s + 1);
+        __syncthreads();
+        publish(more ? s + 2 : steps);
+        if (jc >= 0 && !deferThis) {
+            if (order.progress) {
+                waitForReaders(y0 + 16 * jc, min(y0 + 16 * jc + 16, height));
+                __syncthreads();
+            }
+            storeChunk(rows, jc);
+        }
+    }
+    if (deferChunks > 0) {  // the rows the segment above reads, once it has staged them
+        waitForReaders(y0, min(y0 + 16 * deferChunks, height));
+        __syncthreads();
+        for (int jc = 0; jc < deferChunks; ++jc) storeChunk(deferred + jc * L::outFloats, jc);
+    }
+}
+
+// Whether this build has the tensor-core kernel for the current device (mma.sync needs sm_80 and
+// a binary made for it; a build for older GPUs only runs the direct blur).
+template <int M, typename In, typename Out>
+bool tensorBlurRunsHere() {
+    static const bool runs = [] {
+        cudaFuncAttributes attributes{};
+        if (cudaFuncGetAttributes(&attributes, tensorBlurKernel<M, In, Out>) != cudaSuccess) {
+            cudaGetLastError();
+            return false;
+        }
+        if (attributes.binaryVersion < 80) return false;
+        check(cudaFuncSetAttribute(tensorBlurKernel<M, In, Out>, cudaFuncAttributeMaxDynamicSharedMemorySize,
+                                   int(TensorBlurLayout<M>::sharedBytes)),
+              "cudaFuncSetAttribute (tensor blur shared memory)");
+        return true;
+    }();
+    return runs;
+}
+
+int multiprocessorCount() {
+    int device = 0, count = 0;
+    check(cudaGetDevice(&device), "cudaGetDevice");
+    check(cudaDeviceGetAttribute(&count, cudaDevAttrMultiProcessorCount, device), "cudaDeviceGetAttribute");
+    return count;
+}
+
+// Blocks of the tensor-core blur that can be resident at once.
+template <int M, typename In, typename Out>
+int tensorBlurSlots() {
+    static const int slots = [] {
+        int perSm = 0;
+        check(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&perSm, tensorBlurKernel<M, In, Out>, kTcThreads,
+                                                            TensorBlurLayout<M>::sharedBytes),
+              "cudaOccupancyMaxActiveBlocksPerMultiprocessor");
+        return perSm * multiprocessorCount();
+    }();
+    return slots;
+}
+
+// Rows per block: blocks of a stripe re-blur M - 1 chunks of apron rows each, so fewer, taller
+// segments cost less work, but the grid should fill the GPU: the segment count whose waves x
+// (steps per block) is least, segments of at least 4 chunks (64 rows > r: only adjacent segments
+// read each other's rows). In place every block must be resident at once: 0 when that cannot be.
+int tensorSegmentRows(int width, int height, int chunksPerBand, int slots, bool inPlace) {
+    const int stripes = (width + kTcWidth - 1) / kTcWidth, chunks = (height + 15) / 16;
+    if (slots < 1) return 0;
+    int best = 0, bestCost = 0;
+    for (int segments = 1; segments <= chunks; ++segments) {
+        const int perSegment = (chunks + segments - 1) / segments;
+        if (segments > 1 && perSegment < 4) break;
+        const int blocks = stripes * ((chunks + perSegment - 1) / perSegment);
+        if (inPlace && blocks > slots) continue;
+        const int cost = (blocks + slots - 1) / slots * (perSegment + chunksPerBand - 1);
+        if (best == 0 || cost < bestCost) bestCost = cost, best = perSegment;
+    }
+    return 16 * best;
+}
+
+// Whether a block's output stores change the texels the blur reads (the fused composite).
+template <typename Out>
+struct StoresIntoInput : std::false_type {};
+template <typename HdrIn, typename BloomOut, typename HdrOut>
+struct StoresIntoInput<CompositeOnStore<HdrIn, BloomOut, HdrOut>> : std::true_type {};
+
+bool cooperativeLaunchHere() {
+    static const bool supported = [] {
+        int device = 0, value = 0;
+        check(cudaGetDevice(&device), "cudaGetDevice");
+        check(cudaDeviceGetAttribute(&value, cudaDevAttrCooperativeLaunch, device), "cudaDeviceGetAttribute");
+        return value != 0;
+    }();
+    return supported;
+}
+
+template <int M, typename In, typename Out>
+bool launchTensorBlurChunks(In hdr, Out out, int width, int height, Weights w, int radius, post::BloomParams p,
+                            BloomWorkspace& ws, cudaStream_t stream) {
+    if (!tensorBlurRunsHere<M, In, Out>()) return false;
+    constexpr bool inPlace = StoresIntoInput<Out>::value;
+    if (inPlace && !cooperativeLaunchHere()) return false;
+    int segmentRows = tensorSegmentRows(width, height, M, tensorBlurSlots<M, In, Out>(), inPlace);
+    if (segmentRows == 0) return false;
+    const int stripes = (width + kTcWidth - 1) / kTcWidth, segments = (height + segmentRows - 1) / segmentRows;
+    const dim3 grid{unsigned(stripes), unsigned(segments)};
+    constexpr size_t shared = TensorBlurLayout<M>::sharedBytes;
+    InPlaceOrder order;
+    if (!inPlace) {
+        tensorBlurKernel<M><<<grid, kTcThreads, shared, stream>>>(hdr, out, width, height, w, radius, segmentRows, p,
+                                                                  order);
+        checkLaunch("tensorBlurKernel");
+        return true;
+    }
+    order = {ws.progressCounters(size_t(stripes) * size_t(segments)), stripes, segments};
+    check(cudaMemsetAsync(order.progress, 0, size_t(stripes) * size_t(segments) * sizeof(int), stream),
+          "cudaMemsetAsync (tensor blur progress)");
+    void* args[] = {&hdr, &out, &width, &height, &w, &radius, &segmentRows, &p, &order};
+    const cudaError_t err = cudaLaunchCooperativeKernel(reinterpret_cast<const void*>(tensorBlurKernel<M, In, Out>),
+                                                        grid, dim3(kTcThreads), args, shared, stream);
+    if (err == cudaErrorCooperativeLaunchTooLarge) {  // fewer SMs free than measured: the direct blur
+        cudaGetLastError();
+        return false;
+    }
+    check(err, "cudaLaunchCooperativeKernel (tensorBlurKernel)");
+    return true;
+}
+
+// Auto: the tensor cores from this radius up (the direct blur is memory bound below it; the
+// crossover measured by bench/post_interop.sh, bench/results/post_interop/README.md).
+constexpr int kTensorBlurMinRadius = 2;
+bool wantsTensorBlur(BloomBlur blur, int radius) {
+    if (blur != BloomBlur::Auto) return blur == BloomBlur::TensorCore;
+    return radius >= kTensorBlurMinRadius;
+}
+
+// The instantiations: M = 2, 4, 6, 8 chunks (radius <= 8, 24, 40, 56); a radius between runs
+// the next one up, the extra chunks multiplying zero weights.
+template <typename In, typename Out>
+bool launchTensorBlur(In hdr, Out out, int width, int height, const Weights& w, int radius,
+                      const post::BloomParams& p, BloomWorkspace& ws, cudaStream_t stream) {
+    const int chunks = tensorChunks(radius);
+    if (chunks <= 2) return launchTensorBlurChunks<2>(hdr, out, width, height, w, radius, p, ws, stream);
+    if (chunks <= 4) return launchTensorBlurChunks<4>(hdr, out, width, height, w, radius, p, ws, stream);
+    if (chunks <= 6) return launchTensorBlurChunks<6>(hdr, out, width, height, w, radius, p, ws, stream);
+    return launchTensorBlurChunks<8>(hdr, out, width, height, w, radius, p, ws, stream);
+}
+
 template <typename In, typename Out>
 void bloomWork(In hdr, Out bloom, int width, int height, const post::BloomParams& p, BloomWorkspace& ws,
                cudaStream_t stream) {
-    ws.ensure(width, height, p);
     const dim3 block(kBlock, kBlock);
     if (p.method == post::BloomMethod::Separable) {
         const std::vector<float> taps = post::gaussianWeights(p.kernel);
         Weights w{};
         for (size_t i = 0; i < taps.size(); ++i) w.w[i] = taps[i];
         const int radius = int(taps.size()) - 1;
+        if (wantsTensorBlur(ws.blur, radius) && launchTensorBlur(hdr, bloom, width, height, w, radius, p, ws, stream))
+            return;
+        ws.ensure(width, height, p);
         // Bright pass fused into the horizontal blur's staging; fp32 intermediate in ws.a.
         launchBlur<true>(BrightSource<In>{hdr, p}, BufferImage{ws.a, width}, width, height, w, radius, stream);
         launchBlur<false>(BufferImage{ws.a, width}, bloom, width, height, w, radius, stream);
         return;
     }
+    ws.ensure(width, height, p);
     const int levels = post::mipLevelCount(p.kernel, width, height);
     for (int l = 0; l < levels; ++l) {
         const int dw = post::mipSize(width, l), dh = post::mipSize(height, l);
@@ -298,7 +762,18 @@ void bloomWork(In hdr, Out bloom, int width, int height, const post::BloomParams
 
 BloomWorkspace::~BloomWorkspace() {
     cudaFree(a);
+    cudaFree(progress);
     for (float4* m : mips) cudaFree(m);
+}
+
+int* BloomWorkspace::progressCounters(size_t count) {
+    if (progressCount < count) {
+        check(cudaFree(progress), "cudaFree");
+        progress = nullptr;
+        check(cudaMalloc(&progress, count * sizeof(int)), "cudaMalloc (tensor blur progress)");
+        progressCount = count;
+    }
+    return progress;
 }
 
 void BloomWorkspace::ensure(int width, int height, const post::BloomParams& p) {
@@ -359,6 +834,111 @@ void compositeSurfaces(cudaSurfaceObject_t hdr, cudaSurfaceObject_t bloom, int w
     compositeKernel<<<gridFor(width, height), dim3(kBlock, kBlock), 0, stream>>>(
         Half4Surface{hdr}, Half4Surface{bloom}, Half4Surface{hdr}, width, height, strength);
     checkLaunch("compositeKernel");
+}
+
+bool bloomBlurUsesTensorCores(int kernel, BloomBlur blur) {
+    const int radius = int(post::gaussianWeights(kernel).size()) - 1;
+    if (!wantsTensorBlur(blur, radius)) return false;
+    using Surfaces = CompositeOnStore<Half4Surface, Half4Surface, Half4Surface>;  // what the passes run
+    const int chunks = tensorChunks(radius);
+    if (chunks <= 2) return tensorBlurRunsHere<2, Half4Surface, Surfaces>();
+    if (chunks <= 4) return tensorBlurRunsHere<4, Half4Surface, Surfaces>();
+    if (chunks <= 6) return tensorBlurRunsHere<6, Half4Surface, Surfaces>();
+    return tensorBlurRunsHere<8, Half4Surface, Surfaces>();
+}
+
+namespace {
+
+// An RGBA16F CUDA array with its surface, as the GL textures the passes share.
+struct Half4Array {
+    cudaArray_t array = nullptr;
+    cudaSurfaceObject_t surface = 0;
+    Half4Array(int width, int height) {
+        const cudaChannelFormatDesc desc = cudaCreateChannelDescHalf4();
+        check(cudaMallocArray(&array, &desc, size_t(width), size_t(height), cudaArraySurfaceLoadStore),
+              "cudaMallocArray");
+        cudaResourceDesc resource{};
+        resource.resType = cudaResourceTypeArray;
+        resource.res.array.array = array;
+        check(cudaCreateSurfaceObject(&surface, &resource), "cudaCreateSurfaceObject");
+    }
+    ~Half4Array() {
+        cudaDestroySurfaceObject(surface);
+        cudaFreeArray(array);
+    }
+    Half4Array(const Half4Array&) = delete;
+    Half4Array& operator=(const Half4Array&) = delete;
+};
+
+// A scene-like HDR image: mostly below the threshold, one texel in 64 bright (up to 50).
+__global__ void fillBenchHdr(Half4Surface hdr, int width, int height) {
+    const int x = int(blockIdx.x * blockDim.x + threadIdx.x), y = int(blockIdx.y * blockDim.y + threadIdx.y);
+    if (x >= width || y >= height) return;
+    const unsigned h = (unsigned(x) * 73856093u) ^ (unsigned(y) * 19349663u);
+    const float base = float(h % 1000u) * 0.0009f, bright = (h >> 10) % 64u == 0 ? float((h >> 16) % 50u) : 0.0f;
+    hdr.store(x, y, make_float4(base + bright, base * 0.8f + bright, base * 0.6f + bright, 1.0f));
+}
+
+double copyBytesPerSecond(cudaStream_t stream) {
+    const size_t bytes = size_t(512) << 20;
+    void *a = nullptr, *b = nullptr;
+    check(cudaMalloc(&a, bytes), "cudaMalloc (copy bandwidth)");
+    check(cudaMalloc(&b, bytes), "cudaMalloc (copy bandwidth)");
+    cudaEvent_t start, stop;
+    check(cudaEventCreate(&start), "cudaEventCreate");
+    check(cudaEventCreate(&stop), "cudaEventCreate");
+    std::vector<float> ms;
+    for (int i = 0; i < 12; ++i) {
+        check(cudaEventRecord(start, stream), "cudaEventRecord");
+        check(cudaMemcpyAsync(b, a, bytes, cudaMemcpyDeviceToDevice, stream), "cudaMemcpyAsync");
+        check(cudaEventRecord(stop, stream), "cudaEventRecord");
+        check(cudaEventSynchronize(stop), "cudaEventSynchronize");
+        float t = 0.0f;
+        check(cudaEventElapsedTime(&t, start, stop), "cudaEventElapsedTime");
+        if (i >= 2) ms.push_back(t);
+    }
+    std::sort(ms.begin(), ms.end());
+    cudaEventDestroy(start);
+    cudaEventDestroy(stop);
+    cudaFree(a);
+    cudaFree(b);
+    return 2.0 * double(bytes) / (double(ms[ms.size() / 2]) * 1e-3);
+}
+
+}  // namespace
+
+BloomKernelTime timeBloomCompositeKernels(int width, int height, const post::BloomParams& p, BloomBlur blur,
+                                          int iterations) {
+    Half4Array hdr(width, height), bloom(width, height);
+    cudaStream_t stream = nullptr;
+    check(cudaStreamCreate(&stream), "cudaStreamCreate");
+    BloomWorkspace ws;
+    ws.blur = blur;
+    BloomKernelTime result;
+    result.tensorCores = p.method == post::BloomMethod::Separable && bloomBlurUsesTensorCores(p.kernel, blur);
+    result.copyBytesPerSecond = copyBytesPerSecond(stream);
+    cudaEvent_t start, stop;
+    check(cudaEventCreate(&start), "cudaEventCreate");
+    check(cudaEventCreate(&stop), "cudaEventCreate");
+    std::vector<float> ms;
+    for (int i = -5; i < iterations; ++i) {  // 5 warm-up runs; the HDR refilled so every run composites the same
+        fillBenchHdr<<<gridFor(width, height), dim3(kBlock, kBlock), 0, stream>>>(Half4Surface{hdr.surface}, width,
+                                                                                  height);
+        checkLaunch("fillBenchHdr");
+        check(cudaEventRecord(start, stream), "cudaEventRecord");
+        bloomCompositeSurfaces(hdr.surface, bloom.surface, width, height, p, ws, stream);
+        check(cudaEventRecord(stop, stream), "cudaEventRecord");
+        check(cudaEventSynchronize(stop), "cudaEventSynchronize");
+        float t = 0.0f;
+        check(cudaEventElapsedTime(&t, start, stop), "cudaEventElapsedTime");
+        if (i >= 0) ms.push_back(t);
+    }
+    cudaEventDestroy(start);
+    cudaEventDestroy(stop);
+    cudaStreamDestroy(stream);
+    std::sort(ms.begin(), ms.end());
+    result.medianMs = ms.empty() ? 0.0 : double(ms[ms.size() / 2]);
+    return result;
 }
 
 }  // namespace lp::cuda
