@@ -294,10 +294,11 @@ struct TensorBlurLayout {
     static constexpr int stageHalves = 6 * planeHalves;  // 3 channels x (hi, lo)
     static constexpr int outRow = kTcWidth + 4;          // floats; (2t * 68 + g) % 32 distinct
     static constexpr int outFloats = 3 * 16 * outRow;
-    static constexpr int tableUint4 = 2 * M * 32;  // per table: (hi, lo) or (nt 0, nt 1) x M x lanes
-    static constexpr int loads = (16 * stagedCols + kTcThreads - 1) / kTcThreads;  // per thread per step
+    static constexpr int tableUint4 = 2 * M * 32;  // (hi, lo) x M chunks x lanes
+    static constexpr int pairs = 16 * stagedCols / 2;  // column pairs staged per step
+    static constexpr int loads = (pairs + kTcThreads - 1) / kTcThreads;  // pairs per thread per step
     static constexpr int deferChunks = M / 2;  // ceil(r / 16) for the largest r of M chunks
-    static constexpr size_t sharedBytes = 2 * size_t(tableUint4) * 16 + 2 * size_t(stageHalves) * 2 +
+    static constexpr size_t sharedBytes = size_t(tableUint4) * 16 + 2 * size_t(stageHalves) * 2 +
                                           (2 + size_t(deferChunks)) * size_t(outFloats) * 4;
 };
 
@@ -389,9 +390,8 @@ __global__ void __launch_bounds__(kTcThreads, 1)
     using L = TensorBlurLayout<M>;
     using Raw = RawTexel<In>;
     extern __shared__ uint4 shared[];
-    uint4* horizontalTable = shared;                // [(m * 2 + hi/lo) * 32 + lane]: T^T chunk m
-    uint4* verticalTable = shared + L::tableUint4;  // [(m * 2 + nt) * 32 + lane]: {hi b0, b1, lo b0, b1}
-    __half* stage = reinterpret_cast<__half*>(shared + 2 * L::tableUint4);
+    uint4* table = shared;  // [(m * 2 + hi/lo) * 32 + lane]: Toeplitz chunk m as an A fragment
+    __half* stage = reinterpret_cast<__half*>(shared + L::tableUint4);
     float* outBuffer = reinterpret_cast<float*>(stage + 2 * L::stageHalves);
     float* deferred = outBuffer + 2 * L::outFloats;  // L::deferChunks output chunks, stored last
 
@@ -429,9 +429,10 @@ __global__ void __launch_bounds__(kTcThreads, 1)
         __threadfence();
     };
 
-    // The Toeplitz fragments, once per block. Horizontal A (16 output columns i x 16 input columns
-    // k of chunk m): T[i][k] = w(16m + k - i - r). Vertical B (16 input rows k x 8 output rows n of
-    // half nt): w(16m + k - 8nt - n - r).
+    // The Toeplitz fragments, once per block: chunk m as the A operand (16 output columns i x 16
+    // input columns k), T[i][k] = w(16m + k - i - r). The vertical pass needs B fragments of
+    // (16 input rows k x 8 output rows n of half nt) = w(16m + k - 8nt - n - r) = T[8nt + n][k]:
+    // in the fragment layouts those are this lane's registers {0, 2} (nt 0) and {1, 3} (nt 1).
     for (int e = thread; e < M * 32; e += kTcThreads) {
         const int m = e / 32, el = e % 32, eg = el >> 2, et = el & 3;
         uint32_t hi[4], lo[4];
@@ -440,32 +441,24 @@ __global__ void __launch_bounds__(kTcThreads, 1)
             splitPair(tapWeight(w, radius, 16 * m + k - i - radius), tapWeight(w, radius, 16 * m + k + 1 - i - radius),
                       hi[reg], lo[reg]);
         }
-        horizontalTable[(m * 2 + 0) * 32 + el] = make_uint4(hi[0], hi[1], hi[2], hi[3]);
-        horizontalTable[(m * 2 + 1) * 32 + el] = make_uint4(lo[0], lo[1], lo[2], lo[3]);
-        for (int nt = 0; nt < 2; ++nt) {
-            uint32_t bh[2], bl[2];
-            for (int reg = 0; reg < 2; ++reg) {
-                const int k = 2 * et + 8 * reg, n = 8 * nt + eg;
-                splitPair(tapWeight(w, radius, 16 * m + k - n - radius), tapWeight(w, radius, 16 * m + k + 1 - n - radius),
-                          bh[reg], bl[reg]);
-            }
-            verticalTable[(m * 2 + nt) * 32 + el] = make_uint4(bh[0], bh[1], bl[0], bl[1]);
-        }
+        table[(m * 2 + 0) * 32 + el] = make_uint4(hi[0], hi[1], hi[2], hi[3]);
+        table[(m * 2 + 1) * 32 + el] = make_uint4(lo[0], lo[1], lo[2], lo[3]);
     }
 
     // Staging of input chunk s (apron coordinates: row y0 - r + 16s + i, column x0 - r + c), clamped
     // as the reference's texel(); the bright pass is applied as the texels are staged.
-    typename Raw::type pending[L::loads];
+    typename Raw::type pending[L::loads][2];  // column pairs, so that staging stores half2
     auto load = [&](int s) {
 #pragma unroll
         for (int b = 0; b < L::loads; ++b) {
             const int e = thread + b * kTcThreads;
-            const int c = e % L::stagedCols, row = 16 * s + e / L::stagedCols;
-            pending[b] = typename Raw::type{};
-            if (e < 16 * L::stagedCols && c < neededCols && row < neededRows) {
-                const int x = clampi(x0 - radius + c, 0, width - 1);
-                const int y = clampi(y0 - radius + row, 0, height - 1);
-                pending[b] = Raw::load(hdr, x, y);
+            const int c = 2 * (e % (L::stagedCols / 2)), row = 16 * s + e / (L::stagedCols / 2);
+            const int y = clampi(y0 - radius + row, 0, height - 1);
+#pragma unroll
+            for (int j = 0; j < 2; ++j) {
+                pending[b][j] = typename Raw::type{};
+                if (e < L::pairs && c + j < neededCols && row < neededRows)
+                    pending[b][j] = Raw::load(hdr, clampi(x0 - radius + c + j, 0, width - 1), y);
             }
         }
     };
@@ -474,15 +467,17 @@ __global__ void __launch_bounds__(kTcThreads, 1)
 #pragma unroll
         for (int b = 0; b < L::loads; ++b) {
             const int e = thread + b * kTcThreads;
-            if (e >= 16 * L::stagedCols) continue;
-            const Rgb c = post::brightPass(rgb(Raw::decode(pending[b])), p.threshold, p.knee, p.highlight);
-            const int at = (e / L::stagedCols) * L::rowHalves + e % L::stagedCols;
-            const float v[3] = {c.r, c.g, c.b};
+            if (e >= L::pairs) continue;
+            const Rgb c0 = post::brightPass(rgb(Raw::decode(pending[b][0])), p.threshold, p.knee, p.highlight);
+            const Rgb c1 = post::brightPass(rgb(Raw::decode(pending[b][1])), p.threshold, p.knee, p.highlight);
+            const int at = (e / (L::stagedCols / 2)) * L::rowHalves + 2 * (e % (L::stagedCols / 2));
+            const float v0[3] = {c0.r, c0.g, c0.b}, v1[3] = {c1.r, c1.g, c1.b};
 #pragma unroll
             for (int ch = 0; ch < 3; ++ch) {
-                const __half h = hiPart(v[ch]);
-                buffer[(2 * ch) * L::planeHalves + at] = h;
-                buffer[(2 * ch + 1) * L::planeHalves + at] = loPart(v[ch], h);
+                uint32_t hi, lo;
+                splitPair(v0[ch], v1[ch], hi, lo);
+                *reinterpret_cast<uint32_t*>(buffer + (2 * ch) * L::planeHalves + at) = hi;
+                *reinterpret_cast<uint32_t*>(buffer + (2 * ch + 1) * L::planeHalves + at) = lo;
             }
         }
     };
@@ -500,40 +495,64 @@ __global__ void __launch_bounds__(kTcThreads, 1)
     __syncthreads();
     publish(1);
 
-    uint4 windowHi[M], windowLo[M];  // the horizontal result, input chunks jc .. jc + M - 1, as A fragments
-    for (int s = 0; s < steps; ++s) {
-        const bool more = s + 1 < steps;
+    // The horizontal result as A fragments: before step s appends its chunk, window[m] holds staged
+    // chunk s - M + m, the M chunks output chunk s - M needs. Each step multiplies every Toeplitz
+    // chunk m once into both passes: the new staged rows (horizontal) and window[m] (vertical).
+    uint4 windowHi[M], windowLo[M];
+    for (int s = 0; s < steps + 1; ++s) {
+        const bool staged = s < steps, more = s + 1 < steps;
         if (more) load(s + 1);
+        const int jc = s - M;  // output chunk of this step's vertical pass
+        const bool deferThis = jc >= 0 && jc < deferChunks;
+        float* rows = deferThis ? deferred + jc * L::outFloats : outBuffer + (jc & 1) * L::outFloats;
 
-        // Horizontal: this warp's 16 columns x the 16 staged rows (two n-tiles of 8 rows).
         const __half* hiPlane = stage + (s & 1) * L::stageHalves + (2 * channel) * L::planeHalves;
         const __half* loPlane = hiPlane + L::planeHalves;
-        float accHi[2][4] = {}, accLo[2][4] = {};
+        float accHi[2][4] = {}, accLo[2][4] = {}, outHi[2][4] = {}, outLo[2][4] = {};
 #pragma unroll
         for (int m = 0; m < M; ++m) {
-            const uint4 aHi = horizontalTable[(m * 2 + 0) * 32 + lane];
-            const uint4 aLo = horizontalTable[(m * 2 + 1) * 32 + lane];
-            const int col = 16 * (chunk + m) + 2 * t;
+            const uint4 aHi = table[(m * 2 + 0) * 32 + lane];
+            const uint4 aLo = table[(m * 2 + 1) * 32 + lane];
+            if (staged) {  // horizontal: this warp's 16 columns x the 16 staged rows (n-tiles of 8 rows)
+                const int col = 16 * (chunk + m) + 2 * t;
 #pragma unroll
-            for (int nt = 0; nt < 2; ++nt) {
-                const int at = (8 * nt + g) * L::rowHalves + col;
-                const uint32_t bHi0 = *reinterpret_cast<const uint32_t*>(hiPlane + at);
-                const uint32_t bHi1 = *reinterpret_cast<const uint32_t*>(hiPlane + at + 8);
-                const uint32_t bLo0 = *reinterpret_cast<const uint32_t*>(loPlane + at);
-                const uint32_t bLo1 = *reinterpret_cast<const uint32_t*>(loPlane + at + 8);
-                mma16816(accHi[nt], aHi, bHi0, bHi1);
-                mma16816(accLo[nt], aLo, bHi0, bHi1);
-                mma16816(accLo[nt], aHi, bLo0, bLo1);
+                for (int nt = 0; nt < 2; ++nt) {
+                    const int at = (8 * nt + g) * L::rowHalves + col;
+                    const uint32_t bHi0 = *reinterpret_cast<const uint32_t*>(hiPlane + at);
+                    const uint32_t bHi1 = *reinterpret_cast<const uint32_t*>(hiPlane + at + 8);
+                    const uint32_t bLo0 = *reinterpret_cast<const uint32_t*>(loPlane + at);
+                    const uint32_t bLo1 = *reinterpret_cast<const uint32_t*>(loPlane + at + 8);
+                    mma16816(accHi[nt], aHi, bHi0, bHi1);
+                    mma16816(accLo[nt], aLo, bHi0, bHi1);
+                    mma16816(accLo[nt], aHi, bLo0, bLo1);
+                }
+            }
+            if (jc >= 0) {  // vertical: window[m] (16 columns x 16 rows) x T rows of n-tile nt
+                mma16816(outHi[0], windowHi[m], aHi.x, aHi.z);
+                mma16816(outLo[0], windowLo[m], aHi.x, aHi.z);
+                mma16816(outLo[0], windowHi[m], aLo.x, aLo.z);
+                mma16816(outHi[1], windowHi[m], aHi.y, aHi.w);
+                mma16816(outLo[1], windowLo[m], aHi.y, aHi.w);
+                mma16816(outLo[1], windowHi[m], aLo.y, aLo.w);
             }
         }
-        // Slide the window and append: D of n-tile nt holds (column g / g + 8, rows 8nt + 2t, +1),
-        // the A fragment of (columns x 16 rows) wants exactly that order.
+        if (jc >= 0) {  // D of n-tile nt: (column g / g + 8, output rows 8nt + 2t, +1)
+            float* plane = rows + channel * 16 * L::outRow;
 #pragma unroll
-        for (int m = 0; m < M - 1; ++m) {
-            windowHi[m] = windowHi[m + 1];
-            windowLo[m] = windowLo[m + 1];
+            for (int nt = 0; nt < 2; ++nt)
+#pragma unroll
+                for (int j = 0; j < 4; ++j) {
+                    const int row = 8 * nt + 2 * t + (j & 1), col = 16 * chunk + g + 8 * (j >> 1);
+                    plane[row * L::outRow + col] = outHi[nt][j] + outLo[nt][j] * (1.0f / kLoScale);
+                }
         }
-        {
+        if (staged) {  // slide the window and append: the horizontal D of n-tile nt holds (column g /
+                       // g + 8, rows 8nt + 2t, +1), the A fragment (columns x 16 rows) wants that order
+#pragma unroll
+            for (int m = 0; m < M - 1; ++m) {
+                windowHi[m] = windowHi[m + 1];
+                windowLo[m] = windowLo[m + 1];
+            }
             float v[2][4];
 #pragma unroll
             for (int nt = 0; nt < 2; ++nt)
@@ -547,33 +566,9 @@ __global__ void __launch_bounds__(kTcThreads, 1)
             windowHi[M - 1] = hi;
             windowLo[M - 1] = lo;
         }
-
-        const int jc = s - (M - 1);  // output chunk the window now covers
-        const bool deferThis = jc >= 0 && jc < deferChunks;
-        float* rows = deferThis ? deferred + jc * L::outFloats : outBuffer + (jc & 1) * L::outFloats;
-        if (jc >= 0) {
-            float oHi[2][4] = {}, oLo[2][4] = {};
-#pragma unroll
-            for (int m = 0; m < M; ++m)
-#pragma unroll
-                for (int nt = 0; nt < 2; ++nt) {
-                    const uint4 b = verticalTable[(m * 2 + nt) * 32 + lane];
-                    mma16816(oHi[nt], windowHi[m], b.x, b.y);
-                    mma16816(oLo[nt], windowLo[m], b.x, b.y);
-                    mma16816(oLo[nt], windowHi[m], b.z, b.w);
-                }
-            float* plane = rows + channel * 16 * L::outRow;
-#pragma unroll
-            for (int nt = 0; nt < 2; ++nt)
-#pragma unroll
-                for (int j = 0; j < 4; ++j) {
-                    const int row = 8 * nt + 2 * t + (j & 1), col = 16 * chunk + g + 8 * (j >> 1);
-                    plane[row * L::outRow + col] = oHi[nt][j] + oLo[nt][j] * (1.0f / kLoScale);
-                }
-        }
         if (more) commit(s + 1);
         __syncthreads();
-        publish(more ? s + 2 : steps);
+        if (staged) publish(more ? s + 2 : steps);
         if (jc >= 0 && !deferThis) {
             if (order.progress) {
                 waitForReaders(y0 + 16 * jc, min(y0 + 16 * jc + 16, height));
