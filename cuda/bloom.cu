@@ -268,11 +268,14 @@ void launchBlur(Source src, Out out, int width, int height, const Weights& w, in
 // the horizontal pass computes in^T and the vertical pass multiplies it by T^T, so the
 // intermediate never leaves the registers. One warp per (16-column chunk, channel).
 //
-// Precision: fp16 operands with fp32 accumulation, each operand split as x = hi + lo / 2048
+// Precision: fp16 operands with fp32 accumulation, an operand split as x = hi + lo / 2048
 // (hi = fp16(x), lo = fp16((x - hi) * 2048): 22 significant bits, lo scaled into fp16's normal
-// range), three products hi*hi + (lo*hi + hi*lo) / 2048 (lo*lo, 2^-22 relative, is dropped).
-// Inputs are >= 0 after the bright pass and <= kHalfMax, so every sum is of non-negative terms
-// and the error stays relative to the output, within the tests' 1e-5 of the fp32 reference.
+// range). Into fp32 outputs both are split, three products hi*hi + (lo*hi + hi*lo) / 2048 (lo*lo,
+// 2^-22 relative, is dropped): within the tests' 1e-5 of the fp32 reference. Into fp16 outputs (the
+// GL textures) only the weights are, two products hi*hi + hi*lo / 2048: the texel and the
+// intermediate are rounded to fp16 once each, and with the store's own rounding the result is within
+// 3 half-ulps (1.5 fp16 ulps) of the reference. Inputs are >= 0 after the bright pass and <=
+// kHalfMax, so every sum is of non-negative terms and the error stays relative to the output.
 constexpr int kTcColChunks = 4;                  // 16-column chunks of a block's stripe
 constexpr int kTcWidth = 16 * kTcColChunks;      // output columns per block
 constexpr int kTcWarps = 3 * kTcColChunks;       // one per (chunk, channel)
@@ -360,6 +363,15 @@ __device__ inline float tapWeight(const Weights& w, int radius, int d) {
 // once (cooperative launch), and no block waits for more than it has staged itself, so the waits
 // end. The segment above reads this segment's first r rows at its end: those chunks are kept in
 // shared memory and stored last. Segments are at least 64 rows (> r), so only adjacent ones meet.
+// Whether every texel the kernel stores is rounded to fp16 (the GL textures the passes use).
+template <typename Out>
+struct StoresHalf : std::false_type {};
+template <>
+struct StoresHalf<Half4Surface> : std::true_type {};
+template <typename HdrIn, typename BloomOut, typename HdrOut>
+struct StoresHalf<CompositeOnStore<HdrIn, BloomOut, HdrOut>>
+    : std::bool_constant<StoresHalf<BloomOut>::value && StoresHalf<HdrOut>::value> {};
+
 struct InPlaceOrder {
     int* progress = nullptr;  // null: the output does not alias the input, no ordering
     int stripes = 0, segments = 0;
@@ -389,6 +401,9 @@ __global__ void __launch_bounds__(kTcThreads, 1)
                      post::BloomParams p, InPlaceOrder order) {
     using L = TensorBlurLayout<M>;
     using Raw = RawTexel<In>;
+    // Into fp16 outputs the texels and the intermediate stay fp16 (see Precision above): two
+    // products instead of three, half the staged planes and the window.
+    constexpr bool splitTexels = !StoresHalf<Out>::value;
     extern __shared__ uint4 shared[];
     uint4* table = shared;  // [(m * 2 + hi/lo) * 32 + lane]: Toeplitz chunk m as an A fragment
     __half* stage = reinterpret_cast<__half*>(shared + L::tableUint4);
@@ -475,9 +490,13 @@ __global__ void __launch_bounds__(kTcThreads, 1)
 #pragma unroll
             for (int ch = 0; ch < 3; ++ch) {
                 uint32_t hi, lo;
-                splitPair(v0[ch], v1[ch], hi, lo);
+                if constexpr (splitTexels) {
+                    splitPair(v0[ch], v1[ch], hi, lo);
+                    *reinterpret_cast<uint32_t*>(buffer + (2 * ch + 1) * L::planeHalves + at) = lo;
+                } else {
+                    hi = packHalves(hiPart(v0[ch]), hiPart(v1[ch]));
+                }
                 *reinterpret_cast<uint32_t*>(buffer + (2 * ch) * L::planeHalves + at) = hi;
-                *reinterpret_cast<uint32_t*>(buffer + (2 * ch + 1) * L::planeHalves + at) = lo;
             }
         }
     };
@@ -498,7 +517,8 @@ __global__ void __launch_bounds__(kTcThreads, 1)
     // The horizontal result as A fragments: before step s appends its chunk, window[m] holds staged
     // chunk s - M + m, the M chunks output chunk s - M needs. Each step multiplies every Toeplitz
     // chunk m once into both passes: the new staged rows (horizontal) and window[m] (vertical).
-    uint4 windowHi[M], windowLo[M];
+    uint4 windowHi[M];
+    [[maybe_unused]] uint4 windowLo[M];
     for (int s = 0; s < steps + 1; ++s) {
         const bool staged = s < steps, more = s + 1 < steps;
         if (more) load(s + 1);
@@ -507,7 +527,7 @@ __global__ void __launch_bounds__(kTcThreads, 1)
         float* rows = deferThis ? deferred + jc * L::outFloats : outBuffer + (jc & 1) * L::outFloats;
 
         const __half* hiPlane = stage + (s & 1) * L::stageHalves + (2 * channel) * L::planeHalves;
-        const __half* loPlane = hiPlane + L::planeHalves;
+        [[maybe_unused]] const __half* loPlane = hiPlane + L::planeHalves;
         float accHi[2][4] = {}, accLo[2][4] = {}, outHi[2][4] = {}, outLo[2][4] = {};
 #pragma unroll
         for (int m = 0; m < M; ++m) {
@@ -520,20 +540,24 @@ __global__ void __launch_bounds__(kTcThreads, 1)
                     const int at = (8 * nt + g) * L::rowHalves + col;
                     const uint32_t bHi0 = *reinterpret_cast<const uint32_t*>(hiPlane + at);
                     const uint32_t bHi1 = *reinterpret_cast<const uint32_t*>(hiPlane + at + 8);
-                    const uint32_t bLo0 = *reinterpret_cast<const uint32_t*>(loPlane + at);
-                    const uint32_t bLo1 = *reinterpret_cast<const uint32_t*>(loPlane + at + 8);
                     mma16816(accHi[nt], aHi, bHi0, bHi1);
                     mma16816(accLo[nt], aLo, bHi0, bHi1);
-                    mma16816(accLo[nt], aHi, bLo0, bLo1);
+                    if constexpr (splitTexels) {
+                        const uint32_t bLo0 = *reinterpret_cast<const uint32_t*>(loPlane + at);
+                        const uint32_t bLo1 = *reinterpret_cast<const uint32_t*>(loPlane + at + 8);
+                        mma16816(accLo[nt], aHi, bLo0, bLo1);
+                    }
                 }
             }
             if (jc >= 0) {  // vertical: window[m] (16 columns x 16 rows) x T rows of n-tile nt
                 mma16816(outHi[0], windowHi[m], aHi.x, aHi.z);
-                mma16816(outLo[0], windowLo[m], aHi.x, aHi.z);
                 mma16816(outLo[0], windowHi[m], aLo.x, aLo.z);
                 mma16816(outHi[1], windowHi[m], aHi.y, aHi.w);
-                mma16816(outLo[1], windowLo[m], aHi.y, aHi.w);
                 mma16816(outLo[1], windowHi[m], aLo.y, aLo.w);
+                if constexpr (splitTexels) {
+                    mma16816(outLo[0], windowLo[m], aHi.x, aHi.z);
+                    mma16816(outLo[1], windowLo[m], aHi.y, aHi.w);
+                }
             }
         }
         if (jc >= 0) {  // D of n-tile nt: (column g / g + 8, output rows 8nt + 2t, +1)
@@ -551,7 +575,7 @@ __global__ void __launch_bounds__(kTcThreads, 1)
 #pragma unroll
             for (int m = 0; m < M - 1; ++m) {
                 windowHi[m] = windowHi[m + 1];
-                windowLo[m] = windowLo[m + 1];
+                if constexpr (splitTexels) windowLo[m] = windowLo[m + 1];
             }
             float v[2][4];
 #pragma unroll
@@ -564,7 +588,7 @@ __global__ void __launch_bounds__(kTcThreads, 1)
             splitPair(v[1][0], v[1][1], hi.z, lo.z);
             splitPair(v[1][2], v[1][3], hi.w, lo.w);
             windowHi[M - 1] = hi;
-            windowLo[M - 1] = lo;
+            if constexpr (splitTexels) windowLo[M - 1] = lo;
         }
         if (more) commit(s + 1);
         __syncthreads();

@@ -10,6 +10,8 @@
 #include <random>
 
 #include "cuda/post_cuda.hpp"
+#include "engine/gl/context.hpp"
+#include "engine/gl/handles.hpp"
 #include "engine/post/post_reference.hpp"
 
 using namespace lp;
@@ -135,6 +137,39 @@ TEST(CudaTensorBlur, MatchesReferenceAtTheEndsOfTheHalfRange) {
     p.knee = 1e-4f;
     const ImageF ref = post::bloomBuffer(hdr, p, Storage::Float);
     EXPECT_LE(maxRelError(cuda::bloomOnDevice(hdr, p, BloomBlur::TensorCore), ref), 1e-5);
+}
+
+// On GL textures (RGBA16F, what the passes run): the fp16-output variant, texels and intermediate
+// in fp16 and only the weights split, through the fused bloom + composite in place. Its bound: one
+// fp16 rounding of the texel, one of the intermediate and the store's own, 3 half-ulps relative,
+// checked as 1.6 / 1024 (the interop tests allow 2), on a size with partial stripes and chunks and
+// on one with segments of several chunks.
+TEST(CudaTensorBlur, HalfTexturesMatchReferenceWithinOneAndAHalfUlps) {
+    const std::string problem = tensorBlurProblem();
+    if (!problem.empty()) GTEST_SKIP() << problem;
+    std::unique_ptr<gl::GpuContext> ctx = gl::createHeadlessContext();
+    if (!ctx->isNvidia()) GTEST_SKIP() << "the headless GL context is not NVIDIA (" << ctx->info().renderer << ")";
+    cuda::PostInterop interop;
+    unsigned seed = 40;
+    for (auto [w, h] : {std::pair{97, 45}, std::pair{700, 900}}) {
+        const ImageF hdrIn = randomHdr(w, h, seed++);
+        for (int kernel : {3, 5, 25, 51, 101}) {
+            const BloomParams p = separable(kernel);
+            gl::Texture hdr = gl::makeTexture2D(GL_RGBA16F, w, h, 1, "test.hdr");
+            gl::Texture bloom = gl::makeTexture2D(GL_RGBA16F, w, h, 1, "test.bloom");
+            glTextureSubImage2D(hdr.id(), 0, 0, 0, w, h, GL_RGBA, GL_FLOAT, hdrIn.rgba.data());
+            interop.bloomComposite(hdr.id(), bloom.id(), w, h, p);
+            ImageF gotBloom = hdrIn, gotHdr = hdrIn;
+            glGetTextureImage(bloom.id(), 0, GL_RGBA, GL_FLOAT, GLsizei(gotBloom.rgba.size() * 4), gotBloom.rgba.data());
+            glGetTextureImage(hdr.id(), 0, GL_RGBA, GL_FLOAT, GLsizei(gotHdr.rgba.size() * 4), gotHdr.rgba.data());
+            const ImageF refBloom = post::bloomBuffer(hdrIn, p, Storage::Float);
+            EXPECT_LE(maxRelError(gotBloom, refBloom), 1.6 / 1024.0) << w << "x" << h << " kernel " << kernel;
+            EXPECT_LE(maxRelError(gotHdr, post::compositeBloom(hdrIn, refBloom, p.strength)), 2.0 / 1024.0)
+                << w << "x" << h << " kernel " << kernel;
+            interop.forgetTexture(hdr.id());
+            interop.forgetTexture(bloom.id());
+        }
+    }
 }
 
 // Not a test: the kernel-only benchmark bench/post_interop.sh runs (cuda_tests
