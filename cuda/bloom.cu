@@ -122,10 +122,12 @@ struct CompositeOnStore {
     BloomOut bloom;
     HdrOut hdrOut;
     float strength;
-    __device__ void store(int x, int y, float4 c) const {
+    __device__ void store(int x, int y, float4 c) const { storeOver(x, y, c, hdr.load(x, y)); }
+    // store() with the HDR texel `h` loaded beforehand.
+    __device__ void storeOver(int x, int y, float4 c, float4 h) const {
         bloom.store(x, y, c);
-        const Rgb b = rgb(BloomOut::stored(c)), h = rgb(hdr.load(x, y));
-        hdrOut.store(x, y, f4(post::sanitize(add(post::sanitize(h), scale(b, strength)))));
+        const Rgb b = rgb(BloomOut::stored(c));
+        hdrOut.store(x, y, f4(post::sanitize(add(post::sanitize(rgb(h)), scale(b, strength)))));
     }
 };
 
@@ -355,6 +357,23 @@ __device__ inline float tapWeight(const Weights& w, int radius, int d) {
     return d <= radius ? w.w[d] : 0.0f;
 }
 
+// What a store reads back, loaded ahead: nothing for plain outputs, the HDR texel for the composite.
+template <typename Out>
+struct OutputPrefetch {
+    using type = char;
+    __device__ static type load(const Out&, int, int) { return 0; }
+    __device__ static void store(const Out& out, int x, int y, float4 c, type) { out.store(x, y, c); }
+};
+template <typename HdrIn, typename BloomOut, typename HdrOut>
+struct OutputPrefetch<CompositeOnStore<HdrIn, BloomOut, HdrOut>> {
+    using Out = CompositeOnStore<HdrIn, BloomOut, HdrOut>;
+    using type = typename RawTexel<HdrIn>::type;
+    __device__ static type load(const Out& out, int x, int y) { return RawTexel<HdrIn>::load(out.hdr, x, y); }
+    __device__ static void store(const Out& out, int x, int y, float4 c, type h) {
+        out.storeOver(x, y, c, RawTexel<HdrIn>::decode(h));
+    }
+};
+
 // In place (the composite writes the HDR texture the blur reads, as bloomCompositeSurfaces does):
 // a block must not overwrite HDR texels that another block has yet to stage. Blocks publish how
 // many input chunks they have staged (`progress`, one counter per block, zeroed before the launch),
@@ -429,17 +448,23 @@ __global__ void __launch_bounds__(kTcThreads, 1)
             atomicExch(&order.progress[segment * order.stripes + stripe], staged);
         }
     };
+    // Lane n < 9 of warp 0 watches neighbour (segment - 1 + n / 3, stripe - 1 + n % 3). It reads the
+    // counter early in a step (peek) and again only while that is short of what a store needs:
+    // neighbours keep pace, so the stores rarely wait for a counter's round trip.
+    const int watchedSegment = segment - 1 + lane / 3, watchedStripe = stripe - 1 + lane % 3;
+    const bool watches = order.progress && warp == 0 && lane < 9 && lane != 4 && watchedSegment >= 0 &&
+                         watchedSegment < order.segments && watchedStripe >= 0 && watchedStripe < order.stripes;
+    volatile int* watched = watches ? order.progress + watchedSegment * order.stripes + watchedStripe : nullptr;
+    int seen = 0;
+    auto peek = [&] {
+        if (watches) seen = *watched;
+    };
     auto waitForReaders = [&](int ya, int yb) {  // then __syncthreads
-        if (!order.progress || thread != 0) return;
-        for (int sg = max(segment - 1, 0); sg <= min(segment + 1, order.segments - 1); ++sg) {
-            const SegmentReads reads(sg, segmentRows, height, radius, M);
-            const int need = reads.chunksReading(ya, yb, height);
-            if (need == 0) continue;
-            for (int st = max(stripe - 1, 0); st <= min(stripe + 1, order.stripes - 1); ++st) {
-                if (st == stripe && sg == segment) continue;
-                volatile int* counter = order.progress + sg * order.stripes + st;
-                while (*counter < need) __nanosleep(256);
-            }
+        if (!watches) return;
+        const int need = SegmentReads(watchedSegment, segmentRows, height, radius, M).chunksReading(ya, yb, height);
+        while (seen < need) {
+            __nanosleep(128);
+            seen = *watched;
         }
         __threadfence();
     };
@@ -500,13 +525,32 @@ __global__ void __launch_bounds__(kTcThreads, 1)
             }
         }
     };
-    auto storeChunk = [&](const float* rows, int jc) {  // 16 rows x 64 columns, three channel planes
-        for (int e = thread; e < 16 * kTcWidth; e += kTcThreads) {
+    // Stores of an output chunk: 16 rows x 64 columns from three channel planes. What the output
+    // reads back (the composite's HDR texel) is loaded at the start of the step, not at the store.
+    using Prefetch = OutputPrefetch<Out>;
+    constexpr int kStores = (16 * kTcWidth + kTcThreads - 1) / kTcThreads;
+    typename Prefetch::type before[kStores];
+    auto prefetch = [&](int jc) {
+#pragma unroll
+        for (int i = 0; i < kStores; ++i) {
+            const int e = thread + i * kTcThreads;
+            const int x = x0 + e % kTcWidth, y = y0 + 16 * jc + e / kTcWidth;
+            if (e < 16 * kTcWidth && x < width && y < height) before[i] = Prefetch::load(out, x, y);
+        }
+    };
+    auto storeChunk = [&](const float* rows, int jc, bool prefetched) {
+#pragma unroll
+        for (int i = 0; i < kStores; ++i) {
+            const int e = thread + i * kTcThreads;
             const int row = e / kTcWidth, col = e % kTcWidth;
             const int x = x0 + col, y = y0 + 16 * jc + row;
-            if (x >= width || y >= height) continue;
+            if (e >= 16 * kTcWidth || x >= width || y >= height) continue;
             const int at = row * L::outRow + col;
-            out.store(x, y, make_float4(rows[at], rows[16 * L::outRow + at], rows[32 * L::outRow + at], 1.0f));
+            const float4 c = make_float4(rows[at], rows[16 * L::outRow + at], rows[32 * L::outRow + at], 1.0f);
+            if (prefetched)
+                Prefetch::store(out, x, y, c, before[i]);
+            else
+                out.store(x, y, c);
         }
     };
     load(0);
@@ -524,6 +568,10 @@ __global__ void __launch_bounds__(kTcThreads, 1)
         if (more) load(s + 1);
         const int jc = s - M;  // output chunk of this step's vertical pass
         const bool deferThis = jc >= 0 && jc < deferChunks;
+        if (jc >= 0 && !deferThis) {
+            prefetch(jc);
+            peek();
+        }
         float* rows = deferThis ? deferred + jc * L::outFloats : outBuffer + (jc & 1) * L::outFloats;
 
         const __half* hiPlane = stage + (s & 1) * L::stageHalves + (2 * channel) * L::planeHalves;
@@ -598,13 +646,14 @@ __global__ void __launch_bounds__(kTcThreads, 1)
                 waitForReaders(y0 + 16 * jc, min(y0 + 16 * jc + 16, height));
                 __syncthreads();
             }
-            storeChunk(rows, jc);
+            storeChunk(rows, jc, true);
         }
     }
     if (deferChunks > 0) {  // the rows the segment above reads, once it has staged them
+        peek();
         waitForReaders(y0, min(y0 + 16 * deferChunks, height));
         __syncthreads();
-        for (int jc = 0; jc < deferChunks; ++jc) storeChunk(deferred + jc * L::outFloats, jc);
+        for (int jc = 0; jc < deferChunks; ++jc) storeChunk(deferred + jc * L::outFloats, jc, false);
     }
 }
 
