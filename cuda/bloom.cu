@@ -976,7 +976,7 @@ double copyBytesPerSecond(cudaStream_t stream) {
 }  // namespace
 
 BloomKernelTime timeBloomCompositeKernels(int width, int height, const post::BloomParams& p, BloomBlur blur,
-                                          int iterations) {
+                                          int iterations, bool composite) {
     Half4Array hdr(width, height), bloom(width, height);
     cudaStream_t stream = nullptr;
     check(cudaStreamCreate(&stream), "cudaStreamCreate");
@@ -994,7 +994,10 @@ BloomKernelTime timeBloomCompositeKernels(int width, int height, const post::Blo
                                                                                   height);
         checkLaunch("fillBenchHdr");
         check(cudaEventRecord(start, stream), "cudaEventRecord");
-        bloomCompositeSurfaces(hdr.surface, bloom.surface, width, height, p, ws, stream);
+        if (composite)
+            bloomCompositeSurfaces(hdr.surface, bloom.surface, width, height, p, ws, stream);
+        else
+            bloomSurfaceToSurface(hdr.surface, bloom.surface, width, height, p, ws, stream);
         check(cudaEventRecord(stop, stream), "cudaEventRecord");
         check(cudaEventSynchronize(stop), "cudaEventSynchronize");
         float t = 0.0f;

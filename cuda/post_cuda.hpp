@@ -89,17 +89,17 @@ struct BloomAndComposite {
 BloomAndComposite bloomCompositeOnDevice(const ImageF& hdr, const post::BloomParams& p,
                                          BloomBlur blur = BloomBlur::Auto);  // the fused path
 
-// Kernel-only time of the fused bloom + composite on RGBA16F CUDA arrays (the layout of the GL
-// textures the passes share, without GL): median of `iterations` CUDA-event timings after a
-// warm-up, and the device's copy bandwidth (bytes read + written per second by a device-to-device
-// copy of 512 MiB) for the floor.
+// Kernel-only time of the fused bloom + composite (or, with composite false, of the bloom buffer
+// alone) on RGBA16F CUDA arrays (the layout of the GL textures the passes share, without GL):
+// median of `iterations` CUDA-event timings after a warm-up, and the device's copy bandwidth (bytes
+// read + written per second by a device-to-device copy of 512 MiB) for the floor.
 struct BloomKernelTime {
     double medianMs = 0.0;
     double copyBytesPerSecond = 0.0;
     bool tensorCores = false;  // the blur ran on the tensor cores
 };
 BloomKernelTime timeBloomCompositeKernels(int width, int height, const post::BloomParams& p, BloomBlur blur,
-                                          int iterations);
+                                          int iterations, bool composite = true);
 ImageF compositeOnDevice(const ImageF& hdr, const ImageF& bloom, float strength);
 ImageF toonOnDevice(const ImageF& hdr, const ImageF& position, const ImageF& normal, const post::ToonParams& p);
 

@@ -175,19 +175,23 @@ TEST(CudaTensorBlur, HalfTexturesMatchReferenceWithinOneAndAHalfUlps) {
 // Not a test: the kernel-only benchmark bench/post_interop.sh runs (cuda_tests
 // --gtest_also_run_disabled_tests --gtest_filter='CudaBloomBench.*'). The fused bloom + composite
 // on RGBA16F CUDA arrays, direct and tensor-core blur, against the floor: 24 bytes a texel (the HDR
-// read, the bloom and the HDR written, 8 bytes each) at the measured copy bandwidth.
+// read, the bloom and the HDR written, 8 bytes each) at the measured copy bandwidth. Also the bloom
+// buffer alone (no composite: not in place, 16 bytes a texel), lines "bloom_only_kernels".
 TEST(CudaBloomBench, DISABLED_KernelTimesAgainstFloor) {
     const std::string device = cuda::postDeviceProblem();
     if (!device.empty()) GTEST_SKIP() << "no CUDA device: " << device;
-    for (auto [w, h] : {std::pair{1920, 1080}, std::pair{3840, 2160}})
-        for (int kernel : {3, 5, 9, 17, 25, 50, 100})
-            for (BloomBlur blur : {BloomBlur::Direct, BloomBlur::TensorCore, BloomBlur::Auto}) {
-                const BloomParams p = separable(kernel);
-                const cuda::BloomKernelTime t = cuda::timeBloomCompositeKernels(w, h, p, blur, 60);
-                const double floorMs = 24.0 * double(w) * double(h) / t.copyBytesPerSecond * 1e3;
-                std::printf("bloom_kernels size=%dx%d kernel=%d blur=%s ran=%s ms=%.5f floor_ms=%.5f copy_GBps=%.1f\n", w,
-                            h, kernel, blur == BloomBlur::Direct ? "direct" : blur == BloomBlur::TensorCore ? "tensor" : "auto",
-                            t.tensorCores ? "tensor" : "direct", t.medianMs, floorMs, t.copyBytesPerSecond * 1e-9);
-                std::fflush(stdout);
-            }
+    for (bool composite : {true, false})
+        for (auto [w, h] : {std::pair{1920, 1080}, std::pair{3840, 2160}})
+            for (int kernel : {3, 5, 9, 17, 25, 50, 100})
+                for (BloomBlur blur : {BloomBlur::Direct, BloomBlur::TensorCore, BloomBlur::Auto}) {
+                    const BloomParams p = separable(kernel);
+                    const cuda::BloomKernelTime t = cuda::timeBloomCompositeKernels(w, h, p, blur, 60, composite);
+                    const double bytes = composite ? 24.0 : 16.0;
+                    const double floorMs = bytes * double(w) * double(h) / t.copyBytesPerSecond * 1e3;
+                    std::printf("%s size=%dx%d kernel=%d blur=%s ran=%s ms=%.5f floor_ms=%.5f copy_GBps=%.1f\n",
+                                composite ? "bloom_kernels" : "bloom_only_kernels", w, h, kernel,
+                                blur == BloomBlur::Direct ? "direct" : blur == BloomBlur::TensorCore ? "tensor" : "auto",
+                                t.tensorCores ? "tensor" : "direct", t.medianMs, floorMs, t.copyBytesPerSecond * 1e-9);
+                    std::fflush(stdout);
+                }
 }
