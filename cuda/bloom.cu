@@ -487,8 +487,13 @@ __global__ void __launch_bounds__(kTcThreads, 1)
 
     // Staging of input chunk s (apron coordinates: row y0 - r + 16s + i, column x0 - r + c), clamped
     // as the reference's texel(); the bright pass is applied as the texels are staged.
-    typename Raw::type pending[L::loads][2];  // column pairs, so that staging stores half2
-    auto load = [&](int s) {
+    // Loads run kDepth chunks ahead of the staging: two where a step's products are too few to
+    // cover a load's latency (M <= 4) and the registers allow it (fp16 texels).
+    constexpr int kDepth = M <= 4 && sizeof(typename Raw::type) <= 8 ? 2 : 1;
+    using Pending = typename Raw::type[L::loads][2];  // column pairs, so that staging stores half2
+    Pending pendingA;
+    [[maybe_unused]] Pending pendingB;
+    auto load = [&](Pending& pending, int s) {
 #pragma unroll
         for (int b = 0; b < L::loads; ++b) {
             const int e = thread + b * kTcThreads;
@@ -502,7 +507,7 @@ __global__ void __launch_bounds__(kTcThreads, 1)
             }
         }
     };
-    auto commit = [&](int s) {
+    auto commit = [&](const Pending& pending, int s) {
         __half* buffer = stage + (s & 1) * L::stageHalves;
 #pragma unroll
         for (int b = 0; b < L::loads; ++b) {
@@ -553,8 +558,10 @@ __global__ void __launch_bounds__(kTcThreads, 1)
                 out.store(x, y, c);
         }
     };
-    load(0);
-    commit(0);
+    load(pendingA, 0);
+    commit(pendingA, 0);
+    if constexpr (kDepth == 2)
+        if (1 < steps) load(pendingB, 1);
     __syncthreads();
     publish(1);
 
@@ -563,9 +570,10 @@ __global__ void __launch_bounds__(kTcThreads, 1)
     // chunk m once into both passes: the new staged rows (horizontal) and window[m] (vertical).
     uint4 windowHi[M];
     [[maybe_unused]] uint4 windowLo[M];
-    for (int s = 0; s < steps + 1; ++s) {
+    // Step s: loads of chunk s + kDepth into `loading`, staging of chunk s + 1 from `staging`.
+    auto step = [&](int s, Pending& loading, const Pending& staging) {
         const bool staged = s < steps, more = s + 1 < steps;
-        if (more) load(s + 1);
+        if (s + kDepth < steps) load(loading, s + kDepth);
         const int jc = s - M;  // output chunk of this step's vertical pass
         const bool deferThis = jc >= 0 && jc < deferChunks;
         if (jc >= 0 && !deferThis) {
@@ -638,7 +646,7 @@ __global__ void __launch_bounds__(kTcThreads, 1)
             windowHi[M - 1] = hi;
             if constexpr (splitTexels) windowLo[M - 1] = lo;
         }
-        if (more) commit(s + 1);
+        if (more) commit(staging, s + 1);
         __syncthreads();
         if (staged) publish(more ? s + 2 : steps);
         if (jc >= 0 && !deferThis) {
@@ -647,6 +655,14 @@ __global__ void __launch_bounds__(kTcThreads, 1)
                 __syncthreads();
             }
             storeChunk(rows, jc, true);
+        }
+    };
+    for (int s = 0; s < steps + 1; s += kDepth) {
+        if constexpr (kDepth == 1) {
+            step(s, pendingA, pendingA);
+        } else {
+            step(s, pendingA, pendingB);
+            if (s + 1 < steps + 1) step(s + 1, pendingB, pendingA);
         }
     }
     if (deferChunks > 0) {  // the rows the segment above reads, once it has staged them
