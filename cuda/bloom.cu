@@ -487,9 +487,9 @@ __global__ void __launch_bounds__(kTcThreads, 1)
 
     // Staging of input chunk s (apron coordinates: row y0 - r + 16s + i, column x0 - r + c), clamped
     // as the reference's texel(); the bright pass is applied as the texels are staged.
-    // Loads run kDepth chunks ahead of the staging: two where a step's products are too few to
-    // cover a load's latency (M <= 4) and the registers allow it (fp16 texels).
-    constexpr int kDepth = M <= 4 && sizeof(typename Raw::type) <= 8 ? 2 : 1;
+    // Loads run kDepth chunks ahead of the staging, so that a load's latency is covered by two
+    // steps of products: two where the registers allow it (fp16 texels), else one.
+    constexpr int kDepth = sizeof(typename Raw::type) <= 8 ? 2 : 1;
     using Pending = typename Raw::type[L::loads][2];  // column pairs, so that staging stores half2
     Pending pendingA;
     [[maybe_unused]] Pending pendingB;
@@ -779,9 +779,11 @@ bool launchTensorBlurChunks(In hdr, Out out, int width, int height, Weights w, i
     return true;
 }
 
-// Auto: the tensor cores from this radius up (the direct blur is memory bound below it; the
-// crossover measured by bench/post_interop.sh, bench/results/post_interop/README.md).
-constexpr int kTensorBlurMinRadius = 2;
+// Auto: the tensor cores from this radius up. On the H100 (bench/results/post_interop/README.md)
+// the direct blur was faster at kernel 50 and slower at 100 (fused in place, 1080p and 4K); its
+// time grows with the radius and the tensor-core blur's is flat within one instantiation (M = 8:
+// radius 41..56), so the two meet near kernel 85.
+constexpr int kTensorBlurMinRadius = 43;
 bool wantsTensorBlur(BloomBlur blur, int radius) {
     if (blur != BloomBlur::Auto) return blur == BloomBlur::TensorCore;
     return radius >= kTensorBlurMinRadius;
