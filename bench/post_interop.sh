@@ -6,7 +6,9 @@
 # map/unmap), and what --post-backend auto chose (measured afresh into OUTDIR/cache). `external`
 # is ordered by Vulkan semaphores where info's `sync:` line says so, else by host waits. Per pass: GL-timed ms (what the frame pays, interop and
 # syncs included), CUDA kernel ms, interop ms, the bandwidth floor and measured/floor. Also runs the
-# CUDA tests (shared textures vs the CPU reference) and records `info`. From the repository root:
+# CUDA tests (shared textures vs the CPU reference), the kernel-only bloom benchmark in cuda_tests
+# (bloom_kernels.txt: direct vs tensor-core blur, kernel 3..100, 1080p and 4K, against the floor)
+# and records `info`. From the repository root:
 #   bench/post_interop.sh BUNDLE OUTDIR    (BUNDLE: run, cuda_tests, lib/)
 #   SMOKE=1 bench/post_interop.sh BUNDLE OUTDIR   tiny sizes, few frames (checks the plumbing)
 set -u
@@ -19,6 +21,10 @@ export LIGHTPASS_CACHE_DIR=$R/cache
 "$B/run" info > "$R/info.txt" 2>&1; grep -E "^(renderer|cuda|interop|sync):" "$R/info.txt"
 if [[ -x "$B/cuda_tests" ]]; then
   LD_LIBRARY_PATH=$B/lib "$B/cuda_tests" > "$R/cuda_tests.txt" 2>&1; tail -2 "$R/cuda_tests.txt"
+  # Kernel-only: the fused bloom + composite on RGBA16F CUDA arrays (no GL), direct and
+  # tensor-core blur and what auto picks, kernel 3..100 at 1080p and 4K, CUDA events, vs the floor.
+  LD_LIBRARY_PATH=$B/lib "$B/cuda_tests" --gtest_also_run_disabled_tests --gtest_filter='CudaBloomBench.*' \
+    > "$R/bloom_kernels.txt" 2>&1 || echo "bloom kernel benchmark failed: $(tail -1 "$R/bloom_kernels.txt")"
 fi
 cuda=1
 grep -q "^cuda:.*(compute [0-9]" "$R/info.txt" || { cuda=0; echo "(no CUDA device: CUDA rows skipped)"; }

@@ -302,17 +302,19 @@ PostTiming PostInterop::toon(GLuint hdr, GLuint position, GLuint normal, int wid
     });
 }
 
-ImageF bloomOnDevice(const ImageF& hdr, const post::BloomParams& p) {
+ImageF bloomOnDevice(const ImageF& hdr, const post::BloomParams& p, BloomBlur blur) {
     DeviceImage in(hdr), out(hdr.width, hdr.height);
     BloomWorkspace ws;
+    ws.blur = blur;
     bloomBufferToBuffer(in.data, out.data, hdr.width, hdr.height, p, ws, nullptr);
     check(cudaDeviceSynchronize(), "cudaDeviceSynchronize");
     return out.download(hdr.width, hdr.height);
 }
 
-BloomAndComposite bloomCompositeOnDevice(const ImageF& hdr, const post::BloomParams& p) {
+BloomAndComposite bloomCompositeOnDevice(const ImageF& hdr, const post::BloomParams& p, BloomBlur blur) {
     DeviceImage in(hdr), bloom(hdr.width, hdr.height);
     BloomWorkspace ws;
+    ws.blur = blur;
     bloomCompositeBuffers(in.data, bloom.data, in.data, hdr.width, hdr.height, p, ws, nullptr);  // in place
     check(cudaDeviceSynchronize(), "cudaDeviceSynchronize");
     return {bloom.download(hdr.width, hdr.height), in.download(hdr.width, hdr.height)};

@@ -94,12 +94,33 @@ private:
     std::unique_ptr<Impl> impl_;
 };
 
+// Which kernels run the separable blur (cuda/bloom.cu): Auto picks the tensor-core blur where the
+// device has it (sm_80+) and the radius is at least kTensorBlurMinRadius, else the direct one; the
+// others force one (tests, benchmark; TensorCore falls back to Direct where the device lacks it).
+enum class BloomBlur { Auto, Direct, TensorCore };
+// Whether a separable bloom of `kernel` px with `blur` runs on the tensor cores on this device.
+bool bloomBlurUsesTensorCores(int kernel, BloomBlur blur);
+
 // Device-buffer runs (fp32 intermediates) for tests and the benchmark.
-ImageF bloomOnDevice(const ImageF& hdr, const post::BloomParams& p);  // the bloom buffer
+ImageF bloomOnDevice(const ImageF& hdr, const post::BloomParams& p,
+                     BloomBlur blur = BloomBlur::Auto);  // the bloom buffer
 struct BloomAndComposite {
     ImageF bloom, hdr;
 };
-BloomAndComposite bloomCompositeOnDevice(const ImageF& hdr, const post::BloomParams& p);  // the fused path
+BloomAndComposite bloomCompositeOnDevice(const ImageF& hdr, const post::BloomParams& p,
+                                         BloomBlur blur = BloomBlur::Auto);  // the fused path
+
+// Kernel-only time of the fused bloom + composite (or, with composite false, of the bloom buffer
+// alone) on RGBA16F CUDA arrays (the layout of the GL textures the passes share, without GL):
+// median of `iterations` CUDA-event timings after a warm-up, and the device's copy bandwidth (bytes
+// read + written per second by a device-to-device copy of 512 MiB) for the floor.
+struct BloomKernelTime {
+    double medianMs = 0.0;
+    double copyBytesPerSecond = 0.0;
+    bool tensorCores = false;  // the blur ran on the tensor cores
+};
+BloomKernelTime timeBloomCompositeKernels(int width, int height, const post::BloomParams& p, BloomBlur blur,
+                                          int iterations, bool composite = true);
 ImageF compositeOnDevice(const ImageF& hdr, const ImageF& bloom, float strength);
 ImageF toonOnDevice(const ImageF& hdr, const ImageF& position, const ImageF& normal, const post::ToonParams& p);
 

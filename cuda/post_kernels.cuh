@@ -4,6 +4,7 @@
 #include <cuda_fp16.h>
 #include <cuda_runtime.h>
 
+#include "cuda/post_cuda.hpp"
 #include "engine/post/post_math.hpp"
 #include "engine/post/post_params.hpp"
 
@@ -45,17 +46,21 @@ struct Float4Surface {
 };
 
 // Device scratch of the bloom: the full-resolution horizontal-blur buffer and the mip chain, grown
-// on demand.
+// on demand; and which separable blur runs (the tensor-core blur needs only per-block counters).
 struct BloomWorkspace {
+    BloomBlur blur = BloomBlur::Auto;
     float4* a = nullptr;
     size_t fullTexels = 0;
     float4* mips[post::kMaxMipLevels] = {};
     size_t mipTexels[post::kMaxMipLevels] = {};
+    int* progress = nullptr;  // the tensor-core blur's per-block counters when it composites in place
+    size_t progressCount = 0;
     BloomWorkspace() = default;
     ~BloomWorkspace();
     BloomWorkspace(const BloomWorkspace&) = delete;
     BloomWorkspace& operator=(const BloomWorkspace&) = delete;
     void ensure(int width, int height, const post::BloomParams& p);
+    int* progressCounters(size_t count);  // at least `count`, grown on demand
 };
 
 // Bloom buffer of `hdr` into `bloom` (fp32 intermediates), by p.method.
