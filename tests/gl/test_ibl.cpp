@@ -94,6 +94,66 @@ glm::dvec2 dfgReference(double nv, double roughness) {
     return ab / double(nt * np);
 }
 
+// One sphere of radius 0.5 at the origin under the environment map `map`, seen from 2.5 m with a
+// 40 degree field of view, no ambient: the furnace and small-lamp tests' scene.
+Scene sphereUnderMap(const std::filesystem::path& map, glm::vec3 diffuse, glm::vec3 specular, float shininess) {
+    Scene scene;
+    ModelInstance m;
+    m.name = "sphere";
+    m.primitive = "sphere";
+    m.mesh = makeSphere(0.5f, 64, 32);
+    for (auto& mat : m.mesh.materials) {
+        mat.diffuse = diffuse;
+        mat.specular = specular;
+        mat.shininess = shininess;
+    }
+    scene.models.push_back(std::move(m));
+    scene.ambient = glm::vec3(0.0f);
+    scene.environment.map = map;
+    scene.camera.position = glm::vec3(0.0f, 0.0f, 2.5f);
+    scene.camera.target = glm::vec3(0.0f);
+    scene.camera.fovYDegrees = 40.0f;
+    scene.camera.nearPlane = 0.1f;
+    scene.camera.farPlane = 10.0f;
+    return scene;
+}
+
+// The pixels of a w x h image of sphereUnderMap's scene whose ray meets the sphere inside radius
+// 0.45 (away from the tessellated silhouette), with the normal of the radius-0.5 sphere there, the
+// direction to the eye and N.V (clamped to [1e-4, 1]).
+struct SpherePixel {
+    int x, y;
+    glm::dvec3 normal, view;
+    double nv;
+};
+std::vector<SpherePixel> spherePixels(const Scene& scene, int w, int h) {
+    const glm::dmat4 inv = glm::inverse(glm::dmat4(scene.camera.projection(float(w) / float(h))) * glm::dmat4(scene.camera.view()));
+    std::vector<SpherePixel> pixels;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const double nx = (x + 0.5) / w * 2.0 - 1.0, ny = 1.0 - (y + 0.5) / h * 2.0;
+            const glm::dvec4 a = inv * glm::dvec4(nx, ny, -1.0, 1.0), b = inv * glm::dvec4(nx, ny, 1.0, 1.0);
+            const glm::dvec3 o = glm::dvec3(a) / a.w, d = glm::normalize(glm::dvec3(b) / b.w - o);
+            const double bq = glm::dot(o, d);
+            if (bq * bq - (glm::dot(o, o) - 0.45 * 0.45) <= 0.0) continue;
+            const glm::dvec3 n = (o + (-bq - std::sqrt(bq * bq - (glm::dot(o, o) - 0.25))) * d) / 0.5;
+            pixels.push_back({x, y, n, -d, std::clamp(glm::dot(n, -d), 1e-4, 1.0)});
+        }
+    return pixels;
+}
+
+// The directional albedo A + B of lightpass's GGX (F0 = 1) at N.V, computed once per N.V (the
+// sphere images are symmetric) into `memo`.
+double memoAlbedo(std::map<long, double>& memo, double nv, double roughness) {
+    const long key = std::lround(nv * 1e7);
+    auto it = memo.find(key);
+    if (it == memo.end()) {
+        const glm::dvec2 ab = dfgReference(nv, roughness);
+        it = memo.emplace(key, ab.x + ab.y).first;
+    }
+    return it->second;
+}
+
 }  // namespace
 
 // White furnace: a Lambertian sphere (ks = 0) of albedo 1 and of albedo 0.5 in a uniform environment
@@ -112,24 +172,7 @@ TEST(Ibl, WhiteFurnaceSphereReflectsTheEnvironmentExactly) {
     white.rgba.assign(size_t(128 * 64 * 4), 1.0f);
     writeExr(mapPath, white);
 
-    Scene scene;
-    ModelInstance m;
-    m.name = "sphere";
-    m.primitive = "sphere";
-    m.mesh = makeSphere(0.5f, 64, 32);
-    for (auto& mat : m.mesh.materials) {
-        mat.diffuse = glm::vec3(albedo);
-        mat.specular = glm::vec3(0.0f);
-        mat.shininess = 32.0f;
-    }
-    scene.models.push_back(std::move(m));
-    scene.ambient = glm::vec3(0.0f);
-    scene.environment.map = mapPath;
-    scene.camera.position = glm::vec3(0.0f, 0.0f, 2.5f);
-    scene.camera.target = glm::vec3(0.0f);
-    scene.camera.fovYDegrees = 40.0f;
-    scene.camera.nearPlane = 0.1f;
-    scene.camera.farPlane = 10.0f;
+    const Scene scene = sphereUnderMap(mapPath, glm::vec3(albedo), glm::vec3(0.0f), 32.0f);
 
     Renderer r(scene);
     for (IrradianceSource source : {IrradianceSource::SphericalHarmonics, IrradianceSource::Cubemap})
@@ -145,24 +188,15 @@ TEST(Ibl, WhiteFurnaceSphereReflectsTheEnvironmentExactly) {
         r.render(s, 0.0f, false);
         ASSERT_TRUE(r.graph().isLive("ibl"));
         ImageF hdr = r.readHdr();
-        const glm::dmat4 inv = glm::inverse(glm::dmat4(scene.camera.projection(64.0f / 48.0f)) * glm::dmat4(scene.camera.view()));
-        int onSphere = 0;
-        for (int y = 0; y < 48; ++y)
-            for (int x = 0; x < 64; ++x) {
-                const double nx = (x + 0.5) / 64 * 2.0 - 1.0, ny = 1.0 - (y + 0.5) / 48 * 2.0;
-                glm::dvec4 a = inv * glm::dvec4(nx, ny, -1.0, 1.0), b = inv * glm::dvec4(nx, ny, 1.0, 1.0);
-                glm::dvec3 o = glm::dvec3(a) / a.w, d = glm::normalize(glm::dvec3(b) / b.w - o);
-                // Inside radius 0.45: away from the tessellated silhouette.
-                const double bq = glm::dot(o, d), c = glm::dot(o, o) - 0.45 * 0.45;
-                if (bq * bq - c <= 0.0) continue;
-                ++onSphere;
-                const float* p = &hdr.rgba[(size_t(y) * 64 + size_t(x)) * 4];
-                for (int ch = 0; ch < 3; ++ch)
-                    EXPECT_NEAR(p[ch], albedo, 0.005 * albedo)
-                        << "pixel " << x << "," << y << " source " << int(source) << " albedo " << albedo
-                        << " specular " << iblSpecularName(specular);
-            }
-        EXPECT_GT(onSphere, 200);
+        const std::vector<SpherePixel> sphere = spherePixels(scene, 64, 48);
+        for (const SpherePixel& px : sphere) {
+            const float* p = &hdr.rgba[(size_t(px.y) * 64 + size_t(px.x)) * 4];
+            for (int ch = 0; ch < 3; ++ch)
+                EXPECT_NEAR(p[ch], albedo, 0.005 * albedo)
+                    << "pixel " << px.x << "," << px.y << " source " << int(source) << " albedo " << albedo
+                    << " specular " << iblSpecularName(specular);
+        }
+        EXPECT_GT(sphere.size(), 200u);
     }
     std::filesystem::remove(mapPath);
   }
@@ -185,24 +219,7 @@ TEST(Ibl, WhiteFurnaceGgxSphereReflectsItsExactAlbedo) {
     for (IblSpecular specular : {IblSpecular::SplitSum, IblSpecular::Sampled})
     for (float shininess : {6.0f, 0.0f}) {  // alpha = sqrt(2 / (n + 2)): 0.5 and 1
         SCOPED_TRACE(iblSpecularName(specular));
-        Scene scene;
-        ModelInstance m;
-        m.name = "sphere";
-        m.primitive = "sphere";
-        m.mesh = makeSphere(0.5f, 64, 32);
-        for (auto& mat : m.mesh.materials) {
-            mat.diffuse = glm::vec3(0.0f);
-            mat.specular = glm::vec3(1.0f);
-            mat.shininess = shininess;
-        }
-        scene.models.push_back(std::move(m));
-        scene.ambient = glm::vec3(0.0f);
-        scene.environment.map = mapPath;
-        scene.camera.position = glm::vec3(0.0f, 0.0f, 2.5f);
-        scene.camera.target = glm::vec3(0.0f);
-        scene.camera.fovYDegrees = 40.0f;
-        scene.camera.nearPlane = 0.1f;
-        scene.camera.farPlane = 10.0f;
+        const Scene scene = sphereUnderMap(mapPath, glm::vec3(0.0f), glm::vec3(1.0f), shininess);
         Renderer r(scene);
         RenderSettings s;
         s.width = 48;
@@ -216,32 +233,17 @@ TEST(Ibl, WhiteFurnaceGgxSphereReflectsItsExactAlbedo) {
         ASSERT_TRUE(r.graph().isLive("ibl"));
         ImageF hdr = r.readHdr();
         const double roughness = std::sqrt(std::sqrt(2.0 / (shininess + 2.0)));
-        const glm::dmat4 inv = glm::inverse(glm::dmat4(scene.camera.projection(48.0f / 36.0f)) * glm::dmat4(scene.camera.view()));
         double sum = 0.0, sumExact = 0.0;
-        int onSphere = 0;
-        std::map<long, double> albedoAt;  // the image is symmetric: each N.V once
-        for (int y = 0; y < 36; ++y)
-            for (int x = 0; x < 48; ++x) {
-                const double nx = (x + 0.5) / 48 * 2.0 - 1.0, ny = 1.0 - (y + 0.5) / 36 * 2.0;
-                glm::dvec4 a = inv * glm::dvec4(nx, ny, -1.0, 1.0), b = inv * glm::dvec4(nx, ny, 1.0, 1.0);
-                glm::dvec3 o = glm::dvec3(a) / a.w, d = glm::normalize(glm::dvec3(b) / b.w - o);
-                const double bq = glm::dot(o, d), c = glm::dot(o, o) - 0.45 * 0.45;
-                if (bq * bq - c <= 0.0) continue;
-                const double t = -bq - std::sqrt(bq * bq - (glm::dot(o, o) - 0.25));
-                const double nv = std::clamp(-glm::dot((o + t * d) / 0.5, d), 1e-4, 1.0);
-                const long key = std::lround(nv * 1e7);
-                if (!albedoAt.count(key)) {
-                    const glm::dvec2 ab = dfgReference(nv, roughness);
-                    albedoAt[key] = ab.x + ab.y;
-                }
-                const double exact = albedoAt[key];
-                const float* p = &hdr.rgba[(size_t(y) * 48 + size_t(x)) * 4];
-                EXPECT_NEAR(p[1], exact, 0.02 * exact) << "pixel " << x << "," << y << " N.V " << nv << " n " << shininess;
-                sum += p[1];
-                sumExact += exact;
-                ++onSphere;
-            }
-        ASSERT_GT(onSphere, 100);
+        std::map<long, double> albedoAt;
+        const std::vector<SpherePixel> sphere = spherePixels(scene, 48, 36);
+        for (const SpherePixel& px : sphere) {
+            const double exact = memoAlbedo(albedoAt, px.nv, roughness);
+            const float* p = &hdr.rgba[(size_t(px.y) * 48 + size_t(px.x)) * 4];
+            EXPECT_NEAR(p[1], exact, 0.02 * exact) << "pixel " << px.x << "," << px.y << " N.V " << px.nv << " n " << shininess;
+            sum += p[1];
+            sumExact += exact;
+        }
+        ASSERT_GT(sphere.size(), 100u);
         EXPECT_NEAR(sum / sumExact, 1.0, 0.005) << "shininess " << shininess;
         RecordProperty(std::string(iblSpecularName(specular)) + "_mean_rel_error_n" + std::to_string(int(shininess)),
                        std::to_string(sum / sumExact - 1.0));
@@ -487,24 +489,7 @@ TEST(Ibl, RoughSphereUnderASmallLampMatchesTheExactSplitSum) {
     const auto mapPath = tempPath("lamp-sphere.exr");
     writeExr(mapPath, lampMap(lampDir));
     const float shininess = 6.0f;  // alpha = sqrt(2 / (n + 2)) = 0.5
-    Scene scene;
-    ModelInstance m;
-    m.name = "sphere";
-    m.primitive = "sphere";
-    m.mesh = makeSphere(0.5f, 64, 32);
-    for (auto& mat : m.mesh.materials) {
-        mat.diffuse = glm::vec3(0.0f);
-        mat.specular = glm::vec3(1.0f);
-        mat.shininess = shininess;
-    }
-    scene.models.push_back(std::move(m));
-    scene.ambient = glm::vec3(0.0f);
-    scene.environment.map = mapPath;
-    scene.camera.position = glm::vec3(0.0f, 0.0f, 2.5f);
-    scene.camera.target = glm::vec3(0.0f);
-    scene.camera.fovYDegrees = 40.0f;
-    scene.camera.nearPlane = 0.1f;
-    scene.camera.farPlane = 10.0f;
+    const Scene scene = sphereUnderMap(mapPath, glm::vec3(0.0f), glm::vec3(1.0f), shininess);
     Renderer r(scene);
     RenderSettings s;
     s.width = 40;
@@ -545,48 +530,36 @@ TEST(Ibl, RoughSphereUnderASmallLampMatchesTheExactSplitSum) {
         const double dd = nh * nh * (a2 - 1.0) + 1.0;
         return a2 / (kPi * dd * dd);
     };
-    const glm::dmat4 inv = glm::inverse(glm::dmat4(scene.camera.projection(40.0f / 30.0f)) * glm::dmat4(scene.camera.view()));
     double got = 0.0, want = 0.0, exact = 0.0, gotCore = 0.0, wantCore = 0.0, sampled = 0.0;
-    int onSphere = 0;
     std::map<long, double> albedoAt;
-    for (int y = 0; y < 30; ++y)
-        for (int x = 0; x < 40; ++x) {
-            const double nx = (x + 0.5) / 40 * 2.0 - 1.0, ny = 1.0 - (y + 0.5) / 30 * 2.0;
-            glm::dvec4 a = inv * glm::dvec4(nx, ny, -1.0, 1.0), b = inv * glm::dvec4(nx, ny, 1.0, 1.0);
-            const glm::dvec3 o = glm::dvec3(a) / a.w, d = glm::normalize(glm::dvec3(b) / b.w - o);
-            const double bq = glm::dot(o, d);
-            if (bq * bq - (glm::dot(o, o) - 0.45 * 0.45) <= 0.0) continue;  // away from the silhouette
-            const glm::dvec3 N = (o + (-bq - std::sqrt(bq * bq - (glm::dot(o, o) - 0.25))) * d) / 0.5, V = -d;
-            const double nv = std::clamp(glm::dot(N, V), 1e-4, 1.0);
-            const glm::dvec3 R = 2.0 * nv * N - V, Rd = glm::normalize(glm::mix(R, N, a2));
-            double sum = 0.0, weight = 0.0, direct = 0.0;
-            for (size_t t = 0; t < dirs.size(); ++t) {
-                const double rl = glm::dot(Rd, dirs[t]);
-                if (rl > 0.0) {
-                    const double w = ggxD(std::sqrt((1.0 + rl) / 2.0)) * rl * omega[t];
-                    sum += w * radiance[t];
-                    weight += w;
-                }
-                const double nl = glm::dot(N, dirs[t]);
-                if (nl > 0.0) {  // the BRDF itself (F = 1, height-correlated Smith)
-                    const glm::dvec3 h = glm::normalize(V + dirs[t]);
-                    const double vis = 0.5 / (nl * std::sqrt(nv * nv * (1.0 - a2) + a2) + nv * std::sqrt(nl * nl * (1.0 - a2) + a2));
-                    direct += radiance[t] * ggxD(glm::dot(N, h)) * vis * nl * omega[t];
-                }
+    const std::vector<SpherePixel> sphere = spherePixels(scene, 40, 30);
+    for (const SpherePixel& px : sphere) {
+        const glm::dvec3 N = px.normal, V = px.view;
+        const double nv = px.nv;
+        const glm::dvec3 R = 2.0 * nv * N - V, Rd = glm::normalize(glm::mix(R, N, a2));
+        double sum = 0.0, weight = 0.0, direct = 0.0;
+        for (size_t t = 0; t < dirs.size(); ++t) {
+            const double rl = glm::dot(Rd, dirs[t]);
+            if (rl > 0.0) {
+                const double w = ggxD(std::sqrt((1.0 + rl) / 2.0)) * rl * omega[t];
+                sum += w * radiance[t];
+                weight += w;
             }
-            const long key = std::lround(nv * 1e7);
-            if (!albedoAt.count(key)) {
-                const glm::dvec2 ab = dfgReference(nv, roughness);
-                albedoAt[key] = ab.x + ab.y;
+            const double nl = glm::dot(N, dirs[t]);
+            if (nl > 0.0) {  // the BRDF itself (F = 1, height-correlated Smith)
+                const glm::dvec3 h = glm::normalize(V + dirs[t]);
+                const double vis = 0.5 / (nl * std::sqrt(nv * nv * (1.0 - a2) + a2) + nv * std::sqrt(nl * nl * (1.0 - a2) + a2));
+                direct += radiance[t] * ggxD(glm::dot(N, h)) * vis * nl * omega[t];
             }
-            const double splitSum = sum / weight * albedoAt[key];
-            const double pixel = hdr.rgba[(size_t(y) * 40 + size_t(x)) * 4 + 1];
-            const double sampledPixel = sampledHdr.rgba[(size_t(y) * 40 + size_t(x)) * 4 + 1];
-            ASSERT_TRUE(std::isfinite(pixel) && std::isfinite(sampledPixel));
-            got += pixel, want += splitSum, exact += direct, sampled += sampledPixel, ++onSphere;
-            if (nv >= 0.7) gotCore += pixel, wantCore += splitSum;
         }
-    ASSERT_GT(onSphere, 100);
+        const double splitSum = sum / weight * memoAlbedo(albedoAt, nv, roughness);
+        const double pixel = hdr.rgba[(size_t(px.y) * 40 + size_t(px.x)) * 4 + 1];
+        const double sampledPixel = sampledHdr.rgba[(size_t(px.y) * 40 + size_t(px.x)) * 4 + 1];
+        ASSERT_TRUE(std::isfinite(pixel) && std::isfinite(sampledPixel));
+        got += pixel, want += splitSum, exact += direct, sampled += sampledPixel;
+        if (nv >= 0.7) gotCore += pixel, wantCore += splitSum;
+    }
+    ASSERT_GT(sphere.size(), 100u);
     EXPECT_NEAR(got / want, 1.0, 0.03) << "whole sphere";
     EXPECT_NEAR(gotCore / wantCore, 1.0, 0.06) << "N.V >= 0.7";
     RecordProperty("lightpass_over_split_sum", std::to_string(got / want) + " / " + std::to_string(gotCore / wantCore));
