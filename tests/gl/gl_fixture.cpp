@@ -1,8 +1,15 @@
 #include "tests/gl/gl_fixture.hpp"
 
-#include "engine/gl/handles.hpp"
+#include <gtest/gtest.h>
 
 #include <filesystem>
+
+#include "engine/gl/handles.hpp"
+#include "engine/graph/texture_pool.hpp"
+#include "engine/render/scene_gpu.hpp"
+#include "engine/scene/scene.hpp"
+#include "frame/frame_builder.hpp"
+#include "passes/shadow_map_pass.hpp"
 
 namespace lp::test {
 
@@ -60,6 +67,30 @@ EnvironmentSettings smallIblBake(int dfgSamples) {
     s.dfgSize = 32;
     s.dfgSamples = dfgSamples;
     return s;
+}
+
+std::vector<float> shadowAtlas(const Scene& scene, const RenderSettings& settings, ShadowMapPass* kept) {
+    SceneGpu gpu(scene);
+    gl::ShaderLibrary shaders;
+    FrameData frame = makeFrameData(scene, settings, 0.0f);
+    frame.gpu = &gpu;
+    frame.shaders = &shaders;
+    ShadowMapPass local;
+    ShadowMapPass& state = kept ? *kept : local;
+    fg::FrameGraph graph;
+    fg::TexturePool pool;
+    const ShadowMaps maps = addShadowMapPasses(graph, state, frame);
+    EXPECT_EQ(maps.size(), 1u);
+    if (maps.empty()) return {};
+    graph.markOutput(maps[0].depth);
+    graph.compile();
+    graph.execute(pool);
+    const int side = maps[0].frustum.tileSize;
+    const size_t n = size_t(side * maps[0].frustum.columns) * size_t(side * maps[0].frustum.rows);
+    std::vector<float> depth(n);
+    glGetTextureImage(graph.outputTexture(maps[0].depth), 0, GL_DEPTH_COMPONENT, GL_FLOAT, GLsizei(n * sizeof(float)),
+                      depth.data());
+    return depth;
 }
 
 }  // namespace lp::test

@@ -9,6 +9,11 @@
 #include "engine/gl/shader.hpp"
 #include "engine/render/settings.hpp"
 
+namespace lp {
+struct Scene;
+struct ShadowMapPass;
+}  // namespace lp
+
 namespace lp::test {
 
 extern gl::GpuContext* gContext;
@@ -27,5 +32,9 @@ std::vector<glm::vec4> runGlsl(const std::vector<std::string>& includes, const s
 // IBL on with a bake small enough for a software rasteriser (32^2 cubes, 64 GGX samples, a 32^2
 // DFG LUT of `dfgSamples` samples per texel).
 EnvironmentSettings smallIblBake(int dfgSamples);
+
+// The first sun's whole depth atlas (every cascade tile), drawn by the shadow map passes alone with
+// `kept` (a fresh ShadowMapPass where null) and read back.
+std::vector<float> shadowAtlas(const Scene& scene, const RenderSettings& settings, ShadowMapPass* kept = nullptr);
 
 }  // namespace lp::test

@@ -62,29 +62,7 @@ Scene randomCasters(bool floor) {
     return s;
 }
 
-std::vector<float> shadowAtlas(const Scene& scene, const RenderSettings& settings, ShadowMapPass* kept = nullptr) {
-    SceneGpu gpu(scene);
-    gl::ShaderLibrary shaders;
-    FrameData frame = makeFrameData(scene, settings, 0.0f);
-    frame.gpu = &gpu;
-    frame.shaders = &shaders;
-    ShadowMapPass local;
-    ShadowMapPass& state = kept ? *kept : local;
-    fg::FrameGraph graph;
-    fg::TexturePool pool;
-    const ShadowMaps maps = addShadowMapPasses(graph, state, frame);
-    EXPECT_EQ(maps.size(), 1u);
-    if (maps.empty()) return {};
-    graph.markOutput(maps[0].depth);
-    graph.compile();
-    graph.execute(pool);
-    const int side = maps[0].frustum.tileSize;
-    const size_t n = size_t(side * maps[0].frustum.columns) * size_t(side * maps[0].frustum.rows);
-    std::vector<float> depth(n);
-    glGetTextureImage(graph.outputTexture(maps[0].depth), 0, GL_DEPTH_COMPONENT, GL_FLOAT, GLsizei(n * sizeof(float)),
-                      depth.data());
-    return depth;
-}
+using test::shadowAtlas;
 
 uint32_t bitsOf(float f) {
     uint32_t u;
