@@ -89,6 +89,20 @@ void readGBuffer(fg::PassBuilder& b, const GBuffer& g, bool diffuse) {
     b.read(g.specular, sampled);
 }
 
+GBuffer createGBufferColourTargets(fg::PassBuilder& b, int w, int h, const GBufferSettings& layout,
+                                   GBufferChannels channels, fg::Usage how) {
+    GBuffer out;
+    out.normal = b.createIfRead("gbuffer.normal", {w, h, gbufferNormalFormat(layout.normal)}, how);
+    out.diffuse = b.createIfRead("gbuffer.diffuse", {w, h, GL_RGBA8}, how);
+    if (channels.position && !positionFromDepth(layout.position))
+        out.position = b.createIfRead("gbuffer.position", {w, h, GL_RGBA32F}, how);
+    out.specular = b.createIfRead("gbuffer.specular", {w, h, gbufferSpecularFormat(layout.normal)}, how);
+    if (channels.texcoord) out.texcoord = b.createIfRead("gbuffer.texcoord", {w, h, GL_RG32F}, how);
+    if (channels.tangent) out.tangent = b.createIfRead("gbuffer.tangent", {w, h, GL_RGBA16F}, how);
+    if (channels.velocity) out.velocity = b.createIfRead("gbuffer.velocity", {w, h, GL_RG16F}, how);
+    return out;
+}
+
 void bindGBuffer(GLuint program, const fg::PassResources& res, const GBuffer& g, const FrameData& frame, bool diffuse) {
     glBindTextureUnit(0, res.texture(g.depth));
     glBindTextureUnit(1, res.texture(g.normal));
@@ -114,16 +128,10 @@ GBuffer addGeometryPass(fg::FrameGraph& graph, GBufferPass& state, const FrameDa
     return graph.addPass<GBuffer>(
         name, fg::PassKind::Raster,
         [&](fg::PassBuilder& b, GBuffer& out) {
-            constexpr fg::Usage colour = fg::Usage::ColorAttachment;
-            out.depth = b.create("gbuffer.depth", {w, h, GL_DEPTH_COMPONENT32F}, fg::Usage::DepthAttachment);
-            out.normal = b.createIfRead("gbuffer.normal", {w, h, gbufferNormalFormat(layout.normal)}, colour);
-            out.diffuse = b.createIfRead("gbuffer.diffuse", {w, h, GL_RGBA8}, colour);
-            if (channels.position && !positionFromDepth(layout.position))
-                out.position = b.createIfRead("gbuffer.position", {w, h, GL_RGBA32F}, colour);
-            out.specular = b.createIfRead("gbuffer.specular", {w, h, gbufferSpecularFormat(layout.normal)}, colour);
-            if (channels.texcoord) out.texcoord = b.createIfRead("gbuffer.texcoord", {w, h, GL_RG32F}, colour);
-            if (channels.tangent) out.tangent = b.createIfRead("gbuffer.tangent", {w, h, GL_RGBA16F}, colour);
-            if (channels.velocity) out.velocity = b.createIfRead("gbuffer.velocity", {w, h, GL_RG16F}, colour);
+            const fg::ResourceId depth =
+                b.create("gbuffer.depth", {w, h, GL_DEPTH_COMPONENT32F}, fg::Usage::DepthAttachment);
+            out = createGBufferColourTargets(b, w, h, layout, channels, fg::Usage::ColorAttachment);
+            out.depth = depth;
         },
         [&state, frame, layout](const GBuffer& out, const fg::PassResources& res) {
             const bool velocity = out.velocity.valid() && res.texture(out.velocity) != 0;

@@ -69,6 +69,11 @@ void setGBufferDepthTest(const GBufferSettings& layout);
 
 // Declares reads of the targets the decode API needs (position only when stored; diffuse when asked).
 void readGBuffer(fg::PassBuilder& b, const GBuffer& g, bool diffuse = true);
+// Creates the colour targets (every one but depth) of a w x h G-buffer in `layout`, each only if some
+// pass reads it and its channel is asked for, written with `how`: the classic pass's attachments and
+// the visibility resolve's image stores are the same targets, names and formats.
+GBuffer createGBufferColourTargets(fg::PassBuilder& b, int w, int h, const GBufferSettings& layout,
+                                   GBufferChannels channels, fg::Usage how);
 // Binds the targets to units LP_BIND_* and sets `program`'s uGbufferCamera; unbindGBuffer clears the units.
 void bindGBuffer(GLuint program, const fg::PassResources& res, const GBuffer& g, const FrameData& frame,
                  bool diffuse = true);

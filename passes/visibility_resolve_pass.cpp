@@ -105,18 +105,9 @@ GBuffer addVisibilityResolvePass(fg::FrameGraph& graph, VisibilityResolvePass& s
     const Data& data = graph.addPass<Data>(
         "gbuffer_resolve", fg::PassKind::Compute,
         [&](fg::PassBuilder& b, Data& d) {
-            constexpr fg::Usage store = fg::Usage::ImageStore;
             d.ids = b.read(visibility.ids, fg::Usage::Sampled);
-            GBuffer& out = d.out;
-            out.depth = visibility.depth;  // written by gbuffer_visibility, not touched here
-            out.normal = b.createIfRead("gbuffer.normal", {w, h, gbufferNormalFormat(layout.normal)}, store);
-            out.diffuse = b.createIfRead("gbuffer.diffuse", {w, h, GL_RGBA8}, store);
-            if (channels.position && !positionFromDepth(layout.position))
-                out.position = b.createIfRead("gbuffer.position", {w, h, GL_RGBA32F}, store);
-            out.specular = b.createIfRead("gbuffer.specular", {w, h, gbufferSpecularFormat(layout.normal)}, store);
-            if (channels.texcoord) out.texcoord = b.createIfRead("gbuffer.texcoord", {w, h, GL_RG32F}, store);
-            if (channels.tangent) out.tangent = b.createIfRead("gbuffer.tangent", {w, h, GL_RGBA16F}, store);
-            if (channels.velocity) out.velocity = b.createIfRead("gbuffer.velocity", {w, h, GL_RG16F}, store);
+            d.out = createGBufferColourTargets(b, w, h, layout, channels, fg::Usage::ImageStore);
+            d.out.depth = visibility.depth;  // written by gbuffer_visibility, not touched here
         },
         [&state, frame](const Data& d, const fg::PassResources& res) {
             const SceneGpu& gpu = *frame.gpu;
