@@ -214,13 +214,10 @@ ChannelDiff channelDiff(const GBufferImages& a, size_t i, const GBufferImages& b
 
 // The rasteriser snaps vertices to 1 / 2^GL_SUBPIXEL_BITS of a pixel and may interpolate from the
 // snapped triangle (NVIDIA does; llvmpipe interpolates from the unsnapped one), while the resolve
-// rebuilds the exact one: a pixel's values may then differ by what moving the triangle half a
-// sub-pixel step changes them, i.e. their change to the next pixel on the same triangle times 2^-bits
-// (summed over x and y). That term widens each per-channel bound.
-ChannelDiff snapAllowance(const GBufferImages& c, const std::vector<uint32_t>& ids, int x, int y) {
-    GLint bits = 0;
-    glGetIntegerv(GL_SUBPIXEL_BITS, &bits);
-    const double step = std::ldexp(1.0, -std::max(bits, 4));
+// rebuilds the exact one: a pixel's values may then differ by what moving the triangle by about a
+// sub-pixel step changes them, taken as their change to each of the four neighbouring pixels on the
+// same triangle times 2^-bits, summed. That term widens each per-channel bound.
+ChannelDiff snapAllowance(const GBufferImages& c, const std::vector<uint32_t>& ids, int x, int y, double step) {
     const size_t i = size_t(y) * kWidth + size_t(x);
     ChannelDiff a;
     for (auto [dx, dy] : {std::pair{1, 0}, std::pair{-1, 0}, std::pair{0, 1}, std::pair{0, -1}}) {
@@ -241,6 +238,9 @@ ChannelDiff snapAllowance(const GBufferImages& c, const std::vector<uint32_t>& i
 
 Mismatch compareGBuffers(const GBufferImages& c, const GBufferImages& v, double normalBoundDeg) {
     Mismatch m;
+    GLint bits = 0;
+    glGetIntegerv(GL_SUBPIXEL_BITS, &bits);
+    const double step = std::ldexp(1.0, -std::max(bits, 4));  // the sub-pixel grid, in pixels
     for (int y = 0; y < kHeight; ++y)
         for (int x = 0; x < kWidth; ++x) {
             const size_t i = size_t(y) * kWidth + size_t(x);
@@ -258,7 +258,7 @@ Mismatch compareGBuffers(const GBufferImages& c, const GBufferImages& v, double 
             const bool edge = onTriangleEdge(v.ids, x, y);
             m.edge += edge;
             const ChannelDiff d = channelDiff(c, i, v, i);
-            const ChannelDiff snap = snapAllowance(c, v.ids, x, y);
+            const ChannelDiff snap = snapAllowance(c, v.ids, x, y, step);
             const double normalDeg = d.normalDeg, colour = d.colour, shininess = d.shininess, position = d.position,
                          texcoord = d.texcoord, tangent = d.tangent;
             m.normalDeg = std::max(m.normalDeg, normalDeg);
