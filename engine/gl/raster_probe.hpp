@@ -18,7 +18,7 @@ struct RasterInterpolation {
 
 // Draws one triangle with a steep depth slope and off-grid vertices into a 32x32 depth texture and
 // compares its depth with both models' planes. Needs a current context; restores the GL state it
-// changes. A few hundred microseconds: callers keep the result.
+// changes. It waits for the read-back: callers probe once and keep the result.
 RasterInterpolation probeRasterInterpolation(const ShaderLibrary& shaders);
 
 }  // namespace lp::gl
