@@ -129,6 +129,7 @@ int commandGraph(const Options& o) {
     buildFrameGraph(graph, passes, frame);
     graph.compile();
     checkDisabledPasses(graph, settings.disabledPasses);
+    if (o.explain) noteEnvironmentLights(graph, scene, settings);
     std::printf("frame graph for %s, view '%s', %s\n", (o.model.empty() ? o.scene : o.model).c_str(),
                 viewName(settings.view), sizeLabel(settings).c_str());
     std::fputs((o.explain ? graph.explainText() : graph.describe()).c_str(), stdout);

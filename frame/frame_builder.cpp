@@ -5,6 +5,8 @@
 #include <string>
 
 #include "engine/core/error.hpp"
+#include "engine/io/image_io.hpp"
+#include "engine/render/ibl_lights.hpp"
 #include "engine/render/local_lights.hpp"
 #include "frame/knobs.hpp"
 
@@ -263,6 +265,16 @@ FrameData makeFrameData(const Scene& scene, const RenderSettings& settings, floa
     f.scene = &scene;
     f.settings = &settings;
     return f;
+}
+
+void noteEnvironmentLights(fg::FrameGraph& graph, const Scene& scene, const RenderSettings& settings) {
+    const Environment& e = scene.environment;
+    if (e.map.empty() || !settings.environment.ibl.value_or(e.ibl)) return;
+    ImageF map = loadHdrImage(e.map);
+    const LightExtraction extraction = extractEnvironmentLights(map, e.rotationDegrees, settings.environment.extractLights,
+                                                                settings.environment.extractThreshold);
+    for (const std::string& line : describeExtraction(extraction, settings.environment.extractLights))
+        graph.notePass("ibl", "extracted from the map: " + line);
 }
 
 }  // namespace lp

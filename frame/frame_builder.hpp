@@ -73,6 +73,10 @@ struct FrameOutputs {
 // frame.environments is set to &passes.environments here.
 FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const FrameData& frame);
 
+// For --explain: notes on the ibl pass (when it runs) saying which sources light extraction takes out of
+// the scene's map (direction, irradiance, solid angle) or why none. Reads the map on the CPU; no GL.
+void noteEnvironmentLights(fg::FrameGraph& graph, const Scene& scene, const RenderSettings& settings);
+
 // Throws lp::Error for a --disable-pass name that is no candidate pass of `graph` (built, compiled),
 // listing the candidates: "--disable-pass foo: no such pass (gbuffer, shadow_map_0, ...)".
 void checkDisabledPasses(const fg::FrameGraph& graph, const std::set<std::string>& disabled);

@@ -7,6 +7,7 @@
 
 #include "engine/core/error.hpp"
 #include "engine/post/post_config.hpp"
+#include "engine/render/ibl_lights.hpp"
 #include "engine/render/local_lights.hpp"
 #include "engine/render/shadows.hpp"
 
@@ -406,6 +407,26 @@ std::vector<KnobEntry> makeKnobTable() {
                        s.environment.ibl = true;
                        s.environment.specular = IblSpecular::Sampled;
                    }};
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = intKnob("ibl-extract-lights", [](auto& s) -> auto& { return s.environment.extractLights; }, 0,
+                              kMaxEnvironmentLights);
+        k.flags = {valueFlag("--ibl-extract-lights")};
+        k.help = "small, very bright sources of the map (a sun, a lamp) lit as directional lights with the BRDF "
+                 "instead of through the prefiltered chain; 0 = off";
+        k.panel = {PanelSection::Lighting, PanelWidget::Slider, "IBL lights extracted", ""};
+        k.sweep = {{"0", "1", "4"}, true,
+                   "sources taken out of the map and lit analytically (--ibl-extract-lights, with --ibl): "
+                   "0 leaves a small lamp to the prefilter",
+                   iblOn};
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = floatKnob("ibl-extract-threshold", [](auto& s) -> auto& { return s.environment.extractThreshold; },
+                                {1.0});
+        k.flags = {valueFlag("--ibl-extract-threshold")};
+        k.help = "a source's texels are brighter than this many times the map's median luminance";
         t.push_back(std::move(k));
     }
     {

@@ -1,5 +1,9 @@
 #include "passes/ibl_pass.hpp"
 
+#include <algorithm>
+#include <array>
+#include <cmath>
+
 #include <glm/gtc/type_ptr.hpp>
 
 #include "engine/gl/shader.hpp"
@@ -67,6 +71,20 @@ void setIblUniforms(GLuint prog, const FrameData& frame, const BakedEnvironment&
     glProgramUniform1f(prog, glGetUniformLocation(prog, "uMaxLod"), float(env.prefiltered.levels - 1));
     glProgramUniform1i(prog, glGetUniformLocation(prog, "uSpecularSamples"),
                        s.specular == IblSpecular::Sampled ? s.specularRuntimeSamples : 0);
+    const int lights = std::min(int(env.lights.size()), kMaxEnvironmentLights);
+    std::array<glm::vec3, kMaxEnvironmentLights> direction{}, irradiance{};
+    std::array<float, kMaxEnvironmentLights> sinRadius{};
+    for (int i = 0; i < lights; ++i) {
+        direction[size_t(i)] = env.lights[size_t(i)].direction;
+        irradiance[size_t(i)] = env.lights[size_t(i)].irradiance;
+        sinRadius[size_t(i)] = std::sin(std::min(env.lights[size_t(i)].angularRadius, 1.5707963f));
+    }
+    glProgramUniform1i(prog, glGetUniformLocation(prog, "uIblLightCount"), lights);
+    glProgramUniform3fv(prog, glGetUniformLocation(prog, "uIblLightDirection"), kMaxEnvironmentLights,
+                        glm::value_ptr(direction[0]));
+    glProgramUniform3fv(prog, glGetUniformLocation(prog, "uIblLightIrradiance"), kMaxEnvironmentLights,
+                        glm::value_ptr(irradiance[0]));
+    glProgramUniform1fv(prog, glGetUniformLocation(prog, "uIblLightSinRadius"), kMaxEnvironmentLights, sinRadius.data());
 }
 
 fg::ResourceId addIblPass(fg::FrameGraph& graph, IblPass& state, const FrameData& frame, const GBuffer& gbuffer,

@@ -13,6 +13,7 @@
 #include "engine/gl/state.hpp"
 #include "engine/graph/frame_graph.hpp"
 #include "engine/io/image_io.hpp"
+#include "engine/render/ibl_lights.hpp"
 #include "engine/render/ibl_sh.hpp"
 
 namespace lp {
@@ -65,7 +66,8 @@ std::string cubeKey(const Scene& scene, const EnvironmentSettings& s) {
 std::string bakeKeyOf(const std::string& cube, const EnvironmentSettings& s) {
     return cube + "|spec=" + std::to_string(s.specularSize) + "x" + std::to_string(s.specularLevels) + "x" +
            std::to_string(s.specularSamples) + "|lod=perceptual|irr=" + std::to_string(s.irradianceSize) + "x" +
-           std::to_string(s.irradianceSamples);
+           std::to_string(s.irradianceSamples) + "|lights=" + std::to_string(s.extractLights) + "@" +
+           fmt(s.extractThreshold);
 }
 
 uint64_t fnv1a(const std::string& text) {
@@ -85,16 +87,34 @@ size_t levelBytes(const gl::Texture& t, int level) {
     return s * s * 6 * 4 * sizeof(uint16_t);
 }
 
-// Cache file: "lightpass-ibl 1\n<key>\n", 9 SH vec3 (float), then each cube's levels as RGBA half.
+// Per extracted light: direction, irradiance, solid angle, angular radius (8 floats) and its texels.
+struct StoredLight {
+    float values[8];
+    int32_t texels;
+};
+
+// Cache file: "lightpass-ibl 2\n<key>\n"; with SH (a bake): 9 SH vec3 (float), the count of extracted
+// lights (int32) and each light (StoredLight); then each cube's levels as RGBA half.
 void saveCache(const fs::path& path, const std::string& key, const std::array<glm::vec3, 9>* sh,
-               const std::vector<const gl::Texture*>& cubes) {
+               const std::vector<EnvironmentLight>* lights, const std::vector<const gl::Texture*>& cubes) {
     std::error_code ec;
     fs::create_directories(path.parent_path(), ec);
     if (ec) throw Error(path.parent_path().string() + ": cannot create the IBL cache folder: " + ec.message());
     writeFileAtomically(path, [&](const fs::path& tmp) {
         std::ofstream out(tmp, std::ios::binary);
-        out << "lightpass-ibl 1\n" << key << "\n";
+        out << "lightpass-ibl 2\n" << key << "\n";
         if (sh) out.write(reinterpret_cast<const char*>(sh->data()), sizeof(*sh));
+        if (sh) {
+            const int32_t count = lights ? int32_t(lights->size()) : 0;
+            out.write(reinterpret_cast<const char*>(&count), sizeof count);
+            for (int32_t i = 0; i < count; ++i) {
+                const EnvironmentLight& l = (*lights)[size_t(i)];
+                const StoredLight stored{{l.direction.x, l.direction.y, l.direction.z, l.irradiance.x, l.irradiance.y,
+                                          l.irradiance.z, l.solidAngle, l.angularRadius},
+                                         l.texels};
+                out.write(reinterpret_cast<const char*>(&stored), sizeof stored);
+            }
+        }
         std::vector<char> data;
         for (const gl::Texture* t : cubes)
             for (int l = 0; l < t->levels; ++l) {
@@ -108,15 +128,32 @@ void saveCache(const fs::path& path, const std::string& key, const std::array<gl
 
 // False (and the textures untouched) when the file is absent or not for `key`.
 bool loadCache(const fs::path& path, const std::string& key, std::array<glm::vec3, 9>* sh,
-               const std::vector<gl::Texture*>& cubes) {
+               std::vector<EnvironmentLight>* lights, const std::vector<gl::Texture*>& cubes) {
     std::ifstream in(path, std::ios::binary);
     if (!in) return false;
     std::string magic, storedKey;
     std::getline(in, magic);
     std::getline(in, storedKey);
-    if (magic != "lightpass-ibl 1" || storedKey != key) return false;
+    if (magic != "lightpass-ibl 2" || storedKey != key) return false;
     std::array<glm::vec3, 9> shRead{};
     if (sh && !in.read(reinterpret_cast<char*>(shRead.data()), sizeof(shRead))) return false;
+    std::vector<EnvironmentLight> lightsRead;
+    if (sh) {
+        int32_t count = 0;
+        if (!in.read(reinterpret_cast<char*>(&count), sizeof count) || count < 0 || count > kMaxEnvironmentLights)
+            return false;
+        for (int32_t i = 0; i < count; ++i) {
+            StoredLight stored{};
+            if (!in.read(reinterpret_cast<char*>(&stored), sizeof stored)) return false;
+            EnvironmentLight l;
+            l.direction = {stored.values[0], stored.values[1], stored.values[2]};
+            l.irradiance = {stored.values[3], stored.values[4], stored.values[5]};
+            l.solidAngle = stored.values[6];
+            l.angularRadius = stored.values[7];
+            l.texels = stored.texels;
+            lightsRead.push_back(l);
+        }
+    }
     std::vector<std::vector<char>> levels;
     for (const gl::Texture* t : cubes)
         for (int l = 0; l < t->levels; ++l) {
@@ -133,6 +170,7 @@ bool loadCache(const fs::path& path, const std::string& key, std::array<glm::vec
             glTextureSubImage3D(t->id(), l, 0, 0, 0, s, s, 6, GL_RGBA, GL_HALF_FLOAT, levels[i++].data());
         }
     if (sh) *sh = shRead;
+    if (lights) *lights = lightsRead;
     return true;
 }
 
@@ -194,6 +232,9 @@ void validateEnvironmentSettings(const EnvironmentSettings& s) {
     need(s.dfgSize >= 2 && s.dfgSize <= 1024, "DFG LUT size must be in [2, 1024]");
     need(s.dfgSamples >= 1 && s.dfgSamples <= 65536, "DFG samples must be in [1, 65536]");
     need(s.debugMip >= 0, "debug mip must be >= 0");
+    need(s.extractLights >= 0 && s.extractLights <= kMaxEnvironmentLights,
+         "extracted lights " + std::to_string(s.extractLights) + " must be in [0, " + std::to_string(kMaxEnvironmentLights) + "]");
+    need(std::isfinite(s.extractThreshold) && s.extractThreshold >= 1.0f, "light extraction threshold must be >= 1");
     need(s.specularRuntimeSamples >= 1 && s.specularRuntimeSamples <= 256,
          "sampled specular samples " + std::to_string(s.specularRuntimeSamples) + " must be in [1, 256]");
 }
@@ -238,23 +279,13 @@ size_t EnvironmentCache::gpuBytes() const {
     return total;
 }
 
-void EnvironmentCache::makeCube(BakedEnvironment& env, const Scene& scene, const EnvironmentSettings& s,
-                                const gl::ShaderLibrary& shaders, const std::string& key) {
-    const int levels = environmentCubeLevels(s);
-    env.cube = gl::makeTextureCube(GL_RGBA16F, s.cubeSize, levels, "ibl.environment");
-    const bool useDisk = env.hasMap && !s.cacheDir.empty();
-    const fs::path file = useDisk ? cacheFile(s.cacheDir, "cube", key) : fs::path();
-    if (useDisk && loadCache(file, key, nullptr, {&env.cube})) {
-        logInfo("ibl: environment cube read from " + file.string());
-        return;
-    }
-    const auto t0 = std::chrono::steady_clock::now();
-    ImageF map = env.hasMap ? loadHdrImage(scene.environment.map) : uniformImage(scene.environment.color);
+void EnvironmentCache::equirectToCube(ImageF map, double rotationDegrees, const gl::Texture& cube,
+                                      const std::string& label, const gl::ShaderLibrary& shaders) {
     // Over the GPU's texture limits: halved until it fits, with a warning (README "Bad input").
     if (const gl::TextureFit fit = gl::fitTexture(GL_RGBA32F, map.width, map.height); fit.halvings > 0) {
         const int w = map.width, h = map.height;
         map = downscaleToFit(map, std::max(w, h) >> fit.halvings);
-        logWarn(scene.environment.map.string() + ": " + std::to_string(w) + "x" + std::to_string(h) + " is " + fit.reason +
+        logWarn(label + ": " + std::to_string(w) + "x" + std::to_string(h) + " is " + fit.reason +
                 "; downscaled to " + std::to_string(map.width) + "x" + std::to_string(map.height));
     }
     gl::Texture equirect = gl::makeTexture2D(GL_RGBA32F, map.width, map.height, 1, "ibl.equirect");
@@ -267,27 +298,41 @@ void EnvironmentCache::makeCube(BakedEnvironment& env, const Scene& scene, const
     const GLuint prog = toCube_.id();
     // Map texels per cube texel at the equator, times 2: enough taps that poles and small faces
     // average their footprint instead of aliasing.
-    const double ratio = double(map.width) / (3.14159265358979 * s.cubeSize);
+    const double ratio = double(map.width) / (3.14159265358979 * cube.width);
     const int taps = std::clamp(int(std::ceil(2.0 * ratio)), 2, 8);
-    glProgramUniform1i(prog, glGetUniformLocation(prog, "uSize"), s.cubeSize);
+    glProgramUniform1i(prog, glGetUniformLocation(prog, "uSize"), cube.width);
     glProgramUniform1i(prog, glGetUniformLocation(prog, "uTaps"), taps);
-    glProgramUniform1f(prog, glGetUniformLocation(prog, "uRotation"),
-                       float(double(scene.environment.rotationDegrees) * 3.14159265358979 / 180.0));
+    glProgramUniform1f(prog, glGetUniformLocation(prog, "uRotation"), float(rotationDegrees * 3.14159265358979 / 180.0));
     glBindTextureUnit(0, equirect.id());
-    glBindImageTexture(0, env.cube.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindImageTexture(0, cube.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glUseProgram(prog);
-    dispatchCube(s.cubeSize);
+    dispatchCube(cube.width);
     glUseProgram(0);
     glBindTextureUnit(0, 0);
     glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    generateCubeMips(env.cube, shaders);
+    generateCubeMips(cube, shaders);
     gl::checkErrors("converting the environment map to a cubemap");
+}
+
+void EnvironmentCache::makeCube(BakedEnvironment& env, const Scene& scene, const EnvironmentSettings& s,
+                                const gl::ShaderLibrary& shaders, const std::string& key) {
+    const int levels = environmentCubeLevels(s);
+    env.cube = gl::makeTextureCube(GL_RGBA16F, s.cubeSize, levels, "ibl.environment");
+    const bool useDisk = env.hasMap && !s.cacheDir.empty();
+    const fs::path file = useDisk ? cacheFile(s.cacheDir, "cube", key) : fs::path();
+    if (useDisk && loadCache(file, key, nullptr, nullptr, {&env.cube})) {
+        logInfo("ibl: environment cube read from " + file.string());
+        return;
+    }
+    const auto t0 = std::chrono::steady_clock::now();
+    equirectToCube(env.hasMap ? loadHdrImage(scene.environment.map) : uniformImage(scene.environment.color),
+                   scene.environment.rotationDegrees, env.cube, scene.environment.map.string(), shaders);
     if (env.hasMap) {
         glFinish();
         logInfo("ibl: " + scene.environment.map.string() + " -> cubemap " + std::to_string(s.cubeSize) + "^2 x 6 (" +
                 std::to_string(levels) + " mips) in " + fmt(std::round(secondsSince(t0) * 1000.0)) + " ms");
     }
-    if (useDisk) saveCache(file, key, nullptr, {&env.cube});
+    if (useDisk) saveCache(file, key, nullptr, nullptr, {&env.cube});
 }
 
 void EnvironmentCache::bakeIbl(BakedEnvironment& env, const Scene& scene, const EnvironmentSettings& s,
@@ -296,8 +341,11 @@ void EnvironmentCache::bakeIbl(BakedEnvironment& env, const Scene& scene, const 
     env.irradiance = gl::makeTextureCube(GL_RGBA16F, s.irradianceSize, 1, "ibl.irradiance");
     const bool useDisk = env.hasMap && !s.cacheDir.empty();
     const fs::path file = useDisk ? cacheFile(s.cacheDir, "bake", key) : fs::path();
-    if (useDisk && loadCache(file, key, &env.sh, {&env.prefiltered, &env.irradiance})) {
+    if (useDisk && loadCache(file, key, &env.sh, &env.lights, {&env.prefiltered, &env.irradiance})) {
         env.bakeKey = key;
+        LightExtraction stored;
+        stored.lights = env.lights;
+        env.lightSummary = describeExtraction(stored, s.extractLights);
         logInfo("ibl: baked environment read from " + file.string());
         return;
     }
@@ -309,23 +357,40 @@ void EnvironmentCache::bakeIbl(BakedEnvironment& env, const Scene& scene, const 
 
     // Diffuse SH: on the CPU, in double, from the equirectangular map (not from the clamped cube).
     ImageF map = env.hasMap ? loadHdrImage(scene.environment.map) : uniformImage(scene.environment.color);
+    // The small, very bright sources leave the map here: everything below is made from the residual.
+    env.lights.clear();
+    env.lightSummary.clear();
+    if (env.hasMap) {
+        const LightExtraction extraction =
+            extractEnvironmentLights(map, scene.environment.rotationDegrees, s.extractLights, s.extractThreshold);
+        env.lights = extraction.lights;
+        env.lightSummary = describeExtraction(extraction, s.extractLights);
+        for (const std::string& line : env.lightSummary) progress(line);
+    }
     ShCoefficients sh = projectEquirectSh(map, scene.environment.rotationDegrees);
     for (size_t i = 0; i < 9; ++i) env.sh[i] = glm::vec3(sh[i]);
     progress("SH (CPU, double) done");
+    // The irradiance cube and the prefiltered chain read the residual's own cube (the sky keeps env.cube).
+    gl::Texture residualCube;
+    if (!env.lights.empty()) {
+        residualCube = gl::makeTextureCube(GL_RGBA16F, env.cube.width, env.cube.levels, "ibl.residual");
+        equirectToCube(map, scene.environment.rotationDegrees, residualCube, what, shaders);
+    }
+    const gl::Texture& source = env.lights.empty() ? env.cube : residualCube;
 
     gl::ScopedEnable seamless(GL_TEXTURE_CUBE_MAP_SEAMLESS, true);
     // GPU time of the bake itself (irradiance + prefiltered chain), apart from file reading and the CPU SH.
     gl::Query gpuBegin = gl::makeQuery(GL_TIMESTAMP), gpuEnd = gl::makeQuery(GL_TIMESTAMP);
     glQueryCounter(gpuBegin.id(), GL_TIMESTAMP);
-    const float sourceMaxLod = float(env.cube.levels - 1);
-    glBindTextureUnit(0, env.cube.id());
+    const float sourceMaxLod = float(source.levels - 1);
+    glBindTextureUnit(0, source.id());
 
     // Irradiance cube.
     if (!irradiance_) irradiance_ = shaders.compute("ibl_irradiance.comp");
     GLuint prog = irradiance_.id();
     glProgramUniform1i(prog, glGetUniformLocation(prog, "uSize"), s.irradianceSize);
     glProgramUniform1i(prog, glGetUniformLocation(prog, "uSamples"), s.irradianceSamples);
-    glProgramUniform1i(prog, glGetUniformLocation(prog, "uSourceSize"), env.cube.width);
+    glProgramUniform1i(prog, glGetUniformLocation(prog, "uSourceSize"), source.width);
     glProgramUniform1f(prog, glGetUniformLocation(prog, "uSourceMaxLod"), sourceMaxLod);
     glBindImageTexture(0, env.irradiance.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glUseProgram(prog);
@@ -335,12 +400,12 @@ void EnvironmentCache::bakeIbl(BakedEnvironment& env, const Scene& scene, const 
 
     // Specular: mip 0 (roughness 0) is an exact copy of the cube mip of that size (Filament #3093).
     const int sourceLevel = log2Int(s.cubeSize / s.specularSize);
-    glCopyImageSubData(env.cube.id(), GL_TEXTURE_CUBE_MAP, sourceLevel, 0, 0, 0, env.prefiltered.id(),
+    glCopyImageSubData(source.id(), GL_TEXTURE_CUBE_MAP, sourceLevel, 0, 0, 0, env.prefiltered.id(),
                        GL_TEXTURE_CUBE_MAP, 0, 0, 0, 0, s.specularSize, s.specularSize, 6);
     if (!prefilter_) prefilter_ = shaders.compute("ibl_prefilter.comp");
     prog = prefilter_.id();
     glProgramUniform1i(prog, glGetUniformLocation(prog, "uSamples"), s.specularSamples);
-    glProgramUniform1i(prog, glGetUniformLocation(prog, "uSourceSize"), env.cube.width);
+    glProgramUniform1i(prog, glGetUniformLocation(prog, "uSourceSize"), source.width);
     glProgramUniform1f(prog, glGetUniformLocation(prog, "uSourceMaxLod"), sourceMaxLod);
     glUseProgram(prog);
     for (int level = 1; level < s.specularLevels; ++level) {
@@ -374,7 +439,7 @@ void EnvironmentCache::bakeIbl(BakedEnvironment& env, const Scene& scene, const 
                 fmt(float(std::round(env.bakeGpuMs * 100.0) / 100.0)) + " ms: irradiance " + std::to_string(s.irradianceSize) + "^2 x " +
                 std::to_string(s.irradianceSamples) + ", prefiltered " + std::to_string(s.specularSize) + "^2 x " +
                 std::to_string(s.specularLevels) + " mips x " + std::to_string(s.specularSamples) + " samples)");
-    if (useDisk) saveCache(file, key, &env.sh, {&env.prefiltered, &env.irradiance});
+    if (useDisk) saveCache(file, key, &env.sh, &env.lights, {&env.prefiltered, &env.irradiance});
 }
 
 void EnvironmentCache::forgetBakes() {

@@ -9,11 +9,13 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <glm/glm.hpp>
 
 #include "engine/gl/handles.hpp"
 #include "engine/gl/shader.hpp"
+#include "engine/render/ibl_lights.hpp"
 #include "engine/render/settings.hpp"
 #include "engine/scene/scene.hpp"
 
@@ -27,6 +29,10 @@ struct BakedEnvironment {
     std::array<glm::vec3, 9> sh{};  // SH of radiance
     gl::Texture irradiance;     // E(n), W/m^2
     gl::Texture prefiltered;    // mip m: roughness prefilteredLevelRoughness(m, levels); mip 0 is a copy of a cube mip
+    // Sources taken out of the map before the SH, irradiance and prefiltered chain were made (those
+    // hold the residual; `cube`, which the sky draws, keeps the original map). Lit analytically.
+    std::vector<EnvironmentLight> lights;
+    std::vector<std::string> lightSummary;  // describeExtraction's lines, for the log and --explain
 };
 
 class EnvironmentCache {
@@ -51,6 +57,10 @@ private:
                   const gl::ShaderLibrary& shaders, const std::string& key);
     // Levels 1.. of `cube` from level 0, solid-angle weighted (shaders/ibl_cube_downsample.comp).
     void generateCubeMips(const gl::Texture& cube, const gl::ShaderLibrary& shaders);
+    // `cube` level 0 from the equirectangular `map` (rotated about +Y), then its mips. `label` names
+    // the map in the warning when it has to be downscaled to fit the GPU.
+    void equirectToCube(ImageF map, double rotationDegrees, const gl::Texture& cube, const std::string& label,
+                        const gl::ShaderLibrary& shaders);
     void bakeIbl(BakedEnvironment& env, const Scene& scene, const EnvironmentSettings& s,
                  const gl::ShaderLibrary& shaders, const std::string& key);
 

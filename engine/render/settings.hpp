@@ -145,6 +145,11 @@ struct EnvironmentSettings {    // environment, skybox, image-based lighting, to
     IrradianceSource diffuse = IrradianceSource::SphericalHarmonics;
     IblSpecular specular = IblSpecular::SplitSum;  // bench/results/mitsuba/issue16/sampled_specular.md
     int specularRuntimeSamples = 64;  // per pixel, with IblSpecular::Sampled (fewer: the pattern shows in the error)
+    // Small, very bright sources taken out of the map at bake time and lit as directional lights
+    // (engine/render/ibl_lights.hpp): at most this many (0: off, <= kMaxEnvironmentLights), regions whose
+    // luminance is above extractThreshold times the map's median.
+    int extractLights = 4;
+    float extractThreshold = 100.0f;
     ToneMapOperator toneMap = ToneMapOperator::Lightpass;
     int debugMip = 0;           // the 'prefiltered' debug view shows this mip
     std::string cacheDir;       // non-empty: baked environments are also cached on disk here

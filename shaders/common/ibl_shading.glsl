@@ -3,13 +3,15 @@
 // prefiltered(R, roughness) * Fss, Fss = F0 A + f90 B from the DFG LUT (splitSumReflectance), the
 // prefiltered mip from the perceptual roughness (prefilteredLodFromRoughness); or, with
 // uSpecularSamples > 0 (--ibl-specular sampled), F0 A La + f90 B Lb with La, Lb the lobe-weighted
-// radiance of that many per-pixel GGX samples (common/ibl_sampled.glsl). The samplers are the includer's
+// radiance of that many per-pixel GGX samples (common/ibl_sampled.glsl). Plus the sources extracted
+// from the map at bake time, as distant discs with the GGX BRDF itself (common/ibl_lights.glsl). The samplers are the includer's
 // (their units differ between passes); the environment's other inputs are these uniforms.
 #ifndef LP_IBL_SHADING_GLSL
 #define LP_IBL_SHADING_GLSL
 #include "common/ambient_occlusion.glsl"
 #include "common/ibl.glsl"
 #include "common/ibl_sampled.glsl"
+#include "common/ibl_lights.glsl"
 
 uniform vec3 uSh[9];
 uniform bool uDiffuseFromCube;
@@ -17,6 +19,12 @@ uniform mat3 uEyeToWorld;
 uniform float uIntensity;
 uniform float uMaxLod;        // prefiltered levels - 1
 uniform int uSpecularSamples;  // 0: split sum; n: the sampled specular with n samples a pixel
+// Sources taken out of the map at bake time (--ibl-extract-lights), lit by common/ibl_lights.glsl.
+#define LP_MAX_IBL_LIGHTS 4
+uniform int uIblLightCount;
+uniform vec3 uIblLightDirection[LP_MAX_IBL_LIGHTS];   // towards the source, world space, unit
+uniform vec3 uIblLightIrradiance[LP_MAX_IBL_LIGHTS];  // E at normal incidence, without uIntensity
+uniform float uIblLightSinRadius[LP_MAX_IBL_LIGHTS];  // sin of the source's angular radius
 
 // Radiance the environment reflects at a point with eye-space normal N and view direction V.
 // `occlusion`: the material's; `screenAo`: the ambient-occlusion pass's (1 without it), and whether
@@ -41,7 +49,13 @@ vec3 lpIblRadiance(samplerCube irradiance, samplerCube prefilteredMap, sampler2D
                             : textureLod(prefilteredMap, Rw, prefilteredLodFromRoughness(roughness, uMaxLod)).rgb * fss;
     float ao = screenAo * occlusion;
     float specularAo = aoOn ? specularOcclusion(NdotV, ao, roughness * roughness) : occlusion;
-    return uIntensity * (ao * kd * (1.0 - fss) * E / LP_IBL_PI + specularAo * specular);
+    vec3 lights = vec3(0.0);
+    for (int i = 0; i < min(uIblLightCount, LP_MAX_IBL_LIGHTS); ++i) {
+        vec3 D = uIblLightDirection[i] * uEyeToWorld;  // world -> eye: uEyeToWorld is a rotation
+        lights += environmentLightRadiance(N, V, D, uIblLightSinRadius[i], uIblLightIrradiance[i], kd, f0,
+                                           roughness * roughness, fss, ao, specularAo);
+    }
+    return uIntensity * (ao * kd * (1.0 - fss) * E / LP_IBL_PI + specularAo * specular + lights);
 }
 
 #endif
