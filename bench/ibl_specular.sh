@@ -6,7 +6,8 @@
 # sphere grid under the 50,000 lamp (bench/mitsuba/scenes/lamp50k.json). The accuracy side of the
 # trade is bench/results/mitsuba/issue16/sampled_specular.md. From the repository root on the GPU machine:
 #   bench/ibl_specular.sh BUNDLE OUTDIR    (BUNDLE: run, gl_tests, lib/; the gallery needs ../shared/assets)
-# Writes OUTDIR/ibl_specular_<scene>.json (lightpass bench) and OUTDIR/ibl_specular.md (the table).
+# Writes OUTDIR/ibl_specular_<scene>.json (lightpass bench) and OUTDIR/ibl_specular.md (the table), and
+# for light extraction (0 or 4 sources lit analytically) OUTDIR/ibl_extract_<scene>.json and OUTDIR/ibl_extract.md.
 set -u
 B=$(cd "$1" && pwd); R=$2; mkdir -p $R
 nvidia-smi --query-gpu=name,driver_version --format=csv,noheader | tee $R/device.txt
@@ -21,6 +22,35 @@ for s in scenes/gallery.json bench/mitsuba/scenes/lamp50k.json; do
     --timings-json $R/ibl_specular_$name.json -q > $R/ibl_specular_$name.log 2>&1 ||
     echo "bench $name failed (see $R/ibl_specular_$name.log)"
 done
+# Light extraction (--ibl-extract-lights): the extracted sources are a few directional lights per pixel
+# in the ibl pass and forward+'s forward_opaque. lamp50k extracts 1, royal_esplanade_1k 4 (the most).
+for s in bench/mitsuba/scenes/lamp50k.json bench/mitsuba/scenes/royal_esplanade_1k.json; do
+  name=$(basename $s .json)
+  $B/run bench --scene $s --ibl --brdf ggx --frames 200 --warmup 30 --vary '--ibl-extract-lights 0,4' \
+    --vary '--ibl-specular split-sum|--ibl-specular sampled --ibl-specular-samples 64' \
+    --vary '--size 1920x1080,3840x2160' --vary '--render-path deferred,forward+' \
+    --timings-json $R/ibl_extract_$name.json -q > $R/ibl_extract_$name.log 2>&1 ||
+    echo "bench extract $name failed (see $R/ibl_extract_$name.log)"
+done
+python3 - $R <<'PY' | tee $R/ibl_extract.md
+import json, os, sys
+R = sys.argv[1]
+print("| scene | size | render path | specular | extracted lights | ibl ms | forward_opaque ms | frame ms |")
+print("| --- | --- | --- | --- | ---: | ---: | ---: | ---: |")
+for scene in ["lamp50k", "royal_esplanade_1k"]:
+    path = f"{R}/ibl_extract_{scene}.json"
+    if not os.path.isfile(path):
+        continue
+    for run in json.load(open(path))["runs"]:
+        f, p = run["flags"], run["passes"]
+        size = f.split("--size ")[1].split()[0] if "--size " in f else "-"
+        rpath = "forward+" if "forward+" in f else "deferred"
+        spec = "split sum" if "split-sum" in f else "sampled 64"
+        lights = f.split("--ibl-extract-lights ")[1].split()[0] if "--ibl-extract-lights " in f else "-"
+        cell = lambda n: f"{p[n]['median_ms']:.4f}" if n in p else "-"
+        print(f"| {scene} | {size} | {rpath} | {spec} | {lights} | {cell('ibl')} | {cell('forward_opaque')} | "
+              f"{cell('frame')} |")
+PY
 python3 - $R <<'PY' | tee $R/ibl_specular.md
 import json, os, sys
 R = sys.argv[1]
