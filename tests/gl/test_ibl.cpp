@@ -983,6 +983,7 @@ TEST(Ibl, GbufferShininessSurvivesHalfFloatStorage) {
 }
 
 // The disk cache (--ibl-cache) returns exactly what was baked: same SH, byte-equal cube levels.
+// With a lamp in the map the extracted light round-trips too, and the extraction setting is part of the key.
 TEST(Ibl, DiskCacheRoundTripsTheBake) {
     const auto mapPath = tempPath("gradient.exr");
     const auto dir = tempPath("cache");
@@ -991,6 +992,7 @@ TEST(Ibl, DiskCacheRoundTripsTheBake) {
     img.height = 32;
     for (int y = 0; y < 32; ++y)
         for (int x = 0; x < 64; ++x) img.rgba.insert(img.rgba.end(), {x / 64.0f, y / 32.0f, 0.5f, 1.0f});
+    for (int c = 0; c < 3; ++c) img.rgba[(size_t(10) * 64 + 20) * 4 + size_t(c)] = 3000.0f;  // a lamp: extracted
     writeExr(mapPath, img);
     Scene scene;
     scene.environment.map = mapPath;
@@ -1003,10 +1005,19 @@ TEST(Ibl, DiskCacheRoundTripsTheBake) {
     ASSERT_EQ(std::distance(std::filesystem::directory_iterator(dir), std::filesystem::directory_iterator()), 2);
     const BakedEnvironment& b = second.get(scene, s, shaders, true);
     for (int i = 0; i < 9; ++i) EXPECT_EQ(a.sh[size_t(i)], b.sh[size_t(i)]);
+    ASSERT_EQ(a.lights.size(), 1u);
+    ASSERT_EQ(b.lights.size(), 1u);
+    EXPECT_EQ(a.lights[0].direction, b.lights[0].direction);
+    EXPECT_EQ(a.lights[0].irradiance, b.lights[0].irradiance);
+    EXPECT_EQ(a.lights[0].angularRadius, b.lights[0].angularRadius);
     for (int l = 0; l < a.cube.levels; ++l) EXPECT_EQ(readCubeLevel(a.cube, l), readCubeLevel(b.cube, l));
     for (int l = 0; l < a.prefiltered.levels; ++l)
         EXPECT_EQ(readCubeLevel(a.prefiltered, l), readCubeLevel(b.prefiltered, l));
     EXPECT_EQ(readCubeLevel(a.irradiance, 0), readCubeLevel(b.irradiance, 0));
+    // Another extraction setting is another bake: a third file.
+    s.extractLights = 0;
+    EXPECT_TRUE(second.get(scene, s, shaders, true).lights.empty());
+    EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), std::filesystem::directory_iterator()), 3);
     std::filesystem::remove_all(dir);
     std::filesystem::remove(mapPath);
 }
