@@ -13,14 +13,14 @@
 // half-energy radius. So D becomes an anisotropic GGX whose widths are alpha and those, added in
 // quadrature (N.V floored at 0.05), with the anisotropic Smith visibility. A source much
 // smaller than the lobe leaves it as it is (a point light); a near-mirror reflects a highlight the size
-// and shape of the disc's reflection instead of a pinpoint. D stays normalised, so the energy is right
-// at every view angle. (Karis 2013's representative point with its (alpha / alpha')^2 normalisation
+// and shape of the disc's reflection instead of a pinpoint. D stays normalised, so the energy stays near
+// the point light's at every view angle. (Karis 2013's representative point with its (alpha / alpha')^2 normalisation
 // tripled a smooth plane's reflection of small lamps at grazing view against the exact split sum in
 // test_ibl's grazing-plane scene; a round widening of s / (2 sqrt 2) left a roughness-0.05 plane's lamp
 // reflections 23% dark against Mitsuba, a sliver narrower than a pixel; a round widening wide enough
 // across spilled 16% of the lobe below the horizon: bench/results/mitsuba/issue16/README.md.)
 // Energy (test_ibl's ExtractedLightKeepsTheLobesEnergyAtEveryAngle): within 1% of the point light's at
-// normal incidence; at grazing view (N.L 0.1) +7% for a 2.9-degree source on alpha 0.05, +1% for 1.1 degrees.
+// normal incidence; at grazing view (N.L 0.1) +7% for a 2.9-degree source on alpha 0.05, +2% on alpha 0.2.
 vec3 environmentLightSpecular(vec3 N, vec3 V, vec3 D, float sinRadius, vec3 f0, float alpha) {
     float nl = dot(N, D);
     if (nl <= 0.0 || sinRadius <= 0.0) return ggxSpecular(N, V, D, f0, alpha);
