@@ -95,6 +95,15 @@ uint findDraw(uint triangle) {
     return lo;
 }
 
+#if LP_VERTEX_FLOATS == 12
+// The same buffer as three vec4 a vertex (position, normal, uv, tangent: lp::Vertex): one 16-byte
+// load instead of four scalar ones.
+layout(std430, binding = 0) readonly buffer VertexQuads { vec4 vertexQuads[]; };
+vec3 vertexPosition(uint v) { return vertexQuads[3u * v].xyz; }
+vec3 vertexNormal(uint v) { return vec3(vertexQuads[3u * v].w, vertexQuads[3u * v + 1u].xy); }
+vec2 vertexUv(uint v) { return vertexQuads[3u * v + 1u].zw; }
+vec4 vertexTangent(uint v) { return vertexQuads[3u * v + 2u]; }
+#else
 vec3 vertexPosition(uint v) { uint b = v * uint(LP_VERTEX_FLOATS); return vec3(vertices[b], vertices[b + 1u], vertices[b + 2u]); }
 vec3 vertexNormal(uint v) { uint b = v * uint(LP_VERTEX_FLOATS) + 3u; return vec3(vertices[b], vertices[b + 1u], vertices[b + 2u]); }
 vec2 vertexUv(uint v) { uint b = v * uint(LP_VERTEX_FLOATS) + 6u; return vec2(vertices[b], vertices[b + 1u]); }
@@ -102,6 +111,7 @@ vec4 vertexTangent(uint v) {
     uint b = v * uint(LP_VERTEX_FLOATS) + 8u;
     return vec4(vertices[b], vertices[b + 1u], vertices[b + 2u], vertices[b + 3u]);
 }
+#endif
 
 // The eye-space direction of the ray through window position `window` (pixels).
 vec3 eyeRay(vec2 window, vec2 size) {
@@ -117,8 +127,22 @@ vec2 snappedWindow(vec4 c, vec2 size) { return round((c.xy / c.w * 0.5 + 0.5) * 
 // perspective-correct weights of the piece that holds the pixel, turned back into the whole
 // triangle's. The quad partners use the same piece's plane, as helper invocations do. False when no
 // piece holds the pixel (rounding at a piece's edge): the caller then takes the exact ray.
+bool insideDepthPlanes(vec4 c) { return (uDepthZeroToOne ? c.z : c.z + c.w) >= 0.0 && c.w - c.z >= 0.0; }
+
 bool snappedBarycentrics(vec4 c0, vec4 c1, vec4 c2, vec2 window, vec2 partnerX, vec2 partnerY, vec2 size,
                          out vec3 b, out vec3 bx, out vec3 by) {
+    if (insideDepthPlanes(c0) && insideDepthPlanes(c1) && insideDepthPlanes(c2)) {
+        // Nothing to clip (nearly every triangle): the general path below with one piece whose
+        // weights are the identity, without its arrays (indexed at run time, they live in slow
+        // per-thread memory).
+        vec2 s0 = snappedWindow(c0, size), s1 = snappedWindow(c1, size), s2 = snappedWindow(c2, size);
+        vec3 w = vec3(c0.w, c1.w, c2.w);
+        b = windowBarycentrics(window, s0, s1, s2, w);
+        if (any(lessThan(b, vec3(0.0)))) return false;
+        bx = windowBarycentrics(partnerX, s0, s1, s2, w);
+        by = windowBarycentrics(partnerY, s0, s1, s2, w);
+        return true;
+    }
     vec4 clip[5];
     vec3 weight[5];
     int n = 3;
