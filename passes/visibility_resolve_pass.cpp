@@ -100,14 +100,15 @@ GBuffer addVisibilityResolvePass(fg::FrameGraph& graph, VisibilityResolvePass& s
     const GBufferSettings layout = frame.settings->gbuffer;
     struct Data {
         GBuffer out;
-        fg::ResourceId ids;
+        fg::ResourceId ids, depth;
     };
     const Data& data = graph.addPass<Data>(
         "gbuffer_resolve", fg::PassKind::Compute,
         [&](fg::PassBuilder& b, Data& d) {
             d.ids = b.read(visibility.ids, fg::Usage::Sampled);
+            d.depth = b.read(visibility.depth, fg::Usage::Sampled);  // where the ids hold a triangle
             d.out = createGBufferColourTargets(b, w, h, layout, channels, fg::Usage::ImageStore);
-            d.out.depth = visibility.depth;  // written by gbuffer_visibility, not touched here
+            d.out.depth = d.depth;  // written by gbuffer_visibility, only read here
         },
         [&state, frame](const Data& d, const fg::PassResources& res) {
             const SceneGpu& gpu = *frame.gpu;
@@ -174,6 +175,9 @@ GBuffer addVisibilityResolvePass(fg::FrameGraph& graph, VisibilityResolvePass& s
                                        state.materials.id()};
             for (GLuint i = 0; i < 5; ++i) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, buffers[i]);
             glBindTextureUnit(5, res.texture(d.ids));
+            glBindTextureUnit(6, res.texture(d.depth));
+            glProgramUniform1f(prog, loc("uBackgroundDepth"),
+                               frame.settings->gbuffer.position == GBufferPositionMode::ReversedZ ? 0.0f : 1.0f);
             glUseProgram(prog);
             const GLint filter = loc("uMaterialFilter");
             const GLuint groupsX = GLuint((frame.width + 7) / 8), groupsY = GLuint((frame.height + 7) / 8);
@@ -191,7 +195,7 @@ GBuffer addVisibilityResolvePass(fg::FrameGraph& graph, VisibilityResolvePass& s
                 glBindTextureUnit(4, m.occlusionMap);
                 glDispatchCompute(groupsX, groupsY, 1);
             }
-            for (GLuint u = 0; u < 6; ++u) glBindTextureUnit(u, 0);
+            for (GLuint u = 0; u < 7; ++u) glBindTextureUnit(u, 0);
             for (GLuint i = 0; i < 7; ++i) glBindImageTexture(i, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
             for (GLuint i = 0; i < 5; ++i) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, 0);
             glUseProgram(0);

@@ -121,7 +121,7 @@ FrameData testFrame(const Scene& scene, const RenderSettings& s) {
 // The G-buffer of `mode` alone with every channel (the unpacked, stored layout: every value as the
 // material evaluation computed it, at float precision).
 GBufferImages renderGBuffer(const Scene& scene, SceneGpu& gpu, const gl::ShaderLibrary& shaders, PassStates& states,
-                            GBufferMode mode) {
+                            GBufferMode mode, fg::TexturePool* keptPool = nullptr) {
     RenderSettings s;
     s.width = kWidth;
     s.height = kHeight;
@@ -130,7 +130,8 @@ GBufferImages renderGBuffer(const Scene& scene, SceneGpu& gpu, const gl::ShaderL
     frame.gpu = &gpu;
     frame.shaders = &shaders;
     fg::FrameGraph graph;
-    fg::TexturePool pool;
+    fg::TexturePool localPool;
+    fg::TexturePool& pool = keptPool ? *keptPool : localPool;
     GBufferChannels channels;
     channels.texcoord = channels.tangent = channels.velocity = true;
     GBuffer g;
@@ -156,7 +157,13 @@ GBufferImages renderGBuffer(const Scene& scene, SceneGpu& gpu, const gl::ShaderL
     out.tangent = readTexture<glm::vec4>(graph.outputTexture(g.tangent), GL_RGBA, GL_FLOAT);
     out.texcoord = readTexture<glm::vec2>(graph.outputTexture(g.texcoord), GL_RG, GL_FLOAT);
     out.velocity = readTexture<glm::vec2>(graph.outputTexture(g.velocity), GL_RG, GL_FLOAT);
-    if (ids.valid()) out.ids = readTexture<uint32_t>(graph.outputTexture(ids), GL_RED_INTEGER, GL_UNSIGNED_INT);
+    if (ids.valid()) {
+        out.ids = readTexture<uint32_t>(graph.outputTexture(ids), GL_RED_INTEGER, GL_UNSIGNED_INT);
+        // The ids are not cleared: where the depth keeps its cleared value the pixel is empty (0).
+        const float background = s.gbuffer.position == GBufferPositionMode::ReversedZ ? 0.0f : 1.0f;
+        for (size_t i = 0; i < out.ids.size(); ++i)
+            if (out.depth[i] == background) out.ids[i] = 0;
+    }
     return out;
 }
 
@@ -456,6 +463,36 @@ RenderSettings frameSettings(GBufferMode mode, DebugView view = DebugView::Final
     s.shadows.cascades = 2;
     s.environment = test::smallIblBake(64);
     return s;
+}
+
+// The id target is not cleared (only the depth is): a frame that sees nothing after one that saw
+// the whole box, with the same pool (so the same id texture, still holding the first frame's ids),
+// must resolve to background everywhere, as classic does.
+TEST(VisibilityBuffer, StaleIdsOfAnEarlierFrameNeverReachTheGBuffer) {
+    const gl::ShaderLibrary shaders;
+    const Scene box = loadScene(test::repoPath("scenes/cornell.json"));
+    Scene away = box;
+    away.camera.target = away.camera.position + (away.camera.position - box.camera.target);  // turned round
+    SceneGpu gpu(box);
+    PassStates states;
+    fg::TexturePool pool;
+    const GBufferImages first = renderGBuffer(box, gpu, shaders, states, GBufferMode::Visibility, &pool);
+    const float background = RenderSettings().gbuffer.position == GBufferPositionMode::ReversedZ ? 0.0f : 1.0f;
+    size_t covered = 0;
+    for (float d : first.depth) covered += d != background ? 1 : 0;
+    ASSERT_GT(covered, first.depth.size() / 2) << "the first frame should see the box";
+    const GBufferImages second = renderGBuffer(away, gpu, shaders, states, GBufferMode::Visibility, &pool);
+    const GBufferImages classic = renderGBuffer(away, gpu, shaders, states, GBufferMode::Classic);
+    size_t surfaces = 0, differ = 0;
+    for (size_t i = 0; i < second.depth.size(); ++i) {
+        surfaces += second.depth[i] != background ? 1 : 0;
+        differ += second.diffuse[i] != classic.diffuse[i] || second.normal[i] != classic.normal[i] ||
+                          second.position[i] != classic.position[i]
+                      ? 1
+                      : 0;
+    }
+    EXPECT_EQ(surfaces, 0u) << "the second frame looks away from every surface";
+    EXPECT_EQ(differ, 0u) << "pixels whose G-buffer is not the background's";
 }
 
 TEST(VisibilityBuffer, FinalImageMatchesClassicOnEveryBundledScene) {
