@@ -9,12 +9,12 @@
 // Dispatched once with uMaterialFilter = -1 (every pixel of an untextured material, and the
 // background), then once per textured material with its maps on units 0..4 (no bindless textures in
 // GL 4.5 core): each pixel is written by exactly one dispatch.
-// Defines: the G-buffer layout's (gbufferDefines), LP_NORMAL_IMAGE_FORMAT / LP_NORMAL_IMAGE (the normal
-// target's image format and type), LP_SPECULAR_IMAGE_FORMAT, LP_VERTEX_FLOATS (floats per vertex).
+// Defines: gbufferImageDefines (passes/gbuffer_pass.hpp), LP_VERTEX_FLOATS (floats per vertex).
 #include "common/gbuffer_layout.glsl"
 #include "common/velocity.glsl"
 #include "common/material.glsl"
 #include "common/visibility.glsl"
+#include "common/gbuffer_images.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -25,17 +25,6 @@ layout(binding = 5) uniform usampler2D uVisibility;  // R32UI ids, meaningful on
 layout(binding = 6) uniform sampler2D uDepth;
 uniform float uBackgroundDepth;
 
-layout(binding = 0, LP_NORMAL_IMAGE_FORMAT) uniform writeonly LP_NORMAL_IMAGE uNormalOut;
-layout(binding = 1, rgba8) uniform writeonly image2D uDiffuseOut;
-#ifndef LP_GBUFFER_POSITION_FROM_DEPTH
-layout(binding = 2, rgba32f) uniform writeonly image2D uPositionOut;
-#endif
-layout(binding = 3, LP_SPECULAR_IMAGE_FORMAT) uniform writeonly image2D uSpecularOut;
-layout(binding = 4, rg32f) uniform writeonly image2D uTexcoordOut;
-layout(binding = 5, rgba16f) uniform writeonly image2D uTangentOut;
-layout(binding = 6, rg16f) uniform writeonly image2D uVelocityOut;
-// Bit i set: target i (normal, diffuse, position, specular, texcoord, tangent, velocity) is bound.
-uniform uint uTargets;
 uniform int uMaterialFilter;   // -1: untextured materials and the background; else this material only
 uniform uint uDrawCount;
 uniform mat4 uInverseProjection;  // inverse of the jittered projection the ids were rasterised with
@@ -44,14 +33,6 @@ uniform mat4 uProjection;         // that projection
 // (engine/gl/raster_probe), else 0: the pixel's ray through the exact triangle.
 uniform float uSubpixelSnap;
 uniform bool uDepthZeroToOne;     // clip control 0..1 (reversed-Z): the near clip plane is z = 0, else z = -w
-// Background velocity (common/velocity.glsl's backgroundVelocity).
-uniform vec2 uJitterNdc;
-uniform mat4 uInverseRotationProjection;
-uniform mat4 uViewProjection;
-uniform mat4 uPreviousViewProjection;
-
-const uint LP_TARGET_NORMAL = 1u, LP_TARGET_DIFFUSE = 2u, LP_TARGET_POSITION = 4u, LP_TARGET_SPECULAR = 8u;
-const uint LP_TARGET_TEXCOORD = 16u, LP_TARGET_TANGENT = 32u, LP_TARGET_VELOCITY = 64u;
 
 // lp::VisibilityDrawRecord
 struct DrawRecord {
@@ -204,35 +185,6 @@ MaterialInputs materialInputs(MaterialRecord r) {
                           (f & LP_MATERIAL_NORMAL_MAP) != 0u, (f & LP_MATERIAL_METAL_ROUGH_MAP) != 0u,
                           (f & LP_MATERIAL_OCCLUSION_MAP) != 0u, (f & LP_MATERIAL_ALPHA_MASK) != 0u,
                           (f & LP_MATERIAL_FLAT) != 0u);
-}
-
-void storeNormal(ivec2 p, vec3 n, float shininess) {
-#ifdef LP_GBUFFER_NORMAL_OCT
-    imageStore(uNormalOut, p, uvec4(gbufferEncodeNormalOct(n), 0u, 0u, 0u));
-#else
-    imageStore(uNormalOut, p, gbufferEncodeNormal(n, shininess));
-#endif
-}
-
-// What the classic pass leaves where no mesh is drawn: its clear values, and the background's motion.
-void storeBackground(ivec2 p, vec2 size) {
-#ifdef LP_GBUFFER_NORMAL_OCT
-    if ((uTargets & LP_TARGET_NORMAL) != 0u) imageStore(uNormalOut, p, uvec4(0u));
-#else
-    if ((uTargets & LP_TARGET_NORMAL) != 0u) imageStore(uNormalOut, p, vec4(0.0));
-#endif
-    if ((uTargets & LP_TARGET_DIFFUSE) != 0u) imageStore(uDiffuseOut, p, vec4(0.0));
-#ifndef LP_GBUFFER_POSITION_FROM_DEPTH
-    if ((uTargets & LP_TARGET_POSITION) != 0u) imageStore(uPositionOut, p, vec4(0.0));
-#endif
-    if ((uTargets & LP_TARGET_SPECULAR) != 0u) imageStore(uSpecularOut, p, vec4(0.0));
-    if ((uTargets & LP_TARGET_TEXCOORD) != 0u) imageStore(uTexcoordOut, p, vec4(0.0));
-    if ((uTargets & LP_TARGET_TANGENT) != 0u) imageStore(uTangentOut, p, vec4(0.0));
-    if ((uTargets & LP_TARGET_VELOCITY) != 0u) {
-        vec2 ndc = (vec2(p) + 0.5) / size * 2.0 - 1.0;
-        vec2 v = backgroundVelocity(ndc, uJitterNdc, uInverseRotationProjection, uViewProjection, uPreviousViewProjection);
-        imageStore(uVelocityOut, p, vec4(v, 0.0, 0.0));
-    }
 }
 
 void main() {
