@@ -32,8 +32,8 @@ struct GBufferPass {
     GBufferSettings depthOnlyLayout;
     gl::Program depthOnlyVelocityProgram;
     GBufferSettings depthOnlyVelocityLayout;
-    gl::Program backgroundVelocity;  // motion of the background at infinity (camera rotation)
-    gl::VertexArray emptyVao;        // its full-screen triangle has no vertex buffer
+    gl::Program background;  // gbuffer_background.comp: what the pixels no mesh covers hold
+    GBufferSettings backgroundLayout;
     gl::Framebuffer fbo;
 };
 
@@ -74,6 +74,13 @@ void readGBuffer(fg::PassBuilder& b, const GBuffer& g, bool diffuse = true);
 // the visibility resolve's image stores are the same targets, names and formats.
 GBuffer createGBufferColourTargets(fg::PassBuilder& b, int w, int h, const GBufferSettings& layout,
                                    GBufferChannels channels, fg::Usage how);
+// The G-buffer's colour targets as images (shaders/common/gbuffer_images.glsl): the defines that give
+// their image formats (with gbufferDefines'), binding the created ones to image units 0..6 (returns
+// uTargets' bits) and unbinding them, and the uniforms of the background's motion.
+std::vector<std::string> gbufferImageDefines(const GBufferSettings& layout);
+GLuint bindGBufferImages(const fg::PassResources& res, const GBuffer& g);
+void unbindGBufferImages();
+void setBackgroundMotionUniforms(GLuint program, const FrameData& frame);
 // Binds the targets to units LP_BIND_* and sets `program`'s uGbufferCamera; unbindGBuffer clears the units.
 void bindGBuffer(GLuint program, const fg::PassResources& res, const GBuffer& g, const FrameData& frame,
                  bool diffuse = true);

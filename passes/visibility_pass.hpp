@@ -19,7 +19,8 @@ class SceneGpu;
 
 struct VisibilityBuffer {
     fg::ResourceId depth;  // gbuffer.depth, as the classic pass writes it
-    fg::ResourceId ids;    // gbuffer.visibility: R32UI, global triangle index + 1, 0 where empty
+    fg::ResourceId ids;    // gbuffer.visibility: R32UI, global triangle index + 1 where depth holds a surface
+                           // (not cleared: undefined where depth keeps its cleared value)
 };
 
 struct VisibilityPass {

@@ -74,21 +74,6 @@ void buildGeometry(VisibilityResolvePass& state, const SceneGpu& gpu) {
     state.geometryTriangles = gpu.triangleCount;
 }
 
-std::vector<std::string> imageDefines(const GBufferSettings& layout) {
-    std::vector<std::string> d = gbufferDefines(layout);
-    switch (gbufferNormalFormat(layout.normal)) {
-        case GL_RGBA16F: d.push_back("LP_NORMAL_IMAGE_FORMAT rgba16f"); d.push_back("LP_NORMAL_IMAGE image2D"); break;
-        case GL_RG32F: d.push_back("LP_NORMAL_IMAGE_FORMAT rg32f"); d.push_back("LP_NORMAL_IMAGE image2D"); break;
-        case GL_R16UI: d.push_back("LP_NORMAL_IMAGE_FORMAT r16ui"); d.push_back("LP_NORMAL_IMAGE uimage2D"); break;
-        case GL_R32UI: d.push_back("LP_NORMAL_IMAGE_FORMAT r32ui"); d.push_back("LP_NORMAL_IMAGE uimage2D"); break;
-        default: d.push_back("LP_NORMAL_IMAGE_FORMAT rgba32f"); d.push_back("LP_NORMAL_IMAGE image2D"); break;
-    }
-    d.push_back(gbufferSpecularFormat(layout.normal) == GL_RGBA8 ? "LP_SPECULAR_IMAGE_FORMAT rgba8"
-                                                                 : "LP_SPECULAR_IMAGE_FORMAT rgba16f");
-    d.push_back("LP_VERTEX_FLOATS " + std::to_string(sizeof(Vertex) / sizeof(float)));
-    return d;
-}
-
 }  // namespace
 
 GBuffer addVisibilityResolvePass(fg::FrameGraph& graph, VisibilityResolvePass& state, const FrameData& frame,
@@ -100,14 +85,15 @@ GBuffer addVisibilityResolvePass(fg::FrameGraph& graph, VisibilityResolvePass& s
     const GBufferSettings layout = frame.settings->gbuffer;
     struct Data {
         GBuffer out;
-        fg::ResourceId ids;
+        fg::ResourceId ids, depth;
     };
     const Data& data = graph.addPass<Data>(
         "gbuffer_resolve", fg::PassKind::Compute,
         [&](fg::PassBuilder& b, Data& d) {
             d.ids = b.read(visibility.ids, fg::Usage::Sampled);
+            d.depth = b.read(visibility.depth, fg::Usage::Sampled);  // where the ids hold a triangle
             d.out = createGBufferColourTargets(b, w, h, layout, channels, fg::Usage::ImageStore);
-            d.out.depth = visibility.depth;  // written by gbuffer_visibility, not touched here
+            d.out.depth = d.depth;  // written by gbuffer_visibility, only read here
         },
         [&state, frame](const Data& d, const fg::PassResources& res) {
             const SceneGpu& gpu = *frame.gpu;
@@ -118,8 +104,9 @@ GBuffer addVisibilityResolvePass(fg::FrameGraph& graph, VisibilityResolvePass& s
                     if (materialFlags(gpu.materials[i]) & kAnyMap) state.texturedMaterials.push_back(int(i));
             }
             const GLuint prog = programForLayout(state.program, state.layout, frame, [&](const std::vector<std::string>&) {
-                                    return frame.shaders->compute("visibility_resolve.comp",
-                                                                  imageDefines(frame.settings->gbuffer));
+                                    std::vector<std::string> defines = gbufferImageDefines(frame.settings->gbuffer);
+                                    defines.push_back("LP_VERTEX_FLOATS " + std::to_string(sizeof(Vertex) / sizeof(float)));
+                                    return frame.shaders->compute("visibility_resolve.comp", defines);
                                 }).id();
             if (!state.rasterModel) state.rasterModel = gl::probeRasterInterpolation(*frame.shaders);
             // Per frame: the meshes' transforms (the view moves) and the materials (the viewer switches flat).
@@ -142,16 +129,7 @@ GBuffer addVisibilityResolvePass(fg::FrameGraph& graph, VisibilityResolvePass& s
                 glNamedBufferSubData(state.materials.id(), 0, GLsizeiptr(materials.size() * sizeof(MaterialRecord)),
                                      materials.data());
 
-            const GBuffer& out = d.out;
-            const fg::ResourceId targets[7] = {out.normal,   out.diffuse, out.position, out.specular,
-                                               out.texcoord, out.tangent, out.velocity};
-            GLuint bound = 0;
-            for (GLuint i = 0; i < 7; ++i) {
-                const GLuint tex = targets[i].valid() ? res.texture(targets[i]) : 0;
-                if (!tex) continue;
-                glBindImageTexture(i, tex, 0, GL_FALSE, 0, GL_WRITE_ONLY, res.desc(targets[i]).format);
-                bound |= 1u << i;
-            }
+            const GLuint bound = bindGBufferImages(res, d.out);
             auto loc = [prog](const char* name) { return glGetUniformLocation(prog, name); };
             glProgramUniform1ui(prog, loc("uTargets"), bound);
             glProgramUniform1ui(prog, loc("uDrawCount"), state.drawCount);
@@ -161,19 +139,14 @@ GBuffer addVisibilityResolvePass(fg::FrameGraph& graph, VisibilityResolvePass& s
             glProgramUniform1f(prog, loc("uSubpixelSnap"), state.rasterModel->snapScale());
             glProgramUniform1i(prog, loc("uDepthZeroToOne"),
                                frame.settings->gbuffer.position == GBufferPositionMode::ReversedZ);
-            const glm::mat4 rotation = frame.unjitteredProjection * glm::mat4(glm::mat3(frame.view));
-            const glm::vec2 jitterNdc =
-                2.0f * frame.jitterPixels / glm::vec2(std::max(frame.outputWidth, 1), std::max(frame.outputHeight, 1));
-            glProgramUniform2fv(prog, loc("uJitterNdc"), 1, glm::value_ptr(jitterNdc));
-            glProgramUniformMatrix4fv(prog, loc("uInverseRotationProjection"), 1, GL_FALSE,
-                                      glm::value_ptr(glm::inverse(rotation)));
-            glProgramUniformMatrix4fv(prog, loc("uViewProjection"), 1, GL_FALSE, glm::value_ptr(viewProjection));
-            glProgramUniformMatrix4fv(prog, loc("uPreviousViewProjection"), 1, GL_FALSE,
-                                      glm::value_ptr(frame.previousViewProjection));
+            setBackgroundMotionUniforms(prog, frame);
             const GLuint buffers[5] = {state.vertices.id(), state.indices.id(), state.draws.id(), state.meshes.id(),
                                        state.materials.id()};
             for (GLuint i = 0; i < 5; ++i) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, buffers[i]);
             glBindTextureUnit(5, res.texture(d.ids));
+            glBindTextureUnit(6, res.texture(d.depth));
+            glProgramUniform1f(prog, loc("uBackgroundDepth"),
+                               frame.settings->gbuffer.position == GBufferPositionMode::ReversedZ ? 0.0f : 1.0f);
             glUseProgram(prog);
             const GLint filter = loc("uMaterialFilter");
             const GLuint groupsX = GLuint((frame.width + 7) / 8), groupsY = GLuint((frame.height + 7) / 8);
@@ -191,8 +164,8 @@ GBuffer addVisibilityResolvePass(fg::FrameGraph& graph, VisibilityResolvePass& s
                 glBindTextureUnit(4, m.occlusionMap);
                 glDispatchCompute(groupsX, groupsY, 1);
             }
-            for (GLuint u = 0; u < 6; ++u) glBindTextureUnit(u, 0);
-            for (GLuint i = 0; i < 7; ++i) glBindImageTexture(i, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+            for (GLuint u = 0; u < 7; ++u) glBindTextureUnit(u, 0);
+            unbindGBufferImages();
             for (GLuint i = 0; i < 5; ++i) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, 0);
             glUseProgram(0);
         });

@@ -120,7 +120,11 @@ TEST(ShadowCasterCulling, PlainAndSplitRastersSeeTheSameCasters) {
 // as the geometry shader (faces towards the light: never nearer than the centre's), so where all
 // hold a caster: geometry shader <= hardware <= plain (1e-5; 1e-4 against the geometry shader,
 // whose grown vertices carry the plane in float). Coverage: plain's texels all in the hardware's;
-// the hardware's all in the geometry shader's but for 0.1% (fill-rule ties on the grown edges).
+// the hardware's touches all in the geometry shader's but for 0.1% (fill-rule ties on the grown
+// edges). A touch the geometry shader misses shows either as a texel only the hardware covers or,
+// where another caster covers the texel in both, as a hardware depth nearer than the geometry
+// shader's (on an H100: 4 of 26178 texels, up to 0.039 nearer, with the cache's stable cascades), so
+// both count against that 0.1%.
 TEST(ShadowConservativeRaster, HardwareLiesBetweenTheGeometryShaderAndThePlainRaster) {
     const ConservativeRasterSupport support = queryConservativeRasterSupport();
     if (!support.hardware) GTEST_SKIP() << "no hardware conservative raster on this GPU: " << support.reason;
@@ -148,7 +152,9 @@ TEST(ShadowConservativeRaster, HardwareLiesBetweenTheGeometryShaderAndThePlainRa
         if (!h) continue;
         ++covered;
         if (g) {
-            nearerThanGs += hw[i] < gs[i] - 1e-4f ? 1 : 0;
+            if (hw[i] < gs[i] - 1e-4f && ++nearerThanGs <= 8)  // the texels that break the order, to tell why
+                std::printf("atlas texel %zu: hardware %.6f, geometry shader %.6f, plain %.6f\n", i, double(hw[i]),
+                            double(gs[i]), double(pl[i]));
             worstGs = std::max(worstGs, gs[i] - hw[i]);
             equalToGs += std::abs(hw[i] - gs[i]) <= 1e-5f ? 1 : 0;
         }
@@ -158,11 +164,11 @@ TEST(ShadowConservativeRaster, HardwareLiesBetweenTheGeometryShaderAndThePlainRa
         }
     }
     std::printf("hardware conservative raster: %zu texels hold a caster, %zu equal to the geometry shader's (1e-5); "
-                "worst nearer than it %g, worst farther than plain %g\n",
-                covered, equalToGs, double(worstGs), double(worstPlain));
+                "worst nearer than it %g, worst farther than plain %g; touches the geometry shader misses: %zu "
+                "texels only the hardware covers, %zu nearer than the geometry shader's\n",
+                covered, equalToGs, double(worstGs), double(worstPlain), hardwareOnly, nearerThanGs);
     EXPECT_GT(covered, hw.size() / 2);
     EXPECT_EQ(plainOnly, 0u);
-    EXPECT_LE(hardwareOnly, covered / 1000);
-    EXPECT_EQ(nearerThanGs, 0u);
+    EXPECT_LE(hardwareOnly + nearerThanGs, covered / 1000);
     EXPECT_EQ(fartherThanPlain, 0u);
 }

@@ -121,7 +121,7 @@ FrameData testFrame(const Scene& scene, const RenderSettings& s) {
 // The G-buffer of `mode` alone with every channel (the unpacked, stored layout: every value as the
 // material evaluation computed it, at float precision).
 GBufferImages renderGBuffer(const Scene& scene, SceneGpu& gpu, const gl::ShaderLibrary& shaders, PassStates& states,
-                            GBufferMode mode) {
+                            GBufferMode mode, fg::TexturePool* keptPool = nullptr) {
     RenderSettings s;
     s.width = kWidth;
     s.height = kHeight;
@@ -130,7 +130,8 @@ GBufferImages renderGBuffer(const Scene& scene, SceneGpu& gpu, const gl::ShaderL
     frame.gpu = &gpu;
     frame.shaders = &shaders;
     fg::FrameGraph graph;
-    fg::TexturePool pool;
+    fg::TexturePool localPool;
+    fg::TexturePool& pool = keptPool ? *keptPool : localPool;
     GBufferChannels channels;
     channels.texcoord = channels.tangent = channels.velocity = true;
     GBuffer g;
@@ -156,7 +157,13 @@ GBufferImages renderGBuffer(const Scene& scene, SceneGpu& gpu, const gl::ShaderL
     out.tangent = readTexture<glm::vec4>(graph.outputTexture(g.tangent), GL_RGBA, GL_FLOAT);
     out.texcoord = readTexture<glm::vec2>(graph.outputTexture(g.texcoord), GL_RG, GL_FLOAT);
     out.velocity = readTexture<glm::vec2>(graph.outputTexture(g.velocity), GL_RG, GL_FLOAT);
-    if (ids.valid()) out.ids = readTexture<uint32_t>(graph.outputTexture(ids), GL_RED_INTEGER, GL_UNSIGNED_INT);
+    if (ids.valid()) {
+        out.ids = readTexture<uint32_t>(graph.outputTexture(ids), GL_RED_INTEGER, GL_UNSIGNED_INT);
+        // The ids are not cleared: where the depth keeps its cleared value the pixel is empty (0).
+        const float background = s.gbuffer.position == GBufferPositionMode::ReversedZ ? 0.0f : 1.0f;
+        for (size_t i = 0; i < out.ids.size(); ++i)
+            if (out.depth[i] == background) out.ids[i] = 0;
+    }
     return out;
 }
 
@@ -456,6 +463,39 @@ RenderSettings frameSettings(GBufferMode mode, DebugView view = DebugView::Final
     s.shadows.cascades = 2;
     s.environment = test::smallIblBake(64);
     return s;
+}
+
+// Neither mode clears its colour targets (only the depth): the visibility ids are not cleared, and
+// the classic targets get the background by compute where the depth is empty. A frame that sees
+// nothing after one that saw the whole box, with the same pool (so the same textures, still holding
+// the first frame's values), must hold the background's values (zeros) everywhere in both modes.
+TEST(VisibilityBuffer, StaleValuesOfAnEarlierFrameNeverReachTheGBuffer) {
+    const gl::ShaderLibrary shaders;
+    const Scene box = loadScene(test::repoPath("scenes/cornell.json"));
+    Scene away = box;
+    away.camera.target = away.camera.position + (away.camera.position - box.camera.target);  // turned round
+    const float background = RenderSettings().gbuffer.position == GBufferPositionMode::ReversedZ ? 0.0f : 1.0f;
+    for (GBufferMode mode : {GBufferMode::Classic, GBufferMode::Visibility}) {
+        SCOPED_TRACE(mode == GBufferMode::Classic ? "classic" : "visibility");
+        SceneGpu gpu(box);
+        PassStates states;
+        fg::TexturePool pool;
+        const GBufferImages first = renderGBuffer(box, gpu, shaders, states, mode, &pool);
+        size_t covered = 0;
+        for (float d : first.depth) covered += d != background ? 1 : 0;
+        ASSERT_GT(covered, first.depth.size() / 2) << "the first frame should see the box";
+        const GBufferImages second = renderGBuffer(away, gpu, shaders, states, mode, &pool);
+        size_t surfaces = 0, stale = 0;
+        for (size_t i = 0; i < second.depth.size(); ++i) {
+            surfaces += second.depth[i] != background ? 1 : 0;
+            const bool zero = second.diffuse[i] == glm::vec4(0.0f) && second.normal[i] == glm::vec4(0.0f) &&
+                              second.position[i] == glm::vec4(0.0f) && second.specular[i] == glm::vec4(0.0f) &&
+                              second.tangent[i] == glm::vec4(0.0f) && second.texcoord[i] == glm::vec2(0.0f);
+            stale += zero ? 0 : 1;
+        }
+        EXPECT_EQ(surfaces, 0u) << "the second frame looks away from every surface";
+        EXPECT_EQ(stale, 0u) << "pixels whose G-buffer is not the background's";
+    }
 }
 
 TEST(VisibilityBuffer, FinalImageMatchesClassicOnEveryBundledScene) {
