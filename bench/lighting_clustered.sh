@@ -9,6 +9,9 @@
 #   bench/lighting_clustered.sh BUNDLE OUTDIR    (BUNDLE: run, lib/)
 # SCENES="fence" (a subset of the three) runs only those; the tables cover every clustered_<scene>.json
 # already in OUTDIR, so a run split over several calls still ends with the whole table.
+# METHODS (a --vary value) replaces the methods compared, e.g. with the clustered method's culling
+# paths: METHODS='--local-lights tiled|--local-lights clustered --cluster-cull slices|...'; the
+# tables get a column per --cluster-cull variant present.
 # Writes OUTDIR/clustered_<scene>.json (lightpass bench), OUTDIR/clustered_<scene>.log and
 # OUTDIR/lighting_clustered.md (the tables: local_lights ms, measured/floor, clustered/tiled, the
 # frame with forward+, and issue #18's targets).
@@ -16,9 +19,10 @@ set -u
 B=$(cd "$1" && pwd); R=$2; mkdir -p "$R"
 nvidia-smi --query-gpu=name,driver_version --format=csv,noheader > "$R/device.txt" 2>/dev/null
 $B/run --version
+DEFAULT_METHODS='--local-lights tiled|--local-lights clustered --cluster-size 16|--local-lights clustered --cluster-size 32|--render-path forward+'
 for s in ${SCENES:-gallery depth-discontinuity fence}; do
   $B/run bench --scene scenes/$s.json --frames 100 --warmup 10 --floors --max-seconds 3 --min-frames 3 \
-    --vary '--local-lights tiled|--local-lights clustered --cluster-size 16|--local-lights clustered --cluster-size 32|--render-path forward+' \
+    --vary "${METHODS:-$DEFAULT_METHODS}" \
     --vary '--light-count 1,16,256,1024,4096,16384' --vary '--size 1920x1080,3840x2160' \
     --timings-json "$R/clustered_$s.json" -q > "$R/clustered_$s.log" 2>&1 \
     || echo "bench $s failed (see $R/clustered_$s.log)"
