@@ -27,6 +27,32 @@ for s in ${SCENES:-gallery depth-discontinuity fence}; do
     --timings-json "$R/clustered_$s.json" -q > "$R/clustered_$s.log" 2>&1 \
     || echo "bench $s failed (see $R/clustered_$s.log)"
 done
+# ABLATE=1: what the clustered kernel's parts are worth, at 1080p on the two scenes whose tiles span
+# near and far, from patched copies of shaders/ through $LIGHTPASS_SHADER_DIR (timing only; same
+# images): no_reorder (the slice path keeps each pixel on its invocation instead of grouping a tile's
+# pixels by slice into warps) and no_early_out (lpShadeLocalLight evaluates lights past their range
+# instead of skipping them; every method). OUTDIR/ablate_<name>.md each.
+if [ -n "${ABLATE:-}" ]; then
+  for a in no_reorder no_early_out; do
+    P=$R/shaders_$a; rm -rf "$P"; cp -r shaders "$P"
+    case $a in
+      no_reorder) sed -i 's/^const bool LP_REORDER = LP_SLOTS <= 1024;$/const bool LP_REORDER = false;/' \
+                    "$P/local_light_clustered.comp" ;;
+      no_early_out) sed -i '/d2 >= l.positionRange.w \* l.positionRange.w) return vec3(0.0);$/d' \
+                      "$P/common/local_light.glsl" ;;
+    esac
+    if diff -rq shaders "$P" > /dev/null; then echo "ablation $a: the shaders changed shape, skipped"; continue; fi
+    for s in depth-discontinuity fence; do
+      LIGHTPASS_SHADER_DIR=$P $B/run bench --scene scenes/$s.json --frames 100 --warmup 10 --floors --max-seconds 3 \
+        --min-frames 3 --vary '--local-lights tiled|--local-lights clustered --cluster-size 16|--local-lights clustered --cluster-size 16 --cluster-cull slices' \
+        --vary '--light-count 1,16,256,1024,4096,16384' --vary '--size 1920x1080' \
+        --timings-json "$R/ablate_${a}_$s.json" -q > "$R/ablate_${a}_$s.log" 2>&1 || echo "ablation $a $s failed"
+    done
+    { echo "# Ablation: $a (patched shaders, timing only)"; echo
+      python3 bench/summarize_clustered.py "$R/ablate_${a}_depth-discontinuity.json" "$R/ablate_${a}_fence.json"; } \
+      > "$R/ablate_$a.md"
+  done
+fi
 tables=()
 for s in gallery depth-discontinuity fence; do [ -f "$R/clustered_$s.json" ] && tables+=("$R/clustered_$s.json"); done
 python3 bench/summarize_clustered.py "${tables[@]}" | tee "$R/lighting_clustered.md"
