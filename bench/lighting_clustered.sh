@@ -31,9 +31,10 @@ done
 # near and far, from patched copies of shaders/ through $LIGHTPASS_SHADER_DIR (timing only; same
 # images): no_reorder (the slice path keeps each pixel on its invocation instead of grouping a tile's
 # pixels by slice into warps) and no_early_out (lpShadeLocalLight evaluates lights past their range
-# instead of skipping them; every method). OUTDIR/ablate_<name>.md each.
+# instead of skipping them; every method). OUTDIR/ablate_<name>.md each. ABLATE=no_reorder runs one.
 if [ -n "${ABLATE:-}" ]; then
-  for a in no_reorder no_early_out; do
+  ablations=$ABLATE; [ "$ABLATE" = 1 ] && ablations="no_reorder no_early_out"
+  for a in $ablations; do
     P=$R/shaders_$a; rm -rf "$P"; cp -r shaders "$P"
     case $a in
       no_reorder) sed -i 's/^const bool LP_REORDER = LP_SLOTS <= 1024;$/const bool LP_REORDER = false;/' \

@@ -108,7 +108,7 @@ void unbindAll(const LocalLightPass& state) {
     }
     for (GLuint u = 0; u < 6; ++u) glBindTextureUnit(u, 0);
     glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
-    for (GLuint b = 0; b < 5; ++b) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, 0);
+    for (GLuint b = 0; b < 7; ++b) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, 0);
     glBindVertexArray(0);
     glUseProgram(0);
 }
@@ -171,11 +171,15 @@ const GLuint* takeFinishedCounters(MappedCounterRing& ring) {
     return nullptr;
 }
 
-// Zeroes the ring's next slot and binds it to SSBO `binding` for the dispatch that follows; then
-// fenceCounters.
-void bindNextCounters(MappedCounterRing& ring, GLuint binding, const char* name) {
+// Binds the ring's next slot (SSBO 3) and its tally (SSBO 6) for the dispatch of `groups` work groups
+// of `prog` that follows; then fenceCounters.
+void bindNextCounters(MappedCounterRing& ring, GLuint prog, int groups, const char* name) {
     auto& slot = ring.slots[size_t(ring.next)];
     constexpr GLsizeiptr bytes = MappedCounterRing::kCounters * sizeof(GLuint);
+    if (!ring.tally) {
+        const std::array<GLuint, MappedCounterRing::kCounters + 1> zero{};
+        ring.tally = gl::makeBuffer(GLsizeiptr(sizeof(zero)), zero.data(), 0, std::string(name) + ".tally");
+    }
     if (!slot.buffer) {
         // Persistently mapped (coherent): the counters are read from memory once the fence has
         // signaled, never through glGetBufferSubData, which some drivers serialise with the whole queue.
@@ -184,20 +188,15 @@ void bindNextCounters(MappedCounterRing& ring, GLuint binding, const char* name)
         slot.mapped = static_cast<GLuint*>(glMapNamedBufferRange(slot.buffer.id(), 0, bytes, access));
         if (!slot.mapped) throw Error(std::string("cannot map ") + name + " (glMapNamedBufferRange failed)");
     }
-    // Zeroed through the mapping once the GPU is done with the slot's last dispatch (coherent: the
-    // dispatch issued next sees it), so the pass issues no clear command; a slot still in flight (the
-    // CPU a whole ring ahead) is cleared on the GPU, in order.
-    if (!slot.done || slot.done.signaled()) {
-        std::fill(slot.mapped, slot.mapped + MappedCounterRing::kCounters, 0u);
-    } else {
-        const GLuint zero = 0;
-        glClearNamedBufferData(slot.buffer.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-    }
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, slot.buffer.id());
+    glProgramUniform1ui(prog, glGetUniformLocation(prog, "uGroupCount"), GLuint(groups));
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, slot.buffer.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, ring.tally.id());
 }
 
 // After the dispatch that wrote the slot bindNextCounters bound: fenced, the ring moves on.
 void fenceCounters(MappedCounterRing& ring) {
+    // The tally's reset seen by the next dispatch; the slot's shader writes seen through the mapping.
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_CLIENT_MAPPED_BUFFER_BARRIER_BIT);
     auto& slot = ring.slots[size_t(ring.next)];
     ring.next = (ring.next + 1) % int(ring.slots.size());
     slot.done = gl::Fence::insert();
@@ -211,8 +210,9 @@ ClusterGrid frameClusterGrid(const FrameData& frame) {
 
 // Readies the froxel grid for a build from the lights in the SSBO at binding 0 (uploadLights): reads
 // the newest finished build's overflow count, sizes the buffers, binds the counts (1), lists (2) and
-// a cleared overflow counter (3). The caller dispatches a build, then finishClusterBuild.
-ClusterGrid beginClusterBuild(LocalLightPass& state, const FrameData& frame) {
+// the overflow counter (3, 6) for a dispatch of `prog`. The caller dispatches a build, then
+// finishClusterBuild.
+ClusterGrid beginClusterBuild(LocalLightPass& state, const FrameData& frame, GLuint prog) {
     const ClusterGrid g = frameClusterGrid(frame);
     if (const GLuint* counters = takeFinishedCounters(state.clusterOverflow)) {
         const GLuint overflow = counters[0];
@@ -231,7 +231,7 @@ ClusterGrid beginClusterBuild(LocalLightPass& state, const FrameData& frame) {
         state.clusterLists = gl::makeBuffer(GLsizeiptr(clusters * kMaxLightsPerCluster * sizeof(GLuint)), nullptr, 0,
                                             "clusters.lights");
     }
-    bindNextCounters(state.clusterOverflow, 3, "clusters.overflow");
+    bindNextCounters(state.clusterOverflow, prog, g.tilesX * g.tilesY, "clusters.overflow");
     state.clusterGrid = g;
     state.stats.clusters = g.count();
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, state.clusterCounts.id());
@@ -249,8 +249,8 @@ void finishClusterBuild(LocalLightPass& state) {
 // Builds the whole grid's light lists (light_clusters.comp: every froxel whole, for the forward
 // passes and transparent surfaces); leaves the counts at binding 1 and the lists at binding 2.
 void buildClusters(LocalLightPass& state, const FrameData& frame, int lightCount) {
-    const ClusterGrid g = beginClusterBuild(state, frame);
     const GLuint prog = state.clusterBuildProgram.id();
+    const ClusterGrid g = beginClusterBuild(state, frame, prog);
     setClusterUniforms(prog, g);
     setInt(prog, "uLightCount", lightCount);
     setMat4(prog, "uProjection", frame.projection);
@@ -265,7 +265,7 @@ void buildClusters(LocalLightPass& state, const FrameData& frame, int lightCount
 // bound by the caller.
 void buildTightClusters(LocalLightPass& state, const FrameData& frame, int lightCount) {
     const GLuint prog = state.clusterTightBuildProgram.id();
-    const ClusterGrid g = beginClusterBuild(state, frame);
+    const ClusterGrid g = beginClusterBuild(state, frame, prog);
     setClusterUniforms(prog, g);
     setInt(prog, "uLightCount", lightCount);
     setMat4(prog, "uProjection", frame.projection);
@@ -300,7 +300,7 @@ void shadeClustered(LocalLightPass& state, const FrameData& frame, const fg::Pas
     setInt(prog, "uSpecularMode", specularMode(s));
     setInt(prog, "uCullMode", int(s.clusterCull));
     glBindImageTexture(0, hdrTexture, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
-    bindNextCounters(state.clusterPaths, 3, "clusters.paths");
+    bindNextCounters(state.clusterPaths, prog, g.tilesX * g.tilesY, "clusters.paths");
     glUseProgram(prog);
     glDispatchCompute(GLuint(g.tilesX), GLuint(g.tilesY), 1);
     fenceCounters(state.clusterPaths);
@@ -387,7 +387,7 @@ int bindClusteredLightLists(LocalLightPass& state, GLuint prog, const FrameData&
 }
 
 void unbindClusteredLightLists() {
-    for (GLuint b = 0; b < 5; ++b) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, 0);
+    for (GLuint b = 0; b < 7; ++b) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, 0);
     glBindTextureUnit(kSpotShadowUnit, 0);
 }
 

@@ -35,12 +35,15 @@ struct LocalLightStats {
 };
 
 // A ring of small persistently mapped counter buffers written by the GPU, each read back only once
-// its fence has signaled, so reading never makes the CPU (or a pass's GPU timer) wait.
+// its fence has signaled, so reading never makes the CPU (or a pass's GPU timer) wait. The shaders
+// add into the device-local `tally` and the dispatch's last work group copies it into the slot
+// (shaders/common/dispatch_counters.glsl): the mapped slot lives in host memory.
 struct MappedCounterRing {
     static constexpr int kCounters = 4;  // uints per slot
+    gl::Buffer tally;  // kCounters + 1 uints (the last: work groups finished), zero between dispatches
     struct Slot {
         gl::Buffer buffer;
-        GLuint* mapped = nullptr;  // `buffer`, persistently mapped: read and zeroed without a GL call
+        GLuint* mapped = nullptr;  // `buffer`, persistently mapped: read without a GL call
         gl::Fence done;     // after the dispatch that wrote it
         bool read = false;  // its counters have been taken already
     };

@@ -10,11 +10,12 @@
 //     between the nearest and farthest pixel (the tiled method's test), and the survivors against
 //     each occupied slice's tight range and box; a bit per light and slice in shared memory;
 //  3. the bits become the tile's froxel lists in the shared grid (index order, at most the cap;
-//     counts uncapped, overflowing froxels counted in uOverflow). Unoccupied froxels list nothing:
+//     counts uncapped, overflowing froxels counted: dispatch counter 0). Unoccupied froxels list nothing:
 //     these lists are for the depth buffer's surfaces, not for transparent ones (light_clusters.comp
 //     builds whole froxels for the forward passes).
 #include "common/local_light.glsl"
 #include "common/clusters.glsl"
+#include "common/dispatch_counters.glsl"
 #define LP_GBUFFER_READ
 #include "common/gbuffer_layout.glsl"
 
@@ -34,7 +35,6 @@ layout(local_size_x = LP_SIDE, local_size_y = LP_SIDE) in;
 layout(std430, binding = 0) readonly buffer LocalLights { LpLocalLight uLights[]; };
 layout(std430, binding = 1) writeonly buffer ClusterCounts { uint uCounts[]; };
 layout(std430, binding = 2) writeonly buffer ClusterLights { uint uLists[]; };
-layout(std430, binding = 3) buffer ClusterOverflow { uint uOverflow; };
 uniform int uLightCount;
 uniform mat4 uProjection;
 uniform ivec2 uImageSize;
@@ -162,6 +162,7 @@ void main() {
     if (lid < uint(slices)) {
         uint count = sListed[lid];
         uCounts[clusterIndex(ivec3(tile, int(lid)))] = count;
-        if (count > LP_MAX_LIGHTS_PER_CLUSTER) atomicAdd(uOverflow, 1u);
+        if (count > LP_MAX_LIGHTS_PER_CLUSTER) tallyCounter(0, 1u);  // clusters past the cap
     }
+    finishDispatchCounters();
 }

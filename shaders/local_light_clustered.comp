@@ -17,9 +17,10 @@
 //     data is staged in shared memory with that mask;
 //  4. each pixel adds the staged lights whose mask holds its slice.
 // Unbounded specular reaches every pixel: then every light is added (the tile path).
-// Each work group counts which path it took into uSlicedTiles / uTileTiles (LocalLightStats).
+// Each work group counts which path it took (dispatch counters 0: slices, 1: the tile's list).
 #include "common/local_light.glsl"
 #include "common/clusters.glsl"
+#include "common/dispatch_counters.glsl"
 #include "common/tonemap.glsl"
 #define LP_GBUFFER_READ
 #include "common/gbuffer_layout.glsl"
@@ -48,7 +49,6 @@ const int LP_CULL_AUTO = 0, LP_CULL_TILES = 1, LP_CULL_SLICES = 2;  // ClusterCu
 
 layout(local_size_x = LP_SIDE, local_size_y = LP_SIDE) in;
 layout(std430, binding = 0) readonly buffer LocalLights { LpLocalLight uLights[]; };
-layout(std430, binding = 3) buffer ClusterPathCounts { uint uSlicedTiles, uTileTiles; };
 layout(rgba16f, binding = 0) uniform image2D uHdr;
 uniform int uLightCount;
 uniform mat4 uProjection;
@@ -272,10 +272,9 @@ void main() {
             barrier();
         }
     }
-    if (lid == 0u && anySurface) {
-        if (sliced) atomicAdd(uSlicedTiles, 1u);
-        else atomicAdd(uTileTiles, 1u);
-    }
+    // The tiles on each path (LocalLightStats::slicedTiles, tileListTiles).
+    if (lid == 0u && anySurface) tallyCounter(sliced ? 0 : 1, 1u);
+    finishDispatchCounters();
     for (int k = 0; k < LP_PIXELS; ++k) {
         if (!surface[k]) continue;
         ivec2 p = origin + offset[k];
