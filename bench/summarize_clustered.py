@@ -2,7 +2,7 @@
 """bench/lighting_clustered.sh's tables. Per scene and size:
 1. the local_lights pass's median GPU ms for deferred tiled and clustered (16- and 32-pixel froxel
    tiles), each with measured/floor (the floor: the bytes the pass must move once, over the measured
-   bandwidth), and clustered/tiled; with runs of --cluster-cull tiles/slices (16 px), those paths too;
+   bandwidth), and clustered/tiled;
 2. the whole frame and the opaque geometry + lighting passes for deferred tiled, deferred clustered
    (16 px) and forward+ (deferred: gbuffer, global_lights, ibl, local_lights, emission; forward+:
    depth_prepass, forward_opaque), and forward+ / deferred clustered (frame);
@@ -15,7 +15,6 @@ import sys
 DEFERRED = ("gbuffer", "global_lights", "ibl", "local_lights", "emission")
 FORWARD = ("depth_prepass", "forward_opaque")
 LOCAL = ("tiled", "clustered 16", "clustered 32")
-CULLS = ("clustered 16 tiles", "clustered 16 slices")  # --cluster-cull forced (METHODS), when run
 SPANNING = ("depth-discontinuity", "fence")  # scenes whose tiles span near and far
 
 
@@ -29,8 +28,7 @@ def variant(flags):
         return "forward+"
     method = flag(flags, "local-lights") or "?"
     if method == "clustered":
-        cull = flag(flags, "cluster-cull")
-        return f"clustered {flag(flags, 'cluster-size') or '16'}" + (f" {cull}" if cull and cull != "auto" else "")
+        return f"clustered {flag(flags, 'cluster-size') or '16'}"
     return method
 
 
@@ -98,19 +96,6 @@ def main(paths):
                         targets.append((scene, size, n, c / t))
                 print(f"| {n} | " + " | ".join(row) + " |")
             print()
-            culls = [v for v in CULLS if any(k[0] == size and k[2] == v for k in cells)]
-            if culls:
-                print(f"**{size}**: `local_lights` GPU ms, the clustered method's culling paths (16 px; auto picks "
-                      "per tile) against tiled\n")
-                names = ["auto"] + [v.split()[-1] for v in culls]
-                print("| lights | tiled | " + " | ".join(names) + " | " + " | ".join(f"{n} / tiled" for n in names) + " |")
-                print("|---:|" + "---:|" * (1 + 2 * len(names)))
-                for n in counts:
-                    t = cells.get((size, n, "tiled"), {}).get("local")
-                    ms = [cells.get((size, n, v), {}).get("local") for v in ["clustered 16"] + culls]
-                    print(f"| {n} | {fmt(t, 4)} | " + " | ".join(fmt(m, 4) for m in ms) + " | " +
-                          " | ".join(fmt(ratio(m, t)) for m in ms) + " |")
-                print()
             order = ("tiled", "clustered 16", "forward+")
             print(f"**{size}**: GPU ms, frame / opaque geometry + lighting (deferred tiled, deferred clustered "
                   "16 px, forward+)\n")

@@ -783,20 +783,6 @@ std::vector<KnobEntry> makeKnobTable() {
         t.push_back(std::move(k));
     }
     {
-        KnobEntry k = choiceKnob("cluster-cull", [](auto& s) -> auto& { return s.localLights.clusterCull; },
-                                 allClusterCulls(), clusterCullName);
-        k.flags = {valueFlag("--cluster-cull")};
-        k.choiceNoun = "culling";
-        k.help = "clustered method, per tile: auto (depth slices where the tile spans near and far and the "
-                 "lights are many), tiles (the tile's list, as tiled), slices (always per depth slice); the same image";
-        k.panel = {PanelSection::Lighting, PanelWidget::Combo, "cluster culling", ""};
-        k.sweep = {{"auto", "tiles", "slices"}, false,
-                   "clustered method's per-tile culling (--cluster-cull, switches --local-lights clustered on): "
-                   "the same image by design, so not monotone",
-                   [](RenderSettings& s, double) { s.localLights.method = LocalLightMethod::Clustered; }};
-        t.push_back(std::move(k));
-    }
-    {
         KnobEntry k = intKnob("cluster-slice", [](auto& s) -> auto& { return s.localLights.clusterSlice; }, -1, 63);
         k.flags = {valueFlag("--cluster-slice")};
         k.help = "lights-per-cluster view: show this depth slice; -1 the most lights over all slices";

@@ -43,7 +43,7 @@ void ensureState(LocalLightPass& state, const FrameData& frame, bool spotShadows
     // The programs that read the G-buffer follow its layout (recompiled when it changes), and
     // sample spot shadow maps only in frames that have one.
     const GBufferSettings& layout = frame.settings->gbuffer;
-    // The clustered programs are compiled for the grid's tile size (their work-group shape).
+    // The fused clustered programs are compiled for the grid's tile size (their work-group shape).
     const int clusterTile = frame.settings->localLights.clusterSize;
     if (!state.fbo || state.layout != layout || state.spotShadowVariant != spotShadows ||
         state.clusterTileCompiled != clusterTile) {
@@ -55,7 +55,8 @@ void ensureState(LocalLightPass& state, const FrameData& frame, bool spotShadows
         std::vector<std::string> clustered = defines;
         clustered.push_back("LP_CLUSTER_TILE " + std::to_string(clusterTile));
         state.clusteredProgram = frame.shaders->compute("local_light_clustered.comp", clustered);
-        state.clusterTightBuildProgram = frame.shaders->compute("light_clusters_tight.comp", clustered);
+        clustered.push_back("LP_CLUSTER_BUILD_ONLY");
+        state.clusterTightBuildProgram = frame.shaders->compute("local_light_clustered.comp", clustered);
         state.clusterTileCompiled = clusterTile;
         defines.push_back("LP_TILE_HEATMAP");
         state.heatmapProgram = frame.shaders->compute("local_light_tiled.comp", defines);
@@ -108,7 +109,7 @@ void unbindAll(const LocalLightPass& state) {
     }
     for (GLuint u = 0; u < 6; ++u) glBindTextureUnit(u, 0);
     glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
-    for (GLuint b = 0; b < 7; ++b) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, 0);
+    for (GLuint b = 0; b < 5; ++b) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, 0);
     glBindVertexArray(0);
     glUseProgram(0);
 }
@@ -157,65 +158,21 @@ void setClusterUniforms(GLuint prog, const ClusterGrid& g) {
     setFloat(prog, "uClusterFar", g.farPlane);
 }
 
-// The newest slot of `ring` whose dispatch has finished and that was not read before (marked read
-// now), or nullptr: never waits.
-const GLuint* takeFinishedCounters(MappedCounterRing& ring) {
-    const int n = int(ring.slots.size());
-    for (int back = 1; back <= n; ++back) {
-        auto& slot = ring.slots[size_t((ring.next - back + n) % n)];
-        if (!slot.done || !slot.done.signaled()) continue;
-        if (slot.read) return nullptr;
-        slot.read = true;
-        return slot.mapped;  // coherent, and the fence says the dispatch is done
-    }
-    return nullptr;
-}
-
-// Binds the ring's next slot (SSBO 3) and its tally (SSBO 6) for the dispatch of `groups` work groups
-// of `prog` that follows; then fenceCounters.
-void bindNextCounters(MappedCounterRing& ring, GLuint prog, int groups, const char* name) {
-    auto& slot = ring.slots[size_t(ring.next)];
-    constexpr GLsizeiptr bytes = MappedCounterRing::kCounters * sizeof(GLuint);
-    if (!ring.tally) {
-        const std::array<GLuint, MappedCounterRing::kCounters + 1> zero{};
-        ring.tally = gl::makeBuffer(GLsizeiptr(sizeof(zero)), zero.data(), 0, std::string(name) + ".tally");
-    }
-    if (!slot.buffer) {
-        // Persistently mapped (coherent): the counters are read from memory once the fence has
-        // signaled, never through glGetBufferSubData, which some drivers serialise with the whole queue.
-        const GLbitfield access = GL_MAP_READ_BIT | GL_MAP_WRITE_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT;
-        slot.buffer = gl::makeBuffer(bytes, nullptr, access, name);
-        slot.mapped = static_cast<GLuint*>(glMapNamedBufferRange(slot.buffer.id(), 0, bytes, access));
-        if (!slot.mapped) throw Error(std::string("cannot map ") + name + " (glMapNamedBufferRange failed)");
-    }
-    glProgramUniform1ui(prog, glGetUniformLocation(prog, "uGroupCount"), GLuint(groups));
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, slot.buffer.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, ring.tally.id());
-}
-
-// After the dispatch that wrote the slot bindNextCounters bound: fenced, the ring moves on.
-void fenceCounters(MappedCounterRing& ring) {
-    // The tally's reset seen by the next dispatch; the slot's shader writes seen through the mapping.
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_CLIENT_MAPPED_BUFFER_BARRIER_BIT);
-    auto& slot = ring.slots[size_t(ring.next)];
-    ring.next = (ring.next + 1) % int(ring.slots.size());
-    slot.done = gl::Fence::insert();
-    slot.read = false;
-}
-
-ClusterGrid frameClusterGrid(const FrameData& frame) {
-    const LocalLightSettings& s = frame.settings->localLights;
-    return makeClusterGrid(frame.width, frame.height, s.clusterSize, s.clusterSlices, frame.nearPlane, frame.farPlane);
-}
-
 // Readies the froxel grid for a build from the lights in the SSBO at binding 0 (uploadLights): reads
 // the newest finished build's overflow count, sizes the buffers, binds the counts (1), lists (2) and
-// the overflow counter (3, 6) for a dispatch of `prog`. The caller dispatches a build, then
-// finishClusterBuild.
-ClusterGrid beginClusterBuild(LocalLightPass& state, const FrameData& frame, GLuint prog) {
-    const ClusterGrid g = frameClusterGrid(frame);
-    if (const GLuint* counters = takeFinishedCounters(state.clusterOverflow)) {
-        const GLuint overflow = counters[0];
+// a cleared overflow counter (3). The caller dispatches a build, then finishClusterBuild.
+ClusterGrid beginClusterBuild(LocalLightPass& state, const FrameData& frame) {
+    const LocalLightSettings& s = frame.settings->localLights;
+    const ClusterGrid g = makeClusterGrid(frame.width, frame.height, s.clusterSize, s.clusterSlices, frame.nearPlane,
+                                          frame.farPlane);
+    // The newest finished build's overflow count (never waits: see OverflowSlot).
+    for (int back = 1; back <= int(state.clusterOverflow.size()); ++back) {
+        auto& slot = state.clusterOverflow[size_t((state.nextOverflowSlot - back + 3 * int(state.clusterOverflow.size())) %
+                                                  int(state.clusterOverflow.size()))];
+        if (!slot.done || !slot.done.signaled()) continue;
+        if (slot.read) break;
+        const GLuint overflow = *slot.mapped;  // coherent, and the fence says the build is done
+        slot.read = true;
         state.stats.clustersOverflowing = int(overflow);
         if (int(overflow) != state.lastOverflowWarned && overflow > 0)
             logWarn("clustered: " + std::to_string(overflow) + " of " + std::to_string(state.clusterGrid.count()) +
@@ -223,6 +180,7 @@ ClusterGrid beginClusterBuild(LocalLightPass& state, const FrameData& frame, GLu
                     " lights; their lists (forward shading, the lights-per-cluster view) keep the first " +
                     std::to_string(kMaxLightsPerCluster) + " (lower --cluster-size or raise --cluster-slices)");
         state.lastOverflowWarned = int(overflow);
+        break;
     }
     const size_t clusters = size_t(g.count());
     if (clusters > state.clusterCapacity || !state.clusterCounts) {
@@ -231,26 +189,47 @@ ClusterGrid beginClusterBuild(LocalLightPass& state, const FrameData& frame, GLu
         state.clusterLists = gl::makeBuffer(GLsizeiptr(clusters * kMaxLightsPerCluster * sizeof(GLuint)), nullptr, 0,
                                             "clusters.lights");
     }
-    bindNextCounters(state.clusterOverflow, prog, g.tilesX * g.tilesY, "clusters.overflow");
+    auto& slot = state.clusterOverflow[size_t(state.nextOverflowSlot)];
+    if (!slot.count) {
+        // Persistently mapped (coherent): the count is read from memory once its fence has signaled,
+        // never through glGetBufferSubData, which some drivers serialise with the whole queue.
+        const GLbitfield access = GL_MAP_READ_BIT | GL_MAP_WRITE_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT;
+        slot.count = gl::makeBuffer(sizeof(GLuint), nullptr, access, "clusters.overflow");
+        slot.mapped = static_cast<GLuint*>(glMapNamedBufferRange(slot.count.id(), 0, sizeof(GLuint), access));
+        if (!slot.mapped) throw Error("clustered: cannot map the overflow counter (glMapNamedBufferRange failed)");
+    }
+    // Zeroed through the mapping once the GPU is done with the slot's last build (coherent: the
+    // build issued next sees it), so the pass issues no clear command; a slot still in flight (the
+    // CPU a whole ring of builds ahead) is cleared on the GPU, in order.
+    if (!slot.done || slot.done.signaled()) {
+        *slot.mapped = 0u;
+    } else {
+        const GLuint zero = 0;
+        glClearNamedBufferData(slot.count.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    }
     state.clusterGrid = g;
     state.stats.clusters = g.count();
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, state.clusterCounts.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, state.clusterLists.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, slot.count.id());
     return g;
 }
 
 // After the build's dispatch: its lists visible to the next dispatches and draws, its overflow slot
 // fenced.
 void finishClusterBuild(LocalLightPass& state) {
+    auto& slot = state.clusterOverflow[size_t(state.nextOverflowSlot)];
+    state.nextOverflowSlot = (state.nextOverflowSlot + 1) % int(state.clusterOverflow.size());
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-    fenceCounters(state.clusterOverflow);
+    slot.done = gl::Fence::insert();
+    slot.read = false;
 }
 
 // Builds the whole grid's light lists (light_clusters.comp: every froxel whole, for the forward
 // passes and transparent surfaces); leaves the counts at binding 1 and the lists at binding 2.
 void buildClusters(LocalLightPass& state, const FrameData& frame, int lightCount) {
+    const ClusterGrid g = beginClusterBuild(state, frame);
     const GLuint prog = state.clusterBuildProgram.id();
-    const ClusterGrid g = beginClusterBuild(state, frame, prog);
     setClusterUniforms(prog, g);
     setInt(prog, "uLightCount", lightCount);
     setMat4(prog, "uProjection", frame.projection);
@@ -260,12 +239,11 @@ void buildClusters(LocalLightPass& state, const FrameData& frame, int lightCount
     finishClusterBuild(state);
 }
 
-// The deferred clustered method's lists tightened to the G-buffer's depth (light_clusters_tight.comp,
-// a work group per tile) into the grid buffers, for the lights-per-cluster view. The G-buffer is
-// bound by the caller.
-void buildTightClusters(LocalLightPass& state, const FrameData& frame, int lightCount) {
-    const GLuint prog = state.clusterTightBuildProgram.id();
-    const ClusterGrid g = beginClusterBuild(state, frame, prog);
+// The clustered method's fused pass (local_light_clustered.comp, `prog`: shading, or the build-only
+// variant): a work group per tile builds the grid's lists tightened to the G-buffer's depth and
+// (unless build-only) shades its pixels from them. The G-buffer is bound by the caller.
+void buildTightClusters(LocalLightPass& state, const FrameData& frame, GLuint prog, int lightCount) {
+    const ClusterGrid g = beginClusterBuild(state, frame);
     setClusterUniforms(prog, g);
     setInt(prog, "uLightCount", lightCount);
     setMat4(prog, "uProjection", frame.projection);
@@ -273,38 +251,6 @@ void buildTightClusters(LocalLightPass& state, const FrameData& frame, int light
     glUseProgram(prog);
     glDispatchCompute(GLuint(g.tilesX), GLuint(g.tilesY), 1);
     finishClusterBuild(state);
-}
-
-// The clustered method's pass (local_light_clustered.comp): a work group per tile culls per tile or
-// per depth slice (--cluster-cull) and shades its pixels, the lists in shared memory. Reads the
-// previous pass's per-path tile counts into stats.
-void shadeClustered(LocalLightPass& state, const FrameData& frame, const fg::PassResources& res, const GBuffer& in,
-                    GLuint hdrTexture, bool lightingOnly, int lightCount) {
-    const LocalLightSettings& s = frame.settings->localLights;
-    const GLuint prog = state.clusteredProgram.id();
-    if (const GLuint* counters = takeFinishedCounters(state.clusterPaths)) {
-        state.lastSlicedTiles = int(counters[0]);
-        state.lastTileListTiles = int(counters[1]);
-    }
-    state.stats.slicedTiles = state.lastSlicedTiles;
-    state.stats.tileListTiles = state.lastTileListTiles;
-    const ClusterGrid g = frameClusterGrid(frame);
-    state.stats.clusters = g.count();
-    bindGBuffer(prog, res, in, frame, !lightingOnly);
-    setClusterUniforms(prog, g);
-    setInt(prog, "uLightCount", lightCount);
-    setMat4(prog, "uProjection", frame.projection);
-    glProgramUniform2i(prog, glGetUniformLocation(prog, "uImageSize"), frame.width, frame.height);
-    setInt(prog, "uUnbounded", unbounded(s));
-    setInt(prog, "uLightingOnly", lightingOnly);
-    setInt(prog, "uSpecularMode", specularMode(s));
-    setInt(prog, "uCullMode", int(s.clusterCull));
-    glBindImageTexture(0, hdrTexture, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
-    bindNextCounters(state.clusterPaths, prog, g.tilesX * g.tilesY, "clusters.paths");
-    glUseProgram(prog);
-    glDispatchCompute(GLuint(g.tilesX), GLuint(g.tilesY), 1);
-    fenceCounters(state.clusterPaths);
-    state.stats.drawn = lightCount;
 }
 
 // The fullscreen, scissor and volumes methods: additive blending into an FBO holding the HDR texture.
@@ -387,7 +333,7 @@ int bindClusteredLightLists(LocalLightPass& state, GLuint prog, const FrameData&
 }
 
 void unbindClusteredLightLists() {
-    for (GLuint b = 0; b < 7; ++b) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, 0);
+    for (GLuint b = 0; b < 5; ++b) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, 0);
     glBindTextureUnit(kSpotShadowUnit, 0);
 }
 
@@ -428,7 +374,14 @@ fg::ResourceId addLocalLightPass(fg::FrameGraph& graph, LocalLightPass& state, c
                 gl::dispatch2D(frame.width, frame.height, kTileSize);
                 state.stats.drawn = int(lights.size());
             } else if (s.method == LocalLightMethod::Clustered) {
-                shadeClustered(state, frame, res, data.in, hdrTexture, lightingOnly, int(lights.size()));
+                const GLuint prog = state.clusteredProgram.id();
+                bindGBuffer(prog, res, data.in, frame, !lightingOnly);
+                setInt(prog, "uUnbounded", unbounded(s));
+                setInt(prog, "uLightingOnly", lightingOnly);
+                setInt(prog, "uSpecularMode", specularMode(s));
+                glBindImageTexture(0, hdrTexture, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
+                buildTightClusters(state, frame, prog, int(lights.size()));
+                state.stats.drawn = int(lights.size());
             } else {
                 const GLuint prog = state.fragmentProgram.id();
                 bindGBuffer(prog, res, data.in, frame, !lightingOnly);
@@ -652,7 +605,7 @@ fg::ResourceId addLocalLightOverlayPasses(fg::FrameGraph& graph, LocalLightPass&
                                const GLuint build = state.clusterTightBuildProgram.id();
                                bindGBuffer(build, res, data.in, frame, true);
                                setInt(build, "uLightingOnly", 0);
-                               buildTightClusters(state, frame, int(lights.size()));
+                               buildTightClusters(state, frame, build, int(lights.size()));
                            } else {
                                buildClusters(state, frame, int(lights.size()));
                            }

@@ -2,10 +2,9 @@
 // Local lights (ranged points and spots) added into the HDR buffer, by one of five methods that give
 // the same image (settings.localLights.method): fullscreen, scissor, volumes, tiled, clustered. Plus
 // the overlays: light globes, the light-ranges view and the lights-per-tile and lights-per-cluster
-// heat maps. The clustered method culls per froxel, tightened to the G-buffer's depth, and shades in
-// one dispatch keeping its lists in shared memory (local_light_clustered.comp); the lights-per-cluster
-// view builds the same tight lists into the grid buffers (light_clusters_tight.comp), the forward
-// passes whole froxels (light_clusters.comp).
+// heat maps. The clustered method builds its froxel grid's lists, tightened to the G-buffer's depth,
+// and shades from them in one dispatch (local_light_clustered.comp); the forward passes build whole
+// froxels (light_clusters.comp) into the same grid buffers.
 #include <array>
 
 #include "engine/gl/handles.hpp"
@@ -28,27 +27,6 @@ struct LocalLightStats {
     // clustered method: froxels of the previous grid build that held more than kMaxLightsPerCluster
     // lights (read back one build late, so the frame does not wait for the GPU); -1 before any.
     int clustersOverflowing = -1;
-    // clustered method: tiles of the previous clustered local_lights pass that culled per depth slice
-    // and that shaded from the tile's list (--cluster-cull), read back one pass late; -1 before any.
-    int slicedTiles = -1;
-    int tileListTiles = -1;
-};
-
-// A ring of small persistently mapped counter buffers written by the GPU, each read back only once
-// its fence has signaled, so reading never makes the CPU (or a pass's GPU timer) wait. The shaders
-// add into the device-local `tally` and the dispatch's last work group copies it into the slot
-// (shaders/common/dispatch_counters.glsl): the mapped slot lives in host memory.
-struct MappedCounterRing {
-    static constexpr int kCounters = 4;  // uints per slot
-    gl::Buffer tally;  // kCounters + 1 uints (the last: work groups finished), zero between dispatches
-    struct Slot {
-        gl::Buffer buffer;
-        GLuint* mapped = nullptr;  // `buffer`, persistently mapped: read without a GL call
-        gl::Fence done;     // after the dispatch that wrote it
-        bool read = false;  // its counters have been taken already
-    };
-    std::array<Slot, 8> slots;  // up to three builds a frame (forward, transparent, view)
-    int next = 0;
 };
 
 struct LocalLightPass {
@@ -58,18 +36,25 @@ struct LocalLightPass {
     gl::Program sanitizeProgram;  // local_light_sanitize.comp
     gl::Program overlayProgram;   // local_light_overlay.vert/.frag: globes, volumes, rectangles
     gl::Program clusterBuildProgram;  // light_clusters.comp
-    gl::Program clusteredProgram;     // local_light_clustered.comp: tight culling and shading, fused
-    gl::Program clusterTightBuildProgram;  // light_clusters_tight.comp: the tight lists (lights-per-cluster view)
+    gl::Program clusteredProgram;     // local_light_clustered.comp: tight lists and shading, fused
+    gl::Program clusterTightBuildProgram;  // the same with LP_CLUSTER_BUILD_ONLY (lights-per-cluster view)
     int clusterTileCompiled = 0;      // the tile size (--cluster-size) those two were compiled for
     gl::Program clusterViewProgram;   // light_clusters_view.comp
     ClusterGrid clusterGrid;          // the grid the last build made
     gl::Buffer clusterCounts;         // uint per cluster: lights touching it (uncapped)
     gl::Buffer clusterLists;          // kMaxLightsPerCluster uints per cluster: light indices
-    MappedCounterRing clusterOverflow;  // per grid build, counter 0: clusters past the cap
-    MappedCounterRing clusterPaths;     // per clustered local_lights pass: tiles sliced, tiles on the list
+    // One uint per build: clusters past the cap. A ring, each slot read back only once its fence
+    // has signaled, so the warning never makes the CPU (or the pass's GPU timer) wait on a build.
+    struct OverflowSlot {
+        gl::Buffer count;
+        GLuint* mapped = nullptr;  // `count`, persistently mapped: read and zeroed without a GL call
+        gl::Fence done;     // after the build that wrote `count`
+        bool read = false;  // its count is in stats already
+    };
+    std::array<OverflowSlot, 8> clusterOverflow;  // up to three builds a frame (forward, transparent, view)
+    int nextOverflowSlot = 0;
     size_t clusterCapacity = 0;       // clusters the buffers hold
     int lastOverflowWarned = 0;
-    int lastSlicedTiles = -1, lastTileListTiles = -1;  // the newest per-path tile counts read back
     gl::Program globeVelocityProgram;  // the same with LP_GLOBE_VELOCITY: globes and their motion vectors
     GBufferSettings layout;       // the G-buffer layout the fragment, tiled and heatmap programs were compiled for
     bool spotShadowVariant = false;  // ... and whether with LP_SPOT_SHADOWS (only frames with a shadowed spot)

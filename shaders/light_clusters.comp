@@ -8,17 +8,17 @@
 // slice k's eye-space box (clusterLightTouchesBox), appending it to its froxel's list. Lights are
 // thus tested once per tile and only the tile's survivors once per slice. Lists hold the
 // lowest-indexed lights first; counts past the cap are kept (uncapped) for the heat map, and clusters
-// that overflow are counted (dispatch counter 0). (The deferred clustered method culls tighter froxels
-// from the G-buffer's depth: local_light_clustered.comp, light_clusters_tight.comp for its view.)
+// that overflow are counted in uOverflow. (The deferred clustered method builds tighter lists from
+// the G-buffer's depth in local_light_clustered.comp.)
 #include "common/local_light.glsl"
 #include "common/clusters.glsl"
-#include "common/dispatch_counters.glsl"
 
 const int LP_BATCH = 256;  // lights per batch: one per invocation (and >= kMaxClusterSlices)
 layout(local_size_x = LP_BATCH) in;
 layout(std430, binding = 0) readonly buffer LocalLights { LpLocalLight uLights[]; };
 layout(std430, binding = 1) writeonly buffer ClusterCounts { uint uCounts[]; };
 layout(std430, binding = 2) writeonly buffer ClusterLights { uint uLists[]; };
+layout(std430, binding = 3) buffer ClusterOverflow { uint uOverflow; };
 uniform int uLightCount;
 uniform mat4 uProjection;
 uniform ivec2 uImageSize;
@@ -68,9 +68,7 @@ void main() {
                 }
         barrier();
     }
-    if (ownsSlice) {
-        uCounts[cluster] = count;
-        if (count > LP_MAX_LIGHTS_PER_CLUSTER) tallyCounter(0, 1u);  // clusters past the cap
-    }
-    finishDispatchCounters();
+    if (!ownsSlice) return;
+    uCounts[cluster] = count;
+    if (count > LP_MAX_LIGHTS_PER_CLUSTER) atomicAdd(uOverflow, 1u);
 }

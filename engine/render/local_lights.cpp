@@ -31,17 +31,6 @@ std::optional<LocalLightMethod> parseLocalLightMethod(const std::string& name) {
     return std::nullopt;
 }
 
-const char* clusterCullName(ClusterCull c) {
-    switch (c) {
-        case ClusterCull::Auto: return "auto";
-        case ClusterCull::Tiles: return "tiles";
-        case ClusterCull::Slices: return "slices";
-    }
-    return "auto";
-}
-
-std::vector<ClusterCull> allClusterCulls() { return {ClusterCull::Auto, ClusterCull::Tiles, ClusterCull::Slices}; }
-
 namespace {
 // Deterministic hash to [0, 1): light i of a demo set does not depend on how many are asked for.
 float hash01(uint32_t x) {

@@ -14,7 +14,6 @@
 namespace lp {
 
 std::vector<LocalLightMethod> allLocalLightMethods();
-std::vector<ClusterCull> allClusterCulls();
 
 // One light as the shaders' SSBO holds it (std430, common/local_light.glsl's LpLocalLight).
 struct GpuLocalLight {

@@ -110,10 +110,6 @@ struct ShadowSettings {         // directional-light shadow maps (passes/shadow_
 enum class LocalLightMethod { Fullscreen, Scissor, Volumes, Tiled, Clustered };
 const char* localLightMethodName(LocalLightMethod method);  // defined in engine/render/local_lights.cpp
 std::optional<LocalLightMethod> parseLocalLightMethod(const std::string& name);
-// The clustered method's culling per tile (local_light_clustered.comp): auto picks per tile; tiles
-// always shades from the tile's list (the tiled method's culling); slices always culls per depth slice.
-enum class ClusterCull { Auto, Tiles, Slices };
-const char* clusterCullName(ClusterCull cull);  // defined in engine/render/local_lights.cpp
 struct LocalLightSettings {     // local lights: ranged point lights and spots
     bool enabled = true;
     LocalLightMethod method = LocalLightMethod::Tiled;
@@ -126,7 +122,6 @@ struct LocalLightSettings {     // local lights: ranged point lights and spots
     int clusterSize = 16;       // clustered: froxel tile side in pixels (the fused pass's work group)
     int clusterSlices = 24;     // clustered: exponential depth slices between the near and far planes
     int clusterSlice = -1;      // lights-per-cluster view: this slice, -1 the most over all slices
-    ClusterCull clusterCull = ClusterCull::Auto;  // clustered: per-tile culling path
 };
 enum class ToneMapOperator { Lightpass, Aces, PbrNeutral, Agx };
 enum class IrradianceSource { SphericalHarmonics, Cubemap };

@@ -647,14 +647,20 @@ double rayBoxEntryDepth(glm::dvec3 dir, glm::dvec3 lo, glm::dvec3 hi) {
     return t0 <= t1 ? -(t0 * dir.z) : std::nan("");
 }
 
-// The camera at the origin looking down -z at a thin pillar (front face 2 m away) before a wall 8 m
-// away, the top rows empty; 90 lights through the view at 1-10 m.
-const glm::vec3 kWallLo(-20.0f, -20.0f, -8.2f), kWallHi(20.0f, 2.31f, -8.0f);
-// The pillar: NDC x from -0.75 to -0.25 at 2 m (pixels 8 to 24 of 64), the full height.
-const glm::vec3 kPillarLo(-1.1547f, -5.0f, -2.02f), kPillarHi(-0.3849f, 5.0f, -2.0f);
-Scene pillarScene() {
+// The deferred clustered method's tight froxels on a scene of known depth: the camera at the origin
+// looking down -z at a thin pillar (front face 2 m away) before a wall 8 m away, the top rows empty,
+// 4 x 3 tiles x 8 slices (2 m in slice 4, 8 m in slice 6). Each pixel's eye distance is ray-cast
+// here; from them the CPU reference (referenceTightClusterLists) gives each froxel's list. The GPU's
+// lists hold every light of the reference with the bounds shrunk by 1e-3, and only lights of the
+// reference with the bounds and depth ranges grown by 1%; unoccupied froxels list nothing; lights
+// crossing only the empty depth between pillar and wall are dropped (they are in the whole-froxel
+// lists); every light reaching a pixel's surface point is listed in that pixel's froxel; and the
+// image equals the tiled method's within the fp16 bound.
+TEST(ClusteredLights, TightFroxelsListEveryLightReachingTheirPixels) {
     Scene s;
-    const glm::vec3 wallLo = kWallLo, wallHi = kWallHi, pillarLo = kPillarLo, pillarHi = kPillarHi;
+    const glm::vec3 wallLo(-20.0f, -20.0f, -8.2f), wallHi(20.0f, 2.31f, -8.0f);
+    // The pillar: NDC x from -0.75 to -0.25 at 2 m (pixels 8 to 24 of 64), the full height.
+    const glm::vec3 pillarLo(-1.1547f, -5.0f, -2.02f), pillarHi(-0.3849f, 5.0f, -2.0f);
     for (auto [lo, hi] : {std::pair{wallLo, wallHi}, std::pair{pillarLo, pillarHi}})
         s.models.push_back(model("cube", makeCube(1.0f),
                                  glm::scale(glm::translate(glm::mat4(1.0f), 0.5f * (lo + hi)), hi - lo),
@@ -682,28 +688,11 @@ Scene pillarScene() {
                               15.0f, float(20.0 + 50.0 * next()), false};
         s.pointLights.push_back(l);
     }
-    return s;
-}
-
-// The deferred clustered method's tight froxels on pillarScene, 4 x 3 tiles x 8 slices (2 m in slice
-// 4, 8 m in slice 6), as the lights-per-cluster view builds them (light_clusters_tight.comp). Each
-// pixel's eye distance is ray-cast here; from them the CPU reference (referenceTightClusterLists)
-// gives each froxel's list. The GPU's lists hold every light of the reference with the bounds shrunk
-// by 1e-3, and only lights of the reference with the bounds and depth ranges grown by 1%; unoccupied
-// froxels list nothing; lights crossing only the empty depth between pillar and wall are dropped
-// (they are in the whole-froxel lists); every light reaching a pixel's surface point is listed in
-// that pixel's froxel; and the clustered image equals the tiled method's within the fp16 bound.
-TEST(ClusteredLights, TightFroxelsListEveryLightReachingTheirPixels) {
-    const Scene s = pillarScene();
-    const glm::vec3 wallLo = kWallLo, wallHi = kWallHi, pillarLo = kPillarLo, pillarHi = kPillarHi;
     Rig rig(s);
     RenderSettings r = smallSettings(LocalLightMethod::Clustered);
     r.localLights.clusterSize = 16;
     r.localLights.clusterSlices = 8;
     const std::vector<float> img = rig.renderHdr(r);
-    RenderSettings view = r;
-    view.view = DebugView::LightsPerCluster;
-    rig.renderHdr(view);
     const LocalLightPass& st = rig.passes.localLights;
     const ClusterGrid& g = st.clusterGrid;
     ASSERT_EQ(g.count(), 96);
@@ -778,6 +767,16 @@ TEST(ClusteredLights, TightFroxelsListEveryLightReachingTheirPixels) {
         }
     }
     EXPECT_GT(reached, 1000);
+    // The lights-per-cluster view builds the same tight grid (from the G-buffer, without shading).
+    RenderSettings view = r;
+    view.view = DebugView::LightsPerCluster;
+    rig.renderHdr(view);
+    const ClusterReadback shown = readClusters(rig.passes.localLights);
+    for (int c = 0; c < g.count(); ++c) {
+        ASSERT_EQ(shown.counts[size_t(c)], gpu.counts[size_t(c)]) << "cluster " << c;
+        for (GLuint n = 0; n < gpu.counts[size_t(c)]; ++n)
+            ASSERT_EQ(shown.lists[size_t(c) * kMaxLightsPerCluster + n], gpu.lists[size_t(c) * kMaxLightsPerCluster + n]);
+    }
     // And the image: the tiled method's within FourMethodsGiveTheSameImage's bound.
     const std::vector<float> tiled = rig.renderHdr(smallSettings(LocalLightMethod::Tiled));
     std::vector<int> k = lightsPerPixel(s, smallSettings(LocalLightMethod::Scissor));
@@ -791,73 +790,33 @@ TEST(ClusteredLights, TightFroxelsListEveryLightReachingTheirPixels) {
     EXPECT_GT(lit, 64 * 48 / 8);
 }
 
-// The clustered pass's per-tile culling paths (--cluster-cull) on pillarScene, 4 x 3 tiles of 16 px, 8
-// slices: auto culls per slice the 6 tiles holding the pillar (2 m) before the wall (8 m) and shades
-// the 6 tiles of wall alone (one depth) from the tile's list; slices takes the slice path in all 12,
-// tiles in none (the counts are read back one pass late). All three give the tiled method's image
-// within the bound of TightFroxelsListEveryLightReachingTheirPixels.
-TEST(ClusteredLights, CullPathPerTileGivesTheSameImage) {
-    const Scene s = pillarScene();
-    Rig rig(s);
-    const std::vector<float> tiled = rig.renderHdr(smallSettings(LocalLightMethod::Tiled));
-    const std::vector<int> k = lightsPerPixel(s, smallSettings(LocalLightMethod::Scissor));
-    struct Expected {
-        ClusterCull cull;
-        int sliced, tileList;
-    };
-    for (Expected e : {Expected{ClusterCull::Auto, 6, 6}, Expected{ClusterCull::Slices, 12, 0},
-                       Expected{ClusterCull::Tiles, 0, 12}}) {
-        SCOPED_TRACE(clusterCullName(e.cull));
-        RenderSettings r = smallSettings(LocalLightMethod::Clustered);
-        r.localLights.clusterSize = 16;
-        r.localLights.clusterSlices = 8;
-        r.localLights.clusterCull = e.cull;
-        rig.renderHdr(r);
-        const std::vector<float> img = rig.renderHdr(r);
-        EXPECT_EQ(rig.passes.localLights.stats.slicedTiles, e.sliced);
-        EXPECT_EQ(rig.passes.localLights.stats.tileListTiles, e.tileList);
-        int lit = 0;
-        for (size_t i = 0; i < img.size(); ++i) {
-            ASSERT_TRUE(std::isfinite(img[i]));
-            const double bound = (2.0 * (k[i / 4] + 1) * std::ldexp(1.0, -11) + 2e-3) * std::abs(tiled[i]) + 2e-6;
-            ASSERT_LE(std::abs(double(img[i]) - double(tiled[i])), bound) << "texel " << i / 4 << " channel " << i % 4;
-            if (i % 4 == 1 && tiled[i] > 1e-3f) ++lit;
-        }
-        EXPECT_GT(lit, 64 * 48 / 8);
-    }
-}
-
 // The fused clustered pass at tile sizes other than its 16 x 16 work group (a pixel per
 // invocation): smaller tiles (fewer invocations, smaller batches), larger ones (several pixels per
-// invocation, partial tiles at the image's edges), and 1, 7 or 64 slices, each on the tile path and
-// the slice path (which reorders a tile's pixels by slice up to 32 px tiles, not past): the
-// fullscreen image within the bound of EveryMethodGivesTheSameImageWithSpots.
+// invocation, partial tiles at the image's edges), and 1, 7 or 64 slices: the fullscreen image
+// within the bound of EveryMethodGivesTheSameImageWithSpots.
 TEST(ClusteredLights, EveryTileSizeAndSliceCountGivesTheSameImage) {
     Scene s = spotScene();
     Rig rig(s);
     const std::vector<float> ref = rig.renderHdr(smallSettings(LocalLightMethod::Fullscreen));
     std::vector<int> k = lightsPerPixel(s, smallSettings(LocalLightMethod::Scissor));
     for (int tile : {8, 12, 24, 40})
-        for (int slices : {1, 7, 64})
-            for (ClusterCull cull : {ClusterCull::Tiles, ClusterCull::Slices}) {
+        for (int slices : {1, 7, 64}) {
             RenderSettings r = smallSettings(LocalLightMethod::Clustered);
             r.localLights.clusterSize = tile;
             r.localLights.clusterSlices = slices;
-            r.localLights.clusterCull = cull;
             const std::vector<float> got = rig.renderHdr(r);
             EXPECT_EQ(rig.passes.localLights.stats.clusters,
                       ((64 + tile - 1) / tile) * ((48 + tile - 1) / tile) * slices);
             for (size_t i = 0; i < got.size(); ++i) {
                 const double bound = ((k[i / 4] + 1) * std::ldexp(1.0, -11) + 1e-3) * std::abs(ref[i]) + 1e-6;
                 ASSERT_LE(std::abs(double(got[i]) - double(ref[i])), bound)
-                    << "tile " << tile << " slices " << slices << " " << clusterCullName(cull) << " texel " << i / 4;
+                    << "tile " << tile << " slices " << slices << " texel " << i / 4;
             }
         }
 }
 
-// Past the cap: 300 lights around one point. In the lights-per-cluster view's tight grid the cluster
-// counts all 300, lists the first 256 (lowest indices), the overflow is counted (stats, one build
-// late) and warned about, the image stays finite.
+// Past the cap: 300 lights around one point. The cluster counts all 300, lists the first 256 (lowest
+// indices), the overflow is counted (stats, one build late) and warned about, the image stays finite.
 TEST(ClusteredLights, OverflowPastTheCapIsCountedAndWarned) {
     Scene s = twentyLightScene();
     s.pointLights.clear();
@@ -872,7 +831,6 @@ TEST(ClusteredLights, OverflowPastTheCapIsCountedAndWarned) {
     RenderSettings r = smallSettings(LocalLightMethod::Clustered);
     r.localLights.clusterSize = 16;
     r.localLights.clusterSlices = 8;
-    r.view = DebugView::LightsPerCluster;  // the grid's tight lists (the pass itself keeps none)
     const int warningsBefore = warningCount();
     rig.renderHdr(r);
     EXPECT_EQ(rig.passes.localLights.stats.clustersOverflowing, -1) << "no earlier build to read";
