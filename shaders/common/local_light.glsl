@@ -107,7 +107,11 @@ float lpSpotShadow(int layer, vec3 P, vec3 N, vec3 L) {
 // cone falloff. Zero exactly outside the cone and past the range, so every method can cut at the bound.
 vec3 lpShadeLocalLight(LpLocalLight l, vec3 P, vec3 N, vec3 V, vec3 kd, vec3 ks, float shininess, int specularMode) {
     vec3 toLight = l.positionRange.xyz - P;
-    float d = length(toLight);
+    // Past the range the window is exactly 0 (the unranged specular mode aside): skip the rest. The
+    // tiled and clustered methods' lists hold many lights that reach the tile but not this pixel.
+    float d2 = dot(toLight, toLight);
+    if (specularMode != LP_LOCAL_SPECULAR_UNRANGED && d2 >= l.positionRange.w * l.positionRange.w) return vec3(0.0);
+    float d = sqrt(d2);
     float cosAngle = d > 0.0 ? dot(-toLight / d, l.directionCos.xyz) : 1.0;  // at the apex: on the axis
     float cone = lpSpotFalloff(cosAngle, l.directionCos.w, l.intensity.w);
     if (cone <= 0.0) return vec3(0.0);
