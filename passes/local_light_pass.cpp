@@ -198,20 +198,17 @@ ClusterGrid beginClusterBuild(LocalLightPass& state, const FrameData& frame) {
         slot.mapped = static_cast<GLuint*>(glMapNamedBufferRange(slot.count.id(), 0, sizeof(GLuint), access));
         if (!slot.mapped) throw Error("clustered: cannot map the overflow counter (glMapNamedBufferRange failed)");
     }
-    // Zeroed through the mapping once the GPU is done with the slot's last build (coherent: the
-    // build issued next sees it), so the pass issues no clear command; a slot still in flight (the
-    // CPU a whole ring of builds ahead) is cleared on the GPU, in order.
-    if (!slot.done || slot.done.signaled()) {
-        *slot.mapped = 0u;
-    } else {
-        const GLuint zero = 0;
-        glClearNamedBufferData(slot.count.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-    }
+    // The count starts at zero in GPU memory, in order with the builds (finishClusterBuild copies it
+    // into the slot).
+    if (!state.clusterOverflowCounter)
+        state.clusterOverflowCounter = gl::makeBuffer(sizeof(GLuint), nullptr, 0, "clusters.overflow_counter");
+    const GLuint zero = 0;
+    glClearNamedBufferData(state.clusterOverflowCounter.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
     state.clusterGrid = g;
     state.stats.clusters = g.count();
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, state.clusterCounts.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, state.clusterLists.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, slot.count.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, state.clusterOverflowCounter.id());
     return g;
 }
 
@@ -221,6 +218,7 @@ void finishClusterBuild(LocalLightPass& state) {
     auto& slot = state.clusterOverflow[size_t(state.nextOverflowSlot)];
     state.nextOverflowSlot = (state.nextOverflowSlot + 1) % int(state.clusterOverflow.size());
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    glCopyNamedBufferSubData(state.clusterOverflowCounter.id(), slot.count.id(), 0, 0, sizeof(GLuint));
     slot.done = gl::Fence::insert();
     slot.read = false;
 }
