@@ -352,6 +352,32 @@ ImageF lampMap(glm::dvec3 lampDir) {
     return img;
 }
 
+// The two lamp tests' sphere (Ks = 1, alpha = sqrt(2 / (n + 2)) = 0.5) under lampMap in kLampDirection,
+// and their 40 x 30 HDR frame: AO off, a small bake on a 128^2 cube, a 64^2 DFG LUT of 1024 samples,
+// the sun's pass off (the map alone lights it).
+const glm::dvec3 kLampDirection = glm::normalize(glm::dvec3(0.2, 0.45, 0.85));
+constexpr float kLampSphereShininess = 6.0f;
+
+Scene lampSphere(const char* mapFile) {
+    const auto mapPath = tempPath(mapFile);
+    writeExr(mapPath, lampMap(kLampDirection));
+    return sphereUnderMap(mapPath, glm::vec3(0.0f), glm::vec3(1.0f), kLampSphereShininess);
+}
+
+RenderSettings lampSphereSettings() {
+    RenderSettings s;
+    s.width = 40;
+    s.height = 30;
+    s.keepHdr = true;
+    s.ao.enabled = false;
+    s.environment = smallBake();
+    s.environment.cubeSize = 128;
+    s.environment.dfgSize = 64;
+    s.environment.dfgSamples = 1024;
+    s.disabledPasses.insert("global_lights");
+    return s;
+}
+
 // Unit direction through the centre of texel (i, j) of face f (shaders/common/ibl.glsl cubeDirection).
 glm::dvec3 cubeTexelDir(int f, int i, int j, int size) {
     const double s = (i + 0.5) / size * 2.0 - 1.0, t = (j + 0.5) / size * 2.0 - 1.0;
@@ -486,26 +512,15 @@ TEST(Ibl, PrefilteredChainDoesNotLoseASmallLamp) {
 // integral of the BRDF over the sphere under this light (recorded, not bounded; see
 // bench/mitsuba/split_sum_budget.py for the lamp50k sphere).
 TEST(Ibl, RoughSphereUnderASmallLampMatchesTheExactSplitSum) {
-    const glm::dvec3 lampDir = glm::normalize(glm::dvec3(0.2, 0.45, 0.85));
-    const auto mapPath = tempPath("lamp-sphere.exr");
-    writeExr(mapPath, lampMap(lampDir));
-    const float shininess = 6.0f;  // alpha = sqrt(2 / (n + 2)) = 0.5
-    const Scene scene = sphereUnderMap(mapPath, glm::vec3(0.0f), glm::vec3(1.0f), shininess);
+    const glm::dvec3 lampDir = kLampDirection;
+    const float shininess = kLampSphereShininess;
+    const Scene scene = lampSphere("lamp-sphere.exr");
     Renderer r(scene);
-    RenderSettings s;
-    s.width = 40;
-    s.height = 30;
-    s.keepHdr = true;
-    s.ao.enabled = false;
-    s.environment = smallBake();
-    s.environment.cubeSize = 128;
+    RenderSettings s = lampSphereSettings();
     s.environment.specularSize = 128;  // level 4 (alpha 0.31) 8^2: coarser faces flatten its lobe's peak
     s.environment.specularLevels = 6;
     s.environment.specularSamples = EnvironmentSettings{}.specularSamples;
-    s.environment.dfgSize = 64;
-    s.environment.dfgSamples = 1024;
     s.environment.extractLights = 0;  // what is pinned is the chain's handling of the lamp
-    s.disabledPasses.insert("global_lights");
     r.render(s, 0.0f, false);
     ASSERT_TRUE(r.graph().isLive("ibl"));
     const ImageF hdr = r.readHdr();
@@ -568,7 +583,7 @@ TEST(Ibl, RoughSphereUnderASmallLampMatchesTheExactSplitSum) {
     RecordProperty("split_sum_over_exact", std::to_string(want / exact));
     RecordProperty("sampled_over_exact", std::to_string(sampled / exact));
     EXPECT_LT(std::abs(sampled / exact - 1.0), 0.5 * std::abs(got / exact - 1.0)) << "sampled specular";
-    std::filesystem::remove(mapPath);
+    std::filesystem::remove(tempPath("lamp-sphere.exr"));
 }
 
 // Issue #16's lamp case with the lamp taken out of the map (--ibl-extract-lights, the default): the
@@ -580,24 +595,13 @@ TEST(Ibl, RoughSphereUnderASmallLampMatchesTheExactSplitSum) {
 // White furnace with extraction on: nothing taken out, the mean within 0.5% of the exact albedo, and
 // the image bit-identical to the one with extraction off.
 TEST(Ibl, RoughSphereUnderASmallLampMatchesTheExactIntegralWithTheLampExtracted) {
-    const glm::dvec3 lampDir = glm::normalize(glm::dvec3(0.2, 0.45, 0.85));
-    const auto mapPath = tempPath("lamp-extracted.exr");
-    writeExr(mapPath, lampMap(lampDir));
-    const float shininess = 6.0f;  // alpha 0.5
-    const Scene scene = sphereUnderMap(mapPath, glm::vec3(0.0f), glm::vec3(1.0f), shininess);
+    const glm::dvec3 lampDir = kLampDirection;
+    const float shininess = kLampSphereShininess;
+    const Scene scene = lampSphere("lamp-extracted.exr");
     Renderer r(scene);
-    RenderSettings s;
-    s.width = 40;
-    s.height = 30;
-    s.keepHdr = true;
-    s.ao.enabled = false;
-    s.environment = smallBake();
-    s.environment.cubeSize = 128;
+    RenderSettings s = lampSphereSettings();
     s.environment.specularSize = 64;
-    s.environment.dfgSize = 64;
-    s.environment.dfgSamples = 1024;
     ASSERT_GT(s.environment.extractLights, 0) << "extraction is on by default";
-    s.disabledPasses.insert("global_lights");
     std::vector<ImageF> images;
     for (IblSpecular specular : {IblSpecular::SplitSum, IblSpecular::Sampled}) {
         s.environment.specular = specular;
@@ -646,7 +650,7 @@ TEST(Ibl, RoughSphereUnderASmallLampMatchesTheExactIntegralWithTheLampExtracted)
     EXPECT_NEAR(got[1] / exact, 1.0, 0.02) << "sampled specular + extracted lamp, whole sphere";
     RecordProperty("split_sum_with_lamp_over_exact", std::to_string(got[0] / exact));
     RecordProperty("sampled_with_lamp_over_exact", std::to_string(got[1] / exact));
-    std::filesystem::remove(mapPath);
+    std::filesystem::remove(tempPath("lamp-extracted.exr"));
 
     // White furnace, extraction on: nothing is taken out, the sphere keeps its exact albedo.
     const auto furnacePath = tempPath("furnace-extract.exr");
