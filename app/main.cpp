@@ -115,6 +115,15 @@ int commandGraph(const Options& o) {
     Scene scene = loadFromOptions(o);
     RenderSettings settings = settingsFromOptions(o);
     FrameData frame = makeFrameData(scene, settings, float(o.time));
+    if (settings.gbuffer.mode == GBufferMode::Auto) {
+        // auto's G-buffer depends on the GPU's rasteriser: asked of a headless context where one can
+        // be made, else the classic G-buffer, and the skip reasons say so.
+        try {
+            auto ctx = gl::createHeadlessContext();
+            frame.softwareRaster = ctx->isSoftware();
+        } catch (const std::exception&) {
+        }
+    }
     fg::FrameGraph graph;
     PassStates passes;  // never executed: describing a graph needs no GPU
     if (o.explain) {

@@ -13,6 +13,7 @@ void requireFrameFitsGpu(const gl::GpuContext& context, const Scene& scene, cons
     const gl::RenderTargetLimits limits = gl::queryRenderTargetLimits(context.isSoftware());
     gl::requireRenderSizeFits(settings.width, settings.height, 0, limits);  // dimensions first: cheap
     FrameData frame = makeFrameData(scene, settings, 0.0f);
+    frame.softwareRaster = context.isSoftware();  // the G-buffer mode auto picks here
     fg::FrameGraph graph;
     PassStates passes;  // never executed: sizing the graph needs no GPU
     buildFrameGraph(graph, passes, frame);

@@ -139,12 +139,13 @@ std::vector<KnobEntry> makeKnobTable() {
         t.push_back(std::move(k));
     }
     {
-        KnobEntry k = choiceKnob("gbuffer-mode", [](auto& s) -> auto& { return s.gbuffer.mode; }, allGBufferModes(),
-                                 gbufferModeName);
+        KnobEntry k = choiceKnob("gbuffer-mode", [](auto& s) -> auto& { return s.gbuffer.mode; },
+                                 gbufferModeChoices(), gbufferModeName);
         k.flags = {valueFlag("--gbuffer-mode")};
         k.choiceNoun = "mode";
         k.help = "classic: the G-buffer pass rasterises every target; visibility: depth and a triangle id are "
-                 "rasterised and a compute pass rebuilds the same targets (README \"Visibility buffer\")";
+                 "rasterised and a compute pass rebuilds the same targets (README \"Visibility buffer\"); auto: "
+                 "visibility on a GPU, classic on a software rasteriser";
         k.panel = {PanelSection::View, PanelWidget::Combo, "G-buffer mode", ""};
         k.sweep = {{"visibility", "classic"},
                    false,

@@ -3,12 +3,16 @@
 #include <string>
 
 #include "engine/core/error.hpp"
+#include "engine/gl/context.hpp"
 #include "engine/gl/handles.hpp"
 
 namespace lp {
 
 Renderer::Renderer(const Scene& scene, gl::ShaderLibrary shaders)
-    : scene_(&scene), shaders_(std::move(shaders)), gpu_(std::make_unique<SceneGpu>(scene)) {}
+    : scene_(&scene),
+      shaders_(std::move(shaders)),
+      gpu_(std::make_unique<SceneGpu>(scene)),
+      softwareRaster_(gl::currentContextIsSoftware()) {}
 
 void Renderer::render(const RenderSettings& settings, float time, bool timed) {
     if (settings.width <= 0 || settings.height <= 0) throw Error("render size must be positive");
@@ -21,6 +25,7 @@ void Renderer::render(const RenderSettings& settings, float time, bool timed) {
     applyMotion(frame, history_, temporalAntiAliasing(settings) ? taaJitterPixels(taaFrames_++) : jitterPixels_);
     frame.gpu = gpu_.get();
     frame.shaders = &shaders_;
+    frame.softwareRaster = softwareRaster_;
     graph_ = fg::FrameGraph();
     outputs_ = buildFrameGraph(graph_, passes_, frame);
     // Textures the CUDA passes touch come from CUDA's shared memory when CUDA runs on shared textures.

@@ -69,6 +69,7 @@ private:
     glm::vec2 jitterPixels_{0.0f};
     uint64_t taaFrames_ = 0;  // TAA frames rendered: the next one's jitter phase
     MotionHistory history_;
+    bool softwareRaster_ = true;  // the current context's rasteriser (--gbuffer-mode auto)
 };
 
 }  // namespace lp

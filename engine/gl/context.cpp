@@ -14,10 +14,16 @@
 namespace lp::gl {
 
 bool GpuContext::isNvidia() const { return info_.vendor.find("NVIDIA") != std::string::npos; }
-bool GpuContext::isSoftware() const {
-    const auto& r = info_.renderer;
+bool GpuContext::isSoftware() const { return isSoftwareRenderer(info_.renderer); }
+
+bool isSoftwareRenderer(const std::string& r) {
     return r.find("llvmpipe") != std::string::npos || r.find("softpipe") != std::string::npos ||
            r.find("SwiftShader") != std::string::npos;
+}
+
+bool currentContextIsSoftware() {
+    const GLubyte* r = glGetString(GL_RENDERER);
+    return !r || isSoftwareRenderer(reinterpret_cast<const char*>(r));
 }
 
 namespace {

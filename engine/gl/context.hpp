@@ -41,6 +41,11 @@ protected:
     ContextInfo info_;
 };
 
+// A GL_RENDERER string of a software rasteriser (llvmpipe, softpipe, SwiftShader); the current
+// context's (true without one).
+bool isSoftwareRenderer(const std::string& renderer);
+bool currentContextIsSoftware();
+
 // Headless: EGL_EXT_platform_device, preferring an NVIDIA device, else Mesa's software device.
 // LIGHTPASS_EGL_DEVICE=N picks device N. Throws lp::Error with one line when nothing works.
 std::unique_ptr<GpuContext> createHeadlessContext(const ContextOptions& options = {});

@@ -41,6 +41,9 @@ struct FrameData {
     float sceneExtent = 1.0f;  // distance that maps eye-space positions into the debug view's range
     const Scene* scene = nullptr;
     const RenderSettings* settings = nullptr;
+    // The rasteriser is a software one (llvmpipe) or unknown (a graph described without a GPU):
+    // --gbuffer-mode auto makes the classic G-buffer there, the visibility buffer on a GPU.
+    bool softwareRaster = true;
     const SceneGpu* gpu = nullptr;
     const gl::ShaderLibrary* shaders = nullptr;
     // Environment cubes and IBL bakes, kept across frames (imported into each frame's graph).

@@ -47,10 +47,21 @@ std::optional<GBufferPositionMode> parseGBufferPosition(const std::string& name)
 }
 
 const char* gbufferModeName(GBufferMode mode) {
-    return mode == GBufferMode::Visibility ? "visibility" : "classic";
+    switch (mode) {
+        case GBufferMode::Visibility: return "visibility";
+        case GBufferMode::Auto: return "auto";
+        default: return "classic";
+    }
 }
 
 std::vector<GBufferMode> allGBufferModes() { return {GBufferMode::Classic, GBufferMode::Visibility}; }
+
+std::vector<GBufferMode> gbufferModeChoices() { return {GBufferMode::Auto, GBufferMode::Classic, GBufferMode::Visibility}; }
+
+GBufferMode resolveGBufferMode(GBufferMode mode, bool softwareRaster) {
+    if (mode != GBufferMode::Auto) return mode;
+    return softwareRaster ? GBufferMode::Classic : GBufferMode::Visibility;
+}
 
 std::string gbufferFormatNames() {
     std::string s;

@@ -533,6 +533,35 @@ TEST(SceneDrivenGraph, TaaHistoryResetsOnCutResizeAndSettingChange) {
     EXPECT_FALSE(taaHistoryUsable(state, frame, settingsSignature(s)));
 }
 
+// --gbuffer-mode auto (the default): the visibility buffer on a GPU's rasteriser, the classic pass on
+// a software one (llvmpipe: the resolve costs 13x the classic raster there) or with none known;
+// the skipped passes say why.
+TEST(SceneDrivenGraph, GBufferModeAutoFollowsTheRasteriser) {
+    EXPECT_EQ(RenderSettings().gbuffer.mode, GBufferMode::Auto);
+    EXPECT_TRUE(FrameData().softwareRaster) << "no GPU known: classic";
+    for (bool software : {true, false}) {
+        RenderSettings s = small();
+        FrameData frame = makeFrameData(bundledScene("cornell"), s, 0.0f);
+        frame.softwareRaster = software;
+        fg::FrameGraph graph;
+        PassStates passes;
+        buildFrameGraph(graph, passes, frame);
+        graph.compile();
+        std::map<std::string, std::string> reasons;
+        for (const fg::PassDecision& d : graph.explain())
+            if (!d.runs) reasons[d.name] = d.reason;
+        SCOPED_TRACE(software ? "software rasteriser" : "GPU rasteriser");
+        EXPECT_EQ(graph.isLive("gbuffer"), software);
+        EXPECT_EQ(graph.isLive("gbuffer_visibility"), !software);
+        EXPECT_EQ(graph.isLive("gbuffer_resolve"), !software);
+        const std::string why = software ? reasons["gbuffer_visibility"] : reasons["gbuffer"];
+        EXPECT_NE(why.find("--gbuffer-mode auto"), std::string::npos) << why;
+        EXPECT_EQ(resolveGBufferMode(GBufferMode::Auto, software), software ? GBufferMode::Classic : GBufferMode::Visibility);
+    }
+    for (GBufferMode fixed : allGBufferModes())
+        for (bool software : {true, false}) EXPECT_EQ(resolveGBufferMode(fixed, software), fixed);
+}
+
 // --gbuffer-mode: each mode's passes run and the other's are skipped with the reason; the resolve's
 // image stores are followed by the barrier the lighting passes' texture fetches need, and nothing
 // needs one before the resolve (it samples a colour attachment).
