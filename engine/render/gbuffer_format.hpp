@@ -36,7 +36,7 @@ enum class GBufferMode {
 struct GBufferSettings {
     GBufferNormalFormat normal = GBufferNormalFormat::Unpacked;
     GBufferPositionMode position = GBufferPositionMode::Stored;
-    GBufferMode mode = GBufferMode::Auto;
+    GBufferMode mode = GBufferMode::Classic;
     bool operator==(const GBufferSettings& o) const {
         return normal == o.normal && position == o.position && mode == o.mode;
     }
