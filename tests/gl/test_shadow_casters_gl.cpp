@@ -47,6 +47,18 @@ Scene rowOfSpheres() {
 
 using test::shadowAtlas;
 
+// Two 128^2 cascades of rowOfSpheres at 64 x 48 with no slope bias: the rasters' depths compare
+// directly (the tests that order them).
+RenderSettings twoUnbiasedCascades() {
+    RenderSettings settings;
+    settings.width = 64;
+    settings.height = 48;
+    settings.shadows.size = 128;
+    settings.shadows.cascades = 2;
+    settings.shadows.slopeBias = 0.0f;
+    return settings;
+}
+
 }  // namespace
 
 TEST(ShadowCasterCulling, AtlasIsUnchangedWithCullingOnAndOff) {
@@ -88,12 +100,7 @@ TEST(ShadowCasterCulling, AtlasIsUnchangedWithCullingOnAndOff) {
 // are only grown and pulled nearer).
 TEST(ShadowCasterCulling, PlainAndSplitRastersSeeTheSameCasters) {
     const Scene s = rowOfSpheres();
-    RenderSettings settings;
-    settings.width = 64;
-    settings.height = 48;
-    settings.shadows.size = 128;
-    settings.shadows.cascades = 2;
-    settings.shadows.slopeBias = 0.0f;
+    const RenderSettings settings = twoUnbiasedCascades();
     RenderSettings plain = settings, split = settings;
     plain.shadows.raster = ShadowSettings::Raster::Plain;
     split.shadows.raster = ShadowSettings::Raster::Split;
@@ -129,12 +136,7 @@ TEST(ShadowConservativeRaster, HardwareLiesBetweenTheGeometryShaderAndThePlainRa
     const ConservativeRasterSupport support = queryConservativeRasterSupport();
     if (!support.hardware) GTEST_SKIP() << "no hardware conservative raster on this GPU: " << support.reason;
     const Scene s = rowOfSpheres();
-    RenderSettings settings;
-    settings.width = 64;
-    settings.height = 48;
-    settings.shadows.size = 128;
-    settings.shadows.cascades = 2;
-    settings.shadows.slopeBias = 0.0f;
+    const RenderSettings settings = twoUnbiasedCascades();
     RenderSettings hardware = settings, geometry = settings, plain = settings;
     hardware.shadows.conservativeRaster = ShadowSettings::ConservativeRaster::Hardware;
     geometry.shadows.conservativeRaster = ShadowSettings::ConservativeRaster::GeometryShader;
