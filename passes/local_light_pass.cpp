@@ -192,10 +192,11 @@ ClusterGrid beginClusterBuild(LocalLightPass& state, const FrameData& frame) {
     auto& slot = state.clusterOverflow[size_t(state.nextOverflowSlot)];
     if (!slot.count) {
         // Persistently mapped (coherent): the count is read from memory once its fence has signaled,
-        // never through glGetBufferSubData, which some drivers serialise with the whole queue.
-        const GLbitfield access = GL_MAP_READ_BIT | GL_MAP_WRITE_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT;
+        // never through glGetBufferSubData, which some drivers serialise with the whole queue. Only
+        // read: the GPU copies each build's count in (finishClusterBuild).
+        const GLbitfield access = GL_MAP_READ_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT;
         slot.count = gl::makeBuffer(sizeof(GLuint), nullptr, access, "clusters.overflow");
-        slot.mapped = static_cast<GLuint*>(glMapNamedBufferRange(slot.count.id(), 0, sizeof(GLuint), access));
+        slot.mapped = static_cast<const GLuint*>(glMapNamedBufferRange(slot.count.id(), 0, sizeof(GLuint), access));
         if (!slot.mapped) throw Error("clustered: cannot map the overflow counter (glMapNamedBufferRange failed)");
     }
     // The count starts at zero in GPU memory, in order with the builds (finishClusterBuild copies it

@@ -51,7 +51,7 @@ struct LocalLightPass {
     gl::Buffer clusterOverflowCounter;
     struct OverflowSlot {
         gl::Buffer count;
-        GLuint* mapped = nullptr;  // `count`, persistently mapped: read without a GL call
+        const GLuint* mapped = nullptr;  // `count`, persistently mapped: read without a GL call
         gl::Fence done;     // after the build that wrote `count`
         bool read = false;  // its count is in stats already
     };
