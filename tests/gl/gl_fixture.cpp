@@ -69,28 +69,36 @@ EnvironmentSettings smallIblBake(int dfgSamples) {
     return s;
 }
 
-std::vector<float> shadowAtlas(const Scene& scene, const RenderSettings& settings, ShadowMapPass* kept) {
-    SceneGpu gpu(scene);
+ShadowAtlasFrame drawShadowAtlas(const Scene& scene, const SceneGpu& gpu, const RenderSettings& settings,
+                                 ShadowMapPass& state, fg::TexturePool& pool) {
     gl::ShaderLibrary shaders;
     FrameData frame = makeFrameData(scene, settings, 0.0f);
     frame.gpu = &gpu;
     frame.shaders = &shaders;
-    ShadowMapPass local;
-    ShadowMapPass& state = kept ? *kept : local;
     fg::FrameGraph graph;
-    fg::TexturePool pool;
     const ShadowMaps maps = addShadowMapPasses(graph, state, frame);
     EXPECT_EQ(maps.size(), 1u);
     if (maps.empty()) return {};
     graph.markOutput(maps[0].depth);
     graph.compile();
     graph.execute(pool);
-    const int side = maps[0].frustum.tileSize;
-    const size_t n = size_t(side * maps[0].frustum.columns) * size_t(side * maps[0].frustum.rows);
-    std::vector<float> depth(n);
+    ShadowAtlasFrame out;
+    for (const auto& d : graph.explain())
+        if (d.name == "shadow_map_0") out.notes = d.notes;
+    out.frustum = maps[0].frustum;
+    const int side = out.frustum.tileSize;
+    const size_t n = size_t(side * out.frustum.columns) * size_t(side * out.frustum.rows);
+    out.depth.resize(n);
     glGetTextureImage(graph.outputTexture(maps[0].depth), 0, GL_DEPTH_COMPONENT, GL_FLOAT, GLsizei(n * sizeof(float)),
-                      depth.data());
-    return depth;
+                      out.depth.data());
+    return out;
+}
+
+std::vector<float> shadowAtlas(const Scene& scene, const RenderSettings& settings, ShadowMapPass* kept) {
+    SceneGpu gpu(scene);
+    ShadowMapPass local;
+    fg::TexturePool pool;
+    return drawShadowAtlas(scene, gpu, settings, kept ? *kept : local, pool).depth;
 }
 
 }  // namespace lp::test

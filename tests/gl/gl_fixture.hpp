@@ -8,10 +8,15 @@
 #include "engine/gl/context.hpp"
 #include "engine/gl/shader.hpp"
 #include "engine/render/settings.hpp"
+#include "engine/render/shadows.hpp"
 
 namespace lp {
 struct Scene;
+class SceneGpu;
 struct ShadowMapPass;
+namespace fg {
+class TexturePool;
+}
 }  // namespace lp
 
 namespace lp::test {
@@ -33,8 +38,18 @@ std::vector<glm::vec4> runGlsl(const std::vector<std::string>& includes, const s
 // DFG LUT of `dfgSamples` samples per texel).
 EnvironmentSettings smallIblBake(int dfgSamples);
 
-// The first sun's whole depth atlas (every cascade tile), drawn by the shadow map passes alone with
-// `kept` (a fresh ShadowMapPass where null) and read back.
+// One frame of the first sun's shadow map passes alone, drawn with `state` from `pool` (both the
+// caller's, so they may be kept across frames): the whole depth atlas read back (every cascade tile;
+// tileSize x columns texels wide), its frustum and the pass's notes.
+struct ShadowAtlasFrame {
+    std::vector<float> depth;
+    ShadowFrustum frustum;
+    std::vector<std::string> notes;
+};
+ShadowAtlasFrame drawShadowAtlas(const Scene& scene, const SceneGpu& gpu, const RenderSettings& settings,
+                                 ShadowMapPass& state, fg::TexturePool& pool);
+
+// The same atlas's depth alone, with `kept` (a fresh ShadowMapPass where null) and a fresh pool.
 std::vector<float> shadowAtlas(const Scene& scene, const RenderSettings& settings, ShadowMapPass* kept = nullptr);
 
 }  // namespace lp::test

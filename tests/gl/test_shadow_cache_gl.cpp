@@ -63,30 +63,21 @@ struct Tiles {
     std::vector<std::vector<float>> depth;
 };
 
-// Draws one frame's shadow passes with `state` and reads back the cascade tiles.
+// Draws one frame's shadow passes with `state` and cuts the cascade tiles out of the atlas.
 Tiles drawTiles(const Scene& scene, const SceneGpu& gpu, const RenderSettings& settings, ShadowMapPass& state,
                 fg::TexturePool& pool, std::vector<std::string>* notes = nullptr) {
-    gl::ShaderLibrary shaders;
-    FrameData frame = makeFrameData(scene, settings, 0.0f);
-    frame.gpu = &gpu;
-    frame.shaders = &shaders;
-    fg::FrameGraph graph;
-    const ShadowMaps maps = addShadowMapPasses(graph, state, frame);
-    EXPECT_EQ(maps.size(), 1u);
-    if (maps.empty()) return {};
-    graph.markOutput(maps[0].depth);
-    graph.compile();
-    graph.execute(pool);
-    if (notes)
-        for (const auto& d : graph.explain())
-            if (d.name == "shadow_map_0") *notes = d.notes;
-    const ShadowFrustum& fr = maps[0].frustum;
+    const test::ShadowAtlasFrame atlas = test::drawShadowAtlas(scene, gpu, settings, state, pool);
+    if (notes) *notes = atlas.notes;
+    const ShadowFrustum& fr = atlas.frustum;
+    const size_t side = size_t(fr.tileSize), width = side * size_t(fr.columns);
     Tiles t;
     for (size_t c = 0; c < fr.cascades.size(); ++c) {
-        std::vector<float> tile(size_t(fr.tileSize) * size_t(fr.tileSize));
-        glGetTextureSubImage(graph.outputTexture(maps[0].depth), 0, int(c % size_t(fr.columns)) * fr.tileSize,
-                             int(c / size_t(fr.columns)) * fr.tileSize, 0, fr.tileSize, fr.tileSize, 1, GL_DEPTH_COMPONENT,
-                             GL_FLOAT, GLsizei(tile.size() * sizeof(float)), tile.data());
+        const size_t x0 = (c % size_t(fr.columns)) * side, y0 = (c / size_t(fr.columns)) * side;
+        std::vector<float> tile;
+        tile.reserve(side * side);
+        for (size_t y = 0; y < side; ++y)
+            tile.insert(tile.end(), atlas.depth.begin() + std::ptrdiff_t((y0 + y) * width + x0),
+                        atlas.depth.begin() + std::ptrdiff_t((y0 + y) * width + x0 + side));
         t.depth.push_back(std::move(tile));
     }
     return t;
