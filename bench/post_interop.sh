@@ -7,8 +7,8 @@
 # is ordered by Vulkan semaphores where info's `sync:` line says so, else by host waits. Per pass: GL-timed ms (what the frame pays, interop and
 # syncs included), CUDA kernel ms, interop ms, the bandwidth floor and measured/floor. Also runs the
 # CUDA tests (shared textures vs the CPU reference), the kernel-only bloom benchmark in cuda_tests
-# (bloom_kernels.txt: direct vs tensor-core blur, kernel 3..100, 1080p and 4K, against the floor)
-# and records `info`. From the repository root:
+# (bloom_kernels.txt: direct vs tensor-core blur, kernel 3..100, 1080p and 4K, against the floor),
+# the cost of one hand-over to CUDA and back by itself (hand_over.txt) and records `info`. From the repository root:
 #   bench/post_interop.sh BUNDLE OUTDIR    (BUNDLE: run, cuda_tests, lib/)
 #   SMOKE=1 bench/post_interop.sh BUNDLE OUTDIR   tiny sizes, few frames (checks the plumbing)
 set -u
@@ -25,6 +25,11 @@ if [[ -x "$B/cuda_tests" ]]; then
   # tensor-core blur and what auto picks, kernel 3..100 at 1080p and 4K, CUDA events, vs the floor.
   LD_LIBRARY_PATH=$B/lib "$B/cuda_tests" --gtest_also_run_disabled_tests --gtest_filter='CudaBloomBench.*' \
     > "$R/bloom_kernels.txt" 2>&1 || echo "bloom kernel benchmark failed: $(tail -1 "$R/bloom_kernels.txt")"
+  # What one GL -> CUDA -> GL hand-over costs a GL frame by itself (a kernel of a few microseconds
+  # on 64x48 texels), under each ordering, and one map/unmap call instead.
+  LD_LIBRARY_PATH=$B/lib "$B/cuda_tests" --gtest_also_run_disabled_tests --gtest_filter='*FrameCostOfAHandOver*' \
+    > "$R/hand_over.txt" 2>&1 || echo "hand-over benchmark failed: $(tail -1 "$R/hand_over.txt")"
+  grep "hand-over bench" "$R/hand_over.txt"
 fi
 cuda=1
 grep -q "^cuda:.*(compute [0-9]" "$R/info.txt" || { cuda=0; echo "(no CUDA device: CUDA rows skipped)"; }
