@@ -26,7 +26,7 @@ bool sphereIntersectsFrustum(const glm::mat4& viewProjection, glm::vec3 center, 
 int localLightsInView(const FrameData& frame) {
     const glm::mat4 viewProjection = frame.projection * frame.view;
     int visible = 0;
-    for (const PointLight& l : localLightsForFrame(*frame.scene, frame.settings->localLights, frame.time)) {
+    for (const PointLight& l : *frameLocalLights(frame)) {
         const BoundingSphere b = localLightBounds(l);
         visible += (b.radius <= 0.0f || sphereIntersectsFrustum(viewProjection, b.center, b.radius)) ? 1 : 0;
     }
@@ -269,6 +269,7 @@ FrameData makeFrameData(const Scene& scene, const RenderSettings& settings, floa
     f.sceneExtent = std::max(glm::length(0.5f * (lo + hi) - camera.position) + 0.5f * glm::length(hi - lo), 1e-3f);
     f.scene = &scene;
     f.settings = &settings;
+    f.localLights = std::make_shared<const std::vector<PointLight>>(localLightsForFrame(scene, settings.localLights, time));
     return f;
 }
 

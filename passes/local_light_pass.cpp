@@ -74,13 +74,15 @@ void ensureState(LocalLightPass& state, const FrameData& frame, bool spotShadows
 
 // Uploads the frame's lights (eye space) into the SSBO at binding 0; returns them.
 // With spot shadow maps, each shadowed light's record names its atlas tile.
-std::vector<PointLight> uploadLights(LocalLightPass& state, const FrameData& frame,
-                                     const SpotShadowMaps* spotShadows = nullptr) {
-    std::vector<PointLight> lights = localLightsForFrame(*frame.scene, frame.settings->localLights, frame.time);
+std::shared_ptr<const std::vector<PointLight>> uploadLights(LocalLightPass& state, const FrameData& frame,
+                                                            const SpotShadowMaps* spotShadows = nullptr) {
+    std::shared_ptr<const std::vector<PointLight>> frameLights = frameLocalLights(frame);
+    const std::vector<PointLight>& lights = *frameLights;
     std::vector<int> layer(lights.size(), -1);
     if (spotShadows)
         for (size_t t = 0; t < spotShadows->light.size(); ++t) layer[size_t(spotShadows->light[t])] = int(t);
-    std::vector<GpuLocalLight> gpu;
+    std::vector<GpuLocalLight>& gpu = state.lightRecords;
+    gpu.clear();
     gpu.reserve(lights.size());
     for (size_t i = 0; i < lights.size(); ++i) gpu.push_back(gpuLocalLight(lights[i], frame.view, layer[i]));
     if (gpu.size() > state.lightCapacity || !state.lights) {
@@ -91,7 +93,7 @@ std::vector<PointLight> uploadLights(LocalLightPass& state, const FrameData& fra
     if (!gpu.empty())
         glNamedBufferSubData(state.lights.id(), 0, GLsizeiptr(gpu.size() * sizeof(GpuLocalLight)), gpu.data());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, state.lights.id());
-    return lights;
+    return frameLights;
 }
 
 void setInt(GLuint prog, const char* name, int v) { glProgramUniform1i(prog, glGetUniformLocation(prog, name), v); }
@@ -321,14 +323,14 @@ int bindClusteredLightLists(LocalLightPass& state, GLuint prog, const FrameData&
                             const SpotShadowMaps& spotShadows, GLuint spotAtlas) {
     ensureState(state, frame, spotShadows.any());
     const LocalLightSettings& s = frame.settings->localLights;
-    const std::vector<PointLight> lights = uploadLights(state, frame, &spotShadows);
+    const std::shared_ptr<const std::vector<PointLight>> lights = uploadLights(state, frame, &spotShadows);
     if (spotShadows.any()) bindSpotShadows(state, frame, spotShadows, spotAtlas);
-    buildClusters(state, frame, int(lights.size()));
+    buildClusters(state, frame, int(lights->size()));
     setClusterUniforms(prog, state.clusterGrid);
-    setInt(prog, "uLocalLightCount", int(lights.size()));
+    setInt(prog, "uLocalLightCount", int(lights->size()));
     setInt(prog, "uUnbounded", unbounded(s));
     setInt(prog, "uSpecularMode", specularMode(s));
-    return int(lights.size());
+    return int(lights->size());
 }
 
 void unbindClusteredLightLists() {
@@ -356,14 +358,14 @@ fg::ResourceId addLocalLightPass(fg::FrameGraph& graph, LocalLightPass& state, c
             const LocalLightSettings& s = frame.settings->localLights;
             state.stats = LocalLightStats{};
             state.stats.method = s.method;
-            std::vector<PointLight> lights = uploadLights(state, frame, &spotShadows);
+            const std::shared_ptr<const std::vector<PointLight>> lights = uploadLights(state, frame, &spotShadows);
             if (spotShadows.any()) bindSpotShadows(state, frame, spotShadows, res.texture(data.spotShadows));
-            state.stats.requested = int(lights.size());
+            state.stats.requested = int(lights->size());
             const GLuint hdrTexture = res.texture(data.hdr);
             if (s.method == LocalLightMethod::Tiled) {
                 const GLuint prog = state.tiledProgram.id();
                 bindGBuffer(prog, res, data.in, frame, !lightingOnly);
-                setInt(prog, "uLightCount", int(lights.size()));
+                setInt(prog, "uLightCount", int(lights->size()));
                 setMat4(prog, "uProjection", frame.projection);
                 setInt(prog, "uUnbounded", unbounded(s));
                 setInt(prog, "uLightingOnly", lightingOnly);
@@ -371,7 +373,7 @@ fg::ResourceId addLocalLightPass(fg::FrameGraph& graph, LocalLightPass& state, c
                 glBindImageTexture(0, hdrTexture, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
                 glUseProgram(prog);
                 gl::dispatch2D(frame.width, frame.height, kTileSize);
-                state.stats.drawn = int(lights.size());
+                state.stats.drawn = int(lights->size());
             } else if (s.method == LocalLightMethod::Clustered) {
                 const GLuint prog = state.clusteredProgram.id();
                 bindGBuffer(prog, res, data.in, frame, !lightingOnly);
@@ -379,14 +381,14 @@ fg::ResourceId addLocalLightPass(fg::FrameGraph& graph, LocalLightPass& state, c
                 setInt(prog, "uLightingOnly", lightingOnly);
                 setInt(prog, "uSpecularMode", specularMode(s));
                 glBindImageTexture(0, hdrTexture, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
-                buildTightClusters(state, frame, prog, int(lights.size()));
-                state.stats.drawn = int(lights.size());
+                buildTightClusters(state, frame, prog, int(lights->size()));
+                state.stats.drawn = int(lights->size());
             } else {
                 const GLuint prog = state.fragmentProgram.id();
                 bindGBuffer(prog, res, data.in, frame, !lightingOnly);
                 setInt(prog, "uLightingOnly", lightingOnly);
                 setInt(prog, "uSpecularMode", specularMode(s));
-                drawFragmentMethod(state, frame, lights, hdrTexture);
+                drawFragmentMethod(state, frame, *lights, hdrTexture);
                 // Blending can overflow fp16 to +Inf: clamp like every other HDR write.
                 glBindImageTexture(0, hdrTexture, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
                 glUseProgram(state.sanitizeProgram.id());
@@ -408,7 +410,8 @@ struct OverlayData {
 // function of time gives both; without a previous frame previousTime = time) into binding 1.
 void uploadGlobeMotion(LocalLightPass& state, const FrameData& frame) {
     const LocalLightSettings& s = frame.settings->localLights;
-    const std::vector<PointLight> now = localLightsForFrame(*frame.scene, s, frame.time);
+    const std::shared_ptr<const std::vector<PointLight>> frameLights = frameLocalLights(frame);
+    const std::vector<PointLight>& now = *frameLights;
     const std::vector<PointLight> before = localLightsForFrame(*frame.scene, s, frame.previousTime);
     std::vector<glm::vec4> motion;
     motion.reserve(2 * now.size());
@@ -532,9 +535,9 @@ fg::ResourceId addLocalLightOverlayPasses(fg::FrameGraph& graph, LocalLightPass&
             },
             [&state, frame](const OverlayData& data, const fg::PassResources& res) {
                 ensureState(state, frame, state.spotShadowVariant);
-                std::vector<PointLight> lights = uploadLights(state, frame);
+                const std::shared_ptr<const std::vector<PointLight>> lights = uploadLights(state, frame);
                 const GLuint velocity = data.velocity.valid() ? res.texture(data.velocity) : 0;
-                drawGlobes(state, frame, int(lights.size()), res.texture(data.hdr), res.texture(data.in.depth),
+                drawGlobes(state, frame, int(lights->size()), res.texture(data.hdr), res.texture(data.in.depth),
                            velocity);
                 unbindAll(state);
             });
@@ -549,8 +552,8 @@ fg::ResourceId addLocalLightOverlayPasses(fg::FrameGraph& graph, LocalLightPass&
                        },
                        [&state, frame](const OverlayData& data, const fg::PassResources& res) {
                            ensureState(state, frame, state.spotShadowVariant);
-                           std::vector<PointLight> lights = uploadLights(state, frame);
-                           drawRanges(state, frame, lights, res.texture(data.hdr));
+                           const std::shared_ptr<const std::vector<PointLight>> lights = uploadLights(state, frame);
+                           drawRanges(state, frame, *lights, res.texture(data.hdr));
                            unbindAll(state);
                        })
                   .hdr;
@@ -565,11 +568,11 @@ fg::ResourceId addLocalLightOverlayPasses(fg::FrameGraph& graph, LocalLightPass&
                        },
                        [&state, frame](const OverlayData& data, const fg::PassResources& res) {
                            ensureState(state, frame, state.spotShadowVariant);
-                           std::vector<PointLight> lights = uploadLights(state, frame);
+                           const std::shared_ptr<const std::vector<PointLight>> lights = uploadLights(state, frame);
                            const LocalLightSettings& ls = frame.settings->localLights;
                            const GLuint prog = state.heatmapProgram.id();
                            setInt(prog, "uLightingOnly", 0);
-                           setInt(prog, "uLightCount", int(lights.size()));
+                           setInt(prog, "uLightCount", int(lights->size()));
                            setMat4(prog, "uProjection", frame.projection);
                            setInt(prog, "uUnbounded", unbounded(ls));
                            setFloat(prog, "uHeatMax", kHeatMax);
@@ -599,14 +602,14 @@ fg::ResourceId addLocalLightOverlayPasses(fg::FrameGraph& graph, LocalLightPass&
                            // Built here from this frame's lights as the frame's opaque surfaces used
                            // them: tightened to the G-buffer's depth for the deferred clustered
                            // method, whole froxels otherwise (the forward passes' lists).
-                           std::vector<PointLight> lights = uploadLights(state, frame);
+                           const std::shared_ptr<const std::vector<PointLight>> lights = uploadLights(state, frame);
                            if (tightClusters) {
                                const GLuint build = state.clusterTightBuildProgram.id();
                                bindGBuffer(build, res, data.in, frame, true);
                                setInt(build, "uLightingOnly", 0);
-                               buildTightClusters(state, frame, build, int(lights.size()));
+                               buildTightClusters(state, frame, build, int(lights->size()));
                            } else {
-                               buildClusters(state, frame, int(lights.size()));
+                               buildClusters(state, frame, int(lights->size()));
                            }
                            const GLuint prog = state.clusterViewProgram.id();
                            setClusterUniforms(prog, state.clusterGrid);

@@ -69,6 +69,7 @@ struct LocalLightPass {
     gl::Buffer globeMotion;       // SSBO of each light's world centre now and at the previous frame's time
     size_t globeMotionCapacity = 0;
     size_t lightCapacity = 0;
+    std::vector<GpuLocalLight> lightRecords;  // the SSBO's contents, kept so a frame reuses the allocation
     gl::Buffer volumeMesh, globeMesh;
     gl::VertexArray volumeVao, globeVao;
     int volumeVertices = 0, globeVertices = 0;

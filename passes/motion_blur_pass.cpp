@@ -23,7 +23,8 @@ namespace {
 bool globesMoved(const FrameData& frame) {
     const LocalLightSettings& s = frame.settings->localLights;
     if (!s.globes.value_or(frame.scene->lightGlobes) || frame.time == frame.previousTime) return false;
-    const std::vector<PointLight> now = localLightsForFrame(*frame.scene, s, frame.time);
+    const std::shared_ptr<const std::vector<PointLight>> frameLights = frameLocalLights(frame);
+    const std::vector<PointLight>& now = *frameLights;
     const std::vector<PointLight> before = localLightsForFrame(*frame.scene, s, frame.previousTime);
     for (size_t i = 0; i < now.size() && i < before.size(); ++i)
         if (now[i].position != before[i].position) return true;

@@ -25,7 +25,8 @@ struct Data {
 SpotShadowMaps addSpotShadowPass(fg::FrameGraph& graph, SpotShadowPass& state, const FrameData& frame) {
     SpotShadowMaps maps;
     const RenderSettings& s = *frame.settings;
-    const std::vector<PointLight> lights = localLightsForFrame(*frame.scene, s.localLights, frame.time);
+    const std::shared_ptr<const std::vector<PointLight>> frameLights = frameLocalLights(frame);
+    const std::vector<PointLight>& lights = *frameLights;
     int casting = 0;
     for (const auto& l : lights) casting += (l.spot && l.spot->castsShadow) ? 1 : 0;
     if (casting == 0) {

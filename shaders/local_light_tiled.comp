@@ -24,7 +24,8 @@ uniform float uHeatMax;      // heat map: this many lights per tile or more is r
 uniform float uExposure;     // heat map: EV the tone map will apply
 
 shared uint sMinDist, sMaxDist;  // float bits of positive eye distances (order-preserving as uint)
-shared uint sCount, sTotal;
+shared uint sTotal;
+shared uint sPassed[LP_BATCH / 32u];  // a bit per light of the batch that touches the tile
 shared uint sList[LP_BATCH];
 
 void main() {
@@ -66,18 +67,31 @@ void main() {
     vec3 sum = vec3(0.0);
 #endif
     if (anySurface) {
+        uint word = lid >> 5u, bit = 1u << (lid & 31u);
         for (int base = 0; base < uLightCount; base += int(LP_BATCH)) {
-            if (lid == 0u) sCount = 0u;
+            if (lid < LP_BATCH / 32u) sPassed[lid] = 0u;
             barrier();
             int i = base + int(lid);
+            bool touches = false;
             if (i < uLightCount) {
                 vec4 pr = uLights[i].bound;
                 // 0.1% + 1 um margin: float rounding must never drop a light that reaches the tile.
-                if (uUnbounded || sphereTouchesTileFrustum(pr.xyz, pr.w * 1.001 + 1e-6, tileLo, tileHi, d0, d1, uProjection))
-                    sList[atomicAdd(sCount, 1u)] = uint(i);
+                touches = uUnbounded || sphereTouchesTileFrustum(pr.xyz, pr.w * 1.001 + 1e-6, tileLo, tileHi, d0, d1, uProjection);
+                if (touches) atomicOr(sPassed[word], bit);
             }
             barrier();
-            uint n = sCount;
+            // The list in light index order (each light's place: the touching lights before it), not
+            // in the order the invocations happened to append: the sum over the list, and so the image,
+            // is then the same bits on every run (appending with an atomic counter made the order, and
+            // through it the last bits of the sum, differ between runs, which TAA's history carried on).
+            uint n = 0u, at = 0u;
+            for (uint w = 0u; w < LP_BATCH / 32u; ++w) {
+                uint c = uint(bitCount(sPassed[w]));
+                at += w < word ? c : 0u;
+                n += c;
+            }
+            if (touches) sList[at + uint(bitCount(sPassed[word] & (bit - 1u)))] = uint(i);
+            barrier();
 #ifndef LP_TILE_HEATMAP
             if (surface)
                 for (uint k = 0u; k < n; ++k) {

@@ -2,6 +2,8 @@
 // Per-frame inputs every pass sees. `gpu` and `shaders` are null when the graph is only built to be
 // described (lightpass graph, unit tests): setup code must not touch them, execute code may.
 #include <cstdint>
+#include <memory>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -41,6 +43,12 @@ struct FrameData {
     float sceneExtent = 1.0f;  // distance that maps eye-space positions into the debug view's range
     const Scene* scene = nullptr;
     const RenderSettings* settings = nullptr;
+    // The local lights this frame draws at `time` (localLightsForFrame), made once with the frame
+    // (makeFrameData), before any pass is recorded: every pass reads the same list, and a pass's GPU
+    // timing window never holds the CPU work of making it (at 16384 lights about 1-2 ms, which the
+    // GPU spent idle inside the pass that made them). Null in frames made by hand: frameLocalLights
+    // then makes them.
+    std::shared_ptr<const std::vector<PointLight>> localLights;
     // The rasteriser is a software one (llvmpipe) or unknown (a graph described without a GPU):
     // --gbuffer-mode auto makes the classic G-buffer there, the visibility buffer on a GPU.
     bool softwareRaster = true;

@@ -2,6 +2,7 @@
 // CPU side of ranged point lights: which lights a frame draws (the scene's, the first
 // N, or generated demo lights), their orbit animation, the exact screen rectangle of a light's
 // sphere (scissor method, light-ranges view) and the icosphere that circumscribes it (volumes).
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -12,6 +13,8 @@
 #include "engine/scene/scene.hpp"
 
 namespace lp {
+
+struct FrameData;
 
 std::vector<LocalLightMethod> allLocalLightMethods();
 
@@ -46,6 +49,9 @@ std::vector<PointLight> generateDemoLights(glm::vec3 lo, glm::vec3 hi, int count
 // nothing when disabled; the scene's lights when lightCount < 0; else the first lightCount of them,
 // followed by generated demo lights (in the scene's bounds) when the scene has fewer.
 std::vector<PointLight> localLightsForFrame(const Scene& scene, const LocalLightSettings& settings, float time);
+// The lights `frame` draws at frame.time: frame.localLights, or, in a frame made without them,
+// localLightsForFrame's now.
+std::shared_ptr<const std::vector<PointLight>> frameLocalLights(const FrameData& frame);
 // How many lights localLightsForFrame returns, without building them (for the graph's setup).
 int localLightCount(const Scene& scene, const LocalLightSettings& settings);
 

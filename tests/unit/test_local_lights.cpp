@@ -149,6 +149,68 @@ TEST(LocalLightSelection, OrbitRotatesAboutTheCentreAtItsSpeed) {
     EXPECT_EQ(orbitPosition(l, 10.0f), l.position);
 }
 
+// The records the shaders read are the view matrix's products (glm's mat4 * vec4), to the bit, for
+// point lights and spots; a point light's bounding sphere is its range sphere.
+TEST(LocalLightSelection, GpuRecordsAreTheViewTransformsToTheBit) {
+    const glm::mat4 view = glm::lookAt(glm::vec3(1.3f, 2.7f, -4.1f), glm::vec3(0.2f, 0.5f, 0.3f), glm::vec3(0, 1, 0));
+    PointLight point;
+    point.position = {0.37f, -1.91f, 2.23f};
+    point.range = 3.5f;
+    PointLight spot = point;
+    spot.spot = SpotCone{};
+    spot.spot->direction = glm::normalize(glm::vec3(0.3f, -1.0f, 0.2f));
+    spot.spot->outerDegrees = 30.0f;
+    spot.spot->innerDegrees = 20.0f;
+    for (const PointLight& l : {point, spot}) {
+        const GpuLocalLight g = gpuLocalLight(l, view, -1);
+        const glm::vec3 eye = glm::vec3(view * glm::vec4(l.position, 1.0f));
+        EXPECT_EQ(glm::vec3(g.positionRange), eye);
+        EXPECT_EQ(g.positionRange.w, l.range);
+        const BoundingSphere b = localLightBounds(l);
+        EXPECT_EQ(glm::vec3(g.bound), glm::vec3(view * glm::vec4(b.center, 1.0f)));
+        EXPECT_EQ(g.bound.w, b.radius);
+        if (l.spot)
+            EXPECT_EQ(glm::vec3(g.directionCos), glm::normalize(glm::vec3(view * glm::vec4(l.spot->direction, 0.0f))));
+    }
+}
+
+// An orbit keeps a light's height exactly and its horizontal distance from the centre.
+TEST(LocalLightSelection, OrbitKeepsTheHeightExactly) {
+    PointLight l;
+    l.position = {2.1f, 0.3f, -0.7f};
+    l.orbitCenter = {0.4f, 0.3f, 0.9f};
+    l.orbitSpeed = 0.37f;
+    const float radius = glm::length(glm::vec2(l.position.x - l.orbitCenter.x, l.position.z - l.orbitCenter.z));
+    for (float t : {0.1f, 1.0f, 7.3f, 100.0f}) {
+        const glm::vec3 p = orbitPosition(l, t);
+        EXPECT_EQ(p.y, l.position.y) << "t " << t;
+        EXPECT_NEAR(glm::length(glm::vec2(p.x - l.orbitCenter.x, p.z - l.orbitCenter.z)), radius, 1e-5f) << "t " << t;
+    }
+}
+
+// A frame carries its lights, made once with it (every pass reads that list), equal to
+// localLightsForFrame's at the frame's time.
+TEST(LocalLightSelection, FrameCarriesTheLightsOfItsTime) {
+    Scene s = sceneWithLights(3);
+    RenderSettings settings;
+    settings.width = 64;
+    settings.height = 48;
+    settings.localLights.lightCount = 300;
+    const FrameData frame = makeFrameData(s, settings, 2.5f);
+    ASSERT_TRUE(frame.localLights);
+    const std::vector<PointLight> expected = localLightsForFrame(s, settings.localLights, 2.5f);
+    ASSERT_EQ(frame.localLights->size(), expected.size());
+    for (size_t i = 0; i < expected.size(); ++i) {
+        EXPECT_EQ((*frame.localLights)[i].position, expected[i].position) << i;
+        EXPECT_EQ((*frame.localLights)[i].range, expected[i].range) << i;
+    }
+    EXPECT_EQ(frameLocalLights(frame), frame.localLights);  // the same list, not a new one
+    FrameData byHand = frame;
+    byHand.localLights = nullptr;  // a frame made without them: made on demand, the same lights
+    ASSERT_EQ(frameLocalLights(byHand)->size(), expected.size());
+    EXPECT_EQ((*frameLocalLights(byHand))[299].position, expected[299].position);
+}
+
 std::vector<std::string> order(const Scene& s, RenderSettings settings) {
     settings.width = 64;
     settings.height = 48;
