@@ -85,14 +85,9 @@ std::shared_ptr<const std::vector<PointLight>> uploadLights(LocalLightPass& stat
     gpu.clear();
     gpu.reserve(lights.size());
     for (size_t i = 0; i < lights.size(); ++i) gpu.push_back(gpuLocalLight(lights[i], frame.view, layer[i]));
-    if (gpu.size() > state.lightCapacity || !state.lights) {
-        state.lightCapacity = std::max<size_t>(gpu.size(), 64);
-        state.lights = gl::makeBuffer(GLsizeiptr(state.lightCapacity * sizeof(GpuLocalLight)), nullptr,
-                                      GL_DYNAMIC_STORAGE_BIT, "local_lights.ssbo");
-    }
-    if (!gpu.empty())
-        glNamedBufferSubData(state.lights.id(), 0, GLsizeiptr(gpu.size() * sizeof(GpuLocalLight)), gpu.data());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, state.lights.id());
+    // A new buffer when the GPU may still read the last one (gl::StreamBuffer): the previous frame's
+    // lighting must not see this frame's lights.
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, state.lights.fill(gpu.data(), gpu.size() * sizeof(GpuLocalLight)));
     return frameLights;
 }
 
@@ -143,13 +138,7 @@ void bindSpotShadows(LocalLightPass& state, const FrameData& frame, const SpotSh
         g.bias = glm::vec4(ss.depthBias, 0.0f, 0.0f, 0.0f);
         gpu.push_back(g);
     }
-    if (gpu.size() > state.spotShadowCapacity || !state.spotShadows) {
-        state.spotShadowCapacity = std::max<size_t>(gpu.size(), 4);
-        state.spotShadows = gl::makeBuffer(GLsizeiptr(state.spotShadowCapacity * sizeof(GpuSpotShadow)), nullptr,
-                                           GL_DYNAMIC_STORAGE_BIT, "spot_shadows.ssbo");
-    }
-    glNamedBufferSubData(state.spotShadows.id(), 0, GLsizeiptr(gpu.size() * sizeof(GpuSpotShadow)), gpu.data());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, state.spotShadows.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, state.spotShadows.fill(gpu.data(), gpu.size() * sizeof(GpuSpotShadow)));
     glBindTextureUnit(kSpotShadowUnit, atlas);
 }
 
@@ -419,14 +408,7 @@ void uploadGlobeMotion(LocalLightPass& state, const FrameData& frame) {
         motion.emplace_back(now[i].position, 1.0f);
         motion.emplace_back(i < before.size() ? before[i].position : now[i].position, 1.0f);
     }
-    if (motion.size() > state.globeMotionCapacity || !state.globeMotion) {
-        state.globeMotionCapacity = std::max<size_t>(motion.size(), 128);
-        state.globeMotion = gl::makeBuffer(GLsizeiptr(state.globeMotionCapacity * sizeof(glm::vec4)), nullptr,
-                                           GL_DYNAMIC_STORAGE_BIT, "light_globes.motion");
-    }
-    if (!motion.empty())
-        glNamedBufferSubData(state.globeMotion.id(), 0, GLsizeiptr(motion.size() * sizeof(glm::vec4)), motion.data());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, state.globeMotion.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, state.globeMotion.fill(motion.data(), motion.size() * sizeof(glm::vec4)));
 }
 
 // The globes into the HDR buffer and, when velocityTexture is not 0, their motion vectors into it,

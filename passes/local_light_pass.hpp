@@ -8,6 +8,7 @@
 #include <array>
 
 #include "engine/gl/handles.hpp"
+#include "engine/gl/stream_buffer.hpp"
 #include "engine/graph/frame_graph.hpp"
 #include "engine/render/frame_data.hpp"
 #include "engine/render/light_clusters.hpp"
@@ -62,13 +63,10 @@ struct LocalLightPass {
     gl::Program globeVelocityProgram;  // the same with LP_GLOBE_VELOCITY: globes and their motion vectors
     GBufferSettings layout;       // the G-buffer layout the fragment, tiled and heatmap programs were compiled for
     bool spotShadowVariant = false;  // ... and whether with LP_SPOT_SHADOWS (only frames with a shadowed spot)
-    gl::Buffer spotShadows;       // SSBO of LpSpotShadow (binding 4)
-    size_t spotShadowCapacity = 0;
+    gl::StreamBuffer spotShadows{"spot_shadows.ssbo"};  // LpSpotShadow per atlas tile (binding 4)
     gl::Framebuffer fbo;
-    gl::Buffer lights;            // SSBO of GpuLocalLight
-    gl::Buffer globeMotion;       // SSBO of each light's world centre now and at the previous frame's time
-    size_t globeMotionCapacity = 0;
-    size_t lightCapacity = 0;
+    gl::StreamBuffer lights{"local_lights.ssbo"};  // GpuLocalLight per light (binding 0)
+    gl::StreamBuffer globeMotion{"light_globes.motion"};  // each light's world centre now and at the previous frame's time
     std::vector<GpuLocalLight> lightRecords;  // the SSBO's contents, kept so a frame reuses the allocation
     gl::Buffer volumeMesh, globeMesh;
     gl::VertexArray volumeVao, globeVao;

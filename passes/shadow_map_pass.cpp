@@ -189,10 +189,8 @@ void drawCascadesByCompute(ShadowMapPass& state, const FrameData& frame, const S
         state.largeVertices = gl::makeBuffer(GLsizeiptr(needed * sizeof(glm::vec4)), nullptr, 0, "shadow_map.large_vertices");
         state.largeCapacity = needed;
     }
-    if (!state.largeDraws)
-        state.largeDraws = gl::makeBuffer(GLsizeiptr(kMaxShadowCascades * sizeof(DrawArraysCommand)), nullptr,
-                                          GL_DYNAMIC_STORAGE_BIT, "shadow_map.large_draws");
-    glNamedBufferSubData(state.largeDraws.id(), 0, GLsizeiptr(commands.size() * sizeof(DrawArraysCommand)), commands.data());
+    // A buffer no earlier frame's indirect draws still read (gl::StreamBuffer).
+    const GLuint largeDraws = state.largeDraws.fill(commands.data(), commands.size() * sizeof(DrawArraysCommand));
     const GLuint cleared = 0x3f800000u;  // the bits of 1.0f: no caster
     glClearTexImage(state.depthBits.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &cleared);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
@@ -200,7 +198,7 @@ void drawCascadesByCompute(ShadowMapPass& state, const FrameData& frame, const S
     const GLuint prog = state.rasterProgram.id();
     glUseProgram(prog);
     glBindImageTexture(0, state.depthBits.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, state.largeDraws.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, largeDraws);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, state.largeVertices.id());
     glProgramUniform1i(prog, glGetUniformLocation(prog, "uTileSize"), fr.tileSize);
     glProgramUniform1i(prog, glGetUniformLocation(prog, "uDepthZeroToOne"), depthZeroToOne ? 1 : 0);
@@ -261,7 +259,7 @@ void drawCascadesByCompute(ShadowMapPass& state, const FrameData& frame, const S
     // The large triangles: the plain path (polygon offset, depth clamp), one indirect draw per cascade.
     glUseProgram(state.largeProgram.id());
     glEnable(GL_POLYGON_OFFSET_FILL);
-    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, state.largeDraws.id());
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, largeDraws);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, state.largeVertices.id());
     glEnable(GL_SCISSOR_TEST);
     for (size_t c = 0; c < fr.cascades.size(); ++c) {

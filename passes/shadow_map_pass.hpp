@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "engine/gl/handles.hpp"
+#include "engine/gl/stream_buffer.hpp"
 #include "engine/gl/raster_probe.hpp"
 #include "engine/graph/frame_graph.hpp"
 #include "engine/render/frame_data.hpp"
@@ -101,7 +102,7 @@ struct ShadowMapPass {
     gl::Texture depthBits;       // R32UI, the atlas's size
     gl::Buffer largeVertices;    // clip-space vertices of the large triangles, one region per cascade
     size_t largeCapacity = 0;    // vertices
-    gl::Buffer largeDraws;       // one DrawArraysIndirectCommand per cascade
+    gl::StreamBuffer largeDraws{"shadow_map.large_draws"};       // one DrawArraysIndirectCommand per cascade
     std::optional<gl::RasterInterpolation> rasterModel;  // probed on the first compute raster
     // --shadow-raster auto: resolved on the first frame drawn (from the cache, or measured)
     bool autoResolved = false;
