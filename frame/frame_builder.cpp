@@ -91,7 +91,7 @@ FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const Fr
     EnvironmentTextures environment;
     if (environmentSampled) environment = importEnvironment(graph, frame, bake);
     if (environmentView || (!channelView && environmentSampled)) {
-        if (!passes.environments.ready(scene, s.environment, bake)) environment = addIblBakePass(graph, frame, environment, bake);
+        if (!passes.environments.ready(scene, s.environment, s.specularMasking, bake)) environment = addIblBakePass(graph, frame, environment, bake);
         else graph.skipPass("ibl_bake", "environment unchanged since its bake (cached)");
     } else {
         graph.skipPass("ibl_bake", hasMap ? "nothing in this view samples the environment" : "scene has no environment map");

@@ -322,6 +322,21 @@ std::vector<KnobEntry> makeKnobTable() {
         t.push_back(std::move(k));
     }
     {
+        KnobEntry k = choiceKnob("specular-masking", [](auto& s) -> auto& { return s.specularMasking; },
+                                 std::vector<SpecularMasking>{SpecularMasking::Separable, SpecularMasking::HeightCorrelated},
+                                 specularMaskingName);
+        k.flags = {valueFlag("--specular-masking")};
+        k.choiceNoun = "masking";
+        k.help = "GGX's Smith masking-shadowing (suns with --brdf ggx, IBL, extracted lights): separable "
+                 "G1(V) G1(L), as path tracers (Mitsuba), or height-correlated (Filament's, Unreal's form)";
+        k.panel = {PanelSection::Lighting, PanelWidget::Combo, "specular masking", ""};
+        k.sweep = {{"height-correlated", "separable"}, false,
+                   "GGX masking model (--specular-masking, with --ibl): height-correlated against separable "
+                   "(reference, the path tracer's). A different model, not an approximation: not monotone",
+                   iblOn};
+        t.push_back(std::move(k));
+    }
+    {
         KnobEntry k = boolKnob("ibl", [](auto& s) -> auto& { return s.environment.ibl; });
         k.field.sceneValue = [](const Scene& scene) { return double(scene.environment.ibl); };
         k.flags = {setsFlag("--ibl", 1), setsFlag("--brdf-only", 0)};

@@ -78,6 +78,7 @@ int setSunUniforms(GLuint prog, const FrameData& frame, const ShadowMaps& shadow
     }
     glProgramUniform3fv(prog, loc(prog, "uAmbient"), 1, glm::value_ptr(frame.scene->ambient));
     glProgramUniform1i(prog, loc(prog, "uBrdf"), frame.settings->brdf == Brdf::Ggx ? 1 : 0);
+    glProgramUniform1i(prog, loc(prog, "uSpecularMasking"), int(frame.settings->specularMasking));
     setShadowUniforms(prog, frame, shadowMaps, count);
     return count;
 }

@@ -41,7 +41,10 @@ EnvironmentTextures importEnvironment(fg::FrameGraph& graph, const FrameData& fr
                                         {s.specularSize, s.specularSize, GL_RGBA16F, s.specularLevels, true},
                                         [baked] { return baked(true).prefiltered.id(); });
     t.dfg = graph.importTexture("ibl.dfg_lut", {s.dfgSize, s.dfgSize, GL_RG16F},
-                                [frame] { return frame.environments->dfgLut(frame.settings->environment, *frame.shaders).id(); });
+                                [frame] {
+                                    return frame.environments->dfgLut(frame.settings->environment,
+                                                                      frame.settings->specularMasking, *frame.shaders).id();
+                                });
     return t;
 }
 
@@ -57,7 +60,7 @@ EnvironmentTextures addIblBakePass(fg::FrameGraph& graph, const FrameData& frame
         },
         [frame, bake](const EnvironmentTextures&, const fg::PassResources&) {
             frame.environments->get(*frame.scene, frame.settings->environment, *frame.shaders, bake);
-            if (bake) frame.environments->dfgLut(frame.settings->environment, *frame.shaders);
+            if (bake) frame.environments->dfgLut(frame.settings->environment, frame.settings->specularMasking, *frame.shaders);
         });
 }
 
@@ -69,6 +72,7 @@ void setIblUniforms(GLuint prog, const FrameData& frame, const BakedEnvironment&
                               glm::value_ptr(glm::transpose(glm::mat3(frame.view))));
     glProgramUniform1f(prog, glGetUniformLocation(prog, "uIntensity"), frame.scene->environment.intensity);
     glProgramUniform1f(prog, glGetUniformLocation(prog, "uMaxLod"), float(env.prefiltered.levels - 1));
+    glProgramUniform1i(prog, glGetUniformLocation(prog, "uSpecularMasking"), int(frame.settings->specularMasking));
     glProgramUniform1i(prog, glGetUniformLocation(prog, "uSpecularSamples"),
                        s.specular == IblSpecular::Sampled ? s.specularRuntimeSamples : 0);
     const int lights = std::min(int(env.lights.size()), kMaxEnvironmentLights);

@@ -6,7 +6,7 @@ Renders bench/mitsuba/maps/lamps_low.hdr reflected by a GGX plane (Ks = 1, diffu
 both of its factors were exact, per plane pixel:
     prefiltered(R') = integral L(l) D(h) max(R'.l, 0) dl / integral D(h) max(R'.l, 0) dl  (N = V = R'),
     R' = normalize(mix(R, N, alpha^2)) (lightpass's dominant direction),
-    times the DFG term A + B at (N.V, roughness) (F0 = f90 = 1),
+    times the DFG term A + B at (N.V, roughness) (F0 = f90 = 1) of lightpass's Smith model (--specular-masking),
 the map integrated over its texels (solid angle sin(theta) dtheta dphi; halved to 512 x 256 by default,
 0.7 degree texels, below the 1.6 degree lobe of roughness 0.119). The difference is what the
 prefiltered chain (its levels, its roughness -> mip mapping, its sampling) adds. Writes a Markdown
@@ -42,8 +42,9 @@ def ggx_d(nh, a):
     return a2 / (math.pi * d * d)
 
 
-def dfg(nv, r, nt=512, nphi=128):
-    """A + B (F0 = f90 = 1) by the midpoint rule over the GGX half-vector CDF, height-correlated Smith."""
+def dfg(nv, r, masking="separable", nt=512, nphi=128):
+    """A + B (F0 = f90 = 1) by the midpoint rule over the GGX half-vector CDF, with lightpass's Smith model
+    `masking` (--specular-masking: separable G1(V) G1(L) or height-correlated)."""
     a = r * r
     a2 = a * a
     nv = max(nv, 1e-4)
@@ -58,7 +59,8 @@ def dfg(nv, r, nt=512, nphi=128):
     nl = l[..., 2]
     ok = (nl > 0) & (vh > 0)
     nl = np.where(ok, nl, 1.0)
-    vis = 0.5 / (nl * math.sqrt(nv * nv * (1 - a2) + a2) + nv * np.sqrt(nl * nl * (1 - a2) + a2))
+    lv, ll = math.sqrt(nv * nv * (1 - a2) + a2), np.sqrt(nl * nl * (1 - a2) + a2)  # N.V (1 + 2 Lambda), N.L (...)
+    vis = 0.5 / (nl * lv + nv * ll) if masking == "height-correlated" else 1.0 / ((nv + lv) * (nl + ll))
     w = np.where(ok, vis * 4 * nl * vh / cos_t[:, None], 0.0)
     return float(w.mean())
 
@@ -72,6 +74,8 @@ def main():
     g.add_argument("--shininess", type=float, help="Blinn-Phong exponent of the plane (default: --roughness 0.119's)")
     g.add_argument("--roughness", type=float, help="perceptual roughness (scene-file 'roughness')")
     ap.add_argument("--lightpass-args", default="")
+    ap.add_argument("--specular-masking", default="separable", choices=["separable", "height-correlated"],
+                    help="lightpass's Smith model (passed on as --specular-masking; the exact DFG uses it too)")
     ap.add_argument("--map-width", type=int, default=512, help="the map is halved to at most this width for the integral")
     ap.add_argument("--label", default="")
     ap.add_argument("--out", default=str(REPO / "bench/results/mitsuba"))
@@ -101,7 +105,8 @@ def main():
     scene_path.write_text(json.dumps(scene, indent=1))
     exr = work / "grazing_plane.exr"
     cmd = [args.lightpass, "render", "--scene", str(scene_path), "--ibl", "--brdf", "ggx", "--exr", str(exr),
-           "--out", str(exr.with_suffix(".png")), "--size", f"{width}x{height}", "--frames", "1", *args.lightpass_args.split()]
+           "--out", str(exr.with_suffix(".png")), "--size", f"{width}x{height}", "--frames", "1", "--specular-masking", args.specular_masking,
+           *args.lightpass_args.split()]
     proc = subprocess.run(cmd, capture_output=True, text=True)
     if proc.returncode != 0:
         sys.exit(f"grazing_plane.py: lightpass failed: {proc.stderr.strip().splitlines()[-1:]}")
@@ -147,7 +152,7 @@ def main():
         w = ggx_d(nh, alpha) * np.maximum(c, 0) * omega
         pref[i:i + 32] = (w @ rad) / w.sum(1, keepdims=True)
     grid = np.linspace(0, 1, 65)
-    dfg_grid = np.array([dfg(x, rough) for x in grid])
+    dfg_grid = np.array([dfg(x, rough, args.specular_masking) for x in grid])
     exact = pref * np.interp(nv, grid, dfg_grid)[:, None]
     got = lp[mask]
     lum = lambda c: c @ np.array([0.2126, 0.7152, 0.0722])
@@ -155,7 +160,8 @@ def main():
     lampish = e > 4 * np.median(e)
     rel_all = g_.mean() / e.mean() - 1
     rel_lamp = g_[lampish].mean() / e[lampish].mean() - 1 if lampish.any() else float("nan")
-    label = args.label or (args.lightpass_args or "defaults")
+    label = args.label or (args.lightpass_args or "defaults") + (
+        f" ({args.specular_masking})" if args.specular_masking != "separable" else "")
     line = (f"| {label} | {rough:.3f} | {int(mask.sum())} | {rel_all:+.3f} | {int(lampish.sum())} | {rel_lamp:+.3f} |")
     md = out / "grazing_plane.md"
     if not md.exists():

@@ -194,11 +194,12 @@ def read_rgb(path):
     return np.array(mi.Bitmap(str(path)).convert(mi.Bitmap.PixelFormat.RGB, mi.Struct.Type.Float32, False))
 
 
-def run_lightpass(lightpass, scene_path, exr_path, width, height, extra=()):
+def run_lightpass(lightpass, scene_path, exr_path, width, height, extra=(), masking="separable"):
     # --no-ao: Mitsuba renders each sphere alone (no occlusion of the environment); screen-space AO
     # (on by default with IBL) would darken the grid's silhouettes against it.
     cmd = [str(lightpass), "render", "--scene", str(scene_path), "--ibl", "--no-ao", "--brdf", "ggx", "--exr", str(exr_path),
-           "--out", str(exr_path.with_suffix(".png")), "--size", f"{width}x{height}", "--frames", "1", *extra]
+           "--out", str(exr_path.with_suffix(".png")), "--size", f"{width}x{height}", "--frames", "1",
+           "--specular-masking", masking, *extra]
     t0 = time.perf_counter()
     proc = subprocess.run(cmd, capture_output=True, text=True)
     seconds = time.perf_counter() - t0
@@ -216,7 +217,7 @@ def write_comparison(path, lp, ref):
     mi.Bitmap(stacked, mi.Bitmap.PixelFormat.RGB).write(str(path))
 
 
-def compare(lp, ref, masks, core, furnace=False, nv=None):
+def compare(lp, ref, masks, core, furnace=False, nv=None, masking="separable"):
     rows = []
     for name, _, kind, p, _ in spheres():
         m = masks[name]
@@ -233,13 +234,13 @@ def compare(lp, ref, masks, core, furnace=False, nv=None):
         })
         # Under a uniform map of radiance 1 (furnace.hdr) a Lambertian sphere's exact radiance is its albedo.
         # A GGX sphere (F0 = 1) reflects its directional albedo at each pixel's N.V: the exact value is
-        # that albedo of lightpass's own BRDF (height-correlated Smith) averaged over the same pixels;
-        # the separable one (Mitsuba's) beside it says how much of the Mitsuba difference is the masking model.
+        # that albedo of lightpass's own BRDF (its Smith model, --specular-masking) averaged over the same
+        # pixels; the separable one (Mitsuba's) beside it says how much of the Mitsuba difference is the masking.
         exact, exact_sep = float("nan"), float("nan")
         if furnace and kind == "lambert":
             exact = p
         elif furnace and kind == "ggx" and nv is not None:
-            exact = float(np.mean([ggx_albedo(c, p) for c in nv[m]]))
+            exact = float(np.mean([ggx_albedo(c, p, separable=masking == "separable") for c in nv[m]]))
             exact_sep = float(np.mean([ggx_albedo(c, p, separable=True) for c in nv[m]]))
         rows[-1]["exact"] = exact
         rows[-1]["exact_separable"] = exact_sep
@@ -261,6 +262,8 @@ def main():
     ap.add_argument("--reuse-reference", action="store_true",
                     help="reuse a Mitsuba composite already in --work for the same map, size, spp and variant")
     ap.add_argument("--lightpass-args", default="", help="extra lightpass flags, e.g. '--ibl-samples 1024'")
+    ap.add_argument("--specular-masking", default="separable", choices=["separable", "height-correlated"],
+                    help="lightpass's GGX Smith model (passed on; the furnace's exact albedo uses it)")
     args = ap.parse_args()
     try:
         width, height = (int(v) for v in args.size.split("x"))
@@ -288,7 +291,8 @@ def main():
         scene_path = scenes / f"{stem}.json"
         lightpass_scene(m, scene_path)
         lp_exr = work / f"{stem}_lightpass.exr"
-        lp_seconds = run_lightpass(args.lightpass, scene_path, lp_exr, width, height, args.lightpass_args.split())
+        lp_seconds = run_lightpass(args.lightpass, scene_path, lp_exr, width, height, args.lightpass_args.split(),
+                                   args.specular_masking)
         # One Mitsuba render per sphere, alone in the environment: lightpass's IBL has no visibility
         # term (nothing occludes the environment), so neighbours must not occlude it here either.
         # The composite takes each sphere's pixels (with a margin) from its own render.
@@ -307,7 +311,8 @@ def main():
             mi.Bitmap(composite).write(str(mi_exr))
         lp, ref = read_rgb(lp_exr), read_rgb(mi_exr)
         write_comparison(out / f"{stem}.png", lp, ref)
-        rows = compare(lp, ref, masks, core, furnace=stem.startswith("furnace"), nv=sphere_nv(width, height))
+        rows = compare(lp, ref, masks, core, furnace=stem.startswith("furnace"), nv=sphere_nv(width, height),
+                       masking=args.specular_masking)
         for r in rows:
             r["map"] = stem
         all_rows += rows
@@ -355,7 +360,7 @@ def main():
     furnace_rows = [r for r in all_rows if r["map"].startswith("furnace")]
     if furnace_rows:
         lines += ["", "White furnace (uniform radiance 1): sphere mean against its exact albedo (Lambertian: kd; "
-                  "GGX, F0 = 1: the directional albedo of lightpass's BRDF, height-correlated Smith, averaged over "
+                  f"GGX, F0 = 1: the directional albedo of lightpass's BRDF, {args.specular_masking} Smith, averaged over "
                   "the sphere's pixels; beside it the separable Smith's, Mitsuba's model), (lightpass − exact) / exact:", "",
                   "| sphere | exact albedo | separable Smith | lightpass mean | Mitsuba mean | rel. error vs exact | vs Mitsuba |",
                   "| --- | ---: | ---: | ---: | ---: | ---: | ---: |"]

@@ -193,6 +193,14 @@ def sample_vndf(Ve, alpha, u):
     return ne / np.linalg.norm(ne, axis=-1, keepdims=True)
 
 
+MASKING = "separable"  # lightpass's Smith model (--specular-masking): separable or height-correlated
+
+
+def smith_g2(lv, ll):
+    """G2 from Smith's Lambdas of V and L under MASKING."""
+    return 1 / ((1 + lv) * (1 + ll)) if MASKING == "separable" else 1 / (1 + lv + ll)
+
+
 def smith_lambda(c, a):
     c = np.maximum(c, 1e-6)
     return 0.5 * (np.sqrt(1 + a * a * (1 - c * c) / (c * c)) - 1)
@@ -234,7 +242,7 @@ def sampled_specular(chains, N, V, alpha, ab, u, source, k, narrow=False, f0=1.0
     ok = (nl > 0) & (vh > 0)
     # f cos / pdf = G2(V, L) / G1(V) of the sampled lobe (a_samp): the sub-lobes widen it back to about alpha
     lv, ll = smith_lambda(nv, a_samp)[:, None], smith_lambda(np.maximum(nl, 1e-6), a_samp)
-    w = np.where(ok, (1 + lv) / (1 + lv + ll), 0.0)
+    w = np.where(ok, smith_g2(lv, ll) * (1 + lv), 0.0)
     fc = (1 - np.clip(vh, 0, 1)) ** 5
     # pdf(L) = G1(V) D(H) / (4 N.V)
     g1 = 1 / (1 + smith_lambda(nv, a_samp)[:, None])
@@ -271,7 +279,7 @@ def dfg_ab(nv, alpha, n=128):
         nl = 2 * vh * ch - c
         ok = (nl > 0) & (vh > 0)
         nl = np.where(ok, nl, 1.0)
-        g2 = 1 / (1 + smith_lambda(c, alpha) + smith_lambda(nl, alpha))
+        g2 = smith_g2(smith_lambda(c, alpha), smith_lambda(nl, alpha))
         w = np.where(ok, g2 * vh / (c * ch), 0.0)
         fc = (1 - np.clip(vh, 0, 1)) ** 5
         out.append([np.mean(w * (1 - fc)), np.mean(w * fc)])
@@ -318,7 +326,7 @@ def exact_integral(cube, N, V, alpha, level=1):
         m = nl > 0
         h = D[m] + V[i]
         h /= np.linalg.norm(h, axis=1, keepdims=True)
-        f = ggx_d(h @ N[i], alpha) / (1 + smith_lambda(nv[i], alpha) + smith_lambda(nl[m], alpha)) / (4 * nv[i])
+        f = ggx_d(h @ N[i], alpha) * smith_g2(smith_lambda(nv[i], alpha), smith_lambda(nl[m], alpha)) / (4 * nv[i])
         out.append((R[m] * (f * O[m])[:, None]).sum(0))
     return np.array(out)
 
@@ -335,7 +343,10 @@ def main():
     ap.add_argument("--exact", action="store_true", help="add the exact integral of lightpass's BRDF (minutes)")
     ap.add_argument("--min-alpha", type=float, default=0.15)
     ap.add_argument("--out", default=str(gt.REPO / "bench/results/mitsuba/issue16/sampled_specular.md"))
+    ap.add_argument("--specular-masking", default="separable", choices=["separable", "height-correlated"],
+                    help="lightpass's Smith model (the DFG terms, the weights and --exact)")
     args = ap.parse_args()
+    globals()["MASKING"] = args.specular_masking
     variants = [("prefiltered", args.span, True, int(c)) for c in args.counts.split(",")]
     for v in filter(None, args.variants.split(",")):
         src, span, narrow, count = v.split(":")

@@ -5,7 +5,7 @@ For each GGX sphere of ground_truth.py's grid under lamp50k.hdr (make_maps.py, a
 behind the camera), per pixel of the same 160x90 view (whole sphere: within 0.9 of its radius, as
 ground_truth.py; core: N.V >= 0.7), against the Mitsuba composite that ground_truth.py left in --work:
 
-  exact            the integral of lightpass's BRDF (GGX D, height-correlated Smith, F = 1) over the
+  exact            the integral of lightpass's BRDF (GGX D, Smith of --specular-masking, F = 1) over the
                    map's texels (the sky box-averaged 4x4, the lamp's texels kept)
   split R          the exact split sum: prefiltered integral sum L D(h) (R.l)+ dOmega / sum D (R.l)+
                    dOmega with N = V = R (Karis' N.L weighting), times the exact DFG (A + B), along R
@@ -86,9 +86,14 @@ def ggx_d(c, a):
     return a * a / (math.pi * dd * dd)
 
 
-def vis_correlated(nv, nl, a):
+MASKING = "separable"  # lightpass's Smith model (--specular-masking): separable or height-correlated
+
+
+def visibility(nv, nl, a):
+    """G2 / (4 N.L N.V) of MASKING; lv = N.V (1 + 2 Lambda(V)), ll likewise."""
     a2 = a * a
-    return 0.5 / (nl * np.sqrt(nv * nv * (1 - a2) + a2) + nv * np.sqrt(nl * nl * (1 - a2) + a2))
+    lv, ll = np.sqrt(nv * nv * (1 - a2) + a2), np.sqrt(nl * nl * (1 - a2) + a2)
+    return 0.5 / (nl * lv + nv * ll) if MASKING == "height-correlated" else 1.0 / ((nv + lv) * (nl + ll))
 
 
 def exact(N, V, a, dirs, omega, rad):
@@ -99,7 +104,7 @@ def exact(N, V, a, dirs, omega, rad):
         h = dirs[m] + V[i]
         h /= np.linalg.norm(h, axis=1, keepdims=True)
         nv = max(N[i] @ V[i], 1e-4)
-        out[i] = np.sum(rad[m] * ggx_d(h @ N[i], a) * vis_correlated(nv, nl[m], a) * nl[m] * omega[m])
+        out[i] = np.sum(rad[m] * ggx_d(h @ N[i], a) * visibility(nv, nl[m], a) * nl[m] * omega[m])
     return out
 
 
@@ -125,7 +130,9 @@ def main():
     ap.add_argument("--work", default="/tmp/lightpass-mitsuba", help="where ground_truth.py left the Mitsuba composite")
     ap.add_argument("--spp", type=int, default=128)
     ap.add_argument("--out", default=str(gt.REPO / "bench/results/mitsuba/issue16/split_sum_budget.md"))
+    ap.add_argument("--specular-masking", default="separable", choices=["separable", "height-correlated"])
     args = ap.parse_args()
+    globals()["MASKING"] = args.specular_masking
     ref_path = Path(args.work) / f"lamp50k_mitsuba_{WIDTH}x{HEIGHT}_{args.spp}spp_scalar_rgb.exr"
     if not ref_path.is_file():
         sys.exit(f"split_sum_budget.py: {ref_path}: no Mitsuba composite (run bench/mitsuba/run.sh --maps "
@@ -139,7 +146,7 @@ def main():
     def dfg(nv, a):
         key = (round(float(nv), 6), a)
         if key not in dfg_cache:
-            dfg_cache[key] = gt.ggx_albedo(nv, a, n=256)
+            dfg_cache[key] = gt.ggx_albedo(nv, a, separable=MASKING == "separable", n=256)
         return dfg_cache[key]
 
     cols = ["exact", "split R", "split R' no N.L", "split R'", "lightpass levels", "Frostbite R''"]

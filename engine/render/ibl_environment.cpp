@@ -259,12 +259,19 @@ const BakedEnvironment& EnvironmentCache::get(const Scene& scene, const Environm
     return env;
 }
 
-bool EnvironmentCache::ready(const Scene& scene, const EnvironmentSettings& requested, bool bake) const {
+namespace {
+std::string dfgKeyOf(const EnvironmentSettings& s, SpecularMasking masking) {
+    return std::to_string(s.dfgSize) + "x" + std::to_string(s.dfgSamples) + "|" + specularMaskingName(masking);
+}
+}  // namespace
+
+bool EnvironmentCache::ready(const Scene& scene, const EnvironmentSettings& requested, SpecularMasking masking,
+                             bool bake) const {
     const EnvironmentSettings s = effectiveSettings(requested, !scene.environment.map.empty());
     const std::string key = cubeKey(scene, s);
     auto it = environments_.find(key);
     if (it == environments_.end()) return false;
-    return !bake || (it->second->bakeKey == bakeKeyOf(key, s) && dfg_ && dfgKey_ == std::to_string(s.dfgSize) + "x" + std::to_string(s.dfgSamples));
+    return !bake || (it->second->bakeKey == bakeKeyOf(key, s) && dfg_ && dfgKey_ == dfgKeyOf(s, masking));
 }
 
 size_t EnvironmentCache::gpuBytes() const {
@@ -447,9 +454,10 @@ void EnvironmentCache::forgetBakes() {
     lastBakeGpuMs_ = 0.0;
 }
 
-const gl::Texture& EnvironmentCache::dfgLut(const EnvironmentSettings& s, const gl::ShaderLibrary& shaders) {
+const gl::Texture& EnvironmentCache::dfgLut(const EnvironmentSettings& s, SpecularMasking masking,
+                                            const gl::ShaderLibrary& shaders) {
     validateEnvironmentSettings(s);
-    const std::string key = std::to_string(s.dfgSize) + "x" + std::to_string(s.dfgSamples);
+    const std::string key = dfgKeyOf(s, masking);
     if (dfg_ && dfgKey_ == key) return dfg_;
     dfg_ = gl::makeTexture2D(GL_RG16F, s.dfgSize, s.dfgSize, 1, "ibl.dfg_lut");
     glTextureParameteri(dfg_.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
@@ -460,6 +468,7 @@ const gl::Texture& EnvironmentCache::dfgLut(const EnvironmentSettings& s, const 
     const GLuint prog = dfgProgram_.id();
     glProgramUniform1i(prog, glGetUniformLocation(prog, "uSize"), s.dfgSize);
     glProgramUniform1i(prog, glGetUniformLocation(prog, "uSamples"), s.dfgSamples);
+    glProgramUniform1i(prog, glGetUniformLocation(prog, "uSpecularMasking"), int(masking));
     glBindImageTexture(0, dfg_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG16F);
     glUseProgram(prog);
     gl::dispatch2D(s.dfgSize, s.dfgSize);

@@ -40,10 +40,13 @@ public:
     // The environment of `scene` with its cube made; if `bake`, also its IBL data. Needs GL.
     const BakedEnvironment& get(const Scene& scene, const EnvironmentSettings& settings,
                                 const gl::ShaderLibrary& shaders, bool bake);
-    const gl::Texture& dfgLut(const EnvironmentSettings& settings, const gl::ShaderLibrary& shaders);
+    // The split-sum DFG LUT of the BRDF with Smith model `masking` (baked again when it changes: the
+    // only baked data the masking enters; the cubes, the SH and the extracted lights don't depend on it).
+    const gl::Texture& dfgLut(const EnvironmentSettings& settings, SpecularMasking masking,
+                              const gl::ShaderLibrary& shaders);
     // Whether get(scene, settings, .., bake) would find everything made already (no GL needed):
-    // false in the frame where the environment or the bake settings changed.
-    bool ready(const Scene& scene, const EnvironmentSettings& settings, bool bake) const;
+    // false in the frame where the environment, the bake settings or (with `bake`) the masking changed.
+    bool ready(const Scene& scene, const EnvironmentSettings& settings, SpecularMasking masking, bool bake) const;
     // GPU bytes of every cube and LUT the cache holds (persistent, outside the frame graph's pool).
     size_t gpuBytes() const;
     // Keeps the cubes but forgets every IBL bake, so the next get(.., bake = true) bakes again and

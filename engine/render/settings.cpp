@@ -82,6 +82,10 @@ std::optional<Brdf> parseBrdf(const std::string& name) {
     return std::nullopt;
 }
 
+const char* specularMaskingName(SpecularMasking m) {
+    return m == SpecularMasking::HeightCorrelated ? "height-correlated" : "separable";
+}
+
 const char* iblSpecularName(IblSpecular m) { return m == IblSpecular::Sampled ? "sampled" : "split-sum"; }
 
 const char* toneMapName(ToneMapOperator op) {

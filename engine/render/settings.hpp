@@ -31,6 +31,14 @@ enum class Brdf { BlinnPhong, Ggx };
 const char* brdfName(Brdf brdf);
 std::optional<Brdf> parseBrdf(const std::string& name);
 
+// GGX's Smith masking-shadowing term G2 (--specular-masking), everywhere the BRDF is evaluated or
+// integrated (suns, extracted IBL lights, the DFG LUT, the sampled specular IBL). Separable:
+// G1(V) G1(L), the form of path tracers (Mitsuba's roughconductor), which lightpass is measured
+// against (bench/results/mitsuba/issue16); height-correlated: 1 / (1 + Lambda(V) + Lambda(L)) (Heitz
+// 2014; Filament's and Unreal's form), up to 5% brighter on rough spheres.
+enum class SpecularMasking { Separable = 0, HeightCorrelated = 1 };  // = LP_SPECULAR_MASKING_* (brdf.glsl)
+const char* specularMaskingName(SpecularMasking m);
+
 // How opaque surfaces are lit (--render-path): deferred (G-buffer, then the light passes) or
 // forward+ (a depth pre-pass, then one forward pass shading each fragment from the clustered light
 // lists). Transparent surfaces are drawn forward in both.
@@ -223,6 +231,7 @@ struct RenderSettings {
     float exposureEV = 0.0f;     // manual exposure; with autoExposure the compensation added to it
     bool autoExposure = false;   // --auto-exposure: the histogram pass picks the exposure per frame
     Brdf brdf = Brdf::BlinnPhong;  // analytic BRDF of the light passes
+    SpecularMasking specularMasking = SpecularMasking::Separable;  // GGX's G2, lights and IBL alike
     RenderPath renderPath = RenderPath::Deferred;  // --render-path
     bool keepHdr = false;        // keep the HDR buffer as an output (EXR dumps)
     // --all-passes: add every candidate pass even where the scene does not call for it (shadow maps

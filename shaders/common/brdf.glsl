@@ -26,8 +26,8 @@ vec3 blinnPhongRadiance(vec3 N, vec3 V, vec3 L, vec3 kd, vec3 ks, float shinines
 }
 
 // ---- Cook-Torrance GGX ---------------------------------------------------------------------------
-// f = kd/pi + D(h) Vis(v, l) F(v.h): GGX (Trowbridge-Reitz) distribution, height-correlated Smith
-// visibility Vis = G2 / (4 N.L N.V) (Heitz 2014), Schlick Fresnel. alpha is GGX's width (alpha =
+// f = kd/pi + D(h) Vis(v, l) F(v.h): GGX (Trowbridge-Reitz) distribution, Smith visibility
+// Vis = G2 / (4 N.L N.V) of the model uSpecularMasking selects, Schlick Fresnel. alpha is GGX's width (alpha =
 // roughness^2). alpha is clamped to LP_GGX_MIN_ALPHA: D peaks at 1/(pi alpha^2), 3.2e5 there, which
 // float holds; alpha = 0 would be a delta. N.V is clamped to LP_GGX_MIN_NV: normal interpolation
 // and bump maps make slightly back-facing N.V, which must give a bright rim, not NaN.
@@ -67,15 +67,39 @@ float ggxDistribution(vec3 N, vec3 H, float alpha) {
     return a2 / (LP_PI * max(d * d, 1e-30));
 }
 
-// Height-correlated Smith: Vis = 0.5 / (N.L sqrt(N.V^2 (1 - a2) + a2) + N.V sqrt(N.L^2 (1 - a2) + a2)).
-float ggxVisibility(float nv, float nl, float alpha) {
+// Smith's masking-shadowing G2 (RenderSettings::specularMasking, --specular-masking): separable
+// G1(V) G1(L) (the path tracer's model, Mitsuba's roughconductor: the default) or height-correlated
+// 1 / (1 + Lambda(V) + Lambda(L)) (Heitz 2014; Filament's and Unreal's). The passes that shade GGX set
+// uSpecularMasking; a program that never sets it gets 0, separable.
+#define LP_SPECULAR_MASKING_SEPARABLE 0
+#define LP_SPECULAR_MASKING_HEIGHT_CORRELATED 1
+uniform int uSpecularMasking;
+
+// Vis = G2 / (4 N.L N.V) from each direction's cosine and its length in the alpha-stretched space,
+// lv = |(alpha_x V.x, alpha_y V.y, N.V)| = N.V (1 + 2 Lambda(V)) (likewise ll): separable
+// 1 / ((nv + lv) (nl + ll)), height-correlated 0.5 / (nl lv + nv ll). Isotropic and anisotropic alike.
+float smithVisibilityFromLengths(int masking, float nv, float nl, float lv, float ll) {
+    if (masking == LP_SPECULAR_MASKING_HEIGHT_CORRELATED) return 0.5 / max(nl * lv + nv * ll, 1e-30);
+    return 1.0 / max((nv + lv) * (nl + ll), 1e-30);
+}
+
+// Isotropic GGX: lv = sqrt(N.V^2 (1 - a2) + a2), ll likewise.
+float ggxVisibilityOf(int masking, float nv, float nl, float alpha) {
     float a = max(alpha, LP_GGX_MIN_ALPHA);
     float a2 = a * a;
     nv = max(nv, LP_GGX_MIN_NV);
     nl = max(nl, 0.0);
-    float gv = nl * sqrt(nv * nv * (1.0 - a2) + a2);
-    float gl = nv * sqrt(nl * nl * (1.0 - a2) + a2);
-    return 0.5 / max(gv + gl, 1e-30);
+    return smithVisibilityFromLengths(masking, nv, nl, sqrt(nv * nv * (1.0 - a2) + a2), sqrt(nl * nl * (1.0 - a2) + a2));
+}
+
+float ggxVisibility(float nv, float nl, float alpha) { return ggxVisibilityOf(uSpecularMasking, nv, nl, alpha); }
+
+// G2 / G1(V) from Smith's Lambdas: what f cos / pdf(L) comes to when L is drawn from the distribution of
+// visible normals (pdf(L) = G1(V) D(H) / (4 N.V)). Separable: G1(L); height-correlated:
+// (1 + Lambda(V)) / (1 + Lambda(V) + Lambda(L)).
+float smithShadowingGivenMasking(int masking, float lambdaV, float lambdaL) {
+    if (masking == LP_SPECULAR_MASKING_HEIGHT_CORRELATED) return (1.0 + lambdaV) / (1.0 + lambdaV + lambdaL);
+    return 1.0 / (1.0 + lambdaL);
 }
 
 // Schlick's Fresnel towards f90 = clamp(50 * mean(F0), 0, 1) (Filament's specular occlusion): no

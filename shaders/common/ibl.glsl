@@ -5,6 +5,7 @@
 //   roughness: perceptual r, GGX alpha = r^2; Blinn-Phong shininess n maps to alpha = sqrt(2 / (n + 2))
 #ifndef LP_IBL_GLSL
 #define LP_IBL_GLSL
+#include "common/brdf.glsl"
 
 const float LP_IBL_PI = 3.14159265358979;
 
@@ -101,18 +102,20 @@ vec3 importanceSampleGgx(vec2 xi, float alpha) {
     return vec3(sinTheta * cos(phi), sinTheta * sin(phi), cosTheta);
 }
 
-// Height-correlated Smith visibility V = G / (4 N.L N.V) (Heitz 2014, Filament's form).
-float smithGgxVisibility(float NdotV, float NdotL, float alpha) {
+// The BRDF's Smith visibility (common/brdf.glsl's, model `masking`) without its alpha floor: the LUT's
+// row of roughness 0 holds the mirror's exact limit (A + B = 1 at every N.V, also at N.V = 1e-4 where
+// alpha 1e-3 would not be a mirror yet).
+float dfgVisibility(int masking, float NdotV, float NdotL, float alpha) {
     float a2 = alpha * alpha;
-    float gv = NdotL * sqrt(NdotV * NdotV * (1.0 - a2) + a2);
-    float gl = NdotV * sqrt(NdotL * NdotL * (1.0 - a2) + a2);
-    return 0.5 / max(gv + gl, 1e-12);
+    return smithVisibilityFromLengths(masking, NdotV, NdotL, sqrt(NdotV * NdotV * (1.0 - a2) + a2),
+                                      sqrt(NdotL * NdotL * (1.0 - a2) + a2));
 }
 
 // The split-sum DFG terms (Karis 2013): specular reflectance of a white environment is
 // F0 * A + B with A = integral of (1 - Fc) f cos, B = integral of Fc f cos, Fc = (1 - V.H)^5.
-// N.V is clamped to 1e-4 (a view exactly along the surface has a finite limit).
-vec2 dfgIntegrate(float NdotV, float roughness, uint samples) {
+// N.V is clamped to 1e-4 (a view exactly along the surface has a finite limit). `masking`: the Smith
+// model of the BRDF (LP_SPECULAR_MASKING_*, common/brdf.glsl).
+vec2 dfgIntegrate(float NdotV, float roughness, uint samples, int masking) {
     NdotV = clamp(NdotV, 1e-4, 1.0);
     float alpha = roughness * roughness;
     vec3 V = vec3(sqrt(1.0 - NdotV * NdotV), 0.0, NdotV);
@@ -124,7 +127,7 @@ vec2 dfgIntegrate(float NdotV, float roughness, uint samples) {
         float NdotL = L.z;
         if (NdotL <= 0.0 || VdotH <= 0.0) continue;
         // f cos / pdf(L), pdf(L) = D N.H / (4 V.H): = V_vis * 4 N.L V.H / N.H
-        float w = smithGgxVisibility(NdotV, NdotL, alpha) * 4.0 * NdotL * VdotH / max(H.z, 1e-12);
+        float w = dfgVisibility(masking, NdotV, NdotL, alpha) * 4.0 * NdotL * VdotH / max(H.z, 1e-12);
         float fc = pow(1.0 - VdotH, 5.0);
         ab += vec2((1.0 - fc) * w, fc * w);
     }

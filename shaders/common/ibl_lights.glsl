@@ -1,6 +1,6 @@
 // The small, very bright sources taken out of the environment map at bake time
-// (engine/render/ibl_lights.hpp), lit as distant discs with lightpass's GGX (D, height-correlated
-// Smith, Schlick towards f90: common/brdf.glsl) and the IBL's diffuse kd (1 - Fss) / pi, so that
+// (engine/render/ibl_lights.hpp), lit as distant discs with lightpass's GGX (D, Smith of the chosen
+// masking, Schlick towards f90: common/brdf.glsl) and the IBL's diffuse kd (1 - Fss) / pi, so that
 // residual map + sources shade a surface as the whole map would. No shadows: IBL is unshadowed.
 #ifndef LP_IBL_LIGHTS_GLSL
 #define LP_IBL_LIGHTS_GLSL
@@ -11,7 +11,7 @@
 // ellipse of radius s / 2 in the plane of incidence and s / (2 N.V) across it (there the half vector
 // turns 1 / (2 N.V) times as fast as L); a GGX lobe of alpha r / sqrt 2 shares a disc of radius r's
 // half-energy radius. So D becomes an anisotropic GGX whose widths are alpha and those, added in
-// quadrature (N.V floored at 0.05), with the anisotropic Smith visibility. A source much
+// quadrature (N.V floored at 0.05), with the anisotropic Smith visibility (uSpecularMasking's model). A source much
 // smaller than the lobe leaves it as it is (a point light); a near-mirror reflects a highlight the size
 // and shape of the disc's reflection instead of a pinpoint. D stays normalised, so the energy stays near
 // the point light's at every view angle. (Karis 2013's representative point with its (alpha / alpha')^2 normalisation
@@ -43,10 +43,10 @@ vec3 environmentLightSpecular(vec3 N, vec3 V, vec3 D, float sinRadius, vec3 f0, 
     float x = dot(H, T) / along, y = dot(H, B) / across;
     float d = x * x + y * y + nh * nh;
     float distribution = 1.0 / (LP_PI * along * across * max(d * d, 1e-30));
-    // Height-correlated Smith with each direction's own projected alpha (Heitz 2014, anisotropic).
+    // Smith with each direction's own projected alpha (Heitz 2014, anisotropic).
     float lv = length(vec3(along * dot(V, T), across * dot(V, B), nv));
     float ll = length(vec3(along * dot(D, T), across * dot(D, B), nl));
-    float visibility = 0.5 / max(nl * lv + nv * ll, 1e-30);
+    float visibility = smithVisibilityFromLengths(uSpecularMasking, nv, nl, lv, ll);
     float vh = clamp(dot(V, H), 0.0, 1.0);
     return distribution * visibility * fresnelSchlick(f0, vh);
 }

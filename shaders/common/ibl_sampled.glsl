@@ -57,9 +57,10 @@ float sampledSpecularAlpha(float alpha, int samples) {
 
 // Sample i of `samples` for the view Ve (tangent space, z = the normal) and GGX alpha: the direction L
 // (tangent space), the prefiltered chain's lod to read it at (of maxLod) and its weights towards the
-// DFG LUT's A and B terms, (1 - Fc) f cos / pdf and Fc f cos / pdf. Weights 0: below the surface.
-void sampledSpecularSample(int i, int samples, vec3 Ve, float alpha, float maxLod, out vec3 L, out float lod,
-                           out vec2 weights) {
+// DFG LUT's A and B terms, (1 - Fc) f cos / pdf and Fc f cos / pdf, for the BRDF's Smith model
+// `masking` (LP_SPECULAR_MASKING_*, common/brdf.glsl). Weights 0: below the surface.
+void sampledSpecularSample(int i, int samples, vec3 Ve, float alpha, float maxLod, int masking, out vec3 L,
+                           out float lod, out vec2 weights) {
     float n = float(max(samples, 1));
     float sampledAlpha = sampledSpecularAlpha(alpha, samples);
     float NdotV = max(Ve.z, 1e-4);
@@ -70,8 +71,8 @@ void sampledSpecularSample(int i, int samples, vec3 Ve, float alpha, float maxLo
     lod = 0.0;
     weights = vec2(0.0);
     if (L.z <= 0.0 || VdotH <= 0.0) return;
-    // f cos / pdf(L) = G2(V, L) / G1(V) (height-correlated Smith); pdf(L) = G1(V) D(H) / (4 N.V).
-    float w = (1.0 + lambdaV) / (1.0 + lambdaV + smithGgxLambda(L.z, sampledAlpha));
+    // f cos / pdf(L) = G2(V, L) / G1(V); pdf(L) = G1(V) D(H) / (4 N.V).
+    float w = smithShadowingGivenMasking(masking, lambdaV, smithGgxLambda(L.z, sampledAlpha));
     float pdf = ggxD(H.z, sampledAlpha) / ((1.0 + lambdaV) * 4.0 * NdotV);
     float solidAngle = 1.0 / (n * max(pdf, 1e-20));
     float subAlpha = min(sqrt(LP_SAMPLED_SUBLOBE_SPAN * solidAngle / (4.0 * LP_IBL_PI)), alpha);
@@ -82,9 +83,10 @@ void sampledSpecularSample(int i, int samples, vec3 Ve, float alpha, float maxLo
 
 // The lobe-weighted mean radiance of the prefiltered chain around a surface of normal N, view V
 // (world space, unit) and GGX alpha: `la` weighted by (1 - Fc) f cos, `lb` by Fc f cos (the DFG
-// LUT's A and B terms). False when no sample lies above the surface (then use the split sum).
+// LUT's A and B terms), for the Smith model `masking`. False when no sample lies above the surface (then
+// use the split sum).
 bool sampledSpecularRadiance(samplerCube prefilteredMap, float maxLod, vec3 N, vec3 V, float alpha, int samples,
-                             out vec3 la, out vec3 lb) {
+                             int masking, out vec3 la, out vec3 lb) {
     la = vec3(0.0);
     lb = vec3(0.0);
     vec3 T, B;
@@ -95,7 +97,7 @@ bool sampledSpecularRadiance(samplerCube prefilteredMap, float maxLod, vec3 N, v
         vec3 L;
         float lod;
         vec2 w;
-        sampledSpecularSample(i, samples, Ve, alpha, maxLod, L, lod, w);
+        sampledSpecularSample(i, samples, Ve, alpha, maxLod, masking, L, lod, w);
         if (w.x + w.y <= 0.0) continue;
         vec3 radiance = textureLod(prefilteredMap, T * L.x + B * L.y + N * L.z, lod).rgb;
         la += radiance * w.x;

@@ -44,7 +44,7 @@ vec3 lpIblRadiance(samplerCube irradiance, samplerCube prefilteredMap, sampler2D
     vec3 la, lb;
     bool sampled = uSpecularSamples > 0 &&
                    sampledSpecularRadiance(prefilteredMap, uMaxLod, Nw, normalize(uEyeToWorld * V), roughness * roughness,
-                                           uSpecularSamples, la, lb);
+                                           uSpecularSamples, uSpecularMasking, la, lb);
     vec3 specular = sampled ? f0 * ab.x * la + specularF90(f0) * ab.y * lb
                             : textureLod(prefilteredMap, Rw, prefilteredLodFromRoughness(roughness, uMaxLod)).rgb * fss;
     float ao = screenAo * occlusion;

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 
 #include "engine/gl/handles.hpp"
@@ -67,6 +69,24 @@ EnvironmentSettings smallIblBake(int dfgSamples) {
     s.dfgSize = 32;
     s.dfgSamples = dfgSamples;
     return s;
+}
+
+double smithLambdaRef(double c, double alpha) {
+    const double c2 = std::max(c * c, 1e-12);
+    return 0.5 * (std::sqrt(1.0 + alpha * alpha * (1.0 - c2) / c2) - 1.0);
+}
+
+// G2 / (4 N.L N.V) with G1 = 1 / (1 + Lambda) = 2 c / (c + l), l = c (1 + 2 Lambda) = sqrt(c^2 (1 - a2) + a2),
+// written so that the N.L N.V of the denominator cancels (exact at N.L -> 0).
+double ggxVisibilityRef(SpecularMasking masking, double nv, double nl, double alpha) {
+    const double a2 = alpha * alpha;
+    const double lv = std::sqrt(nv * nv * (1.0 - a2) + a2), ll = std::sqrt(nl * nl * (1.0 - a2) + a2);
+    return masking == SpecularMasking::HeightCorrelated ? 0.5 / (nl * lv + nv * ll) : 1.0 / ((nv + lv) * (nl + ll));
+}
+
+double smithShadowingGivenMaskingRef(SpecularMasking masking, double lambdaV, double lambdaL) {
+    return masking == SpecularMasking::HeightCorrelated ? (1.0 + lambdaV) / (1.0 + lambdaV + lambdaL)
+                                                        : 1.0 / (1.0 + lambdaL);
 }
 
 ShadowAtlasFrame drawShadowAtlas(const Scene& scene, const SceneGpu& gpu, const RenderSettings& settings,

@@ -38,6 +38,13 @@ std::vector<glm::vec4> runGlsl(const std::vector<std::string>& includes, const s
 // DFG LUT of `dfgSamples` samples per texel).
 EnvironmentSettings smallIblBake(int dfgSamples);
 
+// GGX's Smith terms in double precision, for either masking model (shaders/common/brdf.glsl's
+// ggxVisibilityOf and smithShadowingGivenMasking, without their clamps): Lambda at a direction of
+// cosine c to the normal, the visibility G2 / (4 N.L N.V), and G2 / G1(V).
+double smithLambdaRef(double c, double alpha);
+double ggxVisibilityRef(SpecularMasking masking, double nv, double nl, double alpha);
+double smithShadowingGivenMaskingRef(SpecularMasking masking, double lambdaV, double lambdaL);
+
 // One frame of the first sun's shadow map passes alone, drawn with `state` from `pool` (both the
 // caller's, so they may be kept across frames): the whole depth atlas read back (every cascade tile;
 // tileSize x columns texels wide), its frustum and the pass's notes.

@@ -34,11 +34,9 @@ double ggxDRef(glm::dvec3 N, glm::dvec3 H, double alpha) {
     return a2 / (M_PI * d * d);
 }
 
-double ggxVisRef(double nv, double nl, double alpha) {
-    double a2 = std::max(alpha, kMinAlpha) * std::max(alpha, kMinAlpha);
-    nv = std::max(nv, kMinNv);
-    nl = std::max(nl, 0.0);
-    return 0.5 / (nl * std::sqrt(nv * nv * (1.0 - a2) + a2) + nv * std::sqrt(nl * nl * (1.0 - a2) + a2));
+// Vis = G2 / (4 N.L N.V) of `masking` (RenderSettings{}'s by default), with the shader's clamps; N.L > 0.
+double ggxVisRef(double nv, double nl, double alpha, SpecularMasking masking = RenderSettings{}.specularMasking) {
+    return lp::test::ggxVisibilityRef(masking, std::max(nv, kMinNv), nl, std::max(alpha, kMinAlpha));
 }
 
 double fresnelRef(double f0, double vh) {
@@ -51,11 +49,13 @@ glm::dvec3 halfVector(glm::dvec3 N, glm::dvec3 V, glm::dvec3 L) {
     return glm::dot(h, h) > 1e-12 ? glm::normalize(h) : N;
 }
 
-double ggxSpecRef(glm::dvec3 N, glm::dvec3 V, glm::dvec3 L, double f0, double alpha) {
+double ggxSpecRef(glm::dvec3 N, glm::dvec3 V, glm::dvec3 L, double f0, double alpha,
+                  SpecularMasking masking = RenderSettings{}.specularMasking) {
     double nl = glm::dot(N, L);
     if (nl <= 0.0) return 0.0;
     glm::dvec3 H = halfVector(N, V, L);
-    return ggxDRef(N, H, alpha) * ggxVisRef(glm::dot(N, V), nl, alpha) * fresnelRef(f0, std::clamp(glm::dot(V, H), 0.0, 1.0));
+    return ggxDRef(N, H, alpha) * ggxVisRef(glm::dot(N, V), nl, alpha, masking) *
+           fresnelRef(f0, std::clamp(glm::dot(V, H), 0.0, 1.0));
 }
 
 // Directions of the hard-case harness: L in the xz plane at N.L = x.x, V at N.V = x.y, azimuth x.w.
@@ -106,6 +106,59 @@ TEST(ShaderGgx, HardCasesMatchDoubleReference) {
         EXPECT_NEAR(out[i].y, D, 2e-4 * D + 1e-6) << where;
         if (x.x > 0.0f) EXPECT_NEAR(out[i].z, vis, 2e-4 * vis + 1e-6) << where;
         if (x.x <= 0.0f) EXPECT_EQ(out[i].x, 0.0f) << where;
+    }
+}
+
+// Both Smith masking models (--specular-masking) on the driver against double precision: the isotropic
+// visibility ggxVisibilityOf, the anisotropic smithVisibilityFromLengths (extracted lights) with
+// lengths |(alpha_x v_x, alpha_y v_y, N.V)|, and smithShadowingGivenMasking (the sampled IBL's G2 / G1(V)).
+// Bound: 2e-4 relative (+1e-6) at N.L, N.V in {1, 0.5, 0.1, 0.01}, alpha 0.05..1. Property: the
+// separable G2 is never above the height-correlated one ((1 + a)(1 + b) >= 1 + a + b), equal at normal
+// incidence, and 0.95x or less of it for alpha 1 at N.V = N.L = 0.1.
+TEST(ShaderGgx, BothMaskingModelsMatchDoubleReference) {
+    std::vector<glm::vec4> in;
+    const float cosines[] = {1.0f, 0.5f, 0.1f, 0.01f};
+    for (int masking : {0, 1})
+        for (float nl : cosines)
+            for (float nv : cosines)
+                for (float a : {0.05f, 0.3f, 1.0f}) in.push_back(glm::vec4(nl, nv, a, float(masking)));
+    const std::string body = R"(
+        int m = int(x.w);
+        float lv = length(vec3(0.7 * x.z * sqrt(1.0 - x.y * x.y), 0.0, x.y));
+        float ll = length(vec3(0.0, 1.3 * x.z * sqrt(1.0 - x.x * x.x), x.x));
+        float lambdaV = smithGgxLambda(x.y, x.z), lambdaL = smithGgxLambda(x.x, x.z);
+        return vec4(ggxVisibilityOf(m, x.y, x.x, x.z), smithVisibilityFromLengths(m, x.y, x.x, lv, ll),
+                    smithShadowingGivenMasking(m, lambdaV, lambdaL), 0.0);)";
+    auto out = runGlsl({"common/ibl_sampled.glsl"}, body, in);
+    for (size_t i = 0; i < in.size(); ++i) {
+        const glm::vec4 x = in[i];
+        const SpecularMasking m = x.w > 0.5f ? SpecularMasking::HeightCorrelated : SpecularMasking::Separable;
+        const double nl = x.x, nv = x.y, a = x.z;
+        const std::string where = std::string(specularMaskingName(m)) + " N.L=" + std::to_string(nl) +
+                                  " N.V=" + std::to_string(nv) + " alpha=" + std::to_string(a);
+        // Isotropic, from Smith's Lambdas (independent of the shader's and the fixture's length form).
+        const double lamV0 = lp::test::smithLambdaRef(nv, a), lamL0 = lp::test::smithLambdaRef(nl, a);
+        const double vis = (m == SpecularMasking::HeightCorrelated ? 1.0 / (1.0 + lamV0 + lamL0)
+                                                                   : 1.0 / ((1.0 + lamV0) * (1.0 + lamL0))) / (4.0 * nl * nv);
+        EXPECT_NEAR(lp::test::ggxVisibilityRef(m, nv, nl, a), vis, 1e-9 * vis) << where << " (fixture)";
+        // Anisotropic: Lambda from the stretched length, 1 + 2 Lambda = l / cos.
+        const double lv = std::hypot(0.7 * a * std::sqrt(1.0 - nv * nv), nv);
+        const double ll = std::hypot(1.3 * a * std::sqrt(1.0 - nl * nl), nl);
+        const double lamV = 0.5 * (lv / nv - 1.0), lamL = 0.5 * (ll / nl - 1.0);
+        const double g2 = m == SpecularMasking::HeightCorrelated ? 1.0 / (1.0 + lamV + lamL)
+                                                                 : 1.0 / ((1.0 + lamV) * (1.0 + lamL));
+        const double visAniso = g2 / (4.0 * nl * nv);
+        const double shadowing = lp::test::smithShadowingGivenMaskingRef(m, lp::test::smithLambdaRef(nv, a),
+                                                                         lp::test::smithLambdaRef(nl, a));
+        EXPECT_NEAR(out[i].x, vis, 2e-4 * vis + 1e-6) << where;
+        EXPECT_NEAR(out[i].y, visAniso, 2e-4 * visAniso + 1e-6) << where;
+        EXPECT_NEAR(out[i].z, shadowing, 2e-4 * shadowing + 1e-6) << where;
+        if (m == SpecularMasking::HeightCorrelated) {
+            const double sep = out[i - in.size() / 2].x;  // the same point, separable
+            EXPECT_LE(sep, out[i].x * (1.0 + 1e-5)) << where;
+            if (nl == 1.0 && nv == 1.0) EXPECT_NEAR(sep, out[i].x, 1e-5 * out[i].x) << where;
+            if (a == 1.0 && nv == 0.1f && nl == 0.1f) EXPECT_LT(sep, 0.95 * out[i].x) << where;
+        }
     }
 }
 
@@ -417,6 +470,50 @@ TEST(ShadowRender, GgxPlaneMatchesAnalyticRadiance) {
         }
     EXPECT_GT(checked, w * h / 4);
     EXPECT_LT(worst, 2e-3);
+}
+
+// --specular-masking reaches the suns' GGX in both render paths (deferred global_light.comp, forward+
+// forward.frag): a rough (alpha 1, Ns 0), purely specular (Kd 0, Ks 1) plane under one grazing sun,
+// height-correlated over separable per pixel equals the analytic ratio of the two visibilities at that
+// pixel's N.V and N.L (D and F cancel). Bound: 1% (two fp16 HDR values; the ratio reaches above 1.1
+// on the plane, so a masking that did not reach the shader is off by more).
+TEST(ShadowRender, SpecularMaskingReachesTheSunInBothRenderPaths) {
+    const int w = 64, h = 48;
+    Scene s = shadowScene(glm::vec3(-0.9f, -0.25f, 0.1f), false, glm::vec3(1.0f), 0.0f);
+    s.models[0].mesh.materials[0].diffuse = glm::vec3(0.0f);
+    s.ambient = glm::vec3(0.0f);
+    const glm::dvec3 L = -glm::normalize(glm::dvec3(s.directionalLights[0].direction)), N(0, 1, 0);
+    for (RenderPath path : {RenderPath::Deferred, RenderPath::ForwardPlus}) {
+        SCOPED_TRACE(renderPathName(path));
+        RenderSettings settings;
+        settings.brdf = Brdf::Ggx;
+        settings.renderPath = path;
+        settings.shadows.enabled = false;
+        settings.specularMasking = SpecularMasking::Separable;
+        const ImageF separable = renderHdr(s, settings, w, h);
+        settings.specularMasking = SpecularMasking::HeightCorrelated;
+        const ImageF correlated = renderHdr(s, settings, w, h);
+        int checked = 0;
+        double worst = 0.0, lo = 1e9, hi = 0.0;
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                Ray ray = pixelRay(s, w, h, x, y);
+                glm::dvec3 p;
+                if (!hitY(ray, 0.0, p) || std::abs(p.x) > 9.5 || std::abs(p.z) > 9.5) continue;
+                const double nv = glm::dot(N, glm::normalize(glm::dvec3(s.camera.position) - p)), nl = glm::dot(N, L);
+                const double want = ggxVisRef(nv, nl, 1.0, SpecularMasking::HeightCorrelated) /
+                                    ggxVisRef(nv, nl, 1.0, SpecularMasking::Separable);
+                const size_t i = (size_t(y) * w + x) * 4;
+                ASSERT_GT(separable.rgba[i], 1e-3f);
+                const double got = correlated.rgba[i] / double(separable.rgba[i]);
+                worst = std::max(worst, std::abs(got / want - 1.0));
+                lo = std::min(lo, want), hi = std::max(hi, want);
+                ++checked;
+            }
+        EXPECT_GT(checked, w * h / 4);
+        EXPECT_LT(worst, 0.01) << "expected ratios " << lo << ".." << hi;
+        EXPECT_GT(hi, 1.1);
+    }
 }
 
 // No NaN/Inf anywhere in the HDR buffer: the bundled Cornell scene (sun with shadows) under both BRDFs
