@@ -3,6 +3,7 @@
 // where the environment (or its bake settings) changed.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -123,24 +124,29 @@ TEST(SceneDrivenGl, IblBakeRunsOnlyWhenTheEnvironmentChanged) {
 // creates, integer and depth targets included), no GL state left changed, no NaN.
 TEST(SceneDrivenGl, DisablingAnyPassLeavesAValidFrame) {
     Scene scene = loadScene(test::repoPath("scenes/cornell.json"));
-    RenderSettings s = tiny();
-    s.environment.ibl = true;
-    s.post.bloom = true;
-    s.post.toon = true;
-    s.post.bloomMethod = PostSettings::BloomMethod::MipChain;
-    s.post.backend = PostSettings::Backend::Glsl;
-    s.autoExposure = true;
-    s.keepHdr = true;
-    s.gbuffer.normal = GBufferNormalFormat::Oct16;  // an integer target
-    Renderer r(scene);
-    r.render(s, 0.0f, false);
-    std::vector<std::string> passes = r.graph().executionOrder();
-    ASSERT_GE(passes.size(), size_t(9));
-    for (const std::string& name : passes) {
-        RenderSettings off = s;
-        off.disabledPasses = {name};
-        ASSERT_NO_THROW(r.render(off, 0.0f, false)) << name;
-        for (float v : r.readHdr().rgba) ASSERT_TRUE(std::isfinite(v)) << "with " << name << " off";
-        EXPECT_EQ(r.readDisplay().width, s.width);
+    for (GBufferMode mode : allGBufferModes()) {  // each mode's own G-buffer passes disabled too
+        SCOPED_TRACE(std::string(gbufferModeName(mode)) + " G-buffer");
+        RenderSettings s = tiny();
+        s.environment.ibl = true;
+        s.post.bloom = true;
+        s.post.toon = true;
+        s.post.bloomMethod = PostSettings::BloomMethod::MipChain;
+        s.post.backend = PostSettings::Backend::Glsl;
+        s.autoExposure = true;
+        s.keepHdr = true;
+        s.gbuffer.normal = GBufferNormalFormat::Oct16;  // an integer target
+        s.gbuffer.mode = mode;
+        Renderer r(scene);
+        r.render(s, 0.0f, false);
+        std::vector<std::string> passes = r.graph().executionOrder();
+        ASSERT_GE(passes.size(), size_t(9));
+        EXPECT_EQ(std::count(passes.begin(), passes.end(), "gbuffer_resolve"), mode == GBufferMode::Visibility ? 1 : 0);
+        for (const std::string& name : passes) {
+            RenderSettings off = s;
+            off.disabledPasses = {name};
+            ASSERT_NO_THROW(r.render(off, 0.0f, false)) << name;
+            for (float v : r.readHdr().rgba) ASSERT_TRUE(std::isfinite(v)) << "with " << name << " off";
+            EXPECT_EQ(r.readDisplay().width, s.width);
+        }
     }
 }
