@@ -7,6 +7,7 @@
 #include <cmath>
 #include <map>
 #include <string>
+#include <vector>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -26,6 +27,26 @@ RenderSettings small(RenderPath path) {
     s.keepHdr = true;
     s.renderPath = path;
     s.environment = test::smallIblBake(16);
+    return s;
+}
+
+// The ways a frame is made: deferred with each G-buffer mode, and forward+ (no G-buffer to choose).
+struct FrameWay {
+    RenderPath path;
+    GBufferMode mode;
+};
+std::vector<FrameWay> everyWay() {
+    return {{RenderPath::Deferred, GBufferMode::Classic},
+            {RenderPath::Deferred, GBufferMode::Visibility},
+            {RenderPath::ForwardPlus, GBufferMode::Classic}};
+}
+std::string wayName(FrameWay w) {
+    return w.path == RenderPath::ForwardPlus ? renderPathName(w.path)
+                                             : std::string(renderPathName(w.path)) + ", " + gbufferModeName(w.mode) + " G-buffer";
+}
+RenderSettings small(FrameWay w) {
+    RenderSettings s = small(w.path);
+    s.gbuffer.mode = w.mode;
     return s;
 }
 
@@ -249,8 +270,8 @@ TEST(ForwardPlus, EachPathSkipsTheOthersPasses) {
 // radiance drawn opaque by the deferred path (sun, ambient and a local light through the clusters).
 // Bound: 1% relative (the deferred L passes through the 8-bit G-buffer) plus fp16 rounding.
 TEST(Transparency, HalfOpaqueQuadIsTheOverComposite) {
-    for (RenderPath path : {RenderPath::Deferred, RenderPath::ForwardPlus}) {
-        SCOPED_TRACE(renderPathName(path));
+    for (FrameWay way : everyWay()) {
+        SCOPED_TRACE(wayName(way));
         Scene opaque = wallScene();
         DirectionalLight sun;
         sun.direction = glm::normalize(glm::vec3(-0.3f, -0.4f, -1.0f));
@@ -265,8 +286,8 @@ TEST(Transparency, HalfOpaqueQuadIsTheOverComposite) {
         Scene blended = opaque;
         blended.models[1].mesh.materials[0].opacity = 0.5f;
         blended.models[1].mesh.materials[0].alphaMode = AlphaMode::Blend;
-        const ImageF L = renderHdr(opaque, small(RenderPath::Deferred));
-        const ImageF got = renderHdr(blended, small(path));
+        const ImageF L = renderHdr(opaque, small(FrameWay{RenderPath::Deferred, way.mode}));
+        const ImageF got = renderHdr(blended, small(way));
         int checked = 0;
         for (int y = 16; y < 32; ++y)
             for (int x = 24; x < 40; ++x) {
@@ -291,9 +312,9 @@ TEST(Transparency, OverlappingQuadsCompositeBackToFrontWhateverTheSceneOrder) {
     const glm::vec3 expected = 0.5f * red + 0.5f * (0.5f * blue + 0.5f * kBackground);
     const glm::vec3 wrong = 0.5f * blue + 0.5f * (0.5f * red + 0.5f * kBackground);
     ASSERT_GT(glm::length(expected - wrong), 0.3f);
-    for (RenderPath path : {RenderPath::Deferred, RenderPath::ForwardPlus})
+    for (FrameWay way : everyWay())
         for (bool nearFirst : {true, false}) {
-            SCOPED_TRACE(std::string(renderPathName(path)) + (nearFirst ? ", near listed first" : ", far listed first"));
+            SCOPED_TRACE(wayName(way) + (nearFirst ? ", near listed first" : ", far listed first"));
             Scene s = wallScene();
             ModelInstance nearQuad = primitive("plane", makePlane(1.0f), facingCamera({0, 0, 0.5f}, 1.0f), red, 0.5f, true);
             ModelInstance farQuad = primitive("plane", makePlane(1.0f), facingCamera({0.1f, 0, 0}, 1.0f), blue, 0.5f, true);
@@ -304,7 +325,7 @@ TEST(Transparency, OverlappingQuadsCompositeBackToFrontWhateverTheSceneOrder) {
                 s.models.push_back(farQuad);
                 s.models.push_back(nearQuad);
             }
-            const ImageF img = renderHdr(s, small(path));
+            const ImageF img = renderHdr(s, small(way));
             const glm::vec3 c = pixel(img, 32, 24);
             for (int k = 0; k < 3; ++k) EXPECT_NEAR(c[k], expected[k], 2e-3f) << "channel " << k;
         }
@@ -327,15 +348,15 @@ TEST(Transparency, DrawsAreSortedFarthestFirst) {
 // the blend of a fragment behind opaque depth never happens. The opaque frame is bit-identical.
 TEST(Transparency, OpaqueScenesSkipThePassAndAreUnchanged) {
     const Scene cornell = loadScene(test::repoPath("scenes/cornell.json"));
-    for (RenderPath path : {RenderPath::Deferred, RenderPath::ForwardPlus}) {
-        SCOPED_TRACE(renderPathName(path));
-        EXPECT_EQ(decision(cornell, small(path), "transparent"), "skipped: no material of the scene is alpha-blended");
+    for (FrameWay way : everyWay()) {
+        SCOPED_TRACE(wayName(way));
+        EXPECT_EQ(decision(cornell, small(way), "transparent"), "skipped: no material of the scene is alpha-blended");
         Scene withGlass = cornell;
         // at the centre of the glossy sphere: the pass runs and draws it, and depth hides all of it
         const glm::vec3 centre = glm::vec3(cornell.models[1].transform[3]);
         withGlass.models.push_back(primitive("cube", makeCube(0.02f), glm::translate(glm::mat4(1.0f), centre), {1, 0, 0}, 0.5f, false));
-        EXPECT_EQ(decision(withGlass, small(path), "transparent"), "runs");
-        const ImageF a = renderHdr(cornell, small(path)), b = renderHdr(withGlass, small(path));
+        EXPECT_EQ(decision(withGlass, small(way), "transparent"), "runs");
+        const ImageF a = renderHdr(cornell, small(way)), b = renderHdr(withGlass, small(way));
         ASSERT_EQ(a.rgba.size(), b.rgba.size());
         EXPECT_TRUE(a.rgba == b.rgba) << "an unseen transparent surface changed the opaque frame";
     }
@@ -345,9 +366,10 @@ TEST(Transparency, OpaqueScenesSkipThePassAndAreUnchanged) {
 TEST(Transparency, BundledGlassSceneRendersFiniteAndBlended) {
     const Scene scene = loadScene(test::repoPath("scenes/glass.json"));
     EXPECT_TRUE(sceneHasTransparency(scene));
-    for (RenderPath path : {RenderPath::Deferred, RenderPath::ForwardPlus}) {
-        EXPECT_EQ(decision(scene, small(path), "transparent"), "runs");
-        const ImageF img = renderHdr(scene, small(path));
+    for (FrameWay way : everyWay()) {
+        SCOPED_TRACE(wayName(way));
+        EXPECT_EQ(decision(scene, small(way), "transparent"), "runs");
+        const ImageF img = renderHdr(scene, small(way));
         for (float v : img.rgba) ASSERT_TRUE(std::isfinite(v));
     }
 }
