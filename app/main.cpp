@@ -24,6 +24,7 @@
 #include "passes/shadow_map_pass.hpp"
 #include "engine/core/log.hpp"
 #include "engine/gl/context.hpp"
+#include "engine/gl/limits.hpp"
 #include "engine/io/image_io.hpp"
 #include "engine/render/floors.hpp"
 #include "frame/renderer.hpp"
@@ -101,6 +102,12 @@ int commandInfo() {
     printCachedPostChoices("post backend auto, cached on this GPU", false, [&](const std::vector<std::string>& key) {
         return key[0] == info.renderer && key[1] == info.version;
     });
+    // What the default --gbuffer-mode auto makes here (a scene too large for the visibility buffer's
+    // storage blocks falls back to classic: lightpass graph --explain names it per scene).
+    const GBufferModeChoice gbuffer = chooseGBufferMode(GBufferMode::Auto, ctx->isSoftware(), "");
+    std::printf("G-buffer: %s, by the default %s; the visibility buffer reads a scene's geometry through storage "
+                "blocks of up to %.0f MB here (a larger scene's G-buffer is classic)\n",
+                gbufferModeName(gbuffer.mode), gbuffer.why.c_str(), double(gl::maxShaderStorageBlockBytes()) / (1024.0 * 1024.0));
     const ConservativeRasterSupport conservative = queryConservativeRasterSupport();
     if (conservative.hardware)
         std::printf("shadow casters: conservative raster in hardware (GL_NV_conservative_raster, "
@@ -115,12 +122,14 @@ int commandGraph(const Options& o) {
     Scene scene = loadFromOptions(o);
     RenderSettings settings = settingsFromOptions(o);
     FrameData frame = makeFrameData(scene, settings, float(o.time));
-    if (settings.gbuffer.mode == GBufferMode::Auto) {
-        // auto's G-buffer depends on the GPU's rasteriser: asked of a headless context where one can
-        // be made, else the classic G-buffer, and the skip reasons say so.
+    if (settings.gbuffer.mode != GBufferMode::Classic) {
+        // auto's G-buffer depends on the GPU's rasteriser and on whether the visibility buffer can
+        // read the scene's geometry there: asked of a headless context where one can be made, else
+        // the classic G-buffer, and the skip reasons say so.
         try {
             auto ctx = gl::createHeadlessContext();
             frame.softwareRaster = ctx->isSoftware();
+            frame.maxStorageBlockBytes = gl::maxShaderStorageBlockBytes();
         } catch (const std::exception&) {
         }
     }

@@ -110,21 +110,19 @@ FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const Fr
         graph.skipPass("gbuffer", "forward+: the depth pre-pass writes depth (and what later passes read)");
         graph.skipPass("gbuffer_visibility", "forward+: the depth pre-pass replaces the G-buffer");
         graph.skipPass("gbuffer_resolve", "forward+: the depth pre-pass replaces the G-buffer");
-    } else if (resolveGBufferMode(s.gbuffer.mode, frame.softwareRaster) == GBufferMode::Visibility) {
-        graph.skipPass("gbuffer", std::string("--gbuffer-mode ") + gbufferModeName(s.gbuffer.mode) +
-                                      (s.gbuffer.mode == GBufferMode::Auto ? " (a GPU rasteriser)" : "") +
-                                      ": gbuffer_visibility and gbuffer_resolve make the G-buffer");
-        graph.skipPass("depth_prepass", "render path deferred (--render-path forward+ uses a depth pre-pass)");
-        const VisibilityBuffer visibility = addVisibilityPass(graph, passes.visibility, frame);
-        gbuffer = addVisibilityResolvePass(graph, passes.visibilityResolve, frame, visibility, channels);
     } else {
-        gbuffer = addGBufferPass(graph, passes.gbuffer, frame, channels);
+        const GBufferModeChoice mode = chooseGBufferMode(
+            s.gbuffer.mode, frame.softwareRaster, visibilityBufferUnsupported(*frame.scene, frame.maxStorageBlockBytes));
         graph.skipPass("depth_prepass", "render path deferred (--render-path forward+ uses a depth pre-pass)");
-        const std::string why = s.gbuffer.mode == GBufferMode::Auto
-                                    ? "--gbuffer-mode auto: classic on a software rasteriser (or without a GPU)"
-                                    : "--gbuffer-mode classic (visibility buffer off)";
-        graph.skipPass("gbuffer_visibility", why);
-        graph.skipPass("gbuffer_resolve", why);
+        if (mode.mode == GBufferMode::Visibility) {
+            graph.skipPass("gbuffer", mode.why + ": gbuffer_visibility and gbuffer_resolve make the G-buffer");
+            const VisibilityBuffer visibility = addVisibilityPass(graph, passes.visibility, frame);
+            gbuffer = addVisibilityResolvePass(graph, passes.visibilityResolve, frame, visibility, channels);
+        } else {
+            gbuffer = addGBufferPass(graph, passes.gbuffer, frame, channels);
+            graph.skipPass("gbuffer_visibility", mode.why);
+            graph.skipPass("gbuffer_resolve", mode.why);
+        }
     }
     // one depth pass per shadow-casting directional light; global_lights and the shadowmap view read them.
     const ShadowMaps shadowMaps = addShadowMapPasses(graph, passes.shadowMaps, frame);

@@ -145,7 +145,8 @@ std::vector<KnobEntry> makeKnobTable() {
         k.choiceNoun = "mode";
         k.help = "classic: the G-buffer pass rasterises every target; visibility: depth and a triangle id are "
                  "rasterised and a compute pass rebuilds the same targets (README \"Visibility buffer\"); auto: "
-                 "visibility on a GPU, classic on a software rasteriser";
+                 "visibility on a GPU, classic on a software rasteriser or for a scene whose geometry exceeds the GPU's "
+                 "storage blocks (lightpass info, graph --explain say which)";
         k.panel = {PanelSection::View, PanelWidget::Combo, "G-buffer mode", ""};
         k.sweep = {{"visibility", "classic"},
                    false,

@@ -5,6 +5,7 @@
 #include "engine/core/error.hpp"
 #include "engine/gl/context.hpp"
 #include "engine/gl/handles.hpp"
+#include "engine/gl/limits.hpp"
 
 namespace lp {
 
@@ -12,7 +13,8 @@ Renderer::Renderer(const Scene& scene, gl::ShaderLibrary shaders)
     : scene_(&scene),
       shaders_(std::move(shaders)),
       gpu_(std::make_unique<SceneGpu>(scene)),
-      softwareRaster_(gl::currentContextIsSoftware()) {}
+      softwareRaster_(gl::currentContextIsSoftware()),
+      maxStorageBlockBytes_(gl::maxShaderStorageBlockBytes()) {}
 
 void Renderer::render(const RenderSettings& settings, float time, bool timed) {
     if (settings.width <= 0 || settings.height <= 0) throw Error("render size must be positive");
@@ -26,6 +28,7 @@ void Renderer::render(const RenderSettings& settings, float time, bool timed) {
     frame.gpu = gpu_.get();
     frame.shaders = &shaders_;
     frame.softwareRaster = softwareRaster_;
+    frame.maxStorageBlockBytes = maxStorageBlockBytes_;
     graph_ = fg::FrameGraph();
     outputs_ = buildFrameGraph(graph_, passes_, frame);
     // Textures the CUDA passes touch come from CUDA's shared memory when CUDA runs on shared textures.

@@ -69,7 +69,8 @@ private:
     glm::vec2 jitterPixels_{0.0f};
     uint64_t taaFrames_ = 0;  // TAA frames rendered: the next one's jitter phase
     MotionHistory history_;
-    bool softwareRaster_ = true;  // the current context's rasteriser (--gbuffer-mode auto)
+    bool softwareRaster_ = true;        // the current context's rasteriser (--gbuffer-mode auto)
+    uint64_t maxStorageBlockBytes_ = 0;  // its GL_MAX_SHADER_STORAGE_BLOCK_SIZE (the same)
 };
 
 }  // namespace lp

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <cstdint>
+#include <cstdio>
 
 #include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/type_ptr.hpp>
@@ -74,7 +76,31 @@ void buildGeometry(VisibilityResolvePass& state, const SceneGpu& gpu) {
     state.geometryTriangles = gpu.triangleCount;
 }
 
+std::string megabytes(uint64_t bytes) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.1f MB", double(bytes) / (1024.0 * 1024.0));
+    return text;
+}
+
 }  // namespace
+
+std::string visibilityBufferUnsupported(const Scene& scene, uint64_t maxStorageBlockBytes) {
+    uint64_t vertexBytes = 0, indexBytes = 0, triangles = 0;
+    for (const ModelInstance& m : scene.models) {
+        vertexBytes += uint64_t(m.mesh.vertices.size()) * sizeof(Vertex);
+        indexBytes += uint64_t(m.mesh.indices.size()) * sizeof(uint32_t);
+        triangles += m.mesh.indices.size() / 3;
+    }
+    // id = triangle + 1 in 32 bits, 0 meaning none (shaders/common/visibility.glsl)
+    if (triangles > uint64_t(UINT32_MAX) - 1)
+        return std::to_string(triangles) + " triangles do not fit the 32-bit triangle ids";
+    if (maxStorageBlockBytes == 0) return "";
+    const std::string limit = " exceed this GPU's shader storage block limit (" + megabytes(maxStorageBlockBytes) +
+                              ", GL_MAX_SHADER_STORAGE_BLOCK_SIZE) the resolve reads them through";
+    if (vertexBytes > maxStorageBlockBytes) return "the scene's vertices (" + megabytes(vertexBytes) + ")" + limit;
+    if (indexBytes > maxStorageBlockBytes) return "the scene's indices (" + megabytes(indexBytes) + ")" + limit;
+    return "";
+}
 
 GBuffer addVisibilityResolvePass(fg::FrameGraph& graph, VisibilityResolvePass& state, const FrameData& frame,
                                  const VisibilityBuffer& visibility, GBufferChannels channels) {

@@ -5,7 +5,9 @@
 // whichever some pass reads), by image stores; gbuffer.depth passes through from the raster half.
 // The scene's vertex and index buffers are concatenated once into storage buffers, with a draw table
 // and, per frame, the meshes' transforms and the materials (shaders/visibility_resolve.comp).
+#include <cstdint>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "engine/gl/handles.hpp"
@@ -29,6 +31,12 @@ struct VisibilityResolvePass {
     std::vector<int> texturedMaterials;  // one dispatch each, with its maps bound
     std::optional<gl::RasterInterpolation> rasterModel;  // probed on the first resolve
 };
+
+// Why the visibility buffer cannot make `scene`'s G-buffer on a GPU whose shader storage blocks hold
+// at most maxStorageBlockBytes (GL_MAX_SHADER_STORAGE_BLOCK_SIZE; 0: unknown, not checked): the
+// resolve reads all vertices, and all indices, each through one storage block, and ids number every
+// triangle in 32 bits. Empty when it can.
+std::string visibilityBufferUnsupported(const Scene& scene, uint64_t maxStorageBlockBytes);
 
 GBuffer addVisibilityResolvePass(fg::FrameGraph& graph, VisibilityResolvePass& state, const FrameData& frame,
                                  const VisibilityBuffer& visibility, GBufferChannels channels);

@@ -225,12 +225,14 @@ void main() {
     }
 
     vec2 t0 = vertexUv(i0), t1 = vertexUv(i1), t2 = vertexUv(i2);
-    vec2 uv = b.x * t0 + b.y * t1 + b.z * t2;
-    vec2 uvX = bx.x * t0 + bx.y * t1 + bx.z * t2, uvY = by.x * t0 + by.y * t1 + by.z * t2;
+    // Every attribute in the raster's plane-equation form (interpolateAttribute): what the three
+    // vertices share, such as a floor's eye z, comes out exact, as gbuffer.frag's inputs do.
+    vec2 uv = interpolateAttribute(b, t0, t1, t2);
+    vec2 uvX = interpolateAttribute(bx, t0, t1, t2), uvY = interpolateAttribute(by, t0, t1, t2);
     vec2 uvDx = odd.x ? uv - uvX : uvX - uv;
     vec2 uvDy = odd.y ? uv - uvY : uvY - uv;
-    vec3 normal = mat3(mesh.normalMatrix) * (b.x * vertexNormal(i0) + b.y * vertexNormal(i1) + b.z * vertexNormal(i2));
-    vec4 tangentObject = b.x * vertexTangent(i0) + b.y * vertexTangent(i1) + b.z * vertexTangent(i2);
+    vec3 normal = mat3(mesh.normalMatrix) * interpolateAttribute(b, vertexNormal(i0), vertexNormal(i1), vertexNormal(i2));
+    vec4 tangentObject = interpolateAttribute(b, vertexTangent(i0), vertexTangent(i1), vertexTangent(i2));
     vec4 tangent = vec4(mat3(mesh.modelView) * tangentObject.xyz, tangentObject.w);
 
     MaterialInputs m = materialInputs(mr);
@@ -242,13 +244,13 @@ void main() {
     if ((uTargets & LP_TARGET_DIFFUSE) != 0u)
         imageStore(uDiffuseOut, p, vec4(g.kd, m.flatLit ? 0.0 : gbufferEncodeOcclusion(g.occlusion)));
 #ifndef LP_GBUFFER_POSITION_FROM_DEPTH
-    if ((uTargets & LP_TARGET_POSITION) != 0u) imageStore(uPositionOut, p, vec4(b.x * e0 + b.y * e1 + b.z * e2, 1.0));
+    if ((uTargets & LP_TARGET_POSITION) != 0u) imageStore(uPositionOut, p, vec4(interpolateAttribute(b, e0, e1, e2), 1.0));
 #endif
     if ((uTargets & LP_TARGET_SPECULAR) != 0u) imageStore(uSpecularOut, p, vec4(g.f0, g.shininess));
     if ((uTargets & LP_TARGET_TEXCOORD) != 0u) imageStore(uTexcoordOut, p, vec4(uv, 0.0, 0.0));
     if ((uTargets & LP_TARGET_TANGENT) != 0u) imageStore(uTangentOut, p, g.tangentView);
     if ((uTargets & LP_TARGET_VELOCITY) != 0u) {
-        vec4 object = vec4(b.x * o0 + b.y * o1 + b.z * o2, 1.0);
+        vec4 object = vec4(interpolateAttribute(b, o0, o1, o2), 1.0);
         vec2 v = velocityFromClip(mesh.clipFromModel * object, mesh.previousClipFromModel * object);
         imageStore(uVelocityOut, p, vec4(v, 0.0, 0.0));
     }

@@ -32,7 +32,7 @@ def read_results(out_dir, names):
     """{name: {"lightpass": {(w, h): ms}, "filament": {(w, h): result}}}, plus the lightpass device."""
     results, device, flags = {}, None, set()
     for name in names:
-        entry = {"lightpass": {}, "filament": {}, "lightpass_frames": {}}
+        entry = {"lightpass": {}, "filament": {}, "lightpass_frames": {}, "gbuffer_modes": set()}
         lp_path = os.path.join(out_dir, f"peers_lightpass_{name}.json")
         if os.path.isfile(lp_path):
             d = load(lp_path)
@@ -40,6 +40,9 @@ def read_results(out_dir, names):
             flags.add(shown_flags(d.get("common_flags", "")))
             for run in d.get("runs", []):
                 frame = run.get("passes", {}).get("frame")
+                mode = gbuffer_mode(run.get("passes", {}))
+                if mode:
+                    entry["gbuffer_modes"].add(mode)
                 if frame and "width" in run and "height" in run:
                     entry["lightpass"][(run["width"], run["height"])] = frame["median_ms"]
                     entry["lightpass_frames"][(run["width"], run["height"])] = run.get("frames")
@@ -50,6 +53,14 @@ def read_results(out_dir, names):
             entry["filament"][(d["width"], d["height"])] = d
         results[name] = entry
     return results, device, sorted(flags)
+
+
+def gbuffer_mode(passes):
+    """How a lightpass run made its G-buffer, from the passes it timed (--gbuffer-mode auto, the default,
+    picks per GPU): 'visibility', 'classic', or None when neither was timed."""
+    if "gbuffer_resolve" in passes or "gbuffer_visibility" in passes:
+        return "visibility"
+    return "classic" if "gbuffer" in passes else None
 
 
 def shown_flags(common):
@@ -117,6 +128,9 @@ def table(results, device, lightpass_flags=()):
              "Matched: same triangles (GLB from bench/peers/scene_to_glb.py), camera, size and lights; Filament: "
              + (", ".join(sorted(settings)) or "-") + "; lightpass flags: "
              + (", ".join(f"`{f}`" for f in lightpass_flags) or "-") + ".",
+             "lightpass G-buffer (from the passes it timed): "
+             + (", ".join(f"{name} {'/'.join(sorted(e['gbuffer_modes']))}" for name, e in results.items()
+                          if e["gbuffer_modes"]) or "-") + ".",
              ""]
     return "\n".join(notes + lines) + "\n"
 

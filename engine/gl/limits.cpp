@@ -65,6 +65,13 @@ std::pair<GLenum, GLenum> uploadFormatFor(GLenum internalFormat) {
 
 }  // namespace
 
+uint64_t maxShaderStorageBlockBytes() {
+    if (!glGetString(GL_RENDERER)) return 0;
+    GLint64 bytes = 0;
+    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &bytes);
+    return bytes > 0 ? uint64_t(bytes) : 0;
+}
+
 bool canAllocateTexture(unsigned internalFormat, int width, int height) {
     // The probe must not reach the log as a GL error, whatever the driver thinks of it.
     const bool debugOutput = glIsEnabled(GL_DEBUG_OUTPUT);

@@ -18,6 +18,10 @@ struct RenderTargetLimits {
 // Needs a current context. LIGHTPASS_GPU_FREE_BYTES=N in the environment overrides freeBytes.
 RenderTargetLimits queryRenderTargetLimits(bool softwareRasteriser);
 
+// GL_MAX_SHADER_STORAGE_BLOCK_SIZE: the most bytes one storage block of a shader reads. 0 without a
+// current context.
+uint64_t maxShaderStorageBlockBytes();
+
 // Whether the driver can allocate one width x height texture of internalFormat (a proxy texture: no
 // allocation, no GL error). Catches per-texture limits within GL_MAX_TEXTURE_SIZE, such as llvmpipe
 // refusing a 16384x16384 RGBA32F texture (4 GiB). Needs a current context.

@@ -52,6 +52,9 @@ struct FrameData {
     // The rasteriser is a software one (llvmpipe) or unknown (a graph described without a GPU):
     // --gbuffer-mode auto makes the classic G-buffer there, the visibility buffer on a GPU.
     bool softwareRaster = true;
+    // GL_MAX_SHADER_STORAGE_BLOCK_SIZE of the GPU (0: unknown): whether the visibility buffer's resolve
+    // can read the scene's geometry (--gbuffer-mode auto falls back to classic where it cannot).
+    uint64_t maxStorageBlockBytes = 0;
     const SceneGpu* gpu = nullptr;
     const gl::ShaderLibrary* shaders = nullptr;
     // Environment cubes and IBL bakes, kept across frames (imported into each frame's graph).

@@ -36,7 +36,7 @@ enum class GBufferMode {
 struct GBufferSettings {
     GBufferNormalFormat normal = GBufferNormalFormat::Unpacked;
     GBufferPositionMode position = GBufferPositionMode::Stored;
-    GBufferMode mode = GBufferMode::Classic;
+    GBufferMode mode = GBufferMode::Auto;  // the default: visibility on a GPU, classic on a software rasteriser
     bool operator==(const GBufferSettings& o) const {
         return normal == o.normal && position == o.position && mode == o.mode;
     }
@@ -52,8 +52,15 @@ std::vector<GBufferPositionMode> allGBufferPositionModes();
 const char* gbufferModeName(GBufferMode mode);
 std::vector<GBufferMode> allGBufferModes();  // the two ways (classic, visibility); not auto
 std::vector<GBufferMode> gbufferModeChoices();  // what --gbuffer-mode takes: auto, classic, visibility
-// The way --gbuffer-mode `mode` makes the G-buffer on this rasteriser.
-GBufferMode resolveGBufferMode(GBufferMode mode, bool softwareRaster);
+// The way a frame makes its G-buffer and why (the skipped passes' reasons, `lightpass info`).
+struct GBufferModeChoice {
+    GBufferMode mode = GBufferMode::Classic;  // classic or visibility
+    std::string why;                          // starts "--gbuffer-mode <requested>"
+};
+// `visibilityUnsupported`: why the visibility buffer cannot make this scene's G-buffer on this GPU
+// (passes/visibility_resolve_pass: visibilityBufferUnsupported), empty when it can. auto then makes
+// the classic G-buffer; an explicit `visibility` throws lp::Error with that reason.
+GBufferModeChoice chooseGBufferMode(GBufferMode requested, bool softwareRaster, const std::string& visibilityUnsupported);
 std::string gbufferFormatNames();    // "unpacked, seed-packed, ..." for errors and help
 std::string gbufferPositionNames();
 

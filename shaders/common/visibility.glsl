@@ -41,6 +41,16 @@ vec3 windowBarycentrics(vec2 q, vec2 s0, vec2 s1, vec2 s2, vec3 clipW) {
     return sum != 0.0 ? l / sum : vec3(1.0, 0.0, 0.0);
 }
 
+// The value at barycentrics b of an attribute whose vertices hold a0, a1, a2, in the rasteriser's
+// plane-equation form a0 + b1 (a1 - a0) + b2 (a2 - a0): a value the three vertices share comes out
+// exactly, so the points of a plane stay on it (a floor's eye z, a flat normal), as the raster's
+// interpolated ones do. b0 a0 + b1 a1 + b2 a2 misses it by the weights' rounding (normalised, they sum
+// to 1 only within a few ulps), which a light lying in the plane turns into N.L != 0.
+float interpolateAttribute(vec3 b, float a0, float a1, float a2) { return a0 + b.y * (a1 - a0) + b.z * (a2 - a0); }
+vec2 interpolateAttribute(vec3 b, vec2 a0, vec2 a1, vec2 a2) { return a0 + b.y * (a1 - a0) + b.z * (a2 - a0); }
+vec3 interpolateAttribute(vec3 b, vec3 a0, vec3 a1, vec3 a2) { return a0 + b.y * (a1 - a0) + b.z * (a2 - a0); }
+vec4 interpolateAttribute(vec3 b, vec4 a0, vec4 a1, vec4 a2) { return a0 + b.y * (a1 - a0) + b.z * (a2 - a0); }
+
 // Whether the triangle v0 v1 v2 (eye space) faces the eye at the origin with counter-clockwise
 // winding, i.e. gl_FrontFacing under a projection that does not mirror (GL_CCW front faces).
 bool eyeTriangleFrontFacing(vec3 v0, vec3 v1, vec3 v2) { return dot(cross(v1 - v0, v2 - v0), v0) < 0.0; }

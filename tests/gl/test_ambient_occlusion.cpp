@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <set>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -103,9 +104,10 @@ struct AoImage {
     double at(int x, int y) const { return ao[size_t(y) * w + x]; }
 };
 
-AoImage renderAoView(const Scene& s, int w, int h, const AoSettings& ao) {
+AoImage renderAoView(const Scene& s, int w, int h, const AoSettings& ao, GBufferMode mode = GBufferMode::Auto) {
     Renderer r(s);
     RenderSettings settings;
+    settings.gbuffer.mode = mode;
     settings.width = w;
     settings.height = h;
     settings.view = DebugView::Ao;
@@ -240,33 +242,34 @@ TEST(ShaderAmbientOcclusion, TileNoiseIsAPermutationOfSixteen) {
 }
 
 // An open plane occludes nothing: AO 1 on it within 0.01 (8-bit output, samples rounded to pixel
-// centres), at full and half size.
+// centres), at full and half size, from either G-buffer mode's positions and normals.
 TEST(AmbientOcclusion, OpenPlaneIsUnoccluded) {
     const Scene s = cornerScene(false);
-    for (AoResolution res : {AoResolution::Full, AoResolution::Half}) {
-        SCOPED_TRACE(aoResolutionName(res));
-        const AoImage img = renderAoView(s, 96, 64, aoAt(res));
-        double worst = 1.0, sum = 0.0;
-        int n = 0;
-        for (int y = 0; y < img.h; ++y)
-            for (int x = 0; x < img.w; ++x) {
-                glm::dvec3 p;
-                if (!floorPoint(s, img.w, img.h, x, y, p)) continue;
-                worst = std::min(worst, img.at(x, y));
-                sum += img.at(x, y);
-                ++n;
-            }
-        EXPECT_GT(n, img.w * img.h / 4);
-        EXPECT_GE(sum / n, 0.995);
-        EXPECT_GE(worst, 0.99);
-    }
+    for (GBufferMode mode : allGBufferModes())
+        for (AoResolution res : {AoResolution::Full, AoResolution::Half}) {
+            SCOPED_TRACE(std::string(aoResolutionName(res)) + ", " + gbufferModeName(mode) + " G-buffer");
+            const AoImage img = renderAoView(s, 96, 64, aoAt(res), mode);
+            double worst = 1.0, sum = 0.0;
+            int n = 0;
+            for (int y = 0; y < img.h; ++y)
+                for (int x = 0; x < img.w; ++x) {
+                    glm::dvec3 p;
+                    if (!floorPoint(s, img.w, img.h, x, y, p)) continue;
+                    worst = std::min(worst, img.at(x, y));
+                    sum += img.at(x, y);
+                    ++n;
+                }
+            EXPECT_GT(n, img.w * img.h / 4);
+            EXPECT_GE(sum / n, 0.995);
+            EXPECT_GE(worst, 0.99);
+        }
 }
 
 // A 90-degree crease: on the floor at distance d from the wall the cosine-weighted visibility of
 // occluders within the radius r is 1 - (acos(a) - a sqrt(1 - a^2)) / pi, a = d / r. GTAO fades
 // samples out between 0.6 r and r, so its value lies between the visibilities with cut-offs r and
 // 0.6 r; bound 0.06 beyond them (16 rotations x 4 directions x 8 steps, the 4x4 denoise box spanning
-// a range of d, 8-bit output).
+// a range of d, 8-bit output). Either G-buffer mode.
 TEST(AmbientOcclusion, CornerMatchesAnalyticVisibility) {
     const Scene s = cornerScene(true);
     const int w = 128, h = 128;
@@ -274,29 +277,32 @@ TEST(AmbientOcclusion, CornerMatchesAnalyticVisibility) {
     settings.directions = 4;
     settings.steps = 8;
     const double r = settings.radius;
-    const AoImage img = renderAoView(s, w, h, settings);
-    int checked = 0;
-    const int x = w / 2;
-    for (int y = 0; y < h; ++y) {
+    for (GBufferMode mode : allGBufferModes()) {
+        SCOPED_TRACE(std::string(gbufferModeName(mode)) + " G-buffer");
+        const AoImage img = renderAoView(s, w, h, settings, mode);
+        int checked = 0;
+        const int x = w / 2;
+        for (int y = 0; y < h; ++y) {
+            glm::dvec3 p;
+            bool inside = true;  // the denoise's 4x4 box stays on the floor
+            for (int dy = -2; dy <= 2 && inside; ++dy)
+                for (int dx = -2; dx <= 2 && inside; ++dx) inside = floorPoint(s, w, h, x + dx, y + dy, p);
+            if (!inside || !floorPoint(s, w, h, x, y, p)) continue;
+            const double d = p.z;
+            if (d < 0.03 || d > 0.45) continue;
+            const double lo = cornerVisibility(d, r), hi = cornerVisibility(d, 0.6 * r);
+            const double got = img.at(x, y);
+            EXPECT_GE(got, lo - 0.06) << "d " << d << " expected in [" << lo << ", " << hi << "]";
+            EXPECT_LE(got, hi + 0.06) << "d " << d << " expected in [" << lo << ", " << hi << "]";
+            ++checked;
+        }
+        EXPECT_GE(checked, 5);
+        // Far from the crease (beyond the radius) the floor is open again.
         glm::dvec3 p;
-        bool inside = true;  // the denoise's 4x4 box stays on the floor
-        for (int dy = -2; dy <= 2 && inside; ++dy)
-            for (int dx = -2; dx <= 2 && inside; ++dx) inside = floorPoint(s, w, h, x + dx, y + dy, p);
-        if (!inside || !floorPoint(s, w, h, x, y, p)) continue;
-        const double d = p.z;
-        if (d < 0.03 || d > 0.45) continue;
-        const double lo = cornerVisibility(d, r), hi = cornerVisibility(d, 0.6 * r);
-        const double got = img.at(x, y);
-        EXPECT_GE(got, lo - 0.06) << "d " << d << " expected in [" << lo << ", " << hi << "]";
-        EXPECT_LE(got, hi + 0.06) << "d " << d << " expected in [" << lo << ", " << hi << "]";
-        ++checked;
+        ASSERT_TRUE(floorPoint(s, w, h, x, h - 3, p));
+        ASSERT_GT(p.z, 1.2 * r);
+        EXPECT_GE(img.at(x, h - 3), 0.97);
     }
-    EXPECT_GE(checked, 5);
-    // Far from the crease (beyond the radius) the floor is open again.
-    glm::dvec3 p;
-    ASSERT_TRUE(floorPoint(s, w, h, x, h - 3, p));
-    ASSERT_GT(p.z, 1.2 * r);
-    EXPECT_GE(img.at(x, h - 3), 0.97);
 }
 
 // Half size with the depth-aware upsample against full size on the corner: mean difference <= 0.03,

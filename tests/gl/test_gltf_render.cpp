@@ -1,8 +1,9 @@
 // glTF and MTL materials rendered: a normal-mapped plane shades as its analytic normal (glTF with and
 // without tangents, MTL norm), an MTL bump map as the height field's normal, emission adds exactly
-// its radiance, alpha MASK drops exactly the texels below the cutoff.
+// its radiance, alpha MASK drops exactly the texels below the cutoff. Each in both G-buffer modes.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -36,9 +37,10 @@ Scene modelScene(MeshData mesh) {
 }
 
 // HDR radiance at the centre pixel of a w x h render.
-glm::vec3 centre(const Scene& s, int w = 48, int h = 48) {
+glm::vec3 centre(const Scene& s, GBufferMode mode, int w = 48, int h = 48) {
     Renderer r(s);
     RenderSettings settings;
+    settings.gbuffer.mode = mode;
     settings.width = w;
     settings.height = h;
     settings.keepHdr = true;
@@ -50,7 +52,7 @@ glm::vec3 centre(const Scene& s, int w = 48, int h = 48) {
 
 // A 2 x 2 plane at y = 0 seen from straight above, lit by one sun from `toLight` (no shadows, no
 // ambient), Lambertian white: the centre's radiance is E / pi * max(N.L, 0).
-double lambertAtCentre(MeshData mesh, glm::vec3 toLight) {
+double lambertAtCentre(MeshData mesh, glm::vec3 toLight, GBufferMode mode) {
     for (Material& m : mesh.materials) {
         m.diffuse = glm::vec3(1.0f);
         m.specular = glm::vec3(0.0f);
@@ -68,21 +70,22 @@ double lambertAtCentre(MeshData mesh, glm::vec3 toLight) {
     sun.intensity = 2.0f;
     sun.castsShadows = false;
     s.directionalLights.push_back(sun);
-    return centre(s).x;
+    return centre(s, mode).x;
 }
 
-void expectShadesAsNormal(const MeshData& mesh, glm::dvec3 normal, const std::string& what) {
+void expectShadesAsNormal(const MeshData& mesh, glm::dvec3 normal, const std::string& what, GBufferMode mode) {
     // Two lights: one tells the tangent's sign, one the bitangent's.
     for (glm::vec3 L : {glm::vec3(0.8f, 0.6f, 0.0f), glm::vec3(0.0f, 0.6f, -0.8f), glm::vec3(-0.6f, 0.8f, 0.0f)}) {
         const double expected = 2.0 / kPi * std::max(glm::dot(glm::normalize(normal), glm::dvec3(L)), 0.0);
-        EXPECT_NEAR(lambertAtCentre(mesh, L), expected, 0.02 * 2.0 / kPi + 0.02 * expected)
+        EXPECT_NEAR(lambertAtCentre(mesh, L, mode), expected, 0.02 * 2.0 / kPi + 0.02 * expected)
             << what << ", light from " << L.x << " " << L.y << " " << L.z;
     }
 }
 
 fs::path tempDir() {
-    const fs::path d = fs::temp_directory_path() / ("lp_gltf_gl_" + std::to_string(::getpid()) + "_" +
-                                                    ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    std::string test = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+    std::replace(test.begin(), test.end(), '/', '_');  // parameterised: "Case/classic"
+    const fs::path d = fs::temp_directory_path() / ("lp_gltf_gl_" + std::to_string(::getpid()) + "_" + test);
     fs::remove_all(d);
     fs::create_directories(d);
     return d;
@@ -104,24 +107,32 @@ Image8 constantImage(int w, int h, glm::u8vec4 texel) {
     return img;
 }
 
+// Every case in both G-buffer modes: what the materials do (normal and bump maps, emission, MASK alpha,
+// single-sided faces) must hold for the visibility buffer's resolve as for the classic raster (CI's
+// llvmpipe makes the classic one under the default --gbuffer-mode auto, a GPU the visibility one).
+class GltfRender : public ::testing::TestWithParam<GBufferMode> {};
+
 }  // namespace
+
+INSTANTIATE_TEST_SUITE_P(GBufferModes, GltfRender, ::testing::ValuesIn(allGBufferModes()),
+                         [](const ::testing::TestParamInfo<GBufferMode>& info) { return std::string(gbufferModeName(info.param)); });
 
 // The plane's normal map holds tangent-space (0.36, 0.48, 0.8); with the tangent +X and the
 // bitangent -Z (up the image), the shading normal is (0.36, 0.8, -0.48).
-TEST(GltfRender, NormalMappedPlaneShadesAsItsAnalyticNormal) {
+TEST_P(GltfRender, NormalMappedPlaneShadesAsItsAnalyticNormal) {
     const glm::dvec3 n(0.36, 0.8, -0.48);
-    expectShadesAsNormal(loadGltf(dataPath("normal_plane.glb")).mesh, n, "glTF with tangents");
-    expectShadesAsNormal(loadGltf(dataPath("normal_plane_notangent.glb")).mesh, n, "glTF, generated tangents");
+    expectShadesAsNormal(loadGltf(dataPath("normal_plane.glb")).mesh, n, "glTF with tangents", GetParam());
+    expectShadesAsNormal(loadGltf(dataPath("normal_plane_notangent.glb")).mesh, n, "glTF, generated tangents", GetParam());
 }
 
 // MTL: "norm" is read as a tangent-space normal map (the same normal as above), "bump" as a height map:
 // a ramp rising 8/255 per texel along +u tilts the normal towards -X by the height step.
-TEST(GltfRender, MtlNormIsANormalMapAndBumpIsAHeightMap) {
+TEST_P(GltfRender, MtlNormIsANormalMapAndBumpIsAHeightMap) {
     const fs::path dir = tempDir();
     writePng(dir / "n.png", constantImage(8, 8, {173, 189, 230, 255}));  // round((n * 0.5 + 0.5) * 255)
     MeshData normMapped = loadObj(objPlane(dir, "newmtl m\nKd 1 1 1\nnorm n.png\n"));
     ASSERT_FALSE(normMapped.materials[0].normalMap.empty());
-    expectShadesAsNormal(normMapped, glm::dvec3(0.36, 0.8, -0.48), "MTL norm");
+    expectShadesAsNormal(normMapped, glm::dvec3(0.36, 0.8, -0.48), "MTL norm", GetParam());
 
     Image8 ramp{16, 16, {}};
     for (int y = 0; y < 16; ++y)
@@ -133,30 +144,30 @@ TEST(GltfRender, MtlNormIsANormalMapAndBumpIsAHeightMap) {
     ASSERT_TRUE(bumped.materials[0].normalMap.empty());
     // gbuffer.frag: N - 4 scale ((h(u+1) - h(u-1)) T + ...), h in [0, 1]: a step of 2 texels = 16/255.
     const double slope = 4.0 * 16.0 / 255.0;
-    expectShadesAsNormal(bumped, glm::dvec3(-slope, 1.0, 0.0), "MTL bump");
+    expectShadesAsNormal(bumped, glm::dvec3(-slope, 1.0, 0.0), "MTL bump", GetParam());
     fs::remove_all(dir);
 }
 
 // An emissive panel (emissiveFactor (1, 0.5, 0.25) x strength 4) in the dark: exactly (4, 2, 1).
-TEST(GltfRender, EmissionAddsExactlyItsRadiance) {
+TEST_P(GltfRender, EmissionAddsExactlyItsRadiance) {
     Scene s = modelScene(loadGltf(dataPath("emissive.gltf")).mesh);
     s.camera.position = {0.0f, 0.0f, 2.0f};
     s.camera.target = {0.0f, 0.0f, 0.0f};
-    const glm::vec3 c = centre(s);
+    const glm::vec3 c = centre(s, GetParam());
     EXPECT_NEAR(c.x, 4.0f, 4e-3f);
     EXPECT_NEAR(c.y, 2.0f, 2e-3f);
     EXPECT_NEAR(c.z, 1.0f, 1e-3f);
     // And on top of reflected light: a grey panel under ambient 0.5 gives 0.5 kd + emission.
     for (Material& m : s.models[0].mesh.materials) m.diffuse = glm::vec3(0.5f);
     s.ambient = glm::vec3(0.5f);
-    const glm::vec3 lit = centre(s);
+    const glm::vec3 lit = centre(s, GetParam());
     EXPECT_NEAR(lit.x, 4.0f + 0.25f, 1e-2f);
     EXPECT_NEAR(lit.z, 1.0f + 0.25f, 1e-2f);
 }
 
 // alpha_mask.gltf: quads at x = 0, 1.5, 3 (1 x 1, y 0..1), MASK at cutoff 0.5: base alpha 0.3 (not
 // drawn), 0.7 (drawn), and a texture whose left half is alpha 0 (that half not drawn).
-TEST(GltfRender, AlphaMaskDropsTexelsBelowTheCutoff) {
+TEST_P(GltfRender, AlphaMaskDropsTexelsBelowTheCutoff) {
     Scene s = modelScene(loadGltf(dataPath("alpha_mask.gltf")).mesh);
     s.ambient = glm::vec3(1.0f);  // white base, ambient 1: radiance 1 where drawn, 0 (black sky) elsewhere
     s.camera.position = {2.0f, 0.5f, 6.0f};
@@ -165,6 +176,7 @@ TEST(GltfRender, AlphaMaskDropsTexelsBelowTheCutoff) {
     const int w = 96, h = 48;
     Renderer r(s);
     RenderSettings settings;
+    settings.gbuffer.mode = GetParam();
     settings.width = w;
     settings.height = h;
     settings.keepHdr = true;
@@ -183,19 +195,19 @@ TEST(GltfRender, AlphaMaskDropsTexelsBelowTheCutoff) {
 }
 
 // Single-sided glTF materials are not drawn from behind; MTL (double-sided) ones are.
-TEST(GltfRender, SingleSidedMaterialsHideBackFaces) {
+TEST_P(GltfRender, SingleSidedMaterialsHideBackFaces) {
     Scene s = modelScene(loadGltf(dataPath("emissive.gltf")).mesh);
     s.camera.position = {0.0f, 0.0f, -2.0f};  // behind the panel (it faces +Z)
     s.camera.target = {0.0f, 0.0f, 0.0f};
-    EXPECT_NEAR(centre(s).x, 0.0f, 1e-4f);
+    EXPECT_NEAR(centre(s, GetParam()).x, 0.0f, 1e-4f);
     for (Material& m : s.models[0].mesh.materials) m.doubleSided = true;
-    EXPECT_NEAR(centre(s).x, 4.0f, 4e-3f);
+    EXPECT_NEAR(centre(s, GetParam()).x, 4.0f, 4e-3f);
 }
 
 // A glTF spot (node at (0, 1, 0) turned -90 deg about +X: its -Z points down; cone 0.3 / 0.5 rad) over
 // a white plane seen from above: the centre, on the axis, is lit; points beyond the outer angle
 // (28.6 deg, 0.55 m from the foot) on either side are exactly black.
-TEST(GltfRender, GltfSpotLightsItsConeOnly) {
+TEST_P(GltfRender, GltfSpotLightsItsConeOnly) {
     const fs::path dir = tempDir();
     const double s = std::sqrt(0.5);
     std::ofstream(dir / "spot.gltf")
@@ -224,6 +236,7 @@ TEST(GltfRender, GltfSpotLightsItsConeOnly) {
     const int w = 48, h = 48;
     Renderer r(scene);
     RenderSettings settings;
+    settings.gbuffer.mode = GetParam();
     settings.width = w;
     settings.height = h;
     settings.keepHdr = true;
@@ -246,8 +259,9 @@ TEST(GltfRender, GltfSpotLightsItsConeOnly) {
 // (continuous, what a file's tangents would hold): every sphere pixel within 2% of the brightest, and
 // across the seam the step between the two columns either side of it within 2% as well (the
 // analytic render's own step there is the smooth gradient).
-TEST(GltfRender, GeneratedTangentsShadeAUvSphereWithoutASeam) {
-    auto render = [](MeshData mesh, bool normalMapped = true) {
+TEST_P(GltfRender, GeneratedTangentsShadeAUvSphereWithoutASeam) {
+    const GBufferMode mode = GetParam();
+    auto render = [mode](MeshData mesh, bool normalMapped = true) {
         Material m;
         m.diffuse = glm::vec3(1.0f);
         m.specular = glm::vec3(0.0f);
@@ -268,6 +282,7 @@ TEST(GltfRender, GeneratedTangentsShadeAUvSphereWithoutASeam) {
         s.directionalLights.push_back(sun);
         Renderer r(s);
         RenderSettings settings;
+        settings.gbuffer.mode = mode;
         settings.width = 64;
         settings.height = 64;
         settings.keepHdr = true;

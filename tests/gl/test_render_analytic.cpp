@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 #include <limits>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -93,43 +94,47 @@ bool planeAround(const Scene& s, int w, int h, int x, int y, int radius) {
 }
 
 void checkPlane(const Scene& s, float renderScale = 1.0f) {
-    const int w = 96, h = 64;
-    Renderer r(s);
-    RenderSettings settings;
-    settings.width = w;
-    settings.height = h;
-    settings.keepHdr = true;
-    settings.renderScale = renderScale;
-    settings.aa.dither = false;  // the display is checked against plain rounding (+-1 LSB)
-    r.render(settings);
-    EXPECT_EQ(r.graph().isLive("upscale"), renderScale < 1.0f);
-    ImageF hdr = r.readHdr();
-    Image8 ldr = r.readDisplay();
-    ASSERT_EQ(hdr.width, w);  // the output size whatever the render scale
-    ASSERT_EQ(ldr.height, h);
-    const int margin = renderScale < 1.0f ? int(std::ceil(2.0f / renderScale)) : 0;
-    int checked = 0;
-    double worstHdr = 0.0, worstLdr = 0.0;
-    for (int y = 0; y < h; ++y) {
-        for (int x = 0; x < w; ++x) {
-            glm::dvec3 p;
-            if (!planePoint(s, w, h, x, y, p)) continue;
-            if (margin > 0 && !planeAround(s, w, h, x, y, margin)) continue;
-            glm::dvec3 e = expectedRadiance(s, p);
-            for (int c = 0; c < 3; ++c) {
-                double got = hdr.rgba[(size_t(y) * w + x) * 4 + c];
-                // fp16 storage: 2^-11 relative rounding; interpolated positions add ~1e-5.
-                double rel = std::abs(got - e[c]) / std::max(e[c], 1e-3);
-                worstHdr = std::max(worstHdr, rel);
-                double ldrExpected = srgbRef(tonemapRef(e[c])) * 255.0;
-                worstLdr = std::max(worstLdr, std::abs(ldr.rgba[(size_t(y) * w + x) * 4 + c] - ldrExpected));
+    for (GBufferMode mode : allGBufferModes()) {  // the analytic radiance holds for either G-buffer
+        SCOPED_TRACE(std::string(gbufferModeName(mode)) + " G-buffer");
+        const int w = 96, h = 64;
+        Renderer r(s);
+        RenderSettings settings;
+        settings.gbuffer.mode = mode;
+        settings.width = w;
+        settings.height = h;
+        settings.keepHdr = true;
+        settings.renderScale = renderScale;
+        settings.aa.dither = false;  // the display is checked against plain rounding (+-1 LSB)
+        r.render(settings);
+        EXPECT_EQ(r.graph().isLive("upscale"), renderScale < 1.0f);
+        ImageF hdr = r.readHdr();
+        Image8 ldr = r.readDisplay();
+        ASSERT_EQ(hdr.width, w);  // the output size whatever the render scale
+        ASSERT_EQ(ldr.height, h);
+        const int margin = renderScale < 1.0f ? int(std::ceil(2.0f / renderScale)) : 0;
+        int checked = 0;
+        double worstHdr = 0.0, worstLdr = 0.0;
+        for (int y = 0; y < h; ++y) {
+            for (int x = 0; x < w; ++x) {
+                glm::dvec3 p;
+                if (!planePoint(s, w, h, x, y, p)) continue;
+                if (margin > 0 && !planeAround(s, w, h, x, y, margin)) continue;
+                glm::dvec3 e = expectedRadiance(s, p);
+                for (int c = 0; c < 3; ++c) {
+                    double got = hdr.rgba[(size_t(y) * w + x) * 4 + c];
+                    // fp16 storage: 2^-11 relative rounding; interpolated positions add ~1e-5.
+                    double rel = std::abs(got - e[c]) / std::max(e[c], 1e-3);
+                    worstHdr = std::max(worstHdr, rel);
+                    double ldrExpected = srgbRef(tonemapRef(e[c])) * 255.0;
+                    worstLdr = std::max(worstLdr, std::abs(ldr.rgba[(size_t(y) * w + x) * 4 + c] - ldrExpected));
+                }
+                ++checked;
             }
-            ++checked;
         }
+        EXPECT_GT(checked, w * h / 4);
+        EXPECT_LT(worstHdr, 2e-3) << "relative HDR error";
+        EXPECT_LE(worstLdr, 1.0) << "display error in 1/255 steps";
     }
-    EXPECT_GT(checked, w * h / 4);
-    EXPECT_LT(worstHdr, 2e-3) << "relative HDR error";
-    EXPECT_LE(worstLdr, 1.0) << "display error in 1/255 steps";
 }
 
 }  // namespace

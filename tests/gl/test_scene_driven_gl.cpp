@@ -3,6 +3,7 @@
 // where the environment (or its bake settings) changed.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -70,18 +71,31 @@ TEST(SceneDrivenGl, UnneededPassesCostNoTimeAndNoMemory) {
 }
 
 // The texcoords view reads only depth and texcoords: the other G-buffer targets get texture 0 and
-// the G-buffer pass draws without them (no GL error), and the view is still the texcoords.
+// the G-buffer pass (classic) or the resolve (visibility) writes without them (no GL error), and the
+// view is still the texcoords. The pool holds depth, texcoords and the display, plus the R32UI
+// triangle ids in visibility mode (the one target that mode adds).
 TEST(SceneDrivenGl, UnreadGBufferTargetsAreNotAllocated) {
     Scene scene = loadScene(test::repoPath("scenes/cornell.json"));
-    Renderer r(scene);
-    RenderSettings s = tiny();
-    s.view = DebugView::Texcoords;
-    ASSERT_NO_THROW(r.render(s, 0.0f, false));
     auto bytes = [](GLenum format) { return fg::TextureDesc{64, 48, format}.bytes(); };
-    EXPECT_EQ(r.pool().totalBytes(), bytes(GL_DEPTH_COMPONENT32F) + bytes(GL_RG32F) + bytes(GL_RGBA8));
-    for (const auto& res : r.graph().resources())
-        if (res.name == "gbuffer.normal" || res.name == "gbuffer.diffuse" || res.name == "gbuffer.specular")
-            EXPECT_FALSE(res.live) << res.name;
+    for (GBufferMode mode : allGBufferModes()) {
+        SCOPED_TRACE(std::string(gbufferModeName(mode)) + " G-buffer");
+        Renderer r(scene);
+        RenderSettings s = tiny();
+        s.view = DebugView::Texcoords;
+        s.gbuffer.mode = mode;
+        ASSERT_NO_THROW(r.render(s, 0.0f, false));
+        const bool visibility = mode == GBufferMode::Visibility;
+        ASSERT_EQ(r.graph().isLive("gbuffer_resolve"), visibility);
+        EXPECT_EQ(r.pool().totalBytes(), bytes(GL_DEPTH_COMPONENT32F) + bytes(GL_RG32F) + bytes(GL_RGBA8) +
+                                             (visibility ? bytes(GL_R32UI) : 0));
+        bool idsLive = false;
+        for (const auto& res : r.graph().resources()) {
+            if (res.name == "gbuffer.normal" || res.name == "gbuffer.diffuse" || res.name == "gbuffer.specular")
+                EXPECT_FALSE(res.live) << res.name;
+            if (res.name == "gbuffer.visibility") idsLive = res.live;
+        }
+        EXPECT_EQ(idsLive, visibility) << "gbuffer.visibility";
+    }
 }
 
 TEST(SceneDrivenGl, IblBakeRunsOnlyWhenTheEnvironmentChanged) {
@@ -110,24 +124,29 @@ TEST(SceneDrivenGl, IblBakeRunsOnlyWhenTheEnvironmentChanged) {
 // creates, integer and depth targets included), no GL state left changed, no NaN.
 TEST(SceneDrivenGl, DisablingAnyPassLeavesAValidFrame) {
     Scene scene = loadScene(test::repoPath("scenes/cornell.json"));
-    RenderSettings s = tiny();
-    s.environment.ibl = true;
-    s.post.bloom = true;
-    s.post.toon = true;
-    s.post.bloomMethod = PostSettings::BloomMethod::MipChain;
-    s.post.backend = PostSettings::Backend::Glsl;
-    s.autoExposure = true;
-    s.keepHdr = true;
-    s.gbuffer.normal = GBufferNormalFormat::Oct16;  // an integer target
-    Renderer r(scene);
-    r.render(s, 0.0f, false);
-    std::vector<std::string> passes = r.graph().executionOrder();
-    ASSERT_GE(passes.size(), size_t(9));
-    for (const std::string& name : passes) {
-        RenderSettings off = s;
-        off.disabledPasses = {name};
-        ASSERT_NO_THROW(r.render(off, 0.0f, false)) << name;
-        for (float v : r.readHdr().rgba) ASSERT_TRUE(std::isfinite(v)) << "with " << name << " off";
-        EXPECT_EQ(r.readDisplay().width, s.width);
+    for (GBufferMode mode : allGBufferModes()) {  // each mode's own G-buffer passes disabled too
+        SCOPED_TRACE(std::string(gbufferModeName(mode)) + " G-buffer");
+        RenderSettings s = tiny();
+        s.environment.ibl = true;
+        s.post.bloom = true;
+        s.post.toon = true;
+        s.post.bloomMethod = PostSettings::BloomMethod::MipChain;
+        s.post.backend = PostSettings::Backend::Glsl;
+        s.autoExposure = true;
+        s.keepHdr = true;
+        s.gbuffer.normal = GBufferNormalFormat::Oct16;  // an integer target
+        s.gbuffer.mode = mode;
+        Renderer r(scene);
+        r.render(s, 0.0f, false);
+        std::vector<std::string> passes = r.graph().executionOrder();
+        ASSERT_GE(passes.size(), size_t(9));
+        EXPECT_EQ(std::count(passes.begin(), passes.end(), "gbuffer_resolve"), mode == GBufferMode::Visibility ? 1 : 0);
+        for (const std::string& name : passes) {
+            RenderSettings off = s;
+            off.disabledPasses = {name};
+            ASSERT_NO_THROW(r.render(off, 0.0f, false)) << name;
+            for (float v : r.readHdr().rgba) ASSERT_TRUE(std::isfinite(v)) << "with " << name << " off";
+            EXPECT_EQ(r.readDisplay().width, s.width);
+        }
     }
 }

@@ -79,6 +79,58 @@ layout(std430, binding = 7) readonly buffer Cases { vec4 cases[]; };
     EXPECT_LT(worst, 2e-4);
 }
 
+// interpolateAttribute keeps a value the three vertices share exact, whatever the weights' rounding:
+// random triangles lying in a plane z = c (c random, like a floor's eye z), with weights that sum to
+// 1 only within 4 ulps (an approximate reciprocal in windowBarycentrics' normalisation leaves them
+// so on NVIDIA). z must come out exactly c; x and y (up to ~60) within 1e-4 of the double reference.
+// The sum form b0 a0 + b1 a1 + b2 a2 misses c for many of these cases (checked on the CPU below),
+// which a light lying in the plane turns into N.L != 0 (StabilityRender.LightAtTheCameraAndOnTheSurface).
+TEST(ShaderVisibility, SharedVertexValuesInterpolateExactly) {
+    std::mt19937 rng(1919);
+    std::uniform_real_distribution<float> xy(-20.0f, 20.0f), plane(-30.0f, -0.1f), w(-0.3f, 1.3f);
+    std::uniform_int_distribution<int> ulps(-4, 4);
+    const int n = 256;
+    std::vector<glm::vec4> inputs, index(n);
+    std::vector<glm::dvec3> expected;
+    int sumFormMisses = 0;
+    for (int i = 0; i < n; ++i) {
+        const float c = plane(rng);
+        glm::vec3 v[3];
+        for (glm::vec3& p : v) p = {xy(rng), xy(rng), c};
+        const float b1 = w(rng), b2 = w(rng);
+        glm::vec3 b(1.0f - b1 - b2, b1, b2);
+        for (int k = 0; k < 3; ++k) b[k] = b[k] * (1.0f + float(ulps(rng)) * std::ldexp(1.0f, -24));
+        inputs.emplace_back(v[0], 0.0f);
+        inputs.emplace_back(v[1], 0.0f);
+        inputs.emplace_back(v[2], 0.0f);
+        inputs.emplace_back(b, 0.0f);
+        expected.push_back(double(b.x) * glm::dvec3(v[0]) + double(b.y) * glm::dvec3(v[1]) + double(b.z) * glm::dvec3(v[2]));
+        volatile float sumForm = b.x * c;  // no contraction: the float sum form
+        sumForm = sumForm + b.y * c;
+        sumForm = sumForm + b.z * c;
+        sumFormMisses += sumForm != c ? 1 : 0;
+        index[size_t(i)] = glm::vec4(float(i));
+    }
+    ASSERT_GT(sumFormMisses, n / 10) << "the cases do not exercise the weights' rounding";
+    const std::string globals = R"(
+layout(std430, binding = 7) readonly buffer Cases { vec4 cases[]; };
+)";
+    gl::Buffer cases = gl::makeBuffer(GLsizeiptr(inputs.size() * sizeof(glm::vec4)), inputs.data(), 0, "cases");
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, cases.id());
+    const std::vector<glm::vec4> got = test::runGlsl({"common/visibility.glsl"}, R"(
+        int c = int(x.x) * 4;
+        return vec4(interpolateAttribute(cases[c + 3].xyz, cases[c].xyz, cases[c + 1].xyz, cases[c + 2].xyz), 0.0);
+    )",
+                                                     index, globals);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, 0);
+    for (int i = 0; i < n; ++i) {
+        const glm::vec4 g = got[size_t(i)];
+        EXPECT_EQ(g.z, inputs[size_t(i) * 4].z) << "case " << i << ": the plane's z is not kept";
+        for (int k = 0; k < 2; ++k)
+            EXPECT_NEAR(g[k], expected[size_t(i)][k], 1e-4) << "case " << i << " component " << k;
+    }
+}
+
 TEST(ShaderVisibility, IdPackingKeepsZeroForEmpty) {
     const std::vector<glm::vec4> got = test::runGlsl({"common/visibility.glsl"}, R"(
         uint id = visibilityPackId(uint(x.x), uint(x.y));

@@ -247,6 +247,21 @@ class Summariser(unittest.TestCase):
                 self.assertEqual(summarize_peers.main([d, "cornell"]), 0)
             self.assertIn("| cornell | 4.01 | - | - | 13.63 | - | - |", out.getvalue())
 
+    def test_names_the_gbuffer_mode_each_run_timed(self):
+        with tempfile.TemporaryDirectory() as d:
+            with open(os.path.join(DATA, "results", "peers_lightpass_cornell.json"), encoding="utf-8") as f:
+                run = json.load(f)
+            for r in run["runs"]:  # what --gbuffer-mode auto times on a GPU
+                r["passes"]["gbuffer_visibility"] = r["passes"].pop("gbuffer")
+                r["passes"]["gbuffer_resolve"] = r["passes"]["gbuffer_visibility"]
+            with open(os.path.join(d, "peers_lightpass_cornell.json"), "w", encoding="utf-8") as f:
+                json.dump(run, f)
+            shutil.copy(os.path.join(DATA, "results", "peers_lightpass_gallery.json"), d)
+            with redirect_stdout(io.StringIO()) as out:
+                self.assertEqual(summarize_peers.main([d, "gallery", "cornell"]), 0)
+            self.assertIn("lightpass G-buffer (from the passes it timed): gallery classic, cornell visibility.",
+                          out.getvalue())
+
     def test_no_results_is_an_error(self):
         with tempfile.TemporaryDirectory() as d:
             with redirect_stdout(io.StringIO()), redirect_stderr(io.StringIO()) as err:

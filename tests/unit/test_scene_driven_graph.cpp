@@ -13,8 +13,10 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "engine/core/error.hpp"
 #include "engine/graph/frame_graph.hpp"
 #include "frame/frame_builder.hpp"
+#include "passes/visibility_resolve_pass.hpp"
 #include "engine/scene/scene_loader.hpp"
 
 using namespace lp;
@@ -39,10 +41,12 @@ struct Built {
     size_t transientBytes = 0;
 };
 
-// softwareRaster: the rasteriser the frame is for (--gbuffer-mode auto follows it).
-Built build(const Scene& scene, const RenderSettings& settings, bool softwareRaster = true) {
+// softwareRaster, maxStorageBlockBytes: the GPU the frame is for (--gbuffer-mode auto follows them).
+Built build(const Scene& scene, const RenderSettings& settings, bool softwareRaster = true,
+            uint64_t maxStorageBlockBytes = 0) {
     FrameData frame = makeFrameData(scene, settings, 0.0f);
     frame.softwareRaster = softwareRaster;
+    frame.maxStorageBlockBytes = maxStorageBlockBytes;
     fg::FrameGraph graph;
     PassStates passes;
     buildFrameGraph(graph, passes, frame);
@@ -535,11 +539,12 @@ TEST(SceneDrivenGraph, TaaHistoryResetsOnCutResizeAndSettingChange) {
     EXPECT_FALSE(taaHistoryUsable(state, frame, settingsSignature(s)));
 }
 
-// --gbuffer-mode auto: the visibility buffer on a GPU's rasteriser, the classic pass on a software
-// one (llvmpipe: the resolve costs 13x the classic raster there) or with none known; the skipped
-// passes say why.
+// --gbuffer-mode auto (the default): the visibility buffer on a GPU's rasteriser, the classic pass on
+// a software one (llvmpipe: the resolve costs 13x the classic raster there) or with none known; the
+// skipped passes say why.
 TEST(SceneDrivenGraph, GBufferModeAutoFollowsTheRasteriser) {
     EXPECT_TRUE(FrameData().softwareRaster) << "no GPU known: classic";
+    EXPECT_EQ(RenderSettings().gbuffer.mode, GBufferMode::Auto) << "the default";
     for (bool software : {true, false}) {
         RenderSettings s = small();
         s.gbuffer.mode = GBufferMode::Auto;
@@ -550,10 +555,59 @@ TEST(SceneDrivenGraph, GBufferModeAutoFollowsTheRasteriser) {
         EXPECT_EQ(b.runs.count("gbuffer_resolve"), software ? 0u : 1u);
         const std::string why = software ? b.reasons.at("gbuffer_visibility") : b.reasons.at("gbuffer");
         EXPECT_NE(why.find("--gbuffer-mode auto"), std::string::npos) << why;
-        EXPECT_EQ(resolveGBufferMode(GBufferMode::Auto, software), software ? GBufferMode::Classic : GBufferMode::Visibility);
+        EXPECT_NE(why.find(software ? "software rasteriser" : "GPU rasteriser"), std::string::npos) << why;
+        const GBufferModeChoice c = chooseGBufferMode(GBufferMode::Auto, software, "");
+        EXPECT_EQ(c.mode, software ? GBufferMode::Classic : GBufferMode::Visibility);
     }
     for (GBufferMode fixed : allGBufferModes())
-        for (bool software : {true, false}) EXPECT_EQ(resolveGBufferMode(fixed, software), fixed);
+        for (bool software : {true, false}) EXPECT_EQ(chooseGBufferMode(fixed, software, "").mode, fixed);
+}
+
+// A scene the visibility buffer cannot hold on this GPU (its vertices or indices beyond the storage
+// block limit the resolve reads them through): auto makes the classic G-buffer there and the skipped
+// passes say why; an explicit --gbuffer-mode visibility is a one-line error naming the limit. Every
+// material kind the scenes use (opaque, MASK, blended, textured, normal-mapped, glTF) is the
+// visibility buffer's (VisibilityBuffer.GBufferEqualsClassicOnEveryBundledScene), so the size is
+// the only thing auto has to check.
+TEST(SceneDrivenGraph, GBufferModeAutoFallsBackWhereTheVisibilityBufferCannotHoldTheScene) {
+    const Scene& scene = bundledScene("cornell");
+    uint64_t vertexBytes = 0, indexBytes = 0;
+    for (const ModelInstance& m : scene.models) {
+        vertexBytes += m.mesh.vertices.size() * sizeof(Vertex);
+        indexBytes += m.mesh.indices.size() * sizeof(uint32_t);
+    }
+    ASSERT_GT(vertexBytes, indexBytes);
+    EXPECT_EQ(visibilityBufferUnsupported(scene, 0), "") << "unknown limit: not checked";
+    EXPECT_EQ(visibilityBufferUnsupported(scene, vertexBytes), "") << "exactly at the limit fits";
+    const std::string why = visibilityBufferUnsupported(scene, vertexBytes - 1);
+    EXPECT_NE(why.find("vertices"), std::string::npos) << why;
+    EXPECT_NE(why.find("GL_MAX_SHADER_STORAGE_BLOCK_SIZE"), std::string::npos) << why;
+    EXPECT_NE(visibilityBufferUnsupported(scene, indexBytes - 1), "");
+
+    RenderSettings s = small();
+    s.gbuffer.mode = GBufferMode::Auto;
+    const Built fits = build(scene, s, false, vertexBytes);
+    EXPECT_EQ(fits.runs.count("gbuffer_resolve"), 1u);
+    const Built tooLarge = build(scene, s, false, vertexBytes - 1);
+    EXPECT_EQ(tooLarge.runs.count("gbuffer"), 1u);
+    EXPECT_EQ(tooLarge.runs.count("gbuffer_visibility"), 0u);
+    const std::string reason = tooLarge.reasons.at("gbuffer_resolve");
+    EXPECT_NE(reason.find("--gbuffer-mode auto: classic"), std::string::npos) << reason;
+    EXPECT_NE(reason.find(why), std::string::npos) << reason;
+    // forward+ has no G-buffer to choose: unaffected.
+    s.renderPath = RenderPath::ForwardPlus;
+    EXPECT_EQ(build(scene, s, false, vertexBytes - 1).runs.count("depth_prepass"), 1u);
+
+    s = small();
+    s.gbuffer.mode = GBufferMode::Visibility;
+    try {
+        build(scene, s, false, vertexBytes - 1);
+        ADD_FAILURE() << "--gbuffer-mode visibility built a scene the visibility buffer cannot hold";
+    } catch (const Error& e) {
+        const std::string message = e.what();
+        EXPECT_EQ(message.rfind("--gbuffer-mode visibility: " + why, 0), 0u) << message;
+        EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    }
 }
 
 // --gbuffer-mode: each mode's passes run and the other's are skipped with the reason; the resolve's
