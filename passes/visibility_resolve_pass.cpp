@@ -68,10 +68,6 @@ void buildGeometry(VisibilityResolvePass& state, const SceneGpu& gpu) {
     if (records.empty()) records.emplace_back();
     state.draws = gl::makeBuffer(GLsizeiptr(records.size() * sizeof(VisibilityDrawRecord)), records.data(), 0,
                                  "gbuffer_resolve.draws");
-    state.meshes = gl::makeBuffer(GLsizeiptr(std::max<size_t>(gpu.meshes.size(), 1) * sizeof(MeshRecord)), nullptr,
-                                  GL_DYNAMIC_STORAGE_BIT, "gbuffer_resolve.meshes");
-    state.materials = gl::makeBuffer(GLsizeiptr(std::max<size_t>(gpu.materials.size(), 1) * sizeof(MaterialRecord)),
-                                     nullptr, GL_DYNAMIC_STORAGE_BIT, "gbuffer_resolve.materials");
     state.geometryOf = &gpu;
     state.geometryTriangles = gpu.triangleCount;
 }
@@ -143,17 +139,16 @@ GBuffer addVisibilityResolvePass(fg::FrameGraph& graph, VisibilityResolvePass& s
                 meshes.push_back({mv, glm::mat4(glm::inverseTranspose(glm::mat3(mv))), viewProjection * m.model,
                                   frame.previousViewProjection * m.model});
             }
-            if (!meshes.empty())
-                glNamedBufferSubData(state.meshes.id(), 0, GLsizeiptr(meshes.size() * sizeof(MeshRecord)), meshes.data());
+            // Into buffers no earlier frame's resolve still reads (gl::StreamBuffer): a moving camera
+            // changes the transforms every frame.
+            const GLuint meshBuffer = state.meshes.fill(meshes.data(), meshes.size() * sizeof(MeshRecord));
             std::vector<MaterialRecord> materials;
             for (const GpuMaterial& m : gpu.materials)
                 materials.push_back({glm::vec4(m.diffuse, m.opacity), glm::vec4(m.specular, m.metallic),
                                      glm::vec4(m.shininess, m.roughness, m.bumpScale, m.normalScale),
                                      glm::vec4(m.occlusionStrength, m.alphaCutoff, 0.0f, 0.0f),
                                      glm::uvec4(materialFlags(m), 0u, 0u, 0u)});
-            if (!materials.empty())
-                glNamedBufferSubData(state.materials.id(), 0, GLsizeiptr(materials.size() * sizeof(MaterialRecord)),
-                                     materials.data());
+            const GLuint materialBuffer = state.materials.fill(materials.data(), materials.size() * sizeof(MaterialRecord));
 
             const GLuint bound = bindGBufferImages(res, d.out);
             auto loc = [prog](const char* name) { return glGetUniformLocation(prog, name); };
@@ -166,8 +161,7 @@ GBuffer addVisibilityResolvePass(fg::FrameGraph& graph, VisibilityResolvePass& s
             glProgramUniform1i(prog, loc("uDepthZeroToOne"),
                                frame.settings->gbuffer.position == GBufferPositionMode::ReversedZ);
             setBackgroundMotionUniforms(prog, frame);
-            const GLuint buffers[5] = {state.vertices.id(), state.indices.id(), state.draws.id(), state.meshes.id(),
-                                       state.materials.id()};
+            const GLuint buffers[5] = {state.vertices.id(), state.indices.id(), state.draws.id(), meshBuffer, materialBuffer};
             for (GLuint i = 0; i < 5; ++i) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, buffers[i]);
             glBindTextureUnit(5, res.texture(d.ids));
             glBindTextureUnit(6, res.texture(d.depth));

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "engine/gl/handles.hpp"
+#include "engine/gl/stream_buffer.hpp"
 #include "engine/gl/raster_probe.hpp"
 #include "engine/graph/frame_graph.hpp"
 #include "engine/render/frame_data.hpp"
@@ -26,7 +27,8 @@ struct VisibilityResolvePass {
     // at the same address is told apart by its size).
     const SceneGpu* geometryOf = nullptr;
     size_t geometryTriangles = 0;
-    gl::Buffer vertices, indices, draws, meshes, materials;
+    gl::Buffer vertices, indices, draws;
+    gl::StreamBuffer meshes{"gbuffer_resolve.meshes"}, materials{"gbuffer_resolve.materials"};  // refilled every frame
     uint32_t drawCount = 0;
     std::vector<int> texturedMaterials;  // one dispatch each, with its maps bound
     std::optional<gl::RasterInterpolation> rasterModel;  // probed on the first resolve
