@@ -34,30 +34,13 @@ for s in bench/mitsuba/scenes/lamp50k.json bench/mitsuba/scenes/royal_esplanade_
 done
 # The two tables: OUTDIR/ibl_specular.md (specular methods) and OUTDIR/ibl_extract.md (extracted lights).
 python3 - $R <<'PY'
-import json, os, sys
+import sys
+sys.path.insert(0, "bench")
+from ibl_runs import flag_value, table
 R = sys.argv[1]
-
-def table(name, scenes, extract):
-    lines = ["| scene | size | render path | specular |" + (" extracted lights |" if extract else "") +
-             " ibl ms | forward_opaque ms | frame ms |",
-             "| --- | --- | --- | --- |" + (" ---: |" if extract else "") + " ---: | ---: | ---: |"]
-    for scene in scenes:
-        path = f"{R}/{name}_{scene}.json"
-        if not os.path.isfile(path):
-            continue
-        for run in json.load(open(path))["runs"]:
-            f, p = run["flags"], run["passes"]
-            size = f.split("--size ")[1].split()[0] if "--size " in f else "-"
-            rpath = "forward+" if "forward+" in f else "deferred"
-            spec = "split sum" if "split-sum" in f else f"sampled {f.split('--ibl-specular-samples ')[1].split()[0]}"
-            lights = f.split("--ibl-extract-lights ")[1].split()[0] if "--ibl-extract-lights " in f else "-"
-            cell = lambda n: f"{p[n]['median_ms']:.4f}" if n in p else "-"
-            lines.append(f"| {scene} | {size} | {rpath} | {spec} |" + (f" {lights} |" if extract else "") +
-                         f" {cell('ibl')} | {cell('forward_opaque')} | {cell('frame')} |")
-    text = "\n".join(lines) + "\n"
-    open(f"{R}/{name}.md", "w").write(text)
-    print(text)
-
-table("ibl_extract", ["lamp50k", "royal_esplanade_1k"], True)
-table("ibl_specular", ["gallery", "lamp50k"], False)
+lights = [("extracted lights", lambda f: flag_value(f, "--ibl-extract-lights"))]
+passes = ["ibl", "forward_opaque", "frame"]
+print(table(f"{R}/ibl_extract.md", [(s, f"{R}/ibl_extract_{s}.json") for s in ["lamp50k", "royal_esplanade_1k"]],
+            lights, passes))
+print(table(f"{R}/ibl_specular.md", [(s, f"{R}/ibl_specular_{s}.json") for s in ["gallery", "lamp50k"]], [], passes))
 PY

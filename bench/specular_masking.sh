@@ -27,24 +27,12 @@ done
 $B/run sweep --scene bench/mitsuba/scenes/royal_esplanade_1k.json --size 1920x1080 --frames 50 \
   --knob specular-masking --out-dir $R/sweep -q > $R/sweep.log 2>&1 || echo "sweep failed (see $R/sweep.log)"
 python3 - $R <<'PY'
-import json, os, sys
+import sys
+sys.path.insert(0, "bench")
+from ibl_runs import table
 R = sys.argv[1]
-lines = ["| scene | size | render path | specular | masking | global_lights ms | ibl ms | forward_opaque ms | frame ms |",
-         "| --- | --- | --- | --- | --- | ---: | ---: | ---: | ---: |"]
-for scene in ["royal_esplanade_1k", "cornell"]:
-    path = f"{R}/specular_masking_{scene}.json"
-    if not os.path.isfile(path):
-        continue
-    for run in json.load(open(path))["runs"]:
-        f, p = run["flags"], run["passes"]
-        size = f.split("--size ")[1].split()[0] if "--size " in f else "-"
-        rpath = "forward+" if "forward+" in f else "deferred"
-        spec = "split sum" if "split-sum" in f else "sampled 64"
-        masking = "height-correlated" if "height-correlated" in f else "separable"
-        cell = lambda n: f"{p[n]['median_ms']:.4f}" if n in p else "-"
-        lines.append(f"| {scene} | {size} | {rpath} | {spec} | {masking} | {cell('global_lights')} | {cell('ibl')} | "
-                     f"{cell('forward_opaque')} | {cell('frame')} |")
-text = "\n".join(lines) + "\n"
-open(f"{R}/specular_masking.md", "w").write(text)
-print(text)
+masking = [("masking", lambda f: "height-correlated" if "height-correlated" in f else "separable")]
+print(table(f"{R}/specular_masking.md",
+            [(s, f"{R}/specular_masking_{s}.json") for s in ["royal_esplanade_1k", "cornell"]], masking,
+            ["global_lights", "ibl", "forward_opaque", "frame"]))
 PY
