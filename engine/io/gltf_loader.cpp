@@ -376,7 +376,7 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
     mesh.name = path.stem().string();
     std::vector<int> materialSlot(model.materials.size() + 1, -1);  // glTF material (+1: default) -> mesh.materials
     auto materialFor = [&](int index) {
-        if (index >= int(model.materials.size()))
+        if (index < -1 || index >= int(model.materials.size()))  // -1: none given (the default material)
             L.fail("materials", "material " + std::to_string(index) + " does not exist (" + std::to_string(model.materials.size()) + " materials)");
         int& slot = materialSlot[size_t(index + 1)];
         if (slot < 0) {

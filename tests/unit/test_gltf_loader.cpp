@@ -291,6 +291,25 @@ TEST(GltfLoader, BadInputNamesFileAndElement) {
     EXPECT_EQ(g.mesh.materials[0].diffuseMap.path, t.dir / "missing.png");
 }
 
+// Malformed files found by mutating the project's own: each must be one error line naming the file
+// (or a documented fallback), never a crash, a hang or an out-of-memory.
+static void expectOneLineError(const fs::path& p, const std::string& fragment) {
+    const std::string err = loadError(p);
+    EXPECT_EQ(err.rfind(p.string() + ": ", 0), 0u) << p << ": " << err;
+    EXPECT_NE(err.find(fragment), std::string::npos) << p << ": " << err;
+    EXPECT_EQ(err.find('\n'), std::string::npos) << err;
+}
+
+// "material": -2 indexed the material table at -1 (a heap read before the array).
+TEST(GltfMalformed, MaterialIndexBelowMinusOne) {
+    TempDir t;
+    for (const char* m : {"-2", "-1000000"})
+        expectOneLineError(t.write(std::string("material") + m + ".gltf",
+                                   triangleGltf("[" + kPositions + "]", kViews, 42, "",
+                                                std::string(R"("attributes": {"POSITION": 0}, "material": )") + m)),
+                           std::string("materials: material ") + m + " does not exist");
+}
+
 // MTL: "norm" is a tangent-space normal map, "bump" a height map, Ke emission, d opacity.
 TEST(GltfLoader, MtlConvertsOntoTheSameMaterialModel) {
     TempDir t;
