@@ -81,6 +81,8 @@ void checkCorner(const std::string& corner, const std::string& file, size_t line
 
 ObjTextScan scanObjText(const std::string& text, const std::string& file) {
     ObjTextScan scan;
+    constexpr uint64_t kMaxPolygonWork = uint64_t(1) << 25;  // one face of 5792 corners, or 32768 of 32
+    uint64_t polygonWork = 0;
     LineReader reader{text};
     std::string line;
     while (reader.next(line)) {
@@ -114,6 +116,17 @@ ObjTextScan scanObjText(const std::string& text, const std::string& file) {
             }
         } else if (kind == "f" || kind == "l" || kind == "p") {
             for (size_t i = 1; i < w.size(); ++i) checkCorner(w[i], file, reader.number);
+            // The parser's polygon triangulation takes time quadratic in a face's corners (one face of
+            // 90000 corners ran for minutes): the squared corner counts of faces over 4 corners are
+            // bounded in all.
+            const uint64_t corners = w.size() - 1;
+            if (kind == "f" && corners > 4) {
+                polygonWork += corners * corners;
+                if (polygonWork > kMaxPolygonWork)
+                    failAt(file, reader.number,
+                           "a face of " + std::to_string(corners) + " corners; polygons over 4 corners add up to more than " +
+                               std::to_string(kMaxPolygonWork) + " squared corners (their triangulation takes quadratic time)");
+            }
         }
     }
     return scan;

@@ -103,6 +103,33 @@ TEST(ObjText, UnparsableNumbersAndWrappingIndicesNameFileAndLine) {
     EXPECT_EQ(scanError("v 1 2 3 # comment a b\r\nf 1//2 -1 3/4\n"), "");  // comments, CRLF, all corner forms
 }
 
+// Triangulating a polygon takes the parser time quadratic in its corners: one face of 90000 corners
+// ran for minutes. Faces over 4 corners are bounded in total (sum of squared corners <= 2^25).
+TEST(ObjText, HugePolygonsAreAnErrorNotAHang) {
+    auto face = [](size_t corners) {
+        std::string f = "f";
+        for (size_t i = 0; i < corners; ++i) f += " " + std::to_string(i % 3 + 1);
+        return f + "\n";
+    };
+    const std::string vertices = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+    const std::string err = errorOf([&] { scanObjText(vertices + face(90000), "m.obj"); });
+    EXPECT_EQ(err, "m.obj:4: a face of 90000 corners; polygons over 4 corners add up to more than 33554432 squared corners "
+                   "(their triangulation takes quadratic time)");
+    // Many mid-sized polygons add up: 3000 faces of 128 corners, the line where the sum passes the bound.
+    std::string many = vertices;
+    for (int i = 0; i < 3000; ++i) many += face(128);
+    EXPECT_NE(errorOf([&] { scanObjText(many, "m.obj"); }).find("m.obj:2052: a face of 128 corners"), std::string::npos);
+    // Ordinary n-gons pass.
+    EXPECT_EQ(errorOf([&] { scanObjText(vertices + face(4) + face(64) + face(1000), "m.obj"); }), "");
+    // End to end: the loader stops at once with the same line.
+    const auto start = std::chrono::steady_clock::now();
+    const fs::path p = fs::temp_directory_path() / ("lp_polygon_" + std::to_string(::getpid()) + ".obj");
+    std::ofstream(p) << vertices + face(90000);
+    EXPECT_NE(errorOf([&] { loadObj(p); }).find(p.string() + ":4: a face of 90000 corners"), std::string::npos);
+    fs::remove(p);
+    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 2.0);
+}
+
 TEST(ObjText, NanAndOverflowPositionsAreKeptAsNonFiniteAndCounted) {
     ObjTextScan scan = scanObjText("v 0 0 0\nv nan 7 7\nv 1e39 0 0\nvt inf 0\n", "m.obj");
     ASSERT_EQ(scan.positions.size(), 9u);
