@@ -340,6 +340,7 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
     const std::string baseDir = path.has_parent_path() ? path.parent_path().string() : std::string(".");
     const bool binary = bytes.size() >= 4 && bytes.compare(0, 4, "glTF") == 0;
     if (bytes.size() > 0xFFFFFFFFull) throw Error(file + ": over 4 GiB");
+    if (!binary) requireUtf8Text(path, bytes);
     const bool ok = binary ? gltf.LoadBinaryFromMemory(&model, &err, &warnText, reinterpret_cast<const unsigned char*>(bytes.data()),
                                                       unsigned(bytes.size()), baseDir)
                            : gltf.LoadASCIIFromString(&model, &err, &warnText, bytes.data(), unsigned(bytes.size()), baseDir);

@@ -19,6 +19,7 @@
 #include "engine/core/log.hpp"
 #include "engine/gl/limits.hpp"
 #include "engine/io/file_check.hpp"
+#include "engine/io/gltf_loader.hpp"
 #include "engine/io/image_io.hpp"
 #include "engine/io/obj_loader.hpp"
 #include "engine/io/obj_text.hpp"
@@ -361,4 +362,30 @@ TEST(SceneValues, HugeAndTinyDirectionsBecomeFiniteUnitVectors) {
     EXPECT_NEAR(s.camera.up.y, 1.0f, 1e-6f);
     EXPECT_EQ(errorOf([] { parseScene(R"({"lights": [{"type": "directional", "direction": [0, 0, 0]}]})", "s.json", false); }),
               "s.json: lights[0].direction: is the zero vector");
+}
+
+// UTF-16 text failed far from its cause ("no triangles", "invalid literal"), and a NUL ended the JSON
+// and OBJ parsers' input early, so whatever followed it was silently dropped.
+TEST_F(BadInput, Utf16AndNulBytesInTextFilesAreNamedAsSuch) {
+    auto utf16 = [](const std::string& ascii) {
+        std::string out = "\xFF\xFE";
+        for (char c : ascii) out += std::string(1, c) + '\0';
+        return out;
+    };
+    const std::string scene = R"({"models": [{"primitive": "cube"}]})";
+    const fs::path s16 = write("utf16.json", utf16(scene));
+    EXPECT_EQ(errorOf([&] { loadScene(s16); }), s16.string() + ": is UTF-16 text (it starts with a UTF-16 byte order mark); save it as UTF-8");
+    const fs::path o16 = write("utf16.obj", utf16("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"));
+    EXPECT_TRUE(contains(errorOf([&] { loadObj(o16); }), o16.string() + ": is UTF-16 text"));
+    const fs::path g16 = write("utf16.gltf", utf16(R"({"asset": {"version": "2.0"}})"));
+    EXPECT_TRUE(contains(errorOf([&] { loadGltf(g16); }), g16.string() + ": is UTF-16 text"));
+    // A scene with a NUL then an unknown field: the field used to be ignored.
+    const fs::path nul = write("nul.json", scene + std::string(1, '\0') + R"({"unknown": 1})");
+    EXPECT_EQ(errorOf([&] { loadScene(nul); }),
+              nul.string() + ": byte " + std::to_string(scene.size()) + " is NUL: not UTF-8 text (UTF-16 without a byte order mark, or a binary file)");
+    // UTF-16 without a byte order mark is full of NULs.
+    const fs::path bare = write("bare16.obj", utf16("v 0 0 0\n").substr(2));
+    EXPECT_TRUE(contains(errorOf([&] { loadObj(bare); }), bare.string() + ": byte 1 is NUL"));
+    // A UTF-8 BOM is still fine.
+    EXPECT_NO_THROW(loadScene(write("bom.json", "\xEF\xBB\xBF" + scene)));
 }
