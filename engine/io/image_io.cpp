@@ -44,12 +44,23 @@ struct StbSource {
     const std::string& bytes;
     size_t pos = 0;
     bool readPastEnd = false;
+    // Past the end stb_image reads zeros, and its Radiance run-length decoder takes a zero count as
+    // "no pixels" without advancing: a cut .hdr looped forever. For Radiance, bytes of 0xFF are
+    // handed out instead: a run of 127 pixels each, so the decoder finishes (or finds a run longer
+    // than the line) at once and the cut is reported as truncation.
+    bool fillPastEnd = false;
 };
 const stbi_io_callbacks kStbCallbacks = {
     [](void* user, char* data, int size) -> int {
         auto& s = *static_cast<StbSource*>(user);
         const size_t n = std::min(size_t(std::max(size, 0)), s.bytes.size() - s.pos);
-        if (n == 0 && size > 0) s.readPastEnd = true;
+        if (n == 0 && size > 0) {
+            s.readPastEnd = true;
+            if (s.fillPastEnd) {
+                std::memset(data, 0xFF, size_t(size));
+                return size;
+            }
+        }
         std::memcpy(data, s.bytes.data() + s.pos, n);
         s.pos += n;
         return int(n);
@@ -154,6 +165,7 @@ ImageF loadRadiance(const fs::path& path) {
     requirePlausibleStbSize(path, bytes, 4 * sizeof(float));
     int w = 0, h = 0, n = 0;
     StbSource source{bytes};
+    source.fillPastEnd = true;
     std::unique_ptr<float, void (*)(void*)> px(stbi_loadf_from_callbacks(&kStbCallbacks, &source, &w, &h, &n, 4),
                                                stbi_image_free);
     if (!px) fail(path, source.readPastEnd ? truncatedReason(bytes) : stbReason());

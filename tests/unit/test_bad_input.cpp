@@ -389,3 +389,28 @@ TEST_F(BadInput, Utf16AndNulBytesInTextFilesAreNamedAsSuch) {
     // A UTF-8 BOM is still fine.
     EXPECT_NO_THROW(loadScene(write("bom.json", "\xEF\xBB\xBF" + scene)));
 }
+
+// stb_image reads zeros past the end of a file, and its Radiance run-length decoder takes a zero count
+// without advancing: the project's own sky.hdr cut at 52404 bytes looped forever. Every cut of a
+// run-length file is now "truncated", at once.
+TEST_F(BadInput, RunLengthRadianceCutAnywhereIsTruncatedNotAHang) {
+    const std::string header = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 4 +X 16\n";
+    std::string lines;
+    for (int y = 0; y < 4; ++y) {
+        lines += std::string("\x02\x02\x00\x10", 4);
+        for (int c = 0; c < 4; ++c) lines += std::string(1, char(128 + 16)) + char(c == 3 ? 129 : 100);  // a run of 16
+    }
+    const fs::path whole = write("whole.hdr", header + lines);
+    EXPECT_EQ(loadHdrImage(whole).width, 16);
+    const auto start = std::chrono::steady_clock::now();
+    for (size_t cut = 0; cut < lines.size(); ++cut) {
+        const fs::path p = write("cut.hdr", header + lines.substr(0, cut));
+        EXPECT_TRUE(contains(errorOf([&] { loadHdrImage(p); }), p.string() + ": truncated")) << cut;
+    }
+    std::ifstream in(fs::path(LIGHTPASS_SOURCE_DIR) / "hdr/sky.hdr", std::ios::binary);
+    const std::string sky((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    ASSERT_GT(sky.size(), 52404u);
+    const fs::path cutSky = write("sky_cut.hdr", sky.substr(0, 52404));
+    EXPECT_TRUE(contains(errorOf([&] { loadHdrImage(cutSky); }), cutSky.string() + ": truncated"));
+    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0);
+}
