@@ -65,8 +65,28 @@ bool writeWholeFile(std::string*, const std::string&, const std::vector<unsigned
 
 // Images are decoded when they are uploaded (SceneGpu), so that a bad one becomes a checker with a
 // warning: tinygltf only hands over the encoded bytes (embedded or data: URIs).
-bool keepEncodedImage(tinygltf::Image* image, const int, std::string*, std::string*, int, int, const unsigned char* bytes,
-                      int size, void*) {
+// tinygltf hands an image stored in a buffer view over as buffer + byteOffset, byteLength bytes without
+// checking them against the buffer (a lying byteLength read the heap past it): `model` is the one being
+// filled, whose buffers are parsed before its images.
+bool keepEncodedImage(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int, const unsigned char* bytes,
+                      int size, void* model) {
+    if (size < 0) size = 0;
+    const auto& m = *static_cast<const tinygltf::Model*>(model);
+    if (image->bufferView >= 0) {
+        const std::string where = "images[" + std::to_string(index) + "]: bufferViews[" + std::to_string(image->bufferView) + "]";
+        if (size_t(image->bufferView) >= m.bufferViews.size()) {
+            if (err) *err += where + " does not exist";
+            return false;
+        }
+        const tinygltf::BufferView& view = m.bufferViews[size_t(image->bufferView)];
+        const size_t bufferBytes = view.buffer >= 0 && size_t(view.buffer) < m.buffers.size() ? m.buffers[size_t(view.buffer)].data.size() : 0;
+        if (view.byteOffset > bufferBytes || view.byteLength > bufferBytes - view.byteOffset) {
+            if (err)
+                *err += where + ": bytes " + std::to_string(view.byteOffset) + "+" + std::to_string(view.byteLength) + " run past the end of buffers[" +
+                        std::to_string(view.buffer) + "] (" + std::to_string(bufferBytes) + " bytes)";
+            return false;
+        }
+    }
     image->image.assign(bytes, bytes + size);
     image->as_is = true;
     return true;
@@ -334,8 +354,8 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
     const std::string bytes = readFileChecked(path, kMaxImageFileBytes, "a glTF file");
     tinygltf::TinyGLTF gltf;
     gltf.SetFsCallbacks({&fileExists, &expandPath, &readWholeFile, &writeWholeFile, nullptr});
-    gltf.SetImageLoader(&keepEncodedImage, nullptr);
     tinygltf::Model model;
+    gltf.SetImageLoader(&keepEncodedImage, &model);
     std::string err, warnText;
     const std::string baseDir = path.has_parent_path() ? path.parent_path().string() : std::string(".");
     const bool binary = bytes.size() >= 4 && bytes.compare(0, 4, "glTF") == 0;

@@ -394,6 +394,25 @@ TEST(GltfMalformed, LightsAndPositionsThatOverflowAFloat) {
     }
 }
 
+// tinygltf hands an image in a buffer view over as buffer + byteOffset, byteLength bytes unchecked:
+// a byteLength past the buffer read the heap beyond it (found by mutating forms.gltf).
+TEST(GltfMalformed, ImageBufferViewPastItsBuffer) {
+    TempDir t;
+    const std::string views = R"([{"buffer": 0, "byteOffset": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 6}, )";
+    const std::string image = R"("images": [{"mimeType": "image/png", "bufferView": 2}], "textures": [{"source": 0}], "materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}],)";
+    expectOneLineError(t.write("long.gltf", triangleGltf("[" + kPositions + "]", views + R"({"buffer": 0, "byteOffset": 30, "byteLength": 782}])", 42, image,
+                                                         R"("attributes": {"POSITION": 0}, "material": 0)")),
+                       "images[0]: bufferViews[2]: bytes 30+782 run past the end of buffers[0] (42 bytes)");
+    expectOneLineError(t.write("far.gltf", triangleGltf("[" + kPositions + "]", views + R"({"buffer": 0, "byteOffset": 1000000, "byteLength": 4}])", 42, image,
+                                                        R"("attributes": {"POSITION": 0}, "material": 0)")),
+                       "images[0]: bufferViews[2]: bytes 1000000+4 run past the end of buffers[0] (42 bytes)");
+    // In range, the bytes are kept (and later decoded, or a checker with a warning: these 6 are no image).
+    const GltfContent ok = loadGltf(t.write("in_range.gltf", triangleGltf("[" + kPositions + "]", views + R"({"buffer": 0, "byteOffset": 36, "byteLength": 6}])", 42,
+                                                                          image, R"("attributes": {"POSITION": 0}, "material": 0)")));
+    ASSERT_TRUE(ok.mesh.materials.at(0).diffuseMap.encoded);
+    EXPECT_EQ(ok.mesh.materials[0].diffuseMap.encoded->size(), 6u);
+}
+
 // MTL: "norm" is a tangent-space normal map, "bump" a height map, Ke emission, d opacity.
 TEST(GltfLoader, MtlConvertsOntoTheSameMaterialModel) {
     TempDir t;
