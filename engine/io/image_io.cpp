@@ -100,7 +100,13 @@ std::string pngDamage(const std::string& bytes) {
     size_t pos = 8;
     while (pos + 12 <= bytes.size()) {
         const uint32_t length = bigEndian32(p + pos);
-        const std::string type(bytes.data() + pos + 4, 4);
+        // The type as printable text: a corrupt one may hold a CR or an escape that would garble the line.
+        std::string type;
+        for (size_t i = 0; i < 4; ++i) {
+            const unsigned char c = p[pos + 4 + i];
+            static const char* const kHex = "0123456789ABCDEF";
+            type += c >= 0x20 && c < 0x7F ? std::string(1, char(c)) : std::string("\\x") + kHex[c >> 4] + kHex[c & 15];
+        }
         if (length > bytes.size() - pos - 12)
             return "truncated: chunk " + type + " at byte " + std::to_string(pos) + " needs " + std::to_string(length) +
                    " bytes, the file ends " + std::to_string(bytes.size() - pos - 12 < bytes.size() ? bytes.size() - pos - 8 : 0) +

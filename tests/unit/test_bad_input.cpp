@@ -244,6 +244,12 @@ TEST_F(BadInput, PngWithCorruptDataOrCutShortIsRefusedWithTheReason) {
     const std::string e = errorOf([&] { loadImage8(cut); });
     EXPECT_TRUE(contains(e, cut.string() + ": truncated: chunk IDAT")) << e;
     EXPECT_EQ(loadImage8(good).rgba, img.rgba);
+    // A chunk type damaged into a CR is named escaped: raw, it garbled the one-line message.
+    std::string crType = bytes;
+    crType[bytes.find("IDAT") + 2] = '\r';
+    const fs::path cr = write("cr_type.png", crType);
+    EXPECT_EQ(errorOf([&] { loadImage8(cr); }),
+              cr.string() + ": corrupt: CRC mismatch in chunk ID\\x0DT at byte " + std::to_string(bytes.find("IDAT") - 4));
 }
 
 TEST_F(BadInput, TruncatedRadianceIsRefusedNotZeroFilled) {
