@@ -445,10 +445,19 @@ Scene parseScene(const std::string& text, const fs::path& origin, bool loadMeshe
         }
     }
     if (loadMeshes) {
+        // Each model is its own copy of its mesh: a 3 MB scene naming 100000 spheres asked for 15 GB.
+        // The vertices and indices of all models together are bounded (2^26, up to ~3 GB), as are a
+        // glTF's instanced ones.
+        constexpr size_t kMaxSceneElements = size_t(1) << 26;
+        size_t sceneElements = 0;
         for (size_t i = 0; i < scene.models.size(); ++i) {
             try {
                 loadMesh(r, scene.models[i], "models[" + std::to_string(i) + "]", scene);
                 requirePlacedWithinRange(r, scene.models[i], "models[" + std::to_string(i) + "]");
+                sceneElements += scene.models[i].mesh.vertices.size() + scene.models[i].mesh.indices.size();
+                if (sceneElements > kMaxSceneElements)
+                    r.fail("models[" + std::to_string(i) + "]", "the models so far add up to " + std::to_string(sceneElements) +
+                                                              " vertices and indices, over the scene's limit of " + std::to_string(kMaxSceneElements));
             } catch (const Error& e) {
                 std::string msg = e.what();
                 if (msg.rfind(r.file, 0) == 0) throw;

@@ -361,6 +361,16 @@ TEST_F(BadInput, ModelPlacedBeyond1e18IsAnErrorNamingTheModel) {
     EXPECT_EQ(errorOf([&] { loadScene(scene); }), scene.string() + ": models[1]: placed up to 1e+24 m from the origin, beyond the 1e+18 m limit");
 }
 
+// Every model is its own copy of its mesh: a 3 MB scene naming 100000 spheres asked for 15 GB. The
+// models' vertices and indices together are bounded (2^26); 4800 spheres (14049 each) pass it.
+TEST(SceneValues, ModelsAddingUpPastTheSceneLimitAreAnError) {
+    std::string models;
+    for (int i = 0; i < 4800; ++i) models += std::string(i ? ", " : "") + R"({"primitive": "sphere"})";
+    const std::string err = errorOf([&] { parseScene("{\"models\": [" + models + "]}", "many.json"); });
+    EXPECT_EQ(err, "many.json: models[4776]: the models so far add up to 67112073 vertices and indices, over the scene's limit of 67108864");
+    EXPECT_EQ(parseScene(R"({"models": [{"primitive": "sphere"}, {"primitive": "sphere"}]})", "two.json").models.size(), 2u);
+}
+
 TEST(SceneValues, HugeAndTinyDirectionsBecomeFiniteUnitVectors) {
     Scene s = parseScene(R"({"camera": {"up": [0, 1e-40, 0]},
                              "lights": [{"type": "directional", "direction": [1e38, -1e38, 1e38]},
