@@ -486,7 +486,17 @@ void frameCamera(Scene& scene) {
     glm::vec3 lo, hi;
     scene.bounds(lo, hi);
     glm::vec3 center = 0.5f * (lo + hi);
-    float radius = std::max(0.5f * glm::length(hi - lo), 1e-4f);
+    // The camera is framed on at least 0.1 mm (its near plane stays well above zero): a smaller model
+    // covers less than a pixel, which would otherwise be an empty image without a word.
+    constexpr float kMinFramedRadius = 1e-4f;
+    const float modelRadius = 0.5f * glm::length(hi - lo);
+    if (modelRadius < kMinFramedRadius && !scene.models.empty()) {
+        std::ostringstream msg;
+        msg << scene.file.string() << ": the models are only " << 2.0f * modelRadius << " m across; the camera frames 0.0002 m, so they may cover"
+            << " less than a pixel (scale them up with a scene file's models[].scale)";
+        logWarn(msg.str());
+    }
+    float radius = std::max(modelRadius, kMinFramedRadius);
     float fov = glm::radians(scene.camera.fovYDegrees);
     float distance = radius / std::sin(0.5f * fov) * 1.05f;
     // Look at the model's largest face: from +Z (slightly above) unless the model is flat across X or

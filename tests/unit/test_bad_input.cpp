@@ -434,3 +434,20 @@ TEST_F(BadInput, RunLengthRadianceCutAnywhereIsTruncatedNotAHang) {
     EXPECT_TRUE(contains(errorOf([&] { loadHdrImage(cutSky); }), cutSky.string() + ": truncated"));
     EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0);
 }
+
+// A model 1e-20 m across was framed as a 0.2 mm one and rendered as an empty image without a word:
+// now it loads with one warning naming the file and its size.
+TEST_F(BadInput, ModelSmallerThanTheFramingLimitIsRenderedWithAWarning) {
+    resetWarningCount();
+    const fs::path tiny = write("tiny.obj", "v 0 0 0\nv 1e-20 0 0\nv 0 1e-20 0\nf 1 2 3\n");
+    ::testing::internal::CaptureStderr();
+    const Scene s = sceneForModel(tiny);
+    const std::string err = ::testing::internal::GetCapturedStderr();
+    EXPECT_EQ(warningCount(), 1);
+    EXPECT_TRUE(contains(err, tiny.string() + ": the models are only 1.41421e-20 m across")) << err;
+    EXPECT_TRUE(std::isfinite(s.camera.nearPlane) && s.camera.nearPlane > 0.0f);
+    // A millimetre model is framed on its own size, without a warning.
+    resetWarningCount();
+    sceneForModel(write("mm.obj", "v 0 0 0\nv 1e-3 0 0\nv 0 1e-3 0\nf 1 2 3\n"));
+    EXPECT_EQ(warningCount(), 0);
+}
