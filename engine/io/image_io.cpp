@@ -45,9 +45,9 @@ struct StbSource {
     size_t pos = 0;
     bool readPastEnd = false;
     // Past the end stb_image reads zeros, and its Radiance run-length decoder takes a zero count as
-    // "no pixels" without advancing: a cut .hdr looped forever. For Radiance, bytes of 0xFF are
-    // handed out instead: a run of 127 pixels each, so the decoder finishes (or finds a run longer
-    // than the line) at once and the cut is reported as truncation.
+    // "no pixels" without advancing: a cut .hdr looped forever. For Radiance, newlines are handed out
+    // instead: they end the header's line and token loops, and as a count (10) the run-length loop
+    // advances, so the decoder finishes at once and the cut is reported as truncation.
     bool fillPastEnd = false;
 };
 const stbi_io_callbacks kStbCallbacks = {
@@ -57,7 +57,7 @@ const stbi_io_callbacks kStbCallbacks = {
         if (n == 0 && size > 0) {
             s.readPastEnd = true;
             if (s.fillPastEnd) {
-                std::memset(data, 0xFF, size_t(size));
+                std::memset(data, '\n', size_t(size));
                 return size;
             }
         }

@@ -432,6 +432,12 @@ TEST_F(BadInput, RunLengthRadianceCutAnywhereIsTruncatedNotAHang) {
     ASSERT_GT(sky.size(), 52404u);
     const fs::path cutSky = write("sky_cut.hdr", sky.substr(0, 52404));
     EXPECT_TRUE(contains(errorOf([&] { loadHdrImage(cutSky); }), cutSky.string() + ": truncated"));
+    // Headers cut or without their blank line: the line loops must end too.
+    for (const std::string& bad : {std::string("#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n-Y 4 +X 16\n") + lines, std::string("#?RADIANCE\nFORMAT=32-bit_rle_rgbe"),
+                                   std::string("#?RADIANCE\n") + std::string(3000, 'x')}) {
+        const fs::path p = write("header.hdr", bad);
+        EXPECT_TRUE(contains(errorOf([&] { loadHdrImage(p); }), p.string() + ": ")) << bad.substr(0, 40);
+    }
     EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0);
 }
 
