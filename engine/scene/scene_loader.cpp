@@ -207,7 +207,11 @@ void parseModel(const Reader& r, const json& j, const std::string& w, const fs::
         r.fail(w, "needs exactly one of \"obj\", \"gltf\" or \"primitive\"");
     if (!m.primitive.empty() && m.primitive != "plane" && m.primitive != "sphere" && m.primitive != "cube")
         r.fail(w + ".primitive", "unknown primitive '" + m.primitive + "' (plane, sphere, cube)");
-    if (!obj.empty()) m.obj = resolve(base, obj);
+    if (!obj.empty()) {
+        m.obj = resolve(base, obj);
+        // Read as OBJ text a glTF has no "v" or "f" line: "no triangles" would hide the mix-up.
+        if (isGltfPath(m.obj)) r.fail(w + ".obj", obj + ": is a glTF file; name it under \"gltf\"");
+    }
     if (!gltf.empty()) {
         m.gltf = resolve(base, gltf);
         if (!isGltfPath(m.gltf)) r.fail(w + ".gltf", gltf + ": expected a .gltf or .glb file");

@@ -371,6 +371,12 @@ TEST(SceneValues, ModelsAddingUpPastTheSceneLimitAreAnError) {
     EXPECT_EQ(parseScene(R"({"models": [{"primitive": "sphere"}, {"primitive": "sphere"}]})", "two.json").models.size(), 2u);
 }
 
+// A glTF named under "obj" was read as OBJ text and failed as "no triangles".
+TEST(SceneValues, GltfNamedAsObjIsNamedAsSuch) {
+    EXPECT_EQ(errorOf([&] { parseScene(R"({"models": [{"obj": "ship.glb"}]})", "s.json", false); }),
+              "s.json: models[0].obj: ship.glb: is a glTF file; name it under \"gltf\"");
+}
+
 TEST(SceneValues, HugeAndTinyDirectionsBecomeFiniteUnitVectors) {
     Scene s = parseScene(R"({"camera": {"up": [0, 1e-40, 0]},
                              "lights": [{"type": "directional", "direction": [1e38, -1e38, 1e38]},
