@@ -75,8 +75,21 @@ std::string readFileChecked(const fs::path& path, uintmax_t maxBytes, const std:
         if (n == 0) fail(path, "file shrank while being read (" + std::to_string(done) + " of " + std::to_string(size) + " bytes)");
         done += size_t(n);
     }
-    if (stripBom && text.compare(0, 3, "\xEF\xBB\xBF") == 0) text.erase(0, 3);
+    if (stripBom) {
+        requireUtf8Text(path, text);
+        if (text.compare(0, 3, "\xEF\xBB\xBF") == 0) text.erase(0, 3);
+    }
     return text;
+}
+
+void requireUtf8Text(const fs::path& path, const std::string& text) {
+    // UTF-16 read as bytes fails far from its cause ("no triangles", "invalid literal"), and JSON and
+    // OBJ parsers stop at a NUL as if the file ended there, silently dropping the rest.
+    if (text.compare(0, 2, "\xFF\xFE") == 0 || text.compare(0, 2, "\xFE\xFF") == 0)
+        fail(path, "is UTF-16 text (it starts with a UTF-16 byte order mark); save it as UTF-8");
+    const size_t nul = text.find('\0');
+    if (nul != std::string::npos)
+        fail(path, "byte " + std::to_string(nul) + " is NUL: not UTF-8 text (UTF-16 without a byte order mark, or a binary file)");
 }
 
 }  // namespace lp

@@ -19,7 +19,10 @@ uintmax_t requireRegularFile(const std::filesystem::path& path, uintmax_t maxByt
 
 // The whole file, checked as above and read without blocking on special files; a read error or a
 // short read is an error naming the file. A leading UTF-8 byte order mark is removed when stripBom.
+// With stripBom the file is text: requireUtf8Text applies.
 std::string readFileChecked(const std::filesystem::path& path, uintmax_t maxBytes, const std::string& kind = "a file",
                             bool stripBom = false);
+// Throws "<path>: ..." for text that is not UTF-8: a UTF-16 byte order mark, or any NUL byte.
+void requireUtf8Text(const std::filesystem::path& path, const std::string& text);
 
 }  // namespace lp

@@ -40,6 +40,9 @@ std::string formatNumber(double v) {
 // Extensions this loader understands; a file that requires any other is refused (the spec's rule).
 const std::set<std::string> kSupportedExtensions = {"KHR_lights_punctual", "KHR_materials_emissive_strength"};
 constexpr size_t kMaxElements = size_t(1) << 28;  // accessor count limit: 268M elements
+constexpr size_t kMaxNodeDepth = 1024;                        // levels of the node hierarchy
+constexpr size_t kMaxDrawnPrimitives = size_t(1) << 20;       // primitive instances the nodes draw
+constexpr size_t kMaxDrawnVertices = size_t(1) << 26;         // their vertices and indices, instances counted
 
 // tinygltf reads external buffers and images through these: the same regular-file check as every
 // other input (a FIFO named as a buffer would block the read forever).
@@ -62,8 +65,28 @@ bool writeWholeFile(std::string*, const std::string&, const std::vector<unsigned
 
 // Images are decoded when they are uploaded (SceneGpu), so that a bad one becomes a checker with a
 // warning: tinygltf only hands over the encoded bytes (embedded or data: URIs).
-bool keepEncodedImage(tinygltf::Image* image, const int, std::string*, std::string*, int, int, const unsigned char* bytes,
-                      int size, void*) {
+// tinygltf hands an image stored in a buffer view over as buffer + byteOffset, byteLength bytes without
+// checking them against the buffer (a lying byteLength read the heap past it): `model` is the one being
+// filled, whose buffers are parsed before its images.
+bool keepEncodedImage(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int, const unsigned char* bytes,
+                      int size, void* model) {
+    if (size < 0) size = 0;
+    const auto& m = *static_cast<const tinygltf::Model*>(model);
+    if (image->bufferView >= 0) {
+        const std::string where = "images[" + std::to_string(index) + "]: bufferViews[" + std::to_string(image->bufferView) + "]";
+        if (size_t(image->bufferView) >= m.bufferViews.size()) {
+            if (err) *err += where + " does not exist";
+            return false;
+        }
+        const tinygltf::BufferView& view = m.bufferViews[size_t(image->bufferView)];
+        const size_t bufferBytes = view.buffer >= 0 && size_t(view.buffer) < m.buffers.size() ? m.buffers[size_t(view.buffer)].data.size() : 0;
+        if (view.byteOffset > bufferBytes || view.byteLength > bufferBytes - view.byteOffset) {
+            if (err)
+                *err += where + ": bytes " + std::to_string(view.byteOffset) + "+" + std::to_string(view.byteLength) + " run past the end of buffers[" +
+                        std::to_string(view.buffer) + "] (" + std::to_string(bufferBytes) + " bytes)";
+            return false;
+        }
+    }
     image->image.assign(bytes, bytes + size);
     image->as_is = true;
     return true;
@@ -331,12 +354,13 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
     const std::string bytes = readFileChecked(path, kMaxImageFileBytes, "a glTF file");
     tinygltf::TinyGLTF gltf;
     gltf.SetFsCallbacks({&fileExists, &expandPath, &readWholeFile, &writeWholeFile, nullptr});
-    gltf.SetImageLoader(&keepEncodedImage, nullptr);
     tinygltf::Model model;
+    gltf.SetImageLoader(&keepEncodedImage, &model);
     std::string err, warnText;
     const std::string baseDir = path.has_parent_path() ? path.parent_path().string() : std::string(".");
     const bool binary = bytes.size() >= 4 && bytes.compare(0, 4, "glTF") == 0;
     if (bytes.size() > 0xFFFFFFFFull) throw Error(file + ": over 4 GiB");
+    if (!binary) requireUtf8Text(path, bytes);
     const bool ok = binary ? gltf.LoadBinaryFromMemory(&model, &err, &warnText, reinterpret_cast<const unsigned char*>(bytes.data()),
                                                       unsigned(bytes.size()), baseDir)
                            : gltf.LoadASCIIFromString(&model, &err, &warnText, bytes.data(), unsigned(bytes.size()), baseDir);
@@ -376,7 +400,7 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
     mesh.name = path.stem().string();
     std::vector<int> materialSlot(model.materials.size() + 1, -1);  // glTF material (+1: default) -> mesh.materials
     auto materialFor = [&](int index) {
-        if (index >= int(model.materials.size()))
+        if (index < -1 || index >= int(model.materials.size()))  // -1: none given (the default material)
             L.fail("materials", "material " + std::to_string(index) + " does not exist (" + std::to_string(model.materials.size()) + " materials)");
         int& slot = materialSlot[size_t(index + 1)];
         if (slot < 0) {
@@ -397,6 +421,14 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
         if (attr == prim.attributes.end()) L.fail(w, "has no POSITION attribute");
         const std::set<int> fl = {TINYGLTF_COMPONENT_TYPE_FLOAT};
         const auto pos = L.view(attr->second, w + ".attributes.POSITION", {TINYGLTF_TYPE_VEC3}, fl);
+        // Without a buffer view (and not sparse) every element is zero: no triangle could come of it, and
+        // its count, bounded by no bytes of the file, would size the allocations.
+        auto requireData = [&](const Loader::View& v, int accessor, const std::string& where) {
+            if (!v.data && v.count > 0)
+                L.fail(where + " (accessors[" + std::to_string(accessor) + "])",
+                       "has no bufferView, so its " + std::to_string(v.count) + " elements would all be zero");
+        };
+        requireData(pos, attr->second, w + ".attributes.POSITION");
         const size_t vertexCount = pos.count;
         auto optional = [&](const char* name, int type, const std::set<int>& componentTypes, Loader::View& v) {
             auto it = prim.attributes.find(name);
@@ -474,7 +506,9 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
         for (size_t i = 0; i + 2 < tris.size(); i += 3) {
             uint32_t a = tris[i], b = tris[i + 1], c = tris[i + 2];
             const glm::vec3 &pa = part.vertices[a].position, &pb = part.vertices[b].position, &pc = part.vertices[c].position;
-            if (!std::isfinite(pa.x + pa.y + pa.z + pb.x + pb.y + pb.z + pc.x + pc.y + pc.z)) {
+            // Past 1e18 a squared length overflows a float (NaN normals): such a vertex counts as Inf, as in OBJ.
+            auto usable = [](const glm::vec3& p) { return glm::all(glm::lessThanEqual(glm::abs(p), glm::vec3(1e18f))); };
+            if (!usable(pa) || !usable(pb) || !usable(pc)) {
                 ++report.droppedNonFinite;
                 continue;
             }
@@ -491,7 +525,8 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
             MeshData flat;
             for (size_t i = 0; i + 2 < part.indices.size(); i += 3) {
                 const Vertex &a = part.vertices[part.indices[i]], &b = part.vertices[part.indices[i + 1]], &c = part.vertices[part.indices[i + 2]];
-                const glm::vec3 n = glm::normalize(glm::cross(b.position - a.position, c.position - a.position));
+                // In double: at coordinates near 1e18 the cross product's squared length overflows a float.
+                const glm::vec3 n(glm::normalize(glm::cross(glm::dvec3(b.position - a.position), glm::dvec3(c.position - a.position))));
                 for (const Vertex* src : {&a, &b, &c}) {
                     Vertex vx = *src;
                     vx.normal = n;
@@ -528,6 +563,53 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
                 if (c >= 0 && size_t(c) < model.nodes.size()) isChild[size_t(c)] = true;
         for (size_t i = 0; i < model.nodes.size(); ++i)
             if (!isChild[i]) roots.push_back(int(i));
+    }
+    // The node trees are checked before anything is built. glTF nodes form strict trees: a node reached
+    // twice (a second parent, or a root listed twice) is refused, so that a file cannot ask for 2^40
+    // walks by naming a child twice on each of 40 levels; depth is bounded so that a chain 200000 nodes
+    // deep cannot overflow the stack; the instanced primitives and vertices are bounded so that 2000
+    // nodes drawing one mesh of 20000 primitives cannot take minutes and gigabytes.
+    {
+        std::vector<int> parent(model.nodes.size(), -1);
+        std::vector<bool> reached(model.nodes.size(), false);
+        size_t drawnPrimitives = 0, drawnVertices = 0;
+        struct Pending {
+            int node, parent;
+            size_t depth;
+        };
+        std::vector<Pending> stack;
+        for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.push_back({*it, -1, 1});
+        while (!stack.empty()) {
+            const Pending p = stack.back();
+            stack.pop_back();
+            const std::string from = p.parent < 0 ? (sceneIndex >= 0 ? "scenes[" + std::to_string(sceneIndex) + "].nodes" : "nodes")
+                                                  : "nodes[" + std::to_string(p.parent) + "].children";
+            if (p.node < 0 || size_t(p.node) >= model.nodes.size())
+                L.fail(from, "node " + std::to_string(p.node) + " does not exist (" + std::to_string(model.nodes.size()) + " nodes)");
+            const std::string w = "nodes[" + std::to_string(p.node) + "]";
+            if (reached[size_t(p.node)]) {
+                for (int a = p.parent; a >= 0; a = parent[size_t(a)])
+                    if (a == p.node) L.fail(w, "is its own ancestor (the node hierarchy has a cycle)");
+                L.fail(w, "is reached twice (from " + from + "); a glTF node has at most one parent and is not also a scene root");
+            }
+            if (p.depth > kMaxNodeDepth) L.fail(w, "is more than " + std::to_string(kMaxNodeDepth) + " levels deep in the node hierarchy");
+            reached[size_t(p.node)] = true;
+            parent[size_t(p.node)] = p.parent;
+            const tinygltf::Node& node = model.nodes[size_t(p.node)];
+            if (node.mesh >= 0 && size_t(node.mesh) < model.meshes.size())
+                for (const auto& prim : model.meshes[size_t(node.mesh)].primitives) {
+                    ++drawnPrimitives;
+                    auto position = prim.attributes.find("POSITION");
+                    if (position != prim.attributes.end() && position->second >= 0 && size_t(position->second) < model.accessors.size())
+                        drawnVertices += std::min(model.accessors[size_t(position->second)].count, kMaxElements);
+                    if (prim.indices >= 0 && size_t(prim.indices) < model.accessors.size())
+                        drawnVertices += std::min(model.accessors[size_t(prim.indices)].count, kMaxElements);  // flat shading makes one vertex per corner
+                }
+            if (drawnPrimitives > kMaxDrawnPrimitives || drawnVertices > kMaxDrawnVertices)
+                L.fail(w + ".mesh", "the scene's nodes draw more than " + std::to_string(kMaxDrawnPrimitives) + " primitives or " +
+                                        std::to_string(kMaxDrawnVertices) + " vertices and indices in all");
+            for (auto it = node.children.rbegin(); it != node.children.rend(); ++it) stack.push_back({*it, p.node, p.depth + 1});
+        }
     }
     std::vector<bool> onPath(model.nodes.size(), false);
     // glTF cone half-angles (radians, 0 <= inner < outer <= pi/2) as the renderer's (degrees, outer < 90).
@@ -599,8 +681,13 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
             if (l.color.size() == 3) color = glm::vec3(float(l.color[0]), float(l.color[1]), float(l.color[2]));
             const float intensity = float(l.intensity);
             if (!std::isfinite(color.x + color.y + color.z + intensity) || glm::any(glm::lessThan(color, glm::vec3(0.0f))) || intensity < 0.0f ||
-                intensity > 1e9f)
-                L.fail(lw, "colour and intensity must be finite and >= 0 (intensity <= 1e9)");
+                intensity > 1e9f || glm::any(glm::greaterThan(color, glm::vec3(1e9f))))
+                L.fail(lw, "colour and intensity must be finite, >= 0 and <= 1e9");
+            // A node scaled to zero has no -Z: the light would shine in a NaN direction.
+            if ((l.type == "directional" || l.type == "spot") && !std::isfinite(forward.x + forward.y + forward.z))
+                L.fail(lw, "its node (" + w + ") has no -Z direction (a zero scale)");
+            if (l.range > 0.0 && !std::isfinite(float(l.range)))
+                L.fail(lw + ".range", formatNumber(l.range) + " is beyond a float's range");
             if (l.type == "directional") {
                 DirectionalLight d;
                 d.direction = forward;

@@ -44,12 +44,23 @@ struct StbSource {
     const std::string& bytes;
     size_t pos = 0;
     bool readPastEnd = false;
+    // Past the end stb_image reads zeros, and its Radiance run-length decoder takes a zero count as
+    // "no pixels" without advancing: a cut .hdr looped forever. For Radiance, newlines are handed out
+    // instead: they end the header's line and token loops, and as a count (10) the run-length loop
+    // advances, so the decoder finishes at once and the cut is reported as truncation.
+    bool fillPastEnd = false;
 };
 const stbi_io_callbacks kStbCallbacks = {
     [](void* user, char* data, int size) -> int {
         auto& s = *static_cast<StbSource*>(user);
         const size_t n = std::min(size_t(std::max(size, 0)), s.bytes.size() - s.pos);
-        if (n == 0 && size > 0) s.readPastEnd = true;
+        if (n == 0 && size > 0) {
+            s.readPastEnd = true;
+            if (s.fillPastEnd) {
+                std::memset(data, '\n', size_t(size));
+                return size;
+            }
+        }
         std::memcpy(data, s.bytes.data() + s.pos, n);
         s.pos += n;
         return int(n);
@@ -89,7 +100,13 @@ std::string pngDamage(const std::string& bytes) {
     size_t pos = 8;
     while (pos + 12 <= bytes.size()) {
         const uint32_t length = bigEndian32(p + pos);
-        const std::string type(bytes.data() + pos + 4, 4);
+        // The type as printable text: a corrupt one may hold a CR or an escape that would garble the line.
+        std::string type;
+        for (size_t i = 0; i < 4; ++i) {
+            const unsigned char c = p[pos + 4 + i];
+            static const char* const kHex = "0123456789ABCDEF";
+            type += c >= 0x20 && c < 0x7F ? std::string(1, char(c)) : std::string("\\x") + kHex[c >> 4] + kHex[c & 15];
+        }
         if (length > bytes.size() - pos - 12)
             return "truncated: chunk " + type + " at byte " + std::to_string(pos) + " needs " + std::to_string(length) +
                    " bytes, the file ends " + std::to_string(bytes.size() - pos - 12 < bytes.size() ? bytes.size() - pos - 8 : 0) +
@@ -111,6 +128,34 @@ std::string stbReason() {
     return r && *r ? std::string("unreadable image (") + r + ")" : std::string("unreadable image");
 }
 
+// Decoders allocate what the header claims before they find the data missing: an 18-byte TGA or a
+// 51-byte Radiance header claiming 16384x16384 cost a gigabyte and seconds before "truncated". No
+// format here expands a file more than ~33000 times (a 1-bit PNG of one colour, deflated, as RGBA8),
+// so a claim beyond 65536 times the file's size (and beyond 64 MiB) is refused before decoding, as is
+// an image with no pixels.
+constexpr uint64_t kMaxExpansion = 65536;
+constexpr uint64_t kAlwaysAllowedBytes = uint64_t(64) << 20;
+// Empty when the size is plausible, else what is wrong with it.
+std::string implausibleSize(int64_t width, int64_t height, uint64_t bytesPerTexel, uint64_t fileBytes) {
+    if (width <= 0 || height <= 0) return "has no pixels (" + std::to_string(width) + "x" + std::to_string(height) + ")";
+    const uint64_t decoded = uint64_t(width) * uint64_t(height) * bytesPerTexel;  // < 2^31 * 2^31 * 16: no overflow
+    if (decoded > std::max(kAlwaysAllowedBytes, kMaxExpansion * fileBytes))
+        return "claims " + std::to_string(width) + "x" + std::to_string(height) + " texels (" + std::to_string(decoded >> 20) +
+               " MiB decoded) from a " + std::to_string(fileBytes) + "-byte file: truncated or corrupt (more than 65536 times the file's size is refused)";
+    return {};
+}
+void requirePlausibleSize(const fs::path& path, int64_t width, int64_t height, uint64_t bytesPerTexel, uint64_t fileBytes) {
+    const std::string problem = implausibleSize(width, height, bytesPerTexel, fileBytes);
+    if (!problem.empty()) fail(path, problem);
+}
+
+// The size the header of an stb_image format claims, checked before the decoder allocates it.
+void requirePlausibleStbSize(const fs::path& path, const std::string& bytes, uint64_t bytesPerTexel) {
+    int w = 0, h = 0, n = 0;
+    if (stbi_info_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()), int(std::min<size_t>(bytes.size(), INT32_MAX)), &w, &h, &n))
+        requirePlausibleSize(path, w, h, bytesPerTexel, bytes.size());
+}
+
 void requireSize(const fs::path& path, int width, int height, size_t values) {
     if (width <= 0 || height <= 0) fail(path, "cannot write an empty image");
     if (values != size_t(width) * size_t(height) * 4)
@@ -123,12 +168,15 @@ ImageF loadRadiance(const fs::path& path) {
     // stbi_loadf would also accept an LDR file (converting it with a guessed gamma); a .hdr must be Radiance.
     if (!stbi_is_hdr_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()), int(std::min<size_t>(bytes.size(), INT32_MAX))))
         fail(path, "not a Radiance HDR file");
+    requirePlausibleStbSize(path, bytes, 4 * sizeof(float));
     int w = 0, h = 0, n = 0;
     StbSource source{bytes};
+    source.fillPastEnd = true;
     std::unique_ptr<float, void (*)(void*)> px(stbi_loadf_from_callbacks(&kStbCallbacks, &source, &w, &h, &n, 4),
                                                stbi_image_free);
     if (!px) fail(path, source.readPastEnd ? truncatedReason(bytes) : stbReason());
     if (source.readPastEnd) fail(path, truncatedReason(bytes));
+    requirePlausibleSize(path, w, h, 4 * sizeof(float), bytes.size());
     ImageF img{w, h, {}};
     img.rgba.assign(px.get(), px.get() + size_t(w) * h * 4);  // stb sets alpha to 1
     return img;
@@ -224,12 +272,14 @@ Image8 decodeImage8(const std::string& bytes, const fs::path& path) {
         const std::string damage = pngDamage(bytes);
         if (!damage.empty()) fail(path, damage);
     }
+    requirePlausibleStbSize(path, bytes, 4);
     int w = 0, h = 0, n = 0;
     StbSource source{bytes};
     std::unique_ptr<stbi_uc, void (*)(void*)> px(stbi_load_from_callbacks(&kStbCallbacks, &source, &w, &h, &n, 4),
                                                  stbi_image_free);
     if (!px) fail(path, source.readPastEnd ? truncatedReason(bytes) : stbReason());
     if (source.readPastEnd) fail(path, truncatedReason(bytes));
+    requirePlausibleSize(path, w, h, 4, bytes.size());
     Image8 img{w, h, {}};
     img.rgba.assign(px.get(), px.get() + size_t(w) * h * 4);
     return img;

@@ -52,6 +52,22 @@ struct LineReader {
     }
 };
 
+// A token as it is quoted in a message: control bytes (a lone CR, ESC) written as \xNN, so that the
+// message stays one clean line on a terminal, and long tokens cut.
+std::string quoted(const std::string& token) {
+    std::string out = "'";
+    for (size_t i = 0; i < token.size() && i < 64; ++i) {
+        const unsigned char c = static_cast<unsigned char>(token[i]);
+        if (c < 0x20 || c == 0x7F) {
+            static const char* const kHex = "0123456789ABCDEF";
+            out += std::string("\\x") + kHex[c >> 4] + kHex[c & 15];
+        } else {
+            out += char(c);
+        }
+    }
+    return out + (token.size() > 64 ? "...'" : "'");
+}
+
 [[noreturn]] void failAt(const std::string& file, size_t line, const std::string& what) {
     throw Error(file + ":" + std::to_string(line) + ": " + what);
 }
@@ -67,7 +83,7 @@ void checkCorner(const std::string& corner, const std::string& file, size_t line
             char* end = nullptr;
             const long long v = std::strtoll(index.c_str(), &end, 10);
             if (index.empty() || end != index.c_str() + index.size())
-                failAt(file, line, "'" + corner + "' is not a vertex index");
+                failAt(file, line, quoted(corner) + " is not a vertex index");
             if (errno == ERANGE || v > INT_MAX || v < -INT_MAX)
                 failAt(file, line, "index " + index + " is out of range");
             if (v == 0) failAt(file, line, "index 0 (OBJ indices start at 1)");
@@ -81,6 +97,8 @@ void checkCorner(const std::string& corner, const std::string& file, size_t line
 
 ObjTextScan scanObjText(const std::string& text, const std::string& file) {
     ObjTextScan scan;
+    constexpr uint64_t kMaxPolygonWork = uint64_t(1) << 25;  // one face of 5792 corners, or 32768 of 32
+    uint64_t polygonWork = 0;
     LineReader reader{text};
     std::string line;
     while (reader.next(line)) {
@@ -97,7 +115,7 @@ ObjTextScan scanObjText(const std::string& text, const std::string& file) {
             double xyz[3] = {0, 0, 0};
             for (size_t i = 1; i < w.size(); ++i) {
                 double v = 0.0;
-                if (!parseNumber(w[i], v)) failAt(file, reader.number, kind + ": '" + w[i] + "' is not a number");
+                if (!parseNumber(w[i], v)) failAt(file, reader.number, kind + ": " + quoted(w[i]) + " is not a number");
                 if (!finiteAsFloat(v)) finite = false;
                 if (i <= 3) xyz[i - 1] = v;
             }
@@ -114,6 +132,17 @@ ObjTextScan scanObjText(const std::string& text, const std::string& file) {
             }
         } else if (kind == "f" || kind == "l" || kind == "p") {
             for (size_t i = 1; i < w.size(); ++i) checkCorner(w[i], file, reader.number);
+            // The parser's polygon triangulation takes time quadratic in a face's corners (one face of
+            // 90000 corners ran for minutes): the squared corner counts of faces over 4 corners are
+            // bounded in all.
+            const uint64_t corners = w.size() - 1;
+            if (kind == "f" && corners > 4) {
+                polygonWork += corners * corners;
+                if (polygonWork > kMaxPolygonWork)
+                    failAt(file, reader.number,
+                           "a face of " + std::to_string(corners) + " corners; polygons over 4 corners add up to more than " +
+                               std::to_string(kMaxPolygonWork) + " squared corners (their triangulation takes quadratic time)");
+            }
         }
     }
     return scan;
@@ -150,8 +179,8 @@ std::string sanitizeMtlText(const std::string& text, const std::string& file, st
             for (size_t i = 1; i < w.size() && bad.empty(); ++i) {
                 if (i == 1 && w[0] == "Tf" && (w[i] == "spectral" || w[i] == "xyz")) break;
                 double v = 0.0;
-                if (!parseNumber(w[i], v)) bad = "'" + w[i] + "' is not a number";
-                else if (!finiteAsFloat(v)) bad = "'" + w[i] + "' is not a finite number";
+                if (!parseNumber(w[i], v)) bad = quoted(w[i]) + " is not a number";
+                else if (!finiteAsFloat(v)) bad = quoted(w[i]) + " is not a finite number";
             }
             if (!bad.empty()) {
                 auto it = fallback.find(w[0]);

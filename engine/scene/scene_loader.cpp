@@ -207,7 +207,11 @@ void parseModel(const Reader& r, const json& j, const std::string& w, const fs::
         r.fail(w, "needs exactly one of \"obj\", \"gltf\" or \"primitive\"");
     if (!m.primitive.empty() && m.primitive != "plane" && m.primitive != "sphere" && m.primitive != "cube")
         r.fail(w + ".primitive", "unknown primitive '" + m.primitive + "' (plane, sphere, cube)");
-    if (!obj.empty()) m.obj = resolve(base, obj);
+    if (!obj.empty()) {
+        m.obj = resolve(base, obj);
+        // Read as OBJ text a glTF has no "v" or "f" line: "no triangles" would hide the mix-up.
+        if (isGltfPath(m.obj)) r.fail(w + ".obj", obj + ": is a glTF file; name it under \"gltf\"");
+    }
     if (!gltf.empty()) {
         m.gltf = resolve(base, gltf);
         if (!isGltfPath(m.gltf)) r.fail(w + ".gltf", gltf + ": expected a .gltf or .glb file");
@@ -445,10 +449,19 @@ Scene parseScene(const std::string& text, const fs::path& origin, bool loadMeshe
         }
     }
     if (loadMeshes) {
+        // Each model is its own copy of its mesh: a 3 MB scene naming 100000 spheres asked for 15 GB.
+        // The vertices and indices of all models together are bounded (2^26, up to ~3 GB), as are a
+        // glTF's instanced ones.
+        constexpr size_t kMaxSceneElements = size_t(1) << 26;
+        size_t sceneElements = 0;
         for (size_t i = 0; i < scene.models.size(); ++i) {
             try {
                 loadMesh(r, scene.models[i], "models[" + std::to_string(i) + "]", scene);
                 requirePlacedWithinRange(r, scene.models[i], "models[" + std::to_string(i) + "]");
+                sceneElements += scene.models[i].mesh.vertices.size() + scene.models[i].mesh.indices.size();
+                if (sceneElements > kMaxSceneElements)
+                    r.fail("models[" + std::to_string(i) + "]", "the models so far add up to " + std::to_string(sceneElements) +
+                                                              " vertices and indices, over the scene's limit of " + std::to_string(kMaxSceneElements));
             } catch (const Error& e) {
                 std::string msg = e.what();
                 if (msg.rfind(r.file, 0) == 0) throw;
@@ -477,7 +490,17 @@ void frameCamera(Scene& scene) {
     glm::vec3 lo, hi;
     scene.bounds(lo, hi);
     glm::vec3 center = 0.5f * (lo + hi);
-    float radius = std::max(0.5f * glm::length(hi - lo), 1e-4f);
+    // The camera is framed on at least 0.1 mm (its near plane stays well above zero): a smaller model
+    // covers less than a pixel, which would otherwise be an empty image without a word.
+    constexpr float kMinFramedRadius = 1e-4f;
+    const float modelRadius = 0.5f * glm::length(hi - lo);
+    if (modelRadius < kMinFramedRadius && !scene.models.empty()) {
+        std::ostringstream msg;
+        msg << scene.file.string() << ": the models are only " << 2.0f * modelRadius << " m across; the camera frames 0.0002 m, so they may cover"
+            << " less than a pixel (scale them up with a scene file's models[].scale)";
+        logWarn(msg.str());
+    }
+    float radius = std::max(modelRadius, kMinFramedRadius);
     float fov = glm::radians(scene.camera.fovYDegrees);
     float distance = radius / std::sin(0.5f * fov) * 1.05f;
     // Look at the model's largest face: from +Z (slightly above) unless the model is flat across X or

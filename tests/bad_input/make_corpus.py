@@ -357,6 +357,43 @@ scene("scene_bad_gltf.json", models=[{"gltf": "accessor_past_end.gltf"}])
 case(9, "scene_gltf_error_names_both", render_scene("scene_bad_gltf.json"), "error",
      r"scene_bad_gltf.json: models\[0\]\.gltf: .*accessor_past_end.gltf: meshes\[0\]")
 
+# ---- 10. structures that crashed, hung or took gigabytes (found by mutating the project's own files) -
+# A node named twice as a child on each of 3 levels (at 40 levels: 2^40 walks), or a root listed twice.
+gltf("node_twice.gltf", nodes=[{"children": [1, 1]}, {"children": [2, 2]}, {"mesh": 0}])
+case(10, "gltf_node_reached_twice", render_model("node_twice.gltf"), "error",
+     r"{C}/node_twice.gltf: nodes\[2\]: is reached twice \(from nodes\[1\]\.children\)", absent=["{O}/out.png"])
+gltf("material_minus_2.gltf", primitive={"attributes": {"POSITION": 0}, "indices": 1, "material": -2})
+case(10, "gltf_material_below_minus_one", render_model("material_minus_2.gltf"), "error",
+     r"{C}/material_minus_2.gltf: materials: material -2 does not exist", absent=["{O}/out.png"])
+gltf("image_view_past_buffer.gltf", views=[{"buffer": 0, "byteOffset": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 6},
+                                           {"buffer": 0, "byteOffset": 30, "byteLength": 782}],
+     primitive={"attributes": {"POSITION": 0}, "indices": 1, "material": 0},
+     images=[{"mimeType": "image/png", "bufferView": 2}], textures=[{"source": 0}],
+     materials=[{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}])
+case(10, "gltf_image_view_past_buffer", render_model("image_view_past_buffer.gltf"), "error",
+     r"{C}/image_view_past_buffer.gltf: images\[0\]: bufferViews\[2\]: bytes 30\+782 run past the end of buffers\[0\] \(42 bytes\)",
+     absent=["{O}/out.png"])
+write("huge_polygon.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf " + " ".join(str(i % 3 + 1) for i in range(90000)) + "\n")
+case(10, "obj_polygon_of_90000_corners", render_model("huge_polygon.obj"), "error",
+     r"{C}/huge_polygon.obj:4: a face of 90000 corners", absent=["{O}/out.png"])
+write("utf16.json", b"\xff\xfe" + '{"models": [{"primitive": "cube"}]}'.encode("utf-16-le"))
+case(10, "scene_in_utf16", render_scene("utf16.json"), "error", r"{C}/utf16.json: is UTF-16 text", absent=["{O}/out.png"])
+rle_line = b"\x02\x02\x00\x10" + b"".join(bytes((128 + 16, 100)) for _ in range(4))
+write("rle_cut.hdr", b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 4 +X 16\n" + rle_line * 2 + rle_line[:7])
+scene("env_rle_cut.json", environment={"map": "rle_cut.hdr"})
+case(10, "hdr_run_length_cut", render_scene("env_rle_cut.json", more=[*ENV_SMALL]), "error",
+     r"{C}/rle_cut.hdr: truncated: ", absent=["{O}/out.png"])
+write("empty_size.hdr", "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 0 +X 0\n")
+scene("env_empty_size.json", environment={"map": "empty_size.hdr"})
+case(10, "hdr_zero_by_zero", render_scene("env_empty_size.json", more=[*ENV_SMALL]), "error",
+     r"{C}/empty_size.hdr: has no pixels \(0x0\)", absent=["{O}/out.png"])
+write("gigabyte.tga", struct.pack("<BBBHHBHHHHBB", 0, 0, 2, 0, 0, 0, 0, 0, 16384, 16384, 32, 0))
+write("gigabyte_texture.obj", "mtllib gigabyte.mtl\nusemtl m\n" + CUBE_OBJ)
+write("gigabyte.mtl", "newmtl m\nKd 1 1 1\nmap_Kd gigabyte.tga\n")
+case(10, "texture_header_claims_a_gigabyte", render_model("gigabyte_texture.obj"), "fallback",
+     r"warning: {C}/gigabyte.tga: claims 16384x16384 texels \(1024 MiB decoded\) from a 18-byte file.*using a checker texture",
+     outputs=["{O}/out.png"])
+
 with open(os.path.join(C, "manifest.json"), "w") as f:
     json.dump(cases, f, indent=1)
 print(f"{len(cases)} cases in {C}")

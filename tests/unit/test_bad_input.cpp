@@ -19,6 +19,7 @@
 #include "engine/core/log.hpp"
 #include "engine/gl/limits.hpp"
 #include "engine/io/file_check.hpp"
+#include "engine/io/gltf_loader.hpp"
 #include "engine/io/image_io.hpp"
 #include "engine/io/obj_loader.hpp"
 #include "engine/io/obj_text.hpp"
@@ -101,6 +102,37 @@ TEST(ObjText, UnparsableNumbersAndWrappingIndicesNameFileAndLine) {
     EXPECT_EQ(scanError("f 1 2 x\n"), "m.obj:1: 'x' is not a vertex index");
     EXPECT_EQ(scanError("f 1 0 2\n"), "m.obj:1: index 0 (OBJ indices start at 1)");
     EXPECT_EQ(scanError("v 1 2 3 # comment a b\r\nf 1//2 -1 3/4\n"), "");  // comments, CRLF, all corner forms
+    // Control bytes in a bad token are shown escaped: raw, an ESC sequence or a backspace garbles the line.
+    EXPECT_EQ(scanError(std::string("v 0 1\x08") + "2 3\n"), "m.obj:1: v: '1\\x082' is not a number");
+    EXPECT_EQ(scanError("f 1 2 \x1b[2J3\n"), "m.obj:1: '\\x1B[2J3' is not a vertex index");
+    EXPECT_EQ(scanError("v 0 0 " + std::string(100, 'x') + "\n"), "m.obj:1: v: '" + std::string(64, 'x') + "...' is not a number");
+}
+
+// Triangulating a polygon takes the parser time quadratic in its corners: one face of 90000 corners
+// ran for minutes. Faces over 4 corners are bounded in total (sum of squared corners <= 2^25).
+TEST(ObjText, HugePolygonsAreAnErrorNotAHang) {
+    auto face = [](size_t corners) {
+        std::string f = "f";
+        for (size_t i = 0; i < corners; ++i) f += " " + std::to_string(i % 3 + 1);
+        return f + "\n";
+    };
+    const std::string vertices = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+    const std::string err = errorOf([&] { scanObjText(vertices + face(90000), "m.obj"); });
+    EXPECT_EQ(err, "m.obj:4: a face of 90000 corners; polygons over 4 corners add up to more than 33554432 squared corners "
+                   "(their triangulation takes quadratic time)");
+    // Many mid-sized polygons add up: 3000 faces of 128 corners, the line where the sum passes the bound.
+    std::string many = vertices;
+    for (int i = 0; i < 3000; ++i) many += face(128);
+    EXPECT_NE(errorOf([&] { scanObjText(many, "m.obj"); }).find("m.obj:2052: a face of 128 corners"), std::string::npos);
+    // Ordinary n-gons pass.
+    EXPECT_EQ(errorOf([&] { scanObjText(vertices + face(4) + face(64) + face(1000), "m.obj"); }), "");
+    // End to end: the loader stops at once with the same line.
+    const auto start = std::chrono::steady_clock::now();
+    const fs::path p = fs::temp_directory_path() / ("lp_polygon_" + std::to_string(::getpid()) + ".obj");
+    std::ofstream(p) << vertices + face(90000);
+    EXPECT_NE(errorOf([&] { loadObj(p); }).find(p.string() + ":4: a face of 90000 corners"), std::string::npos);
+    fs::remove(p);
+    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 2.0);
 }
 
 TEST(ObjText, NanAndOverflowPositionsAreKeptAsNonFiniteAndCounted) {
@@ -212,6 +244,12 @@ TEST_F(BadInput, PngWithCorruptDataOrCutShortIsRefusedWithTheReason) {
     const std::string e = errorOf([&] { loadImage8(cut); });
     EXPECT_TRUE(contains(e, cut.string() + ": truncated: chunk IDAT")) << e;
     EXPECT_EQ(loadImage8(good).rgba, img.rgba);
+    // A chunk type damaged into a CR is named escaped: raw, it garbled the one-line message.
+    std::string crType = bytes;
+    crType[bytes.find("IDAT") + 2] = '\r';
+    const fs::path cr = write("cr_type.png", crType);
+    EXPECT_EQ(errorOf([&] { loadImage8(cr); }),
+              cr.string() + ": corrupt: CRC mismatch in chunk ID\\x0DT at byte " + std::to_string(bytes.find("IDAT") - 4));
 }
 
 TEST_F(BadInput, TruncatedRadianceIsRefusedNotZeroFilled) {
@@ -323,6 +361,22 @@ TEST_F(BadInput, ModelPlacedBeyond1e18IsAnErrorNamingTheModel) {
     EXPECT_EQ(errorOf([&] { loadScene(scene); }), scene.string() + ": models[1]: placed up to 1e+24 m from the origin, beyond the 1e+18 m limit");
 }
 
+// Every model is its own copy of its mesh: a 3 MB scene naming 100000 spheres asked for 15 GB. The
+// models' vertices and indices together are bounded (2^26); 4800 spheres (14049 each) pass it.
+TEST(SceneValues, ModelsAddingUpPastTheSceneLimitAreAnError) {
+    std::string models;
+    for (int i = 0; i < 4800; ++i) models += std::string(i ? ", " : "") + R"({"primitive": "sphere"})";
+    const std::string err = errorOf([&] { parseScene("{\"models\": [" + models + "]}", "many.json"); });
+    EXPECT_EQ(err, "many.json: models[4776]: the models so far add up to 67112073 vertices and indices, over the scene's limit of 67108864");
+    EXPECT_EQ(parseScene(R"({"models": [{"primitive": "sphere"}, {"primitive": "sphere"}]})", "two.json").models.size(), 2u);
+}
+
+// A glTF named under "obj" was read as OBJ text and failed as "no triangles".
+TEST(SceneValues, GltfNamedAsObjIsNamedAsSuch) {
+    EXPECT_EQ(errorOf([&] { parseScene(R"({"models": [{"obj": "ship.glb"}]})", "s.json", false); }),
+              "s.json: models[0].obj: ship.glb: is a glTF file; name it under \"gltf\"");
+}
+
 TEST(SceneValues, HugeAndTinyDirectionsBecomeFiniteUnitVectors) {
     Scene s = parseScene(R"({"camera": {"up": [0, 1e-40, 0]},
                              "lights": [{"type": "directional", "direction": [1e38, -1e38, 1e38]},
@@ -334,4 +388,78 @@ TEST(SceneValues, HugeAndTinyDirectionsBecomeFiniteUnitVectors) {
     EXPECT_NEAR(s.camera.up.y, 1.0f, 1e-6f);
     EXPECT_EQ(errorOf([] { parseScene(R"({"lights": [{"type": "directional", "direction": [0, 0, 0]}]})", "s.json", false); }),
               "s.json: lights[0].direction: is the zero vector");
+}
+
+// UTF-16 text failed far from its cause ("no triangles", "invalid literal"), and a NUL ended the JSON
+// and OBJ parsers' input early, so whatever followed it was silently dropped.
+TEST_F(BadInput, Utf16AndNulBytesInTextFilesAreNamedAsSuch) {
+    auto utf16 = [](const std::string& ascii) {
+        std::string out = "\xFF\xFE";
+        for (char c : ascii) out += std::string(1, c) + '\0';
+        return out;
+    };
+    const std::string scene = R"({"models": [{"primitive": "cube"}]})";
+    const fs::path s16 = write("utf16.json", utf16(scene));
+    EXPECT_EQ(errorOf([&] { loadScene(s16); }), s16.string() + ": is UTF-16 text (it starts with a UTF-16 byte order mark); save it as UTF-8");
+    const fs::path o16 = write("utf16.obj", utf16("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"));
+    EXPECT_TRUE(contains(errorOf([&] { loadObj(o16); }), o16.string() + ": is UTF-16 text"));
+    const fs::path g16 = write("utf16.gltf", utf16(R"({"asset": {"version": "2.0"}})"));
+    EXPECT_TRUE(contains(errorOf([&] { loadGltf(g16); }), g16.string() + ": is UTF-16 text"));
+    // A scene with a NUL then an unknown field: the field used to be ignored.
+    const fs::path nul = write("nul.json", scene + std::string(1, '\0') + R"({"unknown": 1})");
+    EXPECT_EQ(errorOf([&] { loadScene(nul); }),
+              nul.string() + ": byte " + std::to_string(scene.size()) + " is NUL: not UTF-8 text (UTF-16 without a byte order mark, or a binary file)");
+    // UTF-16 without a byte order mark is full of NULs.
+    const fs::path bare = write("bare16.obj", utf16("v 0 0 0\n").substr(2));
+    EXPECT_TRUE(contains(errorOf([&] { loadObj(bare); }), bare.string() + ": byte 1 is NUL"));
+    // A UTF-8 BOM is still fine.
+    EXPECT_NO_THROW(loadScene(write("bom.json", "\xEF\xBB\xBF" + scene)));
+}
+
+// stb_image reads zeros past the end of a file, and its Radiance run-length decoder takes a zero count
+// without advancing: the project's own sky.hdr cut at 52404 bytes looped forever. Every cut of a
+// run-length file is now "truncated", at once.
+TEST_F(BadInput, RunLengthRadianceCutAnywhereIsTruncatedNotAHang) {
+    const std::string header = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 4 +X 16\n";
+    std::string lines;
+    for (int y = 0; y < 4; ++y) {
+        lines += std::string("\x02\x02\x00\x10", 4);
+        for (int c = 0; c < 4; ++c) lines += std::string(1, char(128 + 16)) + char(c == 3 ? 129 : 100);  // a run of 16
+    }
+    const fs::path whole = write("whole.hdr", header + lines);
+    EXPECT_EQ(loadHdrImage(whole).width, 16);
+    const auto start = std::chrono::steady_clock::now();
+    for (size_t cut = 0; cut < lines.size(); ++cut) {
+        const fs::path p = write("cut.hdr", header + lines.substr(0, cut));
+        EXPECT_TRUE(contains(errorOf([&] { loadHdrImage(p); }), p.string() + ": truncated")) << cut;
+    }
+    std::ifstream in(fs::path(LIGHTPASS_SOURCE_DIR) / "hdr/sky.hdr", std::ios::binary);
+    const std::string sky((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    ASSERT_GT(sky.size(), 52404u);
+    const fs::path cutSky = write("sky_cut.hdr", sky.substr(0, 52404));
+    EXPECT_TRUE(contains(errorOf([&] { loadHdrImage(cutSky); }), cutSky.string() + ": truncated"));
+    // Headers cut or without their blank line: the line loops must end too.
+    for (const std::string& bad : {std::string("#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n-Y 4 +X 16\n") + lines, std::string("#?RADIANCE\nFORMAT=32-bit_rle_rgbe"),
+                                   std::string("#?RADIANCE\n") + std::string(3000, 'x')}) {
+        const fs::path p = write("header.hdr", bad);
+        EXPECT_TRUE(contains(errorOf([&] { loadHdrImage(p); }), p.string() + ": ")) << bad.substr(0, 40);
+    }
+    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0);
+}
+
+// A model 1e-20 m across was framed as a 0.2 mm one and rendered as an empty image without a word:
+// now it loads with one warning naming the file and its size.
+TEST_F(BadInput, ModelSmallerThanTheFramingLimitIsRenderedWithAWarning) {
+    resetWarningCount();
+    const fs::path tiny = write("tiny.obj", "v 0 0 0\nv 1e-20 0 0\nv 0 1e-20 0\nf 1 2 3\n");
+    ::testing::internal::CaptureStderr();
+    const Scene s = sceneForModel(tiny);
+    const std::string err = ::testing::internal::GetCapturedStderr();
+    EXPECT_EQ(warningCount(), 1);
+    EXPECT_TRUE(contains(err, tiny.string() + ": the models are only 1.41421e-20 m across")) << err;
+    EXPECT_TRUE(std::isfinite(s.camera.nearPlane) && s.camera.nearPlane > 0.0f);
+    // A millimetre model is framed on its own size, without a warning.
+    resetWarningCount();
+    sceneForModel(write("mm.obj", "v 0 0 0\nv 1e-3 0 0\nv 0 1e-3 0\nf 1 2 3\n"));
+    EXPECT_EQ(warningCount(), 0);
 }

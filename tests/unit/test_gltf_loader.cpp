@@ -291,6 +291,128 @@ TEST(GltfLoader, BadInputNamesFileAndElement) {
     EXPECT_EQ(g.mesh.materials[0].diffuseMap.path, t.dir / "missing.png");
 }
 
+// Malformed files found by mutating the project's own: each must be one error line naming the file
+// (or a documented fallback), never a crash, a hang or an out-of-memory.
+static void expectOneLineError(const fs::path& p, const std::string& fragment) {
+    const std::string err = loadError(p);
+    EXPECT_EQ(err.rfind(p.string() + ": ", 0), 0u) << p << ": " << err;
+    EXPECT_NE(err.find(fragment), std::string::npos) << p << ": " << err;
+    EXPECT_EQ(err.find('\n'), std::string::npos) << err;
+}
+
+// "material": -2 indexed the material table at -1 (a heap read before the array).
+TEST(GltfMalformed, MaterialIndexBelowMinusOne) {
+    TempDir t;
+    for (const char* m : {"-2", "-1000000"})
+        expectOneLineError(t.write(std::string("material") + m + ".gltf",
+                                   triangleGltf("[" + kPositions + "]", kViews, 42, "",
+                                                std::string(R"("attributes": {"POSITION": 0}, "material": )") + m)),
+                           std::string("materials: material ") + m + " does not exist");
+}
+
+// Node structures that cost exponential time, the whole stack or gigabytes: refused up front.
+TEST(GltfMalformed, NodeHierarchyIsCheckedBeforeItIsWalked) {
+    TempDir t;
+    const std::string base = triangleGltf("[" + kPositions + "]", kViews, 42);
+    // Each of 40 nodes names the next one twice: 2^40 paths to the mesh.
+    std::string dag = "\"nodes\": [";
+    for (int i = 0; i < 40; ++i) dag += "{\"children\": [" + std::to_string(i + 1) + ", " + std::to_string(i + 1) + "]}, ";
+    dag += "{\"mesh\": 0}]";
+    expectOneLineError(t.write("dag.gltf", replaced(base, R"("nodes": [{"mesh": 0}])", dag)),
+                       "nodes[40]: is reached twice (from nodes[39].children)");
+    // A root listed twice would be drawn twice.
+    expectOneLineError(t.write("root_twice.gltf", replaced(base, R"("scenes": [{"nodes": [0]}])", R"("scenes": [{"nodes": [0, 0]}])")),
+                       "nodes[0]: is reached twice (from scenes[0].nodes)");
+    // A chain 5000 nodes deep overflowed the stack of the recursive walk.
+    std::string chain = "\"nodes\": [";
+    for (int i = 0; i < 5000; ++i) chain += "{\"children\": [" + std::to_string(i + 1) + "]}, ";
+    chain += "{\"mesh\": 0}]";
+    expectOneLineError(t.write("chain.gltf", replaced(base, R"("nodes": [{"mesh": 0}])", chain)),
+                       "nodes[1024]: is more than 1024 levels deep");
+    // 2000 nodes drawing one mesh of 1000 primitives: 2M primitive instances.
+    std::string prims;
+    for (int i = 0; i < 1000; ++i) prims += std::string(i ? ", " : "") + R"({"attributes": {"POSITION": 0}})";
+    std::string nodes = "\"nodes\": [", roots;
+    for (int i = 0; i < 2000; ++i) {
+        nodes += std::string(i ? ", " : "") + R"({"mesh": 0})";
+        roots += std::string(i ? ", " : "") + std::to_string(i);
+    }
+    const std::string amplified = replaced(replaced(replaced(base, R"("nodes": [{"mesh": 0}])", nodes + "]"), R"("scenes": [{"nodes": [0]}])",
+                                                    "\"scenes\": [{\"nodes\": [" + roots + "]}]"),
+                                           R"("primitives": [{"attributes": {"POSITION": 0}}])", "\"primitives\": [" + prims + "]");
+    expectOneLineError(t.write("amplified.gltf", amplified), "primitives or 67108864 vertices and indices in all");
+    // The cycle keeps its own message.
+    expectOneLineError(t.write("cycle.gltf", replaced(base, R"("nodes": [{"mesh": 0}])", R"("nodes": [{"mesh": 0, "children": [1]}, {"children": [0]}])")),
+                       "nodes[0]: is its own ancestor");
+    // A deep but legal chain (100 levels) still loads.
+    std::string legal = "\"nodes\": [";
+    for (int i = 0; i < 100; ++i) legal += "{\"children\": [" + std::to_string(i + 1) + "]}, ";
+    legal += "{\"mesh\": 0}]";
+    EXPECT_EQ(loadGltf(t.write("legal.gltf", replaced(base, R"("nodes": [{"mesh": 0}])", legal))).mesh.indices.size(), 3u);
+}
+
+// An accessor without a buffer view is all zeros and its count is bounded by no bytes of the file:
+// a 300-byte file asked for 60M vertices (3 GiB).
+TEST(GltfMalformed, PositionsOrIndicesWithoutABufferView) {
+    TempDir t;
+    expectOneLineError(t.write("positions.gltf", triangleGltf(R"([{"componentType": 5126, "count": 60000000, "type": "VEC3"}])", kViews, 42)),
+                       "meshes[0].primitives[0].attributes.POSITION (accessors[0]): has no bufferView, so its 60000000 elements would all be zero");
+}
+
+// Values that parse but poison the frame once turned into floats: a directional light on a node
+// scaled to zero shone in a NaN direction, a range of 1e300 or a colour of 1e30 became +Inf, and a
+// node scale of 1e30 gave finite positions whose normals were NaN.
+TEST(GltfMalformed, LightsAndPositionsThatOverflowAFloat) {
+    TempDir t;
+    auto lightGltf = [&](const std::string& light, const std::string& node) {
+        return replaced(triangleGltf("[" + kPositions + "]", kViews, 42,
+                                     R"("extensionsUsed": ["KHR_lights_punctual"], "extensions": {"KHR_lights_punctual": {"lights": [)" + light + "]}},"),
+                        R"("nodes": [{"mesh": 0}])", R"("nodes": [{"mesh": 0}, {)" + node + R"("extensions": {"KHR_lights_punctual": {"light": 0}}}])");
+    };
+    auto withRoots = [](std::string text) { return replaced(text, R"("scenes": [{"nodes": [0]}])", R"("scenes": [{"nodes": [0, 1]}])"); };
+    expectOneLineError(t.write("sun_zero_scale.gltf", withRoots(lightGltf(R"({"type": "directional"})", R"("scale": [0, 0, 0], )"))),
+                       "extensions.KHR_lights_punctual.lights[0]: its node (nodes[1]) has no -Z direction (a zero scale)");
+    expectOneLineError(t.write("range_1e300.gltf", withRoots(lightGltf(R"({"type": "point", "range": 1e300})", ""))),
+                       "lights[0].range: 1e+300 is beyond a float's range");
+    expectOneLineError(t.write("colour_1e30.gltf", withRoots(lightGltf(R"({"type": "point", "color": [1e30, 1, 1]})", ""))),
+                       "lights[0]: colour and intensity must be finite, >= 0 and <= 1e9");
+    // A point light needs no direction: a zero scale is fine for it.
+    const GltfContent point = loadGltf(t.write("point_zero_scale.gltf", withRoots(lightGltf(R"({"type": "point"})", R"("scale": [0, 0, 0], )"))));
+    ASSERT_EQ(point.pointLights.size(), 1u);
+    EXPECT_TRUE(std::isfinite(point.pointLights[0].range));
+    // Scaled by 1e30 the triangle's corners are finite floats but its normal is not: dropped, so no triangle.
+    expectOneLineError(t.write("scale_1e30.gltf", replaced(triangleGltf("[" + kPositions + "]", kViews, 42), R"("nodes": [{"mesh": 0}])",
+                                                           R"("nodes": [{"mesh": 0, "scale": [1e30, 1e30, 1e30]}])")),
+                       "no triangles");
+    MeshLoadReport report;
+    const GltfContent big = loadGltf(t.write("scale_1e15.gltf", replaced(triangleGltf("[" + kPositions + "]", kViews, 42), R"("nodes": [{"mesh": 0}])",
+                                                                        R"("nodes": [{"mesh": 0, "scale": [1e15, 1e15, 1e15]}])")), &report);
+    ASSERT_EQ(big.mesh.vertices.size(), 3u);
+    for (const Vertex& v : big.mesh.vertices) {
+        EXPECT_NEAR(glm::length(v.normal), 1.0f, 1e-5f);  // the float cross product's squared length overflowed: a zero normal
+        EXPECT_TRUE(std::isfinite(v.tangent.x + v.tangent.y + v.tangent.z));
+    }
+}
+
+// tinygltf hands an image in a buffer view over as buffer + byteOffset, byteLength bytes unchecked:
+// a byteLength past the buffer read the heap beyond it (found by mutating forms.gltf).
+TEST(GltfMalformed, ImageBufferViewPastItsBuffer) {
+    TempDir t;
+    const std::string views = R"([{"buffer": 0, "byteOffset": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 6}, )";
+    const std::string image = R"("images": [{"mimeType": "image/png", "bufferView": 2}], "textures": [{"source": 0}], "materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}],)";
+    expectOneLineError(t.write("long.gltf", triangleGltf("[" + kPositions + "]", views + R"({"buffer": 0, "byteOffset": 30, "byteLength": 782}])", 42, image,
+                                                         R"("attributes": {"POSITION": 0}, "material": 0)")),
+                       "images[0]: bufferViews[2]: bytes 30+782 run past the end of buffers[0] (42 bytes)");
+    expectOneLineError(t.write("far.gltf", triangleGltf("[" + kPositions + "]", views + R"({"buffer": 0, "byteOffset": 1000000, "byteLength": 4}])", 42, image,
+                                                        R"("attributes": {"POSITION": 0}, "material": 0)")),
+                       "images[0]: bufferViews[2]: bytes 1000000+4 run past the end of buffers[0] (42 bytes)");
+    // In range, the bytes are kept (and later decoded, or a checker with a warning: these 6 are no image).
+    const GltfContent ok = loadGltf(t.write("in_range.gltf", triangleGltf("[" + kPositions + "]", views + R"({"buffer": 0, "byteOffset": 36, "byteLength": 6}])", 42,
+                                                                          image, R"("attributes": {"POSITION": 0}, "material": 0)")));
+    ASSERT_TRUE(ok.mesh.materials.at(0).diffuseMap.encoded);
+    EXPECT_EQ(ok.mesh.materials[0].diffuseMap.encoded->size(), 6u);
+}
+
 // MTL: "norm" is a tangent-space normal map, "bump" a height map, Ke emission, d opacity.
 TEST(GltfLoader, MtlConvertsOntoTheSameMaterialModel) {
     TempDir t;

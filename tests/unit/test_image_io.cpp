@@ -7,6 +7,10 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
+#include <cstring>
+#include <functional>
+#include <iterator>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -321,4 +325,40 @@ TEST(ImageAssets, DwabOriginalsMatchTheirZipCopies) {
             off += std::abs(dwab.rgba[i] - zip.rgba[i]) > 1e-5f * std::max(1.0f, std::abs(zip.rgba[i]));
         EXPECT_EQ(off, 0u);
     }
+}
+
+// Headers that claim far more texels than their file could hold: the decoders allocated (and
+// zero-filled) what the header said before noticing the data was missing, a gigabyte and seconds
+// for an 18-byte TGA or a 51-byte Radiance file. Refused before decoding, naming the file; an image
+// of 0x0 texels (a Radiance header "-Y 0 +X 0" decoded "successfully") is an error too.
+TEST_F(ImageIo, HeaderClaimingMoreThanTheFileHoldsIsRefusedBeforeDecoding) {
+    auto expectOneLine = [&](const fs::path& p, const std::function<void()>& load, const std::string& fragment) {
+        const std::string err = errorOf(load);
+        EXPECT_EQ(err.rfind(p.string() + ": ", 0), 0u) << err;
+        EXPECT_NE(err.find(fragment), std::string::npos) << err;
+        EXPECT_EQ(err.find('\n'), std::string::npos) << err;
+    };
+    // Uncompressed 32-bit TGA, 16384x16384, no pixel data.
+    const fs::path tga = dir / "huge.tga";
+    std::string header(18, '\0');
+    header[2] = 2;
+    header[12] = header[14] = 0;
+    header[13] = header[15] = char(0x40);  // 16384, little-endian
+    header[16] = 32;
+    writeBytes(tga, header);
+    const auto start = std::chrono::steady_clock::now();
+    expectOneLine(tga, [&] { loadImage8(tga); }, "claims 16384x16384 texels (1024 MiB decoded) from a 18-byte file");
+    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 0.5);
+    // The same through the texture path: the checker, not a gigabyte.
+    EXPECT_EQ(loadTextureOrChecker(tga).width, makeCheckerImage().width);
+    const fs::path hdr = dir / "huge.hdr";
+    writeBytes(hdr, "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 8192 +X 8192\n");
+    expectOneLine(hdr, [&] { loadHdrImage(hdr); }, "claims 8192x8192 texels");
+    const fs::path empty = dir / "empty.hdr";
+    writeBytes(empty, "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 0 +X 0\n");
+    expectOneLine(empty, [&] { loadHdrImage(empty); }, "has no pixels (0x0)");
+    // Large but plausible: a 4097x4096 PNG of one colour (64 MiB decoded, ~1000 times its file) still loads.
+    const fs::path big = dir / "big.png";
+    writePng(big, Image8{4097, 4096, std::vector<uint8_t>(size_t(4097) * 4096 * 4, 200)});
+    EXPECT_EQ(loadImage8(big).width, 4097);
 }
