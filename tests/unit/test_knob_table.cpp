@@ -10,6 +10,7 @@
 #include <set>
 #include <sstream>
 
+#include "engine/core/paths.hpp"
 #include "app/cli.hpp"
 #include "engine/core/error.hpp"
 #include "frame/knobs.hpp"
@@ -52,9 +53,9 @@ const KnobFlag* valueFlagOf(const KnobEntry& k) {
     return nullptr;
 }
 
-std::filesystem::path sourceRoot() {  // tests/unit/this file -> the repository
-    return std::filesystem::path(__FILE__).parent_path().parent_path().parent_path();
-}
+// The repository the tests were built from (not __FILE__, which a compiler cache may make relative to
+// the build directory, so the test failed when run from anywhere but ctest's working directory).
+std::filesystem::path sourceRoot() { return lp::dataRoot(); }
 
 std::string readFile(const std::filesystem::path& p) {
     std::ifstream in(p);
