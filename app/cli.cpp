@@ -113,9 +113,13 @@ void parseCamera(Options& o, const std::string& flag, const std::string& v) {
         start = comma + 1;
     }
     if (n.size() != 6 && n.size() != 7) throw Error(flag + " " + v + ": expected px,py,pz,tx,ty,tz[,fov] (6 or 7 numbers)");
+    // The scene file's camera limits: past +-1e7 m the shadow and culling matrices overflow a float,
+    // and a fov outside (0.5, 179) degrees leaves a degenerate projection.
+    for (size_t i = 0; i < 6; ++i)
+        if (std::fabs(n[i]) > 1e7f) throw Error(flag + " " + v + ": coordinates must be within +-1e7 m");
     const glm::vec3 position(n[0], n[1], n[2]), target(n[3], n[4], n[5]);
     if (glm::length(target - position) <= 0.0f) throw Error(flag + " " + v + ": the target equals the position");
-    if (n.size() == 7 && !(n[6] > 0.0f && n[6] < 180.0f)) throw Error(flag + " " + v + ": fov must be in (0, 180) degrees");
+    if (n.size() == 7 && !(n[6] > 0.5f && n[6] < 179.0f)) throw Error(flag + " " + v + ": fov must be in (0.5, 179) degrees");
     o.cameraPosition = position;
     o.cameraTarget = target;
     if (n.size() == 7) o.cameraFov = n[6];

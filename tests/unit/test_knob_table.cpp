@@ -233,6 +233,23 @@ TEST(KnobTable, ErrorsKeepTheirWording) {
     EXPECT_EQ(errorOf({"render", "--scene", "x.json", "--out", "x.png", "--light-range-scale", "0.01"}), "");
 }
 
+// --camera takes what the scene file's camera takes: coordinates beyond +-1e7 m failed later in the
+// shadow pass ("light matrix is not finite") without naming the flag; fov 1e-30 was accepted.
+TEST(KnobTable, CameraFlagHasTheSceneCameraLimits) {
+    const std::vector<std::string> base = {"render", "--scene", "x.json", "--out", "x.png", "--camera"};
+    auto with = [&](const std::string& v) {
+        std::vector<std::string> a = base;
+        a.push_back(v);
+        return a;
+    };
+    EXPECT_EQ(errorOf(with("1e30,0,0,0,0,0")), "--camera 1e30,0,0,0,0,0: coordinates must be within +-1e7 m");
+    EXPECT_EQ(errorOf(with("0,0,0,0,0,-2e7")), "--camera 0,0,0,0,0,-2e7: coordinates must be within +-1e7 m");
+    EXPECT_EQ(errorOf(with("1e7,0,0,-1e7,0,0,90")), "");
+    EXPECT_EQ(errorOf(with("0,0,0,1,0,0,1e-30")), "--camera 0,0,0,1,0,0,1e-30: fov must be in (0.5, 179) degrees");
+    EXPECT_EQ(errorOf(with("0,0,0,1,0,0,179.5")), "--camera 0,0,0,1,0,0,179.5: fov must be in (0.5, 179) degrees");
+    EXPECT_EQ(errorOf(with("0,0,0,1,0,0,178.9")), "");
+}
+
 TEST(KnobTable, SweepKnobsAreTableEntries) {
     std::vector<std::string> sweepEntries;
     for (const KnobEntry& k : knobTable())
