@@ -218,25 +218,29 @@ void EnvironmentCache::generateCubeMips(const gl::Texture& cube, const gl::Shade
 }
 
 void validateEnvironmentSettings(const EnvironmentSettings& s) {
+    // Each message names the flags (and so the sweep knobs / panel widgets) that hold the values:
+    // "specular size 256" said nothing about which flag to change.
     auto need = [](bool ok, const std::string& msg) {
         if (!ok) throw Error("environment settings: " + msg);
     };
-    need(isPowerOfTwo(s.cubeSize) && s.cubeSize >= 4 && s.cubeSize <= 4096, "cube size " + std::to_string(s.cubeSize) + " must be a power of two in [4, 4096]");
+    const std::string cube = std::to_string(s.cubeSize), specular = std::to_string(s.specularSize);
+    need(isPowerOfTwo(s.cubeSize) && s.cubeSize >= 4 && s.cubeSize <= 4096, "--env-size " + cube + " must be a power of two in [4, 4096]");
     need(isPowerOfTwo(s.specularSize) && s.specularSize >= 4 && s.specularSize <= s.cubeSize,
-         "specular size " + std::to_string(s.specularSize) + " must be a power of two in [4, cube size " + std::to_string(s.cubeSize) + "]");
+         "--ibl-specular-size " + specular + " must be a power of two in [4, --env-size " + cube + "]");
     need(s.specularLevels >= 1 && s.specularLevels <= log2Int(s.specularSize) + 1,
-         "specular levels " + std::to_string(s.specularLevels) + " must be in [1, " + std::to_string(log2Int(s.specularSize) + 1) + "]");
-    need(s.specularSamples >= 1 && s.specularSamples <= 65536, "specular samples must be in [1, 65536]");
-    need(s.irradianceSize >= 1 && s.irradianceSize <= 1024, "irradiance size must be in [1, 1024]");
-    need(s.irradianceSamples >= 1 && s.irradianceSamples <= 65536, "irradiance samples must be in [1, 65536]");
-    need(s.dfgSize >= 2 && s.dfgSize <= 1024, "DFG LUT size must be in [2, 1024]");
-    need(s.dfgSamples >= 1 && s.dfgSamples <= 65536, "DFG samples must be in [1, 65536]");
-    need(s.debugMip >= 0, "debug mip must be >= 0");
+         "--ibl-specular-levels " + std::to_string(s.specularLevels) + " must be in [1, " + std::to_string(log2Int(s.specularSize) + 1) +
+             "] for --ibl-specular-size " + specular);
+    need(s.specularSamples >= 1 && s.specularSamples <= 65536, "--ibl-samples must be in [1, 65536]");
+    need(s.irradianceSize >= 1 && s.irradianceSize <= 1024, "--ibl-irradiance-size must be in [1, 1024]");
+    need(s.irradianceSamples >= 1 && s.irradianceSamples <= 65536, "--ibl-irradiance-samples must be in [1, 65536]");
+    need(s.dfgSize >= 2 && s.dfgSize <= 1024, "--dfg-size must be in [2, 1024]");
+    need(s.dfgSamples >= 1 && s.dfgSamples <= 65536, "--dfg-samples must be in [1, 65536]");
+    need(s.debugMip >= 0, "--ibl-mip must be >= 0");
     need(s.extractLights >= 0 && s.extractLights <= kMaxEnvironmentLights,
-         "extracted lights " + std::to_string(s.extractLights) + " must be in [0, " + std::to_string(kMaxEnvironmentLights) + "]");
-    need(std::isfinite(s.extractThreshold) && s.extractThreshold >= 1.0f, "light extraction threshold must be >= 1");
+         "--ibl-extract-lights " + std::to_string(s.extractLights) + " must be in [0, " + std::to_string(kMaxEnvironmentLights) + "]");
+    need(std::isfinite(s.extractThreshold) && s.extractThreshold >= 1.0f, "--ibl-extract-threshold must be >= 1");
     need(s.specularRuntimeSamples >= 1 && s.specularRuntimeSamples <= 256,
-         "sampled specular samples " + std::to_string(s.specularRuntimeSamples) + " must be in [1, 256]");
+         "--ibl-specular-samples " + std::to_string(s.specularRuntimeSamples) + " must be in [1, 256]");
 }
 
 const BakedEnvironment& EnvironmentCache::get(const Scene& scene, const EnvironmentSettings& requested,

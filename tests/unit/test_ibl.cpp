@@ -8,6 +8,8 @@
 #include "engine/io/image_io.hpp"
 #include "frame/frame_builder.hpp"
 #include "engine/render/ibl_sh.hpp"
+#include "engine/render/ibl_environment.hpp"
+#include "engine/core/error.hpp"
 
 using namespace lp;
 
@@ -171,4 +173,27 @@ TEST(IblGraph, IblPassOnlyWithSwitchAndMap) {
     for (DebugView v : {DebugView::Environment, DebugView::Irradiance, DebugView::Prefiltered, DebugView::Dfg})
         EXPECT_EQ(build(true, v).executionOrder(), (std::vector<std::string>{"ibl_bake", "gbuffer", "debug_view"}))
             << viewName(v);
+}
+
+// Settings that are each in range but do not fit together name the flags that hold them
+// (`--env-size 4` alone used to say "specular size 256 must be ... [4, cube size 4]").
+TEST(EnvironmentSettingsErrors, NameTheFlags) {
+    auto errorOf = [](const EnvironmentSettings& s) -> std::string {
+        try {
+            validateEnvironmentSettings(s);
+        } catch (const Error& e) {
+            return e.what();
+        }
+        return "";
+    };
+    EnvironmentSettings s;
+    EXPECT_EQ(errorOf(s), "");
+    s.cubeSize = 4;
+    EXPECT_EQ(errorOf(s), "environment settings: --ibl-specular-size 256 must be a power of two in [4, --env-size 4]");
+    s = EnvironmentSettings{};
+    s.specularSize = 4;
+    EXPECT_EQ(errorOf(s), "environment settings: --ibl-specular-levels 6 must be in [1, 3] for --ibl-specular-size 4");
+    s = EnvironmentSettings{};
+    s.cubeSize = 100;
+    EXPECT_EQ(errorOf(s), "environment settings: --env-size 100 must be a power of two in [4, 4096]");
 }
