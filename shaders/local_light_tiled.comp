@@ -82,8 +82,8 @@ void main() {
             barrier();
             // The list in light index order (each light's place: the touching lights before it), not
             // in the order the invocations happened to append: the sum over the list, and so the image,
-            // is then the same bits on every run (appending with an atomic counter made the order, and
-            // through it the last bits of the sum, differ between runs, which TAA's history carried on).
+            // is then the same bits on every run by construction (an atomic counter's order depends on
+            // scheduling, and float sums on their order).
             uint n = 0u, at = 0u;
             for (uint w = 0u; w < LP_BATCH / 32u; ++w) {
                 uint c = uint(bitCount(sPassed[w]));

@@ -308,8 +308,8 @@ TEST(LocalLights, FourMethodsGiveTheSameImage) {
 
 // The compute methods give the same bits on every run: each sums its lights in index order, so no
 // scheduling of the invocations that test the lights can reorder the sum (tiled appended them with an
-// atomic counter before, and on a GPU the last bits of its image, carried on by TAA's history,
-// differed from run to run). 1000 lights: several batches of 256, many lights per tile.
+// atomic counter before, whose order a GPU's scheduling decides: this test catches that only where
+// the scheduling varies, as on a GPU). 1000 lights: several batches of 256, many lights per tile.
 TEST(LocalLights, ComputeMethodsGiveTheSameBitsOnEveryRun) {
     Scene s = twentyLightScene();
     Rig rig(s);
