@@ -101,12 +101,7 @@ std::string pngDamage(const std::string& bytes) {
     while (pos + 12 <= bytes.size()) {
         const uint32_t length = bigEndian32(p + pos);
         // The type as printable text: a corrupt one may hold a CR or an escape that would garble the line.
-        std::string type;
-        for (size_t i = 0; i < 4; ++i) {
-            const unsigned char c = p[pos + 4 + i];
-            static const char* const kHex = "0123456789ABCDEF";
-            type += c >= 0x20 && c < 0x7F ? std::string(1, char(c)) : std::string("\\x") + kHex[c >> 4] + kHex[c & 15];
-        }
+        const std::string type = printableBytes(bytes.substr(pos + 4, 4), true);
         if (length > bytes.size() - pos - 12)
             return "truncated: chunk " + type + " at byte " + std::to_string(pos) + " needs " + std::to_string(length) +
                    " bytes, the file ends " + std::to_string(bytes.size() - pos - 12 < bytes.size() ? bytes.size() - pos - 8 : 0) +

@@ -55,17 +55,7 @@ struct LineReader {
 // A token as it is quoted in a message: control bytes (a lone CR, ESC) written as \xNN, so that the
 // message stays one clean line on a terminal, and long tokens cut.
 std::string quoted(const std::string& token) {
-    std::string out = "'";
-    for (size_t i = 0; i < token.size() && i < 64; ++i) {
-        const unsigned char c = static_cast<unsigned char>(token[i]);
-        if (c < 0x20 || c == 0x7F) {
-            static const char* const kHex = "0123456789ABCDEF";
-            out += std::string("\\x") + kHex[c >> 4] + kHex[c & 15];
-        } else {
-            out += char(c);
-        }
-    }
-    return out + (token.size() > 64 ? "...'" : "'");
+    return "'" + printableBytes(token.substr(0, 64)) + (token.size() > 64 ? "...'" : "'");
 }
 
 [[noreturn]] void failAt(const std::string& file, size_t line, const std::string& what) {
