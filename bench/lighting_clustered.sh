@@ -18,6 +18,45 @@ set -u
 B=$(cd "$1" && pwd); R=$2; mkdir -p "$R"
 nvidia-smi --query-gpu=name,driver_version --format=csv,noheader > "$R/device.txt" 2>/dev/null
 $B/run --version
+# VARIANTS=1: instead of the run below, the clustered kernel's variants against tiled in one run (timing
+# only; every variant gives the same image within the tests' bounds), each from a patched copy of
+# shaders/ through $LIGHTPASS_SHADER_DIR: `lists` (main's fused kernel up to 0b4a46a,
+# bench/kernels/local_light_clustered_lists.comp: it writes the froxel lists every frame and tests
+# every occupied slice), `default` (shaders/ as they are), `all_slices` (the default without the
+# eye-depth interval's slice range: every occupied slice tested), `merge2` (tiles whose farthest pixel
+# is <= 2x their nearest shade as one froxel), `tile_only` (every tile one froxel: the tiled method's
+# lights in the clustered kernel). Three scenes x 1080p, 4K x 1..16384 lights, 60 frames (2 s cap):
+# OUTDIR/variants_<variant>_<scene>.json and OUTDIR/clustered_variants.md (clustered / tiled per variant).
+if [ -n "${VARIANTS:-}" ]; then
+  variant_dir() {  # $1 name -> a patched copy of shaders/ in $R/shaders_$1 (echoes its path; empty on failure)
+    local P=$R/shaders_$1 f=$R/shaders_$1/local_light_clustered.comp
+    rm -rf "$P"; cp -r shaders "$P"
+    case $1 in
+      lists) cp bench/kernels/local_light_clustered_lists.comp "$f" ;;
+      default) ;;
+      all_slices) sed -i 's/uvec2 candidates = occ & sliceRangeBits(lo, hi);/uvec2 candidates = occ;/' "$f" ;;
+      merge2) sed -i 's/^#define LP_CLUSTER_MERGE_RATIO .*/#define LP_CLUSTER_MERGE_RATIO 2.0/' "$f" ;;
+      tile_only) sed -i 's/^#define LP_CLUSTER_MERGE_RATIO .*/#define LP_CLUSTER_MERGE_RATIO 3.0e38/' "$f" ;;
+    esac
+    if [ "$1" != default ] && cmp -s shaders/local_light_clustered.comp "$f"; then
+      echo "variant $1: shaders/local_light_clustered.comp changed shape, skipped" >&2; return
+    fi
+    echo "$P"
+  }
+  for v in ${VARIANT_LIST:-default lists all_slices merge2 tile_only}; do
+    P=$(variant_dir "$v"); [ -n "$P" ] || continue
+    methods='--local-lights clustered --cluster-size 16'
+    [ "$v" = default ] && methods="--local-lights tiled|$methods"
+    for s in ${SCENES:-gallery depth-discontinuity fence}; do
+      LIGHTPASS_SHADER_DIR=$P $B/run bench --scene scenes/$s.json --frames 60 --warmup 10 --max-seconds 2 \
+        --min-frames 3 --vary "$methods" --vary '--light-count 1,16,256,1024,4096,16384' \
+        --vary '--size 1920x1080,3840x2160' --timings-json "$R/variants_${v}_$s.json" -q \
+        > "$R/variants_${v}_$s.log" 2>&1 || echo "variant $v $s failed (see $R/variants_${v}_$s.log)"
+    done
+  done
+  python3 bench/summarize_clustered_variants.py "$R" | tee "$R/clustered_variants.md"
+  exit 0
+fi
 DEFAULT_METHODS='--local-lights tiled|--local-lights clustered --cluster-size 16|--local-lights clustered --cluster-size 32|--render-path forward+'
 for s in ${SCENES:-gallery depth-discontinuity fence}; do
   $B/run bench --scene scenes/$s.json --frames 100 --warmup 10 --floors --max-seconds 3 --min-frames 3 \

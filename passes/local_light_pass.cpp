@@ -55,8 +55,7 @@ void ensureState(LocalLightPass& state, const FrameData& frame, bool spotShadows
         std::vector<std::string> clustered = defines;
         clustered.push_back("LP_CLUSTER_TILE " + std::to_string(clusterTile));
         state.clusteredProgram = frame.shaders->compute("local_light_clustered.comp", clustered);
-        clustered.push_back("LP_CLUSTER_BUILD_ONLY");
-        state.clusterTightBuildProgram = frame.shaders->compute("local_light_clustered.comp", clustered);
+        state.clusterTightBuildProgram = frame.shaders->compute("light_clusters_tight.comp", clustered);
         state.clusterTileCompiled = clusterTile;
         defines.push_back("LP_TILE_HEATMAP");
         state.heatmapProgram = frame.shaders->compute("local_light_tiled.comp", defines);
@@ -229,9 +228,8 @@ void buildClusters(LocalLightPass& state, const FrameData& frame, int lightCount
     finishClusterBuild(state);
 }
 
-// The clustered method's fused pass (local_light_clustered.comp, `prog`: shading, or the build-only
-// variant): a work group per tile builds the grid's lists tightened to the G-buffer's depth and
-// (unless build-only) shades its pixels from them. The G-buffer is bound by the caller.
+// The froxel lists tightened to the G-buffer's depth (light_clusters_tight.comp, a work group per
+// tile), for the lights-per-cluster view. The G-buffer is bound by the caller.
 void buildTightClusters(LocalLightPass& state, const FrameData& frame, GLuint prog, int lightCount) {
     const ClusterGrid g = beginClusterBuild(state, frame);
     setClusterUniforms(prog, g);
@@ -241,6 +239,30 @@ void buildTightClusters(LocalLightPass& state, const FrameData& frame, GLuint pr
     glUseProgram(prog);
     glDispatchCompute(GLuint(g.tilesX), GLuint(g.tilesY), 1);
     finishClusterBuild(state);
+}
+
+// The clustered method's fused pass (local_light_clustered.comp): a work group per tile culls the
+// lights to its froxels tightened to the G-buffer's depth in shared memory and shades its pixels. It
+// writes no lists, so the grid's buffers and overflow bookkeeping stay out of the pass; a shading
+// program that does write the grid (an older fused kernel, timed through $LIGHTPASS_SHADER_DIR by
+// bench/lighting_clustered.sh) gets them as a build. The G-buffer is bound by the caller.
+void shadeClustered(LocalLightPass& state, const FrameData& frame, GLuint prog, int lightCount) {
+    const bool writesGrid = glGetProgramResourceIndex(prog, GL_SHADER_STORAGE_BLOCK, "ClusterCounts") != GL_INVALID_INDEX;
+    if (writesGrid) {
+        buildTightClusters(state, frame, prog, lightCount);
+        return;
+    }
+    const LocalLightSettings& s = frame.settings->localLights;
+    const ClusterGrid g = makeClusterGrid(frame.width, frame.height, s.clusterSize, s.clusterSlices, frame.nearPlane,
+                                          frame.farPlane);
+    state.clusterGrid = g;
+    state.stats.clusters = g.count();
+    setClusterUniforms(prog, g);
+    setInt(prog, "uLightCount", lightCount);
+    setMat4(prog, "uProjection", frame.projection);
+    glProgramUniform2i(prog, glGetUniformLocation(prog, "uImageSize"), frame.width, frame.height);
+    glUseProgram(prog);
+    glDispatchCompute(GLuint(g.tilesX), GLuint(g.tilesY), 1);
 }
 
 // The fullscreen, scissor and volumes methods: additive blending into an FBO holding the HDR texture.
@@ -370,7 +392,7 @@ fg::ResourceId addLocalLightPass(fg::FrameGraph& graph, LocalLightPass& state, c
                 setInt(prog, "uLightingOnly", lightingOnly);
                 setInt(prog, "uSpecularMode", specularMode(s));
                 glBindImageTexture(0, hdrTexture, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
-                buildTightClusters(state, frame, prog, int(lights->size()));
+                shadeClustered(state, frame, prog, int(lights->size()));
                 state.stats.drawn = int(lights->size());
             } else {
                 const GLuint prog = state.fragmentProgram.id();

@@ -37,8 +37,8 @@ struct LocalLightPass {
     gl::Program sanitizeProgram;  // local_light_sanitize.comp
     gl::Program overlayProgram;   // local_light_overlay.vert/.frag: globes, volumes, rectangles
     gl::Program clusterBuildProgram;  // light_clusters.comp
-    gl::Program clusteredProgram;     // local_light_clustered.comp: tight lists and shading, fused
-    gl::Program clusterTightBuildProgram;  // the same with LP_CLUSTER_BUILD_ONLY (lights-per-cluster view)
+    gl::Program clusteredProgram;     // local_light_clustered.comp: tight froxels in shared memory and shading, fused
+    gl::Program clusterTightBuildProgram;  // light_clusters_tight.comp: the tight lists (lights-per-cluster view)
     int clusterTileCompiled = 0;      // the tile size (--cluster-size) those two were compiled for
     gl::Program clusterViewProgram;   // light_clusters_view.comp
     ClusterGrid clusterGrid;          // the grid the last build made

@@ -714,6 +714,11 @@ TEST(ClusteredLights, TightFroxelsListEveryLightReachingTheirPixels) {
     r.localLights.clusterSize = 16;
     r.localLights.clusterSlices = 8;
     const std::vector<float> img = rig.renderHdr(r);
+    // The shading pass keeps its froxels in shared memory; the lights-per-cluster view builds the
+    // same tight froxels' lists from the G-buffer (light_clusters_tight.comp).
+    RenderSettings view = r;
+    view.view = DebugView::LightsPerCluster;
+    rig.renderHdr(view);
     const LocalLightPass& st = rig.passes.localLights;
     const ClusterGrid& g = st.clusterGrid;
     ASSERT_EQ(g.count(), 96);
@@ -788,16 +793,6 @@ TEST(ClusteredLights, TightFroxelsListEveryLightReachingTheirPixels) {
         }
     }
     EXPECT_GT(reached, 1000);
-    // The lights-per-cluster view builds the same tight grid (from the G-buffer, without shading).
-    RenderSettings view = r;
-    view.view = DebugView::LightsPerCluster;
-    rig.renderHdr(view);
-    const ClusterReadback shown = readClusters(rig.passes.localLights);
-    for (int c = 0; c < g.count(); ++c) {
-        ASSERT_EQ(shown.counts[size_t(c)], gpu.counts[size_t(c)]) << "cluster " << c;
-        for (GLuint n = 0; n < gpu.counts[size_t(c)]; ++n)
-            ASSERT_EQ(shown.lists[size_t(c) * kMaxLightsPerCluster + n], gpu.lists[size_t(c) * kMaxLightsPerCluster + n]);
-    }
     // And the image: the tiled method's within FourMethodsGiveTheSameImage's bound.
     const std::vector<float> tiled = rig.renderHdr(smallSettings(LocalLightMethod::Tiled));
     std::vector<int> k = lightsPerPixel(s, smallSettings(LocalLightMethod::Scissor));
@@ -852,10 +847,13 @@ TEST(ClusteredLights, OverflowPastTheCapIsCountedAndWarned) {
     RenderSettings r = smallSettings(LocalLightMethod::Clustered);
     r.localLights.clusterSize = 16;
     r.localLights.clusterSlices = 8;
+    const std::vector<float> img = rig.renderHdr(r);
+    // The deferred clustered method writes no lists; the lights-per-cluster view builds them.
+    r.view = DebugView::LightsPerCluster;
     const int warningsBefore = warningCount();
     rig.renderHdr(r);
     EXPECT_EQ(rig.passes.localLights.stats.clustersOverflowing, -1) << "no earlier build to read";
-    const std::vector<float> img = rig.renderHdr(r);
+    rig.renderHdr(r);
     const LocalLightPass& st = rig.passes.localLights;
     const ClusterReadback gpu = readClusters(st);
     int over = 0;
@@ -869,7 +867,17 @@ TEST(ClusteredLights, OverflowPastTheCapIsCountedAndWarned) {
     EXPECT_GT(over, 0);
     EXPECT_EQ(st.stats.clustersOverflowing, over);
     EXPECT_GT(warningCount(), warningsBefore);
-    for (float v : img) ASSERT_TRUE(std::isfinite(v));
+    // Shading never stops at the cap, and two batches of lights (256 + 44) give the tiled image.
+    const std::vector<float> tiled = rig.renderHdr(smallSettings(LocalLightMethod::Tiled));
+    const std::vector<int> k = lightsPerPixel(s, smallSettings(LocalLightMethod::Scissor));
+    int lit = 0;
+    for (size_t i = 0; i < img.size(); ++i) {
+        ASSERT_TRUE(std::isfinite(img[i]));
+        const double bound = (2.0 * (k[i / 4] + 1) * std::ldexp(1.0, -11) + 2e-3) * std::abs(tiled[i]) + 2e-6;
+        ASSERT_LE(std::abs(double(img[i]) - double(tiled[i])), bound) << "texel " << i / 4 << " channel " << i % 4;
+        if (i % 4 == 1 && k[i / 4] > 256) ++lit;
+    }
+    EXPECT_GT(lit, 0) << "some pixel is reached by more lights than the cap";
 }
 
 // ---- spot shadows ---------------------------------------------------------------------------------

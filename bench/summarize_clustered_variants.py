@@ -1,0 +1,90 @@
+#!/usr/bin/env python3
+"""bench/lighting_clustered.sh VARIANTS=1's tables, from OUTDIR/variants_<variant>_<scene>.json: per
+scene and size, the local_lights pass's median GPU ms of tiled (measured with the `default` variant)
+and of each clustered variant (16 px), with clustered / tiled; then issue #18's targets per variant:
+clustered <= tiled in every cell, and >= 2x faster than tiled where tiles span near and far (the
+depth-discontinuity and fence scenes, 256 lights and more)."""
+import glob
+import json
+import os
+import re
+import sys
+
+ORDER = ("lists", "default", "all_slices", "merge2", "tile_only")
+SCENES = ("gallery", "depth-discontinuity", "fence")
+SPANNING = ("depth-discontinuity", "fence")
+
+
+def flag(flags, name):
+    m = re.search(rf"--{name} (\S+)", flags)
+    return m.group(1) if m else None
+
+
+def load(path):
+    """{(size, lights, method): median local_lights ms}, device"""
+    d = json.load(open(path))
+    cells = {}
+    for run in d["runs"]:
+        local = run["passes"].get("local_lights")
+        if not local:
+            continue
+        key = (f"{run['width']}x{run['height']}", int(flag(run["flags"], "light-count")), flag(run["flags"], "local-lights"))
+        cells[key] = local["median_ms"]
+    return cells, d.get("device", "?")
+
+
+def main(outdir):
+    found = {}
+    device = "?"
+    for path in glob.glob(os.path.join(outdir, "variants_*.json")):
+        m = re.match(r"variants_(.+)_(gallery|depth-discontinuity|fence)\.json$", os.path.basename(path))
+        if not m:
+            continue
+        try:
+            found[(m.group(1), m.group(2))], device = load(path)
+        except (OSError, ValueError, KeyError) as e:
+            print(f"{path}: not readable: {e}\n")
+    variants = [v for v in ORDER if any(k[0] == v for k in found)]
+    variants += sorted({k[0] for k in found} - set(variants))
+    print(f"# Clustered kernel variants against tiled (`local_lights` GPU ms, median)\n\nDevice: {device}\n")
+    worst = {v: [] for v in variants}
+    for scene in SCENES:
+        tiled = found.get(("default", scene), {})
+        if not any(k[1] == scene for k in found):
+            continue
+        sizes = sorted({k[0] for (v, s), c in found.items() if s == scene for k in c}, key=lambda s: int(s.split("x")[0]))
+        for size in sizes:
+            counts = sorted({k[1] for (v, s), c in found.items() if s == scene for k in c if k[0] == size})
+            print(f"## {scene} {size}: ms (clustered / tiled)\n")
+            print("| lights | tiled | " + " | ".join(variants) + " |")
+            print("|---:|" + "---:|" * (len(variants) + 1))
+            for n in counts:
+                t = tiled.get((size, n, "tiled"))
+                row = [f"{t:.3f}" if t is not None else "-"]
+                for v in variants:
+                    c = found.get((v, scene), {}).get((size, n, "clustered"))
+                    if c is None:
+                        row.append("-")
+                        continue
+                    row.append(f"{c:.3f} ({c / t:.2f})" if t else f"{c:.3f}")
+                    if t:
+                        worst[v].append((scene, size, n, c / t))
+                print(f"| {n} | " + " | ".join(row) + " |")
+            print()
+    print("## Issue #18's targets per variant\n")
+    print("| variant | clustered / tiled, worst (where) | least speed-up where tiles span near and far, >= 256 lights (where) |")
+    print("|---|---:|---:|")
+    for v in variants:
+        rows = worst[v]
+        if not rows:
+            continue
+        w = max(rows, key=lambda r: r[3])
+        span = [r for r in rows if r[0] in SPANNING and r[2] >= 256]
+        least = max(span, key=lambda r: r[3]) if span else None
+        ls = f"{1.0 / least[3]:.2f}x ({least[0]} {least[1]}, {least[2]})" if least else "-"
+        print(f"| {v} | {w[3]:.2f} ({w[0]} {w[1]}, {w[2]}) | {ls} |")
+    print("\n(targets: worst <= 1.00 and least speed-up >= 2.00x)")
+
+
+if __name__ == "__main__":
+    main(sys.argv[1] if len(sys.argv) > 1 else ".")
