@@ -2,9 +2,10 @@
 // Local lights (ranged points and spots) added into the HDR buffer, by one of five methods that give
 // the same image (settings.localLights.method): fullscreen, scissor, volumes, tiled, clustered. Plus
 // the overlays: light globes, the light-ranges view and the lights-per-tile and lights-per-cluster
-// heat maps. The clustered method builds its froxel grid's lists, tightened to the G-buffer's depth,
-// and shades from them in one dispatch (local_light_clustered.comp); the forward passes build whole
-// froxels (light_clusters.comp) into the same grid buffers.
+// heat maps. The clustered method culls to froxels tightened to the G-buffer's depth in shared memory
+// and shades from them in one dispatch (local_light_clustered.comp); the lights-per-cluster view
+// builds the same tight froxels' lists (light_clusters_tight.comp) and the forward passes whole
+// froxels (light_clusters.comp) into the grid buffers.
 #include <array>
 
 #include "engine/gl/handles.hpp"

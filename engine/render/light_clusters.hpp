@@ -20,7 +20,7 @@
 namespace lp {
 
 constexpr int kMaxLightsPerCluster = 256;
-// light_clusters.comp and local_light_clustered.comp give each slice of a tile one invocation of
+// light_clusters.comp and light_clusters_tight.comp give each slice of a tile one invocation of
 // their work group (at least 64 invocations).
 constexpr int kMaxClusterSlices = 64;
 // The largest light-index list the grid may allocate (clusters x cap x 4 bytes).
@@ -73,7 +73,8 @@ bool lightTouchesFroxel(const GpuLocalLight& light, const EyeBox& box, double ma
 std::vector<std::vector<int>> referenceClusterLists(const ClusterGrid& grid, const glm::mat4& projection,
                                                     const std::vector<GpuLocalLight>& lights, double margin);
 
-// Tight froxels (the deferred clustered method, shaders/local_light_clustered.comp): a froxel is
+// Tight froxels (the deferred clustered method, shaders/local_light_clustered.comp; its lists:
+// light_clusters_tight.comp): a froxel is
 // tightened to the eye distances of the pixels it holds. Per cluster, the nearest and farthest
 // eye distance of those pixels; none: nearest > farthest.
 struct FroxelDepth {
