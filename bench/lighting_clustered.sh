@@ -24,9 +24,10 @@ $B/run --version
 # bench/kernels/local_light_clustered_lists.comp: it writes the froxel lists every frame and tests
 # every occupied slice), `default` (shaders/ as they are), `all_slices` (the default without the
 # eye-depth interval's slice range: every occupied slice tested), `no_box` (a slice's depth range
-# only, no test against the box around it), `merge2`, `merge4` (tiles whose farthest pixel is <= 2x,
+# only, no test against the box around it), `shared_boxes` (each occupied slice's box made once per
+# tile in shared memory, behind one more barrier, not by each light), `merge2`, `merge4` (tiles whose farthest pixel is <= 2x,
 # 4x their nearest shade as one froxel), `tile_only` (every tile one froxel: the tiled method's lights
-# in the clustered kernel). Three scenes x 1080p, 4K x 1..16384 lights, 60 frames (2 s cap):
+# in the clustered kernel). Three scenes x 1080p, 4K x 1..16384 lights, 50 frames (2 s cap):
 # OUTDIR/variants_<variant>_<scene>.json and OUTDIR/clustered_variants.md (clustered / tiled per variant).
 if [ -n "${VARIANTS:-}" ]; then
   variant_dir() {  # $1 name -> a patched copy of shaders/ in $R/shaders_$1 (echoes its path; empty on failure)
@@ -37,7 +38,8 @@ if [ -n "${VARIANTS:-}" ]; then
       default) ;;
       all_slices) sed -i 's/uvec2 candidates = occ & sliceRangeBits(lo, hi);/uvec2 candidates = occ;/' "$f" ;;
       merge2) sed -i 's/^#define LP_CLUSTER_MERGE_RATIO .*/#define LP_CLUSTER_MERGE_RATIO 2.0/' "$f" ;;
-      no_box) sed -i '/vec3 boxLo, boxHi;$/d; /clusterTileBox(ndcLo, ndcHi, d0, d1, uProjection, boxLo, boxHi);$/d; /if (!clusterLightTouchesBox(b, apex, axis, boxLo, boxHi)) continue;$/d' "$f" ;;
+      no_box) sed -i '/if (!clusterLightTouchesBox(b, apex, axis, boxLo, boxHi)) continue;$/d' "$f" ;;
+      shared_boxes) sed -i 's/^#define LP_CLUSTER_SHARED_BOXES .*/#define LP_CLUSTER_SHARED_BOXES 1/' "$f" ;;
       merge4) sed -i 's/^#define LP_CLUSTER_MERGE_RATIO .*/#define LP_CLUSTER_MERGE_RATIO 4.0/' "$f" ;;
       tile_only) sed -i 's/^#define LP_CLUSTER_MERGE_RATIO .*/#define LP_CLUSTER_MERGE_RATIO 3.0e38/' "$f" ;;
     esac
@@ -46,12 +48,12 @@ if [ -n "${VARIANTS:-}" ]; then
     fi
     echo "$P"
   }
-  for v in ${VARIANT_LIST:-default lists all_slices no_box merge2 merge4 tile_only}; do
+  for v in ${VARIANT_LIST:-default lists all_slices no_box shared_boxes merge2 merge4 tile_only}; do
     P=$(variant_dir "$v"); [ -n "$P" ] || continue
     methods='--local-lights clustered --cluster-size 16'
     [ "$v" = default ] && methods="--local-lights tiled|$methods"
     for s in ${SCENES:-gallery depth-discontinuity fence}; do
-      LIGHTPASS_SHADER_DIR=$P $B/run bench --scene scenes/$s.json --frames 60 --warmup 10 --max-seconds 2 \
+      LIGHTPASS_SHADER_DIR=$P $B/run bench --scene scenes/$s.json --frames 50 --warmup 8 --max-seconds 2 \
         --min-frames 3 --vary "$methods" --vary '--light-count 1,16,256,1024,4096,16384' \
         --vary '--size 1920x1080,3840x2160' --timings-json "$R/variants_${v}_$s.json" -q \
         > "$R/variants_${v}_$s.log" 2>&1 || echo "variant $v $s failed (see $R/variants_${v}_$s.log)"

@@ -10,7 +10,7 @@ import os
 import re
 import sys
 
-ORDER = ("lists", "default", "all_slices", "no_box", "merge2", "merge4", "tile_only")
+ORDER = ("lists", "default", "all_slices", "no_box", "shared_boxes", "merge2", "merge4", "tile_only")
 SCENES = ("gallery", "depth-discontinuity", "fence")
 SPANNING = ("depth-discontinuity", "fence")
 

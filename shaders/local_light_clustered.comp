@@ -29,6 +29,11 @@
 #ifndef LP_CLUSTER_MERGE_RATIO
 #define LP_CLUSTER_MERGE_RATIO 0.0
 #endif
+// Each occupied slice's box made once per tile in shared memory (one more barrier) rather than by each
+// light that reaches the slice's depth range.
+#ifndef LP_CLUSTER_SHARED_BOXES
+#define LP_CLUSTER_SHARED_BOXES 0
+#endif
 const int LP_TILE = LP_CLUSTER_TILE;
 // At most 16 x 16 invocations; a larger tile gives each invocation several pixels, 16 apart.
 const int LP_SIDE = LP_TILE < 16 ? LP_TILE : 16;
@@ -55,6 +60,9 @@ shared uint sOccupied[2];  // a bit per slice holding a pixel
 // batch needs one barrier between its tests and its shading and one before the next batch's tests.
 shared uint sMask[2 * LP_MASK];  // per slice, a bit per light of the batch touching it
 shared uint sWords[2 * LP_SLICES];  // per slice, a bit per word of its sMask that is not 0
+#if LP_CLUSTER_SHARED_BOXES
+shared vec4 sBoxLo[LP_SLICES], sBoxHi[LP_SLICES];  // each occupied slice's eye-space box
+#endif
 
 // Bits lo..hi (0 <= lo <= hi < 64) of a 64-bit mask held as two words.
 uvec2 sliceRangeBits(int lo, int hi) {
@@ -136,6 +144,18 @@ void main() {
         for (int k = 0; k < LP_PIXELS; ++k) slice[k] = 0;
     vec2 ndcLo, ndcHi;
     clusterTileNdc(tile, uImageSize, ndcLo, ndcHi);
+#if LP_CLUSTER_SHARED_BOXES
+    if (!merged) {
+        for (int j = int(lid); j < slices; j += LP_BATCH)
+            if (sMinDist[j] <= sMaxDist[j]) {
+                vec3 lo, hi;
+                clusterTileBox(ndcLo, ndcHi, uintBitsToFloat(sMinDist[j]), uintBitsToFloat(sMaxDist[j]), uProjection, lo, hi);
+                sBoxLo[j] = vec4(lo, 0.0);
+                sBoxHi[j] = vec4(hi, 0.0);
+            }
+        barrier();
+    }
+#endif
 
     uint word = lid >> 5, bit = 1u << (lid & 31u);
     int part = 0;  // which half of sMask / sWords this batch uses
@@ -164,8 +184,12 @@ void main() {
                             float d0 = uintBitsToFloat(sMinDist[j]), d1 = uintBitsToFloat(sMaxDist[j]);
                             // The tile's side planes passed above: the slice's frustum test is its depth range.
                             if (dist + r < d0 || dist - r > d1) continue;
+#if LP_CLUSTER_SHARED_BOXES
+                            vec3 boxLo = sBoxLo[j].xyz, boxHi = sBoxHi[j].xyz;
+#else
                             vec3 boxLo, boxHi;
                             clusterTileBox(ndcLo, ndcHi, d0, d1, uProjection, boxLo, boxHi);
+#endif
                             if (!clusterLightTouchesBox(b, apex, axis, boxLo, boxHi)) continue;
                             atomicOr(sMask[mask + j * LP_WORDS + int(word)], bit);
                             if ((sWords[words + j] & (1u << word)) == 0u) atomicOr(sWords[words + j], 1u << word);
