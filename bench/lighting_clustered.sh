@@ -22,13 +22,17 @@ $B/run --version
 # only; every variant gives the same image within the tests' bounds), each from a patched copy of
 # shaders/ through $LIGHTPASS_SHADER_DIR: `lists` (main's fused kernel up to 0b4a46a,
 # bench/kernels/local_light_clustered_lists.comp: it writes the froxel lists every frame and tests
-# every occupied slice), `default` (shaders/ as they are), `all_slices` (the default without the
-# eye-depth interval's slice range: every occupied slice tested), `no_box` (a slice's depth range
-# only, no test against the box around it), `shared_boxes` (each occupied slice's box made once per
-# tile in shared memory, behind one more barrier, not by each light), `merge2`, `merge4` (tiles whose farthest pixel is <= 2x,
-# 4x their nearest shade as one froxel), `tile_only` (every tile one froxel: the tiled method's lights
-# in the clustered kernel). Three scenes x 1080p, 4K x 1..16384 lights, 50 frames (2 s cap):
-# OUTDIR/variants_<variant>_<scene>.json and OUTDIR/clustered_variants.md (clustered / tiled per variant).
+# every occupied slice), `default` (shaders/ as they are), and the default with one choice of
+# local_light_clustered.comp flipped: `no_compact` (LP_CLUSTER_COMPACT 0: each light's slice tests on
+# the invocation that tested it against the tile), `inline_boxes` (LP_CLUSTER_SHARED_BOXES 0: each
+# light makes the boxes of the slices it reaches), `hdr_last` (LP_CLUSTER_HDR_FIRST 0: the HDR value
+# read after the shading), `all_slices` (every occupied slice tested, not only those the light's
+# eye-depth interval reaches), `no_box` (the slices' depth ranges only), `merge2`, `merge4` (tiles whose
+# farthest pixel is <= 2x, 4x their nearest shade as one froxel), `tile_only` (every tile one froxel).
+# VARIANT_LIST picks them (default: default lists no_compact inline_boxes hdr_last merge2 merge4);
+# `default` and `lists` also time tiled in their process. Three scenes x 1080p, 4K x 1..16384 lights,
+# 50 frames (2 s cap): OUTDIR/variants_<variant>_<scene>.json and OUTDIR/clustered_variants.md
+# (clustered / tiled per variant, against the tiled of its own process where it has one).
 if [ -n "${VARIANTS:-}" ]; then
   variant_dir() {  # $1 name -> a patched copy of shaders/ in $R/shaders_$1 (echoes its path; empty on failure)
     local P=$R/shaders_$1 f=$R/shaders_$1/local_light_clustered.comp
@@ -36,22 +40,25 @@ if [ -n "${VARIANTS:-}" ]; then
     case $1 in
       lists) cp bench/kernels/local_light_clustered_lists.comp "$f" ;;
       default) ;;
+      no_compact) sed -i 's/^#define LP_CLUSTER_COMPACT .*/#define LP_CLUSTER_COMPACT 0/' "$f" ;;
+      inline_boxes) sed -i 's/^#define LP_CLUSTER_SHARED_BOXES .*/#define LP_CLUSTER_SHARED_BOXES 0/' "$f" ;;
+      hdr_last) sed -i 's/^#define LP_CLUSTER_HDR_FIRST .*/#define LP_CLUSTER_HDR_FIRST 0/' "$f" ;;
       all_slices) sed -i 's/uvec2 candidates = occ & sliceRangeBits(lo, hi);/uvec2 candidates = occ;/' "$f" ;;
-      merge2) sed -i 's/^#define LP_CLUSTER_MERGE_RATIO .*/#define LP_CLUSTER_MERGE_RATIO 2.0/' "$f" ;;
       no_box) sed -i '/if (!clusterLightTouchesBox(b, apex, axis, boxLo, boxHi)) continue;$/d' "$f" ;;
-      shared_boxes) sed -i 's/^#define LP_CLUSTER_SHARED_BOXES .*/#define LP_CLUSTER_SHARED_BOXES 1/' "$f" ;;
+      merge2) sed -i 's/^#define LP_CLUSTER_MERGE_RATIO .*/#define LP_CLUSTER_MERGE_RATIO 2.0/' "$f" ;;
       merge4) sed -i 's/^#define LP_CLUSTER_MERGE_RATIO .*/#define LP_CLUSTER_MERGE_RATIO 4.0/' "$f" ;;
       tile_only) sed -i 's/^#define LP_CLUSTER_MERGE_RATIO .*/#define LP_CLUSTER_MERGE_RATIO 3.0e38/' "$f" ;;
+      *) echo "variant $1: unknown" >&2; return ;;
     esac
     if [ "$1" != default ] && cmp -s shaders/local_light_clustered.comp "$f"; then
       echo "variant $1: shaders/local_light_clustered.comp changed shape, skipped" >&2; return
     fi
     echo "$P"
   }
-  for v in ${VARIANT_LIST:-default lists all_slices no_box shared_boxes merge2 merge4 tile_only}; do
+  for v in ${VARIANT_LIST:-default lists no_compact inline_boxes hdr_last merge2 merge4}; do
     P=$(variant_dir "$v"); [ -n "$P" ] || continue
     methods='--local-lights clustered --cluster-size 16'
-    [ "$v" = default ] && methods="--local-lights tiled|$methods"
+    case $v in default|lists) methods="--local-lights tiled|$methods" ;; esac
     for s in ${SCENES:-gallery depth-discontinuity fence}; do
       LIGHTPASS_SHADER_DIR=$P $B/run bench --scene scenes/$s.json --frames 50 --warmup 8 --max-seconds 2 \
         --min-frames 3 --vary "$methods" --vary '--light-count 1,16,256,1024,4096,16384' \

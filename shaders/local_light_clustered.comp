@@ -32,7 +32,16 @@
 // Each occupied slice's box made once per tile in shared memory (one more barrier) rather than by each
 // light that reaches the slice's depth range.
 #ifndef LP_CLUSTER_SHARED_BOXES
-#define LP_CLUSTER_SHARED_BOXES 0
+#define LP_CLUSTER_SHARED_BOXES 1
+#endif
+// The lights that pass the tile's test gathered first (one more barrier a batch), so their slice tests
+// run on as few warps as there are survivors instead of on every warp holding one.
+#ifndef LP_CLUSTER_COMPACT
+#define LP_CLUSTER_COMPACT 1
+#endif
+// Each pixel's HDR value read with its G-buffer texels, at the start, not after the shading.
+#ifndef LP_CLUSTER_HDR_FIRST
+#define LP_CLUSTER_HDR_FIRST 1
 #endif
 const int LP_TILE = LP_CLUSTER_TILE;
 // At most 16 x 16 invocations; a larger tile gives each invocation several pixels, 16 apart.
@@ -63,6 +72,10 @@ shared uint sWords[2 * LP_SLICES];  // per slice, a bit per word of its sMask th
 #if LP_CLUSTER_SHARED_BOXES
 shared vec4 sBoxLo[LP_SLICES], sBoxHi[LP_SLICES];  // each occupied slice's eye-space box
 #endif
+#if LP_CLUSTER_COMPACT
+shared uint sSurvivors[2 * LP_BATCH];  // per half: the batch's lights that pass the tile's test
+shared uint sSurvivorCount[2];
+#endif
 
 // Bits lo..hi (0 <= lo <= hi < 64) of a 64-bit mask held as two words.
 uvec2 sliceRangeBits(int lo, int hi) {
@@ -75,6 +88,36 @@ uvec2 sliceRangeBits(int lo, int hi) {
     return upTo & ~below;
 }
 
+// Light i (bit `at` of the batch) against the tile's occupied slices `occ` that its eye-depth interval
+// reaches: each one's depth range [sMinDist, sMaxDist], then the box around it; a bit in the half of
+// sMask / sWords at `mask` / `words` for each slice it touches.
+void markSlices(int i, uint at, uvec2 occ, vec2 ndcLo, vec2 ndcHi, int mask, int words) {
+    vec4 b = uLights[i].bound, apex = uLights[i].positionRange, axis = uLights[i].directionCos;
+    float r = b.w * (1.0 + LP_CLUSTER_MARGIN) + 1e-6;
+    float dist = -b.z;
+    uint word = at >> 5, bit = 1u << (at & 31u);
+    // clusterSliceOf is monotone up to the float logarithm's rounding: one slice more either side,
+    // then each slice's own range decides.
+    int lo = max(clusterSliceOf(dist - r) - 1, 0), hi = min(clusterSliceOf(dist + r) + 1, uClusterGrid.z - 1);
+    uvec2 candidates = occ & sliceRangeBits(lo, hi);
+    for (int h = 0; h < 2; ++h)
+        for (uint cand = candidates[h]; cand != 0u; cand &= cand - 1u) {
+            int j = 32 * h + findLSB(cand);
+            float d0 = uintBitsToFloat(sMinDist[j]), d1 = uintBitsToFloat(sMaxDist[j]);
+            // The tile's side planes passed already: the slice's frustum test is its depth range.
+            if (dist + r < d0 || dist - r > d1) continue;
+#if LP_CLUSTER_SHARED_BOXES
+            vec3 boxLo = sBoxLo[j].xyz, boxHi = sBoxHi[j].xyz;
+#else
+            vec3 boxLo, boxHi;
+            clusterTileBox(ndcLo, ndcHi, d0, d1, uProjection, boxLo, boxHi);
+#endif
+            if (!clusterLightTouchesBox(b, apex, axis, boxLo, boxHi)) continue;
+            atomicOr(sMask[mask + j * LP_WORDS + int(word)], bit);
+            if ((sWords[words + j] & (1u << word)) == 0u) atomicOr(sWords[words + j], 1u << word);
+        }
+}
+
 void main() {
     uint lid = gl_LocalInvocationIndex;
     ivec2 tile = ivec2(gl_WorkGroupID.xy);
@@ -85,6 +128,9 @@ void main() {
     // range).
     bool surface[LP_PIXELS];
     vec3 P[LP_PIXELS], N[LP_PIXELS], kd[LP_PIXELS], V[LP_PIXELS], sum[LP_PIXELS];
+#if LP_CLUSTER_HDR_FIRST
+    vec3 hdr[LP_PIXELS];
+#endif
     vec4 spec[LP_PIXELS];
     int slice[LP_PIXELS];
     for (int k = 0; k < LP_PIXELS; ++k) {
@@ -108,6 +154,9 @@ void main() {
             V[k] = pl > 0.0 ? -P[k] / pl : vec3(0.0, 0.0, 1.0);
             slice[k] = clusterSliceOf(max(-P[k].z, 0.0));
         }
+#if LP_CLUSTER_HDR_FIRST
+        hdr[k] = surface[k] ? imageLoad(uHdr, p).rgb : vec3(0.0);
+#endif
     }
     for (int j = int(lid); j < slices; j += LP_BATCH) {
         sMinDist[j] = floatBitsToUint(3.0e38);
@@ -120,6 +169,9 @@ void main() {
         sMask[LP_MASK + w] = 0u;
     }
     if (lid < 2u) sOccupied[lid] = 0u;
+#if LP_CLUSTER_COMPACT
+    if (lid < 2u) sSurvivorCount[lid] = 0u;
+#endif
     barrier();
     for (int k = 0; k < LP_PIXELS; ++k) {
         if (!surface[k]) continue;
@@ -170,33 +222,25 @@ void main() {
             if (sphereTouchesTileFrustum(b.xyz, r, ndcLo, ndcHi, tileNear, tileFar, uProjection)) {
                 if (merged) {
                     atomicOr(sMask[mask + int(word)], bit);
-                    atomicOr(sWords[words], 1u << word);
+                    if ((sWords[words] & (1u << word)) == 0u) atomicOr(sWords[words], 1u << word);
                 } else {
-                    vec4 apex = uLights[i].positionRange, axis = uLights[i].directionCos;
-                    float dist = -b.z;
-                    // clusterSliceOf is monotone up to the float logarithm's rounding: one slice more
-                    // either side, then each slice's own range decides.
-                    int lo = max(clusterSliceOf(dist - r) - 1, 0), hi = min(clusterSliceOf(dist + r) + 1, slices - 1);
-                    uvec2 candidates = occ & sliceRangeBits(lo, hi);
-                    for (int h = 0; h < 2; ++h)
-                        for (uint cand = candidates[h]; cand != 0u; cand &= cand - 1u) {
-                            int j = 32 * h + findLSB(cand);
-                            float d0 = uintBitsToFloat(sMinDist[j]), d1 = uintBitsToFloat(sMaxDist[j]);
-                            // The tile's side planes passed above: the slice's frustum test is its depth range.
-                            if (dist + r < d0 || dist - r > d1) continue;
-#if LP_CLUSTER_SHARED_BOXES
-                            vec3 boxLo = sBoxLo[j].xyz, boxHi = sBoxHi[j].xyz;
+#if LP_CLUSTER_COMPACT
+                    sSurvivors[part * LP_BATCH + int(atomicAdd(sSurvivorCount[part], 1u))] = uint(i);
 #else
-                            vec3 boxLo, boxHi;
-                            clusterTileBox(ndcLo, ndcHi, d0, d1, uProjection, boxLo, boxHi);
+                    markSlices(i, lid, occ, ndcLo, ndcHi, mask, words);
 #endif
-                            if (!clusterLightTouchesBox(b, apex, axis, boxLo, boxHi)) continue;
-                            atomicOr(sMask[mask + j * LP_WORDS + int(word)], bit);
-                            if ((sWords[words + j] & (1u << word)) == 0u) atomicOr(sWords[words + j], 1u << word);
-                        }
                 }
             }
         }
+#if LP_CLUSTER_COMPACT
+        if (!merged && !uUnbounded) {  // uniform
+            barrier();
+            if (lid < sSurvivorCount[part]) {
+                int s = int(sSurvivors[part * LP_BATCH + int(lid)]);
+                markSlices(s, uint(s - first), occ, ndcLo, ndcHi, mask, words);
+            }
+        }
+#endif
         barrier();
         int batch = min(LP_BATCH, uLightCount - first);
         // 3. Each pixel: the lights of its slice, in index order (only the words holding any).
@@ -217,12 +261,19 @@ void main() {
         int other = (1 - part) * LP_MASK;
         for (int w = int(lid); w < slices * LP_WORDS; w += LP_BATCH) sMask[other + w] = 0u;
         for (int j = int(lid); j < slices; j += LP_BATCH) sWords[(1 - part) * LP_SLICES + j] = 0u;
+#if LP_CLUSTER_COMPACT
+        if (lid == 0u) sSurvivorCount[1 - part] = 0u;
+#endif
         barrier();
         part = 1 - part;
     }
     for (int k = 0; k < LP_PIXELS; ++k) {
         if (!surface[k]) continue;
         ivec2 p = origin + ivec2(gl_LocalInvocationID.xy) + LP_SIDE * ivec2(k % LP_PIXELS_SIDE, k / LP_PIXELS_SIDE);
+#if LP_CLUSTER_HDR_FIRST
+        imageStore(uHdr, p, vec4(sanitizeHdr(hdr[k] + sum[k]), 1.0));
+#else
         imageStore(uHdr, p, vec4(sanitizeHdr(imageLoad(uHdr, p).rgb + sum[k]), 1.0));
+#endif
     }
 }

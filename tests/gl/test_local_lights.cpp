@@ -804,6 +804,15 @@ TEST(ClusteredLights, TightFroxelsListEveryLightReachingTheirPixels) {
         if (i % 4 == 1 && tiled[i] > 1e-3f) ++lit;
     }
     EXPECT_GT(lit, 64 * 48 / 8);
+    // 8-pixel tiles: 64 lights a batch, so the 90 lights take two batches (the second in the other
+    // half of the shared bits) in tiles split by the pillar's edge.
+    RenderSettings small = r;
+    small.localLights.clusterSize = 8;
+    const std::vector<float> img8 = rig.renderHdr(small);
+    for (size_t i = 0; i < img8.size(); ++i) {
+        const double bound = (2.0 * (k[i / 4] + 1) * std::ldexp(1.0, -11) + 2e-3) * std::abs(tiled[i]) + 2e-6;
+        ASSERT_LE(std::abs(double(img8[i]) - double(tiled[i])), bound) << "8 px: texel " << i / 4 << " channel " << i % 4;
+    }
 }
 
 // The fused clustered pass at tile sizes other than its 16 x 16 work group (a pixel per
@@ -867,14 +876,20 @@ TEST(ClusteredLights, OverflowPastTheCapIsCountedAndWarned) {
     EXPECT_GT(over, 0);
     EXPECT_EQ(st.stats.clustersOverflowing, over);
     EXPECT_GT(warningCount(), warningsBefore);
-    // Shading never stops at the cap, and two batches of lights (256 + 44) give the tiled image.
+    // Shading never stops at the cap: two batches of lights (256 + 44), and with 8-pixel tiles five
+    // (64 a batch, alternating between the two halves of the shared bits), give the tiled image.
     const std::vector<float> tiled = rig.renderHdr(smallSettings(LocalLightMethod::Tiled));
+    RenderSettings small = smallSettings(LocalLightMethod::Clustered);
+    small.localLights.clusterSize = 8;
+    small.localLights.clusterSlices = 8;
+    const std::vector<float> img8 = rig.renderHdr(small);
     const std::vector<int> k = lightsPerPixel(s, smallSettings(LocalLightMethod::Scissor));
     int lit = 0;
     for (size_t i = 0; i < img.size(); ++i) {
         ASSERT_TRUE(std::isfinite(img[i]));
         const double bound = (2.0 * (k[i / 4] + 1) * std::ldexp(1.0, -11) + 2e-3) * std::abs(tiled[i]) + 2e-6;
         ASSERT_LE(std::abs(double(img[i]) - double(tiled[i])), bound) << "texel " << i / 4 << " channel " << i % 4;
+        ASSERT_LE(std::abs(double(img8[i]) - double(tiled[i])), bound) << "8 px: texel " << i / 4 << " channel " << i % 4;
         if (i % 4 == 1 && k[i / 4] > 256) ++lit;
     }
     EXPECT_GT(lit, 0) << "some pixel is reached by more lights than the cap";
