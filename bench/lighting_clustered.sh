@@ -29,8 +29,8 @@ $B/run --version
 # read after the shading), `all_slices` (every occupied slice tested, not only those the light's
 # eye-depth interval reaches), `no_box` (the slices' depth ranges only), `merge2`, `merge4` (tiles whose
 # farthest pixel is <= 2x, 4x their nearest shade as one froxel), `tile_only` (every tile one froxel).
-# VARIANT_LIST picks them (default: default lists no_compact inline_boxes hdr_last merge2 merge4);
-# `default` and `lists` also time tiled in their process. Three scenes x 1080p, 4K x 1..16384 lights,
+# VARIANT_LIST picks them (default: default lists no_compact inline_boxes hdr_last merge4);
+# `default` and `lists` also time tiled in their process, `default` also 32-pixel tiles ("default 32px"). Three scenes x 1080p, 4K x 1..16384 lights,
 # 50 frames (2 s cap): OUTDIR/variants_<variant>_<scene>.json and OUTDIR/clustered_variants.md
 # (clustered / tiled per variant, against the tiled of its own process where it has one).
 if [ -n "${VARIANTS:-}" ]; then
@@ -55,10 +55,13 @@ if [ -n "${VARIANTS:-}" ]; then
     fi
     echo "$P"
   }
-  for v in ${VARIANT_LIST:-default lists no_compact inline_boxes hdr_last merge2 merge4}; do
+  for v in ${VARIANT_LIST:-default lists no_compact inline_boxes hdr_last merge4}; do
     P=$(variant_dir "$v"); [ -n "$P" ] || continue
     methods='--local-lights clustered --cluster-size 16'
-    case $v in default|lists) methods="--local-lights tiled|$methods" ;; esac
+    case $v in
+      default) methods="--local-lights tiled|$methods|--local-lights clustered --cluster-size 32" ;;
+      lists) methods="--local-lights tiled|$methods" ;;
+    esac
     for s in ${SCENES:-gallery depth-discontinuity fence}; do
       LIGHTPASS_SHADER_DIR=$P $B/run bench --scene scenes/$s.json --frames 50 --warmup 8 --max-seconds 2 \
         --min-frames 3 --vary "$methods" --vary '--light-count 1,16,256,1024,4096,16384' \

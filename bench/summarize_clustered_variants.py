@@ -29,7 +29,10 @@ def load(path):
         local = run["passes"].get("local_lights")
         if not local:
             continue
-        key = (f"{run['width']}x{run['height']}", int(flag(run["flags"], "light-count")), flag(run["flags"], "local-lights"))
+        method = flag(run["flags"], "local-lights")
+        if method == "clustered" and flag(run["flags"], "cluster-size") not in (None, "16"):
+            method += " " + flag(run["flags"], "cluster-size")  # another tile size: its own column
+        key = (f"{run['width']}x{run['height']}", int(flag(run["flags"], "light-count")), method)
         cells[key] = local["median_ms"]
     return cells, d.get("device", "?")
 
@@ -42,9 +45,17 @@ def main(outdir):
         if not m:
             continue
         try:
-            found[(m.group(1), m.group(2))], device = load(path)
+            cells, device = load(path)
         except (OSError, ValueError, KeyError) as e:
             print(f"{path}: not readable: {e}\n")
+            continue
+        found[(m.group(1), m.group(2))] = cells
+        # Other tile sizes of the same kernel (e.g. `default` at --cluster-size 32): variant "<v> <px>px",
+        # against the same process's tiled.
+        for px in sorted({k[2].split(" ")[1] for k in cells if k[2].startswith("clustered ")}):
+            found[(f"{m.group(1)} {px}px", m.group(2))] = {
+                (k[0], k[1], "clustered" if k[2] == f"clustered {px}" else k[2]): ms
+                for k, ms in cells.items() if k[2] in (f"clustered {px}", "tiled")}
     variants = [v for v in ORDER if any(k[0] == v for k in found)]
     variants += sorted({k[0] for k in found} - set(variants))
     print(f"# Clustered kernel variants against tiled (`local_lights` GPU ms, median)\n\nDevice: {device}\n")
