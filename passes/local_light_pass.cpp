@@ -71,22 +71,30 @@ void ensureState(LocalLightPass& state, const FrameData& frame, bool spotShadows
     state.fbo = gl::makeFramebuffer("local_lights");
 }
 
-// Uploads the frame's lights (eye space) into the SSBO at binding 0; returns them.
-// With spot shadow maps, each shadowed light's record names its atlas tile.
-std::shared_ptr<const std::vector<PointLight>> uploadLights(LocalLightPass& state, const FrameData& frame,
-                                                            const SpotShadowMaps* spotShadows = nullptr) {
-    std::shared_ptr<const std::vector<PointLight>> frameLights = frameLocalLights(frame);
-    const std::vector<PointLight>& lights = *frameLights;
+// The frame's lights as GPU records (eye space) into `gpu`. With spot shadow maps, each shadowed
+// light's record names its atlas tile.
+void makeLightRecords(const FrameData& frame, const std::vector<PointLight>& lights, const SpotShadowMaps* spotShadows,
+                      std::vector<GpuLocalLight>& gpu) {
     std::vector<int> layer(lights.size(), -1);
     if (spotShadows)
         for (size_t t = 0; t < spotShadows->light.size(); ++t) layer[size_t(spotShadows->light[t])] = int(t);
-    std::vector<GpuLocalLight>& gpu = state.lightRecords;
     gpu.clear();
     gpu.reserve(lights.size());
     for (size_t i = 0; i < lights.size(); ++i) gpu.push_back(gpuLocalLight(lights[i], frame.view, layer[i]));
-    // A new buffer when the GPU may still read the last one (gl::StreamBuffer): the previous frame's
-    // lighting must not see this frame's lights.
+}
+
+// The records into the SSBO at binding 0. A new buffer when the GPU may still read the last one
+// (gl::StreamBuffer): the previous frame's lighting must not see this frame's lights.
+void uploadRecords(LocalLightPass& state, const std::vector<GpuLocalLight>& gpu) {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, state.lights.fill(gpu.data(), gpu.size() * sizeof(GpuLocalLight)));
+}
+
+// Uploads the frame's lights (eye space) into the SSBO at binding 0; returns them.
+std::shared_ptr<const std::vector<PointLight>> uploadLights(LocalLightPass& state, const FrameData& frame,
+                                                            const SpotShadowMaps* spotShadows = nullptr) {
+    std::shared_ptr<const std::vector<PointLight>> frameLights = frameLocalLights(frame);
+    makeLightRecords(frame, *frameLights, spotShadows, state.lightRecords);
+    uploadRecords(state, state.lightRecords);
     return frameLights;
 }
 
@@ -114,6 +122,10 @@ struct LightData {
     GBuffer in;
     fg::ResourceId hdr;
     fg::ResourceId spotShadows;  // the atlas, when some spot casts a shadow
+    // The lights' GPU records, made when the pass is added: CPU work inside the pass's execute would
+    // sit inside its GPU timing window (the GPU idles there whenever it has caught up with the CPU:
+    // bench/results/lighting/cpu_in_pass).
+    std::shared_ptr<const std::vector<GpuLocalLight>> records;
 };
 
 constexpr GLuint kSpotShadowUnit = 5;  // layout(binding = 5) in common/local_light.glsl
@@ -363,13 +375,17 @@ fg::ResourceId addLocalLightPass(fg::FrameGraph& graph, LocalLightPass& state, c
             readGBuffer(b, gbuffer, !lightingOnly);
             data.hdr = b.write(hdr, tiled ? fg::Usage::ImageLoadStore : fg::Usage::Blend | fg::Usage::ImageLoadStore);
             if (spotShadows.any()) data.spotShadows = b.read(spotShadows.depth, fg::Usage::Sampled);
+            auto records = std::make_shared<std::vector<GpuLocalLight>>();
+            makeLightRecords(frame, *frameLocalLights(frame), &spotShadows, *records);
+            data.records = std::move(records);
         },
         [&state, frame, lightingOnly, spotShadows](const LightData& data, const fg::PassResources& res) {
             ensureState(state, frame, spotShadows.any());
             const LocalLightSettings& s = frame.settings->localLights;
             state.stats = LocalLightStats{};
             state.stats.method = s.method;
-            const std::shared_ptr<const std::vector<PointLight>> lights = uploadLights(state, frame, &spotShadows);
+            const std::shared_ptr<const std::vector<PointLight>> lights = frameLocalLights(frame);
+            uploadRecords(state, *data.records);
             if (spotShadows.any()) bindSpotShadows(state, frame, spotShadows, res.texture(data.spotShadows));
             state.stats.requested = int(lights->size());
             const GLuint hdrTexture = res.texture(data.hdr);
