@@ -25,11 +25,12 @@ $B/run --version
 # every occupied slice), `default` (shaders/ as they are), and the default with one choice of
 # local_light_clustered.comp flipped: `no_compact` (LP_CLUSTER_COMPACT 0: each light's slice tests on
 # the invocation that tested it against the tile), `inline_boxes` (LP_CLUSTER_SHARED_BOXES 0: each
-# light makes the boxes of the slices it reaches), `hdr_last` (LP_CLUSTER_HDR_FIRST 0: the HDR value
-# read after the shading), `all_slices` (every occupied slice tested, not only those the light's
+# light makes the boxes of the slices it reaches), `bits_merged` (LP_CLUSTER_MERGED_LIST 0: a one-froxel
+# tile walks its lights' bits, no list), `hdr_last` (LP_CLUSTER_HDR_FIRST 0: the HDR value read after
+# the shading), `all_slices` (every occupied slice tested, not only those the light's
 # eye-depth interval reaches), `no_box` (the slices' depth ranges only), `merge2`, `merge4` (tiles whose
 # farthest pixel is <= 2x, 4x their nearest shade as one froxel), `tile_only` (every tile one froxel).
-# VARIANT_LIST picks them (default: default lists no_compact inline_boxes hdr_last merge4);
+# VARIANT_LIST picks them (default: default lists no_compact inline_boxes bits_merged hdr_last);
 # `default` and `lists` also time tiled in their process, `default` also 32-pixel tiles ("default 32px"). Three scenes x 1080p, 4K x 1..16384 lights,
 # 50 frames (2 s cap): OUTDIR/variants_<variant>_<scene>.json and OUTDIR/clustered_variants.md
 # (clustered / tiled per variant, against the tiled of its own process where it has one).
@@ -42,6 +43,7 @@ if [ -n "${VARIANTS:-}" ]; then
       default) ;;
       no_compact) sed -i 's/^#define LP_CLUSTER_COMPACT .*/#define LP_CLUSTER_COMPACT 0/' "$f" ;;
       inline_boxes) sed -i 's/^#define LP_CLUSTER_SHARED_BOXES .*/#define LP_CLUSTER_SHARED_BOXES 0/' "$f" ;;
+      bits_merged) sed -i 's/^#define LP_CLUSTER_MERGED_LIST .*/#define LP_CLUSTER_MERGED_LIST 0/' "$f" ;;
       hdr_last) sed -i 's/^#define LP_CLUSTER_HDR_FIRST .*/#define LP_CLUSTER_HDR_FIRST 0/' "$f" ;;
       all_slices) sed -i 's/uvec2 candidates = occ & sliceRangeBits(lo, hi);/uvec2 candidates = occ;/' "$f" ;;
       no_box) sed -i '/if (!clusterLightTouchesBox(b, apex, axis, boxLo, boxHi)) continue;$/d' "$f" ;;
@@ -55,7 +57,7 @@ if [ -n "${VARIANTS:-}" ]; then
     fi
     echo "$P"
   }
-  for v in ${VARIANT_LIST:-default lists no_compact inline_boxes hdr_last merge4}; do
+  for v in ${VARIANT_LIST:-default lists no_compact inline_boxes bits_merged hdr_last}; do
     P=$(variant_dir "$v"); [ -n "$P" ] || continue
     methods='--local-lights clustered --cluster-size 16'
     case $v in

@@ -39,6 +39,11 @@
 #ifndef LP_CLUSTER_COMPACT
 #define LP_CLUSTER_COMPACT 1
 #endif
+// A tile that is one froxel shades from a list of its lights in shared memory, as the tiled method
+// does (one more barrier a batch), rather than by walking their bits.
+#ifndef LP_CLUSTER_MERGED_LIST
+#define LP_CLUSTER_MERGED_LIST 1
+#endif
 // Each pixel's HDR value read with its G-buffer texels, at the start, not after the shading.
 #ifndef LP_CLUSTER_HDR_FIRST
 #define LP_CLUSTER_HDR_FIRST 1
@@ -75,6 +80,9 @@ shared vec4 sBoxLo[LP_SLICES], sBoxHi[LP_SLICES];  // each occupied slice's eye-
 #if LP_CLUSTER_COMPACT
 shared uint sSurvivors[2 * LP_BATCH];  // per half: the batch's lights that pass the tile's test
 shared uint sSurvivorCount[2];
+#endif
+#if LP_CLUSTER_MERGED_LIST
+shared uint sList[LP_BATCH];  // a one-froxel tile's lights of the batch, in index order
 #endif
 
 // Bits lo..hi (0 <= lo <= hi < 64) of a 64-bit mask held as two words.
@@ -243,17 +251,41 @@ void main() {
 #endif
         barrier();
         int batch = min(LP_BATCH, uLightCount - first);
-        // 3. Each pixel: the lights of its slice, in index order (only the words holding any).
-        uint batchWords = (1u << uint((batch + 31) / 32)) - 1u;
-        for (int k = 0; k < LP_PIXELS; ++k) {
-            if (!surface[k]) continue;
-            for (uint ws = uUnbounded ? batchWords : sWords[words + slice[k]]; ws != 0u; ws &= ws - 1u) {
-                int w = findLSB(ws);
-                uint bits = sMask[mask + slice[k] * LP_WORDS + w];
-                if (uUnbounded) bits = batch - 32 * w >= 32 ? ~0u : (1u << uint(batch - 32 * w)) - 1u;
-                for (; bits != 0u; bits &= bits - 1u)
-                    sum[k] += lpShadeLocalLight(uLights[first + 32 * w + findLSB(bits)], P[k], N[k], V[k], kd[k],
-                                                spec[k].rgb, spec[k].a, uSpecularMode);
+#if LP_CLUSTER_MERGED_LIST
+        if (merged && !uUnbounded) {  // uniform
+            // 3. One froxel: its lights as a list in index order (each light's place: the lights
+            // before it), then every pixel adds them.
+            uint n = 0u, at = 0u;
+            for (int w = 0; w < LP_WORDS; ++w) {
+                uint c = uint(bitCount(sMask[mask + w]));
+                at += w < int(word) ? c : 0u;
+                n += c;
+            }
+            uint own = sMask[mask + int(word)];
+            if ((own & bit) != 0u) sList[at + uint(bitCount(own & (bit - 1u)))] = uint(first) + lid;
+            barrier();
+            for (int k = 0; k < LP_PIXELS; ++k) {
+                if (!surface[k]) continue;
+                for (uint e = 0u; e < n; ++e)
+                    sum[k] += lpShadeLocalLight(uLights[sList[e]], P[k], N[k], V[k], kd[k], spec[k].rgb, spec[k].a,
+                                                uSpecularMode);
+            }
+            // (The next batch rewrites sList only after the barrier below: every pixel is done by then.)
+        } else
+#endif
+        {
+            // 3. Each pixel: the lights of its slice, in index order (only the words holding any).
+            uint batchWords = (1u << uint((batch + 31) / 32)) - 1u;
+            for (int k = 0; k < LP_PIXELS; ++k) {
+                if (!surface[k]) continue;
+                for (uint ws = uUnbounded ? batchWords : sWords[words + slice[k]]; ws != 0u; ws &= ws - 1u) {
+                    int w = findLSB(ws);
+                    uint bits = sMask[mask + slice[k] * LP_WORDS + w];
+                    if (uUnbounded) bits = batch - 32 * w >= 32 ? ~0u : (1u << uint(batch - 32 * w)) - 1u;
+                    for (; bits != 0u; bits &= bits - 1u)
+                        sum[k] += lpShadeLocalLight(uLights[first + 32 * w + findLSB(bits)], P[k], N[k], V[k], kd[k],
+                                                    spec[k].rgb, spec[k].a, uSpecularMode);
+                }
             }
         }
         if (first + LP_BATCH >= uLightCount) break;  // uniform
