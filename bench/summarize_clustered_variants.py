@@ -11,7 +11,8 @@ import os
 import re
 import sys
 
-ORDER = ("lists", "default", "no_compact", "inline_boxes", "bits_merged", "hdr_last", "all_slices", "no_box", "merge2", "merge4", "tile_only")
+ORDER = ("lists", "default", "bits_merged", "hdr_first", "inline_boxes", "all_slices", "no_box", "merge2",
+         "merge4", "cull_only", "tile_only")
 SCENES = ("gallery", "depth-discontinuity", "fence")
 SPANNING = ("depth-discontinuity", "fence")
 

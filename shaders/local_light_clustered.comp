@@ -34,19 +34,15 @@
 #ifndef LP_CLUSTER_SHARED_BOXES
 #define LP_CLUSTER_SHARED_BOXES 1
 #endif
-// The lights that pass the tile's test gathered first (one more barrier a batch), so their slice tests
-// run on as few warps as there are survivors instead of on every warp holding one.
-#ifndef LP_CLUSTER_COMPACT
-#define LP_CLUSTER_COMPACT 1
-#endif
 // A tile that is one froxel shades from a list of its lights in shared memory, as the tiled method
 // does (one more barrier a batch), rather than by walking their bits.
 #ifndef LP_CLUSTER_MERGED_LIST
 #define LP_CLUSTER_MERGED_LIST 1
 #endif
-// Each pixel's HDR value read with its G-buffer texels, at the start, not after the shading.
+// Each pixel's HDR value read with its G-buffer texels, at the start, not after the shading (three more
+// registers held through the shading).
 #ifndef LP_CLUSTER_HDR_FIRST
-#define LP_CLUSTER_HDR_FIRST 1
+#define LP_CLUSTER_HDR_FIRST 0
 #endif
 const int LP_TILE = LP_CLUSTER_TILE;
 // At most 16 x 16 invocations; a larger tile gives each invocation several pixels, 16 apart.
@@ -76,10 +72,6 @@ shared uint sMask[2 * LP_MASK];  // per slice, a bit per light of the batch touc
 shared uint sWords[2 * LP_SLICES];  // per slice, a bit per word of its sMask that is not 0
 #if LP_CLUSTER_SHARED_BOXES
 shared vec4 sBoxLo[LP_SLICES], sBoxHi[LP_SLICES];  // each occupied slice's eye-space box
-#endif
-#if LP_CLUSTER_COMPACT
-shared uint sSurvivors[2 * LP_BATCH];  // per half: the batch's lights that pass the tile's test
-shared uint sSurvivorCount[2];
 #endif
 #if LP_CLUSTER_MERGED_LIST
 shared uint sList[LP_BATCH];  // a one-froxel tile's lights of the batch, in index order
@@ -177,9 +169,6 @@ void main() {
         sMask[LP_MASK + w] = 0u;
     }
     if (lid < 2u) sOccupied[lid] = 0u;
-#if LP_CLUSTER_COMPACT
-    if (lid < 2u) sSurvivorCount[lid] = 0u;
-#endif
     barrier();
     for (int k = 0; k < LP_PIXELS; ++k) {
         if (!surface[k]) continue;
@@ -232,23 +221,10 @@ void main() {
                     atomicOr(sMask[mask + int(word)], bit);
                     if ((sWords[words] & (1u << word)) == 0u) atomicOr(sWords[words], 1u << word);
                 } else {
-#if LP_CLUSTER_COMPACT
-                    sSurvivors[part * LP_BATCH + int(atomicAdd(sSurvivorCount[part], 1u))] = uint(i);
-#else
                     markSlices(i, lid, occ, ndcLo, ndcHi, mask, words);
-#endif
                 }
             }
         }
-#if LP_CLUSTER_COMPACT
-        if (!merged && !uUnbounded) {  // uniform
-            barrier();
-            if (lid < sSurvivorCount[part]) {
-                int s = int(sSurvivors[part * LP_BATCH + int(lid)]);
-                markSlices(s, uint(s - first), occ, ndcLo, ndcHi, mask, words);
-            }
-        }
-#endif
         barrier();
         int batch = min(LP_BATCH, uLightCount - first);
 #if LP_CLUSTER_MERGED_LIST
@@ -293,9 +269,6 @@ void main() {
         int other = (1 - part) * LP_MASK;
         for (int w = int(lid); w < slices * LP_WORDS; w += LP_BATCH) sMask[other + w] = 0u;
         for (int j = int(lid); j < slices; j += LP_BATCH) sWords[(1 - part) * LP_SLICES + j] = 0u;
-#if LP_CLUSTER_COMPACT
-        if (lid == 0u) sSurvivorCount[1 - part] = 0u;
-#endif
         barrier();
         part = 1 - part;
     }
