@@ -11,8 +11,7 @@ import os
 import re
 import sys
 
-ORDER = ("lists", "default", "bits_merged", "hdr_first", "inline_boxes", "all_slices", "no_box", "merge2",
-         "merge4", "cull_only", "tile_only")
+ORDER = ("lists", "default", "all_slices", "no_box", "merge2", "merge4", "cull_only", "tile_only")
 SCENES = ("gallery", "depth-discontinuity", "fence")
 SPANNING = ("depth-discontinuity", "fence")
 

@@ -8,7 +8,7 @@
 //  2. per batch of lights (one per invocation), each light is tested against the tile's frustum
 //     between the nearest and farthest pixel (the tiled method's test), then against the occupied
 //     slices its eye-depth interval can reach: each one's tight depth range, then the eye-space box
-//     around it; a bit per light and slice in shared memory;
+//     around it (made once per tile); a bit per light and slice in shared memory;
 //  3. each pixel adds the lights of its own slice's bits, so a tile holding a near pillar and a far
 //     wall shades neither with the lights in the empty depth between them.
 // A tile whose pixels lie within LP_CLUSTER_MERGE_RATIO of each other in depth (or in one slice) is
@@ -25,24 +25,10 @@
 #define LP_CLUSTER_TILE 16
 #endif
 // Tiles whose farthest pixel is at most this many times as far as their nearest shade as one froxel
-// (0: only tiles within one slice).
+// (0: only tiles within one slice; 2 and 4 were slower on the H100: bench/lighting_clustered.sh's
+// VARIANTS run sets it for its merge and tile_only variants).
 #ifndef LP_CLUSTER_MERGE_RATIO
 #define LP_CLUSTER_MERGE_RATIO 0.0
-#endif
-// Each occupied slice's box made once per tile in shared memory (one more barrier) rather than by each
-// light that reaches the slice's depth range.
-#ifndef LP_CLUSTER_SHARED_BOXES
-#define LP_CLUSTER_SHARED_BOXES 1
-#endif
-// A tile that is one froxel shades from a list of its lights in shared memory, as the tiled method
-// does (one more barrier a batch), rather than by walking their bits.
-#ifndef LP_CLUSTER_MERGED_LIST
-#define LP_CLUSTER_MERGED_LIST 1
-#endif
-// Each pixel's HDR value read with its G-buffer texels, at the start, not after the shading (three more
-// registers held through the shading).
-#ifndef LP_CLUSTER_HDR_FIRST
-#define LP_CLUSTER_HDR_FIRST 0
 #endif
 const int LP_TILE = LP_CLUSTER_TILE;
 // At most 16 x 16 invocations; a larger tile gives each invocation several pixels, 16 apart.
@@ -70,12 +56,7 @@ shared uint sOccupied[2];  // a bit per slice holding a pixel
 // batch needs one barrier between its tests and its shading and one before the next batch's tests.
 shared uint sMask[2 * LP_MASK];  // per slice, a bit per light of the batch touching it
 shared uint sWords[2 * LP_SLICES];  // per slice, a bit per word of its sMask that is not 0
-#if LP_CLUSTER_SHARED_BOXES
 shared vec4 sBoxLo[LP_SLICES], sBoxHi[LP_SLICES];  // each occupied slice's eye-space box
-#endif
-#if LP_CLUSTER_MERGED_LIST
-shared uint sList[LP_BATCH];  // a one-froxel tile's lights of the batch, in index order
-#endif
 
 // Bits lo..hi (0 <= lo <= hi < 64) of a 64-bit mask held as two words.
 uvec2 sliceRangeBits(int lo, int hi) {
@@ -91,7 +72,7 @@ uvec2 sliceRangeBits(int lo, int hi) {
 // Light i (bit `at` of the batch) against the tile's occupied slices `occ` that its eye-depth interval
 // reaches: each one's depth range [sMinDist, sMaxDist], then the box around it; a bit in the half of
 // sMask / sWords at `mask` / `words` for each slice it touches.
-void markSlices(int i, uint at, uvec2 occ, vec2 ndcLo, vec2 ndcHi, int mask, int words) {
+void markSlices(int i, uint at, uvec2 occ, int mask, int words) {
     vec4 b = uLights[i].bound, apex = uLights[i].positionRange, axis = uLights[i].directionCos;
     float r = b.w * (1.0 + LP_CLUSTER_MARGIN) + 1e-6;
     float dist = -b.z;
@@ -106,12 +87,7 @@ void markSlices(int i, uint at, uvec2 occ, vec2 ndcLo, vec2 ndcHi, int mask, int
             float d0 = uintBitsToFloat(sMinDist[j]), d1 = uintBitsToFloat(sMaxDist[j]);
             // The tile's side planes passed already: the slice's frustum test is its depth range.
             if (dist + r < d0 || dist - r > d1) continue;
-#if LP_CLUSTER_SHARED_BOXES
             vec3 boxLo = sBoxLo[j].xyz, boxHi = sBoxHi[j].xyz;
-#else
-            vec3 boxLo, boxHi;
-            clusterTileBox(ndcLo, ndcHi, d0, d1, uProjection, boxLo, boxHi);
-#endif
             if (!clusterLightTouchesBox(b, apex, axis, boxLo, boxHi)) continue;
             atomicOr(sMask[mask + j * LP_WORDS + int(word)], bit);
             if ((sWords[words + j] & (1u << word)) == 0u) atomicOr(sWords[words + j], 1u << word);
@@ -128,9 +104,6 @@ void main() {
     // range).
     bool surface[LP_PIXELS];
     vec3 P[LP_PIXELS], N[LP_PIXELS], kd[LP_PIXELS], V[LP_PIXELS], sum[LP_PIXELS];
-#if LP_CLUSTER_HDR_FIRST
-    vec3 hdr[LP_PIXELS];
-#endif
     vec4 spec[LP_PIXELS];
     int slice[LP_PIXELS];
     for (int k = 0; k < LP_PIXELS; ++k) {
@@ -154,9 +127,6 @@ void main() {
             V[k] = pl > 0.0 ? -P[k] / pl : vec3(0.0, 0.0, 1.0);
             slice[k] = clusterSliceOf(max(-P[k].z, 0.0));
         }
-#if LP_CLUSTER_HDR_FIRST
-        hdr[k] = surface[k] ? imageLoad(uHdr, p).rgb : vec3(0.0);
-#endif
     }
     for (int j = int(lid); j < slices; j += LP_BATCH) {
         sMinDist[j] = floatBitsToUint(3.0e38);
@@ -193,7 +163,6 @@ void main() {
         for (int k = 0; k < LP_PIXELS; ++k) slice[k] = 0;
     vec2 ndcLo, ndcHi;
     clusterTileNdc(tile, uImageSize, ndcLo, ndcHi);
-#if LP_CLUSTER_SHARED_BOXES
     if (!merged) {
         for (int j = int(lid); j < slices; j += LP_BATCH)
             if (sMinDist[j] <= sMaxDist[j]) {
@@ -204,7 +173,6 @@ void main() {
             }
         barrier();
     }
-#endif
 
     uint word = lid >> 5, bit = 1u << (lid & 31u);
     int part = 0;  // which half of sMask / sWords this batch uses
@@ -221,47 +189,23 @@ void main() {
                     atomicOr(sMask[mask + int(word)], bit);
                     if ((sWords[words] & (1u << word)) == 0u) atomicOr(sWords[words], 1u << word);
                 } else {
-                    markSlices(i, lid, occ, ndcLo, ndcHi, mask, words);
+                    markSlices(i, lid, occ, mask, words);
                 }
             }
         }
         barrier();
         int batch = min(LP_BATCH, uLightCount - first);
-#if LP_CLUSTER_MERGED_LIST
-        if (merged && !uUnbounded) {  // uniform
-            // 3. One froxel: its lights as a list in index order (each light's place: the lights
-            // before it), then every pixel adds them.
-            uint n = 0u, at = 0u;
-            for (int w = 0; w < LP_WORDS; ++w) {
-                uint c = uint(bitCount(sMask[mask + w]));
-                at += w < int(word) ? c : 0u;
-                n += c;
-            }
-            uint own = sMask[mask + int(word)];
-            if ((own & bit) != 0u) sList[at + uint(bitCount(own & (bit - 1u)))] = uint(first) + lid;
-            barrier();
-            for (int k = 0; k < LP_PIXELS; ++k) {
-                if (!surface[k]) continue;
-                for (uint e = 0u; e < n; ++e)
-                    sum[k] += lpShadeLocalLight(uLights[sList[e]], P[k], N[k], V[k], kd[k], spec[k].rgb, spec[k].a,
-                                                uSpecularMode);
-            }
-            // (The next batch rewrites sList only after the barrier below: every pixel is done by then.)
-        } else
-#endif
-        {
-            // 3. Each pixel: the lights of its slice, in index order (only the words holding any).
-            uint batchWords = (1u << uint((batch + 31) / 32)) - 1u;
-            for (int k = 0; k < LP_PIXELS; ++k) {
-                if (!surface[k]) continue;
-                for (uint ws = uUnbounded ? batchWords : sWords[words + slice[k]]; ws != 0u; ws &= ws - 1u) {
-                    int w = findLSB(ws);
-                    uint bits = sMask[mask + slice[k] * LP_WORDS + w];
-                    if (uUnbounded) bits = batch - 32 * w >= 32 ? ~0u : (1u << uint(batch - 32 * w)) - 1u;
-                    for (; bits != 0u; bits &= bits - 1u)
-                        sum[k] += lpShadeLocalLight(uLights[first + 32 * w + findLSB(bits)], P[k], N[k], V[k], kd[k],
-                                                    spec[k].rgb, spec[k].a, uSpecularMode);
-                }
+        // 3. Each pixel: the lights of its slice, in index order (only the words holding any).
+        uint batchWords = (1u << uint((batch + 31) / 32)) - 1u;
+        for (int k = 0; k < LP_PIXELS; ++k) {
+            if (!surface[k]) continue;
+            for (uint ws = uUnbounded ? batchWords : sWords[words + slice[k]]; ws != 0u; ws &= ws - 1u) {
+                int w = findLSB(ws);
+                uint bits = sMask[mask + slice[k] * LP_WORDS + w];
+                if (uUnbounded) bits = batch - 32 * w >= 32 ? ~0u : (1u << uint(batch - 32 * w)) - 1u;
+                for (; bits != 0u; bits &= bits - 1u)
+                    sum[k] += lpShadeLocalLight(uLights[first + 32 * w + findLSB(bits)], P[k], N[k], V[k], kd[k],
+                                                spec[k].rgb, spec[k].a, uSpecularMode);
             }
         }
         if (first + LP_BATCH >= uLightCount) break;  // uniform
@@ -275,10 +219,6 @@ void main() {
     for (int k = 0; k < LP_PIXELS; ++k) {
         if (!surface[k]) continue;
         ivec2 p = origin + ivec2(gl_LocalInvocationID.xy) + LP_SIDE * ivec2(k % LP_PIXELS_SIDE, k / LP_PIXELS_SIDE);
-#if LP_CLUSTER_HDR_FIRST
-        imageStore(uHdr, p, vec4(sanitizeHdr(hdr[k] + sum[k]), 1.0));
-#else
         imageStore(uHdr, p, vec4(sanitizeHdr(imageLoad(uHdr, p).rgb + sum[k]), 1.0));
-#endif
     }
 }
