@@ -7,7 +7,8 @@
 # is ordered by Vulkan semaphores where info's `sync:` line says so, else by host waits. Per pass: GL-timed ms (what the frame pays, interop and
 # syncs included), CUDA kernel ms, interop ms, the bandwidth floor and measured/floor. Also runs the
 # CUDA tests (shared textures vs the CPU reference), the kernel-only bloom benchmark in cuda_tests
-# (bloom_kernels.txt: direct vs tensor-core blur, kernel 3..100, 1080p and 4K, against the floor),
+# (bloom_kernels.txt: separable with the direct and the tensor-core blur, and the mip chain, kernel
+# 3..100, 1080p and 4K, against the floor; and plain copy kernels, CUDA arrays and linear memory),
 # the cost of one hand-over to CUDA and back by itself (hand_over.txt) and records `info`. From the repository root:
 #   bench/post_interop.sh BUNDLE OUTDIR    (BUNDLE: run, cuda_tests, lib/)
 #   SMOKE=1 bench/post_interop.sh BUNDLE OUTDIR   tiny sizes, few frames (checks the plumbing)
@@ -21,8 +22,9 @@ export LIGHTPASS_CACHE_DIR=$R/cache
 "$B/run" info > "$R/info.txt" 2>&1; grep -E "^(renderer|cuda|interop|sync):" "$R/info.txt"
 if [[ -x "$B/cuda_tests" ]]; then
   LD_LIBRARY_PATH=$B/lib "$B/cuda_tests" > "$R/cuda_tests.txt" 2>&1; tail -2 "$R/cuda_tests.txt"
-  # Kernel-only: the fused bloom + composite on RGBA16F CUDA arrays (no GL), direct and
-  # tensor-core blur and what auto picks, kernel 3..100 at 1080p and 4K, CUDA events, vs the floor.
+  # Kernel-only: the fused bloom + composite on RGBA16F CUDA arrays (no GL), separable (direct and
+  # tensor-core blur and what auto picks) and mip chain, kernel 3..100 at 1080p and 4K, CUDA events,
+  # vs the floor; and the copy kernels that show what bandwidth CUDA arrays and linear memory reach.
   LD_LIBRARY_PATH=$B/lib "$B/cuda_tests" --gtest_also_run_disabled_tests --gtest_filter='CudaBloomBench.*' \
     > "$R/bloom_kernels.txt" 2>&1 || echo "bloom kernel benchmark failed: $(tail -1 "$R/bloom_kernels.txt")"
   # What one GL -> CUDA -> GL hand-over costs a GL frame by itself (a kernel of a few microseconds

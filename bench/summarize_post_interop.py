@@ -14,8 +14,10 @@ re-read), at the measured compute copy bandwidth (the run's `bandwidth.compute_G
 per-pass floors of the table are the graph's declared traffic of each pass.
 
 OUTDIR/bloom_kernels.txt (cuda_tests' CudaBloomBench) adds the kernel-only table: the fused
-bloom + composite on RGBA16F CUDA arrays timed by CUDA events, direct and tensor-core blur and what
-auto picks, against the same 24-byte floor at the copy bandwidth cudaMemcpy measured there."""
+bloom + composite on RGBA16F CUDA arrays timed by CUDA events, the separable bloom with the direct and
+the tensor-core blur and what auto picks, and the mip chain, against the same 24-byte floor at the
+copy bandwidth cudaMemcpy measured there; and plain copy kernels (CUDA array -> CUDA array, linear
+-> linear) as the achievable bandwidth."""
 import glob
 import json
 import os
@@ -48,24 +50,48 @@ def kernel_table(path, kind="bloom_kernels"):
     else:
         print("\nKernel-only, the bloom buffer alone (no composite, not in place; floor = 16 B/texel: HDR read, "
               "bloom written):\n")
-    print("| size | kernel | direct ms | tensor ms | auto ms (ran) | floor ms | direct/floor | tensor/floor | auto/floor |")
-    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- |")
+    print("| size | kernel | separable direct ms | separable tensor ms | separable auto ms (ran) | mip chain ms | floor ms "
+          "| direct/floor | tensor/floor | auto/floor | mip chain/floor |")
+    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
     for (size, kernel), r in sorted(rows.items(), key=lambda kv: (int(kv[0][0].split("x")[0]), kv[0][1])):
         floor = next(iter(r.values()))[1]
-        d, t, a = r.get("direct"), r.get("tensor"), r.get("auto")
+        d, t, a, mc = r.get("direct"), r.get("tensor"), r.get("auto"), r.get("mipchain")
         cell = lambda x: f"{x[0]:.4f}" if x else "-"
         ratio = lambda x: f"{x[0] / floor:.2f}x" if x and floor else "-"
-        print(f"| {size} | {kernel} | {cell(d)} | {cell(t)} | {cell(a)}{f' ({a[2]})' if a else ''} | {floor:.4f} | "
-              f"{ratio(d)} | {ratio(t)} | {ratio(a)} |")
+        print(f"| {size} | {kernel} | {cell(d)} | {cell(t)} | {cell(a)}{f' ({a[2]})' if a else ''} | {cell(mc)} | "
+              f"{floor:.4f} | {ratio(d)} | {ratio(t)} | {ratio(a)} | {ratio(mc)} |")
     print()
     for size in sorted({s for s, _ in rows}):
         wins = [k for (s, k), r in sorted(rows.items()) if s == size and "direct" in r and "tensor" in r
                 and r["tensor"][2] == "tensor" and r["tensor"][0] < r["direct"][0]]
         print(f"- {size}: the tensor-core blur is faster than the direct one at kernel {', '.join(map(str, wins)) or 'none'}")
-    a = rows.get(("3840x2160", 100), {}).get("auto")
-    if a and kind == "bloom_kernels":
-        print(f"- Target kernel 100 4K: {a[0]:.4f} ms = {a[0] / a[1]:.2f}x the floor {a[1]:.4f} ms "
-              f"({'met' if a[0] <= 1.5 * a[1] else 'not met'}: <= 1.5x)")
+    if kind == "bloom_kernels":
+        for size in ("3840x2160", "1920x1080"):
+            for label, key in (("separable (auto)", "auto"), ("separable direct", "direct"),
+                               ("separable tensor", "tensor"), ("mip chain", "mipchain")):
+                x = rows.get((size, 100), {}).get(key)
+                if x:
+                    print(f"- Target kernel 100 {size}, {label}: {x[0]:.4f} ms = {x[0] / x[1]:.2f}x the floor "
+                          f"{x[1]:.4f} ms ({'met' if x[0] <= 1.5 * x[1] else 'not met'}: <= 1.5x)")
+
+
+def copy_table(path):
+    rows = []
+    for line in open(path):
+        m = re.match(r"copy_kernels size=(\d+x\d+) kind=(\w+) ms=([\d.]+) GBps=([\d.]+) floor_ms=([\d.]+) "
+                     r"copy_GBps=([\d.]+)", line)
+        if m:
+            rows.append(m.groups())
+    if not rows:
+        return
+    print("\nCopy kernels (the achievable bandwidth; an RGBA16F image copied, 16 B/texel moved; floor = at "
+          "cudaMemcpy's device-to-device bandwidth):\n")
+    print("| size | copy | ms | GB/s | floor ms | / floor | cudaMemcpy GB/s |")
+    print("| --- | --- | --- | --- | --- | --- | --- |")
+    names = {"array": "CUDA array -> CUDA array (surfaces)", "linear": "linear half4 -> linear half4"}
+    for size, kind, ms, gbps, floor, copy in rows:
+        print(f"| {size} | {names.get(kind, kind)} | {float(ms):.4f} | {float(gbps):.0f} | {float(floor):.4f} | "
+              f"{float(ms) / float(floor):.2f}x | {float(copy):.0f} |")
 
 
 def fmt(x, suffix=""):
@@ -146,6 +172,7 @@ def main(outdir):
     if os.path.exists(kernels):
         kernel_table(kernels)
         kernel_table(kernels, "bloom_only_kernels")
+        copy_table(kernels)
     choices = os.path.join(outdir, "auto_choices.txt")
     if os.path.exists(choices):
         print("\nWhat --post-backend auto measured and chose:\n")

@@ -121,6 +121,20 @@ struct BloomKernelTime {
 };
 BloomKernelTime timeBloomCompositeKernels(int width, int height, const post::BloomParams& p, BloomBlur blur,
                                           int iterations, bool composite = true);
+// The surface path without GL: `hdr` uploaded into an RGBA16F CUDA array (rounded to fp16), the
+// bloom + composite in place (or, with composite false, the bloom alone) on a created stream as
+// the passes run it, both arrays read back.
+BloomAndComposite bloomCompositeOnHalfArrays(const ImageF& hdr, const post::BloomParams& p,
+                                             BloomBlur blur = BloomBlur::Auto, bool composite = true);
+// The achievable bandwidth of plain copies of an RGBA16F image, the baseline of the kernels'
+// floors: one kernel copying CUDA array to CUDA array through surfaces (the GL textures' layout)
+// and one copying linear memory to linear memory (16-byte loads and stores); medians of
+// `iterations` CUDA-event timings, and the device-to-device cudaMemcpy bandwidth as above.
+struct CopyKernelTimes {
+    double arrayMs = 0.0, linearMs = 0.0;
+    double copyBytesPerSecond = 0.0;
+};
+CopyKernelTimes timeHalf4Copies(int width, int height, int iterations);
 ImageF compositeOnDevice(const ImageF& hdr, const ImageF& bloom, float strength);
 ImageF toonOnDevice(const ImageF& hdr, const ImageF& position, const ImageF& normal, const post::ToonParams& p);
 

@@ -63,6 +63,24 @@ struct BloomWorkspace {
     int* progressCounters(size_t count);  // at least `count`, grown on demand
 };
 
+// The mip-chain bloom (cuda/bloom_mip_chain.cu). On device buffers: fp32 levels, the bloom into
+// `bloom` and, with hdrOut non-null, the composite into hdrOut (may be hdr). On RGBA16F surfaces:
+// fp16 levels (as GLSL's RGBA16F mips), the composite in place into hdr when `composite`.
+void mipChainBloomBuffers(const float4* hdr, float4* bloom, float4* hdrOut, int width, int height,
+                          const post::BloomParams& p, BloomWorkspace& ws, cudaStream_t stream);
+void mipChainBloomSurfaces(cudaSurfaceObject_t hdr, cudaSurfaceObject_t bloom, bool composite, int width, int height,
+                           const post::BloomParams& p, BloomWorkspace& ws, cudaStream_t stream);
+
+// An RGBA16F CUDA array with its surface, as the GL textures the passes share (benchmarks, tests).
+struct Half4Array {
+    cudaArray_t array = nullptr;
+    cudaSurfaceObject_t surface = 0;
+    Half4Array(int width, int height);
+    ~Half4Array();
+    Half4Array(const Half4Array&) = delete;
+    Half4Array& operator=(const Half4Array&) = delete;
+};
+
 // Bloom buffer of `hdr` into `bloom` (fp32 intermediates), by p.method.
 void bloomBufferToBuffer(const float4* hdr, float4* bloom, int width, int height, const post::BloomParams& p,
                          BloomWorkspace& ws, cudaStream_t stream);

@@ -174,24 +174,52 @@ TEST(CudaTensorBlur, HalfTexturesMatchReferenceWithinOneAndAHalfUlps) {
 
 // Not a test: the kernel-only benchmark bench/post_interop.sh runs (cuda_tests
 // --gtest_also_run_disabled_tests --gtest_filter='CudaBloomBench.*'). The fused bloom + composite
-// on RGBA16F CUDA arrays, direct and tensor-core blur, against the floor: 24 bytes a texel (the HDR
-// read, the bloom and the HDR written, 8 bytes each) at the measured copy bandwidth. Also the bloom
+// on RGBA16F CUDA arrays against the floor: 24 bytes a texel (the HDR read, the bloom and the HDR
+// written, 8 bytes each) at the measured copy bandwidth; the separable bloom with the direct and
+// the tensor-core blur and what auto picks, and the mip chain (blur=mipchain). Also the bloom
 // buffer alone (no composite: not in place, 16 bytes a texel), lines "bloom_only_kernels".
 TEST(CudaBloomBench, DISABLED_KernelTimesAgainstFloor) {
     const std::string device = cuda::postDeviceProblem();
     if (!device.empty()) GTEST_SKIP() << "no CUDA device: " << device;
+    struct Variant {
+        const char* name;
+        BloomMethod method;
+        BloomBlur blur;
+    };
+    const Variant variants[] = {{"direct", BloomMethod::Separable, BloomBlur::Direct},
+                                {"tensor", BloomMethod::Separable, BloomBlur::TensorCore},
+                                {"auto", BloomMethod::Separable, BloomBlur::Auto},
+                                {"mipchain", BloomMethod::MipChain, BloomBlur::Auto}};
     for (bool composite : {true, false})
         for (auto [w, h] : {std::pair{1920, 1080}, std::pair{3840, 2160}})
             for (int kernel : {3, 5, 9, 17, 25, 50, 100})
-                for (BloomBlur blur : {BloomBlur::Direct, BloomBlur::TensorCore, BloomBlur::Auto}) {
-                    const BloomParams p = separable(kernel);
-                    const cuda::BloomKernelTime t = cuda::timeBloomCompositeKernels(w, h, p, blur, 60, composite);
+                for (const Variant& v : variants) {
+                    BloomParams p = separable(kernel);
+                    p.method = v.method;
+                    const cuda::BloomKernelTime t = cuda::timeBloomCompositeKernels(w, h, p, v.blur, 60, composite);
                     const double bytes = composite ? 24.0 : 16.0;
                     const double floorMs = bytes * double(w) * double(h) / t.copyBytesPerSecond * 1e3;
+                    const char* ran = v.method == BloomMethod::MipChain ? "mipchain" : t.tensorCores ? "tensor" : "direct";
                     std::printf("%s size=%dx%d kernel=%d blur=%s ran=%s ms=%.5f floor_ms=%.5f copy_GBps=%.1f\n",
-                                composite ? "bloom_kernels" : "bloom_only_kernels", w, h, kernel,
-                                blur == BloomBlur::Direct ? "direct" : blur == BloomBlur::TensorCore ? "tensor" : "auto",
-                                t.tensorCores ? "tensor" : "direct", t.medianMs, floorMs, t.copyBytesPerSecond * 1e-9);
+                                composite ? "bloom_kernels" : "bloom_only_kernels", w, h, kernel, v.name, ran,
+                                t.medianMs, floorMs, t.copyBytesPerSecond * 1e-9);
                     std::fflush(stdout);
                 }
+}
+
+// Not a test: the achievable bandwidth the floors assume, for CUDA arrays (the GL textures'
+// layout, surface loads and stores) and for linear memory: a plain copy kernel of an RGBA16F
+// image (16 bytes a texel moved), lines "copy_kernels", next to cudaMemcpy's bandwidth.
+TEST(CudaBloomBench, DISABLED_CopyKernels) {
+    const std::string device = cuda::postDeviceProblem();
+    if (!device.empty()) GTEST_SKIP() << "no CUDA device: " << device;
+    for (auto [w, h] : {std::pair{1920, 1080}, std::pair{3840, 2160}}) {
+        const cuda::CopyKernelTimes t = cuda::timeHalf4Copies(w, h, 60);
+        const double bytes = 16.0 * double(w) * double(h);
+        const double floorMs = bytes / t.copyBytesPerSecond * 1e3;
+        for (auto [kind, ms] : {std::pair{"array", t.arrayMs}, std::pair{"linear", t.linearMs}})
+            std::printf("copy_kernels size=%dx%d kind=%s ms=%.5f GBps=%.1f floor_ms=%.5f copy_GBps=%.1f\n", w, h, kind,
+                        ms, bytes / (ms * 1e-3) * 1e-9, floorMs, t.copyBytesPerSecond * 1e-9);
+        std::fflush(stdout);
+    }
 }
