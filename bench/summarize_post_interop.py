@@ -75,6 +75,26 @@ def kernel_table(path, kind="bloom_kernels"):
                           f"{x[1]:.4f} ms ({'met' if x[0] <= 1.5 * x[1] else 'not met'}: <= 1.5x)")
 
 
+def tuning_table(path):
+    rows = {}
+    for line in open(path):
+        m = re.match(r"mip_chain_tuning size=(\d+x\d+) kernel=(\d+) variant=(\w+) ms=([\d.]+) floor_ms=([\d.]+)", line)
+        if m:
+            size, kernel, variant, ms, floor = m.groups()
+            rows.setdefault((size, int(kernel)), {})[variant] = (float(ms), float(floor))
+    if not rows:
+        return
+    variants = ["default", "no_tail", "no_overlap", "plain_hdr_reads"]
+    print("\nMip chain, what each part buys (fused bloom + composite, kernel-only ms; x floor in brackets): "
+          "default = as the passes run it; no_tail = every level its own launches; no_overlap = no programmatic "
+          "dependent launches; plain_hdr_reads = the first downsample's HDR reads not evict-first:\n")
+    print("| size | kernel | " + " | ".join(variants) + " |")
+    print("| --- | --- | " + " | ".join("---" for _ in variants) + " |")
+    for (size, kernel), r in sorted(rows.items(), key=lambda kv: (int(kv[0][0].split("x")[0]), kv[0][1])):
+        cells = [f"{r[v][0]:.4f} ({r[v][0] / r[v][1]:.2f}x)" if v in r else "-" for v in variants]
+        print(f"| {size} | {kernel} | " + " | ".join(cells) + " |")
+
+
 def copy_table(path):
     rows = []
     for line in open(path):
@@ -172,6 +192,7 @@ def main(outdir):
     if os.path.exists(kernels):
         kernel_table(kernels)
         kernel_table(kernels, "bloom_only_kernels")
+        tuning_table(kernels)
         copy_table(kernels)
     choices = os.path.join(outdir, "auto_choices.txt")
     if os.path.exists(choices):

@@ -939,7 +939,7 @@ ImageF readHalfArray(const Half4Array& a, int width, int height) {
 }  // namespace
 
 BloomAndComposite bloomCompositeOnHalfArrays(const ImageF& hdr, const post::BloomParams& p, BloomBlur blur,
-                                             bool composite) {
+                                             bool composite, const MipChainTuning& tuning) {
     const int width = hdr.width, height = hdr.height;
     Half4Array hdrArray(width, height), bloomArray(width, height);
     const std::vector<__half> texels = halfTexels(hdr);
@@ -951,6 +951,7 @@ BloomAndComposite bloomCompositeOnHalfArrays(const ImageF& hdr, const post::Bloo
     {
         BloomWorkspace ws;
         ws.blur = blur;
+        ws.mipChain = tuning;
         if (composite)
             bloomCompositeSurfaces(hdrArray.surface, bloomArray.surface, width, height, p, ws, stream);
         else
@@ -993,12 +994,13 @@ CopyKernelTimes timeHalf4Copies(int width, int height, int iterations) {
 }
 
 BloomKernelTime timeBloomCompositeKernels(int width, int height, const post::BloomParams& p, BloomBlur blur,
-                                          int iterations, bool composite) {
+                                          int iterations, bool composite, const MipChainTuning& tuning) {
     Half4Array hdr(width, height), bloom(width, height);
     cudaStream_t stream = nullptr;
     check(cudaStreamCreate(&stream), "cudaStreamCreate");
     BloomWorkspace ws;
     ws.blur = blur;
+    ws.mipChain = tuning;
     BloomKernelTime result;
     result.tensorCores = p.method == post::BloomMethod::Separable && bloomBlurUsesTensorCores(p.kernel, blur);
     result.copyBytesPerSecond = copyBytesPerSecond(stream);

@@ -7,16 +7,17 @@
 //   texels) and each output reads 13 of them.
 // - Levels are fp16 RGBA (8 bytes, one access a texel) where the bloom lands in RGBA16F textures,
 //   as the GLSL path's RGBA16F mips and the reference's Storage::Half; fp32 on device buffers.
-// - The levels of at most kTailTexels texels (latency-bound: a few thousand texels each) run
-//   down and back up in one launch of one block.
+// - The levels of at most MipChainTuning::tailTexels texels (latency-bound: a few thousand texels
+//   each) run down and back up in one launch of one block.
 // - The last upsample is fused with the full-resolution one and the composite: a block computes
 //   the half-resolution up_0 = down_0 + U(up_1) it needs into shared memory, upsamples it and
 //   writes the bloom and the composited HDR; no half-resolution up_0 is written or re-read.
 // - On sm_90 the launches after the first are programmatic dependent launches: each kernel lets
-//   the next one be scheduled once all its blocks run, and waits for the previous one to finish
-//   before touching memory, so there is no gap between them.
-// HDR reads and the full-resolution writes of the last kernel are marked streaming (evict first),
-// so the half-resolution level it re-reads stays in L2.
+//   the next one be scheduled as soon as all its own blocks run, and waits for the previous one to
+//   finish before touching what it wrote, so the small levels' launches overlap instead of
+//   queueing one after another.
+// The full-resolution HDR reads and writes are marked streaming (evict-first), so the
+// half-resolution level that the second and the last kernel re-read can stay in L2.
 #include <algorithm>
 #include <type_traits>
 
@@ -148,8 +149,8 @@ __global__ void __launch_bounds__(kDownThreads)
     __shared__ Planes3::Of<kSrcH, kSrcW> source;
     __shared__ Planes3::Of<kBoxH, kBoxW> boxes;
     __shared__ Planes3::Of<kOddH, kOddW> odds;
-    waitForPriorGrids();
     letNextGridLaunch();
+    waitForPriorGrids();
     const int thread = int(threadIdx.y) * kDownW + int(threadIdx.x);
     const int x0 = int(blockIdx.x) * kDownW, y0 = int(blockIdx.y) * kDownH;
     const int sx0 = 2 * x0 - 2, sy0 = 2 * y0 - 2;
@@ -237,8 +238,8 @@ __device__ inline void upsampleColumn(const CoarseTile& tile, int tx, int ty, Rg
 template <typename Lvl>
 __global__ void __launch_bounds__(kUpThreads) upTileKernel(Lvl coarse, Lvl fine) {
     __shared__ CoarseTile tile;
-    waitForPriorGrids();
     letNextGridLaunch();
+    waitForPriorGrids();
     const int tx = int(threadIdx.x), ty = int(threadIdx.y), thread = ty * kUpW + tx;
     const int x0 = int(blockIdx.x) * kUpW, y0 = int(blockIdx.y) * kUpH;
     const int cx0 = x0 / 2 - 2, cy0 = y0 / 2 - 2;
@@ -269,19 +270,23 @@ __global__ void __launch_bounds__(kUpThreads)
                     int height, float norm, float strength) {
     __shared__ Planes3::Of<kUp1H, kUp1W> coarser;
     __shared__ CoarseTile tile;
-    waitForPriorGrids();
     letNextGridLaunch();
     const int tx = int(threadIdx.x), ty = int(threadIdx.y), thread = ty * kUpW + tx;
     const int x0 = int(blockIdx.x) * kUpW, y0 = int(blockIdx.y) * kUpH;
     const int cx0 = x0 / 2 - 2, cy0 = y0 / 2 - 2;  // up_0 tile origin (may be negative: clamped per texel)
     const int ux0 = (cx0 >> 1) - 2, uy0 = (cy0 >> 1) - 2;  // up_1 tile origin (floor halves)
     const int x = x0 + tx, yFirst = y0 + kUpRows * ty;
-    float4 h[kUpRows];  // the HDR texels of the composite, in flight during the rest
+    // The HDR texels of the composite, in flight during the rest. Loaded before the wait: nothing
+    // this launch waits for writes the HDR (the first downsample only reads it, and it started
+    // before this grid could be scheduled, after whatever wrote the HDR), and this kernel writes
+    // it only after the wait.
+    float4 h[kUpRows];
     if (Composite) {
 #pragma unroll
         for (int m = 0; m < kUpRows; ++m)
             if (x < width && yFirst + m < height) h[m] = hdr.load(x, yFirst + m);
     }
+    waitForPriorGrids();
     if (hasUp1) {
         for (int e = thread; e < kUp1W * kUp1H; e += kUpThreads) {
             const int i = e % kUp1W, j = e / kUp1W;
@@ -335,7 +340,6 @@ __global__ void __launch_bounds__(kUpThreads)
 }
 
 // ---- The small levels, down and back up, in one block ----
-constexpr int kTailTexels = 4096;  // levels at most this large run in the tail
 constexpr int kTailThreads = 512;
 
 template <typename Lvl>
@@ -346,8 +350,8 @@ struct Chain {
 
 template <typename Lvl>
 __global__ void __launch_bounds__(kTailThreads) chainTailKernel(Chain<Lvl> chain, int first) {
-    waitForPriorGrids();
     letNextGridLaunch();
+    waitForPriorGrids();
     for (int l = first; l < chain.count; ++l) {
         const Lvl src = chain.level[l - 1], dst = chain.level[l];
         for (int e = int(threadIdx.x); e < dst.width * dst.height; e += kTailThreads) {
@@ -431,10 +435,12 @@ dim3 tilesOf(int width, int height, int tileW, int tileH) {
 // downIn: the HDR as the first downsample reads it; hdr: as the last kernel reads it.
 template <typename Lvl, bool Composite, typename DownIn, typename HdrIn, typename BloomOut, typename HdrOut>
 void mipChain(Chain<Lvl> chain, DownIn downIn, HdrIn hdr, BloomOut bloom, HdrOut hdrOut, int width, int height,
-              const post::BloomParams& p, cudaStream_t stream) {
+              const post::BloomParams& p, const MipChainTuning& tuning, cudaStream_t stream) {
     const int n = chain.count;
     int first = 1;  // the tail: levels first .. n - 1
-    while (first < n && chain.level[first].width * chain.level[first].height > kTailTexels) ++first;
+    while (first < n && chain.level[first].width * chain.level[first].height > tuning.tailTexels) ++first;
+    // Every launch after the first may overlap its predecessor's end.
+    const bool overlap = tuning.programmaticLaunch;
     const dim3 downBlock(kDownW, kDownThreads / kDownW), upBlock(kUpW, kUpH / kUpRows);
     const Lvl& l0 = chain.level[0];
     launch("downTileKernel (level 0)", downTileKernel<true, DownIn, Lvl>, tilesOf(l0.width, l0.height, kDownW, kDownH),
@@ -442,17 +448,18 @@ void mipChain(Chain<Lvl> chain, DownIn downIn, HdrIn hdr, BloomOut bloom, HdrOut
     for (int l = 1; l < first; ++l) {
         const Lvl &src = chain.level[l - 1], &dst = chain.level[l];
         launch("downTileKernel", downTileKernel<false, Lvl, Lvl>, tilesOf(dst.width, dst.height, kDownW, kDownH),
-               downBlock, stream, true, src, src.width, src.height, dst, p);
+               downBlock, stream, overlap, src, src.width, src.height, dst, p);
     }
-    if (first < n) launch("chainTailKernel", chainTailKernel<Lvl>, dim3(1), dim3(kTailThreads), stream, true, chain, first);
+    if (first < n)
+        launch("chainTailKernel", chainTailKernel<Lvl>, dim3(1), dim3(kTailThreads), stream, overlap, chain, first);
     for (int l = std::min(first, n - 1) - 1; l >= 1; --l) {
         const Lvl& fine = chain.level[l];
-        launch("upTileKernel", upTileKernel<Lvl>, tilesOf(fine.width, fine.height, kUpW, kUpH), upBlock, stream, true,
+        launch("upTileKernel", upTileKernel<Lvl>, tilesOf(fine.width, fine.height, kUpW, kUpH), upBlock, stream, overlap,
                chain.level[l + 1], fine);
     }
     const Lvl up1 = n > 1 ? chain.level[1] : chain.level[0];
     launch("finalTileKernel", finalTileKernel<Lvl, Composite, HdrIn, BloomOut, HdrOut>,
-           tilesOf(width, height, kUpW, kUpH), upBlock, stream, true, l0, up1, n > 1, hdr, bloom, hdrOut, width, height,
+           tilesOf(width, height, kUpW, kUpH), upBlock, stream, overlap, l0, up1, n > 1, hdr, bloom, hdrOut, width, height,
            1.0f / float(n), p.strength);
 }
 
@@ -476,22 +483,25 @@ void mipChainBloomBuffers(const float4* hdr, float4* bloom, float4* hdrOut, int 
     const Chain<FloatLevel> chain = chainOf<FloatLevel>(ws, width, height, p);
     const BufferImage in{const_cast<float4*>(hdr), width}, b{bloom, width};
     if (hdrOut)
-        mipChain<FloatLevel, true>(chain, in, in, b, BufferImage{hdrOut, width}, width, height, p, stream);
+        mipChain<FloatLevel, true>(chain, in, in, b, BufferImage{hdrOut, width}, width, height, p, ws.mipChain, stream);
     else
-        mipChain<FloatLevel, false>(chain, in, in, b, b, width, height, p, stream);
+        mipChain<FloatLevel, false>(chain, in, in, b, b, width, height, p, ws.mipChain, stream);
 }
 
 void mipChainBloomSurfaces(cudaSurfaceObject_t hdr, cudaSurfaceObject_t bloom, bool composite, int width, int height,
                            const post::BloomParams& p, BloomWorkspace& ws, cudaStream_t stream) {
     const Chain<HalfLevel> chain = chainOf<HalfLevel>(ws, width, height, p);
-    // The first downsample reads the HDR with plain loads (neighbouring blocks re-read its apron
-    // from L2); the last kernel's one read and two writes per texel stream.
-    const Half4Surface in{hdr};
+    // The last kernel reads and writes each full-resolution texel once: streamed (evict-first).
     const StreamedHalf4Surface streamedIn{hdr}, b{bloom}, out{hdr};
-    if (composite)
-        mipChain<HalfLevel, true>(chain, in, streamedIn, b, out, width, height, p, stream);
+    const MipChainTuning& t = ws.mipChain;
+    if (t.streamHdrReads && composite)
+        mipChain<HalfLevel, true>(chain, streamedIn, streamedIn, b, out, width, height, p, t, stream);
+    else if (t.streamHdrReads)
+        mipChain<HalfLevel, false>(chain, streamedIn, streamedIn, b, b, width, height, p, t, stream);
+    else if (composite)
+        mipChain<HalfLevel, true>(chain, Half4Surface{hdr}, streamedIn, b, out, width, height, p, t, stream);
     else
-        mipChain<HalfLevel, false>(chain, in, streamedIn, b, b, width, height, p, stream);
+        mipChain<HalfLevel, false>(chain, Half4Surface{hdr}, streamedIn, b, b, width, height, p, t, stream);
 }
 
 }  // namespace lp::cuda

@@ -101,6 +101,14 @@ enum class BloomBlur { Auto, Direct, TensorCore };
 // Whether a separable bloom of `kernel` px with `blur` runs on the tensor cores on this device.
 bool bloomBlurUsesTensorCores(int kernel, BloomBlur blur);
 
+// How the mip-chain bloom (cuda/bloom_mip_chain.cu) runs; the defaults are what the passes use,
+// the others let the benchmark measure what each part buys and the tests check every path.
+struct MipChainTuning {
+    int tailTexels = 4096;          // levels of at most this many texels run down and up in one block (0: none)
+    bool programmaticLaunch = true; // sm_90: launches overlap their predecessors' ends (on created streams)
+    bool streamHdrReads = true;     // the first downsample's HDR reads marked evict-first
+};
+
 // Device-buffer runs (fp32 intermediates) for tests and the benchmark.
 ImageF bloomOnDevice(const ImageF& hdr, const post::BloomParams& p,
                      BloomBlur blur = BloomBlur::Auto);  // the bloom buffer
@@ -120,12 +128,13 @@ struct BloomKernelTime {
     bool tensorCores = false;  // the blur ran on the tensor cores
 };
 BloomKernelTime timeBloomCompositeKernels(int width, int height, const post::BloomParams& p, BloomBlur blur,
-                                          int iterations, bool composite = true);
+                                          int iterations, bool composite = true, const MipChainTuning& tuning = {});
 // The surface path without GL: `hdr` uploaded into an RGBA16F CUDA array (rounded to fp16), the
 // bloom + composite in place (or, with composite false, the bloom alone) on a created stream as
 // the passes run it, both arrays read back.
 BloomAndComposite bloomCompositeOnHalfArrays(const ImageF& hdr, const post::BloomParams& p,
-                                             BloomBlur blur = BloomBlur::Auto, bool composite = true);
+                                             BloomBlur blur = BloomBlur::Auto, bool composite = true,
+                                             const MipChainTuning& tuning = {});
 // The achievable bandwidth of plain copies of an RGBA16F image, the baseline of the kernels'
 // floors: one kernel copying CUDA array to CUDA array through surfaces (the GL textures' layout)
 // and one copying linear memory to linear memory (16-byte loads and stores); medians of

@@ -49,6 +49,7 @@ struct Float4Surface {
 // on demand; and which separable blur runs (the tensor-core blur needs only per-block counters).
 struct BloomWorkspace {
     BloomBlur blur = BloomBlur::Auto;
+    MipChainTuning mipChain;
     float4* a = nullptr;
     size_t fullTexels = 0;
     float4* mips[post::kMaxMipLevels] = {};

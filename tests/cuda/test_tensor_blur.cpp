@@ -207,6 +207,33 @@ TEST(CudaBloomBench, DISABLED_KernelTimesAgainstFloor) {
                 }
 }
 
+// Not a test: what each part of the mip chain's layout buys, fused bloom + composite at kernel 5
+// and 100 (lines "mip_chain_tuning"): as the passes run it, without the one-block tail of small
+// levels, without programmatic dependent launches, and with the first downsample's HDR reads not
+// marked evict-first.
+TEST(CudaBloomBench, DISABLED_MipChainTuning) {
+    const std::string device = cuda::postDeviceProblem();
+    if (!device.empty()) GTEST_SKIP() << "no CUDA device: " << device;
+    const cuda::MipChainTuning defaults;
+    cuda::MipChainTuning noTail, noOverlap, plainReads;
+    noTail.tailTexels = 0;
+    noOverlap.programmaticLaunch = false;
+    plainReads.streamHdrReads = false;
+    const std::pair<const char*, cuda::MipChainTuning> variants[] = {
+        {"default", defaults}, {"no_tail", noTail}, {"no_overlap", noOverlap}, {"plain_hdr_reads", plainReads}};
+    for (auto [w, h] : {std::pair{1920, 1080}, std::pair{3840, 2160}})
+        for (int kernel : {5, 100})
+            for (const auto& [name, tuning] : variants) {
+                BloomParams p = separable(kernel);
+                p.method = BloomMethod::MipChain;
+                const cuda::BloomKernelTime t = cuda::timeBloomCompositeKernels(w, h, p, BloomBlur::Auto, 60, true, tuning);
+                const double floorMs = 24.0 * double(w) * double(h) / t.copyBytesPerSecond * 1e3;
+                std::printf("mip_chain_tuning size=%dx%d kernel=%d variant=%s ms=%.5f floor_ms=%.5f\n", w, h, kernel, name,
+                            t.medianMs, floorMs);
+                std::fflush(stdout);
+            }
+}
+
 // Not a test: the achievable bandwidth the floors assume, for CUDA arrays (the GL textures'
 // layout, surface loads and stores) and for linear memory: a plain copy kernel of an RGBA16F
 // image (16 bytes a texel moved), lines "copy_kernels", next to cudaMemcpy's bandwidth.
