@@ -12,6 +12,7 @@
 # the cost of one hand-over to CUDA and back by itself (hand_over.txt) and records `info`. From the repository root:
 #   bench/post_interop.sh BUNDLE OUTDIR    (BUNDLE: run, cuda_tests, lib/)
 #   SMOKE=1 bench/post_interop.sh BUNDLE OUTDIR   tiny sizes, few frames (checks the plumbing)
+#   KERNELS_ONLY=1 bench/post_interop.sh BUNDLE OUTDIR   cuda_tests and the kernel-only benchmark alone
 set -u
 B=$(cd "$1" && pwd); R=$2; mkdir -p "$R"
 frames=200; warmup=30
@@ -32,6 +33,10 @@ if [[ -x "$B/cuda_tests" ]]; then
   LD_LIBRARY_PATH=$B/lib "$B/cuda_tests" --gtest_also_run_disabled_tests --gtest_filter='*FrameCostOfAHandOver*' \
     > "$R/hand_over.txt" 2>&1 || echo "hand-over benchmark failed: $(tail -1 "$R/hand_over.txt")"
   grep "hand-over bench" "$R/hand_over.txt"
+fi
+if [[ "${KERNELS_ONLY:-0}" == 1 ]]; then
+  python3 "$(dirname "$0")/summarize_post_interop.py" "$R" | tee "$R/post_interop.md"
+  exit 0
 fi
 cuda=1
 grep -q "^cuda:.*(compute [0-9]" "$R/info.txt" || { cuda=0; echo "(no CUDA device: CUDA rows skipped)"; }

@@ -122,6 +122,15 @@ def passes_of(effect):
     return ["toon"] if effect == "toon" else ["bloom", "bloom_composite"]
 
 
+def kernel_tables(outdir):
+    kernels = os.path.join(outdir, "bloom_kernels.txt")
+    if os.path.exists(kernels):
+        kernel_table(kernels)
+        kernel_table(kernels, "bloom_only_kernels")
+        tuning_table(kernels)
+        copy_table(kernels)
+
+
 def main(outdir):
     runs = {}
     device = None
@@ -130,6 +139,12 @@ def main(outdir):
         run = json.load(open(path))
         device = device or run.get("device")
         runs[(variant, effect, kernel, size)] = run
+    if not runs:  # KERNELS_ONLY=1: the kernel-only benchmark alone
+        device_txt = os.path.join(outdir, "device.txt")
+        if os.path.exists(device_txt):
+            print("Device: " + open(device_txt).read().strip())
+        kernel_tables(outdir)
+        return
     print(f"Device: {device}. Medians over the frames; floor = bytes moved / measured compute copy bandwidth.")
     info = os.path.join(outdir, "info.txt")
     if os.path.exists(info):
@@ -188,12 +203,7 @@ def main(outdir):
             frame = run["passes"].get("frame", {}).get("median_ms") if run else None
             cells.append(fmt(frame))
         print(f"| {effect} | {kernel[1:]} | {size} | " + " | ".join(cells) + " |")
-    kernels = os.path.join(outdir, "bloom_kernels.txt")
-    if os.path.exists(kernels):
-        kernel_table(kernels)
-        kernel_table(kernels, "bloom_only_kernels")
-        tuning_table(kernels)
-        copy_table(kernels)
+    kernel_tables(outdir)
     choices = os.path.join(outdir, "auto_choices.txt")
     if os.path.exists(choices):
         print("\nWhat --post-backend auto measured and chose:\n")
