@@ -84,10 +84,11 @@ def tuning_table(path):
             rows.setdefault((size, int(kernel)), {})[variant] = (float(ms), float(floor))
     if not rows:
         return
-    variants = ["default", "no_tail", "no_overlap", "plain_hdr_reads"]
+    variants = ["default", "no_tail", "tail_16k", "no_overlap", "plain_hdr_reads", "persist_level0"]
     print("\nMip chain, what each part buys (fused bloom + composite, kernel-only ms; x floor in brackets): "
           "default = as the passes run it; no_tail = every level its own launches; no_overlap = no programmatic "
-          "dependent launches; plain_hdr_reads = the first downsample's HDR reads not evict-first:\n")
+          "dependent launches; tail_16k = levels up to 16384 texels in the one-block tail; plain_hdr_reads = the first "
+          "downsample's HDR reads not evict-first; persist_level0 = level 0 in the persisting part of L2:\n")
     print("| size | kernel | " + " | ".join(variants) + " |")
     print("| --- | --- | " + " | ".join("---" for _ in variants) + " |")
     for (size, kernel), r in sorted(rows.items(), key=lambda kv: (int(kv[0][0].split("x")[0]), kv[0][1])):

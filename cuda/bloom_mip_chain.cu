@@ -411,21 +411,58 @@ bool programmaticLaunchHere() {
 }
 
 // Launches `kernel`; `afterPrior`: as a programmatic dependent launch where the device has them
-// (on a created stream: the legacy default stream keeps plain launches).
+// (on a created stream: the legacy default stream keeps plain launches); `window`: an L2 access
+// policy for the launch (persisting lines in the set-aside part of L2), or null.
 template <typename... Params, typename... Args>
 void launch(const char* name, void (*kernel)(Params...), dim3 grid, dim3 block, cudaStream_t stream, bool afterPrior,
-            Args... args) {
-    cudaLaunchAttribute attribute[1];
-    attribute[0].id = cudaLaunchAttributeProgrammaticStreamSerialization;
-    attribute[0].val.programmaticStreamSerializationAllowed = 1;
+            const cudaAccessPolicyWindow* window, Args... args) {
+    cudaLaunchAttribute attributes[2];
+    unsigned count = 0;
+    if (afterPrior && stream != nullptr && programmaticLaunchHere()) {
+        attributes[count].id = cudaLaunchAttributeProgrammaticStreamSerialization;
+        attributes[count].val.programmaticStreamSerializationAllowed = 1;
+        ++count;
+    }
+    if (window) {
+        attributes[count].id = cudaLaunchAttributeAccessPolicyWindow;
+        attributes[count].val.accessPolicyWindow = *window;
+        ++count;
+    }
     cudaLaunchConfig_t config{};
     config.gridDim = grid;
     config.blockDim = block;
     config.dynamicSmemBytes = 0;
     config.stream = stream;
-    config.attrs = attribute;
-    config.numAttrs = afterPrior && stream != nullptr && programmaticLaunchHere() ? 1 : 0;
+    config.attrs = attributes;
+    config.numAttrs = count;
     check(cudaLaunchKernelEx(&config, kernel, Params(args)...), name);
+}
+
+// The L2 window that keeps level 0 (written by the first kernel, read by the second and the
+// last) in the persisting part of L2: sets that part aside (cudaLimitPersistingL2CacheSize) on
+// first use; null where the device has none.
+template <typename Lvl>
+const cudaAccessPolicyWindow* persistingWindowOf(const Lvl& level, cudaAccessPolicyWindow& window) {
+    int device = 0, maxPersisting = 0, maxWindow = 0;
+    check(cudaGetDevice(&device), "cudaGetDevice");
+    check(cudaDeviceGetAttribute(&maxPersisting, cudaDevAttrMaxPersistingL2CacheSize, device), "cudaDeviceGetAttribute");
+    check(cudaDeviceGetAttribute(&maxWindow, cudaDevAttrMaxAccessPolicyWindowSize, device), "cudaDeviceGetAttribute");
+    if (maxPersisting <= 0 || maxWindow <= 0) return nullptr;
+    const size_t bytes = size_t(level.width) * size_t(level.height) * sizeof(*level.data);
+    size_t setAside = 0;
+    check(cudaDeviceGetLimit(&setAside, cudaLimitPersistingL2CacheSize), "cudaDeviceGetLimit");
+    const size_t wanted = std::min(bytes, size_t(maxPersisting));
+    if (setAside < wanted) {
+        check(cudaDeviceSetLimit(cudaLimitPersistingL2CacheSize, wanted), "cudaDeviceSetLimit (persisting L2)");
+        check(cudaDeviceGetLimit(&setAside, cudaLimitPersistingL2CacheSize), "cudaDeviceGetLimit");
+    }
+    window = {};
+    window.base_ptr = level.data;
+    window.num_bytes = std::min(bytes, size_t(maxWindow));
+    window.hitRatio = float(std::min(1.0, double(setAside) / double(window.num_bytes)));
+    window.hitProp = cudaAccessPropertyPersisting;
+    window.missProp = cudaAccessPropertyStreaming;
+    return &window;
 }
 
 dim3 tilesOf(int width, int height, int tileW, int tileH) {
@@ -443,24 +480,27 @@ void mipChain(Chain<Lvl> chain, DownIn downIn, HdrIn hdr, BloomOut bloom, HdrOut
     const bool overlap = tuning.programmaticLaunch;
     const dim3 downBlock(kDownW, kDownThreads / kDownW), upBlock(kUpW, kUpH / kUpRows);
     const Lvl& l0 = chain.level[0];
+    cudaAccessPolicyWindow window;
+    const cudaAccessPolicyWindow* level0 = tuning.persistLevel0 ? persistingWindowOf(l0, window) : nullptr;
     launch("downTileKernel (level 0)", downTileKernel<true, DownIn, Lvl>, tilesOf(l0.width, l0.height, kDownW, kDownH),
-           downBlock, stream, false, downIn, width, height, l0, p);
+           downBlock, stream, false, level0, downIn, width, height, l0, p);
     for (int l = 1; l < first; ++l) {
         const Lvl &src = chain.level[l - 1], &dst = chain.level[l];
         launch("downTileKernel", downTileKernel<false, Lvl, Lvl>, tilesOf(dst.width, dst.height, kDownW, kDownH),
-               downBlock, stream, overlap, src, src.width, src.height, dst, p);
+               downBlock, stream, overlap, l == 1 ? level0 : nullptr, src, src.width, src.height, dst, p);
     }
     if (first < n)
-        launch("chainTailKernel", chainTailKernel<Lvl>, dim3(1), dim3(kTailThreads), stream, overlap, chain, first);
+        launch("chainTailKernel", chainTailKernel<Lvl>, dim3(1), dim3(kTailThreads), stream, overlap,
+               first == 1 ? level0 : nullptr, chain, first);
     for (int l = std::min(first, n - 1) - 1; l >= 1; --l) {
         const Lvl& fine = chain.level[l];
         launch("upTileKernel", upTileKernel<Lvl>, tilesOf(fine.width, fine.height, kUpW, kUpH), upBlock, stream, overlap,
-               chain.level[l + 1], fine);
+               nullptr, chain.level[l + 1], fine);
     }
     const Lvl up1 = n > 1 ? chain.level[1] : chain.level[0];
     launch("finalTileKernel", finalTileKernel<Lvl, Composite, HdrIn, BloomOut, HdrOut>,
-           tilesOf(width, height, kUpW, kUpH), upBlock, stream, overlap, l0, up1, n > 1, hdr, bloom, hdrOut, width, height,
-           1.0f / float(n), p.strength);
+           tilesOf(width, height, kUpW, kUpH), upBlock, stream, overlap, level0, l0, up1, n > 1, hdr, bloom, hdrOut,
+           width, height, 1.0f / float(n), p.strength);
 }
 
 template <typename Lvl>

@@ -107,6 +107,7 @@ struct MipChainTuning {
     int tailTexels = 4096;          // levels of at most this many texels run down and up in one block (0: none)
     bool programmaticLaunch = true; // sm_90: launches overlap their predecessors' ends (on created streams)
     bool streamHdrReads = true;     // the first downsample's HDR reads marked evict-first
+    bool persistLevel0 = false;     // level 0 in the persisting part of L2 (sets part of L2 aside, device-wide)
 };
 
 // Device-buffer runs (fp32 intermediates) for tests and the benchmark.

@@ -209,18 +209,22 @@ TEST(CudaBloomBench, DISABLED_KernelTimesAgainstFloor) {
 
 // Not a test: what each part of the mip chain's layout buys, fused bloom + composite at kernel 5
 // and 100 (lines "mip_chain_tuning"): as the passes run it, without the one-block tail of small
-// levels, without programmatic dependent launches, and with the first downsample's HDR reads not
-// marked evict-first.
+// levels and with a larger one, without programmatic dependent launches, with the first
+// downsample's HDR reads not marked evict-first, and with level 0 kept in the persisting part of
+// L2 (last: it sets part of L2 aside while it runs).
 TEST(CudaBloomBench, DISABLED_MipChainTuning) {
     const std::string device = cuda::postDeviceProblem();
     if (!device.empty()) GTEST_SKIP() << "no CUDA device: " << device;
     const cuda::MipChainTuning defaults;
-    cuda::MipChainTuning noTail, noOverlap, plainReads;
+    cuda::MipChainTuning noTail, bigTail, noOverlap, plainReads, persisting;
     noTail.tailTexels = 0;
+    bigTail.tailTexels = 16384;
     noOverlap.programmaticLaunch = false;
     plainReads.streamHdrReads = false;
+    persisting.persistLevel0 = true;
     const std::pair<const char*, cuda::MipChainTuning> variants[] = {
-        {"default", defaults}, {"no_tail", noTail}, {"no_overlap", noOverlap}, {"plain_hdr_reads", plainReads}};
+        {"default", defaults},     {"no_tail", noTail},             {"tail_16k", bigTail},
+        {"no_overlap", noOverlap}, {"plain_hdr_reads", plainReads}, {"persist_level0", persisting}};
     for (auto [w, h] : {std::pair{1920, 1080}, std::pair{3840, 2160}})
         for (int kernel : {5, 100})
             for (const auto& [name, tuning] : variants) {
