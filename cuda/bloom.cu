@@ -731,9 +731,17 @@ void separableBloom(In hdr, Out bloom, int width, int height, const post::BloomP
     if (wantsTensorBlur(ws.blur, radius) && launchTensorBlur(hdr, bloom, width, height, w, radius, p, ws, stream))
         return;
     ws.ensure(width, height, p);
-    // Bright pass fused into the horizontal blur's staging; fp32 intermediate in ws.a.
-    launchBlur<true>(BrightSource<In>{hdr, p}, BufferImage{ws.a, width}, width, height, w, radius, stream);
-    launchBlur<false>(BufferImage{ws.a, width}, bloom, width, height, w, radius, stream);
+    // Bright pass fused into the horizontal blur's staging; the intermediate in ws.a: fp16 where the
+    // bloom lands in RGBA16F textures (half the bytes; its one rounding keeps the result within
+    // one fp16 ulp of the fp32 reference), fp32 on device buffers.
+    if constexpr (std::is_same_v<In, Half4Surface>) {
+        const HalfBufferImage intermediate{reinterpret_cast<uint2*>(ws.a), width};
+        launchBlur<true>(BrightSource<In>{hdr, p}, intermediate, width, height, w, radius, stream);
+        launchBlur<false>(intermediate, bloom, width, height, w, radius, stream);
+    } else {
+        launchBlur<true>(BrightSource<In>{hdr, p}, BufferImage{ws.a, width}, width, height, w, radius, stream);
+        launchBlur<false>(BufferImage{ws.a, width}, bloom, width, height, w, radius, stream);
+    }
 }
 
 }  // namespace

@@ -55,17 +55,8 @@ __device__ inline void letNextGridLaunch() {
 struct HalfLevel {
     uint2* data;
     int width, height;
-    __device__ float4 load(int x, int y) const {
-        const uint2 v = data[size_t(y) * size_t(width) + size_t(x)];
-        const float2 rg = __half22float2(*reinterpret_cast<const __half2*>(&v.x));
-        const float2 ba = __half22float2(*reinterpret_cast<const __half2*>(&v.y));
-        return make_float4(rg.x, rg.y, ba.x, ba.y);
-    }
-    __device__ void store(int x, int y, float4 c) const {
-        const __half2 rg = __floats2half2_rn(c.x, c.y), ba = __floats2half2_rn(c.z, c.w);
-        data[size_t(y) * size_t(width) + size_t(x)] =
-            make_uint2(*reinterpret_cast<const unsigned*>(&rg), *reinterpret_cast<const unsigned*>(&ba));
-    }
+    __device__ float4 load(int x, int y) const { return unpackHalf4(data[size_t(y) * size_t(width) + size_t(x)]); }
+    __device__ void store(int x, int y, float4 c) const { data[size_t(y) * size_t(width) + size_t(x)] = packHalf4(c); }
     __device__ static float4 stored(float4 c) { return Half4Surface::stored(c); }
 };
 

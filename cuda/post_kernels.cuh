@@ -19,6 +19,26 @@ struct BufferImage {
     __device__ static float4 stored(float4 c) { return c; }  // what load() returns after store(c)
 };
 
+// RGBA16F texels packed in 8 bytes (one access) and back; packing rounds to nearest even.
+__device__ inline float4 unpackHalf4(uint2 v) {
+    const float2 rg = __half22float2(*reinterpret_cast<const __half2*>(&v.x));
+    const float2 ba = __half22float2(*reinterpret_cast<const __half2*>(&v.y));
+    return make_float4(rg.x, rg.y, ba.x, ba.y);
+}
+__device__ inline uint2 packHalf4(float4 c) {
+    const __half2 rg = __floats2half2_rn(c.x, c.y), ba = __floats2half2_rn(c.z, c.w);
+    return make_uint2(*reinterpret_cast<const unsigned*>(&rg), *reinterpret_cast<const unsigned*>(&ba));
+}
+
+// A row-major RGBA16F image in device memory: scratch where the results land in RGBA16F
+// textures anyway (half the bytes of BufferImage).
+struct HalfBufferImage {
+    uint2* data;
+    int width;
+    __device__ float4 load(int x, int y) const { return unpackHalf4(data[size_t(y) * size_t(width) + size_t(x)]); }
+    __device__ void store(int x, int y, float4 c) const { data[size_t(y) * size_t(width) + size_t(x)] = packHalf4(c); }
+};
+
 // A mapped RGBA16F GL texture (the HDR buffer, the bloom buffer).
 struct Half4Surface {
     cudaSurfaceObject_t surface;
