@@ -3,7 +3,8 @@
 # 100 3840x2160 (and toon at both sizes) for CUDA on shared textures (--cuda-interop external),
 # CUDA with map/unmap per use (--cuda-interop map), GLSL compute, CUDA with the interop auto chose
 # (--cuda-interop auto: shared textures with Vulkan semaphores only where measured faster than
-# map/unmap), and what --post-backend auto chose (measured afresh into OUTDIR/cache). `external`
+# map/unmap), and what --post-backend auto chose (measured afresh into OUTDIR/cache); the same
+# bloom with --bloom-method mip-chain (effect "mipchain") in GLSL, CUDA on shared textures and auto. `external`
 # is ordered by Vulkan semaphores where info's `sync:` line says so, else by host waits. Per pass: GL-timed ms (what the frame pays, interop and
 # syncs included), CUDA kernel ms, interop ms, the bandwidth floor and measured/floor. Also runs the
 # CUDA tests (shared textures vs the CPU reference), the kernel-only bloom benchmark in cuda_tests
@@ -58,7 +59,11 @@ for c in $cases; do
     run "cuda-external_toon_${c}" "$size" "$k" --no-bloom --toon --post-backend cuda --cuda-interop external
     run "cuda-map_toon_${c}" "$size" "$k" --no-bloom --toon --post-backend cuda --cuda-interop map
     run "auto_bloom_${c}" "$size" "$k" --post-backend auto --post-remeasure
+    # The mip chain (effect name "mipchain"): CUDA on shared textures and what auto picks.
+    run "cuda-external_mipchain_${c}" "$size" "$k" --bloom-method mip-chain --post-backend cuda --cuda-interop external
+    run "auto_mipchain_${c}" "$size" "$k" --bloom-method mip-chain --post-backend auto --post-remeasure
   fi
+  run "glsl_mipchain_${c}" "$size" "$k" --bloom-method mip-chain --post-backend glsl
 done
 grep -h "post backend auto\|post effects:" "$R"/auto_*.log "$R"/cuda-auto_*.log 2>/dev/null | sort -u > "$R/auto_choices.txt"
 python3 "$(dirname "$0")/summarize_post_interop.py" "$R" | tee "$R/post_interop.md"

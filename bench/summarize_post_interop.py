@@ -173,22 +173,22 @@ def main(outdir):
             tot[1] += kern if kern is not None else frame
             tot[2] += fl or 0.0
         exact = bloom_floor_ms(run)
-        if effect == "bloom" and exact:
+        if effect in ("bloom", "mipchain") and exact:
             tot[2] = exact
         totals[(variant, effect, kernel, size)] = tot
     print("\nTargets (bloom + composite, all passes summed; floor = 24 B/texel, see above):\n")
-    for kernel, size in sorted({(k, s) for (_, e, k, s) in totals if e == "bloom"}):
-        g = totals.get(("glsl", "bloom", kernel, size))
+    for effect, kernel, size in sorted({(e, k, s) for (_, e, k, s) in totals if e in ("bloom", "mipchain")}):
+        g = totals.get(("glsl", effect, kernel, size))
         for variant in ("cuda-external", "cuda-map", "cuda-auto", "auto"):
-            c = totals.get((variant, "bloom", kernel, size))
+            c = totals.get((variant, effect, kernel, size))
             if not c or not g:
                 continue
-            wf = lambda v: runs.get((v, "bloom", kernel, size), {}).get("passes", {}).get("frame", {}).get("median_ms")
+            wf = lambda v: runs.get((v, effect, kernel, size), {}).get("passes", {}).get("frame", {}).get("median_ms")
             if wf(variant) is not None and wf("glsl") is not None:
-                print(f"- {kernel[1:]} px {size} {variant}: whole frame {wf(variant):.4f} ms vs GLSL's {wf('glsl'):.4f} ms "
+                print(f"- {effect} {kernel[1:]} px {size} {variant}: whole frame {wf(variant):.4f} ms vs GLSL's {wf('glsl'):.4f} ms "
                       f"({'no slower' if wf(variant) <= wf('glsl') else 'slower'}; the pass times below can move a "
                       f"drain of earlier GL work into the CUDA pass)")
-            print(f"- {kernel[1:]} px {size} {variant}: frame {c[0]:.4f} ms vs GLSL {g[0]:.4f} ms "
+            print(f"- {effect} {kernel[1:]} px {size} {variant}: frame {c[0]:.4f} ms vs GLSL {g[0]:.4f} ms "
                   f"({'no slower' if c[0] <= g[0] else 'slower'}); kernels {c[1]:.4f} ms = "
                   f"{c[1] / c[2]:.2f}x floor {c[2]:.4f} ms; frame = {c[0] / c[2]:.2f}x floor" if c[2] else "")
     # The whole frame's GPU time per run: whether a CUDA pass's cost is its own or moved from its
