@@ -966,9 +966,10 @@ BloomAndComposite bloomCompositeOnHalfArrays(const ImageF& hdr, const post::Bloo
             bloomSurfaceToSurface(hdrArray.surface, bloomArray.surface, width, height, p, ws, stream);
         check(cudaStreamSynchronize(stream), "cudaStreamSynchronize");
     }
-    if (tuning.persistLevel0) {  // give the set-aside part of L2 back
-        check(cudaDeviceSetLimit(cudaLimitPersistingL2CacheSize, 0), "cudaDeviceSetLimit (persisting L2)");
-        check(cudaCtxResetPersistingL2Cache(), "cudaCtxResetPersistingL2Cache");
+    if (tuning.persistLevel0) {  // give the set-aside part of L2 back (nothing to do where none was set aside)
+        cudaDeviceSetLimit(cudaLimitPersistingL2CacheSize, 0);
+        cudaCtxResetPersistingL2Cache();
+        cudaGetLastError();
     }
     cudaStreamDestroy(stream);
     return {readHalfArray(bloomArray, width, height), readHalfArray(hdrArray, width, height)};
@@ -1038,9 +1039,10 @@ BloomKernelTime timeBloomCompositeKernels(int width, int height, const post::Blo
     cudaEventDestroy(start);
     cudaEventDestroy(stop);
     cudaStreamDestroy(stream);
-    if (tuning.persistLevel0) {  // give the set-aside part of L2 back
-        check(cudaDeviceSetLimit(cudaLimitPersistingL2CacheSize, 0), "cudaDeviceSetLimit (persisting L2)");
-        check(cudaCtxResetPersistingL2Cache(), "cudaCtxResetPersistingL2Cache");
+    if (tuning.persistLevel0) {  // give the set-aside part of L2 back (nothing to do where none was set aside)
+        cudaDeviceSetLimit(cudaLimitPersistingL2CacheSize, 0);
+        cudaCtxResetPersistingL2Cache();
+        cudaGetLastError();
     }
     std::sort(ms.begin(), ms.end());
     result.medianMs = ms.empty() ? 0.0 : double(ms[ms.size() / 2]);

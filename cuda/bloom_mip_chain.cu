@@ -431,22 +431,26 @@ void launch(const char* name, void (*kernel)(Params...), dim3 grid, dim3 block, 
 
 // The L2 window that keeps level 0 (written by the first kernel, read by the second and the
 // last) in the persisting part of L2: sets that part aside (cudaLimitPersistingL2CacheSize) on
-// first use; null where the device has none.
+// first use; null where the device has none or refuses it (the chain then runs without).
 template <typename Lvl>
 const cudaAccessPolicyWindow* persistingWindowOf(const Lvl& level, cudaAccessPolicyWindow& window) {
     int device = 0, maxPersisting = 0, maxWindow = 0;
-    check(cudaGetDevice(&device), "cudaGetDevice");
-    check(cudaDeviceGetAttribute(&maxPersisting, cudaDevAttrMaxPersistingL2CacheSize, device), "cudaDeviceGetAttribute");
-    check(cudaDeviceGetAttribute(&maxWindow, cudaDevAttrMaxAccessPolicyWindowSize, device), "cudaDeviceGetAttribute");
-    if (maxPersisting <= 0 || maxWindow <= 0) return nullptr;
-    const size_t bytes = size_t(level.width) * size_t(level.height) * sizeof(*level.data);
     size_t setAside = 0;
-    check(cudaDeviceGetLimit(&setAside, cudaLimitPersistingL2CacheSize), "cudaDeviceGetLimit");
-    const size_t wanted = std::min(bytes, size_t(maxPersisting));
-    if (setAside < wanted) {
-        check(cudaDeviceSetLimit(cudaLimitPersistingL2CacheSize, wanted), "cudaDeviceSetLimit (persisting L2)");
-        check(cudaDeviceGetLimit(&setAside, cudaLimitPersistingL2CacheSize), "cudaDeviceGetLimit");
+    const size_t bytes = size_t(level.width) * size_t(level.height) * sizeof(*level.data);
+    if (cudaGetDevice(&device) != cudaSuccess ||
+        cudaDeviceGetAttribute(&maxPersisting, cudaDevAttrMaxPersistingL2CacheSize, device) != cudaSuccess ||
+        cudaDeviceGetAttribute(&maxWindow, cudaDevAttrMaxAccessPolicyWindowSize, device) != cudaSuccess ||
+        maxPersisting <= 0 || maxWindow <= 0 || cudaDeviceGetLimit(&setAside, cudaLimitPersistingL2CacheSize) != cudaSuccess) {
+        cudaGetLastError();
+        return nullptr;
     }
+    const size_t wanted = std::min(bytes, size_t(maxPersisting));
+    if (setAside < wanted && (cudaDeviceSetLimit(cudaLimitPersistingL2CacheSize, wanted) != cudaSuccess ||
+                              cudaDeviceGetLimit(&setAside, cudaLimitPersistingL2CacheSize) != cudaSuccess)) {
+        cudaGetLastError();
+        return nullptr;
+    }
+    if (setAside == 0) return nullptr;
     window = {};
     window.base_ptr = level.data;
     window.num_bytes = std::min(bytes, size_t(maxWindow));

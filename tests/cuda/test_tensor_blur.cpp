@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <exception>
 #include <random>
 
 #include "cuda/post_cuda.hpp"
@@ -196,7 +197,13 @@ TEST(CudaBloomBench, DISABLED_KernelTimesAgainstFloor) {
                 for (const Variant& v : variants) {
                     BloomParams p = separable(kernel);
                     p.method = v.method;
-                    const cuda::BloomKernelTime t = cuda::timeBloomCompositeKernels(w, h, p, v.blur, 60, composite);
+                    cuda::BloomKernelTime t;
+                    try {  // a failing variant is reported and the others still run
+                        t = cuda::timeBloomCompositeKernels(w, h, p, v.blur, 60, composite);
+                    } catch (const std::exception& e) {
+                        ADD_FAILURE() << w << "x" << h << " kernel " << kernel << " " << v.name << ": " << e.what();
+                        continue;
+                    }
                     const double bytes = composite ? 24.0 : 16.0;
                     const double floorMs = bytes * double(w) * double(h) / t.copyBytesPerSecond * 1e3;
                     const char* ran = v.method == BloomMethod::MipChain ? "mipchain" : t.tensorCores ? "tensor" : "direct";
@@ -230,7 +237,13 @@ TEST(CudaBloomBench, DISABLED_MipChainTuning) {
             for (const auto& [name, tuning] : variants) {
                 BloomParams p = separable(kernel);
                 p.method = BloomMethod::MipChain;
-                const cuda::BloomKernelTime t = cuda::timeBloomCompositeKernels(w, h, p, BloomBlur::Auto, 60, true, tuning);
+                cuda::BloomKernelTime t;
+                try {  // a failing variant is reported and the others still run
+                    t = cuda::timeBloomCompositeKernels(w, h, p, BloomBlur::Auto, 60, true, tuning);
+                } catch (const std::exception& e) {
+                    ADD_FAILURE() << w << "x" << h << " kernel " << kernel << " " << name << ": " << e.what();
+                    continue;
+                }
                 const double floorMs = 24.0 * double(w) * double(h) / t.copyBytesPerSecond * 1e3;
                 std::printf("mip_chain_tuning size=%dx%d kernel=%d variant=%s ms=%.5f floor_ms=%.5f\n", w, h, kernel, name,
                             t.medianMs, floorMs);
