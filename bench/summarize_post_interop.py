@@ -84,16 +84,37 @@ def tuning_table(path):
             rows.setdefault((size, int(kernel)), {})[variant] = (float(ms), float(floor))
     if not rows:
         return
-    variants = ["default", "no_tail", "tail_16k", "no_overlap", "plain_hdr_reads", "persist_level0"]
+    variants = ["default", "no_tail", "tail_16k", "no_overlap", "plain_hdr_reads", "lean_upsample", "plain_final",
+                "persist_level0"]
     print("\nMip chain, what each part buys (fused bloom + composite, kernel-only ms; x floor in brackets): "
           "default = as the passes run it; no_tail = every level its own launches; no_overlap = no programmatic "
           "dependent launches; tail_16k = levels up to 16384 texels in the one-block tail; plain_hdr_reads = the first "
-          "downsample's HDR reads not evict-first; persist_level0 = level 0 in the persisting part of L2:\n")
+          "downsample's HDR reads not evict-first; lean_upsample = upsample kernels with 2 rows a thread (512 threads); "
+          "plain_final = the last kernel's full-resolution accesses not evict-first; persist_level0 = level 0 in the "
+          "persisting part of L2:\n")
     print("| size | kernel | " + " | ".join(variants) + " |")
     print("| --- | --- | " + " | ".join("---" for _ in variants) + " |")
     for (size, kernel), r in sorted(rows.items(), key=lambda kv: (int(kv[0][0].split("x")[0]), kv[0][1])):
         cells = [f"{r[v][0]:.4f} ({r[v][0] / r[v][1]:.2f}x)" if v in r else "-" for v in variants]
         print(f"| {size} | {kernel} | " + " | ".join(cells) + " |")
+
+
+def steps_table(path):
+    rows = {}
+    for line in open(path):
+        m = re.match(r"mip_chain_step size=(\d+x\d+) kernel=(\d+) variant=(\w+) step=(\w+) ms=([\d.]+) MB=([\d.]+) "
+                     r"GBps=([\d.]+)", line)
+        if m:
+            size, kernel, variant, step, ms, mb, gbps = m.groups()
+            rows.setdefault((size, int(kernel), variant), []).append((step, float(ms), float(mb), float(gbps)))
+    if not rows:
+        return
+    print("\nMip chain, each launch timed alone (no overlap; MB = what it must read and write at least, GB/s = MB / ms):\n")
+    print("| size | kernel | variant | launches: ms (GB/s) | sum ms |")
+    print("| --- | --- | --- | --- | --- |")
+    for (size, kernel, variant), steps in sorted(rows.items(), key=lambda kv: (int(kv[0][0].split("x")[0]), kv[0][1], kv[0][2])):
+        cells = ", ".join(f"{name} {ms:.4f} ({gbps:.0f})" for name, ms, _, gbps in steps)
+        print(f"| {size} | {kernel} | {variant} | {cells} | {sum(s[1] for s in steps):.4f} |")
 
 
 def copy_table(path):
@@ -129,6 +150,7 @@ def kernel_tables(outdir):
         kernel_table(kernels)
         kernel_table(kernels, "bloom_only_kernels")
         tuning_table(kernels)
+        steps_table(kernels)
         copy_table(kernels)
 
 

@@ -1007,7 +1007,8 @@ CopyKernelTimes timeHalf4Copies(int width, int height, int iterations) {
 }
 
 BloomKernelTime timeBloomCompositeKernels(int width, int height, const post::BloomParams& p, BloomBlur blur,
-                                          int iterations, bool composite, const MipChainTuning& tuning) {
+                                          int iterations, bool composite, const MipChainTuning& tuning,
+                                          std::vector<MipChainStep>* steps) {
     Half4Array hdr(width, height), bloom(width, height);
     cudaStream_t stream = nullptr;
     check(cudaStreamCreate(&stream), "cudaStreamCreate");
@@ -1035,6 +1036,31 @@ BloomKernelTime timeBloomCompositeKernels(int width, int height, const post::Blo
         float t = 0.0f;
         check(cudaEventElapsedTime(&t, start, stop), "cudaEventElapsedTime");
         if (i >= 0) ms.push_back(t);
+    }
+    if (steps && p.method == post::BloomMethod::MipChain) {  // each launch timed alone
+        StepRecorder recorder;
+        ws.recorder = &recorder;
+        std::vector<std::vector<double>> stepMs;
+        for (int i = -2; i < iterations; ++i) {
+            fillBenchHdr<<<gridFor(width, height), dim3(kBlock, kBlock), 0, stream>>>(Half4Surface{hdr.surface}, width,
+                                                                                      height);
+            checkLaunch("fillBenchHdr");
+            recorder.restart();
+            if (composite)
+                bloomCompositeSurfaces(hdr.surface, bloom.surface, width, height, p, ws, stream);
+            else
+                bloomSurfaceToSurface(hdr.surface, bloom.surface, width, height, p, ws, stream);
+            check(cudaStreamSynchronize(stream), "cudaStreamSynchronize");
+            if (i < 0) continue;
+            stepMs.resize(recorder.count());
+            for (size_t k = 0; k < recorder.count(); ++k) stepMs[k].push_back(recorder.ms(k));
+        }
+        ws.recorder = nullptr;
+        steps->clear();
+        for (size_t k = 0; k < stepMs.size(); ++k) {
+            std::sort(stepMs[k].begin(), stepMs[k].end());
+            steps->push_back({recorder.name(k), stepMs[k][stepMs[k].size() / 2], recorder.bytes(k)});
+        }
     }
     cudaEventDestroy(start);
     cudaEventDestroy(stop);

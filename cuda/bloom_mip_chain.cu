@@ -194,30 +194,43 @@ __global__ void __launch_bounds__(kDownThreads)
 }
 
 // ---- Upsample: fine texels from a staged tile of the coarse level ----
-constexpr int kUpW = 64, kUpH = 32, kUpRows = 8;           // outputs per block; 64 x 4 threads, 8 rows each
-constexpr int kUpThreads = kUpW * (kUpH / kUpRows);
-constexpr int kCoarseW = kUpW / 2 + 4, kCoarseH = kUpH / 2 + 4;  // coarse texels x0 / 2 - 2 .. x1 / 2 + 1
-using CoarseTile = Planes3::Of<kCoarseH, kCoarseW>;
+// A block of 64 x ThreadsY threads makes a 64 x (Rows * ThreadsY) tile of fine texels, each thread
+// Rows consecutive rows of one column; the coarse tile it reads spans coarse texels x0 / 2 - 2 ..
+// x1 / 2 + 1. Wide (8 rows a thread) shares each coarse row's horizontal sum among more outputs;
+// Lean (2 rows, 512 threads) needs fewer registers, so more blocks share an SM.
+template <int RowsPerThread, int ThreadsY>
+struct UpShape {
+    static constexpr int Rows = RowsPerThread, W = 64, H = RowsPerThread * ThreadsY, Threads = W * ThreadsY;
+    static constexpr int CoarseW = W / 2 + 4, CoarseH = H / 2 + 4;
+    static constexpr int CoarseRows = Rows / 2 + 4;  // coarse rows one thread's outputs read
+    // up_0 texels (x0 / 2 - 2 + i, ...) of the last kernel's tile need up_1 texels from (x0 / 2 - 2) / 2 - 2.
+    static constexpr int Up1W = CoarseW / 2 + 5, Up1H = CoarseH / 2 + 5;
+    using Tile = Planes3::Of<CoarseH, CoarseW>;
+};
+using WideUp = UpShape<8, 4>;
+using LeanUp = UpShape<2, 8>;
 
-// The upsample (reference: upsample) of the thread's column x = x0 + tx at rows y0 + kUpRows * ty
-// + m from the coarse tile whose origin is (x0 / 2 - 2, y0 / 2 - 2): per coarse row the 4-tap
+// The upsample (reference: upsample) of the thread's column x = x0 + tx at rows y0 + Rows * ty + m
+// from the coarse tile whose origin is (x0 / 2 - 2, y0 / 2 - 2): per coarse row the 4-tap
 // horizontal sum once, then the vertical 4 taps per output (the reference's order: rows, then
 // their weighted sum).
-__device__ inline void upsampleColumn(const CoarseTile& tile, int tx, int ty, Rgb out[kUpRows]) {
+template <typename Shape>
+__device__ inline void upsampleColumn(const typename Shape::Tile& tile, int tx, int ty, Rgb out[Shape::Rows]) {
     const bool ox = tx & 1;
     const int bx = (tx >> 1) + (ox ? 1 : 0);  // (x >> 1) - (ox ? 1 : 2) - (x0 / 2 - 2), x0 even
-    Rgb rows[kUpRows];
+    const int row0 = (Shape::Rows / 2) * ty;  // (y0 + Rows * ty) / 2 - 2 - (y0 / 2 - 2)
+    Rgb rows[Shape::CoarseRows];
 #pragma unroll
-    for (int k = 0; k < kUpRows; ++k) {
+    for (int k = 0; k < Shape::CoarseRows; ++k) {
         Rgb row;
 #pragma unroll
-        for (int i = 0; i < 4; ++i) row = plus(row, times(tile.at(4 * ty + k, bx + i), post::upsampleWeight(i, ox)));
+        for (int i = 0; i < 4; ++i) row = plus(row, times(tile.at(row0 + k, bx + i), post::upsampleWeight(i, ox)));
         rows[k] = row;
     }
 #pragma unroll
-    for (int m = 0; m < kUpRows; ++m) {
+    for (int m = 0; m < Shape::Rows; ++m) {
         const bool oy = m & 1;
-        const int by = (m >> 1) + (oy ? 1 : 0);  // relative to row 4 ty of the tile
+        const int by = (m >> 1) + (oy ? 1 : 0);  // relative to row0
         Rgb sum;
 #pragma unroll
         for (int j = 0; j < 4; ++j) sum = plus(sum, times(rows[by + j], post::upsampleWeight(j, oy)));
@@ -226,76 +239,75 @@ __device__ inline void upsampleColumn(const CoarseTile& tile, int tx, int ty, Rg
 }
 
 // fine += U(coarse), in place (up_l = down_l + U(up_{l+1})).
-template <typename Lvl>
-__global__ void __launch_bounds__(kUpThreads) upTileKernel(Lvl coarse, Lvl fine) {
-    __shared__ CoarseTile tile;
+template <typename Shape, typename Lvl>
+__global__ void __launch_bounds__(Shape::Threads) upTileKernel(Lvl coarse, Lvl fine) {
+    __shared__ typename Shape::Tile tile;
     letNextGridLaunch();
     waitForPriorGrids();
-    const int tx = int(threadIdx.x), ty = int(threadIdx.y), thread = ty * kUpW + tx;
-    const int x0 = int(blockIdx.x) * kUpW, y0 = int(blockIdx.y) * kUpH;
+    const int tx = int(threadIdx.x), ty = int(threadIdx.y), thread = ty * Shape::W + tx;
+    const int x0 = int(blockIdx.x) * Shape::W, y0 = int(blockIdx.y) * Shape::H;
     const int cx0 = x0 / 2 - 2, cy0 = y0 / 2 - 2;
-    const int x = x0 + tx, yFirst = y0 + kUpRows * ty;
-    float4 own[kUpRows];
+    const int x = x0 + tx, yFirst = y0 + Shape::Rows * ty;
+    float4 own[Shape::Rows];
 #pragma unroll
-    for (int m = 0; m < kUpRows; ++m)
+    for (int m = 0; m < Shape::Rows; ++m)
         if (x < fine.width && yFirst + m < fine.height) own[m] = fine.load(x, yFirst + m);
-    for (int e = thread; e < kCoarseW * kCoarseH; e += kUpThreads) {
-        const int i = e % kCoarseW, j = e / kCoarseW;
+    for (int e = thread; e < Shape::CoarseW * Shape::CoarseH; e += Shape::Threads) {
+        const int i = e % Shape::CoarseW, j = e / Shape::CoarseW;
         tile.put(j, i, rgbOf(coarse.load(clampTo(cx0 + i, coarse.width - 1), clampTo(cy0 + j, coarse.height - 1))));
     }
     __syncthreads();
-    Rgb up[kUpRows];
-    upsampleColumn(tile, tx, ty, up);
+    Rgb up[Shape::Rows];
+    upsampleColumn<Shape>(tile, tx, ty, up);
 #pragma unroll
-    for (int m = 0; m < kUpRows; ++m)
+    for (int m = 0; m < Shape::Rows; ++m)
         if (x < fine.width && yFirst + m < fine.height) fine.store(x, yFirst + m, opaque(plus(rgbOf(own[m]), up[m])));
 }
 
 // ---- The last kernel: up_0 on the fly, the full-resolution upsample and the composite ----
-// up_0 texels (x0 / 2 - 2 + i, y0 / 2 - 2 + j) of the tile need up_1 texels from (x0 / 2 - 2) / 2 - 2.
-constexpr int kUp1W = kCoarseW / 2 + 5, kUp1H = kCoarseH / 2 + 5;
-
-template <typename Lvl, bool Composite, typename HdrIn, typename BloomOut, typename HdrOut>
-__global__ void __launch_bounds__(kUpThreads)
+template <typename Shape, typename Lvl, bool Composite, typename HdrIn, typename BloomOut, typename HdrOut>
+__global__ void __launch_bounds__(Shape::Threads)
     finalTileKernel(Lvl down0, Lvl up1, bool hasUp1, HdrIn hdr, BloomOut bloom, HdrOut hdrOut, int width,
                     int height, float norm, float strength) {
+    constexpr int kCoarseW = Shape::CoarseW, kCoarseH = Shape::CoarseH, kUp1W = Shape::Up1W, kUp1H = Shape::Up1H;
+    constexpr int kThreads = Shape::Threads, kRows = Shape::Rows;
     __shared__ Planes3::Of<kUp1H, kUp1W> coarser;
-    __shared__ CoarseTile tile;
+    __shared__ typename Shape::Tile tile;
     letNextGridLaunch();
-    const int tx = int(threadIdx.x), ty = int(threadIdx.y), thread = ty * kUpW + tx;
-    const int x0 = int(blockIdx.x) * kUpW, y0 = int(blockIdx.y) * kUpH;
+    const int tx = int(threadIdx.x), ty = int(threadIdx.y), thread = ty * Shape::W + tx;
+    const int x0 = int(blockIdx.x) * Shape::W, y0 = int(blockIdx.y) * Shape::H;
     const int cx0 = x0 / 2 - 2, cy0 = y0 / 2 - 2;  // up_0 tile origin (may be negative: clamped per texel)
     const int ux0 = (cx0 >> 1) - 2, uy0 = (cy0 >> 1) - 2;  // up_1 tile origin (floor halves)
-    const int x = x0 + tx, yFirst = y0 + kUpRows * ty;
+    const int x = x0 + tx, yFirst = y0 + kRows * ty;
     // The HDR texels of the composite, in flight during the rest. Loaded before the wait: nothing
     // this launch waits for writes the HDR (the first downsample only reads it, and it started
     // before this grid could be scheduled, after whatever wrote the HDR), and this kernel writes
     // it only after the wait.
-    float4 h[kUpRows];
+    float4 h[kRows];
     if (Composite) {
 #pragma unroll
-        for (int m = 0; m < kUpRows; ++m)
+        for (int m = 0; m < kRows; ++m)
             if (x < width && yFirst + m < height) h[m] = hdr.load(x, yFirst + m);
     }
     waitForPriorGrids();
     if (hasUp1) {
-        for (int e = thread; e < kUp1W * kUp1H; e += kUpThreads) {
+        for (int e = thread; e < kUp1W * kUp1H; e += kThreads) {
             const int i = e % kUp1W, j = e / kUp1W;
             coarser.put(j, i, rgbOf(up1.load(clampTo(ux0 + i, up1.width - 1), clampTo(uy0 + j, up1.height - 1))));
         }
     }
-    constexpr int kTile = kCoarseW * kCoarseH, kBatch = (kTile + kUpThreads - 1) / kUpThreads;
+    constexpr int kTile = kCoarseW * kCoarseH, kBatch = (kTile + kThreads - 1) / kThreads;
     float4 own[kBatch];
 #pragma unroll
     for (int b = 0; b < kBatch; ++b) {
-        const int e = thread + b * kUpThreads;
+        const int e = thread + b * kThreads;
         if (e < kTile)
             own[b] = down0.load(clampTo(cx0 + e % kCoarseW, down0.width - 1), clampTo(cy0 + e / kCoarseW, down0.height - 1));
     }
     __syncthreads();
 #pragma unroll
     for (int b = 0; b < kBatch; ++b) {
-        const int e = thread + b * kUpThreads;
+        const int e = thread + b * kThreads;
         if (e >= kTile) continue;
         Rgb c = rgbOf(own[b]);
         if (hasUp1) {  // up_0 = down_0 + U(up_1) at the clamped texel, as stored
@@ -315,10 +327,10 @@ __global__ void __launch_bounds__(kUpThreads)
         tile.put(e / kCoarseW, e % kCoarseW, c);
     }
     __syncthreads();
-    Rgb up[kUpRows];
-    upsampleColumn(tile, tx, ty, up);
+    Rgb up[kRows];
+    upsampleColumn<Shape>(tile, tx, ty, up);
 #pragma unroll
-    for (int m = 0; m < kUpRows; ++m) {
+    for (int m = 0; m < kRows; ++m) {
         const int y = yFirst + m;
         if (x >= width || y >= height) continue;
         const float4 b = opaque(times(up[m], norm));
@@ -464,38 +476,76 @@ dim3 tilesOf(int width, int height, int tileW, int tileH) {
     return dim3(unsigned((width + tileW - 1) / tileW), unsigned((height + tileH - 1) / tileH));
 }
 
+template <typename Lvl>
+double bytesOf(const Lvl& level) {
+    return double(level.width) * double(level.height) * double(sizeof(*level.data));
+}
+
 // downIn: the HDR as the first downsample reads it; hdr: as the last kernel reads it.
-template <typename Lvl, bool Composite, typename DownIn, typename HdrIn, typename BloomOut, typename HdrOut>
+template <typename Shape, typename Lvl, bool Composite, typename DownIn, typename HdrIn, typename BloomOut,
+          typename HdrOut>
 void mipChain(Chain<Lvl> chain, DownIn downIn, HdrIn hdr, BloomOut bloom, HdrOut hdrOut, int width, int height,
-              const post::BloomParams& p, const MipChainTuning& tuning, cudaStream_t stream) {
+              const post::BloomParams& p, const MipChainTuning& tuning, StepRecorder* recorder, cudaStream_t stream) {
     const int n = chain.count;
     int first = 1;  // the tail: levels first .. n - 1
     while (first < n && chain.level[first].width * chain.level[first].height > tuning.tailTexels) ++first;
-    // Every launch after the first may overlap its predecessor's end.
-    const bool overlap = tuning.programmaticLaunch;
-    const dim3 downBlock(kDownW, kDownThreads / kDownW), upBlock(kUpW, kUpH / kUpRows);
+    // Every launch after the first may overlap its predecessor's end (not while each is timed alone).
+    const bool overlap = tuning.programmaticLaunch && !recorder;
+    // Runs `launchIt`, timed as `name` moving `bytes` when recording.
+    auto step = [&](const char* name, double bytes, auto&& launchIt) {
+        if (recorder) recorder->begin(stream);
+        launchIt();
+        if (recorder) recorder->end(stream, name, bytes);
+    };
+    static const char* const kDown[] = {"down0", "down1", "down2", "down3", "down4", "down5", "down6", "down7"};
+    static const char* const kUp[] = {"up0", "up1", "up2", "up3", "up4", "up5", "up6", "up7"};
+    const double hdrBytes = double(width) * double(height) * 8.0;
+    const dim3 downBlock(kDownW, kDownThreads / kDownW), upBlock(Shape::W, Shape::Threads / Shape::W);
     const Lvl& l0 = chain.level[0];
     cudaAccessPolicyWindow window;
     const cudaAccessPolicyWindow* level0 = tuning.persistLevel0 ? persistingWindowOf(l0, window) : nullptr;
-    launch("downTileKernel (level 0)", downTileKernel<true, DownIn, Lvl>, tilesOf(l0.width, l0.height, kDownW, kDownH),
-           downBlock, stream, false, level0, downIn, width, height, l0, p);
+    step(kDown[0], hdrBytes + bytesOf(l0), [&] {
+        launch("downTileKernel (level 0)", downTileKernel<true, DownIn, Lvl>, tilesOf(l0.width, l0.height, kDownW, kDownH),
+               downBlock, stream, false, level0, downIn, width, height, l0, p);
+    });
     for (int l = 1; l < first; ++l) {
         const Lvl &src = chain.level[l - 1], &dst = chain.level[l];
-        launch("downTileKernel", downTileKernel<false, Lvl, Lvl>, tilesOf(dst.width, dst.height, kDownW, kDownH),
-               downBlock, stream, overlap, l == 1 ? level0 : nullptr, src, src.width, src.height, dst, p);
+        step(kDown[l], bytesOf(src) + bytesOf(dst), [&] {
+            launch("downTileKernel", downTileKernel<false, Lvl, Lvl>, tilesOf(dst.width, dst.height, kDownW, kDownH),
+                   downBlock, stream, overlap, l == 1 ? level0 : nullptr, src, src.width, src.height, dst, p);
+        });
     }
-    if (first < n)
-        launch("chainTailKernel", chainTailKernel<Lvl>, dim3(1), dim3(kTailThreads), stream, overlap,
-               first == 1 ? level0 : nullptr, chain, first);
+    if (first < n) {
+        double bytes = 0.0;
+        for (int l = first; l < n; ++l) bytes += bytesOf(chain.level[l - 1]) + bytesOf(chain.level[l]);
+        for (int l = n - 2; l >= first; --l) bytes += bytesOf(chain.level[l + 1]) + 2.0 * bytesOf(chain.level[l]);
+        step("tail", bytes, [&] {
+            launch("chainTailKernel", chainTailKernel<Lvl>, dim3(1), dim3(kTailThreads), stream, overlap,
+                   first == 1 ? level0 : nullptr, chain, first);
+        });
+    }
     for (int l = std::min(first, n - 1) - 1; l >= 1; --l) {
         const Lvl& fine = chain.level[l];
-        launch("upTileKernel", upTileKernel<Lvl>, tilesOf(fine.width, fine.height, kUpW, kUpH), upBlock, stream, overlap,
-               nullptr, chain.level[l + 1], fine);
+        step(kUp[l], bytesOf(chain.level[l + 1]) + 2.0 * bytesOf(fine), [&] {
+            launch("upTileKernel", upTileKernel<Shape, Lvl>, tilesOf(fine.width, fine.height, Shape::W, Shape::H), upBlock,
+                   stream, overlap, nullptr, chain.level[l + 1], fine);
+        });
     }
     const Lvl up1 = n > 1 ? chain.level[1] : chain.level[0];
-    launch("finalTileKernel", finalTileKernel<Lvl, Composite, HdrIn, BloomOut, HdrOut>,
-           tilesOf(width, height, kUpW, kUpH), upBlock, stream, overlap, level0, l0, up1, n > 1, hdr, bloom, hdrOut,
-           width, height, 1.0f / float(n), p.strength);
+    step("final", hdrBytes * (Composite ? 3.0 : 1.0) + bytesOf(l0) + (n > 1 ? bytesOf(up1) : 0.0), [&] {
+        launch("finalTileKernel", finalTileKernel<Shape, Lvl, Composite, HdrIn, BloomOut, HdrOut>,
+               tilesOf(width, height, Shape::W, Shape::H), upBlock, stream, overlap, level0, l0, up1, n > 1, hdr, bloom,
+               hdrOut, width, height, 1.0f / float(n), p.strength);
+    });
+}
+
+// The chain with the upsample shape the tuning asks for.
+template <typename Lvl, bool Composite, typename... Images>
+void mipChainShaped(const MipChainTuning& tuning, Images... images) {
+    if (tuning.leanUpsample)
+        mipChain<LeanUp, Lvl, Composite>(images...);
+    else
+        mipChain<WideUp, Lvl, Composite>(images...);
 }
 
 template <typename Lvl>
@@ -517,26 +567,43 @@ void mipChainBloomBuffers(const float4* hdr, float4* bloom, float4* hdrOut, int 
                           const post::BloomParams& p, BloomWorkspace& ws, cudaStream_t stream) {
     const Chain<FloatLevel> chain = chainOf<FloatLevel>(ws, width, height, p);
     const BufferImage in{const_cast<float4*>(hdr), width}, b{bloom, width};
+    const MipChainTuning& t = ws.mipChain;
     if (hdrOut)
-        mipChain<FloatLevel, true>(chain, in, in, b, BufferImage{hdrOut, width}, width, height, p, ws.mipChain, stream);
+        mipChainShaped<FloatLevel, true>(t, chain, in, in, b, BufferImage{hdrOut, width}, width, height, p, t, ws.recorder,
+                                         stream);
     else
-        mipChain<FloatLevel, false>(chain, in, in, b, b, width, height, p, ws.mipChain, stream);
+        mipChainShaped<FloatLevel, false>(t, chain, in, in, b, b, width, height, p, t, ws.recorder, stream);
 }
+
+namespace {
+
+// The surface path with the last kernel's full-resolution accesses as `Full` (streamed or plain).
+template <typename Full>
+void mipChainOnSurfaces(const Chain<HalfLevel>& chain, cudaSurfaceObject_t hdr, cudaSurfaceObject_t bloom, bool composite,
+                        int width, int height, const post::BloomParams& p, BloomWorkspace& ws, cudaStream_t stream) {
+    const Full in{hdr}, b{bloom}, out{hdr};
+    const MipChainTuning& t = ws.mipChain;
+    StepRecorder* r = ws.recorder;
+    if (t.streamHdrReads && composite)
+        mipChainShaped<HalfLevel, true>(t, chain, StreamedHalf4Surface{hdr}, in, b, out, width, height, p, t, r, stream);
+    else if (t.streamHdrReads)
+        mipChainShaped<HalfLevel, false>(t, chain, StreamedHalf4Surface{hdr}, in, b, b, width, height, p, t, r, stream);
+    else if (composite)
+        mipChainShaped<HalfLevel, true>(t, chain, Half4Surface{hdr}, in, b, out, width, height, p, t, r, stream);
+    else
+        mipChainShaped<HalfLevel, false>(t, chain, Half4Surface{hdr}, in, b, b, width, height, p, t, r, stream);
+}
+
+}  // namespace
 
 void mipChainBloomSurfaces(cudaSurfaceObject_t hdr, cudaSurfaceObject_t bloom, bool composite, int width, int height,
                            const post::BloomParams& p, BloomWorkspace& ws, cudaStream_t stream) {
     const Chain<HalfLevel> chain = chainOf<HalfLevel>(ws, width, height, p);
-    // The last kernel reads and writes each full-resolution texel once: streamed (evict-first).
-    const StreamedHalf4Surface streamedIn{hdr}, b{bloom}, out{hdr};
-    const MipChainTuning& t = ws.mipChain;
-    if (t.streamHdrReads && composite)
-        mipChain<HalfLevel, true>(chain, streamedIn, streamedIn, b, out, width, height, p, t, stream);
-    else if (t.streamHdrReads)
-        mipChain<HalfLevel, false>(chain, streamedIn, streamedIn, b, b, width, height, p, t, stream);
-    else if (composite)
-        mipChain<HalfLevel, true>(chain, Half4Surface{hdr}, streamedIn, b, out, width, height, p, t, stream);
+    // By default the last kernel, which reads and writes each full-resolution texel once, streams.
+    if (ws.mipChain.streamFinal)
+        mipChainOnSurfaces<StreamedHalf4Surface>(chain, hdr, bloom, composite, width, height, p, ws, stream);
     else
-        mipChain<HalfLevel, false>(chain, Half4Surface{hdr}, streamedIn, b, b, width, height, p, t, stream);
+        mipChainOnSurfaces<Half4Surface>(chain, hdr, bloom, composite, width, height, p, ws, stream);
 }
 
 }  // namespace lp::cuda

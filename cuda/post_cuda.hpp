@@ -11,6 +11,7 @@
 // and copy back, so the kernels can be tested against the CPU reference without a GL context.
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "engine/gl/gl.hpp"
 #include "engine/io/image_io.hpp"
@@ -108,6 +109,8 @@ struct MipChainTuning {
     bool programmaticLaunch = true; // sm_90: launches overlap their predecessors' ends (on created streams)
     bool streamHdrReads = true;     // the first downsample's HDR reads marked evict-first
     bool persistLevel0 = false;     // level 0 in the persisting part of L2 (sets part of L2 aside, device-wide)
+    bool leanUpsample = false;      // upsample kernels with 2 rows a thread (512 threads) instead of 8 (256)
+    bool streamFinal = true;        // the last kernel's full-resolution reads and writes marked evict-first
 };
 
 // Device-buffer runs (fp32 intermediates) for tests and the benchmark.
@@ -128,8 +131,16 @@ struct BloomKernelTime {
     double copyBytesPerSecond = 0.0;
     bool tensorCores = false;  // the blur ran on the tensor cores
 };
+// One launch of the mip chain timed alone (no overlap with its neighbours): median ms and the bytes
+// it reads and writes at least.
+struct MipChainStep {
+    std::string name;  // "down0", "down1", ..., "tail", "up3", ..., "final"
+    double ms = 0.0, bytes = 0.0;
+};
+// With `steps`, the mip chain is also run `iterations` more times with each launch timed alone.
 BloomKernelTime timeBloomCompositeKernels(int width, int height, const post::BloomParams& p, BloomBlur blur,
-                                          int iterations, bool composite = true, const MipChainTuning& tuning = {});
+                                          int iterations, bool composite = true, const MipChainTuning& tuning = {},
+                                          std::vector<MipChainStep>* steps = nullptr);
 // The surface path without GL: `hdr` uploaded into an RGBA16F CUDA array (rounded to fp16), the
 // bloom + composite in place (or, with composite false, the bloom alone) on a created stream as
 // the passes run it, both arrays read back.

@@ -4,6 +4,10 @@
 #include <cuda_fp16.h>
 #include <cuda_runtime.h>
 
+#include <string>
+#include <utility>
+#include <vector>
+
 #include "cuda/post_cuda.hpp"
 #include "engine/post/post_math.hpp"
 #include "engine/post/post_params.hpp"
@@ -65,11 +69,59 @@ struct Float4Surface {
     __device__ void store(int x, int y, float4 c) const { surf2Dwrite(c, surface, x * int(sizeof(float4)), y); }
 };
 
+// CUDA events around each launch of a chain of kernels, for the benchmark's per-kernel times.
+class StepRecorder {
+public:
+    StepRecorder() = default;
+    ~StepRecorder() {
+        for (auto& e : events_) {
+            cudaEventDestroy(e.first);
+            cudaEventDestroy(e.second);
+        }
+    }
+    StepRecorder(const StepRecorder&) = delete;
+    StepRecorder& operator=(const StepRecorder&) = delete;
+    void restart() { next_ = 0; }
+    void begin(cudaStream_t stream) {
+        if (next_ == events_.size()) {
+            std::pair<cudaEvent_t, cudaEvent_t> e{};
+            cudaEventCreate(&e.first);
+            cudaEventCreate(&e.second);
+            events_.push_back(e);
+            names_.emplace_back();
+            bytes_.push_back(0.0);
+        }
+        cudaEventRecord(events_[next_].first, stream);
+    }
+    void end(cudaStream_t stream, const char* name, double bytes) {
+        cudaEventRecord(events_[next_].second, stream);
+        names_[next_] = name;
+        bytes_[next_] = bytes;
+        ++next_;
+    }
+    // After the stream finished: the steps of the last run.
+    size_t count() const { return next_; }
+    const std::string& name(size_t i) const { return names_[i]; }
+    double bytes(size_t i) const { return bytes_[i]; }
+    double ms(size_t i) const {
+        float t = 0.0f;
+        cudaEventElapsedTime(&t, events_[i].first, events_[i].second);
+        return double(t);
+    }
+
+private:
+    std::vector<std::pair<cudaEvent_t, cudaEvent_t>> events_;
+    std::vector<std::string> names_;
+    std::vector<double> bytes_;
+    size_t next_ = 0;
+};
+
 // Device scratch of the bloom: the full-resolution horizontal-blur buffer and the mip chain, grown
 // on demand; and which separable blur runs (the tensor-core blur needs only per-block counters).
 struct BloomWorkspace {
     BloomBlur blur = BloomBlur::Auto;
     MipChainTuning mipChain;
+    StepRecorder* recorder = nullptr;  // when set, the mip chain records each launch (and does not overlap them)
     float4* a = nullptr;
     size_t fullTexels = 0;
     float4* mips[post::kMaxMipLevels] = {};

@@ -103,15 +103,20 @@ TEST(CudaMipChain, HalfArraysMatchReferenceOnOddSizes) {
 
 // The other paths the benchmark measures: without the one-block tail (every level its own
 // launches), with the tail from level 1, without programmatic dependent launches, with plain HDR
-// reads and with level 0 persisting in L2; same bound as above.
+// reads, with the lean upsample kernels, with plain final accesses and with level 0 persisting in
+// L2; same bound as above.
 TEST(CudaMipChain, EveryTuningMatchesReference) {
     if (skipWithoutDevice()) GTEST_SKIP() << "no CUDA device: " << cuda::postDeviceProblem();
     const ImageF hdr = randomHdr(700, 390, 70);
-    cuda::MipChainTuning noTail, allTail, noOverlap, plainReads, persisting;
+    cuda::MipChainTuning noTail, allTail, noOverlap, plainReads, lean, leanNoTail, plainFinal, persisting;
     noTail.tailTexels = 0;
     allTail.tailTexels = 1 << 30;
     noOverlap.programmaticLaunch = false;
     plainReads.streamHdrReads = false;
+    lean.leanUpsample = true;
+    leanNoTail.leanUpsample = true;
+    leanNoTail.tailTexels = 0;
+    plainFinal.streamFinal = false;
     persisting.persistLevel0 = true;
     for (int kernel : {5, 100}) {
         const BloomParams p = mipChain(kernel);
@@ -119,6 +124,8 @@ TEST(CudaMipChain, EveryTuningMatchesReference) {
         const ImageF composite = post::compositeBloom(hdr, bloom, p.strength);
         for (const auto& [name, tuning] : {std::pair{"no tail", noTail}, std::pair{"all in the tail", allTail},
                                            std::pair{"no overlap", noOverlap}, std::pair{"plain HDR reads", plainReads},
+                                           std::pair{"lean upsample", lean}, std::pair{"lean upsample, no tail", leanNoTail},
+                                           std::pair{"plain final accesses", plainFinal},
                                            std::pair{"level 0 persisting in L2", persisting}}) {
             const cuda::BloomAndComposite got = cuda::bloomCompositeOnHalfArrays(hdr, p, cuda::BloomBlur::Auto, true, tuning);
             EXPECT_LE(maxRelError(got.bloom, bloom), 4.0 / 1024.0) << name << " kernel " << kernel;

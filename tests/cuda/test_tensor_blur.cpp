@@ -9,6 +9,8 @@
 #include <cstdio>
 #include <exception>
 #include <random>
+#include <string>
+#include <vector>
 
 #include "cuda/post_cuda.hpp"
 #include "engine/gl/context.hpp"
@@ -217,29 +219,37 @@ TEST(CudaBloomBench, DISABLED_KernelTimesAgainstFloor) {
 // Not a test: what each part of the mip chain's layout buys, fused bloom + composite at kernel 5
 // and 100 (lines "mip_chain_tuning"): as the passes run it, without the one-block tail of small
 // levels and with a larger one, without programmatic dependent launches, with the first
-// downsample's HDR reads not marked evict-first, and with level 0 kept in the persisting part of
-// L2 (last: it sets part of L2 aside while it runs).
+// downsample's HDR reads not marked evict-first, with the lean upsample kernels (2 rows a thread),
+// with the last kernel's full-resolution accesses not evict-first, and with level 0 kept in the
+// persisting part of L2 (last: it sets part of L2 aside while it runs). For the default and the
+// lean upsample also each launch timed alone (lines "mip_chain_step": ms, bytes, GB/s).
 TEST(CudaBloomBench, DISABLED_MipChainTuning) {
     const std::string device = cuda::postDeviceProblem();
     if (!device.empty()) GTEST_SKIP() << "no CUDA device: " << device;
     const cuda::MipChainTuning defaults;
-    cuda::MipChainTuning noTail, bigTail, noOverlap, plainReads, persisting;
+    cuda::MipChainTuning noTail, bigTail, noOverlap, plainReads, lean, plainFinal, persisting;
     noTail.tailTexels = 0;
     bigTail.tailTexels = 16384;
     noOverlap.programmaticLaunch = false;
     plainReads.streamHdrReads = false;
+    lean.leanUpsample = true;
+    plainFinal.streamFinal = false;
     persisting.persistLevel0 = true;
     const std::pair<const char*, cuda::MipChainTuning> variants[] = {
-        {"default", defaults},     {"no_tail", noTail},             {"tail_16k", bigTail},
-        {"no_overlap", noOverlap}, {"plain_hdr_reads", plainReads}, {"persist_level0", persisting}};
+        {"default", defaults},         {"no_tail", noTail},           {"tail_16k", bigTail},
+        {"no_overlap", noOverlap},     {"plain_hdr_reads", plainReads}, {"lean_upsample", lean},
+        {"plain_final", plainFinal},   {"persist_level0", persisting}};
     for (auto [w, h] : {std::pair{1920, 1080}, std::pair{3840, 2160}})
         for (int kernel : {5, 100})
             for (const auto& [name, tuning] : variants) {
                 BloomParams p = separable(kernel);
                 p.method = BloomMethod::MipChain;
                 cuda::BloomKernelTime t;
+                std::vector<cuda::MipChainStep> steps;
+                const bool timeSteps = std::string(name) == "default" || std::string(name) == "lean_upsample";
                 try {  // a failing variant is reported and the others still run
-                    t = cuda::timeBloomCompositeKernels(w, h, p, BloomBlur::Auto, 60, true, tuning);
+                    t = cuda::timeBloomCompositeKernels(w, h, p, BloomBlur::Auto, 60, true, tuning,
+                                                        timeSteps ? &steps : nullptr);
                 } catch (const std::exception& e) {
                     ADD_FAILURE() << w << "x" << h << " kernel " << kernel << " " << name << ": " << e.what();
                     continue;
@@ -247,6 +257,10 @@ TEST(CudaBloomBench, DISABLED_MipChainTuning) {
                 const double floorMs = 24.0 * double(w) * double(h) / t.copyBytesPerSecond * 1e3;
                 std::printf("mip_chain_tuning size=%dx%d kernel=%d variant=%s ms=%.5f floor_ms=%.5f\n", w, h, kernel, name,
                             t.medianMs, floorMs);
+                // Each launch alone: its ms and the bandwidth of the bytes it must move.
+                for (const cuda::MipChainStep& s : steps)
+                    std::printf("mip_chain_step size=%dx%d kernel=%d variant=%s step=%s ms=%.5f MB=%.2f GBps=%.0f\n", w, h,
+                                kernel, name, s.name.c_str(), s.ms, s.bytes * 1e-6, s.ms > 0 ? s.bytes / (s.ms * 1e-3) * 1e-9 : 0.0);
                 std::fflush(stdout);
             }
 }
