@@ -19,6 +19,8 @@
 // The full-resolution HDR reads and writes are marked streaming (evict-first), so the
 // half-resolution level that the second and the last kernel re-read can stay in L2.
 #include <algorithm>
+#include <cstring>
+#include <string>
 #include <type_traits>
 
 #include "cuda/interop.hpp"
@@ -596,14 +598,79 @@ void mipChainOnSurfaces(const Chain<HalfLevel>& chain, cudaSurfaceObject_t hdr, 
 
 }  // namespace
 
-void mipChainBloomSurfaces(cudaSurfaceObject_t hdr, cudaSurfaceObject_t bloom, bool composite, int width, int height,
-                           const post::BloomParams& p, BloomWorkspace& ws, cudaStream_t stream) {
-    const Chain<HalfLevel> chain = chainOf<HalfLevel>(ws, width, height, p);
+namespace {
+
+// Everything the captured launches depend on, as bytes.
+std::string graphKeyOf(const Chain<HalfLevel>& chain, cudaSurfaceObject_t hdr, cudaSurfaceObject_t bloom, bool composite,
+                       int width, int height, const post::BloomParams& p, const MipChainTuning& t) {
+    struct Key {
+        cudaSurfaceObject_t hdr, bloom;
+        const void* levels[post::kMaxMipLevels];
+        int width, height, composite, method, kernel, karis, tailTexels, flags;
+        float threshold, knee, strength, highlight;
+    } key;
+    std::memset(&key, 0, sizeof(key));
+    key.hdr = hdr;
+    key.bloom = bloom;
+    for (int l = 0; l < chain.count; ++l) key.levels[l] = chain.level[l].data;
+    key.width = width;
+    key.height = height;
+    key.composite = composite;
+    key.method = int(p.method);
+    key.kernel = p.kernel;
+    key.karis = p.karis;
+    key.tailTexels = t.tailTexels;
+    key.flags = int(t.programmaticLaunch) | int(t.streamHdrReads) << 1 | int(t.leanUpsample) << 2 | int(t.streamFinal) << 3;
+    key.threshold = p.threshold;
+    key.knee = p.knee;
+    key.strength = p.strength;
+    key.highlight = p.highlight;
+    return std::string(reinterpret_cast<const char*>(&key), sizeof(key));
+}
+
+void launchSurfaceChain(const Chain<HalfLevel>& chain, cudaSurfaceObject_t hdr, cudaSurfaceObject_t bloom, bool composite,
+                        int width, int height, const post::BloomParams& p, BloomWorkspace& ws, cudaStream_t stream) {
     // By default the last kernel, which reads and writes each full-resolution texel once, streams.
     if (ws.mipChain.streamFinal)
         mipChainOnSurfaces<StreamedHalf4Surface>(chain, hdr, bloom, composite, width, height, p, ws, stream);
     else
         mipChainOnSurfaces<Half4Surface>(chain, hdr, bloom, composite, width, height, p, ws, stream);
+}
+
+}  // namespace
+
+void mipChainBloomSurfaces(cudaSurfaceObject_t hdr, cudaSurfaceObject_t bloom, bool composite, int width, int height,
+                           const post::BloomParams& p, BloomWorkspace& ws, cudaStream_t stream) {
+    const Chain<HalfLevel> chain = chainOf<HalfLevel>(ws, width, height, p);  // allocates: before any capture
+    const MipChainTuning& t = ws.mipChain;
+    if (!t.graph || !stream || ws.recorder || t.persistLevel0) {
+        launchSurfaceChain(chain, hdr, bloom, composite, width, height, p, ws, stream);
+        return;
+    }
+    // One graph launch instead of a launch per kernel: captured on first use and whenever what the
+    // kernels run with changes.
+    const std::string key = graphKeyOf(chain, hdr, bloom, composite, width, height, p, t);
+    if (!ws.mipChainGraph || ws.mipChainGraphKey != key) {
+        if (ws.mipChainGraph) check(cudaGraphExecDestroy(ws.mipChainGraph), "cudaGraphExecDestroy");
+        ws.mipChainGraph = nullptr;
+        ws.mipChainGraphKey.clear();
+        programmaticLaunchHere();  // its device query runs outside the capture
+        cudaGraph_t graph = nullptr;
+        check(cudaStreamBeginCapture(stream, cudaStreamCaptureModeThreadLocal), "cudaStreamBeginCapture");
+        try {
+            launchSurfaceChain(chain, hdr, bloom, composite, width, height, p, ws, stream);
+        } catch (...) {
+            cudaStreamEndCapture(stream, &graph);
+            if (graph) cudaGraphDestroy(graph);
+            throw;
+        }
+        check(cudaStreamEndCapture(stream, &graph), "cudaStreamEndCapture");
+        const cudaError_t made = cudaGraphInstantiate(&ws.mipChainGraph, graph, 0);
+        cudaGraphDestroy(graph);
+        check(made, "cudaGraphInstantiate (mip chain)");
+        ws.mipChainGraphKey = key;
+    }
+    check(cudaGraphLaunch(ws.mipChainGraph, stream), "cudaGraphLaunch (mip chain)");
 }
 
 }  // namespace lp::cuda

@@ -220,25 +220,30 @@ TEST(CudaBloomBench, DISABLED_KernelTimesAgainstFloor) {
 // and 100 (lines "mip_chain_tuning"): as the passes run it, without the one-block tail of small
 // levels and with a larger one, without programmatic dependent launches, with the first
 // downsample's HDR reads not marked evict-first, with the lean upsample kernels (2 rows a thread),
-// with the last kernel's full-resolution accesses not evict-first, and with level 0 kept in the
-// persisting part of L2 (last: it sets part of L2 aside while it runs). For the default and the
+// with the last kernel's full-resolution accesses not evict-first, captured into a CUDA graph
+// (default and lean shapes), and with level 0 kept in the persisting part of L2 (last: it sets
+// part of L2 aside while it runs). For the default and the
 // lean upsample also each launch timed alone (lines "mip_chain_step": ms, bytes, GB/s).
 TEST(CudaBloomBench, DISABLED_MipChainTuning) {
     const std::string device = cuda::postDeviceProblem();
     if (!device.empty()) GTEST_SKIP() << "no CUDA device: " << device;
     const cuda::MipChainTuning defaults;
-    cuda::MipChainTuning noTail, bigTail, noOverlap, plainReads, lean, plainFinal, persisting;
+    cuda::MipChainTuning noTail, bigTail, noOverlap, plainReads, lean, plainFinal, graph, leanGraph, persisting;
     noTail.tailTexels = 0;
     bigTail.tailTexels = 16384;
     noOverlap.programmaticLaunch = false;
     plainReads.streamHdrReads = false;
     lean.leanUpsample = true;
     plainFinal.streamFinal = false;
+    graph.graph = true;
+    leanGraph.graph = true;
+    leanGraph.leanUpsample = true;
     persisting.persistLevel0 = true;
     const std::pair<const char*, cuda::MipChainTuning> variants[] = {
         {"default", defaults},         {"no_tail", noTail},           {"tail_16k", bigTail},
         {"no_overlap", noOverlap},     {"plain_hdr_reads", plainReads}, {"lean_upsample", lean},
-        {"plain_final", plainFinal},   {"persist_level0", persisting}};
+        {"plain_final", plainFinal},   {"graph", graph},              {"lean_graph", leanGraph},
+        {"persist_level0", persisting}};
     for (auto [w, h] : {std::pair{1920, 1080}, std::pair{3840, 2160}})
         for (int kernel : {5, 100})
             for (const auto& [name, tuning] : variants) {
