@@ -85,13 +85,14 @@ def tuning_table(path):
     if not rows:
         return
     variants = ["default", "no_tail", "tail_16k", "no_overlap", "plain_hdr_reads", "lean_upsample", "plain_final",
-                "graph", "lean_graph", "persist_level0"]
+                "graph", "lean_graph", "split_up0", "lean_split_up0", "persist_level0"]
     print("\nMip chain, what each part buys (fused bloom + composite, kernel-only ms; x floor in brackets): "
           "default = as the passes run it; no_tail = every level its own launches; no_overlap = no programmatic "
           "dependent launches; tail_16k = levels up to 16384 texels in the one-block tail; plain_hdr_reads = the first "
           "downsample's HDR reads not evict-first; lean_upsample = upsample kernels with 2 rows a thread (512 threads); "
           "plain_final = the last kernel's full-resolution accesses not evict-first; graph / lean_graph = the launches "
-          "replayed from a CUDA graph; persist_level0 = level 0 in the persisting part of L2:\n")
+          "replayed from a CUDA graph; split_up0 / lean_split_up0 = up_0 in its own launch, the last kernel upsamples "
+          "level 0 only; persist_level0 = level 0 in the persisting part of L2:\n")
     print("| size | kernel | " + " | ".join(variants) + " |")
     print("| --- | --- | " + " | ".join("---" for _ in variants) + " |")
     for (size, kernel), r in sorted(rows.items(), key=lambda kv: (int(kv[0][0].split("x")[0]), kv[0][1])):

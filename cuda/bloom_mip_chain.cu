@@ -526,17 +526,20 @@ void mipChain(Chain<Lvl> chain, DownIn downIn, HdrIn hdr, BloomOut bloom, HdrOut
                    first == 1 ? level0 : nullptr, chain, first);
         });
     }
-    for (int l = std::min(first, n - 1) - 1; l >= 1; --l) {
+    // up_0 in its own launch when the last kernel does not fuse it (tuning.fuseLastUpsample off).
+    const int lastUp = tuning.fuseLastUpsample ? 1 : 0;
+    for (int l = std::min(first, n - 1) - 1; l >= lastUp; --l) {
         const Lvl& fine = chain.level[l];
         step(kUp[l], bytesOf(chain.level[l + 1]) + 2.0 * bytesOf(fine), [&] {
             launch("upTileKernel", upTileKernel<Shape, Lvl>, tilesOf(fine.width, fine.height, Shape::W, Shape::H), upBlock,
                    stream, overlap, nullptr, chain.level[l + 1], fine);
         });
     }
-    const Lvl up1 = n > 1 ? chain.level[1] : chain.level[0];
-    step("final", hdrBytes * (Composite ? 3.0 : 1.0) + bytesOf(l0) + (n > 1 ? bytesOf(up1) : 0.0), [&] {
+    const bool fused = n > 1 && tuning.fuseLastUpsample;  // level 0 still holds down_0, level 1 up_1
+    const Lvl up1 = fused ? chain.level[1] : chain.level[0];
+    step("final", hdrBytes * (Composite ? 3.0 : 1.0) + bytesOf(l0) + (fused ? bytesOf(up1) : 0.0), [&] {
         launch("finalTileKernel", finalTileKernel<Shape, Lvl, Composite, HdrIn, BloomOut, HdrOut>,
-               tilesOf(width, height, Shape::W, Shape::H), upBlock, stream, overlap, level0, l0, up1, n > 1, hdr, bloom,
+               tilesOf(width, height, Shape::W, Shape::H), upBlock, stream, overlap, level0, l0, up1, fused, hdr, bloom,
                hdrOut, width, height, 1.0f / float(n), p.strength);
     });
 }
@@ -620,7 +623,8 @@ std::string graphKeyOf(const Chain<HalfLevel>& chain, cudaSurfaceObject_t hdr, c
     key.kernel = p.kernel;
     key.karis = p.karis;
     key.tailTexels = t.tailTexels;
-    key.flags = int(t.programmaticLaunch) | int(t.streamHdrReads) << 1 | int(t.leanUpsample) << 2 | int(t.streamFinal) << 3;
+    key.flags = int(t.programmaticLaunch) | int(t.streamHdrReads) << 1 | int(t.leanUpsample) << 2 | int(t.streamFinal) << 3 |
+                int(t.fuseLastUpsample) << 4;
     key.threshold = p.threshold;
     key.knee = p.knee;
     key.strength = p.strength;

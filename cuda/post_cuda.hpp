@@ -111,6 +111,7 @@ struct MipChainTuning {
     bool persistLevel0 = false;     // level 0 in the persisting part of L2 (sets part of L2 aside, device-wide)
     bool leanUpsample = false;      // upsample kernels with 2 rows a thread (512 threads) instead of 8 (256)
     bool streamFinal = true;        // the last kernel's full-resolution reads and writes marked evict-first
+    bool fuseLastUpsample = true;   // up_0 computed inside the last kernel (off: its own launch writes level 0)
     bool graph = false;             // the launches captured once into a CUDA graph and replayed (RGBA16F surfaces,
                                     // created streams; captured again when sizes, settings or textures change)
 };

@@ -104,12 +104,13 @@ TEST(CudaMipChain, HalfArraysMatchReferenceOnOddSizes) {
 // The other paths the benchmark measures: without the one-block tail (every level its own
 // launches), with the tail from level 1, without programmatic dependent launches, with plain HDR
 // reads, with the lean upsample kernels, with plain final accesses, with level 0 persisting in L2,
-// and captured into a CUDA graph (the result of its replay); same bound as above.
+// captured into a CUDA graph (the result of its replay), and with up_0 in its own launch; same
+// bound as above.
 TEST(CudaMipChain, EveryTuningMatchesReference) {
     if (skipWithoutDevice()) GTEST_SKIP() << "no CUDA device: " << cuda::postDeviceProblem();
     const ImageF hdr = randomHdr(700, 390, 70);
     cuda::MipChainTuning noTail, allTail, noOverlap, plainReads, lean, leanNoTail, plainFinal, persisting, graph,
-        leanGraph;
+        leanGraph, split;
     noTail.tailTexels = 0;
     allTail.tailTexels = 1 << 30;
     noOverlap.programmaticLaunch = false;
@@ -122,6 +123,7 @@ TEST(CudaMipChain, EveryTuningMatchesReference) {
     graph.graph = true;
     leanGraph.graph = true;
     leanGraph.leanUpsample = true;
+    split.fuseLastUpsample = false;
     for (int kernel : {5, 100}) {
         const BloomParams p = mipChain(kernel);
         const ImageF bloom = post::bloomBuffer(hdr, p, Storage::Half);
@@ -131,7 +133,8 @@ TEST(CudaMipChain, EveryTuningMatchesReference) {
                                            std::pair{"lean upsample", lean}, std::pair{"lean upsample, no tail", leanNoTail},
                                            std::pair{"plain final accesses", plainFinal},
                                            std::pair{"level 0 persisting in L2", persisting},
-                                           std::pair{"graph (replayed)", graph}, std::pair{"lean graph (replayed)", leanGraph}}) {
+                                           std::pair{"graph (replayed)", graph}, std::pair{"lean graph (replayed)", leanGraph},
+                                           std::pair{"up_0 in its own launch", split}}) {
             const cuda::BloomAndComposite got = cuda::bloomCompositeOnHalfArrays(hdr, p, cuda::BloomBlur::Auto, true, tuning);
             EXPECT_LE(maxRelError(got.bloom, bloom), 4.0 / 1024.0) << name << " kernel " << kernel;
             EXPECT_LE(maxRelError(got.hdr, composite), 4.0 / 1024.0) << name << " kernel " << kernel;
