@@ -85,19 +85,25 @@ def tuning_table(path):
     if not rows:
         return
     variants = ["default", "no_tail", "tail_16k", "no_overlap", "plain_hdr_reads", "lean_upsample", "plain_final",
-                "graph", "lean_graph", "split_up0", "lean_split_up0", "persist_level0"]
+                "graph", "lean_graph", "split_up0", "lean_split_up0", "lean_downsample", "lean_all", "lean_all_graph",
+                "persist_level0"]
     print("\nMip chain, what each part buys (fused bloom + composite, kernel-only ms; x floor in brackets): "
           "default = as the passes run it; no_tail = every level its own launches; no_overlap = no programmatic "
           "dependent launches; tail_16k = levels up to 16384 texels in the one-block tail; plain_hdr_reads = the first "
           "downsample's HDR reads not evict-first; lean_upsample = upsample kernels with 2 rows a thread (512 threads); "
           "plain_final = the last kernel's full-resolution accesses not evict-first; graph / lean_graph = the launches "
           "replayed from a CUDA graph; split_up0 / lean_split_up0 = up_0 in its own launch, the last kernel upsamples "
-          "level 0 only; persist_level0 = level 0 in the persisting part of L2:\n")
-    print("| size | kernel | " + " | ".join(variants) + " |")
-    print("| --- | --- | " + " | ".join("---" for _ in variants) + " |")
-    for (size, kernel), r in sorted(rows.items(), key=lambda kv: (int(kv[0][0].split("x")[0]), kv[0][1])):
-        cells = [f"{r[v][0]:.4f} ({r[v][0] / r[v][1]:.2f}x)" if v in r else "-" for v in variants]
-        print(f"| {size} | {kernel} | " + " | ".join(cells) + " |")
+          "level 0 only; lean_downsample = downsample kernels with 1 output row a thread; lean_all = lean downsample "
+          "and upsample kernels (lean_all_graph: also as a graph); persist_level0 = level 0 in the persisting part of "
+          "L2:\n")
+    cases = sorted(rows, key=lambda k: (int(k[0].split("x")[0]), k[1]))
+    print("| variant | " + " | ".join(f"{size} k{kernel}" for size, kernel in cases) + " |")
+    print("| --- | " + " | ".join("---" for _ in cases) + " |")
+    for v in variants + sorted({v for r in rows.values() for v in r} - set(variants)):
+        if not any(v in rows[c] for c in cases):
+            continue
+        cells = [f"{rows[c][v][0]:.4f} ({rows[c][v][0] / rows[c][v][1]:.2f}x)" if v in rows[c] else "-" for c in cases]
+        print(f"| {v} | " + " | ".join(cells) + " |")
 
 
 def steps_table(path):

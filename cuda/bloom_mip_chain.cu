@@ -117,11 +117,18 @@ __device__ inline Rgb downsampleFromBoxes(const Rgb box[3][3], const Rgb odd[2][
 }
 
 // ---- Downsample of a level (or of the HDR image, bright-passed, for level 0), tiled ----
-constexpr int kDownW = 32, kDownH = 16;                    // outputs per block; 32 x 8 threads, 2 rows each
-constexpr int kDownThreads = 256;
-constexpr int kSrcW = 2 * kDownW + 4, kSrcH = 2 * kDownH + 4;  // source texels 2 * x0 - 2 .. 2 * x1 + 3
-constexpr int kBoxW = kDownW + 2, kBoxH = kDownH + 2;      // even boxes of destinations x0 - 1 .. x1 + 1
-constexpr int kOddW = kDownW + 1, kOddH = kDownH + 1;      // odd boxes of destinations x0 - 1 .. x1
+// A block of 32 x 8 threads makes 32 x (8 * Rows) outputs, Rows rows a thread: it stages source
+// texels 2 * x0 - 2 .. 2 * x1 + 3 and the even boxes of destinations x0 - 1 .. x1 + 1, the odd ones
+// of x0 - 1 .. x1. Wide (2 rows) stages less apron per output; Lean (1 row) needs less shared
+// memory and fewer registers, so more blocks share an SM.
+template <int RowsPerThread>
+struct DownShape {
+    static constexpr int Rows = RowsPerThread, W = 32, ThreadsY = 8, H = 8 * RowsPerThread, Threads = W * ThreadsY;
+    static constexpr int SrcW = 2 * W + 4, SrcH = 2 * H + 4;
+    static constexpr int BoxW = W + 2, BoxH = H + 2, OddW = W + 1, OddH = H + 1;
+};
+using WideDown = DownShape<2>;
+using LeanDown = DownShape<1>;
 
 struct Planes3 {  // one float plane per channel: consecutive lanes, consecutive banks
     template <int H, int W>
@@ -136,9 +143,12 @@ struct Planes3 {  // one float plane per channel: consecutive lanes, consecutive
     };
 };
 
-template <bool First, typename Src, typename Dst>
-__global__ void __launch_bounds__(kDownThreads)
+template <typename Shape, bool First, typename Src, typename Dst>
+__global__ void __launch_bounds__(Shape::Threads)
     downTileKernel(Src src, int sw, int sh, Dst dst, post::BloomParams p) {
+    constexpr int kDownW = Shape::W, kDownH = Shape::H, kDownThreads = Shape::Threads;
+    constexpr int kSrcW = Shape::SrcW, kSrcH = Shape::SrcH, kBoxW = Shape::BoxW, kBoxH = Shape::BoxH;
+    constexpr int kOddW = Shape::OddW, kOddH = Shape::OddH, kRows = Shape::Rows;
     __shared__ Planes3::Of<kSrcH, kSrcW> source;
     __shared__ Planes3::Of<kBoxH, kBoxW> boxes;
     __shared__ Planes3::Of<kOddH, kOddW> odds;
@@ -175,22 +185,23 @@ __global__ void __launch_bounds__(kDownThreads)
         odds.put(j, i, box(2 * i + 1, 2 * j + 1));
     }
     __syncthreads();
-    // Destination (tx, 2 ty + r): even boxes rows 2 ty + r .. + 2, columns tx .. tx + 2 (grid index
-    // = destination - x0 + 1 for destination x - 1); odd boxes rows 2 ty + r .. + 1, columns tx .. tx + 1.
+    // Destination (tx, Rows ty + r): even boxes rows Rows ty + r .. + 2, columns tx .. tx + 2 (grid
+    // index = destination - x0 + 1 for destination x - 1); odd boxes rows Rows ty + r .. + 1, columns
+    // tx .. tx + 1.
     const int tx = int(threadIdx.x), ty = int(threadIdx.y);
     const bool karis = First && p.karis;
 #pragma unroll
-    for (int r = 0; r < 2; ++r) {
-        const int x = x0 + tx, y = y0 + 2 * ty + r;
+    for (int r = 0; r < kRows; ++r) {
+        const int x = x0 + tx, y = y0 + kRows * ty + r;
         Rgb even[3][3], oddBoxes[2][2];
 #pragma unroll
         for (int m = 0; m < 3; ++m)
 #pragma unroll
-            for (int k = 0; k < 3; ++k) even[m][k] = boxes.at(2 * ty + r + m, tx + k);
+            for (int k = 0; k < 3; ++k) even[m][k] = boxes.at(kRows * ty + r + m, tx + k);
 #pragma unroll
         for (int m = 0; m < 2; ++m)
 #pragma unroll
-            for (int k = 0; k < 2; ++k) oddBoxes[m][k] = odds.at(2 * ty + r + m, tx + k);
+            for (int k = 0; k < 2; ++k) oddBoxes[m][k] = odds.at(kRows * ty + r + m, tx + k);
         if (x < dst.width && y < dst.height) dst.store(x, y, opaque(downsampleFromBoxes(even, oddBoxes, karis)));
     }
 }
@@ -484,8 +495,8 @@ double bytesOf(const Lvl& level) {
 }
 
 // downIn: the HDR as the first downsample reads it; hdr: as the last kernel reads it.
-template <typename Shape, typename Lvl, bool Composite, typename DownIn, typename HdrIn, typename BloomOut,
-          typename HdrOut>
+template <typename Shape, typename Down, typename Lvl, bool Composite, typename DownIn, typename HdrIn,
+          typename BloomOut, typename HdrOut>
 void mipChain(Chain<Lvl> chain, DownIn downIn, HdrIn hdr, BloomOut bloom, HdrOut hdrOut, int width, int height,
               const post::BloomParams& p, const MipChainTuning& tuning, StepRecorder* recorder, cudaStream_t stream) {
     const int n = chain.count;
@@ -502,18 +513,18 @@ void mipChain(Chain<Lvl> chain, DownIn downIn, HdrIn hdr, BloomOut bloom, HdrOut
     static const char* const kDown[] = {"down0", "down1", "down2", "down3", "down4", "down5", "down6", "down7"};
     static const char* const kUp[] = {"up0", "up1", "up2", "up3", "up4", "up5", "up6", "up7"};
     const double hdrBytes = double(width) * double(height) * 8.0;
-    const dim3 downBlock(kDownW, kDownThreads / kDownW), upBlock(Shape::W, Shape::Threads / Shape::W);
+    const dim3 downBlock(Down::W, Down::ThreadsY), upBlock(Shape::W, Shape::Threads / Shape::W);
     const Lvl& l0 = chain.level[0];
     cudaAccessPolicyWindow window;
     const cudaAccessPolicyWindow* level0 = tuning.persistLevel0 ? persistingWindowOf(l0, window) : nullptr;
     step(kDown[0], hdrBytes + bytesOf(l0), [&] {
-        launch("downTileKernel (level 0)", downTileKernel<true, DownIn, Lvl>, tilesOf(l0.width, l0.height, kDownW, kDownH),
+        launch("downTileKernel (level 0)", downTileKernel<Down, true, DownIn, Lvl>, tilesOf(l0.width, l0.height, Down::W, Down::H),
                downBlock, stream, false, level0, downIn, width, height, l0, p);
     });
     for (int l = 1; l < first; ++l) {
         const Lvl &src = chain.level[l - 1], &dst = chain.level[l];
         step(kDown[l], bytesOf(src) + bytesOf(dst), [&] {
-            launch("downTileKernel", downTileKernel<false, Lvl, Lvl>, tilesOf(dst.width, dst.height, kDownW, kDownH),
+            launch("downTileKernel", downTileKernel<Down, false, Lvl, Lvl>, tilesOf(dst.width, dst.height, Down::W, Down::H),
                    downBlock, stream, overlap, l == 1 ? level0 : nullptr, src, src.width, src.height, dst, p);
         });
     }
@@ -544,13 +555,17 @@ void mipChain(Chain<Lvl> chain, DownIn downIn, HdrIn hdr, BloomOut bloom, HdrOut
     });
 }
 
-// The chain with the upsample shape the tuning asks for.
+// The chain with the kernel shapes the tuning asks for.
 template <typename Lvl, bool Composite, typename... Images>
 void mipChainShaped(const MipChainTuning& tuning, Images... images) {
-    if (tuning.leanUpsample)
-        mipChain<LeanUp, Lvl, Composite>(images...);
+    if (tuning.leanUpsample && tuning.leanDownsample)
+        mipChain<LeanUp, LeanDown, Lvl, Composite>(images...);
+    else if (tuning.leanUpsample)
+        mipChain<LeanUp, WideDown, Lvl, Composite>(images...);
+    else if (tuning.leanDownsample)
+        mipChain<WideUp, LeanDown, Lvl, Composite>(images...);
     else
-        mipChain<WideUp, Lvl, Composite>(images...);
+        mipChain<WideUp, WideDown, Lvl, Composite>(images...);
 }
 
 template <typename Lvl>
@@ -624,7 +639,7 @@ std::string graphKeyOf(const Chain<HalfLevel>& chain, cudaSurfaceObject_t hdr, c
     key.karis = p.karis;
     key.tailTexels = t.tailTexels;
     key.flags = int(t.programmaticLaunch) | int(t.streamHdrReads) << 1 | int(t.leanUpsample) << 2 | int(t.streamFinal) << 3 |
-                int(t.fuseLastUpsample) << 4;
+                int(t.fuseLastUpsample) << 4 | int(t.leanDownsample) << 5;
     key.threshold = p.threshold;
     key.knee = p.knee;
     key.strength = p.strength;

@@ -110,6 +110,7 @@ struct MipChainTuning {
     bool streamHdrReads = true;     // the first downsample's HDR reads marked evict-first
     bool persistLevel0 = false;     // level 0 in the persisting part of L2 (sets part of L2 aside, device-wide)
     bool leanUpsample = false;      // upsample kernels with 2 rows a thread (512 threads) instead of 8 (256)
+    bool leanDownsample = false;    // downsample kernels with 1 output row a thread (32 x 8 outputs) instead of 2
     bool streamFinal = true;        // the last kernel's full-resolution reads and writes marked evict-first
     bool fuseLastUpsample = true;   // up_0 computed inside the last kernel (off: its own launch writes level 0)
     bool graph = false;             // the launches captured once into a CUDA graph and replayed (RGBA16F surfaces,
