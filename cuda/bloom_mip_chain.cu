@@ -278,13 +278,18 @@ __global__ void __launch_bounds__(Shape::Threads) upTileKernel(Lvl coarse, Lvl f
 }
 
 // ---- The last kernel: up_0 on the fly, the full-resolution upsample and the composite ----
-template <typename Shape, typename Lvl, bool Composite, typename HdrIn, typename BloomOut, typename HdrOut>
+// SeparableUp0: U(up_1) for the tile's up_0 texels in two passes, each up_1 row's horizontal
+// 4-tap sum per up_0 column once (shared by the up_0 texels of that column), then the vertical 4
+// taps: the reference's rows and their weighted sum, with a third of the shared-memory reads.
+template <typename Shape, bool SeparableUp0, typename Lvl, bool Composite, typename HdrIn, typename BloomOut,
+          typename HdrOut>
 __global__ void __launch_bounds__(Shape::Threads)
     finalTileKernel(Lvl down0, Lvl up1, bool hasUp1, HdrIn hdr, BloomOut bloom, HdrOut hdrOut, int width,
                     int height, float norm, float strength) {
     constexpr int kCoarseW = Shape::CoarseW, kCoarseH = Shape::CoarseH, kUp1W = Shape::Up1W, kUp1H = Shape::Up1H;
     constexpr int kThreads = Shape::Threads, kRows = Shape::Rows;
     __shared__ Planes3::Of<kUp1H, kUp1W> coarser;
+    __shared__ Planes3::Of<SeparableUp0 ? kUp1H : 1, SeparableUp0 ? kCoarseW : 1> rowSums;  // [up_1 row][up_0 column]
     __shared__ typename Shape::Tile tile;
     letNextGridLaunch();
     const int tx = int(threadIdx.x), ty = int(threadIdx.y), thread = ty * Shape::W + tx;
@@ -318,6 +323,20 @@ __global__ void __launch_bounds__(Shape::Threads)
             own[b] = down0.load(clampTo(cx0 + e % kCoarseW, down0.width - 1), clampTo(cy0 + e / kCoarseW, down0.height - 1));
     }
     __syncthreads();
+    if (SeparableUp0 && hasUp1) {
+        // rowSums[r][i]: up_1 row r's 4 taps for up_0 column cx0 + i (clamped), weights by its parity.
+        for (int e = thread; e < kUp1H * kCoarseW; e += kThreads) {
+            const int i = e % kCoarseW, r = e / kCoarseW;
+            const int cx = clampTo(cx0 + i, down0.width - 1);
+            const bool ox = cx & 1;
+            const int bx = (cx >> 1) - (ox ? 1 : 2) - ux0;
+            Rgb row;
+#pragma unroll
+            for (int k = 0; k < 4; ++k) row = plus(row, times(coarser.at(r, bx + k), post::upsampleWeight(k, ox)));
+            rowSums.put(r, i, row);
+        }
+        __syncthreads();
+    }
 #pragma unroll
     for (int b = 0; b < kBatch; ++b) {
         const int e = thread + b * kThreads;
@@ -331,8 +350,13 @@ __global__ void __launch_bounds__(Shape::Threads)
 #pragma unroll
             for (int j = 0; j < 4; ++j) {
                 Rgb row;
+                if (SeparableUp0) {
+                    row = rowSums.at(by + j, e % kCoarseW);
+                } else {
 #pragma unroll
-                for (int i = 0; i < 4; ++i) row = plus(row, times(coarser.at(by + j, bx + i), post::upsampleWeight(i, ox)));
+                    for (int i = 0; i < 4; ++i)
+                        row = plus(row, times(coarser.at(by + j, bx + i), post::upsampleWeight(i, ox)));
+                }
                 sum = plus(sum, times(row, post::upsampleWeight(j, oy)));
             }
             c = rgbOf(Lvl::stored(opaque(plus(c, sum))));
@@ -549,9 +573,10 @@ void mipChain(Chain<Lvl> chain, DownIn downIn, HdrIn hdr, BloomOut bloom, HdrOut
     const bool fused = n > 1 && tuning.fuseLastUpsample;  // level 0 still holds down_0, level 1 up_1
     const Lvl up1 = fused ? chain.level[1] : chain.level[0];
     step("final", hdrBytes * (Composite ? 3.0 : 1.0) + bytesOf(l0) + (fused ? bytesOf(up1) : 0.0), [&] {
-        launch("finalTileKernel", finalTileKernel<Shape, Lvl, Composite, HdrIn, BloomOut, HdrOut>,
-               tilesOf(width, height, Shape::W, Shape::H), upBlock, stream, overlap, level0, l0, up1, fused, hdr, bloom,
-               hdrOut, width, height, 1.0f / float(n), p.strength);
+        auto kernel = tuning.separableUp0 ? finalTileKernel<Shape, true, Lvl, Composite, HdrIn, BloomOut, HdrOut>
+                                          : finalTileKernel<Shape, false, Lvl, Composite, HdrIn, BloomOut, HdrOut>;
+        launch("finalTileKernel", kernel, tilesOf(width, height, Shape::W, Shape::H), upBlock, stream, overlap, level0,
+               l0, up1, fused, hdr, bloom, hdrOut, width, height, 1.0f / float(n), p.strength);
     });
 }
 
@@ -639,7 +664,7 @@ std::string graphKeyOf(const Chain<HalfLevel>& chain, cudaSurfaceObject_t hdr, c
     key.karis = p.karis;
     key.tailTexels = t.tailTexels;
     key.flags = int(t.programmaticLaunch) | int(t.streamHdrReads) << 1 | int(t.leanUpsample) << 2 | int(t.streamFinal) << 3 |
-                int(t.fuseLastUpsample) << 4 | int(t.leanDownsample) << 5;
+                int(t.fuseLastUpsample) << 4 | int(t.leanDownsample) << 5 | int(t.separableUp0) << 6;
     key.threshold = p.threshold;
     key.knee = p.knee;
     key.strength = p.strength;

@@ -113,6 +113,7 @@ struct MipChainTuning {
     bool leanDownsample = false;    // downsample kernels with 1 output row a thread (32 x 8 outputs) instead of 2
     bool streamFinal = true;        // the last kernel's full-resolution reads and writes marked evict-first
     bool fuseLastUpsample = true;   // up_0 computed inside the last kernel (off: its own launch writes level 0)
+    bool separableUp0 = true;       // the last kernel's U(up_1) as row sums then columns (off: 4 x 4 taps per texel)
     bool graph = false;             // the launches captured once into a CUDA graph and replayed (RGBA16F surfaces,
                                     // created streams; captured again when sizes, settings or textures change)
 };

@@ -104,13 +104,14 @@ TEST(CudaMipChain, HalfArraysMatchReferenceOnOddSizes) {
 // The other paths the benchmark measures: without the one-block tail (every level its own
 // launches), with the tail from level 1, without programmatic dependent launches, with plain HDR
 // reads, with the lean upsample kernels, with plain final accesses, with level 0 persisting in L2,
-// captured into a CUDA graph (the result of its replay), with up_0 in its own launch, and with the
-// lean downsample and upsample kernels; same bound as above.
+// captured into a CUDA graph (the result of its replay), with up_0 in its own launch, with the lean
+// downsample and upsample kernels, and with the last kernel's up_0 from 4 x 4 taps; same bound as
+// above.
 TEST(CudaMipChain, EveryTuningMatchesReference) {
     if (skipWithoutDevice()) GTEST_SKIP() << "no CUDA device: " << cuda::postDeviceProblem();
     const ImageF hdr = randomHdr(700, 390, 70);
     cuda::MipChainTuning noTail, allTail, noOverlap, plainReads, lean, leanNoTail, plainFinal, persisting, graph,
-        leanGraph, split, leanAll;
+        leanGraph, split, leanAll, directUp0;
     noTail.tailTexels = 0;
     allTail.tailTexels = 1 << 30;
     noOverlap.programmaticLaunch = false;
@@ -126,6 +127,7 @@ TEST(CudaMipChain, EveryTuningMatchesReference) {
     split.fuseLastUpsample = false;
     leanAll.leanUpsample = true;
     leanAll.leanDownsample = true;
+    directUp0.separableUp0 = false;
     for (int kernel : {5, 100}) {
         const BloomParams p = mipChain(kernel);
         const ImageF bloom = post::bloomBuffer(hdr, p, Storage::Half);
@@ -137,7 +139,8 @@ TEST(CudaMipChain, EveryTuningMatchesReference) {
                                            std::pair{"level 0 persisting in L2", persisting},
                                            std::pair{"graph (replayed)", graph}, std::pair{"lean graph (replayed)", leanGraph},
                                            std::pair{"up_0 in its own launch", split},
-                                           std::pair{"lean downsample and upsample", leanAll}}) {
+                                           std::pair{"lean downsample and upsample", leanAll},
+                                           std::pair{"4 x 4 taps for up_0", directUp0}}) {
             const cuda::BloomAndComposite got = cuda::bloomCompositeOnHalfArrays(hdr, p, cuda::BloomBlur::Auto, true, tuning);
             EXPECT_LE(maxRelError(got.bloom, bloom), 4.0 / 1024.0) << name << " kernel " << kernel;
             EXPECT_LE(maxRelError(got.hdr, composite), 4.0 / 1024.0) << name << " kernel " << kernel;

@@ -222,15 +222,16 @@ TEST(CudaBloomBench, DISABLED_KernelTimesAgainstFloor) {
 // downsample's HDR reads not marked evict-first, with the lean upsample kernels (2 rows a thread),
 // with the last kernel's full-resolution accesses not evict-first, captured into a CUDA graph
 // (default and lean shapes), with up_0 in its own launch (both shapes), with the lean downsample
-// kernels (1 row a thread) alone and with the lean upsample ones (also as a graph), and with level
-// 0 kept in the persisting part of L2 (last: it sets part of L2 aside while it runs). For the default and the
+// kernels (1 row a thread) alone and with the lean upsample ones (also as a graph), with the last
+// kernel's up_0 from 4 x 4 taps (direct_up0), and with level 0 kept in the persisting part of L2
+// (last: it sets part of L2 aside while it runs). For the default and the
 // lean upsample also each launch timed alone (lines "mip_chain_step": ms, bytes, GB/s).
 TEST(CudaBloomBench, DISABLED_MipChainTuning) {
     const std::string device = cuda::postDeviceProblem();
     if (!device.empty()) GTEST_SKIP() << "no CUDA device: " << device;
     const cuda::MipChainTuning defaults;
     cuda::MipChainTuning noTail, bigTail, noOverlap, plainReads, lean, plainFinal, graph, leanGraph, split, leanSplit,
-        leanDown, leanAll, leanAllGraph, persisting;
+        leanDown, leanAll, leanAllGraph, directUp0, persisting;
     noTail.tailTexels = 0;
     bigTail.tailTexels = 16384;
     noOverlap.programmaticLaunch = false;
@@ -248,13 +249,15 @@ TEST(CudaBloomBench, DISABLED_MipChainTuning) {
     leanAll.leanUpsample = true;
     leanAllGraph = leanAll;
     leanAllGraph.graph = true;
+    directUp0.separableUp0 = false;
     persisting.persistLevel0 = true;
     const std::pair<const char*, cuda::MipChainTuning> variants[] = {
         {"default", defaults},         {"no_tail", noTail},           {"tail_16k", bigTail},
         {"no_overlap", noOverlap},     {"plain_hdr_reads", plainReads}, {"lean_upsample", lean},
         {"plain_final", plainFinal},   {"graph", graph},              {"lean_graph", leanGraph},
         {"split_up0", split},          {"lean_split_up0", leanSplit}, {"lean_downsample", leanDown},
-        {"lean_all", leanAll},         {"lean_all_graph", leanAllGraph}, {"persist_level0", persisting}};
+        {"lean_all", leanAll},         {"lean_all_graph", leanAllGraph}, {"direct_up0", directUp0},
+        {"persist_level0", persisting}};
     for (auto [w, h] : {std::pair{1920, 1080}, std::pair{3840, 2160}})
         for (int kernel : {5, 100})
             for (const auto& [name, tuning] : variants) {
