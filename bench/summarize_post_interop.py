@@ -86,7 +86,7 @@ def tuning_table(path):
         return
     variants = ["default", "no_tail", "tail_16k", "no_overlap", "plain_hdr_reads", "lean_upsample", "plain_final",
                 "graph", "lean_graph", "split_up0", "lean_split_up0", "lean_downsample", "lean_all", "lean_all_graph",
-                "direct_up0", "persist_level0"]
+                "direct_up0", "fast_divide", "combined", "persist_level0"]
     print("\nMip chain, what each part buys (fused bloom + composite, kernel-only ms; x floor in brackets): "
           "default = as the passes run it; no_tail = every level its own launches; no_overlap = no programmatic "
           "dependent launches; tail_16k = levels up to 16384 texels in the one-block tail; plain_hdr_reads = the first "
@@ -95,7 +95,8 @@ def tuning_table(path):
           "replayed from a CUDA graph; split_up0 / lean_split_up0 = up_0 in its own launch, the last kernel upsamples "
           "level 0 only; lean_downsample = downsample kernels with 1 output row a thread; lean_all = lean downsample "
           "and upsample kernels (lean_all_graph: also as a graph); direct_up0 = the last kernel's up_0 from 4 x 4 taps "
-          "instead of row sums; persist_level0 = level 0 in the persisting part of "
+          "instead of row sums; fast_divide = the first downsample's divisions as __fdividef; combined = lean shapes, graph, "
+          "fast divisions and plain final accesses together; persist_level0 = level 0 in the persisting part of "
           "L2:\n")
     cases = sorted(rows, key=lambda k: (int(k[0].split("x")[0]), k[1]))
     print("| variant | " + " | ".join(f"{size} k{kernel}" for size, kernel in cases) + " |")

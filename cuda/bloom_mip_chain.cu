@@ -96,6 +96,9 @@ struct StreamedHalf4Surface {
 // on the even source texels of destination (x - 1 + k, y - 1 + m), odd[m][k] the box on the odd
 // ones (source 2i + 1..2i + 2) of (x - 1 + k, y - 1 + m). Corner (ox, oy) of the reference is
 // box (ox / 2, oy / 2) for even offsets and odd ((ox - 1) / 2, (oy - 1) / 2) for odd ones.
+// FastDivide: the Karis weights' and the normalisation's divisions as __fdividef (2 ulps instead of
+// correctly rounded; fewer instructions in the compute-heavy first downsample).
+template <bool FastDivide = false>
 __device__ inline Rgb downsampleFromBoxes(const Rgb box[3][3], const Rgb odd[2][2], bool karis) {
     const Rgb g[5] = {
         quarterOf(odd[0][0], odd[0][1], odd[1][0], odd[1][1]),
@@ -109,11 +112,23 @@ __device__ inline Rgb downsampleFromBoxes(const Rgb box[3][3], const Rgb odd[2][
     float wsum = 0.0f;
 #pragma unroll
     for (int k = 0; k < 5; ++k) {
-        const float w = karis ? base[k] * post::karisWeight(g[k]) : base[k];
+        const float karisWeight =
+            FastDivide ? __fdividef(1.0f, 1.0f + post::luminance(g[k])) : post::karisWeight(g[k]);
+        const float w = karis ? base[k] * karisWeight : base[k];
         sum = plus(sum, times(g[k], w));
         wsum += w;
     }
-    return times(sum, 1.0f / wsum);
+    return times(sum, FastDivide ? __fdividef(1.0f, wsum) : 1.0f / wsum);
+}
+
+// post::brightPass with its two divisions as __fdividef (see FastDivide above).
+__device__ inline Rgb brightPassFast(Rgb c, float threshold, float knee, float highlight) {
+    c = post::sanitize(c);
+    const float br = fmaxf(c.r, fmaxf(c.g, c.b));
+    float soft = fminf(fmaxf(br - threshold + knee, 0.0f), 2.0f * knee);
+    soft = __fdividef(soft * soft, 4.0f * knee + 1e-5f);
+    const float contrib = __fdividef(fmaxf(soft, br - threshold), fmaxf(br, 1e-5f));
+    return {fminf(c.r * contrib, highlight), fminf(c.g * contrib, highlight), fminf(c.b * contrib, highlight)};
 }
 
 // ---- Downsample of a level (or of the HDR image, bright-passed, for level 0), tiled ----
@@ -143,7 +158,7 @@ struct Planes3 {  // one float plane per channel: consecutive lanes, consecutive
     };
 };
 
-template <typename Shape, bool First, typename Src, typename Dst>
+template <typename Shape, bool First, bool FastDivide, typename Src, typename Dst>
 __global__ void __launch_bounds__(Shape::Threads)
     downTileKernel(Src src, int sw, int sh, Dst dst, post::BloomParams p) {
     constexpr int kDownW = Shape::W, kDownH = Shape::H, kDownThreads = Shape::Threads;
@@ -169,7 +184,9 @@ __global__ void __launch_bounds__(Shape::Threads)
         const int e = thread + b * kDownThreads;
         if (e >= kStaged) continue;
         const Rgb c = rgbOf(v[b]);
-        source.put(e / kSrcW, e % kSrcW, First ? post::brightPass(c, p.threshold, p.knee, p.highlight) : c);
+        const Rgb bright = FastDivide ? brightPassFast(c, p.threshold, p.knee, p.highlight)
+                                      : post::brightPass(c, p.threshold, p.knee, p.highlight);
+        source.put(e / kSrcW, e % kSrcW, First ? bright : c);
     }
     __syncthreads();
     // Box (i, j) of the even grid covers staged texels 2i..2i+1, 2j..2j+1; of the odd grid 2i+1..2i+2.
@@ -202,7 +219,8 @@ __global__ void __launch_bounds__(Shape::Threads)
         for (int m = 0; m < 2; ++m)
 #pragma unroll
             for (int k = 0; k < 2; ++k) oddBoxes[m][k] = odds.at(kRows * ty + r + m, tx + k);
-        if (x < dst.width && y < dst.height) dst.store(x, y, opaque(downsampleFromBoxes(even, oddBoxes, karis)));
+        if (x < dst.width && y < dst.height)
+            dst.store(x, y, opaque(downsampleFromBoxes<FastDivide>(even, oddBoxes, karis)));
     }
 }
 
@@ -542,13 +560,15 @@ void mipChain(Chain<Lvl> chain, DownIn downIn, HdrIn hdr, BloomOut bloom, HdrOut
     cudaAccessPolicyWindow window;
     const cudaAccessPolicyWindow* level0 = tuning.persistLevel0 ? persistingWindowOf(l0, window) : nullptr;
     step(kDown[0], hdrBytes + bytesOf(l0), [&] {
-        launch("downTileKernel (level 0)", downTileKernel<Down, true, DownIn, Lvl>, tilesOf(l0.width, l0.height, Down::W, Down::H),
-               downBlock, stream, false, level0, downIn, width, height, l0, p);
+        auto kernel = tuning.fastDivide ? downTileKernel<Down, true, true, DownIn, Lvl>
+                                        : downTileKernel<Down, true, false, DownIn, Lvl>;
+        launch("downTileKernel (level 0)", kernel, tilesOf(l0.width, l0.height, Down::W, Down::H), downBlock, stream,
+               false, level0, downIn, width, height, l0, p);
     });
     for (int l = 1; l < first; ++l) {
         const Lvl &src = chain.level[l - 1], &dst = chain.level[l];
         step(kDown[l], bytesOf(src) + bytesOf(dst), [&] {
-            launch("downTileKernel", downTileKernel<Down, false, Lvl, Lvl>, tilesOf(dst.width, dst.height, Down::W, Down::H),
+            launch("downTileKernel", downTileKernel<Down, false, false, Lvl, Lvl>, tilesOf(dst.width, dst.height, Down::W, Down::H),
                    downBlock, stream, overlap, l == 1 ? level0 : nullptr, src, src.width, src.height, dst, p);
         });
     }
@@ -664,7 +684,8 @@ std::string graphKeyOf(const Chain<HalfLevel>& chain, cudaSurfaceObject_t hdr, c
     key.karis = p.karis;
     key.tailTexels = t.tailTexels;
     key.flags = int(t.programmaticLaunch) | int(t.streamHdrReads) << 1 | int(t.leanUpsample) << 2 | int(t.streamFinal) << 3 |
-                int(t.fuseLastUpsample) << 4 | int(t.leanDownsample) << 5 | int(t.separableUp0) << 6;
+                int(t.fuseLastUpsample) << 4 | int(t.leanDownsample) << 5 | int(t.separableUp0) << 6 |
+                int(t.fastDivide) << 7;
     key.threshold = p.threshold;
     key.knee = p.knee;
     key.strength = p.strength;

@@ -114,6 +114,7 @@ struct MipChainTuning {
     bool streamFinal = true;        // the last kernel's full-resolution reads and writes marked evict-first
     bool fuseLastUpsample = true;   // up_0 computed inside the last kernel (off: its own launch writes level 0)
     bool separableUp0 = true;       // the last kernel's U(up_1) as row sums then columns (off: 4 x 4 taps per texel)
+    bool fastDivide = false;        // the first downsample's bright pass and Karis divisions as __fdividef (2 ulps)
     bool graph = false;             // the launches captured once into a CUDA graph and replayed (RGBA16F surfaces,
                                     // created streams; captured again when sizes, settings or textures change)
 };

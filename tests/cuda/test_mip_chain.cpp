@@ -105,13 +105,13 @@ TEST(CudaMipChain, HalfArraysMatchReferenceOnOddSizes) {
 // launches), with the tail from level 1, without programmatic dependent launches, with plain HDR
 // reads, with the lean upsample kernels, with plain final accesses, with level 0 persisting in L2,
 // captured into a CUDA graph (the result of its replay), with up_0 in its own launch, with the lean
-// downsample and upsample kernels, and with the last kernel's up_0 from 4 x 4 taps; same bound as
-// above.
+// downsample and upsample kernels, with the last kernel's up_0 from 4 x 4 taps, with fast divisions
+// in the first downsample, and all of the promising ones combined; same bound as above.
 TEST(CudaMipChain, EveryTuningMatchesReference) {
     if (skipWithoutDevice()) GTEST_SKIP() << "no CUDA device: " << cuda::postDeviceProblem();
     const ImageF hdr = randomHdr(700, 390, 70);
     cuda::MipChainTuning noTail, allTail, noOverlap, plainReads, lean, leanNoTail, plainFinal, persisting, graph,
-        leanGraph, split, leanAll, directUp0;
+        leanGraph, split, leanAll, directUp0, fast, combined;
     noTail.tailTexels = 0;
     allTail.tailTexels = 1 << 30;
     noOverlap.programmaticLaunch = false;
@@ -128,6 +128,11 @@ TEST(CudaMipChain, EveryTuningMatchesReference) {
     leanAll.leanUpsample = true;
     leanAll.leanDownsample = true;
     directUp0.separableUp0 = false;
+    fast.fastDivide = true;
+    combined = leanAll;
+    combined.graph = true;
+    combined.fastDivide = true;
+    combined.streamFinal = false;
     for (int kernel : {5, 100}) {
         const BloomParams p = mipChain(kernel);
         const ImageF bloom = post::bloomBuffer(hdr, p, Storage::Half);
@@ -140,7 +145,8 @@ TEST(CudaMipChain, EveryTuningMatchesReference) {
                                            std::pair{"graph (replayed)", graph}, std::pair{"lean graph (replayed)", leanGraph},
                                            std::pair{"up_0 in its own launch", split},
                                            std::pair{"lean downsample and upsample", leanAll},
-                                           std::pair{"4 x 4 taps for up_0", directUp0}}) {
+                                           std::pair{"4 x 4 taps for up_0", directUp0},
+                                           std::pair{"fast divisions", fast}, std::pair{"combined", combined}}) {
             const cuda::BloomAndComposite got = cuda::bloomCompositeOnHalfArrays(hdr, p, cuda::BloomBlur::Auto, true, tuning);
             EXPECT_LE(maxRelError(got.bloom, bloom), 4.0 / 1024.0) << name << " kernel " << kernel;
             EXPECT_LE(maxRelError(got.hdr, composite), 4.0 / 1024.0) << name << " kernel " << kernel;

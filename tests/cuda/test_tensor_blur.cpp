@@ -223,15 +223,16 @@ TEST(CudaBloomBench, DISABLED_KernelTimesAgainstFloor) {
 // with the last kernel's full-resolution accesses not evict-first, captured into a CUDA graph
 // (default and lean shapes), with up_0 in its own launch (both shapes), with the lean downsample
 // kernels (1 row a thread) alone and with the lean upsample ones (also as a graph), with the last
-// kernel's up_0 from 4 x 4 taps (direct_up0), and with level 0 kept in the persisting part of L2
-// (last: it sets part of L2 aside while it runs). For the default and the
+// kernel's up_0 from 4 x 4 taps (direct_up0), with fast divisions in the first downsample, all the
+// promising ones combined (lean shapes, graph, fast divisions, plain final accesses), and with
+// level 0 kept in the persisting part of L2 (last: it sets part of L2 aside while it runs). For the default and the
 // lean upsample also each launch timed alone (lines "mip_chain_step": ms, bytes, GB/s).
 TEST(CudaBloomBench, DISABLED_MipChainTuning) {
     const std::string device = cuda::postDeviceProblem();
     if (!device.empty()) GTEST_SKIP() << "no CUDA device: " << device;
     const cuda::MipChainTuning defaults;
     cuda::MipChainTuning noTail, bigTail, noOverlap, plainReads, lean, plainFinal, graph, leanGraph, split, leanSplit,
-        leanDown, leanAll, leanAllGraph, directUp0, persisting;
+        leanDown, leanAll, leanAllGraph, directUp0, fast, combined, persisting;
     noTail.tailTexels = 0;
     bigTail.tailTexels = 16384;
     noOverlap.programmaticLaunch = false;
@@ -250,6 +251,10 @@ TEST(CudaBloomBench, DISABLED_MipChainTuning) {
     leanAllGraph = leanAll;
     leanAllGraph.graph = true;
     directUp0.separableUp0 = false;
+    fast.fastDivide = true;
+    combined = leanAllGraph;
+    combined.fastDivide = true;
+    combined.streamFinal = false;
     persisting.persistLevel0 = true;
     const std::pair<const char*, cuda::MipChainTuning> variants[] = {
         {"default", defaults},         {"no_tail", noTail},           {"tail_16k", bigTail},
@@ -257,7 +262,7 @@ TEST(CudaBloomBench, DISABLED_MipChainTuning) {
         {"plain_final", plainFinal},   {"graph", graph},              {"lean_graph", leanGraph},
         {"split_up0", split},          {"lean_split_up0", leanSplit}, {"lean_downsample", leanDown},
         {"lean_all", leanAll},         {"lean_all_graph", leanAllGraph}, {"direct_up0", directUp0},
-        {"persist_level0", persisting}};
+        {"fast_divide", fast},         {"combined", combined},        {"persist_level0", persisting}};
     for (auto [w, h] : {std::pair{1920, 1080}, std::pair{3840, 2160}})
         for (int kernel : {5, 100})
             for (const auto& [name, tuning] : variants) {
@@ -266,7 +271,7 @@ TEST(CudaBloomBench, DISABLED_MipChainTuning) {
                 cuda::BloomKernelTime t;
                 std::vector<cuda::MipChainStep> steps;
                 const bool timeSteps = std::string(name) == "default" || std::string(name) == "lean_all" ||
-                                       std::string(name) == "lean_split_up0";
+                                       std::string(name) == "fast_divide";
                 try {  // a failing variant is reported and the others still run
                     t = cuda::timeBloomCompositeKernels(w, h, p, BloomBlur::Auto, 60, true, tuning,
                                                         timeSteps ? &steps : nullptr);
