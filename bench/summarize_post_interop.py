@@ -84,20 +84,17 @@ def tuning_table(path):
             rows.setdefault((size, int(kernel)), {})[variant] = (float(ms), float(floor))
     if not rows:
         return
-    variants = ["default", "no_tail", "tail_16k", "no_overlap", "plain_hdr_reads", "lean_upsample", "plain_final",
-                "graph", "lean_graph", "split_up0", "lean_split_up0", "lean_downsample", "lean_all", "lean_all_graph",
-                "direct_up0", "fast_divide", "combined", "persist_level0"]
-    print("\nMip chain, what each part buys (fused bloom + composite, kernel-only ms; x floor in brackets): "
-          "default = as the passes run it; no_tail = every level its own launches; no_overlap = no programmatic "
-          "dependent launches; tail_16k = levels up to 16384 texels in the one-block tail; plain_hdr_reads = the first "
-          "downsample's HDR reads not evict-first; lean_upsample = upsample kernels with 2 rows a thread (512 threads); "
-          "plain_final = the last kernel's full-resolution accesses not evict-first; graph / lean_graph = the launches "
-          "replayed from a CUDA graph; split_up0 / lean_split_up0 = up_0 in its own launch, the last kernel upsamples "
-          "level 0 only; lean_downsample = downsample kernels with 1 output row a thread; lean_all = lean downsample "
-          "and upsample kernels (lean_all_graph: also as a graph); direct_up0 = the last kernel's up_0 from 4 x 4 taps "
-          "instead of row sums; fast_divide = the first downsample's divisions as __fdividef; combined = lean shapes, graph, "
-          "fast divisions and plain final accesses together; persist_level0 = level 0 in the persisting part of "
-          "L2:\n")
+    variants = ["default", "no_tail", "tail_16k", "no_overlap", "plain_hdr_reads", "wide_upsample", "wide_downsample",
+                "exact_divide", "streamed_final", "graph", "split_up0", "direct_up0", "first_version", "persist_level0"]
+    print("\nMip chain, what each part buys (fused bloom + composite, kernel-only ms; x floor in brackets): default = as "
+          "the passes run it; each other row changes one setting (README, MipChainTuning): no_tail = every level its own "
+          "launches; tail_16k = levels up to 16384 texels in the one-block tail; no_overlap = no programmatic dependent "
+          "launches; plain_hdr_reads = the first downsample's HDR reads not evict-first; wide_upsample / wide_downsample "
+          "= 8 / 2 rows a thread; exact_divide = correctly rounded divisions in the first downsample; streamed_final = "
+          "the last kernel's full-resolution accesses evict-first; graph = the launches replayed from a CUDA graph; "
+          "split_up0 = up_0 in its own launch; direct_up0 = the last kernel's up_0 from 4 x 4 taps; first_version = "
+          "wide kernels, exact divisions, streamed final accesses; persist_level0 = level 0 in the persisting part of "
+          "L2. Older runs used other names (bench/results/post_interop/mip_chain/):\n")
     cases = sorted(rows, key=lambda k: (int(k[0].split("x")[0]), k[1]))
     print("| variant | " + " | ".join(f"{size} k{kernel}" for size, kernel in cases) + " |")
     print("| --- | " + " | ".join("---" for _ in cases) + " |")

@@ -103,50 +103,47 @@ TEST(CudaMipChain, HalfArraysMatchReferenceOnOddSizes) {
 
 // The other paths the benchmark measures: without the one-block tail (every level its own
 // launches), with the tail from level 1, without programmatic dependent launches, with plain HDR
-// reads, with the lean upsample kernels, with plain final accesses, with level 0 persisting in L2,
-// captured into a CUDA graph (the result of its replay), with up_0 in its own launch, with the lean
-// downsample and upsample kernels, with the last kernel's up_0 from 4 x 4 taps, with fast divisions
-// in the first downsample, and all of the promising ones combined; same bound as above.
+// reads, with the wide downsample and upsample kernels (more rows a thread), with exact divisions,
+// with streamed final accesses, with level 0 persisting in L2, captured into a CUDA graph (the
+// result of its replay), with up_0 in its own launch, with the last kernel's up_0 from 4 x 4 taps,
+// and the first version's settings; same bound as above.
 TEST(CudaMipChain, EveryTuningMatchesReference) {
     if (skipWithoutDevice()) GTEST_SKIP() << "no CUDA device: " << cuda::postDeviceProblem();
     const ImageF hdr = randomHdr(700, 390, 70);
-    cuda::MipChainTuning noTail, allTail, noOverlap, plainReads, lean, leanNoTail, plainFinal, persisting, graph,
-        leanGraph, split, leanAll, directUp0, fast, combined;
+    cuda::MipChainTuning noTail, allTail, noOverlap, plainReads, wideUp, wideDown, wideNoTail, exact, streamedFinal,
+        persisting, graph, wideGraph, split, wideSplit, directUp0, first;
     noTail.tailTexels = 0;
     allTail.tailTexels = 1 << 30;
     noOverlap.programmaticLaunch = false;
     plainReads.streamHdrReads = false;
-    lean.leanUpsample = true;
-    leanNoTail.leanUpsample = true;
-    leanNoTail.tailTexels = 0;
-    plainFinal.streamFinal = false;
+    wideUp.leanUpsample = false;
+    wideDown.leanDownsample = false;
+    wideNoTail.leanUpsample = wideNoTail.leanDownsample = false;
+    wideNoTail.tailTexels = 0;
+    exact.fastDivide = false;
+    streamedFinal.streamFinal = true;
     persisting.persistLevel0 = true;
     graph.graph = true;
-    leanGraph.graph = true;
-    leanGraph.leanUpsample = true;
+    wideGraph.graph = true;
+    wideGraph.leanUpsample = wideGraph.leanDownsample = false;
     split.fuseLastUpsample = false;
-    leanAll.leanUpsample = true;
-    leanAll.leanDownsample = true;
+    wideSplit.fuseLastUpsample = wideSplit.leanUpsample = false;
     directUp0.separableUp0 = false;
-    fast.fastDivide = true;
-    combined = leanAll;
-    combined.graph = true;
-    combined.fastDivide = true;
-    combined.streamFinal = false;
+    first.leanUpsample = first.leanDownsample = first.fastDivide = false;
+    first.streamFinal = true;
     for (int kernel : {5, 100}) {
         const BloomParams p = mipChain(kernel);
         const ImageF bloom = post::bloomBuffer(hdr, p, Storage::Half);
         const ImageF composite = post::compositeBloom(hdr, bloom, p.strength);
-        for (const auto& [name, tuning] : {std::pair{"no tail", noTail}, std::pair{"all in the tail", allTail},
-                                           std::pair{"no overlap", noOverlap}, std::pair{"plain HDR reads", plainReads},
-                                           std::pair{"lean upsample", lean}, std::pair{"lean upsample, no tail", leanNoTail},
-                                           std::pair{"plain final accesses", plainFinal},
-                                           std::pair{"level 0 persisting in L2", persisting},
-                                           std::pair{"graph (replayed)", graph}, std::pair{"lean graph (replayed)", leanGraph},
-                                           std::pair{"up_0 in its own launch", split},
-                                           std::pair{"lean downsample and upsample", leanAll},
-                                           std::pair{"4 x 4 taps for up_0", directUp0},
-                                           std::pair{"fast divisions", fast}, std::pair{"combined", combined}}) {
+        for (const auto& [name, tuning] :
+             {std::pair{"no tail", noTail}, std::pair{"all in the tail", allTail}, std::pair{"no overlap", noOverlap},
+              std::pair{"plain HDR reads", plainReads}, std::pair{"wide upsample", wideUp},
+              std::pair{"wide downsample", wideDown}, std::pair{"wide, no tail", wideNoTail},
+              std::pair{"exact divisions", exact}, std::pair{"streamed final accesses", streamedFinal},
+              std::pair{"level 0 persisting in L2", persisting}, std::pair{"graph (replayed)", graph},
+              std::pair{"wide graph (replayed)", wideGraph}, std::pair{"up_0 in its own launch", split},
+              std::pair{"up_0 in its own wide launch", wideSplit}, std::pair{"4 x 4 taps for up_0", directUp0},
+              std::pair{"first version", first}}) {
             const cuda::BloomAndComposite got = cuda::bloomCompositeOnHalfArrays(hdr, p, cuda::BloomBlur::Auto, true, tuning);
             EXPECT_LE(maxRelError(got.bloom, bloom), 4.0 / 1024.0) << name << " kernel " << kernel;
             EXPECT_LE(maxRelError(got.hdr, composite), 4.0 / 1024.0) << name << " kernel " << kernel;
