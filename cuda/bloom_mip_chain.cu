@@ -16,8 +16,8 @@
 //   the next one be scheduled as soon as all its own blocks run, and waits for the previous one to
 //   finish before touching what it wrote, so the small levels' launches overlap instead of
 //   queueing one after another.
-// The full-resolution HDR reads and writes are marked streaming (evict-first), so the
-// half-resolution level that the second and the last kernel re-read can stay in L2.
+// MipChainTuning (cuda/post_cuda.hpp) switches each of these and a few shapes and access hints;
+// its defaults are the fastest combination measured on the H100 (bench/results/post_interop).
 #include <algorithm>
 #include <cstring>
 #include <string>
@@ -695,7 +695,7 @@ std::string graphKeyOf(const Chain<HalfLevel>& chain, cudaSurfaceObject_t hdr, c
 
 void launchSurfaceChain(const Chain<HalfLevel>& chain, cudaSurfaceObject_t hdr, cudaSurfaceObject_t bloom, bool composite,
                         int width, int height, const post::BloomParams& p, BloomWorkspace& ws, cudaStream_t stream) {
-    // By default the last kernel, which reads and writes each full-resolution texel once, streams.
+    // streamFinal: the last kernel, which reads and writes each full-resolution texel once, streams.
     if (ws.mipChain.streamFinal)
         mipChainOnSurfaces<StreamedHalf4Surface>(chain, hdr, bloom, composite, width, height, p, ws, stream);
     else
