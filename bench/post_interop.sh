@@ -3,14 +3,17 @@
 # 100 3840x2160 (and toon at both sizes) for CUDA on shared textures (--cuda-interop external),
 # CUDA with map/unmap per use (--cuda-interop map), GLSL compute, CUDA with the interop auto chose
 # (--cuda-interop auto: shared textures with Vulkan semaphores only where measured faster than
-# map/unmap), and what --post-backend auto chose (measured afresh into OUTDIR/cache). `external`
+# map/unmap), and what --post-backend auto chose (measured afresh into OUTDIR/cache); the same
+# bloom with --bloom-method mip-chain (effect "mipchain") in GLSL, CUDA on shared textures and auto. `external`
 # is ordered by Vulkan semaphores where info's `sync:` line says so, else by host waits. Per pass: GL-timed ms (what the frame pays, interop and
 # syncs included), CUDA kernel ms, interop ms, the bandwidth floor and measured/floor. Also runs the
 # CUDA tests (shared textures vs the CPU reference), the kernel-only bloom benchmark in cuda_tests
-# (bloom_kernels.txt: direct vs tensor-core blur, kernel 3..100, 1080p and 4K, against the floor),
+# (bloom_kernels.txt: separable with the direct and the tensor-core blur, and the mip chain, kernel
+# 3..100, 1080p and 4K, against the floor; and plain copy kernels, CUDA arrays and linear memory),
 # the cost of one hand-over to CUDA and back by itself (hand_over.txt) and records `info`. From the repository root:
 #   bench/post_interop.sh BUNDLE OUTDIR    (BUNDLE: run, cuda_tests, lib/)
 #   SMOKE=1 bench/post_interop.sh BUNDLE OUTDIR   tiny sizes, few frames (checks the plumbing)
+#   KERNELS_ONLY=1 bench/post_interop.sh BUNDLE OUTDIR   cuda_tests and the kernel-only benchmark alone
 set -u
 B=$(cd "$1" && pwd); R=$2; mkdir -p "$R"
 frames=200; warmup=30
@@ -21,8 +24,9 @@ export LIGHTPASS_CACHE_DIR=$R/cache
 "$B/run" info > "$R/info.txt" 2>&1; grep -E "^(renderer|cuda|interop|sync):" "$R/info.txt"
 if [[ -x "$B/cuda_tests" ]]; then
   LD_LIBRARY_PATH=$B/lib "$B/cuda_tests" > "$R/cuda_tests.txt" 2>&1; tail -2 "$R/cuda_tests.txt"
-  # Kernel-only: the fused bloom + composite on RGBA16F CUDA arrays (no GL), direct and
-  # tensor-core blur and what auto picks, kernel 3..100 at 1080p and 4K, CUDA events, vs the floor.
+  # Kernel-only: the fused bloom + composite on RGBA16F CUDA arrays (no GL), separable (direct and
+  # tensor-core blur and what auto picks) and mip chain, kernel 3..100 at 1080p and 4K, CUDA events,
+  # vs the floor; and the copy kernels that show what bandwidth CUDA arrays and linear memory reach.
   LD_LIBRARY_PATH=$B/lib "$B/cuda_tests" --gtest_also_run_disabled_tests --gtest_filter='CudaBloomBench.*' \
     > "$R/bloom_kernels.txt" 2>&1 || echo "bloom kernel benchmark failed: $(tail -1 "$R/bloom_kernels.txt")"
   # What one GL -> CUDA -> GL hand-over costs a GL frame by itself (a kernel of a few microseconds
@@ -30,6 +34,10 @@ if [[ -x "$B/cuda_tests" ]]; then
   LD_LIBRARY_PATH=$B/lib "$B/cuda_tests" --gtest_also_run_disabled_tests --gtest_filter='*FrameCostOfAHandOver*' \
     > "$R/hand_over.txt" 2>&1 || echo "hand-over benchmark failed: $(tail -1 "$R/hand_over.txt")"
   grep "hand-over bench" "$R/hand_over.txt"
+fi
+if [[ "${KERNELS_ONLY:-0}" == 1 ]]; then
+  python3 "$(dirname "$0")/summarize_post_interop.py" "$R" | tee "$R/post_interop.md"
+  exit 0
 fi
 cuda=1
 grep -q "^cuda:.*(compute [0-9]" "$R/info.txt" || { cuda=0; echo "(no CUDA device: CUDA rows skipped)"; }
@@ -51,7 +59,11 @@ for c in $cases; do
     run "cuda-external_toon_${c}" "$size" "$k" --no-bloom --toon --post-backend cuda --cuda-interop external
     run "cuda-map_toon_${c}" "$size" "$k" --no-bloom --toon --post-backend cuda --cuda-interop map
     run "auto_bloom_${c}" "$size" "$k" --post-backend auto --post-remeasure
+    # The mip chain (effect name "mipchain"): CUDA on shared textures and what auto picks.
+    run "cuda-external_mipchain_${c}" "$size" "$k" --bloom-method mip-chain --post-backend cuda --cuda-interop external
+    run "auto_mipchain_${c}" "$size" "$k" --bloom-method mip-chain --post-backend auto --post-remeasure
   fi
+  run "glsl_mipchain_${c}" "$size" "$k" --bloom-method mip-chain --post-backend glsl
 done
 grep -h "post backend auto\|post effects:" "$R"/auto_*.log "$R"/cuda-auto_*.log 2>/dev/null | sort -u > "$R/auto_choices.txt"
 python3 "$(dirname "$0")/summarize_post_interop.py" "$R" | tee "$R/post_interop.md"

@@ -1,7 +1,8 @@
-// Bloom in CUDA: bright pass, separable Gaussian, Jimenez mip chain, composite. The per-texel
-// math is engine/post/post_math.hpp, the same code the CPU reference runs. The separable blur is
-// two tiled launches (bright pass fused into the first); the weights travel as a kernel parameter,
-// which lives in the constant bank and is broadcast to the warp like __constant__ data.
+// Bloom in CUDA: bright pass, separable Gaussian, composite (the Jimenez mip chain is in
+// cuda/bloom_mip_chain.cu). The per-texel math is engine/post/post_math.hpp, the same code the CPU
+// reference runs. The separable blur is two tiled launches (bright pass fused into the first); the
+// weights travel as a kernel parameter, which lives in the constant bank and is broadcast to the
+// warp like __constant__ data.
 #include <algorithm>
 #include <type_traits>
 #include <vector>
@@ -24,87 +25,6 @@ __device__ inline Rgb scale(Rgb a, float k) { return {a.r * k, a.g * k, a.b * k}
 struct Weights {
     float w[post::kMaxRadius + 1];
 };
-
-template <typename In>
-__global__ void downKernel(In src, int sw, int sh, BufferImage dst, int dw, int dh, bool first, post::BloomParams p) {
-    // The block's 6x6 windows overlap: stage the source texels 2 * x0 - 2 .. 2 * (x0 + 15) + 3 once
-    // (bright-passed once each on the first level) and read the windows from shared memory.
-    constexpr int kSpan = 2 * int(kBlock) + 4;
-    __shared__ float4 staged[kSpan][kSpan];
-    const int sx0 = 2 * int(blockIdx.x * kBlock) - 2, sy0 = 2 * int(blockIdx.y * kBlock) - 2;
-    constexpr int kThreads = int(kBlock * kBlock), kBatch = (kSpan * kSpan + kThreads - 1) / kThreads;
-    const int thread = int(threadIdx.y * kBlock + threadIdx.x);
-    float4 v[kBatch];  // every load in flight before the first is used
-#pragma unroll
-    for (int b = 0; b < kBatch; ++b) {
-        const int e = thread + b * kThreads;
-        if (e < kSpan * kSpan) v[b] = src.load(clampi(sx0 + e % kSpan, 0, sw - 1), clampi(sy0 + e / kSpan, 0, sh - 1));
-    }
-#pragma unroll
-    for (int b = 0; b < kBatch; ++b) {
-        const int e = thread + b * kThreads;
-        if (e >= kSpan * kSpan) continue;
-        const Rgb c = rgb(v[b]);
-        staged[e / kSpan][e % kSpan] = f4(first ? post::brightPass(c, p.threshold, p.knee, p.highlight) : c);
-    }
-    __syncthreads();
-    const int tx = int(threadIdx.x), ty = int(threadIdx.y);
-    const int x = int(blockIdx.x * kBlock) + tx, y = int(blockIdx.y * kBlock) + ty;
-    if (x >= dw || y >= dh) return;
-    Rgb t[6][6];
-    for (int j = 0; j < 6; ++j)
-        for (int i = 0; i < 6; ++i) t[j][i] = rgb(staged[2 * ty + j][2 * tx + i]);
-    auto corner = [&](int ox, int oy) {
-        int i = ox + 2, j = oy + 2;
-        return scale(add(add(t[j][i], t[j][i + 1]), add(t[j + 1][i], t[j + 1][i + 1])), 0.25f);
-    };
-    auto group = [](Rgb a, Rgb b, Rgb c, Rgb d) { return scale(add(add(a, b), add(c, d)), 0.25f); };
-    const Rgb g[5] = {
-        group(corner(-1, -1), corner(1, -1), corner(-1, 1), corner(1, 1)),
-        group(corner(-2, -2), corner(0, -2), corner(-2, 0), corner(0, 0)),
-        group(corner(0, -2), corner(2, -2), corner(0, 0), corner(2, 0)),
-        group(corner(-2, 0), corner(0, 0), corner(-2, 2), corner(0, 2)),
-        group(corner(0, 0), corner(2, 0), corner(0, 2), corner(2, 2)),
-    };
-    const float base[5] = {0.5f, 0.125f, 0.125f, 0.125f, 0.125f};
-    const bool karis = first && p.karis;
-    Rgb sum;
-    float wsum = 0.0f;
-    for (int k = 0; k < 5; ++k) {
-        float w = karis ? base[k] * post::karisWeight(g[k]) : base[k];
-        sum = add(sum, scale(g[k], w));
-        wsum += w;
-    }
-    dst.store(x, y, f4(scale(sum, 1.0f / wsum)));
-}
-
-// up: fine = (addFine ? fine : 0) + U(coarse) * scale  (scale applies when not adding).
-template <typename Out>
-__global__ void upKernel(const float4* coarse, int cw, int ch, Out fine, const float4* fineIn, int fw, int fh,
-                         bool addFine, float scaleBy) {
-    // The block's 4x4 coarse windows span coarse texels x0 / 2 - 2 .. x0 / 2 + 9: staged once.
-    constexpr int kSpan = int(kBlock) / 2 + 4;
-    __shared__ float4 staged[kSpan][kSpan];
-    const int x0 = int(blockIdx.x * kBlock), y0 = int(blockIdx.y * kBlock);
-    const int cx0 = x0 / 2 - 2, cy0 = y0 / 2 - 2;
-    for (int e = int(threadIdx.y * kBlock + threadIdx.x); e < kSpan * kSpan; e += int(kBlock * kBlock)) {
-        const int sx = clampi(cx0 + e % kSpan, 0, cw - 1), sy = clampi(cy0 + e / kSpan, 0, ch - 1);
-        staged[e / kSpan][e % kSpan] = coarse[size_t(sy) * size_t(cw) + size_t(sx)];
-    }
-    __syncthreads();
-    const int x = x0 + int(threadIdx.x), y = y0 + int(threadIdx.y);
-    if (x >= fw || y >= fh) return;
-    const bool ox = x & 1, oy = y & 1;
-    const int bx = (x >> 1) - (ox ? 1 : 2) - cx0, by = (y >> 1) - (oy ? 1 : 2) - cy0;
-    Rgb sum;
-    for (int j = 0; j < 4; ++j) {
-        Rgb row;
-        for (int i = 0; i < 4; ++i) row = add(row, scale(rgb(staged[by + j][bx + i]), post::upsampleWeight(i, ox)));
-        sum = add(sum, scale(row, post::upsampleWeight(j, oy)));
-    }
-    Rgb result = addFine ? add(rgb(fineIn[size_t(y) * size_t(fw) + size_t(x)]), sum) : scale(sum, scaleBy);
-    fine.store(x, y, f4(result));
-}
 
 template <typename In, typename BloomIn, typename Out>
 __global__ void compositeKernel(In hdr, BloomIn bloom, Out out, int width, int height, float strength) {
@@ -802,51 +722,37 @@ bool launchTensorBlur(In hdr, Out out, int width, int height, const Weights& w, 
 }
 
 template <typename In, typename Out>
-void bloomWork(In hdr, Out bloom, int width, int height, const post::BloomParams& p, BloomWorkspace& ws,
-               cudaStream_t stream) {
-    const dim3 block(kBlock, kBlock);
-    if (p.method == post::BloomMethod::Separable) {
-        const std::vector<float> taps = post::gaussianWeights(p.kernel);
-        Weights w{};
-        for (size_t i = 0; i < taps.size(); ++i) w.w[i] = taps[i];
-        const int radius = int(taps.size()) - 1;
-        if (wantsTensorBlur(ws.blur, radius) && launchTensorBlur(hdr, bloom, width, height, w, radius, p, ws, stream))
-            return;
-        ws.ensure(width, height, p);
-        // Bright pass fused into the horizontal blur's staging; fp32 intermediate in ws.a.
-        launchBlur<true>(BrightSource<In>{hdr, p}, BufferImage{ws.a, width}, width, height, w, radius, stream);
-        launchBlur<false>(BufferImage{ws.a, width}, bloom, width, height, w, radius, stream);
+void separableBloom(In hdr, Out bloom, int width, int height, const post::BloomParams& p, BloomWorkspace& ws,
+                    cudaStream_t stream) {
+    const std::vector<float> taps = post::gaussianWeights(p.kernel);
+    Weights w{};
+    for (size_t i = 0; i < taps.size(); ++i) w.w[i] = taps[i];
+    const int radius = int(taps.size()) - 1;
+    if (wantsTensorBlur(ws.blur, radius) && launchTensorBlur(hdr, bloom, width, height, w, radius, p, ws, stream))
         return;
-    }
     ws.ensure(width, height, p);
-    const int levels = post::mipLevelCount(p.kernel, width, height);
-    for (int l = 0; l < levels; ++l) {
-        const int dw = post::mipSize(width, l), dh = post::mipSize(height, l);
-        if (l == 0) {
-            downKernel<<<gridFor(dw, dh), block, 0, stream>>>(hdr, width, height, BufferImage{ws.mips[0], dw}, dw, dh,
-                                                              true, p);
-        } else {
-            const int sw = post::mipSize(width, l - 1), sh = post::mipSize(height, l - 1);
-            downKernel<<<gridFor(dw, dh), block, 0, stream>>>(BufferImage{ws.mips[l - 1], sw}, sw, sh,
-                                                              BufferImage{ws.mips[l], dw}, dw, dh, false, p);
+    // Bright pass fused into the horizontal blur's staging; the intermediate in ws.a: fp16 where the
+    // bloom lands in RGBA16F textures and the radius is small (half the bytes, measured 3-9% faster
+    // up to kernel 17 on the H100 and slower from kernel 25, where the staging's conversions cost
+    // more than the bytes; its one rounding keeps the result within one fp16 ulp of the fp32
+    // reference), else fp32.
+    constexpr int kHalfIntermediateMaxRadius = 8;
+    if constexpr (std::is_same_v<In, Half4Surface>) {
+        if (radius <= kHalfIntermediateMaxRadius) {
+            const HalfBufferImage intermediate{reinterpret_cast<uint2*>(ws.a), width};
+            launchBlur<true>(BrightSource<In>{hdr, p}, intermediate, width, height, w, radius, stream);
+            launchBlur<false>(intermediate, bloom, width, height, w, radius, stream);
+            return;
         }
-        checkLaunch("downKernel");
     }
-    for (int l = levels - 2; l >= 0; --l) {
-        const int fw = post::mipSize(width, l), fh = post::mipSize(height, l);
-        const int cw = post::mipSize(width, l + 1), ch = post::mipSize(height, l + 1);
-        upKernel<<<gridFor(fw, fh), block, 0, stream>>>(ws.mips[l + 1], cw, ch, BufferImage{ws.mips[l], fw}, ws.mips[l],
-                                                        fw, fh, true, 1.0f);
-        checkLaunch("upKernel");
-    }
-    upKernel<<<gridFor(width, height), block, 0, stream>>>(ws.mips[0], post::mipSize(width, 0), post::mipSize(height, 0),
-                                                            bloom, nullptr, width, height, false, 1.0f / float(levels));
-    checkLaunch("upKernel (full resolution)");
+    launchBlur<true>(BrightSource<In>{hdr, p}, BufferImage{ws.a, width}, width, height, w, radius, stream);
+    launchBlur<false>(BufferImage{ws.a, width}, bloom, width, height, w, radius, stream);
 }
 
 }  // namespace
 
 BloomWorkspace::~BloomWorkspace() {
+    if (mipChainGraph) cudaGraphExecDestroy(mipChainGraph);
     cudaFree(a);
     cudaFree(progress);
     for (float4* m : mips) cudaFree(m);
@@ -885,24 +791,28 @@ void BloomWorkspace::ensure(int width, int height, const post::BloomParams& p) {
 
 void bloomBufferToBuffer(const float4* hdr, float4* bloom, int width, int height, const post::BloomParams& p,
                          BloomWorkspace& ws, cudaStream_t stream) {
-    bloomWork(BufferImage{const_cast<float4*>(hdr), width}, BufferImage{bloom, width}, width, height, p, ws, stream);
+    if (p.method == post::BloomMethod::MipChain) return mipChainBloomBuffers(hdr, bloom, nullptr, width, height, p, ws, stream);
+    separableBloom(BufferImage{const_cast<float4*>(hdr), width}, BufferImage{bloom, width}, width, height, p, ws, stream);
 }
 
 void bloomSurfaceToSurface(cudaSurfaceObject_t hdr, cudaSurfaceObject_t bloom, int width, int height,
                            const post::BloomParams& p, BloomWorkspace& ws, cudaStream_t stream) {
-    bloomWork(Half4Surface{hdr}, Half4Surface{bloom}, width, height, p, ws, stream);
+    if (p.method == post::BloomMethod::MipChain) return mipChainBloomSurfaces(hdr, bloom, false, width, height, p, ws, stream);
+    separableBloom(Half4Surface{hdr}, Half4Surface{bloom}, width, height, p, ws, stream);
 }
 
 void bloomCompositeBuffers(const float4* hdr, float4* bloom, float4* hdrOut, int width, int height,
                            const post::BloomParams& p, BloomWorkspace& ws, cudaStream_t stream) {
+    if (p.method == post::BloomMethod::MipChain) return mipChainBloomBuffers(hdr, bloom, hdrOut, width, height, p, ws, stream);
     const BufferImage in{const_cast<float4*>(hdr), width};
     const CompositeOnStore<BufferImage, BufferImage, BufferImage> out{in, {bloom, width}, {hdrOut, width}, p.strength};
-    bloomWork(in, out, width, height, p, ws, stream);
+    separableBloom(in, out, width, height, p, ws, stream);
 }
 
 void bloomCompositeSurfaces(cudaSurfaceObject_t hdr, cudaSurfaceObject_t bloom, int width, int height,
                             const post::BloomParams& p, BloomWorkspace& ws, cudaStream_t stream) {
-    bloomWork(Half4Surface{hdr},
+    if (p.method == post::BloomMethod::MipChain) return mipChainBloomSurfaces(hdr, bloom, true, width, height, p, ws, stream);
+    separableBloom(Half4Surface{hdr},
               CompositeOnStore<Half4Surface, Half4Surface, Half4Surface>{{hdr}, {bloom}, {hdr}, p.strength}, width,
               height, p, ws, stream);
 }
@@ -922,6 +832,20 @@ void compositeSurfaces(cudaSurfaceObject_t hdr, cudaSurfaceObject_t bloom, int w
     checkLaunch("compositeKernel");
 }
 
+Half4Array::Half4Array(int width, int height) {
+    const cudaChannelFormatDesc desc = cudaCreateChannelDescHalf4();
+    check(cudaMallocArray(&array, &desc, size_t(width), size_t(height), cudaArraySurfaceLoadStore), "cudaMallocArray");
+    cudaResourceDesc resource{};
+    resource.resType = cudaResourceTypeArray;
+    resource.res.array.array = array;
+    check(cudaCreateSurfaceObject(&surface, &resource), "cudaCreateSurfaceObject");
+}
+
+Half4Array::~Half4Array() {
+    cudaDestroySurfaceObject(surface);
+    cudaFreeArray(array);
+}
+
 bool bloomBlurUsesTensorCores(int kernel, BloomBlur blur) {
     const int radius = int(post::gaussianWeights(kernel).size()) - 1;
     if (!wantsTensorBlur(blur, radius)) return false;
@@ -935,26 +859,6 @@ bool bloomBlurUsesTensorCores(int kernel, BloomBlur blur) {
 
 namespace {
 
-// An RGBA16F CUDA array with its surface, as the GL textures the passes share.
-struct Half4Array {
-    cudaArray_t array = nullptr;
-    cudaSurfaceObject_t surface = 0;
-    Half4Array(int width, int height) {
-        const cudaChannelFormatDesc desc = cudaCreateChannelDescHalf4();
-        check(cudaMallocArray(&array, &desc, size_t(width), size_t(height), cudaArraySurfaceLoadStore),
-              "cudaMallocArray");
-        cudaResourceDesc resource{};
-        resource.resType = cudaResourceTypeArray;
-        resource.res.array.array = array;
-        check(cudaCreateSurfaceObject(&surface, &resource), "cudaCreateSurfaceObject");
-    }
-    ~Half4Array() {
-        cudaDestroySurfaceObject(surface);
-        cudaFreeArray(array);
-    }
-    Half4Array(const Half4Array&) = delete;
-    Half4Array& operator=(const Half4Array&) = delete;
-};
 
 // A scene-like HDR image: mostly below the threshold, one texel in 64 bright (up to 50).
 __global__ void fillBenchHdr(Half4Surface hdr, int width, int height) {
@@ -991,15 +895,135 @@ double copyBytesPerSecond(cudaStream_t stream) {
     return 2.0 * double(bytes) / (double(ms[ms.size() / 2]) * 1e-3);
 }
 
+// The copy baselines: one RGBA16F texel a thread through surfaces; two a thread (16 bytes) in
+// linear memory.
+__global__ void copyArrayKernel(cudaSurfaceObject_t src, cudaSurfaceObject_t dst, int width, int height) {
+    const int x = int(blockIdx.x * blockDim.x + threadIdx.x), y = int(blockIdx.y * blockDim.y + threadIdx.y);
+    if (x >= width || y >= height) return;
+    surf2Dwrite(surf2Dread<ushort4>(src, x * int(sizeof(ushort4)), y), dst, x * int(sizeof(ushort4)), y);
+}
+
+__global__ void copyLinearKernel(const uint4* src, uint4* dst, size_t count) {
+    const size_t i = size_t(blockIdx.x) * blockDim.x + threadIdx.x;
+    if (i < count) dst[i] = src[i];
+}
+
+// Median ms of `iterations` CUDA-event timings of launch() on `stream`, after 5 warm-up runs.
+template <typename Launch>
+double medianEventMs(cudaStream_t stream, int iterations, Launch&& launch) {
+    cudaEvent_t start, stop;
+    check(cudaEventCreate(&start), "cudaEventCreate");
+    check(cudaEventCreate(&stop), "cudaEventCreate");
+    std::vector<float> ms;
+    for (int i = -5; i < iterations; ++i) {
+        check(cudaEventRecord(start, stream), "cudaEventRecord");
+        launch();
+        check(cudaEventRecord(stop, stream), "cudaEventRecord");
+        check(cudaEventSynchronize(stop), "cudaEventSynchronize");
+        float t = 0.0f;
+        check(cudaEventElapsedTime(&t, start, stop), "cudaEventElapsedTime");
+        if (i >= 0) ms.push_back(t);
+    }
+    cudaEventDestroy(start);
+    cudaEventDestroy(stop);
+    std::sort(ms.begin(), ms.end());
+    return ms.empty() ? 0.0 : double(ms[ms.size() / 2]);
+}
+
+// RGBA16F texels of `img` (fp16-rounded) and back.
+std::vector<__half> halfTexels(const ImageF& img) {
+    std::vector<__half> out(img.rgba.size());
+    for (size_t i = 0; i < out.size(); ++i) out[i] = __float2half_rn(img.rgba[i]);
+    return out;
+}
+
+ImageF readHalfArray(const Half4Array& a, int width, int height) {
+    std::vector<__half> texels(size_t(width) * size_t(height) * 4);
+    check(cudaMemcpy2DFromArray(texels.data(), size_t(width) * 8, a.array, 0, 0, size_t(width) * 8, size_t(height),
+                                cudaMemcpyDeviceToHost),
+          "cudaMemcpy2DFromArray");
+    ImageF out;
+    out.width = width;
+    out.height = height;
+    out.rgba.resize(texels.size());
+    for (size_t i = 0; i < texels.size(); ++i) out.rgba[i] = __half2float(texels[i]);
+    return out;
+}
+
 }  // namespace
 
+BloomAndComposite bloomCompositeOnHalfArrays(const ImageF& hdr, const post::BloomParams& p, BloomBlur blur,
+                                             bool composite, const MipChainTuning& tuning) {
+    const int width = hdr.width, height = hdr.height;
+    Half4Array hdrArray(width, height), bloomArray(width, height);
+    const std::vector<__half> texels = halfTexels(hdr);
+    cudaStream_t stream = nullptr;
+    check(cudaStreamCreate(&stream), "cudaStreamCreate");
+    {
+        BloomWorkspace ws;
+        ws.blur = blur;
+        ws.mipChain = tuning;
+        // With a graph, the second run replays the first one's capture: that is the result returned.
+        for (int run = 0; run < (tuning.graph ? 2 : 1); ++run) {
+            check(cudaMemcpy2DToArray(hdrArray.array, 0, 0, texels.data(), size_t(width) * 8, size_t(width) * 8,
+                                      size_t(height), cudaMemcpyHostToDevice),
+                  "cudaMemcpy2DToArray");
+            if (composite)
+                bloomCompositeSurfaces(hdrArray.surface, bloomArray.surface, width, height, p, ws, stream);
+            else
+                bloomSurfaceToSurface(hdrArray.surface, bloomArray.surface, width, height, p, ws, stream);
+            check(cudaStreamSynchronize(stream), "cudaStreamSynchronize");
+        }
+    }
+    if (tuning.persistLevel0) {  // give the set-aside part of L2 back (nothing to do where none was set aside)
+        cudaDeviceSetLimit(cudaLimitPersistingL2CacheSize, 0);
+        cudaCtxResetPersistingL2Cache();
+        cudaGetLastError();
+    }
+    cudaStreamDestroy(stream);
+    return {readHalfArray(bloomArray, width, height), readHalfArray(hdrArray, width, height)};
+}
+
+CopyKernelTimes timeHalf4Copies(int width, int height, int iterations) {
+    CopyKernelTimes result;
+    cudaStream_t stream = nullptr;
+    check(cudaStreamCreate(&stream), "cudaStreamCreate");
+    result.copyBytesPerSecond = copyBytesPerSecond(stream);
+    {
+        Half4Array src(width, height), dst(width, height);
+        fillBenchHdr<<<gridFor(width, height), dim3(kBlock, kBlock), 0, stream>>>(Half4Surface{src.surface}, width, height);
+        checkLaunch("fillBenchHdr");
+        const dim3 block(32, 8), grid(unsigned(width + 31) / 32, unsigned(height + 7) / 8);
+        result.arrayMs = medianEventMs(stream, iterations, [&] {
+            copyArrayKernel<<<grid, block, 0, stream>>>(src.surface, dst.surface, width, height);
+            checkLaunch("copyArrayKernel");
+        });
+    }
+    const size_t pairs = (size_t(width) * size_t(height) + 1) / 2;  // 16 bytes: two RGBA16F texels
+    uint4 *src = nullptr, *dst = nullptr;
+    check(cudaMalloc(&src, pairs * sizeof(uint4)), "cudaMalloc");
+    check(cudaMalloc(&dst, pairs * sizeof(uint4)), "cudaMalloc");
+    check(cudaMemsetAsync(src, 0x3c, pairs * sizeof(uint4), stream), "cudaMemsetAsync");
+    result.linearMs = medianEventMs(stream, iterations, [&] {
+        copyLinearKernel<<<unsigned((pairs + 255) / 256), 256, 0, stream>>>(src, dst, pairs);
+        checkLaunch("copyLinearKernel");
+    });
+    check(cudaStreamSynchronize(stream), "cudaStreamSynchronize");
+    cudaFree(src);
+    cudaFree(dst);
+    cudaStreamDestroy(stream);
+    return result;
+}
+
 BloomKernelTime timeBloomCompositeKernels(int width, int height, const post::BloomParams& p, BloomBlur blur,
-                                          int iterations, bool composite) {
+                                          int iterations, bool composite, const MipChainTuning& tuning,
+                                          std::vector<MipChainStep>* steps) {
     Half4Array hdr(width, height), bloom(width, height);
     cudaStream_t stream = nullptr;
     check(cudaStreamCreate(&stream), "cudaStreamCreate");
     BloomWorkspace ws;
     ws.blur = blur;
+    ws.mipChain = tuning;
     BloomKernelTime result;
     result.tensorCores = p.method == post::BloomMethod::Separable && bloomBlurUsesTensorCores(p.kernel, blur);
     result.copyBytesPerSecond = copyBytesPerSecond(stream);
@@ -1022,9 +1046,39 @@ BloomKernelTime timeBloomCompositeKernels(int width, int height, const post::Blo
         check(cudaEventElapsedTime(&t, start, stop), "cudaEventElapsedTime");
         if (i >= 0) ms.push_back(t);
     }
+    if (steps && p.method == post::BloomMethod::MipChain) {  // each launch timed alone
+        StepRecorder recorder;
+        ws.recorder = &recorder;
+        std::vector<std::vector<double>> stepMs;
+        for (int i = -2; i < iterations; ++i) {
+            fillBenchHdr<<<gridFor(width, height), dim3(kBlock, kBlock), 0, stream>>>(Half4Surface{hdr.surface}, width,
+                                                                                      height);
+            checkLaunch("fillBenchHdr");
+            recorder.restart();
+            if (composite)
+                bloomCompositeSurfaces(hdr.surface, bloom.surface, width, height, p, ws, stream);
+            else
+                bloomSurfaceToSurface(hdr.surface, bloom.surface, width, height, p, ws, stream);
+            check(cudaStreamSynchronize(stream), "cudaStreamSynchronize");
+            if (i < 0) continue;
+            stepMs.resize(recorder.count());
+            for (size_t k = 0; k < recorder.count(); ++k) stepMs[k].push_back(recorder.ms(k));
+        }
+        ws.recorder = nullptr;
+        steps->clear();
+        for (size_t k = 0; k < stepMs.size(); ++k) {
+            std::sort(stepMs[k].begin(), stepMs[k].end());
+            steps->push_back({recorder.name(k), stepMs[k][stepMs[k].size() / 2], recorder.bytes(k)});
+        }
+    }
     cudaEventDestroy(start);
     cudaEventDestroy(stop);
     cudaStreamDestroy(stream);
+    if (tuning.persistLevel0) {  // give the set-aside part of L2 back (nothing to do where none was set aside)
+        cudaDeviceSetLimit(cudaLimitPersistingL2CacheSize, 0);
+        cudaCtxResetPersistingL2Cache();
+        cudaGetLastError();
+    }
     std::sort(ms.begin(), ms.end());
     result.medianMs = ms.empty() ? 0.0 : double(ms[ms.size() / 2]);
     return result;

@@ -11,6 +11,7 @@
 // and copy back, so the kernels can be tested against the CPU reference without a GL context.
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "engine/gl/gl.hpp"
 #include "engine/io/image_io.hpp"
@@ -101,6 +102,26 @@ enum class BloomBlur { Auto, Direct, TensorCore };
 // Whether a separable bloom of `kernel` px with `blur` runs on the tensor cores on this device.
 bool bloomBlurUsesTensorCores(int kernel, BloomBlur blur);
 
+// How the mip-chain bloom (cuda/bloom_mip_chain.cu) runs; the defaults are what the passes use (the
+// fastest combination measured on the H100, bench/results/post_interop/README.md), the others let
+// the benchmark measure what each part buys and the tests check every path.
+struct MipChainTuning {
+    int tailTexels = 4096;          // levels of at most this many texels run down and up in one block (0: none)
+    bool programmaticLaunch = true; // sm_90: launches overlap their predecessors' ends (on created streams)
+    bool streamHdrReads = true;     // the first downsample's HDR reads marked evict-first
+    bool persistLevel0 = false;     // level 0 in the persisting part of L2 (sets part of L2 aside, device-wide)
+    bool leanUpsample = true;       // upsample kernels with 2 rows a thread (512 threads) instead of 8 (256)
+    bool leanDownsample = true;     // downsample kernels with 1 output row a thread (32 x 8 outputs) instead of 2
+    bool streamFinal = false;       // the last kernel's full-resolution reads and writes marked evict-first
+    bool fuseLastUpsample = true;   // up_0 computed inside the last kernel (off: its own launch writes level 0)
+    bool separableUp0 = true;       // the last kernel's U(up_1) as row sums then columns (off: 4 x 4 taps per texel)
+    bool fastDivide = true;         // the first downsample's bright pass and Karis divisions as __fdividef (2 ulps)
+    // The launches captured once into a CUDA graph and replayed (RGBA16F surfaces, created streams;
+    // captured again when sizes, settings or textures change). Off: it bought 1-2% and textures
+    // mapped per call (map/unmap) would be captured anew every frame.
+    bool graph = false;
+};
+
 // Device-buffer runs (fp32 intermediates) for tests and the benchmark.
 ImageF bloomOnDevice(const ImageF& hdr, const post::BloomParams& p,
                      BloomBlur blur = BloomBlur::Auto);  // the bloom buffer
@@ -119,8 +140,31 @@ struct BloomKernelTime {
     double copyBytesPerSecond = 0.0;
     bool tensorCores = false;  // the blur ran on the tensor cores
 };
+// One launch of the mip chain timed alone (no overlap with its neighbours): median ms and the bytes
+// it reads and writes at least.
+struct MipChainStep {
+    std::string name;  // "down0", "down1", ..., "tail", "up3", ..., "final"
+    double ms = 0.0, bytes = 0.0;
+};
+// With `steps`, the mip chain is also run `iterations` more times with each launch timed alone.
 BloomKernelTime timeBloomCompositeKernels(int width, int height, const post::BloomParams& p, BloomBlur blur,
-                                          int iterations, bool composite = true);
+                                          int iterations, bool composite = true, const MipChainTuning& tuning = {},
+                                          std::vector<MipChainStep>* steps = nullptr);
+// The surface path without GL: `hdr` uploaded into an RGBA16F CUDA array (rounded to fp16), the
+// bloom + composite in place (or, with composite false, the bloom alone) on a created stream as
+// the passes run it, both arrays read back.
+BloomAndComposite bloomCompositeOnHalfArrays(const ImageF& hdr, const post::BloomParams& p,
+                                             BloomBlur blur = BloomBlur::Auto, bool composite = true,
+                                             const MipChainTuning& tuning = {});
+// The achievable bandwidth of plain copies of an RGBA16F image, the baseline of the kernels'
+// floors: one kernel copying CUDA array to CUDA array through surfaces (the GL textures' layout)
+// and one copying linear memory to linear memory (16-byte loads and stores); medians of
+// `iterations` CUDA-event timings, and the device-to-device cudaMemcpy bandwidth as above.
+struct CopyKernelTimes {
+    double arrayMs = 0.0, linearMs = 0.0;
+    double copyBytesPerSecond = 0.0;
+};
+CopyKernelTimes timeHalf4Copies(int width, int height, int iterations);
 ImageF compositeOnDevice(const ImageF& hdr, const ImageF& bloom, float strength);
 ImageF toonOnDevice(const ImageF& hdr, const ImageF& position, const ImageF& normal, const post::ToonParams& p);
 

@@ -179,24 +179,34 @@ TEST(CudaKernels, FusedBloomCompositeMatchesSeparateSteps) {
 }
 
 // The fused path on GL textures: the bloom texture as bloom() writes it, the HDR texture as
-// composite() would leave it, within 2 fp16 ulps of the CPU reference.
+// composite() would leave it, within 2 fp16 ulps of the CPU reference (separable); the mip chain,
+// whose levels are fp16 there as in GLSL, within 4 of the reference's fp16 chain (see
+// tests/cuda/test_mip_chain.cpp).
 TEST(CudaInterop, FusedBloomCompositeOnGlTexturesMatchesReference) {
     if (skipWithoutDevice()) GTEST_SKIP() << "no CUDA device: " << cuda::postDeviceProblem();
     std::unique_ptr<gl::GpuContext> ctx = gl::createHeadlessContext();
     if (!ctx->isNvidia()) GTEST_SKIP() << "the headless GL context is not NVIDIA (" << ctx->info().renderer << ")";
     const ImageF hdrIn = randomHdr(7);
-    const BloomParams p = params(25, BloomMethod::Separable);
-    gl::Texture hdr = gl::makeTexture2D(GL_RGBA16F, kW, kH, 1, "test.hdr");
-    gl::Texture bloom = gl::makeTexture2D(GL_RGBA16F, kW, kH, 1, "test.bloom");
-    glTextureSubImage2D(hdr.id(), 0, 0, 0, kW, kH, GL_RGBA, GL_FLOAT, hdrIn.rgba.data());
     cuda::PostInterop interop;
-    interop.bloomComposite(hdr.id(), bloom.id(), kW, kH, p);
-    ImageF gotBloom = makeImage(kW, kH), gotHdr = makeImage(kW, kH);
-    glGetTextureImage(bloom.id(), 0, GL_RGBA, GL_FLOAT, GLsizei(gotBloom.rgba.size() * 4), gotBloom.rgba.data());
-    glGetTextureImage(hdr.id(), 0, GL_RGBA, GL_FLOAT, GLsizei(gotHdr.rgba.size() * 4), gotHdr.rgba.data());
-    const ImageF refBloom = post::bloomBuffer(hdrIn, p, Storage::Float);
-    EXPECT_LE(maxRelError(gotBloom, refBloom), 2.0 / 1024.0);
-    EXPECT_LE(maxRelError(gotHdr, post::compositeBloom(hdrIn, refBloom, p.strength)), 2.0 / 1024.0);
+    for (BloomMethod m : {BloomMethod::Separable, BloomMethod::MipChain})
+        for (int kernel : {25, 101}) {
+            const BloomParams p = params(kernel, m);
+            gl::Texture hdr = gl::makeTexture2D(GL_RGBA16F, kW, kH, 1, "test.hdr");
+            gl::Texture bloom = gl::makeTexture2D(GL_RGBA16F, kW, kH, 1, "test.bloom");
+            glTextureSubImage2D(hdr.id(), 0, 0, 0, kW, kH, GL_RGBA, GL_FLOAT, hdrIn.rgba.data());
+            interop.bloomComposite(hdr.id(), bloom.id(), kW, kH, p);
+            ImageF gotBloom = makeImage(kW, kH), gotHdr = makeImage(kW, kH);
+            glGetTextureImage(bloom.id(), 0, GL_RGBA, GL_FLOAT, GLsizei(gotBloom.rgba.size() * 4), gotBloom.rgba.data());
+            glGetTextureImage(hdr.id(), 0, GL_RGBA, GL_FLOAT, GLsizei(gotHdr.rgba.size() * 4), gotHdr.rgba.data());
+            const bool mip = m == BloomMethod::MipChain;
+            const ImageF refBloom = post::bloomBuffer(hdrIn, p, mip ? Storage::Half : Storage::Float);
+            const double bound = (mip ? 4.0 : 2.0) / 1024.0;
+            EXPECT_LE(maxRelError(gotBloom, refBloom), bound) << "method " << int(m) << " kernel " << kernel;
+            EXPECT_LE(maxRelError(gotHdr, post::compositeBloom(hdrIn, refBloom, p.strength)), bound)
+                << "method " << int(m) << " kernel " << kernel;
+            interop.forgetTexture(hdr.id());
+            interop.forgetTexture(bloom.id());
+        }
 }
 
 // Shared textures (external memory, no map/unmap), under each ordering: Vulkan semaphores (GL

@@ -1,0 +1,184 @@
+// The CUDA mip-chain bloom (cuda/bloom_mip_chain.cu) against the CPU reference: on RGBA16F CUDA
+// arrays (the passes' path: fp16 levels, as the GLSL path's RGBA16F mips, so against the
+// reference's Storage::Half) and on fp32 device buffers (against Storage::Float), on sizes off its
+// 32x16 / 64x32 tiles, with and without the one-block tail of small levels, with one level only
+// (kernel <= 2, images narrower than two texels) and on images smaller than the chain. Skips where
+// no CUDA device exists.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <random>
+
+#include "cuda/post_cuda.hpp"
+#include "engine/post/post_reference.hpp"
+
+using namespace lp;
+using post::BloomMethod;
+using post::BloomParams;
+using post::Storage;
+
+namespace {
+
+ImageF randomHdr(int w, int h, unsigned seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> base(0.0f, 2.0f), bright(2.0f, 40.0f), pick(0.0f, 1.0f);
+    ImageF img;
+    img.width = w;
+    img.height = h;
+    img.rgba.assign(size_t(w) * size_t(h) * 4, 1.0f);
+    for (size_t i = 0; i < img.rgba.size(); ++i)
+        if (i % 4 != 3) img.rgba[i] = post::roundToHalf(pick(rng) < 0.1f ? bright(rng) : base(rng));
+    return img;
+}
+
+// |d| / (|ref| + 1e-3), colour channels, as the other CUDA tests.
+double maxRelError(const ImageF& got, const ImageF& ref) {
+    double worst = 0.0;
+    for (size_t i = 0; i < got.rgba.size(); ++i)
+        if (i % 4 != 3)
+            worst = std::max(worst, std::fabs(double(got.rgba[i]) - double(ref.rgba[i])) / (std::fabs(double(ref.rgba[i])) + 1e-3));
+    return worst;
+}
+
+BloomParams mipChain(int kernel, bool karis = true) {
+    BloomParams p;
+    p.kernel = kernel;
+    p.method = BloomMethod::MipChain;
+    p.strength = 0.5f;
+    p.karis = karis;
+    return p;
+}
+
+bool skipWithoutDevice() {
+    const std::string problem = cuda::postDeviceProblem();
+    if (problem.empty()) return false;
+    std::printf("  no CUDA device here (%s): CUDA tests skipped\n", problem.c_str());
+    return true;
+}
+
+}  // namespace
+
+// Bound: 4 fp16 ulps relative (4 / 1024; GLSL's mip chain is held to 8). The kernels and the
+// reference round every level to fp16 alike; fp32 FMA contraction and summation order may flip a
+// level's rounding by one ulp, which reaches the bloom diluted, plus the bloom's and the
+// composite's own roundings.
+TEST(CudaMipChain, HalfArraysMatchReferenceOnOddSizes) {
+    if (skipWithoutDevice()) GTEST_SKIP() << "no CUDA device: " << cuda::postDeviceProblem();
+    struct Case {
+        int w, h;
+        std::vector<int> kernels;
+    };
+    const Case cases[] = {
+        {1301, 611, {2, 5, 25, 100}},  // 100: tile kernels for levels 1-2, the tail from level 3; 5: no tail
+        {97, 45, {1, 5, 101}},         // the tail from level 1
+        {64, 48, {5, 25, 101}},
+        {33, 65, {5, 101}},
+        {7, 3, {5, 101}},              // one level (3 / 2 = 1 row)
+        {130, 1, {5, 101}},
+        {1, 70, {5, 101}},
+        {2, 2, {101}},
+    };
+    unsigned seed = 50;
+    for (const Case& c : cases) {
+        const ImageF hdr = randomHdr(c.w, c.h, seed++);
+        for (int kernel : c.kernels)
+            for (bool karis : {true, false}) {
+                if (!karis && kernel != 101 && kernel != 100) continue;
+                const BloomParams p = mipChain(kernel, karis);
+                const ImageF bloom = post::bloomBuffer(hdr, p, Storage::Half);
+                const cuda::BloomAndComposite got = cuda::bloomCompositeOnHalfArrays(hdr, p);
+                EXPECT_LE(maxRelError(got.bloom, bloom), 4.0 / 1024.0)
+                    << c.w << "x" << c.h << " kernel " << kernel << " karis " << karis;
+                EXPECT_LE(maxRelError(got.hdr, post::compositeBloom(hdr, bloom, p.strength)), 4.0 / 1024.0)
+                    << c.w << "x" << c.h << " kernel " << kernel << " karis " << karis;
+                if (kernel == 100 || kernel == 101) {  // the bloom alone (not in place): same bloom, HDR untouched
+                    const cuda::BloomAndComposite alone = cuda::bloomCompositeOnHalfArrays(hdr, p, cuda::BloomBlur::Auto, false);
+                    EXPECT_LE(maxRelError(alone.bloom, bloom), 4.0 / 1024.0) << c.w << "x" << c.h << " kernel " << kernel;
+                    EXPECT_EQ(maxRelError(alone.hdr, hdr), 0.0) << c.w << "x" << c.h << " kernel " << kernel;
+                }
+            }
+    }
+}
+
+// The other paths the benchmark measures: without the one-block tail (every level its own
+// launches), with the tail from level 1, without programmatic dependent launches, with plain HDR
+// reads, with the wide downsample and upsample kernels (more rows a thread), with exact divisions,
+// with streamed final accesses, with level 0 persisting in L2, captured into a CUDA graph (the
+// result of its replay), with up_0 in its own launch, with the last kernel's up_0 from 4 x 4 taps,
+// and the first version's settings; same bound as above.
+TEST(CudaMipChain, EveryTuningMatchesReference) {
+    if (skipWithoutDevice()) GTEST_SKIP() << "no CUDA device: " << cuda::postDeviceProblem();
+    const ImageF hdr = randomHdr(700, 390, 70);
+    cuda::MipChainTuning noTail, allTail, noOverlap, plainReads, wideUp, wideDown, wideNoTail, exact, streamedFinal,
+        persisting, graph, wideGraph, split, wideSplit, directUp0, first;
+    noTail.tailTexels = 0;
+    allTail.tailTexels = 1 << 30;
+    noOverlap.programmaticLaunch = false;
+    plainReads.streamHdrReads = false;
+    wideUp.leanUpsample = false;
+    wideDown.leanDownsample = false;
+    wideNoTail.leanUpsample = wideNoTail.leanDownsample = false;
+    wideNoTail.tailTexels = 0;
+    exact.fastDivide = false;
+    streamedFinal.streamFinal = true;
+    persisting.persistLevel0 = true;
+    graph.graph = true;
+    wideGraph.graph = true;
+    wideGraph.leanUpsample = wideGraph.leanDownsample = false;
+    split.fuseLastUpsample = false;
+    wideSplit.fuseLastUpsample = wideSplit.leanUpsample = false;
+    directUp0.separableUp0 = false;
+    first.leanUpsample = first.leanDownsample = first.fastDivide = false;
+    first.streamFinal = true;
+    for (int kernel : {5, 100}) {
+        const BloomParams p = mipChain(kernel);
+        const ImageF bloom = post::bloomBuffer(hdr, p, Storage::Half);
+        const ImageF composite = post::compositeBloom(hdr, bloom, p.strength);
+        for (const auto& [name, tuning] :
+             {std::pair{"no tail", noTail}, std::pair{"all in the tail", allTail}, std::pair{"no overlap", noOverlap},
+              std::pair{"plain HDR reads", plainReads}, std::pair{"wide upsample", wideUp},
+              std::pair{"wide downsample", wideDown}, std::pair{"wide, no tail", wideNoTail},
+              std::pair{"exact divisions", exact}, std::pair{"streamed final accesses", streamedFinal},
+              std::pair{"level 0 persisting in L2", persisting}, std::pair{"graph (replayed)", graph},
+              std::pair{"wide graph (replayed)", wideGraph}, std::pair{"up_0 in its own launch", split},
+              std::pair{"up_0 in its own wide launch", wideSplit}, std::pair{"4 x 4 taps for up_0", directUp0},
+              std::pair{"first version", first}}) {
+            const cuda::BloomAndComposite got = cuda::bloomCompositeOnHalfArrays(hdr, p, cuda::BloomBlur::Auto, true, tuning);
+            EXPECT_LE(maxRelError(got.bloom, bloom), 4.0 / 1024.0) << name << " kernel " << kernel;
+            EXPECT_LE(maxRelError(got.hdr, composite), 4.0 / 1024.0) << name << " kernel " << kernel;
+        }
+    }
+}
+
+// fp32 device buffers, the fused bloom + composite in place, on an image of many tiles: the bloom
+// within 1e-5 of the fp32 reference, the composite within 1 fp16 ulp (as the other CUDA tests).
+TEST(CudaMipChain, BuffersMatchFp32ReferenceOnALargeImage) {
+    if (skipWithoutDevice()) GTEST_SKIP() << "no CUDA device: " << cuda::postDeviceProblem();
+    const ImageF hdr = randomHdr(1301, 611, 60);
+    for (int kernel : {5, 100}) {
+        const BloomParams p = mipChain(kernel);
+        const ImageF bloom = post::bloomBuffer(hdr, p, Storage::Float);
+        const cuda::BloomAndComposite got = cuda::bloomCompositeOnDevice(hdr, p);
+        EXPECT_LE(maxRelError(got.bloom, bloom), 1e-5) << "kernel " << kernel;
+        EXPECT_LE(maxRelError(got.hdr, post::compositeBloom(hdr, bloom, p.strength)), 1.0 / 1024.0) << "kernel " << kernel;
+        EXPECT_LE(maxRelError(cuda::bloomOnDevice(hdr, p), bloom), 1e-5) << "kernel " << kernel << " bloom alone";
+    }
+}
+
+// A constant image stays constant through the fp16 chain (every filter has unit sum): c = 3
+// bright-passes to 2; bloom 2 and composite 3 + 0.5 * 2 = 4 within 1 fp16 ulp.
+TEST(CudaMipChain, ConstantImageStaysConstantOnHalfArrays) {
+    if (skipWithoutDevice()) GTEST_SKIP() << "no CUDA device: " << cuda::postDeviceProblem();
+    ImageF hdr;
+    hdr.width = 300;
+    hdr.height = 170;
+    hdr.rgba.assign(size_t(hdr.width) * size_t(hdr.height) * 4, 3.0f);
+    for (int kernel : {5, 100}) {
+        const cuda::BloomAndComposite got = cuda::bloomCompositeOnHalfArrays(hdr, mipChain(kernel));
+        for (size_t i = 0; i < got.bloom.rgba.size(); i += 4) {
+            ASSERT_NEAR(got.bloom.rgba[i + 1], 2.0, 2.0 / 1024.0) << "kernel " << kernel << " texel " << i / 4;
+            ASSERT_NEAR(got.hdr.rgba[i + 1], 4.0, 4.0 / 1024.0) << "kernel " << kernel << " texel " << i / 4;
+        }
+    }
+}
