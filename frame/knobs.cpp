@@ -262,6 +262,16 @@ std::vector<KnobEntry> makeKnobTable() {
         t.push_back(std::move(k));
     }
     {
+        KnobEntry k = choiceKnob("shadow-scroll", [](auto& s) -> auto& { return s.shadows.scroll; }, std::vector<bool>{true, false},
+                                 [](bool on) { return on ? "on" : "off"; });
+        k.flags = {valueFlag("--shadow-scroll")};
+        k.help = "with --shadow-cache: a cascade whose square moved by whole texels keeps the overlapping part of its tile, "
+                 "moved by a GPU copy, and redraws only the newly covered strips (off: the whole tile is redrawn)";
+        k.choiceNoun = "setting";
+        k.panel = {PanelSection::Shadows, PanelWidget::Combo, "cascade scroll", ""};
+        t.push_back(std::move(k));
+    }
+    {
         KnobEntry k = floatKnob("shadow-origin-step", [](auto& s) -> auto& { return s.shadows.originStep; },
                                 {0.0, double(kMaxShadowOriginStep)});
         k.flags = {valueFlag("--shadow-origin-step")};

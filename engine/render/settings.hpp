@@ -68,6 +68,10 @@ struct ShadowSettings {         // directional-light shadow maps (passes/shadow_
     // Keep each light's atlas across frames and redraw a cascade's tile only when what it would hold
     // changed (its light matrix, the casters, the raster or slope bias); passes/shadow_map_pass.hpp.
     bool cache = true;
+    // With the cache on: a cascade whose square only moved by whole texels (same size, light and
+    // depth range, casters) keeps the part of its old tile the new square overlaps, moved by that
+    // many texels, and redraws only the strips it newly covers (passes/shadow_map_pass.hpp).
+    bool scroll = true;
     // Room each cascade's square leaves for the camera to move in, as a fraction of its side: the
     // square is that much larger than its slice needs and its origin moves in steps of that much (at
     // least one texel), so a moving camera redraws it less often (engine/render/shadows.hpp).
