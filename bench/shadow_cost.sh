@@ -19,8 +19,8 @@
 #     and plain, 600 frames after 20 (the 8 s path and more): per frame the two suns' shadow passes
 #     summed; mean, median, 99th percentile and maximum, tiles kept / scrolled / drawn whole per
 #     cascade: shadow_cost_scroll.json -> OUTDIR/shadow_cost_scroll.md (also at the top of
-#     shadow_cost.md); then scroll on, conservative-hardware x --shadow-origin-step 1/64, 1/32, 1/8
-#     (the default 1/16 is in the first): shadow_cost_scroll_origin_step.json. Runs first;
+#     shadow_cost.md); then conservative-hardware with scroll on at --shadow-origin-step 1/32, and
+#     --shadow-size-hold on with scroll on and off: shadow_cost_scroll_variants.json. Runs first;
 #     SCROLL_ONLY=1 runs the gl_tests and this alone (about 3 minutes).
 # Per variant: the shadow passes' GPU ms summed (median of 200 frames after 20) against the floor
 # of drawing every atlas texel every frame (depth bytes at the fragment fill, --floors), the share
@@ -68,13 +68,14 @@ $B/run bench --scene $S --time 1 --fps 60 --frames 600 --warmup 20 --size 1920x1
   --vary '--shadow-raster conservative --shadow-conservative hardware|--shadow-raster split --shadow-conservative hardware|--shadow-raster plain' \
   --timings-json $R/shadow_cost_scroll.json -q > /dev/null 2> $R/bench_scroll_progress.txt \
   || { echo "scroll bench failed"; tail -3 $R/bench_scroll_progress.txt; }
-# With strips this cheap a finer origin step may pay: it gives back resolution (the step's share of
-# each square) for more frequent, narrower scrolls.
+# A finer origin step (resolution back, more and narrower scrolls), and squares that hold their size
+# (--shadow-size-hold: fewer whole redraws on the path's zoom) with scrolling on and off.
 $B/run bench --scene $S --time 1 --fps 60 --frames 600 --warmup 20 --size 1920x1080 $COMMON --shadow-cache on \
-  --shadow-scroll on --shadow-raster conservative --shadow-conservative hardware --vary '--shadow-origin-step 0.015625,0.03125,0.125' \
-  --timings-json $R/shadow_cost_scroll_origin_step.json -q > /dev/null 2>> $R/bench_scroll_progress.txt \
+  --shadow-raster conservative --shadow-conservative hardware \
+  --vary '--shadow-scroll on --shadow-origin-step 0.03125|--shadow-scroll on --shadow-size-hold on|--shadow-scroll off --shadow-size-hold on' \
+  --timings-json $R/shadow_cost_scroll_variants.json -q > /dev/null 2>> $R/bench_scroll_progress.txt \
   || { echo "scroll origin-step bench failed"; tail -3 $R/bench_scroll_progress.txt; }
-python3 bench/summarize_shadow_cost.py $R/shadow_cost_scroll.json $R/shadow_cost_scroll_origin_step.json --outdir $R \
+python3 bench/summarize_shadow_cost.py $R/shadow_cost_scroll.json $R/shadow_cost_scroll_variants.json --outdir $R \
   | tee $R/shadow_cost_scroll.md
 [ "${SCROLL_ONLY:-0}" = 1 ] && exit 0
 $BENCH --vary '--shadow-cache off,on' --vary "$VARY" \
@@ -84,7 +85,7 @@ $BENCH --shadow-cache on --vary '--shadow-origin-step 0,0.03125,0.0625,0.125,0.2
   --timings-json $R/shadow_cost_origin_step.json -q > /dev/null 2>> $R/bench_progress.txt || { echo "bench failed"; tail -3 $R/bench_progress.txt; }
 $BENCH --shadow-cache off --no-shadow-culling --vary "$VARY" \
   --timings-json $R/shadow_cost_culling.json -q > /dev/null 2>> $R/bench_progress.txt || { echo "bench failed"; tail -3 $R/bench_progress.txt; }
-python3 bench/summarize_shadow_cost.py $R/shadow_cost_scroll.json $R/shadow_cost_scroll_origin_step.json $R/shadow_cost.json $R/shadow_cost_origin_step.json $R/shadow_cost_culling.json \
+python3 bench/summarize_shadow_cost.py $R/shadow_cost_scroll.json $R/shadow_cost_scroll_variants.json $R/shadow_cost.json $R/shadow_cost_origin_step.json $R/shadow_cost_culling.json \
   --outdir $R | tee $R/shadow_cost.md
 # What the hardware conservative raster's time is made of (cache off, culling on): the same draws
 # (conservative coverage, one draw per facing, the faces away offset nearer) with fragment shaders

@@ -653,7 +653,10 @@ ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const
     for (int light : shadowed) {
         LightShadowMap map;
         map.light = light;
-        map.frustum = fitShadowFrustum(frame, frame.scene->directionalLights[size_t(light)].direction);
+        const auto held = state.previousFrusta.find(light);
+        map.frustum = fitShadowFrustum(frame, frame.scene->directionalLights[size_t(light)].direction,
+                                       held == state.previousFrusta.end() ? nullptr : &held->second);
+        state.previousFrusta[light] = map.frustum;
         const ShadowFrustum& fr = map.frustum;
         const std::string name = "shadow_map_" + std::to_string(light);
         // A small scene needs fewer cascades than asked for: say which were dropped and why.

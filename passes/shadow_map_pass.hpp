@@ -170,6 +170,8 @@ struct ShadowMapPass {
     std::string autoReport;  // the line logged: the choice, the measured times or "cached", the file
     // --shadow-cache on: one kept atlas per shadowed light
     std::map<int, ShadowAtlasCache> atlases;  // by light index
+    // --shadow-size-hold: each shadowed light's cascades of the last frame (fitShadowFrustum's `previous`)
+    std::map<int, ShadowFrustum> previousFrusta;
     ShadowCacheStats cacheStats;
     size_t cacheBytes() const;  // GPU bytes of the kept atlases
 };

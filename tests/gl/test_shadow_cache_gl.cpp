@@ -409,3 +409,50 @@ TEST(ShadowCache, SizeChangeAndScrollOffRedrawWholeTiles) {
     EXPECT_GT(moved, 0u) << "no square moved on the walk";
     EXPECT_EQ(state.cacheStats.scrolled, 0u);
 }
+
+// --shadow-size-hold on a camera that zooms back and forth while it walks: fewer tiles are redrawn
+// whole for a changed light matrix than without it (the squares keep their size, so moves scroll),
+// and every frame's atlas is within the scroll bound of a fresh redraw of the same frusta (the fresh
+// pass is given the same previous frame to hold from).
+TEST(ShadowCache, SizeHoldTurnsResizesIntoScrolls) {
+    auto walk = [](bool hold, size_t& resized, size_t& scrolled) {
+        Scene scene = castersOnAFloor();
+        SceneGpu gpu(scene);
+        RenderSettings settings = smallCascades(ShadowSettings::Raster::Plain);
+        settings.shadows.sizeHold = hold;
+        ShadowMapPass state;
+        fg::TexturePool pool;
+        std::vector<std::string> notes;
+        drawTiles(scene, gpu, settings, state, pool);
+        resized = scrolled = 0;
+        for (int step = 1; step <= 8; ++step) {
+            scene.camera.position += glm::vec3(0.05f, 0.0f, -0.3f);
+            scene.camera.target += glm::vec3(0.05f, 0.0f, -0.3f);
+            scene.camera.fovYDegrees = step % 2 ? 47.0f : 45.0f;
+            ShadowMapPass fresh;
+            fresh.previousFrusta = state.previousFrusta;  // what the kept pass holds from
+            settings.shadows.cache = false;
+            fg::TexturePool freshPool;
+            const Tiles redrawn = drawTiles(scene, gpu, settings, fresh, freshPool);
+            settings.shadows.cache = true;
+            const Tiles now = drawTiles(scene, gpu, settings, state, pool, &notes);
+            resized += countNotes(notes, "redrawn (light matrix changed)");
+            scrolled += countNotes(notes, "scrolled by (");
+            ASSERT_EQ(now.depth.size(), redrawn.depth.size());
+            const size_t side = size_t(settings.shadows.size);
+            for (size_t c = 0; c < now.depth.size(); ++c) {
+                const ScrollDifference d = compareScrolled(now.depth[c], redrawn.depth[c], side);
+                EXPECT_LE(double(d.beyond), kShadowScrollMaxDifferingFraction * double(side * side)) << "step " << step << " cascade " << c;
+                EXPECT_EQ(d.awayFromEdges, 0u) << "step " << step << " cascade " << c;
+            }
+        }
+    };
+    size_t resizedHeld = 0, scrolledHeld = 0, resizedFree = 0, scrolledFree = 0;
+    walk(true, resizedHeld, scrolledHeld);
+    walk(false, resizedFree, scrolledFree);
+    std::printf("zooming walk: %zu tiles redrawn for a changed light matrix with --shadow-size-hold, %zu without; "
+                "scrolled %zu / %zu\n", resizedHeld, resizedFree, scrolledHeld, scrolledFree);
+    EXPECT_GT(resizedFree, 0u) << "the zoom resized nothing: the test proves nothing";
+    EXPECT_LT(resizedHeld, resizedFree);
+    EXPECT_GT(scrolledHeld, 0u);
+}

@@ -140,9 +140,10 @@ TEST(ShadowCascades, PracticalSplitsInterpolateLinearAndLog) {
 
 // Every point of the camera's view volume that lies inside [lo, hi] falls inside its cascade's
 // orthographic box (|x|, |y| <= 1, z in [-1, 1]) - checked on a 9x9x33 grid; returns the points checked.
-int expectCascadesCover(const Scene& s, const RenderSettings& settings, glm::vec3 lo, glm::vec3 hi, const std::string& what) {
+int expectCascadesCover(const Scene& s, const RenderSettings& settings, glm::vec3 lo, glm::vec3 hi, const std::string& what,
+                        const ShadowFrustum* previous = nullptr) {
     FrameData frame = makeFrameData(s, settings, 0.0f);
-    ShadowFrustum fr = fitShadowFrustum(frame, s.directionalLights[0].direction);
+    ShadowFrustum fr = fitShadowFrustum(frame, s.directionalLights[0].direction, previous);
     const glm::mat4 invVp = glm::inverse(frame.projection * frame.view);
     int inside = 0;
     for (int iz = 0; iz <= 32; ++iz)
@@ -447,4 +448,47 @@ TEST(ShadowScroll, OffsetIsTheOriginsWholeTexelMove) {
     b.worldToClip[3].x = 2.0f * 3.0f / float(side);
     b.slopeBias = 2.0f;  // anything else differing: no scroll
     EXPECT_FALSE(shadowTileScroll(a, b));
+}
+
+// --shadow-size-hold: a camera that zooms in a little keeps every square's side (it still holds the
+// slice), zooming back out keeps it too, zooming out far grows it, and zooming in far (past
+// kShadowSizeHoldRatio) shrinks it; without the setting or without a previous frame the fit is the
+// usual one. Every held square still covers what the cascade needs (its side >= the slice's need).
+TEST(ShadowCascades, SizeHoldKeepsTheSquaresSideWithinTheBand) {
+    const glm::vec3 lo(-50, 0, -50), hi(50, 5, 50);
+    Scene s = boundsScene(lo, hi, {true});
+    s.camera.farPlane = 80.0f;
+    RenderSettings settings = small();
+    settings.shadows.sizeHold = true;
+    auto fit = [&](float fov, const ShadowFrustum* previous) {
+        s.camera.fovYDegrees = fov;
+        return fitShadowFrustum(makeFrameData(s, settings, 0.0f), s.directionalLights[0].direction, previous);
+    };
+    const ShadowFrustum first = fit(45.0f, nullptr);
+    ASSERT_EQ(first.cascades.size(), 4u);
+    const ShadowFrustum unheld = fit(42.0f, nullptr);
+    const ShadowFrustum held = fit(42.0f, &first);
+    size_t smallerWithoutHold = 0;
+    for (size_t c = 0; c < 4; ++c) {
+        EXPECT_EQ(held.cascades[c].side, first.cascades[c].side) << c;
+        EXPECT_EQ(glm::mat3(held.cascades[c].worldToClip), glm::mat3(first.cascades[c].worldToClip)) << c;
+        EXPECT_GE(held.cascades[c].side, unheld.cascades[c].side) << c;
+        smallerWithoutHold += unheld.cascades[c].side < first.cascades[c].side ? 1 : 0;
+    }
+    EXPECT_GT(smallerWithoutHold, 0u) << "the zoom changed no square: the test proves nothing";
+    const ShadowFrustum back = fit(45.0f, &held);
+    for (size_t c = 0; c < 4; ++c) EXPECT_EQ(back.cascades[c].side, first.cascades[c].side) << c;
+    const ShadowFrustum wider = fit(60.0f, &back), narrower = fit(30.0f, &back);
+    for (size_t c = 0; c + 1 < 4; ++c) {  // the near ones (the last may span the scene whatever the zoom)
+        EXPECT_GT(wider.cascades[c].side, first.cascades[c].side) << c;
+        EXPECT_LT(narrower.cascades[c].side, first.cascades[c].side) << c;
+        EXPECT_EQ(narrower.cascades[c].side, fit(30.0f, nullptr).cascades[c].side) << c;
+    }
+    settings.shadows.sizeHold = false;
+    const ShadowFrustum off = fit(42.0f, &first);
+    for (size_t c = 0; c < 4; ++c) EXPECT_EQ(off.cascades[c].side, unheld.cascades[c].side) << c;
+    settings.shadows.sizeHold = true;
+    // The held squares still cover the visible scene inside their boxes (as the unheld ones must).
+    s.camera.fovYDegrees = 42.0f;
+    EXPECT_GT(expectCascadesCover(s, settings, lo, hi, "held", &first), 500);
 }
