@@ -332,17 +332,39 @@ std::vector<ShadowTileWork> wholeTiles(const ShadowFrustum& fr, const std::vecto
     return work;
 }
 
-// Moves the kept part of each scrolled tile (--shadow-scroll) by its offset: copied out into the
-// scratch tile and back at its new place, inside the tile (a copy within one texture may not overlap).
+// Moves the kept part of each scrolled tile (--shadow-scroll) by its offset, within the tile (a copy
+// within one texture may not overlap its source): as a memmove, in bands as wide as the shift along
+// its larger axis, the band whose destination no later band reads from first (one pass over the
+// texels), where that takes at most kShadowScrollMaxBands copies; otherwise out to the scratch tile
+// and back (two passes).
 void scrollTiles(ShadowMapPass& state, const ShadowFrustum& fr, const std::vector<ShadowTileWork>& work, GLuint depthTexture) {
     for (size_t c = 0; c < work.size(); ++c) {
         if (!work[c].scrolled) continue;
+        const glm::ivec2 o = work[c].offset;
+        const GLint x = GLint(c % size_t(fr.columns)) * fr.tileSize, y = GLint(c / size_t(fr.columns)) * fr.tileSize;
+        const TileRect k = shadowScrollKeptRect(o, fr.tileSize);
+        auto copy = [&](int dx0, int dy0, int w, int h) {  // the kept texels [dx0, +w) x [dy0, +h), from their old place
+            glCopyImageSubData(depthTexture, GL_TEXTURE_2D, 0, x + dx0 - o.x, y + dy0 - o.y, 0, depthTexture, GL_TEXTURE_2D, 0,
+                               x + dx0, y + dy0, 0, w, h, 1);
+        };
+        const bool alongX = std::abs(o.x) >= std::abs(o.y);
+        const int shift = alongX ? std::abs(o.x) : std::abs(o.y), length = alongX ? k.width : k.height;
+        if ((length + shift - 1) / shift <= kShadowScrollMaxBands) {
+            // Content moving towards + goes first at the + end (its sources lie behind it), and the reverse.
+            const bool positive = (alongX ? o.x : o.y) > 0;
+            const int start = alongX ? k.x : k.y;
+            for (int done = 0; done < length; done += shift) {
+                const int width = std::min(shift, length - done);
+                const int from = positive ? start + length - done - width : start + done;
+                if (alongX) copy(from, k.y, width, k.height);
+                else copy(k.x, from, k.width, width);
+            }
+            continue;
+        }
         if (!state.scrollScratch || state.scrollScratch.width != fr.tileSize || state.scrollScratch.height != fr.tileSize)
             state.scrollScratch = gl::makeTexture2D(GL_DEPTH_COMPONENT32F, fr.tileSize, fr.tileSize, 1, "shadow_map.scroll_scratch");
-        const GLint x = GLint(c % size_t(fr.columns)) * fr.tileSize, y = GLint(c / size_t(fr.columns)) * fr.tileSize;
-        const TileRect k = shadowScrollKeptRect(work[c].offset, fr.tileSize);
-        glCopyImageSubData(depthTexture, GL_TEXTURE_2D, 0, x + k.x - work[c].offset.x, y + k.y - work[c].offset.y, 0,
-                           state.scrollScratch.id(), GL_TEXTURE_2D, 0, 0, 0, 0, k.width, k.height, 1);
+        glCopyImageSubData(depthTexture, GL_TEXTURE_2D, 0, x + k.x - o.x, y + k.y - o.y, 0, state.scrollScratch.id(),
+                           GL_TEXTURE_2D, 0, 0, 0, 0, k.width, k.height, 1);
         glCopyImageSubData(state.scrollScratch.id(), GL_TEXTURE_2D, 0, 0, 0, 0, depthTexture, GL_TEXTURE_2D, 0, x + k.x,
                            y + k.y, 0, k.width, k.height, 1);
     }

@@ -26,10 +26,11 @@
 // --shadow-scroll on (the default, with the cache): a tile whose key differs from the kept one only
 // in the square's origin (same light rotation, size and depth range, so the same depth for every
 // caster point; the same casters, raster and bias) is scrolled instead of redrawn: the part of the
-// old tile the new square still covers is moved by the whole-texel offset (shadowTileScroll) through
-// a scratch texture (glCopyImageSubData, within the tile), and only the strips outside it
+// old tile the new square still covers is moved by the whole-texel offset (shadowTileScroll) by
+// glCopyImageSubData within the tile, and only the strips outside it
 // (shadowScrollRegions: the newly covered texels plus kShadowScrollMargin texels of the old tile's
-// edge) are cleared and drawn, scissored, with the casters that can reach each strip. The moved
+// edge) are cleared and drawn, scissored, with the casters that can reach each strip. The move is
+// a memmove in bands as wide as the shift (kShadowScrollMaxBands), else through the scratch tile. The moved
 // texels were rasterised with the old matrix, whose translation differs from the new one by the
 // offset up to float rounding: at a caster's silhouette a texel whose centre lies within that
 // rounding of an edge may be covered in one and not the other, and the depth planes round
@@ -102,6 +103,9 @@ struct ShadowCacheStats {
 // rasterised at the tile's border (where a driver may clip the grown casters and a 2x2 quad's
 // derivatives straddle it), so they are not trusted inside the new square.
 constexpr int kShadowScrollMargin = 2;
+// A scrolled tile's kept part moves in place in bands as wide as the shift (one pass) when that
+// takes at most this many copies, else through a scratch tile (two passes).
+constexpr int kShadowScrollMaxBands = 16;
 // The bound the tests hold a scrolled tile to against a fresh redraw of the same frame: every texel
 // within kShadowScrollDepthTolerance of window depth (the moved texels' depth planes were evaluated
 // from vertices rounded differently: a few ulps, up to ~1e-5 where the geometry shader's
@@ -153,7 +157,7 @@ struct ShadowMapPass {
     gl::Program plainProgram;  // --shadow-raster plain, and split's faces towards the light
     gl::Program awayProgram;   // --shadow-raster split: conservative, faces away from the light only
     gl::Framebuffer fbo;
-    gl::Texture scrollScratch;  // D32F, one tile: --shadow-scroll moves a tile's content through it
+    gl::Texture scrollScratch;  // D32F, one tile: --shadow-scroll moves through it what would take too many bands
     // --shadow-raster compute
     gl::Program rasterProgram;   // shadow_raster.comp
     gl::Program resolveProgram;  // R32UI bits -> D32F atlas

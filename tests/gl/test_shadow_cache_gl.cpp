@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <random>
+#include <tuple>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -299,20 +300,25 @@ size_t noteCascade(const std::string& note) { return size_t(std::stoul(note.subs
 // they were. Every raster that scrolls (compute redraws whole tiles).
 TEST(ShadowCache, ScrolledTilesMatchAFreshRedrawWithinTheBound) {
     using Conservative = ShadowSettings::ConservativeRaster;
-    std::vector<std::pair<ShadowSettings::Raster, Conservative>> cases;
+    // The origin step: the default (shifts of 16 texels or more: moved in place in bands) and one
+    // texel (shifts of a few texels: too many bands, moved through the scratch tile).
+    std::vector<std::tuple<ShadowSettings::Raster, Conservative, float>> cases;
     for (ShadowSettings::Raster raster :
          {ShadowSettings::Raster::Plain, ShadowSettings::Raster::Conservative, ShadowSettings::Raster::Split})
-        cases.emplace_back(raster, Conservative::GeometryShader);
+        cases.emplace_back(raster, Conservative::GeometryShader, ShadowSettings{}.originStep);
+    cases.emplace_back(ShadowSettings::Raster::Plain, Conservative::GeometryShader, 0.0f);
     if (queryConservativeRasterSupport().hardware)
         for (ShadowSettings::Raster raster : {ShadowSettings::Raster::Conservative, ShadowSettings::Raster::Split})
-            cases.emplace_back(raster, Conservative::Hardware);
-    for (const auto& [raster, conservative] : cases) {
-        const std::string name =
-            std::string(ShadowSettings::rasterName(raster)) + " (" + ShadowSettings::conservativeRasterName(conservative) + ")";
+            cases.emplace_back(raster, Conservative::Hardware, ShadowSettings{}.originStep);
+    for (const auto& [raster, conservative, originStep] : cases) {
+        const std::string name = std::string(ShadowSettings::rasterName(raster)) + " (" +
+                                 ShadowSettings::conservativeRasterName(conservative) + ", origin step " +
+                                 std::to_string(originStep) + ")";
         Scene scene = castersOnAFloor();
         SceneGpu gpu(scene);
         RenderSettings settings = smallCascades(raster);
         settings.shadows.conservativeRaster = conservative;
+        settings.shadows.originStep = originStep;
         ASSERT_TRUE(settings.shadows.scroll) << "scrolling is the default";
         ShadowMapPass state;
         fg::TexturePool pool;
