@@ -135,7 +135,7 @@ TEST(ShadowCache, KeptTilesEqualAFullRedrawOnAMovingCamera) {
         SceneGpu gpu(scene);
         RenderSettings settings = smallCascades(raster);
         settings.shadows.conservativeRaster = conservative;
-        settings.shadows.scroll = false;  // moved tiles redrawn whole: every tile bit for bit (scrolling: below)
+        settings.shadows.scroll = false;  // the default: moved tiles redrawn whole, every tile bit for bit (scrolling: below)
         ShadowMapPass state;
         fg::TexturePool pool;
         std::vector<std::string> notes;
@@ -319,7 +319,7 @@ TEST(ShadowCache, ScrolledTilesMatchAFreshRedrawWithinTheBound) {
         RenderSettings settings = smallCascades(raster);
         settings.shadows.conservativeRaster = conservative;
         settings.shadows.originStep = originStep;
-        ASSERT_TRUE(settings.shadows.scroll) << "scrolling is the default";
+        settings.shadows.scroll = true;
         ShadowMapPass state;
         fg::TexturePool pool;
         std::vector<std::string> notes;
@@ -384,6 +384,7 @@ TEST(ShadowCache, SizeChangeAndScrollOffRedrawWholeTiles) {
     Scene scene = castersOnAFloor();
     SceneGpu gpu(scene);
     RenderSettings settings = smallCascades(ShadowSettings::Raster::Plain);
+    settings.shadows.scroll = true;  // even scrolling redraws a resized square whole
     ShadowMapPass state;
     fg::TexturePool pool;
     std::vector<std::string> notes;
@@ -426,6 +427,7 @@ TEST(ShadowCache, SizeHoldTurnsResizesIntoScrolls) {
         SceneGpu gpu(scene);
         RenderSettings settings = smallCascades(ShadowSettings::Raster::Plain);
         settings.shadows.sizeHold = hold;
+        settings.shadows.scroll = true;
         ShadowMapPass state;
         fg::TexturePool pool;
         std::vector<std::string> notes;
