@@ -139,14 +139,14 @@ def scroll_table(path):
         sums = per_frame(shadow)
         frame = p.get("frame", {}).get("median_ms")
         if not sums:
-            print(f"| {flag(flags, 'shadow-cache', 'on')} | {flag(flags, 'shadow-scroll', 'off')} | "
+            print(f"| {flag(flags, 'shadow-cache', 'on')} | {flag(flags, 'shadow-scroll', 'on')} | "
                   f"{flag(flags, 'shadow-size-hold', 'off')} | {flag(flags, 'shadow-origin-step', '0.0625')} | {raster_name(flags)} | - | - | - | - | - | - | - | - | - |")
             continue
         mean = sum(sums) / len(sums)
         med = percentile(sums, 50)
         p99 = percentile(sums, 99)
         most = max(sums)
-        print(f"| {flag(flags, 'shadow-cache', 'on')} | {flag(flags, 'shadow-scroll', 'off')} | "
+        print(f"| {flag(flags, 'shadow-cache', 'on')} | {flag(flags, 'shadow-scroll', 'on')} | "
               f"{flag(flags, 'shadow-size-hold', 'off')} | {flag(flags, 'shadow-origin-step', '0.0625')} | {raster_name(flags)} | {len(sums)} | {mean:.3f} | {med:.3f} | {p99:.3f} | {most:.3f} | {'yes' if p99 <= TARGET_MS else 'no'} | "
               f"{'yes' if most <= TARGET_MS else 'no'} | {scrolled_rates(run)} | {'-' if frame is None else f'{frame:.3f}'} |")
     print()

@@ -262,7 +262,7 @@ std::vector<KnobEntry> makeKnobTable() {
         t.push_back(std::move(k));
     }
     {
-        KnobEntry k = choiceKnob("shadow-scroll", [](auto& s) -> auto& { return s.shadows.scroll; }, std::vector<bool>{false, true},
+        KnobEntry k = choiceKnob("shadow-scroll", [](auto& s) -> auto& { return s.shadows.scroll; }, std::vector<bool>{true, false},
                                  [](bool on) { return on ? "on" : "off"; });
         k.flags = {valueFlag("--shadow-scroll")};
         k.help = "with --shadow-cache: a cascade whose square moved by whole texels keeps the overlapping part of its tile, "

@@ -23,7 +23,7 @@
 // --explain' and the pass notes say per cascade "redrawn (why)" or "kept"; render and bench count
 // them (ShadowCacheStats). --shadow-cache off: a transient atlas, every cascade drawn every frame.
 //
-// --shadow-scroll on (with the cache; off by default): a tile whose key differs from the kept one only
+// --shadow-scroll on (the default, with the cache): a tile whose key differs from the kept one only
 // in the square's origin (same light rotation, size and depth range, so the same depth for every
 // caster point; the same casters, raster and bias) is scrolled instead of redrawn: the part of the
 // old tile the new square still covers is moved by the whole-texel offset (shadowTileScroll) by

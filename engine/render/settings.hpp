@@ -71,8 +71,8 @@ struct ShadowSettings {         // directional-light shadow maps (passes/shadow_
     // With the cache on: a cascade whose square only moved by whole texels (same size, light and
     // depth range, casters) keeps the part of its old tile the new square overlaps, moved by that
     // many texels, and redraws only the strips it newly covers (passes/shadow_map_pass.hpp).
-    // Off by default: on the H100 it lowered the mean but raised the median (bench/results/shadow_cost).
-    bool scroll = false;
+    // On by default: on the H100 it lowers the mean and the median (bench/results/shadow_cost).
+    bool scroll = true;
     // A cascade's square keeps last frame's size while that still holds its slice and is at most
     // 2^(1/4) larger than needed (engine/render/shadows.hpp): fewer whole redraws on a zooming or
     // moving camera, up to 19% less resolution while held.

@@ -135,7 +135,7 @@ TEST(ShadowCache, KeptTilesEqualAFullRedrawOnAMovingCamera) {
         SceneGpu gpu(scene);
         RenderSettings settings = smallCascades(raster);
         settings.shadows.conservativeRaster = conservative;
-        settings.shadows.scroll = false;  // the default: moved tiles redrawn whole, every tile bit for bit (scrolling: below)
+        settings.shadows.scroll = false;  // moved tiles redrawn whole: every tile bit for bit (scrolling: below)
         ShadowMapPass state;
         fg::TexturePool pool;
         std::vector<std::string> notes;
