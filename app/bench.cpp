@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <iterator>
 #include <cstdio>
 #include <fstream>
@@ -159,11 +160,12 @@ int runBench(const Options& o, const std::vector<std::string>& args) {
         run["frames"] = frames;
         run["transient_texture_bytes"] = renderer.pool().totalBytes();
         const ShadowCacheStats& cache = renderer.shadowCacheStats();
-        if (cache.drawn + cache.kept > 0)
-            run["shadow_cache"] = {{"tiles_drawn", cache.drawn}, {"tiles_kept", cache.kept},
-                                   {"hit_rate", double(cache.kept) / double(cache.kept + cache.drawn)},
+        if (cache.drawn + cache.kept + cache.scrolled > 0)
+            run["shadow_cache"] = {{"tiles_drawn", cache.drawn}, {"tiles_kept", cache.kept}, {"tiles_scrolled", cache.scrolled},
+                                   {"hit_rate", double(cache.kept) / double(cache.kept + cache.drawn + cache.scrolled)},
                                    {"kept_per_cascade", std::vector<uint64_t>(std::begin(cache.keptPerCascade), std::end(cache.keptPerCascade))},
-                                   {"drawn_per_cascade", std::vector<uint64_t>(std::begin(cache.drawnPerCascade), std::end(cache.drawnPerCascade))}};
+                                   {"drawn_per_cascade", std::vector<uint64_t>(std::begin(cache.drawnPerCascade), std::end(cache.drawnPerCascade))},
+                                   {"scrolled_per_cascade", std::vector<uint64_t>(std::begin(cache.scrolledPerCascade), std::end(cache.scrolledPerCascade))}};
         const auto& timers = renderer.timers();
         std::fprintf(stderr, "[%zu/%zu] %-50s frame %9.4f ms (%d frames)\n", vi + 1, variants.size(),
                      join(variants[vi]).c_str(), timers.median("frame"), frames);
@@ -176,6 +178,12 @@ int runBench(const Options& o, const std::vector<std::string>& args) {
             for (double ms : samples) sum += ms, most = std::max(most, ms);
             run["passes"][name]["mean_ms"] = sum / double(samples.size());
             run["passes"][name]["max_ms"] = most;
+            // Per frame, in frame order (every pass of these frames is timed every frame): what
+            // percentiles of a sum of passes (e.g. the suns' shadow maps) need.
+            std::vector<double> sorted = samples;
+            std::sort(sorted.begin(), sorted.end());
+            run["passes"][name]["p99_ms"] = sorted[std::min(sorted.size() - 1, size_t(std::ceil(0.99 * double(sorted.size()))) - 1)];
+            run["passes"][name]["samples_ms"] = samples;
             const size_t bytes = renderer.graph().passTrafficBytes(name);
             if (o.floors && bytes > 0) {
                 const fg::PassKind kind = renderer.graph().passKind(name);  // what the pass declared

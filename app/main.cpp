@@ -261,14 +261,17 @@ int commandRender(const Options& o) {
     say("texture memory: %.2f MiB pooled transients + %.2f MiB persistent (environment, IBL, kept shadow atlases)\n",
                 poolBytes / 1048576.0, persistentBytes / 1048576.0);
     const ShadowCacheStats& cache = renderer.shadowCacheStats();
-    if (cache.drawn + cache.kept > 0) {
-        say("shadow cascades: %llu of %llu tiles kept from an earlier frame, %llu drawn (--shadow-cache %s)\n",
-            (unsigned long long)cache.kept, (unsigned long long)(cache.kept + cache.drawn), (unsigned long long)cache.drawn,
-            settings.shadows.cache ? "on" : "off");
-        j["shadow_cache"] = {{"tiles_drawn", cache.drawn}, {"tiles_kept", cache.kept},
-                             {"hit_rate", double(cache.kept) / double(cache.kept + cache.drawn)},
+    if (cache.drawn + cache.kept + cache.scrolled > 0) {
+        say("shadow cascades: %llu of %llu tiles kept from an earlier frame, %llu scrolled (strips drawn), %llu drawn "
+            "(--shadow-cache %s, --shadow-scroll %s)\n",
+            (unsigned long long)cache.kept, (unsigned long long)(cache.kept + cache.drawn + cache.scrolled),
+            (unsigned long long)cache.scrolled, (unsigned long long)cache.drawn, settings.shadows.cache ? "on" : "off",
+            settings.shadows.scroll ? "on" : "off");
+        j["shadow_cache"] = {{"tiles_drawn", cache.drawn}, {"tiles_kept", cache.kept}, {"tiles_scrolled", cache.scrolled},
+                             {"hit_rate", double(cache.kept) / double(cache.kept + cache.drawn + cache.scrolled)},
                                    {"kept_per_cascade", std::vector<uint64_t>(std::begin(cache.keptPerCascade), std::end(cache.keptPerCascade))},
-                                   {"drawn_per_cascade", std::vector<uint64_t>(std::begin(cache.drawnPerCascade), std::end(cache.drawnPerCascade))}};
+                                   {"drawn_per_cascade", std::vector<uint64_t>(std::begin(cache.drawnPerCascade), std::end(cache.drawnPerCascade))},
+                                   {"scrolled_per_cascade", std::vector<uint64_t>(std::begin(cache.scrolledPerCascade), std::end(cache.scrolledPerCascade))}};
     }
     j["memory"] = {{"pool_bytes", poolBytes}, {"persistent_bytes", persistentBytes},
                    {"total_bytes", poolBytes + persistentBytes},

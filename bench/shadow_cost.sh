@@ -15,6 +15,13 @@
 #     saves): shadow_cost_culling.json.
 #  4. the hardware conservative and split rows (cache off, culling on) with fragment shaders that
 #     write no depth: what the depth export costs: shadow_cost_no_depth_write.json / .md.
+#  5. --shadow-cache on x --shadow-scroll on,off x conservative-hardware (the default), split-hardware
+#     and plain, 600 frames after 20 (the 8 s path and more): per frame the two suns' shadow passes
+#     summed; mean, median, 99th percentile and maximum, tiles kept / scrolled / drawn whole per
+#     cascade: shadow_cost_scroll.json -> OUTDIR/shadow_cost_scroll.md (also at the top of
+#     shadow_cost.md); then conservative-hardware with scroll on at --shadow-origin-step 1/32, and
+#     --shadow-size-hold on with scroll on and off: shadow_cost_scroll_variants.json. Runs first;
+#     SCROLL_ONLY=1 runs the gl_tests and this alone (about 3 minutes).
 # Per variant: the shadow passes' GPU ms summed (median of 200 frames after 20) against the floor
 # of drawing every atlas texel every frame (depth bytes at the fragment fill, --floors), the share
 # of cascade tiles kept from an earlier frame (per cascade), the triangles each cascade drew
@@ -37,6 +44,7 @@ LD_LIBRARY_PATH=$B/lib $B/gl_tests --gtest_brief=1 \
 tail -3 $R/gl_tests_shadow_cost.txt
 grep " ulps " $R/gl_tests_shadow_cost.txt | tee $R/compute_raster_vs_plain.txt
 grep -E "conservative raster|SKIPPED" $R/gl_tests_shadow_cost.txt | tee $R/conservative_raster_tests.txt
+grep "tiles scrolled over the walk" $R/gl_tests_shadow_cost.txt | tee $R/scroll_vs_redraw.txt
 COMMON="--shadow-size 2048 --shadow-cascades 4"
 # Rasters: NAME FLAGS (the explain files and the table's rows are named by NAME).
 RASTERS=("conservative-hardware|--shadow-raster conservative --shadow-conservative hardware"
@@ -53,6 +61,23 @@ done; done
 LIGHTPASS_CACHE_DIR=$R/auto_cache $B/run render --scene $S --size 1920x1080 --time 1 $COMMON --shadow-raster auto \
   --out $R/auto.png 2>&1 | grep "shadow raster auto" | tee $R/auto_choice.txt
 BENCH="$B/run bench --scene $S --time 1 --fps 60 --frames 200 --warmup 20 --floors --size 1920x1080 $COMMON"
+# 5. Scrolling cascades: the frame-by-frame cost (what a frame that moves the near squares pays).
+$B/run graph --scene $S --size 1920x1080 --time 1 $COMMON --explain > $R/explain_default.txt 2>&1
+$B/run bench --scene $S --time 1 --fps 60 --frames 600 --warmup 20 --size 1920x1080 $COMMON --shadow-cache on \
+  --vary '--shadow-scroll on,off' \
+  --vary '--shadow-raster conservative --shadow-conservative hardware|--shadow-raster split --shadow-conservative hardware|--shadow-raster plain' \
+  --timings-json $R/shadow_cost_scroll.json -q > /dev/null 2> $R/bench_scroll_progress.txt \
+  || { echo "scroll bench failed"; tail -3 $R/bench_scroll_progress.txt; }
+# A finer origin step (resolution back, more and narrower scrolls), and squares that hold their size
+# (--shadow-size-hold: fewer whole redraws on the path's zoom) with scrolling on and off.
+$B/run bench --scene $S --time 1 --fps 60 --frames 600 --warmup 20 --size 1920x1080 $COMMON --shadow-cache on \
+  --shadow-raster conservative --shadow-conservative hardware \
+  --vary '--shadow-scroll on --shadow-origin-step 0.03125|--shadow-scroll on --shadow-size-hold on|--shadow-scroll off --shadow-size-hold on' \
+  --timings-json $R/shadow_cost_scroll_variants.json -q > /dev/null 2>> $R/bench_scroll_progress.txt \
+  || { echo "scroll origin-step bench failed"; tail -3 $R/bench_scroll_progress.txt; }
+python3 bench/summarize_shadow_cost.py $R/shadow_cost_scroll.json $R/shadow_cost_scroll_variants.json --outdir $R \
+  | tee $R/shadow_cost_scroll.md
+[ "${SCROLL_ONLY:-0}" = 1 ] && exit 0
 $BENCH --vary '--shadow-cache off,on' --vary "$VARY" \
   --timings-json $R/shadow_cost.json -q > /dev/null 2> $R/bench_progress.txt || { echo "bench failed"; tail -3 $R/bench_progress.txt; }
 $BENCH --shadow-cache on --vary '--shadow-origin-step 0,0.03125,0.0625,0.125,0.25' \
@@ -60,7 +85,7 @@ $BENCH --shadow-cache on --vary '--shadow-origin-step 0,0.03125,0.0625,0.125,0.2
   --timings-json $R/shadow_cost_origin_step.json -q > /dev/null 2>> $R/bench_progress.txt || { echo "bench failed"; tail -3 $R/bench_progress.txt; }
 $BENCH --shadow-cache off --no-shadow-culling --vary "$VARY" \
   --timings-json $R/shadow_cost_culling.json -q > /dev/null 2>> $R/bench_progress.txt || { echo "bench failed"; tail -3 $R/bench_progress.txt; }
-python3 bench/summarize_shadow_cost.py $R/shadow_cost.json $R/shadow_cost_origin_step.json $R/shadow_cost_culling.json \
+python3 bench/summarize_shadow_cost.py $R/shadow_cost_scroll.json $R/shadow_cost_scroll_variants.json $R/shadow_cost.json $R/shadow_cost_origin_step.json $R/shadow_cost_culling.json \
   --outdir $R | tee $R/shadow_cost.md
 # What the hardware conservative raster's time is made of (cache off, culling on): the same draws
 # (conservative coverage, one draw per facing, the faces away offset nearer) with fragment shaders

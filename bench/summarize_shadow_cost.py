@@ -4,10 +4,13 @@
 hardware or by the geometry shader, the "grown by" column being what the pass used, from its explain
 notes) the shadow passes' GPU ms summed over the suns (median, mean and the sum of the per-pass
 maxima: a cached pass is cheap on most frames and costly on the few that redraw, so the mean is what
-the target is judged on), the mean against the floor of drawing every atlas texel every frame (the
+the target is judged on; with per-frame samples also the 99th percentile and maximum of the per-frame sum),
+the mean against the floor of drawing every atlas texel every frame (the
 atlases' depth bytes at the fragment fill rate) and measured/floor, the share of cascade tiles kept
 from an earlier frame (all cascades, then cascade 0..3), the frame, and the triangles each cascade
 drew at t = 1 s (from OUTDIR/explain_<culling>_<raster>.txt). The target (issue #19): the sum <= 2 ms.
+A file named shadow_cost_scroll*.json (--shadow-scroll on/off) gets its own table: the per-frame sum's
+mean, median, 99th percentile and maximum and the share of tiles kept / scrolled / drawn whole.
 
 usage: summarize_shadow_cost.py BENCH.json [BENCH.json ...] [--outdir OUTDIR]"""
 import json
@@ -88,8 +91,65 @@ def hit_rates(run):
     per = c.get("kept_per_cascade"), c.get("drawn_per_cascade")
     if not per[0]:
         return total, "-"
-    each = [f"{100 * k / (k + n):.0f}" if k + n else "-" for k, n in zip(*per)]
+    scrolled = c.get("scrolled_per_cascade") or [0] * len(per[0])
+    each = [f"{100 * k / (k + n + s):.0f}" if k + n + s else "-" for k, n, s in zip(*per, scrolled)]
     return total, "/".join(each)
+
+
+def per_frame(shadow):
+    """The suns' shadow passes summed frame by frame (bench JSON's samples_ms, in frame order), or None."""
+    series = [v.get("samples_ms") for _, v in shadow]
+    if not series or any(not x for x in series) or len({len(x) for x in series}) != 1:
+        return None
+    return [sum(f) for f in zip(*series)]
+
+
+def percentile(values, q):
+    """Nearest-rank percentile q (0..100) of values."""
+    v = sorted(values)
+    return v[max(0, min(len(v) - 1, -(-len(v) * q // 100) - 1))]
+
+
+def scrolled_rates(run):
+    c = run.get("shadow_cache")
+    if not c or "scrolled_per_cascade" not in c:
+        return "-"
+    kept, drawn, scrolled = c["kept_per_cascade"], c["drawn_per_cascade"], c["scrolled_per_cascade"]
+    each = []
+    for k, n, s in zip(kept, drawn, scrolled):
+        total = k + n + s
+        each.append(f"{100 * k / total:.0f}/{100 * s / total:.0f}/{100 * n / total:.0f}" if total else "-")
+    return " · ".join(each)
+
+
+def scroll_table(path):
+    """--shadow-scroll on/off rows: the per-frame sum of the suns' shadow passes (mean, median, 99th
+    percentile, maximum) and per cascade the share of tiles kept / scrolled / drawn whole."""
+    d = json.load(open(path))
+    common = d.get("common_flags", "")
+    print(f"`{os.path.basename(path)}`: {d.get('device')}, {d.get('scene')}, common flags `{common}`; "
+          "per frame: both suns' shadow_map passes summed frame by frame\n")
+    print("| cache | scroll | size hold | origin step | raster | frames | mean ms | median ms | p99 ms | max ms | p99 ≤ 2 ms | max ≤ 2 ms | "
+          "kept / scrolled / drawn whole % per cascade 0 · 1 · 2 · 3 | frame median |")
+    print("| --- | --- | --- | ---: | --- | ---: | ---: | ---: | ---: | ---: | --- | --- | --- | ---: |")
+    for run in d["runs"]:
+        p = run["passes"]
+        flags = common + " " + run["flags"]
+        shadow = sorted((k, v) for k, v in p.items() if k.startswith("shadow_map"))
+        sums = per_frame(shadow)
+        frame = p.get("frame", {}).get("median_ms")
+        if not sums:
+            print(f"| {flag(flags, 'shadow-cache', 'on')} | {flag(flags, 'shadow-scroll', 'on')} | "
+                  f"{flag(flags, 'shadow-size-hold', 'off')} | {flag(flags, 'shadow-origin-step', '0.0625')} | {raster_name(flags)} | - | - | - | - | - | - | - | - | - |")
+            continue
+        mean = sum(sums) / len(sums)
+        med = percentile(sums, 50)
+        p99 = percentile(sums, 99)
+        most = max(sums)
+        print(f"| {flag(flags, 'shadow-cache', 'on')} | {flag(flags, 'shadow-scroll', 'on')} | "
+              f"{flag(flags, 'shadow-size-hold', 'off')} | {flag(flags, 'shadow-origin-step', '0.0625')} | {raster_name(flags)} | {len(sums)} | {mean:.3f} | {med:.3f} | {p99:.3f} | {most:.3f} | {'yes' if p99 <= TARGET_MS else 'no'} | "
+              f"{'yes' if most <= TARGET_MS else 'no'} | {scrolled_rates(run)} | {'-' if frame is None else f'{frame:.3f}'} |")
+    print()
 
 
 def table(path, outdir):
@@ -97,9 +157,9 @@ def table(path, outdir):
     common = d.get("common_flags", "")
     print(f"`{os.path.basename(path)}`: {d.get('device')}, {d.get('scene')}, common flags `{common}`\n")
     print("| cache | origin step | culling | raster | grown by | shadow_map passes median ms | sum median | sum mean | "
-          "sum of maxima | mean × atlas floor | tiles kept | kept per cascade % | frame median | mean ≤ 2 ms | "
+          "sum of maxima | per-frame p99 | per-frame max | mean × atlas floor | tiles kept | kept per cascade % | frame median | mean ≤ 2 ms | "
           "triangles per cascade at t = 1 s |")
-    print("| --- | ---: | --- | --- | --- | --- | ---: | ---: | ---: | ---: | ---: | --- | ---: | --- | --- |")
+    print("| --- | ---: | --- | --- | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- | ---: | --- | --- |")
     for run in d["runs"]:
         p = run["passes"]
         flags = common + " " + run["flags"]
@@ -108,12 +168,14 @@ def table(path, outdir):
         mean = sum(v.get("mean_ms", v["median_ms"]) for _, v in shadow)
         most = sum(v.get("max_ms", v["median_ms"]) for _, v in shadow)
         floor = atlas_floor_ms(d, run, len(shadow))
+        sums = per_frame(shadow)
+        p99, worst = (f"{percentile(sums, 99):.3f}", f"{max(sums):.3f}") if sums else ("-", "-")
         each = ", ".join(f"{k[len('shadow_map_'):]}: {v['median_ms']:.3f}" for k, v in shadow) or "-"
         frame = p.get("frame", {}).get("median_ms")
         kept, per = hit_rates(run)
         print(f"| {flag(flags, 'shadow-cache', 'on')} | {flag(flags, 'shadow-origin-step', '0.0625')} | "
               f"{'off' if '--no-shadow-culling' in flags else 'on'} | {raster_name(flags)} | "
-              f"{conservative_used(outdir, flags)} | {each} | {ms:.3f} | {mean:.3f} | {most:.3f} | {f'{mean / floor:.2f}× of {floor:.2f}' if floor else '-'} | "
+              f"{conservative_used(outdir, flags)} | {each} | {ms:.3f} | {mean:.3f} | {most:.3f} | {p99} | {worst} | {f'{mean / floor:.2f}× of {floor:.2f}' if floor else '-'} | "
               f"{kept} | {per} | {'-' if frame is None else f'{frame:.3f}'} | "
               f"{'yes' if shadow and mean <= TARGET_MS else 'no'} | "
               f"{triangles(outdir, flags)} |")
@@ -134,7 +196,9 @@ def main(argv):
           "kept tiles can). 'tiles kept': cascade tiles reused from an earlier frame (--shadow-cache), "
           f"exact: a tile is kept only when nothing it depends on changed. Target: sum <= {TARGET_MS} ms.\n")
     for path in argv:
-        if os.path.exists(path):
+        if os.path.exists(path) and os.path.basename(path).startswith("shadow_cost_scroll"):
+            scroll_table(path)
+        elif os.path.exists(path):
             table(path, outdir if outdir else os.path.dirname(path))
         else:
             print(f"`{path}`: missing (that bench failed)\n")

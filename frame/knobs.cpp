@@ -262,6 +262,27 @@ std::vector<KnobEntry> makeKnobTable() {
         t.push_back(std::move(k));
     }
     {
+        KnobEntry k = choiceKnob("shadow-scroll", [](auto& s) -> auto& { return s.shadows.scroll; }, std::vector<bool>{true, false},
+                                 [](bool on) { return on ? "on" : "off"; });
+        k.flags = {valueFlag("--shadow-scroll")};
+        k.help = "with --shadow-cache: a cascade whose square moved by whole texels keeps the overlapping part of its tile, "
+                 "moved by a GPU copy, and redraws only the newly covered strips (off: the whole tile is redrawn)";
+        k.choiceNoun = "setting";
+        k.panel = {PanelSection::Shadows, PanelWidget::Combo, "cascade scroll", ""};
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = choiceKnob("shadow-size-hold", [](auto& s) -> auto& { return s.shadows.sizeHold; },
+                                 std::vector<bool>{false, true}, [](bool on) { return on ? "on" : "off"; });
+        k.flags = {valueFlag("--shadow-size-hold")};
+        k.help = "each sun cascade's square keeps last frame's size while that still holds its slice and is at most "
+                 "2^(1/4) larger than needed: a zooming or moving camera scrolls or keeps cached tiles instead of "
+                 "redrawing them whole, at up to 19% less resolution while held";
+        k.choiceNoun = "setting";
+        k.panel = {PanelSection::Shadows, PanelWidget::Combo, "cascade size hold", ""};
+        t.push_back(std::move(k));
+    }
+    {
         KnobEntry k = floatKnob("shadow-origin-step", [](auto& s) -> auto& { return s.shadows.originStep; },
                                 {0.0, double(kMaxShadowOriginStep)});
         k.flags = {valueFlag("--shadow-origin-step")};

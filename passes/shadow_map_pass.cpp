@@ -1,6 +1,7 @@
 #include "passes/shadow_map_pass.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -155,6 +156,52 @@ std::vector<std::string> shadowTilesToDraw(const ShadowAtlasCache* cache, int wi
     return why;
 }
 
+std::optional<glm::ivec2> shadowTileScroll(const ShadowTileKey& old, const ShadowTileKey& now) {
+    // Everything but the translation's x and y bit for bit: the same rotation, scale and depth
+    // range give every caster point the same depth, and the same bias, raster and culling.
+    if (old.tileSize != now.tileSize || old.column != now.column || old.row != now.row || old.raster != now.raster ||
+        old.hardwareConservative != now.hardwareConservative || old.cullCasters != now.cullCasters ||
+        std::memcmp(&old.slopeBias, &now.slopeBias, sizeof old.slopeBias) != 0)
+        return std::nullopt;
+    const glm::mat3 a(old.worldToClip), b(now.worldToClip);
+    const float za = old.worldToClip[3].z, zb = now.worldToClip[3].z, wa = old.worldToClip[3].w, wb = now.worldToClip[3].w;
+    if (std::memcmp(&a, &b, sizeof a) != 0 || std::memcmp(&za, &zb, sizeof za) != 0 || std::memcmp(&wa, &wb, sizeof wa) != 0)
+        return std::nullopt;
+    // A point's window x is (clip x + 1) / 2 * tileSize: a translation change of t moves it t * tileSize / 2 texels.
+    glm::ivec2 offset;
+    for (int i = 0; i < 2; ++i) {
+        const double texels = (double(now.worldToClip[3][i]) - double(old.worldToClip[3][i])) * 0.5 * double(now.tileSize);
+        const double whole = std::round(texels);
+        if (!(std::abs(texels - whole) <= 0.01) || std::abs(whole) >= double(now.tileSize)) return std::nullopt;
+        offset[i] = int(whole);
+    }
+    if (offset == glm::ivec2(0)) return std::nullopt;  // differing bits but no whole texel: redraw
+    const TileRect kept = shadowScrollKeptRect(offset, now.tileSize);
+    if (kept.width <= 0 || kept.height <= 0) return std::nullopt;
+    return offset;
+}
+
+TileRect shadowScrollKeptRect(glm::ivec2 offset, int tileSize) {
+    // New texel p holds old texel p - offset; the old tile's texels [margin, tileSize - margin) are trusted.
+    const int x0 = std::max(0, kShadowScrollMargin + offset.x), x1 = std::min(tileSize, tileSize - kShadowScrollMargin + offset.x);
+    const int y0 = std::max(0, kShadowScrollMargin + offset.y), y1 = std::min(tileSize, tileSize - kShadowScrollMargin + offset.y);
+    return {x0, y0, std::max(0, x1 - x0), std::max(0, y1 - y0)};
+}
+
+std::vector<TileRect> shadowScrollRegions(glm::ivec2 offset, int tileSize) {
+    const TileRect k = shadowScrollKeptRect(offset, tileSize);
+    if (k.width <= 0 || k.height <= 0) return {{0, 0, tileSize, tileSize}};
+    std::vector<TileRect> strips;
+    // Left and right columns over the whole height, then below and above the kept rectangle between them.
+    const TileRect candidates[4] = {{0, 0, k.x, tileSize},
+                                    {k.x + k.width, 0, tileSize - (k.x + k.width), tileSize},
+                                    {k.x, 0, k.width, k.y},
+                                    {k.x, k.y + k.height, k.width, tileSize - (k.y + k.height)}};
+    for (const TileRect& r : candidates)
+        if (r.width > 0 && r.height > 0) strips.push_back(r);
+    return strips;
+}
+
 namespace {
 struct Data {
     fg::ResourceId depth;
@@ -278,13 +325,69 @@ void drawCascadesByCompute(ShadowMapPass& state, const FrameData& frame, const S
     glUseProgram(0);
 }
 
-// Draws the cascades' casters into the atlas `depthTexture` (width x height) with `raster` (not Auto),
-// only the tiles of the cascades `redraw` marks (each cleared first; all of them: the whole atlas
-// cleared); the other tiles are left as they are. Conservative and split grow casters by
-// GL_NV_conservative_raster where state.hardwareConservative, else by the geometry shader.
-void drawAtlas(ShadowMapPass& state, const FrameData& frame, const ShadowFrustum& fr, const std::vector<CasterList>& casters,
-               ShadowSettings::Raster raster, GLuint depthTexture, int width, int height, const std::vector<bool>& redraw) {
+// Every cascade's whole tile drawn with its culled casters.
+std::vector<ShadowTileWork> wholeTiles(const ShadowFrustum& fr, const std::vector<CasterList>& casters) {
+    std::vector<ShadowTileWork> work(fr.cascades.size());
+    for (size_t c = 0; c < work.size(); ++c) work[c].regions.push_back({{0, 0, fr.tileSize, fr.tileSize}, casters[c]});
+    return work;
+}
+
+// Moves the kept part of each scrolled tile (--shadow-scroll) by its offset, within the tile (a copy
+// within one texture may not overlap its source): as a memmove, in bands as wide as the shift along
+// its larger axis, the band whose destination no later band reads from first (one pass over the
+// texels), where that takes at most kShadowScrollMaxBands copies; otherwise out to the scratch tile
+// and back (two passes).
+void scrollTiles(ShadowMapPass& state, const ShadowFrustum& fr, const std::vector<ShadowTileWork>& work, GLuint depthTexture) {
+    for (size_t c = 0; c < work.size(); ++c) {
+        if (!work[c].scrolled) continue;
+        const glm::ivec2 o = work[c].offset;
+        const GLint x = GLint(c % size_t(fr.columns)) * fr.tileSize, y = GLint(c / size_t(fr.columns)) * fr.tileSize;
+        const TileRect k = shadowScrollKeptRect(o, fr.tileSize);
+        auto copy = [&](int dx0, int dy0, int w, int h) {  // the kept texels [dx0, +w) x [dy0, +h), from their old place
+            glCopyImageSubData(depthTexture, GL_TEXTURE_2D, 0, x + dx0 - o.x, y + dy0 - o.y, 0, depthTexture, GL_TEXTURE_2D, 0,
+                               x + dx0, y + dy0, 0, w, h, 1);
+        };
+        const bool alongX = std::abs(o.x) >= std::abs(o.y);
+        const int shift = alongX ? std::abs(o.x) : std::abs(o.y), length = alongX ? k.width : k.height;
+        if ((length + shift - 1) / shift <= kShadowScrollMaxBands) {
+            // Content moving towards + goes first at the + end (its sources lie behind it), and the reverse.
+            const bool positive = (alongX ? o.x : o.y) > 0;
+            const int start = alongX ? k.x : k.y;
+            for (int done = 0; done < length; done += shift) {
+                const int width = std::min(shift, length - done);
+                const int from = positive ? start + length - done - width : start + done;
+                if (alongX) copy(from, k.y, width, k.height);
+                else copy(k.x, from, k.width, width);
+            }
+            continue;
+        }
+        if (!state.scrollScratch || state.scrollScratch.width != fr.tileSize || state.scrollScratch.height != fr.tileSize)
+            state.scrollScratch = gl::makeTexture2D(GL_DEPTH_COMPONENT32F, fr.tileSize, fr.tileSize, 1, "shadow_map.scroll_scratch");
+        glCopyImageSubData(depthTexture, GL_TEXTURE_2D, 0, x + k.x - o.x, y + k.y - o.y, 0, state.scrollScratch.id(),
+                           GL_TEXTURE_2D, 0, 0, 0, 0, k.width, k.height, 1);
+        glCopyImageSubData(state.scrollScratch.id(), GL_TEXTURE_2D, 0, 0, 0, 0, depthTexture, GL_TEXTURE_2D, 0, x + k.x,
+                           y + k.y, 0, k.width, k.height, 1);
+    }
+}
+
+// Draws the cascades' casters into the atlas `depthTexture` (width x height) with `raster` (not Auto):
+// per cascade, the regions of `work` (each cleared first, then drawn scissored with its casters;
+// every tile whole: the whole atlas cleared), after moving scrolled tiles' kept parts; tiles without
+// regions are left as they are. Conservative and split grow casters by GL_NV_conservative_raster
+// where state.hardwareConservative, else by the geometry shader. The compute raster draws whole
+// tiles only (the planner never scrolls for it).
+void drawAtlas(ShadowMapPass& state, const FrameData& frame, const ShadowFrustum& fr, const std::vector<ShadowTileWork>& work,
+               ShadowSettings::Raster raster, GLuint depthTexture, int width, int height) {
     using Raster = ShadowSettings::Raster;
+    std::vector<bool> redraw(work.size());
+    std::vector<CasterList> casters(work.size());
+    for (size_t c = 0; c < work.size(); ++c) {
+        redraw[c] = work[c].drawn();
+        if (redraw[c]) casters[c] = work[c].regions.front().casters;
+    }
+    const bool everyTileWhole = std::all_of(work.begin(), work.end(), [&](const ShadowTileWork& w) {
+        return w.regions.size() == 1 && !w.scrolled && w.regions[0].rect.width == fr.tileSize && w.regions[0].rect.height == fr.tileSize;
+    });
         if (!state.fbo) state.fbo = gl::makeFramebuffer("shadow_map");
         const bool hardware = growsCastersInHardware(raster, state.hardwareConservative);
         if (hardware && raster == Raster::Conservative && !state.hardwareTowardProgram)
@@ -322,14 +425,15 @@ void drawAtlas(ShadowMapPass& state, const FrameData& frame, const ShadowFrustum
         // Plain draws: the slope bias is the polygon offset's factor (as the spot maps').
         glPolygonOffset(frame.settings->shadows.slopeBias, 0.0f);
         const float one = 1.0f;
-        if (std::all_of(redraw.begin(), redraw.end(), [](bool r) { return r; })) {
+        if (everyTileWhole) {
             glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &one);
         } else {
+            scrollTiles(state, fr, work, depthTexture);
             gl::ScopedEnable scissor(GL_SCISSOR_TEST, true);
             for (size_t c = 0; c < fr.cascades.size(); ++c)
-                if (redraw[c]) {
-                    glScissor(GLint(c % size_t(fr.columns)) * fr.tileSize, GLint(c / size_t(fr.columns)) * fr.tileSize,
-                              fr.tileSize, fr.tileSize);
+                for (const ShadowTileRegion& region : work[c].regions) {
+                    glScissor(GLint(c % size_t(fr.columns)) * fr.tileSize + region.rect.x,
+                              GLint(c / size_t(fr.columns)) * fr.tileSize + region.rect.y, region.rect.width, region.rect.height);
                     glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &one);
                 }
         }
@@ -360,12 +464,14 @@ void drawAtlas(ShadowMapPass& state, const FrameData& frame, const ShadowFrustum
         // Each cascade's fragments stay in its tile whatever a driver's guard band does: a kept
         // neighbour (--shadow-cache) must not receive this frame's casters.
         gl::ScopedEnable scissor(GL_SCISSOR_TEST, true);
-        for (size_t c = 0; c < fr.cascades.size(); ++c) {
-            if (!redraw[c]) continue;  // kept from an earlier frame (--shadow-cache)
+        for (size_t c = 0; c < fr.cascades.size(); ++c)
+          for (const ShadowTileRegion& region : work[c].regions) {  // none: kept from an earlier frame (--shadow-cache)
             const GLint x = GLint(c % size_t(fr.columns)) * fr.tileSize;
             const GLint y = GLint(c / size_t(fr.columns)) * fr.tileSize;
+            // The whole tile's viewport (a strip rasterises exactly as the whole tile would), the region's scissor.
             glViewport(x, y, fr.tileSize, fr.tileSize);
-            glScissor(x, y, fr.tileSize, fr.tileSize);
+            glScissor(x + region.rect.x, y + region.rect.y, region.rect.width, region.rect.height);
+            const CasterList& regionCasters = region.casters;
             if (plainProg) {
                 // Split: only the faces towards the light (counter-clockwise in the light's window,
                 // as shadow_depth.geom's orientation), which need neither growth nor gl_FragDepth.
@@ -374,7 +480,7 @@ void drawAtlas(ShadowMapPass& state, const FrameData& frame, const ShadowFrustum
                 if (raster == Raster::Split) glEnable(GL_CULL_FACE);
                 glCullFace(GL_BACK);
                 drawCasterList(frame, plainProg, glGetUniformLocation(plainProg, "uModelToClip"),
-                               fr.cascades[c].worldToClip, casters[c]);
+                               fr.cascades[c].worldToClip, regionCasters);
                 glDisable(GL_POLYGON_OFFSET_FILL);
                 glDisable(GL_CULL_FACE);
             }
@@ -383,7 +489,7 @@ void drawAtlas(ShadowMapPass& state, const FrameData& frame, const ShadowFrustum
                 glProgramUniform4f(conservativeProg, glGetUniformLocation(conservativeProg, "uViewport"), float(x),
                                    float(y), float(fr.tileSize), float(fr.tileSize));
                 drawCasterList(frame, conservativeProg, glGetUniformLocation(conservativeProg, "uModelToClip"),
-                               fr.cascades[c].worldToClip, casters[c]);
+                               fr.cascades[c].worldToClip, regionCasters);
             }
             if (hardware) {
                 // Every texel a triangle touches gets a fragment; no geometry shader, no box to clip to.
@@ -408,7 +514,7 @@ void drawAtlas(ShadowMapPass& state, const FrameData& frame, const ShadowFrustum
                     glProgramUniform4f(prog, glGetUniformLocation(prog, "uViewport"), float(x), float(y),
                                        float(fr.tileSize), float(fr.tileSize));
                     drawCasterList(frame, prog, glGetUniformLocation(prog, "uModelToClip"), fr.cascades[c].worldToClip,
-                                   casters[c]);
+                                   regionCasters);
                 }
                 glDisable(GL_POLYGON_OFFSET_FILL);
                 glPolygonOffset(frame.settings->shadows.slopeBias, 0.0f);
@@ -569,7 +675,10 @@ ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const
     for (int light : shadowed) {
         LightShadowMap map;
         map.light = light;
-        map.frustum = fitShadowFrustum(frame, frame.scene->directionalLights[size_t(light)].direction);
+        const auto held = state.previousFrusta.find(light);
+        map.frustum = fitShadowFrustum(frame, frame.scene->directionalLights[size_t(light)].direction,
+                                       held == state.previousFrusta.end() ? nullptr : &held->second);
+        state.previousFrusta[light] = map.frustum;
         const ShadowFrustum& fr = map.frustum;
         const std::string name = "shadow_map_" + std::to_string(light);
         // A small scene needs fewer cascades than asked for: say which were dropped and why.
@@ -585,20 +694,53 @@ ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const
                     : std::vector<std::string>(fr.cascades.size(), "cache off");
         if (knownRaster == ShadowSettings::Raster::Auto)
             for (std::string& w : why) w = "first frame of --shadow-raster auto";
-        std::vector<bool> redraw(fr.cascades.size());
-        for (size_t c = 0; c < redraw.size(); ++c) redraw[c] = !why[c].empty();
-        // Each cascade's casters, culled to its tile (one texel of margin for the conservative growth).
+        // Each cascade's casters, culled to its tile (one texel of margin for the conservative growth),
+        // and what its tile gets: nothing (kept), its strips after a scroll, or the whole tile.
         std::vector<CasterList> casters;
+        std::vector<ShadowTileWork> work(fr.cascades.size());
+        const bool scrolling = caching && frame.settings->shadows.scroll && knownRaster != ShadowSettings::Raster::Auto &&
+                               knownRaster != ShadowSettings::Raster::Compute;
         for (size_t c = 0; c < fr.cascades.size(); ++c) {
-            casters.push_back(cullCasters(clusters, *frame.scene, fr.cascades[c].worldToClip, 2.0f / float(fr.tileSize),
+            const glm::mat4& worldToClip = fr.cascades[c].worldToClip;
+            casters.push_back(cullCasters(clusters, *frame.scene, worldToClip, 2.0f / float(fr.tileSize),
                                           frame.settings->shadows.cullCasters));
             const CasterList& l = casters.back();
+            std::string what = why[c].empty() ? std::string("kept (unchanged)") : "redrawn (" + why[c] + ")";
+            std::optional<glm::ivec2> offset;
+            if (scrolling && why[c] == "square moved" && kept != state.atlases.end() && c < kept->second.tiles.size() &&
+                kept->second.tiles[c])
+                offset = shadowTileScroll(*kept->second.tiles[c], keys[c]);
+            if (offset) {
+                work[c].scrolled = true;
+                work[c].offset = *offset;
+                size_t stripTriangles = 0;
+                for (const TileRect& r : shadowScrollRegions(*offset, fr.tileSize)) {
+                    // The strip's own clip space (it maps to [-1, 1]) for culling: the casters that can reach it.
+                    const float sx = float(r.width) / float(fr.tileSize), sy = float(r.height) / float(fr.tileSize);
+                    const float cx = (2.0f * float(r.x) + float(r.width)) / float(fr.tileSize) - 1.0f;
+                    const float cy = (2.0f * float(r.y) + float(r.height)) / float(fr.tileSize) - 1.0f;
+                    glm::mat4 toStrip(1.0f);
+                    toStrip[0][0] = 1.0f / sx;
+                    toStrip[1][1] = 1.0f / sy;
+                    toStrip[3][0] = -cx / sx;
+                    toStrip[3][1] = -cy / sy;
+                    // One tile texel of margin along the strip's narrower side (more along the other: conservative).
+                    const float margin = 2.0f / float(fr.tileSize) / std::min(sx, sy);
+                    work[c].regions.push_back(
+                        {r, cullCasters(clusters, *frame.scene, toStrip * worldToClip, margin, frame.settings->shadows.cullCasters)});
+                    stripTriangles += work[c].regions.back().casters.triangles;
+                }
+                what = "scrolled by (" + std::to_string(offset->x) + ", " + std::to_string(offset->y) + "), strip redrawn (" +
+                       std::to_string(work[c].regions.size()) + (work[c].regions.size() == 1 ? " strip, " : " strips, ") +
+                       std::to_string(stripTriangles) + " caster triangles drawn)";
+            } else if (!why[c].empty()) {
+                work[c].regions.push_back({{0, 0, fr.tileSize, fr.tileSize}, l});
+            }
             graph.notePass(name, "cascade " + std::to_string(c) + ": " + std::to_string(l.draws.size()) + " draws, " +
                                      std::to_string(l.clusters) + " of " + std::to_string(clusters.size()) + " clusters, " +
                                      std::to_string(l.triangles) + " of " + std::to_string(sceneTriangles) + " triangles (" +
                                      rasterNote +
-                                     (frame.settings->shadows.cullCasters ? "" : ", culling off") + "); " +
-                                     (redraw[c] ? "redrawn (" + why[c] + ")" : std::string("kept (unchanged)")));
+                                     (frame.settings->shadows.cullCasters ? "" : ", culling off") + "); " + what);
         }
         ShadowMapPass* s = &state;
         fg::ResourceId keptAtlas;
@@ -622,30 +764,37 @@ ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const
                 out.depth = caching ? b.write(keptAtlas, fg::Usage::DepthAttachment)
                                     : b.create(name + ".depth", desc, fg::Usage::DepthAttachment);
             },
-            [s, frame, fr, casters, caching, light, keys, redraw, casterKey](const Data& out, const fg::PassResources& res) {
+            [s, frame, fr, casters, caching, light, keys, work, casterKey](const Data& out, const fg::PassResources& res) {
                 const fg::TextureDesc& d = res.desc(out.depth);
                 const GLuint texture = res.texture(out.depth);
                 ShadowSettings::Raster raster = frame.settings->shadows.raster;
-                const std::vector<bool> everyTile(fr.cascades.size(), true);
+                const std::vector<ShadowTileWork> everyTile = wholeTiles(fr, casters);
                 if (raster == ShadowSettings::Raster::Auto)
                     raster = resolveAutoRaster(*s, [&](ShadowSettings::Raster r) {
-                        drawAtlas(*s, frame, fr, casters, r, texture, d.width, d.height, everyTile);
+                        drawAtlas(*s, frame, fr, everyTile, r, texture, d.width, d.height);
                     });
-                drawAtlas(*s, frame, fr, casters, raster, texture, d.width, d.height, redraw);
-                const size_t drawn = size_t(std::count(redraw.begin(), redraw.end(), true));
-                s->cacheStats.drawn += drawn;
-                s->cacheStats.kept += redraw.size() - drawn;
-                for (size_t c = 0; c < redraw.size() && c < size_t(kMaxShadowCascades); ++c)
-                    ++(redraw[c] ? s->cacheStats.drawnPerCascade[c] : s->cacheStats.keptPerCascade[c]);
+                drawAtlas(*s, frame, fr, work, raster, texture, d.width, d.height);
+                size_t drawn = 0, wholeDrawn = 0;
+                for (size_t c = 0; c < work.size(); ++c) {
+                    drawn += work[c].drawn() ? 1 : 0;
+                    wholeDrawn += work[c].drawn() && !work[c].scrolled ? 1 : 0;
+                    if (c >= size_t(kMaxShadowCascades)) continue;
+                    ++(work[c].scrolled  ? s->cacheStats.scrolledPerCascade[c]
+                       : work[c].drawn() ? s->cacheStats.drawnPerCascade[c]
+                                         : s->cacheStats.keptPerCascade[c]);
+                }
+                s->cacheStats.drawn += wholeDrawn;
+                s->cacheStats.scrolled += drawn - wholeDrawn;
+                s->cacheStats.kept += work.size() - drawn;
                 if (!caching) return;
                 // What the tiles now hold. A new caster set or a whole-atlas clear (every tile
-                // drawn) leaves tiles past this frame's cascades unknown.
+                // drawn whole) leaves tiles past this frame's cascades unknown.
                 ShadowAtlasCache& a = s->atlases[light];
-                if (a.casters != casterKey || drawn == redraw.size()) a.tiles.assign(a.tiles.size(), std::nullopt);
+                if (a.casters != casterKey || wholeDrawn == work.size()) a.tiles.assign(a.tiles.size(), std::nullopt);
                 a.casters = casterKey;
                 if (a.tiles.size() < keys.size()) a.tiles.resize(keys.size());
                 for (size_t c = 0; c < keys.size(); ++c)
-                    if (redraw[c]) {
+                    if (work[c].drawn()) {
                         a.tiles[c] = keys[c];
                         a.tiles[c]->raster = raster;
                         a.tiles[c]->hardwareConservative = growsCastersInHardware(raster, s->hardwareConservative);

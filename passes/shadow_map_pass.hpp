@@ -22,6 +22,21 @@
 // redraw would write: nothing a tile's depth depends on is outside its key. 'lightpass graph
 // --explain' and the pass notes say per cascade "redrawn (why)" or "kept"; render and bench count
 // them (ShadowCacheStats). --shadow-cache off: a transient atlas, every cascade drawn every frame.
+//
+// --shadow-scroll on (the default, with the cache): a tile whose key differs from the kept one only
+// in the square's origin (same light rotation, size and depth range, so the same depth for every
+// caster point; the same casters, raster and bias) is scrolled instead of redrawn: the part of the
+// old tile the new square still covers is moved by the whole-texel offset (shadowTileScroll) by
+// glCopyImageSubData within the tile, and only the strips outside it
+// (shadowScrollRegions: the newly covered texels plus kShadowScrollMargin texels of the old tile's
+// edge) are cleared and drawn, scissored, with the casters that can reach each strip. The move is
+// a memmove in bands as wide as the shift (kShadowScrollMaxBands), else through the scratch tile. The moved
+// texels were rasterised with the old matrix, whose translation differs from the new one by the
+// offset up to float rounding: at a caster's silhouette a texel whose centre lies within that
+// rounding of an edge may be covered in one and not the other, and the depth planes round
+// differently. The tests bound it (kShadowScrollDepthTolerance everywhere but
+// kShadowScrollMaxDifferingFraction of a tile's texels, each next to a depth edge); kept tiles stay
+// bit-exact. The compute raster (which draws whole tiles) redraws moved tiles whole.
 #include <cstdint>
 #include <filesystem>
 #include <map>
@@ -76,10 +91,58 @@ struct ShadowAtlasCache {
     std::vector<std::optional<ShadowTileKey>> tiles;
 };
 
-// Cascade tiles drawn and kept since the counters were last reset (render and bench report them).
+// Cascade tiles drawn whole, kept and scrolled (--shadow-scroll: moved, strips drawn) since the
+// counters were last reset (render and bench report them).
 struct ShadowCacheStats {
-    uint64_t drawn = 0, kept = 0;
-    uint64_t drawnPerCascade[kMaxShadowCascades] = {}, keptPerCascade[kMaxShadowCascades] = {};
+    uint64_t drawn = 0, kept = 0, scrolled = 0;
+    uint64_t drawnPerCascade[kMaxShadowCascades] = {}, keptPerCascade[kMaxShadowCascades] = {},
+             scrolledPerCascade[kMaxShadowCascades] = {};
+};
+
+// Texels of the old tile's edge redrawn with a scrolled tile's strips: its outermost texels were
+// rasterised at the tile's border (where a driver may clip the grown casters and a 2x2 quad's
+// derivatives straddle it), so they are not trusted inside the new square.
+constexpr int kShadowScrollMargin = 2;
+// A scrolled tile's kept part moves in place in bands as wide as the shift (one pass) when that
+// takes at most this many copies, else through a scratch tile (two passes).
+constexpr int kShadowScrollMaxBands = 16;
+// The bound the tests hold a scrolled tile to against a fresh redraw of the same frame: every texel
+// within kShadowScrollDepthTolerance of window depth (the moved texels' depth planes were evaluated
+// from vertices rounded differently: a few ulps, up to ~1e-5 where the geometry shader's
+// derivatives straddle other 2x2 quads), but for at most kShadowScrollMaxDifferingFraction of its
+// texels, each next to a depth edge of the fresh tile (a silhouette whose coverage that rounding
+// decided).
+constexpr float kShadowScrollDepthTolerance = 1e-5f;
+constexpr double kShadowScrollMaxDifferingFraction = 1e-3;
+
+// A rectangle of a tile, in texels from the tile's corner.
+struct TileRect {
+    int x = 0, y = 0, width = 0, height = 0;
+};
+
+// The whole-texel offset by which a tile drawn with key `old` moves to be the tile of key `now`
+// (content at texel p of the old tile belongs at p + offset), when the two differ only in the
+// square's origin by whole texels (within 1/100 texel) and the new square still overlaps enough of
+// the old one; none otherwise (the tile is redrawn whole).
+std::optional<glm::ivec2> shadowTileScroll(const ShadowTileKey& old, const ShadowTileKey& now);
+// The regions of a tile of `tileSize` scrolled by `offset` that are cleared and drawn: every texel
+// not covered by the moved old tile less its kShadowScrollMargin edge texels (at most 4 strips).
+std::vector<TileRect> shadowScrollRegions(glm::ivec2 offset, int tileSize);
+// The part of the new tile the moved old content fills (the complement of shadowScrollRegions).
+TileRect shadowScrollKeptRect(glm::ivec2 offset, int tileSize);
+
+// One scissored region of a cascade's tile drawn this frame and the casters that can reach it.
+struct ShadowTileRegion {
+    TileRect rect;
+    CasterList casters;
+};
+// What a cascade's tile gets this frame: no regions: kept as it is; else each region cleared and
+// drawn, after the old content was moved by `offset` where `scrolled`.
+struct ShadowTileWork {
+    bool scrolled = false;
+    glm::ivec2 offset{0};
+    std::vector<ShadowTileRegion> regions;
+    bool drawn() const { return !regions.empty(); }
 };
 
 struct ShadowMapPass {
@@ -94,6 +157,7 @@ struct ShadowMapPass {
     gl::Program plainProgram;  // --shadow-raster plain, and split's faces towards the light
     gl::Program awayProgram;   // --shadow-raster split: conservative, faces away from the light only
     gl::Framebuffer fbo;
+    gl::Texture scrollScratch;  // D32F, one tile: --shadow-scroll moves through it what would take too many bands
     // --shadow-raster compute
     gl::Program rasterProgram;   // shadow_raster.comp
     gl::Program resolveProgram;  // R32UI bits -> D32F atlas
@@ -110,6 +174,8 @@ struct ShadowMapPass {
     std::string autoReport;  // the line logged: the choice, the measured times or "cached", the file
     // --shadow-cache on: one kept atlas per shadowed light
     std::map<int, ShadowAtlasCache> atlases;  // by light index
+    // --shadow-size-hold: each shadowed light's cascades of the last frame (fitShadowFrustum's `previous`)
+    std::map<int, ShadowFrustum> previousFrusta;
     ShadowCacheStats cacheStats;
     size_t cacheBytes() const;  // GPU bytes of the kept atlases
 };

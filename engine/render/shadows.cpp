@@ -106,7 +106,7 @@ std::optional<glm::dvec2> visibleDepthRange(glm::dvec3 lo, glm::dvec3 hi, const 
     return glm::dvec2(std::max(dMin, nearPlane), std::min(dMax, farPlane));
 }
 
-ShadowFrustum fitShadowFrustum(const FrameData& frame, glm::vec3 lightDirection) {
+ShadowFrustum fitShadowFrustum(const FrameData& frame, glm::vec3 lightDirection, const ShadowFrustum* previous) {
     const ShadowSettings& settings = frame.settings->shadows;
     checkSettings(settings);
     glm::dvec3 f(lightDirection);
@@ -219,7 +219,14 @@ ShadowFrustum fitShadowFrustum(const FrameData& frame, glm::vec3 lightDirection)
         // Rounded up to a 2^(1/8) grid: a camera path that zooms (fov) or the split points' grid
         // changes the slice's sphere a little every frame; the square's size, and so its matrix,
         // changes only when the sphere crosses a step (at most 9% of resolution, 4.5% on average).
-        const double needed = std::exp2(std::ceil(std::log2(std::max(std::min(2.0 * radius, sceneSide), tiny)) * 8.0) / 8.0);
+        const double exact = std::max(std::min(2.0 * radius, sceneSide), tiny);
+        double needed = std::exp2(std::ceil(std::log2(exact) * 8.0) / 8.0);
+        // --shadow-size-hold: last frame's side of this tile, while it holds the slice and wastes little.
+        const size_t tile = out.cascades.size();
+        if (settings.sizeHold && previous && tile < previous->cascades.size()) {
+            const double held = previous->cascades[tile].side;
+            if (held >= exact && held <= exact * kShadowSizeHoldRatio) needed = held;
+        }
         const int stepTexels = originStepTexels(settings);
         const double texel = needed / double(settings.size - 1 - stepTexels);
         const double side = texel * settings.size, half = 0.5 * side, step = stepTexels * texel;
@@ -252,6 +259,7 @@ ShadowFrustum fitShadowFrustum(const FrameData& frame, glm::vec3 lightDirection)
         cascade.splitFar = last ? std::numeric_limits<float>::max() : float(b);
         cascade.texelWorld = float(texel);
         cascade.depthRange = float(farZ - nearZ);
+        cascade.side = needed;
         out.cascades.push_back(cascade);
         if (last) {
             if (c + 1 < settings.cascades)

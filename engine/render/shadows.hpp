@@ -30,6 +30,9 @@ constexpr int kMaxShadowCascades = 4;
 constexpr int kMaxShadowedLights = 4;  // shadow maps the global-light shader binds
 constexpr double kMaxShadowCoordinate = 1e18;
 constexpr float kMaxShadowOriginStep = 0.25f;  // of the tile: the square then is 4/3 of what it needs
+// --shadow-size-hold: a square keeps last frame's side while that is at most this much larger than
+// what its slice needs (two steps of the side's 2^(1/8) grid).
+constexpr double kShadowSizeHoldRatio = 1.189207115002721;  // 2^(1/4)
 
 struct ShadowCascade {
     glm::mat4 worldToClip{1.0f};  // light orthographic projection * light view
@@ -38,6 +41,7 @@ struct ShadowCascade {
     float splitFar = 0.0f;
     float texelWorld = 0.0f;      // world-space size of one shadow texel
     float depthRange = 0.0f;      // world-space distance that window depth 0..1 spans
+    double side = 0.0;            // world-space side of the square less the origin's room (2^(1/8) grid)
 };
 
 struct ShadowFrustum {
@@ -56,8 +60,12 @@ struct ShadowFrustum {
 std::vector<int> shadowCastingLights(const FrameData& frame);
 
 // The cascades for `lightDirection` (travel direction, need not be unit) and `frame`'s camera.
-// Throws lp::Error for a zero or non-finite direction or out-of-range settings.
-ShadowFrustum fitShadowFrustum(const FrameData& frame, glm::vec3 lightDirection);
+// Throws lp::Error for a zero or non-finite direction or out-of-range settings. With
+// settings.shadows.sizeHold and `previous` (last frame's cascades of the same light), each square
+// keeps its previous side while that still holds its slice and is at most kShadowSizeHoldRatio
+// larger than needed: a camera that zooms or moves its split points back and forth then scrolls the
+// cached tiles instead of redrawing them (the frusta then depend on the frames before).
+ShadowFrustum fitShadowFrustum(const FrameData& frame, glm::vec3 lightDirection, const ShadowFrustum* previous = nullptr);
 
 // Why fitShadowFrustum made fewer cascades than `requested` (empty when it did not): for the
 // frame graph's skipped list ('lightpass graph --explain').

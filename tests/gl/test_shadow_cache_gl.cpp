@@ -1,11 +1,14 @@
-// --shadow-cache: a kept cascade tile is exactly what a redraw would write. The same frames are
+// --shadow-cache: a kept cascade tile is exactly what a redraw would write; a scrolled one
+// (--shadow-scroll) is within kShadowScrollDepthTolerance of it but for a few texels at silhouettes. The same frames are
 // drawn by one ShadowMapPass kept across them (cache on) and by a fresh one with the cache off; their
 // cascade tiles must agree bit for bit while the camera moves, the sun turns or a caster moves, and
 // the cache must have kept some tiles and redrawn others (or the comparison proves nothing).
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <cstring>
 #include <random>
+#include <tuple>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -132,6 +135,7 @@ TEST(ShadowCache, KeptTilesEqualAFullRedrawOnAMovingCamera) {
         SceneGpu gpu(scene);
         RenderSettings settings = smallCascades(raster);
         settings.shadows.conservativeRaster = conservative;
+        settings.shadows.scroll = false;  // moved tiles redrawn whole: every tile bit for bit (scrolling: below)
         ShadowMapPass state;
         fg::TexturePool pool;
         std::vector<std::string> notes;
@@ -239,4 +243,224 @@ TEST(ShadowCache, OffDrawsEveryCascadeEveryFrame) {
     EXPECT_EQ(state.cacheStats.kept, 0u);
     EXPECT_EQ(state.cacheStats.drawn, 2 * notes.size());
     EXPECT_TRUE(state.atlases.empty());
+}
+
+namespace {
+
+// Whether texel i of a side x side tile lies next to a depth edge of `tile`: a caster's silhouette
+// (a neighbour holds no caster where it does, or the reverse) or a step between casters larger than
+// `step` within its 3x3 neighbourhood.
+bool nextToDepthEdge(const std::vector<float>& tile, size_t side, size_t i, float step) {
+    const int x = int(i % side), y = int(i / side);
+    for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+            const int nx = x + dx, ny = y + dy;
+            if (nx < 0 || ny < 0 || nx >= int(side) || ny >= int(side)) continue;
+            const float a = tile[i], b = tile[size_t(ny) * side + size_t(nx)];
+            if ((a < 1.0f) != (b < 1.0f) || std::abs(a - b) > step) return true;
+        }
+    return false;
+}
+
+struct ScrollDifference {
+    size_t differing = 0;      // texels not bit-identical to the fresh redraw
+    size_t beyond = 0;         // texels farther than kShadowScrollDepthTolerance from it
+    size_t awayFromEdges = 0;  // of those, texels with no depth edge next to them
+    double largestWithin = 0.0;  // largest difference within the tolerance
+};
+
+ScrollDifference compareScrolled(const std::vector<float>& scrolled, const std::vector<float>& fresh, size_t side) {
+    ScrollDifference d;
+    for (size_t i = 0; i < fresh.size(); ++i) {
+        if (std::memcmp(&scrolled[i], &fresh[i], sizeof(float)) == 0) continue;
+        ++d.differing;
+        const double difference = std::abs(double(scrolled[i]) - double(fresh[i]));
+        if (difference <= double(kShadowScrollDepthTolerance)) {
+            d.largestWithin = std::max(d.largestWithin, difference);
+            continue;
+        }
+        ++d.beyond;
+        // A step of 1e-4 of the depth range: far more than a plane's change over a texel here.
+        d.awayFromEdges += nextToDepthEdge(fresh, side, i, 1e-4f) ? 0 : 1;
+    }
+    return d;
+}
+
+// The cascade index of a pass note "cascade <c>: ...".
+size_t noteCascade(const std::string& note) { return size_t(std::stoul(note.substr(note.find("cascade ") + 8))); }
+
+}  // namespace
+
+// --shadow-scroll on a moving camera: the near cascades' squares step to new origins and their tiles
+// are scrolled (moved by whole texels, strips redrawn) instead of redrawn. Every frame, each scrolled
+// tile agrees with a fresh redraw within kShadowScrollDepthTolerance (the depth plane evaluated from
+// vertices rounded differently) but for at most kShadowScrollMaxDifferingFraction of its texels, each
+// next to a depth edge (coverage at silhouettes decided by that rounding); kept and
+// wholly redrawn tiles are bit-exact; and a frame that scrolls a tile leaves its kept neighbours as
+// they were. Every raster that scrolls (compute redraws whole tiles).
+TEST(ShadowCache, ScrolledTilesMatchAFreshRedrawWithinTheBound) {
+    using Conservative = ShadowSettings::ConservativeRaster;
+    // The origin step: the default (shifts of 16 texels or more: moved in place in bands) and one
+    // texel (shifts of a few texels: too many bands, moved through the scratch tile).
+    std::vector<std::tuple<ShadowSettings::Raster, Conservative, float>> cases;
+    for (ShadowSettings::Raster raster :
+         {ShadowSettings::Raster::Plain, ShadowSettings::Raster::Conservative, ShadowSettings::Raster::Split})
+        cases.emplace_back(raster, Conservative::GeometryShader, ShadowSettings{}.originStep);
+    cases.emplace_back(ShadowSettings::Raster::Plain, Conservative::GeometryShader, 0.0f);
+    if (queryConservativeRasterSupport().hardware)
+        for (ShadowSettings::Raster raster : {ShadowSettings::Raster::Conservative, ShadowSettings::Raster::Split})
+            cases.emplace_back(raster, Conservative::Hardware, ShadowSettings{}.originStep);
+    for (const auto& [raster, conservative, originStep] : cases) {
+        const std::string name = std::string(ShadowSettings::rasterName(raster)) + " (" +
+                                 ShadowSettings::conservativeRasterName(conservative) + ", origin step " +
+                                 std::to_string(originStep) + ")";
+        Scene scene = castersOnAFloor();
+        SceneGpu gpu(scene);
+        RenderSettings settings = smallCascades(raster);
+        settings.shadows.conservativeRaster = conservative;
+        settings.shadows.originStep = originStep;
+        settings.shadows.scroll = true;
+        ShadowMapPass state;
+        fg::TexturePool pool;
+        std::vector<std::string> notes;
+        Tiles before = drawTiles(scene, gpu, settings, state, pool, &notes);
+        size_t scrolledTiles = 0, differingTexels = 0, beyondTexels = 0, keptNextToScroll = 0;
+        double largest = 0.0;
+        for (int step = 1; step <= 8; ++step) {
+            scene.camera.position += glm::vec3(0.05f, 0.0f, -0.3f);
+            scene.camera.target += glm::vec3(0.05f, 0.0f, -0.3f);
+            const Tiles now = drawTiles(scene, gpu, settings, state, pool, &notes);
+            const Tiles fresh = redrawnTiles(scene, gpu, settings);
+            ASSERT_EQ(now.depth.size(), fresh.depth.size());
+            ASSERT_EQ(notes.size(), now.depth.size());
+            bool anyScrolled = false;  // this frame scrolled a tile of the atlas
+            for (const std::string& note : notes) anyScrolled |= note.find("scrolled by (") != std::string::npos;
+            for (const std::string& note : notes) {
+                const size_t c = noteCascade(note);
+                const std::string what = name + " step " + std::to_string(step) + " cascade " + std::to_string(c) + ": " + note;
+                const size_t side = size_t(settings.shadows.size);
+                if (note.find("scrolled by (") != std::string::npos) {
+                    EXPECT_NE(note.find("strip redrawn"), std::string::npos) << what;
+                    const ScrollDifference d = compareScrolled(now.depth[c], fresh.depth[c], side);
+                    EXPECT_LE(double(d.beyond), kShadowScrollMaxDifferingFraction * double(side * side)) << what;
+                    EXPECT_EQ(d.awayFromEdges, 0u) << what;
+                    ++scrolledTiles;
+                    differingTexels += d.differing;
+                    beyondTexels += d.beyond;
+                    largest = std::max(largest, d.largestWithin);
+                } else if (note.find("kept (unchanged)") != std::string::npos) {
+                    // Untouched by the frame's copies and strips (a neighbour of a scrolled tile
+                    // included): bit for bit what it held; within the bound of a fresh redraw (it
+                    // may hold an earlier frame's scrolled texels).
+                    ASSERT_LT(c, before.depth.size()) << what;
+                    EXPECT_EQ(std::memcmp(now.depth[c].data(), before.depth[c].data(), side * side * sizeof(float)), 0) << what;
+                    const ScrollDifference d = compareScrolled(now.depth[c], fresh.depth[c], side);
+                    EXPECT_LE(double(d.beyond), kShadowScrollMaxDifferingFraction * double(side * side)) << what;
+                    EXPECT_EQ(d.awayFromEdges, 0u) << what;
+                    keptNextToScroll += anyScrolled ? 1 : 0;
+                } else {
+                    EXPECT_NE(note.find("redrawn ("), std::string::npos) << what;
+                    EXPECT_EQ(std::memcmp(now.depth[c].data(), fresh.depth[c].data(), side * side * sizeof(float)), 0) << what;
+                }
+            }
+            before = now;
+        }
+        const double tileTexels = double(settings.shadows.size) * double(settings.shadows.size);
+        std::printf("%s: %zu tiles scrolled over the walk; against a fresh redraw %.2f%% of their texels differ in any bit, "
+                    "by at most %.3g within the tolerance %.0e; %zu texels (%.4f%%, bound %.2f%%) beyond it, all next to depth edges\n",
+                    name.c_str(), scrolledTiles, 100.0 * double(differingTexels) / (tileTexels * double(std::max<size_t>(scrolledTiles, 1))),
+                    largest, double(kShadowScrollDepthTolerance), beyondTexels,
+                    100.0 * double(beyondTexels) / (tileTexels * double(std::max<size_t>(scrolledTiles, 1))),
+                    100.0 * kShadowScrollMaxDifferingFraction);
+        EXPECT_GE(scrolledTiles, 2u) << name << ": the walk scrolled (almost) nothing: the comparison proves little";
+        EXPECT_GE(keptNextToScroll, 1u) << name << ": no frame kept a tile beside a scrolled one";
+        EXPECT_EQ(state.cacheStats.scrolled, scrolledTiles) << name;
+    }
+}
+
+// A square that changes size (the camera's field of view widens its slices) is redrawn whole, not
+// scrolled, and equals a fresh redraw bit for bit; --shadow-scroll off redraws moved squares whole.
+TEST(ShadowCache, SizeChangeAndScrollOffRedrawWholeTiles) {
+    Scene scene = castersOnAFloor();
+    SceneGpu gpu(scene);
+    RenderSettings settings = smallCascades(ShadowSettings::Raster::Plain);
+    settings.shadows.scroll = true;  // even scrolling redraws a resized square whole
+    ShadowMapPass state;
+    fg::TexturePool pool;
+    std::vector<std::string> notes;
+    const test::ShadowAtlasFrame first = test::drawShadowAtlas(scene, gpu, settings, state, pool);
+    scene.camera.fovYDegrees *= 1.3f;
+    const test::ShadowAtlasFrame wider = test::drawShadowAtlas(scene, gpu, settings, state, pool);
+    size_t resized = 0;
+    for (const std::string& note : wider.notes) {
+        const size_t c = noteCascade(note);
+        if (c >= first.frustum.cascades.size() || c >= wider.frustum.cascades.size()) continue;
+        if (glm::mat3(first.frustum.cascades[c].worldToClip) == glm::mat3(wider.frustum.cascades[c].worldToClip)) continue;
+        ++resized;
+        EXPECT_NE(note.find("redrawn (light matrix changed)"), std::string::npos) << note;
+    }
+    EXPECT_GT(resized, 0u) << "the wider field of view resized no square";
+    expectSameTiles(drawTiles(scene, gpu, settings, state, pool), redrawnTiles(scene, gpu, settings), "after the resize");
+
+    // Scrolling off: the walk's moved squares are redrawn whole ("square moved"), none scrolled.
+    settings.shadows.scroll = false;
+    size_t moved = 0;
+    for (int step = 1; step <= 4; ++step) {
+        scene.camera.position += glm::vec3(0.05f, 0.0f, -0.3f);
+        scene.camera.target += glm::vec3(0.05f, 0.0f, -0.3f);
+        const Tiles now = drawTiles(scene, gpu, settings, state, pool, &notes);
+        moved += countNotes(notes, "redrawn (square moved)");
+        EXPECT_EQ(countNotes(notes, "scrolled"), 0u);
+        expectSameTiles(now, redrawnTiles(scene, gpu, settings), "scroll off step " + std::to_string(step));
+    }
+    EXPECT_GT(moved, 0u) << "no square moved on the walk";
+    EXPECT_EQ(state.cacheStats.scrolled, 0u);
+}
+
+// --shadow-size-hold on a camera that zooms back and forth while it walks: fewer tiles are redrawn
+// whole for a changed light matrix than without it (the squares keep their size, so moves scroll),
+// and every frame's atlas is within the scroll bound of a fresh redraw of the same frusta (the fresh
+// pass is given the same previous frame to hold from).
+TEST(ShadowCache, SizeHoldTurnsResizesIntoScrolls) {
+    auto walk = [](bool hold, size_t& resized, size_t& scrolled) {
+        Scene scene = castersOnAFloor();
+        SceneGpu gpu(scene);
+        RenderSettings settings = smallCascades(ShadowSettings::Raster::Plain);
+        settings.shadows.sizeHold = hold;
+        settings.shadows.scroll = true;
+        ShadowMapPass state;
+        fg::TexturePool pool;
+        std::vector<std::string> notes;
+        drawTiles(scene, gpu, settings, state, pool);
+        resized = scrolled = 0;
+        for (int step = 1; step <= 8; ++step) {
+            scene.camera.position += glm::vec3(0.05f, 0.0f, -0.3f);
+            scene.camera.target += glm::vec3(0.05f, 0.0f, -0.3f);
+            scene.camera.fovYDegrees = step % 2 ? 47.0f : 45.0f;
+            ShadowMapPass fresh;
+            fresh.previousFrusta = state.previousFrusta;  // what the kept pass holds from
+            settings.shadows.cache = false;
+            fg::TexturePool freshPool;
+            const Tiles redrawn = drawTiles(scene, gpu, settings, fresh, freshPool);
+            settings.shadows.cache = true;
+            const Tiles now = drawTiles(scene, gpu, settings, state, pool, &notes);
+            resized += countNotes(notes, "redrawn (light matrix changed)");
+            scrolled += countNotes(notes, "scrolled by (");
+            ASSERT_EQ(now.depth.size(), redrawn.depth.size());
+            const size_t side = size_t(settings.shadows.size);
+            for (size_t c = 0; c < now.depth.size(); ++c) {
+                const ScrollDifference d = compareScrolled(now.depth[c], redrawn.depth[c], side);
+                EXPECT_LE(double(d.beyond), kShadowScrollMaxDifferingFraction * double(side * side)) << "step " << step << " cascade " << c;
+                EXPECT_EQ(d.awayFromEdges, 0u) << "step " << step << " cascade " << c;
+            }
+        }
+    };
+    size_t resizedHeld = 0, scrolledHeld = 0, resizedFree = 0, scrolledFree = 0;
+    walk(true, resizedHeld, scrolledHeld);
+    walk(false, resizedFree, scrolledFree);
+    std::printf("zooming walk: %zu tiles redrawn for a changed light matrix with --shadow-size-hold, %zu without; "
+                "scrolled %zu / %zu\n", resizedHeld, resizedFree, scrolledHeld, scrolledFree);
+    EXPECT_GT(resizedFree, 0u) << "the zoom resized nothing: the test proves nothing";
+    EXPECT_LT(resizedHeld, resizedFree);
+    EXPECT_GT(scrolledHeld, 0u);
 }

@@ -13,6 +13,7 @@
 #include "engine/graph/frame_graph.hpp"
 #include "frame/frame_builder.hpp"
 #include "engine/render/shadows.hpp"
+#include "passes/shadow_map_pass.hpp"
 
 using namespace lp;
 using fg::FrameGraph;
@@ -139,9 +140,10 @@ TEST(ShadowCascades, PracticalSplitsInterpolateLinearAndLog) {
 
 // Every point of the camera's view volume that lies inside [lo, hi] falls inside its cascade's
 // orthographic box (|x|, |y| <= 1, z in [-1, 1]) - checked on a 9x9x33 grid; returns the points checked.
-int expectCascadesCover(const Scene& s, const RenderSettings& settings, glm::vec3 lo, glm::vec3 hi, const std::string& what) {
+int expectCascadesCover(const Scene& s, const RenderSettings& settings, glm::vec3 lo, glm::vec3 hi, const std::string& what,
+                        const ShadowFrustum* previous = nullptr) {
     FrameData frame = makeFrameData(s, settings, 0.0f);
-    ShadowFrustum fr = fitShadowFrustum(frame, s.directionalLights[0].direction);
+    ShadowFrustum fr = fitShadowFrustum(frame, s.directionalLights[0].direction, previous);
     const glm::mat4 invVp = glm::inverse(frame.projection * frame.view);
     int inside = 0;
     for (int iz = 0; iz <= 32; ++iz)
@@ -365,4 +367,128 @@ TEST(ShadowCascades, SmallSceneGetsFewerCascades) {
     ShadowFrustum bigFr = fitShadowFrustum(bigFrame, big.directionalLights[0].direction);
     EXPECT_EQ(bigFr.cascades.size(), 4u);
     EXPECT_EQ(droppedCascadesReason(bigFr, 4), "");
+}
+
+// --shadow-scroll's offset: along a walk, a cascade whose square moved (same rotation, size and
+// depth range) scrolls by the whole-texel distance its origin moved, in the direction the content
+// moves in the tile (a world point's texel moves by the offset); a resized square does not scroll;
+// and the strips plus the kept rectangle tile the square exactly, the strips covering the newly
+// exposed texels and kShadowScrollMargin texels of the old tile's edge.
+TEST(ShadowScroll, OffsetIsTheOriginsWholeTexelMove) {
+    const glm::vec3 lo(-50, 0, -50), hi(50, 5, 50);
+    Scene s = boundsScene(lo, hi, {true});
+    s.camera.farPlane = 80.0f;
+    RenderSettings settings = small();
+    settings.shadows.size = 512;
+    const ShadowSettings::Raster raster = ShadowSettings::Raster::Plain;
+    std::vector<ShadowTileKey> previous;
+    int scrolled = 0;
+    for (int i = 0; i < 80; ++i) {
+        s.camera.position = glm::vec3(0.05f * float(i), 4.0f, 12.0f - 0.2f * float(i));
+        s.camera.target = s.camera.position + glm::vec3(0.1f, -4.0f, -12.0f);
+        const ShadowFrustum fr = fitShadowFrustum(makeFrameData(s, settings, 0.0f), s.directionalLights[0].direction);
+        const std::vector<ShadowTileKey> keys = shadowTileKeys(fr, settings.shadows, raster, false);
+        for (size_t c = 0; c < keys.size() && c < previous.size(); ++c) {
+            const std::optional<glm::ivec2> offset = shadowTileScroll(previous[c], keys[c]);
+            const bool sameSize = glm::mat3(previous[c].worldToClip) == glm::mat3(keys[c].worldToClip);
+            if (!sameSize) {
+                EXPECT_FALSE(offset) << "frame " << i << " cascade " << c << ": a resized square must be redrawn whole";
+                continue;
+            }
+            if (previous[c] == keys[c]) {
+                EXPECT_FALSE(offset) << "an unchanged tile is kept, not scrolled";
+                continue;
+            }
+            ASSERT_TRUE(offset) << "frame " << i << " cascade " << c;
+            ++scrolled;
+            // A world point inside both squares: its texel in the new tile is its old texel + offset.
+            const glm::vec4 p = glm::inverse(previous[c].worldToClip) * glm::vec4(0.1f, -0.2f, 0.3f, 1.0f);
+            const glm::vec4 a = previous[c].worldToClip * p, b = keys[c].worldToClip * p;
+            const glm::dvec2 move = (glm::dvec2(b.x, b.y) - glm::dvec2(a.x, a.y)) * 0.5 * double(fr.tileSize);
+            EXPECT_NEAR(move.x, double(offset->x), 1e-2);
+            EXPECT_NEAR(move.y, double(offset->y), 1e-2);
+            // The origin step (1/16 of the tile here) or a multiple of it.
+            EXPECT_EQ(offset->x % originStepTexels(settings.shadows), 0);
+            EXPECT_EQ(offset->y % originStepTexels(settings.shadows), 0);
+        }
+        previous = keys;
+    }
+    EXPECT_GT(scrolled, 3) << "the walk moved no square by whole steps";
+
+    // Strips: kept rectangle + strips = the tile, each texel once.
+    const int side = 64;
+    for (const glm::ivec2 offset : {glm::ivec2(4, 0), glm::ivec2(-4, 0), glm::ivec2(0, 8), glm::ivec2(-8, 12), glm::ivec2(1, -1)}) {
+        std::vector<int> covered(size_t(side * side), 0);
+        const TileRect k = shadowScrollKeptRect(offset, side);
+        std::vector<TileRect> all = shadowScrollRegions(offset, side);
+        EXPECT_LE(all.size(), 4u);
+        all.push_back(k);
+        for (const TileRect& r : all)
+            for (int y = r.y; y < r.y + r.height; ++y)
+                for (int x = r.x; x < r.x + r.width; ++x) ++covered[size_t(y * side + x)];
+        for (int v : covered) ASSERT_EQ(v, 1) << offset.x << ", " << offset.y;
+        // The kept rectangle holds only old texels at least kShadowScrollMargin inside the old tile.
+        EXPECT_GE(k.x - offset.x, kShadowScrollMargin);
+        EXPECT_GE(k.y - offset.y, kShadowScrollMargin);
+        EXPECT_LE(k.x + k.width - offset.x, side - kShadowScrollMargin);
+        EXPECT_LE(k.y + k.height - offset.y, side - kShadowScrollMargin);
+        EXPECT_EQ(k.width, side - std::max(std::abs(offset.x) + kShadowScrollMargin, 2 * kShadowScrollMargin));
+        EXPECT_EQ(k.height, side - std::max(std::abs(offset.y) + kShadowScrollMargin, 2 * kShadowScrollMargin));
+    }
+    // An offset past the tile: nothing to keep, the whole tile drawn.
+    ShadowTileKey a, b;
+    a.tileSize = b.tileSize = side;
+    b.worldToClip[3].x = 2.0f;  // a whole tile to the side
+    EXPECT_FALSE(shadowTileScroll(a, b));
+    b.worldToClip[3].x = 2.0f * 3.0f / float(side);  // three texels
+    ASSERT_TRUE(shadowTileScroll(a, b));
+    EXPECT_EQ(*shadowTileScroll(a, b), glm::ivec2(3, 0));
+    b.worldToClip[3].x = 2.0f * 3.5f / float(side);  // not a whole texel
+    EXPECT_FALSE(shadowTileScroll(a, b));
+    b.worldToClip[3].x = 2.0f * 3.0f / float(side);
+    b.slopeBias = 2.0f;  // anything else differing: no scroll
+    EXPECT_FALSE(shadowTileScroll(a, b));
+}
+
+// --shadow-size-hold: a camera that zooms in a little keeps every square's side (it still holds the
+// slice), zooming back out keeps it too, zooming out far grows it, and zooming in far (past
+// kShadowSizeHoldRatio) shrinks it; without the setting or without a previous frame the fit is the
+// usual one. Every held square still covers what the cascade needs (its side >= the slice's need).
+TEST(ShadowCascades, SizeHoldKeepsTheSquaresSideWithinTheBand) {
+    const glm::vec3 lo(-50, 0, -50), hi(50, 5, 50);
+    Scene s = boundsScene(lo, hi, {true});
+    s.camera.farPlane = 80.0f;
+    RenderSettings settings = small();
+    settings.shadows.sizeHold = true;
+    auto fit = [&](float fov, const ShadowFrustum* previous) {
+        s.camera.fovYDegrees = fov;
+        return fitShadowFrustum(makeFrameData(s, settings, 0.0f), s.directionalLights[0].direction, previous);
+    };
+    const ShadowFrustum first = fit(45.0f, nullptr);
+    ASSERT_EQ(first.cascades.size(), 4u);
+    const ShadowFrustum unheld = fit(42.0f, nullptr);
+    const ShadowFrustum held = fit(42.0f, &first);
+    size_t smallerWithoutHold = 0;
+    for (size_t c = 0; c < 4; ++c) {
+        EXPECT_EQ(held.cascades[c].side, first.cascades[c].side) << c;
+        EXPECT_EQ(glm::mat3(held.cascades[c].worldToClip), glm::mat3(first.cascades[c].worldToClip)) << c;
+        EXPECT_GE(held.cascades[c].side, unheld.cascades[c].side) << c;
+        smallerWithoutHold += unheld.cascades[c].side < first.cascades[c].side ? 1 : 0;
+    }
+    EXPECT_GT(smallerWithoutHold, 0u) << "the zoom changed no square: the test proves nothing";
+    const ShadowFrustum back = fit(45.0f, &held);
+    for (size_t c = 0; c < 4; ++c) EXPECT_EQ(back.cascades[c].side, first.cascades[c].side) << c;
+    const ShadowFrustum wider = fit(60.0f, &back), narrower = fit(30.0f, &back);
+    for (size_t c = 0; c + 1 < 4; ++c) {  // the near ones (the last may span the scene whatever the zoom)
+        EXPECT_GT(wider.cascades[c].side, first.cascades[c].side) << c;
+        EXPECT_LT(narrower.cascades[c].side, first.cascades[c].side) << c;
+        EXPECT_EQ(narrower.cascades[c].side, fit(30.0f, nullptr).cascades[c].side) << c;
+    }
+    settings.shadows.sizeHold = false;
+    const ShadowFrustum off = fit(42.0f, &first);
+    for (size_t c = 0; c < 4; ++c) EXPECT_EQ(off.cascades[c].side, unheld.cascades[c].side) << c;
+    settings.shadows.sizeHold = true;
+    // The held squares still cover the visible scene inside their boxes (as the unheld ones must).
+    s.camera.fovYDegrees = 42.0f;
+    EXPECT_GT(expectCascadesCover(s, settings, lo, hi, "held", &first), 500);
 }
