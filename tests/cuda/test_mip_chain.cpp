@@ -12,34 +12,15 @@
 
 #include "cuda/post_cuda.hpp"
 #include "engine/post/post_reference.hpp"
+#include "tests/cuda/post_test_images.hpp"
 
 using namespace lp;
+using namespace lp::posttest;
 using post::BloomMethod;
 using post::BloomParams;
 using post::Storage;
 
 namespace {
-
-ImageF randomHdr(int w, int h, unsigned seed) {
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> base(0.0f, 2.0f), bright(2.0f, 40.0f), pick(0.0f, 1.0f);
-    ImageF img;
-    img.width = w;
-    img.height = h;
-    img.rgba.assign(size_t(w) * size_t(h) * 4, 1.0f);
-    for (size_t i = 0; i < img.rgba.size(); ++i)
-        if (i % 4 != 3) img.rgba[i] = post::roundToHalf(pick(rng) < 0.1f ? bright(rng) : base(rng));
-    return img;
-}
-
-// |d| / (|ref| + 1e-3), colour channels, as the other CUDA tests.
-double maxRelError(const ImageF& got, const ImageF& ref) {
-    double worst = 0.0;
-    for (size_t i = 0; i < got.rgba.size(); ++i)
-        if (i % 4 != 3)
-            worst = std::max(worst, std::fabs(double(got.rgba[i]) - double(ref.rgba[i])) / (std::fabs(double(ref.rgba[i])) + 1e-3));
-    return worst;
-}
 
 BloomParams mipChain(int kernel, bool karis = true) {
     BloomParams p;
@@ -48,13 +29,6 @@ BloomParams mipChain(int kernel, bool karis = true) {
     p.strength = 0.5f;
     p.karis = karis;
     return p;
-}
-
-bool skipWithoutDevice() {
-    const std::string problem = cuda::postDeviceProblem();
-    if (problem.empty()) return false;
-    std::printf("  no CUDA device here (%s): CUDA tests skipped\n", problem.c_str());
-    return true;
 }
 
 }  // namespace

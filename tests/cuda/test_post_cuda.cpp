@@ -19,8 +19,10 @@
 #include "engine/gl/shader.hpp"
 #include "engine/graph/texture_pool.hpp"
 #include "engine/post/post_reference.hpp"
+#include "tests/cuda/post_test_images.hpp"
 
 using namespace lp;
+using namespace lp::posttest;
 using post::BloomMethod;
 using post::BloomParams;
 using post::Storage;
@@ -38,30 +40,6 @@ ImageF makeImage(int w, int h, float fill = 0.0f) {
     return img;
 }
 
-ImageF randomHdr(unsigned seed) {
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> base(0.0f, 2.0f), bright(2.0f, 40.0f), pick(0.0f, 1.0f);
-    ImageF img = makeImage(kW, kH);
-    for (size_t i = 0; i < img.rgba.size(); ++i)
-        if (i % 4 != 3) img.rgba[i] = post::roundToHalf(pick(rng) < 0.1f ? bright(rng) : base(rng));
-    return img;
-}
-
-double maxRelError(const ImageF& got, const ImageF& ref, double floor = 1e-3) {
-    double worst = 0.0;
-    for (size_t i = 0; i < got.rgba.size(); ++i)
-        if (i % 4 != 3)
-            worst = std::max(worst, std::fabs(double(got.rgba[i]) - double(ref.rgba[i])) / (std::fabs(double(ref.rgba[i])) + floor));
-    return worst;
-}
-
-bool skipWithoutDevice() {
-    const std::string problem = cuda::postDeviceProblem();
-    if (problem.empty()) return false;
-    std::printf("  no CUDA device here (%s): CUDA tests skipped\n", problem.c_str());
-    return true;
-}
-
 BloomParams params(int kernel, BloomMethod m) {
     BloomParams p;
     p.kernel = kernel;
@@ -77,7 +55,7 @@ BloomParams params(int kernel, BloomMethod m) {
 // summation order are the only differences).
 TEST(CudaKernels, BloomMatchesCpuReference) {
     if (skipWithoutDevice()) GTEST_SKIP() << "no CUDA device: " << cuda::postDeviceProblem();
-    const ImageF hdr = randomHdr(1);
+    const ImageF hdr = randomHdr(kW, kH, 1);
     for (BloomMethod m : {BloomMethod::Separable, BloomMethod::MipChain})
         for (int kernel : {1, 5, 25, 101}) {
             const BloomParams p = params(kernel, m);
@@ -90,7 +68,7 @@ TEST(CudaKernels, BloomMatchesCpuReference) {
 // Composite and toon: fp32 device results vs the reference's fp16-stored HDR: 1 fp16 ulp relative.
 TEST(CudaKernels, CompositeAndToonMatchCpuReference) {
     if (skipWithoutDevice()) GTEST_SKIP() << "no CUDA device: " << cuda::postDeviceProblem();
-    const ImageF hdr = randomHdr(2);
+    const ImageF hdr = randomHdr(kW, kH, 2);
     const BloomParams p = params(25, BloomMethod::Separable);
     const ImageF bloom = post::bloomBuffer(hdr, p, Storage::Float);
     EXPECT_LE(maxRelError(cuda::compositeOnDevice(hdr, bloom, p.strength), post::compositeBloom(hdr, bloom, p.strength)),
@@ -117,7 +95,7 @@ TEST(CudaKernels, CompositeAndToonMatchCpuReference) {
 // +Inf and NaN texels: every output of the device bloom is finite.
 TEST(CudaKernels, InfAndNanDoNotSpread) {
     if (skipWithoutDevice()) GTEST_SKIP() << "no CUDA device: " << cuda::postDeviceProblem();
-    ImageF hdr = randomHdr(3);
+    ImageF hdr = randomHdr(kW, kH, 3);
     hdr.rgba[(size_t(20) * kW + 20) * 4] = std::numeric_limits<float>::infinity();
     hdr.rgba[(size_t(30) * kW + 40) * 4 + 1] = std::numeric_limits<float>::quiet_NaN();
     for (BloomMethod m : {BloomMethod::Separable, BloomMethod::MipChain}) {
@@ -132,7 +110,7 @@ TEST(CudaInterop, BloomOnGlTexturesMatchesReference) {
     if (skipWithoutDevice()) GTEST_SKIP() << "no CUDA device: " << cuda::postDeviceProblem();
     std::unique_ptr<gl::GpuContext> ctx = gl::createHeadlessContext();
     if (!ctx->isNvidia()) GTEST_SKIP() << "the headless GL context is not NVIDIA (" << ctx->info().renderer << ")";
-    const ImageF hdrIn = randomHdr(4);
+    const ImageF hdrIn = randomHdr(kW, kH, 4);
     const BloomParams p = params(25, BloomMethod::Separable);
     gl::Texture hdr = gl::makeTexture2D(GL_RGBA16F, kW, kH, 1, "test.hdr");
     gl::Texture bloom = gl::makeTexture2D(GL_RGBA16F, kW, kH, 1, "test.bloom");
@@ -168,7 +146,7 @@ TEST(CudaKernels, TiledBlurMatchesReferenceOnOddSizes) {
 // bloom buffer of bloomBuffer (1e-5 relative) and the composite of compositeBloom (1 fp16 ulp).
 TEST(CudaKernels, FusedBloomCompositeMatchesSeparateSteps) {
     if (skipWithoutDevice()) GTEST_SKIP() << "no CUDA device: " << cuda::postDeviceProblem();
-    const ImageF hdr = randomHdr(6);
+    const ImageF hdr = randomHdr(kW, kH, 6);
     for (BloomMethod m : {BloomMethod::Separable, BloomMethod::MipChain}) {
         const BloomParams p = params(25, m);
         const cuda::BloomAndComposite got = cuda::bloomCompositeOnDevice(hdr, p);
@@ -186,7 +164,7 @@ TEST(CudaInterop, FusedBloomCompositeOnGlTexturesMatchesReference) {
     if (skipWithoutDevice()) GTEST_SKIP() << "no CUDA device: " << cuda::postDeviceProblem();
     std::unique_ptr<gl::GpuContext> ctx = gl::createHeadlessContext();
     if (!ctx->isNvidia()) GTEST_SKIP() << "the headless GL context is not NVIDIA (" << ctx->info().renderer << ")";
-    const ImageF hdrIn = randomHdr(7);
+    const ImageF hdrIn = randomHdr(kW, kH, 7);
     cuda::PostInterop interop;
     for (BloomMethod m : {BloomMethod::Separable, BloomMethod::MipChain})
         for (int kernel : {25, 101}) {
@@ -268,7 +246,7 @@ int differingTexels(const ImageF& a, const ImageF& b) {
 // Bloom + composite on shared textures match the CPU reference within 2 fp16 ulps, nothing is
 // registered for mapping, and each call reports how it ran.
 TEST_P(CudaSharedTextures, BloomCompositeMatchesReferenceWithoutMapping) {
-    const ImageF hdrIn = randomHdr(8);
+    const ImageF hdrIn = randomHdr(kW, kH, 8);
     const BloomParams p = params(5, BloomMethod::Separable);
     auto hdr = make(GL_RGBA16F, "test.shared_hdr"), bloom = make(GL_RGBA16F, "test.shared_bloom");
     ASSERT_TRUE(hdr && bloom);
@@ -292,7 +270,7 @@ TEST_P(CudaSharedTextures, BloomCompositeMatchesReferenceWithoutMapping) {
 // uploaded, and CUDA's view of the result equals GL's read-back (which of the hand-overs failed,
 // when the outline is wrong).
 TEST_P(CudaSharedTextures, ToonMatchesReferenceWithoutMapping) {
-    const ImageF hdrIn = randomHdr(9);
+    const ImageF hdrIn = randomHdr(kW, kH, 9);
     ImageF position = makeImage(kW, kH), normal = makeImage(kW, kH);
     for (int y = 0; y < kH; ++y)
         for (int x = 0; x < kW; ++x) {

@@ -16,35 +16,16 @@
 #include "engine/gl/context.hpp"
 #include "engine/gl/handles.hpp"
 #include "engine/post/post_reference.hpp"
+#include "tests/cuda/post_test_images.hpp"
 
 using namespace lp;
+using namespace lp::posttest;
 using cuda::BloomBlur;
 using post::BloomMethod;
 using post::BloomParams;
 using post::Storage;
 
 namespace {
-
-ImageF randomHdr(int w, int h, unsigned seed) {
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> base(0.0f, 2.0f), bright(2.0f, 40.0f), pick(0.0f, 1.0f);
-    ImageF img;
-    img.width = w;
-    img.height = h;
-    img.rgba.assign(size_t(w) * size_t(h) * 4, 1.0f);
-    for (size_t i = 0; i < img.rgba.size(); ++i)
-        if (i % 4 != 3) img.rgba[i] = post::roundToHalf(pick(rng) < 0.1f ? bright(rng) : base(rng));
-    return img;
-}
-
-// As the other CUDA tests: |d| / (|ref| + 1e-3), colour channels.
-double maxRelError(const ImageF& got, const ImageF& ref) {
-    double worst = 0.0;
-    for (size_t i = 0; i < got.rgba.size(); ++i)
-        if (i % 4 != 3)
-            worst = std::max(worst, std::fabs(double(got.rgba[i]) - double(ref.rgba[i])) / (std::fabs(double(ref.rgba[i])) + 1e-3));
-    return worst;
-}
 
 BloomParams separable(int kernel) {
     BloomParams p;
