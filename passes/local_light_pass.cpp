@@ -240,16 +240,22 @@ void buildClusters(LocalLightPass& state, const FrameData& frame, int lightCount
     finishClusterBuild(state);
 }
 
-// The froxel lists tightened to the G-buffer's depth (light_clusters_tight.comp, a work group per
-// tile), for the lights-per-cluster view. The G-buffer is bound by the caller.
-void buildTightClusters(LocalLightPass& state, const FrameData& frame, GLuint prog, int lightCount) {
-    const ClusterGrid g = beginClusterBuild(state, frame);
+// One work group per tile of the froxel grid, for the programs that cull against the G-buffer's depth
+// (the tight lists and the clustered method's fused pass share these uniforms).
+void dispatchPerClusterTile(GLuint prog, const ClusterGrid& g, const FrameData& frame, int lightCount) {
     setClusterUniforms(prog, g);
     setInt(prog, "uLightCount", lightCount);
     setMat4(prog, "uProjection", frame.projection);
     glProgramUniform2i(prog, glGetUniformLocation(prog, "uImageSize"), frame.width, frame.height);
     glUseProgram(prog);
     glDispatchCompute(GLuint(g.tilesX), GLuint(g.tilesY), 1);
+}
+
+// The froxel lists tightened to the G-buffer's depth (light_clusters_tight.comp, a work group per
+// tile), for the lights-per-cluster view. The G-buffer is bound by the caller.
+void buildTightClusters(LocalLightPass& state, const FrameData& frame, GLuint prog, int lightCount) {
+    const ClusterGrid g = beginClusterBuild(state, frame);
+    dispatchPerClusterTile(prog, g, frame, lightCount);
     finishClusterBuild(state);
 }
 
@@ -269,12 +275,7 @@ void shadeClustered(LocalLightPass& state, const FrameData& frame, GLuint prog, 
                                           frame.farPlane);
     state.clusterGrid = g;
     state.stats.clusters = g.count();
-    setClusterUniforms(prog, g);
-    setInt(prog, "uLightCount", lightCount);
-    setMat4(prog, "uProjection", frame.projection);
-    glProgramUniform2i(prog, glGetUniformLocation(prog, "uImageSize"), frame.width, frame.height);
-    glUseProgram(prog);
-    glDispatchCompute(GLuint(g.tilesX), GLuint(g.tilesY), 1);
+    dispatchPerClusterTile(prog, g, frame, lightCount);
 }
 
 // The fullscreen, scissor and volumes methods: additive blending into an FBO holding the HDR texture.
