@@ -752,7 +752,6 @@ void separableBloom(In hdr, Out bloom, int width, int height, const post::BloomP
 }  // namespace
 
 BloomWorkspace::~BloomWorkspace() {
-    if (mipChainGraph) cudaGraphExecDestroy(mipChainGraph);
     cudaFree(a);
     cudaFree(progress);
     for (float4* m : mips) cudaFree(m);
@@ -963,22 +962,14 @@ BloomAndComposite bloomCompositeOnHalfArrays(const ImageF& hdr, const post::Bloo
         BloomWorkspace ws;
         ws.blur = blur;
         ws.mipChain = tuning;
-        // With a graph, the second run replays the first one's capture: that is the result returned.
-        for (int run = 0; run < (tuning.graph ? 2 : 1); ++run) {
-            check(cudaMemcpy2DToArray(hdrArray.array, 0, 0, texels.data(), size_t(width) * 8, size_t(width) * 8,
-                                      size_t(height), cudaMemcpyHostToDevice),
-                  "cudaMemcpy2DToArray");
-            if (composite)
-                bloomCompositeSurfaces(hdrArray.surface, bloomArray.surface, width, height, p, ws, stream);
-            else
-                bloomSurfaceToSurface(hdrArray.surface, bloomArray.surface, width, height, p, ws, stream);
-            check(cudaStreamSynchronize(stream), "cudaStreamSynchronize");
-        }
-    }
-    if (tuning.persistLevel0) {  // give the set-aside part of L2 back (nothing to do where none was set aside)
-        cudaDeviceSetLimit(cudaLimitPersistingL2CacheSize, 0);
-        cudaCtxResetPersistingL2Cache();
-        cudaGetLastError();
+        check(cudaMemcpy2DToArray(hdrArray.array, 0, 0, texels.data(), size_t(width) * 8, size_t(width) * 8,
+                                  size_t(height), cudaMemcpyHostToDevice),
+              "cudaMemcpy2DToArray");
+        if (composite)
+            bloomCompositeSurfaces(hdrArray.surface, bloomArray.surface, width, height, p, ws, stream);
+        else
+            bloomSurfaceToSurface(hdrArray.surface, bloomArray.surface, width, height, p, ws, stream);
+        check(cudaStreamSynchronize(stream), "cudaStreamSynchronize");
     }
     cudaStreamDestroy(stream);
     return {readHalfArray(bloomArray, width, height), readHalfArray(hdrArray, width, height)};
@@ -1074,11 +1065,6 @@ BloomKernelTime timeBloomCompositeKernels(int width, int height, const post::Blo
     cudaEventDestroy(start);
     cudaEventDestroy(stop);
     cudaStreamDestroy(stream);
-    if (tuning.persistLevel0) {  // give the set-aside part of L2 back (nothing to do where none was set aside)
-        cudaDeviceSetLimit(cudaLimitPersistingL2CacheSize, 0);
-        cudaCtxResetPersistingL2Cache();
-        cudaGetLastError();
-    }
     std::sort(ms.begin(), ms.end());
     result.medianMs = ms.empty() ? 0.0 : double(ms[ms.size() / 2]);
     return result;

@@ -16,11 +16,15 @@
 //   the next one be scheduled as soon as all its own blocks run, and waits for the previous one to
 //   finish before touching what it wrote, so the small levels' launches overlap instead of
 //   queueing one after another.
-// MipChainTuning (cuda/post_cuda.hpp) switches each of these and a few shapes and access hints;
-// its defaults are the fastest combination measured on the H100 (bench/results/post_interop).
+// - The first downsample's HDR reads are evict-first and its divisions __fdividef; downsample
+//   blocks make one output row a thread, upsample blocks two (512 threads).
+// This is the fastest layout measured on the H100 (bench/results/post_interop/README.md). The
+// variants that lost there (wide kernel shapes, exact divisions, streamed final accesses, up_0 in
+// its own launch or from 4 x 4 taps, level 0 persisting in L2, a CUDA graph of the launches) were
+// removed after measurement; they are in this file at commit 99b0145. MipChainTuning
+// (cuda/post_cuda.hpp) keeps the two settings that cost the passes nothing: the tail's size and the
+// overlapping launches.
 #include <algorithm>
-#include <cstring>
-#include <string>
 #include <type_traits>
 
 #include "cuda/interop.hpp"
@@ -71,7 +75,7 @@ struct FloatLevel {
     __device__ static float4 stored(float4 c) { return c; }
 };
 
-// An RGBA16F surface read and written once per texel: loads and stores marked evict-first.
+// An RGBA16F surface read once per texel (the first downsample's HDR): loads marked evict-first.
 struct StreamedHalf4Surface {
     cudaSurfaceObject_t surface;
     __device__ float4 load(int x, int y) const {
@@ -82,14 +86,6 @@ struct StreamedHalf4Surface {
         return make_float4(__half2float(__ushort_as_half(r)), __half2float(__ushort_as_half(g)),
                            __half2float(__ushort_as_half(b)), __half2float(__ushort_as_half(a)));
     }
-    __device__ void store(int x, int y, float4 c) const {
-        const unsigned short r = __half_as_ushort(__float2half_rn(c.x)), g = __half_as_ushort(__float2half_rn(c.y)),
-                             b = __half_as_ushort(__float2half_rn(c.z)), a = __half_as_ushort(__float2half_rn(c.w));
-        asm volatile("sust.b.2d.cs.v4.b16.trap [%0, {%1, %2}], {%3, %4, %5, %6};" ::"l"(surface), "r"(x * 8), "r"(y),
-                     "h"(r), "h"(g), "h"(b), "h"(a)
-                     : "memory");
-    }
-    __device__ static float4 stored(float4 c) { return Half4Surface::stored(c); }
 };
 
 // The 13-tap downsample (reference: downsample13) from its 13 2x2 boxes: box[m][k] is the box
@@ -97,7 +93,7 @@ struct StreamedHalf4Surface {
 // ones (source 2i + 1..2i + 2) of (x - 1 + k, y - 1 + m). Corner (ox, oy) of the reference is
 // box (ox / 2, oy / 2) for even offsets and odd ((ox - 1) / 2, (oy - 1) / 2) for odd ones.
 // FastDivide: the Karis weights' and the normalisation's divisions as __fdividef (2 ulps instead of
-// correctly rounded; fewer instructions in the compute-heavy first downsample).
+// correctly rounded): the first downsample was bound by its divisions.
 template <bool FastDivide = false>
 __device__ inline Rgb downsampleFromBoxes(const Rgb box[3][3], const Rgb odd[2][2], bool karis) {
     const Rgb g[5] = {
@@ -121,7 +117,8 @@ __device__ inline Rgb downsampleFromBoxes(const Rgb box[3][3], const Rgb odd[2][
     return times(sum, FastDivide ? __fdividef(1.0f, wsum) : 1.0f / wsum);
 }
 
-// post::brightPass with its two divisions as __fdividef (see FastDivide above).
+// post::brightPass with its two divisions as __fdividef (see FastDivide above; the first
+// downsample's bright pass).
 __device__ inline Rgb brightPassFast(Rgb c, float threshold, float knee, float highlight) {
     c = post::sanitize(c);
     const float br = fmaxf(c.r, fmaxf(c.g, c.b));
@@ -132,18 +129,15 @@ __device__ inline Rgb brightPassFast(Rgb c, float threshold, float knee, float h
 }
 
 // ---- Downsample of a level (or of the HDR image, bright-passed, for level 0), tiled ----
-// A block of 32 x 8 threads makes 32 x (8 * Rows) outputs, Rows rows a thread: it stages source
-// texels 2 * x0 - 2 .. 2 * x1 + 3 and the even boxes of destinations x0 - 1 .. x1 + 1, the odd ones
-// of x0 - 1 .. x1. Wide (2 rows) stages less apron per output; Lean (1 row) needs less shared
-// memory and fewer registers, so more blocks share an SM.
-template <int RowsPerThread>
-struct DownShape {
-    static constexpr int Rows = RowsPerThread, W = 32, ThreadsY = 8, H = 8 * RowsPerThread, Threads = W * ThreadsY;
+// A block of 32 x 8 threads makes 32 x 8 outputs, one a thread: it stages source texels
+// 2 * x0 - 2 .. 2 * x1 + 3 and the even boxes of destinations x0 - 1 .. x1 + 1, the odd ones of
+// x0 - 1 .. x1. One output row a thread (not two) needs less shared memory and fewer registers, so
+// more blocks share an SM.
+struct DownTile {
+    static constexpr int W = 32, H = 8, Threads = W * H;
     static constexpr int SrcW = 2 * W + 4, SrcH = 2 * H + 4;
     static constexpr int BoxW = W + 2, BoxH = H + 2, OddW = W + 1, OddH = H + 1;
 };
-using WideDown = DownShape<2>;
-using LeanDown = DownShape<1>;
 
 struct Planes3 {  // one float plane per channel: consecutive lanes, consecutive banks
     template <int H, int W>
@@ -158,12 +152,12 @@ struct Planes3 {  // one float plane per channel: consecutive lanes, consecutive
     };
 };
 
-template <typename Shape, bool First, bool FastDivide, typename Src, typename Dst>
-__global__ void __launch_bounds__(Shape::Threads)
-    downTileKernel(Src src, int sw, int sh, Dst dst, post::BloomParams p) {
-    constexpr int kDownW = Shape::W, kDownH = Shape::H, kDownThreads = Shape::Threads;
-    constexpr int kSrcW = Shape::SrcW, kSrcH = Shape::SrcH, kBoxW = Shape::BoxW, kBoxH = Shape::BoxH;
-    constexpr int kOddW = Shape::OddW, kOddH = Shape::OddH, kRows = Shape::Rows;
+// First: the level-0 downsample of the HDR (bright pass, Karis, fast divisions).
+template <bool First, typename Src, typename Dst>
+__global__ void __launch_bounds__(DownTile::Threads) downTileKernel(Src src, int sw, int sh, Dst dst, post::BloomParams p) {
+    constexpr int kDownW = DownTile::W, kDownH = DownTile::H, kDownThreads = DownTile::Threads;
+    constexpr int kSrcW = DownTile::SrcW, kSrcH = DownTile::SrcH, kBoxW = DownTile::BoxW, kBoxH = DownTile::BoxH;
+    constexpr int kOddW = DownTile::OddW, kOddH = DownTile::OddH;
     __shared__ Planes3::Of<kSrcH, kSrcW> source;
     __shared__ Planes3::Of<kBoxH, kBoxW> boxes;
     __shared__ Planes3::Of<kOddH, kOddW> odds;
@@ -184,9 +178,7 @@ __global__ void __launch_bounds__(Shape::Threads)
         const int e = thread + b * kDownThreads;
         if (e >= kStaged) continue;
         const Rgb c = rgbOf(v[b]);
-        const Rgb bright = FastDivide ? brightPassFast(c, p.threshold, p.knee, p.highlight)
-                                      : post::brightPass(c, p.threshold, p.knee, p.highlight);
-        source.put(e / kSrcW, e % kSrcW, First ? bright : c);
+        source.put(e / kSrcW, e % kSrcW, First ? brightPassFast(c, p.threshold, p.knee, p.highlight) : c);
     }
     __syncthreads();
     // Box (i, j) of the even grid covers staged texels 2i..2i+1, 2j..2j+1; of the odd grid 2i+1..2i+2.
@@ -202,64 +194,54 @@ __global__ void __launch_bounds__(Shape::Threads)
         odds.put(j, i, box(2 * i + 1, 2 * j + 1));
     }
     __syncthreads();
-    // Destination (tx, Rows ty + r): even boxes rows Rows ty + r .. + 2, columns tx .. tx + 2 (grid
-    // index = destination - x0 + 1 for destination x - 1); odd boxes rows Rows ty + r .. + 1, columns
-    // tx .. tx + 1.
+    // Destination (tx, ty): even boxes rows ty .. ty + 2, columns tx .. tx + 2 (grid index =
+    // destination - x0 + 1 for destination x - 1); odd boxes rows ty .. ty + 1, columns tx .. tx + 1.
     const int tx = int(threadIdx.x), ty = int(threadIdx.y);
-    const bool karis = First && p.karis;
+    const int x = x0 + tx, y = y0 + ty;
+    Rgb even[3][3], oddBoxes[2][2];
 #pragma unroll
-    for (int r = 0; r < kRows; ++r) {
-        const int x = x0 + tx, y = y0 + kRows * ty + r;
-        Rgb even[3][3], oddBoxes[2][2];
+    for (int m = 0; m < 3; ++m)
 #pragma unroll
-        for (int m = 0; m < 3; ++m)
+        for (int k = 0; k < 3; ++k) even[m][k] = boxes.at(ty + m, tx + k);
 #pragma unroll
-            for (int k = 0; k < 3; ++k) even[m][k] = boxes.at(kRows * ty + r + m, tx + k);
+    for (int m = 0; m < 2; ++m)
 #pragma unroll
-        for (int m = 0; m < 2; ++m)
-#pragma unroll
-            for (int k = 0; k < 2; ++k) oddBoxes[m][k] = odds.at(kRows * ty + r + m, tx + k);
-        if (x < dst.width && y < dst.height)
-            dst.store(x, y, opaque(downsampleFromBoxes<FastDivide>(even, oddBoxes, karis)));
-    }
+        for (int k = 0; k < 2; ++k) oddBoxes[m][k] = odds.at(ty + m, tx + k);
+    if (x < dst.width && y < dst.height)
+        dst.store(x, y, opaque(downsampleFromBoxes<First>(even, oddBoxes, First && p.karis)));
 }
 
 // ---- Upsample: fine texels from a staged tile of the coarse level ----
-// A block of 64 x ThreadsY threads makes a 64 x (Rows * ThreadsY) tile of fine texels, each thread
-// Rows consecutive rows of one column; the coarse tile it reads spans coarse texels x0 / 2 - 2 ..
-// x1 / 2 + 1. Wide (8 rows a thread) shares each coarse row's horizontal sum among more outputs;
-// Lean (2 rows, 512 threads) needs fewer registers, so more blocks share an SM.
-template <int RowsPerThread, int ThreadsY>
-struct UpShape {
-    static constexpr int Rows = RowsPerThread, W = 64, H = RowsPerThread * ThreadsY, Threads = W * ThreadsY;
+// A block of 64 x 8 threads makes a 64 x 16 tile of fine texels, each thread 2 consecutive rows of
+// one column; the coarse tile it reads spans coarse texels x0 / 2 - 2 .. x1 / 2 + 1. Two rows a
+// thread (not eight, with 256 threads) need fewer registers, so more blocks share an SM.
+struct UpTile {
+    static constexpr int Rows = 2, ThreadsY = 8, W = 64, H = Rows * ThreadsY, Threads = W * ThreadsY;
     static constexpr int CoarseW = W / 2 + 4, CoarseH = H / 2 + 4;
     static constexpr int CoarseRows = Rows / 2 + 4;  // coarse rows one thread's outputs read
     // up_0 texels (x0 / 2 - 2 + i, ...) of the last kernel's tile need up_1 texels from (x0 / 2 - 2) / 2 - 2.
     static constexpr int Up1W = CoarseW / 2 + 5, Up1H = CoarseH / 2 + 5;
     using Tile = Planes3::Of<CoarseH, CoarseW>;
 };
-using WideUp = UpShape<8, 4>;
-using LeanUp = UpShape<2, 8>;
 
 // The upsample (reference: upsample) of the thread's column x = x0 + tx at rows y0 + Rows * ty + m
 // from the coarse tile whose origin is (x0 / 2 - 2, y0 / 2 - 2): per coarse row the 4-tap
 // horizontal sum once, then the vertical 4 taps per output (the reference's order: rows, then
 // their weighted sum).
-template <typename Shape>
-__device__ inline void upsampleColumn(const typename Shape::Tile& tile, int tx, int ty, Rgb out[Shape::Rows]) {
+__device__ inline void upsampleColumn(const UpTile::Tile& tile, int tx, int ty, Rgb out[UpTile::Rows]) {
     const bool ox = tx & 1;
     const int bx = (tx >> 1) + (ox ? 1 : 0);  // (x >> 1) - (ox ? 1 : 2) - (x0 / 2 - 2), x0 even
-    const int row0 = (Shape::Rows / 2) * ty;  // (y0 + Rows * ty) / 2 - 2 - (y0 / 2 - 2)
-    Rgb rows[Shape::CoarseRows];
+    const int row0 = (UpTile::Rows / 2) * ty;  // (y0 + Rows * ty) / 2 - 2 - (y0 / 2 - 2)
+    Rgb rows[UpTile::CoarseRows];
 #pragma unroll
-    for (int k = 0; k < Shape::CoarseRows; ++k) {
+    for (int k = 0; k < UpTile::CoarseRows; ++k) {
         Rgb row;
 #pragma unroll
         for (int i = 0; i < 4; ++i) row = plus(row, times(tile.at(row0 + k, bx + i), post::upsampleWeight(i, ox)));
         rows[k] = row;
     }
 #pragma unroll
-    for (int m = 0; m < Shape::Rows; ++m) {
+    for (int m = 0; m < UpTile::Rows; ++m) {
         const bool oy = m & 1;
         const int by = (m >> 1) + (oy ? 1 : 0);  // relative to row0
         Rgb sum;
@@ -270,48 +252,47 @@ __device__ inline void upsampleColumn(const typename Shape::Tile& tile, int tx, 
 }
 
 // fine += U(coarse), in place (up_l = down_l + U(up_{l+1})).
-template <typename Shape, typename Lvl>
-__global__ void __launch_bounds__(Shape::Threads) upTileKernel(Lvl coarse, Lvl fine) {
-    __shared__ typename Shape::Tile tile;
+template <typename Lvl>
+__global__ void __launch_bounds__(UpTile::Threads) upTileKernel(Lvl coarse, Lvl fine) {
+    __shared__ UpTile::Tile tile;
     letNextGridLaunch();
     waitForPriorGrids();
-    const int tx = int(threadIdx.x), ty = int(threadIdx.y), thread = ty * Shape::W + tx;
-    const int x0 = int(blockIdx.x) * Shape::W, y0 = int(blockIdx.y) * Shape::H;
+    const int tx = int(threadIdx.x), ty = int(threadIdx.y), thread = ty * UpTile::W + tx;
+    const int x0 = int(blockIdx.x) * UpTile::W, y0 = int(blockIdx.y) * UpTile::H;
     const int cx0 = x0 / 2 - 2, cy0 = y0 / 2 - 2;
-    const int x = x0 + tx, yFirst = y0 + Shape::Rows * ty;
-    float4 own[Shape::Rows];
+    const int x = x0 + tx, yFirst = y0 + UpTile::Rows * ty;
+    float4 own[UpTile::Rows];
 #pragma unroll
-    for (int m = 0; m < Shape::Rows; ++m)
+    for (int m = 0; m < UpTile::Rows; ++m)
         if (x < fine.width && yFirst + m < fine.height) own[m] = fine.load(x, yFirst + m);
-    for (int e = thread; e < Shape::CoarseW * Shape::CoarseH; e += Shape::Threads) {
-        const int i = e % Shape::CoarseW, j = e / Shape::CoarseW;
+    for (int e = thread; e < UpTile::CoarseW * UpTile::CoarseH; e += UpTile::Threads) {
+        const int i = e % UpTile::CoarseW, j = e / UpTile::CoarseW;
         tile.put(j, i, rgbOf(coarse.load(clampTo(cx0 + i, coarse.width - 1), clampTo(cy0 + j, coarse.height - 1))));
     }
     __syncthreads();
-    Rgb up[Shape::Rows];
-    upsampleColumn<Shape>(tile, tx, ty, up);
+    Rgb up[UpTile::Rows];
+    upsampleColumn(tile, tx, ty, up);
 #pragma unroll
-    for (int m = 0; m < Shape::Rows; ++m)
+    for (int m = 0; m < UpTile::Rows; ++m)
         if (x < fine.width && yFirst + m < fine.height) fine.store(x, yFirst + m, opaque(plus(rgbOf(own[m]), up[m])));
 }
 
 // ---- The last kernel: up_0 on the fly, the full-resolution upsample and the composite ----
-// SeparableUp0: U(up_1) for the tile's up_0 texels in two passes, each up_1 row's horizontal
-// 4-tap sum per up_0 column once (shared by the up_0 texels of that column), then the vertical 4
-// taps: the reference's rows and their weighted sum, with a third of the shared-memory reads.
-template <typename Shape, bool SeparableUp0, typename Lvl, bool Composite, typename HdrIn, typename BloomOut,
-          typename HdrOut>
-__global__ void __launch_bounds__(Shape::Threads)
+// U(up_1) for the tile's up_0 texels in two passes: each up_1 row's horizontal 4-tap sum per up_0
+// column once (shared by the up_0 texels of that column), then the vertical 4 taps: the
+// reference's rows and their weighted sum, with a third of the shared-memory reads of 4 x 4 taps.
+template <typename Lvl, bool Composite, typename HdrIn, typename BloomOut, typename HdrOut>
+__global__ void __launch_bounds__(UpTile::Threads)
     finalTileKernel(Lvl down0, Lvl up1, bool hasUp1, HdrIn hdr, BloomOut bloom, HdrOut hdrOut, int width,
                     int height, float norm, float strength) {
-    constexpr int kCoarseW = Shape::CoarseW, kCoarseH = Shape::CoarseH, kUp1W = Shape::Up1W, kUp1H = Shape::Up1H;
-    constexpr int kThreads = Shape::Threads, kRows = Shape::Rows;
+    constexpr int kCoarseW = UpTile::CoarseW, kCoarseH = UpTile::CoarseH, kUp1W = UpTile::Up1W, kUp1H = UpTile::Up1H;
+    constexpr int kThreads = UpTile::Threads, kRows = UpTile::Rows;
     __shared__ Planes3::Of<kUp1H, kUp1W> coarser;
-    __shared__ Planes3::Of<SeparableUp0 ? kUp1H : 1, SeparableUp0 ? kCoarseW : 1> rowSums;  // [up_1 row][up_0 column]
-    __shared__ typename Shape::Tile tile;
+    __shared__ Planes3::Of<kUp1H, kCoarseW> rowSums;  // [up_1 row][up_0 column]
+    __shared__ UpTile::Tile tile;
     letNextGridLaunch();
-    const int tx = int(threadIdx.x), ty = int(threadIdx.y), thread = ty * Shape::W + tx;
-    const int x0 = int(blockIdx.x) * Shape::W, y0 = int(blockIdx.y) * Shape::H;
+    const int tx = int(threadIdx.x), ty = int(threadIdx.y), thread = ty * UpTile::W + tx;
+    const int x0 = int(blockIdx.x) * UpTile::W, y0 = int(blockIdx.y) * UpTile::H;
     const int cx0 = x0 / 2 - 2, cy0 = y0 / 2 - 2;  // up_0 tile origin (may be negative: clamped per texel)
     const int ux0 = (cx0 >> 1) - 2, uy0 = (cy0 >> 1) - 2;  // up_1 tile origin (floor halves)
     const int x = x0 + tx, yFirst = y0 + kRows * ty;
@@ -341,7 +322,7 @@ __global__ void __launch_bounds__(Shape::Threads)
             own[b] = down0.load(clampTo(cx0 + e % kCoarseW, down0.width - 1), clampTo(cy0 + e / kCoarseW, down0.height - 1));
     }
     __syncthreads();
-    if (SeparableUp0 && hasUp1) {
+    if (hasUp1) {
         // rowSums[r][i]: up_1 row r's 4 taps for up_0 column cx0 + i (clamped), weights by its parity.
         for (int e = thread; e < kUp1H * kCoarseW; e += kThreads) {
             const int i = e % kCoarseW, r = e / kCoarseW;
@@ -361,29 +342,19 @@ __global__ void __launch_bounds__(Shape::Threads)
         if (e >= kTile) continue;
         Rgb c = rgbOf(own[b]);
         if (hasUp1) {  // up_0 = down_0 + U(up_1) at the clamped texel, as stored
-            const int cx = clampTo(cx0 + e % kCoarseW, down0.width - 1), cy = clampTo(cy0 + e / kCoarseW, down0.height - 1);
-            const bool ox = cx & 1, oy = cy & 1;
-            const int bx = (cx >> 1) - (ox ? 1 : 2) - ux0, by = (cy >> 1) - (oy ? 1 : 2) - uy0;
+            const int cy = clampTo(cy0 + e / kCoarseW, down0.height - 1);
+            const bool oy = cy & 1;
+            const int by = (cy >> 1) - (oy ? 1 : 2) - uy0;
             Rgb sum;
 #pragma unroll
-            for (int j = 0; j < 4; ++j) {
-                Rgb row;
-                if (SeparableUp0) {
-                    row = rowSums.at(by + j, e % kCoarseW);
-                } else {
-#pragma unroll
-                    for (int i = 0; i < 4; ++i)
-                        row = plus(row, times(coarser.at(by + j, bx + i), post::upsampleWeight(i, ox)));
-                }
-                sum = plus(sum, times(row, post::upsampleWeight(j, oy)));
-            }
+            for (int j = 0; j < 4; ++j) sum = plus(sum, times(rowSums.at(by + j, e % kCoarseW), post::upsampleWeight(j, oy)));
             c = rgbOf(Lvl::stored(opaque(plus(c, sum))));
         }
         tile.put(e / kCoarseW, e % kCoarseW, c);
     }
     __syncthreads();
     Rgb up[kRows];
-    upsampleColumn<Shape>(tile, tx, ty, up);
+    upsampleColumn(tile, tx, ty, up);
 #pragma unroll
     for (int m = 0; m < kRows; ++m) {
         const int y = yFirst + m;
@@ -469,62 +440,23 @@ bool programmaticLaunchHere() {
 }
 
 // Launches `kernel`; `afterPrior`: as a programmatic dependent launch where the device has them
-// (on a created stream: the legacy default stream keeps plain launches); `window`: an L2 access
-// policy for the launch (persisting lines in the set-aside part of L2), or null.
+// (on a created stream: the legacy default stream keeps plain launches).
 template <typename... Params, typename... Args>
 void launch(const char* name, void (*kernel)(Params...), dim3 grid, dim3 block, cudaStream_t stream, bool afterPrior,
-            const cudaAccessPolicyWindow* window, Args... args) {
-    cudaLaunchAttribute attributes[2];
-    unsigned count = 0;
-    if (afterPrior && stream != nullptr && programmaticLaunchHere()) {
-        attributes[count].id = cudaLaunchAttributeProgrammaticStreamSerialization;
-        attributes[count].val.programmaticStreamSerializationAllowed = 1;
-        ++count;
-    }
-    if (window) {
-        attributes[count].id = cudaLaunchAttributeAccessPolicyWindow;
-        attributes[count].val.accessPolicyWindow = *window;
-        ++count;
-    }
+            Args... args) {
+    cudaLaunchAttribute attribute;
     cudaLaunchConfig_t config{};
     config.gridDim = grid;
     config.blockDim = block;
     config.dynamicSmemBytes = 0;
     config.stream = stream;
-    config.attrs = attributes;
-    config.numAttrs = count;
+    if (afterPrior && stream != nullptr && programmaticLaunchHere()) {
+        attribute.id = cudaLaunchAttributeProgrammaticStreamSerialization;
+        attribute.val.programmaticStreamSerializationAllowed = 1;
+        config.attrs = &attribute;
+        config.numAttrs = 1;
+    }
     check(cudaLaunchKernelEx(&config, kernel, Params(args)...), name);
-}
-
-// The L2 window that keeps level 0 (written by the first kernel, read by the second and the
-// last) in the persisting part of L2: sets that part aside (cudaLimitPersistingL2CacheSize) on
-// first use; null where the device has none or refuses it (the chain then runs without).
-template <typename Lvl>
-const cudaAccessPolicyWindow* persistingWindowOf(const Lvl& level, cudaAccessPolicyWindow& window) {
-    int device = 0, maxPersisting = 0, maxWindow = 0;
-    size_t setAside = 0;
-    const size_t bytes = size_t(level.width) * size_t(level.height) * sizeof(*level.data);
-    if (cudaGetDevice(&device) != cudaSuccess ||
-        cudaDeviceGetAttribute(&maxPersisting, cudaDevAttrMaxPersistingL2CacheSize, device) != cudaSuccess ||
-        cudaDeviceGetAttribute(&maxWindow, cudaDevAttrMaxAccessPolicyWindowSize, device) != cudaSuccess ||
-        maxPersisting <= 0 || maxWindow <= 0 || cudaDeviceGetLimit(&setAside, cudaLimitPersistingL2CacheSize) != cudaSuccess) {
-        cudaGetLastError();
-        return nullptr;
-    }
-    const size_t wanted = std::min(bytes, size_t(maxPersisting));
-    if (setAside < wanted && (cudaDeviceSetLimit(cudaLimitPersistingL2CacheSize, wanted) != cudaSuccess ||
-                              cudaDeviceGetLimit(&setAside, cudaLimitPersistingL2CacheSize) != cudaSuccess)) {
-        cudaGetLastError();
-        return nullptr;
-    }
-    if (setAside == 0) return nullptr;
-    window = {};
-    window.base_ptr = level.data;
-    window.num_bytes = std::min(bytes, size_t(maxWindow));
-    window.hitRatio = float(std::min(1.0, double(setAside) / double(window.num_bytes)));
-    window.hitProp = cudaAccessPropertyPersisting;
-    window.missProp = cudaAccessPropertyStreaming;
-    return &window;
 }
 
 dim3 tilesOf(int width, int height, int tileW, int tileH) {
@@ -537,8 +469,7 @@ double bytesOf(const Lvl& level) {
 }
 
 // downIn: the HDR as the first downsample reads it; hdr: as the last kernel reads it.
-template <typename Shape, typename Down, typename Lvl, bool Composite, typename DownIn, typename HdrIn,
-          typename BloomOut, typename HdrOut>
+template <typename Lvl, bool Composite, typename DownIn, typename HdrIn, typename BloomOut, typename HdrOut>
 void mipChain(Chain<Lvl> chain, DownIn downIn, HdrIn hdr, BloomOut bloom, HdrOut hdrOut, int width, int height,
               const post::BloomParams& p, const MipChainTuning& tuning, StepRecorder* recorder, cudaStream_t stream) {
     const int n = chain.count;
@@ -555,21 +486,17 @@ void mipChain(Chain<Lvl> chain, DownIn downIn, HdrIn hdr, BloomOut bloom, HdrOut
     static const char* const kDown[] = {"down0", "down1", "down2", "down3", "down4", "down5", "down6", "down7"};
     static const char* const kUp[] = {"up0", "up1", "up2", "up3", "up4", "up5", "up6", "up7"};
     const double hdrBytes = double(width) * double(height) * 8.0;
-    const dim3 downBlock(Down::W, Down::ThreadsY), upBlock(Shape::W, Shape::Threads / Shape::W);
+    const dim3 downBlock(DownTile::W, DownTile::H), upBlock(UpTile::W, UpTile::ThreadsY);
     const Lvl& l0 = chain.level[0];
-    cudaAccessPolicyWindow window;
-    const cudaAccessPolicyWindow* level0 = tuning.persistLevel0 ? persistingWindowOf(l0, window) : nullptr;
     step(kDown[0], hdrBytes + bytesOf(l0), [&] {
-        auto kernel = tuning.fastDivide ? downTileKernel<Down, true, true, DownIn, Lvl>
-                                        : downTileKernel<Down, true, false, DownIn, Lvl>;
-        launch("downTileKernel (level 0)", kernel, tilesOf(l0.width, l0.height, Down::W, Down::H), downBlock, stream,
-               false, level0, downIn, width, height, l0, p);
+        launch("downTileKernel (level 0)", downTileKernel<true, DownIn, Lvl>,
+               tilesOf(l0.width, l0.height, DownTile::W, DownTile::H), downBlock, stream, false, downIn, width, height, l0, p);
     });
     for (int l = 1; l < first; ++l) {
         const Lvl &src = chain.level[l - 1], &dst = chain.level[l];
         step(kDown[l], bytesOf(src) + bytesOf(dst), [&] {
-            launch("downTileKernel", downTileKernel<Down, false, false, Lvl, Lvl>, tilesOf(dst.width, dst.height, Down::W, Down::H),
-                   downBlock, stream, overlap, l == 1 ? level0 : nullptr, src, src.width, src.height, dst, p);
+            launch("downTileKernel", downTileKernel<false, Lvl, Lvl>, tilesOf(dst.width, dst.height, DownTile::W, DownTile::H),
+                   downBlock, stream, overlap, src, src.width, src.height, dst, p);
         });
     }
     if (first < n) {
@@ -577,40 +504,24 @@ void mipChain(Chain<Lvl> chain, DownIn downIn, HdrIn hdr, BloomOut bloom, HdrOut
         for (int l = first; l < n; ++l) bytes += bytesOf(chain.level[l - 1]) + bytesOf(chain.level[l]);
         for (int l = n - 2; l >= first; --l) bytes += bytesOf(chain.level[l + 1]) + 2.0 * bytesOf(chain.level[l]);
         step("tail", bytes, [&] {
-            launch("chainTailKernel", chainTailKernel<Lvl>, dim3(1), dim3(kTailThreads), stream, overlap,
-                   first == 1 ? level0 : nullptr, chain, first);
+            launch("chainTailKernel", chainTailKernel<Lvl>, dim3(1), dim3(kTailThreads), stream, overlap, chain, first);
         });
     }
-    // up_0 in its own launch when the last kernel does not fuse it (tuning.fuseLastUpsample off).
-    const int lastUp = tuning.fuseLastUpsample ? 1 : 0;
-    for (int l = std::min(first, n - 1) - 1; l >= lastUp; --l) {
+    // up_l for l >= 1; up_0 is computed inside the last kernel.
+    for (int l = std::min(first, n - 1) - 1; l >= 1; --l) {
         const Lvl& fine = chain.level[l];
         step(kUp[l], bytesOf(chain.level[l + 1]) + 2.0 * bytesOf(fine), [&] {
-            launch("upTileKernel", upTileKernel<Shape, Lvl>, tilesOf(fine.width, fine.height, Shape::W, Shape::H), upBlock,
-                   stream, overlap, nullptr, chain.level[l + 1], fine);
+            launch("upTileKernel", upTileKernel<Lvl>, tilesOf(fine.width, fine.height, UpTile::W, UpTile::H), upBlock,
+                   stream, overlap, chain.level[l + 1], fine);
         });
     }
-    const bool fused = n > 1 && tuning.fuseLastUpsample;  // level 0 still holds down_0, level 1 up_1
-    const Lvl up1 = fused ? chain.level[1] : chain.level[0];
-    step("final", hdrBytes * (Composite ? 3.0 : 1.0) + bytesOf(l0) + (fused ? bytesOf(up1) : 0.0), [&] {
-        auto kernel = tuning.separableUp0 ? finalTileKernel<Shape, true, Lvl, Composite, HdrIn, BloomOut, HdrOut>
-                                          : finalTileKernel<Shape, false, Lvl, Composite, HdrIn, BloomOut, HdrOut>;
-        launch("finalTileKernel", kernel, tilesOf(width, height, Shape::W, Shape::H), upBlock, stream, overlap, level0,
-               l0, up1, fused, hdr, bloom, hdrOut, width, height, 1.0f / float(n), p.strength);
+    const bool hasUp1 = n > 1;  // level 0 still holds down_0, level 1 up_1
+    const Lvl up1 = hasUp1 ? chain.level[1] : chain.level[0];
+    step("final", hdrBytes * (Composite ? 3.0 : 1.0) + bytesOf(l0) + (hasUp1 ? bytesOf(up1) : 0.0), [&] {
+        launch("finalTileKernel", finalTileKernel<Lvl, Composite, HdrIn, BloomOut, HdrOut>,
+               tilesOf(width, height, UpTile::W, UpTile::H), upBlock, stream, overlap, l0, up1, hasUp1, hdr, bloom, hdrOut,
+               width, height, 1.0f / float(n), p.strength);
     });
-}
-
-// The chain with the kernel shapes the tuning asks for.
-template <typename Lvl, bool Composite, typename... Images>
-void mipChainShaped(const MipChainTuning& tuning, Images... images) {
-    if (tuning.leanUpsample && tuning.leanDownsample)
-        mipChain<LeanUp, LeanDown, Lvl, Composite>(images...);
-    else if (tuning.leanUpsample)
-        mipChain<LeanUp, WideDown, Lvl, Composite>(images...);
-    else if (tuning.leanDownsample)
-        mipChain<WideUp, LeanDown, Lvl, Composite>(images...);
-    else
-        mipChain<WideUp, WideDown, Lvl, Composite>(images...);
 }
 
 template <typename Lvl>
@@ -634,108 +545,21 @@ void mipChainBloomBuffers(const float4* hdr, float4* bloom, float4* hdrOut, int 
     const BufferImage in{const_cast<float4*>(hdr), width}, b{bloom, width};
     const MipChainTuning& t = ws.mipChain;
     if (hdrOut)
-        mipChainShaped<FloatLevel, true>(t, chain, in, in, b, BufferImage{hdrOut, width}, width, height, p, t, ws.recorder,
-                                         stream);
+        mipChain<FloatLevel, true>(chain, in, in, b, BufferImage{hdrOut, width}, width, height, p, t, ws.recorder, stream);
     else
-        mipChainShaped<FloatLevel, false>(t, chain, in, in, b, b, width, height, p, t, ws.recorder, stream);
+        mipChain<FloatLevel, false>(chain, in, in, b, b, width, height, p, t, ws.recorder, stream);
 }
-
-namespace {
-
-// The surface path with the last kernel's full-resolution accesses as `Full` (streamed or plain).
-template <typename Full>
-void mipChainOnSurfaces(const Chain<HalfLevel>& chain, cudaSurfaceObject_t hdr, cudaSurfaceObject_t bloom, bool composite,
-                        int width, int height, const post::BloomParams& p, BloomWorkspace& ws, cudaStream_t stream) {
-    const Full in{hdr}, b{bloom}, out{hdr};
-    const MipChainTuning& t = ws.mipChain;
-    StepRecorder* r = ws.recorder;
-    if (t.streamHdrReads && composite)
-        mipChainShaped<HalfLevel, true>(t, chain, StreamedHalf4Surface{hdr}, in, b, out, width, height, p, t, r, stream);
-    else if (t.streamHdrReads)
-        mipChainShaped<HalfLevel, false>(t, chain, StreamedHalf4Surface{hdr}, in, b, b, width, height, p, t, r, stream);
-    else if (composite)
-        mipChainShaped<HalfLevel, true>(t, chain, Half4Surface{hdr}, in, b, out, width, height, p, t, r, stream);
-    else
-        mipChainShaped<HalfLevel, false>(t, chain, Half4Surface{hdr}, in, b, b, width, height, p, t, r, stream);
-}
-
-}  // namespace
-
-namespace {
-
-// Everything the captured launches depend on, as bytes.
-std::string graphKeyOf(const Chain<HalfLevel>& chain, cudaSurfaceObject_t hdr, cudaSurfaceObject_t bloom, bool composite,
-                       int width, int height, const post::BloomParams& p, const MipChainTuning& t) {
-    struct Key {
-        cudaSurfaceObject_t hdr, bloom;
-        const void* levels[post::kMaxMipLevels];
-        int width, height, composite, method, kernel, karis, tailTexels, flags;
-        float threshold, knee, strength, highlight;
-    } key;
-    std::memset(&key, 0, sizeof(key));
-    key.hdr = hdr;
-    key.bloom = bloom;
-    for (int l = 0; l < chain.count; ++l) key.levels[l] = chain.level[l].data;
-    key.width = width;
-    key.height = height;
-    key.composite = composite;
-    key.method = int(p.method);
-    key.kernel = p.kernel;
-    key.karis = p.karis;
-    key.tailTexels = t.tailTexels;
-    key.flags = int(t.programmaticLaunch) | int(t.streamHdrReads) << 1 | int(t.leanUpsample) << 2 | int(t.streamFinal) << 3 |
-                int(t.fuseLastUpsample) << 4 | int(t.leanDownsample) << 5 | int(t.separableUp0) << 6 |
-                int(t.fastDivide) << 7;
-    key.threshold = p.threshold;
-    key.knee = p.knee;
-    key.strength = p.strength;
-    key.highlight = p.highlight;
-    return std::string(reinterpret_cast<const char*>(&key), sizeof(key));
-}
-
-void launchSurfaceChain(const Chain<HalfLevel>& chain, cudaSurfaceObject_t hdr, cudaSurfaceObject_t bloom, bool composite,
-                        int width, int height, const post::BloomParams& p, BloomWorkspace& ws, cudaStream_t stream) {
-    // streamFinal: the last kernel, which reads and writes each full-resolution texel once, streams.
-    if (ws.mipChain.streamFinal)
-        mipChainOnSurfaces<StreamedHalf4Surface>(chain, hdr, bloom, composite, width, height, p, ws, stream);
-    else
-        mipChainOnSurfaces<Half4Surface>(chain, hdr, bloom, composite, width, height, p, ws, stream);
-}
-
-}  // namespace
 
 void mipChainBloomSurfaces(cudaSurfaceObject_t hdr, cudaSurfaceObject_t bloom, bool composite, int width, int height,
                            const post::BloomParams& p, BloomWorkspace& ws, cudaStream_t stream) {
-    const Chain<HalfLevel> chain = chainOf<HalfLevel>(ws, width, height, p);  // allocates: before any capture
+    const Chain<HalfLevel> chain = chainOf<HalfLevel>(ws, width, height, p);
+    const StreamedHalf4Surface downIn{hdr};
+    const Half4Surface in{hdr}, b{bloom};
     const MipChainTuning& t = ws.mipChain;
-    if (!t.graph || !stream || ws.recorder || t.persistLevel0) {
-        launchSurfaceChain(chain, hdr, bloom, composite, width, height, p, ws, stream);
-        return;
-    }
-    // One graph launch instead of a launch per kernel: captured on first use and whenever what the
-    // kernels run with changes.
-    const std::string key = graphKeyOf(chain, hdr, bloom, composite, width, height, p, t);
-    if (!ws.mipChainGraph || ws.mipChainGraphKey != key) {
-        if (ws.mipChainGraph) check(cudaGraphExecDestroy(ws.mipChainGraph), "cudaGraphExecDestroy");
-        ws.mipChainGraph = nullptr;
-        ws.mipChainGraphKey.clear();
-        programmaticLaunchHere();  // its device query runs outside the capture
-        cudaGraph_t graph = nullptr;
-        check(cudaStreamBeginCapture(stream, cudaStreamCaptureModeThreadLocal), "cudaStreamBeginCapture");
-        try {
-            launchSurfaceChain(chain, hdr, bloom, composite, width, height, p, ws, stream);
-        } catch (...) {
-            cudaStreamEndCapture(stream, &graph);
-            if (graph) cudaGraphDestroy(graph);
-            throw;
-        }
-        check(cudaStreamEndCapture(stream, &graph), "cudaStreamEndCapture");
-        const cudaError_t made = cudaGraphInstantiate(&ws.mipChainGraph, graph, 0);
-        cudaGraphDestroy(graph);
-        check(made, "cudaGraphInstantiate (mip chain)");
-        ws.mipChainGraphKey = key;
-    }
-    check(cudaGraphLaunch(ws.mipChainGraph, stream), "cudaGraphLaunch (mip chain)");
+    if (composite)
+        mipChain<HalfLevel, true>(chain, downIn, in, b, in, width, height, p, t, ws.recorder, stream);
+    else
+        mipChain<HalfLevel, false>(chain, downIn, in, b, b, width, height, p, t, ws.recorder, stream);
 }
 
 }  // namespace lp::cuda

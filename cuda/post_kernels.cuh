@@ -128,8 +128,6 @@ struct BloomWorkspace {
     size_t mipTexels[post::kMaxMipLevels] = {};
     int* progress = nullptr;  // the tensor-core blur's per-block counters when it composites in place
     size_t progressCount = 0;
-    cudaGraphExec_t mipChainGraph = nullptr;  // MipChainTuning::graph: the captured launches and what they ran with
-    std::string mipChainGraphKey;
     BloomWorkspace() = default;
     ~BloomWorkspace();
     BloomWorkspace(const BloomWorkspace&) = delete;
