@@ -142,10 +142,13 @@ FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const Fr
     forwardLighting.lightingOnly = lightingView;
     // one perspective depth map per shadow-casting spot, read by local_lights and the forward passes.
     SpotShadowMaps spotShadows;
+    LocalLightRecords lightRecords;  // uploaded once a frame by the first pass that shades the lights
     if (localSkip.empty()) {
         spotShadows = addSpotShadowPass(graph, passes.spotShadows, frame);
+        lightRecords = importLocalLightRecords(graph, passes.localLights, frame, spotShadows);
         forwardLighting.localLights = true;
         forwardLighting.spotShadows = spotShadows;
+        forwardLighting.lightRecords = lightRecords;
     } else {
         graph.skipPass("spot_shadows", localSkip);
     }
@@ -153,6 +156,7 @@ FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const Fr
     if (forwardPlus) {
         ForwardLighting opaque = forwardLighting;
         opaque.ao = ao;
+        opaque.fillsLightRecords = true;
         hdr = addForwardOpaquePass(graph, passes.forward, passes.localLights, frame, gbuffer, opaque);
         const std::string why = "forward+: forward_opaque shades the opaque surfaces";
         for (const char* pass : {"global_lights", "ibl", "local_lights", "emission"}) graph.skipPass(pass, why);
@@ -161,7 +165,8 @@ FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const Fr
         hdr = addGlobalLightPass(graph, passes.globalLights, frame, gbuffer, shadowMaps, lightingView, ao);
         if (iblAdded) hdr = addIblPass(graph, passes.ibl, frame, gbuffer, environment, hdr, lightingView, ao);
         else graph.skipPass("ibl", hasMap ? "IBL is off (environment.ibl false, no --ibl)" : "scene has no environment map");
-        if (localSkip.empty()) hdr = addLocalLightPass(graph, passes.localLights, frame, gbuffer, hdr, lightingView, spotShadows);
+        if (localSkip.empty())
+            hdr = addLocalLightPass(graph, passes.localLights, frame, gbuffer, hdr, lightingView, spotShadows, lightRecords);
         else graph.skipPass("local_lights", localSkip);
         if (!lightingView && sceneHasEmission(frame)) hdr = addEmissionPass(graph, passes.emission, frame, gbuffer, hdr);
         else graph.skipPass("emission", lightingView ? "the lighting view shows light alone" : "no material of the scene emits");
@@ -174,7 +179,7 @@ FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const Fr
     else hdr = addTransparentPass(graph, passes.transparent, passes.localLights, frame, gbuffer.depth, hdr, forwardLighting);
     // globes and the light-ranges / lights-per-tile / lights-per-cluster overlays, over the sky too.
     if (!lightingView && localSkip.empty() && localLightCount(scene, s.localLights) > 0)
-        hdr = addLocalLightOverlayPasses(graph, passes.localLights, frame, gbuffer, hdr);
+        hdr = addLocalLightOverlayPasses(graph, passes.localLights, frame, gbuffer, hdr, lightRecords);
     // Motion blur on the HDR buffer, before bloom and the tone map.
     if (motionBlurSkip.empty()) hdr = addMotionBlurPasses(graph, passes.motionBlur, frame, gbuffer, hdr);
     else graph.skipPass("motion_blur", motionBlurSkip);

@@ -35,6 +35,10 @@ ForwardLightingReads declareForwardLighting(fg::PassBuilder& b, const ForwardLig
     if (lighting.ao.valid()) r.ao = b.read(lighting.ao, fg::Usage::Sampled);
     if (lighting.localLights && lighting.spotShadows.any())
         r.spotAtlas = b.read(lighting.spotShadows.depth, fg::Usage::Sampled);
+    if (lighting.localLights) {
+        if (lighting.fillsLightRecords) writeLightRecords(b, lighting.lightRecords);
+        else readLightRecords(b);
+    }
     return r;
 }
 
@@ -65,7 +69,7 @@ void bindForwardLighting(ForwardPass& state, LocalLightPass& localLights, const 
     glProgramUniform1i(prog, loc(prog, "uLightingOnly"), lighting.lightingOnly);
     glProgramUniform1i(prog, loc(prog, "uLocalLightCount"), 0);
     if (lighting.localLights)
-        bindClusteredLightLists(localLights, prog, frame, lighting.spotShadows,
+        bindClusteredLightLists(localLights, prog, frame, lighting.lightRecords, res, lighting.spotShadows,
                                 spotShadows ? res.texture(reads.spotAtlas) : 0);
     glProgramUniformMatrix4fv(prog, loc(prog, "uProjection"), 1, GL_FALSE, glm::value_ptr(gbufferDepthProjection(frame)));
 }

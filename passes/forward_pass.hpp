@@ -32,6 +32,8 @@ struct ForwardLighting {
     fg::ResourceId ao;                // the ambient-occlusion target (opaque surfaces only)
     bool localLights = false;         // the frame has local lights in view
     SpotShadowMaps spotShadows;       // with localLights: the spot shadow atlas
+    LocalLightRecords lightRecords;   // with localLights: the frame's light records
+    bool fillsLightRecords = false;   // the pass uploads them (forward_opaque); else it reads them
     bool lightingOnly = false;        // the lighting view
 };
 
@@ -41,7 +43,8 @@ struct ForwardLightingReads {
     fg::ResourceId irradiance, prefiltered, dfg, ao, spotAtlas;
 };
 
-// Declares the reads of `lighting`'s textures (sampled).
+// Declares the reads of `lighting`'s textures (sampled) and of its light records (or, with
+// fillsLightRecords, their upload).
 ForwardLightingReads declareForwardLighting(fg::PassBuilder& b, const ForwardLighting& lighting);
 
 // Compiles `program` (shaders/gbuffer.vert + forward.frag with `defines`, and LP_SPOT_SHADOWS when a spot

@@ -83,20 +83,7 @@ void makeLightRecords(const FrameData& frame, const std::vector<PointLight>& lig
     for (size_t i = 0; i < lights.size(); ++i) gpu.push_back(gpuLocalLight(lights[i], frame.view, layer[i]));
 }
 
-// The records into the SSBO at binding 0. A new buffer when the GPU may still read the last one
-// (gl::StreamBuffer): the previous frame's lighting must not see this frame's lights.
-void uploadRecords(LocalLightPass& state, const std::vector<GpuLocalLight>& gpu) {
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, state.lights.fill(gpu.data(), gpu.size() * sizeof(GpuLocalLight)));
-}
-
-// Uploads the frame's lights (eye space) into the SSBO at binding 0; returns them.
-std::shared_ptr<const std::vector<PointLight>> uploadLights(LocalLightPass& state, const FrameData& frame,
-                                                            const SpotShadowMaps* spotShadows = nullptr) {
-    std::shared_ptr<const std::vector<PointLight>> frameLights = frameLocalLights(frame);
-    makeLightRecords(frame, *frameLights, spotShadows, state.lightRecords);
-    uploadRecords(state, state.lightRecords);
-    return frameLights;
-}
+constexpr const char* kLightRecordsName = "local_lights.records";
 
 void setInt(GLuint prog, const char* name, int v) { glProgramUniform1i(prog, glGetUniformLocation(prog, name), v); }
 void setFloat(GLuint prog, const char* name, float v) { glProgramUniform1f(prog, glGetUniformLocation(prog, name), v); }
@@ -122,10 +109,6 @@ struct LightData {
     GBuffer in;
     fg::ResourceId hdr;
     fg::ResourceId spotShadows;  // the atlas, when some spot casts a shadow
-    // The lights' GPU records, made when the pass is added: CPU work inside the pass's execute would
-    // sit inside its GPU timing window (the GPU idles there whenever it has caught up with the CPU:
-    // bench/results/lighting/cpu_in_pass).
-    std::shared_ptr<const std::vector<GpuLocalLight>> records;
 };
 
 constexpr GLuint kSpotShadowUnit = 5;  // layout(binding = 5) in common/local_light.glsl
@@ -160,7 +143,7 @@ void setClusterUniforms(GLuint prog, const ClusterGrid& g) {
     setFloat(prog, "uClusterFar", g.farPlane);
 }
 
-// Readies the froxel grid for a build from the lights in the SSBO at binding 0 (uploadLights): reads
+// Readies the froxel grid for a build from the lights in the SSBO at binding 0 (bindLightRecords): reads
 // the newest finished build's overflow count, sizes the buffers, binds the counts (1), lists (2) and
 // a cleared overflow counter (3). The caller dispatches a build, then finishClusterBuild.
 ClusterGrid beginClusterBuild(LocalLightPass& state, const FrameData& frame) {
@@ -343,18 +326,46 @@ void drawFragmentMethod(LocalLightPass& state, const FrameData& frame, const std
 }
 }  // namespace
 
-int bindClusteredLightLists(LocalLightPass& state, GLuint prog, const FrameData& frame,
-                            const SpotShadowMaps& spotShadows, GLuint spotAtlas) {
+LocalLightRecords importLocalLightRecords(fg::FrameGraph& graph, LocalLightPass& state, const FrameData& frame,
+                                          const SpotShadowMaps& spotShadows) {
+    LocalLightRecords r;
+    // CPU work inside a pass's execute would sit inside its GPU timing window (the GPU idles there
+    // whenever it has caught up with the CPU: bench/results/lighting/cpu_in_pass), so made here.
+    auto records = std::make_shared<std::vector<GpuLocalLight>>();
+    makeLightRecords(frame, *frameLocalLights(frame), &spotShadows, *records);
+    r.records = std::move(records);
+    r.buffer = graph.importBuffer(kLightRecordsName, [&state] { return state.lights.current(); });
+    return r;
+}
+
+void writeLightRecords(fg::PassBuilder& b, const LocalLightRecords& records) { b.write(records.buffer, fg::Usage::Transfer); }
+
+void readLightRecords(fg::PassBuilder& b) { b.read(kLightRecordsName, fg::Usage::StorageBuffer); }
+
+void bindLightRecords(LocalLightPass& state, const LocalLightRecords& records, const fg::PassResources& res) {
+    // A new buffer when the GPU may still read the last one (gl::StreamBuffer): the previous frame's
+    // lighting must not see this frame's lights.
+    if (state.filledRecords != records.records) {
+        state.lights.fill(records.records->data(), records.records->size() * sizeof(GpuLocalLight));
+        state.filledRecords = records.records;
+        ++state.recordFills;
+    }
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, res.buffer(records.buffer));
+}
+
+int bindClusteredLightLists(LocalLightPass& state, GLuint prog, const FrameData& frame, const LocalLightRecords& records,
+                            const fg::PassResources& res, const SpotShadowMaps& spotShadows, GLuint spotAtlas) {
     ensureState(state, frame, spotShadows.any());
     const LocalLightSettings& s = frame.settings->localLights;
-    const std::shared_ptr<const std::vector<PointLight>> lights = uploadLights(state, frame, &spotShadows);
+    bindLightRecords(state, records, res);
+    const int count = int(records.records->size());
     if (spotShadows.any()) bindSpotShadows(state, frame, spotShadows, spotAtlas);
-    buildClusters(state, frame, int(lights->size()));
+    buildClusters(state, frame, count);
     setClusterUniforms(prog, state.clusterGrid);
-    setInt(prog, "uLocalLightCount", int(lights->size()));
+    setInt(prog, "uLocalLightCount", count);
     setInt(prog, "uUnbounded", unbounded(s));
     setInt(prog, "uSpecularMode", specularMode(s));
-    return int(lights->size());
+    return count;
 }
 
 void unbindClusteredLightLists() {
@@ -364,7 +375,7 @@ void unbindClusteredLightLists() {
 
 fg::ResourceId addLocalLightPass(fg::FrameGraph& graph, LocalLightPass& state, const FrameData& frame,
                                  const GBuffer& gbuffer, fg::ResourceId hdr, bool lightingOnly,
-                                 const SpotShadowMaps& spotShadows) {
+                                 const SpotShadowMaps& spotShadows, const LocalLightRecords& records) {
     // Tiled and clustered: compute adding into the HDR buffer in place. The other methods blend light
     // geometry into it, then clamp it in place (image load/store).
     const bool tiled = frame.settings->localLights.method == LocalLightMethod::Tiled ||
@@ -376,17 +387,15 @@ fg::ResourceId addLocalLightPass(fg::FrameGraph& graph, LocalLightPass& state, c
             readGBuffer(b, gbuffer, !lightingOnly);
             data.hdr = b.write(hdr, tiled ? fg::Usage::ImageLoadStore : fg::Usage::Blend | fg::Usage::ImageLoadStore);
             if (spotShadows.any()) data.spotShadows = b.read(spotShadows.depth, fg::Usage::Sampled);
-            auto records = std::make_shared<std::vector<GpuLocalLight>>();
-            makeLightRecords(frame, *frameLocalLights(frame), &spotShadows, *records);
-            data.records = std::move(records);
+            writeLightRecords(b, records);
         },
-        [&state, frame, lightingOnly, spotShadows](const LightData& data, const fg::PassResources& res) {
+        [&state, frame, lightingOnly, spotShadows, records](const LightData& data, const fg::PassResources& res) {
             ensureState(state, frame, spotShadows.any());
             const LocalLightSettings& s = frame.settings->localLights;
             state.stats = LocalLightStats{};
             state.stats.method = s.method;
             const std::shared_ptr<const std::vector<PointLight>> lights = frameLocalLights(frame);
-            uploadRecords(state, *data.records);
+            bindLightRecords(state, records, res);
             if (spotShadows.any()) bindSpotShadows(state, frame, spotShadows, res.texture(data.spotShadows));
             state.stats.requested = int(lights->size());
             const GLuint hdrTexture = res.texture(data.hdr);
@@ -542,7 +551,7 @@ void drawRanges(LocalLightPass& state, const FrameData& frame, const std::vector
 }  // namespace
 
 fg::ResourceId addLocalLightOverlayPasses(fg::FrameGraph& graph, LocalLightPass& state, const FrameData& frame,
-                                          GBuffer& gbuffer, fg::ResourceId hdr) {
+                                          GBuffer& gbuffer, fg::ResourceId hdr, const LocalLightRecords& records) {
     const RenderSettings& s = *frame.settings;
     if (s.localLights.globes.value_or(frame.scene->lightGlobes)) {
         const OverlayData& globes = graph.addPass<OverlayData>(
@@ -553,12 +562,13 @@ fg::ResourceId addLocalLightOverlayPasses(fg::FrameGraph& graph, LocalLightPass&
                 data.hdr = b.write(hdr, fg::Usage::ColorAttachment);
                 // Only when a later pass reads motion (the G-buffer made the target for it).
                 if (gbuffer.velocity.valid()) data.velocity = b.write(gbuffer.velocity, fg::Usage::ColorAttachment);
+                readLightRecords(b);
             },
-            [&state, frame](const OverlayData& data, const fg::PassResources& res) {
+            [&state, frame, records](const OverlayData& data, const fg::PassResources& res) {
                 ensureState(state, frame, state.spotShadowVariant);
-                const std::shared_ptr<const std::vector<PointLight>> lights = uploadLights(state, frame);
+                bindLightRecords(state, records, res);
                 const GLuint velocity = data.velocity.valid() ? res.texture(data.velocity) : 0;
-                drawGlobes(state, frame, int(lights->size()), res.texture(data.hdr), res.texture(data.in.depth),
+                drawGlobes(state, frame, int(records.records->size()), res.texture(data.hdr), res.texture(data.in.depth),
                            velocity);
                 unbindAll(state);
             });
@@ -570,11 +580,12 @@ fg::ResourceId addLocalLightOverlayPasses(fg::FrameGraph& graph, LocalLightPass&
                        "light_ranges", fg::PassKind::Raster,
                        [&](fg::PassBuilder& b, OverlayData& data) {
                            data.hdr = b.write(hdr, fg::Usage::ColorAttachment);
+                           readLightRecords(b);
                        },
-                       [&state, frame](const OverlayData& data, const fg::PassResources& res) {
+                       [&state, frame, records](const OverlayData& data, const fg::PassResources& res) {
                            ensureState(state, frame, state.spotShadowVariant);
-                           const std::shared_ptr<const std::vector<PointLight>> lights = uploadLights(state, frame);
-                           drawRanges(state, frame, *lights, res.texture(data.hdr));
+                           bindLightRecords(state, records, res);
+                           drawRanges(state, frame, *frameLocalLights(frame), res.texture(data.hdr));
                            unbindAll(state);
                        })
                   .hdr;
@@ -586,14 +597,15 @@ fg::ResourceId addLocalLightOverlayPasses(fg::FrameGraph& graph, LocalLightPass&
                            data.in = gbuffer;
                            readGBuffer(b, gbuffer, true);  // the diffuse target's alpha marks flat-lit pixels
                            data.hdr = b.write(hdr, fg::Usage::ImageLoadStore);
+                           readLightRecords(b);
                        },
-                       [&state, frame](const OverlayData& data, const fg::PassResources& res) {
+                       [&state, frame, records](const OverlayData& data, const fg::PassResources& res) {
                            ensureState(state, frame, state.spotShadowVariant);
-                           const std::shared_ptr<const std::vector<PointLight>> lights = uploadLights(state, frame);
+                           bindLightRecords(state, records, res);
                            const LocalLightSettings& ls = frame.settings->localLights;
                            const GLuint prog = state.heatmapProgram.id();
                            setInt(prog, "uLightingOnly", 0);
-                           setInt(prog, "uLightCount", int(lights->size()));
+                           setInt(prog, "uLightCount", int(records.records->size()));
                            setMat4(prog, "uProjection", frame.projection);
                            setInt(prog, "uUnbounded", unbounded(ls));
                            setFloat(prog, "uHeatMax", kHeatMax);
@@ -617,20 +629,22 @@ fg::ResourceId addLocalLightOverlayPasses(fg::FrameGraph& graph, LocalLightPass&
                                readGBuffer(b, gbuffer, true);  // the diffuse target's alpha marks flat-lit pixels
                            }
                            data.hdr = b.write(hdr, fg::Usage::ImageLoadStore);
+                           readLightRecords(b);
                        },
-                       [&state, frame, tightClusters](const OverlayData& data, const fg::PassResources& res) {
+                       [&state, frame, tightClusters, records](const OverlayData& data, const fg::PassResources& res) {
                            ensureState(state, frame, state.spotShadowVariant);
                            // Built here from this frame's lights as the frame's opaque surfaces used
                            // them: tightened to the G-buffer's depth for the deferred clustered
                            // method, whole froxels otherwise (the forward passes' lists).
-                           const std::shared_ptr<const std::vector<PointLight>> lights = uploadLights(state, frame);
+                           bindLightRecords(state, records, res);
+                           const int count = int(records.records->size());
                            if (tightClusters) {
                                const GLuint build = state.clusterTightBuildProgram.id();
                                bindGBuffer(build, res, data.in, frame, true);
                                setInt(build, "uLightingOnly", 0);
-                               buildTightClusters(state, frame, build, int(lights->size()));
+                               buildTightClusters(state, frame, build, count);
                            } else {
-                               buildClusters(state, frame, int(lights->size()));
+                               buildClusters(state, frame, count);
                            }
                            const GLuint prog = state.clusterViewProgram.id();
                            setClusterUniforms(prog, state.clusterGrid);

@@ -7,12 +7,15 @@
 // builds the same tight froxels' lists (light_clusters_tight.comp) and the forward passes whole
 // froxels (light_clusters.comp) into the grid buffers.
 #include <array>
+#include <memory>
+#include <vector>
 
 #include "engine/gl/handles.hpp"
 #include "engine/gl/stream_buffer.hpp"
 #include "engine/graph/frame_graph.hpp"
 #include "engine/render/frame_data.hpp"
 #include "engine/render/light_clusters.hpp"
+#include "engine/render/local_lights.hpp"
 #include "passes/gbuffer_pass.hpp"
 #include "passes/spot_shadow_pass.hpp"
 
@@ -66,35 +69,60 @@ struct LocalLightPass {
     bool spotShadowVariant = false;  // ... and whether with LP_SPOT_SHADOWS (only frames with a shadowed spot)
     gl::StreamBuffer spotShadows{"spot_shadows.ssbo"};  // LpSpotShadow per atlas tile (binding 4)
     gl::Framebuffer fbo;
-    gl::StreamBuffer lights{"local_lights.ssbo"};  // GpuLocalLight per light (binding 0)
+    // GpuLocalLight per light (binding 0): the frame's "local_lights.records", filled once a frame
+    // (LocalLightRecords).
+    gl::StreamBuffer lights{"local_lights.ssbo"};
+    std::shared_ptr<const std::vector<GpuLocalLight>> filledRecords;  // what `lights` holds now
+    int recordFills = 0;  // fills of `lights` since the state was made (tests: one a frame)
     gl::StreamBuffer globeMotion{"light_globes.motion"};  // each light's world centre now and at the previous frame's time
-    std::vector<GpuLocalLight> lightRecords;  // the SSBO's contents, kept so a frame reuses the allocation
     gl::Buffer volumeMesh, globeMesh;
     gl::VertexArray volumeVao, globeVao;
     int volumeVertices = 0, globeVertices = 0;
     LocalLightStats stats;
 };
 
-// Adds the "local_lights" pass (read-modify-write of hdr). Whether the frame needs it (lights on,
-// some in view) is the frame builder's decision. With spotShadows.any() it also samples their atlas.
+// The frame's local lights as GPU records (eye space; a shadowed spot's record names its atlas
+// tile), made when the graph is built (outside every pass's timing window) and uploaded once a
+// frame into LocalLightPass::lights, the graph's buffer "local_lights.records": the pass that shades
+// the lights first (local_lights; forward_opaque on the forward+ path) writes it (an upload), the
+// transparent pass and the overlays read it.
+struct LocalLightRecords {
+    fg::ResourceId buffer;  // "local_lights.records" as imported; writers write this version
+    std::shared_ptr<const std::vector<GpuLocalLight>> records;
+};
+LocalLightRecords importLocalLightRecords(fg::FrameGraph& graph, LocalLightPass& state, const FrameData& frame,
+                                          const SpotShadowMaps& spotShadows);
+// In a pass's setup: it fills the records (its execute calls bindLightRecords), or reads what the
+// frame's filling pass uploaded (the last version of "local_lights.records", whichever pass wrote it).
+void writeLightRecords(fg::PassBuilder& b, const LocalLightRecords& records);
+void readLightRecords(fg::PassBuilder& b);
+// In a pass's execute: the records into SSBO 0. Uploaded only if `lights` does not hold this
+// frame's records yet: by the filling pass, or by the first reader when that pass did not run
+// (disabled); every later pass binds the same buffer.
+void bindLightRecords(LocalLightPass& state, const LocalLightRecords& records, const fg::PassResources& res);
+
+// Adds the "local_lights" pass (read-modify-write of hdr; fills `records`). Whether the frame needs it
+// (lights on, some in view) is the frame builder's decision. With spotShadows.any() it also samples
+// their atlas.
 fg::ResourceId addLocalLightPass(fg::FrameGraph& graph, LocalLightPass& state, const FrameData& frame,
                                  const GBuffer& gbuffer, fg::ResourceId hdr, bool lightingOnly,
-                                 const SpotShadowMaps& spotShadows);
+                                 const SpotShadowMaps& spotShadows, const LocalLightRecords& records);
 
-// For the forward passes (passes/forward_pass, passes/transparent_pass), inside their execute: uploads
-// the frame's lights (SSBO 0), builds the clustered method's froxel grid from them (counts SSBO 1,
-// lists SSBO 2; the same build and buffers as the clustered local_lights pass) and, when a spot casts
-// a shadow, binds their records (SSBO 4) and `spotAtlas` (unit 5). Sets `prog`'s cluster uniforms and
-// uLocalLightCount, uUnbounded, uSpecularMode. Returns the number of lights.
-int bindClusteredLightLists(LocalLightPass& state, GLuint prog, const FrameData& frame,
-                            const SpotShadowMaps& spotShadows, GLuint spotAtlas);
+// For the forward passes (passes/forward_pass, passes/transparent_pass), inside their execute: binds
+// the frame's light records (SSBO 0, bindLightRecords), builds the clustered method's froxel grid from
+// them (counts SSBO 1, lists SSBO 2; the same build and buffers as the clustered local_lights pass)
+// and, when a spot casts a shadow, binds their shadow records (SSBO 4) and `spotAtlas` (unit 5). Sets
+// `prog`'s cluster uniforms and uLocalLightCount, uUnbounded, uSpecularMode. Returns the number of lights.
+int bindClusteredLightLists(LocalLightPass& state, GLuint prog, const FrameData& frame, const LocalLightRecords& records,
+                            const fg::PassResources& res, const SpotShadowMaps& spotShadows, GLuint spotAtlas);
 void unbindClusteredLightLists();
 
 // After the sky: "light_globes" (settings.localLights.globes, else the scene's lightGlobes) and the overlay views
-// ("light_ranges", "lights_per_tile") over the finished HDR image. When the frame has gbuffer.velocity,
-// the globes also write their motion into it (their lights orbit): gbuffer.velocity becomes that new
-// version, for the passes that read motion after them.
+// ("light_ranges", "lights_per_tile", "lights_per_cluster") over the finished HDR image, from the
+// frame's light records. When the frame has gbuffer.velocity, the globes also write their motion into
+// it (their lights orbit): gbuffer.velocity becomes that new version, for the passes that read motion
+// after them.
 fg::ResourceId addLocalLightOverlayPasses(fg::FrameGraph& graph, LocalLightPass& state, const FrameData& frame,
-                                          GBuffer& gbuffer, fg::ResourceId hdr);
+                                          GBuffer& gbuffer, fg::ResourceId hdr, const LocalLightRecords& records);
 
 }  // namespace lp

@@ -21,7 +21,8 @@ std::string usageName(Usage u) {
         {Usage::ImageLoad, "image-load"},           {Usage::ImageStore, "image-store"},
         {Usage::ColorAttachment, "color"},          {Usage::Blend, "blend"},
         {Usage::DepthAttachment, "depth"},          {Usage::DepthTest, "depth-test"},
-        {Usage::Transfer, "transfer"},              {Usage::Cuda, "cuda"}};
+        {Usage::Transfer, "transfer"},              {Usage::Cuda, "cuda"},
+        {Usage::StorageBuffer, "storage-buffer"}};
     std::string out;
     uint32_t left = uint32_t(u);
     for (const auto& [bits, name] : names) {
@@ -39,6 +40,7 @@ GLbitfield barrierBitsFor(Usage u) {
     if (any(u, Usage::ColorAttachment | Usage::Blend | Usage::DepthAttachment | Usage::DepthTest))
         bits |= GL_FRAMEBUFFER_BARRIER_BIT;
     if (any(u, Usage::Transfer)) bits |= GL_TEXTURE_UPDATE_BARRIER_BIT;
+    if (any(u, Usage::StorageBuffer)) bits |= GL_SHADER_STORAGE_BARRIER_BIT;
     // CUDA reads the texture's memory once mapped: every way GL may still hold image stores back.
     if (any(u, Usage::Cuda))
         bits |= GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT;
@@ -97,9 +99,25 @@ ResourceId PassBuilder::createIfRead(const std::string& name, const TextureDesc&
     return id;
 }
 
+// A buffer is uploaded to (Transfer) and read as a storage block (StorageBuffer, or Transfer for a
+// copy); a texture never as a storage block.
+void FrameGraph::checkUsage(int pass, int version, Usage how, bool write) const {
+    const Resource& r = resources_[versions_[version].resource];
+    const Usage allowed = !r.buffer ? Usage(~uint32_t(Usage::StorageBuffer))
+                          : write   ? Usage::Transfer
+                                    : Usage::StorageBuffer | Usage::Transfer;
+    if ((uint32_t(how) & ~uint32_t(allowed)) == 0) return;
+    throw Error("frame graph: pass '" + passes_[pass].name + "' " + (write ? "writes " : "reads ") +
+                (r.buffer ? "buffer '" : "texture '") + r.name + "' as " + usageName(how) + " (" +
+                (!r.buffer ? "a texture is not a storage buffer" : write ? "a buffer is written by an upload: transfer"
+                                                                         : "a buffer is read as storage-buffer or transfer") +
+                ")");
+}
+
 ResourceId PassBuilder::read(ResourceId id, Usage how) {
     if (!id.valid() || id.version >= int(graph_.versions_.size()))
         throw Error("frame graph: pass '" + graph_.passes_[pass_].name + "' reads an invalid resource handle");
+    graph_.checkUsage(pass_, id.version, how, false);
     graph_.addRead(pass_, id.version, how);
     return id;
 }
@@ -119,6 +137,7 @@ ResourceId PassBuilder::write(ResourceId id, Usage how) {
         throw Error("frame graph: pass '" + pass.name + "' writes '" + graph_.versionName(id.version) +
                     "', which pass '" + graph_.passes_[graph_.versions_[res.versions[v.number + 1]].writer].name +
                     "' already wrote (a version is written once)");
+    graph_.checkUsage(pass_, id.version, how, true);
     // Writing in place reads the previous contents, the same way it writes them.
     graph_.addRead(pass_, id.version, how);
     int nv = graph_.newVersion(v.resource, pass_);
@@ -156,6 +175,12 @@ ResourceId FrameGraph::importTexture(const std::string& name, const TextureDesc&
 ResourceId FrameGraph::importTexture(const std::string& name, const TextureDesc& desc, std::function<GLuint()> texture) {
     ResourceId id = importTexture(name, desc, GLuint(0));
     resources_.back().importedLater = std::move(texture);
+    return id;
+}
+
+ResourceId FrameGraph::importBuffer(const std::string& name, std::function<GLuint()> buffer) {
+    ResourceId id = importTexture(name, TextureDesc{}, std::move(buffer));
+    resources_.back().buffer = true;
     return id;
 }
 
@@ -222,6 +247,7 @@ void FrameGraph::resolveNamedReads() {
             int v = lastVersion(read.name, "pass '" + p.name + "'");
             if (versions_[v].writer == pi)
                 throw Error("frame graph: pass '" + p.name + "' reads '" + read.name + "', which only it writes");
+            checkUsage(pi, v, read.how, false);
             addRead(pi, v, read.how);
         }
     }
@@ -537,16 +563,22 @@ bool FrameGraph::declares(int pass, int resource) const {
     return false;
 }
 
-GLuint PassResources::texture(ResourceId id) const {
+GLuint PassResources::object(ResourceId id, bool buffer) const {
     const auto& r = graph_.resourceOf(id);
     const int resource = graph_.versions_[id.version].resource;
     // A disabled pass's reads are dropped, so only the passes that run are held to their declarations.
     if (pass_ >= 0 && !graph_.declares(pass_, resource) && !graph_.passes_[size_t(pass_)].disabled)
         throw Error("frame graph: pass '" + graph_.passes_[size_t(pass_)].name + "' uses '" + r.name +
                     "', which it did not declare (declare it with read() or write() in its setup)");
+    if (r.buffer != buffer)
+        throw Error("frame graph: pass '" + (pass_ >= 0 ? graph_.passes_[size_t(pass_)].name : std::string("?")) +
+                    "' asks for '" + r.name + "' as a " + (buffer ? "buffer" : "texture") + ", but it is a " +
+                    (r.buffer ? "buffer" : "texture"));
     if (r.importedLater) return r.importedLater();
     return r.texture;
 }
+GLuint PassResources::texture(ResourceId id) const { return object(id, false); }
+GLuint PassResources::buffer(ResourceId id) const { return object(id, true); }
 const TextureDesc& PassResources::desc(ResourceId id) const { return graph_.resourceOf(id).desc; }
 
 const FrameGraph::Resource& FrameGraph::resourceOf(ResourceId id) const {
@@ -602,7 +634,7 @@ std::vector<std::string> FrameGraph::executionOrder() const {
 
 std::vector<ResourceReport> FrameGraph::resources() const {
     std::vector<ResourceReport> out;
-    for (const auto& r : resources_) out.push_back({r.name, r.desc, r.isImported, r.live, r.first, r.last});
+    for (const auto& r : resources_) out.push_back({r.name, r.desc, r.isImported, r.live, r.first, r.last, r.buffer});
     return out;
 }
 
@@ -726,7 +758,7 @@ std::string FrameGraph::toDot() const {
     for (size_t ri = 0; ri < resources_.size(); ++ri) {
         const auto& r = resources_[ri];
         out << "  r" << ri << " [shape=ellipse, " << (r.live ? "" : "style=dashed, ") << "label=\"" << r.name << "\\n"
-            << descText(r.desc) << "\"];\n";
+            << (r.buffer ? "buffer" : descText(r.desc)) << "\"];\n";
     }
     // Edges are labelled with the usage (one edge per pair; an in-place write shows as the write).
     std::map<std::pair<std::string, std::string>, Usage> edges;

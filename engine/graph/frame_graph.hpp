@@ -52,6 +52,7 @@ enum class Usage : uint32_t {
     DepthTest = 1u << 6,        // bound as the depth attachment, tested, not written
     Transfer = 1u << 7,         // glClearTexImage, glGetTextureImage, copies
     Cuda = 1u << 8,             // mapped into CUDA (map and unmap synchronise with GL)
+    StorageBuffer = 1u << 9,    // a buffer read through a shader storage block
     ImageLoadStore = (1u << 1) | (1u << 2),
 };
 constexpr Usage operator|(Usage a, Usage b) { return Usage(uint32_t(a) | uint32_t(b)); }
@@ -96,6 +97,8 @@ public:
     // The texture of a resource this pass declared (any version of it); throws lp::Error naming the
     // pass and the resource for one it did not declare, so a pass cannot reach around the graph.
     GLuint texture(ResourceId id) const;
+    // The same for a buffer (importBuffer); each throws for the other kind.
+    GLuint buffer(ResourceId id) const;
     const TextureDesc& desc(ResourceId id) const;
     // The timer ring of this execute (null when untimed): passes timed outside GL (CUDA events)
     // report through GpuTimerRing::addExternal.
@@ -104,6 +107,7 @@ public:
 private:
     friend class FrameGraph;
     PassResources(const FrameGraph& g, int pass, gl::GpuTimerRing* timers) : graph_(g), pass_(pass), timers_(timers) {}
+    GLuint object(ResourceId id, bool buffer) const;
     const FrameGraph& graph_;
     int pass_ = -1;
     gl::GpuTimerRing* timers_ = nullptr;
@@ -129,6 +133,7 @@ struct ResourceReport {
     bool imported = false;
     bool live = false;
     int firstPass = -1, lastPass = -1;  // in execution order
+    bool buffer = false;                // importBuffer: a GL buffer (desc unused)
 };
 
 // One candidate pass of a frame: it runs, or why not (culled, disabled, or skipped by the builder).
@@ -158,6 +163,13 @@ public:
     // The same for a texture that only exists once an earlier pass made it (an environment cube the
     // bake pass makes): `texture` is asked each time a pass asks for it during execute().
     ResourceId importTexture(const std::string& name, const TextureDesc& desc, std::function<GLuint()> texture);
+    // A buffer that lives outside the graph, such as one a pass refills each frame (gl::StreamBuffer):
+    // passes declare how they write it (an upload: Usage::Transfer) and read it (StorageBuffer), so
+    // the graph orders its readers after its writer and a pass touches it only if it declared it.
+    // `buffer` is asked each time a pass asks for it (a refill may change it). Only uploads write
+    // it: GL orders them with later reads by itself, so the graph issues no barrier for buffers. A
+    // disabled writer passes its input through, as for textures: readers get the version before it.
+    ResourceId importBuffer(const std::string& name, std::function<GLuint()> buffer);
     // The graph's result(s): what is presented, saved or read back. At least one is required.
     void markOutput(ResourceId id);
     void markOutput(const std::string& resourceName);
@@ -226,6 +238,7 @@ private:
         bool output = false;
         bool optional = false;  // createIfRead: dropped when nothing live reads it
         bool cuda = false;      // a live pass touches it with Usage::Cuda (the pool may share it)
+        bool buffer = false;    // importBuffer: a GL buffer, not a texture
     };
     struct Version {
         int resource = -1;
@@ -253,6 +266,7 @@ private:
     };
     int newVersion(int resource, int writer);
     void addRead(int pass, int version, Usage how);
+    void checkUsage(int pass, int version, Usage how, bool write) const;
     // compile()'s phases, in order.
     void resolveNamedReads();
     void applyDisabledPasses();

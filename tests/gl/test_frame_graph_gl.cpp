@@ -104,6 +104,49 @@ TEST(FrameGraphGl, LazyImportIsAskedWhenThePassRuns) {
     EXPECT_EQ(g.barriersBefore("use"), GLbitfield(GL_TEXTURE_FETCH_BARRIER_BIT));
 }
 
+// An imported buffer is asked for its GL name when a pass asks (after the writer refilled it); a
+// pass gets it only if it declared it, and only as a buffer (texture() on it, buffer() on a texture,
+// are errors naming both).
+TEST(FrameGraphGl, ImportedBufferIsAskedWhenThePassRunsAndOnlyByItsReaders) {
+    fg::TexturePool pool;
+    gl::Buffer first = gl::makeBuffer(16, nullptr, 0, "first"), second = gl::makeBuffer(16, nullptr, 0, "second");
+    GLuint current = first.id();
+    auto run = [&](const std::function<void(const fg::PassResources&, fg::ResourceId, fg::ResourceId)>& use) {
+        fg::FrameGraph g;
+        const fg::ResourceId buffer = g.importBuffer("records", [&] { return current; });
+        fg::ResourceId out;
+        g.addPass("fill", fg::PassKind::Compute, [&](fg::PassBuilder& p) { p.write(buffer, fg::Usage::Transfer); },
+                  [&](const fg::PassResources&) { current = second.id(); });  // a refill: another buffer
+        g.addPass("use", fg::PassKind::Compute,
+                  [&](fg::PassBuilder& p) {
+                      p.read("records", fg::Usage::StorageBuffer);
+                      out = p.create("out", {4, 4, GL_RGBA8}, fg::Usage::ImageStore);
+                  },
+                  [&](const fg::PassResources& r) { use(r, buffer, out); });
+        g.markOutput(out);
+        g.compile();
+        return executeError(g, pool);
+    };
+    GLuint seen = 0;
+    EXPECT_EQ(run([&](const fg::PassResources& r, fg::ResourceId b, fg::ResourceId) { seen = r.buffer(b); }), "");
+    EXPECT_EQ(seen, second.id());
+    const std::string asTexture = run([](const fg::PassResources& r, fg::ResourceId b, fg::ResourceId) { r.texture(b); });
+    EXPECT_NE(asTexture.find("pass 'use' asks for 'records' as a texture, but it is a buffer"), std::string::npos)
+        << asTexture;
+    const std::string asBuffer = run([](const fg::PassResources& r, fg::ResourceId, fg::ResourceId o) { r.buffer(o); });
+    EXPECT_NE(asBuffer.find("asks for 'out' as a buffer, but it is a texture"), std::string::npos) << asBuffer;
+    // A pass that did not declare the buffer cannot reach it.
+    fg::FrameGraph g;
+    const fg::ResourceId buffer = g.importBuffer("records", [&] { return current; });
+    fg::ResourceId out;
+    g.addPass("sneaky", fg::PassKind::Compute, [&](fg::PassBuilder& p) { out = p.create("out", {4, 4, GL_RGBA8}, fg::Usage::ImageStore); },
+              [&](const fg::PassResources& r) { r.buffer(buffer); });
+    g.markOutput(out);
+    g.compile();
+    const std::string e = executeError(g, pool);
+    EXPECT_NE(e.find("pass 'sneaky' uses 'records', which it did not declare"), std::string::npos) << e;
+}
+
 // With LIGHTPASS_GL_STATE_CHECKS (scripts/test builds with it), a pass that leaves watched GL state
 // changed is named; every real pass runs under it in the other GL tests.
 TEST(FrameGraphGl, StateCheckNamesThePassThatLeavesStateChanged) {

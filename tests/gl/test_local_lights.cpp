@@ -140,9 +140,9 @@ struct Rig {
     PassStates passes;
     fg::TexturePool pool;
 
-    std::vector<float> renderHdr(RenderSettings settings) {
+    std::vector<float> renderHdr(RenderSettings settings, float time = 0.0f) {
         settings.keepHdr = true;
-        FrameData frame = makeFrameData(scene, settings, 0.0f);
+        FrameData frame = makeFrameData(scene, settings, time);
         frame.gpu = gpu.get();
         frame.shaders = &shaders;
         fg::FrameGraph graph;
@@ -442,6 +442,60 @@ TEST(LocalLights, GlobesAndOverlayViewsRender) {
             }
             EXPECT_GT(differ, 0u) << viewName(v) << " " << localLightMethodName(m);
         }
+}
+
+// The light records are uploaded once a frame (by local_lights, or forward_opaque on the forward+
+// path) and the overlays read that upload through the graph ("local_lights.records"). With orbiting
+// lights, a frame at t = 1 s rendered after one at t = 0 must equal the same frame rendered first:
+// an overlay that read the previous frame's records (stale) would draw the globes and the heat maps
+// where the lights were at t = 0. Also with the filling pass disabled (the first overlay uploads
+// them: never missing), and in every case exactly one upload a frame.
+TEST(LocalLights, OverlaysReadThisFramesRecordsUploadedOnce) {
+    Scene s = twentyLightScene();
+    for (size_t i = 2; i < s.pointLights.size(); ++i) {  // the grid's lights orbit a point beside them
+        s.pointLights[i].orbitCenter = s.pointLights[i].position + glm::vec3(0.3f, 0.0f, 0.2f);
+        s.pointLights[i].orbitSpeed = 1.5f;
+    }
+    struct Case {
+        const char* name;
+        DebugView view;
+        LocalLightMethod method;
+        RenderPath path;
+        const char* disabled;  // a pass switched off, or null
+    };
+    const Case cases[] = {
+        {"globes, tiled", DebugView::Final, LocalLightMethod::Tiled, RenderPath::Deferred, nullptr},
+        {"globes, forward+", DebugView::Final, LocalLightMethod::Clustered, RenderPath::ForwardPlus, nullptr},
+        {"globes, local_lights disabled", DebugView::Final, LocalLightMethod::Tiled, RenderPath::Deferred, "local_lights"},
+        {"globes, forward_opaque disabled", DebugView::Final, LocalLightMethod::Clustered, RenderPath::ForwardPlus,
+         "forward_opaque"},
+        {"lights per tile", DebugView::LightsPerTile, LocalLightMethod::Volumes, RenderPath::Deferred, nullptr},
+        {"lights per cluster", DebugView::LightsPerCluster, LocalLightMethod::Clustered, RenderPath::Deferred, nullptr},
+        {"lights per cluster, disabled", DebugView::LightsPerCluster, LocalLightMethod::Clustered, RenderPath::Deferred,
+         "local_lights"},
+        {"light ranges, volumes", DebugView::LightRanges, LocalLightMethod::Volumes, RenderPath::Deferred, nullptr},
+    };
+    for (const Case& c : cases) {
+        RenderSettings r = smallSettings(c.method);
+        r.view = c.view;
+        r.renderPath = c.path;
+        r.localLights.globes = c.view == DebugView::Final;
+        if (c.disabled) r.disabledPasses.insert(c.disabled);
+        Rig first(s);
+        const std::vector<float> before = first.renderHdr(r, 0.0f);
+        EXPECT_EQ(first.passes.localLights.recordFills, 1) << c.name;
+        const std::vector<float> after = first.renderHdr(r, 1.0f);
+        EXPECT_EQ(first.passes.localLights.recordFills, 2) << c.name << ": one upload a frame";
+        Rig fresh(s);
+        const std::vector<float> alone = fresh.renderHdr(r, 1.0f);
+        EXPECT_NE(before, alone) << c.name << ": the lights must move between the frames for this test to see anything";
+        EXPECT_EQ(after, alone) << c.name << ": the second frame read records other than its own";
+        if (c.view == DebugView::Final) {  // the globes are there (records not missing)
+            RenderSettings noGlobes = r;
+            noGlobes.localLights.globes = false;
+            EXPECT_NE(fresh.renderHdr(noGlobes, 1.0f), alone) << c.name;
+        }
+    }
 }
 
 // The twenty-light scene with a third of its lights turned into spots (narrow and wide cones, one

@@ -278,7 +278,7 @@ VelocityImage renderGlobeVelocity(const Scene& scene, FrameData frame) {
             const float zero[4] = {0, 0, 0, 0};
             glClearTexImage(res.texture(d.hdr), 0, GL_RGBA, GL_FLOAT, zero);
         }).hdr;
-    addLocalLightOverlayPasses(graph, lightState, frame, g, hdr);
+    addLocalLightOverlayPasses(graph, lightState, frame, g, hdr, importLocalLightRecords(graph, lightState, frame, {}));
     EXPECT_NE(g.velocity.version, gbufferVelocity.version);  // the globes wrote a new version
     graph.markOutput(g.velocity);
     graph.compile();

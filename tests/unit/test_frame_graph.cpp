@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <functional>
 
 #include "engine/core/error.hpp"
 #include "engine/graph/frame_graph.hpp"
@@ -511,4 +512,95 @@ TEST(FrameBuilder, LightGlobesFollowTheSceneUnlessOverridden) {
     EXPECT_TRUE(globes(true, std::nullopt));
     EXPECT_FALSE(globes(true, false));
     EXPECT_TRUE(globes(false, true));
+}
+
+// Buffers (importBuffer): ordered like textures (readers after the writer whose version they
+// read), written only by an upload (transfer) and read only as a storage block or a copy; a texture
+// is never a storage buffer. Each misuse is a clear error naming the pass and the resource.
+TEST(FrameGraph, ImportedBuffersAreOrderedAndTheirUsagesChecked) {
+    FrameGraph g;
+    const ResourceId records = g.importBuffer("records", [] { return GLuint(0); });
+    ResourceId out;
+    g.addPass("reader", fg::PassKind::Compute,
+              [&](PassBuilder& b) {
+                  b.read("records", fg::Usage::StorageBuffer);  // the last version: the writer's
+                  out = b.create("out", kDesc, fg::Usage::ColorAttachment);
+              },
+              nullptr);
+    g.addPass("writer", fg::PassKind::Compute, [&](PassBuilder& b) { b.write(records, fg::Usage::Transfer); }, nullptr);
+    g.markOutput(out);
+    g.compile();
+    EXPECT_EQ(g.executionOrder(), (std::vector<std::string>{"writer", "reader"}));
+    EXPECT_EQ(g.barriersBefore("reader"), 0u);  // an upload is ordered by GL itself
+    bool listed = false;
+    for (const fg::ResourceReport& r : g.resources()) listed = listed || (r.name == "records" && r.buffer && r.imported);
+    EXPECT_TRUE(listed);
+    EXPECT_NE(g.toDot().find("records\\nbuffer"), std::string::npos);
+
+    auto misuse = [](const std::function<void(FrameGraph&, ResourceId, ResourceId)>& declare) {
+        FrameGraph m;
+        const ResourceId buffer = m.importBuffer("buf", [] { return GLuint(0); });
+        const ResourceId texture = m.importTexture("tex", kDesc, GLuint(0));
+        try {
+            declare(m, buffer, texture);
+        } catch (const Error& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    const std::string storedBuffer = misuse([](FrameGraph& m, ResourceId buffer, ResourceId) {
+        m.addPass("p", fg::PassKind::Compute, [&](PassBuilder& b) { b.write(buffer, fg::Usage::ImageStore); }, nullptr);
+    });
+    EXPECT_NE(storedBuffer.find("pass 'p' writes buffer 'buf' as image-store"), std::string::npos) << storedBuffer;
+    const std::string sampledBuffer = misuse([](FrameGraph& m, ResourceId buffer, ResourceId) {
+        m.addPass("p", fg::PassKind::Compute, [&](PassBuilder& b) { b.read(buffer, fg::Usage::Sampled); }, nullptr);
+    });
+    EXPECT_NE(sampledBuffer.find("pass 'p' reads buffer 'buf' as sampled"), std::string::npos) << sampledBuffer;
+    const std::string storageTexture = misuse([](FrameGraph& m, ResourceId, ResourceId texture) {
+        m.addPass("p", fg::PassKind::Compute, [&](PassBuilder& b) { b.read(texture, fg::Usage::StorageBuffer); }, nullptr);
+    });
+    EXPECT_NE(storageTexture.find("pass 'p' reads texture 'tex' as storage-buffer"), std::string::npos) << storageTexture;
+    EXPECT_TRUE(misuse([](FrameGraph& m, ResourceId buffer, ResourceId) {
+                    m.addPass("p", fg::PassKind::Compute, [&](PassBuilder& b) { b.read(buffer, fg::Usage::Transfer); },
+                              nullptr);
+                }).empty());
+}
+
+// The local lights' GPU records are one buffer a frame: the pass that shades the lights first fills
+// it (local_lights; forward_opaque on the forward+ path) and the transparent pass and every overlay
+// read that version. A disabled filler passes the imported version through (the first overlay then
+// uploads them: tests/gl/test_local_lights.cpp).
+TEST(FrameBuilder, OverlaysReadTheLightRecordsTheLightingPassFilled) {
+    Scene s = oneLightScene();
+    s.pointLights.push_back(PointLight{});
+    s.pointLights.back().range = 5.0f;
+    s.lightGlobes = true;
+    auto passReport = [](const FrameGraph& g, const std::string& name) {
+        for (const fg::PassReport& r : g.report())
+            if (r.name == name) return r;
+        return fg::PassReport{};
+    };
+    auto has = [](const std::vector<std::string>& v, const std::string& x) {
+        return std::find(v.begin(), v.end(), x) != v.end();
+    };
+    for (RenderPath path : {RenderPath::Deferred, RenderPath::ForwardPlus})
+        for (DebugView view : {DebugView::Final, DebugView::LightRanges, DebugView::LightsPerTile, DebugView::LightsPerCluster}) {
+            RenderSettings settings;
+            settings.width = 64;
+            settings.height = 48;
+            settings.renderPath = path;
+            settings.view = view;
+            const char* filler = path == RenderPath::Deferred ? "local_lights" : "forward_opaque";
+            const FrameGraph g = buildWith(s, settings);
+            EXPECT_TRUE(has(passReport(g, filler).writes, "local_lights.records@1")) << filler;
+            const char* overlay = view == DebugView::Final          ? "light_globes"
+                                  : view == DebugView::LightRanges  ? "light_ranges"
+                                  : view == DebugView::LightsPerTile ? "lights_per_tile"
+                                                                      : "lights_per_cluster";
+            ASSERT_TRUE(g.isLive(overlay)) << overlay;
+            EXPECT_TRUE(has(passReport(g, overlay).reads, "local_lights.records@1")) << overlay << " " << filler;
+            settings.disabledPasses.insert(filler);
+            const FrameGraph off = buildWith(s, settings);
+            EXPECT_TRUE(has(passReport(off, overlay).reads, "local_lights.records")) << overlay << " without " << filler;
+        }
 }
