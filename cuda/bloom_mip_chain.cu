@@ -19,9 +19,9 @@
 // - The first downsample's HDR reads are evict-first and its divisions __fdividef; downsample
 //   blocks make one output row a thread, upsample blocks two (512 threads).
 // This is the fastest layout measured on the H100 (bench/results/post_interop/README.md). The
-// variants that lost there (wide kernel shapes, exact divisions, streamed final accesses, up_0 in
-// its own launch or from 4 x 4 taps, level 0 persisting in L2, a CUDA graph of the launches) were
-// removed after measurement; they are in this file at commit 99b0145. MipChainTuning
+// variants that lost there (wide kernel shapes, exact divisions, plain HDR reads, streamed final
+// accesses, up_0 in its own launch or from 4 x 4 taps, level 0 persisting in L2, a CUDA graph of the
+// launches) were removed after measurement; they are in this file at commit 99b0145. MipChainTuning
 // (cuda/post_cuda.hpp) keeps the two settings that cost the passes nothing: the tail's size and the
 // overlapping launches.
 #include <algorithm>
