@@ -83,10 +83,10 @@ void makeLightRecords(const FrameData& frame, const std::vector<PointLight>& lig
     for (size_t i = 0; i < lights.size(); ++i) gpu.push_back(gpuLocalLight(lights[i], frame.view, layer[i]));
 }
 
-// The records into the SSBO at binding 0. A new buffer when the GPU may still read the last one
-// (gl::StreamBuffer): the previous frame's lighting must not see this frame's lights.
-void uploadRecords(LocalLightPass& state, const std::vector<GpuLocalLight>& gpu) {
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, state.lights.fill(gpu.data(), gpu.size() * sizeof(GpuLocalLight)));
+// The records into a buffer of state.lights: a new one when the GPU may still read the last one
+// (gl::StreamBuffer), so the previous frame's lighting never waits for this frame's lights.
+GLuint uploadRecords(LocalLightPass& state, const std::vector<GpuLocalLight>& gpu) {
+    return state.lights.fill(gpu.data(), gpu.size() * sizeof(GpuLocalLight));
 }
 
 // Uploads the frame's lights (eye space) into the SSBO at binding 0; returns them.
@@ -94,7 +94,7 @@ std::shared_ptr<const std::vector<PointLight>> uploadLights(LocalLightPass& stat
                                                             const SpotShadowMaps* spotShadows = nullptr) {
     std::shared_ptr<const std::vector<PointLight>> frameLights = frameLocalLights(frame);
     makeLightRecords(frame, *frameLights, spotShadows, state.lightRecords);
-    uploadRecords(state, state.lightRecords);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, uploadRecords(state, state.lightRecords));
     return frameLights;
 }
 
@@ -122,10 +122,12 @@ struct LightData {
     GBuffer in;
     fg::ResourceId hdr;
     fg::ResourceId spotShadows;  // the atlas, when some spot casts a shadow
-    // The lights' GPU records, made when the pass is added: CPU work inside the pass's execute would
-    // sit inside its GPU timing window (the GPU idles there whenever it has caught up with the CPU:
-    // bench/results/lighting/cpu_in_pass).
-    std::shared_ptr<const std::vector<GpuLocalLight>> records;
+    // The lights' GPU records, made when the pass is added and uploaded before the frame's first
+    // pass: CPU work inside the pass's execute would sit inside its GPU timing window (the GPU idles
+    // there whenever it has caught up with the CPU: bench/results/lighting/cpu_in_pass), and so would
+    // the records' upload (16384 lights are 1.3 MB).
+    std::vector<GpuLocalLight> records;
+    GLuint recordsBuffer = 0;  // the upload's buffer
 };
 
 constexpr GLuint kSpotShadowUnit = 5;  // layout(binding = 5) in common/local_light.glsl
@@ -376,9 +378,8 @@ fg::ResourceId addLocalLightPass(fg::FrameGraph& graph, LocalLightPass& state, c
             readGBuffer(b, gbuffer, !lightingOnly);
             data.hdr = b.write(hdr, tiled ? fg::Usage::ImageLoadStore : fg::Usage::Blend | fg::Usage::ImageLoadStore);
             if (spotShadows.any()) data.spotShadows = b.read(spotShadows.depth, fg::Usage::Sampled);
-            auto records = std::make_shared<std::vector<GpuLocalLight>>();
-            makeLightRecords(frame, *frameLocalLights(frame), &spotShadows, *records);
-            data.records = std::move(records);
+            makeLightRecords(frame, *frameLocalLights(frame), &spotShadows, data.records);
+            b.beforeFrame([&state, &data] { data.recordsBuffer = uploadRecords(state, data.records); });
         },
         [&state, frame, lightingOnly, spotShadows](const LightData& data, const fg::PassResources& res) {
             ensureState(state, frame, spotShadows.any());
@@ -386,7 +387,7 @@ fg::ResourceId addLocalLightPass(fg::FrameGraph& graph, LocalLightPass& state, c
             state.stats = LocalLightStats{};
             state.stats.method = s.method;
             const std::shared_ptr<const std::vector<PointLight>> lights = frameLocalLights(frame);
-            uploadRecords(state, *data.records);
+            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, data.recordsBuffer);
             if (spotShadows.any()) bindSpotShadows(state, frame, spotShadows, res.texture(data.spotShadows));
             state.stats.requested = int(lights->size());
             const GLuint hdrTexture = res.texture(data.hdr);

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <functional>
+#include <string>
+#include <vector>
 
 #include "engine/core/error.hpp"
 #include "engine/graph/texture_pool.hpp"
@@ -102,6 +104,34 @@ TEST(FrameGraphGl, LazyImportIsAskedWhenThePassRuns) {
     EXPECT_NE(seen, 0u);
     EXPECT_EQ(seen, made.id());
     EXPECT_EQ(g.barriersBefore("use"), GLbitfield(GL_TEXTURE_FETCH_BARRIER_BIT));
+}
+
+// A pass's beforeFrame work (the local-light records' upload) runs before the first pass executes,
+// so outside every pass's timer, and only for passes that run.
+TEST(FrameGraphGl, BeforeFrameWorkRunsBeforeTheFirstPassAndOnlyForLivePasses) {
+    fg::TexturePool pool;
+    fg::FrameGraph g;
+    std::vector<std::string> events;
+    fg::ResourceId a, out;
+    g.addPass("first", fg::PassKind::Compute, [&](fg::PassBuilder& p) { a = p.create("a", {4, 4, GL_RGBA8}, fg::Usage::ImageStore); },
+              [&](const fg::PassResources&) { events.push_back("first runs"); });
+    g.addPass("second", fg::PassKind::Compute,
+              [&](fg::PassBuilder& p) {
+                  p.read(a, fg::Usage::Sampled);
+                  out = p.create("out", {4, 4, GL_RGBA8}, fg::Usage::ImageStore);
+                  p.beforeFrame([&] { events.push_back("second prepares"); });
+              },
+              [&](const fg::PassResources&) { events.push_back("second runs"); });
+    g.addPass("culled", fg::PassKind::Compute,
+              [&](fg::PassBuilder& p) {
+                  p.create("unread", {4, 4, GL_RGBA8}, fg::Usage::ImageStore);
+                  p.beforeFrame([&] { events.push_back("culled prepares"); });
+              },
+              [&](const fg::PassResources&) { events.push_back("culled runs"); });
+    g.markOutput(out);
+    g.compile();
+    g.execute(pool);
+    EXPECT_EQ(events, (std::vector<std::string>{"second prepares", "first runs", "second runs"}));
 }
 
 // With LIGHTPASS_GL_STATE_CHECKS (scripts/test builds with it), a pass that leaves watched GL state
