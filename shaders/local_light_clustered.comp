@@ -45,6 +45,17 @@
 #ifndef LP_CLUSTER_SKIP_UNLIT
 #define LP_CLUSTER_SKIP_UNLIT 1
 #endif
+// 1: a pixel's normal, diffuse and specular texels are read once its invocation is known (after the
+// sort), in flight during the light tests; 0: with its position, before the first barrier, and read
+// again in sorted tiles (the variants' late_texels).
+#ifndef LP_CLUSTER_LATE_TEXELS
+#define LP_CLUSTER_LATE_TEXELS 0
+#endif
+// 1: each batch's light bounds are loaded before the barrier ahead of its tests, overlapping it (the
+// variants' prefetch).
+#ifndef LP_CLUSTER_PREFETCH_LIGHTS
+#define LP_CLUSTER_PREFETCH_LIGHTS 0
+#endif
 const int LP_TILE = LP_CLUSTER_TILE;
 // At most 16 x 16 invocations; a larger tile gives each invocation several pixels, 16 apart.
 const int LP_SIDE = LP_TILE < 16 ? LP_TILE : 16;
@@ -73,10 +84,10 @@ shared uint sCount[LP_SLICES];  // surface pixels per slice
 shared uint sSorted[LP_TILE * LP_TILE];  // the surface pixels by slice: pixel (y * LP_TILE + x) | slice << 16
 #endif
 
-// Light i (bit `at` of the batch) against the tile's occupied slices `occ` that its eye-depth interval
-// reaches; a bit in the half of sMask / sWords at `mask` / `words` for each slice it touches.
-void markSlices(int i, uint at, uvec2 occ, int mask, int words) {
-    vec4 b = uLights[i].bound, apex = uLights[i].positionRange, axis = uLights[i].directionCos;
+// Light i (bound b; bit `at` of the batch) against the tile's occupied slices `occ` that its eye-depth
+// interval reaches; a bit in the half of sMask / sWords at `mask` / `words` for each slice it touches.
+void markSlices(int i, vec4 b, uint at, uvec2 occ, int mask, int words) {
+    vec4 apex = uLights[i].positionRange, axis = uLights[i].directionCos;
     float r = b.w * (1.0 + LP_CLUSTER_MARGIN) + 1e-6;
     float dist = -b.z;
     uint word = at >> 5, bit = 1u << (at & 31u);
@@ -88,6 +99,15 @@ void markSlices(int i, uint at, uvec2 occ, int mask, int words) {
             atomicOr(sMask[mask + j * LP_WORDS + int(word)], bit);
             if ((sWords[words + j] & (1u << word)) == 0u) atomicOr(sWords[words + j], 1u << word);
         }
+}
+
+// What shading needs of pixel p beyond its eye position P.
+void readShadingTexels(ivec2 p, vec3 P, out vec3 N, out vec4 spec, out vec3 kd, out vec3 V) {
+    N = gbufferNormal(p);
+    spec = vec4(gbufferSpecular(p), gbufferShininess(p));
+    kd = uLightingOnly ? vec3(1.0) : gbufferDiffuse(p);
+    float pl = length(P);
+    V = pl > 0.0 ? -P / pl : vec3(0.0, 0.0, 1.0);
 }
 
 void main() {
@@ -118,14 +138,15 @@ void main() {
         slice[k] = 0;
         if (surface[k]) {
             P[k] = gbufferPosition(p);
-            N[k] = gbufferNormal(p);
-            spec[k] = vec4(gbufferSpecular(p), gbufferShininess(p));
-            kd[k] = uLightingOnly ? vec3(1.0) : gbufferDiffuse(p);
-            float pl = length(P[k]);
-            V[k] = pl > 0.0 ? -P[k] / pl : vec3(0.0, 0.0, 1.0);
+#if !LP_CLUSTER_LATE_TEXELS
+            readShadingTexels(p, P[k], N[k], spec[k], kd[k], V[k]);
+#endif
             slice[k] = clusterSliceOf(max(-P[k].z, 0.0));
         }
     }
+#if LP_CLUSTER_PREFETCH_LIGHTS
+    vec4 bound = int(lid) < uLightCount ? uLights[lid].bound : vec4(0.0);  // this invocation's light of the batch
+#endif
     clusterTileClear(lid, uint(LP_BATCH));
     for (int j = int(lid); j < slices; j += LP_BATCH) {
         sWords[j] = 0u;
@@ -182,16 +203,18 @@ void main() {
             slice[k] = int(e >> 16);
             ivec2 p = origin + at[k];
             P[k] = gbufferPosition(p);
-            N[k] = gbufferNormal(p);
-            spec[k] = vec4(gbufferSpecular(p), gbufferShininess(p));
-            kd[k] = uLightingOnly ? vec3(1.0) : gbufferDiffuse(p);
-            float pl = length(P[k]);
-            V[k] = pl > 0.0 ? -P[k] / pl : vec3(0.0, 0.0, 1.0);
+#if !LP_CLUSTER_LATE_TEXELS
+            readShadingTexels(p, P[k], N[k], spec[k], kd[k], V[k]);
+#endif
         }
 #else
         barrier();
 #endif
     }
+#if LP_CLUSTER_LATE_TEXELS
+    for (int k = 0; k < LP_PIXELS; ++k)
+        if (surface[k]) readShadingTexels(origin + at[k], P[k], N[k], spec[k], kd[k], V[k]);
+#endif
 
     uint word = lid >> 5, bit = 1u << (lid & 31u);
     int part = 0;  // which half of sMask / sWords this batch uses
@@ -201,14 +224,18 @@ void main() {
         // eye-depth interval reaches (every light everywhere when unbounded: no bits needed).
         int i = first + int(lid);
         if (i < uLightCount && !uUnbounded) {
+#if LP_CLUSTER_PREFETCH_LIGHTS
+            vec4 b = bound;
+#else
             vec4 b = uLights[i].bound;
+#endif
             float r = b.w * (1.0 + LP_CLUSTER_MARGIN) + 1e-6;
             if (sphereTouchesTileFrustum(b.xyz, r, ndcLo, ndcHi, tileNear, tileFar, uProjection)) {
                 if (merged) {
                     atomicOr(sMask[mask + int(word)], bit);
                     if ((sWords[words] & (1u << word)) == 0u) atomicOr(sWords[words], 1u << word);
                 } else {
-                    markSlices(i, lid, occ, mask, words);
+                    markSlices(i, b, lid, occ, mask, words);
                 }
             }
         }
@@ -228,6 +255,9 @@ void main() {
             }
         }
         if (first + LP_BATCH >= uLightCount) break;  // uniform
+#if LP_CLUSTER_PREFETCH_LIGHTS
+        if (i + LP_BATCH < uLightCount) bound = uLights[i + LP_BATCH].bound;
+#endif
         // The other half for the next batch: its last readers finished before this batch's barrier.
         int other = (1 - part) * LP_MASK;
         for (int w = int(lid); w < slices * LP_WORDS; w += LP_BATCH) sMask[other + w] = 0u;
