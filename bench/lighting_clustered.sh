@@ -28,12 +28,13 @@ $B/run --version
 # defaults: `no_sort` (each invocation shades its own pixel), `every_texel` (every surface pixel's texel
 # read and written, lit or not), `late_texels` (normal, diffuse and specular read after the sort, not
 # with the position), `prefetch` (each batch's light bounds loaded ahead of the barrier before its
-# tests), `late_prefetch` (both), `all_slices` (every occupied slice tested, not only those the light's
+# tests), `late_prefetch` (both), `sort_ratio2` (sorted only where the tile's farthest pixel is over 2x
+# as far as its nearest), `all_slices` (every occupied slice tested, not only those the light's
 # eye-depth interval reaches), `no_box` (the slices' depth ranges only), `merge2`, `merge4` (tiles whose
 # farthest pixel is <= 2x, 4x their nearest shade as one froxel), and two that split the cost:
 # `cull_only` (the culling and the bits as the default, no light shaded) and `tile_only` (every tile one
 # froxel: tiled's lights, shaded in this kernel).
-# VARIANT_LIST picks them (default: default stop28 no_sort every_texel late_texels prefetch);
+# VARIANT_LIST picks them (default: default stop28 no_sort every_texel late_texels sort_ratio2);
 # `default` and `stop28` also time tiled in their process. Three scenes x 1080p, 4K x 1..16384 lights,
 # 50 frames (2 s cap): OUTDIR/variants_<variant>_<scene>.json and OUTDIR/clustered_variants.md
 # (clustered / tiled per variant, against the tiled of its own process where it has one).
@@ -48,6 +49,7 @@ if [ -n "${VARIANTS:-}" ]; then
       no_sort) sed -i 's/^#define LP_CLUSTER_SORT_PIXELS 1$/#define LP_CLUSTER_SORT_PIXELS 0/' "$f" ;;
       every_texel) sed -i 's/^#define LP_CLUSTER_SKIP_UNLIT 1$/#define LP_CLUSTER_SKIP_UNLIT 0/' "$f" ;;
       late_texels) sed -i 's/^#define LP_CLUSTER_LATE_TEXELS 0$/#define LP_CLUSTER_LATE_TEXELS 1/' "$f" ;;
+      sort_ratio2) sed -i 's/^#define LP_CLUSTER_SORT_RATIO 0.0$/#define LP_CLUSTER_SORT_RATIO 2.0/' "$f" ;;
       prefetch) sed -i 's/^#define LP_CLUSTER_PREFETCH_LIGHTS 0$/#define LP_CLUSTER_PREFETCH_LIGHTS 1/' "$f" ;;
       late_prefetch) sed -i -e 's/^#define LP_CLUSTER_LATE_TEXELS 0$/#define LP_CLUSTER_LATE_TEXELS 1/' \
         -e 's/^#define LP_CLUSTER_PREFETCH_LIGHTS 0$/#define LP_CLUSTER_PREFETCH_LIGHTS 1/' "$f" ;;
@@ -67,7 +69,7 @@ if [ -n "${VARIANTS:-}" ]; then
     fi
     echo "$P"
   }
-  for v in ${VARIANT_LIST:-default stop28 no_sort every_texel late_texels prefetch}; do
+  for v in ${VARIANT_LIST:-default stop28 no_sort every_texel late_texels sort_ratio2}; do
     P=$(variant_dir "$v"); [ -n "$P" ] || continue
     methods='--local-lights clustered --cluster-size 16'
     case $v in

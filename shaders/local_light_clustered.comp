@@ -40,6 +40,11 @@
 #ifndef LP_CLUSTER_SORT_PIXELS
 #define LP_CLUSTER_SORT_PIXELS 1
 #endif
+// Sorted only in tiles whose farthest pixel is more than this many times as far as their nearest (0:
+// every tile with more than one occupied slice; the variants' sort_ratio2 sets 2).
+#ifndef LP_CLUSTER_SORT_RATIO
+#define LP_CLUSTER_SORT_RATIO 0.0
+#endif
 // 1: a pixel no light adds to keeps its HDR texel without a read and a write (0: every surface
 // pixel's texel is read and written, as the tiled method does; the variants' every_texel).
 #ifndef LP_CLUSTER_SKIP_UNLIT
@@ -175,6 +180,7 @@ void main() {
     if (!merged) {
         clusterTileBoxes(lid, uint(LP_BATCH), ndcLo, ndcHi, uProjection);
 #if LP_CLUSTER_SORT_PIXELS
+      if (tileFar > float(LP_CLUSTER_SORT_RATIO) * tileNear) {  // uniform
         // 2. Each surface pixel's place among its slice's (in whatever order the atomics run: which
         // invocation shades a pixel changes no sum), then among the slices before it.
         uint rank[LP_PIXELS];
@@ -207,6 +213,9 @@ void main() {
             readShadingTexels(p, P[k], N[k], spec[k], kd[k], V[k]);
 #endif
         }
+      } else {
+        barrier();
+      }
 #else
         barrier();
 #endif
