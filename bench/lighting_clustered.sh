@@ -20,21 +20,19 @@ nvidia-smi --query-gpu=name,driver_version --format=csv,noheader > "$R/device.tx
 $B/run --version
 # VARIANTS=1: instead of the run below, the clustered kernel's variants against tiled in one run (timing
 # only; every variant gives the same image within the tests' bounds), each from a patched copy of
-# shaders/ through $LIGHTPASS_SHADER_DIR: `default` (shaders/ as they are: pixels sorted by slice in
-# tiles with more than one occupied slice, unlit pixels' texels left alone), `stop28` (main's kernel at
-# 99b0145, bench/kernels/local_light_clustered_stop28.comp: each invocation shades its own pixel and
-# every surface texel is read and written), `lists` (main's fused kernel up to 0b4a46a,
-# bench/kernels/local_light_clustered_lists.comp: it writes the froxel lists every frame), and patched
-# defaults: `no_sort` (each invocation shades its own pixel), `every_texel` (every surface pixel's texel
-# read and written, lit or not), `late_texels` (normal, diffuse and specular read after the sort, not
-# with the position), `prefetch` (each batch's light bounds loaded ahead of the barrier before its
-# tests), `late_prefetch` (both), `sort_ratio2` (sorted only where the tile's farthest pixel is over 2x
-# as far as its nearest), `all_slices` (every occupied slice tested, not only those the light's
-# eye-depth interval reaches), `no_box` (the slices' depth ranges only), `merge2`, `merge4` (tiles whose
-# farthest pixel is <= 2x, 4x their nearest shade as one froxel), and two that split the cost:
-# `cull_only` (the culling and the bits as the default, no light shaded) and `tile_only` (every tile one
-# froxel: tiled's lights, shaded in this kernel).
-# VARIANT_LIST picks them (default: default stop28 no_sort every_texel late_texels sort_ratio2);
+# shaders/ through $LIGHTPASS_SHADER_DIR: `default` (shaders/ as they are), `stop28` (main's kernel at
+# 99b0145, bench/kernels/local_light_clustered_stop28.comp: every surface texel read and written, lit
+# or not), `lists` (main's fused kernel up to 0b4a46a, bench/kernels/local_light_clustered_lists.comp:
+# it writes the froxel lists every frame), and patched defaults: `shared_bounds` (the tile's bounds and
+# occupied slices re-read from shared memory by each batch's tests, not kept in registers),
+# `view_per_light` (the view direction made per light, not kept), `lean` (both), `all_slices` (every
+# occupied slice tested, not only those the light's eye-depth interval reaches), `no_box` (the slices'
+# depth ranges only), `merge2`, `merge4` (tiles whose farthest pixel is <= 2x, 4x their nearest shade
+# as one froxel), and two that split the cost: `cull_only` (the culling and the bits as the default,
+# no light shaded) and `tile_only` (every tile one froxel: tiled's lights, shaded in this kernel).
+# Measured and removed (bench/results/lighting/clustered/variants_run4_*): sorting a tile's pixels by
+# slice, reading the shading texels after that sort, loading the next batch's light bounds early.
+# VARIANT_LIST picks them (default: default stop28 shared_bounds view_per_light lean cull_only);
 # `default` and `stop28` also time tiled in their process. Three scenes x 1080p, 4K x 1..16384 lights,
 # 50 frames (2 s cap): OUTDIR/variants_<variant>_<scene>.json and OUTDIR/clustered_variants.md
 # (clustered / tiled per variant, against the tiled of its own process where it has one).
@@ -46,13 +44,10 @@ if [ -n "${VARIANTS:-}" ]; then
       lists) cp bench/kernels/local_light_clustered_lists.comp "$f" ;;
       stop28) cp bench/kernels/local_light_clustered_stop28.comp "$f" ;;
       default) ;;
-      no_sort) sed -i 's/^#define LP_CLUSTER_SORT_PIXELS 1$/#define LP_CLUSTER_SORT_PIXELS 0/' "$f" ;;
-      every_texel) sed -i 's/^#define LP_CLUSTER_SKIP_UNLIT 1$/#define LP_CLUSTER_SKIP_UNLIT 0/' "$f" ;;
-      late_texels) sed -i 's/^#define LP_CLUSTER_LATE_TEXELS 0$/#define LP_CLUSTER_LATE_TEXELS 1/' "$f" ;;
-      sort_ratio2) sed -i 's/^#define LP_CLUSTER_SORT_RATIO 0.0$/#define LP_CLUSTER_SORT_RATIO 2.0/' "$f" ;;
-      prefetch) sed -i 's/^#define LP_CLUSTER_PREFETCH_LIGHTS 0$/#define LP_CLUSTER_PREFETCH_LIGHTS 1/' "$f" ;;
-      late_prefetch) sed -i -e 's/^#define LP_CLUSTER_LATE_TEXELS 0$/#define LP_CLUSTER_LATE_TEXELS 1/' \
-        -e 's/^#define LP_CLUSTER_PREFETCH_LIGHTS 0$/#define LP_CLUSTER_PREFETCH_LIGHTS 1/' "$f" ;;
+      shared_bounds) sed -i 's/^#define LP_CLUSTER_SHARED_BOUNDS 0$/#define LP_CLUSTER_SHARED_BOUNDS 1/' "$f" ;;
+      view_per_light) sed -i 's/^#define LP_CLUSTER_VIEW_PER_LIGHT 0$/#define LP_CLUSTER_VIEW_PER_LIGHT 1/' "$f" ;;
+      lean) sed -i -e 's/^#define LP_CLUSTER_SHARED_BOUNDS 0$/#define LP_CLUSTER_SHARED_BOUNDS 1/' \
+        -e 's/^#define LP_CLUSTER_VIEW_PER_LIGHT 0$/#define LP_CLUSTER_VIEW_PER_LIGHT 1/' "$f" ;;
       all_slices) sed -i 's/uvec2 candidates = clusterCandidateSlices(dist, r, occ);/uvec2 candidates = occ;/' "$f" ;;
       no_box) sed -i 's/    return clusterLightTouchesBox(b, apex, axis, sBoxLo\[j\].xyz, sBoxHi\[j\].xyz);$/    return true;/' \
         "$P/common/cluster_tile.glsl"
@@ -69,7 +64,7 @@ if [ -n "${VARIANTS:-}" ]; then
     fi
     echo "$P"
   }
-  for v in ${VARIANT_LIST:-default stop28 no_sort every_texel late_texels sort_ratio2}; do
+  for v in ${VARIANT_LIST:-default stop28 shared_bounds view_per_light lean cull_only}; do
     P=$(variant_dir "$v"); [ -n "$P" ] || continue
     methods='--local-lights clustered --cluster-size 16'
     case $v in

@@ -12,7 +12,8 @@ import os
 import re
 import sys
 
-ORDER = ("stop28", "lists", "default", "no_sort", "every_texel", "late_texels", "sort_ratio2", "prefetch", "late_prefetch", "all_slices", "no_box", "merge2", "merge4", "cull_only", "tile_only")
+ORDER = ("stop28", "lists", "default", "shared_bounds", "view_per_light", "lean", "all_slices", "no_box",
+         "merge2", "merge4", "cull_only", "tile_only")
 SCENES = ("gallery", "depth-discontinuity", "fence")
 SPANNING = ("depth-discontinuity", "fence")
 

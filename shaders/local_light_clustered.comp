@@ -4,17 +4,13 @@
 //  1. its pixels read their G-buffer texels at once (the loads are in flight while shared memory is
 //     cleared), find their depth slice and, per slice, the eye-distance range its pixels occupy and
 //     which slices hold any pixel at all (common/cluster_tile.glsl);
-//  2. in a tile with more than one occupied slice, its surface pixels are sorted by slice (a counting
-//     sort in shared memory) and invocation i shades the i-th: a warp then holds one or two slices,
-//     not the near and far pixels of the whole tile, so it runs through its slices' lights only (a
-//     mixed warp runs as long as its longest list, with every lane loading a different light);
-//  3. per batch of lights (one per invocation), each light is tested against the tile's frustum
+//  2. per batch of lights (one per invocation), each light is tested against the tile's frustum
 //     between the nearest and farthest pixel (the tiled method's test), then against the occupied
 //     slices its eye-depth interval can reach: each one's tight depth range, then the eye-space box
-//     around it; a bit per light and slice in shared memory;
-//  4. each pixel adds the lights of its own slice's bits, so a tile holding a near pillar and a far
+//     around it (made once per tile); a bit per light and slice in shared memory;
+//  3. each pixel adds the lights of its own slice's bits, so a tile holding a near pillar and a far
 //     wall shades neither with the lights in the empty depth between them. A pixel no light adds to
-//     leaves its HDR texel untouched.
+//     leaves its HDR texel alone (neither read nor written).
 // A tile whose pixels lie within LP_CLUSTER_MERGE_RATIO of each other in depth (or in one slice) is
 // one froxel: its lights are exactly the tiled method's. The pass writes no froxel lists (nothing
 // reads them after it): light_clusters_tight.comp builds the same tight lists for the
@@ -35,31 +31,14 @@
 #ifndef LP_CLUSTER_MERGE_RATIO
 #define LP_CLUSTER_MERGE_RATIO 0.0
 #endif
-// 1: step 2's sort by slice (0: each invocation shades its own pixels; bench/lighting_clustered.sh's
-// no_sort variant).
-#ifndef LP_CLUSTER_SORT_PIXELS
-#define LP_CLUSTER_SORT_PIXELS 1
+// 1: the tile's bounds and occupied slices are read from shared memory by each batch's tests rather
+// than kept in registers through the shading (the variants' shared_bounds).
+#ifndef LP_CLUSTER_SHARED_BOUNDS
+#define LP_CLUSTER_SHARED_BOUNDS 0
 #endif
-// Sorted only in tiles whose farthest pixel is more than this many times as far as their nearest (0:
-// every tile with more than one occupied slice; the variants' sort_ratio2 sets 2).
-#ifndef LP_CLUSTER_SORT_RATIO
-#define LP_CLUSTER_SORT_RATIO 0.0
-#endif
-// 1: a pixel no light adds to keeps its HDR texel without a read and a write (0: every surface
-// pixel's texel is read and written, as the tiled method does; the variants' every_texel).
-#ifndef LP_CLUSTER_SKIP_UNLIT
-#define LP_CLUSTER_SKIP_UNLIT 1
-#endif
-// 1: a pixel's normal, diffuse and specular texels are read once its invocation is known (after the
-// sort), in flight during the light tests; 0: with its position, before the first barrier, and read
-// again in sorted tiles (the variants' late_texels).
-#ifndef LP_CLUSTER_LATE_TEXELS
-#define LP_CLUSTER_LATE_TEXELS 0
-#endif
-// 1: each batch's light bounds are loaded before the barrier ahead of its tests, overlapping it (the
-// variants' prefetch).
-#ifndef LP_CLUSTER_PREFETCH_LIGHTS
-#define LP_CLUSTER_PREFETCH_LIGHTS 0
+// 1: the view direction is made from the position per light rather than kept (the variants' view_per_light).
+#ifndef LP_CLUSTER_VIEW_PER_LIGHT
+#define LP_CLUSTER_VIEW_PER_LIGHT 0
 #endif
 const int LP_TILE = LP_CLUSTER_TILE;
 // At most 16 x 16 invocations; a larger tile gives each invocation several pixels, 16 apart.
@@ -84,9 +63,9 @@ uniform int uSpecularMode;
 // batch needs one barrier between its tests and its shading and one before the next batch's tests.
 shared uint sMask[2 * LP_MASK];  // per slice, a bit per light of the batch touching it
 shared uint sWords[2 * LP_SLICES];  // per slice, a bit per word of its sMask that is not 0
-#if LP_CLUSTER_SORT_PIXELS
-shared uint sCount[LP_SLICES];  // surface pixels per slice
-shared uint sSorted[LP_TILE * LP_TILE];  // the surface pixels by slice: pixel (y * LP_TILE + x) | slice << 16
+#if LP_CLUSTER_SHARED_BOUNDS
+shared vec4 sTileNdc;  // the tile's NDC rectangle, lo and hi
+shared vec2 sTileDepth;  // its nearest and farthest pixel's eye distance
 #endif
 
 // Light i (bound b; bit `at` of the batch) against the tile's occupied slices `occ` that its eye-depth
@@ -106,13 +85,9 @@ void markSlices(int i, vec4 b, uint at, uvec2 occ, int mask, int words) {
         }
 }
 
-// What shading needs of pixel p beyond its eye position P.
-void readShadingTexels(ivec2 p, vec3 P, out vec3 N, out vec4 spec, out vec3 kd, out vec3 V) {
-    N = gbufferNormal(p);
-    spec = vec4(gbufferSpecular(p), gbufferShininess(p));
-    kd = uLightingOnly ? vec3(1.0) : gbufferDiffuse(p);
+vec3 viewDirection(vec3 P) {
     float pl = length(P);
-    V = pl > 0.0 ? -P / pl : vec3(0.0, 0.0, 1.0);
+    return pl > 0.0 ? -P / pl : vec3(0.0, 0.0, 1.0);
 }
 
 void main() {
@@ -124,41 +99,38 @@ void main() {
     // 1. Each pixel's G-buffer texels first. Flat-lit pixels are no surface to light (and widen no
     // range).
     bool surface[LP_PIXELS];
-    vec3 P[LP_PIXELS], N[LP_PIXELS], kd[LP_PIXELS], V[LP_PIXELS], sum[LP_PIXELS];
+    vec3 P[LP_PIXELS], N[LP_PIXELS], kd[LP_PIXELS], sum[LP_PIXELS];
+#if !LP_CLUSTER_VIEW_PER_LIGHT
+    vec3 V[LP_PIXELS];
+#endif
     vec4 spec[LP_PIXELS];
     int slice[LP_PIXELS];
-    ivec2 at[LP_PIXELS];  // the pixel within the tile
     for (int k = 0; k < LP_PIXELS; ++k) {
         ivec2 q = ivec2(gl_LocalInvocationID.xy) + LP_SIDE * ivec2(k % LP_PIXELS_SIDE, k / LP_PIXELS_SIDE);
         ivec2 p = origin + q;
-        at[k] = q;
         surface[k] = q.x < LP_TILE && q.y < LP_TILE && p.x < uImageSize.x && p.y < uImageSize.y &&
                      !gbufferIsBackground(p) && (uLightingOnly || !gbufferIsFlat(p));
         P[k] = vec3(0.0);
         N[k] = vec3(0.0);
         kd[k] = vec3(0.0);
-        V[k] = vec3(0.0, 0.0, 1.0);
         spec[k] = vec4(0.0);
         sum[k] = vec3(0.0);
         slice[k] = 0;
         if (surface[k]) {
             P[k] = gbufferPosition(p);
-#if !LP_CLUSTER_LATE_TEXELS
-            readShadingTexels(p, P[k], N[k], spec[k], kd[k], V[k]);
-#endif
+            N[k] = gbufferNormal(p);
+            spec[k] = vec4(gbufferSpecular(p), gbufferShininess(p));
+            kd[k] = uLightingOnly ? vec3(1.0) : gbufferDiffuse(p);
             slice[k] = clusterSliceOf(max(-P[k].z, 0.0));
         }
-    }
-#if LP_CLUSTER_PREFETCH_LIGHTS
-    vec4 bound = int(lid) < uLightCount ? uLights[lid].bound : vec4(0.0);  // this invocation's light of the batch
+#if !LP_CLUSTER_VIEW_PER_LIGHT
+        V[k] = viewDirection(P[k]);
 #endif
+    }
     clusterTileClear(lid, uint(LP_BATCH));
     for (int j = int(lid); j < slices; j += LP_BATCH) {
         sWords[j] = 0u;
         sWords[LP_SLICES + j] = 0u;
-#if LP_CLUSTER_SORT_PIXELS
-        sCount[j] = 0u;
-#endif
     }
     for (int w = int(lid); w < slices * LP_WORDS; w += LP_BATCH) {
         sMask[w] = 0u;
@@ -177,67 +149,32 @@ void main() {
         for (int k = 0; k < LP_PIXELS; ++k) slice[k] = 0;
     vec2 ndcLo, ndcHi;
     clusterTileNdc(tile, uImageSize, ndcLo, ndcHi);
+#if LP_CLUSTER_SHARED_BOUNDS
+    // Every invocation writes the same values: each reads back what it wrote until the barriers.
+    sTileNdc = vec4(ndcLo, ndcHi);
+    sTileDepth = vec2(tileNear, tileFar);
+#endif
     if (!merged) {
         clusterTileBoxes(lid, uint(LP_BATCH), ndcLo, ndcHi, uProjection);
-#if LP_CLUSTER_SORT_PIXELS
-      if (tileFar > float(LP_CLUSTER_SORT_RATIO) * tileNear) {  // uniform
-        // 2. Each surface pixel's place among its slice's (in whatever order the atomics run: which
-        // invocation shades a pixel changes no sum), then among the slices before it.
-        uint rank[LP_PIXELS];
-        for (int k = 0; k < LP_PIXELS; ++k) rank[k] = surface[k] ? atomicAdd(sCount[slice[k]], 1u) : 0u;
         barrier();
-        uint before[LP_PIXELS];
-        for (int k = 0; k < LP_PIXELS; ++k) before[k] = 0u;
-        uint total = 0u;
-        for (int h = 0; h < 2; ++h)
-            for (uint bits = occ[h]; bits != 0u; bits &= bits - 1u) {
-                int j = 32 * h + findLSB(bits);
-                uint n = sCount[j];
-                for (int k = 0; k < LP_PIXELS; ++k) before[k] += j < slice[k] ? n : 0u;
-                total += n;
-            }
-        for (int k = 0; k < LP_PIXELS; ++k)
-            if (surface[k]) sSorted[before[k] + rank[k]] = uint(at[k].y * LP_TILE + at[k].x) | uint(slice[k]) << 16;
-        barrier();
-        // The sorted pixels in invocation order; the invocations past them hold none.
-        for (int k = 0; k < LP_PIXELS; ++k) {
-            uint s = uint(k * LP_BATCH) + lid;
-            surface[k] = s < total;
-            if (!surface[k]) continue;
-            uint e = sSorted[s];
-            at[k] = ivec2(int(e & 0xffffu) % LP_TILE, int(e & 0xffffu) / LP_TILE);
-            slice[k] = int(e >> 16);
-            ivec2 p = origin + at[k];
-            P[k] = gbufferPosition(p);
-#if !LP_CLUSTER_LATE_TEXELS
-            readShadingTexels(p, P[k], N[k], spec[k], kd[k], V[k]);
-#endif
-        }
-      } else {
-        barrier();
-      }
-#else
-        barrier();
-#endif
     }
-#if LP_CLUSTER_LATE_TEXELS
-    for (int k = 0; k < LP_PIXELS; ++k)
-        if (surface[k]) readShadingTexels(origin + at[k], P[k], N[k], spec[k], kd[k], V[k]);
-#endif
 
     uint word = lid >> 5, bit = 1u << (lid & 31u);
     int part = 0;  // which half of sMask / sWords this batch uses
     for (int first = 0; first < uLightCount; first += LP_BATCH) {
         int mask = part * LP_MASK, words = part * LP_SLICES;
-        // 3. This invocation's light against the tile, then against the occupied slices its
+        // 2. This invocation's light against the tile, then against the occupied slices its
         // eye-depth interval reaches (every light everywhere when unbounded: no bits needed).
         int i = first + int(lid);
         if (i < uLightCount && !uUnbounded) {
-#if LP_CLUSTER_PREFETCH_LIGHTS
-            vec4 b = bound;
-#else
-            vec4 b = uLights[i].bound;
+#if LP_CLUSTER_SHARED_BOUNDS
+            ndcLo = sTileNdc.xy;
+            ndcHi = sTileNdc.zw;
+            tileNear = sTileDepth.x;
+            tileFar = sTileDepth.y;
+            occ = clusterTileOccupied();
 #endif
+            vec4 b = uLights[i].bound;
             float r = b.w * (1.0 + LP_CLUSTER_MARGIN) + 1e-6;
             if (sphereTouchesTileFrustum(b.xyz, r, ndcLo, ndcHi, tileNear, tileFar, uProjection)) {
                 if (merged) {
@@ -250,7 +187,7 @@ void main() {
         }
         barrier();
         int batch = min(LP_BATCH, uLightCount - first);
-        // 4. Each pixel: the lights of its slice, in index order (only the words holding any).
+        // 3. Each pixel: the lights of its slice, in index order (only the words holding any).
         uint batchWords = (1u << uint((batch + 31) / 32)) - 1u;
         for (int k = 0; k < LP_PIXELS; ++k) {
             if (!surface[k]) continue;
@@ -259,14 +196,16 @@ void main() {
                 uint bits = sMask[mask + slice[k] * LP_WORDS + w];
                 if (uUnbounded) bits = batch - 32 * w >= 32 ? ~0u : (1u << uint(batch - 32 * w)) - 1u;
                 for (; bits != 0u; bits &= bits - 1u)
+#if LP_CLUSTER_VIEW_PER_LIGHT
+                    sum[k] += lpShadeLocalLight(uLights[first + 32 * w + findLSB(bits)], P[k], N[k], viewDirection(P[k]),
+                                                kd[k], spec[k].rgb, spec[k].a, uSpecularMode);
+#else
                     sum[k] += lpShadeLocalLight(uLights[first + 32 * w + findLSB(bits)], P[k], N[k], V[k], kd[k],
                                                 spec[k].rgb, spec[k].a, uSpecularMode);
+#endif
             }
         }
         if (first + LP_BATCH >= uLightCount) break;  // uniform
-#if LP_CLUSTER_PREFETCH_LIGHTS
-        if (i + LP_BATCH < uLightCount) bound = uLights[i + LP_BATCH].bound;
-#endif
         // The other half for the next batch: its last readers finished before this batch's barrier.
         int other = (1 - part) * LP_MASK;
         for (int w = int(lid); w < slices * LP_WORDS; w += LP_BATCH) sMask[other + w] = 0u;
@@ -275,11 +214,9 @@ void main() {
         part = 1 - part;
     }
     for (int k = 0; k < LP_PIXELS; ++k) {
-        if (!surface[k]) continue;
-#if LP_CLUSTER_SKIP_UNLIT
-        if (sum[k] == vec3(0.0)) continue;
-#endif
-        ivec2 p = origin + at[k];
+        // Adding nothing leaves the texel as it is: no read, no write.
+        if (!surface[k] || sum[k] == vec3(0.0)) continue;
+        ivec2 p = origin + ivec2(gl_LocalInvocationID.xy) + LP_SIDE * ivec2(k % LP_PIXELS_SIDE, k / LP_PIXELS_SIDE);
         imageStore(uHdr, p, vec4(sanitizeHdr(imageLoad(uHdr, p).rgb + sum[k]), 1.0));
     }
 }

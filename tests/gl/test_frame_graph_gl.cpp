@@ -171,15 +171,22 @@ TEST(FrameGraphGl, RenderingAndResizingLeaksNoGlObjects) {
     Scene scene = loadScene(test::repoPath("scenes/cornell.json"));
     Renderer r(scene);
     RenderSettings s;
+    // Each frame waited for: a gl::StreamBuffer adds a buffer to its ring when the GPU still reads all
+    // the others (by design, bounded by the frames in flight), so without the wait the count would
+    // depend on the driver's timing.
+    auto render = [&] {
+        r.render(s, 0.0f, false);
+        glFinish();
+    };
     auto settle = [&] {  // pool entries unused for a few frames are freed
         s.width = 64;
         s.height = 48;
         s.view = DebugView::Final;
-        for (int i = 0; i < 6; ++i) r.render(s, 0.0f, false);
+        for (int i = 0; i < 6; ++i) render();
     };
     for (DebugView v : allViews()) {  // compile every program once
         s.view = v;
-        r.render(s, 0.0f, false);
+        render();
     }
     settle();
     const long before = gl::liveObjectCount();
@@ -187,7 +194,7 @@ TEST(FrameGraphGl, RenderingAndResizingLeaksNoGlObjects) {
         s.width = 64 + (i % 7) * 8;
         s.height = 48 + (i % 5) * 8;
         s.view = allViews()[size_t(i) % allViews().size()];
-        r.render(s, 0.0f, false);
+        render();
     }
     settle();
     EXPECT_EQ(gl::liveObjectCount(), before);
