@@ -23,16 +23,18 @@ $B/run --version
 # shaders/ through $LIGHTPASS_SHADER_DIR: `default` (shaders/ as they are), `stop28` (main's kernel at
 # 99b0145, bench/kernels/local_light_clustered_stop28.comp: every surface texel read and written, lit
 # or not), `lists` (main's fused kernel up to 0b4a46a, bench/kernels/local_light_clustered_lists.comp:
-# it writes the froxel lists every frame), and patched defaults: `shared_bounds` (the tile's bounds and
-# occupied slices re-read from shared memory by each batch's tests, not kept in registers),
-# `view_per_light` (the view direction made per light, not kept), `lean` (both), `all_slices` (every
-# occupied slice tested, not only those the light's eye-depth interval reaches), `no_box` (the slices'
-# depth ranges only), `merge2`, `merge4` (tiles whose farthest pixel is <= 2x, 4x their nearest shade
-# as one froxel), and two that split the cost: `cull_only` (the culling and the bits as the default,
-# no light shaded) and `tile_only` (every tile one froxel: tiled's lights, shaded in this kernel).
-# Measured and removed (bench/results/lighting/clustered/variants_run4_*): sorting a tile's pixels by
-# slice, reading the shading texels after that sort, loading the next batch's light bounds early.
-# VARIANT_LIST picks them (default: default stop28 shared_bounds view_per_light lean cull_only);
+# it writes the froxel lists every frame), and patched defaults: `slices64` (the shared arrays sized for
+# 64 slices, not for the grid's), `all_slices` (every occupied slice tested, not only those the light's
+# eye-depth interval reaches), `no_box` (the slices' depth ranges only), `merge2`, `merge4` (tiles whose
+# farthest pixel is <= 2x, 4x their nearest shade as one froxel), and those that split the cost:
+# `cull_only` (the culling and the bits as the default, no light shaded), `tile_only` (every tile one
+# froxel: tiled's lights, shaded in this kernel) and `tiled_cull_only` (the tiled method culling and
+# shading nothing; its column is tiled's, against the default's tiled).
+# Measured and removed (bench/results/lighting/clustered/variants_run4_*, variants_run5_*): sorting a
+# tile's pixels by slice, reading the shading texels after that sort, loading the next batch's light
+# bounds early, the tile's bounds re-read from shared memory per batch, the view direction made per
+# light.
+# VARIANT_LIST picks them (default: default stop28 slices64 cull_only tiled_cull_only);
 # `default` and `stop28` also time tiled in their process. Three scenes x 1080p, 4K x 1..16384 lights,
 # 50 frames (2 s cap): OUTDIR/variants_<variant>_<scene>.json and OUTDIR/clustered_variants.md
 # (clustered / tiled per variant, against the tiled of its own process where it has one).
@@ -44,10 +46,11 @@ if [ -n "${VARIANTS:-}" ]; then
       lists) cp bench/kernels/local_light_clustered_lists.comp "$f" ;;
       stop28) cp bench/kernels/local_light_clustered_stop28.comp "$f" ;;
       default) ;;
-      shared_bounds) sed -i 's/^#define LP_CLUSTER_SHARED_BOUNDS 0$/#define LP_CLUSTER_SHARED_BOUNDS 1/' "$f" ;;
-      view_per_light) sed -i 's/^#define LP_CLUSTER_VIEW_PER_LIGHT 0$/#define LP_CLUSTER_VIEW_PER_LIGHT 1/' "$f" ;;
-      lean) sed -i -e 's/^#define LP_CLUSTER_SHARED_BOUNDS 0$/#define LP_CLUSTER_SHARED_BOUNDS 1/' \
-        -e 's/^#define LP_CLUSTER_VIEW_PER_LIGHT 0$/#define LP_CLUSTER_VIEW_PER_LIGHT 1/' "$f" ;;
+      slices64) sed -i 's/^const int LP_SLICES = LP_CLUSTER_SLICES;$/const int LP_SLICES = 64;/' "$P/common/cluster_tile.glsl"
+        cmp -s shaders/common/cluster_tile.glsl "$P/common/cluster_tile.glsl" && { echo "variant $1: common/cluster_tile.glsl changed shape, skipped" >&2; return; } ;;
+      tiled_cull_only) f=$P/local_light_tiled.comp
+        sed -i 's/for (uint k = 0u; k < n; ++k) {$/for (uint k = 0u; k < 0u; ++k) {/' "$f"
+        cmp -s shaders/local_light_tiled.comp "$f" && { echo "variant $1: shaders/local_light_tiled.comp changed shape, skipped" >&2; return; } ;;
       all_slices) sed -i 's/uvec2 candidates = clusterCandidateSlices(dist, r, occ);/uvec2 candidates = occ;/' "$f" ;;
       no_box) sed -i 's/    return clusterLightTouchesBox(b, apex, axis, sBoxLo\[j\].xyz, sBoxHi\[j\].xyz);$/    return true;/' \
         "$P/common/cluster_tile.glsl"
@@ -59,16 +62,17 @@ if [ -n "${VARIANTS:-}" ]; then
         grep -q 'for (; false; bits' "$f" || { echo "variant $1: the shading loop changed shape, skipped" >&2; return; } ;;
       *) echo "variant $1: unknown" >&2; return ;;
     esac
-    if [ "$1" != default ] && [ "$1" != no_box ] && cmp -s shaders/local_light_clustered.comp "$f"; then
+    case $1 in default|no_box|slices64|tiled_cull_only) ;; *) if cmp -s shaders/local_light_clustered.comp "$f"; then
       echo "variant $1: shaders/local_light_clustered.comp changed shape, skipped" >&2; return
-    fi
+    fi ;; esac
     echo "$P"
   }
-  for v in ${VARIANT_LIST:-default stop28 shared_bounds view_per_light lean cull_only}; do
+  for v in ${VARIANT_LIST:-default stop28 slices64 cull_only tiled_cull_only}; do
     P=$(variant_dir "$v"); [ -n "$P" ] || continue
     methods='--local-lights clustered --cluster-size 16'
     case $v in
       default|stop28) methods="--local-lights tiled|$methods" ;;
+      tiled_*) methods='--local-lights tiled' ;;  # a variant of the tiled method: its own column
     esac
     for s in ${SCENES:-gallery depth-discontinuity fence}; do
       LIGHTPASS_SHADER_DIR=$P $B/run bench --scene scenes/$s.json --frames 50 --warmup 8 --max-seconds 2 \

@@ -12,8 +12,8 @@ import os
 import re
 import sys
 
-ORDER = ("stop28", "lists", "default", "shared_bounds", "view_per_light", "lean", "all_slices", "no_box",
-         "merge2", "merge4", "cull_only", "tile_only")
+ORDER = ("stop28", "lists", "default", "slices64", "all_slices", "no_box", "merge2", "merge4", "cull_only",
+         "tile_only", "tiled_cull_only")
 SCENES = ("gallery", "depth-discontinuity", "fence")
 SPANNING = ("depth-discontinuity", "fence")
 
@@ -51,6 +51,8 @@ def main(outdir):
         except (OSError, ValueError, KeyError) as e:
             print(f"{path}: not readable: {e}\n")
             continue
+        if m.group(1).startswith("tiled_"):  # a variant of the tiled method: its own column
+            cells = {(k[0], k[1], "clustered"): ms for k, ms in cells.items() if k[2] == "tiled"}
         found[(m.group(1), m.group(2))] = cells
         # Other tile sizes of the same kernel (e.g. `default` at --cluster-size 32): variant "<v> <px>px",
         # against the same process's tiled.
@@ -98,7 +100,7 @@ def main(outdir):
     print("|---|---:|---:|")
     for v in variants:
         rows = worst[v]
-        if not rows:
+        if not rows or v.startswith("tiled_"):
             continue
         w = max(rows, key=lambda r: r[3])
         span = [r for r in rows if r[0] in SPANNING and r[2] >= 256]

@@ -31,15 +31,6 @@
 #ifndef LP_CLUSTER_MERGE_RATIO
 #define LP_CLUSTER_MERGE_RATIO 0.0
 #endif
-// 1: the tile's bounds and occupied slices are read from shared memory by each batch's tests rather
-// than kept in registers through the shading (the variants' shared_bounds).
-#ifndef LP_CLUSTER_SHARED_BOUNDS
-#define LP_CLUSTER_SHARED_BOUNDS 0
-#endif
-// 1: the view direction is made from the position per light rather than kept (the variants' view_per_light).
-#ifndef LP_CLUSTER_VIEW_PER_LIGHT
-#define LP_CLUSTER_VIEW_PER_LIGHT 0
-#endif
 const int LP_TILE = LP_CLUSTER_TILE;
 // At most 16 x 16 invocations; a larger tile gives each invocation several pixels, 16 apart.
 const int LP_SIDE = LP_TILE < 16 ? LP_TILE : 16;
@@ -63,10 +54,6 @@ uniform int uSpecularMode;
 // batch needs one barrier between its tests and its shading and one before the next batch's tests.
 shared uint sMask[2 * LP_MASK];  // per slice, a bit per light of the batch touching it
 shared uint sWords[2 * LP_SLICES];  // per slice, a bit per word of its sMask that is not 0
-#if LP_CLUSTER_SHARED_BOUNDS
-shared vec4 sTileNdc;  // the tile's NDC rectangle, lo and hi
-shared vec2 sTileDepth;  // its nearest and farthest pixel's eye distance
-#endif
 
 // Light i (bound b; bit `at` of the batch) against the tile's occupied slices `occ` that its eye-depth
 // interval reaches; a bit in the half of sMask / sWords at `mask` / `words` for each slice it touches.
@@ -99,10 +86,7 @@ void main() {
     // 1. Each pixel's G-buffer texels first. Flat-lit pixels are no surface to light (and widen no
     // range).
     bool surface[LP_PIXELS];
-    vec3 P[LP_PIXELS], N[LP_PIXELS], kd[LP_PIXELS], sum[LP_PIXELS];
-#if !LP_CLUSTER_VIEW_PER_LIGHT
-    vec3 V[LP_PIXELS];
-#endif
+    vec3 P[LP_PIXELS], N[LP_PIXELS], kd[LP_PIXELS], V[LP_PIXELS], sum[LP_PIXELS];
     vec4 spec[LP_PIXELS];
     int slice[LP_PIXELS];
     for (int k = 0; k < LP_PIXELS; ++k) {
@@ -123,9 +107,7 @@ void main() {
             kd[k] = uLightingOnly ? vec3(1.0) : gbufferDiffuse(p);
             slice[k] = clusterSliceOf(max(-P[k].z, 0.0));
         }
-#if !LP_CLUSTER_VIEW_PER_LIGHT
         V[k] = viewDirection(P[k]);
-#endif
     }
     clusterTileClear(lid, uint(LP_BATCH));
     for (int j = int(lid); j < slices; j += LP_BATCH) {
@@ -149,11 +131,6 @@ void main() {
         for (int k = 0; k < LP_PIXELS; ++k) slice[k] = 0;
     vec2 ndcLo, ndcHi;
     clusterTileNdc(tile, uImageSize, ndcLo, ndcHi);
-#if LP_CLUSTER_SHARED_BOUNDS
-    // Every invocation writes the same values: each reads back what it wrote until the barriers.
-    sTileNdc = vec4(ndcLo, ndcHi);
-    sTileDepth = vec2(tileNear, tileFar);
-#endif
     if (!merged) {
         clusterTileBoxes(lid, uint(LP_BATCH), ndcLo, ndcHi, uProjection);
         barrier();
@@ -167,13 +144,6 @@ void main() {
         // eye-depth interval reaches (every light everywhere when unbounded: no bits needed).
         int i = first + int(lid);
         if (i < uLightCount && !uUnbounded) {
-#if LP_CLUSTER_SHARED_BOUNDS
-            ndcLo = sTileNdc.xy;
-            ndcHi = sTileNdc.zw;
-            tileNear = sTileDepth.x;
-            tileFar = sTileDepth.y;
-            occ = clusterTileOccupied();
-#endif
             vec4 b = uLights[i].bound;
             float r = b.w * (1.0 + LP_CLUSTER_MARGIN) + 1e-6;
             if (sphereTouchesTileFrustum(b.xyz, r, ndcLo, ndcHi, tileNear, tileFar, uProjection)) {
@@ -196,13 +166,8 @@ void main() {
                 uint bits = sMask[mask + slice[k] * LP_WORDS + w];
                 if (uUnbounded) bits = batch - 32 * w >= 32 ? ~0u : (1u << uint(batch - 32 * w)) - 1u;
                 for (; bits != 0u; bits &= bits - 1u)
-#if LP_CLUSTER_VIEW_PER_LIGHT
-                    sum[k] += lpShadeLocalLight(uLights[first + 32 * w + findLSB(bits)], P[k], N[k], viewDirection(P[k]),
-                                                kd[k], spec[k].rgb, spec[k].a, uSpecularMode);
-#else
                     sum[k] += lpShadeLocalLight(uLights[first + 32 * w + findLSB(bits)], P[k], N[k], V[k], kd[k],
                                                 spec[k].rgb, spec[k].a, uSpecularMode);
-#endif
             }
         }
         if (first + LP_BATCH >= uLightCount) break;  // uniform
