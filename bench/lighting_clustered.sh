@@ -23,8 +23,9 @@ $B/run --version
 # shaders/ through $LIGHTPASS_SHADER_DIR: `default` (shaders/ as they are), `stop28` (main's kernel at
 # 99b0145, bench/kernels/local_light_clustered_stop28.comp: every surface texel read and written, lit
 # or not), `lists` (main's fused kernel up to 0b4a46a, bench/kernels/local_light_clustered_lists.comp:
-# it writes the froxel lists every frame), and patched defaults: `slices64` (the shared arrays sized for
-# 64 slices, not for the grid's), `all_slices` (every occupied slice tested, not only those the light's
+# it writes the froxel lists every frame), and patched defaults: `merge_slices2`, `merge_slices3`
+# (tiles with at most 2, 3 occupied slices shade as one froxel, with the tiled test's lights),
+# `merge_contiguous` (tiles whose occupied slices are consecutive: a continuous surface), `all_slices` (every occupied slice tested, not only those the light's
 # eye-depth interval reaches), `no_box` (the slices' depth ranges only), `merge2`, `merge4` (tiles whose
 # farthest pixel is <= 2x, 4x their nearest shade as one froxel), and those that split the cost:
 # `cull_only` (the culling and the bits as the default, no light shaded), `tile_only` (every tile one
@@ -33,8 +34,8 @@ $B/run --version
 # Measured and removed (bench/results/lighting/clustered/variants_run4_*, variants_run5_*): sorting a
 # tile's pixels by slice, reading the shading texels after that sort, loading the next batch's light
 # bounds early, the tile's bounds re-read from shared memory per batch, the view direction made per
-# light.
-# VARIANT_LIST picks them (default: default stop28 slices64 cull_only tiled_cull_only);
+# light; variants_run6_*: shared arrays sized for the grid's slice count, not 64 (no change).
+# VARIANT_LIST picks them (default: default merge_slices2 merge_slices3 merge_contiguous);
 # `default` and `stop28` also time tiled in their process. Three scenes x 1080p, 4K x 1..16384 lights,
 # 50 frames (2 s cap): OUTDIR/variants_<variant>_<scene>.json and OUTDIR/clustered_variants.md
 # (clustered / tiled per variant, against the tiled of its own process where it has one).
@@ -46,8 +47,9 @@ if [ -n "${VARIANTS:-}" ]; then
       lists) cp bench/kernels/local_light_clustered_lists.comp "$f" ;;
       stop28) cp bench/kernels/local_light_clustered_stop28.comp "$f" ;;
       default) ;;
-      slices64) sed -i 's/^const int LP_SLICES = LP_CLUSTER_SLICES;$/const int LP_SLICES = 64;/' "$P/common/cluster_tile.glsl"
-        cmp -s shaders/common/cluster_tile.glsl "$P/common/cluster_tile.glsl" && { echo "variant $1: common/cluster_tile.glsl changed shape, skipped" >&2; return; } ;;
+      merge_slices2) sed -i 's/^#define LP_CLUSTER_MERGE_SLICES 1$/#define LP_CLUSTER_MERGE_SLICES 2/' "$f" ;;
+      merge_slices3) sed -i 's/^#define LP_CLUSTER_MERGE_SLICES 1$/#define LP_CLUSTER_MERGE_SLICES 3/' "$f" ;;
+      merge_contiguous) sed -i 's/^#define LP_CLUSTER_MERGE_CONTIGUOUS 0$/#define LP_CLUSTER_MERGE_CONTIGUOUS 1/' "$f" ;;
       tiled_cull_only) f=$P/local_light_tiled.comp
         sed -i 's/for (uint k = 0u; k < n; ++k) {$/for (uint k = 0u; k < 0u; ++k) {/' "$f"
         cmp -s shaders/local_light_tiled.comp "$f" && { echo "variant $1: shaders/local_light_tiled.comp changed shape, skipped" >&2; return; } ;;
@@ -62,12 +64,12 @@ if [ -n "${VARIANTS:-}" ]; then
         grep -q 'for (; false; bits' "$f" || { echo "variant $1: the shading loop changed shape, skipped" >&2; return; } ;;
       *) echo "variant $1: unknown" >&2; return ;;
     esac
-    case $1 in default|no_box|slices64|tiled_cull_only) ;; *) if cmp -s shaders/local_light_clustered.comp "$f"; then
+    case $1 in default|no_box|tiled_cull_only) ;; *) if cmp -s shaders/local_light_clustered.comp "$f"; then
       echo "variant $1: shaders/local_light_clustered.comp changed shape, skipped" >&2; return
     fi ;; esac
     echo "$P"
   }
-  for v in ${VARIANT_LIST:-default stop28 slices64 cull_only tiled_cull_only}; do
+  for v in ${VARIANT_LIST:-default merge_slices2 merge_slices3 merge_contiguous}; do
     P=$(variant_dir "$v"); [ -n "$P" ] || continue
     methods='--local-lights clustered --cluster-size 16'
     case $v in

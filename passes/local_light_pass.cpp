@@ -43,12 +43,10 @@ void ensureState(LocalLightPass& state, const FrameData& frame, bool spotShadows
     // The programs that read the G-buffer follow its layout (recompiled when it changes), and
     // sample spot shadow maps only in frames that have one.
     const GBufferSettings& layout = frame.settings->gbuffer;
-    // The fused clustered programs are compiled for the grid's tile size (their work-group shape) and
-    // slice count (their shared arrays' size).
+    // The fused clustered programs are compiled for the grid's tile size (their work-group shape).
     const int clusterTile = frame.settings->localLights.clusterSize;
-    const int clusterSlices = frame.settings->localLights.clusterSlices;
     if (!state.fbo || state.layout != layout || state.spotShadowVariant != spotShadows ||
-        state.clusterTileCompiled != clusterTile || state.clusterSlicesCompiled != clusterSlices) {
+        state.clusterTileCompiled != clusterTile) {
         std::vector<std::string> defines = gbufferDefines(layout);
         if (spotShadows) defines.push_back("LP_SPOT_SHADOWS");
         state.spotShadowVariant = spotShadows;
@@ -56,11 +54,9 @@ void ensureState(LocalLightPass& state, const FrameData& frame, bool spotShadows
         state.tiledProgram = frame.shaders->compute("local_light_tiled.comp", defines);
         std::vector<std::string> clustered = defines;
         clustered.push_back("LP_CLUSTER_TILE " + std::to_string(clusterTile));
-        clustered.push_back("LP_CLUSTER_SLICES " + std::to_string(std::clamp(clusterSlices, 1, kMaxClusterSlices)));
         state.clusteredProgram = frame.shaders->compute("local_light_clustered.comp", clustered);
         state.clusterTightBuildProgram = frame.shaders->compute("light_clusters_tight.comp", clustered);
         state.clusterTileCompiled = clusterTile;
-        state.clusterSlicesCompiled = clusterSlices;
         defines.push_back("LP_TILE_HEATMAP");
         state.heatmapProgram = frame.shaders->compute("local_light_tiled.comp", defines);
         state.layout = layout;

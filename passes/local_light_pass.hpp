@@ -41,7 +41,6 @@ struct LocalLightPass {
     gl::Program clusteredProgram;     // local_light_clustered.comp: tight froxels in shared memory and shading, fused
     gl::Program clusterTightBuildProgram;  // light_clusters_tight.comp: the tight lists (lights-per-cluster view)
     int clusterTileCompiled = 0;      // the tile size (--cluster-size) those two were compiled for
-    int clusterSlicesCompiled = 0;    // ... and the slice count (--cluster-slices)
     gl::Program clusterViewProgram;   // light_clusters_view.comp
     ClusterGrid clusterGrid;          // the grid the last build made
     gl::Buffer clusterCounts;         // uint per cluster: lights touching it (uncapped)

@@ -7,13 +7,7 @@
 #ifndef LP_CLUSTER_TILE_GLSL
 #define LP_CLUSTER_TILE_GLSL
 
-// The grid's slice count (--cluster-slices), which the pass compiles the program for: the shared
-// arrays are sized for it, since shared memory taken from the L1 cache is not there for the light
-// records (the variants' slices64 sizes them for kMaxClusterSlices).
-#ifndef LP_CLUSTER_SLICES
-#define LP_CLUSTER_SLICES 64
-#endif
-const int LP_SLICES = LP_CLUSTER_SLICES;
+const int LP_SLICES = 64;  // kMaxClusterSlices
 
 shared uint sMinDist[LP_SLICES], sMaxDist[LP_SLICES];  // float bits of eye distances (order-preserving)
 shared uint sOccupied[2];  // a bit per slice holding a pixel
@@ -57,7 +51,7 @@ void clusterTileBoxes(uint lid, uint invocations, vec2 ndcLo, vec2 ndcHi, mat4 p
         }
 }
 
-// Bits lo..hi (0 <= lo <= hi < 64) of a 64-bit mask held as two words (up to kMaxClusterSlices slices).
+// Bits lo..hi (0 <= lo <= hi < 64) of a 64-bit mask held as two words.
 uvec2 sliceRangeBits(int lo, int hi) {
     uvec2 upTo;  // bits 0..hi
     upTo.x = hi >= 31 ? ~0u : (2u << uint(hi)) - 1u;
