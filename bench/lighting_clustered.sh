@@ -23,10 +23,8 @@ $B/run --version
 # shaders/ through $LIGHTPASS_SHADER_DIR: `default` (shaders/ as they are), `stop28` (main's kernel at
 # 99b0145, bench/kernels/local_light_clustered_stop28.comp: every surface texel read and written, lit
 # or not), `lists` (main's fused kernel up to 0b4a46a, bench/kernels/local_light_clustered_lists.comp:
-# it writes the froxel lists every frame), and patched defaults: `merge_slices2`, `merge_slices3`
-# (tiles with at most 2, 3 occupied slices shade as one froxel, with the tiled test's lights),
-# `merge_contiguous` (tiles whose occupied slices are consecutive: a continuous surface), `all_slices` (every occupied slice tested, not only those the light's
-# eye-depth interval reaches), `no_box` (the slices' depth ranges only), `merge2`, `merge4` (tiles whose
+# it writes the froxel lists every frame), and patched defaults: `all_slices` (every occupied slice
+# tested, not only those the light's eye-depth interval reaches), `no_box` (the slices' depth ranges only), `merge2`, `merge4` (tiles whose
 # farthest pixel is <= 2x, 4x their nearest shade as one froxel), and those that split the cost:
 # `cull_only` (the culling and the bits as the default, no light shaded), `tile_only` (every tile one
 # froxel: tiled's lights, shaded in this kernel) and `tiled_cull_only` (the tiled method culling and
@@ -34,8 +32,10 @@ $B/run --version
 # Measured and removed (bench/results/lighting/clustered/variants_run4_*, variants_run5_*): sorting a
 # tile's pixels by slice, reading the shading texels after that sort, loading the next batch's light
 # bounds early, the tile's bounds re-read from shared memory per batch, the view direction made per
-# light; variants_run6_*: shared arrays sized for the grid's slice count, not 64 (no change).
-# VARIANT_LIST picks them (default: default merge_slices2 merge_slices3 merge_contiguous);
+# light; variants_run6_*: shared arrays sized for the grid's slice count, not 64 (no change);
+# variants_run7_*: tiles with at most 2 or 3 occupied slices, or with consecutive ones, shading as one
+# froxel (slower).
+# VARIANT_LIST picks them (default: default stop28 cull_only tiled_cull_only);
 # `default` and `stop28` also time tiled in their process. Three scenes x 1080p, 4K x 1..16384 lights,
 # 50 frames (2 s cap): OUTDIR/variants_<variant>_<scene>.json and OUTDIR/clustered_variants.md
 # (clustered / tiled per variant, against the tiled of its own process where it has one).
@@ -47,9 +47,6 @@ if [ -n "${VARIANTS:-}" ]; then
       lists) cp bench/kernels/local_light_clustered_lists.comp "$f" ;;
       stop28) cp bench/kernels/local_light_clustered_stop28.comp "$f" ;;
       default) ;;
-      merge_slices2) sed -i 's/^#define LP_CLUSTER_MERGE_SLICES 1$/#define LP_CLUSTER_MERGE_SLICES 2/' "$f" ;;
-      merge_slices3) sed -i 's/^#define LP_CLUSTER_MERGE_SLICES 1$/#define LP_CLUSTER_MERGE_SLICES 3/' "$f" ;;
-      merge_contiguous) sed -i 's/^#define LP_CLUSTER_MERGE_CONTIGUOUS 0$/#define LP_CLUSTER_MERGE_CONTIGUOUS 1/' "$f" ;;
       tiled_cull_only) f=$P/local_light_tiled.comp
         sed -i 's/for (uint k = 0u; k < n; ++k) {$/for (uint k = 0u; k < 0u; ++k) {/' "$f"
         cmp -s shaders/local_light_tiled.comp "$f" && { echo "variant $1: shaders/local_light_tiled.comp changed shape, skipped" >&2; return; } ;;
@@ -69,7 +66,7 @@ if [ -n "${VARIANTS:-}" ]; then
     fi ;; esac
     echo "$P"
   }
-  for v in ${VARIANT_LIST:-default merge_slices2 merge_slices3 merge_contiguous}; do
+  for v in ${VARIANT_LIST:-default stop28 cull_only tiled_cull_only}; do
     P=$(variant_dir "$v"); [ -n "$P" ] || continue
     methods='--local-lights clustered --cluster-size 16'
     case $v in

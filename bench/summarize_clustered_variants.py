@@ -12,7 +12,7 @@ import os
 import re
 import sys
 
-ORDER = ("stop28", "lists", "default", "merge_slices2", "merge_slices3", "merge_contiguous", "all_slices", "no_box", "merge2", "merge4", "cull_only",
+ORDER = ("stop28", "lists", "default", "all_slices", "no_box", "merge2", "merge4", "cull_only",
          "tile_only", "tiled_cull_only")
 SCENES = ("gallery", "depth-discontinuity", "fence")
 SPANNING = ("depth-discontinuity", "fence")

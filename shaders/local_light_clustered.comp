@@ -26,20 +26,11 @@
 #define LP_CLUSTER_TILE 16
 #endif
 // Tiles whose farthest pixel is at most this many times as far as their nearest shade as one froxel
-// (0: only tiles within one slice; 2 and 4 were slower on the H100: bench/lighting_clustered.sh's
-// VARIANTS run sets it for its tile_only variant).
+// (0: only tiles within one slice; 2 and 4 were slower on the H100, and so were tiles with up to 2 or 3
+// occupied slices, or consecutive ones: bench/results/lighting/clustered/variants_run7_*;
+// bench/lighting_clustered.sh's VARIANTS run sets it for its merge2, merge4 and tile_only variants).
 #ifndef LP_CLUSTER_MERGE_RATIO
 #define LP_CLUSTER_MERGE_RATIO 0.0
-#endif
-// Tiles with at most this many occupied slices shade as one froxel (1: only tiles within one slice;
-// the variants' merge_slices2, merge_slices3).
-#ifndef LP_CLUSTER_MERGE_SLICES
-#define LP_CLUSTER_MERGE_SLICES 1
-#endif
-// 1: tiles whose occupied slices are consecutive (no empty slice between: a continuous surface) shade
-// as one froxel (the variants' merge_contiguous).
-#ifndef LP_CLUSTER_MERGE_CONTIGUOUS
-#define LP_CLUSTER_MERGE_CONTIGUOUS 0
 #endif
 const int LP_TILE = LP_CLUSTER_TILE;
 // At most 16 x 16 invocations; a larger tile gives each invocation several pixels, 16 apart.
@@ -136,13 +127,7 @@ void main() {
     if ((occ.x | occ.y) == 0u) return;  // no surface in the tile: nothing to add
     float tileNear = clusterTileNear(occ), tileFar = clusterTileFar(occ);
     // One froxel for the whole tile (uniform): the tiled method's lights, slice 0's bits.
-    int occupied = bitCount(occ.x) + bitCount(occ.y);
-    bool merged = occupied <= LP_CLUSTER_MERGE_SLICES || tileFar <= float(LP_CLUSTER_MERGE_RATIO) * tileNear;
-#if LP_CLUSTER_MERGE_CONTIGUOUS
-    int firstSlice = occ.x != 0u ? findLSB(occ.x) : 32 + findLSB(occ.y);
-    int lastSlice = occ.y != 0u ? 32 + findMSB(occ.y) : findMSB(occ.x);
-    merged = merged || occupied == lastSlice - firstSlice + 1;
-#endif
+    bool merged = bitCount(occ.x) + bitCount(occ.y) == 1 || tileFar <= float(LP_CLUSTER_MERGE_RATIO) * tileNear;
     if (merged)
         for (int k = 0; k < LP_PIXELS; ++k) slice[k] = 0;
     vec2 ndcLo, ndcHi;
