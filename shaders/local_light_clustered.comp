@@ -15,6 +15,10 @@
 // one froxel: its lights are exactly the tiled method's. The pass writes no froxel lists (nothing
 // reads them after it): light_clusters_tight.comp builds the same tight lists for the
 // lights-per-cluster view. Unbounded specular reaches every pixel: then every light is added.
+// Measured on the H100 and not kept (bench/results/lighting/clustered/README.md): sorting a tile's
+// pixels by slice so that a warp holds one or two slices (no gain: the shading left is BRDF work),
+// fewer values kept in registers, shared arrays sized for the grid's slices, more tiles shaded as one
+// froxel.
 #include "common/local_light.glsl"
 #include "common/clusters.glsl"
 #include "common/cluster_tile.glsl"
@@ -73,9 +77,13 @@ void markSlices(int i, vec4 b, uint at, uvec2 occ, int mask, int words) {
         }
 }
 
-vec3 viewDirection(vec3 P) {
+// What shading needs of pixel p beyond its eye position P.
+void readShadingTexels(ivec2 p, vec3 P, out vec3 N, out vec4 spec, out vec3 kd, out vec3 V) {
+    N = gbufferNormal(p);
+    spec = vec4(gbufferSpecular(p), gbufferShininess(p));
+    kd = uLightingOnly ? vec3(1.0) : gbufferDiffuse(p);
     float pl = length(P);
-    return pl > 0.0 ? -P / pl : vec3(0.0, 0.0, 1.0);
+    V = pl > 0.0 ? -P / pl : vec3(0.0, 0.0, 1.0);
 }
 
 void main() {
@@ -90,25 +98,25 @@ void main() {
     vec3 P[LP_PIXELS], N[LP_PIXELS], kd[LP_PIXELS], V[LP_PIXELS], sum[LP_PIXELS];
     vec4 spec[LP_PIXELS];
     int slice[LP_PIXELS];
+    ivec2 at[LP_PIXELS];  // the pixel within the tile
     for (int k = 0; k < LP_PIXELS; ++k) {
         ivec2 q = ivec2(gl_LocalInvocationID.xy) + LP_SIDE * ivec2(k % LP_PIXELS_SIDE, k / LP_PIXELS_SIDE);
         ivec2 p = origin + q;
+        at[k] = q;
         surface[k] = q.x < LP_TILE && q.y < LP_TILE && p.x < uImageSize.x && p.y < uImageSize.y &&
                      !gbufferIsBackground(p) && (uLightingOnly || !gbufferIsFlat(p));
         P[k] = vec3(0.0);
         N[k] = vec3(0.0);
         kd[k] = vec3(0.0);
+        V[k] = vec3(0.0, 0.0, 1.0);
         spec[k] = vec4(0.0);
         sum[k] = vec3(0.0);
         slice[k] = 0;
         if (surface[k]) {
             P[k] = gbufferPosition(p);
-            N[k] = gbufferNormal(p);
-            spec[k] = vec4(gbufferSpecular(p), gbufferShininess(p));
-            kd[k] = uLightingOnly ? vec3(1.0) : gbufferDiffuse(p);
+            readShadingTexels(p, P[k], N[k], spec[k], kd[k], V[k]);
             slice[k] = clusterSliceOf(max(-P[k].z, 0.0));
         }
-        V[k] = viewDirection(P[k]);
     }
     clusterTileClear(lid, uint(LP_BATCH));
     for (int j = int(lid); j < slices; j += LP_BATCH) {
@@ -180,9 +188,9 @@ void main() {
         part = 1 - part;
     }
     for (int k = 0; k < LP_PIXELS; ++k) {
-        // Adding nothing leaves the texel as it is: no read, no write.
-        if (!surface[k] || sum[k] == vec3(0.0)) continue;
-        ivec2 p = origin + ivec2(gl_LocalInvocationID.xy) + LP_SIDE * ivec2(k % LP_PIXELS_SIDE, k / LP_PIXELS_SIDE);
+        if (!surface[k]) continue;
+        if (sum[k] == vec3(0.0)) continue;  // adds nothing: no read, no write
+        ivec2 p = origin + at[k];
         imageStore(uHdr, p, vec4(sanitizeHdr(imageLoad(uHdr, p).rgb + sum[k]), 1.0));
     }
 }
