@@ -20,15 +20,23 @@ nvidia-smi --query-gpu=name,driver_version --format=csv,noheader > "$R/device.tx
 $B/run --version
 # VARIANTS=1: instead of the run below, the clustered kernel's variants against tiled in one run (timing
 # only; every variant gives the same image within the tests' bounds), each from a patched copy of
-# shaders/ through $LIGHTPASS_SHADER_DIR: `lists` (main's fused kernel up to 0b4a46a,
-# bench/kernels/local_light_clustered_lists.comp: it writes the froxel lists every frame and tests
-# every occupied slice), `default` (shaders/ as they are), and patched defaults: `all_slices` (every
-# occupied slice tested, not only those the light's eye-depth interval reaches), `no_box` (the slices'
-# depth ranges only), `merge2`, `merge4` (tiles whose farthest pixel is <= 2x, 4x their nearest shade as
-# one froxel), and two that split the cost: `cull_only` (the culling and the bits as the default, no
-# light shaded) and `tile_only` (every tile one froxel: tiled's lights, shaded in this kernel).
-# VARIANT_LIST picks them (default: default lists cull_only tile_only);
-# `default` and `lists` also time tiled in their process. Three scenes x 1080p, 4K x 1..16384 lights,
+# shaders/ through $LIGHTPASS_SHADER_DIR: `default` (shaders/ as they are), `stop28` (main's kernel at
+# 99b0145, bench/kernels/local_light_clustered_stop28.comp: every surface texel read and written, lit
+# or not), `lists` (main's fused kernel up to 0b4a46a, bench/kernels/local_light_clustered_lists.comp:
+# it writes the froxel lists every frame), and patched defaults: `all_slices` (every occupied slice
+# tested, not only those the light's eye-depth interval reaches), `no_box` (the slices' depth ranges only), `merge2`, `merge4` (tiles whose
+# farthest pixel is <= 2x, 4x their nearest shade as one froxel), and those that split the cost:
+# `cull_only` (the culling and the bits as the default, no light shaded), `tile_only` (every tile one
+# froxel: tiled's lights, shaded in this kernel) and `tiled_cull_only` (the tiled method culling and
+# shading nothing; its column is tiled's, against the default's tiled).
+# Measured and removed (bench/results/lighting/clustered/variants_run4_*, variants_run5_*): sorting a
+# tile's pixels by slice, reading the shading texels after that sort, loading the next batch's light
+# bounds early, the tile's bounds re-read from shared memory per batch, the view direction made per
+# light; variants_run6_*: shared arrays sized for the grid's slice count, not 64 (no change);
+# variants_run7_*: tiles with at most 2 or 3 occupied slices, or with consecutive ones, shading as one
+# froxel (slower).
+# VARIANT_LIST picks them (default: default stop28 cull_only tiled_cull_only);
+# `default` and `stop28` also time tiled in their process. Three scenes x 1080p, 4K x 1..16384 lights,
 # 50 frames (2 s cap): OUTDIR/variants_<variant>_<scene>.json and OUTDIR/clustered_variants.md
 # (clustered / tiled per variant, against the tiled of its own process where it has one).
 if [ -n "${VARIANTS:-}" ]; then
@@ -37,9 +45,15 @@ if [ -n "${VARIANTS:-}" ]; then
     rm -rf "$P"; cp -r shaders "$P"
     case $1 in
       lists) cp bench/kernels/local_light_clustered_lists.comp "$f" ;;
+      stop28) cp bench/kernels/local_light_clustered_stop28.comp "$f" ;;
       default) ;;
-      all_slices) sed -i 's/uvec2 candidates = occ & sliceRangeBits(lo, hi);/uvec2 candidates = occ;/' "$f" ;;
-      no_box) sed -i '/if (!clusterLightTouchesBox(b, apex, axis, boxLo, boxHi)) continue;$/d' "$f" ;;
+      tiled_cull_only) f=$P/local_light_tiled.comp
+        sed -i 's/for (uint k = 0u; k < n; ++k) {$/for (uint k = 0u; k < 0u; ++k) {/' "$f"
+        cmp -s shaders/local_light_tiled.comp "$f" && { echo "variant $1: shaders/local_light_tiled.comp changed shape, skipped" >&2; return; } ;;
+      all_slices) sed -i 's/uvec2 candidates = clusterCandidateSlices(dist, r, occ);/uvec2 candidates = occ;/' "$f" ;;
+      no_box) sed -i 's/    return clusterLightTouchesBox(b, apex, axis, sBoxLo\[j\].xyz, sBoxHi\[j\].xyz);$/    return true;/' \
+        "$P/common/cluster_tile.glsl"
+        cmp -s shaders/common/cluster_tile.glsl "$P/common/cluster_tile.glsl" && { echo "variant $1: common/cluster_tile.glsl changed shape, skipped" >&2; return; } ;;
       merge2) sed -i 's/^#define LP_CLUSTER_MERGE_RATIO .*/#define LP_CLUSTER_MERGE_RATIO 2.0/' "$f" ;;
       merge4) sed -i 's/^#define LP_CLUSTER_MERGE_RATIO .*/#define LP_CLUSTER_MERGE_RATIO 4.0/' "$f" ;;
       tile_only) sed -i 's/^#define LP_CLUSTER_MERGE_RATIO .*/#define LP_CLUSTER_MERGE_RATIO 3.0e38/' "$f" ;;
@@ -47,16 +61,17 @@ if [ -n "${VARIANTS:-}" ]; then
         grep -q 'for (; false; bits' "$f" || { echo "variant $1: the shading loop changed shape, skipped" >&2; return; } ;;
       *) echo "variant $1: unknown" >&2; return ;;
     esac
-    if [ "$1" != default ] && cmp -s shaders/local_light_clustered.comp "$f"; then
+    case $1 in default|no_box|tiled_cull_only) ;; *) if cmp -s shaders/local_light_clustered.comp "$f"; then
       echo "variant $1: shaders/local_light_clustered.comp changed shape, skipped" >&2; return
-    fi
+    fi ;; esac
     echo "$P"
   }
-  for v in ${VARIANT_LIST:-default lists cull_only tile_only}; do
+  for v in ${VARIANT_LIST:-default stop28 cull_only tiled_cull_only}; do
     P=$(variant_dir "$v"); [ -n "$P" ] || continue
     methods='--local-lights clustered --cluster-size 16'
     case $v in
-      default|lists) methods="--local-lights tiled|$methods" ;;
+      default|stop28) methods="--local-lights tiled|$methods" ;;
+      tiled_*) methods='--local-lights tiled' ;;  # a variant of the tiled method: its own column
     esac
     for s in ${SCENES:-gallery depth-discontinuity fence}; do
       LIGHTPASS_SHADER_DIR=$P $B/run bench --scene scenes/$s.json --frames 50 --warmup 8 --max-seconds 2 \

@@ -2,7 +2,8 @@
 """bench/lighting_clustered.sh VARIANTS=1's tables, from OUTDIR/variants_<variant>_<scene>.json: per
 scene and size, the local_lights pass's median GPU ms of tiled (measured with the `default` variant)
 and of each clustered variant (16 px), with clustered / tiled (against the tiled measured in the
-variant's own process where it has one: `default`, `lists`); then issue #18's targets per variant:
+variant's own process where it has one: `default`, `stop28`, `lists`; the other process's tiled is
+shown again, which shows how much tiled moves between processes); then issue #18's targets per variant:
 clustered <= tiled in every cell, and >= 2x faster than tiled where tiles span near and far (the
 depth-discontinuity and fence scenes, 256 lights and more)."""
 import glob
@@ -11,7 +12,8 @@ import os
 import re
 import sys
 
-ORDER = ("lists", "default", "all_slices", "no_box", "merge2", "merge4", "cull_only", "tile_only")
+ORDER = ("stop28", "lists", "default", "all_slices", "no_box", "merge2", "merge4", "cull_only",
+         "tile_only", "tiled_cull_only")
 SCENES = ("gallery", "depth-discontinuity", "fence")
 SPANNING = ("depth-discontinuity", "fence")
 
@@ -49,6 +51,8 @@ def main(outdir):
         except (OSError, ValueError, KeyError) as e:
             print(f"{path}: not readable: {e}\n")
             continue
+        if m.group(1).startswith("tiled_"):  # a variant of the tiled method: its own column
+            cells = {(k[0], k[1], "clustered"): ms for k, ms in cells.items() if k[2] == "tiled"}
         found[(m.group(1), m.group(2))] = cells
         # Other tile sizes of the same kernel (e.g. `default` at --cluster-size 32): variant "<v> <px>px",
         # against the same process's tiled.
@@ -68,8 +72,10 @@ def main(outdir):
         for size in sizes:
             counts = sorted({k[1] for (v, s), c in found.items() if s == scene for k in c if k[0] == size})
             print(f"## {scene} {size}: ms (clustered / tiled)\n")
-            again = any(k[2] == "tiled" for k in found.get(("lists", scene), {}))
-            print("| lights | tiled | " + " | ".join(variants) + (" | tiled again (lists' run) |" if again else " |"))
+            second = next((v for v in variants if v != "default" and
+                           any(k[2] == "tiled" for k in found.get((v, scene), {}))), None)
+            again = second is not None
+            print("| lights | tiled | " + " | ".join(variants) + (f" | tiled again ({second}'s run) |" if again else " |"))
             print("|---:|" + "---:|" * (len(variants) + 1 + int(again)))
             for n in counts:
                 t = tiled.get((size, n, "tiled"))
@@ -84,7 +90,7 @@ def main(outdir):
                     row.append(f"{c:.3f} ({c / ref:.2f})" if ref else f"{c:.3f}")
                     if ref:
                         worst[v].append((scene, size, n, c / ref))
-                other = found.get(("lists", scene), {}).get((size, n, "tiled"))
+                other = found.get((second, scene), {}).get((size, n, "tiled")) if again else None
                 if other is not None:
                     row.append(f"{other:.3f}")
                 print(f"| {n} | " + " | ".join(row) + " |")
@@ -94,7 +100,7 @@ def main(outdir):
     print("|---|---:|---:|")
     for v in variants:
         rows = worst[v]
-        if not rows:
+        if not rows or v.startswith("tiled_"):
             continue
         w = max(rows, key=lambda r: r[3])
         span = [r for r in rows if r[0] in SPANNING and r[2] >= 256]

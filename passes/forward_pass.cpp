@@ -24,7 +24,7 @@ struct OpaqueData {
 };
 }  // namespace
 
-ForwardLightingReads declareForwardLighting(fg::PassBuilder& b, const ForwardLighting& lighting) {
+ForwardLightingReads declareForwardLighting(fg::PassBuilder& b, LocalLightPass& localLights, const ForwardLighting& lighting) {
     ForwardLightingReads r;
     for (const auto& m : lighting.shadowMaps) r.shadowMaps.push_back(b.read(m.depth, fg::Usage::Sampled));
     if (lighting.environment.irradiance.valid()) {
@@ -36,7 +36,7 @@ ForwardLightingReads declareForwardLighting(fg::PassBuilder& b, const ForwardLig
     if (lighting.localLights && lighting.spotShadows.any())
         r.spotAtlas = b.read(lighting.spotShadows.depth, fg::Usage::Sampled);
     if (lighting.localLights) {
-        if (lighting.fillsLightRecords) writeLightRecords(b, lighting.lightRecords);
+        if (lighting.fillsLightRecords) writeLightRecords(b, localLights, lighting.lightRecords);
         else readLightRecords(b);
     }
     return r;
@@ -113,7 +113,7 @@ fg::ResourceId addForwardOpaquePass(fg::FrameGraph& graph, ForwardPass& state, L
         "forward_opaque", fg::PassKind::Raster,
         [&](fg::PassBuilder& b, OpaqueData& data) {
             data.depth = b.read(depthPrepass.depth, fg::Usage::DepthTest);
-            data.reads = declareForwardLighting(b, lighting);
+            data.reads = declareForwardLighting(b, localLights, lighting);
             data.hdr = b.create("hdr", {frame.width, frame.height, GL_RGBA16F}, fg::Usage::ColorAttachment);
         },
         [&state, &localLights, frame, lighting](const OpaqueData& data, const fg::PassResources& res) {

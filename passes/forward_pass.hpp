@@ -45,7 +45,7 @@ struct ForwardLightingReads {
 
 // Declares the reads of `lighting`'s textures (sampled) and of its light records (or, with
 // fillsLightRecords, their upload).
-ForwardLightingReads declareForwardLighting(fg::PassBuilder& b, const ForwardLighting& lighting);
+ForwardLightingReads declareForwardLighting(fg::PassBuilder& b, LocalLightPass& localLights, const ForwardLighting& lighting);
 
 // Compiles `program` (shaders/gbuffer.vert + forward.frag with `defines`, and LP_SPOT_SHADOWS when a spot
 // casts a shadow) if needed, sets every lighting uniform, binds the textures and builds and binds the

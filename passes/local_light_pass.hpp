@@ -92,13 +92,14 @@ struct LocalLightRecords {
 };
 LocalLightRecords importLocalLightRecords(fg::FrameGraph& graph, LocalLightPass& state, const FrameData& frame,
                                           const SpotShadowMaps& spotShadows);
-// In a pass's setup: it fills the records (its execute calls bindLightRecords), or reads what the
-// frame's filling pass uploaded (the last version of "local_lights.records", whichever pass wrote it).
-void writeLightRecords(fg::PassBuilder& b, const LocalLightRecords& records);
+// In a pass's setup: it fills the records (uploaded before the frame's first pass, outside every
+// pass's timing window), or reads what the frame's filling pass uploaded (the last version of
+// "local_lights.records", whichever pass wrote it).
+void writeLightRecords(fg::PassBuilder& b, LocalLightPass& state, const LocalLightRecords& records);
 void readLightRecords(fg::PassBuilder& b);
-// In a pass's execute: the records into SSBO 0. Uploaded only if `lights` does not hold this
-// frame's records yet: by the filling pass, or by the first reader when that pass did not run
-// (disabled); every later pass binds the same buffer.
+// In a pass's execute: the records into SSBO 0. Uploaded here only if `lights` does not hold this
+// frame's records yet: when the filling pass did not run (disabled), by the first reader; every
+// later pass binds the same buffer.
 void bindLightRecords(LocalLightPass& state, const LocalLightRecords& records, const fg::PassResources& res);
 
 // Adds the "local_lights" pass (read-modify-write of hdr; fills `records`). Whether the frame needs it

@@ -47,7 +47,7 @@ fg::ResourceId addTransparentPass(fg::FrameGraph& graph, TransparentPass& state,
         "transparent", fg::PassKind::Raster,
         [&](fg::PassBuilder& b, Data& data) {
             data.depth = b.read(depth, fg::Usage::DepthTest);
-            data.reads = declareForwardLighting(b, withoutAo);
+            data.reads = declareForwardLighting(b, localLights, withoutAo);
             data.hdr = b.write(hdr, fg::Usage::Blend);
         },
         [&state, &localLights, frame, withoutAo](const Data& data, const fg::PassResources& res) {

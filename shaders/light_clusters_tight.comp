@@ -3,18 +3,19 @@
 // shading (the lights-per-cluster view; local_light_clustered.comp shades from the same tests in
 // shared memory and writes no lists). One work group per tile of the froxel grid (LP_CLUSTER_TILE =
 // uClusterTileSize pixels square):
-//  1. its pixels find their depth slice; per slice, the eye-distance range its pixels occupy (the
-//     froxel tightened to the depth of what it holds: Olsson et al. 2012's compact clusters, Harada's
-//     2.5D culling) and which slices hold any pixel at all;
+//  1. its pixels find their depth slice; per slice, the eye-distance range its pixels occupy and
+//     which slices hold any pixel at all (common/cluster_tile.glsl, shared with the clustered pass);
 //  2. per batch of lights (one per invocation), each light is tested against the tile's frustum
 //     between the nearest and farthest pixel (the tiled method's test), and the survivors against
-//     each occupied slice's tight range and box; a bit per light and slice in shared memory;
+//     the occupied slices its eye-depth interval can reach: each one's tight range and box; a bit per
+//     light and slice in shared memory;
 //  3. the bits become the tile's froxel lists in the grid (index order, at most the cap; counts
 //     uncapped, overflowing froxels counted in uOverflow). Unoccupied froxels list nothing: these
 //     lists are for the depth buffer's surfaces, not for transparent ones (light_clusters.comp
 //     builds whole froxels for the forward passes).
 #include "common/local_light.glsl"
 #include "common/clusters.glsl"
+#include "common/cluster_tile.glsl"
 #define LP_GBUFFER_READ
 #include "common/gbuffer_layout.glsl"
 
@@ -28,7 +29,6 @@ const int LP_PIXELS_SIDE = (LP_TILE + LP_SIDE - 1) / LP_SIDE;
 const int LP_PIXELS = LP_PIXELS_SIDE * LP_PIXELS_SIDE;
 const int LP_BATCH = LP_SIDE * LP_SIDE;  // lights per batch: one per invocation
 const int LP_WORDS = (LP_BATCH + 31) / 32;  // bit-mask words per slice
-const int LP_SLICES = 64;  // kMaxClusterSlices
 
 layout(local_size_x = LP_SIDE, local_size_y = LP_SIDE) in;
 layout(std430, binding = 0) readonly buffer LocalLights { LpLocalLight uLights[]; };
@@ -40,9 +40,6 @@ uniform mat4 uProjection;
 uniform ivec2 uImageSize;
 uniform bool uLightingOnly;  // every non-background pixel is a surface (else flat-lit ones are not)
 
-shared uint sMinDist[LP_SLICES], sMaxDist[LP_SLICES];  // float bits of eye distances (order-preserving)
-shared uint sOccupied[2];  // a bit per slice holding a pixel
-shared vec4 sBoxLo[LP_SLICES], sBoxHi[LP_SLICES];  // each occupied slice's tight eye-space box
 shared uint sMask[LP_SLICES * LP_WORDS];  // per slice, a bit per light of the batch touching it
 shared uint sWords[LP_SLICES];  // per slice, a bit per word of sMask that is not 0
 shared uint sListed[LP_SLICES];  // lights listed so far per slice (uncapped)
@@ -52,14 +49,12 @@ void main() {
     ivec2 tile = ivec2(gl_WorkGroupID.xy);
     ivec2 origin = tile * LP_TILE;
     int slices = uClusterGrid.z;
+    clusterTileClear(lid, uint(LP_BATCH));
     for (uint j = lid; j < uint(LP_SLICES); j += uint(LP_BATCH)) {
-        sMinDist[j] = floatBitsToUint(3.0e38);
-        sMaxDist[j] = 0u;
         sListed[j] = 0u;
         sWords[j] = 0u;
     }
     for (uint w = lid; w < uint(slices * LP_WORDS); w += uint(LP_BATCH)) sMask[w] = 0u;
-    if (lid < 2u) sOccupied[lid] = 0u;
     barrier();
 
     // 1. Each pixel's slice; each slice's occupied depth range. Flat-lit pixels are no surface to
@@ -77,40 +72,28 @@ void main() {
         if (surface[k]) {
             P[k] = gbufferPosition(p);
             float d = max(-P[k].z, 0.0);
-            int j = clusterSliceOf(d);
-            slice[k] = j;
-            // Most pixels of a slice cannot move its range: a (possibly stale) read first spares
-            // their atomics on the one shared word they all hit.
-            uint bits = floatBitsToUint(d);
-            if (bits < sMinDist[j]) atomicMin(sMinDist[j], bits);
-            if (bits > sMaxDist[j]) atomicMax(sMaxDist[j], bits);
+            slice[k] = clusterSliceOf(d);
+            clusterTileAddPixel(slice[k], d);
         }
     }
     barrier();
     vec2 ndcLo, ndcHi;
     clusterTileNdc(tile, uImageSize, ndcLo, ndcHi);
-    if (lid < uint(slices) && sMinDist[lid] <= sMaxDist[lid]) {
-        vec3 lo, hi;
-        clusterTileBox(ndcLo, ndcHi, uintBitsToFloat(sMinDist[lid]), uintBitsToFloat(sMaxDist[lid]), uProjection, lo, hi);
-        sBoxLo[lid] = vec4(lo, 0.0);
-        sBoxHi[lid] = vec4(hi, 0.0);
-        atomicOr(sOccupied[lid >> 5], 1u << (lid & 31u));
-    }
-    barrier();
-    uvec2 occ = uvec2(sOccupied[0], sOccupied[1]);  // uniform across the group
+    uvec2 occ = clusterTileOccupied();  // uniform across the group
     bool anySurface = (occ.x | occ.y) != 0u;
-    // The tile's depth bounds: the nearest occupied slice's nearest pixel to the farthest's farthest.
     float tileNear = 0.0, tileFar = 0.0;
     if (anySurface) {
-        tileNear = uintBitsToFloat(sMinDist[occ.x != 0u ? findLSB(occ.x) : 32 + findLSB(occ.y)]);
-        tileFar = uintBitsToFloat(sMaxDist[occ.y != 0u ? 32 + findMSB(occ.y) : findMSB(occ.x)]);
+        tileNear = clusterTileNear(occ);
+        tileFar = clusterTileFar(occ);
     }
-
+    clusterTileBoxes(lid, uint(LP_BATCH), ndcLo, ndcHi, uProjection);
+    barrier();
 
     if (anySurface) {
         uint word = lid >> 5, bit = 1u << (lid & 31u);
         for (int first = 0; first < uLightCount; first += LP_BATCH) {
-            // 2. This invocation's light against the tile, then against each occupied slice.
+            // 2. This invocation's light against the tile, then against the occupied slices its
+            // eye-depth interval reaches.
             int i = first + int(lid);
             bool touches = false;  // some occupied slice
             if (i < uLightCount) {
@@ -118,12 +101,12 @@ void main() {
                 float r = b.w * (1.0 + LP_CLUSTER_MARGIN) + 1e-6;
                 if (sphereTouchesTileFrustum(b.xyz, r, ndcLo, ndcHi, tileNear, tileFar, uProjection)) {
                     vec4 apex = uLights[i].positionRange, axis = uLights[i].directionCos;
+                    float dist = -b.z;
+                    uvec2 candidates = clusterCandidateSlices(dist, r, occ);
                     for (int h = 0; h < 2; ++h)
-                        for (uint bits = occ[h]; bits != 0u; bits &= bits - 1u) {
+                        for (uint bits = candidates[h]; bits != 0u; bits &= bits - 1u) {
                             int j = 32 * h + findLSB(bits);
-                            if (sphereTouchesTileFrustum(b.xyz, r, ndcLo, ndcHi, uintBitsToFloat(sMinDist[j]),
-                                                         uintBitsToFloat(sMaxDist[j]), uProjection) &&
-                                clusterLightTouchesBox(b, apex, axis, sBoxLo[j].xyz, sBoxHi[j].xyz)) {
+                            if (clusterLightTouchesSlice(b, r, dist, apex, axis, j)) {
                                 atomicOr(sMask[j * LP_WORDS + int(word)], bit);
                                 atomicOr(sWords[j], 1u << word);
                                 touches = true;

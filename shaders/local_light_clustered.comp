@@ -2,21 +2,26 @@
 // Clustered method in one compute pass, fused like the tiled method: one work group per tile of the
 // froxel grid (LP_CLUSTER_TILE = uClusterTileSize pixels square):
 //  1. its pixels read their G-buffer texels at once (the loads are in flight while shared memory is
-//     cleared), find their depth slice and, per slice, the eye-distance range its pixels occupy (the
-//     froxel tightened to the depth of what it holds: Olsson et al. 2012's compact clusters, Harada's
-//     2.5D culling) and which slices hold any pixel at all;
+//     cleared), find their depth slice and, per slice, the eye-distance range its pixels occupy and
+//     which slices hold any pixel at all (common/cluster_tile.glsl);
 //  2. per batch of lights (one per invocation), each light is tested against the tile's frustum
 //     between the nearest and farthest pixel (the tiled method's test), then against the occupied
 //     slices its eye-depth interval can reach: each one's tight depth range, then the eye-space box
 //     around it (made once per tile); a bit per light and slice in shared memory;
 //  3. each pixel adds the lights of its own slice's bits, so a tile holding a near pillar and a far
-//     wall shades neither with the lights in the empty depth between them.
+//     wall shades neither with the lights in the empty depth between them. A pixel no light adds to
+//     leaves its HDR texel alone (neither read nor written).
 // A tile whose pixels lie within LP_CLUSTER_MERGE_RATIO of each other in depth (or in one slice) is
 // one froxel: its lights are exactly the tiled method's. The pass writes no froxel lists (nothing
 // reads them after it): light_clusters_tight.comp builds the same tight lists for the
 // lights-per-cluster view. Unbounded specular reaches every pixel: then every light is added.
+// Measured on the H100 and not kept (bench/results/lighting/clustered/README.md): sorting a tile's
+// pixels by slice so that a warp holds one or two slices (no gain: the shading left is BRDF work),
+// fewer values kept in registers, shared arrays sized for the grid's slices, more tiles shaded as one
+// froxel.
 #include "common/local_light.glsl"
 #include "common/clusters.glsl"
+#include "common/cluster_tile.glsl"
 #include "common/tonemap.glsl"
 #define LP_GBUFFER_READ
 #include "common/gbuffer_layout.glsl"
@@ -25,8 +30,9 @@
 #define LP_CLUSTER_TILE 16
 #endif
 // Tiles whose farthest pixel is at most this many times as far as their nearest shade as one froxel
-// (0: only tiles within one slice; 2 and 4 were slower on the H100: bench/lighting_clustered.sh's
-// VARIANTS run sets it for its merge and tile_only variants).
+// (0: only tiles within one slice; 2 and 4 were slower on the H100, and so were tiles with up to 2 or 3
+// occupied slices, or consecutive ones: bench/results/lighting/clustered/variants_run7_*;
+// bench/lighting_clustered.sh's VARIANTS run sets it for its merge2, merge4 and tile_only variants).
 #ifndef LP_CLUSTER_MERGE_RATIO
 #define LP_CLUSTER_MERGE_RATIO 0.0
 #endif
@@ -37,7 +43,6 @@ const int LP_PIXELS_SIDE = (LP_TILE + LP_SIDE - 1) / LP_SIDE;
 const int LP_PIXELS = LP_PIXELS_SIDE * LP_PIXELS_SIDE;
 const int LP_BATCH = LP_SIDE * LP_SIDE;  // lights per batch: one per invocation
 const int LP_WORDS = (LP_BATCH + 31) / 32;  // bit-mask words per slice
-const int LP_SLICES = 64;  // kMaxClusterSlices
 const int LP_MASK = LP_SLICES * LP_WORDS;  // one batch's bits
 
 layout(local_size_x = LP_SIDE, local_size_y = LP_SIDE) in;
@@ -50,48 +55,35 @@ uniform bool uUnbounded;     // specular outside the range: every light reaches 
 uniform bool uLightingOnly;
 uniform int uSpecularMode;
 
-shared uint sMinDist[LP_SLICES], sMaxDist[LP_SLICES];  // float bits of eye distances (order-preserving)
-shared uint sOccupied[2];  // a bit per slice holding a pixel
 // Two batches' bits, alternating: a batch's tests write one half while the other is cleared, so a
 // batch needs one barrier between its tests and its shading and one before the next batch's tests.
 shared uint sMask[2 * LP_MASK];  // per slice, a bit per light of the batch touching it
 shared uint sWords[2 * LP_SLICES];  // per slice, a bit per word of its sMask that is not 0
-shared vec4 sBoxLo[LP_SLICES], sBoxHi[LP_SLICES];  // each occupied slice's eye-space box
 
-// Bits lo..hi (0 <= lo <= hi < 64) of a 64-bit mask held as two words.
-uvec2 sliceRangeBits(int lo, int hi) {
-    uvec2 upTo;  // bits 0..hi
-    upTo.x = hi >= 31 ? ~0u : (2u << uint(hi)) - 1u;
-    upTo.y = hi < 32 ? 0u : (hi >= 63 ? ~0u : (2u << uint(hi - 32)) - 1u);
-    uvec2 below;  // bits 0..lo-1
-    below.x = lo >= 32 ? ~0u : (1u << uint(lo)) - 1u;
-    below.y = lo <= 32 ? 0u : (1u << uint(lo - 32)) - 1u;
-    return upTo & ~below;
-}
-
-// Light i (bit `at` of the batch) against the tile's occupied slices `occ` that its eye-depth interval
-// reaches: each one's depth range [sMinDist, sMaxDist], then the box around it; a bit in the half of
-// sMask / sWords at `mask` / `words` for each slice it touches.
-void markSlices(int i, uint at, uvec2 occ, int mask, int words) {
-    vec4 b = uLights[i].bound, apex = uLights[i].positionRange, axis = uLights[i].directionCos;
+// Light i (bound b; bit `at` of the batch) against the tile's occupied slices `occ` that its eye-depth
+// interval reaches; a bit in the half of sMask / sWords at `mask` / `words` for each slice it touches.
+void markSlices(int i, vec4 b, uint at, uvec2 occ, int mask, int words) {
+    vec4 apex = uLights[i].positionRange, axis = uLights[i].directionCos;
     float r = b.w * (1.0 + LP_CLUSTER_MARGIN) + 1e-6;
     float dist = -b.z;
     uint word = at >> 5, bit = 1u << (at & 31u);
-    // clusterSliceOf is monotone up to the float logarithm's rounding: one slice more either side,
-    // then each slice's own range decides.
-    int lo = max(clusterSliceOf(dist - r) - 1, 0), hi = min(clusterSliceOf(dist + r) + 1, uClusterGrid.z - 1);
-    uvec2 candidates = occ & sliceRangeBits(lo, hi);
+    uvec2 candidates = clusterCandidateSlices(dist, r, occ);
     for (int h = 0; h < 2; ++h)
         for (uint cand = candidates[h]; cand != 0u; cand &= cand - 1u) {
             int j = 32 * h + findLSB(cand);
-            float d0 = uintBitsToFloat(sMinDist[j]), d1 = uintBitsToFloat(sMaxDist[j]);
-            // The tile's side planes passed already: the slice's frustum test is its depth range.
-            if (dist + r < d0 || dist - r > d1) continue;
-            vec3 boxLo = sBoxLo[j].xyz, boxHi = sBoxHi[j].xyz;
-            if (!clusterLightTouchesBox(b, apex, axis, boxLo, boxHi)) continue;
+            if (!clusterLightTouchesSlice(b, r, dist, apex, axis, j)) continue;
             atomicOr(sMask[mask + j * LP_WORDS + int(word)], bit);
             if ((sWords[words + j] & (1u << word)) == 0u) atomicOr(sWords[words + j], 1u << word);
         }
+}
+
+// What shading needs of pixel p beyond its eye position P.
+void readShadingTexels(ivec2 p, vec3 P, out vec3 N, out vec4 spec, out vec3 kd, out vec3 V) {
+    N = gbufferNormal(p);
+    spec = vec4(gbufferSpecular(p), gbufferShininess(p));
+    kd = uLightingOnly ? vec3(1.0) : gbufferDiffuse(p);
+    float pl = length(P);
+    V = pl > 0.0 ? -P / pl : vec3(0.0, 0.0, 1.0);
 }
 
 void main() {
@@ -106,9 +98,11 @@ void main() {
     vec3 P[LP_PIXELS], N[LP_PIXELS], kd[LP_PIXELS], V[LP_PIXELS], sum[LP_PIXELS];
     vec4 spec[LP_PIXELS];
     int slice[LP_PIXELS];
+    ivec2 at[LP_PIXELS];  // the pixel within the tile
     for (int k = 0; k < LP_PIXELS; ++k) {
         ivec2 q = ivec2(gl_LocalInvocationID.xy) + LP_SIDE * ivec2(k % LP_PIXELS_SIDE, k / LP_PIXELS_SIDE);
         ivec2 p = origin + q;
+        at[k] = q;
         surface[k] = q.x < LP_TILE && q.y < LP_TILE && p.x < uImageSize.x && p.y < uImageSize.y &&
                      !gbufferIsBackground(p) && (uLightingOnly || !gbufferIsFlat(p));
         P[k] = vec3(0.0);
@@ -120,17 +114,12 @@ void main() {
         slice[k] = 0;
         if (surface[k]) {
             P[k] = gbufferPosition(p);
-            N[k] = gbufferNormal(p);
-            spec[k] = vec4(gbufferSpecular(p), gbufferShininess(p));
-            kd[k] = uLightingOnly ? vec3(1.0) : gbufferDiffuse(p);
-            float pl = length(P[k]);
-            V[k] = pl > 0.0 ? -P[k] / pl : vec3(0.0, 0.0, 1.0);
+            readShadingTexels(p, P[k], N[k], spec[k], kd[k], V[k]);
             slice[k] = clusterSliceOf(max(-P[k].z, 0.0));
         }
     }
+    clusterTileClear(lid, uint(LP_BATCH));
     for (int j = int(lid); j < slices; j += LP_BATCH) {
-        sMinDist[j] = floatBitsToUint(3.0e38);
-        sMaxDist[j] = 0u;
         sWords[j] = 0u;
         sWords[LP_SLICES + j] = 0u;
     }
@@ -138,25 +127,13 @@ void main() {
         sMask[w] = 0u;
         sMask[LP_MASK + w] = 0u;
     }
-    if (lid < 2u) sOccupied[lid] = 0u;
     barrier();
-    for (int k = 0; k < LP_PIXELS; ++k) {
-        if (!surface[k]) continue;
-        int j = slice[k];
-        // Most pixels of a slice cannot move its range or its bit: a (possibly stale) read first
-        // spares their atomics on the one shared word they all hit.
-        uint bits = floatBitsToUint(max(-P[k].z, 0.0));
-        if (bits < sMinDist[j]) atomicMin(sMinDist[j], bits);
-        if (bits > sMaxDist[j]) atomicMax(sMaxDist[j], bits);
-        uint o = 1u << uint(j & 31);
-        if ((sOccupied[j >> 5] & o) == 0u) atomicOr(sOccupied[j >> 5], o);
-    }
+    for (int k = 0; k < LP_PIXELS; ++k)
+        if (surface[k]) clusterTileAddPixel(slice[k], max(-P[k].z, 0.0));
     barrier();
-    uvec2 occ = uvec2(sOccupied[0], sOccupied[1]);  // uniform across the group
+    uvec2 occ = clusterTileOccupied();  // uniform across the group
     if ((occ.x | occ.y) == 0u) return;  // no surface in the tile: nothing to add
-    // The tile's depth bounds: the nearest occupied slice's nearest pixel to the farthest's farthest.
-    float tileNear = uintBitsToFloat(sMinDist[occ.x != 0u ? findLSB(occ.x) : 32 + findLSB(occ.y)]);
-    float tileFar = uintBitsToFloat(sMaxDist[occ.y != 0u ? 32 + findMSB(occ.y) : findMSB(occ.x)]);
+    float tileNear = clusterTileNear(occ), tileFar = clusterTileFar(occ);
     // One froxel for the whole tile (uniform): the tiled method's lights, slice 0's bits.
     bool merged = bitCount(occ.x) + bitCount(occ.y) == 1 || tileFar <= float(LP_CLUSTER_MERGE_RATIO) * tileNear;
     if (merged)
@@ -164,13 +141,7 @@ void main() {
     vec2 ndcLo, ndcHi;
     clusterTileNdc(tile, uImageSize, ndcLo, ndcHi);
     if (!merged) {
-        for (int j = int(lid); j < slices; j += LP_BATCH)
-            if (sMinDist[j] <= sMaxDist[j]) {
-                vec3 lo, hi;
-                clusterTileBox(ndcLo, ndcHi, uintBitsToFloat(sMinDist[j]), uintBitsToFloat(sMaxDist[j]), uProjection, lo, hi);
-                sBoxLo[j] = vec4(lo, 0.0);
-                sBoxHi[j] = vec4(hi, 0.0);
-            }
+        clusterTileBoxes(lid, uint(LP_BATCH), ndcLo, ndcHi, uProjection);
         barrier();
     }
 
@@ -189,7 +160,7 @@ void main() {
                     atomicOr(sMask[mask + int(word)], bit);
                     if ((sWords[words] & (1u << word)) == 0u) atomicOr(sWords[words], 1u << word);
                 } else {
-                    markSlices(i, lid, occ, mask, words);
+                    markSlices(i, b, lid, occ, mask, words);
                 }
             }
         }
@@ -218,7 +189,8 @@ void main() {
     }
     for (int k = 0; k < LP_PIXELS; ++k) {
         if (!surface[k]) continue;
-        ivec2 p = origin + ivec2(gl_LocalInvocationID.xy) + LP_SIDE * ivec2(k % LP_PIXELS_SIDE, k / LP_PIXELS_SIDE);
+        if (sum[k] == vec3(0.0)) continue;  // adds nothing: no read, no write
+        ivec2 p = origin + at[k];
         imageStore(uHdr, p, vec4(sanitizeHdr(imageLoad(uHdr, p).rgb + sum[k]), 1.0));
     }
 }

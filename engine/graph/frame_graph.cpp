@@ -148,6 +148,8 @@ ResourceId PassBuilder::write(ResourceId id, Usage how) {
 
 void PassBuilder::sideEffect() { graph_.passes_[pass_].sideEffect = true; }
 
+void PassBuilder::beforeFrame(std::function<void()> prepare) { graph_.passes_[pass_].beforeFrame = std::move(prepare); }
+
 void FrameGraph::addPass(const std::string& name, PassKind kind, const SetupFn& setup, ExecuteFn execute) {
     for (const auto& p : passes_)
         if (p.name == name) throw Error("frame graph: two passes named '" + name + "'");
@@ -600,6 +602,14 @@ void FrameGraph::execute(TexturePool& pool, gl::GpuTimerRing* timers) {
     const gl::WatchedState before = gl::captureWatchedState();
 #endif
     pool.beginFrame();
+    for (int i : order_) {
+        const Pass& p = passes_[i];
+        if (p.beforeFrame && !p.disabled) {
+            gl::DebugGroup group(p.name + " (before the frame)");
+            p.beforeFrame();
+            gl::checkErrors("pass '" + p.name + "' before the frame");
+        }
+    }
     for (auto& r : resources_) r.texture = r.isImported ? r.imported : 0;
     for (int i = 0; i < int(order_.size()); ++i) {
         for (auto& r : resources_)

@@ -84,6 +84,9 @@ public:
     ResourceId read(const std::string& resourceName, Usage how);  // resolves at compile time to the last version
     ResourceId write(ResourceId id, Usage how);                   // read-modify-write: returns the new version
     void sideEffect();                                            // never culled (presents, readbacks)
+    // Work the pass needs done before it runs, outside its timing window (a buffer upload): run at
+    // the start of execute(), before the first pass's timer begins, when the pass is live and enabled.
+    void beforeFrame(std::function<void()> prepare);
 
 private:
     friend class FrameGraph;
@@ -254,6 +257,7 @@ private:
         std::string name;
         PassKind kind = PassKind::Compute;
         ExecuteFn execute;
+        std::function<void()> beforeFrame;  // PassBuilder::beforeFrame
         std::vector<int> reads;  // version indices
         std::vector<Usage> readUsage;  // parallel to reads
         std::vector<NamedRead> namedReads;  // resolved in compile

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <functional>
+#include <string>
+#include <vector>
 
 #include "engine/core/error.hpp"
 #include "engine/graph/texture_pool.hpp"
@@ -147,6 +149,34 @@ TEST(FrameGraphGl, ImportedBufferIsAskedWhenThePassRunsAndOnlyByItsReaders) {
     EXPECT_NE(e.find("pass 'sneaky' uses 'records', which it did not declare"), std::string::npos) << e;
 }
 
+// A pass's beforeFrame work (the local-light records' upload) runs before the first pass executes,
+// so outside every pass's timer, and only for passes that run.
+TEST(FrameGraphGl, BeforeFrameWorkRunsBeforeTheFirstPassAndOnlyForLivePasses) {
+    fg::TexturePool pool;
+    fg::FrameGraph g;
+    std::vector<std::string> events;
+    fg::ResourceId a, out;
+    g.addPass("first", fg::PassKind::Compute, [&](fg::PassBuilder& p) { a = p.create("a", {4, 4, GL_RGBA8}, fg::Usage::ImageStore); },
+              [&](const fg::PassResources&) { events.push_back("first runs"); });
+    g.addPass("second", fg::PassKind::Compute,
+              [&](fg::PassBuilder& p) {
+                  p.read(a, fg::Usage::Sampled);
+                  out = p.create("out", {4, 4, GL_RGBA8}, fg::Usage::ImageStore);
+                  p.beforeFrame([&] { events.push_back("second prepares"); });
+              },
+              [&](const fg::PassResources&) { events.push_back("second runs"); });
+    g.addPass("culled", fg::PassKind::Compute,
+              [&](fg::PassBuilder& p) {
+                  p.create("unread", {4, 4, GL_RGBA8}, fg::Usage::ImageStore);
+                  p.beforeFrame([&] { events.push_back("culled prepares"); });
+              },
+              [&](const fg::PassResources&) { events.push_back("culled runs"); });
+    g.markOutput(out);
+    g.compile();
+    g.execute(pool);
+    EXPECT_EQ(events, (std::vector<std::string>{"second prepares", "first runs", "second runs"}));
+}
+
 // With LIGHTPASS_GL_STATE_CHECKS (scripts/test builds with it), a pass that leaves watched GL state
 // changed is named; every real pass runs under it in the other GL tests.
 TEST(FrameGraphGl, StateCheckNamesThePassThatLeavesStateChanged) {
@@ -184,15 +214,22 @@ TEST(FrameGraphGl, RenderingAndResizingLeaksNoGlObjects) {
     Scene scene = loadScene(test::repoPath("scenes/cornell.json"));
     Renderer r(scene);
     RenderSettings s;
+    // Each frame waited for: a gl::StreamBuffer adds a buffer to its ring when the GPU still reads all
+    // the others (by design, bounded by the frames in flight), so without the wait the count would
+    // depend on the driver's timing.
+    auto render = [&] {
+        r.render(s, 0.0f, false);
+        glFinish();
+    };
     auto settle = [&] {  // pool entries unused for a few frames are freed
         s.width = 64;
         s.height = 48;
         s.view = DebugView::Final;
-        for (int i = 0; i < 6; ++i) r.render(s, 0.0f, false);
+        for (int i = 0; i < 6; ++i) render();
     };
     for (DebugView v : allViews()) {  // compile every program once
         s.view = v;
-        r.render(s, 0.0f, false);
+        render();
     }
     settle();
     const long before = gl::liveObjectCount();
@@ -200,7 +237,7 @@ TEST(FrameGraphGl, RenderingAndResizingLeaksNoGlObjects) {
         s.width = 64 + (i % 7) * 8;
         s.height = 48 + (i % 5) * 8;
         s.view = allViews()[size_t(i) % allViews().size()];
-        r.render(s, 0.0f, false);
+        render();
     }
     settle();
     EXPECT_EQ(gl::liveObjectCount(), before);

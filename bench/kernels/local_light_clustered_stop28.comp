@@ -1,0 +1,227 @@
+#version 450
+// The clustered kernel of main at 99b0145 (stop 28), kept as a baseline of bench/lighting_clustered.sh's
+// VARIANTS run (copied over shaders/local_light_clustered.comp in a patched shader folder): each
+// invocation shades its own pixel, and every pixel's texel is read and written.
+// Clustered method in one compute pass, fused like the tiled method: one work group per tile of the
+// froxel grid (LP_CLUSTER_TILE = uClusterTileSize pixels square):
+//  1. its pixels read their G-buffer texels at once (the loads are in flight while shared memory is
+//     cleared), find their depth slice and, per slice, the eye-distance range its pixels occupy (the
+//     froxel tightened to the depth of what it holds: Olsson et al. 2012's compact clusters, Harada's
+//     2.5D culling) and which slices hold any pixel at all;
+//  2. per batch of lights (one per invocation), each light is tested against the tile's frustum
+//     between the nearest and farthest pixel (the tiled method's test), then against the occupied
+//     slices its eye-depth interval can reach: each one's tight depth range, then the eye-space box
+//     around it (made once per tile); a bit per light and slice in shared memory;
+//  3. each pixel adds the lights of its own slice's bits, so a tile holding a near pillar and a far
+//     wall shades neither with the lights in the empty depth between them.
+// A tile whose pixels lie within LP_CLUSTER_MERGE_RATIO of each other in depth (or in one slice) is
+// one froxel: its lights are exactly the tiled method's. The pass writes no froxel lists (nothing
+// reads them after it): light_clusters_tight.comp builds the same tight lists for the
+// lights-per-cluster view. Unbounded specular reaches every pixel: then every light is added.
+#include "common/local_light.glsl"
+#include "common/clusters.glsl"
+#include "common/tonemap.glsl"
+#define LP_GBUFFER_READ
+#include "common/gbuffer_layout.glsl"
+
+#ifndef LP_CLUSTER_TILE
+#define LP_CLUSTER_TILE 16
+#endif
+// Tiles whose farthest pixel is at most this many times as far as their nearest shade as one froxel
+// (0: only tiles within one slice; 2 and 4 were slower on the H100: bench/lighting_clustered.sh's
+// VARIANTS run sets it for its merge and tile_only variants).
+#ifndef LP_CLUSTER_MERGE_RATIO
+#define LP_CLUSTER_MERGE_RATIO 0.0
+#endif
+const int LP_TILE = LP_CLUSTER_TILE;
+// At most 16 x 16 invocations; a larger tile gives each invocation several pixels, 16 apart.
+const int LP_SIDE = LP_TILE < 16 ? LP_TILE : 16;
+const int LP_PIXELS_SIDE = (LP_TILE + LP_SIDE - 1) / LP_SIDE;
+const int LP_PIXELS = LP_PIXELS_SIDE * LP_PIXELS_SIDE;
+const int LP_BATCH = LP_SIDE * LP_SIDE;  // lights per batch: one per invocation
+const int LP_WORDS = (LP_BATCH + 31) / 32;  // bit-mask words per slice
+const int LP_SLICES = 64;  // kMaxClusterSlices
+const int LP_MASK = LP_SLICES * LP_WORDS;  // one batch's bits
+
+layout(local_size_x = LP_SIDE, local_size_y = LP_SIDE) in;
+layout(std430, binding = 0) readonly buffer LocalLights { LpLocalLight uLights[]; };
+layout(rgba16f, binding = 0) uniform image2D uHdr;
+uniform int uLightCount;
+uniform mat4 uProjection;
+uniform ivec2 uImageSize;
+uniform bool uUnbounded;     // specular outside the range: every light reaches every pixel
+uniform bool uLightingOnly;
+uniform int uSpecularMode;
+
+shared uint sMinDist[LP_SLICES], sMaxDist[LP_SLICES];  // float bits of eye distances (order-preserving)
+shared uint sOccupied[2];  // a bit per slice holding a pixel
+// Two batches' bits, alternating: a batch's tests write one half while the other is cleared, so a
+// batch needs one barrier between its tests and its shading and one before the next batch's tests.
+shared uint sMask[2 * LP_MASK];  // per slice, a bit per light of the batch touching it
+shared uint sWords[2 * LP_SLICES];  // per slice, a bit per word of its sMask that is not 0
+shared vec4 sBoxLo[LP_SLICES], sBoxHi[LP_SLICES];  // each occupied slice's eye-space box
+
+// Bits lo..hi (0 <= lo <= hi < 64) of a 64-bit mask held as two words.
+uvec2 sliceRangeBits(int lo, int hi) {
+    uvec2 upTo;  // bits 0..hi
+    upTo.x = hi >= 31 ? ~0u : (2u << uint(hi)) - 1u;
+    upTo.y = hi < 32 ? 0u : (hi >= 63 ? ~0u : (2u << uint(hi - 32)) - 1u);
+    uvec2 below;  // bits 0..lo-1
+    below.x = lo >= 32 ? ~0u : (1u << uint(lo)) - 1u;
+    below.y = lo <= 32 ? 0u : (1u << uint(lo - 32)) - 1u;
+    return upTo & ~below;
+}
+
+// Light i (bit `at` of the batch) against the tile's occupied slices `occ` that its eye-depth interval
+// reaches: each one's depth range [sMinDist, sMaxDist], then the box around it; a bit in the half of
+// sMask / sWords at `mask` / `words` for each slice it touches.
+void markSlices(int i, uint at, uvec2 occ, int mask, int words) {
+    vec4 b = uLights[i].bound, apex = uLights[i].positionRange, axis = uLights[i].directionCos;
+    float r = b.w * (1.0 + LP_CLUSTER_MARGIN) + 1e-6;
+    float dist = -b.z;
+    uint word = at >> 5, bit = 1u << (at & 31u);
+    // clusterSliceOf is monotone up to the float logarithm's rounding: one slice more either side,
+    // then each slice's own range decides.
+    int lo = max(clusterSliceOf(dist - r) - 1, 0), hi = min(clusterSliceOf(dist + r) + 1, uClusterGrid.z - 1);
+    uvec2 candidates = occ & sliceRangeBits(lo, hi);
+    for (int h = 0; h < 2; ++h)
+        for (uint cand = candidates[h]; cand != 0u; cand &= cand - 1u) {
+            int j = 32 * h + findLSB(cand);
+            float d0 = uintBitsToFloat(sMinDist[j]), d1 = uintBitsToFloat(sMaxDist[j]);
+            // The tile's side planes passed already: the slice's frustum test is its depth range.
+            if (dist + r < d0 || dist - r > d1) continue;
+            vec3 boxLo = sBoxLo[j].xyz, boxHi = sBoxHi[j].xyz;
+            if (!clusterLightTouchesBox(b, apex, axis, boxLo, boxHi)) continue;
+            atomicOr(sMask[mask + j * LP_WORDS + int(word)], bit);
+            if ((sWords[words + j] & (1u << word)) == 0u) atomicOr(sWords[words + j], 1u << word);
+        }
+}
+
+void main() {
+    uint lid = gl_LocalInvocationIndex;
+    ivec2 tile = ivec2(gl_WorkGroupID.xy);
+    ivec2 origin = tile * LP_TILE;
+    int slices = uClusterGrid.z;
+
+    // 1. Each pixel's G-buffer texels first. Flat-lit pixels are no surface to light (and widen no
+    // range).
+    bool surface[LP_PIXELS];
+    vec3 P[LP_PIXELS], N[LP_PIXELS], kd[LP_PIXELS], V[LP_PIXELS], sum[LP_PIXELS];
+    vec4 spec[LP_PIXELS];
+    int slice[LP_PIXELS];
+    for (int k = 0; k < LP_PIXELS; ++k) {
+        ivec2 q = ivec2(gl_LocalInvocationID.xy) + LP_SIDE * ivec2(k % LP_PIXELS_SIDE, k / LP_PIXELS_SIDE);
+        ivec2 p = origin + q;
+        surface[k] = q.x < LP_TILE && q.y < LP_TILE && p.x < uImageSize.x && p.y < uImageSize.y &&
+                     !gbufferIsBackground(p) && (uLightingOnly || !gbufferIsFlat(p));
+        P[k] = vec3(0.0);
+        N[k] = vec3(0.0);
+        kd[k] = vec3(0.0);
+        V[k] = vec3(0.0, 0.0, 1.0);
+        spec[k] = vec4(0.0);
+        sum[k] = vec3(0.0);
+        slice[k] = 0;
+        if (surface[k]) {
+            P[k] = gbufferPosition(p);
+            N[k] = gbufferNormal(p);
+            spec[k] = vec4(gbufferSpecular(p), gbufferShininess(p));
+            kd[k] = uLightingOnly ? vec3(1.0) : gbufferDiffuse(p);
+            float pl = length(P[k]);
+            V[k] = pl > 0.0 ? -P[k] / pl : vec3(0.0, 0.0, 1.0);
+            slice[k] = clusterSliceOf(max(-P[k].z, 0.0));
+        }
+    }
+    for (int j = int(lid); j < slices; j += LP_BATCH) {
+        sMinDist[j] = floatBitsToUint(3.0e38);
+        sMaxDist[j] = 0u;
+        sWords[j] = 0u;
+        sWords[LP_SLICES + j] = 0u;
+    }
+    for (int w = int(lid); w < slices * LP_WORDS; w += LP_BATCH) {
+        sMask[w] = 0u;
+        sMask[LP_MASK + w] = 0u;
+    }
+    if (lid < 2u) sOccupied[lid] = 0u;
+    barrier();
+    for (int k = 0; k < LP_PIXELS; ++k) {
+        if (!surface[k]) continue;
+        int j = slice[k];
+        // Most pixels of a slice cannot move its range or its bit: a (possibly stale) read first
+        // spares their atomics on the one shared word they all hit.
+        uint bits = floatBitsToUint(max(-P[k].z, 0.0));
+        if (bits < sMinDist[j]) atomicMin(sMinDist[j], bits);
+        if (bits > sMaxDist[j]) atomicMax(sMaxDist[j], bits);
+        uint o = 1u << uint(j & 31);
+        if ((sOccupied[j >> 5] & o) == 0u) atomicOr(sOccupied[j >> 5], o);
+    }
+    barrier();
+    uvec2 occ = uvec2(sOccupied[0], sOccupied[1]);  // uniform across the group
+    if ((occ.x | occ.y) == 0u) return;  // no surface in the tile: nothing to add
+    // The tile's depth bounds: the nearest occupied slice's nearest pixel to the farthest's farthest.
+    float tileNear = uintBitsToFloat(sMinDist[occ.x != 0u ? findLSB(occ.x) : 32 + findLSB(occ.y)]);
+    float tileFar = uintBitsToFloat(sMaxDist[occ.y != 0u ? 32 + findMSB(occ.y) : findMSB(occ.x)]);
+    // One froxel for the whole tile (uniform): the tiled method's lights, slice 0's bits.
+    bool merged = bitCount(occ.x) + bitCount(occ.y) == 1 || tileFar <= float(LP_CLUSTER_MERGE_RATIO) * tileNear;
+    if (merged)
+        for (int k = 0; k < LP_PIXELS; ++k) slice[k] = 0;
+    vec2 ndcLo, ndcHi;
+    clusterTileNdc(tile, uImageSize, ndcLo, ndcHi);
+    if (!merged) {
+        for (int j = int(lid); j < slices; j += LP_BATCH)
+            if (sMinDist[j] <= sMaxDist[j]) {
+                vec3 lo, hi;
+                clusterTileBox(ndcLo, ndcHi, uintBitsToFloat(sMinDist[j]), uintBitsToFloat(sMaxDist[j]), uProjection, lo, hi);
+                sBoxLo[j] = vec4(lo, 0.0);
+                sBoxHi[j] = vec4(hi, 0.0);
+            }
+        barrier();
+    }
+
+    uint word = lid >> 5, bit = 1u << (lid & 31u);
+    int part = 0;  // which half of sMask / sWords this batch uses
+    for (int first = 0; first < uLightCount; first += LP_BATCH) {
+        int mask = part * LP_MASK, words = part * LP_SLICES;
+        // 2. This invocation's light against the tile, then against the occupied slices its
+        // eye-depth interval reaches (every light everywhere when unbounded: no bits needed).
+        int i = first + int(lid);
+        if (i < uLightCount && !uUnbounded) {
+            vec4 b = uLights[i].bound;
+            float r = b.w * (1.0 + LP_CLUSTER_MARGIN) + 1e-6;
+            if (sphereTouchesTileFrustum(b.xyz, r, ndcLo, ndcHi, tileNear, tileFar, uProjection)) {
+                if (merged) {
+                    atomicOr(sMask[mask + int(word)], bit);
+                    if ((sWords[words] & (1u << word)) == 0u) atomicOr(sWords[words], 1u << word);
+                } else {
+                    markSlices(i, lid, occ, mask, words);
+                }
+            }
+        }
+        barrier();
+        int batch = min(LP_BATCH, uLightCount - first);
+        // 3. Each pixel: the lights of its slice, in index order (only the words holding any).
+        uint batchWords = (1u << uint((batch + 31) / 32)) - 1u;
+        for (int k = 0; k < LP_PIXELS; ++k) {
+            if (!surface[k]) continue;
+            for (uint ws = uUnbounded ? batchWords : sWords[words + slice[k]]; ws != 0u; ws &= ws - 1u) {
+                int w = findLSB(ws);
+                uint bits = sMask[mask + slice[k] * LP_WORDS + w];
+                if (uUnbounded) bits = batch - 32 * w >= 32 ? ~0u : (1u << uint(batch - 32 * w)) - 1u;
+                for (; bits != 0u; bits &= bits - 1u)
+                    sum[k] += lpShadeLocalLight(uLights[first + 32 * w + findLSB(bits)], P[k], N[k], V[k], kd[k],
+                                                spec[k].rgb, spec[k].a, uSpecularMode);
+            }
+        }
+        if (first + LP_BATCH >= uLightCount) break;  // uniform
+        // The other half for the next batch: its last readers finished before this batch's barrier.
+        int other = (1 - part) * LP_MASK;
+        for (int w = int(lid); w < slices * LP_WORDS; w += LP_BATCH) sMask[other + w] = 0u;
+        for (int j = int(lid); j < slices; j += LP_BATCH) sWords[(1 - part) * LP_SLICES + j] = 0u;
+        barrier();
+        part = 1 - part;
+    }
+    for (int k = 0; k < LP_PIXELS; ++k) {
+        if (!surface[k]) continue;
+        ivec2 p = origin + ivec2(gl_LocalInvocationID.xy) + LP_SIDE * ivec2(k % LP_PIXELS_SIDE, k / LP_PIXELS_SIDE);
+        imageStore(uHdr, p, vec4(sanitizeHdr(imageLoad(uHdr, p).rgb + sum[k]), 1.0));
+    }
+}
