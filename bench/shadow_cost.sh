@@ -15,7 +15,7 @@
 #     saves): shadow_cost_culling.json.
 #  4. the hardware conservative and split rows (cache off, culling on) with fragment shaders that
 #     write no depth: what the depth export costs: shadow_cost_no_depth_write.json / .md.
-#  0. --shadow-redraw-budget 0, 1, 2 (default), 4, 8 on the default settings, and plain and split at
+#  0. --shadow-redraw-budget 0, 1, 2 (default), 3, 4 on the default settings, and plain and split at
 #     the default budget: the same per-frame statistics, tiles lagging behind their new square and
 #     quarters drawn: shadow_cost_budget.json -> OUTDIR/shadow_cost_budget.md. BUDGET_ONLY=1 runs
 #     the gl_tests and this alone (about 2 minutes).
@@ -53,12 +53,12 @@ grep -E "redraw budget|FAILED" $R/gl_tests_shadow_cost.txt | tee $R/redraw_budge
 COMMON="--shadow-size 2048 --shadow-cascades 4"
 # 0. --shadow-redraw-budget (BUDGET_ONLY=1: the gl_tests above and this alone, about 2 minutes):
 #    default settings (cache, scroll, hardware conservative where the GPU has it) with the budget at
-#    0 (resized squares drawn whole at once, as before), 1, 2 (the default), 4 and 8 quarter tiles a
+#    0 (resized squares drawn whole at once, as before), 1, 2 (the default), 3 and 4 quarter tiles a
 #    frame, 600 frames after 20; then plain and split at the default budget: per frame the two suns'
 #    shadow passes summed -> shadow_cost_budget.json, OUTDIR/shadow_cost_budget.md.
 $B/run graph --scene $S --size 1920x1080 --time 1 $COMMON --explain > $R/explain_default.txt 2>&1
 $B/run bench --scene $S --time 1 --fps 60 --frames 600 --warmup 20 --size 1920x1080 $COMMON \
-  --vary '--shadow-redraw-budget 0|--shadow-redraw-budget 1|--shadow-redraw-budget 2|--shadow-redraw-budget 4|--shadow-redraw-budget 8|--shadow-raster plain|--shadow-raster split' \
+  --vary '--shadow-redraw-budget 0|--shadow-redraw-budget 1|--shadow-redraw-budget 2|--shadow-redraw-budget 3|--shadow-redraw-budget 4|--shadow-raster plain|--shadow-raster split' \
   --timings-json $R/shadow_cost_budget.json -q > /dev/null 2> $R/bench_budget_progress.txt \
   || { echo "budget bench failed"; tail -3 $R/bench_budget_progress.txt; }
 python3 bench/summarize_shadow_cost.py $R/shadow_cost_budget.json --outdir $R | tee $R/shadow_cost_budget.md
