@@ -37,6 +37,18 @@
 // differently. The tests bound it (kShadowScrollDepthTolerance everywhere but
 // kShadowScrollMaxDifferingFraction of a tile's texels, each next to a depth edge); kept tiles stay
 // bit-exact. The compute raster (which draws whole tiles) redraws moved tiles whole.
+//
+// --shadow-redraw-budget N (default 2, with the cache; 0: no limit): a cascade whose square changed
+// in a way its kept tile cannot follow by scrolling, but whose kept tile is still a valid map of its
+// previous square (ShadowTileChange::SquareResized, or a move too large to scroll: the same sun,
+// depth range, casters, raster, bias), lags: it keeps serving from its previous square (matrix and
+// texel size in ShadowAtlasCache::squares; the eye-space matrix redone from this frame's camera)
+// while its new square is drawn a quarter tile at a time (at most N quarters a frame, all suns
+// together) into the spare atlas at the tile's own place, then copied over the tile. One square is
+// pending at a time (ShadowMapPass::pending). The lighting takes, from a pixel's depth split on, the
+// first cascade whose square holds it, so what a lagging square misses is shaded from the next
+// cascade. The last cascade never lags. With the camera still the squares catch up and every tile is
+// what an unbudgeted pass draws, bit for bit.
 #include <cstdint>
 #include <filesystem>
 #include <map>
