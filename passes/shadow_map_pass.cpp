@@ -809,7 +809,18 @@ ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const
                 }
             if (!pending.active) state.pending.reset();
         }
-        if (budgeted && !state.pending)
+        // The nearest lagging tile first, over all suns (the others' as they last lagged): near
+        // cascades are the most visible and the cheapest to draw.
+        int nearest = -1;
+        for (size_t c = 0; c < fr.cascades.size() && nearest < 0; ++c)
+            if (lags[c]) nearest = fr.cascades[c].tile;
+        if (nearest < 0) state.nearestLagging.erase(light);
+        else state.nearestLagging[light] = nearest;
+        bool nearerElsewhere = false;
+        for (const auto& [other, tile] : state.nearestLagging)
+            nearerElsewhere |= other != light && std::find(shadowed.begin(), shadowed.end(), other) != shadowed.end() &&
+                               (tile < nearest || (tile == nearest && other < light));
+        if (budgeted && !state.pending && nearest >= 0 && !nearerElsewhere)
             for (size_t c = 0; c < fr.cascades.size() && !pending.active; ++c)
                 if (lags[c]) pending = {true, {light, fr.cascades[c].tile, keys[c], fr.cascades[c], 0}, {}, false};
         if (pending.active) {

@@ -238,6 +238,7 @@ struct ShadowMapPass {
     // atlas's size; made when first needed)
     std::optional<ShadowPendingTile> pending;
     gl::Texture spareAtlas;
+    std::map<int, int> nearestLagging;  // by light: its nearest lagging tile when last planned (none: not lagging)
     // --shadow-size-hold: each shadowed light's cascades of the last frame (fitShadowFrustum's `previous`)
     std::map<int, ShadowFrustum> previousFrusta;
     ShadowCacheStats cacheStats;
