@@ -169,7 +169,7 @@ int runBench(const Options& o, const std::vector<std::string>& args) {
                                    {"completed_per_cascade", std::vector<uint64_t>(std::begin(cache.completedPerCascade), std::end(cache.completedPerCascade))},
                                    {"lagging_per_cascade", std::vector<uint64_t>(std::begin(cache.laggingPerCascade), std::end(cache.laggingPerCascade))},
                                    {"tiles_lagging", cache.lagging}, {"tiles_completed", cache.completed},
-                                   {"quarters_drawn", cache.quarters}, {"most_quarters_in_a_frame", cache.mostQuartersInAFrame}};
+                                   {"quarters_drawn", cache.quarters}, {"most_budget_units_in_a_frame", cache.mostBudgetUnitsInAFrame}};
         const auto& timers = renderer.timers();
         std::fprintf(stderr, "[%zu/%zu] %-50s frame %9.4f ms (%d frames)\n", vi + 1, variants.size(),
                      join(variants[vi]).c_str(), timers.median("frame"), frames);

@@ -268,7 +268,7 @@ int commandRender(const Options& o) {
             (unsigned long long)cache.kept, (unsigned long long)(cache.kept + cache.drawn + cache.scrolled + cache.completed),
             (unsigned long long)cache.lagging, (unsigned long long)cache.scrolled, (unsigned long long)cache.drawn,
             (unsigned long long)cache.completed, (unsigned long long)cache.quarters,
-            (unsigned long long)cache.mostQuartersInAFrame, settings.shadows.cache ? "on" : "off",
+            (unsigned long long)cache.mostBudgetUnitsInAFrame, settings.shadows.cache ? "on" : "off",
             settings.shadows.scroll ? "on" : "off", settings.shadows.redrawBudget);
         j["shadow_cache"] = {{"tiles_drawn", cache.drawn}, {"tiles_kept", cache.kept}, {"tiles_scrolled", cache.scrolled},
                              {"hit_rate", double(cache.kept) / double(cache.kept + cache.drawn + cache.scrolled + cache.completed)},
@@ -278,7 +278,7 @@ int commandRender(const Options& o) {
                                    {"completed_per_cascade", std::vector<uint64_t>(std::begin(cache.completedPerCascade), std::end(cache.completedPerCascade))},
                                    {"lagging_per_cascade", std::vector<uint64_t>(std::begin(cache.laggingPerCascade), std::end(cache.laggingPerCascade))},
                                    {"tiles_lagging", cache.lagging}, {"tiles_completed", cache.completed},
-                                   {"quarters_drawn", cache.quarters}, {"most_quarters_in_a_frame", cache.mostQuartersInAFrame}};
+                                   {"quarters_drawn", cache.quarters}, {"most_budget_units_in_a_frame", cache.mostBudgetUnitsInAFrame}};
     }
     j["memory"] = {{"pool_bytes", poolBytes}, {"persistent_bytes", persistentBytes},
                    {"total_bytes", poolBytes + persistentBytes},

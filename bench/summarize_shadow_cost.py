@@ -180,7 +180,7 @@ def budget_table(path):
           "per frame: both suns' shadow_map passes summed frame by frame\n")
     print("| redraw budget | raster | frames | mean ms | median ms | p99 ms | max ms | frames > 2 ms | p99 ≤ 2 ms | max ≤ 2 ms | "
           "kept / scrolled / drawn whole / completed % per cascade 0 · 1 · 2 · 3 | lagging % per cascade | "
-          "quarters drawn (most in a frame) | frame median | frame p99 |")
+          "quarters drawn (most budget units in a frame) | frame median | frame p99 |")
     print("| ---: | --- | ---: | ---: | ---: | ---: | ---: | ---: | --- | --- | --- | --- | ---: | ---: | ---: |")
     worst_lines = []
     for run in d["runs"]:
@@ -200,7 +200,7 @@ def budget_table(path):
         over = sum(1 for x in sums if x > TARGET_MS)
         rates, lag = budget_rates(run)
         c = run.get("shadow_cache") or {}
-        quarters = f"{c.get('quarters_drawn', 0)} ({c.get('most_quarters_in_a_frame', 0)})"
+        quarters = f"{c.get('quarters_drawn', 0)} ({c.get('most_budget_units_in_a_frame', 0)})"
         print(f"| {budget} | {raster_name(flags)} | {len(sums)} | {mean:.3f} | {med:.3f} | {p99:.3f} | {most:.3f} | {over} | "
               f"{'yes' if p99 <= TARGET_MS else 'no'} | {'yes' if most <= TARGET_MS else 'no'} | {rates} | {lag} | {quarters} | "
               f"{frame_med} | {frame_p99} |")

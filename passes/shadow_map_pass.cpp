@@ -201,9 +201,12 @@ std::optional<glm::ivec2> shadowTileScroll(const ShadowTileKey& old, const Shado
 }
 
 TileRect shadowScrollKeptRect(glm::ivec2 offset, int tileSize) {
-    // New texel p holds old texel p - offset; the old tile's texels [margin, tileSize - margin) are trusted.
-    const int x0 = std::max(0, kShadowScrollMargin + offset.x), x1 = std::min(tileSize, tileSize - kShadowScrollMargin + offset.x);
-    const int y0 = std::max(0, kShadowScrollMargin + offset.y), y1 = std::min(tileSize, tileSize - kShadowScrollMargin + offset.y);
+    // New texel p holds old texel p - offset; the old tile's texels [margin, tileSize - margin) are
+    // trusted along an axis the tile moves along. Along one it does not move, the old border texels
+    // stay at the border, where a fresh draw rasterises them the same way: all are kept.
+    const int mx = offset.x != 0 ? kShadowScrollMargin : 0, my = offset.y != 0 ? kShadowScrollMargin : 0;
+    const int x0 = std::max(0, mx + offset.x), x1 = std::min(tileSize, tileSize - mx + offset.x);
+    const int y0 = std::max(0, my + offset.y), y1 = std::min(tileSize, tileSize - my + offset.y);
     return {x0, y0, std::max(0, x1 - x0), std::max(0, y1 - y0)};
 }
 
@@ -729,8 +732,10 @@ ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const
                                    chooseConservativeRaster(state, frame);
     // --shadow-redraw-budget: quarter tiles of resized squares left to draw this frame, all suns together.
     const int budget = frame.settings->shadows.redrawBudget;
+    // A pending square keeps one unit for itself, so scrolls cannot starve it.
     int quartersLeft = budget;
-    uint64_t quartersThisFrame = 0;
+    int scrollUnitsLeft = std::max(0, budget - (state.pending ? 1 : 0));
+    uint64_t quartersThisFrame = 0, unitsThisFrame = 0;
     if (state.pending && (!caching || std::find(shadowed.begin(), shadowed.end(), state.pending->light) == shadowed.end()))
         state.pending.reset();
     for (int light : shadowed) {
@@ -767,7 +772,7 @@ ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const
         // depth behind it (a pixel its previous square misses would have no cascade left).
         const bool budgeted = caching && budget > 0 && frame.gpu && knownRaster != ShadowSettings::Raster::Auto &&
                               knownRaster != ShadowSettings::Raster::Compute;
-        std::vector<bool> lags(fr.cascades.size(), false);
+        std::vector<bool> lags(fr.cascades.size(), false), scrollWaits(fr.cascades.size(), false);
         for (size_t c = 0; c < fr.cascades.size(); ++c) {
             const size_t tile = size_t(fr.cascades[c].tile);
             std::optional<glm::ivec2> offset;
@@ -775,8 +780,20 @@ ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const
                 offset = shadowTileScroll(*kept->tiles[tile], keys[c]);
             const bool resized = why[c].change == ShadowTileChange::SquareResized ||
                                  (why[c].change == ShadowTileChange::SquareMoved && !offset);
-            lags[c] = budgeted && resized && c + 1 < fr.cascades.size() && kept && tile < kept->squares.size() &&
-                      kept->squares[tile] && kept->tiles[tile];
+            const bool canLag = budgeted && c + 1 < fr.cascades.size() && kept && tile < kept->squares.size() &&
+                                kept->squares[tile] && kept->tiles[tile];
+            // A scroll is one unit of the budget too (its strips cost about a quarter tile's casters);
+            // past the budget the square waits on its previous place, as a resized one does.
+            if (offset && canLag) {
+                if (scrollUnitsLeft > 0) {
+                    --scrollUnitsLeft;
+                    --quartersLeft;
+                    ++unitsThisFrame;
+                } else {
+                    scrollWaits[c] = true;
+                }
+            }
+            lags[c] = canLag && (resized || scrollWaits[c]);
             if (lags[c]) continue;
             if (offset) {
                 work[c].scrolled = true;
@@ -813,7 +830,7 @@ ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const
         // cascades are the most visible and the cheapest to draw.
         int nearest = -1;
         for (size_t c = 0; c < fr.cascades.size() && nearest < 0; ++c)
-            if (lags[c]) nearest = fr.cascades[c].tile;
+            if (lags[c] && !scrollWaits[c]) nearest = fr.cascades[c].tile;
         if (nearest < 0) state.nearestLagging.erase(light);
         else state.nearestLagging[light] = nearest;
         bool nearerElsewhere = false;
@@ -822,7 +839,7 @@ ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const
                                (tile < nearest || (tile == nearest && other < light));
         if (budgeted && !state.pending && nearest >= 0 && !nearerElsewhere)
             for (size_t c = 0; c < fr.cascades.size() && !pending.active; ++c)
-                if (lags[c]) pending = {true, {light, fr.cascades[c].tile, keys[c], fr.cascades[c], 0}, {}, false};
+                if (lags[c] && !scrollWaits[c]) pending = {true, {light, fr.cascades[c].tile, keys[c], fr.cascades[c], 0}, {}, false};
         if (pending.active) {
             for (int q = 0; q < 4 && quartersLeft > 0; ++q)
                 if (!(pending.tile.quartersDrawn & (1u << q))) {
@@ -831,6 +848,7 @@ ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const
                     pending.tile.quartersDrawn |= 1u << q;
                     --quartersLeft;
                     ++quartersThisFrame;
+                    ++unitsThisFrame;
                 }
             pending.completes = pending.tile.quartersDrawn == 0xfu;
             if (pending.completes) state.pending.reset();
@@ -852,7 +870,8 @@ ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const
             fr.cascades[c] = servedFromThisCamera(*kept->squares[tile], fr.cascades[c], frame);
             keys[c] = *kept->tiles[tile];
             what[c] = "kept its previous square (" + why[c].text + ": " +
-                      (isPending ? "the new square is drawn a quarter at a time, " +
+                      (scrollWaits[c] ? std::string("its scroll waits for --shadow-redraw-budget")
+                       : isPending ? "the new square is drawn a quarter at a time, " +
                                        std::to_string(std::bitset<4>(pending.tile.quartersDrawn).count()) + " of 4 quarters done"
                                  : std::string("waits for --shadow-redraw-budget")) +
                       "; pixels it misses use the next cascade)";
@@ -966,7 +985,7 @@ ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const
         maps.push_back(std::move(map));
     }
     state.cacheStats.quarters += quartersThisFrame;
-    state.cacheStats.mostQuartersInAFrame = std::max(state.cacheStats.mostQuartersInAFrame, quartersThisFrame);
+    state.cacheStats.mostBudgetUnitsInAFrame = std::max(state.cacheStats.mostBudgetUnitsInAFrame, unitsThisFrame);
     ++state.cacheStats.frames;
     return maps;
 }

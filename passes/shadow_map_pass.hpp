@@ -129,7 +129,8 @@ struct ShadowCacheStats {
     uint64_t drawnPerCascade[kMaxShadowCascades] = {}, keptPerCascade[kMaxShadowCascades] = {},
              scrolledPerCascade[kMaxShadowCascades] = {}, completedPerCascade[kMaxShadowCascades] = {},
              laggingPerCascade[kMaxShadowCascades] = {};
-    uint64_t quarters = 0, mostQuartersInAFrame = 0, frames = 0;
+    // Quarters drawn; the most budget units (quarters and budgeted scrolls) spent in one frame.
+    uint64_t quarters = 0, mostBudgetUnitsInAFrame = 0, frames = 0;
 };
 
 // Why a cascade's tile is drawn this frame (shadowTilesToDraw); None: the kept tile holds it.

@@ -474,18 +474,19 @@ TEST(ShadowCache, SizeHoldTurnsResizesIntoScrolls) {
 }
 
 // --shadow-redraw-budget on a camera that walks and zooms (squares move and resize every few
-// frames), scrolling off so that every kept tile must equal a fresh redraw of its square bit for bit:
-// no frame draws more quarters than the budget, no cascade but the last is drawn whole after the first frame, some
+// frames), scrolling off (every kept tile must equal a fresh redraw of its square bit for bit) and
+// on (scrolls are budget units too): no frame spends more than the budget, no cascade but the last is drawn whole after the first frame, some
 // cascades lag and some new squares complete; a lagging cascade serves its tile untouched; and once
 // the camera stops, the squares catch up within 4 frames a cascade and the tiles are what a pass
-// without a budget draws, bit for bit (the converged atlas equals the unbudgeted one).
+// without a budget draws, bit for bit (the converged atlas equals the unbudgeted one; with
+// scrolling, within the scroll bound).
 TEST(ShadowRedrawBudget, BudgetHeldOnAFlythroughAndTheAtlasConverges) {
-    for (int budget : {1, 3}) {
-        const std::string name = "budget " + std::to_string(budget);
+    for (const auto& [budget, scroll] : {std::pair<int, bool>{1, false}, {3, false}, {2, true}}) {
+        const std::string name = "budget " + std::to_string(budget) + (scroll ? ", scrolling" : "");
         Scene scene = castersOnAFloor();
         SceneGpu gpu(scene);
         RenderSettings settings = smallCascades(ShadowSettings::Raster::Plain);
-        settings.shadows.scroll = false;
+        settings.shadows.scroll = scroll;
         settings.shadows.redrawBudget = budget;
         ShadowMapPass state;
         fg::TexturePool pool;
@@ -514,7 +515,8 @@ TEST(ShadowRedrawBudget, BudgetHeldOnAFlythroughAndTheAtlasConverges) {
             scene.camera.fovYDegrees = 45.0f + 2.0f * float(step % 4);
             const uint64_t quartersBefore = state.cacheStats.quarters;
             const test::ShadowAtlasFrame atlas = test::drawShadowAtlas(scene, gpu, settings, state, pool);
-            EXPECT_LE(state.cacheStats.quarters - quartersBefore, uint64_t(budget)) << name << " step " << step;
+            const uint64_t scrolls = countNotes(atlas.notes, "scrolled by (");
+            EXPECT_LE(state.cacheStats.quarters - quartersBefore + scrolls, uint64_t(budget)) << name << " step " << step;
             lagged += countNotes(atlas.notes, "kept its previous square (");
             // A lagging cascade serves the square its tile already held, untouched: the tile's bits and
             // matrix as the frame before (its content is checked against a fresh redraw at the end).
@@ -542,7 +544,7 @@ TEST(ShadowRedrawBudget, BudgetHeldOnAFlythroughAndTheAtlasConverges) {
         }
         for (size_t c = 0; c < last; ++c)
             EXPECT_EQ(state.cacheStats.drawnPerCascade[c], 1u) << name << ": cascade " << c << " was drawn whole on the moving camera";
-        EXPECT_LE(state.cacheStats.mostQuartersInAFrame, uint64_t(budget)) << name;
+        EXPECT_LE(state.cacheStats.mostBudgetUnitsInAFrame, uint64_t(budget)) << name;
         EXPECT_GT(lagged, 0u) << name << ": no cascade lagged: the walk proves nothing";
         EXPECT_GT(state.cacheStats.completed, 0u) << name << ": no new square was completed";
         // The camera stops: at one quarter a frame, 4 frames per lagging cascade (and what remains of a
@@ -555,7 +557,20 @@ TEST(ShadowRedrawBudget, BudgetHeldOnAFlythroughAndTheAtlasConverges) {
         }
         EXPECT_LT(frames, settle) << name << ": the squares did not catch up";
         EXPECT_EQ(countNotes(notes, "kept (unchanged)"), notes.size()) << name;
-        expectSameTiles(drawTiles(scene, gpu, settings, state, pool), redrawnTiles(scene, gpu, settings), name + " converged");
+        const Tiles converged = drawTiles(scene, gpu, settings, state, pool), fresh = redrawnTiles(scene, gpu, settings);
+        if (!scroll) {
+            expectSameTiles(converged, fresh, name + " converged");
+            continue;
+        }
+        // Scrolled tiles: within the scroll bound of a fresh redraw (ShadowCache.ScrolledTiles...).
+        EXPECT_GT(state.cacheStats.scrolled, 0u) << name << ": nothing scrolled";
+        ASSERT_EQ(converged.depth.size(), fresh.depth.size());
+        const size_t side = size_t(settings.shadows.size);
+        for (size_t c = 0; c < converged.depth.size(); ++c) {
+            const ScrollDifference d = compareScrolled(converged.depth[c], fresh.depth[c], side);
+            EXPECT_LE(double(d.beyond), kShadowScrollMaxDifferingFraction * double(side * side)) << name << " cascade " << c;
+            EXPECT_EQ(d.awayFromEdges, 0u) << name << " cascade " << c;
+        }
     }
 }
 

@@ -755,7 +755,7 @@ TEST(ShadowRedrawBudget, LaggingCascadesMissesShadeFromTheNextCascadeAndConverge
             }
     ASSERT_GE(lagging, 1u) << "the jump moved no square";
     EXPECT_EQ(r.shadowCacheStats().lagging, lagging);
-    EXPECT_EQ(r.shadowCacheStats().mostQuartersInAFrame, 1u);
+    EXPECT_EQ(r.shadowCacheStats().mostBudgetUnitsInAFrame, 1u);
 
     const glm::dvec3 toLight = -glm::normalize(glm::dvec3(s.directionalLights[0].direction));
     const double tanTheta = std::sqrt(std::max(1.0 - toLight.y * toLight.y, 0.0)) / toLight.y;

@@ -430,13 +430,16 @@ TEST(ShadowScroll, OffsetIsTheOriginsWholeTexelMove) {
             for (int y = r.y; y < r.y + r.height; ++y)
                 for (int x = r.x; x < r.x + r.width; ++x) ++covered[size_t(y * side + x)];
         for (int v : covered) ASSERT_EQ(v, 1) << offset.x << ", " << offset.y;
-        // The kept rectangle holds only old texels at least kShadowScrollMargin inside the old tile.
-        EXPECT_GE(k.x - offset.x, kShadowScrollMargin);
-        EXPECT_GE(k.y - offset.y, kShadowScrollMargin);
-        EXPECT_LE(k.x + k.width - offset.x, side - kShadowScrollMargin);
-        EXPECT_LE(k.y + k.height - offset.y, side - kShadowScrollMargin);
-        EXPECT_EQ(k.width, side - std::max(std::abs(offset.x) + kShadowScrollMargin, 2 * kShadowScrollMargin));
-        EXPECT_EQ(k.height, side - std::max(std::abs(offset.y) + kShadowScrollMargin, 2 * kShadowScrollMargin));
+        // The kept rectangle holds only old texels at least kShadowScrollMargin inside the old tile
+        // along an axis the tile moves along; along one it does not, the whole old extent (its
+        // border texels stay at the border).
+        const int mx = offset.x != 0 ? kShadowScrollMargin : 0, my = offset.y != 0 ? kShadowScrollMargin : 0;
+        EXPECT_GE(k.x - offset.x, mx);
+        EXPECT_GE(k.y - offset.y, my);
+        EXPECT_LE(k.x + k.width - offset.x, side - mx);
+        EXPECT_LE(k.y + k.height - offset.y, side - my);
+        EXPECT_EQ(k.width, side - std::max(std::abs(offset.x) + mx, 2 * mx));
+        EXPECT_EQ(k.height, side - std::max(std::abs(offset.y) + my, 2 * my));
     }
     // An offset past the tile: nothing to keep, the whole tile drawn.
     ShadowTileKey a, b;
