@@ -58,7 +58,7 @@ COMMON="--shadow-size 2048 --shadow-cascades 4"
 #    shadow passes summed -> shadow_cost_budget.json, OUTDIR/shadow_cost_budget.md.
 $B/run graph --scene $S --size 1920x1080 --time 1 $COMMON --explain > $R/explain_default.txt 2>&1
 $B/run bench --scene $S --time 1 --fps 60 --frames 600 --warmup 20 --size 1920x1080 $COMMON \
-  --vary '--shadow-redraw-budget 0|--shadow-redraw-budget 1|--shadow-redraw-budget 2|--shadow-redraw-budget 3|--shadow-redraw-budget 4|--shadow-raster plain|--shadow-raster split' \
+  --vary '--shadow-redraw-budget 0|--shadow-redraw-budget 1|--shadow-redraw-budget 2|--shadow-redraw-budget 3|--shadow-redraw-budget 4|--shadow-redraw-budget 1 --shadow-scroll off|--shadow-redraw-budget 2 --shadow-scroll off|--shadow-raster plain|--shadow-raster split' \
   --timings-json $R/shadow_cost_budget.json -q > /dev/null 2> $R/bench_budget_progress.txt \
   || { echo "budget bench failed"; tail -3 $R/bench_budget_progress.txt; }
 python3 bench/summarize_shadow_cost.py $R/shadow_cost_budget.json --outdir $R | tee $R/shadow_cost_budget.md

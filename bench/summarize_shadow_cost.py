@@ -188,7 +188,7 @@ def budget_table(path):
         flags = common + " " + run["flags"]
         shadow = sorted((k, v) for k, v in p.items() if k.startswith("shadow_map"))
         sums = per_frame(shadow)
-        budget = flag(flags, "shadow-redraw-budget", "2 (default)")
+        budget = flag(flags, "shadow-redraw-budget", "2 (default)") + (", scroll off" if flag(flags, "shadow-scroll", "on") == "off" else "")
         if not sums:
             print(f"| {budget} | {raster_name(flags)} | - | - | - | - | - | - | - | - | - | - | - | - | - |")
             continue
