@@ -54,7 +54,8 @@ COMMON="--shadow-size 2048 --shadow-cascades 4"
 # 0. --shadow-redraw-budget (BUDGET_ONLY=1: the gl_tests above and this alone, about 2 minutes):
 #    default settings (cache, scroll, hardware conservative where the GPU has it) with the budget at
 #    0 (resized squares drawn whole at once, as before), 1, 2 (the default), 3 and 4 quarter tiles a
-#    frame, 600 frames after 20; then plain and split at the default budget: per frame the two suns'
+#    frame (a scroll is a unit too), budgets 1 and 2 with --shadow-scroll off, 600 frames after 20;
+#    then plain and split at the default budget: per frame the two suns'
 #    shadow passes summed -> shadow_cost_budget.json, OUTDIR/shadow_cost_budget.md.
 $B/run graph --scene $S --size 1920x1080 --time 1 $COMMON --explain > $R/explain_default.txt 2>&1
 $B/run bench --scene $S --time 1 --fps 60 --frames 600 --warmup 20 --size 1920x1080 $COMMON \
