@@ -732,7 +732,8 @@ ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const
                                    chooseConservativeRaster(state, frame);
     // --shadow-redraw-budget: quarter tiles of resized squares left to draw this frame, all suns together.
     const int budget = frame.settings->shadows.redrawBudget;
-    // A pending square keeps one unit for itself, so scrolls cannot starve it.
+    // Units left this frame (quarters and scrolls); a pending square keeps one for itself, so scrolls
+    // cannot starve it.
     int quartersLeft = budget;
     int scrollUnitsLeft = std::max(0, budget - (state.pending ? 1 : 0));
     uint64_t quartersThisFrame = 0, unitsThisFrame = 0;
@@ -785,7 +786,7 @@ ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const
             // A scroll is one unit of the budget too (its strips cost about a quarter tile's casters);
             // past the budget the square waits on its previous place, as a resized one does.
             if (offset && canLag) {
-                if (scrollUnitsLeft > 0) {
+                if (scrollUnitsLeft > 0 && quartersLeft > 0) {
                     --scrollUnitsLeft;
                     --quartersLeft;
                     ++unitsThisFrame;

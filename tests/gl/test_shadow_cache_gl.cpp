@@ -17,6 +17,7 @@
 #include "engine/render/scene_gpu.hpp"
 #include "engine/scene/primitives.hpp"
 #include "frame/frame_builder.hpp"
+#include "frame/renderer.hpp"
 #include "passes/shadow_map_pass.hpp"
 #include "tests/gl/gl_fixture.hpp"
 
@@ -610,4 +611,33 @@ TEST(ShadowRedrawBudget, TileReasonSaysWhatChanged) {
     EXPECT_EQ(turn.change, ShadowTileChange::LightChanged);
     EXPECT_EQ(turn.text, "light matrix changed");
     EXPECT_EQ(shadowTilesToDraw(&cache, width, height, 8, keys)[0].change, ShadowTileChange::CastersChanged);
+}
+
+// Two suns on a walk that zooms: the budget holds for the frame, all suns together, whichever sun's
+// square is pending and whichever scrolls (a scroll of one sun and quarters of the other share it).
+TEST(ShadowRedrawBudget, BudgetIsSharedByTheSuns) {
+    Scene scene = castersOnAFloor();
+    DirectionalLight second = scene.directionalLights[0];
+    second.direction = glm::normalize(glm::vec3(-0.5f, -1.0f, 0.2f));
+    scene.directionalLights.push_back(second);
+    for (int budget : {1, 2}) {
+        RenderSettings settings = smallCascades(ShadowSettings::Raster::Plain);
+        settings.shadows.scroll = true;
+        settings.shadows.redrawBudget = budget;
+        Scene walk = scene;
+        Renderer r(walk);
+        r.render(settings);
+        r.resetShadowCacheStats();
+        for (int step = 1; step <= 16; ++step) {
+            walk.camera.position += glm::vec3(0.03f, 0.0f, -0.3f);
+            walk.camera.target += glm::vec3(0.03f, 0.0f, -0.3f);
+            walk.camera.fovYDegrees = 45.0f + 2.0f * float(step % 4);
+            r.render(settings);
+        }
+        const ShadowCacheStats& stats = r.shadowCacheStats();
+        EXPECT_LE(stats.mostBudgetUnitsInAFrame, uint64_t(budget)) << "budget " << budget;
+        EXPECT_GT(stats.lagging, 0u) << "budget " << budget << ": nothing lagged";
+        EXPECT_GT(stats.scrolled + stats.completed, 0u) << "budget " << budget << ": nothing scrolled or completed";
+        for (size_t c = 0; c + 1 < size_t(settings.shadows.cascades); ++c) EXPECT_EQ(stats.drawnPerCascade[c], 0u) << c;
+    }
 }
