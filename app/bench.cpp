@@ -160,12 +160,16 @@ int runBench(const Options& o, const std::vector<std::string>& args) {
         run["frames"] = frames;
         run["transient_texture_bytes"] = renderer.pool().totalBytes();
         const ShadowCacheStats& cache = renderer.shadowCacheStats();
-        if (cache.drawn + cache.kept + cache.scrolled > 0)
+        if (cache.drawn + cache.kept + cache.scrolled + cache.completed > 0)
             run["shadow_cache"] = {{"tiles_drawn", cache.drawn}, {"tiles_kept", cache.kept}, {"tiles_scrolled", cache.scrolled},
-                                   {"hit_rate", double(cache.kept) / double(cache.kept + cache.drawn + cache.scrolled)},
+                                   {"hit_rate", double(cache.kept) / double(cache.kept + cache.drawn + cache.scrolled + cache.completed)},
                                    {"kept_per_cascade", std::vector<uint64_t>(std::begin(cache.keptPerCascade), std::end(cache.keptPerCascade))},
                                    {"drawn_per_cascade", std::vector<uint64_t>(std::begin(cache.drawnPerCascade), std::end(cache.drawnPerCascade))},
-                                   {"scrolled_per_cascade", std::vector<uint64_t>(std::begin(cache.scrolledPerCascade), std::end(cache.scrolledPerCascade))}};
+                                   {"scrolled_per_cascade", std::vector<uint64_t>(std::begin(cache.scrolledPerCascade), std::end(cache.scrolledPerCascade))},
+                                   {"completed_per_cascade", std::vector<uint64_t>(std::begin(cache.completedPerCascade), std::end(cache.completedPerCascade))},
+                                   {"lagging_per_cascade", std::vector<uint64_t>(std::begin(cache.laggingPerCascade), std::end(cache.laggingPerCascade))},
+                                   {"tiles_lagging", cache.lagging}, {"tiles_completed", cache.completed},
+                                   {"quarters_drawn", cache.quarters}, {"most_budget_units_in_a_frame", cache.mostBudgetUnitsInAFrame}};
         const auto& timers = renderer.timers();
         std::fprintf(stderr, "[%zu/%zu] %-50s frame %9.4f ms (%d frames)\n", vi + 1, variants.size(),
                      join(variants[vi]).c_str(), timers.median("frame"), frames);

@@ -261,17 +261,24 @@ int commandRender(const Options& o) {
     say("texture memory: %.2f MiB pooled transients + %.2f MiB persistent (environment, IBL, kept shadow atlases)\n",
                 poolBytes / 1048576.0, persistentBytes / 1048576.0);
     const ShadowCacheStats& cache = renderer.shadowCacheStats();
-    if (cache.drawn + cache.kept + cache.scrolled > 0) {
-        say("shadow cascades: %llu of %llu tiles kept from an earlier frame, %llu scrolled (strips drawn), %llu drawn "
-            "(--shadow-cache %s, --shadow-scroll %s)\n",
-            (unsigned long long)cache.kept, (unsigned long long)(cache.kept + cache.drawn + cache.scrolled),
-            (unsigned long long)cache.scrolled, (unsigned long long)cache.drawn, settings.shadows.cache ? "on" : "off",
-            settings.shadows.scroll ? "on" : "off");
+    if (cache.drawn + cache.kept + cache.scrolled + cache.completed > 0) {
+        say("shadow cascades: %llu of %llu tiles kept from an earlier frame (%llu of them lagging behind a resized square), "
+            "%llu scrolled (strips drawn), %llu drawn, %llu completed a quarter at a time (%llu quarters, at most %llu in a "
+            "frame) (--shadow-cache %s, --shadow-scroll %s, --shadow-redraw-budget %d)\n",
+            (unsigned long long)cache.kept, (unsigned long long)(cache.kept + cache.drawn + cache.scrolled + cache.completed),
+            (unsigned long long)cache.lagging, (unsigned long long)cache.scrolled, (unsigned long long)cache.drawn,
+            (unsigned long long)cache.completed, (unsigned long long)cache.quarters,
+            (unsigned long long)cache.mostBudgetUnitsInAFrame, settings.shadows.cache ? "on" : "off",
+            settings.shadows.scroll ? "on" : "off", settings.shadows.redrawBudget);
         j["shadow_cache"] = {{"tiles_drawn", cache.drawn}, {"tiles_kept", cache.kept}, {"tiles_scrolled", cache.scrolled},
-                             {"hit_rate", double(cache.kept) / double(cache.kept + cache.drawn + cache.scrolled)},
+                             {"hit_rate", double(cache.kept) / double(cache.kept + cache.drawn + cache.scrolled + cache.completed)},
                                    {"kept_per_cascade", std::vector<uint64_t>(std::begin(cache.keptPerCascade), std::end(cache.keptPerCascade))},
                                    {"drawn_per_cascade", std::vector<uint64_t>(std::begin(cache.drawnPerCascade), std::end(cache.drawnPerCascade))},
-                                   {"scrolled_per_cascade", std::vector<uint64_t>(std::begin(cache.scrolledPerCascade), std::end(cache.scrolledPerCascade))}};
+                                   {"scrolled_per_cascade", std::vector<uint64_t>(std::begin(cache.scrolledPerCascade), std::end(cache.scrolledPerCascade))},
+                                   {"completed_per_cascade", std::vector<uint64_t>(std::begin(cache.completedPerCascade), std::end(cache.completedPerCascade))},
+                                   {"lagging_per_cascade", std::vector<uint64_t>(std::begin(cache.laggingPerCascade), std::end(cache.laggingPerCascade))},
+                                   {"tiles_lagging", cache.lagging}, {"tiles_completed", cache.completed},
+                                   {"quarters_drawn", cache.quarters}, {"most_budget_units_in_a_frame", cache.mostBudgetUnitsInAFrame}};
     }
     j["memory"] = {{"pool_bytes", poolBytes}, {"persistent_bytes", persistentBytes},
                    {"total_bytes", poolBytes + persistentBytes},

@@ -15,6 +15,10 @@
 #     saves): shadow_cost_culling.json.
 #  4. the hardware conservative and split rows (cache off, culling on) with fragment shaders that
 #     write no depth: what the depth export costs: shadow_cost_no_depth_write.json / .md.
+#  0. --shadow-redraw-budget 0, 1, 2 (default), 3, 4 on the default settings, and plain and split at
+#     the default budget: the same per-frame statistics, tiles lagging behind their new square and
+#     quarters drawn: shadow_cost_budget.json -> OUTDIR/shadow_cost_budget.md. BUDGET_ONLY=1 runs
+#     the gl_tests and this alone (about 2 minutes).
 #  5. --shadow-cache on x --shadow-scroll on,off x conservative-hardware (the default), split-hardware
 #     and plain, 600 frames after 20 (the 8 s path and more): per frame the two suns' shadow passes
 #     summed; mean, median, 99th percentile and maximum, tiles kept / scrolled / drawn whole per
@@ -39,13 +43,27 @@ S=scenes/gallery-flythrough.json
 nvidia-smi --query-gpu=name,driver_version --format=csv,noheader | tee $R/device.txt
 $B/run info > $R/info.txt 2>&1; grep "shadow casters" $R/info.txt
 LD_LIBRARY_PATH=$B/lib $B/gl_tests --gtest_brief=1 \
-  --gtest_filter='ShadowCasterCulling*:ShadowComputeRaster*:ShadowRender.ConcaveCorner*:ShadowConservativeRaster*:ShaderShadowCasterDepth*:ShadowCache*' \
+  --gtest_filter='ShadowCasterCulling*:ShadowComputeRaster*:ShadowRender.ConcaveCorner*:ShadowConservativeRaster*:ShaderShadowCasterDepth*:ShadowCache*:ShadowRedrawBudget*' \
   > $R/gl_tests_shadow_cost.txt 2>&1
 tail -3 $R/gl_tests_shadow_cost.txt
 grep " ulps " $R/gl_tests_shadow_cost.txt | tee $R/compute_raster_vs_plain.txt
 grep -E "conservative raster|SKIPPED" $R/gl_tests_shadow_cost.txt | tee $R/conservative_raster_tests.txt
 grep "tiles scrolled over the walk" $R/gl_tests_shadow_cost.txt | tee $R/scroll_vs_redraw.txt
+grep -E "redraw budget|FAILED" $R/gl_tests_shadow_cost.txt | tee $R/redraw_budget_tests.txt
 COMMON="--shadow-size 2048 --shadow-cascades 4"
+# 0. --shadow-redraw-budget (BUDGET_ONLY=1: the gl_tests above and this alone, about 2 minutes):
+#    default settings (cache, scroll, hardware conservative where the GPU has it) with the budget at
+#    0 (resized squares drawn whole at once, as before), 1, 2 (the default), 3 and 4 quarter tiles a
+#    frame (a scroll is a unit too), budgets 1 and 2 with --shadow-scroll off, 600 frames after 20;
+#    then plain and split at the default budget: per frame the two suns'
+#    shadow passes summed -> shadow_cost_budget.json, OUTDIR/shadow_cost_budget.md.
+$B/run graph --scene $S --size 1920x1080 --time 1 $COMMON --explain > $R/explain_default.txt 2>&1
+$B/run bench --scene $S --time 1 --fps 60 --frames 600 --warmup 20 --size 1920x1080 $COMMON \
+  --vary '--shadow-redraw-budget 0|--shadow-redraw-budget 1|--shadow-redraw-budget 2|--shadow-redraw-budget 3|--shadow-redraw-budget 4|--shadow-redraw-budget 1 --shadow-scroll off|--shadow-redraw-budget 2 --shadow-scroll off|--shadow-raster plain|--shadow-raster split' \
+  --timings-json $R/shadow_cost_budget.json -q > /dev/null 2> $R/bench_budget_progress.txt \
+  || { echo "budget bench failed"; tail -3 $R/bench_budget_progress.txt; }
+python3 bench/summarize_shadow_cost.py $R/shadow_cost_budget.json --outdir $R | tee $R/shadow_cost_budget.md
+[ "${BUDGET_ONLY:-0}" = 1 ] && exit 0
 # Rasters: NAME FLAGS (the explain files and the table's rows are named by NAME).
 RASTERS=("conservative-hardware|--shadow-raster conservative --shadow-conservative hardware"
          "conservative-geometry-shader|--shadow-raster conservative --shadow-conservative geometry-shader"
@@ -62,7 +80,6 @@ LIGHTPASS_CACHE_DIR=$R/auto_cache $B/run render --scene $S --size 1920x1080 --ti
   --out $R/auto.png 2>&1 | grep "shadow raster auto" | tee $R/auto_choice.txt
 BENCH="$B/run bench --scene $S --time 1 --fps 60 --frames 200 --warmup 20 --floors --size 1920x1080 $COMMON"
 # 5. Scrolling cascades: the frame-by-frame cost (what a frame that moves the near squares pays).
-$B/run graph --scene $S --size 1920x1080 --time 1 $COMMON --explain > $R/explain_default.txt 2>&1
 $B/run bench --scene $S --time 1 --fps 60 --frames 600 --warmup 20 --size 1920x1080 $COMMON --shadow-cache on \
   --vary '--shadow-scroll on,off' \
   --vary '--shadow-raster conservative --shadow-conservative hardware|--shadow-raster split --shadow-conservative hardware|--shadow-raster plain' \

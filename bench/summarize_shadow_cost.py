@@ -11,6 +11,9 @@ from an earlier frame (all cascades, then cascade 0..3), the frame, and the tria
 drew at t = 1 s (from OUTDIR/explain_<culling>_<raster>.txt). The target (issue #19): the sum <= 2 ms.
 A file named shadow_cost_scroll*.json (--shadow-scroll on/off) gets its own table: the per-frame sum's
 mean, median, 99th percentile and maximum and the share of tiles kept / scrolled / drawn whole.
+A file named shadow_cost_budget*.json (--shadow-redraw-budget variants) gets a table of the same
+per-frame statistics with the frames over 2 ms, the share of tiles kept / scrolled / drawn whole /
+completed a quarter at a time and lagging behind their new square, and the quarters drawn.
 
 usage: summarize_shadow_cost.py BENCH.json [BENCH.json ...] [--outdir OUTDIR]"""
 import json
@@ -152,6 +155,62 @@ def scroll_table(path):
     print()
 
 
+def budget_rates(run):
+    """Per cascade: kept / scrolled / drawn whole / completed from quarters %, and lagging %."""
+    c = run.get("shadow_cache")
+    if not c or "completed_per_cascade" not in c:
+        return "-", "-"
+    rows = zip(c["kept_per_cascade"], c["scrolled_per_cascade"], c["drawn_per_cascade"], c["completed_per_cascade"],
+               c["lagging_per_cascade"])
+    each, lag = [], []
+    for k, s, n, q, g in rows:
+        total = k + s + n + q
+        each.append("/".join(f"{100 * x / total:.0f}" for x in (k, s, n, q)) if total else "-")
+        lag.append(f"{100 * g / total:.1f}" if total else "-")
+    return " · ".join(each), " · ".join(lag)
+
+
+def budget_table(path):
+    """--shadow-redraw-budget rows: the per-frame sum of the suns' shadow passes (mean, median, p99,
+    max, frames over 2 ms), tiles kept / scrolled / drawn whole / completed, lagging, quarters drawn,
+    the frame's median and p99, and the worst frames."""
+    d = json.load(open(path))
+    common = d.get("common_flags", "")
+    print(f"`{os.path.basename(path)}`: {d.get('device')}, {d.get('scene')}, common flags `{common}`; "
+          "per frame: both suns' shadow_map passes summed frame by frame\n")
+    print("| redraw budget | raster | frames | mean ms | median ms | p99 ms | max ms | frames > 2 ms | p99 ≤ 2 ms | max ≤ 2 ms | "
+          "kept / scrolled / drawn whole / completed % per cascade 0 · 1 · 2 · 3 | lagging % per cascade | "
+          "quarters drawn (most budget units in a frame) | frame median | frame p99 |")
+    print("| ---: | --- | ---: | ---: | ---: | ---: | ---: | ---: | --- | --- | --- | --- | ---: | ---: | ---: |")
+    worst_lines = []
+    for run in d["runs"]:
+        p = run["passes"]
+        flags = common + " " + run["flags"]
+        shadow = sorted((k, v) for k, v in p.items() if k.startswith("shadow_map"))
+        sums = per_frame(shadow)
+        budget = flag(flags, "shadow-redraw-budget", "2 (default)") + (", scroll off" if flag(flags, "shadow-scroll", "on") == "off" else "")
+        if not sums:
+            print(f"| {budget} | {raster_name(flags)} | - | - | - | - | - | - | - | - | - | - | - | - | - |")
+            continue
+        frame = p.get("frame", {})
+        frame_samples = frame.get("samples_ms")
+        frame_p99 = f"{percentile(frame_samples, 99):.3f}" if frame_samples else "-"
+        frame_med = f"{frame['median_ms']:.3f}" if "median_ms" in frame else "-"
+        mean, med, p99, most = sum(sums) / len(sums), percentile(sums, 50), percentile(sums, 99), max(sums)
+        over = sum(1 for x in sums if x > TARGET_MS)
+        rates, lag = budget_rates(run)
+        c = run.get("shadow_cache") or {}
+        quarters = f"{c.get('quarters_drawn', 0)} ({c.get('most_budget_units_in_a_frame', 0)})"
+        print(f"| {budget} | {raster_name(flags)} | {len(sums)} | {mean:.3f} | {med:.3f} | {p99:.3f} | {most:.3f} | {over} | "
+              f"{'yes' if p99 <= TARGET_MS else 'no'} | {'yes' if most <= TARGET_MS else 'no'} | {rates} | {lag} | {quarters} | "
+              f"{frame_med} | {frame_p99} |")
+        worst = sorted(range(len(sums)), key=lambda i: -sums[i])[:6]
+        worst_lines.append(f"- budget {budget}: worst frames (index: ms) " + ", ".join(f"{i}: {sums[i]:.3f}" for i in worst))
+    print()
+    print("\n".join(worst_lines))
+    print()
+
+
 def table(path, outdir):
     d = json.load(open(path))
     common = d.get("common_flags", "")
@@ -198,6 +257,8 @@ def main(argv):
     for path in argv:
         if os.path.exists(path) and os.path.basename(path).startswith("shadow_cost_scroll"):
             scroll_table(path)
+        elif os.path.exists(path) and os.path.basename(path).startswith("shadow_cost_budget"):
+            budget_table(path)
         elif os.path.exists(path):
             table(path, outdir if outdir else os.path.dirname(path))
         else:

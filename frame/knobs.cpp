@@ -283,6 +283,16 @@ std::vector<KnobEntry> makeKnobTable() {
         t.push_back(std::move(k));
     }
     {
+        KnobEntry k = intKnob("shadow-redraw-budget", [](auto& s) -> auto& { return s.shadows.redrawBudget; }, 0, 64);
+        k.flags = {valueFlag("--shadow-redraw-budget")};
+        k.help = "with --shadow-cache: at most this many quarter tiles of resized sun cascade squares (a scroll counts "
+                 "as one) are drawn per frame, all suns together (0: no limit, resized squares drawn whole at once); a "
+                 "cascade whose new square is not drawn yet keeps its previous square, and the next cascade shades the "
+                 "pixels it misses";
+        k.panel = {PanelSection::Shadows, PanelWidget::Slider, "redraw budget (quarter tiles)", ""};
+        t.push_back(std::move(k));
+    }
+    {
         KnobEntry k = floatKnob("shadow-origin-step", [](auto& s) -> auto& { return s.shadows.originStep; },
                                 {0.0, double(kMaxShadowOriginStep)});
         k.flags = {valueFlag("--shadow-origin-step")};

@@ -41,7 +41,7 @@ void setShadowUniforms(GLuint prog, const FrameData& frame, const ShadowMaps& ma
         for (size_t c = 0; c < m.frustum.cascades.size(); ++c) {
             const ShadowCascade& sc = m.frustum.cascades[c];
             eyeToClip[slot * kMaxShadowCascades + c] = sc.eyeToClip;
-            cascadeInfo[slot * kMaxShadowCascades + c] = glm::vec4(sc.splitFar, sc.texelWorld, sc.texelWorld / sc.depthRange, 0.0f);
+            cascadeInfo[slot * kMaxShadowCascades + c] = glm::vec4(sc.splitFar, sc.texelWorld, sc.texelWorld / sc.depthRange, float(sc.tile));
         }
     }
     const ShadowSettings& s = frame.settings->shadows;

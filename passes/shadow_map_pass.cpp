@@ -1,6 +1,7 @@
 #include "passes/shadow_map_pass.hpp"
 
 #include <algorithm>
+#include <bitset>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -63,6 +64,7 @@ size_t ShadowMapPass::cacheBytes() const {
     size_t bytes = 0;
     for (const auto& [light, atlas] : atlases)
         if (atlas.depth) bytes += size_t(atlas.width) * size_t(atlas.height) * sizeof(float);
+    if (spareAtlas) bytes += size_t(spareAtlas.width) * size_t(spareAtlas.height) * sizeof(float);
     return bytes;
 }
 
@@ -117,8 +119,9 @@ std::vector<ShadowTileKey> shadowTileKeys(const ShadowFrustum& fr, const ShadowS
     for (size_t c = 0; c < keys.size(); ++c) {
         keys[c].worldToClip = fr.cascades[c].worldToClip;
         keys[c].tileSize = fr.tileSize;
-        keys[c].column = int(c % size_t(fr.columns));
-        keys[c].row = int(c / size_t(fr.columns));
+        keys[c].tile = fr.cascades[c].tile;
+        keys[c].column = fr.cascades[c].tile % fr.columns;
+        keys[c].row = fr.cascades[c].tile / fr.columns;
         keys[c].raster = resolvedRaster;
         keys[c].hardwareConservative = growsCastersInHardware(resolvedRaster, hardwareConservative);
         keys[c].slopeBias = settings.slopeBias;
@@ -127,33 +130,49 @@ std::vector<ShadowTileKey> shadowTileKeys(const ShadowFrustum& fr, const ShadowS
     return keys;
 }
 
-std::vector<std::string> shadowTilesToDraw(const ShadowAtlasCache* cache, int width, int height, uint64_t casters,
-                                           const std::vector<ShadowTileKey>& keys) {
-    std::string all;
-    if (!cache || !cache->depth || cache->width == 0) all = "nothing kept yet";
-    else if (cache->width != width || cache->height != height) all = "atlas size changed";
-    else if (cache->casters != casters) all = "casters changed";
-    std::vector<std::string> why(keys.size(), all);
-    if (!all.empty()) return why;
+std::vector<ShadowTileReason> shadowTilesToDraw(const ShadowAtlasCache* cache, int width, int height, uint64_t casters,
+                                                const std::vector<ShadowTileKey>& keys) {
+    using Change = ShadowTileChange;
+    ShadowTileReason all;
+    if (!cache || !cache->depth || cache->width == 0) all = {Change::NothingKept, "nothing kept yet"};
+    else if (cache->width != width || cache->height != height) all = {Change::AtlasResized, "atlas size changed"};
+    else if (cache->casters != casters) all = {Change::CastersChanged, "casters changed"};
+    std::vector<ShadowTileReason> why(keys.size(), all);
+    if (!all.kept()) return why;
     for (size_t c = 0; c < keys.size(); ++c) {
         const ShadowTileKey& k = keys[c];
-        if (c >= cache->tiles.size() || !cache->tiles[c]) {
-            why[c] = "tile not drawn yet";
+        const size_t tile = size_t(k.tile);
+        if (tile >= cache->tiles.size() || !cache->tiles[tile]) {
+            why[c] = {Change::TileNotDrawn, "tile not drawn yet"};
             continue;
         }
-        const ShadowTileKey& old = *cache->tiles[c];
+        const ShadowTileKey& old = *cache->tiles[tile];
         if (old == k) continue;
-        if (old.raster != k.raster) why[c] = "caster raster changed";
+        if (old.raster != k.raster) why[c] = {Change::RasterChanged, "caster raster changed"};
         else if (old.hardwareConservative != k.hardwareConservative)
-            why[c] = std::string("conservative raster changed to ") + conservativeRasterLabel(k.hardwareConservative);
-        else if (old.slopeBias != k.slopeBias) why[c] = "slope bias changed";
-        else if (old.cullCasters != k.cullCasters) why[c] = "caster culling changed";
-        else if (old.tileSize != k.tileSize) why[c] = "tile size changed";
+            why[c] = {Change::ConservativeRasterChanged,
+                      std::string("conservative raster changed to ") + conservativeRasterLabel(k.hardwareConservative)};
+        else if (old.slopeBias != k.slopeBias) why[c] = {Change::SlopeBiasChanged, "slope bias changed"};
+        else if (old.cullCasters != k.cullCasters) why[c] = {Change::CullingChanged, "caster culling changed"};
+        else if (old.tileSize != k.tileSize) why[c] = {Change::TileSizeChanged, "tile size changed"};
         else if (glm::mat3(old.worldToClip) == glm::mat3(k.worldToClip) && old.worldToClip[3].z == k.worldToClip[3].z)
-            why[c] = "square moved";  // same light, size and depth range: only the texel-snapped origin
-        else why[c] = "light matrix changed";
+            why[c] = {Change::SquareMoved, "square moved"};  // same light, size and depth range: only the texel-snapped origin
+        else {
+            // The window-depth and w rows bit for bit: the same sun direction and depth range, so
+            // only the square (its size and origin) differs. The text stays what --explain said before.
+            bool sameDepth = true;
+            for (int i = 0; i < 4; ++i)
+                for (int r : {2, 3}) sameDepth &= std::memcmp(&old.worldToClip[i][r], &k.worldToClip[i][r], sizeof(float)) == 0;
+            why[c] = {sameDepth ? Change::SquareResized : Change::LightChanged, "light matrix changed"};
+        }
     }
     return why;
+}
+
+TileRect shadowTileQuarter(int q, int tileSize) {
+    const int half = tileSize / 2;
+    const int x = (q % 2) * half, y = (q / 2) * half;
+    return {x, y, q % 2 ? tileSize - half : half, q / 2 ? tileSize - half : half};
 }
 
 std::optional<glm::ivec2> shadowTileScroll(const ShadowTileKey& old, const ShadowTileKey& now) {
@@ -182,9 +201,12 @@ std::optional<glm::ivec2> shadowTileScroll(const ShadowTileKey& old, const Shado
 }
 
 TileRect shadowScrollKeptRect(glm::ivec2 offset, int tileSize) {
-    // New texel p holds old texel p - offset; the old tile's texels [margin, tileSize - margin) are trusted.
-    const int x0 = std::max(0, kShadowScrollMargin + offset.x), x1 = std::min(tileSize, tileSize - kShadowScrollMargin + offset.x);
-    const int y0 = std::max(0, kShadowScrollMargin + offset.y), y1 = std::min(tileSize, tileSize - kShadowScrollMargin + offset.y);
+    // New texel p holds old texel p - offset; the old tile's texels [margin, tileSize - margin) are
+    // trusted along an axis the tile moves along. Along one it does not move, the old border texels
+    // stay at the border, where a fresh draw rasterises them the same way: all are kept.
+    const int mx = offset.x != 0 ? kShadowScrollMargin : 0, my = offset.y != 0 ? kShadowScrollMargin : 0;
+    const int x0 = std::max(0, mx + offset.x), x1 = std::min(tileSize, tileSize - mx + offset.x);
+    const int y0 = std::max(0, my + offset.y), y1 = std::min(tileSize, tileSize - my + offset.y);
     return {x0, y0, std::max(0, x1 - x0), std::max(0, y1 - y0)};
 }
 
@@ -260,8 +282,8 @@ void drawCascadesByCompute(ShadowMapPass& state, const FrameData& frame, const S
     const GLint locCount = glGetUniformLocation(prog, "uTriangleCount");
     for (size_t c = 0; c < fr.cascades.size(); ++c) {
         if (!redraw[c]) continue;  // kept from an earlier frame (--shadow-cache)
-        glProgramUniform2i(prog, glGetUniformLocation(prog, "uTileOrigin"), GLint(c % size_t(fr.columns)) * fr.tileSize,
-                           GLint(c / size_t(fr.columns)) * fr.tileSize);
+        glProgramUniform2i(prog, glGetUniformLocation(prog, "uTileOrigin"), GLint(fr.cascades[c].tile % fr.columns) * fr.tileSize,
+                           GLint(fr.cascades[c].tile / fr.columns) * fr.tileSize);
         glProgramUniform1i(prog, glGetUniformLocation(prog, "uCascade"), GLint(c));
         for (const CasterDraw& draw : casters[c].draws) {
             if (draw.model < 0 || size_t(draw.model) >= frame.gpu->meshes.size()) continue;
@@ -293,9 +315,9 @@ void drawCascadesByCompute(ShadowMapPass& state, const FrameData& frame, const S
     glEnable(GL_SCISSOR_TEST);  // tiles kept from an earlier frame (--shadow-cache) stay untouched
     for (size_t c = 0; c < fr.cascades.size() && !all; ++c) {
         if (!redraw[c]) continue;
-        glViewport(GLint(c % size_t(fr.columns)) * fr.tileSize, GLint(c / size_t(fr.columns)) * fr.tileSize, fr.tileSize,
+        glViewport(GLint(fr.cascades[c].tile % fr.columns) * fr.tileSize, GLint(fr.cascades[c].tile / fr.columns) * fr.tileSize, fr.tileSize,
                    fr.tileSize);
-        glScissor(GLint(c % size_t(fr.columns)) * fr.tileSize, GLint(c / size_t(fr.columns)) * fr.tileSize, fr.tileSize,
+        glScissor(GLint(fr.cascades[c].tile % fr.columns) * fr.tileSize, GLint(fr.cascades[c].tile / fr.columns) * fr.tileSize, fr.tileSize,
                   fr.tileSize);
         glDrawArrays(GL_TRIANGLES, 0, 3);
     }
@@ -311,9 +333,9 @@ void drawCascadesByCompute(ShadowMapPass& state, const FrameData& frame, const S
     glEnable(GL_SCISSOR_TEST);
     for (size_t c = 0; c < fr.cascades.size(); ++c) {
         if (!redraw[c]) continue;
-        glViewport(GLint(c % size_t(fr.columns)) * fr.tileSize, GLint(c / size_t(fr.columns)) * fr.tileSize, fr.tileSize,
+        glViewport(GLint(fr.cascades[c].tile % fr.columns) * fr.tileSize, GLint(fr.cascades[c].tile / fr.columns) * fr.tileSize, fr.tileSize,
                    fr.tileSize);
-        glScissor(GLint(c % size_t(fr.columns)) * fr.tileSize, GLint(c / size_t(fr.columns)) * fr.tileSize, fr.tileSize,
+        glScissor(GLint(fr.cascades[c].tile % fr.columns) * fr.tileSize, GLint(fr.cascades[c].tile / fr.columns) * fr.tileSize, fr.tileSize,
                   fr.tileSize);
         glDrawArraysIndirect(GL_TRIANGLES, reinterpret_cast<const void*>(c * sizeof(DrawArraysCommand)));
     }
@@ -341,7 +363,7 @@ void scrollTiles(ShadowMapPass& state, const ShadowFrustum& fr, const std::vecto
     for (size_t c = 0; c < work.size(); ++c) {
         if (!work[c].scrolled) continue;
         const glm::ivec2 o = work[c].offset;
-        const GLint x = GLint(c % size_t(fr.columns)) * fr.tileSize, y = GLint(c / size_t(fr.columns)) * fr.tileSize;
+        const GLint x = GLint(fr.cascades[c].tile % fr.columns) * fr.tileSize, y = GLint(fr.cascades[c].tile / fr.columns) * fr.tileSize;
         const TileRect k = shadowScrollKeptRect(o, fr.tileSize);
         auto copy = [&](int dx0, int dy0, int w, int h) {  // the kept texels [dx0, +w) x [dy0, +h), from their old place
             glCopyImageSubData(depthTexture, GL_TEXTURE_2D, 0, x + dx0 - o.x, y + dy0 - o.y, 0, depthTexture, GL_TEXTURE_2D, 0,
@@ -432,8 +454,8 @@ void drawAtlas(ShadowMapPass& state, const FrameData& frame, const ShadowFrustum
             gl::ScopedEnable scissor(GL_SCISSOR_TEST, true);
             for (size_t c = 0; c < fr.cascades.size(); ++c)
                 for (const ShadowTileRegion& region : work[c].regions) {
-                    glScissor(GLint(c % size_t(fr.columns)) * fr.tileSize + region.rect.x,
-                              GLint(c / size_t(fr.columns)) * fr.tileSize + region.rect.y, region.rect.width, region.rect.height);
+                    glScissor(GLint(fr.cascades[c].tile % fr.columns) * fr.tileSize + region.rect.x,
+                              GLint(fr.cascades[c].tile / fr.columns) * fr.tileSize + region.rect.y, region.rect.width, region.rect.height);
                     glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &one);
                 }
         }
@@ -466,8 +488,8 @@ void drawAtlas(ShadowMapPass& state, const FrameData& frame, const ShadowFrustum
         gl::ScopedEnable scissor(GL_SCISSOR_TEST, true);
         for (size_t c = 0; c < fr.cascades.size(); ++c)
           for (const ShadowTileRegion& region : work[c].regions) {  // none: kept from an earlier frame (--shadow-cache)
-            const GLint x = GLint(c % size_t(fr.columns)) * fr.tileSize;
-            const GLint y = GLint(c / size_t(fr.columns)) * fr.tileSize;
+            const GLint x = GLint(fr.cascades[c].tile % fr.columns) * fr.tileSize;
+            const GLint y = GLint(fr.cascades[c].tile / fr.columns) * fr.tileSize;
             // The whole tile's viewport (a strip rasterises exactly as the whole tile would), the region's scissor.
             glViewport(x, y, fr.tileSize, fr.tileSize);
             glScissor(x + region.rect.x, y + region.rect.y, region.rect.width, region.rect.height);
@@ -641,6 +663,42 @@ std::string chooseConservativeRaster(ShadowMapPass& state, const FrameData& fram
 
 }  // namespace
 
+namespace {
+// The casters that can reach `rect` of a tile drawn with `worldToClip`: culled in the rectangle's own
+// clip space (it maps to [-1, 1]), one tile texel of margin along its narrower side (more along the
+// other: conservative).
+CasterList regionCasters(const std::vector<CasterCluster>& clusters, const FrameData& frame, const glm::mat4& worldToClip,
+                         const TileRect& r, int tileSize) {
+    const float sx = float(r.width) / float(tileSize), sy = float(r.height) / float(tileSize);
+    const float cx = (2.0f * float(r.x) + float(r.width)) / float(tileSize) - 1.0f;
+    const float cy = (2.0f * float(r.y) + float(r.height)) / float(tileSize) - 1.0f;
+    glm::mat4 toRegion(1.0f);
+    toRegion[0][0] = 1.0f / sx;
+    toRegion[1][1] = 1.0f / sy;
+    toRegion[3][0] = -cx / sx;
+    toRegion[3][1] = -cy / sy;
+    const float margin = 2.0f / float(tileSize) / std::min(sx, sy);
+    return cullCasters(clusters, *frame.scene, toRegion * worldToClip, margin, frame.settings->shadows.cullCasters);
+}
+
+// A square drawn for an earlier camera, served from this frame's camera: its eye-space matrix redone.
+ShadowCascade servedFromThisCamera(ShadowCascade square, const ShadowCascade& slice, const FrameData& frame) {
+    square.eyeToClip = glm::mat4(glm::dmat4(square.worldToClip) * glm::inverse(glm::dmat4(frame.view)));
+    square.splitNear = slice.splitNear;
+    square.splitFar = slice.splitFar;
+    square.tile = slice.tile;
+    return square;
+}
+
+// This frame's pending-square work of one light (--shadow-redraw-budget).
+struct PendingWork {
+    bool active = false;
+    ShadowPendingTile tile;          // as it will be after this frame
+    std::vector<ShadowTileRegion> quarters;  // drawn into the spare tile this frame
+    bool completes = false;          // copied over the atlas tile this frame
+};
+}  // namespace
+
 ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const FrameData& frame) {
     ShadowMaps maps;
     // Say why a frame has no (or fewer) shadow passes: 'lightpass graph' and the viewer show it.
@@ -672,75 +730,169 @@ ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const
                                                                     : ShadowSettings::Raster::Auto;
     const std::string rasterNote = std::string(ShadowSettings::rasterName(frame.settings->shadows.raster)) + " raster" +
                                    chooseConservativeRaster(state, frame);
+    // --shadow-redraw-budget: quarter tiles of resized squares left to draw this frame, all suns together.
+    const int budget = frame.settings->shadows.redrawBudget;
+    // Units left this frame (quarters and scrolls); a pending square keeps one for itself, so scrolls
+    // cannot starve it.
+    int quartersLeft = budget;
+    int scrollUnitsLeft = std::max(0, budget - (state.pending ? 1 : 0));
+    uint64_t quartersThisFrame = 0, unitsThisFrame = 0;
+    if (state.pending && (!caching || std::find(shadowed.begin(), shadowed.end(), state.pending->light) == shadowed.end()))
+        state.pending.reset();
     for (int light : shadowed) {
         LightShadowMap map;
         map.light = light;
         const auto held = state.previousFrusta.find(light);
         map.frustum = fitShadowFrustum(frame, frame.scene->directionalLights[size_t(light)].direction,
                                        held == state.previousFrusta.end() ? nullptr : &held->second);
-        state.previousFrusta[light] = map.frustum;
-        const ShadowFrustum& fr = map.frustum;
+        state.previousFrusta[light] = map.frustum;  // the squares wanted, whatever lags behind them
+        ShadowFrustum& fr = map.frustum;
         const std::string name = "shadow_map_" + std::to_string(light);
         // A small scene needs fewer cascades than asked for: say which were dropped and why.
         if (const std::string why = droppedCascadesReason(fr, frame.settings->shadows.cascades); !why.empty())
             graph.skipPass(name + " cascades", why);
         const fg::TextureDesc desc{fr.tileSize * fr.columns, fr.tileSize * fr.rows, GL_DEPTH_COMPONENT32F};
-        // --shadow-cache: which tiles the kept atlas already holds (empty reason: kept).
-        const std::vector<ShadowTileKey> keys = shadowTileKeys(fr, frame.settings->shadows, knownRaster, state.hardwareConservative);
-        const auto kept = state.atlases.find(light);
-        std::vector<std::string> why =
-            caching ? shadowTilesToDraw(kept == state.atlases.end() ? nullptr : &kept->second, desc.width, desc.height,
-                                        casterKey, keys)
-                    : std::vector<std::string>(fr.cascades.size(), "cache off");
+        // --shadow-cache: which tiles the kept atlas already holds (None: kept).
+        std::vector<ShadowTileKey> keys = shadowTileKeys(fr, frame.settings->shadows, knownRaster, state.hardwareConservative);
+        const auto keptIt = state.atlases.find(light);
+        const ShadowAtlasCache* kept = keptIt == state.atlases.end() ? nullptr : &keptIt->second;
+        std::vector<ShadowTileReason> why =
+            caching ? shadowTilesToDraw(kept, desc.width, desc.height, casterKey, keys)
+                    : std::vector<ShadowTileReason>(fr.cascades.size(), {ShadowTileChange::CacheOff, "cache off"});
         if (knownRaster == ShadowSettings::Raster::Auto)
-            for (std::string& w : why) w = "first frame of --shadow-raster auto";
+            for (ShadowTileReason& w : why) w = {ShadowTileChange::AutoFirstFrame, "first frame of --shadow-raster auto"};
         // Each cascade's casters, culled to its tile (one texel of margin for the conservative growth),
         // and what its tile gets: nothing (kept), its strips after a scroll, or the whole tile.
         std::vector<CasterList> casters;
         std::vector<ShadowTileWork> work(fr.cascades.size());
+        std::vector<std::string> what(fr.cascades.size());
         const bool scrolling = caching && frame.settings->shadows.scroll && knownRaster != ShadowSettings::Raster::Auto &&
                                knownRaster != ShadowSettings::Raster::Compute;
+        // Resized squares may lag (keep their previous square) where the kept tile is a valid map of
+        // that square and the raster draws parts of tiles; never the last cascade, which serves every
+        // depth behind it (a pixel its previous square misses would have no cascade left).
+        const bool budgeted = caching && budget > 0 && frame.gpu && knownRaster != ShadowSettings::Raster::Auto &&
+                              knownRaster != ShadowSettings::Raster::Compute;
+        std::vector<bool> lags(fr.cascades.size(), false), scrollWaits(fr.cascades.size(), false);
         for (size_t c = 0; c < fr.cascades.size(); ++c) {
-            const glm::mat4& worldToClip = fr.cascades[c].worldToClip;
-            casters.push_back(cullCasters(clusters, *frame.scene, worldToClip, 2.0f / float(fr.tileSize),
-                                          frame.settings->shadows.cullCasters));
-            const CasterList& l = casters.back();
-            std::string what = why[c].empty() ? std::string("kept (unchanged)") : "redrawn (" + why[c] + ")";
+            const size_t tile = size_t(fr.cascades[c].tile);
             std::optional<glm::ivec2> offset;
-            if (scrolling && why[c] == "square moved" && kept != state.atlases.end() && c < kept->second.tiles.size() &&
-                kept->second.tiles[c])
-                offset = shadowTileScroll(*kept->second.tiles[c], keys[c]);
+            if (scrolling && why[c].change == ShadowTileChange::SquareMoved && kept && tile < kept->tiles.size() && kept->tiles[tile])
+                offset = shadowTileScroll(*kept->tiles[tile], keys[c]);
+            const bool resized = why[c].change == ShadowTileChange::SquareResized ||
+                                 (why[c].change == ShadowTileChange::SquareMoved && !offset);
+            const bool canLag = budgeted && c + 1 < fr.cascades.size() && kept && tile < kept->squares.size() &&
+                                kept->squares[tile] && kept->tiles[tile];
+            // A scroll is one unit of the budget too (its strips cost about a quarter tile's casters);
+            // past the budget the square waits on its previous place, as a resized one does.
+            if (offset && canLag) {
+                if (scrollUnitsLeft > 0 && quartersLeft > 0) {
+                    --scrollUnitsLeft;
+                    --quartersLeft;
+                    ++unitsThisFrame;
+                } else {
+                    scrollWaits[c] = true;
+                }
+            }
+            lags[c] = canLag && (resized || scrollWaits[c]);
+            if (lags[c]) continue;
             if (offset) {
                 work[c].scrolled = true;
                 work[c].offset = *offset;
                 size_t stripTriangles = 0;
                 for (const TileRect& r : shadowScrollRegions(*offset, fr.tileSize)) {
-                    // The strip's own clip space (it maps to [-1, 1]) for culling: the casters that can reach it.
-                    const float sx = float(r.width) / float(fr.tileSize), sy = float(r.height) / float(fr.tileSize);
-                    const float cx = (2.0f * float(r.x) + float(r.width)) / float(fr.tileSize) - 1.0f;
-                    const float cy = (2.0f * float(r.y) + float(r.height)) / float(fr.tileSize) - 1.0f;
-                    glm::mat4 toStrip(1.0f);
-                    toStrip[0][0] = 1.0f / sx;
-                    toStrip[1][1] = 1.0f / sy;
-                    toStrip[3][0] = -cx / sx;
-                    toStrip[3][1] = -cy / sy;
-                    // One tile texel of margin along the strip's narrower side (more along the other: conservative).
-                    const float margin = 2.0f / float(fr.tileSize) / std::min(sx, sy);
-                    work[c].regions.push_back(
-                        {r, cullCasters(clusters, *frame.scene, toStrip * worldToClip, margin, frame.settings->shadows.cullCasters)});
+                    work[c].regions.push_back({r, regionCasters(clusters, frame, fr.cascades[c].worldToClip, r, fr.tileSize)});
                     stripTriangles += work[c].regions.back().casters.triangles;
                 }
-                what = "scrolled by (" + std::to_string(offset->x) + ", " + std::to_string(offset->y) + "), strip redrawn (" +
-                       std::to_string(work[c].regions.size()) + (work[c].regions.size() == 1 ? " strip, " : " strips, ") +
-                       std::to_string(stripTriangles) + " caster triangles drawn)";
-            } else if (!why[c].empty()) {
-                work[c].regions.push_back({{0, 0, fr.tileSize, fr.tileSize}, l});
+                what[c] = "scrolled by (" + std::to_string(offset->x) + ", " + std::to_string(offset->y) + "), strip redrawn (" +
+                          std::to_string(work[c].regions.size()) + (work[c].regions.size() == 1 ? " strip, " : " strips, ") +
+                          std::to_string(stripTriangles) + " caster triangles drawn)";
+            } else if (!why[c].kept()) {
+                what[c] = "redrawn (" + why[c].text + ")";
+            } else {
+                what[c] = "kept (unchanged)";
             }
+        }
+        // The pending square (one for all suns): carried on while its tile still lags (and nothing
+        // it depends on changed), else dropped; a new one started for this light's nearest lagging
+        // cascade when none is pending. It may be a square of a few frames ago: once copied over, the
+        // cascade scrolls or lags again from it.
+        PendingWork pending;
+        if (state.pending && state.pending->light == light) {
+            for (size_t c = 0; c < fr.cascades.size() && budgeted; ++c)
+                if (lags[c] && fr.cascades[c].tile == state.pending->tile) {
+                    ShadowTileKey wanted = keys[c];
+                    wanted.worldToClip = state.pending->key.worldToClip;
+                    if (wanted == state.pending->key) pending = {true, *state.pending, {}, false};
+                }
+            if (!pending.active) state.pending.reset();
+        }
+        // The nearest lagging tile first, over all suns (the others' as they last lagged): near
+        // cascades are the most visible and the cheapest to draw.
+        int nearest = -1;
+        for (size_t c = 0; c < fr.cascades.size() && nearest < 0; ++c)
+            if (lags[c] && !scrollWaits[c]) nearest = fr.cascades[c].tile;
+        if (nearest < 0) state.nearestLagging.erase(light);
+        else state.nearestLagging[light] = nearest;
+        bool nearerElsewhere = false;
+        for (const auto& [other, tile] : state.nearestLagging)
+            nearerElsewhere |= other != light && std::find(shadowed.begin(), shadowed.end(), other) != shadowed.end() &&
+                               (tile < nearest || (tile == nearest && other < light));
+        if (budgeted && !state.pending && nearest >= 0 && !nearerElsewhere)
+            for (size_t c = 0; c < fr.cascades.size() && !pending.active; ++c)
+                if (lags[c] && !scrollWaits[c]) pending = {true, {light, fr.cascades[c].tile, keys[c], fr.cascades[c], 0}, {}, false};
+        if (pending.active) {
+            for (int q = 0; q < 4 && quartersLeft > 0; ++q)
+                if (!(pending.tile.quartersDrawn & (1u << q))) {
+                    const TileRect r = shadowTileQuarter(q, fr.tileSize);
+                    pending.quarters.push_back({r, regionCasters(clusters, frame, pending.tile.cascade.worldToClip, r, fr.tileSize)});
+                    pending.tile.quartersDrawn |= 1u << q;
+                    --quartersLeft;
+                    ++quartersThisFrame;
+                    ++unitsThisFrame;
+                }
+            pending.completes = pending.tile.quartersDrawn == 0xfu;
+            if (pending.completes) state.pending.reset();
+            else state.pending = pending.tile;
+        }
+        for (size_t c = 0; c < fr.cascades.size(); ++c) {
+            if (!lags[c]) continue;
+            const size_t tile = size_t(fr.cascades[c].tile);
+            const bool isPending = pending.active && pending.tile.tile == fr.cascades[c].tile;
+            if (isPending && pending.completes) {
+                // The new square is whole in the spare tile: copied over, it serves from this frame on.
+                fr.cascades[c] = servedFromThisCamera(pending.tile.cascade, fr.cascades[c], frame);
+                keys[c] = pending.tile.key;
+                work[c].fromSpare = true;
+                what[c] = "redrawn (" + why[c].text + "; drawn a quarter at a time within --shadow-redraw-budget, done)";
+                lags[c] = false;
+                continue;
+            }
+            fr.cascades[c] = servedFromThisCamera(*kept->squares[tile], fr.cascades[c], frame);
+            keys[c] = *kept->tiles[tile];
+            what[c] = "kept its previous square (" + why[c].text + ": " +
+                      (scrollWaits[c] ? std::string("its scroll waits for --shadow-redraw-budget")
+                       : isPending ? "the new square is drawn a quarter at a time, " +
+                                       std::to_string(std::bitset<4>(pending.tile.quartersDrawn).count()) + " of 4 quarters done"
+                                 : std::string("waits for --shadow-redraw-budget")) +
+                      "; pixels it misses use the next cascade)";
+        }
+        // Casters of the squares actually drawn (the lagging ones keep their previous square).
+        casters.assign(fr.cascades.size(), {});
+        for (size_t c = 0; c < fr.cascades.size(); ++c) {
+            const glm::mat4& worldToClip = fr.cascades[c].worldToClip;
+            casters[c] = cullCasters(clusters, *frame.scene, worldToClip, 2.0f / float(fr.tileSize),
+                                     frame.settings->shadows.cullCasters);
+            if (!why[c].kept() && !work[c].scrolled && !work[c].fromSpare && !lags[c])
+                work[c].regions.push_back({{0, 0, fr.tileSize, fr.tileSize}, casters[c]});
+            const CasterList& l = casters[c];
             graph.notePass(name, "cascade " + std::to_string(c) + ": " + std::to_string(l.draws.size()) + " draws, " +
                                      std::to_string(l.clusters) + " of " + std::to_string(clusters.size()) + " clusters, " +
                                      std::to_string(l.triangles) + " of " + std::to_string(sceneTriangles) + " triangles (" +
                                      rasterNote +
-                                     (frame.settings->shadows.cullCasters ? "" : ", culling off") + "); " + what);
+                                     (frame.settings->shadows.cullCasters ? "" : ", culling off") + "); " + what[c]);
+            if (c < size_t(kMaxShadowCascades) && lags[c]) ++state.cacheStats.laggingPerCascade[c];
+            state.cacheStats.lagging += lags[c] ? 1 : 0;
         }
         ShadowMapPass* s = &state;
         fg::ResourceId keptAtlas;
@@ -764,7 +916,7 @@ ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const
                 out.depth = caching ? b.write(keptAtlas, fg::Usage::DepthAttachment)
                                     : b.create(name + ".depth", desc, fg::Usage::DepthAttachment);
             },
-            [s, frame, fr, casters, caching, light, keys, work, casterKey](const Data& out, const fg::PassResources& res) {
+            [s, frame, fr, casters, caching, light, keys, work, casterKey, pending](const Data& out, const fg::PassResources& res) {
                 const fg::TextureDesc& d = res.desc(out.depth);
                 const GLuint texture = res.texture(out.depth);
                 ShadowSettings::Raster raster = frame.settings->shadows.raster;
@@ -773,36 +925,69 @@ ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const
                     raster = resolveAutoRaster(*s, [&](ShadowSettings::Raster r) {
                         drawAtlas(*s, frame, fr, everyTile, r, texture, d.width, d.height);
                     });
-                drawAtlas(*s, frame, fr, work, raster, texture, d.width, d.height);
-                size_t drawn = 0, wholeDrawn = 0;
+                std::vector<ShadowTileWork> atlasWork = work;
+                for (ShadowTileWork& w : atlasWork) w.fromSpare = false;  // copied below, after the spare is drawn
+                drawAtlas(*s, frame, fr, atlasWork, raster, texture, d.width, d.height);
+                ShadowAtlasCache* a = caching ? &s->atlases[light] : nullptr;
+                if (a && pending.active && !pending.quarters.empty()) {
+                    // The pending square's quarters into the spare atlas, at its tile's place.
+                    if (!s->spareAtlas || s->spareAtlas.width != d.width || s->spareAtlas.height != d.height)
+                        s->spareAtlas = gl::makeTexture2D(GL_DEPTH_COMPONENT32F, d.width, d.height, 1, "shadow_map.spare_atlas");
+                    ShadowFrustum one = fr;
+                    one.cascades = {pending.tile.cascade};
+                    std::vector<ShadowTileWork> quarterWork(1);
+                    quarterWork[0].regions = pending.quarters;
+                    drawAtlas(*s, frame, one, quarterWork, raster, s->spareAtlas.id(), d.width, d.height);
+                }
+                for (size_t c = 0; c < work.size(); ++c)
+                    if (a && work[c].fromSpare) {
+                        const GLint x = (fr.cascades[c].tile % fr.columns) * fr.tileSize, y = (fr.cascades[c].tile / fr.columns) * fr.tileSize;
+                        glCopyImageSubData(s->spareAtlas.id(), GL_TEXTURE_2D, 0, x, y, 0, texture, GL_TEXTURE_2D, 0, x, y, 0,
+                                           fr.tileSize, fr.tileSize, 1);
+                    }
+                // Counted: drawn whole, scrolled, completed from the spare tile (its quarters were
+                // counted as drawn), or kept (lagging ones too).
+                size_t drawn = 0, wholeDrawn = 0, completed = 0;
                 for (size_t c = 0; c < work.size(); ++c) {
                     drawn += work[c].drawn() ? 1 : 0;
-                    wholeDrawn += work[c].drawn() && !work[c].scrolled ? 1 : 0;
+                    wholeDrawn += !work[c].regions.empty() && !work[c].scrolled ? 1 : 0;
+                    completed += work[c].fromSpare ? 1 : 0;
                     if (c >= size_t(kMaxShadowCascades)) continue;
-                    ++(work[c].scrolled  ? s->cacheStats.scrolledPerCascade[c]
-                       : work[c].drawn() ? s->cacheStats.drawnPerCascade[c]
-                                         : s->cacheStats.keptPerCascade[c]);
+                    ++(work[c].scrolled             ? s->cacheStats.scrolledPerCascade[c]
+                       : work[c].fromSpare          ? s->cacheStats.completedPerCascade[c]
+                       : !work[c].regions.empty()   ? s->cacheStats.drawnPerCascade[c]
+                                                    : s->cacheStats.keptPerCascade[c]);
                 }
                 s->cacheStats.drawn += wholeDrawn;
-                s->cacheStats.scrolled += drawn - wholeDrawn;
+                s->cacheStats.completed += completed;
+                s->cacheStats.scrolled += drawn - wholeDrawn - completed;
                 s->cacheStats.kept += work.size() - drawn;
-                if (!caching) return;
+                if (!a) return;
                 // What the tiles now hold. A new caster set or a whole-atlas clear (every tile
                 // drawn whole) leaves tiles past this frame's cascades unknown.
-                ShadowAtlasCache& a = s->atlases[light];
-                if (a.casters != casterKey || wholeDrawn == work.size()) a.tiles.assign(a.tiles.size(), std::nullopt);
-                a.casters = casterKey;
-                if (a.tiles.size() < keys.size()) a.tiles.resize(keys.size());
+                if (a->casters != casterKey || wholeDrawn == work.size()) {
+                    a->tiles.assign(a->tiles.size(), std::nullopt);
+                    a->squares.assign(a->squares.size(), std::nullopt);
+                }
+                a->casters = casterKey;
+                const size_t tiles = size_t(fr.columns * fr.rows);
+                if (a->tiles.size() < tiles) a->tiles.resize(tiles);
+                if (a->squares.size() < tiles) a->squares.resize(tiles);
                 for (size_t c = 0; c < keys.size(); ++c)
                     if (work[c].drawn()) {
-                        a.tiles[c] = keys[c];
-                        a.tiles[c]->raster = raster;
-                        a.tiles[c]->hardwareConservative = growsCastersInHardware(raster, s->hardwareConservative);
+                        const size_t tile = size_t(fr.cascades[c].tile);
+                        a->tiles[tile] = keys[c];
+                        a->tiles[tile]->raster = raster;
+                        a->tiles[tile]->hardwareConservative = growsCastersInHardware(raster, s->hardwareConservative);
+                        a->squares[tile] = fr.cascades[c];
                     }
             });
         map.depth = data.depth;
         maps.push_back(std::move(map));
     }
+    state.cacheStats.quarters += quartersThisFrame;
+    state.cacheStats.mostBudgetUnitsInAFrame = std::max(state.cacheStats.mostBudgetUnitsInAFrame, unitsThisFrame);
+    ++state.cacheStats.frames;
     return maps;
 }
 

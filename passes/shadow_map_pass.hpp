@@ -37,6 +37,18 @@
 // differently. The tests bound it (kShadowScrollDepthTolerance everywhere but
 // kShadowScrollMaxDifferingFraction of a tile's texels, each next to a depth edge); kept tiles stay
 // bit-exact. The compute raster (which draws whole tiles) redraws moved tiles whole.
+//
+// --shadow-redraw-budget N (default 2, with the cache; 0: no limit): a cascade whose square changed
+// in a way its kept tile cannot follow by scrolling, but whose kept tile is still a valid map of its
+// previous square (ShadowTileChange::SquareResized, or a move too large to scroll: the same sun,
+// depth range, casters, raster, bias), lags: it keeps serving from its previous square (matrix and
+// texel size in ShadowAtlasCache::squares; the eye-space matrix redone from this frame's camera)
+// while its new square is drawn a quarter tile at a time (at most N quarters a frame, all suns
+// together) into the spare atlas at the tile's own place, then copied over the tile. One square is
+// pending at a time (ShadowMapPass::pending). The lighting takes, from a pixel's depth split on, the
+// first cascade whose square holds it, so what a lagging square misses is shaded from the next
+// cascade. The last cascade never lags. With the camera still the squares catch up and every tile is
+// what an unbudgeted pass draws, bit for bit.
 #include <cstdint>
 #include <filesystem>
 #include <map>
@@ -73,6 +85,7 @@ const char* conservativeRasterLabel(bool hardware);  // "hardware" / "geometry s
 struct ShadowTileKey {
     glm::mat4 worldToClip{1.0f};
     int tileSize = 0, column = 0, row = 0;
+    int tile = 0;  // index of the atlas tile (row * columns + column), where ShadowAtlasCache keeps it
     ShadowSettings::Raster raster = ShadowSettings::Raster::Conservative;  // resolved (never Auto)
     // Conservative and split only: grown by GL_NV_conservative_raster (true) or the geometry shader;
     // the two give slightly different depth (the hardware's nearest-over-texel vs the GS's clamp).
@@ -82,21 +95,66 @@ struct ShadowTileKey {
     bool operator==(const ShadowTileKey& o) const;
 };
 
+// --shadow-redraw-budget: a cascade's new square drawn a quarter of the tile at a time into the spare
+// atlas (at the tile's own place: the same window coordinates rasterise the same depth bit for bit)
+// while the cascade keeps serving from its previous square; copied over the atlas tile when all four
+// quarters are drawn. One at a time, for all suns.
+struct ShadowPendingTile {
+    int light = -1;         // whose atlas
+    int tile = -1;          // the atlas tile it replaces
+    ShadowTileKey key;      // what the new square holds once drawn
+    ShadowCascade cascade;  // its matrices and texel size (eyeToClip is redone from each frame's camera)
+    unsigned quartersDrawn = 0;  // bit q: quarter q (shadowTileQuarter) is in the spare tile
+};
+
 // One light's kept atlas and what each of its tiles holds (none: unknown, e.g. never drawn).
 struct ShadowAtlasCache {
     int light = -1;
     gl::Texture depth;  // D32F, width x height
     int width = 0, height = 0;
     uint64_t casters = 0;  // casterSignature the tiles were drawn with
-    std::vector<std::optional<ShadowTileKey>> tiles;
+    std::vector<std::optional<ShadowTileKey>> tiles;  // by atlas tile
+    // The square each tile holds (matrices, texel size): what a cascade lagging behind its new
+    // square (--shadow-redraw-budget) serves from meanwhile.
+    std::vector<std::optional<ShadowCascade>> squares;  // by atlas tile
 };
 
 // Cascade tiles drawn whole, kept and scrolled (--shadow-scroll: moved, strips drawn) since the
-// counters were last reset (render and bench report them).
+// counters were last reset (render and bench report them); with --shadow-redraw-budget, tiles whose
+// new square was completed in the spare tile and copied over (completed), cascades that served from
+// their previous square (lagging, counted as kept too), and the quarters of new squares drawn, with
+// the most drawn in one frame (all suns together).
 struct ShadowCacheStats {
-    uint64_t drawn = 0, kept = 0, scrolled = 0;
+    uint64_t drawn = 0, kept = 0, scrolled = 0, completed = 0, lagging = 0;  // lagging ones are kept too
     uint64_t drawnPerCascade[kMaxShadowCascades] = {}, keptPerCascade[kMaxShadowCascades] = {},
-             scrolledPerCascade[kMaxShadowCascades] = {};
+             scrolledPerCascade[kMaxShadowCascades] = {}, completedPerCascade[kMaxShadowCascades] = {},
+             laggingPerCascade[kMaxShadowCascades] = {};
+    // Quarters drawn; the most budget units (quarters and budgeted scrolls) spent in one frame.
+    uint64_t quarters = 0, mostBudgetUnitsInAFrame = 0, frames = 0;
+};
+
+// Why a cascade's tile is drawn this frame (shadowTilesToDraw); None: the kept tile holds it.
+enum class ShadowTileChange {
+    None,
+    CacheOff,
+    AutoFirstFrame,
+    NothingKept,
+    AtlasResized,
+    CastersChanged,
+    TileNotDrawn,
+    RasterChanged,
+    ConservativeRasterChanged,
+    SlopeBiasChanged,
+    CullingChanged,
+    TileSizeChanged,
+    SquareMoved,    // only the square's texel-snapped origin: --shadow-scroll can move the tile
+    SquareResized,  // the same sun and depth range, another square: the kept tile stays a valid map of its own square
+    LightChanged,   // the sun turned or the depth range changed: the kept tile is no use
+};
+struct ShadowTileReason {
+    ShadowTileChange change = ShadowTileChange::None;
+    std::string text;  // what --explain says ("square moved", ...); empty for None
+    bool kept() const { return change == ShadowTileChange::None; }
 };
 
 // Texels of the old tile's edge redrawn with a scrolled tile's strips: its outermost texels were
@@ -119,6 +177,8 @@ constexpr double kShadowScrollMaxDifferingFraction = 1e-3;
 struct TileRect {
     int x = 0, y = 0, width = 0, height = 0;
 };
+// Quarter q (0..3: x half q % 2, y half q / 2) of a tile of `tileSize`: the unit of --shadow-redraw-budget.
+TileRect shadowTileQuarter(int q, int tileSize);
 
 // The whole-texel offset by which a tile drawn with key `old` moves to be the tile of key `now`
 // (content at texel p of the old tile belongs at p + offset), when the two differ only in the
@@ -142,7 +202,8 @@ struct ShadowTileWork {
     bool scrolled = false;
     glm::ivec2 offset{0};
     std::vector<ShadowTileRegion> regions;
-    bool drawn() const { return !regions.empty(); }
+    bool fromSpare = false;  // the pending square, completed in the spare tile, is copied over it
+    bool drawn() const { return !regions.empty() || fromSpare; }
 };
 
 struct ShadowMapPass {
@@ -174,19 +235,24 @@ struct ShadowMapPass {
     std::string autoReport;  // the line logged: the choice, the measured times or "cached", the file
     // --shadow-cache on: one kept atlas per shadowed light
     std::map<int, ShadowAtlasCache> atlases;  // by light index
+    // --shadow-redraw-budget: the new square being drawn a quarter at a time, and where (D32F, an
+    // atlas's size; made when first needed)
+    std::optional<ShadowPendingTile> pending;
+    gl::Texture spareAtlas;
+    std::map<int, int> nearestLagging;  // by light: its nearest lagging tile when last planned (none: not lagging)
     // --shadow-size-hold: each shadowed light's cascades of the last frame (fitShadowFrustum's `previous`)
     std::map<int, ShadowFrustum> previousFrusta;
     ShadowCacheStats cacheStats;
-    size_t cacheBytes() const;  // GPU bytes of the kept atlases
+    size_t cacheBytes() const;  // GPU bytes of the kept atlases and the spare one
 };
 
 // A hash of what every cascade's casters are: the SceneGpu, each mesh's model matrix and buffers,
 // which materials are alpha-blended (those cast no shadow) and the caster clusters.
 uint64_t casterSignature(const FrameData& frame);
 
-// Per cascade of `frustum`: why its tile must be drawn this frame, or empty when `cache` already
+// Per cascade of `frustum`: why its tile must be drawn this frame, or None when `cache` already
 // holds exactly what it would draw (keys from shadowTileKeys).
-std::vector<std::string> shadowTilesToDraw(const ShadowAtlasCache* cache, int width, int height, uint64_t casters,
+std::vector<ShadowTileReason> shadowTilesToDraw(const ShadowAtlasCache* cache, int width, int height, uint64_t casters,
                                            const std::vector<ShadowTileKey>& keys);
 // hardwareConservative: this frame grows conservative and split casters by GL_NV_conservative_raster
 // (ShadowMapPass::hardwareConservative); the keys record it for those two rasters only.

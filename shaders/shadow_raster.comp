@@ -39,10 +39,13 @@ vec4 clipPosition(uint index) {
     return uModelToClip * vec4(vertexData[b], vertexData[b + 1u], vertexData[b + 2u], 1.0);
 }
 
-vec3 windowPosition(vec4 clip) {
+// Window position in the atlas as the viewport transform gives it (x_w = x_ndc * w/2 + (x + w/2),
+// the tile's viewport), rounded as the hardware rounds it: the tile's origin is added before any
+// rounding, so snapping below sees the same values as the hardware raster wherever the tile lies.
+vec3 atlasWindowPosition(vec4 clip) {
     vec3 ndc = clip.xyz / clip.w;
-    float s = float(uTileSize);
-    return vec3((ndc.xy * 0.5 + 0.5) * s, uDepthZeroToOne == 1 ? ndc.z : ndc.z * 0.5 + 0.5);
+    float h = 0.5 * float(uTileSize);
+    return vec3(ndc.xy * h + (vec2(uTileOrigin) + h), uDepthZeroToOne == 1 ? ndc.z : ndc.z * 0.5 + 0.5);
 }
 
 // Edge a->b of a counter-clockwise triangle: positive inside. Its x coefficient is a.y - b.y and
@@ -61,7 +64,10 @@ void main() {
     uint first = uFirstIndex + 3u * t;
     vec4 c0 = clipPosition(indexData[first]), c1 = clipPosition(indexData[first + 1u]),
          c2 = clipPosition(indexData[first + 2u]);
-    vec3 w0 = windowPosition(c0), w1 = windowPosition(c1), w2 = windowPosition(c2);
+    vec3 a0 = atlasWindowPosition(c0), a1 = atlasWindowPosition(c1), a2 = atlasWindowPosition(c2);
+    // Tile-local positions (subtracting the whole-texel origin is exact).
+    vec3 w0 = vec3(a0.xy - vec2(uTileOrigin), a0.z), w1 = vec3(a1.xy - vec2(uTileOrigin), a1.z),
+         w2 = vec3(a2.xy - vec2(uTileOrigin), a2.z);
     vec2 lo = min(w0.xy, min(w1.xy, w2.xy)), hi = max(w0.xy, max(w1.xy, w2.xy));
     if (!(all(greaterThan(hi, vec2(0.0))) && all(lessThan(lo, vec2(float(uTileSize)))))) return;  // off the tile, or NaN
     if (hi.x - lo.x > uLargeTexels || hi.y - lo.y > uLargeTexels) {
@@ -76,8 +82,10 @@ void main() {
     ivec2 last2 = min(ivec2(floor(hi - 0.5)), ivec2(uTileSize - 1));
     if (any(greaterThan(first2, last2))) return;
 
-    ivec2 v0 = ivec2(round(w0.xy * float(uSubTexel))), v1 = ivec2(round(w1.xy * float(uSubTexel))),
-          v2 = ivec2(round(w2.xy * float(uSubTexel)));
+    // Snapped on the atlas's window grid, then made tile-local (whole texels: exact integers).
+    ivec2 o = uTileOrigin * uSubTexel;
+    ivec2 v0 = ivec2(round(a0.xy * float(uSubTexel))) - o, v1 = ivec2(round(a1.xy * float(uSubTexel))) - o,
+          v2 = ivec2(round(a2.xy * float(uSubTexel))) - o;
     int area = edgeValue(v0, v1, v2);
     if (area == 0) return;  // degenerate after snapping: the hardware draws nothing
     if (area < 0) {  // both windings cast (no culling): make it counter-clockwise

@@ -77,6 +77,11 @@ struct ShadowSettings {         // directional-light shadow maps (passes/shadow_
     // 2^(1/4) larger than needed (engine/render/shadows.hpp): fewer whole redraws on a zooming or
     // moving camera, up to 19% less resolution while held.
     bool sizeHold = false;
+    // With the cache on: at most this many quarter tiles of resized squares (a scroll counts as one)
+    // are drawn per frame, all suns together (0: no limit, every resized square drawn whole at once). A cascade whose new
+    // square is not drawn yet keeps serving from its previous square (still exact for that square);
+    // where that no longer covers a pixel, the next cascade shades it (passes/shadow_map_pass.hpp).
+    int redrawBudget = 2;
     // Room each cascade's square leaves for the camera to move in, as a fraction of its side: the
     // square is that much larger than its slice needs and its origin moves in steps of that much (at
     // least one texel), so a moving camera redraws it less often (engine/render/shadows.hpp).

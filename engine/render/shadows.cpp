@@ -260,6 +260,7 @@ ShadowFrustum fitShadowFrustum(const FrameData& frame, glm::vec3 lightDirection,
         cascade.texelWorld = float(texel);
         cascade.depthRange = float(farZ - nearZ);
         cascade.side = needed;
+        cascade.tile = c;
         out.cascades.push_back(cascade);
         if (last) {
             if (c + 1 < settings.cascades)
@@ -270,7 +271,7 @@ ShadowFrustum fitShadowFrustum(const FrameData& frame, glm::vec3 lightDirection,
             break;
         }
     }
-    const glm::ivec2 used = shadowAtlasGrid(int(out.cascades.size()));
+    const glm::ivec2 used = shadowAtlasGrid(out.cascades.empty() ? 1 : out.cascades.back().tile + 1);
     out.columns = used.x;
     out.rows = used.y;
     return out;

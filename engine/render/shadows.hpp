@@ -42,13 +42,18 @@ struct ShadowCascade {
     float texelWorld = 0.0f;      // world-space size of one shadow texel
     float depthRange = 0.0f;      // world-space distance that window depth 0..1 spans
     double side = 0.0;            // world-space side of the square less the origin's room (2^(1/8) grid)
+    // Atlas tile (column tile % columns, row tile / columns): the cascade's index among those asked
+    // for, so a tile keeps its square (and --shadow-cache its content) when nearer cascades are
+    // dropped or come back as the camera moves.
+    int tile = 0;
 };
 
 struct ShadowFrustum {
     glm::dvec3 lightDirection{0.0, -1.0, 0.0};  // normalised travel direction
     glm::mat3 eyeToLight{1.0f};  // rotation from camera eye space to light view space (+z towards the light)
     std::vector<ShadowCascade> cascades;
-    // Tile layout of the cascades in the shadow-map atlas: cascade c at column c % columns, row c / columns.
+    // Tile layout of the atlas: cascade c at column cascades[c].tile % columns, row tile / columns;
+    // the grid holds tiles 0 .. the last cascade's (dropped near cascades leave theirs unused).
     int columns = 1, rows = 1;
     int tileSize = 0;
     double visibleNear = 0.0, visibleFar = 0.0;  // view depths of the scene's bounds inside the frustum

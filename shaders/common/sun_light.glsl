@@ -25,7 +25,7 @@ layout(binding = LP_SUN_SHADOW_UNIT) uniform sampler2D uShadowMap[MAX_SHADOWED];
 uniform int uLightShadowSlot[MAX_LIGHTS];                 // -1: unshadowed
 uniform int uShadowCascadeCount[MAX_SHADOWED];
 uniform mat4 uShadowEyeToClip[MAX_SHADOWED * MAX_CASCADES];
-uniform vec4 uShadowCascade[MAX_SHADOWED * MAX_CASCADES];   // split far (view depth), texel (world), texel / depth range
+uniform vec4 uShadowCascade[MAX_SHADOWED * MAX_CASCADES];   // split far (view depth), texel (world), texel / depth range, atlas tile
 uniform mat3 uShadowEyeToLight[MAX_SHADOWED];
 uniform int uShadowColumns;
 uniform int uShadowTileSize;
@@ -44,10 +44,13 @@ float shadowVisibility(int slot, vec3 P, vec3 N, float nl, vec2 pixel) {
         vec3 Po = P + N * (uShadowNormalBias * info.y * (1.0 - nl));
         vec3 ndc = (uShadowEyeToClip[k] * vec4(Po, 1.0)).xyz;  // orthographic: w = 1
         vec2 uv = ndc.xy * 0.5 + 0.5;
-        if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) continue;  // try a wider cascade
+        // Outside this cascade's square (past its edge, or a square lagging behind its slice under
+        // --shadow-redraw-budget): the next cascade's square serves the pixel.
+        if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) continue;
         float z = ndc.z * 0.5 + 0.5;
         if (z >= 1.0) return 1.0;  // beyond every caster
-        ivec2 tileMin = ivec2(c % uShadowColumns, c / uShadowColumns) * uShadowTileSize;
+        int tile = int(info.w);
+        ivec2 tileMin = ivec2(tile % uShadowColumns, tile / uShadowColumns) * uShadowTileSize;
         ivec2 tileMax = tileMin + ivec2(uShadowTileSize - 1);
         vec2 pos = vec2(tileMin) + uv * float(uShadowTileSize);
         vec2 grad = shadowReceiverGradient(uShadowEyeToLight[slot] * N, info.z);

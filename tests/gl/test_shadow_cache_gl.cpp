@@ -7,6 +7,7 @@
 
 #include <cstdlib>
 #include <cstring>
+#include <map>
 #include <random>
 #include <tuple>
 
@@ -16,6 +17,7 @@
 #include "engine/render/scene_gpu.hpp"
 #include "engine/scene/primitives.hpp"
 #include "frame/frame_builder.hpp"
+#include "frame/renderer.hpp"
 #include "passes/shadow_map_pass.hpp"
 #include "tests/gl/gl_fixture.hpp"
 
@@ -58,6 +60,9 @@ RenderSettings smallCascades(ShadowSettings::Raster raster) {
     s.shadows.size = 256;
     s.shadows.cascades = 4;
     s.shadows.raster = raster;
+    // Resized squares drawn whole at once: each frame's tiles compare bit for bit with a fresh
+    // redraw of the same frusta (--shadow-redraw-budget's lag is tested on its own).
+    s.shadows.redrawBudget = 0;
     return s;
 }
 
@@ -75,7 +80,8 @@ Tiles drawTiles(const Scene& scene, const SceneGpu& gpu, const RenderSettings& s
     const size_t side = size_t(fr.tileSize), width = side * size_t(fr.columns);
     Tiles t;
     for (size_t c = 0; c < fr.cascades.size(); ++c) {
-        const size_t x0 = (c % size_t(fr.columns)) * side, y0 = (c / size_t(fr.columns)) * side;
+        const size_t at = size_t(fr.cascades[c].tile);
+        const size_t x0 = (at % size_t(fr.columns)) * side, y0 = (at / size_t(fr.columns)) * side;
         std::vector<float> tile;
         tile.reserve(side * side);
         for (size_t y = 0; y < side; ++y)
@@ -211,6 +217,7 @@ TEST(ShadowCache, ConservativeRasterIsPartOfTheTileKey) {
     fr.columns = 2;
     fr.rows = 1;
     fr.cascades.resize(2);
+    fr.cascades[1].tile = 1;
     ShadowSettings settings;
     for (ShadowSettings::Raster raster : {ShadowSettings::Raster::Conservative, ShadowSettings::Raster::Split}) {
         ShadowAtlasCache cache;
@@ -219,10 +226,12 @@ TEST(ShadowCache, ConservativeRasterIsPartOfTheTileKey) {
         cache.height = 64;
         cache.casters = 7;
         for (const ShadowTileKey& k : shadowTileKeys(fr, settings, raster, false)) cache.tiles.push_back(k);
-        for (const std::string& why : shadowTilesToDraw(&cache, 128, 64, 7, shadowTileKeys(fr, settings, raster, false)))
-            EXPECT_EQ(why, "");
-        for (const std::string& why : shadowTilesToDraw(&cache, 128, 64, 7, shadowTileKeys(fr, settings, raster, true)))
-            EXPECT_EQ(why, "conservative raster changed to hardware") << ShadowSettings::rasterName(raster);
+        for (const ShadowTileReason& why : shadowTilesToDraw(&cache, 128, 64, 7, shadowTileKeys(fr, settings, raster, false)))
+            EXPECT_TRUE(why.kept()) << why.text;
+        for (const ShadowTileReason& why : shadowTilesToDraw(&cache, 128, 64, 7, shadowTileKeys(fr, settings, raster, true))) {
+            EXPECT_EQ(why.change, ShadowTileChange::ConservativeRasterChanged) << ShadowSettings::rasterName(raster);
+            EXPECT_EQ(why.text, "conservative raster changed to hardware") << ShadowSettings::rasterName(raster);
+        }
     }
     // Plain and compute grow nothing: the hardware's presence does not touch their tiles.
     for (ShadowSettings::Raster raster : {ShadowSettings::Raster::Plain, ShadowSettings::Raster::Compute})
@@ -463,4 +472,172 @@ TEST(ShadowCache, SizeHoldTurnsResizesIntoScrolls) {
     EXPECT_GT(resizedFree, 0u) << "the zoom resized nothing: the test proves nothing";
     EXPECT_LT(resizedHeld, resizedFree);
     EXPECT_GT(scrolledHeld, 0u);
+}
+
+// --shadow-redraw-budget on a camera that walks and zooms (squares move and resize every few
+// frames), scrolling off (every kept tile must equal a fresh redraw of its square bit for bit) and
+// on (scrolls are budget units too): no frame spends more than the budget, no cascade but the last is drawn whole after the first frame, some
+// cascades lag and some new squares complete; a lagging cascade serves its tile untouched; and once
+// the camera stops, the squares catch up within 4 frames a cascade and the tiles are what a pass
+// without a budget draws, bit for bit (the converged atlas equals the unbudgeted one; with
+// scrolling, within the scroll bound).
+TEST(ShadowRedrawBudget, BudgetHeldOnAFlythroughAndTheAtlasConverges) {
+    for (const auto& [budget, scroll] : {std::pair<int, bool>{1, false}, {3, false}, {2, true}}) {
+        const std::string name = "budget " + std::to_string(budget) + (scroll ? ", scrolling" : "");
+        Scene scene = castersOnAFloor();
+        SceneGpu gpu(scene);
+        RenderSettings settings = smallCascades(ShadowSettings::Raster::Plain);
+        settings.shadows.scroll = scroll;
+        settings.shadows.redrawBudget = budget;
+        ShadowMapPass state;
+        fg::TexturePool pool;
+        std::vector<std::string> notes;
+        drawTiles(scene, gpu, settings, state, pool, &notes);
+        EXPECT_EQ(state.cacheStats.drawn, notes.size()) << name;
+        const size_t last = notes.size() - 1;  // the last cascade never lags: drawn whole when it changes
+        uint64_t lagged = 0;
+        std::map<int, std::pair<glm::mat4, std::vector<float>>> previous;  // by atlas tile: served matrix, depth
+        {
+            const test::ShadowAtlasFrame atlas = test::drawShadowAtlas(scene, gpu, settings, state, pool);
+            const size_t side = size_t(atlas.frustum.tileSize), width = side * size_t(atlas.frustum.columns);
+            for (const ShadowCascade& cascade : atlas.frustum.cascades) {
+                const size_t at = size_t(cascade.tile), x0 = (at % size_t(atlas.frustum.columns)) * side,
+                             y0 = (at / size_t(atlas.frustum.columns)) * side;
+                std::vector<float> tile;
+                for (size_t y = 0; y < side; ++y)
+                    tile.insert(tile.end(), atlas.depth.begin() + std::ptrdiff_t((y0 + y) * width + x0),
+                                atlas.depth.begin() + std::ptrdiff_t((y0 + y) * width + x0 + side));
+                previous[cascade.tile] = {cascade.worldToClip, std::move(tile)};
+            }
+        }
+        for (int step = 1; step <= 12; ++step) {
+            scene.camera.position += glm::vec3(0.03f, 0.0f, -0.3f);
+            scene.camera.target += glm::vec3(0.03f, 0.0f, -0.3f);
+            scene.camera.fovYDegrees = 45.0f + 2.0f * float(step % 4);
+            const uint64_t quartersBefore = state.cacheStats.quarters;
+            const test::ShadowAtlasFrame atlas = test::drawShadowAtlas(scene, gpu, settings, state, pool);
+            const uint64_t scrolls = countNotes(atlas.notes, "scrolled by (");
+            EXPECT_LE(state.cacheStats.quarters - quartersBefore + scrolls, uint64_t(budget)) << name << " step " << step;
+            lagged += countNotes(atlas.notes, "kept its previous square (");
+            // A lagging cascade serves the square its tile already held, untouched: the tile's bits and
+            // matrix as the frame before (its content is checked against a fresh redraw at the end).
+            const size_t side = size_t(atlas.frustum.tileSize), width = side * size_t(atlas.frustum.columns);
+            std::map<int, std::pair<glm::mat4, std::vector<float>>> tiles;
+            for (size_t c = 0; c < atlas.frustum.cascades.size(); ++c) {
+                const ShadowCascade& cascade = atlas.frustum.cascades[c];
+                const size_t at = size_t(cascade.tile), x0 = (at % size_t(atlas.frustum.columns)) * side,
+                             y0 = (at / size_t(atlas.frustum.columns)) * side;
+                std::vector<float> tile;
+                for (size_t y = 0; y < side; ++y)
+                    tile.insert(tile.end(), atlas.depth.begin() + std::ptrdiff_t((y0 + y) * width + x0),
+                                atlas.depth.begin() + std::ptrdiff_t((y0 + y) * width + x0 + side));
+                const std::string& note = atlas.notes[c];
+                if (note.find("kept its previous square (") != std::string::npos ||
+                    note.find("kept (unchanged)") != std::string::npos) {
+                    const auto last = previous.find(cascade.tile);
+                    ASSERT_NE(last, previous.end()) << name << " step " << step << ": " << note;
+                    EXPECT_EQ(last->second.first, cascade.worldToClip) << name << " step " << step << ": " << note;
+                    EXPECT_EQ(last->second.second, tile) << name << " step " << step << ": " << note;
+                }
+                tiles[cascade.tile] = {cascade.worldToClip, std::move(tile)};
+            }
+            previous = std::move(tiles);
+        }
+        for (size_t c = 0; c < last; ++c)
+            EXPECT_EQ(state.cacheStats.drawnPerCascade[c], 1u) << name << ": cascade " << c << " was drawn whole on the moving camera";
+        EXPECT_LE(state.cacheStats.mostBudgetUnitsInAFrame, uint64_t(budget)) << name;
+        EXPECT_GT(lagged, 0u) << name << ": no cascade lagged: the walk proves nothing";
+        EXPECT_GT(state.cacheStats.completed, 0u) << name << ": no new square was completed";
+        // The camera stops: at one quarter a frame, 4 frames per lagging cascade (and what remains of a
+        // square begun before the stop, which may then lag once more), and everything is kept.
+        const int settle = 4 * settings.shadows.cascades + 1;
+        int frames = 0;
+        for (; frames < settle; ++frames) {
+            drawTiles(scene, gpu, settings, state, pool, &notes);
+            if (countNotes(notes, "kept (unchanged)") == notes.size()) break;
+        }
+        EXPECT_LT(frames, settle) << name << ": the squares did not catch up";
+        EXPECT_EQ(countNotes(notes, "kept (unchanged)"), notes.size()) << name;
+        const Tiles converged = drawTiles(scene, gpu, settings, state, pool), fresh = redrawnTiles(scene, gpu, settings);
+        if (!scroll) {
+            expectSameTiles(converged, fresh, name + " converged");
+            continue;
+        }
+        // Scrolled tiles: within the scroll bound of a fresh redraw (ShadowCache.ScrolledTiles...).
+        EXPECT_GT(state.cacheStats.scrolled, 0u) << name << ": nothing scrolled";
+        ASSERT_EQ(converged.depth.size(), fresh.depth.size());
+        const size_t side = size_t(settings.shadows.size);
+        for (size_t c = 0; c < converged.depth.size(); ++c) {
+            const ScrollDifference d = compareScrolled(converged.depth[c], fresh.depth[c], side);
+            EXPECT_LE(double(d.beyond), kShadowScrollMaxDifferingFraction * double(side * side)) << name << " cascade " << c;
+            EXPECT_EQ(d.awayFromEdges, 0u) << name << " cascade " << c;
+        }
+    }
+}
+
+// The structured reason: what changed in a tile's key decides whether it may lag or scroll, and
+// --explain's text stays as it was.
+TEST(ShadowRedrawBudget, TileReasonSaysWhatChanged) {
+    Scene scene = castersOnAFloor();
+    RenderSettings settings = smallCascades(ShadowSettings::Raster::Plain);
+    const ShadowFrustum fr = fitShadowFrustum(makeFrameData(scene, settings, 0.0f), scene.directionalLights[0].direction);
+    ShadowAtlasCache cache;
+    const int width = fr.tileSize * fr.columns, height = fr.tileSize * fr.rows;
+    cache.depth = gl::makeTexture2D(GL_DEPTH_COMPONENT32F, width, height, 1, "test_kept_atlas");
+    cache.width = width;
+    cache.height = height;
+    cache.casters = 7;
+    const std::vector<ShadowTileKey> keys = shadowTileKeys(fr, settings.shadows, ShadowSettings::Raster::Plain, false);
+    cache.tiles.resize(size_t(fr.columns * fr.rows));
+    for (const ShadowTileKey& k : keys) cache.tiles[size_t(k.tile)] = k;
+    auto reasonFor = [&](const FrameData& frame, glm::vec3 sun) {
+        const ShadowFrustum now = fitShadowFrustum(frame, sun);
+        return shadowTilesToDraw(&cache, width, height, 7, shadowTileKeys(now, settings.shadows, ShadowSettings::Raster::Plain, false))[0];
+    };
+    const glm::vec3 sun = scene.directionalLights[0].direction;
+    EXPECT_EQ(reasonFor(makeFrameData(scene, settings, 0.0f), sun).change, ShadowTileChange::None);
+    Scene moved = scene;
+    moved.camera.position += glm::vec3(0.0f, 0.0f, -1.0f);
+    moved.camera.target += glm::vec3(0.0f, 0.0f, -1.0f);
+    const ShadowTileReason move = reasonFor(makeFrameData(moved, settings, 0.0f), sun);
+    EXPECT_EQ(move.change, ShadowTileChange::SquareMoved);
+    EXPECT_EQ(move.text, "square moved");
+    Scene wider = scene;
+    wider.camera.fovYDegrees *= 1.3f;
+    const ShadowTileReason resize = reasonFor(makeFrameData(wider, settings, 0.0f), sun);
+    EXPECT_EQ(resize.change, ShadowTileChange::SquareResized);
+    EXPECT_EQ(resize.text, "light matrix changed");
+    const ShadowTileReason turn = reasonFor(makeFrameData(scene, settings, 0.0f), glm::normalize(sun + glm::vec3(0.05f, 0.0f, 0.0f)));
+    EXPECT_EQ(turn.change, ShadowTileChange::LightChanged);
+    EXPECT_EQ(turn.text, "light matrix changed");
+    EXPECT_EQ(shadowTilesToDraw(&cache, width, height, 8, keys)[0].change, ShadowTileChange::CastersChanged);
+}
+
+// Two suns on a walk that zooms: the budget holds for the frame, all suns together, whichever sun's
+// square is pending and whichever scrolls (a scroll of one sun and quarters of the other share it).
+TEST(ShadowRedrawBudget, BudgetIsSharedByTheSuns) {
+    Scene scene = castersOnAFloor();
+    DirectionalLight second = scene.directionalLights[0];
+    second.direction = glm::normalize(glm::vec3(-0.5f, -1.0f, 0.2f));
+    scene.directionalLights.push_back(second);
+    for (int budget : {1, 2}) {
+        RenderSettings settings = smallCascades(ShadowSettings::Raster::Plain);
+        settings.shadows.scroll = true;
+        settings.shadows.redrawBudget = budget;
+        Scene walk = scene;
+        Renderer r(walk);
+        r.render(settings);
+        r.resetShadowCacheStats();
+        for (int step = 1; step <= 16; ++step) {
+            walk.camera.position += glm::vec3(0.03f, 0.0f, -0.3f);
+            walk.camera.target += glm::vec3(0.03f, 0.0f, -0.3f);
+            walk.camera.fovYDegrees = 45.0f + 2.0f * float(step % 4);
+            r.render(settings);
+        }
+        const ShadowCacheStats& stats = r.shadowCacheStats();
+        EXPECT_LE(stats.mostBudgetUnitsInAFrame, uint64_t(budget)) << "budget " << budget;
+        EXPECT_GT(stats.lagging, 0u) << "budget " << budget << ": nothing lagged";
+        EXPECT_GT(stats.scrolled + stats.completed, 0u) << "budget " << budget << ": nothing scrolled or completed";
+        for (size_t c = 0; c + 1 < size_t(settings.shadows.cascades); ++c) EXPECT_EQ(stats.drawnPerCascade[c], 0u) << c;
+    }
 }

@@ -77,6 +77,7 @@ struct AtlasComparison {
     size_t withinOneUlp = 0;   // of `both`
     float maxDifference = 0.0f;
     size_t casters = 0;        // texels with a caster in the plain atlas
+    size_t worstTexel = 0;     // where maxUlps is (index into the atlas)
 };
 
 AtlasComparison compareAtlases(const std::vector<float>& plain, const std::vector<float>& compute) {
@@ -90,6 +91,7 @@ AtlasComparison compareAtlases(const std::vector<float>& plain, const std::vecto
         if (!a || !b) continue;
         ++r.both;
         const uint32_t x = bitsOf(plain[i]), y = bitsOf(compute[i]);
+        if ((x > y ? x - y : y - x) > r.maxUlps) r.worstTexel = i;
         r.maxUlps = std::max(r.maxUlps, x > y ? x - y : y - x);
         r.withinOneUlp += (x > y ? x - y : y - x) <= 1 ? 1 : 0;
         r.maxDifference = std::max(r.maxDifference, std::abs(plain[i] - compute[i]));
@@ -103,8 +105,10 @@ void expectSameAtlas(const Scene& s, RenderSettings settings, const char* what) 
     compute.shadows.raster = ShadowSettings::Raster::Compute;
     const AtlasComparison r = compareAtlases(shadowAtlas(s, plain), shadowAtlas(s, compute));
     // The driver's numbers, for the benchmark log (bench/shadow_cost.sh runs this test on the GPU).
-    std::printf("%s: %zu texels in both, %zu within one ulp, max %u ulps (%.3g), %zu covered by one only\n", what, r.both,
-                r.withinOneUlp, r.maxUlps, double(r.maxDifference), r.onlyOne);
+    const int atlasWidth = settings.shadows.size * shadowAtlasGrid(settings.shadows.cascades).x;
+    std::printf("%s: %zu texels in both, %zu within one ulp, max %u ulps (%.3g) at atlas texel (%zu, %zu), %zu covered by one only\n",
+                what, r.both, r.withinOneUlp, r.maxUlps, double(r.maxDifference), r.worstTexel % size_t(atlasWidth),
+                r.worstTexel / size_t(atlasWidth), r.onlyOne);
     EXPECT_GT(r.casters, size_t(500)) << what << ": the test needs casters in the map";
     // GL leaves the interpolation's arithmetic to the implementation: the depth agrees with the
     // plane at the texel centre to a few float roundings, more on steep triangles (large dz/dx).

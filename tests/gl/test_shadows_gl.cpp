@@ -707,3 +707,116 @@ TEST(ShadowRender, ConcaveCornerDoesNotLeakWithTheHardwareConservativeRaster) {
     for (auto raster : {ShadowSettings::Raster::Conservative, ShadowSettings::Raster::Split})
         EXPECT_EQ(expectNoCreaseLeak(raster, ShadowSettings::ConservativeRaster::Hardware), "hardware");
 }
+
+// --shadow-redraw-budget: the camera jumps, the near cascades' new squares wait for the budget and
+// keep serving from their previous squares (drawn for the old camera, far from the new view), so
+// most of their slices' pixels lie outside them. Each ground pixel must then be shaded from the
+// first cascade, from its depth split on, whose square (previous or new) holds it: exactly lit or
+// exactly shadowed by the analytic occluder (as checkShadowEdge), the margin from that cascade's
+// texel. Once the camera stays, the squares catch up within the budget, and the image equals the
+// one drawn without a budget.
+TEST(ShadowRedrawBudget, LaggingCascadesMissesShadeFromTheNextCascadeAndConverge) {
+    const int w = 96, h = 64;
+    Scene s = shadowScene(glm::vec3(-0.3f, -1.0f, -0.2f), true);
+    RenderSettings settings;
+    settings.width = w;
+    settings.height = h;
+    settings.keepHdr = true;
+    settings.shadows.size = 256;
+    settings.shadows.cascades = 4;
+    settings.shadows.filter = ShadowSettings::Filter::Pcf3x3;
+    settings.shadows.raster = ShadowSettings::Raster::Plain;
+    settings.shadows.scroll = false;  // a moved square lags too (no scroll to take it)
+    settings.shadows.redrawBudget = 1;
+    Camera seen = s.camera;  // close over the occluder: its shadow in the near cascades' slices
+    seen.position = glm::vec3(0.6f, 1.9f, 1.9f);
+    seen.target = glm::vec3(0.0f, 0.0f, 0.3f);
+    s.camera.position = glm::vec3(-8.0f, 3.0f, -8.5f);  // first: over the ground's far corner
+    s.camera.target = glm::vec3(-8.5f, 0.0f, -4.5f);
+    Renderer r(s);
+    r.render(settings);
+    const ShadowFrustum before = fitShadowFrustum(makeFrameData(s, settings, 0.0f), s.directionalLights[0].direction);
+    s.camera = seen;  // then: the occluder in view
+    r.resetShadowCacheStats();
+    r.render(settings);
+    const ImageF hdr = r.readHdr();
+    const FrameData frame = makeFrameData(s, settings, 0.0f);
+    const ShadowFrustum wanted = fitShadowFrustum(frame, s.directionalLights[0].direction);
+    // What the lighting is given: the last cascade drawn whole, every other whose tile held another
+    // square still on that square.
+    ShadowFrustum served = wanted;
+    size_t lagging = 0;
+    for (size_t c = 0; c + 1 < served.cascades.size(); ++c)
+        for (const ShadowCascade& old : before.cascades)
+            if (old.tile == wanted.cascades[c].tile && old.worldToClip != wanted.cascades[c].worldToClip) {
+                served.cascades[c].worldToClip = old.worldToClip;
+                served.cascades[c].texelWorld = old.texelWorld;
+                ++lagging;
+            }
+    ASSERT_GE(lagging, 1u) << "the jump moved no square";
+    EXPECT_EQ(r.shadowCacheStats().lagging, lagging);
+    EXPECT_EQ(r.shadowCacheStats().mostBudgetUnitsInAFrame, 1u);
+
+    const glm::dvec3 toLight = -glm::normalize(glm::dvec3(s.directionalLights[0].direction));
+    const double tanTheta = std::sqrt(std::max(1.0 - toLight.y * toLight.y, 0.0)) / toLight.y;
+    int lit = 0, shadowed = 0, fellThrough = 0, fellThroughShadowed = 0;
+    double worst = 0.0;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            Ray ray = pixelRay(s, w, h, x, y);
+            glm::dvec3 p, o;
+            if (hitY(ray, 1.0, o) && squareDistance(o) <= 0.0) continue;  // sees the occluder
+            if (!hitY(ray, 0.0, p) || std::abs(p.x) > 9.5 || std::abs(p.z) > 9.5) continue;
+            const double depth = -(glm::dmat4(frame.view) * glm::dvec4(p, 1.0)).z;
+            size_t split = 0;
+            while (split + 1 < served.cascades.size() && depth > served.cascades[split].splitFar) ++split;
+            // The shader's choice: from the split on, the first square holding the point (well inside:
+            // the filter's texels and the normal offset stay in it).
+            size_t c = split;
+            for (; c < served.cascades.size(); ++c) {
+                const glm::dvec4 q = glm::dmat4(served.cascades[c].worldToClip) * glm::dvec4(p, 1.0);
+                const double inset = 2.0 * 4.0 / double(settings.shadows.size);
+                if (std::abs(q.x) < 1.0 - inset && std::abs(q.y) < 1.0 - inset) break;
+                const bool onTheEdge = std::abs(q.x) < 1.0 + inset && std::abs(q.y) < 1.0 + inset;
+                if (onTheEdge) c = served.cascades.size();  // the edge's texels: either choice, not checked
+            }
+            if (c >= served.cascades.size()) continue;
+            const double texel = served.cascades[c].texelWorld;
+            const double margin = (2.0 + 1.5) * texel / toLight.y + settings.shadows.normalBias * texel * tanTheta;
+            const double d = squareDistance(p + toLight * (1.0 / toLight.y));
+            if (std::abs(d) < margin) continue;
+            const glm::dvec3 expected = lambertRadiance(s, d > 0.0 ? toLight.y : 0.0);
+            for (int ch = 0; ch < 3; ++ch) {
+                const double got = hdr.rgba[(size_t(y) * w + x) * 4 + ch];
+                worst = std::max(worst, std::abs(got - expected[ch]) / std::max(expected[ch], 1e-3));
+            }
+            (d > 0.0 ? lit : shadowed)++;
+            if (c != split) {
+                ++fellThrough;
+                fellThroughShadowed += d > 0.0 ? 0 : 1;
+            }
+        }
+    std::printf("redraw budget: %zu of %zu cascades lagging; %d lit and %d shadowed ground pixels checked, %d (%d shadowed) "
+                "outside their split's square and shaded from a later cascade; worst relative error %.2e\n",
+                lagging, served.cascades.size(), lit, shadowed, fellThrough, fellThroughShadowed, worst);
+    EXPECT_GT(lit, 500);
+    EXPECT_GT(shadowed, 30);
+    EXPECT_GT(fellThrough, 200) << "the lagging squares still held most pixels: the fallback was not exercised";
+    EXPECT_GT(fellThroughShadowed, 10) << "no shadowed pixel was served by a later cascade";
+    EXPECT_LT(worst, 2e-3);
+
+    // The camera stays: at one quarter a frame, each lagging square is done in 4 frames.
+    for (size_t i = 0; i < 4 * lagging; ++i) r.render(settings);
+    EXPECT_EQ(r.shadowCacheStats().completed, lagging);
+    r.render(settings);
+    const ImageF converged = r.readHdr();
+    RenderSettings unbudgeted = settings;
+    unbudgeted.shadows.redrawBudget = 0;
+    Renderer fresh(s);
+    fresh.render(unbudgeted);
+    const ImageF reference = fresh.readHdr();
+    ASSERT_EQ(converged.rgba.size(), reference.rgba.size());
+    size_t differing = 0;
+    for (size_t i = 0; i < converged.rgba.size(); ++i) differing += converged.rgba[i] != reference.rgba[i] ? 1 : 0;
+    EXPECT_EQ(differing, 0u) << "the converged image differs from the unbudgeted one in " << differing << " values";
+}
