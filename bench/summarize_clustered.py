@@ -4,15 +4,16 @@
    tiles), each with measured/floor (the floor: the bytes the pass must move once, over the measured
    bandwidth), and clustered/tiled;
 2. the whole frame and the opaque geometry + lighting passes for deferred tiled, deferred clustered
-   (16 px) and forward+ (deferred: gbuffer, global_lights, ibl, local_lights, emission; forward+:
-   depth_prepass, forward_opaque), and forward+ / deferred clustered (frame);
+   (16 px) and forward+ (deferred: gbuffer or gbuffer_visibility + gbuffer_resolve, global_lights, ibl,
+   local_lights, emission; forward+: depth_prepass, forward_opaque), and forward+ / deferred
+   clustered (frame);
 then issue #18's targets: clustered (16 px, the default) <= tiled in every cell, and >= 2x faster
 than tiled where tiles span near and far (the depth-discontinuity and fence scenes)."""
 import json
 import re
 import sys
 
-DEFERRED = ("gbuffer", "global_lights", "ibl", "local_lights", "emission")
+DEFERRED = ("gbuffer", "gbuffer_visibility", "gbuffer_resolve", "global_lights", "ibl", "local_lights", "emission")
 FORWARD = ("depth_prepass", "forward_opaque")
 LOCAL = ("tiled", "clustered 16", "clustered 32")
 SPANNING = ("depth-discontinuity", "fence")  # scenes whose tiles span near and far

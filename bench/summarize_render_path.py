@@ -1,14 +1,15 @@
 #!/usr/bin/env python3
 """bench/render_path.sh's table: per scene and size, at each light count, the median GPU ms of the
 whole frame and of the opaque geometry + lighting passes for deferred (tiled and clustered local
-lights) and forward+, and forward+ / deferred clustered. Geometry + lighting: deferred's gbuffer,
+lights) and forward+, and forward+ / deferred clustered. Geometry + lighting: deferred's gbuffer
+(or gbuffer_visibility + gbuffer_resolve),
 global_lights, ibl, local_lights, emission; forward+'s depth_prepass and forward_opaque (each
 variant's shadow maps, AO, sky and post effects are the same passes in both)."""
 import json
 import re
 import sys
 
-DEFERRED = ("gbuffer", "global_lights", "ibl", "local_lights", "emission")
+DEFERRED = ("gbuffer", "gbuffer_visibility", "gbuffer_resolve", "global_lights", "ibl", "local_lights", "emission")
 FORWARD = ("depth_prepass", "forward_opaque")
 
 
