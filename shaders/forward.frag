@@ -7,6 +7,7 @@
 // light passes call, so both paths shade a surface alike. Transparent fragments write premultiplied
 // radiance and coverage for "over" blending (ONE, ONE_MINUS_SRC_ALPHA).
 #define LP_SUN_SHADOW_UNIT 10
+#define LP_SUN_SHADOW_CONSTANT_SLOTS  // common/sun_light.glsl: no gather through a dynamic sampler index
 #include "common/material_uniforms.glsl"
 #include "common/sun_light.glsl"
 #include "common/ibl_shading.glsl"

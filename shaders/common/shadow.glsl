@@ -23,15 +23,37 @@ vec2 shadowReceiverGradient(vec3 nLight, float texelOverRange) {
 // Texel compare results: lit, occluded, or no caster at all in that texel (cleared to 1.0).
 const float LP_SHADOW_NO_CASTER = -1.0;
 
-// 1 where texel t (clamped into the tile) does not occlude the receiver, 0 where it does,
-// LP_SHADOW_NO_CASTER where it holds no caster (casters cover every texel they touch:
+// 1 where a texel tc (inside the tile) holding depth `stored` does not occlude the receiver, 0
+// where it does, LP_SHADOW_NO_CASTER where it holds no caster (casters cover every texel they touch:
 // shadow_depth.geom).
-float shadowTexelCompare(sampler2D map, ivec2 t, ivec2 tileMin, ivec2 tileMax, vec2 pos, float z, vec2 grad, float bias) {
-    ivec2 tc = clamp(t, tileMin, tileMax);
-    float stored = texelFetch(map, tc, 0).r;
+float shadowCompareStored(float stored, ivec2 tc, vec2 pos, float z, vec2 grad, float bias) {
     if (stored >= 1.0) return LP_SHADOW_NO_CASTER;
     float expected = z + dot(grad, vec2(tc) + 0.5 - pos) - bias;
     return expected <= stored ? 1.0 : 0.0;
+}
+
+// The same for texel t, clamped into the tile, read from the atlas.
+float shadowTexelCompare(sampler2D map, ivec2 t, ivec2 tileMin, ivec2 tileMax, vec2 pos, float z, vec2 grad, float bias) {
+    ivec2 tc = clamp(t, tileMin, tileMax);
+    return shadowCompareStored(texelFetch(map, tc, 0).r, tc, pos, z, grad, bias);
+}
+
+// The depths of texels t, t + (1, 0), t + (0, 1) and t + (1, 1), each clamped into the tile, in that
+// order, from one textureGather: a quarter of the fetch instructions of four texelFetch, which matters
+// most where texture fetches are scarce (fragment shaders on compute GPUs: bench/forward_terms.sh).
+// The gather reads the 2x2 block at b, t clamped so that the block lies in the tile; every clamped
+// texel of t's block is one of b's (it is sampled at the block's shared corner, exactly between texel
+// centres, so the footprint is b whatever the rounding; gather reads the base level, whatever the
+// filter). One path for every texel, the tile's edges included: no branch around the gather.
+vec4 shadowDepths2x2(sampler2D map, vec2 atlasSize, ivec2 t, ivec2 tileMin, ivec2 tileMax) {
+    ivec2 b = clamp(t, tileMin, max(tileMax - 1, tileMin));
+    vec4 g = textureGather(map, vec2(b + 1) / atlasSize, 0);  // (i0 j1, i1 j1, i1 j0, i0 j0)
+    vec2 row0 = vec2(g.w, g.z), row1 = vec2(g.x, g.y);       // rows b.y and b.y + 1
+    ivec2 o0 = clamp(t, tileMin, tileMax) - b;                // 0 or 1 on each axis
+    ivec2 o1 = clamp(t + 1, tileMin, tileMax) - b;
+    vec2 lo = o0.y == 0 ? row0 : row1;  // the row of t.y
+    vec2 hi = o1.y == 0 ? row0 : row1;  // the row of t.y + 1
+    return vec4(o0.x == 0 ? lo.x : lo.y, o1.x == 0 ? lo.x : lo.y, o0.x == 0 ? hi.x : hi.y, o1.x == 0 ? hi.x : hi.y);
 }
 
 // 1 where texel t does not occlude the receiver, else 0. Cleared texels (no caster) never occlude,
@@ -94,29 +116,66 @@ void shadowTap(int filterMode, int k, vec2 pos, mat2 rotation, out ivec2 texel, 
     weight = wx * wy / (n * n);
 }
 
-// Fraction of light reaching the receiver (0 shadowed .. 1 lit) with the chosen filter. One loop
-// with one texel fetch for every filter: small code (llvmpipe compiles it quickly) and no unrolling.
+// Sum over a 2x2 block of texels t .. t + (1, 1) (depths d from shadowDepths2x2, in its order) of
+// weight w times the compare, a texel with no caster taking the receiver's own answer.
+float shadowBlockSum(vec4 d, vec4 w, ivec2 t, ivec2 tileMin, ivec2 tileMax, vec2 pos, float z, vec2 grad,
+                     float bias, float own) {
+    vec4 c = vec4(shadowCompareStored(d.x, clamp(t, tileMin, tileMax), pos, z, grad, bias),
+                  shadowCompareStored(d.y, clamp(t + ivec2(1, 0), tileMin, tileMax), pos, z, grad, bias),
+                  shadowCompareStored(d.z, clamp(t + ivec2(0, 1), tileMin, tileMax), pos, z, grad, bias),
+                  shadowCompareStored(d.w, clamp(t + ivec2(1, 1), tileMin, tileMax), pos, z, grad, bias));
+    c = mix(c, vec4(own), equal(c, vec4(LP_SHADOW_NO_CASTER)));
+    return dot(w, c);
+}
+
+// Weight of texel column (or row) i of a (2r+2)-wide PCF block, -r <= i <= r + 1, at fraction f.
+float shadowPcfWeight(int i, int r, float f) {
+    return i == -r ? 1.0 - f : (i == r + 1 ? f : 1.0);
+}
+
+// Fraction of light reaching the receiver (0 shadowed .. 1 lit) with the chosen filter: the texel
+// compares of shadowTap (the same texels and weights), read four at a time (shadowDepths2x2).
 float shadowFilter(sampler2D map, int filterMode, vec2 pos, ivec2 tileMin, ivec2 tileMax, float z, vec2 grad,
                    float bias, vec2 pixel) {
-    float angle = 6.28318531 * interleavedGradientNoise(pixel);
-    float c = cos(angle), s = sin(angle);
-    mat2 rotation = mat2(c, s, -s, c);
     // A tap on a texel with no caster lies past the silhouette of everything the light sees; the
     // receiver is itself a caster, so such a tap only reaches past an edge where the receiver meets
     // another caster (a concave corner) or ends. It says nothing about the light there: it takes the
     // answer of the receiver's own texel, so a crease in shadow stays in shadow under any kernel.
     float own = shadowTexelLit(map, ivec2(floor(pos)), tileMin, tileMax, pos, z, grad, bias);
     if (filterMode == LP_SHADOW_FILTER_OFF) return own;
+    vec2 atlasSize = vec2(textureSize(map, 0));
     float sum = 0.0;
-    int n = shadowTapCount(filterMode);
-    for (int k = 0; k < n; ++k) {
-        ivec2 texel;
-        float weight;
-        shadowTap(filterMode, k, pos, rotation, texel, weight);
-        float r = shadowTexelCompare(map, texel, tileMin, tileMax, pos, z, grad, bias);
-        sum += weight * (r == LP_SHADOW_NO_CASTER ? own : r);
+    if (filterMode == LP_SHADOW_FILTER_POISSON) {
+        float angle = 6.28318531 * interleavedGradientNoise(pixel);
+        float c = cos(angle), s = sin(angle);
+        mat2 rotation = mat2(c, s, -s, c);
+        for (int k = 0; k < 16; ++k) {  // 16 bilinear compares: a 2x2 block each
+            vec2 p = pos - 0.5 + rotation * LP_POISSON_DISC16[k] * LP_SHADOW_POISSON_RADIUS;
+            ivec2 t = ivec2(floor(p));
+            vec2 f = p - floor(p);
+            vec4 w = vec4((1.0 - f.x) * (1.0 - f.y), f.x * (1.0 - f.y), (1.0 - f.x) * f.y, f.x * f.y);
+            sum += shadowBlockSum(shadowDepths2x2(map, atlasSize, t, tileMin, tileMax), w, t, tileMin, tileMax, pos,
+                                  z, grad, bias, own);
+        }
+        return sum / 16.0;
     }
-    return sum;
+    // 3x3 and 5x5: (2r+1)^2 bilinear compares at unit offsets, as (2r+2)^2 texels with separable
+    // weights (1 - f, 1, ..., 1, f), read as (r+1)^2 blocks of 2x2.
+    int r = filterMode == LP_SHADOW_FILTER_PCF5 ? 2 : 1;
+    vec2 p = pos - 0.5;
+    ivec2 corner = ivec2(floor(p));
+    vec2 f = p - floor(p);
+    for (int j = -r; j <= r; j += 2) {
+        vec2 wy = vec2(shadowPcfWeight(j, r, f.y), shadowPcfWeight(j + 1, r, f.y));
+        for (int i = -r; i <= r; i += 2) {
+            vec2 wx = vec2(shadowPcfWeight(i, r, f.x), shadowPcfWeight(i + 1, r, f.x));
+            ivec2 t = corner + ivec2(i, j);
+            sum += shadowBlockSum(shadowDepths2x2(map, atlasSize, t, tileMin, tileMax), vec4(wx * wy.x, wx * wy.y), t,
+                                  tileMin, tileMax, pos, z, grad, bias, own);
+        }
+    }
+    float n = float(2 * r + 1);
+    return sum / (n * n);
 }
 
 #endif

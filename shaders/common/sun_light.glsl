@@ -54,8 +54,20 @@ float shadowVisibility(int slot, vec3 P, vec3 N, float nl, vec2 pixel) {
         ivec2 tileMax = tileMin + ivec2(uShadowTileSize - 1);
         vec2 pos = vec2(tileMin) + uv * float(uShadowTileSize);
         vec2 grad = shadowReceiverGradient(uShadowEyeToLight[slot] * N, info.z);
-        return shadowFilter(uShadowMap[slot], uShadowFilter, pos, tileMin, tileMax, z, grad,
-                            uShadowDepthBias * info.z, pixel);
+        float bias = uShadowDepthBias * info.z;
+#ifdef LP_SUN_SHADOW_CONSTANT_SLOTS
+        // A constant index for each atlas: Mesa's llvmpipe (LLVM 15) crashes compiling a fragment
+        // shader that gathers (shadowDepths2x2) through a dynamically indexed sampler array.
+        // Compute shaders keep the one call (a quarter of the code to compile).
+        switch (slot) {
+        case 0: return shadowFilter(uShadowMap[0], uShadowFilter, pos, tileMin, tileMax, z, grad, bias, pixel);
+        case 1: return shadowFilter(uShadowMap[1], uShadowFilter, pos, tileMin, tileMax, z, grad, bias, pixel);
+        case 2: return shadowFilter(uShadowMap[2], uShadowFilter, pos, tileMin, tileMax, z, grad, bias, pixel);
+        default: return shadowFilter(uShadowMap[3], uShadowFilter, pos, tileMin, tileMax, z, grad, bias, pixel);
+        }
+#else
+        return shadowFilter(uShadowMap[slot], uShadowFilter, pos, tileMin, tileMax, z, grad, bias, pixel);
+#endif
     }
     return 1.0;  // outside every cascade: nothing there casts
 }

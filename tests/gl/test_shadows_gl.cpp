@@ -2,9 +2,12 @@
 // maps checked against the geometry (analytic shadow edges, no acne, no NaN/Inf).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -819,4 +822,119 @@ TEST(ShadowRedrawBudget, LaggingCascadesMissesShadeFromTheNextCascadeAndConverge
     size_t differing = 0;
     for (size_t i = 0; i < converged.rgba.size(); ++i) differing += converged.rgba[i] != reference.rgba[i] ? 1 : 0;
     EXPECT_EQ(differing, 0u) << "the converged image differs from the unbudgeted one in " << differing << " values";
+}
+
+namespace {
+// shaders/common/shadow.glsl's shadowFilter in double precision: every texel compare with its texel
+// clamped into the tile, weights and the no-caster rule as documented there. The per-pixel Poisson
+// rotation's noise is computed in float, as the shader does (pixel coordinates below 8 keep it
+// within a few float ulps of the shader's).
+double cpuShadowFilter(const std::vector<float>& atlas, int width, int mode, glm::dvec2 pos, glm::ivec2 tileMin,
+                       glm::ivec2 tileMax, double z, glm::dvec2 grad, double bias, glm::vec2 pixel) {
+    const double kNoCaster = -1.0;
+    auto compare = [&](glm::ivec2 t) {
+        const glm::ivec2 tc = glm::clamp(t, tileMin, tileMax);
+        const double stored = atlas[size_t(tc.y) * size_t(width) + size_t(tc.x)];
+        if (stored >= 1.0) return kNoCaster;
+        const double expected = z + glm::dot(grad, glm::dvec2(tc) + 0.5 - pos) - bias;
+        return expected <= stored ? 1.0 : 0.0;
+    };
+    const double ownCompare = compare(glm::ivec2(glm::floor(pos)));
+    const double own = ownCompare == kNoCaster ? 1.0 : ownCompare;
+    if (mode == int(ShadowSettings::Filter::Off)) return own;
+    double sum = 0.0;
+    if (mode == int(ShadowSettings::Filter::Poisson)) {
+        static const double disc[16][2] = {
+            {-0.94201624, -0.39906216}, {0.94558609, -0.76890725}, {-0.094184101, -0.92938870},
+            {0.34495938, 0.29387760},   {-0.91588581, 0.45771432}, {-0.81544232, -0.87912464},
+            {-0.38277543, 0.27676845},  {0.97484398, 0.75648379},  {0.44323325, -0.97511554},
+            {0.53742981, -0.47373420},  {-0.26496911, -0.41893023}, {0.79197514, 0.19090188},
+            {-0.24188840, 0.99706507},  {-0.81409955, 0.91437590}, {0.19984126, 0.78641367},
+            {0.14383161, -0.14100790}};
+        const float inner = pixel.x * 0.06711056f + pixel.y * 0.00583715f;
+        const float noise = 52.9829189f * (inner - std::floor(inner));
+        const double angle = 6.28318531 * double(noise - std::floor(noise));
+        const double c = std::cos(angle), s = std::sin(angle);
+        for (const auto& d : disc) {
+            const glm::dvec2 p = pos - 0.5 + glm::dvec2(c * d[0] - s * d[1], s * d[0] + c * d[1]) * 2.0;
+            const glm::ivec2 t(glm::floor(p));
+            const glm::dvec2 f = p - glm::floor(p);
+            for (int q = 0; q < 4; ++q) {
+                const glm::ivec2 o(q & 1, q >> 1);
+                const double w = (o.x ? f.x : 1.0 - f.x) * (o.y ? f.y : 1.0 - f.y);
+                const double r = compare(t + o);
+                sum += w * (r == kNoCaster ? own : r);
+            }
+        }
+        return sum / 16.0;
+    }
+    const int r = mode == int(ShadowSettings::Filter::Pcf5x5) ? 2 : 1;
+    const glm::dvec2 p = pos - 0.5;
+    const glm::dvec2 f = p - glm::floor(p);
+    for (int j = -r; j <= r + 1; ++j)
+        for (int i = -r; i <= r + 1; ++i) {
+            const double wx = i == -r ? 1.0 - f.x : (i == r + 1 ? f.x : 1.0);
+            const double wy = j == -r ? 1.0 - f.y : (j == r + 1 ? f.y : 1.0);
+            const double c = compare(glm::ivec2(glm::floor(p)) + glm::ivec2(i, j));
+            sum += wx * wy * (c == kNoCaster ? own : c);
+        }
+    const double n = 2.0 * r + 1.0;
+    return sum / (n * n);
+}
+}  // namespace
+
+// The shadow filter (read four texels at a time with textureGather inside the tile, one by one at its
+// edge) against the double-precision reference above, for every filter: receivers all over a tile of
+// an atlas of random depths (a fifth of its texels with no caster), the tile's edges and corners
+// included, sloped receivers. Depths sit on a 1/64 grid and receivers between its steps, so no
+// compare lies within float rounding of its threshold.
+TEST(ShadowFilter, GatheredTapsMatchTheCpuReferenceForEveryFilter) {
+    const int width = 64, height = 48;
+    const glm::ivec2 tileMin(16, 8), tileMax(47, 39);  // a 32x32 tile away from the atlas's edges
+    std::vector<float> atlas(size_t(width) * height);
+    uint32_t state = 12345u;
+    auto next = [&state] {
+        state = state * 1664525u + 1013904223u;
+        return double(state >> 8) / double(1u << 24);
+    };
+    for (float& d : atlas) d = next() < 0.2 ? 1.0f : float(std::floor(next() * 60.0) / 64.0 + 1.0 / 128.0);
+    gl::Texture map = gl::makeTexture2D(GL_DEPTH_COMPONENT32F, width, height, 1, "test.shadowAtlas");
+    glTextureSubImage2D(map.id(), 0, 0, 0, width, height, GL_DEPTH_COMPONENT, GL_FLOAT, atlas.data());
+    glBindTextureUnit(9, map.id());
+
+    std::vector<glm::vec4> inputs;
+    for (int k = 0; k < 1500; ++k) {
+        // Positions over the tile and a texel past it (taps clamp at its edge), a third of them
+        // within 3 texels of an edge or a corner.
+        glm::dvec2 pos(tileMin.x + next() * 32.0, tileMin.y + next() * 32.0);
+        if (k % 3 == 0) pos.x = next() < 0.5 ? tileMin.x + next() * 3.0 : tileMax.x + 1.0 - next() * 3.0;
+        if (k % 6 == 0) pos.y = next() < 0.5 ? tileMin.y + next() * 3.0 : tileMax.y + 1.0 - next() * 3.0;
+        const double z = std::floor(next() * 62.0) / 64.0;  // a step below the depths around it
+        inputs.emplace_back(float(pos.x), float(pos.y), float(z), float(k));
+    }
+    const std::string globals = "layout(binding = 9) uniform sampler2D uMap;\n";
+    for (int mode = 0; mode < 4; ++mode) {
+        // grad up to 1/1024 per texel: 5 texels of reach move the receiver 0.005, under the depths'
+        // 1/128 spacing from it; bias 0.001.
+        const std::string body = "vec2 grad = vec2(sin(x.w * 1.7), cos(x.w * 2.3)) / 1024.0;\n"
+                                 "return vec4(shadowFilter(uMap, " + std::to_string(mode) +
+                                 ", x.xy, ivec2(16, 8), ivec2(47, 39), x.z, grad, 0.001, vec2(mod(x.w, 7.0), mod(x.w, 5.0))));";
+        const auto out = runGlsl({"common/shadow.glsl"}, body, inputs, globals);
+        double worst = 0.0;
+        int partial = 0;
+        for (size_t i = 0; i < inputs.size(); ++i) {
+            const glm::vec4 x = inputs[i];
+            const glm::dvec2 grad(std::sin(double(x.w) * 1.7), std::cos(double(x.w) * 2.3));
+            const double ref = cpuShadowFilter(atlas, width, mode, glm::dvec2(x.x, x.y), tileMin, tileMax, x.z,
+                                               grad / 1024.0, 0.001, glm::vec2(std::fmod(x.w, 7.0f), std::fmod(x.w, 5.0f)));
+            worst = std::max(worst, std::abs(double(out[i].x) - ref));
+            partial += ref > 0.01 && ref < 0.99;
+        }
+        const auto name = ShadowSettings::filterName(ShadowSettings::Filter(mode));
+        // Poisson's taps turn with the per-pixel noise, whose float rounding (a fused multiply-add or
+        // not) moves them by ~1e-5 texels: its bound allows that, not a wrong texel or weight (~0.05).
+        EXPECT_LT(worst, mode == int(ShadowSettings::Filter::Poisson) ? 5e-4 : 2e-5) << "filter " << name;
+        if (mode != 0) EXPECT_GT(partial, 300) << "filter " << name << ": too few receivers in penumbra";
+    }
+    glBindTextureUnit(9, 0);
 }
