@@ -26,16 +26,11 @@ import sys
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from tile_depth_spans import SLICES, TILE, scene_depths  # noqa: E402
+from tile_depth_spans import SLICES, TILE, camera_basis, scene_depths  # noqa: E402
 
 
 def view_matrix(cam):
-    pos = np.array(cam["position"], float)
-    fwd = np.array(cam["target"], float) - pos
-    fwd /= np.linalg.norm(fwd)
-    right = np.cross(fwd, [0.0, 1.0, 0.0])
-    right /= np.linalg.norm(right)
-    up = np.cross(right, fwd)
+    pos, right, up, fwd = camera_basis(cam)
     R = np.stack([right, up, -fwd])
     return R, -R @ pos
 

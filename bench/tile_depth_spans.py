@@ -22,13 +22,19 @@ SLICES = 24  # LocalLightSettings::clusterSlices' default
 TILE = 16
 
 
-def camera_rays(cam, width, height):
+def camera_basis(cam):
+    """The camera's position and unit right, up and forward vectors (y up, as the renderer's look-at)."""
     pos = np.array(cam["position"], float)
     fwd = np.array(cam["target"], float) - pos
     fwd /= np.linalg.norm(fwd)
     right = np.cross(fwd, [0.0, 1.0, 0.0])
     right /= np.linalg.norm(right)
     up = np.cross(right, fwd)
+    return pos, right, up, fwd
+
+
+def camera_rays(cam, width, height):
+    pos, right, up, fwd = camera_basis(cam)
     t = math.tan(math.radians(cam.get("fov", 60.0)) / 2.0)
     x = ((np.arange(width) + 0.5) / width * 2.0 - 1.0) * t * width / height
     y = (1.0 - (np.arange(height) + 0.5) / height * 2.0) * t
