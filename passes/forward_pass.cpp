@@ -46,11 +46,14 @@ void bindForwardLighting(ForwardPass& state, LocalLightPass& localLights, const 
                          const ForwardLighting& lighting, const ForwardLightingReads& reads,
                          const fg::PassResources& res, const std::vector<std::string>& defines) {
     const bool spotShadows = lighting.localLights && lighting.spotShadows.any();
-    if (!state.program || state.spotShadowVariant != spotShadows) {
+    const int filter = int(frame.settings->shadows.filter);
+    if (!state.program || state.spotShadowVariant != spotShadows || state.shadowFilter != filter) {
         std::vector<std::string> d = defines;
         if (spotShadows) d.push_back("LP_SPOT_SHADOWS");
+        d.push_back(sunShadowFilterDefine(frame));
         state.program = frame.shaders->graphics("gbuffer.vert", "forward.frag", d);
         state.spotShadowVariant = spotShadows;
+        state.shadowFilter = filter;
     }
     const GLuint prog = state.program.id();
     setSunUniforms(prog, frame, lighting.shadowMaps);

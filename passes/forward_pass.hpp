@@ -22,6 +22,7 @@ namespace lp {
 struct ForwardPass {
     gl::Program program;
     bool spotShadowVariant = false;  // `program` compiled with LP_SPOT_SHADOWS
+    int shadowFilter = -1;           // and for this sun shadow filter (sunShadowFilterDefine)
     gl::Framebuffer fbo;
 };
 

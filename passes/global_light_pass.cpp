@@ -59,6 +59,10 @@ void setShadowUniforms(GLuint prog, const FrameData& frame, const ShadowMaps& ma
 }
 }  // namespace
 
+std::string sunShadowFilterDefine(const FrameData& frame) {
+    return "LP_SHADOW_FILTER_MODE " + std::to_string(int(frame.settings->shadows.filter));
+}
+
 int setSunUniforms(GLuint prog, const FrameData& frame, const ShadowMaps& shadowMaps) {
     const auto& lights = frame.scene->directionalLights;
     if (int(lights.size()) > kMaxLights)
@@ -96,7 +100,11 @@ fg::ResourceId addGlobalLightPass(fg::FrameGraph& graph, GlobalLightPass& state,
             data.hdr = b.create("hdr", {frame.width, frame.height, GL_RGBA16F}, fg::Usage::ImageStore);
         },
         [&state, frame, lightingOnly, shadowMaps](const Data& data, const fg::PassResources& res) {
-            programForLayout(state.program, state.layout, frame, [&](const std::vector<std::string>& defines) {
+            const int filter = int(frame.settings->shadows.filter);
+            if (state.shadowFilter != filter) state.program = {};  // rebuilt below for this filter
+            state.shadowFilter = filter;
+            programForLayout(state.program, state.layout, frame, [&](std::vector<std::string> defines) {
+                defines.push_back(sunShadowFilterDefine(frame));
                 return frame.shaders->compute("global_light.comp", defines);
             });
             const GLuint prog = state.program.id();

@@ -519,6 +519,41 @@ TEST(ShadowRender, SpecularMaskingReachesTheSunInBothRenderPaths) {
     }
 }
 
+// The sun shadows' programs are compiled for one filter (sunShadowFilterDefine): one renderer switching
+// --pcf frame to frame renders each filter exactly as a fresh renderer does, in both render paths, and
+// the filters differ (the occluder's penumbra), so a program kept for the wrong filter would show.
+TEST(ShadowRender, SwitchingTheFilterOnOneRendererMatchesAFreshRenderer) {
+    const Scene s = shadowScene(glm::normalize(glm::vec3(-0.3f, -1.0f, -0.2f)), true);
+    const int w = 64, h = 48;
+    for (RenderPath path : {RenderPath::Deferred, RenderPath::ForwardPlus}) {
+        SCOPED_TRACE(renderPathName(path));
+        Renderer renderer(s);
+        ImageF offImage;
+        for (auto f : {ShadowSettings::Filter::Off, ShadowSettings::Filter::Pcf3x3, ShadowSettings::Filter::Poisson,
+                       ShadowSettings::Filter::Pcf5x5, ShadowSettings::Filter::Off}) {
+            RenderSettings settings;
+            settings.renderPath = path;
+            settings.shadows.size = 256;
+            settings.shadows.filter = f;
+            const ImageF fresh = renderHdr(s, settings, w, h);
+            settings.width = w;
+            settings.height = h;
+            settings.keepHdr = true;
+            renderer.render(settings);
+            const ImageF kept = renderer.readHdr();
+            ASSERT_EQ(kept.rgba.size(), fresh.rgba.size());
+            EXPECT_TRUE(kept.rgba == fresh.rgba) << "filter " << ShadowSettings::filterName(f);
+            if (f == ShadowSettings::Filter::Off) {
+                offImage = kept;
+            } else {
+                size_t differ = 0;
+                for (size_t i = 0; i < kept.rgba.size(); ++i) differ += kept.rgba[i] != offImage.rgba[i];
+                EXPECT_GT(differ, 20u) << "filter " << ShadowSettings::filterName(f) << " renders like off";
+            }
+        }
+    }
+}
+
 // No NaN/Inf anywhere in the HDR buffer: the bundled Cornell scene (sun with shadows) under both BRDFs
 // and every filter, and a 10,000 km plane (huge bounds) with shadows.
 TEST(ShadowRender, HdrIsFiniteForEveryFilterAndBrdf) {
