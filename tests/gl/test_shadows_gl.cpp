@@ -302,6 +302,15 @@ double squareDistance(glm::dvec3 q) {
     return glm::length(outside) + std::min(std::max(d.x, d.y), 0.0);
 }
 
+// The point p of the ground (y = 0, within 9.5 m of the centre) that pixel (x, y) sees; false where
+// the occluder hides it or the pixel misses the ground.
+bool visibleGroundPoint(const Scene& s, int w, int h, int x, int y, glm::dvec3& p) {
+    const Ray ray = pixelRay(s, w, h, x, y);
+    glm::dvec3 o;
+    if (hitY(ray, 1.0, o) && squareDistance(o) <= 0.0) return false;  // sees the occluder
+    return hitY(ray, 0.0, p) && std::abs(p.x) <= 9.5 && std::abs(p.z) <= 9.5;
+}
+
 glm::dvec3 lambertRadiance(const Scene& s, double nl) {
     const auto& mat = s.models[0].mesh.materials[0];
     const glm::dvec3 kd = glm::round(glm::dvec3(mat.diffuse) * 255.0) / 255.0;  // RGBA8 G-buffer
@@ -342,10 +351,8 @@ void checkShadowEdge(glm::vec3 lightDir, ShadowSettings::Filter filter) {
     double worst = 0.0;
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
-            Ray ray = pixelRay(s, w, h, x, y);
-            glm::dvec3 p, o;
-            if (hitY(ray, 1.0, o) && squareDistance(o) <= 0.0) continue;  // sees the occluder
-            if (!hitY(ray, 0.0, p) || std::abs(p.x) > 9.5 || std::abs(p.z) > 9.5) continue;
+            glm::dvec3 p;
+            if (!visibleGroundPoint(s, w, h, x, y, p)) continue;
             const glm::dvec3 q = p + toLight * (1.0 / toLight.y);  // up the light ray to y = 1
             const double depth = -(glm::dmat4(frame.view) * glm::dvec4(p, 1.0)).z;
             size_t c = 0;
@@ -801,10 +808,8 @@ TEST(ShadowRedrawBudget, LaggingCascadesMissesShadeFromTheNextCascadeAndConverge
     double worst = 0.0;
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
-            Ray ray = pixelRay(s, w, h, x, y);
-            glm::dvec3 p, o;
-            if (hitY(ray, 1.0, o) && squareDistance(o) <= 0.0) continue;  // sees the occluder
-            if (!hitY(ray, 0.0, p) || std::abs(p.x) > 9.5 || std::abs(p.z) > 9.5) continue;
+            glm::dvec3 p;
+            if (!visibleGroundPoint(s, w, h, x, y, p)) continue;
             const double depth = -(glm::dmat4(frame.view) * glm::dvec4(p, 1.0)).z;
             size_t split = 0;
             while (split + 1 < served.cascades.size() && depth > served.cascades[split].splitFar) ++split;
