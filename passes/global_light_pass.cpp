@@ -53,7 +53,6 @@ void setShadowUniforms(GLuint prog, const FrameData& frame, const ShadowMaps& ma
     glProgramUniformMatrix3fv(prog, loc(prog, "uShadowEyeToLight"), kMaxShadowedLights, GL_FALSE, glm::value_ptr(eyeToLight[0]));
     glProgramUniform1i(prog, loc(prog, "uShadowColumns"), columns);
     glProgramUniform1i(prog, loc(prog, "uShadowTileSize"), tileSize);
-    glProgramUniform1i(prog, loc(prog, "uShadowFilter"), int(s.filter));
     glProgramUniform1f(prog, loc(prog, "uShadowDepthBias"), s.depthBias);
     glProgramUniform1f(prog, loc(prog, "uShadowNormalBias"), s.normalBias);
 }

@@ -29,14 +29,11 @@ uniform vec4 uShadowCascade[MAX_SHADOWED * MAX_CASCADES];   // split far (view d
 uniform mat3 uShadowEyeToLight[MAX_SHADOWED];
 uniform int uShadowColumns;
 uniform int uShadowTileSize;
-uniform int uShadowFilter;       // LP_SHADOW_FILTER_*
-// A program compiled for one filter (LP_SHADOW_FILTER_MODE: passes/global_light_pass's
-// sunShadowFilterDefine) carries that filter's code and registers alone: a filter chosen by the
-// uniform sizes every pixel's registers for the costliest one.
-#ifdef LP_SHADOW_FILTER_MODE
-#define LP_SUN_SHADOW_FILTER LP_SHADOW_FILTER_MODE
-#else
-#define LP_SUN_SHADOW_FILTER uShadowFilter
+// The filter (LP_SHADOW_FILTER_*) is compiled in: passes/global_light_pass's sunShadowFilterDefine.
+// A program carries that filter's code and registers alone; a filter chosen by a uniform sized every
+// pixel's registers for the costliest one.
+#ifndef LP_SHADOW_FILTER_MODE
+#error "common/sun_light.glsl needs LP_SHADOW_FILTER_MODE (passes/global_light_pass: sunShadowFilterDefine)"
 #endif
 uniform float uShadowDepthBias;  // shadow texels of depth
 uniform float uShadowNormalBias; // shadow texels along N, times (1 - N.L)
@@ -68,13 +65,13 @@ float shadowVisibility(int slot, vec3 P, vec3 N, float nl, vec2 pixel) {
         // shader that gathers (shadowDepths2x2) through a dynamically indexed sampler array.
         // Compute shaders keep the one call (a quarter of the code to compile).
         switch (slot) {
-        case 0: return shadowFilter(uShadowMap[0], LP_SUN_SHADOW_FILTER, pos, tileMin, tileMax, z, grad, bias, pixel);
-        case 1: return shadowFilter(uShadowMap[1], LP_SUN_SHADOW_FILTER, pos, tileMin, tileMax, z, grad, bias, pixel);
-        case 2: return shadowFilter(uShadowMap[2], LP_SUN_SHADOW_FILTER, pos, tileMin, tileMax, z, grad, bias, pixel);
-        default: return shadowFilter(uShadowMap[3], LP_SUN_SHADOW_FILTER, pos, tileMin, tileMax, z, grad, bias, pixel);
+        case 0: return shadowFilter(uShadowMap[0], LP_SHADOW_FILTER_MODE, pos, tileMin, tileMax, z, grad, bias, pixel);
+        case 1: return shadowFilter(uShadowMap[1], LP_SHADOW_FILTER_MODE, pos, tileMin, tileMax, z, grad, bias, pixel);
+        case 2: return shadowFilter(uShadowMap[2], LP_SHADOW_FILTER_MODE, pos, tileMin, tileMax, z, grad, bias, pixel);
+        default: return shadowFilter(uShadowMap[3], LP_SHADOW_FILTER_MODE, pos, tileMin, tileMax, z, grad, bias, pixel);
         }
 #else
-        return shadowFilter(uShadowMap[slot], LP_SUN_SHADOW_FILTER, pos, tileMin, tileMax, z, grad, bias, pixel);
+        return shadowFilter(uShadowMap[slot], LP_SHADOW_FILTER_MODE, pos, tileMin, tileMax, z, grad, bias, pixel);
 #endif
     }
     return 1.0;  // outside every cascade: nothing there casts
