@@ -81,6 +81,12 @@ struct Fnv1a {
         add(&v, sizeof v);
     }
 };
+
+// Atlas texel of cascade c's tile's first texel (column tile % columns, row tile / columns).
+glm::ivec2 tileOrigin(const ShadowFrustum& fr, size_t c) {
+    const int tile = fr.cascades[c].tile;
+    return glm::ivec2(tile % fr.columns, tile / fr.columns) * fr.tileSize;
+}
 }  // namespace
 
 uint64_t casterSignature(const FrameData& frame) {
@@ -282,8 +288,8 @@ void drawCascadesByCompute(ShadowMapPass& state, const FrameData& frame, const S
     const GLint locCount = glGetUniformLocation(prog, "uTriangleCount");
     for (size_t c = 0; c < fr.cascades.size(); ++c) {
         if (!redraw[c]) continue;  // kept from an earlier frame (--shadow-cache)
-        glProgramUniform2i(prog, glGetUniformLocation(prog, "uTileOrigin"), GLint(fr.cascades[c].tile % fr.columns) * fr.tileSize,
-                           GLint(fr.cascades[c].tile / fr.columns) * fr.tileSize);
+        const glm::ivec2 origin = tileOrigin(fr, c);
+        glProgramUniform2i(prog, glGetUniformLocation(prog, "uTileOrigin"), origin.x, origin.y);
         glProgramUniform1i(prog, glGetUniformLocation(prog, "uCascade"), GLint(c));
         for (const CasterDraw& draw : casters[c].draws) {
             if (draw.model < 0 || size_t(draw.model) >= frame.gpu->meshes.size()) continue;
@@ -315,10 +321,9 @@ void drawCascadesByCompute(ShadowMapPass& state, const FrameData& frame, const S
     glEnable(GL_SCISSOR_TEST);  // tiles kept from an earlier frame (--shadow-cache) stay untouched
     for (size_t c = 0; c < fr.cascades.size() && !all; ++c) {
         if (!redraw[c]) continue;
-        glViewport(GLint(fr.cascades[c].tile % fr.columns) * fr.tileSize, GLint(fr.cascades[c].tile / fr.columns) * fr.tileSize, fr.tileSize,
-                   fr.tileSize);
-        glScissor(GLint(fr.cascades[c].tile % fr.columns) * fr.tileSize, GLint(fr.cascades[c].tile / fr.columns) * fr.tileSize, fr.tileSize,
-                  fr.tileSize);
+        const glm::ivec2 origin = tileOrigin(fr, c);
+        glViewport(origin.x, origin.y, fr.tileSize, fr.tileSize);
+        glScissor(origin.x, origin.y, fr.tileSize, fr.tileSize);
         glDrawArrays(GL_TRIANGLES, 0, 3);
     }
     glDisable(GL_SCISSOR_TEST);
@@ -333,10 +338,9 @@ void drawCascadesByCompute(ShadowMapPass& state, const FrameData& frame, const S
     glEnable(GL_SCISSOR_TEST);
     for (size_t c = 0; c < fr.cascades.size(); ++c) {
         if (!redraw[c]) continue;
-        glViewport(GLint(fr.cascades[c].tile % fr.columns) * fr.tileSize, GLint(fr.cascades[c].tile / fr.columns) * fr.tileSize, fr.tileSize,
-                   fr.tileSize);
-        glScissor(GLint(fr.cascades[c].tile % fr.columns) * fr.tileSize, GLint(fr.cascades[c].tile / fr.columns) * fr.tileSize, fr.tileSize,
-                  fr.tileSize);
+        const glm::ivec2 origin = tileOrigin(fr, c);
+        glViewport(origin.x, origin.y, fr.tileSize, fr.tileSize);
+        glScissor(origin.x, origin.y, fr.tileSize, fr.tileSize);
         glDrawArraysIndirect(GL_TRIANGLES, reinterpret_cast<const void*>(c * sizeof(DrawArraysCommand)));
     }
     glDisable(GL_SCISSOR_TEST);
@@ -363,7 +367,8 @@ void scrollTiles(ShadowMapPass& state, const ShadowFrustum& fr, const std::vecto
     for (size_t c = 0; c < work.size(); ++c) {
         if (!work[c].scrolled) continue;
         const glm::ivec2 o = work[c].offset;
-        const GLint x = GLint(fr.cascades[c].tile % fr.columns) * fr.tileSize, y = GLint(fr.cascades[c].tile / fr.columns) * fr.tileSize;
+        const glm::ivec2 origin = tileOrigin(fr, c);
+        const GLint x = origin.x, y = origin.y;
         const TileRect k = shadowScrollKeptRect(o, fr.tileSize);
         auto copy = [&](int dx0, int dy0, int w, int h) {  // the kept texels [dx0, +w) x [dy0, +h), from their old place
             glCopyImageSubData(depthTexture, GL_TEXTURE_2D, 0, x + dx0 - o.x, y + dy0 - o.y, 0, depthTexture, GL_TEXTURE_2D, 0,
@@ -454,8 +459,8 @@ void drawAtlas(ShadowMapPass& state, const FrameData& frame, const ShadowFrustum
             gl::ScopedEnable scissor(GL_SCISSOR_TEST, true);
             for (size_t c = 0; c < fr.cascades.size(); ++c)
                 for (const ShadowTileRegion& region : work[c].regions) {
-                    glScissor(GLint(fr.cascades[c].tile % fr.columns) * fr.tileSize + region.rect.x,
-                              GLint(fr.cascades[c].tile / fr.columns) * fr.tileSize + region.rect.y, region.rect.width, region.rect.height);
+                    const glm::ivec2 origin = tileOrigin(fr, c);
+                    glScissor(origin.x + region.rect.x, origin.y + region.rect.y, region.rect.width, region.rect.height);
                     glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &one);
                 }
         }
@@ -488,8 +493,8 @@ void drawAtlas(ShadowMapPass& state, const FrameData& frame, const ShadowFrustum
         gl::ScopedEnable scissor(GL_SCISSOR_TEST, true);
         for (size_t c = 0; c < fr.cascades.size(); ++c)
           for (const ShadowTileRegion& region : work[c].regions) {  // none: kept from an earlier frame (--shadow-cache)
-            const GLint x = GLint(fr.cascades[c].tile % fr.columns) * fr.tileSize;
-            const GLint y = GLint(fr.cascades[c].tile / fr.columns) * fr.tileSize;
+            const glm::ivec2 origin = tileOrigin(fr, c);
+            const GLint x = origin.x, y = origin.y;
             // The whole tile's viewport (a strip rasterises exactly as the whole tile would), the region's scissor.
             glViewport(x, y, fr.tileSize, fr.tileSize);
             glScissor(x + region.rect.x, y + region.rect.y, region.rect.width, region.rect.height);
@@ -941,7 +946,8 @@ ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const
                 }
                 for (size_t c = 0; c < work.size(); ++c)
                     if (a && work[c].fromSpare) {
-                        const GLint x = (fr.cascades[c].tile % fr.columns) * fr.tileSize, y = (fr.cascades[c].tile / fr.columns) * fr.tileSize;
+                        const glm::ivec2 origin = tileOrigin(fr, c);
+                        const GLint x = origin.x, y = origin.y;
                         glCopyImageSubData(s->spareAtlas.id(), GL_TEXTURE_2D, 0, x, y, 0, texture, GL_TEXTURE_2D, 0, x, y, 0,
                                            fr.tileSize, fr.tileSize, 1);
                     }
