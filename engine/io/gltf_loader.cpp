@@ -18,6 +18,7 @@
 #include "engine/core/error.hpp"
 #include "engine/core/log.hpp"
 #include "engine/io/file_check.hpp"
+#include "engine/io/gltf_schema.hpp"
 #include "engine/scene/mesh_ops.hpp"
 
 namespace lp {
@@ -43,6 +44,18 @@ constexpr size_t kMaxElements = size_t(1) << 28;  // accessor count limit: 268M 
 constexpr size_t kMaxNodeDepth = 1024;                        // levels of the node hierarchy
 constexpr size_t kMaxDrawnPrimitives = size_t(1) << 20;       // primitive instances the nodes draw
 constexpr size_t kMaxDrawnVertices = size_t(1) << 26;         // their vertices and indices, instances counted
+
+// The JSON text of a .gltf file, or of a GLB's first chunk (empty when the GLB header does not
+// hold one: tinygltf then names what is wrong).
+std::string gltfJsonText(const std::string& bytes, bool binary) {
+    if (!binary) return bytes;
+    if (bytes.size() < 20) return {};
+    uint32_t length = 0, type = 0;
+    std::memcpy(&length, bytes.data() + 12, 4);
+    std::memcpy(&type, bytes.data() + 16, 4);
+    if (type != 0x4E4F534Au || length > bytes.size() - 20) return {};  // "JSON"
+    return bytes.substr(20, length);
+}
 
 // tinygltf reads external buffers and images through these: the same regular-file check as every
 // other input (a FIFO named as a buffer would block the read forever).
@@ -361,6 +374,27 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
     const bool binary = bytes.size() >= 4 && bytes.compare(0, 4, "glTF") == 0;
     if (bytes.size() > 0xFFFFFFFFull) throw Error(file + ": over 4 GiB");
     if (!binary) requireUtf8Text(path, bytes);
+    if (binary && bytes.size() >= 8) {
+        uint32_t container = 0;
+        std::memcpy(&container, bytes.data() + 4, 4);
+        if (container != 2) throw Error(file + ": GLB container version " + std::to_string(container) + ": lightpass reads glTF 2.0 (GLB version 2)");
+    }
+    // The schema first: tinygltf skips a property of the wrong type silently, and names the element
+    // of the ones it refuses only by the property. A document that does not parse is tinygltf's to name.
+    std::vector<GltfSchemaIssue> schemaIssues;
+    {
+        const nlohmann::json root = nlohmann::json::parse(gltfJsonText(bytes, binary), nullptr, false);
+        if (!root.is_discarded()) schemaIssues = checkGltfSchema(root);
+        for (const GltfSchemaIssue& issue : schemaIssues)
+            if (issue.error) throw Error(file + ": " + issue.where + ": " + issue.what);
+        // Before tinygltf, which fails on what such an extension changes (a Draco mesh's accessors
+        // have no bufferView) with a message that does not name the extension.
+        if (root.is_object() && root.contains("extensionsRequired"))
+            for (const auto& e : root["extensionsRequired"])
+                if (!kSupportedExtensions.count(e.get<std::string>()))
+                    throw Error(file + ": extensionsRequired: " + e.get<std::string>() +
+                                " is not supported (supported: KHR_lights_punctual, KHR_materials_emissive_strength)");
+    }
     const bool ok = binary ? gltf.LoadBinaryFromMemory(&model, &err, &warnText, reinterpret_cast<const unsigned char*>(bytes.data()),
                                                       unsigned(bytes.size()), baseDir)
                            : gltf.LoadASCIIFromString(&model, &err, &warnText, bytes.data(), unsigned(bytes.size()), baseDir);
@@ -387,13 +421,12 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
         throw Error(file + ": " + (err.empty() ? std::string("could not be parsed as glTF") : firstLine(err)));
     }
     Loader L{model, file, report};
+    for (const GltfSchemaIssue& issue : schemaIssues) L.warn(issue.where, issue.what);
     if (!warnText.empty()) {
         const std::string msg = file + ": " + firstLine(warnText);
         report.warnings.push_back(msg);
         logWarn(msg);
     }
-    for (const auto& e : model.extensionsRequired)
-        if (!kSupportedExtensions.count(e)) L.fail("extensionsRequired", e + " is not supported (supported: KHR_lights_punctual, KHR_materials_emissive_strength)");
 
     GltfContent out;
     MeshData& mesh = out.mesh;

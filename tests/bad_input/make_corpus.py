@@ -352,6 +352,25 @@ case(9, "gltf_blend_drawn_blended", render_model("blend.gltf"), "ok", r"wrote ",
      forbid=r"warning|error|MASK")
 write("truncated.glb", b"glTF\x02\x00\x00\x00\xff\x00\x00\x00")
 case(9, "glb_truncated", render_model("truncated.glb"), "error", r"truncated.glb: ")
+# Properties of the wrong JSON type or outside their enumeration (tinygltf skipped them silently: the
+# mesh, the emission or the blending were lost without a word); factors outside [0, 1]: clamped, warned.
+gltf("wrong_type_mesh.gltf", nodes=[{"mesh": "0"}])
+case(9, "gltf_wrong_type_index", render_model("wrong_type_mesh.gltf"), "error",
+     r'wrong_type_mesh.gltf: nodes\[0\]\.mesh: expected an index \(an integer >= 0\), got a string \("0"\)')
+gltf("wrong_type_factor.gltf", primitive={"attributes": {"POSITION": 0}, "indices": 1, "material": 0},
+     materials=[{"emissiveFactor": ["1", 0, 0]}])
+case(9, "gltf_wrong_type_factor", render_model("wrong_type_factor.gltf"), "error",
+     r'wrong_type_factor.gltf: materials\[0\]\.emissiveFactor\[0\]: expected a number, got a string \("1"\)')
+gltf("wrong_enum.gltf", primitive={"attributes": {"POSITION": 0}, "indices": 1, "material": 0}, materials=[{"alphaMode": "blend"}])
+case(9, "gltf_wrong_enum", render_model("wrong_enum.gltf"), "error",
+     r'wrong_enum.gltf: materials\[0\]\.alphaMode: expected one of OPAQUE, MASK, BLEND, got a string \("blend"\)')
+gltf("gltf1.gltf", asset={"version": "1.0"}, scene="defaultScene")
+case(9, "gltf_version_1", render_model("gltf1.gltf"), "error", r'gltf1.gltf: asset\.version: "1\.0" is not a glTF 2 version')
+gltf("factor_out_of_range.gltf", primitive={"attributes": {"POSITION": 0}, "indices": 1, "material": 0},
+     materials=[{"pbrMetallicRoughness": {"roughnessFactor": 5}}])
+case(9, "gltf_factor_clamped", render_model("factor_out_of_range.gltf"), "fallback",
+     r"factor_out_of_range.gltf: materials\[0\]\.pbrMetallicRoughness\.roughnessFactor: 5 is outside \[0, 1\]; clamped",
+     outputs=["{O}/out.png"])
 gltf("scene_gltf_target.gltf")
 scene("scene_bad_gltf.json", models=[{"gltf": "accessor_past_end.gltf"}])
 case(9, "scene_gltf_error_names_both", render_scene("scene_bad_gltf.json"), "error",
@@ -364,7 +383,8 @@ case(10, "gltf_node_reached_twice", render_model("node_twice.gltf"), "error",
      r"{C}/node_twice.gltf: nodes\[2\]: is reached twice \(from nodes\[1\]\.children\)", absent=["{O}/out.png"])
 gltf("material_minus_2.gltf", primitive={"attributes": {"POSITION": 0}, "indices": 1, "material": -2})
 case(10, "gltf_material_below_minus_one", render_model("material_minus_2.gltf"), "error",
-     r"{C}/material_minus_2.gltf: materials: material -2 does not exist", absent=["{O}/out.png"])
+     r"{C}/material_minus_2.gltf: meshes\[0\]\.primitives\[0\]\.material: expected an index \(an integer >= 0\), got -2",
+     absent=["{O}/out.png"])
 gltf("image_view_past_buffer.gltf", views=[{"buffer": 0, "byteOffset": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 6},
                                            {"buffer": 0, "byteOffset": 30, "byteLength": 782}],
      primitive={"attributes": {"POSITION": 0}, "indices": 1, "material": 0},

@@ -7,9 +7,11 @@
 #include <fstream>
 
 #include <glm/gtc/matrix_transform.hpp>
+#include <nlohmann/json.hpp>
 
 #include "engine/core/error.hpp"
 #include "engine/io/gltf_loader.hpp"
+#include "engine/io/gltf_schema.hpp"
 #include "engine/io/obj_loader.hpp"
 #include "engine/scene/scene_loader.hpp"
 
@@ -300,14 +302,18 @@ static void expectOneLineError(const fs::path& p, const std::string& fragment) {
     EXPECT_EQ(err.find('\n'), std::string::npos) << err;
 }
 
-// "material": -2 indexed the material table at -1 (a heap read before the array).
+// "material": -2 indexed the material table at -1 (a heap read before the array). The schema
+// refuses every negative index; one past the table is the loader's to name.
 TEST(GltfMalformed, MaterialIndexBelowMinusOne) {
     TempDir t;
-    for (const char* m : {"-2", "-1000000"})
+    for (const char* m : {"-1", "-2", "-1000000"})
         expectOneLineError(t.write(std::string("material") + m + ".gltf",
                                    triangleGltf("[" + kPositions + "]", kViews, 42, "",
                                                 std::string(R"("attributes": {"POSITION": 0}, "material": )") + m)),
-                           std::string("materials: material ") + m + " does not exist");
+                           std::string("meshes[0].primitives[0].material: expected an index (an integer >= 0), got ") + m);
+    expectOneLineError(t.write("material1.gltf", triangleGltf("[" + kPositions + "]", kViews, 42, "",
+                                                              R"("attributes": {"POSITION": 0}, "material": 1)")),
+                       "materials: material 1 does not exist (0 materials)");
 }
 
 // Node structures that cost exponential time, the whole stack or gigabytes: refused up front.
@@ -411,6 +417,148 @@ TEST(GltfMalformed, ImageBufferViewPastItsBuffer) {
                                                                           image, R"("attributes": {"POSITION": 0}, "material": 0)")));
     ASSERT_TRUE(ok.mesh.materials.at(0).diffuseMap.encoded);
     EXPECT_EQ(ok.mesh.materials[0].diffuseMap.encoded->size(), 6u);
+}
+
+// A property of the wrong JSON type, length or enumeration: tinygltf skipped these silently (the
+// file then loaded as if the property were absent: no mesh, no emission, a default alpha mode).
+// Each is one error line naming the element, from .gltf and from .glb alike.
+namespace {
+
+// The triangle document with a material, a texture, a sampler, a camera node and a light, all valid.
+nlohmann::json schemaBase() {
+    nlohmann::json d = nlohmann::json::parse(triangleGltf(
+        "[" + kPositions + "]", kViews, 42,
+        R"("materials": [{"pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 1], "roughnessFactor": 0.5,
+                          "baseColorTexture": {"index": 0}}, "emissiveFactor": [0, 0, 0], "alphaMode": "OPAQUE"}],
+            "textures": [{"source": 0, "sampler": 0}], "samplers": [{"wrapS": 10497}], "images": [{"uri": "missing.png"}],
+            "cameras": [{"type": "perspective", "perspective": {"yfov": 0.8, "znear": 0.1}}],
+            "extensionsUsed": ["KHR_lights_punctual"],
+            "extensions": {"KHR_lights_punctual": {"lights": [{"type": "point", "color": [1, 1, 1], "intensity": 5}]}},)",
+        R"("attributes": {"POSITION": 0}, "material": 0)"));
+    d["nodes"][0]["camera"] = 0;
+    d["nodes"][0]["extensions"]["KHR_lights_punctual"]["light"] = 0;
+    return d;
+}
+
+// A GLB of `doc` with no BIN chunk (the buffer stays a data: URI).
+std::string glbOf(const nlohmann::json& doc, uint32_t container = 2) {
+    std::string json = doc.dump();
+    json.append((4 - json.size() % 4) % 4, ' ');
+    auto u32 = [](uint32_t v) { return std::string(reinterpret_cast<const char*>(&v), 4); };
+    return "glTF" + u32(container) + u32(uint32_t(20 + json.size())) + u32(uint32_t(json.size())) + "JSON" + json;
+}
+
+}  // namespace
+
+TEST(GltfSchema, WrongTypesLengthsAndEnumerationsAreErrorsNamingTheElement) {
+    TempDir t;
+    const nlohmann::json base = schemaBase();
+    MeshLoadReport clean;
+    ASSERT_NO_THROW(loadGltf(t.write("base.gltf", base.dump()), &clean));
+    for (const auto& w : clean.warnings) EXPECT_EQ(w.find("clamped"), std::string::npos) << w;
+    EXPECT_TRUE(checkGltfSchema(base).empty());
+    struct Case {
+        const char* pointer;  // JSON pointer of the property to set
+        nlohmann::json value;
+        const char* error;    // "where: what"
+    };
+    const Case cases[] = {
+        {"/materials/0/emissiveFactor/0", "VEC3", R"(materials[0].emissiveFactor[0]: expected a number, got a string ("VEC3"))"},
+        {"/materials/0/emissiveFactor", 5, "materials[0].emissiveFactor: expected an array of 3 numbers, got 5"},
+        {"/materials/0/pbrMetallicRoughness/roughnessFactor", "0.5", "materials[0].pbrMetallicRoughness.roughnessFactor: expected a number"},
+        {"/materials/0/alphaMode", "FOO", R"(materials[0].alphaMode: expected one of OPAQUE, MASK, BLEND, got a string ("FOO"))"},
+        {"/materials/0/doubleSided", "", "materials[0].doubleSided: expected true or false"},
+        {"/materials/0/pbrMetallicRoughness/baseColorTexture/index", 0.5,
+         "materials[0].pbrMetallicRoughness.baseColorTexture.index: expected an index (an integer >= 0), got 0.5"},
+        {"/materials/0/pbrMetallicRoughness", nlohmann::json::array(), "materials[0].pbrMetallicRoughness: expected an object, got an array"},
+        {"/nodes/0/mesh", 0.5, "nodes[0].mesh: expected an index (an integer >= 0), got 0.5"},
+        {"/nodes/0/mesh", "0", "nodes[0].mesh: expected an index"},
+        {"/nodes/0/mesh", 4294967296.0, "nodes[0].mesh: expected an index (an integer >= 0)"},
+        {"/nodes/0/mesh", 2147483648u, "nodes[0].mesh: expected an index below 2^31"},
+        {"/nodes/0/translation", {0, 1}, "nodes[0].translation: expected an array of 3 numbers, got an array of 2"},
+        {"/nodes/0/children", nlohmann::json::object(), "nodes[0].children: expected an array of indices, got an object"},
+        {"/meshes/0/primitives/0/attributes", {0}, "meshes[0].primitives[0].attributes: expected an object, got an array"},
+        {"/meshes/0/primitives/0/attributes/POSITION", "0", "meshes[0].primitives[0].attributes.POSITION: expected an index"},
+        {"/meshes/0/primitives/0/mode", 9, "meshes[0].primitives[0].mode: expected one of 0, 1, 2, 3, 4, 5, 6, got 9"},
+        {"/meshes/0/primitives", nlohmann::json::array(), "meshes[0].primitives: expected at least 1 element(s), got none"},
+        {"/accessors/0/normalized", "x", "accessors[0].normalized: expected true or false"},
+        {"/accessors/0/count", 0, "accessors[0].count: expected an integer >= 1, got 0"},
+        {"/accessors/0/componentType", 5124, "accessors[0].componentType: expected one of 5120, 5121, 5122, 5123, 5125, 5126, got 5124"},
+        {"/accessors/0/min", {0, 0}, "accessors[0].min: expected an array of 3 numbers, got an array of 2"},
+        {"/bufferViews/0/byteOffset", "0", "bufferViews[0].byteOffset: expected an integer >= 0"},
+        {"/bufferViews/0/byteStride", 2, "bufferViews[0].byteStride: expected an integer from 4 to 252, got 2"},
+        {"/buffers/0/byteLength", -42, "buffers[0].byteLength: expected an integer >= 1, got -42"},
+        {"/samplers/0/wrapS", 1, "samplers[0].wrapS: expected one of 33071, 33648, 10497, got 1"},
+        {"/textures/0/source", -1, "textures[0].source: expected an index (an integer >= 0), got -1"},
+        {"/cameras/0/perspective/yfov", 0, "cameras[0].perspective.yfov: 0 must be > 0"},
+        {"/cameras/0/type", "fisheye", "cameras[0].type: expected one of perspective, orthographic"},
+        {"/extensions/KHR_lights_punctual/lights/0/intensity", -5, "extensions.KHR_lights_punctual.lights[0].intensity: -5 must be >= 0"},
+        {"/extensions/KHR_lights_punctual/lights/0/color/1", -0.5, "extensions.KHR_lights_punctual.lights[0].color[1]: -0.5 must be >= 0"},
+        {"/extensions/KHR_lights_punctual/lights/0/type", "area", "extensions.KHR_lights_punctual.lights[0].type: expected one of directional"},
+        {"/extensions/KHR_lights_punctual/lights/0/range", 0, "extensions.KHR_lights_punctual.lights[0].range: 0 must be > 0"},
+        {"/nodes/0/extensions/KHR_lights_punctual/light", "0", "nodes[0].extensions.KHR_lights_punctual.light: expected an index"},
+        {"/scene", "0", R"(scene: expected an index (an integer >= 0), got a string ("0"))"},
+        {"/scenes/0/nodes/0", -1, "scenes[0].nodes[0]: expected an index (an integer >= 0), got -1"},
+        {"/asset/version", "1.0", R"(asset.version: "1.0" is not a glTF 2 version: lightpass reads glTF 2.0)"},
+        {"/extensionsUsed", "KHR_lights_punctual", "extensionsUsed: expected an array of strings"},
+    };
+    int n = 0;
+    for (const Case& c : cases) {
+        nlohmann::json d = base;
+        d[nlohmann::json::json_pointer(c.pointer)] = c.value;
+        const std::string name = "case" + std::to_string(n++);
+        expectOneLineError(t.write(name + ".gltf", d.dump()), c.error);
+        expectOneLineError(t.write(name + ".glb", glbOf(d)), c.error);
+    }
+    // Required properties.
+    for (const auto& [pointer, error] : std::vector<std::pair<std::string, std::string>>{
+             {"/accessors/0/componentType", "accessors[0].componentType: missing (the glTF schema requires it)"},
+             {"/meshes/0/primitives/0/attributes", "meshes[0].primitives[0].attributes: missing"},
+             {"/materials/0/pbrMetallicRoughness/baseColorTexture/index", "baseColorTexture.index: missing"},
+             {"/cameras/0/perspective/yfov", "cameras[0].perspective.yfov: missing"},
+             {"/bufferViews/0/buffer", "bufferViews[0].buffer: missing"}}) {
+        nlohmann::json d = base;
+        const nlohmann::json::json_pointer p(pointer);
+        d[p.parent_pointer()].erase(p.back());
+        expectOneLineError(t.write("missing" + std::to_string(n++) + ".gltf", d.dump()), error);
+    }
+    // A GLB of glTF 1.0, and a required extension named before tinygltf trips over what it changes.
+    expectOneLineError(t.write("v1.glb", glbOf(base, 1)), "GLB container version 1: lightpass reads glTF 2.0");
+    nlohmann::json draco = base;
+    draco["extensionsRequired"] = {"KHR_draco_mesh_compression"};
+    draco["accessors"][0].erase("bufferView");
+    draco["meshes"][0]["primitives"][0]["extensions"]["KHR_draco_mesh_compression"] = {{"bufferView", 0}, {"attributes", {{"POSITION", 0}}}};
+    expectOneLineError(t.write("draco.gltf", draco.dump()), "extensionsRequired: KHR_draco_mesh_compression is not supported");
+}
+
+// Factors outside the schema's [0, 1] (and a negative alphaCutoff) load clamped, each with a warning
+// naming it.
+TEST(GltfSchema, OutOfRangeFactorsAreClampedWithAWarning) {
+    TempDir t;
+    nlohmann::json d = schemaBase();
+    d["materials"][0]["pbrMetallicRoughness"]["roughnessFactor"] = 5;
+    d["materials"][0]["pbrMetallicRoughness"]["metallicFactor"] = -1;
+    d["materials"][0]["pbrMetallicRoughness"]["baseColorFactor"] = {2, 0.5, -0.25, 1};
+    d["materials"][0]["emissiveFactor"] = {0, 3, 0};
+    d["materials"][0]["alphaCutoff"] = -1;
+    MeshLoadReport report;
+    const GltfContent g = loadGltf(t.write("clamped.gltf", d.dump()), &report);
+    ASSERT_EQ(g.mesh.materials.size(), 1u);
+    const Material& m = g.mesh.materials[0];
+    EXPECT_EQ(m.roughness, 1.0f);
+    EXPECT_EQ(m.metallic, 0.0f);
+    EXPECT_EQ(m.diffuse, glm::vec3(1.0f, 0.5f, 0.0f));
+    EXPECT_EQ(m.emission, glm::vec3(0.0f, 1.0f, 0.0f));
+    EXPECT_EQ(m.alphaCutoff, 0.0f);
+    std::string all;
+    for (const auto& w : report.warnings) all += w + "\n";
+    for (const char* expected : {"materials[0].pbrMetallicRoughness.roughnessFactor: 5 is outside [0, 1]; clamped",
+                                 "materials[0].pbrMetallicRoughness.metallicFactor: -1 is outside [0, 1]; clamped",
+                                 "materials[0].pbrMetallicRoughness.baseColorFactor[0]: 2 is outside [0, 1]; clamped",
+                                 "materials[0].pbrMetallicRoughness.baseColorFactor[2]: -0.25 is outside [0, 1]; clamped",
+                                 "materials[0].emissiveFactor[1]: 3 is outside [0, 1]; clamped",
+                                 "materials[0].alphaCutoff: -1 is outside [0, inf); clamped"})
+        EXPECT_NE(all.find(expected), std::string::npos) << expected << "\nin:\n" << all;
 }
 
 // MTL: "norm" is a tangent-space normal map, "bump" a height map, Ke emission, d opacity.

@@ -1,0 +1,29 @@
+// The glTF 2.0 JSON schema's rules for the properties lightpass reads, checked on the document
+// before it is used: tinygltf silently skips a property of the wrong JSON type (an `emissiveFactor`
+// of strings, a `mesh` of 0.5, `attributes` given as an array), so without this such files loaded
+// as if the property were absent.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace lp {
+
+struct GltfSchemaIssue {
+    std::string where;  // the element as the file names it: materials[0].pbrMetallicRoughness.roughnessFactor
+    std::string what;
+    bool error = true;  // false: a value outside the schema's range that the loader clamps (a warning)
+};
+
+// Every issue of `root` (a glTF document's JSON), errors and warnings, in document order:
+// - errors: a property of the wrong JSON type, an array of the wrong length or element type, an index
+//   that is not an integer >= 0, a value not in its enumeration (componentType, type, mode, alphaMode,
+//   sampler filters and wraps, camera and light types), a required property missing, a count, length
+//   or camera extent the schema requires positive, a negative light intensity or colour;
+// - warnings: material factors outside [0, 1] and a negative alphaCutoff (the loader clamps them).
+// Properties lightpass does not read (animations, skins, other extensions, extras) are not checked.
+std::vector<GltfSchemaIssue> checkGltfSchema(const nlohmann::json& root);
+
+}  // namespace lp
