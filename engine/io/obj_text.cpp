@@ -1,5 +1,6 @@
 #include "engine/io/obj_text.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <climits>
 #include <cmath>
@@ -138,6 +139,57 @@ ObjTextScan scanObjText(const std::string& text, const std::string& file) {
     return scan;
 }
 
+namespace {
+
+// A colour or scalar statement the renderer reads, in its physical range: the statement rewritten
+// when it changes (empty when it stands as written). A colour of one value is grey (the MTL
+// specification's "g and b equal r"; tinyobjloader reads "Kd 0.5" as (0.5, 0, 0)); reflectances Kd
+// and Ks outside [0, 1], a negative emission Ke, an exponent Ns outside [0, 10000] and a dissolve d or
+// Tr outside [0, 1] are clamped with one warning "<file>:<line>: ..." (a reflectance above 1 would
+// give back more light than arrives).
+std::string rangedMtlStatement(const std::vector<std::string>& w, const std::string& file, size_t line,
+                               std::vector<std::string>& warnings) {
+    struct Range {
+        const char* key;
+        bool colour;
+        double lo, hi;
+    };
+    static const Range kRanges[] = {{"Kd", true, 0.0, 1.0},  {"Ks", true, 0.0, 1.0}, {"Ke", true, 0.0, HUGE_VAL},
+                                    {"Ka", true, -HUGE_VAL, HUGE_VAL}, {"Ns", false, 0.0, 10000.0}, {"d", false, 0.0, 1.0},
+                                    {"Tr", false, 0.0, 1.0}};
+    const Range* range = nullptr;
+    for (const Range& r : kRanges) range = w[0] == r.key ? &r : range;
+    if (!range || w.size() < 2) return {};
+    std::vector<double> v;
+    for (size_t i = 1; i < w.size() && i <= (range->colour ? 3u : 1u); ++i) {
+        double x = 0.0;
+        parseNumber(w[i], x);
+        v.push_back(x);
+    }
+    const bool grey = range->colour && v.size() == 1;
+    if (grey) v.assign(3, v[0]);
+    bool clamped = false;
+    for (double& x : v) {
+        const double c = std::clamp(x, range->lo, range->hi);
+        clamped = clamped || c != x;
+        x = c;
+    }
+    if (!grey && !clamped) return {};
+    std::ostringstream values;
+    values.precision(9);
+    for (size_t i = 0; i < v.size(); ++i) values << (i ? " " : "") << v[i];
+    if (clamped) {
+        std::string written = w[0];
+        for (size_t i = 1; i < w.size(); ++i) written += " " + w[i].substr(0, 24);  // numbers: parsed above
+        const std::string bounds = range->hi == HUGE_VAL ? "below 0"
+                                                         : "outside [" + std::to_string(int(range->lo)) + ", " + std::to_string(int(range->hi)) + "]";
+        warnings.push_back(file + ":" + std::to_string(line) + ": " + written + ": " + bounds + "; clamped to " + values.str());
+    }
+    return w[0] + " " + values.str();
+}
+
+}  // namespace
+
 std::string sanitizeMtlText(const std::string& text, const std::string& file, std::vector<std::string>& warnings) {
     const Material defaults;
     auto triple = [](glm::vec3 c) {
@@ -177,6 +229,11 @@ std::string sanitizeMtlText(const std::string& text, const std::string& file, st
                 warnings.push_back(file + ":" + std::to_string(reader.number) + ": " + w[0] + ": " + bad + "; " +
                                    (it != fallback.end() ? "using the default " + it->second : "line ignored"));
                 if (it != fallback.end()) out += w[0] + " " + it->second + "\n";
+                continue;
+            }
+            const std::string ranged = rangedMtlStatement(w, file, reader.number, warnings);
+            if (!ranged.empty()) {
+                out += ranged + "\n";
                 continue;
             }
         }

@@ -156,6 +156,43 @@ TEST(ObjText, BadMtlNumbersFallBackToTheDefaultWithALineNumber) {
     EXPECT_EQ(out, "newmtl m\nKd 0.8 0.8 0.8\nNs 32.000000\nKs 0.5 0.5 0.5\n");
 }
 
+// Reflectances above 1 gave back more light than arrives; a negative one subtracted light; a single
+// value read as red. Each is clamped (or made grey) in place, with a warning naming file and line.
+TEST(ObjText, MtlValuesOutsideTheirPhysicalRangeAreClampedWithALineNumber) {
+    std::vector<std::string> warnings;
+    const std::string out = sanitizeMtlText(
+        "newmtl m\nKd 5 0.5 -1\nKs 0.25\nKe -3 2 100\nNs 20000\nd 1.5\nTr -0.5\nKd 0.2 0.3 0.4\nKa -1 2 3\n", "m.mtl", warnings);
+    ASSERT_EQ(warnings.size(), 5u);
+    EXPECT_EQ(warnings[0], "m.mtl:2: Kd 5 0.5 -1: outside [0, 1]; clamped to 1 0.5 0");
+    EXPECT_EQ(warnings[1], "m.mtl:4: Ke -3 2 100: below 0; clamped to 0 2 100");
+    EXPECT_EQ(warnings[2], "m.mtl:5: Ns 20000: outside [0, 10000]; clamped to 10000");
+    EXPECT_EQ(warnings[3], "m.mtl:6: d 1.5: outside [0, 1]; clamped to 1");
+    EXPECT_EQ(warnings[4], "m.mtl:7: Tr -0.5: outside [0, 1]; clamped to 0");
+    EXPECT_EQ(out, "newmtl m\nKd 1 0.5 0\nKs 0.25 0.25 0.25\nKe 0 2 100\nNs 10000\nd 1\nTr 0\nKd 0.2 0.3 0.4\nKa -1 2 3\n");
+}
+
+TEST_F(BadInput, MtlKdAboveOneAndGreyShorthandReachTheMaterial) {
+    write("m.mtl", "newmtl bright\nKd 3 3 3\nnewmtl grey\nKd 0.5\n");
+    const fs::path obj = write("a.obj", "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl bright\nf 1 2 3\nusemtl grey\nf 1 3 2\n");
+    MeshLoadReport report;
+    const MeshData mesh = loadObj(obj, &report);
+    int found = 0;
+    for (const Material& m : mesh.materials) {
+        if (m.name == "bright") {
+            EXPECT_EQ(m.diffuse, glm::vec3(1.0f));
+            ++found;
+        }
+        if (m.name == "grey") {
+            EXPECT_EQ(m.diffuse, glm::vec3(0.5f)) << "tinyobjloader alone reads 'Kd 0.5' as (0.5, 0, 0)";
+            ++found;
+        }
+    }
+    EXPECT_EQ(found, 2);
+    bool warned = false;
+    for (const auto& w : report.warnings) warned |= w.find("m.mtl:2: Kd 3 3 3: outside [0, 1]; clamped to 1 1 1") != std::string::npos;
+    EXPECT_TRUE(warned);
+}
+
 TEST_F(BadInput, ObjNanVertexDropsItsTriangleAndNanKdUsesTheDefault) {
     write("m.mtl", "newmtl red\nKd nan nan nan\n");
     const fs::path obj = write("a.obj", "mtllib m.mtl\nusemtl red\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv nan 7 7\nf 1 2 3\nf 1 2 4\n");

@@ -74,6 +74,17 @@ TEST(SceneLoader, ErrorsNameFileAndField) {
     EXPECT_NE(errorFor(R"({"effects": {"bloom": {"kernel": 500}}})").find("effects.bloom.kernel: must be in [1, 101]"), std::string::npos);
     EXPECT_NE(errorFor(R"({"models": [{"primitive": "cube", "material": {"shininess": 20000}}]})").find("[0, 10000]"),
               std::string::npos);
+    // Reflectances above 1 give back more light than arrives; only a flat (unlit) colour may be brighter.
+    EXPECT_NE(errorFor(R"({"models": [{"primitive": "cube", "material": {"diffuse": [1.5, 0.5, 0.5]}}]})")
+                  .find("test.json: models[0].material.diffuse: reflectance components must be <= 1"),
+              std::string::npos);
+    EXPECT_NE(errorFor(R"({"models": [{"primitive": "cube", "material": {"specular": [0.5, 0.5, 2]}}]})")
+                  .find("test.json: models[0].material.specular: reflectance components must be <= 1"),
+              std::string::npos);
+    EXPECT_NE(errorFor(R"({"models": [{"primitive": "cube", "material": {"flat": true, "specular": [0.5, 0.5, 2]}}]})")
+                  .find("models[0].material.specular: reflectance"),
+              std::string::npos);
+    EXPECT_EQ(errorFor(R"({"models": [{"primitive": "cube", "material": {"flat": true, "diffuse": [4, 2, 1]}}]})"), "");
 }
 
 // environment.ibl turns image-based lighting on from the scene file; it needs a map to light with.
