@@ -249,18 +249,38 @@ const BakedEnvironment& EnvironmentCache::get(const Scene& scene, const Environm
     const bool hasMap = !scene.environment.map.empty();
     const EnvironmentSettings s = effectiveSettings(requested, hasMap);
     const std::string key = cubeKey(scene, s);
+    DecodedMap map{scene, std::nullopt};
     auto it = environments_.find(key);
     if (it == environments_.end()) {
         if (environments_.size() >= 4) environments_.clear();  // bounded: maps are tens of MB each
         auto env = std::make_unique<BakedEnvironment>();
         env->hasMap = hasMap;
-        makeCube(*env, scene, s, shaders, key);
+        makeCube(*env, scene, s, shaders, key, map);
         it = environments_.emplace(key, std::move(env)).first;
     }
     BakedEnvironment& env = *it->second;
     const std::string bakeKey = bakeKeyOf(key, s);
-    if (bake && env.bakeKey != bakeKey) bakeIbl(env, scene, s, shaders, bakeKey);
+    if (bake && env.bakeKey != bakeKey) bakeIbl(env, scene, s, shaders, bakeKey, map);
     return env;
+}
+
+const ImageF& EnvironmentCache::DecodedMap::get() {
+    if (image) return *image;
+    if (scene.environment.map.empty()) return image.emplace(uniformImage(scene.environment.color));
+    image = loadHdrImage(scene.environment.map);
+    // Read as latitude-longitude whatever its shape: a cross, a mirror ball or a square map comes
+    // out stretched, which the user should hear about.
+    if (image->width != 2 * image->height)
+        logWarn(scene.environment.map.string() + ": " + std::to_string(image->width) + "x" + std::to_string(image->height) +
+                " is not 2:1; read as an equirectangular (latitude-longitude) map, stretched");
+    return *image;
+}
+
+ImageF EnvironmentCache::DecodedMap::take() {
+    get();
+    ImageF out = std::move(*image);
+    image.reset();
+    return out;
 }
 
 namespace {
@@ -326,7 +346,7 @@ void EnvironmentCache::equirectToCube(ImageF map, double rotationDegrees, const 
 }
 
 void EnvironmentCache::makeCube(BakedEnvironment& env, const Scene& scene, const EnvironmentSettings& s,
-                                const gl::ShaderLibrary& shaders, const std::string& key) {
+                                const gl::ShaderLibrary& shaders, const std::string& key, DecodedMap& map) {
     const int levels = environmentCubeLevels(s);
     env.cube = gl::makeTextureCube(GL_RGBA16F, s.cubeSize, levels, "ibl.environment");
     const bool useDisk = env.hasMap && !s.cacheDir.empty();
@@ -336,8 +356,7 @@ void EnvironmentCache::makeCube(BakedEnvironment& env, const Scene& scene, const
         return;
     }
     const auto t0 = std::chrono::steady_clock::now();
-    equirectToCube(env.hasMap ? loadHdrImage(scene.environment.map) : uniformImage(scene.environment.color),
-                   scene.environment.rotationDegrees, env.cube, scene.environment.map.string(), shaders);
+    equirectToCube(map.get(), scene.environment.rotationDegrees, env.cube, scene.environment.map.string(), shaders);
     if (env.hasMap) {
         glFinish();
         logInfo("ibl: " + scene.environment.map.string() + " -> cubemap " + std::to_string(s.cubeSize) + "^2 x 6 (" +
@@ -347,7 +366,7 @@ void EnvironmentCache::makeCube(BakedEnvironment& env, const Scene& scene, const
 }
 
 void EnvironmentCache::bakeIbl(BakedEnvironment& env, const Scene& scene, const EnvironmentSettings& s,
-                               const gl::ShaderLibrary& shaders, const std::string& key) {
+                               const gl::ShaderLibrary& shaders, const std::string& key, DecodedMap& decoded) {
     env.prefiltered = gl::makeTextureCube(GL_RGBA16F, s.specularSize, s.specularLevels, "ibl.prefiltered");
     env.irradiance = gl::makeTextureCube(GL_RGBA16F, s.irradianceSize, 1, "ibl.irradiance");
     const bool useDisk = env.hasMap && !s.cacheDir.empty();
@@ -367,7 +386,7 @@ void EnvironmentCache::bakeIbl(BakedEnvironment& env, const Scene& scene, const 
     };
 
     // Diffuse SH: on the CPU, in double, from the equirectangular map (not from the clamped cube).
-    ImageF map = env.hasMap ? loadHdrImage(scene.environment.map) : uniformImage(scene.environment.color);
+    ImageF map = decoded.take();
     // The small, very bright sources leave the map here: everything below is made from the residual.
     env.lights.clear();
     env.lightSummary.clear();

@@ -8,6 +8,7 @@
 #include <array>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -56,8 +57,16 @@ public:
     double lastBakeGpuMs() const { return lastBakeGpuMs_; }
 
 private:
+    // The scene's map (or its uniform colour as one), decoded at most once per get(): the cube and
+    // the bake both read it, and a large map takes seconds to decode.
+    struct DecodedMap {
+        const Scene& scene;
+        std::optional<ImageF> image;
+        const ImageF& get();
+        ImageF take();  // the last reader's own copy (the bake removes the extracted lights from it)
+    };
     void makeCube(BakedEnvironment& env, const Scene& scene, const EnvironmentSettings& s,
-                  const gl::ShaderLibrary& shaders, const std::string& key);
+                  const gl::ShaderLibrary& shaders, const std::string& key, DecodedMap& map);
     // Levels 1.. of `cube` from level 0, solid-angle weighted (shaders/ibl_cube_downsample.comp).
     void generateCubeMips(const gl::Texture& cube, const gl::ShaderLibrary& shaders);
     // `cube` level 0 from the equirectangular `map` (rotated about +Y), then its mips. `label` names
@@ -65,7 +74,7 @@ private:
     void equirectToCube(ImageF map, double rotationDegrees, const gl::Texture& cube, const std::string& label,
                         const gl::ShaderLibrary& shaders);
     void bakeIbl(BakedEnvironment& env, const Scene& scene, const EnvironmentSettings& s,
-                 const gl::ShaderLibrary& shaders, const std::string& key);
+                 const gl::ShaderLibrary& shaders, const std::string& key, DecodedMap& map);
 
     std::map<std::string, std::unique_ptr<BakedEnvironment>> environments_;
     gl::Texture dfg_;

@@ -76,8 +76,8 @@ def radiance(width, height):
     return header + bytes((128, 128, 128, 129)) * (width * height)
 
 
-def exr(data_window, display_window):
-    """An uncompressed scanline EXR with float R, G, B over data_window (x0, y0, x1, y1)."""
+def exr(data_window, display_window, value=0.5):
+    """An uncompressed scanline EXR with float R, G, B (all `value`) over data_window (x0, y0, x1, y1)."""
     def attr(name, kind, body):
         return name.encode() + b"\0" + kind.encode() + b"\0" + struct.pack("<i", len(body)) + body
     chlist = b"".join(c.encode() + b"\0" + struct.pack("<iB3xii", 2, 0, 1, 1) for c in "BGR") + b"\0"
@@ -88,7 +88,7 @@ def exr(data_window, display_window):
               attr("screenWindowCenter", "v2f", struct.pack("<2f", 0, 0)) + attr("screenWindowWidth", "float", struct.pack("<f", 1)) +
               b"\0")
     width, height = data_window[2] - data_window[0] + 1, data_window[3] - data_window[1] + 1
-    lines = [struct.pack("<ii", data_window[1] + y, 3 * 4 * width) + struct.pack(f"<{3 * width}f", *([0.5] * 3 * width))
+    lines = [struct.pack("<ii", data_window[1] + y, 3 * 4 * width) + struct.pack(f"<{3 * width}f", *([value] * 3 * width))
              for y in range(height)]
     offset, table = len(header) + 8 * height, b""
     for line in lines:
@@ -265,6 +265,19 @@ write("truncated.exr", open(os.path.join(C, "small.exr"), "rb").read()[:-20])
 scene("env_truncated_exr.json", environment={"map": "truncated.exr"})
 case(7, "exr_truncated", render_scene("env_truncated_exr.json", more=[*ENV_SMALL]), "error",
      r"{C}/truncated.exr: ", absent=["{O}/out.png"])
+
+# A map that is not 2:1 is read as latitude-longitude all the same (stretched), with a warning.
+write("square.hdr", radiance(8, 8))
+scene("env_square.json", environment={"map": "square.hdr"})
+case(7, "hdr_not_two_to_one", render_scene("env_square.json", more=[*ENV_SMALL, "--ibl"]), "fallback",
+     r"warning: {C}/square.hdr: 8x8 is not 2:1; read as an equirectangular \(latitude-longitude\) map, stretched",
+     outputs=["{O}/out.png"], max_warnings=1)
+# Negative texels: replaced with one warning, the map decoded once for the cube and the IBL bake.
+write("negative.exr", exr((0, 0, 7, 3), (0, 0, 7, 3), value=-0.25))
+scene("env_negative_exr.json", environment={"map": "negative.exr"})
+case(7, "exr_negative_texels_warned_once", render_scene("env_negative_exr.json", more=[*ENV_SMALL, "--ibl"]), "fallback",
+     r"warning: {C}/negative.exr: replaced 96 negative, 0 NaN and 0 \+Inf texel components", outputs=["{O}/out.png"],
+     max_warnings=1)
 
 # ---- 8. scene values that failed late or vanished ---------------------------------------------------
 write("overflow_number.json", '{"camera": {"position": [1e400, 0, 0]}}')
