@@ -422,6 +422,11 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
     }
     Loader L{model, file, report};
     for (const GltfSchemaIssue& issue : schemaIssues) L.warn(issue.where, issue.what);
+    // An extension the file uses but does not require is optional to read, yet the model looks
+    // different without it (a texture transform, clearcoat, transmission): say which are ignored.
+    for (size_t i = 0; i < model.extensionsUsed.size(); ++i)
+        if (!kSupportedExtensions.count(model.extensionsUsed[i]))
+            L.warn("extensionsUsed[" + std::to_string(i) + "]", model.extensionsUsed[i] + " is not supported; ignored (the model may look different)");
     if (!warnText.empty()) {
         const std::string msg = file + ": " + firstLine(warnText);
         report.warnings.push_back(msg);

@@ -531,6 +531,21 @@ TEST(GltfSchema, WrongTypesLengthsAndEnumerationsAreErrorsNamingTheElement) {
     expectOneLineError(t.write("draco.gltf", draco.dump()), "extensionsRequired: KHR_draco_mesh_compression is not supported");
 }
 
+// An optional extension lightpass does not read loads without it, with a warning naming it; the
+// supported ones load silently.
+TEST(GltfSchema, UnsupportedOptionalExtensionsAreNamedInAWarning) {
+    TempDir t;
+    nlohmann::json d = schemaBase();
+    d["extensionsUsed"] = {"KHR_lights_punctual", "KHR_texture_transform", "KHR_materials_clearcoat"};
+    MeshLoadReport report;
+    loadGltf(t.write("ext.gltf", d.dump()), &report);
+    std::string all;
+    for (const auto& w : report.warnings) all += w + "\n";
+    EXPECT_NE(all.find("extensionsUsed[1]: KHR_texture_transform is not supported; ignored (the model may look different)"), std::string::npos) << all;
+    EXPECT_NE(all.find("extensionsUsed[2]: KHR_materials_clearcoat is not supported"), std::string::npos) << all;
+    EXPECT_EQ(all.find("KHR_lights_punctual is not supported"), std::string::npos) << all;
+}
+
 // Factors outside the schema's [0, 1] (and a negative alphaCutoff) load clamped, each with a warning
 // naming it.
 TEST(GltfSchema, OutOfRangeFactorsAreClampedWithAWarning) {
