@@ -18,6 +18,7 @@
 #include <cstring>
 #include <cmath>
 #include <memory>
+#include <set>
 #include <sstream>
 #include <string>
 
@@ -192,8 +193,35 @@ ImageF loadExr(const fs::path& path) {
         Imf::InputFile file(path.c_str());
         const Imf::Header& header = file.header();
         const Imf::ChannelList& channels = header.channels();
-        if (!channels.findChannel("R") && !channels.findChannel("G") && !channels.findChannel("B"))
-            throw Error("no R, G or B channel");
+        // Which channels make R, G, B and A: the bare ones; else a luminance image's Y (grey); else
+        // the first layer holding R, G and B (a renderer's multi-layer file), named in a warning.
+        std::string names[4] = {"R", "G", "B", "A"};
+        if (!channels.findChannel("R") && !channels.findChannel("G") && !channels.findChannel("B")) {
+            if (channels.findChannel("RY") || channels.findChannel("BY"))
+                throw Error("a luminance-chroma (Y, RY, BY) image is not supported; write it as RGB");
+            if (channels.findChannel("Y")) {
+                names[0] = names[1] = names[2] = "Y";
+            } else {
+                std::set<std::string> layers;
+                channels.layers(layers);
+                // The rendered image's layer where one is named so (Blender's "Combined", "beauty"),
+                // else the first: data passes (albedo, normals) hold R, G, B too.
+                auto isBeauty = [](std::string l) {
+                    l = l.substr(l.rfind('.') == std::string::npos ? 0 : l.rfind('.') + 1);
+                    std::transform(l.begin(), l.end(), l.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+                    return l == "combined" || l == "beauty" || l == "rgba" || l == "rgb";
+                };
+                std::string chosen, all;
+                for (const std::string& l : layers) {
+                    if (!channels.findChannel(l + ".R") || !channels.findChannel(l + ".G") || !channels.findChannel(l + ".B")) continue;
+                    if (chosen.empty() || (isBeauty(l) && !isBeauty(chosen))) chosen = l;
+                    all += (all.empty() ? "" : ", ") + l;
+                }
+                if (chosen.empty()) throw Error("no R, G, B or Y channel, and no layer with R, G and B");
+                for (std::string& n : names) n = chosen + "." + n;
+                logWarn(path.string() + ": no R, G, B channels; read layer '" + chosen + "' (layers with R, G and B: " + all + ")");
+            }
+        }
         const Imath::Box2i data = header.dataWindow(), display = header.displayWindow();
         const auto [dataW, dataH] = windowSize(data);
         const auto [dispW, dispH] = windowSize(display);
@@ -207,11 +235,15 @@ ImageF loadExr(const fs::path& path) {
 
         std::vector<float> pixels(size_t(dataW) * dataH * 4);
         Imf::FrameBuffer fb;
+        const bool grey = names[0] == names[1];  // Y into R, copied to G and B after the read
         for (int c = 0; c < 4; ++c)  // absent channels are filled: RGB with 0, A with 1
-            fb.insert(kChannels[c], Imf::Slice::Make(Imf::FLOAT, pixels.data() + c, data, 4 * sizeof(float),
+            if (!grey || c == 0 || c == 3)
+                fb.insert(names[c], Imf::Slice::Make(Imf::FLOAT, pixels.data() + c, data, 4 * sizeof(float),
                                                      size_t(dataW) * 4 * sizeof(float), 1, 1, c == 3 ? 1.0 : 0.0));
         file.setFrameBuffer(fb);
         file.readPixels(data.min.y, data.max.y);
+        if (grey)
+            for (size_t i = 0; i < pixels.size(); i += 4) pixels[i + 1] = pixels[i + 2] = pixels[i];
 
         ImageF img{dispW, dispH, {}};
         if (data == display) {

@@ -76,11 +76,12 @@ def radiance(width, height):
     return header + bytes((128, 128, 128, 129)) * (width * height)
 
 
-def exr(data_window, display_window, value=0.5):
-    """An uncompressed scanline EXR with float R, G, B (all `value`) over data_window (x0, y0, x1, y1)."""
+def exr(data_window, display_window, value=0.5, channels=("R", "G", "B")):
+    """An uncompressed scanline EXR with float `channels` (all `value`) over data_window (x0, y0, x1, y1)."""
     def attr(name, kind, body):
         return name.encode() + b"\0" + kind.encode() + b"\0" + struct.pack("<i", len(body)) + body
-    chlist = b"".join(c.encode() + b"\0" + struct.pack("<iB3xii", 2, 0, 1, 1) for c in "BGR") + b"\0"
+    channels = sorted(channels)  # a chlist is in name order
+    chlist = b"".join(c.encode() + b"\0" + struct.pack("<iB3xii", 2, 0, 1, 1) for c in channels) + b"\0"
     header = (b"\x76\x2f\x31\x01" + struct.pack("<i", 2) + attr("channels", "chlist", chlist) +
               attr("compression", "compression", b"\0") + attr("dataWindow", "box2i", struct.pack("<4i", *data_window)) +
               attr("displayWindow", "box2i", struct.pack("<4i", *display_window)) + attr("lineOrder", "lineOrder", b"\0") +
@@ -88,7 +89,8 @@ def exr(data_window, display_window, value=0.5):
               attr("screenWindowCenter", "v2f", struct.pack("<2f", 0, 0)) + attr("screenWindowWidth", "float", struct.pack("<f", 1)) +
               b"\0")
     width, height = data_window[2] - data_window[0] + 1, data_window[3] - data_window[1] + 1
-    lines = [struct.pack("<ii", data_window[1] + y, 3 * 4 * width) + struct.pack(f"<{3 * width}f", *([value] * 3 * width))
+    n = len(channels)
+    lines = [struct.pack("<ii", data_window[1] + y, n * 4 * width) + struct.pack(f"<{n * width}f", *([value] * n * width))
              for y in range(height)]
     offset, table = len(header) + 8 * height, b""
     for line in lines:
@@ -278,6 +280,23 @@ scene("env_negative_exr.json", environment={"map": "negative.exr"})
 case(7, "exr_negative_texels_warned_once", render_scene("env_negative_exr.json", more=[*ENV_SMALL, "--ibl"]), "fallback",
      r"warning: {C}/negative.exr: replaced 96 negative, 0 NaN and 0 \+Inf texel components", outputs=["{O}/out.png"],
      max_warnings=1)
+
+# EXR channels: a luminance image (Y) is grey; a renderer's multi-layer file without bare R, G, B is
+# read from its first layer holding them, named in a warning; no colour at all is an error.
+write("luminance.exr", exr((0, 0, 7, 3), (0, 0, 7, 3), channels=("Y",)))
+scene("env_luminance_exr.json", environment={"map": "luminance.exr"})
+case(7, "exr_luminance_is_grey", render_scene("env_luminance_exr.json", more=[*ENV_SMALL]), "ok", r"wrote ",
+     outputs=["{O}/out.png"], forbid=r"warning|error")
+write("layers.exr", exr((0, 0, 7, 3), (0, 0, 7, 3), channels=("ViewLayer.Combined.R", "ViewLayer.Combined.G", "ViewLayer.Combined.B",
+                                                               "ViewLayer.Combined.A", "ViewLayer.Depth.Z")))
+scene("env_layers_exr.json", environment={"map": "layers.exr"})
+case(7, "exr_layer_named", render_scene("env_layers_exr.json", more=[*ENV_SMALL]), "fallback",
+     r"warning: {C}/layers.exr: no R, G, B channels; read layer 'ViewLayer.Combined' \(layers with R, G and B: ViewLayer.Combined\)",
+     outputs=["{O}/out.png"])
+write("depth_only.exr", exr((0, 0, 7, 3), (0, 0, 7, 3), channels=("Z",)))
+scene("env_depth_exr.json", environment={"map": "depth_only.exr"})
+case(7, "exr_no_colour", render_scene("env_depth_exr.json", more=[*ENV_SMALL]), "error",
+     r"{C}/depth_only.exr: no R, G, B or Y channel, and no layer with R, G and B", absent=["{O}/out.png"])
 
 # ---- 8. scene values that failed late or vanished ---------------------------------------------------
 write("overflow_number.json", '{"camera": {"position": [1e400, 0, 0]}}')

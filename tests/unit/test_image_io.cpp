@@ -65,21 +65,25 @@ ImageF solid(int w, int h, float v) {
     return img;
 }
 
-// Writes an EXR directly with OpenEXR, for layouts writeExr never produces.
-void writeRgbExr(const fs::path& p, const Imath::Box2i& display, const Imath::Box2i& data,
-                 const std::vector<float>& rgb) {
+// Writes an EXR directly with OpenEXR, for layouts writeExr never produces: `values` holds
+// names.size() floats a texel, in the order of `names`.
+void writeExrChannels(const fs::path& p, const Imath::Box2i& display, const Imath::Box2i& data,
+                      const std::vector<std::string>& names, const std::vector<float>& values) {
     Imf::Header header(display, data);
     const int w = data.max.x - data.min.x + 1;
+    const size_t n = names.size();
     Imf::FrameBuffer fb;
-    const char* names[3] = {"R", "G", "B"};
-    for (int c = 0; c < 3; ++c) {
+    for (size_t c = 0; c < n; ++c) {
         header.channels().insert(names[c], Imf::Channel(Imf::FLOAT));
-        fb.insert(names[c], Imf::Slice::Make(Imf::FLOAT, rgb.data() + c, data, 3 * sizeof(float),
-                                             size_t(w) * 3 * sizeof(float)));
+        fb.insert(names[c], Imf::Slice::Make(Imf::FLOAT, values.data() + c, data, n * sizeof(float), size_t(w) * n * sizeof(float)));
     }
     Imf::OutputFile file(p.c_str(), header);
     file.setFrameBuffer(fb);
     file.writePixels(data.max.y - data.min.y + 1);
+}
+
+void writeRgbExr(const fs::path& p, const Imath::Box2i& display, const Imath::Box2i& data, const std::vector<float>& rgb) {
+    writeExrChannels(p, display, data, {"R", "G", "B"}, rgb);
 }
 
 }  // namespace
@@ -229,6 +233,25 @@ TEST_F(ImageIo, ExrNanNegativeAndInfAreReplacedWithOneWarning) {
     ImageF allInf{1, 1, {inf, inf, 0.0f, 1.0f}};
     writeExr(p, allInf);
     EXPECT_EQ(loadHdrImage(p).rgba, (std::vector<float>{65504.0f, 65504.0f, 0.0f, 1.0f}));
+}
+
+// A luminance image is grey; a multi-layer file without bare R, G, B is read from its rendered
+// layer ("Combined", "beauty"), else the first with R, G, B (each value from its own channel, not a
+// neighbour's); no colour at all is an error.
+TEST_F(ImageIo, ExrLuminanceIsGreyAndLayersAreReadByName) {
+    const Imath::Box2i box({0, 0}, {1, 0});
+    const fs::path y = dir / "y.exr";
+    writeExrChannels(y, box, box, {"Y"}, {0.25f, 3.0f});
+    EXPECT_EQ(loadHdrImage(y).rgba, (std::vector<float>{0.25f, 0.25f, 0.25f, 1, 3, 3, 3, 1}));
+    const fs::path layered = dir / "layers.exr";
+    writeExrChannels(layered, box, box, {"Albedo.B", "Albedo.G", "Albedo.R", "Combined.A", "Combined.B", "Combined.G", "Combined.R", "Depth.Z"},
+                     {9, 9, 9, 0.5f, 3, 2, 1, 7, 9, 9, 9, 0.25f, 6, 5, 4, 7});
+    EXPECT_EQ(loadHdrImage(layered).rgba, (std::vector<float>{1, 2, 3, 0.5f, 4, 5, 6, 0.25f})) << "the rendered layer, not the albedo pass";
+    writeExrChannels(layered, box, box, {"Albedo.B", "Albedo.G", "Albedo.R", "Normal.B", "Normal.G", "Normal.R"}, {3, 2, 1, 9, 9, 9, 6, 5, 4, 9, 9, 9});
+    EXPECT_EQ(loadHdrImage(layered).rgba, (std::vector<float>{1, 2, 3, 1, 4, 5, 6, 1})) << "no rendered layer: the first";
+    const fs::path depth = dir / "depth.exr";
+    writeExrChannels(depth, box, box, {"Z"}, {1, 2});
+    EXPECT_EQ(errorOf([&] { loadHdrImage(depth); }), depth.string() + ": no R, G, B or Y channel, and no layer with R, G and B");
 }
 
 TEST_F(ImageIo, ExrDataWindowIsPlacedInDisplayWindowAndAlphaDefaultsToOne) {
