@@ -52,7 +52,21 @@ class Checker {
 public:
     std::vector<GltfSchemaIssue> issues;
 
-    void error(const std::string& where, const std::string& what) { issues.push_back({where, what, true}); }
+    // Inside leniently(): a property lightpass does not read; breaking its rule is a warning, not a
+    // reason to refuse a model other viewers show.
+    bool lenient = false;
+
+    void error(const std::string& where, const std::string& what) {
+        if (lenient) issues.push_back({where, what + "; ignored (lightpass does not read it)", false});
+        else issues.push_back({where, what, true});
+    }
+    template <typename F>
+    void leniently(F&& check) {
+        const bool was = lenient;
+        lenient = true;
+        check();
+        lenient = was;
+    }
     void warning(const std::string& where, const std::string& what) { issues.push_back({where, what, false}); }
 
     static std::string join(const std::string& at, const std::string& key) { return at.empty() ? key : at + "." + key; }
@@ -265,10 +279,12 @@ public:
         const auto type = a.find("type");
         for (const auto& [name, n] : kComponents)
             if (type != a.end() && type->is_string() && type->get<std::string>() == name) components = n;
-        for (const char* bound : {"max", "min"}) {
-            if (components) numbers(a, bound, w, components, components);
-            else numbers(a, bound, w, 1, 16);
-        }
+        leniently([&] {
+            for (const char* bound : {"max", "min"}) {
+                if (components) numbers(a, bound, w, components, components);
+                else numbers(a, bound, w, 1, 16);
+            }
+        });
         object(a, "sparse", w);  // refused by the loader, which names it
     }
 
@@ -348,7 +364,12 @@ public:
             index(v, "buffer", w, true);
             integer(v, "byteOffset", w, 0, INT64_MAX);
             integer(v, "byteLength", w, 1, INT64_MAX, true);
-            integer(v, "byteStride", w, 4, 252);
+            // 0 (glTF 1.0's "tightly packed", still written by some exporters) reads as packed.
+            const auto stride = v.find("byteStride");
+            if (stride != v.end() && stride->is_number_integer() && integerWithin(*stride, 0, 0))
+                warning(join(w, "byteStride"), "0 is outside 4..252; read as tightly packed");
+            else
+                integer(v, "byteStride", w, 4, 252);
             enumInteger(v, "target", w, {34962, 34963});
         });
         objects(root, "buffers", "", [&](const json& b, const std::string& w) {
@@ -369,11 +390,13 @@ public:
             index(i, "bufferView", w);
         });
         objects(root, "samplers", "", [&](const json& s, const std::string& w) {
-            string(s, "name", w);
-            enumInteger(s, "magFilter", w, {9728, 9729});
-            enumInteger(s, "minFilter", w, {9728, 9729, 9984, 9985, 9986, 9987});
-            enumInteger(s, "wrapS", w, {33071, 33648, 10497});
-            enumInteger(s, "wrapT", w, {33071, 33648, 10497});
+            leniently([&] {  // every texture is sampled trilinear and anisotropic, repeating
+                string(s, "name", w);
+                enumInteger(s, "magFilter", w, {9728, 9729});
+                enumInteger(s, "minFilter", w, {9728, 9729, 9984, 9985, 9986, 9987});
+                enumInteger(s, "wrapS", w, {33071, 33648, 10497});
+                enumInteger(s, "wrapT", w, {33071, 33648, 10497});
+            });
         });
         objects(root, "cameras", "", [&](const json& c, const std::string& w) { camera(c, w); });
         // Not read by lightpass; their elements must still be objects.

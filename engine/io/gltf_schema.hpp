@@ -22,8 +22,10 @@ struct GltfSchemaIssue {
 //   that is not an integer >= 0, a value not in its enumeration (componentType, type, mode, alphaMode,
 //   sampler filters and wraps, camera and light types), a required property missing, a count, length
 //   or camera extent the schema requires positive, a negative light intensity or colour;
-// - warnings: material factors outside [0, 1] and a negative alphaCutoff (the loader clamps them).
-// Properties lightpass does not read (animations, skins, other extensions, extras) are not checked.
+// - warnings: material factors outside [0, 1] and a negative alphaCutoff (the loader clamps them), a
+//   bufferView's byteStride of 0 (read as packed), and any rule broken by a property lightpass does
+//   not read (samplers, an accessor's min and max).
+// Animations, skins, other extensions and extras are not checked.
 std::vector<GltfSchemaIssue> checkGltfSchema(const nlohmann::json& root);
 
 }  // namespace lp

@@ -484,11 +484,9 @@ TEST(GltfSchema, WrongTypesLengthsAndEnumerationsAreErrorsNamingTheElement) {
         {"/accessors/0/normalized", "x", "accessors[0].normalized: expected true or false"},
         {"/accessors/0/count", 0, "accessors[0].count: expected an integer >= 1, got 0"},
         {"/accessors/0/componentType", 5124, "accessors[0].componentType: expected one of 5120, 5121, 5122, 5123, 5125, 5126, got 5124"},
-        {"/accessors/0/min", {0, 0}, "accessors[0].min: expected an array of 3 numbers, got an array of 2"},
         {"/bufferViews/0/byteOffset", "0", "bufferViews[0].byteOffset: expected an integer >= 0"},
         {"/bufferViews/0/byteStride", 2, "bufferViews[0].byteStride: expected an integer from 4 to 252, got 2"},
         {"/buffers/0/byteLength", -42, "buffers[0].byteLength: expected an integer >= 1, got -42"},
-        {"/samplers/0/wrapS", 1, "samplers[0].wrapS: expected one of 33071, 33648, 10497, got 1"},
         {"/textures/0/source", -1, "textures[0].source: expected an index (an integer >= 0), got -1"},
         {"/cameras/0/perspective/yfov", 0, "cameras[0].perspective.yfov: 0 must be > 0"},
         {"/cameras/0/type", "fisheye", "cameras[0].type: expected one of perspective, orthographic"},
@@ -544,6 +542,29 @@ TEST(GltfSchema, UnsupportedOptionalExtensionsAreNamedInAWarning) {
     EXPECT_NE(all.find("extensionsUsed[1]: KHR_texture_transform is not supported; ignored (the model may look different)"), std::string::npos) << all;
     EXPECT_NE(all.find("extensionsUsed[2]: KHR_materials_clearcoat is not supported"), std::string::npos) << all;
     EXPECT_EQ(all.find("KHR_lights_punctual is not supported"), std::string::npos) << all;
+}
+
+// What lightpass does not read (samplers, an accessor's min and max) may break its rule with a
+// warning; a byteStride of 0 (glTF 1.0's "packed") reads as packed.
+TEST(GltfSchema, RulesOfPropertiesLightpassDoesNotReadAreWarnings) {
+    TempDir t;
+    nlohmann::json d = schemaBase();
+    d["samplers"][0]["wrapS"] = 1;
+    d["samplers"][0]["magFilter"] = 9987;
+    d["accessors"][0]["min"] = {0, 0};
+    d["bufferViews"][0]["byteStride"] = 0;
+    MeshLoadReport report;
+    const GltfContent g = loadGltf(t.write("lenient.gltf", d.dump()), &report);
+    EXPECT_EQ(g.mesh.indices.size(), 3u);
+    std::string all;
+    for (const auto& w : report.warnings) all += w + "\n";
+    for (const char* expected : {"samplers[0].wrapS: expected one of 33071, 33648, 10497, got 1; ignored (lightpass does not read it)",
+                                 "samplers[0].magFilter: expected one of 9728, 9729, got 9987; ignored",
+                                 "accessors[0].min: expected an array of 3 numbers, got an array of 2; ignored",
+                                 "bufferViews[0].byteStride: 0 is outside 4..252; read as tightly packed"})
+        EXPECT_NE(all.find(expected), std::string::npos) << expected << "\nin:\n" << all;
+    d["bufferViews"][0]["byteStride"] = 2;
+    expectOneLineError(t.write("stride2.gltf", d.dump()), "bufferViews[0].byteStride: expected an integer from 4 to 252, got 2");
 }
 
 // Factors outside the schema's [0, 1] (and a negative alphaCutoff) load clamped, each with a warning
