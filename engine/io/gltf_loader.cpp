@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 #include <functional>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -39,7 +40,7 @@ std::string formatNumber(double v) {
 }
 
 // Extensions this loader understands; a file that requires any other is refused (the spec's rule).
-const std::set<std::string> kSupportedExtensions = {"KHR_lights_punctual", "KHR_materials_emissive_strength"};
+const std::set<std::string> kSupportedExtensions = {"KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_texture_transform"};
 constexpr size_t kMaxElements = size_t(1) << 28;  // accessor count limit: 268M elements
 constexpr size_t kMaxNodeDepth = 1024;                        // levels of the node hierarchy
 constexpr size_t kMaxDrawnPrimitives = size_t(1) << 20;       // primitive instances the nodes draw
@@ -282,6 +283,69 @@ struct Loader {
         return r;
     }
 
+    // KHR_texture_transform on one texture: uv' = linear * uv + offset in glTF's uv (origin top left),
+    // the extension's translation * rotation * scale.
+    struct UvTransform {
+        glm::dmat2 linear{1.0};
+        glm::dvec2 offset{0.0};
+        bool identity() const { return linear == glm::dmat2(1.0) && offset == glm::dvec2(0.0); }
+        // Whether the uv axes turn or flip: tangents made for the file's uv then no longer fit.
+        bool turnsAxes() const { return linear[1][0] != 0.0 || linear[0][1] != 0.0 || linear[0][0] <= 0.0 || linear[1][1] <= 0.0; }
+        bool operator==(const UvTransform& o) const { return linear == o.linear && offset == o.offset; }
+    };
+    UvTransform uvTransform(const tinygltf::ExtensionMap& extensions, const std::string& where) const {
+        UvTransform t;
+        const auto it = extensions.find("KHR_texture_transform");
+        if (it == extensions.end() || !it->second.IsObject()) return t;
+        const tinygltf::Value& x = it->second;
+        auto pair = [&](const char* key, glm::dvec2 fallback) {
+            if (!x.Has(key) || !x.Get(key).IsArray() || x.Get(key).ArrayLen() != 2) return fallback;
+            return glm::dvec2(x.Get(key).Get(0).GetNumberAsDouble(), x.Get(key).Get(1).GetNumberAsDouble());
+        };
+        const glm::dvec2 offset = pair("offset", glm::dvec2(0.0)), scale = pair("scale", glm::dvec2(1.0));
+        const double rotation = x.Has("rotation") ? x.Get("rotation").GetNumberAsDouble() : 0.0;
+        if (!std::isfinite(offset.x + offset.y + scale.x + scale.y + rotation))
+            fail(where + ".extensions.KHR_texture_transform", "offset, rotation and scale must be finite");
+        if (x.Has("texCoord") && x.Get("texCoord").GetNumberAsInt() != 0)
+            warn(where + ".extensions.KHR_texture_transform", "texCoord " + std::to_string(x.Get("texCoord").GetNumberAsInt()) +
+                                                                 ": only TEXCOORD_0 is read");
+        // u' = cos u + sin v, v' = -sin u + cos v: the extension's "uvs turned counter-clockwise, the
+        // image clockwise" (its example maps offset (0, 1), rotation pi/2, scale 0.5 onto the lower left
+        // quadrant, and Khronos' TextureTransformTest marks this direction green). The README's GLSL,
+        // read as GLSL's column-major mat3, turns the other way.
+        const double c = std::cos(rotation), sn = std::sin(rotation);
+        t.linear = glm::dmat2(c, -sn, sn, c) * glm::dmat2(scale.x, 0.0, 0.0, scale.y);  // columns
+        t.offset = offset;
+        return t;
+    }
+    // The one uv transform of material `index`'s textures: lightpass keeps a single uv set per vertex,
+    // so textures of one material that disagree get the first one's, with a warning.
+    UvTransform materialUvTransform(int index) const {
+        if (index < 0 || size_t(index) >= model.materials.size()) return {};
+        const tinygltf::Material& m = model.materials[size_t(index)];
+        const std::string w = "materials[" + std::to_string(index) + "]";
+        const std::pair<std::string, std::pair<int, const tinygltf::ExtensionMap*>> textures[] = {
+            {"pbrMetallicRoughness.baseColorTexture", {m.pbrMetallicRoughness.baseColorTexture.index, &m.pbrMetallicRoughness.baseColorTexture.extensions}},
+            {"pbrMetallicRoughness.metallicRoughnessTexture",
+             {m.pbrMetallicRoughness.metallicRoughnessTexture.index, &m.pbrMetallicRoughness.metallicRoughnessTexture.extensions}},
+            {"normalTexture", {m.normalTexture.index, &m.normalTexture.extensions}},
+            {"occlusionTexture", {m.occlusionTexture.index, &m.occlusionTexture.extensions}},
+            {"emissiveTexture", {m.emissiveTexture.index, &m.emissiveTexture.extensions}}};
+        std::optional<UvTransform> first;
+        std::string firstName;
+        for (const auto& [name, texture] : textures) {
+            if (texture.first < 0) continue;
+            const UvTransform t = uvTransform(*texture.second, w + "." + name);
+            if (!first) {
+                first = t;
+                firstName = name;
+            } else if (!(t == *first)) {
+                warn(w + "." + name, "its KHR_texture_transform differs from " + firstName + "'s, which is applied to every texture of the material");
+            }
+        }
+        return first.value_or(UvTransform{});
+    }
+
     Material material(int index) const {
         Material out;
         out.specular = glm::vec3(0.04f);
@@ -393,7 +457,7 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
             for (const auto& e : root["extensionsRequired"])
                 if (!kSupportedExtensions.count(e.get<std::string>()))
                     throw Error(file + ": extensionsRequired: " + e.get<std::string>() +
-                                " is not supported (supported: KHR_lights_punctual, KHR_materials_emissive_strength)");
+                                " is not supported (supported: KHR_lights_punctual, KHR_materials_emissive_strength, KHR_texture_transform)");
     }
     const bool ok = binary ? gltf.LoadBinaryFromMemory(&model, &err, &warnText, reinterpret_cast<const unsigned char*>(bytes.data()),
                                                       unsigned(bytes.size()), baseDir)
@@ -480,7 +544,10 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
         const bool hasNormals = optional("NORMAL", TINYGLTF_TYPE_VEC3, fl, nrm);
         const bool hasUv = optional("TEXCOORD_0", TINYGLTF_TYPE_VEC2,
                                     {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT}, uv);
-        const bool hasTangents = optional("TANGENT", TINYGLTF_TYPE_VEC4, fl, tan);
+        // KHR_texture_transform: applied to the uvs here. Where it turns or flips the uv axes, the
+        // file's tangents (made for the untransformed uvs) are replaced by generated ones.
+        const Loader::UvTransform uvTransform = L.materialUvTransform(prim.material);
+        const bool hasTangents = optional("TANGENT", TINYGLTF_TYPE_VEC4, fl, tan) && !uvTransform.turnsAxes();
 
         // Triangle list, as vertex numbers of this primitive.
         std::vector<uint32_t> corners;
@@ -526,7 +593,8 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
                 vx.normal = (len > 0.0f && std::isfinite(len)) ? n / len : glm::vec3(0.0f, 1.0f, 0.0f);
             }
             if (hasUv) {
-                const glm::vec2 t(Loader::component(uv, v, 0), Loader::component(uv, v, 1));
+                glm::vec2 t(Loader::component(uv, v, 0), Loader::component(uv, v, 1));
+                if (!uvTransform.identity()) t = glm::vec2(uvTransform.linear * glm::dvec2(t) + uvTransform.offset);
                 if (std::isfinite(t.x) && std::isfinite(t.y)) vx.uv = glm::vec2(t.x, 1.0f - t.y);  // v = 0 at the bottom
             }
             if (hasTangents) {

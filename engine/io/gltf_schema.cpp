@@ -204,6 +204,14 @@ public:
         const std::string w = join(at, key);
         index(*t, "index", w, true);
         integer(*t, "texCoord", w, 0, INT32_MAX);
+        if (const json* ext = object(*t, "extensions", w))
+            if (const json* x = object(*ext, "KHR_texture_transform", join(w, "extensions"))) {
+                const std::string xw = join(w, "extensions.KHR_texture_transform");
+                numbers(*x, "offset", xw, 2, 2);
+                number(*x, "rotation", xw);
+                numbers(*x, "scale", xw, 2, 2);
+                integer(*x, "texCoord", xw, 0, INT32_MAX);
+            }
         if (extra) {
             if (extraIsFactor) factor(*t, extra, w);
             else number(*t, extra, w);

@@ -190,6 +190,111 @@ TEST(GltfLoader, Materials) {
     }
 }
 
+namespace {
+
+std::string base64(const std::string& bytes) {
+    static const char* k = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    std::string out;
+    for (size_t i = 0; i < bytes.size(); i += 3) {
+        uint32_t n = uint32_t(uint8_t(bytes[i])) << 16;
+        if (i + 1 < bytes.size()) n |= uint32_t(uint8_t(bytes[i + 1])) << 8;
+        if (i + 2 < bytes.size()) n |= uint32_t(uint8_t(bytes[i + 2]));
+        out += k[(n >> 18) & 63];
+        out += k[(n >> 12) & 63];
+        out += i + 1 < bytes.size() ? k[(n >> 6) & 63] : '=';
+        out += i + 2 < bytes.size() ? k[n & 63] : '=';
+    }
+    return out;
+}
+
+// A unit quad in z = 0 facing +Z, glTF uvs (0, 1) (1, 1) (0, 0) (1, 0) at (0, 0) (1, 0) (0, 1) (1, 1)
+// (v down the image), file tangents +X, base colour and normal textures, with `baseTransform` and
+// `normalTransform` as their KHR_texture_transform (null: none).
+nlohmann::json texturedQuad(const nlohmann::json& baseTransform, const nlohmann::json& normalTransform) {
+    const float pos[] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0};
+    const float nrm[] = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
+    const float uv[] = {0, 1, 1, 1, 0, 0, 1, 0};
+    const float tan[] = {1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1};
+    const uint16_t idx[] = {0, 1, 2, 2, 1, 3};
+    std::string bytes;
+    for (const auto& [data, size] : std::vector<std::pair<const void*, size_t>>{
+             {pos, sizeof pos}, {nrm, sizeof nrm}, {uv, sizeof uv}, {tan, sizeof tan}, {idx, sizeof idx}})
+        bytes.append(static_cast<const char*>(data), size);
+    nlohmann::json d = {{"asset", {{"version", "2.0"}}}, {"extensionsUsed", {"KHR_texture_transform"}}};
+    d["buffers"] = {{{"byteLength", bytes.size()}, {"uri", "data:application/octet-stream;base64," + base64(bytes)}}};
+    d["bufferViews"] = {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 48}},   {{"buffer", 0}, {"byteOffset", 48}, {"byteLength", 48}},
+                        {{"buffer", 0}, {"byteOffset", 96}, {"byteLength", 32}},  {{"buffer", 0}, {"byteOffset", 128}, {"byteLength", 64}},
+                        {{"buffer", 0}, {"byteOffset", 192}, {"byteLength", 12}}};
+    d["accessors"] = {{{"bufferView", 0}, {"componentType", 5126}, {"count", 4}, {"type", "VEC3"}},
+                      {{"bufferView", 1}, {"componentType", 5126}, {"count", 4}, {"type", "VEC3"}},
+                      {{"bufferView", 2}, {"componentType", 5126}, {"count", 4}, {"type", "VEC2"}},
+                      {{"bufferView", 3}, {"componentType", 5126}, {"count", 4}, {"type", "VEC4"}},
+                      {{"bufferView", 4}, {"componentType", 5123}, {"count", 6}, {"type", "SCALAR"}}};
+    d["images"] = {{{"uri", "missing.png"}}};
+    d["textures"] = {{{"source", 0}}};
+    nlohmann::json base = {{"index", 0}}, normal = {{"index", 0}};
+    if (!baseTransform.is_null()) base["extensions"]["KHR_texture_transform"] = baseTransform;
+    if (!normalTransform.is_null()) normal["extensions"]["KHR_texture_transform"] = normalTransform;
+    d["materials"] = {{{"pbrMetallicRoughness", {{"baseColorTexture", base}}}, {"normalTexture", normal}}};
+    d["meshes"] = {{{"primitives", {{{"attributes", {{"POSITION", 0}, {"NORMAL", 1}, {"TEXCOORD_0", 2}, {"TANGENT", 3}}},
+                                     {"indices", 4}, {"material", 0}}}}}};
+    d["nodes"] = {{{"mesh", 0}}};
+    d["scenes"] = {{{"nodes", {0}}}};
+    d["scene"] = 0;
+    return d;
+}
+
+}  // namespace
+
+static void expectOneLineError(const fs::path& p, const std::string& fragment);  // below
+
+// KHR_texture_transform, applied to the uvs on load. The extension's example (offset (0, 1), rotation
+// pi/2, scale 0.5: "the lower left quadrant of the source image, rotated clockwise 90 degrees") maps
+// glTF uv (u, v) to (v / 2, 1 - u / 2), i.e. (v / 2, u / 2) once v is flipped to lightpass's v up;
+// turning the uv axes replaces the file's tangents by generated ones (here dP/du = -Y). A scale and
+// offset keep them. Textures of one material with different transforms get the first's, warned.
+TEST(GltfLoader, TextureTransformIsAppliedToTheUvs) {
+    TempDir t;
+    const float glTFuv[4][2] = {{0, 1}, {1, 1}, {0, 0}, {1, 0}};
+    const nlohmann::json example = {{"offset", {0, 1}}, {"rotation", 1.57079632679}, {"scale", {0.5, 0.5}}};
+    MeshLoadReport turned;
+    const MeshData a = loadGltf(t.write("turned.gltf", texturedQuad(example, example).dump()), &turned).mesh;
+    ASSERT_EQ(a.vertices.size(), 4u);
+    for (size_t i = 0; i < 4; ++i) {
+        const float u = glTFuv[i][0], v = glTFuv[i][1];
+        EXPECT_NEAR(a.vertices[i].uv.x, 0.5f * v, 1e-6f) << i;
+        EXPECT_NEAR(a.vertices[i].uv.y, 0.5f * u, 1e-6f) << i;
+        // Inside the image's lower left quadrant (glTF v in [0.5, 1] is lightpass v in [0, 0.5]).
+        EXPECT_TRUE(a.vertices[i].uv.x >= -1e-6f && a.vertices[i].uv.x <= 0.5f + 1e-6f && a.vertices[i].uv.y <= 0.5f + 1e-6f);
+        EXPECT_NEAR(glm::distance(glm::vec3(a.vertices[i].tangent), glm::vec3(0, -1, 0)), 0.0f, 1e-5f) << i;
+    }
+    EXPECT_TRUE(turned.generatedTangents);
+    for (const auto& w : turned.warnings) EXPECT_EQ(w.find("not supported"), std::string::npos) << w;
+
+    const nlohmann::json tiled = {{"offset", {0.25, 0}}, {"scale", {2, 3}}};
+    MeshLoadReport scaled;
+    const MeshData b = loadGltf(t.write("scaled.gltf", texturedQuad(tiled, tiled).dump()), &scaled).mesh;
+    for (size_t i = 0; i < 4; ++i) {
+        EXPECT_NEAR(b.vertices[i].uv.x, 2.0f * glTFuv[i][0] + 0.25f, 1e-6f) << i;
+        EXPECT_NEAR(b.vertices[i].uv.y, 1.0f - 3.0f * glTFuv[i][1], 1e-6f) << i;
+        EXPECT_EQ(glm::vec3(b.vertices[i].tangent), glm::vec3(1, 0, 0)) << i;
+    }
+    EXPECT_FALSE(scaled.generatedTangents);
+
+    MeshLoadReport mixed;
+    const MeshData c = loadGltf(t.write("mixed.gltf", texturedQuad(tiled, nlohmann::json{{"texCoord", 1}}).dump()), &mixed).mesh;
+    EXPECT_NEAR(c.vertices[1].uv.x, 2.25f, 1e-6f);  // the base colour's transform
+    std::string all;
+    for (const auto& w : mixed.warnings) all += w + "\n";
+    EXPECT_NE(all.find("materials[0].normalTexture: its KHR_texture_transform differs from pbrMetallicRoughness.baseColorTexture's"),
+              std::string::npos) << all;
+    EXPECT_NE(all.find("materials[0].normalTexture.extensions.KHR_texture_transform: texCoord 1: only TEXCOORD_0 is read"), std::string::npos)
+        << all;
+    nlohmann::json bad = texturedQuad(nlohmann::json{{"scale", 2}}, nullptr);
+    expectOneLineError(t.write("bad.gltf", bad.dump()),
+                       "materials[0].pbrMetallicRoughness.baseColorTexture.extensions.KHR_texture_transform.scale: expected an array of 2 numbers, got 2");
+}
+
 TEST(GltfLoader, SceneFileModelsGltf) {
     TempDir t;
     const std::string scene = R"({"models": [{"gltf": ")" + (kData / "lights.gltf").string() +
@@ -534,14 +639,15 @@ TEST(GltfSchema, WrongTypesLengthsAndEnumerationsAreErrorsNamingTheElement) {
 TEST(GltfSchema, UnsupportedOptionalExtensionsAreNamedInAWarning) {
     TempDir t;
     nlohmann::json d = schemaBase();
-    d["extensionsUsed"] = {"KHR_lights_punctual", "KHR_texture_transform", "KHR_materials_clearcoat"};
+    d["extensionsUsed"] = {"KHR_lights_punctual", "KHR_materials_transmission", "KHR_materials_clearcoat", "KHR_texture_transform"};
     MeshLoadReport report;
     loadGltf(t.write("ext.gltf", d.dump()), &report);
     std::string all;
     for (const auto& w : report.warnings) all += w + "\n";
-    EXPECT_NE(all.find("extensionsUsed[1]: KHR_texture_transform is not supported; ignored (the model may look different)"), std::string::npos) << all;
+    EXPECT_NE(all.find("extensionsUsed[1]: KHR_materials_transmission is not supported; ignored (the model may look different)"), std::string::npos) << all;
     EXPECT_NE(all.find("extensionsUsed[2]: KHR_materials_clearcoat is not supported"), std::string::npos) << all;
     EXPECT_EQ(all.find("KHR_lights_punctual is not supported"), std::string::npos) << all;
+    EXPECT_EQ(all.find("KHR_texture_transform is not supported"), std::string::npos) << all;
 }
 
 // What lightpass does not read (samplers, an accessor's min and max) may break its rule with a
