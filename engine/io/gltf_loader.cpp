@@ -40,7 +40,8 @@ std::string formatNumber(double v) {
 }
 
 // Extensions this loader understands; a file that requires any other is refused (the spec's rule).
-const std::set<std::string> kSupportedExtensions = {"KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_texture_transform"};
+const std::set<std::string> kSupportedExtensions = {"KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_materials_ior",
+                                                     "KHR_materials_unlit", "KHR_texture_transform"};
 constexpr size_t kMaxElements = size_t(1) << 28;  // accessor count limit: 268M elements
 constexpr size_t kMaxNodeDepth = 1024;                        // levels of the node hierarchy
 constexpr size_t kMaxDrawnPrimitives = size_t(1) << 20;       // primitive instances the nodes draw
@@ -398,6 +399,17 @@ struct Loader {
                 const double e = m.emissiveFactor[size_t(c)];
                 out.emission[c] = std::isfinite(e) ? float(std::clamp(e, 0.0, 1.0)) * strength : 0.0f;
             }
+        // KHR_materials_ior: the dielectric F0 of the index, ((ior - 1) / (ior + 1))^2 (1.5: the default 0.04).
+        if (auto ior = m.extensions.find("KHR_materials_ior"); ior != m.extensions.end() && ior->second.Has("ior")) {
+            const double n = ior->second.Get("ior").GetNumberAsDouble();
+            out.specular = glm::vec3(float(((n - 1.0) / (n + 1.0)) * ((n - 1.0) / (n + 1.0))));
+        }
+        // KHR_materials_unlit: the base colour as it is, untouched by light: lightpass's flat-lit material
+        // (which shows base x (1 - metallic)).
+        if (m.extensions.count("KHR_materials_unlit")) {
+            out.flat = true;
+            out.metallic = 0.0f;
+        }
         out.doubleSided = m.doubleSided;
         out.alphaCutoff = std::isfinite(m.alphaCutoff) ? float(std::max(m.alphaCutoff, 0.0)) : 0.5f;
         if (m.alphaMode == "MASK") {
@@ -457,7 +469,8 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
             for (const auto& e : root["extensionsRequired"])
                 if (!kSupportedExtensions.count(e.get<std::string>()))
                     throw Error(file + ": extensionsRequired: " + e.get<std::string>() +
-                                " is not supported (supported: KHR_lights_punctual, KHR_materials_emissive_strength, KHR_texture_transform)");
+                                " is not supported (supported: KHR_lights_punctual, KHR_materials_emissive_strength, KHR_materials_ior, KHR_materials_unlit, "
+                                "KHR_texture_transform)");
     }
     const bool ok = binary ? gltf.LoadBinaryFromMemory(&model, &err, &warnText, reinterpret_cast<const unsigned char*>(bytes.data()),
                                                       unsigned(bytes.size()), baseDir)

@@ -235,9 +235,16 @@ public:
         enumString(m, "alphaMode", w, {"OPAQUE", "MASK", "BLEND"});
         factor(m, "alphaCutoff", w, -1.0);
         boolean(m, "doubleSided", w);
-        if (const json* ext = object(m, "extensions", w))
-            if (const json* s = object(*ext, "KHR_materials_emissive_strength", join(w, "extensions")))
-                number(*s, "emissiveStrength", join(w, "extensions.KHR_materials_emissive_strength"));
+        if (const json* ext = object(m, "extensions", w)) {
+            const std::string ew = join(w, "extensions");
+            if (const json* s = object(*ext, "KHR_materials_emissive_strength", ew))
+                number(*s, "emissiveStrength", join(ew, "KHR_materials_emissive_strength"));
+            if (const json* s = object(*ext, "KHR_materials_ior", ew))
+                if (const json* n = number(*s, "ior", join(ew, "KHR_materials_ior")))
+                    if (n->get<double>() != 0.0 && n->get<double>() < 1.0)
+                        error(join(ew, "KHR_materials_ior.ior"), numberText(*n) + " must be >= 1 (or 0)");
+            object(*ext, "KHR_materials_unlit", ew);
+        }
     }
 
     void node(const json& n, const std::string& w) {

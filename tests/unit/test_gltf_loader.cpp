@@ -295,6 +295,35 @@ TEST(GltfLoader, TextureTransformIsAppliedToTheUvs) {
                        "materials[0].pbrMetallicRoughness.baseColorTexture.extensions.KHR_texture_transform.scale: expected an array of 2 numbers, got 2");
 }
 
+// KHR_materials_unlit is lightpass's flat-lit material showing the base colour (metallic dropped);
+// KHR_materials_ior gives the dielectric F0 ((n - 1) / (n + 1))^2, 0 meaning F0 = 1.
+TEST(GltfLoader, UnlitAndIorMaterials) {
+    TempDir t;
+    nlohmann::json d = texturedQuad(nullptr, nullptr);
+    d["extensionsUsed"] = {"KHR_materials_unlit", "KHR_materials_ior"};
+    nlohmann::json unlit = {{"pbrMetallicRoughness", {{"baseColorFactor", {0.5, 0.25, 1, 1}}, {"metallicFactor", 1}}},
+                            {"extensions", {{"KHR_materials_unlit", nlohmann::json::object()}}}};
+    nlohmann::json water = {{"extensions", {{"KHR_materials_ior", {{"ior", 1.33}}}}}};
+    nlohmann::json mirror = {{"extensions", {{"KHR_materials_ior", {{"ior", 0}}}}}};
+    d["materials"] = {unlit, water, mirror, nlohmann::json::object()};
+    d["meshes"][0]["primitives"] = {d["meshes"][0]["primitives"][0], d["meshes"][0]["primitives"][0], d["meshes"][0]["primitives"][0],
+                                    d["meshes"][0]["primitives"][0]};
+    for (int i = 0; i < 4; ++i) d["meshes"][0]["primitives"][size_t(i)]["material"] = i;
+    MeshLoadReport report;
+    const MeshData m = loadGltf(t.write("materials.gltf", d.dump()), &report).mesh;
+    ASSERT_EQ(m.materials.size(), 4u);
+    EXPECT_TRUE(m.materials[0].flat);
+    EXPECT_EQ(m.materials[0].metallic, 0.0f);
+    EXPECT_EQ(m.materials[0].diffuse, glm::vec3(0.5f, 0.25f, 1.0f));
+    EXPECT_NEAR(m.materials[1].specular.x, (0.33 / 2.33) * (0.33 / 2.33), 1e-7);
+    EXPECT_FALSE(m.materials[1].flat);
+    EXPECT_EQ(m.materials[2].specular, glm::vec3(1.0f));
+    EXPECT_NEAR(m.materials[3].specular.x, 0.04f, 1e-7f);  // no extension: ior 1.5
+    for (const auto& w : report.warnings) EXPECT_EQ(w.find("not supported"), std::string::npos) << w;
+    d["materials"][1]["extensions"]["KHR_materials_ior"]["ior"] = 0.5;
+    expectOneLineError(t.write("ior.gltf", d.dump()), "materials[1].extensions.KHR_materials_ior.ior: 0.5 must be >= 1 (or 0)");
+}
+
 TEST(GltfLoader, SceneFileModelsGltf) {
     TempDir t;
     const std::string scene = R"({"models": [{"gltf": ")" + (kData / "lights.gltf").string() +
