@@ -41,7 +41,7 @@ std::string formatNumber(double v) {
 
 // Extensions this loader understands; a file that requires any other is refused (the spec's rule).
 const std::set<std::string> kSupportedExtensions = {"KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_materials_ior",
-                                                     "KHR_materials_unlit", "KHR_texture_transform"};
+                                                     "KHR_materials_unlit", "KHR_mesh_quantization", "KHR_texture_transform"};
 constexpr size_t kMaxElements = size_t(1) << 28;  // accessor count limit: 268M elements
 constexpr size_t kMaxNodeDepth = 1024;                        // levels of the node hierarchy
 constexpr size_t kMaxDrawnPrimitives = size_t(1) << 20;       // primitive instances the nodes draw
@@ -470,7 +470,7 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
                 if (!kSupportedExtensions.count(e.get<std::string>()))
                     throw Error(file + ": extensionsRequired: " + e.get<std::string>() +
                                 " is not supported (supported: KHR_lights_punctual, KHR_materials_emissive_strength, KHR_materials_ior, KHR_materials_unlit, "
-                                "KHR_texture_transform)");
+                                "KHR_mesh_quantization, KHR_texture_transform)");
     }
     const bool ok = binary ? gltf.LoadBinaryFromMemory(&model, &err, &warnText, reinterpret_cast<const unsigned char*>(bytes.data()),
                                                       unsigned(bytes.size()), baseDir)
@@ -525,6 +525,7 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
         return slot;
     };
 
+    const bool quantized = std::find(model.extensionsUsed.begin(), model.extensionsUsed.end(), "KHR_mesh_quantization") != model.extensionsUsed.end();
     auto addPrimitive = [&](int meshIndex, int primIndex, const glm::mat4& world) {
         const tinygltf::Primitive& prim = model.meshes[size_t(meshIndex)].primitives[size_t(primIndex)];
         const std::string w = "meshes[" + std::to_string(meshIndex) + "].primitives[" + std::to_string(primIndex) + "]";
@@ -535,7 +536,12 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
         auto attr = prim.attributes.find("POSITION");
         if (attr == prim.attributes.end()) L.fail(w, "has no POSITION attribute");
         const std::set<int> fl = {TINYGLTF_COMPONENT_TYPE_FLOAT};
-        const auto pos = L.view(attr->second, w + ".attributes.POSITION", {TINYGLTF_TYPE_VEC3}, fl);
+        // KHR_mesh_quantization (gltfpack's output): integer positions and uvs, normalised integer
+        // normals and tangents; the node transform (and a texture transform) scales them back.
+        const std::set<int> integers = {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
+                                        TINYGLTF_COMPONENT_TYPE_SHORT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT};
+        const std::set<int> signedNormalised = {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_COMPONENT_TYPE_SHORT};
+        const auto pos = L.view(attr->second, w + ".attributes.POSITION", {TINYGLTF_TYPE_VEC3}, quantized ? integers : fl);
         // Without a buffer view (and not sparse) every element is zero: no triangle could come of it, and
         // its count, bounded by no bytes of the file, would size the allocations.
         auto requireData = [&](const Loader::View& v, int accessor, const std::string& where) {
@@ -554,13 +560,16 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
             return true;
         };
         Loader::View nrm, uv, tan;
-        const bool hasNormals = optional("NORMAL", TINYGLTF_TYPE_VEC3, fl, nrm);
+        const bool hasNormals = optional("NORMAL", TINYGLTF_TYPE_VEC3, quantized ? signedNormalised : fl, nrm);
         const bool hasUv = optional("TEXCOORD_0", TINYGLTF_TYPE_VEC2,
-                                    {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT}, uv);
+                                    quantized ? integers
+                                              : std::set<int>{TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
+                                                              TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
+                                    uv);
         // KHR_texture_transform: applied to the uvs here. Where it turns or flips the uv axes, the
         // file's tangents (made for the untransformed uvs) are replaced by generated ones.
         const Loader::UvTransform uvTransform = L.materialUvTransform(prim.material);
-        const bool hasTangents = optional("TANGENT", TINYGLTF_TYPE_VEC4, fl, tan) && !uvTransform.turnsAxes();
+        const bool hasTangents = optional("TANGENT", TINYGLTF_TYPE_VEC4, quantized ? signedNormalised : fl, tan) && !uvTransform.turnsAxes();
 
         // Triangle list, as vertex numbers of this primitive.
         std::vector<uint32_t> corners;

@@ -295,6 +295,54 @@ TEST(GltfLoader, TextureTransformIsAppliedToTheUvs) {
                        "materials[0].pbrMetallicRoughness.baseColorTexture.extensions.KHR_texture_transform.scale: expected an array of 2 numbers, got 2");
 }
 
+// KHR_mesh_quantization (gltfpack's output): u16 positions scaled back by the node, i8 normalised
+// normals and tangents, u16 normalised uvs, all read as their floats; without the extension declared
+// the same file is refused, naming the attribute's component type.
+TEST(GltfLoader, QuantizedAttributesWithKhrMeshQuantization) {
+    TempDir t;
+    const uint16_t pos[] = {0, 0, 0, 1000, 0, 0, 0, 1000, 0, 1000, 1000, 0};
+    const int8_t nrm[] = {0, 0, 127, 0, 0, 0, 127, 0, 0, 0, 127, 0, 0, 0, 127, 0};  // VEC3 in 4-byte strides
+    const int8_t tan[] = {127, 0, 0, 127, 127, 0, 0, 127, 127, 0, 0, 127, 127, 0, 0, 127};
+    const uint16_t uv[] = {0, 65535, 65535, 65535, 0, 0, 65535, 0};
+    const uint16_t idx[] = {0, 1, 2, 2, 1, 3};
+    std::string bytes;
+    for (const auto& [data, size] : std::vector<std::pair<const void*, size_t>>{
+             {pos, sizeof pos}, {nrm, sizeof nrm}, {tan, sizeof tan}, {uv, sizeof uv}, {idx, sizeof idx}})
+        bytes.append(static_cast<const char*>(data), size);
+    nlohmann::json d = {{"asset", {{"version", "2.0"}}}, {"extensionsUsed", {"KHR_mesh_quantization"}},
+                        {"extensionsRequired", {"KHR_mesh_quantization"}}};
+    d["buffers"] = {{{"byteLength", bytes.size()}, {"uri", "data:application/octet-stream;base64," + base64(bytes)}}};
+    d["bufferViews"] = {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 24}},
+                        {{"buffer", 0}, {"byteOffset", 24}, {"byteLength", 16}, {"byteStride", 4}},
+                        {{"buffer", 0}, {"byteOffset", 40}, {"byteLength", 16}},
+                        {{"buffer", 0}, {"byteOffset", 56}, {"byteLength", 16}},
+                        {{"buffer", 0}, {"byteOffset", 72}, {"byteLength", 12}}};
+    d["accessors"] = {{{"bufferView", 0}, {"componentType", 5123}, {"count", 4}, {"type", "VEC3"}},
+                      {{"bufferView", 1}, {"componentType", 5120}, {"normalized", true}, {"count", 4}, {"type", "VEC3"}},
+                      {{"bufferView", 2}, {"componentType", 5120}, {"normalized", true}, {"count", 4}, {"type", "VEC4"}},
+                      {{"bufferView", 3}, {"componentType", 5123}, {"normalized", true}, {"count", 4}, {"type", "VEC2"}},
+                      {{"bufferView", 4}, {"componentType", 5123}, {"count", 6}, {"type", "SCALAR"}}};
+    d["meshes"] = {{{"primitives", {{{"attributes", {{"POSITION", 0}, {"NORMAL", 1}, {"TANGENT", 2}, {"TEXCOORD_0", 3}}}, {"indices", 4}}}}}};
+    d["nodes"] = {{{"mesh", 0}, {"scale", {0.001, 0.001, 0.001}}}};
+    d["scenes"] = {{{"nodes", {0}}}};
+    d["scene"] = 0;
+    MeshLoadReport report;
+    const MeshData m = loadGltf(t.write("quantized.gltf", d.dump()), &report).mesh;
+    ASSERT_EQ(m.vertices.size(), 4u);
+    const glm::vec3 expected[] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}};
+    const glm::vec2 expectedUv[] = {{0, 0}, {1, 0}, {0, 1}, {1, 1}};  // glTF v flipped
+    for (size_t i = 0; i < 4; ++i) {
+        EXPECT_NEAR(glm::distance(m.vertices[i].position, expected[i]), 0.0f, 1e-6f) << i;
+        EXPECT_NEAR(glm::distance(m.vertices[i].normal, glm::vec3(0, 0, 1)), 0.0f, 1e-6f) << i;
+        EXPECT_NEAR(glm::distance(glm::vec3(m.vertices[i].tangent), glm::vec3(1, 0, 0)), 0.0f, 1e-6f) << i;
+        EXPECT_NEAR(glm::distance(m.vertices[i].uv, expectedUv[i]), 0.0f, 1e-6f) << i;
+    }
+    EXPECT_FALSE(report.generatedTangents);
+    d.erase("extensionsUsed");
+    d.erase("extensionsRequired");
+    expectOneLineError(t.write("undeclared.gltf", d.dump()), "meshes[0].primitives[0].attributes.POSITION (accessors[0]): unexpected componentType 5123");
+}
+
 // KHR_materials_unlit is lightpass's flat-lit material showing the base colour (metallic dropped);
 // KHR_materials_ior gives the dielectric F0 ((n - 1) / (n + 1))^2, 0 meaning F0 = 1.
 TEST(GltfLoader, UnlitAndIorMaterials) {
