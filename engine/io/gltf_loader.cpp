@@ -526,6 +526,8 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
     };
 
     const bool quantized = std::find(model.extensionsUsed.begin(), model.extensionsUsed.end(), "KHR_mesh_quantization") != model.extensionsUsed.end();
+    std::set<std::string> noted;  // what notedOnce has seen
+    auto notedOnce = [&noted](const std::string& what) { return noted.insert(what).second; };
     auto addPrimitive = [&](int meshIndex, int primIndex, const glm::mat4& world) {
         const tinygltf::Primitive& prim = model.meshes[size_t(meshIndex)].primitives[size_t(primIndex)];
         const std::string w = "meshes[" + std::to_string(meshIndex) + "].primitives[" + std::to_string(primIndex) + "]";
@@ -559,6 +561,12 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
                 L.fail(w + ".attributes." + name, std::to_string(v.count) + " elements, but POSITION has " + std::to_string(vertexCount));
             return true;
         };
+        // Attributes lightpass does not draw with: said once per file (a model with vertex colours
+        // or morph targets looks different without them).
+        if (prim.attributes.count("COLOR_0") && notedOnce("COLOR_0"))
+            L.warn(w + ".attributes.COLOR_0", "vertex colours are not read; the base colour is drawn without them");
+        if (!prim.targets.empty() && notedOnce("targets"))
+            L.warn(w + ".targets", "morph targets are not applied; drawn with the base shape");
         Loader::View nrm, uv, tan;
         const bool hasNormals = optional("NORMAL", TINYGLTF_TYPE_VEC3, quantized ? signedNormalised : fl, nrm);
         const bool hasUv = optional("TEXCOORD_0", TINYGLTF_TYPE_VEC2,

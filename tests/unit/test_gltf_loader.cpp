@@ -338,6 +338,23 @@ TEST(GltfLoader, QuantizedAttributesWithKhrMeshQuantization) {
         EXPECT_NEAR(glm::distance(m.vertices[i].uv, expectedUv[i]), 0.0f, 1e-6f) << i;
     }
     EXPECT_FALSE(report.generatedTangents);
+    // Vertex colours and morph targets are not drawn: one warning each per file, however many primitives.
+    d["meshes"][0]["primitives"][0]["attributes"]["COLOR_0"] = 1;
+    d["meshes"][0]["primitives"][0]["targets"] = {{{"POSITION", 1}}};
+    d["meshes"][0]["primitives"].push_back(d["meshes"][0]["primitives"][0]);
+    MeshLoadReport ignored;
+    loadGltf(t.write("colours.gltf", d.dump()), &ignored);
+    int colours = 0, targets = 0;
+    for (const auto& w : ignored.warnings) {
+        colours += w.find("meshes[0].primitives[0].attributes.COLOR_0: vertex colours are not read") != std::string::npos;
+        targets += w.find("meshes[0].primitives[0].targets: morph targets are not applied") != std::string::npos;
+    }
+    EXPECT_EQ(colours, 1);
+    EXPECT_EQ(targets, 1);
+    EXPECT_EQ(ignored.warnings.size(), 2u);
+    d["meshes"][0]["primitives"].erase(1);
+    d["meshes"][0]["primitives"][0]["attributes"].erase("COLOR_0");
+    d["meshes"][0]["primitives"][0].erase("targets");
     d.erase("extensionsUsed");
     d.erase("extensionsRequired");
     expectOneLineError(t.write("undeclared.gltf", d.dump()), "meshes[0].primitives[0].attributes.POSITION (accessors[0]): unexpected componentType 5123");
