@@ -3,7 +3,8 @@
 // the depth pre-pass (addDepthPrepass) it draws every opaque surface again with depth test EQUAL and
 // shades each fragment in shaders/forward.frag from the suns and their shadows, the ambient and IBL
 // (times the ambient occlusion), the local lights listed in the fragment's froxel (the clustered
-// method's grid, built in this pass by bindClusteredLightLists) and its emission, writing the HDR
+// method's grid of whole froxels, built once a frame by the first pass that binds it through
+// bindClusteredLightLists) and its emission, writing the HDR
 // buffer directly. The lighting helpers here also serve the transparent pass (passes/transparent_pass).
 #include <vector>
 

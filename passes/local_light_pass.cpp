@@ -212,6 +212,7 @@ void finishClusterBuild(LocalLightPass& state) {
 // Builds the whole grid's light lists (light_clusters.comp: every froxel whole, for the forward
 // passes and transparent surfaces); leaves the counts at binding 1 and the lists at binding 2.
 void buildClusters(LocalLightPass& state, const FrameData& frame, int lightCount) {
+    ++state.clusterBuilds;
     const ClusterGrid g = beginClusterBuild(state, frame);
     const GLuint prog = state.clusterBuildProgram.id();
     setClusterUniforms(prog, g);
@@ -237,6 +238,8 @@ void dispatchPerClusterTile(GLuint prog, const ClusterGrid& g, const FrameData& 
 // The froxel lists tightened to the G-buffer's depth (light_clusters_tight.comp, a work group per
 // tile), for the lights-per-cluster view. The G-buffer is bound by the caller.
 void buildTightClusters(LocalLightPass& state, const FrameData& frame, GLuint prog, int lightCount) {
+    ++state.clusterBuilds;
+    state.wholeListsFor = nullptr;  // the lists are now the tight ones
     const ClusterGrid g = beginClusterBuild(state, frame);
     dispatchPerClusterTile(prog, g, frame, lightCount);
     finishClusterBuild(state);
@@ -364,6 +367,19 @@ void bindLightRecords(LocalLightPass& state, const LocalLightRecords& records, c
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, res.buffer(records.buffer));
 }
 
+// The whole-froxel lists of this frame's records at bindings 1 and 2: built by the first reader of
+// the frame, bound as they are for the others (the lists depend only on the lights and the grid,
+// both fixed within a frame).
+void bindWholeClusters(LocalLightPass& state, const FrameData& frame, const LocalLightRecords& records) {
+    if (state.wholeListsFor != records.records || !state.clusterCounts) {
+        buildClusters(state, frame, int(records.records->size()));
+        state.wholeListsFor = records.records;
+        return;
+    }
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, state.clusterCounts.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, state.clusterLists.id());
+}
+
 int bindClusteredLightLists(LocalLightPass& state, GLuint prog, const FrameData& frame, const LocalLightRecords& records,
                             const fg::PassResources& res, const SpotShadowMaps& spotShadows, GLuint spotAtlas) {
     ensureState(state, frame, spotShadows.any());
@@ -371,7 +387,7 @@ int bindClusteredLightLists(LocalLightPass& state, GLuint prog, const FrameData&
     bindLightRecords(state, records, res);
     const int count = int(records.records->size());
     if (spotShadows.any()) bindSpotShadows(state, frame, spotShadows, spotAtlas);
-    buildClusters(state, frame, count);
+    bindWholeClusters(state, frame, records);
     setClusterUniforms(prog, state.clusterGrid);
     setInt(prog, "uLocalLightCount", count);
     setInt(prog, "uUnbounded", unbounded(s));
@@ -655,7 +671,7 @@ fg::ResourceId addLocalLightOverlayPasses(fg::FrameGraph& graph, LocalLightPass&
                                setInt(build, "uLightingOnly", 0);
                                buildTightClusters(state, frame, build, count);
                            } else {
-                               buildClusters(state, frame, count);
+                               bindWholeClusters(state, frame, records);
                            }
                            const GLuint prog = state.clusterViewProgram.id();
                            setClusterUniforms(prog, state.clusterGrid);

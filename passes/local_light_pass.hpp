@@ -74,6 +74,11 @@ struct LocalLightPass {
     gl::StreamBuffer lights{"local_lights.ssbo"};
     std::shared_ptr<const std::vector<GpuLocalLight>> filledRecords;  // what `lights` holds now
     int recordFills = 0;  // fills of `lights` since the state was made (tests: one a frame)
+    // The records whose whole-froxel lists clusterCounts / clusterLists hold (null after a tight
+    // build, which overwrites them): forward_opaque, transparent and the lights-per-cluster view read
+    // one build a frame.
+    std::shared_ptr<const std::vector<GpuLocalLight>> wholeListsFor;
+    int clusterBuilds = 0;  // grid builds, whole or tight, since the state was made (tests)
     gl::StreamBuffer globeMotion{"light_globes.motion"};  // each light's world centre now and at the previous frame's time
     gl::Buffer volumeMesh, globeMesh;
     gl::VertexArray volumeVao, globeVao;

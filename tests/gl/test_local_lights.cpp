@@ -444,6 +444,51 @@ TEST(LocalLights, GlobesAndOverlayViewsRender) {
         }
 }
 
+// The whole-froxel light lists are built once a frame: forward_opaque builds them, the transparent
+// pass and the lights-per-cluster view read that build (they were built again by each). With orbiting
+// lights, a second frame must still equal the same frame rendered first (no reader of the previous
+// frame's lists), in forward+ with a see-through quad in front of the lights. On the deferred path
+// the transparent pass builds the whole lists and the clustered method's view its own tight ones: two.
+TEST(LocalLights, WholeClusterListsAreBuiltOnceAFrame) {
+    Scene s = twentyLightScene();
+    for (size_t i = 2; i < s.pointLights.size(); ++i) {
+        s.pointLights[i].orbitCenter = s.pointLights[i].position + glm::vec3(0.3f, 0.0f, 0.2f);
+        s.pointLights[i].orbitSpeed = 1.5f;
+    }
+    ModelInstance glass = model("glass", makePlane(1.0f, 1),
+                                glm::translate(glm::mat4(1.0f), {0.0f, 0.6f, 0.5f}) *
+                                    glm::rotate(glm::mat4(1.0f), glm::radians(90.0f), glm::vec3(1, 0, 0)) *
+                                    glm::scale(glm::mat4(1.0f), glm::vec3(2.0f)),
+                                {0.8f, 0.8f, 0.8f}, {0.04f, 0.04f, 0.04f}, 32.0f);
+    for (Material& m : glass.mesh.materials) {
+        m.opacity = 0.5f;
+        m.alphaMode = AlphaMode::Blend;
+    }
+    s.models.push_back(std::move(glass));
+    struct Case {
+        const char* name;
+        DebugView view;
+        RenderPath path;
+        int builds;  // a frame
+    };
+    for (const Case& c : {Case{"forward+", DebugView::Final, RenderPath::ForwardPlus, 1},
+                          Case{"forward+, lights per cluster", DebugView::LightsPerCluster, RenderPath::ForwardPlus, 1},
+                          Case{"deferred clustered, lights per cluster", DebugView::LightsPerCluster, RenderPath::Deferred, 2}}) {
+        RenderSettings r = smallSettings(LocalLightMethod::Clustered);
+        r.view = c.view;
+        r.renderPath = c.path;
+        Rig first(s);
+        const std::vector<float> before = first.renderHdr(r, 0.0f);
+        EXPECT_EQ(first.passes.localLights.clusterBuilds, c.builds) << c.name;
+        const std::vector<float> after = first.renderHdr(r, 1.0f);
+        EXPECT_EQ(first.passes.localLights.clusterBuilds, 2 * c.builds) << c.name << ": the same builds every frame";
+        Rig fresh(s);
+        const std::vector<float> alone = fresh.renderHdr(r, 1.0f);
+        EXPECT_NE(before, alone) << c.name << ": the lights must move between the frames for this test to see anything";
+        EXPECT_EQ(after, alone) << c.name << ": the second frame read lists other than its own";
+    }
+}
+
 // The light records are uploaded once a frame (by local_lights, or forward_opaque on the forward+
 // path) and the overlays read that upload through the graph ("local_lights.records"). With orbiting
 // lights, a frame at t = 1 s rendered after one at t = 0 must equal the same frame rendered first:
