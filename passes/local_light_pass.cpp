@@ -64,6 +64,7 @@ void ensureState(LocalLightPass& state, const FrameData& frame, bool spotShadows
     if (state.fbo) return;
     state.sanitizeProgram = frame.shaders->compute("local_light_sanitize.comp");
     state.clusterBuildProgram = frame.shaders->compute("light_clusters.comp");
+    state.clusterSupertileProgram = frame.shaders->compute("light_cluster_supertiles.comp");
     state.clusterViewProgram = frame.shaders->compute("light_clusters_view.comp");
     state.overlayProgram = frame.shaders->graphics("local_light_overlay.vert", "local_light_overlay.frag");
     makeMesh(circumscribingIcosphere(1), "local_light.volume", state.volumeMesh, state.volumeVao, state.volumeVertices);
@@ -211,16 +212,44 @@ void finishClusterBuild(LocalLightPass& state) {
 
 // Builds the whole grid's light lists (light_clusters.comp: every froxel whole, for the forward
 // passes and transparent surfaces); leaves the counts at binding 1 and the lists at binding 2.
+// Supertiles of 8 x 8 froxel tiles (128 px at the default 16): at 16384 lights a 4K frame's 510
+// supertiles keep a few hundred lights each, so each tile tests those instead of all 16384. A list
+// holds at most 4096 lights (8 MB at 4K); a supertile with more is tested light by light.
+constexpr int kSupertileTiles = 8;
+constexpr int kSupertileCapacity = 4096;
+
 void buildClusters(LocalLightPass& state, const FrameData& frame, int lightCount) {
     ++state.clusterBuilds;
     const ClusterGrid g = beginClusterBuild(state, frame);
-    const GLuint prog = state.clusterBuildProgram.id();
-    setClusterUniforms(prog, g);
-    setInt(prog, "uLightCount", lightCount);
-    setMat4(prog, "uProjection", frame.projection);
-    glProgramUniform2i(prog, glGetUniformLocation(prog, "uImageSize"), frame.width, frame.height);
-    glUseProgram(prog);
+    const int side = state.supertileTiles > 0 ? state.supertileTiles : kSupertileTiles;
+    const int capacity = std::max(1, std::min(lightCount, state.supertileCapacity > 0 ? state.supertileCapacity : kSupertileCapacity));
+    const int stX = (g.tilesX + side - 1) / side, stY = (g.tilesY + side - 1) / side;
+    const size_t counts = size_t(stX) * size_t(stY), entries = counts * size_t(capacity);
+    if (counts > state.supertileCountsCapacity || !state.supertileCounts) {
+        state.supertileCountsCapacity = counts;
+        state.supertileCounts = gl::makeBuffer(GLsizeiptr(counts * sizeof(GLuint)), nullptr, 0, "clusters.supertile_counts");
+    }
+    if (entries > state.supertileListsCapacity || !state.supertileLists) {
+        state.supertileListsCapacity = entries;
+        state.supertileLists = gl::makeBuffer(GLsizeiptr(entries * sizeof(GLuint)), nullptr, 0, "clusters.supertile_lights");
+    }
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, state.supertileCounts.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, state.supertileLists.id());
+    for (const GLuint prog : {state.clusterSupertileProgram.id(), state.clusterBuildProgram.id()}) {
+        setClusterUniforms(prog, g);
+        setInt(prog, "uLightCount", lightCount);
+        setMat4(prog, "uProjection", frame.projection);
+        glProgramUniform2i(prog, glGetUniformLocation(prog, "uImageSize"), frame.width, frame.height);
+        setInt(prog, "uSupertile", side);
+        setInt(prog, "uSupertileCapacity", capacity);
+    }
+    glUseProgram(state.clusterSupertileProgram.id());
+    glDispatchCompute(GLuint(stX), GLuint(stY), 1);  // a work group per supertile
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    glUseProgram(state.clusterBuildProgram.id());
     glDispatchCompute(GLuint(g.tilesX), GLuint(g.tilesY), 1);  // a work group per tile, an invocation per slice
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, 0);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, 0);
     finishClusterBuild(state);
 }
 

@@ -48,6 +48,13 @@ struct LocalLightPass {
     ClusterGrid clusterGrid;          // the grid the last build made
     gl::Buffer clusterCounts;         // uint per cluster: lights touching it (uncapped)
     gl::Buffer clusterLists;          // kMaxLightsPerCluster uints per cluster: light indices
+    // The whole build's first level (light_cluster_supertiles.comp): per supertile of
+    // supertileTiles x supertileTiles froxel tiles, its light count and up to supertileCapacity
+    // light indices. The two sizes are settable for tests (0: the defaults).
+    gl::Program clusterSupertileProgram;
+    gl::Buffer supertileCounts, supertileLists;
+    size_t supertileCountsCapacity = 0, supertileListsCapacity = 0;  // uints the buffers hold
+    int supertileTiles = 0, supertileCapacity = 0;
     // One uint per build: clusters past the cap. A ring, each slot read back only once its fence
     // has signaled, so the warning never makes the CPU (or the pass's GPU timer) wait on a build.
     // The builds count into clusterOverflowCounter, in GPU memory, and each build's count is then

@@ -1,7 +1,8 @@
 #version 450
 // Builds the whole froxel grid's light lists (every slice of every tile, whatever the depth buffer
 // holds): the lists the forward passes read, transparent surfaces included, which are in no depth
-// buffer. One work group per screen tile, in two steps per batch of 256 lights: each invocation
+// buffer. One work group per screen tile, in two steps per batch of 256 of its supertile's lights
+// (light_cluster_supertiles.comp; every light where that list overflowed): each invocation
 // tests one light against the tile's whole column (the tile's frustum from the near to the far
 // plane, as the tiled method culls) and marks a survivor with a bit in shared memory, then
 // invocation k < slices walks the survivors' bits (index order, no scan) and tests each against
@@ -19,14 +20,20 @@ layout(std430, binding = 0) readonly buffer LocalLights { LpLocalLight uLights[]
 layout(std430, binding = 1) writeonly buffer ClusterCounts { uint uCounts[]; };
 layout(std430, binding = 2) writeonly buffer ClusterLights { uint uLists[]; };
 layout(std430, binding = 3) buffer ClusterOverflow { uint uOverflow; };
+// light_cluster_supertiles.comp's lists: the lights that can touch this tile's supertile.
+layout(std430, binding = 6) readonly buffer SupertileCounts { uint uSupertileCounts[]; };
+layout(std430, binding = 7) readonly buffer SupertileLights { uint uSupertileLists[]; };
 uniform int uLightCount;
 uniform mat4 uProjection;
 uniform ivec2 uImageSize;
+uniform int uSupertile;
+uniform int uSupertileCapacity;
 
 shared uint sSurvivors[LP_BATCH / 32];  // a bit per light of the batch touching the tile's column
 shared vec4 sBound[LP_BATCH];
 shared vec4 sApex[LP_BATCH];  // xyz position, w range
 shared vec4 sAxis[LP_BATCH];  // xyz spot axis, w cos(outer); < -1 a point light
+shared uint sLight[LP_BATCH];  // the light's index
 
 void main() {
     ivec2 tile = ivec2(gl_WorkGroupID.xy);
@@ -42,17 +49,26 @@ void main() {
     int cluster = clusterIndex(ivec3(tile, slice));
     uint base = uint(cluster) * LP_MAX_LIGHTS_PER_CLUSTER;
     uint count = 0u;
-    for (int first = 0; first < uLightCount; first += LP_BATCH) {
+    // The supertile's lights (index order), or every light where its list overflowed.
+    ivec2 st = tile / uSupertile;
+    int stIndex = st.y * ((uClusterGrid.x + uSupertile - 1) / uSupertile) + st.x;
+    uint stCount = uSupertileCounts[stIndex];
+    bool listed = stCount <= uint(uSupertileCapacity);
+    int candidates = listed ? int(stCount) : uLightCount;
+    uint stBase = uint(stIndex) * uint(uSupertileCapacity);
+    for (int first = 0; first < candidates; first += LP_BATCH) {
         if (lid < uint(LP_BATCH / 32)) sSurvivors[lid] = 0u;
         barrier();
-        int i = first + int(lid);
-        if (i < uLightCount) {
+        int k = first + int(lid);
+        if (k < candidates) {
+            int i = listed ? int(uSupertileLists[stBase + uint(k)]) : k;
             vec4 b = uLights[i].bound;
             if (sphereTouchesTileFrustum(b.xyz, b.w * (1.0 + LP_CLUSTER_MARGIN) + 1e-6, ndcLo, ndcHi, uClusterNear,
                                          uClusterFar, uProjection)) {
                 sBound[lid] = b;
                 sApex[lid] = uLights[i].positionRange;
                 sAxis[lid] = uLights[i].directionCos;
+                sLight[lid] = uint(i);
                 atomicOr(sSurvivors[lid >> 5], 1u << (lid & 31u));
             }
         }
@@ -62,7 +78,7 @@ void main() {
                 for (uint bits = sSurvivors[w]; bits != 0u; bits &= bits - 1u) {
                     int j = 32 * w + findLSB(bits);
                     if (clusterLightTouchesBox(sBound[j], sApex[j], sAxis[j], lo, hi)) {
-                        if (count < LP_MAX_LIGHTS_PER_CLUSTER) uLists[base + count] = uint(first + j);
+                        if (count < LP_MAX_LIGHTS_PER_CLUSTER) uLists[base + count] = sLight[j];
                         ++count;
                     }
                 }
