@@ -214,13 +214,16 @@ void finishClusterBuild(LocalLightPass& state) {
 // passes and transparent surfaces); leaves the counts at binding 1 and the lists at binding 2.
 // Supertiles of 8 x 8 froxel tiles (128 px at the default 16): at 16384 lights a 4K frame's 510
 // supertiles keep a few hundred lights each, so each tile tests those instead of all 16384. A list
-// holds at most 4096 lights (8 MB at 4K); a supertile with more is tested light by light.
+// holds at most 4096 lights (8 MB at 4K); a supertile with more is tested light by light. Up to 256
+// lights (one batch of the tile kernel either way) the first level only adds a dispatch: skipped.
 constexpr int kSupertileTiles = 8;
 constexpr int kSupertileCapacity = 4096;
+constexpr int kSupertileMinLights = 257;
 
 void buildClusters(LocalLightPass& state, const FrameData& frame, int lightCount) {
     ++state.clusterBuilds;
     const ClusterGrid g = beginClusterBuild(state, frame);
+    const bool supertiles = lightCount >= kSupertileMinLights || state.supertileTiles > 0;
     const int side = state.supertileTiles > 0 ? state.supertileTiles : kSupertileTiles;
     const int capacity = std::max(1, std::min(lightCount, state.supertileCapacity > 0 ? state.supertileCapacity : kSupertileCapacity));
     const int stX = (g.tilesX + side - 1) / side, stY = (g.tilesY + side - 1) / side;
@@ -240,12 +243,14 @@ void buildClusters(LocalLightPass& state, const FrameData& frame, int lightCount
         setInt(prog, "uLightCount", lightCount);
         setMat4(prog, "uProjection", frame.projection);
         glProgramUniform2i(prog, glGetUniformLocation(prog, "uImageSize"), frame.width, frame.height);
-        setInt(prog, "uSupertile", side);
+        setInt(prog, "uSupertile", supertiles ? side : 0);
         setInt(prog, "uSupertileCapacity", capacity);
     }
-    glUseProgram(state.clusterSupertileProgram.id());
-    glDispatchCompute(GLuint(stX), GLuint(stY), 1);  // a work group per supertile
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    if (supertiles) {
+        glUseProgram(state.clusterSupertileProgram.id());
+        glDispatchCompute(GLuint(stX), GLuint(stY), 1);  // a work group per supertile
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
     glUseProgram(state.clusterBuildProgram.id());
     glDispatchCompute(GLuint(g.tilesX), GLuint(g.tilesY), 1);  // a work group per tile, an invocation per slice
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, 0);

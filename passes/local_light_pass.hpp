@@ -50,7 +50,8 @@ struct LocalLightPass {
     gl::Buffer clusterLists;          // kMaxLightsPerCluster uints per cluster: light indices
     // The whole build's first level (light_cluster_supertiles.comp): per supertile of
     // supertileTiles x supertileTiles froxel tiles, its light count and up to supertileCapacity
-    // light indices. The two sizes are settable for tests (0: the defaults).
+    // light indices. The two sizes are settable for tests (0: the defaults; a supertile size set
+    // here also makes the first level run below its light count).
     gl::Program clusterSupertileProgram;
     gl::Buffer supertileCounts, supertileLists;
     size_t supertileCountsCapacity = 0, supertileListsCapacity = 0;  // uints the buffers hold

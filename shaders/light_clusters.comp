@@ -49,11 +49,16 @@ void main() {
     int cluster = clusterIndex(ivec3(tile, slice));
     uint base = uint(cluster) * LP_MAX_LIGHTS_PER_CLUSTER;
     uint count = 0u;
-    // The supertile's lights (index order), or every light where its list overflowed.
-    ivec2 st = tile / uSupertile;
-    int stIndex = st.y * ((uClusterGrid.x + uSupertile - 1) / uSupertile) + st.x;
-    uint stCount = uSupertileCounts[stIndex];
-    bool listed = stCount <= uint(uSupertileCapacity);
+    // The supertile's lights (index order), or every light where its list overflowed or there are
+    // no supertiles (uSupertile 0: few lights, one batch either way).
+    int stIndex = 0;
+    uint stCount = 0u;
+    if (uSupertile > 0) {
+        ivec2 st = tile / uSupertile;
+        stIndex = st.y * ((uClusterGrid.x + uSupertile - 1) / uSupertile) + st.x;
+        stCount = uSupertileCounts[stIndex];
+    }
+    bool listed = uSupertile > 0 && stCount <= uint(uSupertileCapacity);
     int candidates = listed ? int(stCount) : uLightCount;
     uint stBase = uint(stIndex) * uint(uSupertileCapacity);
     for (int first = 0; first < candidates; first += LP_BATCH) {
