@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 #include <functional>
+#include <map>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -320,9 +321,12 @@ struct Loader {
         return t;
     }
     // The one uv transform of material `index`'s textures: lightpass keeps a single uv set per vertex,
-    // so textures of one material that disagree get the first one's, with a warning.
+    // so textures of one material that disagree get the first one's, with a warning (once per
+    // material, however many primitives use it).
+    mutable std::map<int, UvTransform> materialUvTransforms;
     UvTransform materialUvTransform(int index) const {
         if (index < 0 || size_t(index) >= model.materials.size()) return {};
+        if (auto known = materialUvTransforms.find(index); known != materialUvTransforms.end()) return known->second;
         const tinygltf::Material& m = model.materials[size_t(index)];
         const std::string w = "materials[" + std::to_string(index) + "]";
         const std::pair<std::string, std::pair<int, const tinygltf::ExtensionMap*>> textures[] = {
@@ -344,7 +348,7 @@ struct Loader {
                 warn(w + "." + name, "its KHR_texture_transform differs from " + firstName + "'s, which is applied to every texture of the material");
             }
         }
-        return first.value_or(UvTransform{});
+        return materialUvTransforms[index] = first.value_or(UvTransform{});
     }
 
     Material material(int index) const {
