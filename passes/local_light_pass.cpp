@@ -220,12 +220,21 @@ constexpr int kSupertileTiles = 8;
 constexpr int kSupertileCapacity = 4096;
 constexpr int kSupertileMinLights = 257;
 
-void buildClusters(LocalLightPass& state, const FrameData& frame, int lightCount) {
-    ++state.clusterBuilds;
-    const ClusterGrid g = beginClusterBuild(state, frame);
-    const bool supertiles = lightCount >= kSupertileMinLights || state.supertileTiles > 0;
+// The first level of a build or of the tiled and clustered shading passes
+// (light_cluster_supertiles.comp): each supertile's lights at bindings 6 and 7, for grid g's tiles,
+// with uSupertile / uSupertileCapacity set on `readers` (the programs that read the lists; uSupertile
+// 0 where the level is skipped: few lights, or not `allowed`, as with unbounded specular, where every
+// light reaches every pixel). The caller unbinds 6 and 7 after its dispatch.
+void buildSupertiles(LocalLightPass& state, const FrameData& frame, const ClusterGrid& g, int lightCount,
+                     std::initializer_list<GLuint> readers, bool allowed = true) {
+    const bool supertiles = allowed && state.supertileTiles >= 0 && (lightCount >= kSupertileMinLights || state.supertileTiles > 0);
     const int side = state.supertileTiles > 0 ? state.supertileTiles : kSupertileTiles;
     const int capacity = std::max(1, std::min(lightCount, state.supertileCapacity > 0 ? state.supertileCapacity : kSupertileCapacity));
+    for (const GLuint prog : readers) {
+        setInt(prog, "uSupertile", supertiles ? side : 0);
+        setInt(prog, "uSupertileCapacity", capacity);
+    }
+    if (!supertiles) return;
     const int stX = (g.tilesX + side - 1) / side, stY = (g.tilesY + side - 1) / side;
     const size_t counts = size_t(stX) * size_t(stY), entries = counts * size_t(capacity);
     if (counts > state.supertileCountsCapacity || !state.supertileCounts) {
@@ -238,23 +247,35 @@ void buildClusters(LocalLightPass& state, const FrameData& frame, int lightCount
     }
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, state.supertileCounts.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, state.supertileLists.id());
-    for (const GLuint prog : {state.clusterSupertileProgram.id(), state.clusterBuildProgram.id()}) {
-        setClusterUniforms(prog, g);
-        setInt(prog, "uLightCount", lightCount);
-        setMat4(prog, "uProjection", frame.projection);
-        glProgramUniform2i(prog, glGetUniformLocation(prog, "uImageSize"), frame.width, frame.height);
-        setInt(prog, "uSupertile", supertiles ? side : 0);
-        setInt(prog, "uSupertileCapacity", capacity);
-    }
-    if (supertiles) {
-        glUseProgram(state.clusterSupertileProgram.id());
-        glDispatchCompute(GLuint(stX), GLuint(stY), 1);  // a work group per supertile
-        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    }
-    glUseProgram(state.clusterBuildProgram.id());
-    glDispatchCompute(GLuint(g.tilesX), GLuint(g.tilesY), 1);  // a work group per tile, an invocation per slice
+    const GLuint prog = state.clusterSupertileProgram.id();
+    setClusterUniforms(prog, g);
+    setInt(prog, "uLightCount", lightCount);
+    setMat4(prog, "uProjection", frame.projection);
+    glProgramUniform2i(prog, glGetUniformLocation(prog, "uImageSize"), frame.width, frame.height);
+    setInt(prog, "uSupertile", side);
+    setInt(prog, "uSupertileCapacity", capacity);
+    glUseProgram(prog);
+    glDispatchCompute(GLuint(stX), GLuint(stY), 1);  // a work group per supertile
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+void unbindSupertiles() {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, 0);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, 0);
+}
+
+void buildClusters(LocalLightPass& state, const FrameData& frame, int lightCount) {
+    ++state.clusterBuilds;
+    const ClusterGrid g = beginClusterBuild(state, frame);
+    const GLuint prog = state.clusterBuildProgram.id();
+    buildSupertiles(state, frame, g, lightCount, {prog});
+    setClusterUniforms(prog, g);
+    setInt(prog, "uLightCount", lightCount);
+    setMat4(prog, "uProjection", frame.projection);
+    glProgramUniform2i(prog, glGetUniformLocation(prog, "uImageSize"), frame.width, frame.height);
+    glUseProgram(prog);
+    glDispatchCompute(GLuint(g.tilesX), GLuint(g.tilesY), 1);  // a work group per tile, an invocation per slice
+    unbindSupertiles();
     finishClusterBuild(state);
 }
 
@@ -295,7 +316,9 @@ void shadeClustered(LocalLightPass& state, const FrameData& frame, GLuint prog, 
                                           frame.farPlane);
     state.clusterGrid = g;
     state.stats.clusters = g.count();
+    buildSupertiles(state, frame, g, lightCount, {prog}, !unbounded(s));
     dispatchPerClusterTile(prog, g, frame, lightCount);
+    unbindSupertiles();
 }
 
 // The fullscreen, scissor and volumes methods: additive blending into an FBO holding the HDR texture.
@@ -468,9 +491,13 @@ fg::ResourceId addLocalLightPass(fg::FrameGraph& graph, LocalLightPass& state, c
                 setInt(prog, "uUnbounded", unbounded(s));
                 setInt(prog, "uLightingOnly", lightingOnly);
                 setInt(prog, "uSpecularMode", specularMode(s));
+                buildSupertiles(state, frame,
+                                makeClusterGrid(frame.width, frame.height, kTileSize, 1, frame.nearPlane, frame.farPlane),
+                                int(lights->size()), {prog}, !unbounded(s));
                 glBindImageTexture(0, hdrTexture, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
                 glUseProgram(prog);
                 gl::dispatch2D(frame.width, frame.height, kTileSize);
+                unbindSupertiles();
                 state.stats.drawn = int(lights->size());
             } else if (s.method == LocalLightMethod::Clustered) {
                 const GLuint prog = state.clusteredProgram.id();

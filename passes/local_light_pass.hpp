@@ -51,7 +51,7 @@ struct LocalLightPass {
     // The whole build's first level (light_cluster_supertiles.comp): per supertile of
     // supertileTiles x supertileTiles froxel tiles, its light count and up to supertileCapacity
     // light indices. The two sizes are settable for tests (0: the defaults; a supertile size set
-    // here also makes the first level run below its light count).
+    // here also makes the first level run below its light count; a negative one turns it off).
     gl::Program clusterSupertileProgram;
     gl::Buffer supertileCounts, supertileLists;
     size_t supertileCountsCapacity = 0, supertileListsCapacity = 0;  // uints the buffers hold

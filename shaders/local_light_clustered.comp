@@ -47,6 +47,11 @@ const int LP_MASK = LP_SLICES * LP_WORDS;  // one batch's bits
 
 layout(local_size_x = LP_SIDE, local_size_y = LP_SIDE) in;
 layout(std430, binding = 0) readonly buffer LocalLights { LpLocalLight uLights[]; };
+// light_cluster_supertiles.comp's lists (see local_light_tiled.comp).
+layout(std430, binding = 6) readonly buffer SupertileCounts { uint uSupertileCounts[]; };
+layout(std430, binding = 7) readonly buffer SupertileLights { uint uSupertileLists[]; };
+uniform int uSupertile;
+uniform int uSupertileCapacity;
 layout(rgba16f, binding = 0) uniform image2D uHdr;
 uniform int uLightCount;
 uniform mat4 uProjection;
@@ -59,6 +64,7 @@ uniform int uSpecularMode;
 // batch needs one barrier between its tests and its shading and one before the next batch's tests.
 shared uint sMask[2 * LP_MASK];  // per slice, a bit per light of the batch touching it
 shared uint sWords[2 * LP_SLICES];  // per slice, a bit per word of its sMask that is not 0
+shared uint sLight[LP_BATCH];  // the batch's light indices (its bits' lights)
 
 // Light i (bound b; bit `at` of the batch) against the tile's occupied slices `occ` that its eye-depth
 // interval reaches; a bit in the half of sMask / sWords at `mask` / `words` for each slice it touches.
@@ -147,12 +153,26 @@ void main() {
 
     uint word = lid >> 5, bit = 1u << (lid & 31u);
     int part = 0;  // which half of sMask / sWords this batch uses
-    for (int first = 0; first < uLightCount; first += LP_BATCH) {
+    // The candidates: the supertile's lights, or every light (no supertiles, an overflowing list).
+    int candidates = uLightCount;
+    bool listed = false;
+    uint stBase = 0u;
+    if (uSupertile > 0) {
+        ivec2 st = tile / uSupertile;
+        int stIndex = st.y * ((int(gl_NumWorkGroups.x) + uSupertile - 1) / uSupertile) + st.x;
+        uint n = uSupertileCounts[stIndex];
+        listed = n <= uint(uSupertileCapacity);
+        if (listed) candidates = int(n);
+        stBase = uint(stIndex) * uint(uSupertileCapacity);
+    }
+    for (int first = 0; first < candidates; first += LP_BATCH) {
         int mask = part * LP_MASK, words = part * LP_SLICES;
         // 2. This invocation's light against the tile, then against the occupied slices its
         // eye-depth interval reaches (every light everywhere when unbounded: no bits needed).
-        int i = first + int(lid);
-        if (i < uLightCount && !uUnbounded) {
+        int cand = first + int(lid);  // this invocation's candidate
+        int i = cand < candidates && listed ? int(uSupertileLists[stBase + uint(cand)]) : cand;
+        if (cand < candidates) sLight[lid] = uint(i);
+        if (cand < candidates && !uUnbounded) {
             vec4 b = uLights[i].bound;
             float r = b.w * (1.0 + LP_CLUSTER_MARGIN) + 1e-6;
             if (sphereTouchesTileFrustum(b.xyz, r, ndcLo, ndcHi, tileNear, tileFar, uProjection)) {
@@ -165,7 +185,7 @@ void main() {
             }
         }
         barrier();
-        int batch = min(LP_BATCH, uLightCount - first);
+        int batch = min(LP_BATCH, candidates - first);
         // 3. Each pixel: the lights of its slice, in index order (only the words holding any).
         uint batchWords = (1u << uint((batch + 31) / 32)) - 1u;
         for (int k = 0; k < LP_PIXELS; ++k) {
@@ -175,11 +195,11 @@ void main() {
                 uint bits = sMask[mask + slice[k] * LP_WORDS + w];
                 if (uUnbounded) bits = batch - 32 * w >= 32 ? ~0u : (1u << uint(batch - 32 * w)) - 1u;
                 for (; bits != 0u; bits &= bits - 1u)
-                    sum[k] += lpShadeLocalLight(uLights[first + 32 * w + findLSB(bits)], P[k], N[k], V[k], kd[k],
+                    sum[k] += lpShadeLocalLight(uLights[sLight[32 * w + findLSB(bits)]], P[k], N[k], V[k], kd[k],
                                                 spec[k].rgb, spec[k].a, uSpecularMode);
             }
         }
-        if (first + LP_BATCH >= uLightCount) break;  // uniform
+        if (first + LP_BATCH >= candidates) break;  // uniform
         // The other half for the next batch: its last readers finished before this batch's barrier.
         int other = (1 - part) * LP_MASK;
         for (int w = int(lid); w < slices * LP_WORDS; w += LP_BATCH) sMask[other + w] = 0u;

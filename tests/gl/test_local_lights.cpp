@@ -444,6 +444,35 @@ TEST(LocalLights, GlobesAndOverlayViewsRender) {
         }
 }
 
+// The tiled and clustered passes' candidates from light_cluster_supertiles.comp change no bit of the
+// image: a supertile only drops lights that cannot touch its tiles, and each pixel still adds its
+// lights in index order. Twenty lights with the level forced on (2 x 2 and 1 x 1 tiles, and every
+// list overflowing) against it off; 600 lights (the level on by default) against it off; with
+// unbounded specular the level stays off.
+TEST(LocalLights, SupertileCandidatesChangeNoBit) {
+    const Scene twenty = twentyLightScene();
+    for (LocalLightMethod m : {LocalLightMethod::Tiled, LocalLightMethod::Clustered}) {
+        SCOPED_TRACE(localLightMethodName(m));
+        auto render = [&](const Scene& s, RenderSettings r, int tiles, int capacity) {
+            Rig rig(s);
+            rig.passes.localLights.supertileTiles = tiles;
+            rig.passes.localLights.supertileCapacity = capacity;
+            return rig.renderHdr(r);
+        };
+        const RenderSettings r = smallSettings(m);
+        const std::vector<float> off = render(twenty, r, -1, 0);
+        EXPECT_EQ(render(twenty, r, 2, 0), off) << "2 x 2 supertiles";
+        EXPECT_EQ(render(twenty, r, 1, 0), off) << "a supertile a tile";
+        EXPECT_EQ(render(twenty, r, 2, 1), off) << "every list overflowing";
+        RenderSettings many = r;
+        many.localLights.lightCount = 600;
+        const std::vector<float> manyOff = render(twenty, many, -1, 0);
+        EXPECT_EQ(render(twenty, many, 0, 0), manyOff) << "600 lights, the default supertiles";
+        EXPECT_EQ(render(twenty, many, 1, 0), manyOff) << "600 lights, a supertile a tile";
+        EXPECT_NE(manyOff, off) << "the 600 lights must add light for this test to see anything";
+    }
+}
+
 // The whole-froxel light lists are built once a frame: forward_opaque builds them, the transparent
 // pass and the lights-per-cluster view read that build (they were built again by each). With orbiting
 // lights, a second frame must still equal the same frame rendered first (no reader of the previous
