@@ -64,7 +64,7 @@ uniform int uSpecularMode;
 // batch needs one barrier between its tests and its shading and one before the next batch's tests.
 shared uint sMask[2 * LP_MASK];  // per slice, a bit per light of the batch touching it
 shared uint sWords[2 * LP_SLICES];  // per slice, a bit per word of its sMask that is not 0
-shared uint sLight[LP_BATCH];  // the batch's light indices (its bits' lights)
+shared uint sLight[LP_BATCH];  // the batch's light indices where they come from a supertile list
 
 // Light i (bound b; bit `at` of the batch) against the tile's occupied slices `occ` that its eye-depth
 // interval reaches; a bit in the half of sMask / sWords at `mask` / `words` for each slice it touches.
@@ -171,7 +171,7 @@ void main() {
         // eye-depth interval reaches (every light everywhere when unbounded: no bits needed).
         int cand = first + int(lid);  // this invocation's candidate
         int i = cand < candidates && listed ? int(uSupertileLists[stBase + uint(cand)]) : cand;
-        if (cand < candidates) sLight[lid] = uint(i);
+        if (listed && cand < candidates) sLight[lid] = uint(i);
         if (cand < candidates && !uUnbounded) {
             vec4 b = uLights[i].bound;
             float r = b.w * (1.0 + LP_CLUSTER_MARGIN) + 1e-6;
@@ -195,7 +195,8 @@ void main() {
                 uint bits = sMask[mask + slice[k] * LP_WORDS + w];
                 if (uUnbounded) bits = batch - 32 * w >= 32 ? ~0u : (1u << uint(batch - 32 * w)) - 1u;
                 for (; bits != 0u; bits &= bits - 1u)
-                    sum[k] += lpShadeLocalLight(uLights[sLight[32 * w + findLSB(bits)]], P[k], N[k], V[k], kd[k],
+                    sum[k] += lpShadeLocalLight(uLights[listed ? int(sLight[32 * w + findLSB(bits)]) : first + 32 * w + findLSB(bits)],
+                                                P[k], N[k], V[k], kd[k],
                                                 spec[k].rgb, spec[k].a, uSpecularMode);
             }
         }
