@@ -55,6 +55,7 @@ void ensureState(LocalLightPass& state, const FrameData& frame, bool spotShadows
         std::vector<std::string> clustered = defines;
         clustered.push_back("LP_CLUSTER_TILE " + std::to_string(clusterTile));
         state.clusteredProgram = frame.shaders->compute("local_light_clustered.comp", clustered);
+        state.clusteredSupertileProgram = {};  // compiled when first needed (many lights)
         state.clusterTightBuildProgram = frame.shaders->compute("light_clusters_tight.comp", clustered);
         state.clusterTileCompiled = clusterTile;
         defines.push_back("LP_TILE_HEATMAP");
@@ -225,9 +226,14 @@ constexpr int kSupertileMinLights = 257;
 // with uSupertile / uSupertileCapacity set on `readers` (the programs that read the lists; uSupertile
 // 0 where the level is skipped: few lights, or not `allowed`, as with unbounded specular, where every
 // light reaches every pixel). The caller unbinds 6 and 7 after its dispatch.
+// Whether a pass over lightCount lights takes its candidates from supertile lists.
+bool useSupertiles(const LocalLightPass& state, int lightCount, bool allowed) {
+    return allowed && state.supertileTiles >= 0 && (lightCount >= kSupertileMinLights || state.supertileTiles > 0);
+}
+
 void buildSupertiles(LocalLightPass& state, const FrameData& frame, const ClusterGrid& g, int lightCount,
                      std::initializer_list<GLuint> readers, bool allowed = true) {
-    const bool supertiles = allowed && state.supertileTiles >= 0 && (lightCount >= kSupertileMinLights || state.supertileTiles > 0);
+    const bool supertiles = useSupertiles(state, lightCount, allowed);
     const int side = state.supertileTiles > 0 ? state.supertileTiles : kSupertileTiles;
     const int capacity = std::max(1, std::min(lightCount, state.supertileCapacity > 0 ? state.supertileCapacity : kSupertileCapacity));
     for (const GLuint prog : readers) {
@@ -500,7 +506,16 @@ fg::ResourceId addLocalLightPass(fg::FrameGraph& graph, LocalLightPass& state, c
                 unbindSupertiles();
                 state.stats.drawn = int(lights->size());
             } else if (s.method == LocalLightMethod::Clustered) {
-                const GLuint prog = state.clusteredProgram.id();
+                // With many lights the variant that reads the supertile lists (LP_SUPERTILES).
+                const bool supertiles = useSupertiles(state, int(lights->size()), !unbounded(s));
+                if (supertiles && !state.clusteredSupertileProgram) {
+                    std::vector<std::string> d = gbufferDefines(frame.settings->gbuffer);
+                    if (state.spotShadowVariant) d.push_back("LP_SPOT_SHADOWS");
+                    d.push_back("LP_CLUSTER_TILE " + std::to_string(state.clusterTileCompiled));
+                    d.push_back("LP_SUPERTILES");
+                    state.clusteredSupertileProgram = frame.shaders->compute("local_light_clustered.comp", d);
+                }
+                const GLuint prog = supertiles ? state.clusteredSupertileProgram.id() : state.clusteredProgram.id();
                 bindGBuffer(prog, res, data.in, frame, !lightingOnly);
                 setInt(prog, "uUnbounded", unbounded(s));
                 setInt(prog, "uLightingOnly", lightingOnly);

@@ -42,6 +42,7 @@ struct LocalLightPass {
     gl::Program overlayProgram;   // local_light_overlay.vert/.frag: globes, volumes, rectangles
     gl::Program clusterBuildProgram;  // light_clusters.comp
     gl::Program clusteredProgram;     // local_light_clustered.comp: tight froxels in shared memory and shading, fused
+    gl::Program clusteredSupertileProgram;  // the same with LP_SUPERTILES: candidates from supertile lists (many lights)
     gl::Program clusterTightBuildProgram;  // light_clusters_tight.comp: the tight lists (lights-per-cluster view)
     int clusterTileCompiled = 0;      // the tile size (--cluster-size) those two were compiled for
     gl::Program clusterViewProgram;   // light_clusters_view.comp
