@@ -13,6 +13,7 @@
 // the G-buffer's depth in local_light_clustered.comp.)
 #include "common/local_light.glsl"
 #include "common/clusters.glsl"
+#include "common/supertiles.glsl"
 
 const int LP_BATCH = 256;  // lights per batch: one per invocation (and >= kMaxClusterSlices)
 layout(local_size_x = LP_BATCH) in;
@@ -20,14 +21,9 @@ layout(std430, binding = 0) readonly buffer LocalLights { LpLocalLight uLights[]
 layout(std430, binding = 1) writeonly buffer ClusterCounts { uint uCounts[]; };
 layout(std430, binding = 2) writeonly buffer ClusterLights { uint uLists[]; };
 layout(std430, binding = 3) buffer ClusterOverflow { uint uOverflow; };
-// light_cluster_supertiles.comp's lists: the lights that can touch this tile's supertile.
-layout(std430, binding = 6) readonly buffer SupertileCounts { uint uSupertileCounts[]; };
-layout(std430, binding = 7) readonly buffer SupertileLights { uint uSupertileLists[]; };
 uniform int uLightCount;
 uniform mat4 uProjection;
 uniform ivec2 uImageSize;
-uniform int uSupertile;
-uniform int uSupertileCapacity;
 
 shared uint sSurvivors[LP_BATCH / 32];  // a bit per light of the batch touching the tile's column
 shared vec4 sBound[LP_BATCH];
@@ -49,24 +45,13 @@ void main() {
     int cluster = clusterIndex(ivec3(tile, slice));
     uint base = uint(cluster) * LP_MAX_LIGHTS_PER_CLUSTER;
     uint count = 0u;
-    // The supertile's lights (index order), or every light where its list overflowed or there are
-    // no supertiles (uSupertile 0: few lights, one batch either way).
-    int stIndex = 0;
-    uint stCount = 0u;
-    if (uSupertile > 0) {
-        ivec2 st = tile / uSupertile;
-        stIndex = st.y * ((uClusterGrid.x + uSupertile - 1) / uSupertile) + st.x;
-        stCount = uSupertileCounts[stIndex];
-    }
-    bool listed = uSupertile > 0 && stCount <= uint(uSupertileCapacity);
-    int candidates = listed ? int(stCount) : uLightCount;
-    uint stBase = uint(stIndex) * uint(uSupertileCapacity);
-    for (int first = 0; first < candidates; first += LP_BATCH) {
+    const SupertileCandidates candidates = supertileCandidates(tile, uClusterGrid.x, uLightCount);
+    for (int first = 0; first < candidates.count; first += LP_BATCH) {
         if (lid < uint(LP_BATCH / 32)) sSurvivors[lid] = 0u;
         barrier();
         int k = first + int(lid);
-        if (k < candidates) {
-            int i = listed ? int(uSupertileLists[stBase + uint(k)]) : k;
+        if (k < candidates.count) {
+            int i = supertileCandidate(candidates, k);
             vec4 b = uLights[i].bound;
             if (sphereTouchesTileFrustum(b.xyz, b.w * (1.0 + LP_CLUSTER_MARGIN) + 1e-6, ndcLo, ndcHi, uClusterNear,
                                          uClusterFar, uProjection)) {

@@ -48,12 +48,9 @@ const int LP_MASK = LP_SLICES * LP_WORDS;  // one batch's bits
 layout(local_size_x = LP_SIDE, local_size_y = LP_SIDE) in;
 layout(std430, binding = 0) readonly buffer LocalLights { LpLocalLight uLights[]; };
 #ifdef LP_SUPERTILES
-// light_cluster_supertiles.comp's lists (see local_light_tiled.comp). A variant of its own: without
-// them (up to 256 lights) the kernel compiles to what it was before they existed, 2-3% faster there.
-layout(std430, binding = 6) readonly buffer SupertileCounts { uint uSupertileCounts[]; };
-layout(std430, binding = 7) readonly buffer SupertileLights { uint uSupertileLists[]; };
-uniform int uSupertile;
-uniform int uSupertileCapacity;
+// Candidates from light_cluster_supertiles.comp's lists. A variant of its own: without them (up to
+// 256 lights) the kernel compiles to what it was before they existed, 2-3% faster there.
+#include "common/supertiles.glsl"
 #endif
 layout(rgba16f, binding = 0) uniform image2D uHdr;
 uniform int uLightCount;
@@ -168,17 +165,9 @@ void main() {
     int part = 0;  // which half of sMask / sWords this batch uses
     // The candidates: the supertile's lights, or every light (no supertiles, an overflowing list).
 #ifdef LP_SUPERTILES
-    int candidates = uLightCount;
-    bool listed = false;
-    uint stBase = 0u;
-    if (uSupertile > 0) {
-        ivec2 st = tile / uSupertile;
-        int stIndex = st.y * ((int(gl_NumWorkGroups.x) + uSupertile - 1) / uSupertile) + st.x;
-        uint n = uSupertileCounts[stIndex];
-        listed = n <= uint(uSupertileCapacity);
-        if (listed) candidates = int(n);
-        stBase = uint(stIndex) * uint(uSupertileCapacity);
-    }
+    const SupertileCandidates tileCandidates = supertileCandidates(tile, int(gl_NumWorkGroups.x), uLightCount);
+    const int candidates = tileCandidates.count;
+    const bool listed = tileCandidates.listed;
 #else
     const int candidates = uLightCount;
     const bool listed = false;
@@ -189,7 +178,7 @@ void main() {
         // eye-depth interval reaches (every light everywhere when unbounded: no bits needed).
         int cand = first + int(lid);  // this invocation's candidate
 #ifdef LP_SUPERTILES
-        int i = cand < candidates && listed ? int(uSupertileLists[stBase + uint(cand)]) : cand;
+        int i = cand < candidates ? supertileCandidate(tileCandidates, cand) : cand;
         if (listed && cand < candidates) sLight[lid] = uint(i);
 #else
         int i = cand;

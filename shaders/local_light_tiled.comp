@@ -7,6 +7,7 @@
 #include "common/local_light.glsl"
 #include "common/tonemap.glsl"
 #include "common/heatmap.glsl"
+#include "common/supertiles.glsl"
 #define LP_GBUFFER_READ
 #include "common/gbuffer_layout.glsl"
 
@@ -14,12 +15,6 @@ layout(local_size_x = 16, local_size_y = 16) in;
 const uint LP_BATCH = 256u;  // = threads per group: each thread tests one light per batch
 
 layout(std430, binding = 0) readonly buffer LocalLights { LpLocalLight uLights[]; };
-// light_cluster_supertiles.comp's lists: the lights that can touch this tile's supertile (uSupertile
-// 0: none built, every light is a candidate; a count above uSupertileCapacity: the list overflowed, the same).
-layout(std430, binding = 6) readonly buffer SupertileCounts { uint uSupertileCounts[]; };
-layout(std430, binding = 7) readonly buffer SupertileLights { uint uSupertileLists[]; };
-uniform int uSupertile;
-uniform int uSupertileCapacity;
 layout(rgba16f, binding = 0) uniform image2D uHdr;
 uniform int uLightCount;
 uniform mat4 uProjection;
@@ -74,24 +69,14 @@ void main() {
 #endif
     if (anySurface) {
         uint word = lid >> 5u, bit = 1u << (lid & 31u);
-        int candidates = uLightCount;
-        bool listed = false;
-        uint stBase = 0u;
-        if (uSupertile > 0) {
-            ivec2 st = ivec2(gl_WorkGroupID.xy) / uSupertile;
-            int stIndex = st.y * ((int(gl_NumWorkGroups.x) + uSupertile - 1) / uSupertile) + st.x;
-            uint n = uSupertileCounts[stIndex];
-            listed = n <= uint(uSupertileCapacity);
-            if (listed) candidates = int(n);
-            stBase = uint(stIndex) * uint(uSupertileCapacity);
-        }
-        for (int base = 0; base < candidates; base += int(LP_BATCH)) {
+        const SupertileCandidates candidates = supertileCandidates(ivec2(gl_WorkGroupID.xy), int(gl_NumWorkGroups.x), uLightCount);
+        for (int base = 0; base < candidates.count; base += int(LP_BATCH)) {
             if (lid < LP_BATCH / 32u) sPassed[lid] = 0u;
             barrier();
             int cand = base + int(lid);  // this invocation's candidate
-            int i = cand < candidates && listed ? int(uSupertileLists[stBase + uint(cand)]) : cand;
+            int i = cand < candidates.count ? supertileCandidate(candidates, cand) : cand;
             bool touches = false;
-            if (cand < candidates) {
+            if (cand < candidates.count) {
                 vec4 pr = uLights[i].bound;
                 // 0.1% + 1 um margin: float rounding must never drop a light that reaches the tile.
                 touches = uUnbounded || sphereTouchesTileFrustum(pr.xyz, pr.w * 1.001 + 1e-6, tileLo, tileHi, d0, d1, uProjection);
