@@ -39,6 +39,20 @@ void makeMesh(const std::vector<glm::vec3>& tris, const std::string& name, gl::B
     vertices = int(tris.size());
 }
 
+// The G-buffer-reading programs' defines: the G-buffer layout and spot shadows.
+std::vector<std::string> lightingDefines(const GBufferSettings& layout, bool spotShadows) {
+    std::vector<std::string> d = gbufferDefines(layout);
+    if (spotShadows) d.push_back("LP_SPOT_SHADOWS");
+    return d;
+}
+
+// The fused clustered programs' defines: those and the grid's tile size (their work-group shape).
+std::vector<std::string> clusteredDefines(const GBufferSettings& layout, bool spotShadows, int clusterTile) {
+    std::vector<std::string> d = lightingDefines(layout, spotShadows);
+    d.push_back("LP_CLUSTER_TILE " + std::to_string(clusterTile));
+    return d;
+}
+
 void ensureState(LocalLightPass& state, const FrameData& frame, bool spotShadows = false) {
     // The programs that read the G-buffer follow its layout (recompiled when it changes), and
     // sample spot shadow maps only in frames that have one.
@@ -47,13 +61,11 @@ void ensureState(LocalLightPass& state, const FrameData& frame, bool spotShadows
     const int clusterTile = frame.settings->localLights.clusterSize;
     if (!state.fbo || state.layout != layout || state.spotShadowVariant != spotShadows ||
         state.clusterTileCompiled != clusterTile) {
-        std::vector<std::string> defines = gbufferDefines(layout);
-        if (spotShadows) defines.push_back("LP_SPOT_SHADOWS");
+        std::vector<std::string> defines = lightingDefines(layout, spotShadows);
         state.spotShadowVariant = spotShadows;
         state.fragmentProgram = frame.shaders->graphics("local_light.vert", "local_light.frag", defines);
         state.tiledProgram = frame.shaders->compute("local_light_tiled.comp", defines);
-        std::vector<std::string> clustered = defines;
-        clustered.push_back("LP_CLUSTER_TILE " + std::to_string(clusterTile));
+        const std::vector<std::string> clustered = clusteredDefines(layout, spotShadows, clusterTile);
         state.clusteredProgram = frame.shaders->compute("local_light_clustered.comp", clustered);
         state.clusteredSupertileProgram = {};  // compiled when first needed (many lights)
         state.clusterTightBuildProgram = frame.shaders->compute("light_clusters_tight.comp", clustered);
@@ -211,8 +223,22 @@ void finishClusterBuild(LocalLightPass& state) {
     slot.read = false;
 }
 
-// Builds the whole grid's light lists (light_clusters.comp: every froxel whole, for the forward
-// passes and transparent surfaces); leaves the counts at binding 1 and the lists at binding 2.
+// What every program that culls lights per tile of grid g reads (the supertile lists' build, the
+// whole and tight froxel builds, the clustered method's fused pass).
+void setTileCullUniforms(GLuint prog, const ClusterGrid& g, const FrameData& frame, int lightCount) {
+    setClusterUniforms(prog, g);
+    setInt(prog, "uLightCount", lightCount);
+    setMat4(prog, "uProjection", frame.projection);
+    glProgramUniform2i(prog, glGetUniformLocation(prog, "uImageSize"), frame.width, frame.height);
+}
+
+// One work group per tile of the froxel grid, for the programs that cull per tile.
+void dispatchPerClusterTile(GLuint prog, const ClusterGrid& g, const FrameData& frame, int lightCount) {
+    setTileCullUniforms(prog, g, frame, lightCount);
+    glUseProgram(prog);
+    glDispatchCompute(GLuint(g.tilesX), GLuint(g.tilesY), 1);
+}
+
 // Supertiles of 8 x 8 froxel tiles (128 px at the default 16): at 16384 lights a 4K frame's 510
 // supertiles keep a few hundred lights each, so each tile tests those instead of all 16384. A list
 // holds at most 4096 lights (8 MB at 4K); a supertile with more is tested light by light. Up to 256
@@ -221,16 +247,16 @@ constexpr int kSupertileTiles = 8;
 constexpr int kSupertileCapacity = 4096;
 constexpr int kSupertileMinLights = 257;
 
-// The first level of a build or of the tiled and clustered shading passes
-// (light_cluster_supertiles.comp): each supertile's lights at bindings 6 and 7, for grid g's tiles,
-// with uSupertile / uSupertileCapacity set on `readers` (the programs that read the lists; uSupertile
-// 0 where the level is skipped: few lights, or not `allowed`, as with unbounded specular, where every
-// light reaches every pixel). The caller unbinds 6 and 7 after its dispatch.
 // Whether a pass over lightCount lights takes its candidates from supertile lists.
 bool useSupertiles(const LocalLightPass& state, int lightCount, bool allowed) {
     return allowed && state.supertileTiles >= 0 && (lightCount >= kSupertileMinLights || state.supertileTiles > 0);
 }
 
+// The first level of a build or of the tiled and clustered shading passes
+// (light_cluster_supertiles.comp): each supertile's lights at bindings 6 and 7, for grid g's tiles,
+// with uSupertile / uSupertileCapacity set on `readers` (the programs that read the lists; uSupertile
+// 0 where the level is skipped: few lights, or not `allowed`, as with unbounded specular, where every
+// light reaches every pixel). The caller unbinds 6 and 7 after its dispatch.
 void buildSupertiles(LocalLightPass& state, const FrameData& frame, const ClusterGrid& g, int lightCount,
                      std::initializer_list<GLuint> readers, bool allowed = true) {
     const bool supertiles = useSupertiles(state, lightCount, allowed);
@@ -254,10 +280,7 @@ void buildSupertiles(LocalLightPass& state, const FrameData& frame, const Cluste
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, state.supertileCounts.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, state.supertileLists.id());
     const GLuint prog = state.clusterSupertileProgram.id();
-    setClusterUniforms(prog, g);
-    setInt(prog, "uLightCount", lightCount);
-    setMat4(prog, "uProjection", frame.projection);
-    glProgramUniform2i(prog, glGetUniformLocation(prog, "uImageSize"), frame.width, frame.height);
+    setTileCullUniforms(prog, g, frame, lightCount);
     setInt(prog, "uSupertile", side);
     setInt(prog, "uSupertileCapacity", capacity);
     glUseProgram(prog);
@@ -270,30 +293,17 @@ void unbindSupertiles() {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, 0);
 }
 
+// Builds the whole grid's light lists (light_clusters.comp: every froxel whole, for the forward
+// passes and transparent surfaces; a work group per tile, an invocation per slice); leaves the counts
+// at binding 1 and the lists at binding 2.
 void buildClusters(LocalLightPass& state, const FrameData& frame, int lightCount) {
     ++state.clusterBuilds;
     const ClusterGrid g = beginClusterBuild(state, frame);
     const GLuint prog = state.clusterBuildProgram.id();
     buildSupertiles(state, frame, g, lightCount, {prog});
-    setClusterUniforms(prog, g);
-    setInt(prog, "uLightCount", lightCount);
-    setMat4(prog, "uProjection", frame.projection);
-    glProgramUniform2i(prog, glGetUniformLocation(prog, "uImageSize"), frame.width, frame.height);
-    glUseProgram(prog);
-    glDispatchCompute(GLuint(g.tilesX), GLuint(g.tilesY), 1);  // a work group per tile, an invocation per slice
+    dispatchPerClusterTile(prog, g, frame, lightCount);
     unbindSupertiles();
     finishClusterBuild(state);
-}
-
-// One work group per tile of the froxel grid, for the programs that cull against the G-buffer's depth
-// (the tight lists and the clustered method's fused pass share these uniforms).
-void dispatchPerClusterTile(GLuint prog, const ClusterGrid& g, const FrameData& frame, int lightCount) {
-    setClusterUniforms(prog, g);
-    setInt(prog, "uLightCount", lightCount);
-    setMat4(prog, "uProjection", frame.projection);
-    glProgramUniform2i(prog, glGetUniformLocation(prog, "uImageSize"), frame.width, frame.height);
-    glUseProgram(prog);
-    glDispatchCompute(GLuint(g.tilesX), GLuint(g.tilesY), 1);
 }
 
 // The froxel lists tightened to the G-buffer's depth (light_clusters_tight.comp, a work group per
@@ -509,9 +519,7 @@ fg::ResourceId addLocalLightPass(fg::FrameGraph& graph, LocalLightPass& state, c
                 // With many lights the variant that reads the supertile lists (LP_SUPERTILES).
                 const bool supertiles = useSupertiles(state, int(lights->size()), !unbounded(s));
                 if (supertiles && !state.clusteredSupertileProgram) {
-                    std::vector<std::string> d = gbufferDefines(frame.settings->gbuffer);
-                    if (state.spotShadowVariant) d.push_back("LP_SPOT_SHADOWS");
-                    d.push_back("LP_CLUSTER_TILE " + std::to_string(state.clusterTileCompiled));
+                    std::vector<std::string> d = clusteredDefines(state.layout, state.spotShadowVariant, state.clusterTileCompiled);
                     d.push_back("LP_SUPERTILES");
                     state.clusteredSupertileProgram = frame.shaders->compute("local_light_clustered.comp", d);
                 }
