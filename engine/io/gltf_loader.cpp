@@ -471,10 +471,11 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
         // have no bufferView) with a message that does not name the extension.
         if (root.is_object() && root.contains("extensionsRequired"))
             for (const auto& e : root["extensionsRequired"])
-                if (!kSupportedExtensions.count(e.get<std::string>()))
-                    throw Error(file + ": extensionsRequired: " + e.get<std::string>() +
-                                " is not supported (supported: KHR_lights_punctual, KHR_materials_emissive_strength, KHR_materials_ior, KHR_materials_unlit, "
-                                "KHR_mesh_quantization, KHR_texture_transform)");
+                if (!kSupportedExtensions.count(e.get<std::string>())) {
+                    std::string supported;
+                    for (const std::string& name : kSupportedExtensions) supported += (supported.empty() ? "" : ", ") + name;
+                    throw Error(file + ": extensionsRequired: " + e.get<std::string>() + " is not supported (supported: " + supported + ")");
+                }
     }
     const bool ok = binary ? gltf.LoadBinaryFromMemory(&model, &err, &warnText, reinterpret_cast<const unsigned char*>(bytes.data()),
                                                       unsigned(bytes.size()), baseDir)
@@ -529,7 +530,18 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
         return slot;
     };
 
+    // KHR_mesh_quantization (gltfpack's output): integer positions and uvs, normalised integer
+    // normals and tangents; the node transform (and a texture transform) scales them back.
     const bool quantized = std::find(model.extensionsUsed.begin(), model.extensionsUsed.end(), "KHR_mesh_quantization") != model.extensionsUsed.end();
+    const std::set<int> floats = {TINYGLTF_COMPONENT_TYPE_FLOAT};
+    const std::set<int> integers = {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
+                                    TINYGLTF_COMPONENT_TYPE_SHORT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT};
+    const std::set<int> signedNormalised = {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_COMPONENT_TYPE_SHORT};
+    const std::set<int>& positionTypes = quantized ? integers : floats;
+    const std::set<int>& directionTypes = quantized ? signedNormalised : floats;  // normals and tangents
+    const std::set<int> uvTypes = quantized ? integers
+                                            : std::set<int>{TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
+                                                            TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT};
     std::set<std::string> noted;  // what notedOnce has seen
     auto notedOnce = [&noted](const std::string& what) { return noted.insert(what).second; };
     auto addPrimitive = [&](int meshIndex, int primIndex, const glm::mat4& world) {
@@ -541,13 +553,7 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
         }
         auto attr = prim.attributes.find("POSITION");
         if (attr == prim.attributes.end()) L.fail(w, "has no POSITION attribute");
-        const std::set<int> fl = {TINYGLTF_COMPONENT_TYPE_FLOAT};
-        // KHR_mesh_quantization (gltfpack's output): integer positions and uvs, normalised integer
-        // normals and tangents; the node transform (and a texture transform) scales them back.
-        const std::set<int> integers = {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
-                                        TINYGLTF_COMPONENT_TYPE_SHORT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT};
-        const std::set<int> signedNormalised = {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_COMPONENT_TYPE_SHORT};
-        const auto pos = L.view(attr->second, w + ".attributes.POSITION", {TINYGLTF_TYPE_VEC3}, quantized ? integers : fl);
+        const auto pos = L.view(attr->second, w + ".attributes.POSITION", {TINYGLTF_TYPE_VEC3}, positionTypes);
         // Without a buffer view (and not sparse) every element is zero: no triangle could come of it, and
         // its count, bounded by no bytes of the file, would size the allocations.
         auto requireData = [&](const Loader::View& v, int accessor, const std::string& where) {
@@ -572,16 +578,12 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
         if (!prim.targets.empty() && notedOnce("targets"))
             L.warn(w + ".targets", "morph targets are not applied; drawn with the base shape");
         Loader::View nrm, uv, tan;
-        const bool hasNormals = optional("NORMAL", TINYGLTF_TYPE_VEC3, quantized ? signedNormalised : fl, nrm);
-        const bool hasUv = optional("TEXCOORD_0", TINYGLTF_TYPE_VEC2,
-                                    quantized ? integers
-                                              : std::set<int>{TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
-                                                              TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
-                                    uv);
+        const bool hasNormals = optional("NORMAL", TINYGLTF_TYPE_VEC3, directionTypes, nrm);
+        const bool hasUv = optional("TEXCOORD_0", TINYGLTF_TYPE_VEC2, uvTypes, uv);
         // KHR_texture_transform: applied to the uvs here. Where it turns or flips the uv axes, the
         // file's tangents (made for the untransformed uvs) are replaced by generated ones.
         const Loader::UvTransform uvTransform = L.materialUvTransform(prim.material);
-        const bool hasTangents = optional("TANGENT", TINYGLTF_TYPE_VEC4, quantized ? signedNormalised : fl, tan) && !uvTransform.turnsAxes();
+        const bool hasTangents = optional("TANGENT", TINYGLTF_TYPE_VEC4, directionTypes, tan) && !uvTransform.turnsAxes();
 
         // Triangle list, as vertex numbers of this primitive.
         std::vector<uint32_t> corners;
