@@ -244,10 +244,12 @@ void parseModel(const Reader& r, const json& j, const std::string& w, const fs::
         if (mat.contains("specular")) m.specularOverride = r.color(mat, "specular", mw, glm::vec3(0.0f));
         // Reflectances: above 1 a surface gives back more light than reaches it. A flat material's
         // colour is shown as it is (unlit), so it may be brighter.
-        const bool flat = m.flatOverride.value_or(false);
-        for (const auto& [key, value] : {std::pair{"diffuse", m.diffuseOverride}, std::pair{"specular", m.specularOverride}})
-            if (value && glm::any(glm::greaterThan(*value, glm::vec3(1.0f))) && !(flat && std::string(key) == "diffuse"))
+        auto reflectance = [&](const char* key, const std::optional<glm::vec3>& value) {
+            if (value && glm::any(glm::greaterThan(*value, glm::vec3(1.0f))))
                 r.fail(mw + "." + key, "reflectance components must be <= 1 (a flat material's diffuse colour may be brighter)");
+        };
+        if (!m.flatOverride.value_or(false)) reflectance("diffuse", m.diffuseOverride);
+        reflectance("specular", m.specularOverride);
         if (mat.contains("shininess")) {
             float n = r.number(mat["shininess"], mw + ".shininess");
             if (n < 0.0f || n > 10000.0f) r.fail(mw + ".shininess", "must be in [0, 10000]");
