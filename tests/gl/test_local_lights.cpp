@@ -978,6 +978,62 @@ TEST(ClusteredLights, EveryTileSizeAndSliceCountGivesTheSameImage) {
         }
 }
 
+// A tile spanning more slices than a light's 32-bit slice mask holds (the clustered pass counts a
+// tile's slices from its nearest occupied one, the farthest sharing the last bit): a pillar 0.3 m
+// from the camera before a wall 60 m away, 64 slices. Lights on the wall and around the pillar give
+// the fullscreen image.
+TEST(ClusteredLights, TilesSpanningMoreSlicesThanAMaskHoldsShadeEveryLight) {
+    Scene s;
+    const glm::mat4 wall = glm::translate(glm::mat4(1.0f), {0.0f, 0.0f, -60.0f}) *
+                           glm::rotate(glm::mat4(1.0f), glm::radians(90.0f), {1.0f, 0.0f, 0.0f}) *
+                           glm::scale(glm::mat4(1.0f), glm::vec3(100.0f));
+    s.models.push_back(model("plane", makePlane(1.0f, 4), wall, {0.6f, 0.6f, 0.6f}, {0.3f, 0.3f, 0.3f}, 16.0f));
+    s.models.push_back(model("cube", makeCube(1.0f),
+                             glm::translate(glm::mat4(1.0f), {0.0f, 0.0f, -0.3f}) *
+                                 glm::scale(glm::mat4(1.0f), {0.04f, 1.0f, 0.04f}),
+                             {0.8f, 0.3f, 0.2f}, {0.5f, 0.5f, 0.5f}, 64.0f));
+    s.camera.position = {0.0f, 0.0f, 0.0f};
+    s.camera.target = {0.0f, 0.0f, -1.0f};
+    s.camera.nearPlane = 0.05f;
+    s.camera.farPlane = 100.0f;
+    s.camera.fovYDegrees = 60.0f;
+    s.ambient = glm::vec3(0.0f);
+    for (int i = 0; i < 20; ++i) {  // on the wall: 2 m before it, reaching 7.7 m of it
+        PointLight l;
+        l.position = {-24.0f + 12.0f * float(i % 5), -15.0f + 10.0f * float(i / 5), -58.0f};
+        l.range = 8.0f;
+        l.intensity = 40.0f;
+        l.color = {1.0f, 0.8f - 0.03f * float(i), 0.5f + 0.02f * float(i)};
+        s.pointLights.push_back(l);
+    }
+    for (int i = 0; i < 4; ++i) {  // around the pillar
+        PointLight l;
+        l.position = {-0.06f + 0.04f * float(i), 0.1f * float(i) - 0.15f, -0.2f};
+        l.range = 0.25f;
+        l.intensity = 0.02f;
+        s.pointLights.push_back(l);
+    }
+    Rig rig(s);
+    const std::vector<float> ref = rig.renderHdr(smallSettings(LocalLightMethod::Fullscreen));
+    const std::vector<int> k = lightsPerPixel(s, smallSettings(LocalLightMethod::Scissor));
+    const ClusterGrid g = makeClusterGrid(64, 48, 16, 64, s.camera.nearPlane, s.camera.farPlane);
+    ASSERT_GT(clusterSliceOf(g, 59.0) - clusterSliceOf(g, 0.32), 32) << "the pillar's and the wall's slices";
+    for (int tile : {16, 40}) {
+        RenderSettings r = smallSettings(LocalLightMethod::Clustered);
+        r.localLights.clusterSize = tile;
+        r.localLights.clusterSlices = 64;
+        const std::vector<float> got = rig.renderHdr(r);
+        int wallLit = 0;
+        for (size_t i = 0; i < got.size(); ++i) {
+            const double bound = ((k[i / 4] + 1) * std::ldexp(1.0, -11) + 1e-3) * std::abs(ref[i]) + 1e-6;
+            ASSERT_LE(std::abs(double(got[i]) - double(ref[i])), bound) << "tile " << tile << " texel " << i / 4;
+            const int x = int(i / 4) % 64;
+            if (i % 4 == 0 && ref[i] > 1e-3f && x >= 24 && x < 40) ++wallLit;
+        }
+        EXPECT_GT(wallLit, 0) << "lit wall in the pillar's tiles";
+    }
+}
+
 // Past the cap: 300 lights around one point. The cluster counts all 300, lists the first 256 (lowest
 // indices), the overflow is counted (stats, one build late) and warned about, the image stays finite.
 TEST(ClusteredLights, OverflowPastTheCapIsCountedAndWarned) {
