@@ -22,10 +22,18 @@ $B/run --version
 # only; every variant gives the same image within the tests' bounds), each from a patched copy of
 # shaders/ through $LIGHTPASS_SHADER_DIR: `default` (shaders/ as they are), `stop28` (main's kernel at
 # 99b0145, bench/kernels/local_light_clustered_stop28.comp: every surface texel read and written, lit
-# or not), `lists` (main's fused kernel up to 0b4a46a, bench/kernels/local_light_clustered_lists.comp:
-# it writes the froxel lists every frame), and patched defaults: `all_slices` (every occupied slice
-# tested, not only those the light's eye-depth interval reaches), `no_box` (the slices' depth ranges only), `merge2`, `merge4` (tiles whose
-# farthest pixel is <= 2x, 4x their nearest shade as one froxel), and those that split the cost:
+# or not), stop 31's kernels (bench/kernels/local_light_clustered_<name>.comp; each tile's slice boxes
+# made where tested, not kept in shared memory): `compact2` (the tiled method's list of the tile's
+# lights, double-buffered, each light with a 32-bit mask of its slices; every pixel walks the whole
+# list and skips the lights its slice lacks), `compact` (the same, one buffer), `bits32` (main's kernel
+# with 3.8 KB of shared memory instead of 8.5: slices counted from the tile's nearest), `group_walk`
+# (`bits32` where 32 invocations walk their pixels' slices' lights together), `tiled_pad8k` (the tiled
+# kernel with 8 KB more shared memory: its column is tiled's), `lists` (main's fused kernel up to
+# 0b4a46a, bench/kernels/local_light_clustered_lists.comp: it writes the froxel lists every frame),
+# and patched defaults: `all_slices` (every occupied slice tested, not only those the light's
+# eye-depth interval reaches), `no_box` (the slices' depth ranges only), `merge1_5`, `merge2`,
+# `merge4`, `merge8` (tiles whose farthest pixel is <= 1.5x, 2x, 4x, 8x their nearest shade as one
+# froxel), and those that split the cost:
 # `cull_only` (the culling and the bits as the default, no light shaded), `tile_only` (every tile one
 # froxel: tiled's lights, shaded in this kernel) and `tiled_cull_only` (the tiled method culling and
 # shading nothing; its column is tiled's, against the default's tiled).
@@ -46,6 +54,8 @@ if [ -n "${VARIANTS:-}" ]; then
     case $1 in
       lists) cp bench/kernels/local_light_clustered_lists.comp "$f" ;;
       stop28) cp bench/kernels/local_light_clustered_stop28.comp "$f" ;;
+      compact|compact2|bits32|group_walk) cp bench/kernels/local_light_clustered_$1.comp "$f" ;;
+      tiled_pad8k) f=$P/local_light_tiled.comp; cp bench/kernels/local_light_tiled_pad8k.comp "$f" ;;
       default) ;;
       tiled_cull_only) f=$P/local_light_tiled.comp
         sed -i 's/for (uint k = 0u; k < n; ++k) {$/for (uint k = 0u; k < 0u; ++k) {/' "$f"
@@ -55,13 +65,15 @@ if [ -n "${VARIANTS:-}" ]; then
         "$P/common/cluster_tile.glsl"
         cmp -s shaders/common/cluster_tile.glsl "$P/common/cluster_tile.glsl" && { echo "variant $1: common/cluster_tile.glsl changed shape, skipped" >&2; return; } ;;
       merge2) sed -i 's/^#define LP_CLUSTER_MERGE_RATIO .*/#define LP_CLUSTER_MERGE_RATIO 2.0/' "$f" ;;
+      merge1_5) sed -i 's/^#define LP_CLUSTER_MERGE_RATIO .*/#define LP_CLUSTER_MERGE_RATIO 1.5/' "$f" ;;
       merge4) sed -i 's/^#define LP_CLUSTER_MERGE_RATIO .*/#define LP_CLUSTER_MERGE_RATIO 4.0/' "$f" ;;
+      merge8) sed -i 's/^#define LP_CLUSTER_MERGE_RATIO .*/#define LP_CLUSTER_MERGE_RATIO 8.0/' "$f" ;;
       tile_only) sed -i 's/^#define LP_CLUSTER_MERGE_RATIO .*/#define LP_CLUSTER_MERGE_RATIO 3.0e38/' "$f" ;;
       cull_only) sed -i 's/for (; bits != 0u; bits \&= bits - 1u)$/for (; false; bits \&= bits - 1u)/' "$f"
         grep -q 'for (; false; bits' "$f" || { echo "variant $1: the shading loop changed shape, skipped" >&2; return; } ;;
       *) echo "variant $1: unknown" >&2; return ;;
     esac
-    case $1 in default|no_box|tiled_cull_only) ;; *) if cmp -s shaders/local_light_clustered.comp "$f"; then
+    case $1 in default|no_box|tiled_*) ;; *) if cmp -s shaders/local_light_clustered.comp "$f"; then
       echo "variant $1: shaders/local_light_clustered.comp changed shape, skipped" >&2; return
     fi ;; esac
     echo "$P"
