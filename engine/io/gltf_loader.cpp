@@ -260,8 +260,35 @@ struct Loader {
             return r;
         }
         const tinygltf::Image& image = model.images[size_t(t.source)];
+        TextureRef r = imageTexture(image, t.source);
+        r.sampler = sampler(t.sampler, iw);
+        return r;
+    }
+
+    // Texture `where`'s sampler `index`: its wraps and filters that are valid (the schema check warned
+    // about the others, which keep the default).
+    TextureSampler sampler(int index, const std::string& where) const {
+        TextureSampler s;
+        if (index < 0) return s;
+        if (size_t(index) >= model.samplers.size()) {
+            warn(where, "sampler " + std::to_string(index) + " does not exist; the default is used");
+            return s;
+        }
+        const tinygltf::Sampler& g = model.samplers[size_t(index)];
+        const auto oneOf = [](int v, std::initializer_list<int> valid) {
+            return std::find(valid.begin(), valid.end(), v) != valid.end();
+        };
+        if (oneOf(g.wrapS, {33071, 33648, 10497})) s.wrapS = g.wrapS;
+        if (oneOf(g.wrapT, {33071, 33648, 10497})) s.wrapT = g.wrapT;
+        if (oneOf(g.magFilter, {9728, 9729})) s.magFilter = g.magFilter;
+        if (oneOf(g.minFilter, {9728, 9729, 9984, 9985, 9986, 9987})) s.minFilter = g.minFilter;
+        return s;
+    }
+
+    // images[source]: its encoded bytes, or the file its URI names.
+    TextureRef imageTexture(const tinygltf::Image& image, int source) const {
         TextureRef r;
-        r.key = file + "#images[" + std::to_string(t.source) + "]";
+        r.key = file + "#images[" + std::to_string(source) + "]";
         if (!image.image.empty()) {
             r.encoded = std::make_shared<const std::string>(image.image.begin(), image.image.end());
         } else if (!image.uri.empty() && image.uri.rfind("data:", 0) != 0) {

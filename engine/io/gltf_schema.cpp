@@ -52,20 +52,25 @@ class Checker {
 public:
     std::vector<GltfSchemaIssue> issues;
 
-    // Inside leniently(): a property lightpass does not read; breaking its rule is a warning, not a
-    // reason to refuse a model other viewers show.
+    // Inside leniently(): a property lightpass does not read, or reads with a default to fall back on;
+    // breaking its rule is a warning (what then happens: `lenientNote`), not a reason to refuse a model
+    // other viewers show.
     bool lenient = false;
+    std::string lenientNote;
 
     void error(const std::string& where, const std::string& what) {
-        if (lenient) issues.push_back({where, what + "; ignored (lightpass does not read it)", false});
+        if (lenient) issues.push_back({where, what + "; " + lenientNote, false});
         else issues.push_back({where, what, true});
     }
     template <typename F>
-    void leniently(F&& check) {
+    void leniently(F&& check, const std::string& note = "ignored (lightpass does not read it)") {
         const bool was = lenient;
+        const std::string wasNote = lenientNote;
         lenient = true;
+        lenientNote = note;
         check();
         lenient = was;
+        lenientNote = wasNote;
     }
     void warning(const std::string& where, const std::string& what) { issues.push_back({where, what, false}); }
 
@@ -405,13 +410,15 @@ public:
             index(i, "bufferView", w);
         });
         objects(root, "samplers", "", [&](const json& s, const std::string& w) {
-            leniently([&] {  // every texture is sampled trilinear and anisotropic, repeating
+            // The loader keeps only valid filters and wraps (gltfTextureSampler); the rest sample as
+            // textures without a sampler do.
+            leniently([&] {
                 string(s, "name", w);
                 enumInteger(s, "magFilter", w, {9728, 9729});
                 enumInteger(s, "minFilter", w, {9728, 9729, 9984, 9985, 9986, 9987});
                 enumInteger(s, "wrapS", w, {33071, 33648, 10497});
                 enumInteger(s, "wrapT", w, {33071, 33648, 10497});
-            });
+            }, "ignored (the default is used: repeat, trilinear)");
         });
         objects(root, "cameras", "", [&](const json& c, const std::string& w) { camera(c, w); });
         // Not read by lightpass; their elements must still be objects.

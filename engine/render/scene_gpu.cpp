@@ -10,8 +10,17 @@
 
 namespace lp {
 
+namespace {
+// A non-default sampler's part of the texture cache's key: one image sampled two ways is two textures.
+std::string samplerKey(const TextureSampler& s) {
+    if (s.isDefault()) return "";
+    return "#sampler(" + std::to_string(s.wrapS) + "," + std::to_string(s.wrapT) + "," + std::to_string(s.magFilter) + "," +
+           std::to_string(s.minFilter) + ")";
+}
+}  // namespace
+
 GLuint SceneGpu::texture(const TextureRef& ref, bool srgb) {
-    const std::string key = ref.key + (srgb ? "#srgb" : "#linear");
+    const std::string key = ref.key + samplerKey(ref.sampler) + (srgb ? "#srgb" : "#linear");
     auto it = textures_.find(key);
     if (it != textures_.end()) return it->second.id();
     const std::filesystem::path path = ref.encoded ? std::filesystem::path(ref.key) : ref.path;
@@ -33,9 +42,18 @@ GLuint SceneGpu::texture(const TextureRef& ref, bool srgb) {
                                       path.filename().string());
     glTextureSubImage2D(t.id(), 0, 0, 0, img.width, img.height, GL_RGBA, GL_UNSIGNED_BYTE, flipped.data());
     glGenerateTextureMipmap(t.id());
-    glTextureParameteri(t.id(), GL_TEXTURE_WRAP_S, GL_REPEAT);
-    glTextureParameteri(t.id(), GL_TEXTURE_WRAP_T, GL_REPEAT);
-    if (GLAD_GL_EXT_texture_filter_anisotropic) glTextureParameterf(t.id(), GL_TEXTURE_MAX_ANISOTROPY_EXT, 8.0f);
+    // The material's sampler (glTF's codes are OpenGL's enums); by default repeating, trilinear and
+    // anisotropic. Any other filter gets no anisotropy: it would blend the texels that nearest
+    // magnification asks to keep apart (llvmpipe does), or the mip levels a nearest one keeps.
+    const TextureSampler& sampler = ref.sampler;
+    glTextureParameteri(t.id(), GL_TEXTURE_WRAP_S, GLint(sampler.wrapS));
+    glTextureParameteri(t.id(), GL_TEXTURE_WRAP_T, GLint(sampler.wrapT));
+    if (sampler.magFilter != 0) glTextureParameteri(t.id(), GL_TEXTURE_MAG_FILTER, GLint(sampler.magFilter));
+    if (sampler.minFilter != 0) glTextureParameteri(t.id(), GL_TEXTURE_MIN_FILTER, GLint(sampler.minFilter));
+    const bool trilinear = (sampler.minFilter == 0 || sampler.minFilter == GL_LINEAR_MIPMAP_LINEAR) &&
+                           (sampler.magFilter == 0 || sampler.magFilter == GL_LINEAR);
+    if (GLAD_GL_EXT_texture_filter_anisotropic && trilinear)
+        glTextureParameterf(t.id(), GL_TEXTURE_MAX_ANISOTROPY_EXT, 8.0f);
     textureBytes += size_t(img.width) * img.height * 4 * 4 / 3;
     GLuint id = t.id();
     textures_.emplace(key, std::move(t));

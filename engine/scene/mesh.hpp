@@ -17,12 +17,27 @@ struct Vertex {
     glm::vec4 tangent{1.0f, 0.0f, 0.0f, 1.0f};  // xyz tangent, w = handedness (+1/-1) for the bitangent
 };
 
+// How a texture is sampled: a glTF sampler's wraps and filters, as glTF writes them (OpenGL's enum
+// values). 0 for a filter: lightpass's default (trilinear, 8x anisotropic).
+struct TextureSampler {
+    int wrapS = 10497;  // GL_REPEAT; GL_CLAMP_TO_EDGE 33071, GL_MIRRORED_REPEAT 33648
+    int wrapT = 10497;
+    int magFilter = 0;  // GL_NEAREST 9728, GL_LINEAR 9729
+    int minFilter = 0;  // GL_NEAREST .. GL_LINEAR_MIPMAP_LINEAR (9728, 9729, 9984..9987)
+    bool isDefault() const { return wrapS == 10497 && wrapT == 10497 && magFilter == 0 && minFilter == 0; }
+    bool operator==(const TextureSampler& o) const {
+        return wrapS == o.wrapS && wrapT == o.wrapT && magFilter == o.magFilter && minFilter == o.minFilter;
+    }
+};
+
 // A texture: a file, or an image embedded in a glTF (encoded bytes, decoded when uploaded). `key`
-// identifies it for sharing ("<file>" or "<gltf>#images[3]").
+// identifies the image for sharing ("<file>" or "<gltf>#images[3]"); one image sampled two ways is
+// two textures.
 struct TextureRef {
     std::filesystem::path path;
     std::shared_ptr<const std::string> encoded;
     std::string key;
+    TextureSampler sampler;
     bool empty() const { return path.empty() && !encoded; }
     void clear() { *this = TextureRef{}; }
     static TextureRef file(const std::filesystem::path& p) {

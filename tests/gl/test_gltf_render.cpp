@@ -11,6 +11,7 @@
 #include "engine/io/gltf_loader.hpp"
 #include "engine/io/image_io.hpp"
 #include "engine/io/obj_loader.hpp"
+#include "engine/render/scene_gpu.hpp"
 #include "engine/scene/mesh_ops.hpp"
 #include "engine/scene/primitives.hpp"
 #include "frame/renderer.hpp"
@@ -192,6 +193,77 @@ TEST_P(GltfRender, AlphaMaskDropsTexelsBelowTheCutoff) {
     EXPECT_NEAR(at(2.0f, 0.5f), 1.0f, 1e-2f) << "alpha 0.7 is above it";
     EXPECT_NEAR(at(3.25f, 0.5f), 0.0f, 1e-4f) << "the texture's transparent half";
     EXPECT_NEAR(at(3.75f, 0.5f), 1.0f, 1e-2f) << "the texture's opaque half";
+}
+
+// A glTF sampler's wrap modes, on a quad whose u runs 0..2 across it (x = -1..1) with a 4 x 1 texture
+// black on its left half, white on its right (nearest magnification: no blend between them). Ambient 1 on
+// a white base: the radiance is the texel. At u = 1.125 repeat reads u 0.125 (black), clamp the edge
+// (white), mirror u 0.875 (white); at u = 1.875 repeat and clamp read white, mirror u 0.125 (black).
+// One image under two samplers is two textures; under one, one.
+TEST_P(GltfRender, SamplerWrapModesAreApplied) {
+    MeshData quad;
+    const glm::vec2 corners[4] = {{-1, -0.5f}, {1, -0.5f}, {1, 0.5f}, {-1, 0.5f}};
+    for (const glm::vec2 c : corners) {
+        Vertex v;
+        v.position = glm::vec3(c, 0.0f);
+        v.normal = {0, 0, 1};
+        v.uv = {c.x + 1.0f, c.y + 0.5f};
+        quad.vertices.push_back(v);
+    }
+    quad.indices = {0, 1, 2, 0, 2, 3};
+    quad.subMeshes = {{0, 6, 0}};
+    Image8 halves{4, 1, {0, 0, 0, 255, 0, 0, 0, 255, 255, 255, 255, 255, 255, 255, 255, 255}};
+    Material m;
+    m.diffuse = glm::vec3(1.0f);
+    m.specular = glm::vec3(0.0f);
+    m.diffuseMap.encoded = std::make_shared<const std::string>(encodePng(halves));
+    m.diffuseMap.key = "halves.png";
+    m.diffuseMap.sampler.magFilter = 9728;  // GL_NEAREST (and so no anisotropy)
+    quad.materials = {m};
+    Scene s = modelScene(quad);
+    s.ambient = glm::vec3(1.0f);
+    s.camera.position = {0.0f, 0.0f, 3.0f};
+    s.camera.target = {0.0f, 0.0f, 0.0f};
+    s.camera.fovYDegrees = 45.0f;
+    const int w = 96, h = 48;
+    auto texelsAt = [&](int wrapS) {
+        s.models[0].mesh.materials[0].diffuseMap.sampler.wrapS = wrapS;
+        Renderer r(s);
+        RenderSettings settings;
+        settings.gbuffer.mode = GetParam();
+        settings.width = w;
+        settings.height = h;
+        settings.keepHdr = true;
+        r.render(settings);
+        const ImageF hdr = r.readHdr();
+        const glm::mat4 vp = s.camera.projection(float(w) / float(h)) * s.camera.view();
+        std::vector<float> v;
+        for (float u : {0.125f, 1.125f, 1.875f}) {
+            const glm::vec4 c = vp * glm::vec4(u - 1.0f, 0.0f, 0.0f, 1.0f);
+            const int px = int((c.x / c.w * 0.5f + 0.5f) * float(w)), py = int((0.5f - c.y / c.w * 0.5f) * float(h));
+            v.push_back(hdr.rgba[(size_t(py) * size_t(w) + size_t(px)) * 4]);
+        }
+        return v;
+    };
+    const std::vector<float> repeat = texelsAt(10497), clamp = texelsAt(33071), mirror = texelsAt(33648);
+    const float expected[3][3] = {{0, 0, 1}, {0, 1, 1}, {0, 1, 0}};
+    for (int i = 0; i < 3; ++i) {
+        EXPECT_NEAR(repeat[size_t(i)], expected[0][i], 1e-2f) << "repeat, point " << i;
+        EXPECT_NEAR(clamp[size_t(i)], expected[1][i], 1e-2f) << "clamp to edge, point " << i;
+        EXPECT_NEAR(mirror[size_t(i)], expected[2][i], 1e-2f) << "mirrored repeat, point " << i;
+    }
+
+    quad.materials = {m, m, m};
+    quad.materials[1].diffuseMap.sampler.wrapS = 33071;
+    SceneGpu gpu(modelScene(quad));
+    ASSERT_EQ(gpu.materials.size(), 3u);
+    EXPECT_NE(gpu.materials[0].diffuseMap, gpu.materials[1].diffuseMap) << "two samplers: two textures";
+    EXPECT_EQ(gpu.materials[0].diffuseMap, gpu.materials[2].diffuseMap) << "one sampler: one texture";
+    GLint mag = 0, wrap = 0;
+    glGetTextureParameteriv(gpu.materials[1].diffuseMap, GL_TEXTURE_MAG_FILTER, &mag);
+    glGetTextureParameteriv(gpu.materials[1].diffuseMap, GL_TEXTURE_WRAP_S, &wrap);
+    EXPECT_EQ(mag, GL_NEAREST);
+    EXPECT_EQ(wrap, GL_CLAMP_TO_EDGE);
 }
 
 // Single-sided glTF materials are not drawn from behind; MTL (double-sided) ones are.

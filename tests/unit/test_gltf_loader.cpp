@@ -368,6 +368,43 @@ TEST(GltfLoader, QuantizedAttributesWithKhrMeshQuantization) {
 
 // KHR_materials_unlit is lightpass's flat-lit material showing the base colour (metallic dropped);
 // KHR_materials_ior gives the dielectric F0 ((n - 1) / (n + 1))^2, 0 meaning F0 = 1.
+// Samplers: each texture carries its sampler's wraps and filters (OpenGL's codes, as glTF writes
+// them); none means repeat and lightpass's trilinear default (0). A value outside the schema's
+// enumeration keeps the default with a warning, and so does a sampler that does not exist.
+TEST(GltfLoader, SamplersAreReadPerTexture) {
+    TempDir t;
+    nlohmann::json d = texturedQuad(nullptr, nullptr);
+    d["samplers"] = {{{"wrapS", 33071}, {"wrapT", 33648}, {"magFilter", 9728}, {"minFilter", 9986}},
+                     {{"wrapS", 12345}, {"wrapT", 33071}, {"minFilter", 9729}}};
+    d["textures"] = {{{"source", 0}, {"sampler", 0}}, {{"source", 0}, {"sampler", 1}}};
+    d["materials"][0]["normalTexture"]["index"] = 1;
+    MeshLoadReport report;
+    const MeshData a = loadGltf(t.write("samplers.gltf", d.dump()), &report).mesh;
+    const TextureSampler& base = a.materials[0].diffuseMap.sampler;
+    EXPECT_EQ(base.wrapS, 33071);
+    EXPECT_EQ(base.wrapT, 33648);
+    EXPECT_EQ(base.magFilter, 9728);
+    EXPECT_EQ(base.minFilter, 9986);
+    const TextureSampler& normal = a.materials[0].normalMap.sampler;
+    EXPECT_EQ(normal.wrapS, 10497) << "invalid: the default";
+    EXPECT_EQ(normal.wrapT, 33071);
+    EXPECT_EQ(normal.magFilter, 0);
+    EXPECT_EQ(normal.minFilter, 9729);
+    std::string all;
+    for (const auto& w : report.warnings) all += w + "\n";
+    EXPECT_NE(all.find("samplers[1].wrapS"), std::string::npos) << all;
+    EXPECT_NE(all.find("ignored (the default is used: repeat, trilinear)"), std::string::npos) << all;
+
+    d["textures"] = {{{"source", 0}}, {{"source", 0}, {"sampler", 7}}};
+    MeshLoadReport missing;
+    const MeshData b = loadGltf(t.write("missing_sampler.gltf", d.dump()), &missing).mesh;
+    EXPECT_TRUE(b.materials[0].diffuseMap.sampler.isDefault()) << "no sampler: the default";
+    EXPECT_TRUE(b.materials[0].normalMap.sampler.isDefault());
+    all.clear();
+    for (const auto& w : missing.warnings) all += w + "\n";
+    EXPECT_NE(all.find("textures[1]: sampler 7 does not exist; the default is used"), std::string::npos) << all;
+}
+
 TEST(GltfLoader, UnlitAndIorMaterials) {
     TempDir t;
     nlohmann::json d = texturedQuad(nullptr, nullptr);
@@ -750,8 +787,9 @@ TEST(GltfSchema, UnsupportedOptionalExtensionsAreNamedInAWarning) {
     EXPECT_EQ(all.find("KHR_texture_transform is not supported"), std::string::npos) << all;
 }
 
-// What lightpass does not read (samplers, an accessor's min and max) may break its rule with a
-// warning; a byteStride of 0 (glTF 1.0's "packed") reads as packed.
+// What lightpass does not read (an accessor's min and max) or reads with a default to fall back on
+// (samplers' filters and wraps) may break its rule with a warning; a byteStride of 0 (glTF 1.0's
+// "packed") reads as packed.
 TEST(GltfSchema, RulesOfPropertiesLightpassDoesNotReadAreWarnings) {
     TempDir t;
     nlohmann::json d = schemaBase();
@@ -764,9 +802,9 @@ TEST(GltfSchema, RulesOfPropertiesLightpassDoesNotReadAreWarnings) {
     EXPECT_EQ(g.mesh.indices.size(), 3u);
     std::string all;
     for (const auto& w : report.warnings) all += w + "\n";
-    for (const char* expected : {"samplers[0].wrapS: expected one of 33071, 33648, 10497, got 1; ignored (lightpass does not read it)",
+    for (const char* expected : {"samplers[0].wrapS: expected one of 33071, 33648, 10497, got 1; ignored (the default is used: repeat, trilinear)",
                                  "samplers[0].magFilter: expected one of 9728, 9729, got 9987; ignored",
-                                 "accessors[0].min: expected an array of 3 numbers, got an array of 2; ignored",
+                                 "accessors[0].min: expected an array of 3 numbers, got an array of 2; ignored (lightpass does not read it)",
                                  "bufferViews[0].byteStride: 0 is outside 4..252; read as tightly packed"})
         EXPECT_NE(all.find(expected), std::string::npos) << expected << "\nin:\n" << all;
     d["bufferViews"][0]["byteStride"] = 2;
