@@ -51,6 +51,27 @@ glm::vec3 centre(const Scene& s, GBufferMode mode, int w = 48, int h = 48) {
     return {hdr.rgba[i], hdr.rgba[i + 1], hdr.rgba[i + 2]};
 }
 
+// The red HDR radiance of a 96 x 48 render where each of `points` (world, on z = 0) lands.
+std::vector<float> redAtPoints(const Scene& s, GBufferMode mode, const std::vector<glm::vec2>& points) {
+    const int w = 96, h = 48;
+    Renderer r(s);
+    RenderSettings settings;
+    settings.gbuffer.mode = mode;
+    settings.width = w;
+    settings.height = h;
+    settings.keepHdr = true;
+    r.render(settings);
+    const ImageF hdr = r.readHdr();
+    const glm::mat4 vp = s.camera.projection(float(w) / float(h)) * s.camera.view();
+    std::vector<float> red;
+    for (const glm::vec2 p : points) {
+        const glm::vec4 c = vp * glm::vec4(p, 0.0f, 1.0f);
+        const int px = int((c.x / c.w * 0.5f + 0.5f) * float(w)), py = int((0.5f - c.y / c.w * 0.5f) * float(h));
+        red.push_back(hdr.rgba[(size_t(py) * size_t(w) + size_t(px)) * 4]);
+    }
+    return red;
+}
+
 // A 2 x 2 plane at y = 0 seen from straight above, lit by one sun from `toLight` (no shadows, no
 // ambient), Lambertian white: the centre's radiance is E / pi * max(N.L, 0).
 double lambertAtCentre(MeshData mesh, glm::vec3 toLight, GBufferMode mode) {
@@ -174,25 +195,11 @@ TEST_P(GltfRender, AlphaMaskDropsTexelsBelowTheCutoff) {
     s.camera.position = {2.0f, 0.5f, 6.0f};
     s.camera.target = {2.0f, 0.5f, 0.0f};
     s.camera.fovYDegrees = 45.0f;
-    const int w = 96, h = 48;
-    Renderer r(s);
-    RenderSettings settings;
-    settings.gbuffer.mode = GetParam();
-    settings.width = w;
-    settings.height = h;
-    settings.keepHdr = true;
-    r.render(settings);
-    const ImageF hdr = r.readHdr();
-    const glm::mat4 vp = s.camera.projection(float(w) / float(h)) * s.camera.view();
-    auto at = [&](float x, float y) {
-        const glm::vec4 c = vp * glm::vec4(x, y, 0.0f, 1.0f);
-        const int px = int((c.x / c.w * 0.5f + 0.5f) * float(w)), py = int((0.5f - c.y / c.w * 0.5f) * float(h));
-        return hdr.rgba[(size_t(py) * size_t(w) + size_t(px)) * 4];
-    };
-    EXPECT_NEAR(at(0.5f, 0.5f), 0.0f, 1e-4f) << "alpha 0.3 is below the cutoff";
-    EXPECT_NEAR(at(2.0f, 0.5f), 1.0f, 1e-2f) << "alpha 0.7 is above it";
-    EXPECT_NEAR(at(3.25f, 0.5f), 0.0f, 1e-4f) << "the texture's transparent half";
-    EXPECT_NEAR(at(3.75f, 0.5f), 1.0f, 1e-2f) << "the texture's opaque half";
+    const std::vector<float> at = redAtPoints(s, GetParam(), {{0.5f, 0.5f}, {2.0f, 0.5f}, {3.25f, 0.5f}, {3.75f, 0.5f}});
+    EXPECT_NEAR(at[0], 0.0f, 1e-4f) << "alpha 0.3 is below the cutoff";
+    EXPECT_NEAR(at[1], 1.0f, 1e-2f) << "alpha 0.7 is above it";
+    EXPECT_NEAR(at[2], 0.0f, 1e-4f) << "the texture's transparent half";
+    EXPECT_NEAR(at[3], 1.0f, 1e-2f) << "the texture's opaque half";
 }
 
 // A glTF sampler's wrap modes, on a quad whose u runs 0..2 across it (x = -1..1) with a 4 x 1 texture
@@ -225,25 +232,9 @@ TEST_P(GltfRender, SamplerWrapModesAreApplied) {
     s.camera.position = {0.0f, 0.0f, 3.0f};
     s.camera.target = {0.0f, 0.0f, 0.0f};
     s.camera.fovYDegrees = 45.0f;
-    const int w = 96, h = 48;
-    auto texelsAt = [&](int wrapS) {
+    auto texelsAt = [&](int wrapS) {  // at u = 0.125, 1.125, 1.875
         s.models[0].mesh.materials[0].diffuseMap.sampler.wrapS = wrapS;
-        Renderer r(s);
-        RenderSettings settings;
-        settings.gbuffer.mode = GetParam();
-        settings.width = w;
-        settings.height = h;
-        settings.keepHdr = true;
-        r.render(settings);
-        const ImageF hdr = r.readHdr();
-        const glm::mat4 vp = s.camera.projection(float(w) / float(h)) * s.camera.view();
-        std::vector<float> v;
-        for (float u : {0.125f, 1.125f, 1.875f}) {
-            const glm::vec4 c = vp * glm::vec4(u - 1.0f, 0.0f, 0.0f, 1.0f);
-            const int px = int((c.x / c.w * 0.5f + 0.5f) * float(w)), py = int((0.5f - c.y / c.w * 0.5f) * float(h));
-            v.push_back(hdr.rgba[(size_t(py) * size_t(w) + size_t(px)) * 4]);
-        }
-        return v;
+        return redAtPoints(s, GetParam(), {{-0.875f, 0.0f}, {0.125f, 0.0f}, {0.875f, 0.0f}});
     };
     const std::vector<float> repeat = texelsAt(10497), clamp = texelsAt(33071), mirror = texelsAt(33648);
     const float expected[3][3] = {{0, 0, 1}, {0, 1, 1}, {0, 1, 0}};
