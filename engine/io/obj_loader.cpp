@@ -29,10 +29,14 @@ glm::vec3 colorOr(const tinyobj::real_t c[3], glm::vec3 fallback, const std::str
     return glm::max(glm::vec3(c[0], c[1], c[2]), glm::vec3(0.0f));
 }
 
-TextureRef texturePath(const fs::path& dir, const std::string& name) {
+// A map's file, relative to the MTL's folder; `-clamp on` samples it clamped to its edge (the MTL
+// option's texture coordinates clamped to [0, 1]) instead of repeating.
+TextureRef texturePath(const fs::path& dir, const std::string& name, const tinyobj::texture_option_t& option) {
     if (name.empty()) return {};
     fs::path p(name);
-    return TextureRef::file(p.is_absolute() ? p : (dir / p).lexically_normal());
+    TextureRef t = TextureRef::file(p.is_absolute() ? p : (dir / p).lexically_normal());
+    if (option.clamp) t.sampler.wrapS = t.sampler.wrapT = 33071;  // GL_CLAMP_TO_EDGE
+    return t;
 }
 
 Material convertMaterial(const tinyobj::material_t& m, const fs::path& dir, const std::string& file,
@@ -46,14 +50,14 @@ Material convertMaterial(const tinyobj::material_t& m, const fs::path& dir, cons
     if (std::isfinite(m.shininess)) out.shininess = std::clamp(float(m.shininess), 0.0f, 10000.0f);
     else bad.push_back("Ns");
     out.roughness = roughnessFromShininess(out.shininess);
-    out.diffuseMap = texturePath(dir, m.diffuse_texname);
-    out.emissiveMap = texturePath(dir, m.emissive_texname);
+    out.diffuseMap = texturePath(dir, m.diffuse_texname, m.diffuse_texopt);
+    out.emissiveMap = texturePath(dir, m.emissive_texname, m.emissive_texopt);
     // "norm" is a tangent-space normal map; "bump" / "map_Bump" a height map (the MTL conversion in
     // the README). tinyobjloader keeps them apart: normal_texname and bump_texname.
-    out.normalMap = texturePath(dir, m.normal_texname);
+    out.normalMap = texturePath(dir, m.normal_texname, m.normal_texopt);
     if (!m.normal_texname.empty() && std::isfinite(m.normal_texopt.bump_multiplier))
         out.normalScale = m.normal_texopt.bump_multiplier;
-    out.bumpMap = texturePath(dir, m.bump_texname);
+    out.bumpMap = texturePath(dir, m.bump_texname, m.bump_texopt);
     if (!m.bump_texname.empty() && std::isfinite(m.bump_texopt.bump_multiplier)) out.bumpScale = m.bump_texopt.bump_multiplier;
     // d (tinyobjloader turns Tr into d = 1 - Tr): below 1 the material is see-through, drawn
     // alpha-blended by the transparent pass.

@@ -841,16 +841,22 @@ TEST(GltfSchema, OutOfRangeFactorsAreClampedWithAWarning) {
         EXPECT_NE(all.find(expected), std::string::npos) << expected << "\nin:\n" << all;
 }
 
-// MTL: "norm" is a tangent-space normal map, "bump" a height map, Ke emission, d opacity.
+// MTL: "norm" is a tangent-space normal map, "bump" a height map, Ke emission, d opacity; a map's
+// `-clamp on` samples it clamped to its edge.
 TEST(GltfLoader, MtlConvertsOntoTheSameMaterialModel) {
     TempDir t;
-    t.write("m.mtl", "newmtl a\nKd 0.5 0.25 0.125\nKs 0.1 0.2 0.3\nNs 100\nKe 2 3 4\nnorm -bm 0.5 n.png\nbump h.png\nd 0.4\n");
+    t.write("m.mtl", "newmtl a\nKd 0.5 0.25 0.125\nKs 0.1 0.2 0.3\nNs 100\nKe 2 3 4\nnorm -bm 0.5 n.png\nbump h.png\nd 0.4\n"
+                     "map_Kd -clamp on kd.png\n");
     const fs::path obj = t.write("m.obj", "mtllib m.mtl\nusemtl a\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
     const MeshData m = loadObj(obj);
     const Material& a = m.materials[0];
     EXPECT_EQ(a.normalMap.path, t.dir / "n.png");
     EXPECT_NEAR(a.normalScale, 0.5f, 1e-6f);
     EXPECT_EQ(a.bumpMap.path, t.dir / "h.png");
+    EXPECT_EQ(a.diffuseMap.path, t.dir / "kd.png");
+    EXPECT_EQ(a.diffuseMap.sampler.wrapS, 33071);  // GL_CLAMP_TO_EDGE
+    EXPECT_EQ(a.diffuseMap.sampler.wrapT, 33071);
+    EXPECT_TRUE(a.bumpMap.sampler.isDefault()) << "no -clamp: repeating";
     EXPECT_NEAR(a.emission.z, 4.0f, 1e-6f);
     EXPECT_NEAR(a.specular.y, 0.2f, 1e-6f);
     EXPECT_EQ(a.metallic, 0.0f);
