@@ -28,7 +28,8 @@ $B/run --version
 # list and skips the lights its slice lacks), `compact` (the same, one buffer), `bits32` (main's kernel
 # with 3.8 KB of shared memory instead of 8.5: slices counted from the tile's nearest), `group_walk`
 # (`bits32` where 32 invocations walk their pixels' slices' lights together), `merged_list` (main's
-# kernel where a tile in one froxel walks the tiled method's list), `tiled_pad8k` (the tiled
+# kernel where a tile in one froxel walks the tiled method's list), `pair_union` (main's kernel where a
+# tile with two occupied slices walks both slices' lights together), `tiled_pad8k` (the tiled
 # kernel with 8 KB more shared memory: its column is tiled's), `lists` (main's fused kernel up to
 # 0b4a46a, bench/kernels/local_light_clustered_lists.comp: it writes the froxel lists every frame),
 # and patched defaults: `all_slices` (every occupied slice tested, not only those the light's
@@ -55,7 +56,7 @@ if [ -n "${VARIANTS:-}" ]; then
     case $1 in
       lists) cp bench/kernels/local_light_clustered_lists.comp "$f" ;;
       stop28) cp bench/kernels/local_light_clustered_stop28.comp "$f" ;;
-      compact|compact2|bits32|group_walk|merged_list) cp bench/kernels/local_light_clustered_$1.comp "$f" ;;
+      compact|compact2|bits32|group_walk|merged_list|pair_union) cp bench/kernels/local_light_clustered_$1.comp "$f" ;;
       tiled_pad8k) f=$P/local_light_tiled.comp; cp bench/kernels/local_light_tiled_pad8k.comp "$f" ;;
       default) ;;
       tiled_cull_only) f=$P/local_light_tiled.comp

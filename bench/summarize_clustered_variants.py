@@ -12,8 +12,9 @@ import os
 import re
 import sys
 
-ORDER = ("stop28", "lists", "default", "compact", "compact2", "bits32", "group_walk", "merged_list", "all_slices",
-         "no_box", "merge1_5", "merge2", "merge4", "merge8", "cull_only", "tile_only", "tiled_cull_only", "tiled_pad8k")
+ORDER = ("stop28", "lists", "default", "compact", "compact2", "bits32", "group_walk", "merged_list", "pair_union",
+         "all_slices", "no_box", "merge1_5", "merge2", "merge4", "merge8", "cull_only", "tile_only", "tiled_cull_only",
+         "tiled_pad8k")
 SCENES = ("gallery", "depth-discontinuity", "fence")
 SPANNING = ("depth-discontinuity", "fence")
 
