@@ -2,8 +2,8 @@
 """bench/lighting_clustered.sh VARIANTS=1's tables, from OUTDIR/variants_<variant>_<scene>.json: per
 scene and size, the local_lights pass's median GPU ms of tiled (measured with the `default` variant)
 and of each clustered variant (16 px), with clustered / tiled (against the tiled measured in the
-variant's own process where it has one: `default`, `stop28`, `lists`; the other process's tiled is
-shown again, which shows how much tiled moves between processes); then issue #18's targets per variant:
+variant's own process where it has one: `default`, `stop28`, `one_dispatch`, `lists`; the other process's tiled
+is shown again, which shows how much tiled moves between processes); then issue #18's targets per variant:
 clustered <= tiled in every cell, and >= 2x faster than tiled where tiles span near and far (the
 depth-discontinuity and fence scenes, 256 lights and more)."""
 import glob
@@ -12,9 +12,9 @@ import os
 import re
 import sys
 
-ORDER = ("stop28", "lists", "default", "compact", "compact2", "bits32", "group_walk", "merged_list", "pair_union",
-         "all_slices", "no_box", "merge1_5", "merge2", "merge4", "merge8", "cull_only", "tile_only", "tiled_cull_only",
-         "tiled_pad8k")
+ORDER = ("stop28", "lists", "one_dispatch", "default", "compact", "compact2", "bits32", "group_walk", "merged_list",
+         "pair_union", "all_slices", "no_box", "merge1_5", "merge2", "merge4", "merge8", "cull_only", "tile_only",
+         "tiled_cull_only", "tiled_pad8k")
 SCENES = ("gallery", "depth-discontinuity", "fence")
 SPANNING = ("depth-discontinuity", "fence")
 

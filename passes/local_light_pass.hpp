@@ -43,6 +43,18 @@ struct LocalLightPass {
     gl::Program clusterBuildProgram;  // light_clusters.comp
     gl::Program clusteredProgram;     // local_light_clustered.comp: tight froxels in shared memory and shading, fused
     gl::Program clusteredSupertileProgram;  // the same with LP_SUPERTILES: candidates from supertile lists (many lights)
+    // The clustered method in two dispatches (16-pixel tiles): local_light_tiled.comp with
+    // LP_DEFER_DEEP shades every tile the tiled way but the deep ones with many lights, which it lists
+    // in deepTiles (an indirect dispatch's counts, then the tiles) for local_light_clustered.comp with
+    // LP_TILE_LIST (and LP_SUPERTILES for many lights). Compiled when first needed.
+    gl::Program deepDeferProgram;
+    std::array<gl::Program, 2> clusteredListPrograms;  // [0] without, [1] with supertile lists
+    gl::Buffer deepTiles;
+    size_t deepTilesCapacity = 0;  // tiles the buffer holds
+    // A deep tile (pixels in more than one slice) goes to the clustered kernel when its first batch
+    // keeps at least this many lights. For tests: 0 is the default (kDeepTileLights); a negative value
+    // shades every tile in the clustered kernel, in one dispatch.
+    int deepTileLights = 0;
     gl::Program clusterTightBuildProgram;  // light_clusters_tight.comp: the tight lists (lights-per-cluster view)
     int clusterTileCompiled = 0;      // the tile size (--cluster-size) those two were compiled for
     gl::Program clusterViewProgram;   // light_clusters_view.comp

@@ -982,7 +982,7 @@ TEST(ClusteredLights, EveryTileSizeAndSliceCountGivesTheSameImage) {
 // tile's slices from its nearest occupied one, the farthest sharing the last bit): a pillar 0.3 m
 // from the camera before a wall 60 m away, 64 slices. Lights on the wall and around the pillar give
 // the fullscreen image.
-TEST(ClusteredLights, TilesSpanningMoreSlicesThanAMaskHoldsShadeEveryLight) {
+Scene pillarBeforeWallScene() {
     Scene s;
     const glm::mat4 wall = glm::translate(glm::mat4(1.0f), {0.0f, 0.0f, -60.0f}) *
                            glm::rotate(glm::mat4(1.0f), glm::radians(90.0f), {1.0f, 0.0f, 0.0f}) *
@@ -1013,6 +1013,11 @@ TEST(ClusteredLights, TilesSpanningMoreSlicesThanAMaskHoldsShadeEveryLight) {
         l.intensity = 0.02f;
         s.pointLights.push_back(l);
     }
+    return s;
+}
+
+TEST(ClusteredLights, TilesSpanningMoreSlicesThanAMaskHoldsShadeEveryLight) {
+    const Scene s = pillarBeforeWallScene();
     Rig rig(s);
     const std::vector<float> ref = rig.renderHdr(smallSettings(LocalLightMethod::Fullscreen));
     const std::vector<int> k = lightsPerPixel(s, smallSettings(LocalLightMethod::Scissor));
@@ -1031,6 +1036,39 @@ TEST(ClusteredLights, TilesSpanningMoreSlicesThanAMaskHoldsShadeEveryLight) {
             if (i % 4 == 0 && ref[i] > 1e-3f && x >= 24 && x < 40) ++wallLit;
         }
         EXPECT_GT(wallLit, 0) << "lit wall in the pillar's tiles";
+    }
+}
+
+// The clustered method's two dispatches (16-pixel tiles): the tiled kernel shades the tiles within one
+// slice or with few lights and lists the rest for the clustered kernel. Every split gives the
+// fullscreen image: no tile listed (a threshold above the light count: the tiled kernel alone), every
+// deep tile listed (threshold 1), the default, and one dispatch of the clustered kernel (negative);
+// with supertile lists too (2 x 2 tiles). With threshold 1 some deep tile is listed.
+TEST(ClusteredLights, BothDispatchesOfTheClusteredMethodGiveTheSameImage) {
+    for (const Scene& s : {twentyLightScene(), spotScene(), pillarBeforeWallScene()}) {
+        Rig rig(s);
+        const std::vector<float> ref = rig.renderHdr(smallSettings(LocalLightMethod::Fullscreen));
+        const std::vector<int> k = lightsPerPixel(s, smallSettings(LocalLightMethod::Scissor));
+        RenderSettings r = smallSettings(LocalLightMethod::Clustered);
+        r.localLights.clusterSize = 16;
+        r.localLights.clusterSlices = 64;
+        int listedSomewhere = 0;
+        for (int supertiles : {-1, 2})
+            for (int threshold : {1 << 20, 1, 0, -1}) {
+                SCOPED_TRACE("supertiles " + std::to_string(supertiles) + ", threshold " + std::to_string(threshold));
+                rig.passes.localLights.supertileTiles = supertiles;
+                rig.passes.localLights.deepTileLights = threshold;
+                const std::vector<float> got = rig.renderHdr(r);
+                for (size_t i = 0; i < got.size(); ++i) {
+                    const double bound = ((k[i / 4] + 1) * std::ldexp(1.0, -11) + 1e-3) * std::abs(ref[i]) + 1e-6;
+                    ASSERT_LE(std::abs(double(got[i]) - double(ref[i])), bound) << "texel " << i / 4;
+                }
+                if (threshold != 1) continue;
+                GLuint listed = 0;
+                glGetNamedBufferSubData(rig.passes.localLights.deepTiles.id(), 0, sizeof(GLuint), &listed);
+                listedSomewhere += int(listed);
+            }
+        EXPECT_GT(listedSomewhere, 0) << "some deep tile goes to the clustered kernel";
     }
 }
 
