@@ -22,8 +22,7 @@ $B/run --version
 # only; every variant gives the same image within the tests' bounds), each from a patched copy of
 # shaders/ through $LIGHTPASS_SHADER_DIR: `default` (shaders/ as they are), `stop28` (main's kernel at
 # 99b0145, bench/kernels/local_light_clustered_stop28.comp: every surface texel read and written, lit
-# or not), `one_dispatch` (main's kernel before the two-dispatch method, at 3a0ee4a: every tile shaded
-# by the clustered kernel), stop 31's kernels (bench/kernels/local_light_clustered_<name>.comp; each tile's slice boxes
+# or not), stop 31's kernels (bench/kernels/local_light_clustered_<name>.comp; each tile's slice boxes
 # made where tested, not kept in shared memory): `compact2` (the tiled method's list of the tile's
 # lights, double-buffered, each light with a 32-bit mask of its slices; every pixel walks the whole
 # list and skips the lights its slice lacks), `compact` (the same, one buffer), `bits32` (main's kernel
@@ -47,7 +46,7 @@ $B/run --version
 # variants_run7_*: tiles with at most 2 or 3 occupied slices, or with consecutive ones, shading as one
 # froxel (slower).
 # VARIANT_LIST picks them (default: default stop28 cull_only tiled_cull_only);
-# `default`, `stop28` and `one_dispatch` also time tiled in their process. Three scenes x 1080p, 4K x
+# `default` and `stop28` also time tiled in their process. Three scenes x 1080p, 4K x
 # 1..16384 lights, 50 frames (2 s cap): OUTDIR/variants_<variant>_<scene>.json and OUTDIR/clustered_variants.md
 # (clustered / tiled per variant, against the tiled of its own process where it has one).
 if [ -n "${VARIANTS:-}" ]; then
@@ -57,7 +56,7 @@ if [ -n "${VARIANTS:-}" ]; then
     case $1 in
       lists) cp bench/kernels/local_light_clustered_lists.comp "$f" ;;
       stop28) cp bench/kernels/local_light_clustered_stop28.comp "$f" ;;
-      compact|compact2|bits32|group_walk|merged_list|pair_union|one_dispatch) cp bench/kernels/local_light_clustered_$1.comp "$f" ;;
+      compact|compact2|bits32|group_walk|merged_list|pair_union) cp bench/kernels/local_light_clustered_$1.comp "$f" ;;
       tiled_pad8k) f=$P/local_light_tiled.comp; cp bench/kernels/local_light_tiled_pad8k.comp "$f" ;;
       default) ;;
       tiled_cull_only) f=$P/local_light_tiled.comp
@@ -85,7 +84,7 @@ if [ -n "${VARIANTS:-}" ]; then
     P=$(variant_dir "$v"); [ -n "$P" ] || continue
     methods='--local-lights clustered --cluster-size 16'
     case $v in
-      default|stop28|one_dispatch) methods="--local-lights tiled|$methods" ;;
+      default|stop28) methods="--local-lights tiled|$methods" ;;
       tiled_*) methods='--local-lights tiled' ;;  # a variant of the tiled method: its own column
     esac
     for s in ${SCENES:-gallery depth-discontinuity fence}; do

@@ -1,7 +1,6 @@
 #include "passes/local_light_pass.hpp"
 
 #include <algorithm>
-#include <limits>
 #include <memory>
 #include <vector>
 
@@ -17,6 +16,12 @@ namespace lp {
 
 namespace {
 constexpr int kTileSize = 16;           // local_size of local_light_tiled.comp
+// Below this many lights the clustered method (with 16-pixel froxel tiles, the tiled kernel's) shades
+// with the tiled kernel: no tile then holds enough lights for its slices to save what they cost. On
+// the H100 the clustered kernel took 1.03-1.22x the tiled kernel's time at 1 and 16 lights on every
+// scene, and was faster from 256 lights on scenes whose tiles span depth
+// (bench/results/stop31/README.md).
+constexpr int kClusteredMinLights = 32;
 constexpr float kGlobeScale = 0.04f;    // globe radius as a fraction of the light's range
 constexpr float kGlobeRadiance = 8.0f;  // flat radiance of a globe (brightest channel)
 constexpr float kOverlayRadiance = 3.0f;
@@ -69,8 +74,6 @@ void ensureState(LocalLightPass& state, const FrameData& frame, bool spotShadows
         const std::vector<std::string> clustered = clusteredDefines(layout, spotShadows, clusterTile);
         state.clusteredProgram = frame.shaders->compute("local_light_clustered.comp", clustered);
         state.clusteredSupertileProgram = {};  // compiled when first needed (many lights)
-        state.deepDeferProgram = {};           // these too (the two-dispatch clustered method)
-        state.clusteredListPrograms = {};
         state.clusterTightBuildProgram = frame.shaders->compute("light_clusters_tight.comp", clustered);
         state.clusterTileCompiled = clusterTile;
         defines.push_back("LP_TILE_HEATMAP");
@@ -340,56 +343,6 @@ void shadeClustered(LocalLightPass& state, const FrameData& frame, GLuint prog, 
     unbindSupertiles();
 }
 
-// The clustered method in two dispatches (16-pixel tiles, bounded lights): the tiled kernel
-// (local_light_tiled.comp, LP_DEFER_DEEP) shades every tile but those whose pixels lie in more than
-// one slice and that keep about kDeepTileLights lights or more; it lists those, and the
-// clustered kernel (LP_TILE_LIST) culls and shades them per slice, one work group each by an indirect
-// dispatch. Tiles the slices cannot speed up so pay only the tiled kernel, whose smaller shared memory
-// runs faster on the H100 (bench/results/stop31/). `first` and `second` have the G-buffer, the
-// lighting uniforms and the HDR image bound by the caller.
-constexpr int kDeepTileLights = 32;
-
-void shadeClusteredInTwoDispatches(LocalLightPass& state, const FrameData& frame, GLuint first, GLuint second, int lightCount) {
-    const LocalLightSettings& s = frame.settings->localLights;
-    const ClusterGrid g = makeClusterGrid(frame.width, frame.height, s.clusterSize, s.clusterSlices, frame.nearPlane,
-                                          frame.farPlane);
-    state.clusterGrid = g;
-    state.stats.clusters = g.count();
-    const size_t tiles = size_t(g.tilesX) * size_t(g.tilesY);
-    if (tiles > state.deepTilesCapacity || !state.deepTiles) {
-        std::vector<GLuint> init(3 + tiles, 0u);
-        init[1] = init[2] = 1u;  // the indirect dispatch's y and z counts
-        state.deepTiles = gl::makeBuffer(GLsizeiptr(init.size() * sizeof(GLuint)), init.data(), 0, "local_lights.deep_tiles");
-        state.deepTilesCapacity = tiles;
-    }
-    // Fewer lights than the threshold: no tile can be listed, so the tiled kernel alone (the second
-    // dispatch and its barrier cost ~6 us, a tenth of the pass at 1080p).
-    const int threshold = state.deepTileLights > 0 ? state.deepTileLights : kDeepTileLights;
-    const bool listing = lightCount >= threshold;
-    const GLuint zero = 0;
-    if (listing)
-        glClearNamedBufferSubData(state.deepTiles.id(), GL_R32UI, 0, sizeof(GLuint), GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-    buildSupertiles(state, frame, g, lightCount, {first, second});
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, state.deepTiles.id());
-    setTileCullUniforms(first, g, frame, lightCount);
-    setInt(first, "uDeepTileLights", listing ? threshold : std::numeric_limits<int>::max());
-    glUseProgram(first);
-    glDispatchCompute(GLuint(g.tilesX), GLuint(g.tilesY), 1);
-    if (!listing) {
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, 0);
-        unbindSupertiles();
-        return;
-    }
-    glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
-    setTileCullUniforms(second, g, frame, lightCount);
-    glUseProgram(second);
-    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, state.deepTiles.id());
-    glDispatchComputeIndirect(0);
-    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, 0);
-    unbindSupertiles();
-}
-
 // The fullscreen, scissor and volumes methods: additive blending into an FBO holding the HDR texture.
 void drawFragmentMethod(LocalLightPass& state, const FrameData& frame, const std::vector<PointLight>& lights,
                         GLuint hdrTexture) {
@@ -552,7 +505,17 @@ fg::ResourceId addLocalLightPass(fg::FrameGraph& graph, LocalLightPass& state, c
             if (spotShadows.any()) bindSpotShadows(state, frame, spotShadows, res.texture(data.spotShadows));
             state.stats.requested = int(lights->size());
             const GLuint hdrTexture = res.texture(data.hdr);
-            if (s.method == LocalLightMethod::Tiled) {
+            const int minLights = state.clusteredMinLights != 0 ? state.clusteredMinLights : kClusteredMinLights;
+            const bool clusteredAsTiled = s.method == LocalLightMethod::Clustered && s.clusterSize == kTileSize &&
+                                          int(lights->size()) < minLights;
+            state.stats.slicesShaded = s.method == LocalLightMethod::Clustered && !clusteredAsTiled;
+            if (clusteredAsTiled) {
+                const ClusterGrid g = makeClusterGrid(frame.width, frame.height, s.clusterSize, s.clusterSlices,
+                                                      frame.nearPlane, frame.farPlane);
+                state.clusterGrid = g;
+                state.stats.clusters = g.count();
+            }
+            if (s.method == LocalLightMethod::Tiled || clusteredAsTiled) {
                 const GLuint prog = state.tiledProgram.id();
                 bindGBuffer(prog, res, data.in, frame, !lightingOnly);
                 setInt(prog, "uLightCount", int(lights->size()));
@@ -569,41 +532,20 @@ fg::ResourceId addLocalLightPass(fg::FrameGraph& graph, LocalLightPass& state, c
                 unbindSupertiles();
                 state.stats.drawn = int(lights->size());
             } else if (s.method == LocalLightMethod::Clustered) {
-                // With many lights the variant that reads the supertile lists (LP_SUPERTILES). With
-                // 16-pixel tiles and bounded lights, two dispatches: the tiled kernel for the tiles
-                // the slices cannot speed up, the clustered one for the rest.
+                // With many lights the variant that reads the supertile lists (LP_SUPERTILES).
                 const bool supertiles = useSupertiles(state, int(lights->size()), !unbounded(s));
-                const bool twoDispatches = state.deepTileLights >= 0 && s.clusterSize == kTileSize && !unbounded(s);
-                std::vector<std::string> d = clusteredDefines(state.layout, state.spotShadowVariant, state.clusterTileCompiled);
-                if (supertiles) d.push_back("LP_SUPERTILES");
-                if (twoDispatches) d.push_back("LP_TILE_LIST");
-                gl::Program& program = twoDispatches ? state.clusteredListPrograms[supertiles]
-                                       : supertiles  ? state.clusteredSupertileProgram
-                                                     : state.clusteredProgram;
-                if (!program) program = frame.shaders->compute("local_light_clustered.comp", d);
-                const GLuint prog = program.id();
+                if (supertiles && !state.clusteredSupertileProgram) {
+                    std::vector<std::string> d = clusteredDefines(state.layout, state.spotShadowVariant, state.clusterTileCompiled);
+                    d.push_back("LP_SUPERTILES");
+                    state.clusteredSupertileProgram = frame.shaders->compute("local_light_clustered.comp", d);
+                }
+                const GLuint prog = supertiles ? state.clusteredSupertileProgram.id() : state.clusteredProgram.id();
                 bindGBuffer(prog, res, data.in, frame, !lightingOnly);
                 setInt(prog, "uUnbounded", unbounded(s));
                 setInt(prog, "uLightingOnly", lightingOnly);
                 setInt(prog, "uSpecularMode", specularMode(s));
                 glBindImageTexture(0, hdrTexture, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
-                // A kernel without the tile list (an older one timed through $LIGHTPASS_SHADER_DIR by
-                // bench/lighting_clustered.sh) shades every tile in one dispatch.
-                if (twoDispatches && glGetProgramResourceIndex(prog, GL_SHADER_STORAGE_BLOCK, "DeepTiles") != GL_INVALID_INDEX) {
-                    if (!state.deepDeferProgram) {
-                        std::vector<std::string> t = lightingDefines(state.layout, state.spotShadowVariant);
-                        t.push_back("LP_DEFER_DEEP");
-                        state.deepDeferProgram = frame.shaders->compute("local_light_tiled.comp", t);
-                    }
-                    const GLuint first = state.deepDeferProgram.id();
-                    bindGBuffer(first, res, data.in, frame, !lightingOnly);
-                    setInt(first, "uUnbounded", 0);
-                    setInt(first, "uLightingOnly", lightingOnly);
-                    setInt(first, "uSpecularMode", specularMode(s));
-                    shadeClusteredInTwoDispatches(state, frame, first, prog, int(lights->size()));
-                } else {
-                    shadeClustered(state, frame, prog, int(lights->size()));
-                }
+                shadeClustered(state, frame, prog, int(lights->size()));
                 state.stats.drawn = int(lights->size());
             } else {
                 const GLuint prog = state.fragmentProgram.id();

@@ -29,6 +29,7 @@ struct LocalLightStats {
     int offscreen = 0;   // scissor method: lights skipped because their rectangle was empty
     int fullScreen = 0;  // scissor method: lights drawn full screen (camera inside / near plane crossed)
     int clusters = 0;    // clustered method: froxels in the grid
+    bool slicesShaded = false;  // clustered method: its kernel ran (false: few lights, the tiled kernel)
     // clustered method: froxels of the previous grid build that held more than kMaxLightsPerCluster
     // lights (read back one build late, so the frame does not wait for the GPU); -1 before any.
     int clustersOverflowing = -1;
@@ -43,18 +44,10 @@ struct LocalLightPass {
     gl::Program clusterBuildProgram;  // light_clusters.comp
     gl::Program clusteredProgram;     // local_light_clustered.comp: tight froxels in shared memory and shading, fused
     gl::Program clusteredSupertileProgram;  // the same with LP_SUPERTILES: candidates from supertile lists (many lights)
-    // The clustered method in two dispatches (16-pixel tiles): local_light_tiled.comp with
-    // LP_DEFER_DEEP shades every tile the tiled way but the deep ones with many lights, which it lists
-    // in deepTiles (an indirect dispatch's counts, then the tiles) for local_light_clustered.comp with
-    // LP_TILE_LIST (and LP_SUPERTILES for many lights). Compiled when first needed.
-    gl::Program deepDeferProgram;
-    std::array<gl::Program, 2> clusteredListPrograms;  // [0] without, [1] with supertile lists
-    gl::Buffer deepTiles;
-    size_t deepTilesCapacity = 0;  // tiles the buffer holds
-    // A deep tile (pixels in more than one slice) goes to the clustered kernel when its first batch
-    // keeps at least this many lights. For tests: 0 is the default (kDeepTileLights); a negative value
-    // shades every tile in the clustered kernel, in one dispatch.
-    int deepTileLights = 0;
+    // With fewer lights than this and 16-pixel froxel tiles, the clustered method shades with the tiled
+    // kernel (the same tiles without slices). For tests: 0 is the default (kClusteredMinLights); a
+    // negative value always runs the clustered kernel.
+    int clusteredMinLights = 0;
     gl::Program clusterTightBuildProgram;  // light_clusters_tight.comp: the tight lists (lights-per-cluster view)
     int clusterTileCompiled = 0;      // the tile size (--cluster-size) those two were compiled for
     gl::Program clusterViewProgram;   // light_clusters_view.comp

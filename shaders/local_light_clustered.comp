@@ -52,11 +52,6 @@ layout(std430, binding = 0) readonly buffer LocalLights { LpLocalLight uLights[]
 // 256 lights) the kernel compiles to what it was before they existed, 2-3% faster there.
 #include "common/supertiles.glsl"
 #endif
-#ifdef LP_TILE_LIST
-// The clustered method's second dispatch: only the tiles local_light_tiled.comp (LP_DEFER_DEEP) left
-// to it, one work group each (indirect), each tile as x | y << 16.
-layout(std430, binding = 8) readonly buffer DeepTiles { uint uDeepTileCount; uint uDeepTileGroupsY, uDeepTileGroupsZ; uint uDeepTiles[]; };
-#endif
 layout(rgba16f, binding = 0) uniform image2D uHdr;
 uniform int uLightCount;
 uniform mat4 uProjection;
@@ -109,11 +104,7 @@ void readShadingTexels(ivec2 p, vec3 P, out vec3 N, out vec4 spec, out vec3 kd, 
 
 void main() {
     uint lid = gl_LocalInvocationIndex;
-#ifdef LP_TILE_LIST
-    ivec2 tile = ivec2(uDeepTiles[gl_WorkGroupID.x] & 0xffffu, uDeepTiles[gl_WorkGroupID.x] >> 16u);
-#else
     ivec2 tile = ivec2(gl_WorkGroupID.xy);
-#endif
     ivec2 origin = tile * LP_TILE;
     int slices = uClusterGrid.z;
 
@@ -174,7 +165,7 @@ void main() {
     int part = 0;  // which half of sMask / sWords this batch uses
     // The candidates: the supertile's lights, or every light (no supertiles, an overflowing list).
 #ifdef LP_SUPERTILES
-    const SupertileCandidates tileCandidates = supertileCandidates(tile, uClusterGrid.x, uLightCount);
+    const SupertileCandidates tileCandidates = supertileCandidates(tile, int(gl_NumWorkGroups.x), uLightCount);
     const int candidates = tileCandidates.count;
     const bool listed = tileCandidates.listed;
 #else

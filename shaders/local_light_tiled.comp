@@ -4,10 +4,6 @@
 // sphere) touches the tile's frustum (four side planes and the depth bounds) into shared memory, 256
 // lights at a time, and shades its pixels with
 // that list. With LP_TILE_HEATMAP it instead paints the per-tile count over the finished image.
-// With LP_DEFER_DEEP it is the clustered method's first dispatch: a tile whose pixels lie in more than
-// one depth slice of the froxel grid and that keeps about uDeepTileLights lights or more (its first
-// batch's lights times its batches) is not shaded here but listed for local_light_clustered.comp (LP_TILE_LIST), which culls it per slice;
-// every other tile is shaded the tiled way, by this small kernel.
 #include "common/local_light.glsl"
 #include "common/tonemap.glsl"
 #include "common/heatmap.glsl"
@@ -19,13 +15,6 @@ layout(local_size_x = 16, local_size_y = 16) in;
 const uint LP_BATCH = 256u;  // = threads per group: each thread tests one light per batch
 
 layout(std430, binding = 0) readonly buffer LocalLights { LpLocalLight uLights[]; };
-#ifdef LP_DEFER_DEEP
-#include "common/clusters.glsl"
-// The tiles left to the clustered kernel: its indirect dispatch's work-group counts, then each tile
-// as x | y << 16.
-layout(std430, binding = 8) buffer DeepTiles { uint uDeepTileCount; uint uDeepTileGroupsY, uDeepTileGroupsZ; uint uDeepTiles[]; };
-uniform int uDeepTileLights;
-#endif
 layout(rgba16f, binding = 0) uniform image2D uHdr;
 uniform int uLightCount;
 uniform mat4 uProjection;
@@ -104,15 +93,6 @@ void main() {
                 at += w < word ? c : 0u;
                 n += c;
             }
-#ifdef LP_DEFER_DEEP
-            // A deep tile with many lights goes to the clustered kernel: its first batch's lights times
-            // its batches (uniform: d0, d1, n and the candidates are).
-            int batches = (candidates.count + int(LP_BATCH) - 1) / int(LP_BATCH);
-            if (base == 0 && int(n) * batches >= uDeepTileLights && clusterSliceOf(d0) != clusterSliceOf(d1)) {
-                if (lid == 0u) uDeepTiles[atomicAdd(uDeepTileCount, 1u)] = gl_WorkGroupID.x | (gl_WorkGroupID.y << 16u);
-                return;
-            }
-#endif
             if (touches) sList[at + uint(bitCount(sPassed[word] & (bit - 1u)))] = uint(i);
             barrier();
 #ifndef LP_TILE_HEATMAP

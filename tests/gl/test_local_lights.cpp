@@ -133,7 +133,10 @@ TEST(LocalLightShader, SpotFalloffIsSmoothstepBetweenTheConeCosines) {
 
 // Everything one test needs to render frames and look at the local-light pass's state.
 struct Rig {
-    explicit Rig(const Scene& s) : scene(s), gpu(std::make_unique<SceneGpu>(scene)) {}
+    // The clustered method's own kernel at any light count (by default it leaves fewer than 32 lights
+    // to the tiled kernel): these tests are about it. ClusteredLights.FewLightsShadeWithTheTiledKernel
+    // tests the default.
+    explicit Rig(const Scene& s) : scene(s), gpu(std::make_unique<SceneGpu>(scene)) { passes.localLights.clusteredMinLights = -1; }
     const Scene& scene;
     std::unique_ptr<SceneGpu> gpu;
     gl::ShaderLibrary shaders;
@@ -1039,36 +1042,32 @@ TEST(ClusteredLights, TilesSpanningMoreSlicesThanAMaskHoldsShadeEveryLight) {
     }
 }
 
-// The clustered method's two dispatches (16-pixel tiles): the tiled kernel shades the tiles within one
-// slice or with few lights and lists the rest for the clustered kernel. Every split gives the
-// fullscreen image: no tile listed (a threshold above the light count: the tiled kernel alone), every
-// deep tile listed (threshold 1), the default, and one dispatch of the clustered kernel (negative);
-// with supertile lists too (2 x 2 tiles). With threshold 1 some deep tile is listed.
-TEST(ClusteredLights, BothDispatchesOfTheClusteredMethodGiveTheSameImage) {
-    for (const Scene& s : {twentyLightScene(), spotScene(), pillarBeforeWallScene()}) {
-        Rig rig(s);
-        const std::vector<float> ref = rig.renderHdr(smallSettings(LocalLightMethod::Fullscreen));
-        const std::vector<int> k = lightsPerPixel(s, smallSettings(LocalLightMethod::Scissor));
-        RenderSettings r = smallSettings(LocalLightMethod::Clustered);
-        r.localLights.clusterSize = 16;
-        r.localLights.clusterSlices = 64;
-        int listedSomewhere = 0;
-        for (int supertiles : {-1, 2})
-            for (int threshold : {1 << 20, 1, 0, -1}) {
-                SCOPED_TRACE("supertiles " + std::to_string(supertiles) + ", threshold " + std::to_string(threshold));
-                rig.passes.localLights.supertileTiles = supertiles;
-                rig.passes.localLights.deepTileLights = threshold;
-                const std::vector<float> got = rig.renderHdr(r);
-                for (size_t i = 0; i < got.size(); ++i) {
-                    const double bound = ((k[i / 4] + 1) * std::ldexp(1.0, -11) + 1e-3) * std::abs(ref[i]) + 1e-6;
-                    ASSERT_LE(std::abs(double(got[i]) - double(ref[i])), bound) << "texel " << i / 4;
-                }
-                if (threshold != 1) continue;
-                GLuint listed = 0;
-                glGetNamedBufferSubData(rig.passes.localLights.deepTiles.id(), 0, sizeof(GLuint), &listed);
-                listedSomewhere += int(listed);
-            }
-        EXPECT_GT(listedSomewhere, 0) << "some deep tile goes to the clustered kernel";
+// By default the clustered method leaves frames with fewer than 32 lights to the tiled kernel when its
+// froxel tiles are the tiled kernel's (16 px): the same bits as the tiled method, and the slices'
+// kernel from 32 lights, or with other tile sizes. Every case gives the fullscreen image.
+TEST(ClusteredLights, FewLightsShadeWithTheTiledKernel) {
+    const Scene s = twentyLightScene();
+    Rig rig(s);
+    rig.passes.localLights.clusteredMinLights = 0;  // the default
+    const std::vector<float> tiled = rig.renderHdr(smallSettings(LocalLightMethod::Tiled));
+    RenderSettings r = smallSettings(LocalLightMethod::Clustered);
+    EXPECT_EQ(rig.renderHdr(r), tiled) << "20 lights, 16-pixel tiles: the tiled kernel";
+    EXPECT_FALSE(rig.passes.localLights.stats.slicesShaded);
+    EXPECT_EQ(rig.passes.localLights.stats.clusters, 4 * 3 * r.localLights.clusterSlices) << "the grid it stands for";
+    for (const auto& [size, lights] : {std::pair{16, 40}, std::pair{8, 20}}) {
+        SCOPED_TRACE(std::to_string(size) + " px, " + std::to_string(lights) + " lights");
+        r.localLights.clusterSize = size;
+        r.localLights.lightCount = lights;
+        RenderSettings full = smallSettings(LocalLightMethod::Fullscreen);
+        full.localLights.lightCount = lights;
+        const std::vector<float> ref = rig.renderHdr(full);
+        const std::vector<float> got = rig.renderHdr(r);
+        EXPECT_TRUE(rig.passes.localLights.stats.slicesShaded);
+        const std::vector<int> k = lightsPerPixel(s, full);
+        for (size_t i = 0; i < got.size(); ++i) {
+            const double bound = ((k[i / 4] + 1) * std::ldexp(1.0, -11) + 1e-3) * std::abs(ref[i]) + 1e-6;
+            ASSERT_LE(std::abs(double(got[i]) - double(ref[i])), bound) << "texel " << i / 4;
+        }
     }
 }
 
