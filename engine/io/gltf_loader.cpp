@@ -275,13 +275,13 @@ struct Loader {
             return s;
         }
         const tinygltf::Sampler& g = model.samplers[size_t(index)];
-        const auto oneOf = [](int v, std::initializer_list<int> valid) {
-            return std::find(valid.begin(), valid.end(), v) != valid.end();
+        const auto oneOf = [](int v, const std::vector<int64_t>& valid) {
+            return std::find(valid.begin(), valid.end(), int64_t(v)) != valid.end();
         };
-        if (oneOf(g.wrapS, {33071, 33648, 10497})) s.wrapS = g.wrapS;
-        if (oneOf(g.wrapT, {33071, 33648, 10497})) s.wrapT = g.wrapT;
-        if (oneOf(g.magFilter, {9728, 9729})) s.magFilter = g.magFilter;
-        if (oneOf(g.minFilter, {9728, 9729, 9984, 9985, 9986, 9987})) s.minFilter = g.minFilter;
+        if (oneOf(g.wrapS, kGltfSamplerWraps)) s.wrapS = g.wrapS;
+        if (oneOf(g.wrapT, kGltfSamplerWraps)) s.wrapT = g.wrapT;
+        if (oneOf(g.magFilter, kGltfMagFilters)) s.magFilter = g.magFilter;
+        if (oneOf(g.minFilter, kGltfMinFilters)) s.minFilter = g.minFilter;
         return s;
     }
 
@@ -350,7 +350,7 @@ struct Loader {
     // The one uv transform of material `index`'s textures: lightpass keeps a single uv set per vertex,
     // so textures of one material that disagree get the first one's, with a warning (once per
     // material, however many primitives use it).
-    mutable std::map<int, UvTransform> materialUvTransforms;
+    mutable std::map<int, UvTransform> materialUvTransforms{};
     UvTransform materialUvTransform(int index) const {
         if (index < 0 || size_t(index) >= model.materials.size()) return {};
         if (auto known = materialUvTransforms.find(index); known != materialUvTransforms.end()) return known->second;

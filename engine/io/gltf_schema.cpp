@@ -32,7 +32,7 @@ std::string listed(std::initializer_list<const char*> values) {
     return s;
 }
 
-std::string listed(std::initializer_list<int64_t> values) {
+std::string listed(const std::vector<int64_t>& values) {
     std::string s;
     for (int64_t v : values) s += (s.empty() ? "" : ", ") + std::to_string(v);
     return s;
@@ -127,7 +127,7 @@ public:
         expect(*v, join(at, key), v->is_number_integer() && integerWithin(*v, lo, hi), range);
     }
 
-    void enumInteger(const json& obj, const char* key, const std::string& at, std::initializer_list<int64_t> values,
+    void enumInteger(const json& obj, const char* key, const std::string& at, const std::vector<int64_t>& values,
                      bool required = false) {
         const json* v = member(obj, key, at, required);
         if (!v) return;
@@ -410,14 +410,14 @@ public:
             index(i, "bufferView", w);
         });
         objects(root, "samplers", "", [&](const json& s, const std::string& w) {
-            // The loader keeps only valid filters and wraps (gltfTextureSampler); the rest sample as
+            // The loader keeps only valid filters and wraps (Loader::sampler); the rest sample as
             // textures without a sampler do.
             leniently([&] {
                 string(s, "name", w);
-                enumInteger(s, "magFilter", w, {9728, 9729});
-                enumInteger(s, "minFilter", w, {9728, 9729, 9984, 9985, 9986, 9987});
-                enumInteger(s, "wrapS", w, {33071, 33648, 10497});
-                enumInteger(s, "wrapT", w, {33071, 33648, 10497});
+                enumInteger(s, "magFilter", w, kGltfMagFilters);
+                enumInteger(s, "minFilter", w, kGltfMinFilters);
+                enumInteger(s, "wrapS", w, kGltfSamplerWraps);
+                enumInteger(s, "wrapT", w, kGltfSamplerWraps);
             }, "ignored (the default is used: repeat, trilinear)");
         });
         objects(root, "cameras", "", [&](const json& c, const std::string& w) { camera(c, w); });

@@ -25,9 +25,6 @@ struct TextureSampler {
     int magFilter = 0;  // GL_NEAREST 9728, GL_LINEAR 9729
     int minFilter = 0;  // GL_NEAREST .. GL_LINEAR_MIPMAP_LINEAR (9728, 9729, 9984..9987)
     bool isDefault() const { return wrapS == 10497 && wrapT == 10497 && magFilter == 0 && minFilter == 0; }
-    bool operator==(const TextureSampler& o) const {
-        return wrapS == o.wrapS && wrapT == o.wrapT && magFilter == o.magFilter && minFilter == o.minFilter;
-    }
 };
 
 // A texture: a file, or an image embedded in a glTF (encoded bytes, decoded when uploaded). `key`

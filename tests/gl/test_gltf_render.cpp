@@ -37,8 +37,8 @@ Scene modelScene(MeshData mesh) {
     return s;
 }
 
-// HDR radiance at the centre pixel of a w x h render.
-glm::vec3 centre(const Scene& s, GBufferMode mode, int w = 48, int h = 48) {
+// The HDR buffer of a w x h render in G-buffer mode `mode`.
+ImageF renderHdr(const Scene& s, GBufferMode mode, int w, int h) {
     Renderer r(s);
     RenderSettings settings;
     settings.gbuffer.mode = mode;
@@ -46,7 +46,12 @@ glm::vec3 centre(const Scene& s, GBufferMode mode, int w = 48, int h = 48) {
     settings.height = h;
     settings.keepHdr = true;
     r.render(settings);
-    const ImageF hdr = r.readHdr();
+    return r.readHdr();
+}
+
+// HDR radiance at the centre pixel of a w x h render.
+glm::vec3 centre(const Scene& s, GBufferMode mode, int w = 48, int h = 48) {
+    const ImageF hdr = renderHdr(s, mode, w, h);
     const size_t i = (size_t(h / 2) * size_t(w) + size_t(w / 2)) * 4;
     return {hdr.rgba[i], hdr.rgba[i + 1], hdr.rgba[i + 2]};
 }
@@ -54,14 +59,7 @@ glm::vec3 centre(const Scene& s, GBufferMode mode, int w = 48, int h = 48) {
 // The red HDR radiance of a 96 x 48 render where each of `points` (world, on z = 0) lands.
 std::vector<float> redAtPoints(const Scene& s, GBufferMode mode, const std::vector<glm::vec2>& points) {
     const int w = 96, h = 48;
-    Renderer r(s);
-    RenderSettings settings;
-    settings.gbuffer.mode = mode;
-    settings.width = w;
-    settings.height = h;
-    settings.keepHdr = true;
-    r.render(settings);
-    const ImageF hdr = r.readHdr();
+    const ImageF hdr = renderHdr(s, mode, w, h);
     const glm::mat4 vp = s.camera.projection(float(w) / float(h)) * s.camera.view();
     std::vector<float> red;
     for (const glm::vec2 p : points) {

@@ -228,6 +228,12 @@ RenderSettings smallSettings(LocalLightMethod method) {
     return r;
 }
 
+// The bound between two methods' HDR values where `lights` lights reach the texel: one fp16 rounding
+// per light added (2^-11 relative each) and 1e-3 relative (+ 1e-6) for the float sums' order.
+double tiledBound(int lights, double value) {
+    return ((lights + 1) * std::ldexp(1.0, -11) + 1e-3) * std::abs(value) + 1e-6;
+}
+
 // Lights whose scissor rectangle holds pixel (x, y) (row 0 = bottom): an upper bound on the number of
 // lights that add to that pixel, hence on the number of fp16 roundings in a blended sum.
 std::vector<int> lightsPerPixel(const Scene& s, const RenderSettings& settings) {
@@ -300,7 +306,7 @@ TEST(LocalLights, FourMethodsGiveTheSameImage) {
                     continue;
                 }
                 const int lights = mode.outside ? 20 : k[i / 4];
-                const double bound = ((lights + 1) * std::ldexp(1.0, -11) + 1e-3) * std::abs(ref[i]) + 1e-6;
+                const double bound = tiledBound(lights, ref[i]);
                 EXPECT_LE(diff, bound) << localLightMethodName(m) << " texel " << i / 4 << " channel " << i % 4;
                 worst = std::max(worst, diff / (std::abs(ref[i]) + 1e-6));
             }
@@ -612,7 +618,7 @@ TEST(LocalLights, EveryMethodGivesTheSameImageWithSpots) {
                 ASSERT_EQ(got[i], ref[i]) << localLightMethodName(m) << " texel " << i / 4;
                 continue;
             }
-            const double bound = ((k[i / 4] + 1) * std::ldexp(1.0, -11) + 1e-3) * std::abs(ref[i]) + 1e-6;
+            const double bound = tiledBound(k[i / 4], ref[i]);
             ASSERT_LE(std::abs(double(got[i]) - double(ref[i])), bound) << localLightMethodName(m) << " texel " << i / 4;
         }
     }
@@ -940,7 +946,7 @@ TEST(ClusteredLights, TightFroxelsListEveryLightReachingTheirPixels) {
     int lit = 0;
     for (size_t i = 0; i < img.size(); ++i) {
         ASSERT_TRUE(std::isfinite(img[i]));
-        const double bound = (2.0 * (k[i / 4] + 1) * std::ldexp(1.0, -11) + 2e-3) * std::abs(tiled[i]) + 2e-6;
+        const double bound = 2.0 * tiledBound(k[i / 4], tiled[i]);
         ASSERT_LE(std::abs(double(img[i]) - double(tiled[i])), bound) << "texel " << i / 4 << " channel " << i % 4;
         if (i % 4 == 1 && tiled[i] > 1e-3f) ++lit;
     }
@@ -951,7 +957,7 @@ TEST(ClusteredLights, TightFroxelsListEveryLightReachingTheirPixels) {
     small.localLights.clusterSize = 8;
     const std::vector<float> img8 = rig.renderHdr(small);
     for (size_t i = 0; i < img8.size(); ++i) {
-        const double bound = (2.0 * (k[i / 4] + 1) * std::ldexp(1.0, -11) + 2e-3) * std::abs(tiled[i]) + 2e-6;
+        const double bound = 2.0 * tiledBound(k[i / 4], tiled[i]);
         ASSERT_LE(std::abs(double(img8[i]) - double(tiled[i])), bound) << "8 px: texel " << i / 4 << " channel " << i % 4;
     }
 }
@@ -974,7 +980,7 @@ TEST(ClusteredLights, EveryTileSizeAndSliceCountGivesTheSameImage) {
             EXPECT_EQ(rig.passes.localLights.stats.clusters,
                       ((64 + tile - 1) / tile) * ((48 + tile - 1) / tile) * slices);
             for (size_t i = 0; i < got.size(); ++i) {
-                const double bound = ((k[i / 4] + 1) * std::ldexp(1.0, -11) + 1e-3) * std::abs(ref[i]) + 1e-6;
+                const double bound = tiledBound(k[i / 4], ref[i]);
                 ASSERT_LE(std::abs(double(got[i]) - double(ref[i])), bound)
                     << "tile " << tile << " slices " << slices << " texel " << i / 4;
             }
@@ -1033,7 +1039,7 @@ TEST(ClusteredLights, TilesSpanningMoreSlicesThanAMaskHoldsShadeEveryLight) {
         const std::vector<float> got = rig.renderHdr(r);
         int wallLit = 0;
         for (size_t i = 0; i < got.size(); ++i) {
-            const double bound = ((k[i / 4] + 1) * std::ldexp(1.0, -11) + 1e-3) * std::abs(ref[i]) + 1e-6;
+            const double bound = tiledBound(k[i / 4], ref[i]);
             ASSERT_LE(std::abs(double(got[i]) - double(ref[i])), bound) << "tile " << tile << " texel " << i / 4;
             const int x = int(i / 4) % 64;
             if (i % 4 == 0 && ref[i] > 1e-3f && x >= 24 && x < 40) ++wallLit;
@@ -1065,7 +1071,7 @@ TEST(ClusteredLights, FewLightsShadeWithTheTiledKernel) {
         EXPECT_TRUE(rig.passes.localLights.stats.slicesShaded);
         const std::vector<int> k = lightsPerPixel(s, full);
         for (size_t i = 0; i < got.size(); ++i) {
-            const double bound = ((k[i / 4] + 1) * std::ldexp(1.0, -11) + 1e-3) * std::abs(ref[i]) + 1e-6;
+            const double bound = tiledBound(k[i / 4], ref[i]);
             ASSERT_LE(std::abs(double(got[i]) - double(ref[i])), bound) << "texel " << i / 4;
         }
     }
@@ -1118,7 +1124,7 @@ TEST(ClusteredLights, OverflowPastTheCapIsCountedAndWarned) {
     int lit = 0;
     for (size_t i = 0; i < img.size(); ++i) {
         ASSERT_TRUE(std::isfinite(img[i]));
-        const double bound = (2.0 * (k[i / 4] + 1) * std::ldexp(1.0, -11) + 2e-3) * std::abs(tiled[i]) + 2e-6;
+        const double bound = 2.0 * tiledBound(k[i / 4], tiled[i]);
         ASSERT_LE(std::abs(double(img[i]) - double(tiled[i])), bound) << "texel " << i / 4 << " channel " << i % 4;
         ASSERT_LE(std::abs(double(img8[i]) - double(tiled[i])), bound) << "8 px: texel " << i / 4 << " channel " << i % 4;
         if (i % 4 == 1 && k[i / 4] > 256) ++lit;
