@@ -170,6 +170,10 @@ int runBench(const Options& o, const std::vector<std::string>& args) {
                                    {"lagging_per_cascade", std::vector<uint64_t>(std::begin(cache.laggingPerCascade), std::end(cache.laggingPerCascade))},
                                    {"tiles_lagging", cache.lagging}, {"tiles_completed", cache.completed},
                                    {"quarters_drawn", cache.quarters}, {"most_budget_units_in_a_frame", cache.mostBudgetUnitsInAFrame}};
+        const LocalLightStats& lights = renderer.localLightStats();
+        if (lights.froxelKernelMs >= 0.0)  // --clustered-kernel auto raced its two kernels: what it found
+            run["clustered_kernel"] = {{"shading", lights.slicesShaded ? "froxels" : "tiles"},
+                                       {"froxels_ms", lights.froxelKernelMs}, {"tiles_ms", lights.tileKernelMs}};
         const auto& timers = renderer.timers();
         std::fprintf(stderr, "[%zu/%zu] %-50s frame %9.4f ms (%d frames)\n", vi + 1, variants.size(),
                      join(variants[vi]).c_str(), timers.median("frame"), frames);

@@ -1,6 +1,7 @@
 #!/bin/bash
 # Local-light culling on the GPU, one run: deferred tiled, deferred clustered (16- and 32-pixel froxel
-# tiles; 16 is the default) and forward+ (which reads the clustered lists), light counts 1..16384 at
+# tiles; 16 is the default, run with --clustered-kernel auto, the default, and froxels, its own kernel
+# alone) and forward+ (which reads the clustered lists), light counts 1..16384 at
 # 1080p and 4K, on three scenes: the gallery (needs ../shared/assets; continuous surfaces, where
 # tiled's per-tile depth bounds are already tight), scenes/depth-discontinuity.json (thin pillars
 # against a wall 40 m away: the tiles on a pillar's edge span 1-40 m) and scenes/fence.json (a 5 cm
@@ -82,7 +83,7 @@ if [ -n "${VARIANTS:-}" ]; then
   }
   for v in ${VARIANT_LIST:-default stop28 cull_only tiled_cull_only}; do
     P=$(variant_dir "$v"); [ -n "$P" ] || continue
-    methods='--local-lights clustered --cluster-size 16'
+    methods='--local-lights clustered --cluster-size 16 --clustered-kernel froxels'  # the kernel itself, never the race
     case $v in
       default|stop28) methods="--local-lights tiled|$methods" ;;
       tiled_*) methods='--local-lights tiled' ;;  # a variant of the tiled method: its own column
@@ -97,7 +98,7 @@ if [ -n "${VARIANTS:-}" ]; then
   python3 bench/summarize_clustered_variants.py "$R" | tee "$R/clustered_variants.md"
   exit 0
 fi
-DEFAULT_METHODS='--local-lights tiled|--local-lights clustered --cluster-size 16|--local-lights clustered --cluster-size 32|--render-path forward+'
+DEFAULT_METHODS='--local-lights tiled|--local-lights clustered --cluster-size 16|--local-lights clustered --cluster-size 16 --clustered-kernel froxels|--local-lights clustered --cluster-size 32|--render-path forward+'
 for s in ${SCENES:-gallery depth-discontinuity fence}; do
   $B/run bench --scene scenes/$s.json --frames 100 --warmup 10 --floors --max-seconds 3 --min-frames 3 \
     --vary "${METHODS:-$DEFAULT_METHODS}" \

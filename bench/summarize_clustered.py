@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """bench/lighting_clustered.sh's tables. Per scene and size:
 1. the local_lights pass's median GPU ms for deferred tiled and clustered (16- and 32-pixel froxel
-   tiles), each with measured/floor (the floor: the bytes the pass must move once, over the measured
-   bandwidth), and clustered/tiled;
+   tiles; `clustered 16` runs --clustered-kernel auto, the default, and `clustered 16 froxels` the
+   clustered kernel alone), each with measured/floor (the floor: the bytes the pass must move once,
+   over the measured bandwidth), and clustered/tiled;
 2. the whole frame and the opaque geometry + lighting passes for deferred tiled, deferred clustered
    (16 px) and forward+ (deferred: gbuffer or gbuffer_visibility + gbuffer_resolve, global_lights, ibl,
    local_lights, emission; forward+: depth_prepass, forward_opaque), and forward+ / deferred
@@ -15,7 +16,8 @@ import sys
 
 DEFERRED = ("gbuffer", "gbuffer_visibility", "gbuffer_resolve", "global_lights", "ibl", "local_lights", "emission")
 FORWARD = ("depth_prepass", "forward_opaque")
-LOCAL = ("tiled", "clustered 16", "clustered 32")
+LOCAL = ("tiled", "clustered 16", "clustered 16 froxels", "clustered 32")
+RATIOS = ("clustered 16", "clustered 16 froxels", "clustered 32")
 SPANNING = ("depth-discontinuity", "fence")  # scenes whose tiles span near and far
 
 
@@ -29,7 +31,8 @@ def variant(flags):
         return "forward+"
     method = flag(flags, "local-lights") or "?"
     if method == "clustered":
-        return f"clustered {flag(flags, 'cluster-size') or '16'}"
+        kernel = flag(flags, "clustered-kernel")
+        return f"clustered {flag(flags, 'cluster-size') or '16'}" + (f" {kernel}" if kernel and kernel != "auto" else "")
     return method
 
 
@@ -52,6 +55,7 @@ def load(path):
             "frame": p.get("frame", {}).get("median_ms"),
             "shading": shading,
             "frames": run.get("frames"),
+            "kernel": run.get("clustered_kernel", {}).get("shading"),  # auto: the kernel the race kept
         }
     return d, cells
 
@@ -77,9 +81,9 @@ def main(paths):
         sizes = sorted({k[0] for k in cells}, key=size_key)
         for size in sizes:
             counts = sorted({k[1] for k in cells if k[0] == size})
-            print(f"**{size}**: `local_lights` GPU ms (frames) · measured/floor\n")
-            print("| lights | " + " | ".join(LOCAL) + " | clustered 16 / tiled | clustered 32 / tiled |")
-            print("|---:|" + "---:|" * (len(LOCAL) + 2))
+            print(f"**{size}**: `local_lights` GPU ms (frames) · measured/floor [the kernel auto kept]\n")
+            print("| lights | " + " | ".join(LOCAL) + " | " + " | ".join(f"{v} / tiled" for v in RATIOS) + " |")
+            print("|---:|" + "---:|" * (len(LOCAL) + len(RATIOS)))
             for n in counts:
                 row = []
                 for v in LOCAL:
@@ -88,9 +92,10 @@ def main(paths):
                         row.append("-")
                         continue
                     floor = f" · {c['local'] / c['floor']:.3g}×" if c["floor"] else ""
-                    row.append(f"{c['local']:.3f} ({c['frames']}){floor}")
+                    kept = f" [{c['kernel']}]" if c.get("kernel") else ""
+                    row.append(f"{c['local']:.3f} ({c['frames']}){floor}{kept}")
                 t = cells.get((size, n, "tiled"), {}).get("local")
-                for v in ("clustered 16", "clustered 32"):
+                for v in RATIOS:
                     c = cells.get((size, n, v), {}).get("local")
                     row.append(fmt(ratio(c, t)))
                     if v == "clustered 16" and c is not None and t:
@@ -124,8 +129,13 @@ def main(paths):
             big = " · ".join(f"{speed[n]:.2f}×" if n in speed else "-" for n in (1024, 4096, 16384))
             print(f"| {scene} | {size} | {worst[3]:.3g} ({worst[2]}) | {big} |")
     worst = max(targets, key=lambda t: t[3])
-    print(f"\n- clustered <= tiled everywhere: {'met' if worst[3] <= 1.0 else 'not met'} "
-          f"(worst {worst[3]:.3g}: {worst[0]} {worst[1]}, {worst[2]} lights)")
+    # Where both columns run the same kernel (auto below 32 lights, or where the race kept tiles) the
+    # ratio still moves by a few tenths of a percent from run to run: said, not hidden.
+    above = [t for t in targets if t[3] > 1.0]
+    beyond_noise = [t for t in targets if t[3] > 1.01]
+    verdict = "met" if not above else ("met within 1% (the two medians' run-to-run spread)" if not beyond_noise else "not met")
+    print(f"\n- clustered <= tiled everywhere: {verdict} (worst {worst[3]:.4f}: {worst[0]} {worst[1]}, {worst[2]} lights; "
+          f"{len(above)} of {len(targets)} cells above 1, {len(beyond_noise)} above 1.01)")
     spanning = [t for t in targets if any(s in t[0] for s in SPANNING) and t[2] >= 256]
     if spanning:
         least = max(spanning, key=lambda t: t[3])

@@ -835,9 +835,13 @@ std::vector<KnobEntry> makeKnobTable() {
         k.help = "clustered method: froxel tile side in pixels";
         k.panel = {PanelSection::Lighting, PanelWidget::Slider, "cluster size (px)", ""};
         k.sweep = {{"16", "32", "64", "128"}, false,
-                   "froxel tile side in pixels (--cluster-size, switches --local-lights clustered on): smaller tiles, "
-                   "shorter light lists, more froxels to build; the same image by design, so not monotone",
-                   [](RenderSettings& s, double) { s.localLights.method = LocalLightMethod::Clustered; }};
+                   "froxel tile side in pixels (--cluster-size, switches --local-lights clustered --clustered-kernel "
+                   "froxels on): smaller tiles, shorter light lists, more froxels to build; the same image by design, "
+                   "so not monotone",
+                   [](RenderSettings& s, double) {
+                       s.localLights.method = LocalLightMethod::Clustered;
+                       s.localLights.clusteredKernel = ClusteredKernel::Froxels;
+                   }};
         t.push_back(std::move(k));
     }
     {
@@ -847,9 +851,24 @@ std::vector<KnobEntry> makeKnobTable() {
         k.panel = {PanelSection::Lighting, PanelWidget::Slider, "cluster slices", ""};
         k.sweep = {{"8", "16", "24", "32", "64"}, false,
                    "exponential depth slices of the froxel grid (--cluster-slices, switches --local-lights clustered "
-                   "on): the same image by design, so not monotone; below 32 lights with 16-pixel tiles the tiled "
-                   "kernel shades and the slices change nothing",
-                   [](RenderSettings& s, double) { s.localLights.method = LocalLightMethod::Clustered; }};
+                   "--clustered-kernel froxels on: the kernel that uses them, at any light count): the same image by "
+                   "design, so not monotone",
+                   [](RenderSettings& s, double) {
+                       s.localLights.method = LocalLightMethod::Clustered;
+                       s.localLights.clusteredKernel = ClusteredKernel::Froxels;
+                   }};
+        t.push_back(std::move(k));
+    }
+    {
+        KnobEntry k = choiceKnob("clustered-kernel", [](auto& s) -> auto& { return s.localLights.clusteredKernel; },
+                                 allClusteredKernels(), clusteredKernelName);
+        k.flags = {valueFlag("--clustered-kernel")};
+        k.choiceNoun = "kernel";
+        k.help = "clustered method, 16-pixel tiles: the kernel that shades (the same image). froxels: the clustered "
+                 "kernel, each pixel the lights of its depth slice; tiles: the tiled kernel on the same tiles without "
+                 "slices; auto: both timed on the GPU in turn for the view and the faster one kept, timed again "
+                 "every 240 frames and when the lights, size or settings change (below 32 lights: tiles)";
+        k.panel = {PanelSection::Lighting, PanelWidget::Combo, "clustered kernel", ""};
         t.push_back(std::move(k));
     }
     {

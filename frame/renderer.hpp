@@ -40,6 +40,8 @@ public:
     // Sun cascade tiles drawn and kept (--shadow-cache) since the last resetShadowCacheStats().
     const ShadowCacheStats& shadowCacheStats() const { return passes_.shadowMaps.cacheStats; }
     void resetShadowCacheStats() { passes_.shadowMaps.cacheStats = {}; }
+    // What the last frame's local-light pass did (the clustered method: which kernel shaded, the race's times).
+    const LocalLightStats& localLightStats() const { return passes_.localLights.stats; }
     // The environment cubes and IBL bakes (imported into each frame's graph), e.g. to time a fresh bake.
     EnvironmentCache& environments() { return passes_.environments; }
     const SceneGpu& sceneGpu() const { return *gpu_; }

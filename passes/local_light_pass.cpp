@@ -479,6 +479,90 @@ void unbindClusteredLightLists() {
     glBindTextureUnit(kSpotShadowUnit, 0);
 }
 
+namespace {
+// What the clustered race's time depends on besides the view: a change begins a new round.
+std::uint64_t clusteredRaceKey(const FrameData& frame, bool lightingOnly, bool spotShadows, int lightCount) {
+    const LocalLightSettings& s = frame.settings->localLights;
+    std::uint64_t h = 1469598103934665603ull;  // FNV-1a over the values
+    for (const std::int64_t v : {std::int64_t(lightCount), std::int64_t(frame.width), std::int64_t(frame.height),
+                                 std::int64_t(s.clusterSlices), std::int64_t(specularMode(s)), std::int64_t(lightingOnly),
+                                 std::int64_t(spotShadows), std::int64_t(frame.settings->gbuffer.mode)}) {
+        h ^= std::uint64_t(v);
+        h *= 1099511628211ull;
+    }
+    return h;
+}
+
+// Reads the race's timestamps the GPU has passed; the others stay pending.
+void collectRaceTimings(LocalLightPass& state) {
+    for (LocalLightPass::RaceTiming& t : state.raceTimings) {
+        if (!t.pending) continue;
+        GLint available = 0;
+        glGetQueryObjectiv(t.end.id(), GL_QUERY_RESULT_AVAILABLE, &available);
+        if (!available) continue;
+        GLuint64 t0 = 0, t1 = 0;
+        glGetQueryObjectui64v(t.begin.id(), GL_QUERY_RESULT, &t0);
+        glGetQueryObjectui64v(t.end.id(), GL_QUERY_RESULT, &t1);
+        t.pending = false;
+        const bool wasRacing = state.clusteredRace.racing;
+        kernelRaceRecord(state.clusteredRace, t.key, t.kernel, t1 >= t0 ? double(t1 - t0) * 1e-6 : 0.0);
+        if (wasRacing && !state.clusteredRace.racing) {
+            const std::array<double, 2>& m = state.clusteredRace.lastMedians;
+            logDebug("clustered: froxels kernel " + std::to_string(m[0]) + " ms, tiles kernel " + std::to_string(m[1]) +
+                     " ms at this view: " + (state.clusteredRace.choice == 0 ? "froxels" : "tiles") + " shade");
+        }
+    }
+}
+
+struct ClusteredChoice {
+    int kernel = 0;  // 0: the clustered kernel, 1: the tiled kernel (also: not the clustered method)
+    LocalLightPass::RaceTiming* timing = nullptr;  // where to time it (a race round), else null
+};
+
+// Which kernel shades the clustered method this frame. Other tile sizes than the tiled kernel's: the
+// clustered kernel. 16-pixel tiles: --clustered-kernel froxels or tiles as asked; auto: the tiled
+// kernel below kClusteredMinLights, else the race's pick for the view.
+ClusteredChoice chooseClusteredKernel(LocalLightPass& state, const FrameData& frame, bool lightingOnly,
+                                      bool spotShadows, int lightCount) {
+    const LocalLightSettings& s = frame.settings->localLights;
+    ClusteredChoice c;
+    if (s.method != LocalLightMethod::Clustered) {
+        c.kernel = 1;
+        return c;
+    }
+    if (s.clusterSize != kTileSize || state.clusteredMinLights < 0) return c;
+    if (s.clusteredKernel != ClusteredKernel::Auto) {
+        c.kernel = s.clusteredKernel == ClusteredKernel::Tiles ? 1 : 0;
+        return c;
+    }
+    const int minLights = state.clusteredMinLights != 0 ? state.clusteredMinLights : kClusteredMinLights;
+    if (lightCount < minLights) {
+        c.kernel = 1;
+        return c;
+    }
+    collectRaceTimings(state);
+    const std::uint64_t key = clusteredRaceKey(frame, lightingOnly, spotShadows, lightCount);
+    bool timed = false;
+    c.kernel = kernelRaceNext(state.clusteredRace, key, timed);
+    state.stats.kernelRacing = timed;
+    state.stats.froxelKernelMs = state.clusteredRace.lastMedians[0];
+    state.stats.tileKernelMs = state.clusteredRace.lastMedians[1];
+    if (!timed) return c;
+    for (LocalLightPass::RaceTiming& t : state.raceTimings) {
+        if (t.pending) continue;
+        if (!t.begin) {
+            t.begin = gl::makeQuery(GL_TIMESTAMP);
+            t.end = gl::makeQuery(GL_TIMESTAMP);
+        }
+        t.kernel = c.kernel;
+        t.key = key;
+        c.timing = &t;
+        break;
+    }
+    return c;  // every slot still in flight: this frame goes untimed
+}
+}  // namespace
+
 fg::ResourceId addLocalLightPass(fg::FrameGraph& graph, LocalLightPass& state, const FrameData& frame,
                                  const GBuffer& gbuffer, fg::ResourceId hdr, bool lightingOnly,
                                  const SpotShadowMaps& spotShadows, const LocalLightRecords& records) {
@@ -505,9 +589,9 @@ fg::ResourceId addLocalLightPass(fg::FrameGraph& graph, LocalLightPass& state, c
             if (spotShadows.any()) bindSpotShadows(state, frame, spotShadows, res.texture(data.spotShadows));
             state.stats.requested = int(lights->size());
             const GLuint hdrTexture = res.texture(data.hdr);
-            const int minLights = state.clusteredMinLights != 0 ? state.clusteredMinLights : kClusteredMinLights;
-            const bool clusteredAsTiled = s.method == LocalLightMethod::Clustered && s.clusterSize == kTileSize &&
-                                          int(lights->size()) < minLights;
+            const ClusteredChoice choice = chooseClusteredKernel(state, frame, lightingOnly, spotShadows.any(),
+                                                                 int(lights->size()));
+            const bool clusteredAsTiled = s.method == LocalLightMethod::Clustered && choice.kernel == 1;
             state.stats.slicesShaded = s.method == LocalLightMethod::Clustered && !clusteredAsTiled;
             if (clusteredAsTiled) {
                 const ClusterGrid g = makeClusterGrid(frame.width, frame.height, s.clusterSize, s.clusterSlices,
@@ -515,6 +599,8 @@ fg::ResourceId addLocalLightPass(fg::FrameGraph& graph, LocalLightPass& state, c
                 state.clusterGrid = g;
                 state.stats.clusters = g.count();
             }
+            LocalLightPass::RaceTiming* timing = choice.timing;
+            if (timing) glQueryCounter(timing->begin.id(), GL_TIMESTAMP);
             if (s.method == LocalLightMethod::Tiled || clusteredAsTiled) {
                 const GLuint prog = state.tiledProgram.id();
                 bindGBuffer(prog, res, data.in, frame, !lightingOnly);
@@ -547,7 +633,12 @@ fg::ResourceId addLocalLightPass(fg::FrameGraph& graph, LocalLightPass& state, c
                 glBindImageTexture(0, hdrTexture, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
                 shadeClustered(state, frame, prog, int(lights->size()));
                 state.stats.drawn = int(lights->size());
-            } else {
+            }
+            if (timing) {
+                glQueryCounter(timing->end.id(), GL_TIMESTAMP);
+                timing->pending = true;
+            }
+            if (s.method != LocalLightMethod::Tiled && s.method != LocalLightMethod::Clustered) {
                 const GLuint prog = state.fragmentProgram.id();
                 bindGBuffer(prog, res, data.in, frame, !lightingOnly);
                 setInt(prog, "uLightingOnly", lightingOnly);

@@ -7,6 +7,7 @@
 // builds the same tight froxels' lists (light_clusters_tight.comp) and the forward passes whole
 // froxels (light_clusters.comp) into the grid buffers.
 #include <array>
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -14,6 +15,7 @@
 #include "engine/gl/stream_buffer.hpp"
 #include "engine/graph/frame_graph.hpp"
 #include "engine/render/frame_data.hpp"
+#include "engine/render/kernel_race.hpp"
 #include "engine/render/light_clusters.hpp"
 #include "engine/render/local_lights.hpp"
 #include "passes/gbuffer_pass.hpp"
@@ -29,7 +31,11 @@ struct LocalLightStats {
     int offscreen = 0;   // scissor method: lights skipped because their rectangle was empty
     int fullScreen = 0;  // scissor method: lights drawn full screen (camera inside / near plane crossed)
     int clusters = 0;    // clustered method: froxels in the grid
-    bool slicesShaded = false;  // clustered method: its kernel ran (false: few lights, the tiled kernel)
+    bool slicesShaded = false;  // clustered method: its kernel ran (false: the tiled kernel on its tiles)
+    // clustered method under --clustered-kernel auto: whether a race round ran this frame, and the
+    // last finished round's median ms of the clustered kernel and of the tiled kernel (-1: none yet).
+    bool kernelRacing = false;
+    double froxelKernelMs = -1.0, tileKernelMs = -1.0;
     // clustered method: froxels of the previous grid build that held more than kMaxLightsPerCluster
     // lights (read back one build late, so the frame does not wait for the GPU); -1 before any.
     int clustersOverflowing = -1;
@@ -44,10 +50,21 @@ struct LocalLightPass {
     gl::Program clusterBuildProgram;  // light_clusters.comp
     gl::Program clusteredProgram;     // local_light_clustered.comp: tight froxels in shared memory and shading, fused
     gl::Program clusteredSupertileProgram;  // the same with LP_SUPERTILES: candidates from supertile lists (many lights)
-    // With fewer lights than this and 16-pixel froxel tiles, the clustered method shades with the tiled
-    // kernel (the same tiles without slices). For tests: 0 is the default (kClusteredMinLights); a
-    // negative value always runs the clustered kernel.
+    // With fewer lights than this and 16-pixel froxel tiles, the clustered method under auto shades with
+    // the tiled kernel (the same tiles without slices). For tests: 0 is the default (kClusteredMinLights);
+    // a negative value always runs the clustered kernel, whatever --clustered-kernel says.
     int clusteredMinLights = 0;
+    // --clustered-kernel auto: the race between the clustered kernel (0) and the tiled kernel (1) for
+    // the view (engine/render/kernel_race.hpp), and the timestamps around the kernels it timed, read
+    // once the GPU has passed them (never waited for).
+    KernelRace clusteredRace;
+    struct RaceTiming {
+        gl::Query begin, end;
+        int kernel = 0;
+        std::uint64_t key = 0;
+        bool pending = false;
+    };
+    std::array<RaceTiming, 8> raceTimings;
     gl::Program clusterTightBuildProgram;  // light_clusters_tight.comp: the tight lists (lights-per-cluster view)
     int clusterTileCompiled = 0;      // the tile size (--cluster-size) those two were compiled for
     gl::Program clusterViewProgram;   // light_clusters_view.comp

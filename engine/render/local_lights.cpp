@@ -33,6 +33,19 @@ std::optional<LocalLightMethod> parseLocalLightMethod(const std::string& name) {
     return std::nullopt;
 }
 
+const char* clusteredKernelName(ClusteredKernel k) {
+    switch (k) {
+        case ClusteredKernel::Auto: return "auto";
+        case ClusteredKernel::Froxels: return "froxels";
+        case ClusteredKernel::Tiles: return "tiles";
+    }
+    return "auto";
+}
+
+std::vector<ClusteredKernel> allClusteredKernels() {
+    return {ClusteredKernel::Auto, ClusteredKernel::Froxels, ClusteredKernel::Tiles};
+}
+
 namespace {
 // Deterministic hash to [0, 1): light i of a demo set does not depend on how many are asked for.
 float hash01(uint32_t x) {

@@ -132,6 +132,12 @@ struct ShadowSettings {         // directional-light shadow maps (passes/shadow_
 enum class LocalLightMethod { Fullscreen, Scissor, Volumes, Tiled, Clustered };
 const char* localLightMethodName(LocalLightMethod method);  // defined in engine/render/local_lights.cpp
 std::optional<LocalLightMethod> parseLocalLightMethod(const std::string& name);
+// Which kernel the clustered method shades with (16-pixel froxel tiles; other sizes always froxels):
+// auto races the two per view (engine/render/kernel_race.hpp) and takes the faster; froxels is the
+// clustered kernel, tiles the tiled kernel on the same tiles without slices. The same image.
+enum class ClusteredKernel { Auto, Froxels, Tiles };
+const char* clusteredKernelName(ClusteredKernel kernel);  // defined in engine/render/local_lights.cpp
+std::vector<ClusteredKernel> allClusteredKernels();
 struct LocalLightSettings {     // local lights: ranged point lights and spots
     bool enabled = true;
     LocalLightMethod method = LocalLightMethod::Tiled;
@@ -143,6 +149,7 @@ struct LocalLightSettings {     // local lights: ranged point lights and spots
     float rangeScale = 1.0f;    // --light-range-scale: each light's range x this (< 1 cuts lights short; a sweep knob)
     int clusterSize = 16;       // clustered: froxel tile side in pixels (the fused pass's work group)
     int clusterSlices = 24;     // clustered: exponential depth slices between the near and far planes
+    ClusteredKernel clusteredKernel = ClusteredKernel::Auto;  // clustered: which kernel shades (above)
     int clusterSlice = -1;      // lights-per-cluster view: this slice, -1 the most over all slices
 };
 enum class ToneMapOperator { Lightpass, Aces, PbrNeutral, Agx };

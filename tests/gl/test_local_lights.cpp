@@ -134,8 +134,9 @@ TEST(LocalLightShader, SpotFalloffIsSmoothstepBetweenTheConeCosines) {
 // Everything one test needs to render frames and look at the local-light pass's state.
 struct Rig {
     // The clustered method's own kernel at any light count (by default it leaves fewer than 32 lights
-    // to the tiled kernel): these tests are about it. ClusteredLights.FewLightsShadeWithTheTiledKernel
-    // tests the default.
+    // to the tiled kernel, and races the two from 32): these tests are about it.
+    // ClusteredLights.FewLightsShadeWithTheTiledKernel and AutoRacesBothKernelsAndKeepsTheFaster test
+    // the default.
     explicit Rig(const Scene& s) : scene(s), gpu(std::make_unique<SceneGpu>(scene)) { passes.localLights.clusteredMinLights = -1; }
     const Scene& scene;
     std::unique_ptr<SceneGpu> gpu;
@@ -1048,9 +1049,10 @@ TEST(ClusteredLights, TilesSpanningMoreSlicesThanAMaskHoldsShadeEveryLight) {
     }
 }
 
-// By default the clustered method leaves frames with fewer than 32 lights to the tiled kernel when its
-// froxel tiles are the tiled kernel's (16 px): the same bits as the tiled method, and the slices'
-// kernel from 32 lights, or with other tile sizes. Every case gives the fullscreen image.
+// By default (--clustered-kernel auto) the clustered method leaves frames with fewer than 32 lights to
+// the tiled kernel when its froxel tiles are the tiled kernel's (16 px): the same bits as the tiled
+// method. --clustered-kernel froxels runs the slices' kernel at any light count, and other tile sizes
+// always do. Every case gives the fullscreen image.
 TEST(ClusteredLights, FewLightsShadeWithTheTiledKernel) {
     const Scene s = twentyLightScene();
     Rig rig(s);
@@ -1060,21 +1062,61 @@ TEST(ClusteredLights, FewLightsShadeWithTheTiledKernel) {
     EXPECT_EQ(rig.renderHdr(r), tiled) << "20 lights, 16-pixel tiles: the tiled kernel";
     EXPECT_FALSE(rig.passes.localLights.stats.slicesShaded);
     EXPECT_EQ(rig.passes.localLights.stats.clusters, 4 * 3 * r.localLights.clusterSlices) << "the grid it stands for";
-    for (const auto& [size, lights] : {std::pair{16, 40}, std::pair{8, 20}}) {
-        SCOPED_TRACE(std::to_string(size) + " px, " + std::to_string(lights) + " lights");
+    const std::vector<float> ref = rig.renderHdr(smallSettings(LocalLightMethod::Fullscreen));
+    const std::vector<int> k = lightsPerPixel(s, smallSettings(LocalLightMethod::Fullscreen));
+    for (const auto& [size, kernel] : {std::pair{16, ClusteredKernel::Froxels}, std::pair{8, ClusteredKernel::Auto}}) {
+        SCOPED_TRACE(std::to_string(size) + " px, " + clusteredKernelName(kernel));
         r.localLights.clusterSize = size;
-        r.localLights.lightCount = lights;
-        RenderSettings full = smallSettings(LocalLightMethod::Fullscreen);
-        full.localLights.lightCount = lights;
-        const std::vector<float> ref = rig.renderHdr(full);
+        r.localLights.clusteredKernel = kernel;
         const std::vector<float> got = rig.renderHdr(r);
         EXPECT_TRUE(rig.passes.localLights.stats.slicesShaded);
-        const std::vector<int> k = lightsPerPixel(s, full);
         for (size_t i = 0; i < got.size(); ++i) {
             const double bound = tiledBound(k[i / 4], ref[i]);
             ASSERT_LE(std::abs(double(got[i]) - double(ref[i])), bound) << "texel " << i / 4;
         }
     }
+}
+
+// From 32 lights, --clustered-kernel auto times the clustered and the tiled kernel in turn on the GPU
+// (GL timestamps, read frames later) and then runs the one with the smaller median; both give the
+// fullscreen image. --clustered-kernel tiles gives the tiled method's bits.
+TEST(ClusteredLights, AutoRacesBothKernelsAndKeepsTheFaster) {
+    const Scene s = twentyLightScene();
+    Rig rig(s);
+    rig.passes.localLights.clusteredMinLights = 0;  // the default
+    RenderSettings full = smallSettings(LocalLightMethod::Fullscreen);
+    full.localLights.lightCount = 40;
+    const std::vector<float> ref = rig.renderHdr(full);
+    const std::vector<int> k = lightsPerPixel(s, full);
+    RenderSettings r = smallSettings(LocalLightMethod::Clustered);
+    r.localLights.lightCount = 40;
+    bool ran[2] = {false, false};  // froxels, tiles
+    int frames = 0;
+    for (; frames < 40; ++frames) {
+        const std::vector<float> got = rig.renderHdr(r);
+        const LocalLightStats& st = rig.passes.localLights.stats;
+        ran[st.slicesShaded ? 0 : 1] = true;
+        for (size_t i = 0; i < got.size(); ++i) {
+            const double bound = tiledBound(k[i / 4], ref[i]);
+            ASSERT_LE(std::abs(double(got[i]) - double(ref[i])), bound) << "frame " << frames << " texel " << i / 4;
+        }
+        if (!st.kernelRacing) break;
+    }
+    ASSERT_LT(frames, 40) << "the round never ended: its timestamps were never read";
+    EXPECT_TRUE(ran[0] && ran[1]) << "both kernels timed";
+    const LocalLightStats& st = rig.passes.localLights.stats;
+    ASSERT_GT(st.froxelKernelMs, 0.0);
+    ASSERT_GT(st.tileKernelMs, 0.0);
+    const bool froxelsFaster = st.froxelKernelMs <= st.tileKernelMs;  // a tie keeps the first choice, froxels
+    for (int f = 0; f < 5; ++f) {
+        rig.renderHdr(r);
+        EXPECT_FALSE(rig.passes.localLights.stats.kernelRacing);
+        EXPECT_EQ(rig.passes.localLights.stats.slicesShaded, froxelsFaster) << "frame " << f << " after the round";
+    }
+    RenderSettings t = smallSettings(LocalLightMethod::Tiled);
+    t.localLights.lightCount = 40;
+    r.localLights.clusteredKernel = ClusteredKernel::Tiles;
+    EXPECT_EQ(rig.renderHdr(r), rig.renderHdr(t)) << "--clustered-kernel tiles";
 }
 
 // Past the cap: 300 lights around one point. The cluster counts all 300, lists the first 256 (lowest
