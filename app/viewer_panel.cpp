@@ -235,6 +235,11 @@ void drawViewerPanel(ViewerState& st, Renderer& renderer, const Scene& scene, co
 
     if (ImGui::CollapsingHeader("passes (GPU ms, rolling median)", ImGuiTreeNodeFlags_DefaultOpen)) {
         drawPasses(st, renderer);
+        const LocalLightStats& lights = renderer.localLightStats();
+        if (st.settings.localLights.method == LocalLightMethod::Clustered && lights.froxelKernelMs >= 0.0)
+            ImGui::TextDisabled("clustered kernel: %s%s (froxels %.3f ms, tiles %.3f ms)",
+                                lights.slicesShaded ? "froxels" : "tiles", lights.kernelRacing ? ", timing both" : "",
+                                lights.froxelKernelMs, lights.tileKernelMs);
         ImGui::TextDisabled("transient textures: %.1f MiB in %zu", renderer.pool().totalBytes() / 1048576.0,
                             renderer.pool().textureCount());
     }
