@@ -246,7 +246,9 @@ struct DrawArraysCommand {
 void drawCascadesByCompute(ShadowMapPass& state, const FrameData& frame, const ShadowFrustum& fr,
                            const std::vector<CasterList>& casters, int width, int height, bool depthZeroToOne,
                            const std::vector<bool>& redraw) {
-    if (!state.rasterProgram) state.rasterProgram = frame.shaders->compute("shadow_raster.comp");
+    if (!state.rasterProgram)
+        state.rasterProgram = frame.shaders->compute(
+            "shadow_raster.comp", std::vector<std::string>{"LP_VERTEX_FLOATS " + std::to_string(sizeof(Vertex) / sizeof(float))});
     if (!state.resolveProgram) state.resolveProgram = frame.shaders->graphics("fullscreen.vert", "shadow_raster_resolve.frag");
     if (!state.largeProgram) state.largeProgram = frame.shaders->graphics("shadow_raster_large.vert", "shadow_depth.frag");
     if (!state.emptyVao) state.emptyVao = gl::makeVertexArray("shadow_map.compute_raster");

@@ -101,7 +101,8 @@ std::string visibilityBufferUnsupported(const Scene& scene, uint64_t maxStorageB
 GBuffer addVisibilityResolvePass(fg::FrameGraph& graph, VisibilityResolvePass& state, const FrameData& frame,
                                  const VisibilityBuffer& visibility, GBufferChannels channels) {
     static_assert(offsetof(Vertex, normal) == 3 * sizeof(float) && offsetof(Vertex, uv) == 6 * sizeof(float) &&
-                      offsetof(Vertex, tangent) == 8 * sizeof(float),
+                      offsetof(Vertex, tangent) == 8 * sizeof(float) && offsetof(Vertex, color) == 12 * sizeof(float) &&
+                      sizeof(Vertex) == 16 * sizeof(float),
                   "visibility_resolve.comp reads vertices as floats at these offsets");
     const int w = frame.width, h = frame.height;
     const GBufferSettings layout = frame.settings->gbuffer;

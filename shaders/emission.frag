@@ -6,6 +6,7 @@ in vec3 vPosition;
 in vec3 vNormal;
 in vec2 vUv;
 in vec4 vTangent;
+in vec4 vColor;  // the vertex colour: its alpha is part of the MASK test
 
 uniform vec3 uEmission;  // linear radiance (emissiveFactor x strength, or Ke)
 uniform bool uHasEmissiveMap;
@@ -21,7 +22,7 @@ layout(location = 0) out vec4 outHdr;
 
 void main() {
     if (!uDoubleSided && !gl_FrontFacing) discard;
-    float alpha = uOpacity;
+    float alpha = uOpacity * vColor.a;
     if (uHasDiffuseMap) alpha *= texture(uDiffuseMap, vUv).a;
     if (uAlphaMask && alpha < uAlphaCutoff) discard;
     vec3 e = max(uEmission, vec3(0.0));

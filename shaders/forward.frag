@@ -19,6 +19,7 @@ in vec3 vPosition;
 in vec3 vNormal;
 in vec2 vUv;
 in vec4 vTangent;
+in vec4 vColor;
 
 uniform vec3 uEmission;  // linear radiance (emissiveFactor x strength, or Ke)
 uniform bool uHasEmissiveMap;
@@ -42,8 +43,8 @@ layout(location = 0) out vec4 outHdr;
 void main() {
     // Derivatives before any discard (they need the whole quad).
     vec2 uvDx = dFdxFine(vUv), uvDy = dFdyFine(vUv);
-    if (lpMaterialDiscards(vUv, uvDx, uvDy, gl_FrontFacing)) discard;
-    LpSurface s = lpEvaluateSurface(vNormal, vTangent, vUv, uvDx, uvDy, gl_FrontFacing);
+    if (lpMaterialDiscards(vUv, uvDx, uvDy, vColor, gl_FrontFacing)) discard;
+    LpSurface s = lpEvaluateSurface(vNormal, vTangent, vUv, uvDx, uvDy, vColor, gl_FrontFacing);
 #ifdef LP_FORWARD_TRANSPARENT
     float alpha = s.alpha;
     if (alpha <= 0.0) discard;

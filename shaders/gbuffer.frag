@@ -9,6 +9,7 @@ in vec3 vPosition;
 in vec3 vNormal;
 in vec2 vUv;
 in vec4 vTangent;
+in vec4 vColor;
 
 #ifdef LP_GBUFFER_NORMAL_OCT
 layout(location = 0) out uint outNormal;
@@ -33,7 +34,7 @@ void main() {
     vec2 uvDx = dFdxFine(vUv), uvDy = dFdyFine(vUv);
     if (!uDoubleSided && !gl_FrontFacing) discard;
     MaterialInputs m = materialFromUniforms();
-    vec4 base = materialBaseColor(m, vUv, uvDx, uvDy);
+    vec4 base = materialBaseColor(m, vUv, uvDx, uvDy, vColor);
     if (materialAlphaRejects(m, base)) discard;
 #ifdef LP_GBUFFER_DEPTH_ONLY
     // The forward+ depth pre-pass: depth (and motion) only; the forward pass shades the material.

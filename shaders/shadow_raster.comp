@@ -10,7 +10,8 @@
 layout(local_size_x = 64) in;
 
 layout(r32ui, binding = 0) uniform coherent uimage2D uDepth;
-layout(std430, binding = 0) readonly buffer Vertices { float vertexData[]; };  // Vertex: 12 floats, position first
+// lp::Vertex: LP_VERTEX_FLOATS floats (set by the pass from sizeof(Vertex)), position first.
+layout(std430, binding = 0) readonly buffer Vertices { float vertexData[]; };
 layout(std430, binding = 1) readonly buffer Indices { uint indexData[]; };
 struct DrawArraysCommand {
     uint count;
@@ -35,7 +36,7 @@ uniform bool uSnappedDepthPlane;  // engine/gl/raster_probe: the raster interpol
 uniform int uSubTexel;  // 2^GL_SUBPIXEL_BITS: the sub-texel grid the hardware snaps vertices to
 
 vec4 clipPosition(uint index) {
-    uint b = index * 12u;
+    uint b = index * uint(LP_VERTEX_FLOATS);
     return uModelToClip * vec4(vertexData[b], vertexData[b + 1u], vertexData[b + 2u], 1.0);
 }
 

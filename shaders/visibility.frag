@@ -10,6 +10,7 @@ layout(location = 0) out uint outId;
 
 #ifdef LP_VISIBILITY_ALPHA_MASK
 in vec2 vUv;
+in vec4 vColor;
 uniform vec3 uDiffuse;
 uniform float uOpacity;
 uniform bool uHasDiffuseMap;
@@ -25,7 +26,7 @@ void main() {
     m.hasDiffuseMap = uHasDiffuseMap;
     m.alphaMask = true;
     m.alphaCutoff = uAlphaCutoff;
-    if (materialAlphaRejects(m, materialBaseColor(m, vUv, uvDx, uvDy))) discard;
+    if (materialAlphaRejects(m, materialBaseColor(m, vUv, uvDx, uvDy, vColor))) discard;
 #endif
     outId = visibilityPackId(uFirstTriangle, uint(gl_PrimitiveID));
 }

@@ -81,20 +81,25 @@ uint findDraw(uint triangle) {
     return lo;
 }
 
-#if LP_VERTEX_FLOATS == 12
-// The same buffer as three vec4 a vertex (position, normal, uv, tangent: lp::Vertex): one 16-byte
-// load instead of four scalar ones.
+#if LP_VERTEX_FLOATS == 16
+// The same buffer as four vec4 a vertex (position, normal, uv, tangent, colour: lp::Vertex): one
+// 16-byte load instead of four scalar ones.
 layout(std430, binding = 0) readonly buffer VertexQuads { vec4 vertexQuads[]; };
-vec3 vertexPosition(uint v) { return vertexQuads[3u * v].xyz; }
-vec3 vertexNormal(uint v) { return vec3(vertexQuads[3u * v].w, vertexQuads[3u * v + 1u].xy); }
-vec2 vertexUv(uint v) { return vertexQuads[3u * v + 1u].zw; }
-vec4 vertexTangent(uint v) { return vertexQuads[3u * v + 2u]; }
+vec3 vertexPosition(uint v) { return vertexQuads[4u * v].xyz; }
+vec3 vertexNormal(uint v) { return vec3(vertexQuads[4u * v].w, vertexQuads[4u * v + 1u].xy); }
+vec2 vertexUv(uint v) { return vertexQuads[4u * v + 1u].zw; }
+vec4 vertexTangent(uint v) { return vertexQuads[4u * v + 2u]; }
+vec4 vertexColor(uint v) { return vertexQuads[4u * v + 3u]; }
 #else
 vec3 vertexPosition(uint v) { uint b = v * uint(LP_VERTEX_FLOATS); return vec3(vertices[b], vertices[b + 1u], vertices[b + 2u]); }
 vec3 vertexNormal(uint v) { uint b = v * uint(LP_VERTEX_FLOATS) + 3u; return vec3(vertices[b], vertices[b + 1u], vertices[b + 2u]); }
 vec2 vertexUv(uint v) { uint b = v * uint(LP_VERTEX_FLOATS) + 6u; return vec2(vertices[b], vertices[b + 1u]); }
 vec4 vertexTangent(uint v) {
     uint b = v * uint(LP_VERTEX_FLOATS) + 8u;
+    return vec4(vertices[b], vertices[b + 1u], vertices[b + 2u], vertices[b + 3u]);
+}
+vec4 vertexColor(uint v) {
+    uint b = v * uint(LP_VERTEX_FLOATS) + 12u;
     return vec4(vertices[b], vertices[b + 1u], vertices[b + 2u], vertices[b + 3u]);
 }
 #endif
@@ -236,7 +241,7 @@ void main() {
     vec4 tangent = vec4(mat3(mesh.modelView) * tangentObject.xyz, tangentObject.w);
 
     MaterialInputs m = materialInputs(mr);
-    vec4 base = materialBaseColor(m, uv, uvDx, uvDy);
+    vec4 base = materialBaseColor(m, uv, uvDx, uvDy, interpolateAttribute(b, vertexColor(i0), vertexColor(i1), vertexColor(i2)));
     MaterialSample g = materialEvaluate(m, base, SurfaceInputs(normal, tangent, uv, uvDx, uvDy,
                                                                eyeTriangleFrontFacing(e0, e1, e2)));
     g.shininess = gbufferEncodeShininess(g.shininess);  // the half-float channel's encoding (to the 0.02 floor)

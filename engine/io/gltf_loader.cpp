@@ -598,15 +598,31 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
                 L.fail(w + ".attributes." + name, std::to_string(v.count) + " elements, but POSITION has " + std::to_string(vertexCount));
             return true;
         };
-        // Attributes lightpass does not draw with: said once per file (a model with vertex colours
-        // or morph targets looks different without them).
-        if (prim.attributes.count("COLOR_0") && notedOnce("COLOR_0"))
-            L.warn(w + ".attributes.COLOR_0", "vertex colours are not read; the base colour is drawn without them");
+        // Attributes lightpass does not draw with: said once per file (a model with morph targets
+        // looks different without them).
         if (!prim.targets.empty() && notedOnce("targets"))
             L.warn(w + ".targets", "morph targets are not applied; drawn with the base shape");
-        Loader::View nrm, uv, tan;
+        Loader::View nrm, uv, tan, col;
         const bool hasNormals = optional("NORMAL", TINYGLTF_TYPE_VEC3, directionTypes, nrm);
         const bool hasUv = optional("TEXCOORD_0", TINYGLTF_TYPE_VEC2, uvTypes, uv);
+        // COLOR_0: linear RGB or RGBA multiplying the base colour; float, or normalised unsigned bytes
+        // or shorts (the spec requires `normalized`; an integer accessor without it is read as
+        // normalised, with a warning, rather than as colours up to 255 or 65535).
+        bool hasColors = false;
+        if (auto it = prim.attributes.find("COLOR_0"); it != prim.attributes.end()) {
+            const std::string cw = w + ".attributes.COLOR_0";
+            col = L.view(it->second, cw, {TINYGLTF_TYPE_VEC3, TINYGLTF_TYPE_VEC4},
+                         {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT});
+            if (col.count != vertexCount)
+                L.fail(cw, std::to_string(col.count) + " elements, but POSITION has " + std::to_string(vertexCount));
+            if (col.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT && !col.normalized) {
+                L.warn(cw, "integer colours must be normalized; read as normalized");
+                col.normalized = true;
+            }
+            hasColors = true;
+        }
+        const int colorComponents = hasColors ? std::min(col.components, 4) : 0;
+        size_t colorsClamped = 0;
         // KHR_texture_transform: applied to the uvs here. Where it turns or flips the uv axes, the
         // file's tangents (made for the untransformed uvs) are replaced by generated ones.
         const Loader::UvTransform uvTransform = L.materialUvTransform(prim.material);
@@ -660,6 +676,15 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
                 if (!uvTransform.identity()) t = glm::vec2(uvTransform.linear * glm::dvec2(t) + uvTransform.offset);
                 if (std::isfinite(t.x) && std::isfinite(t.y)) vx.uv = glm::vec2(t.x, 1.0f - t.y);  // v = 0 at the bottom
             }
+            if (hasColors) {
+                glm::vec4 c(1.0f);
+                for (int k = 0; k < colorComponents; ++k) c[k] = Loader::component(col, v, k);
+                // A colour multiplies the base colour: outside [0, 1] (or not a number) it would add
+                // energy or poison the image.
+                const glm::vec4 clamped = glm::clamp(c, glm::vec4(0.0f), glm::vec4(1.0f));
+                if (clamped != c || !std::isfinite(c.x + c.y + c.z + c.w)) ++colorsClamped;
+                for (int k = 0; k < 4; ++k) vx.color[k] = std::isfinite(c[k]) ? clamped[k] : 1.0f;
+            }
             if (hasTangents) {
                 // glTF's bitangent cross(N, T) w points up the image (its normal maps' +Y), which is
                 // +v after the flip: w is kept. A mirroring transform flips the frame's handedness.
@@ -670,6 +695,9 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
                 vx.tangent = (len > 0.0f && std::isfinite(len)) ? glm::vec4(t / len, hand) : glm::vec4(anyPerpendicular(vx.normal), 1.0f);
             }
         }
+        if (colorsClamped > 0)
+            L.warn(w + ".attributes.COLOR_0", std::to_string(colorsClamped) +
+                                                  " colours outside [0, 1] or not finite; clamped (not finite: 1)");
         // Triangles: non-finite and degenerate ones dropped (as for OBJ); a mirroring transform
         // reverses the winding so that front faces stay front faces.
         for (size_t i = 0; i + 2 < tris.size(); i += 3) {

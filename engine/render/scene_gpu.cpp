@@ -85,6 +85,7 @@ SceneGpu::SceneGpu(const Scene& scene) {
         attrib(1, 3, offsetof(Vertex, normal));
         attrib(2, 2, offsetof(Vertex, uv));
         attrib(3, 4, offsetof(Vertex, tangent));
+        attrib(4, 4, offsetof(Vertex, color));
 
         const int base = int(materials.size());
         for (const auto& m : mesh.materials) {

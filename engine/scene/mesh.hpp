@@ -15,6 +15,8 @@ struct Vertex {
     glm::vec3 normal{0.0f, 1.0f, 0.0f};
     glm::vec2 uv{0.0f};
     glm::vec4 tangent{1.0f, 0.0f, 0.0f, 1.0f};  // xyz tangent, w = handedness (+1/-1) for the bitangent
+    // Linear RGBA multiplying the material's base colour and alpha (glTF COLOR_0); white: none.
+    glm::vec4 color{1.0f};
 };
 
 // How a texture is sampled: a glTF sampler's wraps and filters, as glTF writes them (OpenGL's enum

@@ -62,9 +62,10 @@ struct MaterialSample {
     vec4 tangentView;  // the tangent view's value: unit tangent orthogonal to normal x 0.5 + 0.5, handedness 0/1
 };
 
-// Base colour and alpha (the alpha test reads .a).
-vec4 materialBaseColor(MaterialInputs m, vec2 uv, vec2 uvDx, vec2 uvDy) {
-    vec4 base = vec4(m.diffuse, m.opacity);
+// Base colour and alpha (the alpha test reads .a): the factor x the texture x the vertex colour
+// (glTF: baseColorFactor x baseColorTexture x COLOR_0).
+vec4 materialBaseColor(MaterialInputs m, vec2 uv, vec2 uvDx, vec2 uvDy, vec4 vertexColor) {
+    vec4 base = vec4(m.diffuse, m.opacity) * vertexColor;
     if (m.hasDiffuseMap) base *= textureGrad(uDiffuseMap, uv, uvDx, uvDy);
     return base;
 }

@@ -42,15 +42,15 @@ struct LpSurface {
 
 // Whether the fragment is dropped: a back face of a single-sided material, or MASK below the cutoff.
 // uvDx, uvDy: the uv derivatives, taken before any discard (they need the whole quad).
-bool lpMaterialDiscards(vec2 uv, vec2 uvDx, vec2 uvDy, bool frontFacing) {
+bool lpMaterialDiscards(vec2 uv, vec2 uvDx, vec2 uvDy, vec4 vertexColor, bool frontFacing) {
     if (!uDoubleSided && !frontFacing) return true;
     MaterialInputs m = materialFromUniforms();
-    return materialAlphaRejects(m, materialBaseColor(m, uv, uvDx, uvDy));
+    return materialAlphaRejects(m, materialBaseColor(m, uv, uvDx, uvDy, vertexColor));
 }
 
-LpSurface lpEvaluateSurface(vec3 normal, vec4 tangent, vec2 uv, vec2 uvDx, vec2 uvDy, bool frontFacing) {
+LpSurface lpEvaluateSurface(vec3 normal, vec4 tangent, vec2 uv, vec2 uvDx, vec2 uvDy, vec4 vertexColor, bool frontFacing) {
     MaterialInputs m = materialFromUniforms();
-    vec4 base = materialBaseColor(m, uv, uvDx, uvDy);
+    vec4 base = materialBaseColor(m, uv, uvDx, uvDy, vertexColor);
     MaterialSample g = materialEvaluate(m, base, SurfaceInputs(normal, tangent, uv, uvDx, uvDy, frontFacing));
     LpSurface s;
     s.N = g.normal;

@@ -255,6 +255,73 @@ TEST_P(GltfRender, SamplerWrapModesAreApplied) {
     EXPECT_EQ(wrap, GL_CLAMP_TO_EDGE);
 }
 
+// Vertex colours (glTF COLOR_0) multiply the base colour: a white quad under ambient 1 whose left
+// vertices are red and right vertices blue shows the colour interpolated across it, on both render
+// paths. Their alpha multiplies the base alpha: under MASK (cutoff 0.5) with alpha 0.2 on the left
+// and 1 on the right, the texels left of u = 0.375 are dropped.
+TEST_P(GltfRender, VertexColoursMultiplyTheBaseColourAndAlpha) {
+    MeshData quad;
+    const glm::vec2 corners[4] = {{-1, -0.5f}, {1, -0.5f}, {1, 0.5f}, {-1, 0.5f}};
+    for (const glm::vec2 c : corners) {
+        Vertex v;
+        v.position = glm::vec3(c, 0.0f);
+        v.normal = {0, 0, 1};
+        v.uv = {0.5f * (c.x + 1.0f), c.y + 0.5f};
+        v.color = c.x < 0.0f ? glm::vec4(1, 0, 0, 0.2f) : glm::vec4(0, 0, 1, 1);
+        quad.vertices.push_back(v);
+    }
+    quad.indices = {0, 1, 2, 0, 2, 3};
+    quad.subMeshes = {{0, 6, 0}};
+    Material m;
+    m.diffuse = glm::vec3(1.0f);
+    m.specular = glm::vec3(0.0f);
+    quad.materials = {m};
+    Scene s = modelScene(quad);
+    s.ambient = glm::vec3(1.0f);
+    s.camera.position = {0.0f, 0.0f, 3.0f};
+    s.camera.target = {0.0f, 0.0f, 0.0f};
+    s.camera.fovYDegrees = 45.0f;
+    const int w = 96, h = 48;
+    auto rgbAt = [&](RenderPath path, const std::vector<float>& xs) {
+        Renderer r(s);
+        RenderSettings settings;
+        settings.gbuffer.mode = GetParam();
+        settings.renderPath = path;
+        settings.width = w;
+        settings.height = h;
+        settings.keepHdr = true;
+        r.render(settings);
+        const ImageF hdr = r.readHdr();
+        const glm::mat4 vp = s.camera.projection(float(w) / float(h)) * s.camera.view();
+        std::vector<glm::vec3> out;
+        for (const float x : xs) {
+            const glm::vec4 c = vp * glm::vec4(x, 0.0f, 0.0f, 1.0f);
+            const int px = int((c.x / c.w * 0.5f + 0.5f) * float(w)), py = int((0.5f - c.y / c.w * 0.5f) * float(h));
+            const size_t i = (size_t(py) * size_t(w) + size_t(px)) * 4;
+            out.emplace_back(hdr.rgba[i], hdr.rgba[i + 1], hdr.rgba[i + 2]);
+        }
+        return out;
+    };
+    const std::vector<float> xs = {-0.75f, -0.5f, 0.0f, 0.5f, 0.75f};
+    for (const RenderPath path : {RenderPath::Deferred, RenderPath::ForwardPlus}) {
+        SCOPED_TRACE(renderPathName(path));
+        s.models[0].mesh.materials[0].alphaMode = AlphaMode::Opaque;
+        const std::vector<glm::vec3> got = rgbAt(path, xs);
+        for (size_t i = 0; i < xs.size(); ++i) {
+            // The pixel centre nearest x lies within half a pixel of it: about 0.011 of u here.
+            const float u = 0.5f * (xs[i] + 1.0f);
+            EXPECT_NEAR(got[i].x, 1.0f - u, 0.03f) << "red at x = " << xs[i];
+            EXPECT_NEAR(got[i].y, 0.0f, 1e-3f) << "green at x = " << xs[i];
+            EXPECT_NEAR(got[i].z, u, 0.03f) << "blue at x = " << xs[i];
+        }
+        s.models[0].mesh.materials[0].alphaMode = AlphaMode::Mask;
+        const std::vector<glm::vec3> masked = rgbAt(path, {-0.75f, -0.4f, 0.5f});
+        EXPECT_NEAR(masked[0].x + masked[0].z, 0.0f, 1e-4f) << "alpha 0.3 is below the cutoff: not drawn";
+        EXPECT_NEAR(masked[1].x + masked[1].z, 0.0f, 1e-4f) << "alpha 0.44: not drawn";
+        EXPECT_NEAR(masked[2].z, 0.75f, 0.03f) << "alpha 0.8: drawn";
+    }
+}
+
 // Single-sided glTF materials are not drawn from behind; MTL (double-sided) ones are.
 TEST_P(GltfRender, SingleSidedMaterialsHideBackFaces) {
     Scene s = modelScene(loadGltf(dataPath("emissive.gltf")).mesh);

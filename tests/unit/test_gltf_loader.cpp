@@ -344,26 +344,89 @@ TEST(GltfLoader, QuantizedAttributesWithKhrMeshQuantization) {
         EXPECT_NEAR(glm::distance(m.vertices[i].uv, expectedUv[i]), 0.0f, 1e-6f) << i;
     }
     EXPECT_FALSE(report.generatedTangents);
-    // Vertex colours and morph targets are not drawn: one warning each per file, however many primitives.
-    d["meshes"][0]["primitives"][0]["attributes"]["COLOR_0"] = 1;
+    // Morph targets are not applied: one warning per file, however many primitives.
     d["meshes"][0]["primitives"][0]["targets"] = {{{"POSITION", 1}}};
     d["meshes"][0]["primitives"].push_back(d["meshes"][0]["primitives"][0]);
     MeshLoadReport ignored;
-    loadGltf(t.write("colours.gltf", d.dump()), &ignored);
-    int colours = 0, targets = 0;
-    for (const auto& w : ignored.warnings) {
-        colours += w.find("meshes[0].primitives[0].attributes.COLOR_0: vertex colours are not read") != std::string::npos;
+    loadGltf(t.write("targets.gltf", d.dump()), &ignored);
+    int targets = 0;
+    for (const auto& w : ignored.warnings)
         targets += w.find("meshes[0].primitives[0].targets: morph targets are not applied") != std::string::npos;
-    }
-    EXPECT_EQ(colours, 1);
     EXPECT_EQ(targets, 1);
-    EXPECT_EQ(ignored.warnings.size(), 2u);
+    EXPECT_EQ(ignored.warnings.size(), 1u);
     d["meshes"][0]["primitives"].erase(1);
-    d["meshes"][0]["primitives"][0]["attributes"].erase("COLOR_0");
     d["meshes"][0]["primitives"][0].erase("targets");
     d.erase("extensionsUsed");
     d.erase("extensionsRequired");
     expectOneLineError(t.write("undeclared.gltf", d.dump()), "meshes[0].primitives[0].attributes.POSITION (accessors[0]): unexpected componentType 5123");
+}
+
+// COLOR_0 multiplies the base colour: read from floats (VEC3 or VEC4) and from normalised unsigned
+// bytes and shorts; integers without `normalized` are read as normalised with a warning; values outside
+// [0, 1] are clamped with one warning per primitive; no COLOR_0 is white. A colour accessor of another
+// type, or of another length than POSITION, is an error naming it.
+TEST(GltfLoader, VertexColoursAreReadAsLinearMultipliers) {
+    TempDir t;
+    const float pos[] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0};
+    const float rgba[] = {1, 0, 0, 1, 0, 1, 0, 0.5f, 0, 0, 1, 1, 2, -1, 0.25f, 1};  // the last one out of range
+    const uint8_t rgb8[] = {255, 0, 0, 0, 0, 128, 0, 0, 0, 0, 255, 0, 51, 51, 51, 0};  // VEC3 in 4-byte strides
+    const uint16_t rgba16[] = {65535, 0, 0, 65535, 0, 65535, 0, 32768, 0, 0, 65535, 65535, 13107, 13107, 13107, 0};
+    const uint16_t idx[] = {0, 1, 2, 2, 1, 3};
+    const float nrm[] = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};  // with normals the 4 vertices stay 4
+    std::string bytes;
+    for (const auto& [data, size] : std::vector<std::pair<const void*, size_t>>{
+             {pos, sizeof pos}, {rgba, sizeof rgba}, {rgb8, sizeof rgb8}, {rgba16, sizeof rgba16}, {idx, sizeof idx}, {nrm, sizeof nrm}})
+        bytes.append(static_cast<const char*>(data), size);
+    nlohmann::json d = {{"asset", {{"version", "2.0"}}}};
+    d["buffers"] = {{{"byteLength", bytes.size()}, {"uri", "data:application/octet-stream;base64," + base64(bytes)}}};
+    d["bufferViews"] = {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 48}},
+                        {{"buffer", 0}, {"byteOffset", 48}, {"byteLength", 64}},
+                        {{"buffer", 0}, {"byteOffset", 112}, {"byteLength", 16}, {"byteStride", 4}},
+                        {{"buffer", 0}, {"byteOffset", 128}, {"byteLength", 32}},
+                        {{"buffer", 0}, {"byteOffset", 160}, {"byteLength", 12}},
+                        {{"buffer", 0}, {"byteOffset", 172}, {"byteLength", 48}}};
+    d["accessors"] = {{{"bufferView", 0}, {"componentType", 5126}, {"count", 4}, {"type", "VEC3"}},
+                      {{"bufferView", 1}, {"componentType", 5126}, {"count", 4}, {"type", "VEC4"}},
+                      {{"bufferView", 2}, {"componentType", 5121}, {"normalized", true}, {"count", 4}, {"type", "VEC3"}},
+                      {{"bufferView", 3}, {"componentType", 5123}, {"count", 4}, {"type", "VEC4"}},  // not normalized
+                      {{"bufferView", 4}, {"componentType", 5123}, {"count", 6}, {"type", "SCALAR"}},
+                      {{"bufferView", 1}, {"componentType", 5126}, {"count", 4}, {"type", "SCALAR"}},
+                      {{"bufferView", 1}, {"componentType", 5126}, {"count", 3}, {"type", "VEC4"}},
+                      {{"bufferView", 5}, {"componentType", 5126}, {"count", 4}, {"type", "VEC3"}}};
+    d["meshes"] = {{{"primitives", {{{"attributes", {{"POSITION", 0}, {"NORMAL", 7}}}, {"indices", 4}}}}}};
+    d["nodes"] = {{{"mesh", 0}}};
+    d["scenes"] = {{{"nodes", {0}}}};
+    d["scene"] = 0;
+    auto load = [&](int colours, MeshLoadReport* report) {
+        nlohmann::json e = d;
+        if (colours >= 0) e["meshes"][0]["primitives"][0]["attributes"]["COLOR_0"] = colours;
+        return loadGltf(t.write("colours" + std::to_string(colours) + ".gltf", e.dump()), report).mesh;
+    };
+    auto expectColours = [](const MeshData& m, const std::vector<glm::vec4>& expected, float tolerance, const char* what) {
+        ASSERT_EQ(m.vertices.size(), expected.size()) << what;
+        for (size_t i = 0; i < expected.size(); ++i)
+            EXPECT_NEAR(glm::distance(m.vertices[i].color, expected[i]), 0.0f, tolerance) << what << ", vertex " << i;
+    };
+    MeshLoadReport none, floats, bytes8, shorts;
+    expectColours(load(-1, &none), {glm::vec4(1), glm::vec4(1), glm::vec4(1), glm::vec4(1)}, 0.0f, "no COLOR_0");
+    EXPECT_TRUE(none.warnings.empty());
+    expectColours(load(1, &floats), {{1, 0, 0, 1}, {0, 1, 0, 0.5f}, {0, 0, 1, 1}, {1, 0, 0.25f, 1}}, 0.0f, "float RGBA");
+    ASSERT_EQ(floats.warnings.size(), 1u);
+    EXPECT_NE(floats.warnings[0].find("meshes[0].primitives[0].attributes.COLOR_0: 1 colours outside [0, 1]"), std::string::npos)
+        << floats.warnings[0];
+    expectColours(load(2, &bytes8), {{1, 0, 0, 1}, {0, 128 / 255.0f, 0, 1}, {0, 0, 1, 1}, {0.2f, 0.2f, 0.2f, 1}}, 1e-6f,
+                  "normalised unsigned bytes, RGB");
+    EXPECT_TRUE(bytes8.warnings.empty());
+    expectColours(load(3, &shorts), {{1, 0, 0, 1}, {0, 1, 0, 32768 / 65535.0f}, {0, 0, 1, 1}, {0.2f, 0.2f, 0.2f, 0}}, 1e-6f,
+                  "unsigned shorts without `normalized`");
+    ASSERT_EQ(shorts.warnings.size(), 1u);
+    EXPECT_NE(shorts.warnings[0].find("COLOR_0: integer colours must be normalized; read as normalized"), std::string::npos)
+        << shorts.warnings[0];
+    nlohmann::json bad = d;
+    bad["meshes"][0]["primitives"][0]["attributes"]["COLOR_0"] = 5;
+    expectOneLineError(t.write("scalar.gltf", bad.dump()), "meshes[0].primitives[0].attributes.COLOR_0 (accessors[5]): unexpected type");
+    bad["meshes"][0]["primitives"][0]["attributes"]["COLOR_0"] = 6;
+    expectOneLineError(t.write("short.gltf", bad.dump()), "meshes[0].primitives[0].attributes.COLOR_0: 3 elements, but POSITION has 4");
 }
 
 // KHR_materials_unlit is lightpass's flat-lit material showing the base colour (metallic dropped);
