@@ -14,7 +14,7 @@ namespace lp {
 
 struct AmbientOcclusionPass {
     gl::Program gtao, denoise;
-    GBufferSettings gtaoLayout, denoiseLayout;  // the G-buffer layouts the programs were compiled for
+    GBufferProgramKey gtaoLayout, denoiseLayout;  // the G-buffer layouts the programs were compiled for
 };
 
 // Texture unit the light passes sample the AO target on (LP_BIND_AO in their shaders).

@@ -14,7 +14,7 @@ namespace lp {
 
 struct DebugViewPass {
     gl::Program program, environmentProgram;
-    GBufferSettings layout, environmentLayout;  // the G-buffer layouts the programs were compiled for
+    GBufferProgramKey layout, environmentLayout;  // the G-buffer layouts the programs were compiled for
 };
 
 // The velocity view is at full brightness for motion of this many output pixels per frame (linear

@@ -12,7 +12,7 @@ namespace lp {
 
 struct EmissionPass {
     gl::Program program;
-    GBufferSettings layout;  // the depth convention `program` and the depth test were set up for
+    GBufferProgramKey layout;  // the depth convention `program` and the depth test were set up for
     gl::Framebuffer fbo;
 };
 

@@ -47,13 +47,17 @@ void bindForwardLighting(ForwardPass& state, LocalLightPass& localLights, const 
                          const fg::PassResources& res, const std::vector<std::string>& defines) {
     const bool spotShadows = lighting.localLights && lighting.spotShadows.any();
     const int filter = int(frame.settings->shadows.filter);
-    if (!state.program || state.spotShadowVariant != spotShadows || state.shadowFilter != filter) {
+    const bool vertexColors = frame.gpu != nullptr && frame.gpu->vertexColors;
+    if (!state.program || state.spotShadowVariant != spotShadows || state.shadowFilter != filter ||
+        state.vertexColors != vertexColors) {
         std::vector<std::string> d = defines;
         if (spotShadows) d.push_back("LP_SPOT_SHADOWS");
+        if (vertexColors) d.push_back("LP_VERTEX_COLOR");
         d.push_back(sunShadowFilterDefine(frame));
         state.program = frame.shaders->graphics("gbuffer.vert", "forward.frag", d);
         state.spotShadowVariant = spotShadows;
         state.shadowFilter = filter;
+        state.vertexColors = vertexColors;
     }
     const GLuint prog = state.program.id();
     setSunUniforms(prog, frame, lighting.shadowMaps);

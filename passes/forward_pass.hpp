@@ -24,6 +24,7 @@ struct ForwardPass {
     gl::Program program;
     bool spotShadowVariant = false;  // `program` compiled with LP_SPOT_SHADOWS
     int shadowFilter = -1;           // and for this sun shadow filter (sunShadowFilterDefine)
+    bool vertexColors = false;       // and with LP_VERTEX_COLOR (the scene has vertex colours)
     gl::Framebuffer fbo;
 };
 

@@ -185,7 +185,7 @@ GBuffer addGeometryPass(fg::FrameGraph& graph, GBufferPass& state, const FrameDa
             bool depthOnly = true;
             for (fg::ResourceId c : {out.normal, out.diffuse, out.position, out.specular, out.texcoord, out.tangent})
                 depthOnly = depthOnly && (!c.valid() || res.texture(c) == 0);
-            auto variant = [&](gl::Program& program, GBufferSettings& builtFor, bool withVelocity,
+            auto variant = [&](gl::Program& program, GBufferProgramKey& builtFor, bool withVelocity,
                                bool withDepthOnly) -> const gl::Program& {
                 return programForLayout(program, builtFor, frame, [&](std::vector<std::string> defines) {
                     if (withVelocity) defines.push_back("LP_GBUFFER_VELOCITY");

@@ -6,6 +6,7 @@
 #include "engine/gl/handles.hpp"
 #include "engine/graph/frame_graph.hpp"
 #include "engine/render/frame_data.hpp"
+#include "engine/render/scene_gpu.hpp"
 
 namespace lp {
 
@@ -23,17 +24,28 @@ struct GBuffer {
     fg::ResourceId velocity;  // invalid unless GBufferChannels::velocity
 };
 
+// What a program that reads or draws the G-buffer was compiled for: the layout, and whether the
+// scene's meshes carry vertex colours (LP_VERTEX_COLOR; without them the mesh-drawing programs neither
+// fetch nor interpolate a colour: on the H100 that varying cost the gallery's classic G-buffer 0.18 ms
+// at 1080p, 8%).
+struct GBufferProgramKey {
+    GBufferSettings layout;
+    bool vertexColors = false;
+    bool operator==(const GBufferProgramKey& o) const { return layout == o.layout && vertexColors == o.vertexColors; }
+    bool operator!=(const GBufferProgramKey& o) const { return !(*this == o); }
+};
+
 struct GBufferPass {
     gl::Program program;
-    GBufferSettings layout;  // what `program` was compiled for
+    GBufferProgramKey layout;  // what `program` was compiled for
     gl::Program velocityProgram;  // the same with LP_GBUFFER_VELOCITY: also writes motion vectors
-    GBufferSettings velocityLayout;
+    GBufferProgramKey velocityLayout;
     gl::Program depthOnlyProgram;  // LP_GBUFFER_DEPTH_ONLY: no material channel is read (forward+'s pre-pass)
-    GBufferSettings depthOnlyLayout;
+    GBufferProgramKey depthOnlyLayout;
     gl::Program depthOnlyVelocityProgram;
-    GBufferSettings depthOnlyVelocityLayout;
+    GBufferProgramKey depthOnlyVelocityLayout;
     gl::Program background;  // gbuffer_background.comp: what the pixels no mesh covers hold
-    GBufferSettings backgroundLayout;
+    GBufferProgramKey backgroundLayout;
     gl::Framebuffer fbo;
 };
 
@@ -86,15 +98,18 @@ void bindGBuffer(GLuint program, const fg::PassResources& res, const GBuffer& g,
                  bool diffuse = true);
 void unbindGBuffer();
 
-// `program`, compiled by compile(defines) for the frame's G-buffer layout; compiled again when the
-// layout changed since (lightpass sweep changes it within one process).
+// `program`, compiled by compile(defines) for the frame's G-buffer layout (and LP_VERTEX_COLOR where
+// the scene has vertex colours); compiled again when either changed since (lightpass sweep changes
+// the layout within one process, the viewer the scene).
 template <class Compile>
-const gl::Program& programForLayout(gl::Program& program, GBufferSettings& builtFor, const FrameData& frame,
+const gl::Program& programForLayout(gl::Program& program, GBufferProgramKey& builtFor, const FrameData& frame,
                                     Compile compile) {
-    const GBufferSettings& layout = frame.settings->gbuffer;
-    if (!program || builtFor != layout) {
-        program = compile(gbufferDefines(layout));
-        builtFor = layout;
+    const GBufferProgramKey key{frame.settings->gbuffer, frame.gpu != nullptr && frame.gpu->vertexColors};
+    if (!program || builtFor != key) {
+        std::vector<std::string> defines = gbufferDefines(key.layout);
+        if (key.vertexColors) defines.push_back("LP_VERTEX_COLOR");
+        program = compile(defines);
+        builtFor = key;
     }
     return program;
 }

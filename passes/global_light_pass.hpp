@@ -16,7 +16,7 @@ namespace lp {
 
 struct GlobalLightPass {
     gl::Program program;
-    GBufferSettings layout;  // the G-buffer layout `program` was compiled for
+    GBufferProgramKey layout;  // the G-buffer layout `program` was compiled for
     int shadowFilter = -1;   // and the shadow filter (sunShadowFilterDefine)
 };
 

@@ -14,7 +14,7 @@ namespace lp {
 
 struct IblPass {
     gl::Program program;
-    GBufferSettings layout;  // the G-buffer layout `program` was compiled for
+    GBufferProgramKey layout;  // the G-buffer layout `program` was compiled for
 };
 
 // The environment's textures in this frame's graph: imported from frame.environments (the cache

@@ -11,7 +11,7 @@ namespace lp {
 
 struct SkyPass {
     gl::Program program;
-    GBufferSettings layout;  // the G-buffer layout (depth convention) `program` was compiled for
+    GBufferProgramKey layout;  // the G-buffer layout (depth convention) `program` was compiled for
 };
 
 // `environmentCube`: the environment (importEnvironment / addIblBakePass); invalid without a map.

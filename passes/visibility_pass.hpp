@@ -25,9 +25,9 @@ struct VisibilityBuffer {
 
 struct VisibilityPass {
     gl::Program opaque;  // no texture, no discard: early depth tests hold
-    GBufferSettings opaqueLayout;
+    GBufferProgramKey opaqueLayout;
     gl::Program masked;  // MASK materials: the alpha test of gbuffer.frag
-    GBufferSettings maskedLayout;
+    GBufferProgramKey maskedLayout;
     gl::Framebuffer fbo;
 };
 

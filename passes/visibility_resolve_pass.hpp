@@ -22,7 +22,7 @@ namespace lp {
 
 struct VisibilityResolvePass {
     gl::Program program;
-    GBufferSettings layout;  // what `program` was compiled for
+    GBufferProgramKey layout;  // what `program` was compiled for
     // The scene the storage buffers below hold (its address and triangle count: a scene loaded later
     // at the same address is told apart by its size).
     const SceneGpu* geometryOf = nullptr;

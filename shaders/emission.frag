@@ -6,7 +6,8 @@ in vec3 vPosition;
 in vec3 vNormal;
 in vec2 vUv;
 in vec4 vTangent;
-in vec4 vColor;  // the vertex colour: its alpha is part of the MASK test
+// The vertex colour: its alpha is part of the MASK test.
+#include "common/vertex_color.glsl"
 
 uniform vec3 uEmission;  // linear radiance (emissiveFactor x strength, or Ke)
 uniform bool uHasEmissiveMap;

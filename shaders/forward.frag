@@ -19,7 +19,7 @@ in vec3 vPosition;
 in vec3 vNormal;
 in vec2 vUv;
 in vec4 vTangent;
-in vec4 vColor;
+#include "common/vertex_color.glsl"
 
 uniform vec3 uEmission;  // linear radiance (emissiveFactor x strength, or Ke)
 uniform bool uHasEmissiveMap;

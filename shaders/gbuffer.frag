@@ -9,7 +9,7 @@ in vec3 vPosition;
 in vec3 vNormal;
 in vec2 vUv;
 in vec4 vTangent;
-in vec4 vColor;
+#include "common/vertex_color.glsl"
 
 #ifdef LP_GBUFFER_NORMAL_OCT
 layout(location = 0) out uint outNormal;

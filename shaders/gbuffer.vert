@@ -3,7 +3,10 @@ layout(location = 0) in vec3 inPosition;
 layout(location = 1) in vec3 inNormal;
 layout(location = 2) in vec2 inUv;
 layout(location = 3) in vec4 inTangent;
-layout(location = 4) in vec4 inColor;  // the vertex colour (glTF COLOR_0; white: none)
+#ifdef LP_VERTEX_COLOR  // the scene has vertex colours (glTF COLOR_0; common/vertex_color.glsl)
+layout(location = 4) in vec4 inColor;
+out vec4 vColor;      // multiplies the material's base colour and alpha
+#endif
 
 uniform mat4 uModelView;
 uniform mat3 uNormalMatrix;
@@ -13,7 +16,6 @@ out vec3 vPosition;   // eye space
 out vec3 vNormal;     // eye space
 out vec2 vUv;
 out vec4 vTangent;    // eye space xyz, handedness w
-out vec4 vColor;      // multiplies the material's base colour and alpha
 #ifdef LP_GBUFFER_VELOCITY
 // Unjittered clip positions this frame and the previous one (common/velocity.glsl).
 uniform mat4 uClipFromModel;
@@ -30,7 +32,9 @@ void main() {
     vNormal = uNormalMatrix * inNormal;
     vTangent = vec4(mat3(uModelView) * inTangent.xyz, inTangent.w);
     vUv = inUv;
+#ifdef LP_VERTEX_COLOR
     vColor = inColor;
+#endif
     gl_Position = uProjection * p;
 #ifdef LP_GBUFFER_VELOCITY
     vCurrentClip = uClipFromModel * vec4(inPosition, 1.0);

@@ -10,7 +10,7 @@ layout(location = 0) out uint outId;
 
 #ifdef LP_VISIBILITY_ALPHA_MASK
 in vec2 vUv;
-in vec4 vColor;
+#include "common/vertex_color.glsl"
 uniform vec3 uDiffuse;
 uniform float uOpacity;
 uniform bool uHasDiffuseMap;

@@ -241,7 +241,12 @@ void main() {
     vec4 tangent = vec4(mat3(mesh.modelView) * tangentObject.xyz, tangentObject.w);
 
     MaterialInputs m = materialInputs(mr);
-    vec4 base = materialBaseColor(m, uv, uvDx, uvDy, interpolateAttribute(b, vertexColor(i0), vertexColor(i1), vertexColor(i2)));
+#ifdef LP_VERTEX_COLOR
+    vec4 vertexColors = interpolateAttribute(b, vertexColor(i0), vertexColor(i1), vertexColor(i2));
+#else
+    vec4 vertexColors = vec4(1.0);  // the scene has none (common/vertex_color.glsl)
+#endif
+    vec4 base = materialBaseColor(m, uv, uvDx, uvDy, vertexColors);
     MaterialSample g = materialEvaluate(m, base, SurfaceInputs(normal, tangent, uv, uvDx, uvDy,
                                                                eyeTriangleFrontFacing(e0, e1, e2)));
     g.shininess = gbufferEncodeShininess(g.shininess);  // the half-float channel's encoding (to the 0.02 floor)

@@ -73,6 +73,11 @@ SceneGpu::SceneGpu(const Scene& scene) {
                                     model.name + ".indices");
         geometryBytes += mesh.vertices.size() * sizeof(Vertex) + mesh.indices.size() * sizeof(uint32_t);
         triangleCount += mesh.indices.size() / 3;
+        for (const Vertex& v : mesh.vertices)
+            if (v.color != glm::vec4(1.0f)) {
+                vertexColors = true;
+                break;
+            }
         const GLuint vao = gm.vao.id();
         glVertexArrayVertexBuffer(vao, 0, gm.vertices.id(), 0, sizeof(Vertex));
         glVertexArrayElementBuffer(vao, gm.indices.id());

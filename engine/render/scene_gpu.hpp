@@ -65,6 +65,7 @@ public:
     size_t geometryBytes = 0;
     size_t textureBytes = 0;
     size_t triangleCount = 0;
+    bool vertexColors = false;  // some vertex has a colour other than white (the G-buffer programs read them: LP_VERTEX_COLOR)
 
 private:
     GLuint texture(const TextureRef& ref, bool srgb);

@@ -302,6 +302,10 @@ TEST_P(GltfRender, VertexColoursMultiplyTheBaseColourAndAlpha) {
         }
         return out;
     };
+    EXPECT_TRUE(SceneGpu(s).vertexColors) << "the programs read vertex colours (LP_VERTEX_COLOR)";
+    Scene white = s;
+    for (Vertex& v : white.models[0].mesh.vertices) v.color = glm::vec4(1.0f);
+    EXPECT_FALSE(SceneGpu(white).vertexColors) << "all white: the programs are compiled without them";
     const std::vector<float> xs = {-0.75f, -0.5f, 0.0f, 0.5f, 0.75f};
     for (const RenderPath path : {RenderPath::Deferred, RenderPath::ForwardPlus}) {
         SCOPED_TRACE(renderPathName(path));
