@@ -258,7 +258,8 @@ TEST_P(GltfRender, SamplerWrapModesAreApplied) {
 // Vertex colours (glTF COLOR_0) multiply the base colour: a white quad under ambient 1 whose left
 // vertices are red and right vertices blue shows the colour interpolated across it, on both render
 // paths. Their alpha multiplies the base alpha: under MASK (cutoff 0.5) with alpha 0.2 on the left
-// and 1 on the right, the texels left of u = 0.375 are dropped.
+// and 1 on the right, the texels left of u = 0.375 are dropped; under BLEND the transparent pass
+// covers the black sky by that alpha.
 TEST_P(GltfRender, VertexColoursMultiplyTheBaseColourAndAlpha) {
     MeshData quad;
     const glm::vec2 corners[4] = {{-1, -0.5f}, {1, -0.5f}, {1, 0.5f}, {-1, 0.5f}};
@@ -323,6 +324,13 @@ TEST_P(GltfRender, VertexColoursMultiplyTheBaseColourAndAlpha) {
         EXPECT_NEAR(masked[0].x + masked[0].z, 0.0f, 1e-4f) << "alpha 0.3 is below the cutoff: not drawn";
         EXPECT_NEAR(masked[1].x + masked[1].z, 0.0f, 1e-4f) << "alpha 0.44: not drawn";
         EXPECT_NEAR(masked[2].z, 0.75f, 0.03f) << "alpha 0.8: drawn";
+        // BLEND (the transparent pass, over the black sky): the colour times its alpha 0.2 + 0.8 u.
+        s.models[0].mesh.materials[0].alphaMode = AlphaMode::Blend;
+        const std::vector<glm::vec3> blended = rgbAt(path, {-0.5f, 0.5f});
+        EXPECT_NEAR(blended[0].x, 0.4f * 0.75f, 0.03f) << "u 0.25: alpha 0.4 x red 0.75";
+        EXPECT_NEAR(blended[0].z, 0.4f * 0.25f, 0.03f) << "u 0.25: alpha 0.4 x blue 0.25";
+        EXPECT_NEAR(blended[1].x, 0.8f * 0.25f, 0.03f) << "u 0.75: alpha 0.8 x red 0.25";
+        EXPECT_NEAR(blended[1].z, 0.8f * 0.75f, 0.03f) << "u 0.75: alpha 0.8 x blue 0.75";
     }
 }
 
