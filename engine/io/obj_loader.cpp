@@ -177,6 +177,12 @@ MeshData loadObj(const fs::path& path, MeshLoadReport* reportOut) {
 
     const size_t positionCount = attrib.vertices.size() / 3;
     const size_t normalCount = attrib.normals.size() / 3;
+    // Vertex colours (the `v x y z r g b` extension), only when every `v` line has them (tinyobjloader
+    // keeps none otherwise). OBJ does not say their colour space; MeshLab, scanners and most exporters
+    // write display (sRGB) values, decoded here to the linear multipliers glTF's COLOR_0 gives.
+    const bool hasColors = attrib.colors.size() == attrib.vertices.size() &&
+                           std::any_of(attrib.colors.begin(), attrib.colors.end(), [](float c) { return c != 1.0f; });
+    size_t colorsClamped = 0;
     const size_t uvCount = attrib.texcoords.size() / 2;
     std::map<std::tuple<int, int, int>, uint32_t> dedup;
     std::map<int, std::vector<uint32_t>> byMaterial;  // triangles grouped by material
@@ -204,6 +210,15 @@ MeshData loadObj(const fs::path& path, MeshLoadReport* reportOut) {
         if (t >= 0) {
             const float* tt = &attrib.texcoords[2 * size_t(t)];
             if (std::isfinite(tt[0]) && std::isfinite(tt[1])) v.uv = glm::vec2(tt[0], tt[1]);
+        }
+        if (hasColors) {
+            const float* c = &attrib.colors[3 * size_t(idx.vertex_index)];
+            for (int k = 0; k < 3; ++k) {
+                const float x = std::isfinite(c[k]) ? std::clamp(c[k], 0.0f, 1.0f) : 1.0f;
+                if (x != c[k]) ++colorsClamped;
+                // sRGB to linear (IEC 61966-2-1)
+                v.color[k] = x <= 0.04045f ? x / 12.92f : std::pow((x + 0.055f) / 1.055f, 2.4f);
+            }
         }
         uint32_t id = uint32_t(mesh.vertices.size());
         mesh.vertices.push_back(v);
@@ -245,6 +260,7 @@ MeshData loadObj(const fs::path& path, MeshLoadReport* reportOut) {
             for (const auto& t : tri) list.push_back(uint32_t(vertexFor(t)));
         }
     }
+    if (colorsClamped) warn(file + ": " + std::to_string(colorsClamped) + " vertex colour components outside [0, 1] clamped");
     if (badIndex) {
         std::string msg = file + ": " + std::to_string(badIndex) + " faces with out-of-range vertex indices dropped";
         report.warnings.push_back(msg);

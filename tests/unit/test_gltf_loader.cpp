@@ -429,6 +429,31 @@ TEST(GltfLoader, VertexColoursAreReadAsLinearMultipliers) {
     expectOneLineError(t.write("short.gltf", bad.dump()), "meshes[0].primitives[0].attributes.COLOR_0: 3 elements, but POSITION has 4");
 }
 
+// OBJ's `v x y z r g b` extension: display (sRGB) colours decoded to the linear multipliers COLOR_0
+// gives; out of [0, 1] clamped with a warning. Without colours on every `v` line, none are read.
+TEST(ObjLoader, VertexColoursAreReadAsSrgb) {
+    TempDir t;
+    MeshLoadReport report;
+    const MeshData m = loadObj(t.write("coloured.obj", "v 0 0 0 1 0 0\nv 1 0 0 0 0.5 0\nv 0 1 0 0.02 0 2\nvn 0 0 1\n"
+                                                       "f 1//1 2//1 3//1\n"),
+                               &report);
+    ASSERT_EQ(m.vertices.size(), 3u);
+    auto at = [&](glm::vec3 p) {
+        for (const Vertex& v : m.vertices)
+            if (v.position == p) return v.color;
+        return glm::vec4(-1.0f);
+    };
+    EXPECT_EQ(at({0, 0, 0}), glm::vec4(1, 0, 0, 1));
+    EXPECT_NEAR(at({1, 0, 0}).y, 0.21404f, 1e-4f) << "sRGB 0.5";
+    EXPECT_NEAR(at({0, 1, 0}).x, 0.02f / 12.92f, 1e-6f) << "the linear segment";
+    EXPECT_EQ(at({0, 1, 0}).z, 1.0f) << "2 clamped to 1";
+    ASSERT_EQ(report.warnings.size(), 1u);
+    EXPECT_NE(report.warnings[0].find("coloured.obj: 1 vertex colour components outside [0, 1] clamped"), std::string::npos)
+        << report.warnings[0];
+    const MeshData partial = loadObj(t.write("partial.obj", "v 0 0 0 1 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//1\n"));
+    for (const Vertex& v : partial.vertices) EXPECT_EQ(v.color, glm::vec4(1.0f)) << "not every v line has a colour";
+}
+
 // KHR_materials_unlit is lightpass's flat-lit material showing the base colour (metallic dropped);
 // KHR_materials_ior gives the dielectric F0 ((n - 1) / (n + 1))^2, 0 meaning F0 = 1.
 // Samplers: each texture carries its sampler's wraps and filters (OpenGL's codes, as glTF writes
