@@ -37,11 +37,12 @@ Scene modelScene(MeshData mesh) {
     return s;
 }
 
-// The HDR buffer of a w x h render in G-buffer mode `mode`.
-ImageF renderHdr(const Scene& s, GBufferMode mode, int w, int h) {
+// The HDR buffer of a w x h render in G-buffer mode `mode` on render path `path`.
+ImageF renderHdr(const Scene& s, GBufferMode mode, int w, int h, RenderPath path = RenderPath::Deferred) {
     Renderer r(s);
     RenderSettings settings;
     settings.gbuffer.mode = mode;
+    settings.renderPath = path;
     settings.width = w;
     settings.height = h;
     settings.keepHdr = true;
@@ -56,17 +57,26 @@ glm::vec3 centre(const Scene& s, GBufferMode mode, int w = 48, int h = 48) {
     return {hdr.rgba[i], hdr.rgba[i + 1], hdr.rgba[i + 2]};
 }
 
-// The red HDR radiance of a 96 x 48 render where each of `points` (world, on z = 0) lands.
-std::vector<float> redAtPoints(const Scene& s, GBufferMode mode, const std::vector<glm::vec2>& points) {
+// The HDR radiance of a 96 x 48 render where each of `points` (world, on z = 0) lands.
+std::vector<glm::vec3> radianceAtPoints(const Scene& s, GBufferMode mode, const std::vector<glm::vec2>& points,
+                                        RenderPath path = RenderPath::Deferred) {
     const int w = 96, h = 48;
-    const ImageF hdr = renderHdr(s, mode, w, h);
+    const ImageF hdr = renderHdr(s, mode, w, h, path);
     const glm::mat4 vp = s.camera.projection(float(w) / float(h)) * s.camera.view();
-    std::vector<float> red;
+    std::vector<glm::vec3> out;
     for (const glm::vec2 p : points) {
         const glm::vec4 c = vp * glm::vec4(p, 0.0f, 1.0f);
         const int px = int((c.x / c.w * 0.5f + 0.5f) * float(w)), py = int((0.5f - c.y / c.w * 0.5f) * float(h));
-        red.push_back(hdr.rgba[(size_t(py) * size_t(w) + size_t(px)) * 4]);
+        const size_t i = (size_t(py) * size_t(w) + size_t(px)) * 4;
+        out.emplace_back(hdr.rgba[i], hdr.rgba[i + 1], hdr.rgba[i + 2]);
     }
+    return out;
+}
+
+// Their red channel.
+std::vector<float> redAtPoints(const Scene& s, GBufferMode mode, const std::vector<glm::vec2>& points) {
+    std::vector<float> red;
+    for (const glm::vec3 c : radianceAtPoints(s, mode, points)) red.push_back(c.x);
     return red;
 }
 
@@ -282,26 +292,10 @@ TEST_P(GltfRender, VertexColoursMultiplyTheBaseColourAndAlpha) {
     s.camera.position = {0.0f, 0.0f, 3.0f};
     s.camera.target = {0.0f, 0.0f, 0.0f};
     s.camera.fovYDegrees = 45.0f;
-    const int w = 96, h = 48;
     auto rgbAt = [&](RenderPath path, const std::vector<float>& xs) {
-        Renderer r(s);
-        RenderSettings settings;
-        settings.gbuffer.mode = GetParam();
-        settings.renderPath = path;
-        settings.width = w;
-        settings.height = h;
-        settings.keepHdr = true;
-        r.render(settings);
-        const ImageF hdr = r.readHdr();
-        const glm::mat4 vp = s.camera.projection(float(w) / float(h)) * s.camera.view();
-        std::vector<glm::vec3> out;
-        for (const float x : xs) {
-            const glm::vec4 c = vp * glm::vec4(x, 0.0f, 0.0f, 1.0f);
-            const int px = int((c.x / c.w * 0.5f + 0.5f) * float(w)), py = int((0.5f - c.y / c.w * 0.5f) * float(h));
-            const size_t i = (size_t(py) * size_t(w) + size_t(px)) * 4;
-            out.emplace_back(hdr.rgba[i], hdr.rgba[i + 1], hdr.rgba[i + 2]);
-        }
-        return out;
+        std::vector<glm::vec2> points;
+        for (const float x : xs) points.emplace_back(x, 0.0f);
+        return radianceAtPoints(s, GetParam(), points, path);
     };
     EXPECT_TRUE(SceneGpu(s).vertexColors) << "the programs read vertex colours (LP_VERTEX_COLOR)";
     Scene white = s;
