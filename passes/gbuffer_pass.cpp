@@ -103,8 +103,7 @@ GBuffer createGBufferColourTargets(fg::PassBuilder& b, int w, int h, const GBuff
     return out;
 }
 
-std::vector<std::string> gbufferImageDefines(const GBufferSettings& layout) {
-    std::vector<std::string> d = gbufferDefines(layout);
+void addGBufferImageDefines(std::vector<std::string>& d, const GBufferSettings& layout) {
     switch (gbufferNormalFormat(layout.normal)) {
         case GL_RGBA16F: d.push_back("LP_NORMAL_IMAGE_FORMAT rgba16f"); d.push_back("LP_NORMAL_IMAGE image2D"); break;
         case GL_RG32F: d.push_back("LP_NORMAL_IMAGE_FORMAT rg32f"); d.push_back("LP_NORMAL_IMAGE image2D"); break;
@@ -114,7 +113,6 @@ std::vector<std::string> gbufferImageDefines(const GBufferSettings& layout) {
     }
     d.push_back(gbufferSpecularFormat(layout.normal) == GL_RGBA8 ? "LP_SPECULAR_IMAGE_FORMAT rgba8"
                                                                  : "LP_SPECULAR_IMAGE_FORMAT rgba16f");
-    return d;
 }
 
 GLuint bindGBufferImages(const fg::PassResources& res, const GBuffer& g) {
@@ -260,9 +258,9 @@ GBuffer addGeometryPass(fg::FrameGraph& graph, GBufferPass& state, const FrameDa
             const GLuint bound = bindGBufferImages(res, out);
             if (bound) {
                 const GLuint bg = programForLayout(state.background, state.backgroundLayout, frame,
-                                                   [&](const std::vector<std::string>&) {
-                                                       return frame.shaders->compute(
-                                                           "gbuffer_background.comp", gbufferImageDefines(layout));
+                                                   [&](std::vector<std::string> defines) {
+                                                       addGBufferImageDefines(defines, layout);
+                                                       return frame.shaders->compute("gbuffer_background.comp", defines);
                                                    })
                                       .id();
                 glProgramUniform1ui(bg, glGetUniformLocation(bg, "uTargets"), bound);

@@ -87,9 +87,9 @@ void readGBuffer(fg::PassBuilder& b, const GBuffer& g, bool diffuse = true);
 GBuffer createGBufferColourTargets(fg::PassBuilder& b, int w, int h, const GBufferSettings& layout,
                                    GBufferChannels channels, fg::Usage how);
 // The G-buffer's colour targets as images (shaders/common/gbuffer_images.glsl): the defines that give
-// their image formats (with gbufferDefines'), binding the created ones to image units 0..6 (returns
-// uTargets' bits) and unbinding them, and the uniforms of the background's motion.
-std::vector<std::string> gbufferImageDefines(const GBufferSettings& layout);
+// their image formats (added to `defines`, e.g. programForLayout's), binding the created ones to image
+// units 0..6 (returns uTargets' bits) and unbinding them, and the uniforms of the background's motion.
+void addGBufferImageDefines(std::vector<std::string>& defines, const GBufferSettings& layout);
 GLuint bindGBufferImages(const fg::PassResources& res, const GBuffer& g);
 void unbindGBufferImages();
 void setBackgroundMotionUniforms(GLuint program, const FrameData& frame);

@@ -163,13 +163,24 @@ void setClusterUniforms(GLuint prog, const ClusterGrid& g) {
     setFloat(prog, "uClusterFar", g.farPlane);
 }
 
+// The frame's froxel grid (--cluster-size, --cluster-slices, the camera's depth range).
+ClusterGrid frameClusterGrid(const FrameData& frame) {
+    const LocalLightSettings& s = frame.settings->localLights;
+    return makeClusterGrid(frame.width, frame.height, s.clusterSize, s.clusterSlices, frame.nearPlane, frame.farPlane);
+}
+
+// Grid g as the last one made (state.clusterGrid, read by the views and the next build's overflow
+// warning), counted in the stats.
+void recordClusterGrid(LocalLightPass& state, const ClusterGrid& g) {
+    state.clusterGrid = g;
+    state.stats.clusters = g.count();
+}
+
 // Readies the froxel grid for a build from the lights in the SSBO at binding 0 (bindLightRecords): reads
 // the newest finished build's overflow count, sizes the buffers, binds the counts (1), lists (2) and
 // a cleared overflow counter (3). The caller dispatches a build, then finishClusterBuild.
 ClusterGrid beginClusterBuild(LocalLightPass& state, const FrameData& frame) {
-    const LocalLightSettings& s = frame.settings->localLights;
-    const ClusterGrid g = makeClusterGrid(frame.width, frame.height, s.clusterSize, s.clusterSlices, frame.nearPlane,
-                                          frame.farPlane);
+    const ClusterGrid g = frameClusterGrid(frame);
     // The newest finished build's overflow count (never waits: see OverflowSlot).
     for (int back = 1; back <= int(state.clusterOverflow.size()); ++back) {
         auto& slot = state.clusterOverflow[size_t((state.nextOverflowSlot - back + 3 * int(state.clusterOverflow.size())) %
@@ -210,8 +221,7 @@ ClusterGrid beginClusterBuild(LocalLightPass& state, const FrameData& frame) {
         state.clusterOverflowCounter = gl::makeBuffer(sizeof(GLuint), nullptr, 0, "clusters.overflow_counter");
     const GLuint zero = 0;
     glClearNamedBufferData(state.clusterOverflowCounter.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-    state.clusterGrid = g;
-    state.stats.clusters = g.count();
+    recordClusterGrid(state, g);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, state.clusterCounts.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, state.clusterLists.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, state.clusterOverflowCounter.id());
@@ -333,12 +343,9 @@ void shadeClustered(LocalLightPass& state, const FrameData& frame, GLuint prog, 
         buildTightClusters(state, frame, prog, lightCount);
         return;
     }
-    const LocalLightSettings& s = frame.settings->localLights;
-    const ClusterGrid g = makeClusterGrid(frame.width, frame.height, s.clusterSize, s.clusterSlices, frame.nearPlane,
-                                          frame.farPlane);
-    state.clusterGrid = g;
-    state.stats.clusters = g.count();
-    buildSupertiles(state, frame, g, lightCount, {prog}, !unbounded(s));
+    const ClusterGrid g = frameClusterGrid(frame);
+    recordClusterGrid(state, g);
+    buildSupertiles(state, frame, g, lightCount, {prog}, !unbounded(frame.settings->localLights));
     dispatchPerClusterTile(prog, g, frame, lightCount);
     unbindSupertiles();
 }
@@ -515,35 +522,27 @@ void collectRaceTimings(LocalLightPass& state) {
 }
 
 struct ClusteredChoice {
-    int kernel = 0;  // 0: the clustered kernel, 1: the tiled kernel (also: not the clustered method)
+    bool tiles = false;  // the tiled kernel shades (else the clustered kernel)
     LocalLightPass::RaceTiming* timing = nullptr;  // where to time it (a race round), else null
 };
 
 // Which kernel shades the clustered method this frame. Other tile sizes than the tiled kernel's: the
 // clustered kernel. 16-pixel tiles: --clustered-kernel froxels or tiles as asked; auto: the tiled
-// kernel below kClusteredMinLights, else the race's pick for the view.
+// kernel below kClusteredMinLights, else the race's pick for the view (kernel 1 is the tiled one).
 ClusteredChoice chooseClusteredKernel(LocalLightPass& state, const FrameData& frame, bool lightingOnly,
                                       bool spotShadows, int lightCount) {
     const LocalLightSettings& s = frame.settings->localLights;
     ClusteredChoice c;
-    if (s.method != LocalLightMethod::Clustered) {
-        c.kernel = 1;
-        return c;
-    }
-    if (s.clusterSize != kTileSize || state.clusteredMinLights < 0) return c;
-    if (s.clusteredKernel != ClusteredKernel::Auto) {
-        c.kernel = s.clusteredKernel == ClusteredKernel::Tiles ? 1 : 0;
-        return c;
-    }
-    const int minLights = state.clusteredMinLights != 0 ? state.clusteredMinLights : kClusteredMinLights;
-    if (lightCount < minLights) {
-        c.kernel = 1;
+    if (s.clusterSize != kTileSize || s.clusteredKernel == ClusteredKernel::Froxels) return c;
+    if (s.clusteredKernel == ClusteredKernel::Tiles || lightCount < kClusteredMinLights) {
+        c.tiles = true;
         return c;
     }
     collectRaceTimings(state);
     const std::uint64_t key = clusteredRaceKey(frame, lightingOnly, spotShadows, lightCount);
     bool timed = false;
-    c.kernel = kernelRaceNext(state.clusteredRace, key, timed);
+    const int kernel = kernelRaceNext(state.clusteredRace, key, timed);
+    c.tiles = kernel == 1;
     state.stats.kernelRacing = timed;
     state.stats.froxelKernelMs = state.clusteredRace.lastMedians[0];
     state.stats.tileKernelMs = state.clusteredRace.lastMedians[1];
@@ -554,7 +553,7 @@ ClusteredChoice chooseClusteredKernel(LocalLightPass& state, const FrameData& fr
             t.begin = gl::makeQuery(GL_TIMESTAMP);
             t.end = gl::makeQuery(GL_TIMESTAMP);
         }
-        t.kernel = c.kernel;
+        t.kernel = kernel;
         t.key = key;
         c.timing = &t;
         break;
@@ -589,16 +588,13 @@ fg::ResourceId addLocalLightPass(fg::FrameGraph& graph, LocalLightPass& state, c
             if (spotShadows.any()) bindSpotShadows(state, frame, spotShadows, res.texture(data.spotShadows));
             state.stats.requested = int(lights->size());
             const GLuint hdrTexture = res.texture(data.hdr);
-            const ClusteredChoice choice = chooseClusteredKernel(state, frame, lightingOnly, spotShadows.any(),
-                                                                 int(lights->size()));
-            const bool clusteredAsTiled = s.method == LocalLightMethod::Clustered && choice.kernel == 1;
-            state.stats.slicesShaded = s.method == LocalLightMethod::Clustered && !clusteredAsTiled;
-            if (clusteredAsTiled) {
-                const ClusterGrid g = makeClusterGrid(frame.width, frame.height, s.clusterSize, s.clusterSlices,
-                                                      frame.nearPlane, frame.farPlane);
-                state.clusterGrid = g;
-                state.stats.clusters = g.count();
-            }
+            const bool clustered = s.method == LocalLightMethod::Clustered;
+            const ClusteredChoice choice =
+                clustered ? chooseClusteredKernel(state, frame, lightingOnly, spotShadows.any(), int(lights->size()))
+                          : ClusteredChoice{};
+            const bool clusteredAsTiled = clustered && choice.tiles;
+            state.stats.slicesShaded = clustered && !choice.tiles;
+            if (clusteredAsTiled) recordClusterGrid(state, frameClusterGrid(frame));  // what its tiles stand for
             LocalLightPass::RaceTiming* timing = choice.timing;
             if (timing) glQueryCounter(timing->begin.id(), GL_TIMESTAMP);
             if (s.method == LocalLightMethod::Tiled || clusteredAsTiled) {

@@ -50,10 +50,6 @@ struct LocalLightPass {
     gl::Program clusterBuildProgram;  // light_clusters.comp
     gl::Program clusteredProgram;     // local_light_clustered.comp: tight froxels in shared memory and shading, fused
     gl::Program clusteredSupertileProgram;  // the same with LP_SUPERTILES: candidates from supertile lists (many lights)
-    // With fewer lights than this and 16-pixel froxel tiles, the clustered method under auto shades with
-    // the tiled kernel (the same tiles without slices). For tests: 0 is the default (kClusteredMinLights);
-    // a negative value always runs the clustered kernel, whatever --clustered-kernel says.
-    int clusteredMinLights = 0;
     // --clustered-kernel auto: the race between the clustered kernel (0) and the tiled kernel (1) for
     // the view (engine/render/kernel_race.hpp), and the timestamps around the kernels it timed, read
     // once the GPU has passed them (never waited for).

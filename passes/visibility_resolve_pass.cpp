@@ -126,10 +126,8 @@ GBuffer addVisibilityResolvePass(fg::FrameGraph& graph, VisibilityResolvePass& s
                 for (size_t i = 0; i < gpu.materials.size(); ++i)
                     if (materialFlags(gpu.materials[i]) & kAnyMap) state.texturedMaterials.push_back(int(i));
             }
-            const GLuint prog = programForLayout(state.program, state.layout, frame, [&](const std::vector<std::string>& given) {
-                                    std::vector<std::string> defines = gbufferImageDefines(frame.settings->gbuffer);
-                                    if (std::find(given.begin(), given.end(), "LP_VERTEX_COLOR") != given.end())
-                                        defines.push_back("LP_VERTEX_COLOR");
+            const GLuint prog = programForLayout(state.program, state.layout, frame, [&](std::vector<std::string> defines) {
+                                    addGBufferImageDefines(defines, frame.settings->gbuffer);
                                     defines.push_back("LP_VERTEX_FLOATS " + std::to_string(sizeof(Vertex) / sizeof(float)));
                                     return frame.shaders->compute("visibility_resolve.comp", defines);
                                 }).id();

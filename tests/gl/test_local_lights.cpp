@@ -133,11 +133,7 @@ TEST(LocalLightShader, SpotFalloffIsSmoothstepBetweenTheConeCosines) {
 
 // Everything one test needs to render frames and look at the local-light pass's state.
 struct Rig {
-    // The clustered method's own kernel at any light count (by default it leaves fewer than 32 lights
-    // to the tiled kernel, and races the two from 32): these tests are about it.
-    // ClusteredLights.FewLightsShadeWithTheTiledKernel and AutoRacesBothKernelsAndKeepsTheFaster test
-    // the default.
-    explicit Rig(const Scene& s) : scene(s), gpu(std::make_unique<SceneGpu>(scene)) { passes.localLights.clusteredMinLights = -1; }
+    explicit Rig(const Scene& s) : scene(s), gpu(std::make_unique<SceneGpu>(scene)) {}
     const Scene& scene;
     std::unique_ptr<SceneGpu> gpu;
     gl::ShaderLibrary shaders;
@@ -221,11 +217,16 @@ Scene twentyLightScene() {
     return s;
 }
 
+// A 64 x 48 frame with `method`. The clustered method runs its own kernel at any light count
+// (--clustered-kernel froxels; by default it leaves fewer than 32 lights to the tiled kernel and races
+// the two from 32): these tests are about it. ClusteredLights.FewLightsShadeWithTheTiledKernel and
+// AutoRacesBothKernelsAndKeepsTheFaster test the default.
 RenderSettings smallSettings(LocalLightMethod method) {
     RenderSettings r;
     r.width = 64;
     r.height = 48;
     r.localLights.method = method;
+    r.localLights.clusteredKernel = ClusteredKernel::Froxels;
     return r;
 }
 
@@ -1056,9 +1057,9 @@ TEST(ClusteredLights, TilesSpanningMoreSlicesThanAMaskHoldsShadeEveryLight) {
 TEST(ClusteredLights, FewLightsShadeWithTheTiledKernel) {
     const Scene s = twentyLightScene();
     Rig rig(s);
-    rig.passes.localLights.clusteredMinLights = 0;  // the default
     const std::vector<float> tiled = rig.renderHdr(smallSettings(LocalLightMethod::Tiled));
     RenderSettings r = smallSettings(LocalLightMethod::Clustered);
+    r.localLights.clusteredKernel = ClusteredKernel::Auto;  // the default
     EXPECT_EQ(rig.renderHdr(r), tiled) << "20 lights, 16-pixel tiles: the tiled kernel";
     EXPECT_FALSE(rig.passes.localLights.stats.slicesShaded);
     EXPECT_EQ(rig.passes.localLights.stats.clusters, 4 * 3 * r.localLights.clusterSlices) << "the grid it stands for";
@@ -1083,12 +1084,12 @@ TEST(ClusteredLights, FewLightsShadeWithTheTiledKernel) {
 TEST(ClusteredLights, AutoRacesBothKernelsAndKeepsTheFaster) {
     const Scene s = twentyLightScene();
     Rig rig(s);
-    rig.passes.localLights.clusteredMinLights = 0;  // the default
     RenderSettings full = smallSettings(LocalLightMethod::Fullscreen);
     full.localLights.lightCount = 40;
     const std::vector<float> ref = rig.renderHdr(full);
     const std::vector<int> k = lightsPerPixel(s, full);
     RenderSettings r = smallSettings(LocalLightMethod::Clustered);
+    r.localLights.clusteredKernel = ClusteredKernel::Auto;  // the default
     r.localLights.lightCount = 40;
     bool ran[2] = {false, false};  // froxels, tiles
     int frames = 0;
