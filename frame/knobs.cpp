@@ -89,6 +89,13 @@ KnobEntry choiceKnob(const std::string& name, At at, const std::vector<E>& optio
 KnobFlag valueFlag(const std::string& flag) { return {flag, std::nullopt}; }
 KnobFlag setsFlag(const std::string& flag, double value) { return {flag, value}; }
 
+// The froxel grid's sweeps (cluster-size, cluster-slices) time the kernel that uses the grid: the
+// clustered method with its own kernel, whatever --clustered-kernel auto would pick.
+void sweepClusteredKernel(RenderSettings& s, double) {
+    s.localLights.method = LocalLightMethod::Clustered;
+    s.localLights.clusteredKernel = ClusteredKernel::Froxels;
+}
+
 constexpr double kNoMax = std::numeric_limits<double>::infinity();
 const KnobRange kNonNegative{0.0, kNoMax};
 
@@ -838,10 +845,7 @@ std::vector<KnobEntry> makeKnobTable() {
                    "froxel tile side in pixels (--cluster-size, switches --local-lights clustered --clustered-kernel "
                    "froxels on): smaller tiles, shorter light lists, more froxels to build; the same image by design, "
                    "so not monotone",
-                   [](RenderSettings& s, double) {
-                       s.localLights.method = LocalLightMethod::Clustered;
-                       s.localLights.clusteredKernel = ClusteredKernel::Froxels;
-                   }};
+                   sweepClusteredKernel};
         t.push_back(std::move(k));
     }
     {
@@ -853,10 +857,7 @@ std::vector<KnobEntry> makeKnobTable() {
                    "exponential depth slices of the froxel grid (--cluster-slices, switches --local-lights clustered "
                    "--clustered-kernel froxels on: the kernel that uses them, at any light count): the same image by "
                    "design, so not monotone",
-                   [](RenderSettings& s, double) {
-                       s.localLights.method = LocalLightMethod::Clustered;
-                       s.localLights.clusteredKernel = ClusteredKernel::Froxels;
-                   }};
+                   sweepClusteredKernel};
         t.push_back(std::move(k));
     }
     {

@@ -294,7 +294,13 @@ TEST(KnobTable, SweepKnobsAreTableEntries) {
     findKnob("ibl-face-size")->values.front().apply(s);
     EXPECT_EQ(s.environment.cubeSize, 64);
     EXPECT_EQ(s.environment.specularSize, 32);
-    EXPECT_EQ(s.environment.ibl, true);
+    EXPECT_EQ(s.environment.ibl, true);    // The froxel grid's sweeps time the clustered method's own kernel, not whichever auto would race to.
+    for (const char* grid : {"cluster-size", "cluster-slices"}) {
+        RenderSettings g;
+        findKnob(grid)->values.front().apply(g);
+        EXPECT_EQ(g.localLights.method, LocalLightMethod::Clustered) << grid;
+        EXPECT_EQ(g.localLights.clusteredKernel, ClusteredKernel::Froxels) << grid;
+    }
 }
 
 // Every flag --help names is a knob flag or a command flag, and every one of those is in --help.
