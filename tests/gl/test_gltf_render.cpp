@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 
 #include "engine/io/gltf_loader.hpp"
 #include "engine/io/image_io.hpp"
@@ -71,6 +72,32 @@ std::vector<glm::vec3> radianceAtPoints(const Scene& s, GBufferMode mode, const 
         out.emplace_back(hdr.rgba[i], hdr.rgba[i + 1], hdr.rgba[i + 2]);
     }
     return out;
+}
+
+// A 2 x 1 quad in z = 0 (x -1..1, y -0.5..0.5, facing +Z) with one white, non-specular material,
+// `corner` giving each corner's uv and colour; in a scene lit by ambient 1 alone (the radiance is the
+// base colour), seen head-on from z = 3.
+Scene facingQuadScene(const std::function<void(Vertex&, glm::vec2)>& corner) {
+    MeshData quad;
+    for (const glm::vec2 c : {glm::vec2(-1, -0.5f), glm::vec2(1, -0.5f), glm::vec2(1, 0.5f), glm::vec2(-1, 0.5f)}) {
+        Vertex v;
+        v.position = glm::vec3(c, 0.0f);
+        v.normal = {0, 0, 1};
+        corner(v, c);
+        quad.vertices.push_back(v);
+    }
+    quad.indices = {0, 1, 2, 0, 2, 3};
+    quad.subMeshes = {{0, 6, 0}};
+    Material m;
+    m.diffuse = glm::vec3(1.0f);
+    m.specular = glm::vec3(0.0f);
+    quad.materials = {m};
+    Scene s = modelScene(std::move(quad));
+    s.ambient = glm::vec3(1.0f);
+    s.camera.position = {0.0f, 0.0f, 3.0f};
+    s.camera.target = {0.0f, 0.0f, 0.0f};
+    s.camera.fovYDegrees = 45.0f;
+    return s;
 }
 
 // Their red channel.
@@ -216,30 +243,13 @@ TEST_P(GltfRender, AlphaMaskDropsTexelsBelowTheCutoff) {
 // (white), mirror u 0.875 (white); at u = 1.875 repeat and clamp read white, mirror u 0.125 (black).
 // One image under two samplers is two textures; under one, one.
 TEST_P(GltfRender, SamplerWrapModesAreApplied) {
-    MeshData quad;
-    const glm::vec2 corners[4] = {{-1, -0.5f}, {1, -0.5f}, {1, 0.5f}, {-1, 0.5f}};
-    for (const glm::vec2 c : corners) {
-        Vertex v;
-        v.position = glm::vec3(c, 0.0f);
-        v.normal = {0, 0, 1};
-        v.uv = {c.x + 1.0f, c.y + 0.5f};
-        quad.vertices.push_back(v);
-    }
-    quad.indices = {0, 1, 2, 0, 2, 3};
-    quad.subMeshes = {{0, 6, 0}};
+    Scene s = facingQuadScene([](Vertex& v, glm::vec2 c) { v.uv = {c.x + 1.0f, c.y + 0.5f}; });
     Image8 halves{4, 1, {0, 0, 0, 255, 0, 0, 0, 255, 255, 255, 255, 255, 255, 255, 255, 255}};
-    Material m;
-    m.diffuse = glm::vec3(1.0f);
-    m.specular = glm::vec3(0.0f);
+    Material& m = s.models[0].mesh.materials[0];
     m.diffuseMap.encoded = std::make_shared<const std::string>(encodePng(halves));
     m.diffuseMap.key = "halves.png";
     m.diffuseMap.sampler.magFilter = 9728;  // GL_NEAREST (and so no anisotropy)
-    quad.materials = {m};
-    Scene s = modelScene(quad);
-    s.ambient = glm::vec3(1.0f);
-    s.camera.position = {0.0f, 0.0f, 3.0f};
-    s.camera.target = {0.0f, 0.0f, 0.0f};
-    s.camera.fovYDegrees = 45.0f;
+    const Material repeating = m;           // before texelsAt changes its wrap
     auto texelsAt = [&](int wrapS) {  // at u = 0.125, 1.125, 1.875
         s.models[0].mesh.materials[0].diffuseMap.sampler.wrapS = wrapS;
         return redAtPoints(s, GetParam(), {{-0.875f, 0.0f}, {0.125f, 0.0f}, {0.875f, 0.0f}});
@@ -252,7 +262,8 @@ TEST_P(GltfRender, SamplerWrapModesAreApplied) {
         EXPECT_NEAR(mirror[size_t(i)], expected[2][i], 1e-2f) << "mirrored repeat, point " << i;
     }
 
-    quad.materials = {m, m, m};
+    MeshData quad = s.models[0].mesh;
+    quad.materials = {repeating, repeating, repeating};
     quad.materials[1].diffuseMap.sampler.wrapS = 33071;
     SceneGpu gpu(modelScene(quad));
     ASSERT_EQ(gpu.materials.size(), 3u);
@@ -271,27 +282,10 @@ TEST_P(GltfRender, SamplerWrapModesAreApplied) {
 // and 1 on the right, the texels left of u = 0.375 are dropped; under BLEND the transparent pass
 // covers the black sky by that alpha.
 TEST_P(GltfRender, VertexColoursMultiplyTheBaseColourAndAlpha) {
-    MeshData quad;
-    const glm::vec2 corners[4] = {{-1, -0.5f}, {1, -0.5f}, {1, 0.5f}, {-1, 0.5f}};
-    for (const glm::vec2 c : corners) {
-        Vertex v;
-        v.position = glm::vec3(c, 0.0f);
-        v.normal = {0, 0, 1};
+    Scene s = facingQuadScene([](Vertex& v, glm::vec2 c) {
         v.uv = {0.5f * (c.x + 1.0f), c.y + 0.5f};
         v.color = c.x < 0.0f ? glm::vec4(1, 0, 0, 0.2f) : glm::vec4(0, 0, 1, 1);
-        quad.vertices.push_back(v);
-    }
-    quad.indices = {0, 1, 2, 0, 2, 3};
-    quad.subMeshes = {{0, 6, 0}};
-    Material m;
-    m.diffuse = glm::vec3(1.0f);
-    m.specular = glm::vec3(0.0f);
-    quad.materials = {m};
-    Scene s = modelScene(quad);
-    s.ambient = glm::vec3(1.0f);
-    s.camera.position = {0.0f, 0.0f, 3.0f};
-    s.camera.target = {0.0f, 0.0f, 0.0f};
-    s.camera.fovYDegrees = 45.0f;
+    });
     auto rgbAt = [&](RenderPath path, const std::vector<float>& xs) {
         std::vector<glm::vec2> points;
         for (const float x : xs) points.emplace_back(x, 0.0f);

@@ -230,6 +230,17 @@ RenderSettings smallSettings(LocalLightMethod method) {
     return r;
 }
 
+// The camera at the origin looking down -Z (60 degrees high) between `nearPlane` and `farPlane`, and
+// no ambient light: the depth scenes of the clustered tests.
+void lookDownMinusZ(Scene& s, float nearPlane, float farPlane) {
+    s.camera.position = {0.0f, 0.0f, 0.0f};
+    s.camera.target = {0.0f, 0.0f, -1.0f};
+    s.camera.nearPlane = nearPlane;
+    s.camera.farPlane = farPlane;
+    s.camera.fovYDegrees = 60.0f;
+    s.ambient = glm::vec3(0.0f);
+}
+
 // The bound between two methods' HDR values where `lights` lights reach the texel: one fp16 rounding
 // per light added (2^-11 relative each) and 1e-3 relative (+ 1e-6) for the float sums' order.
 double tiledBound(int lights, double value) {
@@ -835,12 +846,7 @@ TEST(ClusteredLights, TightFroxelsListEveryLightReachingTheirPixels) {
         s.models.push_back(model("cube", makeCube(1.0f),
                                  glm::scale(glm::translate(glm::mat4(1.0f), 0.5f * (lo + hi)), hi - lo),
                                  {0.5f, 0.5f, 0.5f}, {0.2f, 0.2f, 0.2f}, 16.0f));
-    s.camera.position = {0.0f, 0.0f, 0.0f};
-    s.camera.target = {0.0f, 0.0f, -1.0f};
-    s.camera.nearPlane = 0.1f;
-    s.camera.farPlane = 30.0f;
-    s.camera.fovYDegrees = 60.0f;
-    s.ambient = glm::vec3(0.0f);
+    lookDownMinusZ(s, 0.1f, 30.0f);
     // 90 lights through the view at 1-10 m, ranges 0.3-2.5 m, every third a spot.
     uint32_t seed = 12345u;
     auto next = [&seed] {
@@ -1003,12 +1009,7 @@ Scene pillarBeforeWallScene() {
                              glm::translate(glm::mat4(1.0f), {0.0f, 0.0f, -0.3f}) *
                                  glm::scale(glm::mat4(1.0f), {0.04f, 1.0f, 0.04f}),
                              {0.8f, 0.3f, 0.2f}, {0.5f, 0.5f, 0.5f}, 64.0f));
-    s.camera.position = {0.0f, 0.0f, 0.0f};
-    s.camera.target = {0.0f, 0.0f, -1.0f};
-    s.camera.nearPlane = 0.05f;
-    s.camera.farPlane = 100.0f;
-    s.camera.fovYDegrees = 60.0f;
-    s.ambient = glm::vec3(0.0f);
+    lookDownMinusZ(s, 0.05f, 100.0f);
     for (int i = 0; i < 20; ++i) {  // on the wall: 2 m before it, reaching 7.7 m of it
         PointLight l;
         l.position = {-24.0f + 12.0f * float(i % 5), -15.0f + 10.0f * float(i / 5), -58.0f};
