@@ -569,6 +569,8 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
     const std::set<int> uvTypes = quantized ? integers
                                             : std::set<int>{TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
                                                             TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT};
+    const std::set<int> colorTypes = {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
+                                      TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT};
     std::set<std::string> noted;  // what notedOnce has seen
     auto notedOnce = [&noted](const std::string& what) { return noted.insert(what).second; };
     auto addPrimitive = [&](int meshIndex, int primIndex, const glm::mat4& world) {
@@ -590,10 +592,10 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
         };
         requireData(pos, attr->second, w + ".attributes.POSITION");
         const size_t vertexCount = pos.count;
-        auto optional = [&](const char* name, int type, const std::set<int>& componentTypes, Loader::View& v) {
+        auto optional = [&](const char* name, const std::set<int>& types, const std::set<int>& componentTypes, Loader::View& v) {
             auto it = prim.attributes.find(name);
             if (it == prim.attributes.end()) return false;
-            v = L.view(it->second, w + ".attributes." + name, {type}, componentTypes);
+            v = L.view(it->second, w + ".attributes." + name, types, componentTypes);
             if (v.count != vertexCount)
                 L.fail(w + ".attributes." + name, std::to_string(v.count) + " elements, but POSITION has " + std::to_string(vertexCount));
             return true;
@@ -603,30 +605,22 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
         if (!prim.targets.empty() && notedOnce("targets"))
             L.warn(w + ".targets", "morph targets are not applied; drawn with the base shape");
         Loader::View nrm, uv, tan, col;
-        const bool hasNormals = optional("NORMAL", TINYGLTF_TYPE_VEC3, directionTypes, nrm);
-        const bool hasUv = optional("TEXCOORD_0", TINYGLTF_TYPE_VEC2, uvTypes, uv);
+        const bool hasNormals = optional("NORMAL", {TINYGLTF_TYPE_VEC3}, directionTypes, nrm);
+        const bool hasUv = optional("TEXCOORD_0", {TINYGLTF_TYPE_VEC2}, uvTypes, uv);
         // COLOR_0: linear RGB or RGBA multiplying the base colour; float, or normalised unsigned bytes
         // or shorts (the spec requires `normalized`; an integer accessor without it is read as
         // normalised, with a warning, rather than as colours up to 255 or 65535).
-        bool hasColors = false;
-        if (auto it = prim.attributes.find("COLOR_0"); it != prim.attributes.end()) {
-            const std::string cw = w + ".attributes.COLOR_0";
-            col = L.view(it->second, cw, {TINYGLTF_TYPE_VEC3, TINYGLTF_TYPE_VEC4},
-                         {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT});
-            if (col.count != vertexCount)
-                L.fail(cw, std::to_string(col.count) + " elements, but POSITION has " + std::to_string(vertexCount));
-            if (col.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT && !col.normalized) {
-                L.warn(cw, "integer colours must be normalized; read as normalized");
-                col.normalized = true;
-            }
-            hasColors = true;
+        const bool hasColors = optional("COLOR_0", {TINYGLTF_TYPE_VEC3, TINYGLTF_TYPE_VEC4}, colorTypes, col);
+        if (hasColors && col.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT && !col.normalized) {
+            L.warn(w + ".attributes.COLOR_0", "integer colours must be normalized; read as normalized");
+            col.normalized = true;
         }
         const int colorComponents = hasColors ? std::min(col.components, 4) : 0;
         size_t colorsClamped = 0;
         // KHR_texture_transform: applied to the uvs here. Where it turns or flips the uv axes, the
         // file's tangents (made for the untransformed uvs) are replaced by generated ones.
         const Loader::UvTransform uvTransform = L.materialUvTransform(prim.material);
-        const bool hasTangents = optional("TANGENT", TINYGLTF_TYPE_VEC4, directionTypes, tan) && !uvTransform.turnsAxes();
+        const bool hasTangents = optional("TANGENT", {TINYGLTF_TYPE_VEC4}, directionTypes, tan) && !uvTransform.turnsAxes();
 
         // Triangle list, as vertex numbers of this primitive.
         std::vector<uint32_t> corners;
@@ -680,9 +674,9 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
                 glm::vec4 c(1.0f);
                 for (int k = 0; k < colorComponents; ++k) c[k] = Loader::component(col, v, k);
                 // A colour multiplies the base colour: outside [0, 1] (or not a number) it would add
-                // energy or poison the image.
+                // energy or poison the image. A NaN or Inf component differs from its clamp too.
                 const glm::vec4 clamped = glm::clamp(c, glm::vec4(0.0f), glm::vec4(1.0f));
-                if (clamped != c || !std::isfinite(c.x + c.y + c.z + c.w)) ++colorsClamped;
+                if (clamped != c) ++colorsClamped;
                 for (int k = 0; k < 4; ++k) vx.color[k] = std::isfinite(c[k]) ? clamped[k] : 1.0f;
             }
             if (hasTangents) {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
@@ -363,12 +364,13 @@ TEST(GltfLoader, QuantizedAttributesWithKhrMeshQuantization) {
 
 // COLOR_0 multiplies the base colour: read from floats (VEC3 or VEC4) and from normalised unsigned
 // bytes and shorts; integers without `normalized` are read as normalised with a warning; values outside
-// [0, 1] are clamped with one warning per primitive; no COLOR_0 is white. A colour accessor of another
+// [0, 1] are clamped with one warning per primitive (a NaN one read as 1); no COLOR_0 is white. A colour accessor of another
 // type, or of another length than POSITION, is an error naming it.
 TEST(GltfLoader, VertexColoursAreReadAsLinearMultipliers) {
     TempDir t;
     const float pos[] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0};
-    const float rgba[] = {1, 0, 0, 1, 0, 1, 0, 0.5f, 0, 0, 1, 1, 2, -1, 0.25f, 1};  // the last one out of range
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const float rgba[] = {1, 0, 0, 1, 0, 1, 0, 0.5f, 0, 0, 1, 1, 2, -1, 0.25f, nan};  // the last one out of range, its alpha NaN
     const uint8_t rgb8[] = {255, 0, 0, 0, 0, 128, 0, 0, 0, 0, 255, 0, 51, 51, 51, 0};  // VEC3 in 4-byte strides
     const uint16_t rgba16[] = {65535, 0, 0, 65535, 0, 65535, 0, 32768, 0, 0, 65535, 65535, 13107, 13107, 13107, 0};
     const uint16_t idx[] = {0, 1, 2, 2, 1, 3};
