@@ -69,11 +69,14 @@ struct LocalLightPass {
     gl::Buffer clusterLists;          // kMaxLightsPerCluster uints per cluster: light indices
     // The whole build's first level (light_cluster_supertiles.comp): per supertile of
     // supertileTiles x supertileTiles froxel tiles, its light count and up to supertileCapacity
-    // light indices. The two sizes are settable for tests (0: the defaults; a supertile size set
-    // here also makes the first level run below its light count; a negative one turns it off).
+    // light indices, made from a bit per light (supertileBits) by the last of its work groups to
+    // finish (supertileDone counts them). The two sizes are settable for tests (0: the defaults; a
+    // supertile size set here also makes the first level run below its light count; a negative one
+    // turns it off).
     gl::Program clusterSupertileProgram;
-    gl::Buffer supertileCounts, supertileLists;
+    gl::Buffer supertileCounts, supertileLists, supertileBits, supertileDone;
     size_t supertileCountsCapacity = 0, supertileListsCapacity = 0;  // uints the buffers hold
+    size_t supertileBitsCapacity = 0, supertileDoneCapacity = 0;
     int supertileTiles = 0, supertileCapacity = 0;
     // One uint per build: clusters past the cap. A ring, each slot read back only once its fence
     // has signaled, so the warning never makes the CPU (or the pass's GPU timer) wait on a build.

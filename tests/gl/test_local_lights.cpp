@@ -470,7 +470,7 @@ TEST(LocalLights, GlobesAndOverlayViewsRender) {
 // image: a supertile only drops lights that cannot touch its tiles, and each pixel still adds its
 // lights in index order. Twenty lights with the level forced on (2 x 2 and 1 x 1 tiles, and every
 // list overflowing) against it off; 600 lights (the level on by default) against it off; with
-// unbounded specular the level stays off.
+// unbounded specular the level stays off. A second frame's lists are its own.
 TEST(LocalLights, SupertileCandidatesChangeNoBit) {
     const Scene twenty = twentyLightScene();
     for (LocalLightMethod m : {LocalLightMethod::Tiled, LocalLightMethod::Clustered}) {
@@ -492,6 +492,16 @@ TEST(LocalLights, SupertileCandidatesChangeNoBit) {
         EXPECT_EQ(render(twenty, many, 0, 0), manyOff) << "600 lights, the default supertiles";
         EXPECT_EQ(render(twenty, many, 1, 0), manyOff) << "600 lights, a supertile a tile";
         EXPECT_NE(manyOff, off) << "the 600 lights must add light for this test to see anything";
+        // Above 2048 lights several work groups test a supertile's lights, and the last to finish
+        // makes its list. The build leaves its counters of finished groups as it found them: a second
+        // frame (2400 lights after 2100, two groups a supertile each) equals that frame rendered first.
+        RenderSettings more = r, most = r;
+        more.localLights.lightCount = 2100;
+        most.localLights.lightCount = 2400;
+        const std::vector<float> mostOff = render(twenty, most, -1, 0);
+        Rig rig(twenty);
+        EXPECT_EQ(rig.renderHdr(more), render(twenty, more, -1, 0)) << "2100 lights, two groups a supertile";
+        EXPECT_EQ(rig.renderHdr(most), mostOff) << "a second frame's supertile lists";
     }
 }
 
