@@ -272,6 +272,15 @@ bool useSupertiles(const LocalLightPass& state, int lightCount, bool allowed) {
     return allowed && state.supertileTiles >= 0 && (lightCount >= kSupertileMinLights || state.supertileTiles > 0);
 }
 
+// Makes `buffer` hold at least `uints` uints: made anew when it holds fewer (or none), its contents
+// then undefined, or zero when `zeroed`; never shrunk.
+void reserveUints(gl::Buffer& buffer, size_t& capacity, size_t uints, const char* name, bool zeroed = false) {
+    if (buffer && uints <= capacity) return;
+    capacity = uints;
+    const std::vector<GLuint> zeros(zeroed ? uints : 0, 0u);
+    buffer = gl::makeBuffer(GLsizeiptr(uints * sizeof(GLuint)), zeroed ? zeros.data() : nullptr, 0, name);
+}
+
 // The first level of a build or of the tiled and clustered shading passes
 // (light_cluster_supertiles.comp): each supertile's lights at bindings 6 and 7, for grid g's tiles,
 // with uSupertile / uSupertileCapacity set on `readers` (the programs that read the lists; uSupertile
@@ -288,32 +297,19 @@ void buildSupertiles(LocalLightPass& state, const FrameData& frame, const Cluste
     }
     if (!supertiles) return;
     const int stX = (g.tilesX + side - 1) / side, stY = (g.tilesY + side - 1) / side;
-    const size_t counts = size_t(stX) * size_t(stY), entries = counts * size_t(capacity);
-    if (counts > state.supertileCountsCapacity || !state.supertileCounts) {
-        state.supertileCountsCapacity = counts;
-        state.supertileCounts = gl::makeBuffer(GLsizeiptr(counts * sizeof(GLuint)), nullptr, 0, "clusters.supertile_counts");
-    }
-    if (entries > state.supertileListsCapacity || !state.supertileLists) {
-        state.supertileListsCapacity = entries;
-        state.supertileLists = gl::makeBuffer(GLsizeiptr(entries * sizeof(GLuint)), nullptr, 0, "clusters.supertile_lights");
-    }
-    // The bits, and the counters of finished groups (zero when made; the build leaves them zero).
+    const size_t counts = size_t(stX) * size_t(stY);
     const int bitWords = (lightCount + 31) / 32, chunks = (lightCount + kSupertileChunk - 1) / kSupertileChunk;
     const int groups = (chunks + kSupertileChunksPerGroup - 1) / kSupertileChunksPerGroup;  // per supertile
-    const size_t words = counts * size_t(bitWords);
-    if (words > state.supertileBitsCapacity || !state.supertileBits) {
-        state.supertileBitsCapacity = words;
-        state.supertileBits = gl::makeBuffer(GLsizeiptr(words * sizeof(GLuint)), nullptr, 0, "clusters.supertile_bits");
-    }
-    if (counts > state.supertileDoneCapacity || !state.supertileDone) {
-        state.supertileDoneCapacity = counts;
-        const std::vector<GLuint> zeros(counts, 0u);
-        state.supertileDone = gl::makeBuffer(GLsizeiptr(counts * sizeof(GLuint)), zeros.data(), 0, "clusters.supertile_done");
-    }
+    reserveUints(state.supertileCounts, state.supertileCountsCapacity, counts, "clusters.supertile_counts");
+    reserveUints(state.supertileLists, state.supertileListsCapacity, counts * size_t(capacity), "clusters.supertile_lights");
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, state.supertileCounts.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, state.supertileLists.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, state.supertileBits.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, state.supertileDone.id());
+    if (groups > 1) {  // the bits, and the counters of finished groups (zero when made; each build leaves them zero)
+        reserveUints(state.supertileBits, state.supertileBitsCapacity, counts * size_t(bitWords), "clusters.supertile_bits");
+        reserveUints(state.supertileDone, state.supertileDoneCapacity, counts, "clusters.supertile_done", true);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, state.supertileBits.id());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, state.supertileDone.id());
+    }
     const GLuint prog = state.clusterSupertileProgram.id();
     setTileCullUniforms(prog, g, frame, lightCount);
     setInt(prog, "uSupertile", side);
