@@ -60,7 +60,7 @@ fg::ResourceId addEmissionPass(fg::FrameGraph& graph, EmissionPass& state, const
             const GLint locMV = loc("uModelView"), locN = loc("uNormalMatrix");
             const GLint locE = loc("uEmission"), locHasE = loc("uHasEmissiveMap");
             const GLint locOpacity = loc("uOpacity"), locHasD = loc("uHasDiffuseMap"), locMask = loc("uAlphaMask");
-            const GLint locCutoff = loc("uAlphaCutoff"), locTwoSided = loc("uDoubleSided");
+            const GLint locCutoff = loc("uAlphaCutoff"), locTwoSided = loc("uDoubleSided"), locSecondUv = loc("uSecondUvMaps");
             for (const auto& mesh : frame.gpu->meshes) {
                 bool any = false;
                 for (const auto& dr : mesh.draws) {
@@ -83,6 +83,7 @@ fg::ResourceId addEmissionPass(fg::FrameGraph& graph, EmissionPass& state, const
                     glProgramUniform1i(prog, locMask, m.alphaMask);
                     glProgramUniform1f(prog, locCutoff, m.alphaCutoff);
                     glProgramUniform1i(prog, locTwoSided, m.doubleSided);
+                    glProgramUniform1ui(prog, locSecondUv, m.secondUvMaps);
                     glBindTextureUnit(0, m.diffuseMap);
                     glBindTextureUnit(1, m.emissiveMap);
                     glDrawElements(GL_TRIANGLES, GLsizei(dr.indexCount), GL_UNSIGNED_INT,

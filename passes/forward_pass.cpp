@@ -48,16 +48,19 @@ void bindForwardLighting(ForwardPass& state, LocalLightPass& localLights, const 
     const bool spotShadows = lighting.localLights && lighting.spotShadows.any();
     const int filter = int(frame.settings->shadows.filter);
     const bool vertexColors = frame.gpu != nullptr && frame.gpu->vertexColors;
+    const bool secondUvSet = frame.gpu != nullptr && frame.gpu->secondUvSet;
     if (!state.program || state.spotShadowVariant != spotShadows || state.shadowFilter != filter ||
-        state.vertexColors != vertexColors) {
+        state.vertexColors != vertexColors || state.secondUvSet != secondUvSet) {
         std::vector<std::string> d = defines;
         if (spotShadows) d.push_back("LP_SPOT_SHADOWS");
         if (vertexColors) d.push_back("LP_VERTEX_COLOR");
+        if (secondUvSet) d.push_back("LP_SECOND_UV");
         d.push_back(sunShadowFilterDefine(frame));
         state.program = frame.shaders->graphics("gbuffer.vert", "forward.frag", d);
         state.spotShadowVariant = spotShadows;
         state.shadowFilter = filter;
         state.vertexColors = vertexColors;
+        state.secondUvSet = secondUvSet;
     }
     const GLuint prog = state.program.id();
     setSunUniforms(prog, frame, lighting.shadowMaps);

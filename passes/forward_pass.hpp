@@ -25,6 +25,7 @@ struct ForwardPass {
     bool spotShadowVariant = false;  // `program` compiled with LP_SPOT_SHADOWS
     int shadowFilter = -1;           // and for this sun shadow filter (sunShadowFilterDefine)
     bool vertexColors = false;       // and with LP_VERTEX_COLOR (the scene has vertex colours)
+    bool secondUvSet = false;        // and with LP_SECOND_UV (a material samples TEXCOORD_1)
     gl::Framebuffer fbo;
 };
 

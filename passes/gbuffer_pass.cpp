@@ -35,7 +35,7 @@ MaterialUniforms::MaterialUniforms(GLuint prog) {
     hasBump = loc("uHasBumpMap"); bumpScale = loc("uBumpScale"); hasNormal = loc("uHasNormalMap");
     normalScale = loc("uNormalScale"); hasMetalRough = loc("uHasMetalRoughMap"); hasOcclusion = loc("uHasOcclusionMap");
     occlusionStrength = loc("uOcclusionStrength"); mask = loc("uAlphaMask"); cutoff = loc("uAlphaCutoff");
-    twoSided = loc("uDoubleSided"); flat = loc("uFlat");
+    twoSided = loc("uDoubleSided"); flat = loc("uFlat"); secondUvMaps = loc("uSecondUvMaps");
 }
 
 void MaterialUniforms::set(GLuint prog, const GpuMaterial& m) const {
@@ -57,6 +57,7 @@ void MaterialUniforms::set(GLuint prog, const GpuMaterial& m) const {
     glProgramUniform1f(prog, cutoff, m.alphaCutoff);
     glProgramUniform1i(prog, twoSided, m.doubleSided);
     glProgramUniform1i(prog, flat, m.flat);
+    glProgramUniform1ui(prog, secondUvMaps, m.secondUvMaps);
     glBindTextureUnit(0, m.diffuseMap);
     glBindTextureUnit(1, m.bumpMap);
     glBindTextureUnit(2, m.normalMap);

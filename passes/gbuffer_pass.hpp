@@ -24,14 +24,17 @@ struct GBuffer {
     fg::ResourceId velocity;  // invalid unless GBufferChannels::velocity
 };
 
-// What a program that reads or draws the G-buffer was compiled for: the layout, and whether the
-// scene's meshes carry vertex colours (LP_VERTEX_COLOR; without them the mesh-drawing programs neither
+// What a program that reads or draws the G-buffer was compiled for: the layout, whether the scene's
+// meshes carry vertex colours (LP_VERTEX_COLOR; without them the mesh-drawing programs neither
 // fetch nor interpolate a colour: on the H100 that varying cost the gallery's classic G-buffer 0.18 ms
-// at 1080p, 8%).
+// at 1080p, 8%) and whether a material samples the second uv set (LP_SECOND_UV, likewise).
 struct GBufferProgramKey {
     GBufferSettings layout;
     bool vertexColors = false;
-    bool operator==(const GBufferProgramKey& o) const { return layout == o.layout && vertexColors == o.vertexColors; }
+    bool secondUvSet = false;
+    bool operator==(const GBufferProgramKey& o) const {
+        return layout == o.layout && vertexColors == o.vertexColors && secondUvSet == o.secondUvSet;
+    }
     bool operator!=(const GBufferProgramKey& o) const { return !(*this == o); }
 };
 
@@ -63,7 +66,7 @@ struct MaterialUniforms {
     explicit MaterialUniforms(GLuint prog);
     void set(GLuint prog, const GpuMaterial& m) const;  // also binds the material's textures (units 0..4)
     GLint kd, opacity, ks, metallic, shininess, roughness, hasDiffuse, hasBump, bumpScale, hasNormal, normalScale,
-        hasMetalRough, hasOcclusion, occlusionStrength, mask, cutoff, twoSided, flat;
+        hasMetalRough, hasOcclusion, occlusionStrength, mask, cutoff, twoSided, flat, secondUvMaps;
 };
 
 // GL internal formats of the targets under a layout (README "G-buffer formats").
@@ -99,15 +102,17 @@ void bindGBuffer(GLuint program, const fg::PassResources& res, const GBuffer& g,
 void unbindGBuffer();
 
 // `program`, compiled by compile(defines) for the frame's G-buffer layout (and LP_VERTEX_COLOR where
-// the scene has vertex colours); compiled again when either changed since (lightpass sweep changes
-// the layout within one process, the viewer the scene).
+// the scene has vertex colours, LP_SECOND_UV where it samples TEXCOORD_1); compiled again when any
+// changed since (lightpass sweep changes the layout within one process, the viewer the scene).
 template <class Compile>
 const gl::Program& programForLayout(gl::Program& program, GBufferProgramKey& builtFor, const FrameData& frame,
                                     Compile compile) {
-    const GBufferProgramKey key{frame.settings->gbuffer, frame.gpu != nullptr && frame.gpu->vertexColors};
+    const GBufferProgramKey key{frame.settings->gbuffer, frame.gpu != nullptr && frame.gpu->vertexColors,
+                                frame.gpu != nullptr && frame.gpu->secondUvSet};
     if (!program || builtFor != key) {
         std::vector<std::string> defines = gbufferDefines(key.layout);
         if (key.vertexColors) defines.push_back("LP_VERTEX_COLOR");
+        if (key.secondUvSet) defines.push_back("LP_SECOND_UV");
         program = compile(defines);
         builtFor = key;
     }

@@ -248,7 +248,7 @@ void drawCascadesByCompute(ShadowMapPass& state, const FrameData& frame, const S
                            const std::vector<bool>& redraw) {
     if (!state.rasterProgram)
         state.rasterProgram = frame.shaders->compute(
-            "shadow_raster.comp", std::vector<std::string>{"LP_VERTEX_FLOATS " + std::to_string(sizeof(Vertex) / sizeof(float))});
+            "shadow_raster.comp", std::vector<std::string>{"LP_VERTEX_FLOATS " + std::to_string(sizeof(GpuVertex) / sizeof(float))});
     if (!state.resolveProgram) state.resolveProgram = frame.shaders->graphics("fullscreen.vert", "shadow_raster_resolve.frag");
     if (!state.largeProgram) state.largeProgram = frame.shaders->graphics("shadow_raster_large.vert", "shadow_depth.frag");
     if (!state.emptyVao) state.emptyVao = gl::makeVertexArray("shadow_map.compute_raster");

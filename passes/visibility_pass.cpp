@@ -78,7 +78,7 @@ VisibilityBuffer addVisibilityPass(fg::FrameGraph& graph, VisibilityPass& state,
             const GLint maskedFirst = glGetUniformLocation(masked, "uFirstTriangle");
             auto loc = [masked](const char* name) { return glGetUniformLocation(masked, name); };
             const GLint locKd = loc("uDiffuse"), locOpacity = loc("uOpacity"), locHasD = loc("uHasDiffuseMap");
-            const GLint locCutoff = loc("uAlphaCutoff");
+            const GLint locCutoff = loc("uAlphaCutoff"), locSecondUv = loc("uSecondUvMaps");
             uint32_t firstTriangle = 0;  // the numbering of visibilityDrawRecords
             GLuint current = 0;
             for (const auto& mesh : frame.gpu->meshes) {
@@ -100,6 +100,7 @@ VisibilityBuffer addVisibilityPass(fg::FrameGraph& graph, VisibilityPass& state,
                         glProgramUniform1f(prog, locOpacity, m.opacity);
                         glProgramUniform1i(prog, locHasD, m.diffuseMap != 0);
                         glProgramUniform1f(prog, locCutoff, m.alphaCutoff);
+                        glProgramUniform1ui(prog, locSecondUv, m.secondUvMaps);
                         glBindTextureUnit(0, m.diffuseMap);
                     }
                     if (m.doubleSided) glDisable(GL_CULL_FACE);

@@ -47,7 +47,7 @@ void buildGeometry(VisibilityResolvePass& state, const SceneGpu& gpu) {
     GLsizeiptr vertexBytes = 0, indexBytes = 0;
     for (const GpuMesh& m : gpu.meshes) {
         const GLint vb = bufferSize(m.vertices.id()), ib = bufferSize(m.indices.id());
-        vertexCounts.push_back(uint32_t(vb / GLint(sizeof(Vertex))));
+        vertexCounts.push_back(uint32_t(vb / GLint(sizeof(GpuVertex))));
         indexCounts.push_back(uint32_t(ib / GLint(sizeof(uint32_t))));
         vertexBytes += vb;
         indexBytes += ib;
@@ -62,6 +62,21 @@ void buildGeometry(VisibilityResolvePass& state, const SceneGpu& gpu) {
         if (ib > 0) glCopyNamedBufferSubData(m.indices.id(), state.indices.id(), 0, io, ib);
         vo += vb;
         io += ib;
+    }
+    // The second uv set, at the same vertex numbers; only a scene that samples it has one.
+    state.uv1 = {};
+    if (gpu.secondUvSet) {
+        const GLsizeiptr uvBytes = vertexBytes / GLsizeiptr(sizeof(GpuVertex)) * GLsizeiptr(sizeof(glm::vec2));
+        state.uv1 = gl::makeBuffer(std::max<GLsizeiptr>(uvBytes, 16), nullptr, 0, "gbuffer_resolve.uv1");
+        const float zero = 0.0f;
+        glClearNamedBufferData(state.uv1.id(), GL_R32F, GL_RED, GL_FLOAT, &zero);
+        GLintptr uo = 0;
+        for (const GpuMesh& m : gpu.meshes) {
+            const GLint vb = bufferSize(m.vertices.id());
+            const GLint ub = m.uv1.id() != 0 ? bufferSize(m.uv1.id()) : 0;
+            if (ub > 0) glCopyNamedBufferSubData(m.uv1.id(), state.uv1.id(), 0, uo, ub);
+            uo += GLintptr(vb / GLint(sizeof(GpuVertex))) * GLintptr(sizeof(glm::vec2));
+        }
     }
     std::vector<VisibilityDrawRecord> records = visibilityDrawRecords(gpu, indexCounts, vertexCounts);
     state.drawCount = uint32_t(records.size());
@@ -83,7 +98,7 @@ std::string megabytes(uint64_t bytes) {
 std::string visibilityBufferUnsupported(const Scene& scene, uint64_t maxStorageBlockBytes) {
     uint64_t vertexBytes = 0, indexBytes = 0, triangles = 0;
     for (const ModelInstance& m : scene.models) {
-        vertexBytes += uint64_t(m.mesh.vertices.size()) * sizeof(Vertex);
+        vertexBytes += uint64_t(m.mesh.vertices.size()) * sizeof(GpuVertex);
         indexBytes += uint64_t(m.mesh.indices.size()) * sizeof(uint32_t);
         triangles += m.mesh.indices.size() / 3;
     }
@@ -100,9 +115,9 @@ std::string visibilityBufferUnsupported(const Scene& scene, uint64_t maxStorageB
 
 GBuffer addVisibilityResolvePass(fg::FrameGraph& graph, VisibilityResolvePass& state, const FrameData& frame,
                                  const VisibilityBuffer& visibility, GBufferChannels channels) {
-    static_assert(offsetof(Vertex, normal) == 3 * sizeof(float) && offsetof(Vertex, uv) == 6 * sizeof(float) &&
-                      offsetof(Vertex, tangent) == 8 * sizeof(float) && offsetof(Vertex, color) == 12 * sizeof(float) &&
-                      sizeof(Vertex) == 16 * sizeof(float),
+    static_assert(offsetof(GpuVertex, normal) == 3 * sizeof(float) && offsetof(GpuVertex, uv) == 6 * sizeof(float) &&
+                      offsetof(GpuVertex, tangent) == 8 * sizeof(float) && offsetof(GpuVertex, color) == 12 * sizeof(float) &&
+                      sizeof(GpuVertex) == 16 * sizeof(float),
                   "visibility_resolve.comp reads vertices as floats at these offsets");
     const int w = frame.width, h = frame.height;
     const GBufferSettings layout = frame.settings->gbuffer;
@@ -128,7 +143,7 @@ GBuffer addVisibilityResolvePass(fg::FrameGraph& graph, VisibilityResolvePass& s
             }
             const GLuint prog = programForLayout(state.program, state.layout, frame, [&](std::vector<std::string> defines) {
                                     addGBufferImageDefines(defines, frame.settings->gbuffer);
-                                    defines.push_back("LP_VERTEX_FLOATS " + std::to_string(sizeof(Vertex) / sizeof(float)));
+                                    defines.push_back("LP_VERTEX_FLOATS " + std::to_string(sizeof(GpuVertex) / sizeof(float)));
                                     return frame.shaders->compute("visibility_resolve.comp", defines);
                                 }).id();
             if (!state.rasterModel) state.rasterModel = gl::probeRasterInterpolation(*frame.shaders);
@@ -148,7 +163,7 @@ GBuffer addVisibilityResolvePass(fg::FrameGraph& graph, VisibilityResolvePass& s
                 materials.push_back({glm::vec4(m.diffuse, m.opacity), glm::vec4(m.specular, m.metallic),
                                      glm::vec4(m.shininess, m.roughness, m.bumpScale, m.normalScale),
                                      glm::vec4(m.occlusionStrength, m.alphaCutoff, 0.0f, 0.0f),
-                                     glm::uvec4(materialFlags(m), 0u, 0u, 0u)});
+                                     glm::uvec4(materialFlags(m), m.secondUvMaps, 0u, 0u)});
             const GLuint materialBuffer = state.materials.fill(materials.data(), materials.size() * sizeof(MaterialRecord));
 
             const GLuint bound = bindGBufferImages(res, d.out);
@@ -164,6 +179,7 @@ GBuffer addVisibilityResolvePass(fg::FrameGraph& graph, VisibilityResolvePass& s
             setBackgroundMotionUniforms(prog, frame);
             const GLuint buffers[5] = {state.vertices.id(), state.indices.id(), state.draws.id(), meshBuffer, materialBuffer};
             for (GLuint i = 0; i < 5; ++i) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, buffers[i]);
+            if (state.uv1) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, state.uv1.id());
             glBindTextureUnit(5, res.texture(d.ids));
             glBindTextureUnit(6, res.texture(d.depth));
             glProgramUniform1f(prog, loc("uBackgroundDepth"),
@@ -187,7 +203,7 @@ GBuffer addVisibilityResolvePass(fg::FrameGraph& graph, VisibilityResolvePass& s
             }
             for (GLuint u = 0; u < 7; ++u) glBindTextureUnit(u, 0);
             unbindGBufferImages();
-            for (GLuint i = 0; i < 5; ++i) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, 0);
+            for (GLuint i = 0; i < 6; ++i) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, 0);
             glUseProgram(0);
         });
     return data.out;

@@ -28,6 +28,7 @@ struct VisibilityResolvePass {
     const SceneGpu* geometryOf = nullptr;
     size_t geometryTriangles = 0;
     gl::Buffer vertices, indices, draws;
+    gl::Buffer uv1;  // every mesh's second uv set, a vec2 a vertex (0 where a mesh has none), when the scene samples it
     gl::StreamBuffer meshes{"gbuffer_resolve.meshes"}, materials{"gbuffer_resolve.materials"};  // refilled every frame
     uint32_t drawCount = 0;
     std::vector<int> texturedMaterials;  // one dispatch each, with its maps bound

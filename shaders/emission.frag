@@ -4,8 +4,8 @@
 // single-sided tests as gbuffer.frag, so exactly the texels the G-buffer kept emit.
 in vec3 vPosition;
 in vec3 vNormal;
-in vec2 vUv;
 in vec4 vTangent;
+#include "common/vertex_uvs.glsl"
 // The vertex colour: its alpha is part of the MASK test.
 #include "common/vertex_color.glsl"
 
@@ -16,6 +16,7 @@ uniform bool uHasDiffuseMap;
 uniform bool uAlphaMask;
 uniform float uAlphaCutoff;
 uniform bool uDoubleSided;
+uniform uint uSecondUvMaps;  // bit 1: the diffuse map, 32: the emissive map read the second uv set (lp::MaterialMapBit)
 layout(binding = 0) uniform sampler2D uDiffuseMap;   // sRGB: its alpha decides MASK
 layout(binding = 1) uniform sampler2D uEmissiveMap;  // sRGB: sampled as linear
 
@@ -24,9 +25,9 @@ layout(location = 0) out vec4 outHdr;
 void main() {
     if (!uDoubleSided && !gl_FrontFacing) discard;
     float alpha = uOpacity * vColor.a;
-    if (uHasDiffuseMap) alpha *= texture(uDiffuseMap, vUv).a;
+    if (uHasDiffuseMap) alpha *= texture(uDiffuseMap, fragmentUv((uSecondUvMaps & 1u) != 0u)).a;
     if (uAlphaMask && alpha < uAlphaCutoff) discard;
     vec3 e = max(uEmission, vec3(0.0));
-    if (uHasEmissiveMap) e *= texture(uEmissiveMap, vUv).rgb;
+    if (uHasEmissiveMap) e *= texture(uEmissiveMap, fragmentUv((uSecondUvMaps & 32u) != 0u)).rgb;
     outHdr = vec4(e, 0.0);
 }

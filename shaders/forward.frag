@@ -17,8 +17,8 @@
 
 in vec3 vPosition;
 in vec3 vNormal;
-in vec2 vUv;
 in vec4 vTangent;
+#include "common/vertex_uvs.glsl"
 #include "common/vertex_color.glsl"
 
 uniform vec3 uEmission;  // linear radiance (emissiveFactor x strength, or Ke)
@@ -42,9 +42,9 @@ layout(location = 0) out vec4 outHdr;
 
 void main() {
     // Derivatives before any discard (they need the whole quad).
-    vec2 uvDx = dFdxFine(vUv), uvDy = dFdyFine(vUv);
-    if (lpMaterialDiscards(vUv, uvDx, uvDy, vColor, gl_FrontFacing)) discard;
-    LpSurface s = lpEvaluateSurface(vNormal, vTangent, vUv, uvDx, uvDy, vColor, gl_FrontFacing);
+    UvSets uvs = fragmentUvSets();
+    if (lpMaterialDiscards(uvs, vColor, gl_FrontFacing)) discard;
+    LpSurface s = lpEvaluateSurface(vNormal, vTangent, uvs, vColor, gl_FrontFacing);
 #ifdef LP_FORWARD_TRANSPARENT
     float alpha = s.alpha;
     if (alpha <= 0.0) discard;
@@ -82,7 +82,7 @@ void main() {
     }
     if (!uLightingOnly) {
         vec3 e = max(uEmission, vec3(0.0));
-        if (uHasEmissiveMap) e *= texture(uEmissiveMap, vUv).rgb;
+        if (uHasEmissiveMap) e *= texture(uEmissiveMap, fragmentUv((uSecondUvMaps & LP_MAP_EMISSIVE) != 0u)).rgb;
         c += e;
     }
     outHdr = vec4(sanitizeHdr(c) * alpha, alpha);

@@ -7,8 +7,8 @@
 
 in vec3 vPosition;
 in vec3 vNormal;
-in vec2 vUv;
 in vec4 vTangent;
+#include "common/vertex_uvs.glsl"
 #include "common/vertex_color.glsl"
 
 #ifdef LP_GBUFFER_NORMAL_OCT
@@ -31,10 +31,10 @@ layout(location = 6) out vec2 outVelocity;  // uv_current - uv_previous, unjitte
 
 void main() {
     // Derivatives before any discard (they need the whole quad).
-    vec2 uvDx = dFdxFine(vUv), uvDy = dFdyFine(vUv);
+    UvSets uvs = fragmentUvSets();
     if (!uDoubleSided && !gl_FrontFacing) discard;
     MaterialInputs m = materialFromUniforms();
-    vec4 base = materialBaseColor(m, vUv, uvDx, uvDy, vColor);
+    vec4 base = materialBaseColor(m, uvs, vColor);
     if (materialAlphaRejects(m, base)) discard;
 #ifdef LP_GBUFFER_DEPTH_ONLY
     // The forward+ depth pre-pass: depth (and motion) only; the forward pass shades the material.
@@ -43,7 +43,7 @@ void main() {
 #endif
     return;
 #else
-    MaterialSample g = materialEvaluate(m, base, SurfaceInputs(vNormal, vTangent, vUv, uvDx, uvDy, gl_FrontFacing));
+    MaterialSample g = materialEvaluate(m, base, SurfaceInputs(vNormal, vTangent, uvs, gl_FrontFacing));
     g.shininess = gbufferEncodeShininess(g.shininess);  // the half-float channel's encoding (to the 0.02 floor)
 #ifdef LP_GBUFFER_NORMAL_OCT
     outNormal = gbufferEncodeNormalOct(g.normal);

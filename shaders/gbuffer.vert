@@ -3,6 +3,10 @@ layout(location = 0) in vec3 inPosition;
 layout(location = 1) in vec3 inNormal;
 layout(location = 2) in vec2 inUv;
 layout(location = 3) in vec4 inTangent;
+#ifdef LP_SECOND_UV  // a material of the scene samples TEXCOORD_1 (common/vertex_uvs.glsl)
+layout(location = 5) in vec2 inUv1;
+out vec2 vUv1;
+#endif
 #ifdef LP_VERTEX_COLOR  // the scene has vertex colours (glTF COLOR_0; common/vertex_color.glsl)
 layout(location = 4) in vec4 inColor;
 out vec4 vColor;      // multiplies the material's base colour and alpha
@@ -32,6 +36,9 @@ void main() {
     vNormal = uNormalMatrix * inNormal;
     vTangent = vec4(mat3(uModelView) * inTangent.xyz, inTangent.w);
     vUv = inUv;
+#ifdef LP_SECOND_UV
+    vUv1 = inUv1;
+#endif
 #ifdef LP_VERTEX_COLOR
     vColor = inColor;
 #endif

@@ -9,24 +9,26 @@ uniform uint uFirstTriangle;  // the draw's first global triangle
 layout(location = 0) out uint outId;
 
 #ifdef LP_VISIBILITY_ALPHA_MASK
-in vec2 vUv;
+#include "common/vertex_uvs.glsl"
 #include "common/vertex_color.glsl"
 uniform vec3 uDiffuse;
 uniform float uOpacity;
 uniform bool uHasDiffuseMap;
 uniform float uAlphaCutoff;
+uniform uint uSecondUvMaps;
 #endif
 
 void main() {
 #ifdef LP_VISIBILITY_ALPHA_MASK
-    vec2 uvDx = dFdxFine(vUv), uvDy = dFdyFine(vUv);
+    UvSets uvs = fragmentUvSets();
     MaterialInputs m;
     m.diffuse = uDiffuse;
     m.opacity = uOpacity;
     m.hasDiffuseMap = uHasDiffuseMap;
     m.alphaMask = true;
     m.alphaCutoff = uAlphaCutoff;
-    if (materialAlphaRejects(m, materialBaseColor(m, vUv, uvDx, uvDy, vColor))) discard;
+    m.secondUvMaps = uSecondUvMaps;
+    if (materialAlphaRejects(m, materialBaseColor(m, uvs, vColor))) discard;
 #endif
     outId = visibilityPackId(uFirstTriangle, uint(gl_PrimitiveID));
 }

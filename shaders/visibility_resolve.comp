@@ -58,7 +58,7 @@ struct MaterialRecord {
     vec4 specularMetallic;
     vec4 shininessRoughnessBumpNormal;  // shininess, roughness, bump scale, normal scale
     vec4 occlusionCutoff;               // occlusion strength, alpha cutoff
-    uvec4 flags;                        // x: LP_MATERIAL_* bits
+    uvec4 flags;                        // x: LP_MATERIAL_* bits, y: LP_MAP_* of the maps on the second uv set
 };
 const uint LP_MATERIAL_DIFFUSE_MAP = 1u, LP_MATERIAL_BUMP_MAP = 2u, LP_MATERIAL_NORMAL_MAP = 4u;
 const uint LP_MATERIAL_METAL_ROUGH_MAP = 8u, LP_MATERIAL_OCCLUSION_MAP = 16u, LP_MATERIAL_ALPHA_MASK = 32u;
@@ -69,6 +69,9 @@ layout(std430, binding = 1) readonly buffer Indices { uint indices[]; };
 layout(std430, binding = 2) readonly buffer Draws { DrawRecord draws[]; };
 layout(std430, binding = 3) readonly buffer Meshes { MeshRecord meshes[]; };
 layout(std430, binding = 4) readonly buffer Materials { MaterialRecord materials[]; };
+#ifdef LP_SECOND_UV  // a material samples TEXCOORD_1: every vertex's second uv set, numbered as `vertices`
+layout(std430, binding = 5) readonly buffer SecondUvs { vec2 secondUvs[]; };
+#endif
 
 // The last draw whose first triangle is <= triangle.
 uint findDraw(uint triangle) {
@@ -181,6 +184,13 @@ bool snappedBarycentrics(vec4 c0, vec4 c1, vec4 c2, vec2 window, vec2 partnerX, 
     return false;
 }
 
+// A uv set at the pixel (barycentrics b) and its dFdxFine / dFdyFine, from its quad partners' (bx, by).
+TexCoord resolveTexCoord(vec2 t0, vec2 t1, vec2 t2, vec3 b, vec3 bx, vec3 by, bvec2 odd) {
+    vec2 uv = interpolateAttribute(b, t0, t1, t2);
+    vec2 uvX = interpolateAttribute(bx, t0, t1, t2), uvY = interpolateAttribute(by, t0, t1, t2);
+    return TexCoord(uv, odd.x ? uv - uvX : uvX - uv, odd.y ? uv - uvY : uvY - uv);
+}
+
 MaterialInputs materialInputs(MaterialRecord r) {
     uint f = r.flags.x;
     return MaterialInputs(r.diffuseOpacity.rgb, r.diffuseOpacity.a, r.specularMetallic.rgb, r.specularMetallic.a,
@@ -189,7 +199,7 @@ MaterialInputs materialInputs(MaterialRecord r) {
                           r.occlusionCutoff.y, (f & LP_MATERIAL_DIFFUSE_MAP) != 0u, (f & LP_MATERIAL_BUMP_MAP) != 0u,
                           (f & LP_MATERIAL_NORMAL_MAP) != 0u, (f & LP_MATERIAL_METAL_ROUGH_MAP) != 0u,
                           (f & LP_MATERIAL_OCCLUSION_MAP) != 0u, (f & LP_MATERIAL_ALPHA_MASK) != 0u,
-                          (f & LP_MATERIAL_FLAT) != 0u);
+                          (f & LP_MATERIAL_FLAT) != 0u, r.flags.y);
 }
 
 void main() {
@@ -229,13 +239,15 @@ void main() {
         by = rayTriangleBarycentrics(vec3(0.0), eyeRay(partnerY, size), e0, e1, e2);
     }
 
-    vec2 t0 = vertexUv(i0), t1 = vertexUv(i1), t2 = vertexUv(i2);
     // Every attribute in the raster's plane-equation form (interpolateAttribute): what the three
     // vertices share, such as a floor's eye z, comes out exact, as gbuffer.frag's inputs do.
-    vec2 uv = interpolateAttribute(b, t0, t1, t2);
-    vec2 uvX = interpolateAttribute(bx, t0, t1, t2), uvY = interpolateAttribute(by, t0, t1, t2);
-    vec2 uvDx = odd.x ? uv - uvX : uvX - uv;
-    vec2 uvDy = odd.y ? uv - uvY : uvY - uv;
+    UvSets uvs;
+    uvs.set0 = resolveTexCoord(vertexUv(i0), vertexUv(i1), vertexUv(i2), b, bx, by, odd);
+    uvs.set1 = uvs.set0;
+#ifdef LP_SECOND_UV
+    if (mr.flags.y != 0u) uvs.set1 = resolveTexCoord(secondUvs[i0], secondUvs[i1], secondUvs[i2], b, bx, by, odd);
+#endif
+    vec2 uv = uvs.set0.uv;
     vec3 normal = mat3(mesh.normalMatrix) * interpolateAttribute(b, vertexNormal(i0), vertexNormal(i1), vertexNormal(i2));
     vec4 tangentObject = interpolateAttribute(b, vertexTangent(i0), vertexTangent(i1), vertexTangent(i2));
     vec4 tangent = vec4(mat3(mesh.modelView) * tangentObject.xyz, tangentObject.w);
@@ -246,9 +258,8 @@ void main() {
 #else
     vec4 vertexColors = vec4(1.0);  // the scene has none (common/vertex_color.glsl)
 #endif
-    vec4 base = materialBaseColor(m, uv, uvDx, uvDy, vertexColors);
-    MaterialSample g = materialEvaluate(m, base, SurfaceInputs(normal, tangent, uv, uvDx, uvDy,
-                                                               eyeTriangleFrontFacing(e0, e1, e2)));
+    vec4 base = materialBaseColor(m, uvs, vertexColors);
+    MaterialSample g = materialEvaluate(m, base, SurfaceInputs(normal, tangent, uvs, eyeTriangleFrontFacing(e0, e1, e2)));
     g.shininess = gbufferEncodeShininess(g.shininess);  // the half-float channel's encoding (to the 0.02 floor)
     if ((uTargets & LP_TARGET_NORMAL) != 0u) storeNormal(p, g.normal, g.shininess);
     if ((uTargets & LP_TARGET_DIFFUSE) != 0u)

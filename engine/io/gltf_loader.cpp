@@ -243,13 +243,28 @@ struct Loader {
         }
     }
 
-    TextureRef texture(int textureIndex, int texCoord, const std::string& where) const {
+    // The uv set a texture reads: its texCoord, or its KHR_texture_transform's texCoord, which
+    // overrides it. lightpass keeps two sets (TEXCOORD_0 and TEXCOORD_1); a higher one reads TEXCOORD_0.
+    static int texCoordOf(int texCoord, const tinygltf::ExtensionMap& extensions) {
+        const auto it = extensions.find("KHR_texture_transform");
+        if (it != extensions.end() && it->second.IsObject() && it->second.Has("texCoord") && it->second.Get("texCoord").IsNumber())
+            return it->second.Get("texCoord").GetNumberAsInt();
+        return texCoord;
+    }
+    static int uvSetOf(int texCoord, const tinygltf::ExtensionMap& extensions) {
+        const int n = texCoordOf(texCoord, extensions);
+        return n == 1 ? 1 : 0;
+    }
+
+    // Texture `textureIndex` of a material, sampled with TEXCOORD_`texCoord` (a textureInfo's fields).
+    TextureRef texture(int textureIndex, int texCoord, const tinygltf::ExtensionMap& extensions, const std::string& where) const {
         if (textureIndex < 0) return {};
         if (size_t(textureIndex) >= model.textures.size()) {
             warn(where, "texture " + std::to_string(textureIndex) + " does not exist; ignored");
             return {};
         }
-        if (texCoord != 0) warn(where, "uses TEXCOORD_" + std::to_string(texCoord) + "; only TEXCOORD_0 is read");
+        const int n = texCoordOf(texCoord, extensions);
+        if (n > 1) warn(where, "uses TEXCOORD_" + std::to_string(n) + "; only TEXCOORD_0 and TEXCOORD_1 are read, so it reads TEXCOORD_0");
         const tinygltf::Texture& t = model.textures[size_t(textureIndex)];
         const std::string iw = "textures[" + std::to_string(textureIndex) + "]";
         if (t.source < 0 || size_t(t.source) >= model.images.size()) {
@@ -257,11 +272,13 @@ struct Loader {
             TextureRef r;
             r.encoded = std::make_shared<const std::string>();  // decodes to the checker, with a warning
             r.key = file + "#" + iw;
+            r.uvSet = uvSetOf(texCoord, extensions);
             return r;
         }
         const tinygltf::Image& image = model.images[size_t(t.source)];
         TextureRef r = imageTexture(image, t.source);
         r.sampler = sampler(t.sampler, iw);
+        r.uvSet = uvSetOf(texCoord, extensions);
         return r;
     }
 
@@ -335,9 +352,6 @@ struct Loader {
         const double rotation = x.Has("rotation") ? x.Get("rotation").GetNumberAsDouble() : 0.0;
         if (!std::isfinite(offset.x + offset.y + scale.x + scale.y + rotation))
             fail(where + ".extensions.KHR_texture_transform", "offset, rotation and scale must be finite");
-        if (x.Has("texCoord") && x.Get("texCoord").GetNumberAsInt() != 0)
-            warn(where + ".extensions.KHR_texture_transform", "texCoord " + std::to_string(x.Get("texCoord").GetNumberAsInt()) +
-                                                                 ": only TEXCOORD_0 is read");
         // u' = cos u + sin v, v' = -sin u + cos v: the extension's "uvs turned counter-clockwise, the
         // image clockwise" (its example maps offset (0, 1), rotation pi/2, scale 0.5 onto the lower left
         // quadrant, and Khronos' TextureTransformTest marks this direction green). The README's GLSL,
@@ -347,35 +361,51 @@ struct Loader {
         t.offset = offset;
         return t;
     }
-    // The one uv transform of material `index`'s textures: lightpass keeps a single uv set per vertex,
-    // so textures of one material that disagree get the first one's, with a warning (once per
-    // material, however many primitives use it).
-    mutable std::map<int, UvTransform> materialUvTransforms{};
-    UvTransform materialUvTransform(int index) const {
+    // What material `index`'s textures ask of a primitive's uv sets: the transform of each set (applied
+    // to the vertices' uvs, so the textures that read one set share one transform: one that disagrees
+    // gets the first one's, with a warning, once per material however many primitives use it), which
+    // sets are read, and which the normal map reads (the set its tangents follow).
+    struct MaterialUvSets {
+        UvTransform transform[2];
+        bool reads[2] = {false, false};
+        int normalSet = 0;
+    };
+    mutable std::map<int, MaterialUvSets> materialUvSetsKnown{};
+    MaterialUvSets materialUvSets(int index) const {
         if (index < 0 || size_t(index) >= model.materials.size()) return {};
-        if (auto known = materialUvTransforms.find(index); known != materialUvTransforms.end()) return known->second;
+        if (auto known = materialUvSetsKnown.find(index); known != materialUvSetsKnown.end()) return known->second;
         const tinygltf::Material& m = model.materials[size_t(index)];
         const std::string w = "materials[" + std::to_string(index) + "]";
-        const std::pair<std::string, std::pair<int, const tinygltf::ExtensionMap*>> textures[] = {
-            {"pbrMetallicRoughness.baseColorTexture", {m.pbrMetallicRoughness.baseColorTexture.index, &m.pbrMetallicRoughness.baseColorTexture.extensions}},
-            {"pbrMetallicRoughness.metallicRoughnessTexture",
-             {m.pbrMetallicRoughness.metallicRoughnessTexture.index, &m.pbrMetallicRoughness.metallicRoughnessTexture.extensions}},
-            {"normalTexture", {m.normalTexture.index, &m.normalTexture.extensions}},
-            {"occlusionTexture", {m.occlusionTexture.index, &m.occlusionTexture.extensions}},
-            {"emissiveTexture", {m.emissiveTexture.index, &m.emissiveTexture.extensions}}};
-        std::optional<UvTransform> first;
-        std::string firstName;
-        for (const auto& [name, texture] : textures) {
-            if (texture.first < 0) continue;
-            const UvTransform t = uvTransform(*texture.second, w + "." + name);
-            if (!first) {
-                first = t;
-                firstName = name;
-            } else if (!(t == *first)) {
-                warn(w + "." + name, "its KHR_texture_transform differs from " + firstName + "'s, which is applied to every texture of the material");
+        struct Slot {
+            const char* name;
+            int index, texCoord;
+            const tinygltf::ExtensionMap* extensions;
+        };
+        const auto& pbr = m.pbrMetallicRoughness;
+        const Slot textures[] = {
+            {"pbrMetallicRoughness.baseColorTexture", pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, &pbr.baseColorTexture.extensions},
+            {"pbrMetallicRoughness.metallicRoughnessTexture", pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
+             &pbr.metallicRoughnessTexture.extensions},
+            {"normalTexture", m.normalTexture.index, m.normalTexture.texCoord, &m.normalTexture.extensions},
+            {"occlusionTexture", m.occlusionTexture.index, m.occlusionTexture.texCoord, &m.occlusionTexture.extensions},
+            {"emissiveTexture", m.emissiveTexture.index, m.emissiveTexture.texCoord, &m.emissiveTexture.extensions}};
+        MaterialUvSets out;
+        std::string firstName[2];
+        for (const Slot& texture : textures) {
+            if (texture.index < 0) continue;
+            const int set = uvSetOf(texture.texCoord, *texture.extensions);
+            if (texture.extensions == &m.normalTexture.extensions) out.normalSet = set;
+            const UvTransform t = uvTransform(*texture.extensions, w + "." + texture.name);
+            if (!out.reads[set]) {
+                out.reads[set] = true;
+                out.transform[set] = t;
+                firstName[set] = texture.name;
+            } else if (!(t == out.transform[set])) {
+                warn(w + "." + texture.name, "its KHR_texture_transform differs from " + firstName[set] +
+                                                 "'s, which is applied to every texture of the material on TEXCOORD_" + std::to_string(set));
             }
         }
-        return materialUvTransforms[index] = first.value_or(UvTransform{});
+        return materialUvSetsKnown[index] = out;
     }
 
     Material material(int index) const {
@@ -410,14 +440,15 @@ struct Loader {
         out.metallic = finite01(pbr.metallicFactor, 1.0, "pbrMetallicRoughness.metallicFactor");
         out.roughness = finite01(pbr.roughnessFactor, 1.0, "pbrMetallicRoughness.roughnessFactor");
         out.shininess = shininessFromRoughness(out.roughness);
-        out.diffuseMap = texture(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, w + ".pbrMetallicRoughness.baseColorTexture");
+        out.diffuseMap = texture(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, pbr.baseColorTexture.extensions,
+                                 w + ".pbrMetallicRoughness.baseColorTexture");
         out.metallicRoughnessMap = texture(pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
-                                           w + ".pbrMetallicRoughness.metallicRoughnessTexture");
-        out.normalMap = texture(m.normalTexture.index, m.normalTexture.texCoord, w + ".normalTexture");
+                                           pbr.metallicRoughnessTexture.extensions, w + ".pbrMetallicRoughness.metallicRoughnessTexture");
+        out.normalMap = texture(m.normalTexture.index, m.normalTexture.texCoord, m.normalTexture.extensions, w + ".normalTexture");
         out.normalScale = std::isfinite(m.normalTexture.scale) ? float(m.normalTexture.scale) : 1.0f;
-        out.occlusionMap = texture(m.occlusionTexture.index, m.occlusionTexture.texCoord, w + ".occlusionTexture");
+        out.occlusionMap = texture(m.occlusionTexture.index, m.occlusionTexture.texCoord, m.occlusionTexture.extensions, w + ".occlusionTexture");
         out.occlusionStrength = finite01(m.occlusionTexture.strength, 1.0, "occlusionTexture.strength");
-        out.emissiveMap = texture(m.emissiveTexture.index, m.emissiveTexture.texCoord, w + ".emissiveTexture");
+        out.emissiveMap = texture(m.emissiveTexture.index, m.emissiveTexture.texCoord, m.emissiveTexture.extensions, w + ".emissiveTexture");
         float strength = 1.0f;
         auto ext = m.extensions.find("KHR_materials_emissive_strength");
         if (ext != m.extensions.end() && ext->second.Has("emissiveStrength")) {
@@ -604,9 +635,16 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
         // looks different without them).
         if (!prim.targets.empty() && notedOnce("targets"))
             L.warn(w + ".targets", "morph targets are not applied; drawn with the base shape");
-        Loader::View nrm, uv, tan, col;
+        Loader::View nrm, uv, uv1, tan, col;
         const bool hasNormals = optional("NORMAL", {TINYGLTF_TYPE_VEC3}, directionTypes, nrm);
         const bool hasUv = optional("TEXCOORD_0", {TINYGLTF_TYPE_VEC2}, uvTypes, uv);
+        // TEXCOORD_1, read when the material samples it; where the primitive lacks it (the file is
+        // then invalid) its textures read TEXCOORD_0.
+        const Loader::MaterialUvSets uvSets = L.materialUvSets(prim.material);
+        const bool hasUv1 = uvSets.reads[1] && optional("TEXCOORD_1", {TINYGLTF_TYPE_VEC2}, uvTypes, uv1);
+        if (uvSets.reads[1] && !hasUv1)
+            L.warn(w + ".attributes", "has no TEXCOORD_1, which materials[" + std::to_string(prim.material) +
+                                          "] samples; those textures read TEXCOORD_0");
         // COLOR_0: linear RGB or RGBA multiplying the base colour; float, or normalised unsigned bytes
         // or shorts (the spec requires `normalized`; an integer accessor without it is read as
         // normalised, with a warning, rather than as colours up to 255 or 65535).
@@ -617,10 +655,11 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
         }
         const int colorComponents = hasColors ? std::min(col.components, 4) : 0;
         size_t colorsClamped = 0;
-        // KHR_texture_transform: applied to the uvs here. Where it turns or flips the uv axes, the
-        // file's tangents (made for the untransformed uvs) are replaced by generated ones.
-        const Loader::UvTransform uvTransform = L.materialUvTransform(prim.material);
-        const bool hasTangents = optional("TANGENT", {TINYGLTF_TYPE_VEC4}, directionTypes, tan) && !uvTransform.turnsAxes();
+        // KHR_texture_transform: applied to the uvs here. Where it turns or flips the uv axes of the
+        // normal map's set, the file's tangents (made for the untransformed uvs) are replaced by
+        // generated ones.
+        const bool hasTangents = optional("TANGENT", {TINYGLTF_TYPE_VEC4}, directionTypes, tan) &&
+                                 !uvSets.transform[uvSets.normalSet].turnsAxes();
 
         // Triangle list, as vertex numbers of this primitive.
         std::vector<uint32_t> corners;
@@ -665,11 +704,15 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
                 const float len = glm::length(n);
                 vx.normal = (len > 0.0f && std::isfinite(len)) ? n / len : glm::vec3(0.0f, 1.0f, 0.0f);
             }
-            if (hasUv) {
-                glm::vec2 t(Loader::component(uv, v, 0), Loader::component(uv, v, 1));
-                if (!uvTransform.identity()) t = glm::vec2(uvTransform.linear * glm::dvec2(t) + uvTransform.offset);
-                if (std::isfinite(t.x) && std::isfinite(t.y)) vx.uv = glm::vec2(t.x, 1.0f - t.y);  // v = 0 at the bottom
-            }
+            // A set's uvs through its transform, flipped to v = 0 at the bottom; not finite: 0.
+            auto uvOf = [&](const Loader::View& view, const Loader::UvTransform& transform, glm::vec2& out) {
+                glm::vec2 t(Loader::component(view, v, 0), Loader::component(view, v, 1));
+                if (!transform.identity()) t = glm::vec2(transform.linear * glm::dvec2(t) + transform.offset);
+                if (std::isfinite(t.x) && std::isfinite(t.y)) out = glm::vec2(t.x, 1.0f - t.y);
+            };
+            if (hasUv) uvOf(uv, uvSets.transform[0], vx.uv);
+            if (hasUv1) uvOf(uv1, uvSets.transform[1], vx.uv1);
+            else if (uvSets.reads[1] && hasUv) uvOf(uv, uvSets.transform[1], vx.uv1);
             if (hasColors) {
                 glm::vec4 c(1.0f);
                 for (int k = 0; k < colorComponents; ++k) c[k] = Loader::component(col, v, k);
@@ -730,7 +773,13 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
             report.generatedNormals = true;
         }
         if (!hasTangents) {
+            // Tangents follow the normal map's uv set: MikkTSpace on TEXCOORD_1 when it reads that.
+            auto swapSets = [&part] {
+                for (Vertex& vx : part.vertices) std::swap(vx.uv, vx.uv1);
+            };
+            if (uvSets.normalSet == 1) swapSets();
             computeTangents(part);
+            if (uvSets.normalSet == 1) swapSets();
             report.generatedTangents = true;
         }
         const int mat = materialFor(prim.material);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <cstring>
 #include <limits>
 
 #include "engine/core/log.hpp"
@@ -60,6 +61,10 @@ GLuint SceneGpu::texture(const TextureRef& ref, bool srgb) {
     return id;
 }
 
+static_assert(offsetof(GpuVertex, normal) == offsetof(Vertex, normal) && offsetof(GpuVertex, uv) == offsetof(Vertex, uv) &&
+                  offsetof(GpuVertex, tangent) == offsetof(Vertex, tangent) && offsetof(GpuVertex, color) == offsetof(Vertex, color),
+              "GpuVertex is copied from the front of lp::Vertex");
+
 SceneGpu::SceneGpu(const Scene& scene) {
     for (const auto& model : scene.models) {
         const MeshData& mesh = model.mesh;
@@ -67,11 +72,20 @@ SceneGpu::SceneGpu(const Scene& scene) {
         gm.name = model.name;
         gm.model = model.transform;
         gm.vao = gl::makeVertexArray(model.name);
-        gm.vertices = gl::makeBuffer(GLsizeiptr(mesh.vertices.size() * sizeof(Vertex)), mesh.vertices.data(), 0,
-                                     model.name + ".vertices");
+        std::vector<GpuVertex> vertices(mesh.vertices.size());
+        for (size_t i = 0; i < vertices.size(); ++i) std::memcpy(&vertices[i], &mesh.vertices[i], sizeof(GpuVertex));
+        gm.vertices = gl::makeBuffer(GLsizeiptr(vertices.size() * sizeof(GpuVertex)), vertices.data(), 0, model.name + ".vertices");
         gm.indices = gl::makeBuffer(GLsizeiptr(mesh.indices.size() * sizeof(uint32_t)), mesh.indices.data(), 0,
                                     model.name + ".indices");
-        geometryBytes += mesh.vertices.size() * sizeof(Vertex) + mesh.indices.size() * sizeof(uint32_t);
+        geometryBytes += vertices.size() * sizeof(GpuVertex) + mesh.indices.size() * sizeof(uint32_t);
+        const bool meshSamplesUv1 =
+            std::any_of(mesh.materials.begin(), mesh.materials.end(), [](const Material& m) { return m.samplesUv1(); });
+        if (meshSamplesUv1 && !mesh.vertices.empty()) {
+            std::vector<glm::vec2> uv1(mesh.vertices.size());
+            for (size_t i = 0; i < uv1.size(); ++i) uv1[i] = mesh.vertices[i].uv1;
+            gm.uv1 = gl::makeBuffer(GLsizeiptr(uv1.size() * sizeof(glm::vec2)), uv1.data(), 0, model.name + ".uv1");
+            geometryBytes += uv1.size() * sizeof(glm::vec2);
+        }
         triangleCount += mesh.indices.size() / 3;
         for (const Vertex& v : mesh.vertices)
             if (v.color != glm::vec4(1.0f)) {
@@ -79,18 +93,24 @@ SceneGpu::SceneGpu(const Scene& scene) {
                 break;
             }
         const GLuint vao = gm.vao.id();
-        glVertexArrayVertexBuffer(vao, 0, gm.vertices.id(), 0, sizeof(Vertex));
+        glVertexArrayVertexBuffer(vao, 0, gm.vertices.id(), 0, sizeof(GpuVertex));
         glVertexArrayElementBuffer(vao, gm.indices.id());
         auto attrib = [vao](GLuint loc, GLint n, size_t offset) {
             glEnableVertexArrayAttrib(vao, loc);
             glVertexArrayAttribFormat(vao, loc, n, GL_FLOAT, GL_FALSE, GLuint(offset));
             glVertexArrayAttribBinding(vao, loc, 0);
         };
-        attrib(0, 3, offsetof(Vertex, position));
-        attrib(1, 3, offsetof(Vertex, normal));
-        attrib(2, 2, offsetof(Vertex, uv));
-        attrib(3, 4, offsetof(Vertex, tangent));
-        attrib(4, 4, offsetof(Vertex, color));
+        attrib(0, 3, offsetof(GpuVertex, position));
+        attrib(1, 3, offsetof(GpuVertex, normal));
+        attrib(2, 2, offsetof(GpuVertex, uv));
+        attrib(3, 4, offsetof(GpuVertex, tangent));
+        attrib(4, 4, offsetof(GpuVertex, color));
+        if (gm.uv1.id() != 0) {  // without it attribute 5 reads (0, 0): no material of the mesh samples it
+            glVertexArrayVertexBuffer(vao, 1, gm.uv1.id(), 0, sizeof(glm::vec2));
+            glEnableVertexArrayAttrib(vao, 5);
+            glVertexArrayAttribFormat(vao, 5, 2, GL_FLOAT, GL_FALSE, 0);
+            glVertexArrayAttribBinding(vao, 5, 1);
+        }
 
         const int base = int(materials.size());
         for (const auto& m : mesh.materials) {
@@ -117,6 +137,12 @@ SceneGpu::SceneGpu(const Scene& scene) {
             if (!m.metallicRoughnessMap.empty()) g.metallicRoughnessMap = texture(m.metallicRoughnessMap, false);
             if (!m.occlusionMap.empty()) g.occlusionMap = texture(m.occlusionMap, false);
             if (!m.emissiveMap.empty()) g.emissiveMap = texture(m.emissiveMap, true);
+            const std::pair<const TextureRef*, MaterialMapBit> maps[] = {
+                {&m.diffuseMap, kDiffuseMapBit},         {&m.bumpMap, kBumpMapBit},           {&m.normalMap, kNormalMapBit},
+                {&m.metallicRoughnessMap, kMetalRoughMapBit}, {&m.occlusionMap, kOcclusionMapBit}, {&m.emissiveMap, kEmissiveMapBit}};
+            for (const auto& [map, bit] : maps)
+                if (!map->empty() && map->uvSet == 1) g.secondUvMaps |= bit;
+            secondUvSet |= g.secondUvMaps != 0;
             materials.push_back(g);
         }
         for (const auto& sm : mesh.subMeshes) {

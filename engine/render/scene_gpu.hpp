@@ -2,6 +2,8 @@
 // The scene's meshes, materials and textures on the GPU. Textures are shared by path, sRGB colour
 // maps are stored as SRGB8_ALPHA8 (so sampling returns linear values) with full mip chains, and a
 // missing texture becomes a visible checker with a warning.
+#include <cstddef>
+#include <cstdint>
 #include <map>
 #include <string>
 #include <vector>
@@ -13,6 +15,24 @@
 #include "engine/scene/scene.hpp"
 
 namespace lp {
+
+// A vertex in the GPU's vertex buffers: lp::Vertex up to its second uv set, which a mesh whose
+// materials sample it keeps in a buffer of its own (GpuMesh::uv1). 64 bytes: the visibility resolve
+// reads it as four vec4.
+struct GpuVertex {
+    glm::vec3 position;
+    glm::vec3 normal;
+    glm::vec2 uv;
+    glm::vec4 tangent;
+    glm::vec4 color;
+};
+static_assert(sizeof(GpuVertex) == offsetof(Vertex, uv1), "GpuVertex is lp::Vertex up to uv1");
+
+// Which of a material's maps read the second uv set (GpuMaterial::secondUvMaps): the order of the
+// texture units (shaders/common/material.glsl), the emissive map last.
+enum MaterialMapBit : uint32_t {
+    kDiffuseMapBit = 1, kBumpMapBit = 2, kNormalMapBit = 4, kMetalRoughMapBit = 8, kOcclusionMapBit = 16, kEmissiveMapBit = 32
+};
 
 struct GpuMaterial {
     glm::vec3 diffuse{0.8f};  // base colour
@@ -31,6 +51,7 @@ struct GpuMaterial {
     GLuint occlusionMap = 0;
     float occlusionStrength = 1.0f;
     GLuint emissiveMap = 0;
+    uint32_t secondUvMaps = 0;  // MaterialMapBit of each map sampled with the second uv set (TEXCOORD_1)
     bool alphaMask = false;
     bool alphaBlend = false;  // BLEND / MTL d < 1: drawn by the transparent pass, not into the G-buffer
     float alphaCutoff = 0.5f;
@@ -52,6 +73,7 @@ struct GpuMesh {
     gl::VertexArray vao;
     gl::Buffer vertices;
     gl::Buffer indices;
+    gl::Buffer uv1;  // the second uv set, a vec2 a vertex (attribute 5), where its materials sample it; else none
     glm::mat4 model{1.0f};
     std::vector<GpuDraw> draws;
 };
@@ -66,6 +88,7 @@ public:
     size_t textureBytes = 0;
     size_t triangleCount = 0;
     bool vertexColors = false;  // some vertex has a colour other than white (the G-buffer programs read them: LP_VERTEX_COLOR)
+    bool secondUvSet = false;   // some material samples TEXCOORD_1 (the programs read it: LP_SECOND_UV)
 
 private:
     GLuint texture(const TextureRef& ref, bool srgb);

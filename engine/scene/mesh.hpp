@@ -2,6 +2,7 @@
 // CPU-side mesh and material data, as loaded from OBJ/MTL or glTF or made by the primitive generators.
 #include <cstdint>
 #include <filesystem>
+#include <initializer_list>
 #include <memory>
 #include <string>
 #include <vector>
@@ -17,6 +18,10 @@ struct Vertex {
     glm::vec4 tangent{1.0f, 0.0f, 0.0f, 1.0f};  // xyz tangent, w = handedness (+1/-1) for the bitangent
     // Linear RGBA multiplying the material's base colour and alpha (glTF COLOR_0); white: none.
     glm::vec4 color{1.0f};
+    // The second uv set (glTF TEXCOORD_1), read by the textures whose uvSet is 1. Last, so that the
+    // GPU's vertex buffer is the 64 bytes before it (lp::GpuVertex); it travels in a second buffer,
+    // and only for the meshes that sample it.
+    glm::vec2 uv1{0.0f};
 };
 
 // How a texture is sampled: a glTF sampler's wraps and filters, as glTF writes them (OpenGL's enum
@@ -37,6 +42,7 @@ struct TextureRef {
     std::shared_ptr<const std::string> encoded;
     std::string key;
     TextureSampler sampler;
+    int uvSet = 0;  // the uv set it is sampled with: 0 (Vertex::uv, TEXCOORD_0) or 1 (Vertex::uv1, TEXCOORD_1)
     bool empty() const { return path.empty() && !encoded; }
     void clear() { *this = TextureRef{}; }
     static TextureRef file(const std::filesystem::path& p) {
@@ -79,6 +85,12 @@ struct Material {
     bool doubleSided = true;          // MTL: always (thin walls); glTF: doubleSided
     // Flat-lit (seed 003): shown as its diffuse colour, untouched by any light (lamps, light globes).
     bool flat = false;
+    // Whether a texture of it is sampled with the second uv set (Vertex::uv1).
+    bool samplesUv1() const {
+        for (const TextureRef* t : {&diffuseMap, &metallicRoughnessMap, &normalMap, &bumpMap, &occlusionMap, &emissiveMap})
+            if (!t->empty() && t->uvSet == 1) return true;
+        return false;
+    }
 };
 
 // Smallest perceptual roughness a material can have (GGX alpha = r^2 = 4e-4). The G-buffer's

@@ -8,12 +8,17 @@
 #include "common/brdf.glsl"
 #include "common/normal_map.glsl"
 #include "common/ibl.glsl"
+#include "common/uv_sets.glsl"
 
 #define LP_MATERIAL_BIND_DIFFUSE 0
 #define LP_MATERIAL_BIND_BUMP 1
 #define LP_MATERIAL_BIND_NORMAL 2
 #define LP_MATERIAL_BIND_METAL_ROUGH 3
 #define LP_MATERIAL_BIND_OCCLUSION 4
+
+// The maps' bits in MaterialInputs.secondUvMaps (lp::MaterialMapBit): which read the second uv set.
+const uint LP_MAP_DIFFUSE = 1u, LP_MAP_BUMP = 2u, LP_MAP_NORMAL = 4u, LP_MAP_METAL_ROUGH = 8u, LP_MAP_OCCLUSION = 16u,
+           LP_MAP_EMISSIVE = 32u;
 
 layout(binding = LP_MATERIAL_BIND_DIFFUSE) uniform sampler2D uDiffuseMap;        // sRGB: sampled as linear; alpha x opacity
 layout(binding = LP_MATERIAL_BIND_BUMP) uniform sampler2D uBumpMap;              // height in r
@@ -40,17 +45,22 @@ struct MaterialInputs {
     bool hasOcclusionMap;
     bool alphaMask;
     bool flatLit;  // flat-lit: diffuse alpha 0 tells the light passes to leave it alone
+    uint secondUvMaps;  // LP_MAP_* of the maps sampled with the second uv set (glTF texCoord 1)
 };
 
-// The interpolated vertex attributes at a pixel, eye space, and the uv footprint of the pixel.
+// The interpolated vertex attributes at a pixel, eye space, and its uv sets with their footprints.
 struct SurfaceInputs {
     vec3 normal;   // interpolated, not normalised
-    vec4 tangent;  // xyz interpolated, w handedness
-    vec2 uv;
-    vec2 uvDx;     // d uv / d window x
-    vec2 uvDy;     // d uv / d window y
+    vec4 tangent;  // xyz interpolated, w handedness (for the normal map's uv set)
+    UvSets uvs;
     bool frontFacing;
 };
+
+// Where map `bit` (LP_MAP_*) of material m samples.
+TexCoord materialTexCoord(MaterialInputs m, UvSets uvs, uint bit) {
+    return (m.secondUvMaps & bit) != 0u ? uvs.set1 : uvs.set0;
+}
+vec4 sampleMap(sampler2D map, TexCoord t) { return textureGrad(map, t.uv, t.dx, t.dy); }
 
 // What the G-buffer stores for the pixel.
 struct MaterialSample {
@@ -64,9 +74,9 @@ struct MaterialSample {
 
 // Base colour and alpha (the alpha test reads .a): the factor x the texture x the vertex colour
 // (glTF: baseColorFactor x baseColorTexture x COLOR_0).
-vec4 materialBaseColor(MaterialInputs m, vec2 uv, vec2 uvDx, vec2 uvDy, vec4 vertexColor) {
+vec4 materialBaseColor(MaterialInputs m, UvSets uvs, vec4 vertexColor) {
     vec4 base = vec4(m.diffuse, m.opacity) * vertexColor;
-    if (m.hasDiffuseMap) base *= textureGrad(uDiffuseMap, uv, uvDx, uvDy);
+    if (m.hasDiffuseMap) base *= sampleMap(uDiffuseMap, materialTexCoord(m, uvs, LP_MAP_DIFFUSE));
     return base;
 }
 
@@ -86,16 +96,17 @@ MaterialSample materialEvaluate(MaterialInputs m, vec4 base, SurfaceInputs s) {
     T = hasFrame ? T / tl : vec3(1.0, 0.0, 0.0);
     vec3 B = cross(N, T) * (s.tangent.w < 0.0 ? -1.0 : 1.0);
     if (m.hasNormalMap && hasFrame) {
-        vec3 t = textureGrad(uNormalMap, s.uv, s.uvDx, s.uvDy).xyz * 2.0 - 1.0;
+        vec3 t = sampleMap(uNormalMap, materialTexCoord(m, s.uvs, LP_MAP_NORMAL)).xyz * 2.0 - 1.0;
         N = normalMapNormal(N, T, B, t, m.normalScale);
     }
     if (m.hasBumpMap && hasFrame) {
         // Height map -> normal: central differences in texture space, bent along the tangent frame.
         vec2 texel = 1.0 / vec2(textureSize(uBumpMap, 0));
-        float hl = textureGrad(uBumpMap, s.uv - vec2(texel.x, 0), s.uvDx, s.uvDy).r;
-        float hr = textureGrad(uBumpMap, s.uv + vec2(texel.x, 0), s.uvDx, s.uvDy).r;
-        float hd = textureGrad(uBumpMap, s.uv - vec2(0, texel.y), s.uvDx, s.uvDy).r;
-        float hu = textureGrad(uBumpMap, s.uv + vec2(0, texel.y), s.uvDx, s.uvDy).r;
+        TexCoord c = materialTexCoord(m, s.uvs, LP_MAP_BUMP);
+        float hl = textureGrad(uBumpMap, c.uv - vec2(texel.x, 0), c.dx, c.dy).r;
+        float hr = textureGrad(uBumpMap, c.uv + vec2(texel.x, 0), c.dx, c.dy).r;
+        float hd = textureGrad(uBumpMap, c.uv - vec2(0, texel.y), c.dx, c.dy).r;
+        float hu = textureGrad(uBumpMap, c.uv + vec2(0, texel.y), c.dx, c.dy).r;
         vec3 bent = N - m.bumpScale * 4.0 * ((hr - hl) * T + (hu - hd) * B);
         float bl = length(bent);
         if (bl > 1e-20) N = bent / bl;
@@ -104,7 +115,7 @@ MaterialSample materialEvaluate(MaterialInputs m, vec4 base, SurfaceInputs s) {
     // Up to the IBL's roughness floor (0.02); the analytic BRDFs clamp to 10000 themselves.
     float shininess = clamp(m.shininess, 0.0, LP_IBL_MAX_SHININESS);
     if (m.hasMetalRoughMap) {
-        vec4 mr = textureGrad(uMetalRoughMap, s.uv, s.uvDx, s.uvDy);
+        vec4 mr = sampleMap(uMetalRoughMap, materialTexCoord(m, s.uvs, LP_MAP_METAL_ROUGH));
         metallic = clamp(metallic * mr.b, 0.0, 1.0);
         shininess = shininessFromRoughnessToFloor(m.roughness * mr.g);
     }
@@ -116,7 +127,8 @@ MaterialSample materialEvaluate(MaterialInputs m, vec4 base, SurfaceInputs s) {
     o.shininess = shininess;
     o.occlusion = 1.0;
     if (m.hasOcclusionMap)
-        o.occlusion = mix(1.0, textureGrad(uOcclusionMap, s.uv, s.uvDx, s.uvDy).r, clamp(m.occlusionStrength, 0.0, 1.0));
+        o.occlusion = mix(1.0, sampleMap(uOcclusionMap, materialTexCoord(m, s.uvs, LP_MAP_OCCLUSION)).r,
+                          clamp(m.occlusionStrength, 0.0, 1.0));
     vec3 Tn = s.tangent.xyz - N * dot(N, s.tangent.xyz);
     float tn = length(Tn);
     o.tangentView = vec4(tn > 1e-20 ? Tn / tn * 0.5 + 0.5 : vec3(0.5), s.tangent.w < 0.0 ? 0.0 : 1.0);

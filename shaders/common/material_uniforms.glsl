@@ -23,11 +23,12 @@ uniform bool uDoubleSided;   // single-sided: back faces are not drawn
 uniform bool uFlat;          // flat-lit material: shown as its diffuse colour, untouched by light
 uniform bool uHasBumpMap;
 uniform float uBumpScale;
+uniform uint uSecondUvMaps;  // LP_MAP_* of the maps sampled with the second uv set
 
 MaterialInputs materialFromUniforms() {
     return MaterialInputs(uDiffuse, uOpacity, uSpecular, uMetallic, uShininess, uRoughness, uBumpScale, uNormalScale,
                           uOcclusionStrength, uAlphaCutoff, uHasDiffuseMap, uHasBumpMap, uHasNormalMap,
-                          uHasMetalRoughMap, uHasOcclusionMap, uAlphaMask, uFlat);
+                          uHasMetalRoughMap, uHasOcclusionMap, uAlphaMask, uFlat, uSecondUvMaps);
 }
 
 // The surface the forward passes shade.
@@ -41,17 +42,17 @@ struct LpSurface {
 };
 
 // Whether the fragment is dropped: a back face of a single-sided material, or MASK below the cutoff.
-// uvDx, uvDy: the uv derivatives, taken before any discard (they need the whole quad).
-bool lpMaterialDiscards(vec2 uv, vec2 uvDx, vec2 uvDy, vec4 vertexColor, bool frontFacing) {
+// uvs: with their derivatives, taken before any discard (they need the whole quad).
+bool lpMaterialDiscards(UvSets uvs, vec4 vertexColor, bool frontFacing) {
     if (!uDoubleSided && !frontFacing) return true;
     MaterialInputs m = materialFromUniforms();
-    return materialAlphaRejects(m, materialBaseColor(m, uv, uvDx, uvDy, vertexColor));
+    return materialAlphaRejects(m, materialBaseColor(m, uvs, vertexColor));
 }
 
-LpSurface lpEvaluateSurface(vec3 normal, vec4 tangent, vec2 uv, vec2 uvDx, vec2 uvDy, vec4 vertexColor, bool frontFacing) {
+LpSurface lpEvaluateSurface(vec3 normal, vec4 tangent, UvSets uvs, vec4 vertexColor, bool frontFacing) {
     MaterialInputs m = materialFromUniforms();
-    vec4 base = materialBaseColor(m, uv, uvDx, uvDy, vertexColor);
-    MaterialSample g = materialEvaluate(m, base, SurfaceInputs(normal, tangent, uv, uvDx, uvDy, frontFacing));
+    vec4 base = materialBaseColor(m, uvs, vertexColor);
+    MaterialSample g = materialEvaluate(m, base, SurfaceInputs(normal, tangent, uvs, frontFacing));
     LpSurface s;
     s.N = g.normal;
     s.kd = g.kd;

@@ -322,6 +322,68 @@ TEST_P(GltfRender, VertexColoursMultiplyTheBaseColourAndAlpha) {
     }
 }
 
+// A second uv set (glTF TEXCOORD_1) is read by exactly the maps that ask for it, in every path: a
+// quad whose first set holds u = 0.125 everywhere and whose second runs u1 = 0..1 across it, with a
+// 4 x 1 texture (nearest) black on its left half and white on its right. On set 0 every map reads
+// black; on set 1 the left half (u1 0.25) black and the right (u1 0.75) white. Lit by ambient 1
+// alone, the radiance is base x occlusion, plus the emission: base colour, occlusion, emissive map,
+// MASK alpha (the visibility buffer's own alpha test) and BLEND alpha (the transparent pass) each
+// show the halves, on both render paths.
+TEST_P(GltfRender, SecondUvSetIsSampledByTheMapsThatAskForIt) {
+    Scene s = facingQuadScene([](Vertex& v, glm::vec2 c) {
+        v.uv = {0.125f, 0.5f};
+        v.uv1 = {0.5f * (c.x + 1.0f), 0.5f};
+    });
+    const Image8 halves{4, 1, {0, 0, 0, 0, 0, 0, 0, 0, 255, 255, 255, 255, 255, 255, 255, 255}};
+    TextureRef map;
+    map.encoded = std::make_shared<const std::string>(encodePng(halves));
+    map.key = "halves.png";
+    map.sampler.magFilter = 9728;  // GL_NEAREST
+    map.uvSet = 1;
+    EXPECT_FALSE(SceneGpu(s).secondUvSet) << "no map on set 1: the programs are compiled without it";
+    const Material plain = s.models[0].mesh.materials[0];
+    auto redAt = [&](const Material& m, RenderPath path) {
+        s.models[0].mesh.materials[0] = m;
+        std::vector<float> red;
+        for (const glm::vec3 c : radianceAtPoints(s, GetParam(), {{-0.5f, 0.0f}, {0.5f, 0.0f}}, path)) red.push_back(c.x);
+        return red;
+    };
+    std::vector<std::pair<std::string, Material>> cases;
+    Material base = plain;
+    base.diffuseMap = map;
+    cases.emplace_back("base colour", base);
+    Material occlusion = plain;
+    occlusion.occlusionMap = map;
+    cases.emplace_back("occlusion", occlusion);
+    Material emissive = plain;
+    emissive.diffuse = glm::vec3(0.0f);
+    emissive.emission = glm::vec3(1.0f);
+    emissive.emissiveMap = map;
+    cases.emplace_back("emission", emissive);
+    Material masked = plain;
+    masked.diffuseMap = map;  // its alpha is 0 on the left: cut away, and the black sky shows
+    masked.alphaMode = AlphaMode::Mask;
+    cases.emplace_back("MASK", masked);
+    Material blended = masked;  // the transparent pass: alpha 0 shows the sky, alpha 1 the texel
+    blended.alphaMode = AlphaMode::Blend;
+    cases.emplace_back("BLEND", blended);
+    for (const RenderPath path : {RenderPath::Deferred, RenderPath::ForwardPlus})
+        for (auto& [what, m] : cases) {
+            SCOPED_TRACE(std::string(renderPathName(path)) + ", " + what);
+            s.models[0].mesh.materials[0] = m;
+            EXPECT_TRUE(SceneGpu(s).secondUvSet);
+            const std::vector<float> second = redAt(m, path);
+            // Black within 1/255: the deferred G-buffer keeps occlusion above 0 (0 marks flat-lit texels).
+            EXPECT_NEAR(second[0], 0.0f, 5e-3f) << "set 1, u1 0.25: black";
+            EXPECT_NEAR(second[1], 1.0f, 1e-2f) << "set 1, u1 0.75: white";
+            Material first = m;
+            for (TextureRef* t : {&first.diffuseMap, &first.occlusionMap, &first.emissiveMap}) t->uvSet = 0;
+            const std::vector<float> zero = redAt(first, path);
+            EXPECT_NEAR(zero[0], 0.0f, 5e-3f) << "set 0, u 0.125: black";
+            EXPECT_NEAR(zero[1], 0.0f, 5e-3f) << "set 0, u 0.125: black";
+        }
+}
+
 // Single-sided glTF materials are not drawn from behind; MTL (double-sided) ones are.
 TEST_P(GltfRender, SingleSidedMaterialsHideBackFaces) {
     Scene s = modelScene(loadGltf(dataPath("emissive.gltf")).mesh);

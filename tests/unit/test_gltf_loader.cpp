@@ -2,6 +2,7 @@
 // input (each error names the file and the element). Assets: tests/data/gltf (scripts/make_gltf_assets.py).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -283,7 +284,7 @@ TEST(GltfLoader, TextureTransformIsAppliedToTheUvs) {
     EXPECT_FALSE(scaled.generatedTangents);
 
     MeshLoadReport mixed;
-    nlohmann::json twoPrimitives = texturedQuad(tiled, nlohmann::json{{"texCoord", 1}});
+    nlohmann::json twoPrimitives = texturedQuad(tiled, nlohmann::json{{"offset", {0.5, 0}}});
     twoPrimitives["meshes"][0]["primitives"].push_back(twoPrimitives["meshes"][0]["primitives"][0]);
     const MeshData c = loadGltf(t.write("mixed.gltf", twoPrimitives.dump()), &mixed).mesh;
     EXPECT_NEAR(c.vertices[1].uv.x, 2.25f, 1e-6f);  // the base colour's transform
@@ -291,15 +292,98 @@ TEST(GltfLoader, TextureTransformIsAppliedToTheUvs) {
     int differs = 0;
     for (const auto& w : mixed.warnings) {
         all += w + "\n";
-        differs += w.find("materials[0].normalTexture: its KHR_texture_transform differs from pbrMetallicRoughness.baseColorTexture's") !=
-                   std::string::npos;
+        differs += w.find("materials[0].normalTexture: its KHR_texture_transform differs from pbrMetallicRoughness.baseColorTexture's, "
+                          "which is applied to every texture of the material on TEXCOORD_0") != std::string::npos;
     }
     EXPECT_EQ(differs, 1) << "once per material, not per primitive:\n" << all;
-    EXPECT_NE(all.find("materials[0].normalTexture.extensions.KHR_texture_transform: texCoord 1: only TEXCOORD_0 is read"), std::string::npos)
-        << all;
     nlohmann::json bad = texturedQuad(nlohmann::json{{"scale", 2}}, nullptr);
     expectOneLineError(t.write("bad.gltf", bad.dump()),
                        "materials[0].pbrMetallicRoughness.baseColorTexture.extensions.KHR_texture_transform.scale: expected an array of 2 numbers, got 2");
+}
+
+// A second uv set (TEXCOORD_1): read for the textures whose texCoord, or whose transform's texCoord
+// (which overrides it), is 1, through that set's own transform; the tangents the loader makes follow
+// the normal map's set (MikkTSpace on TEXCOORD_1: here u1 runs along +Y, so the tangent is +Y where
+// TEXCOORD_0 would give +X). A primitive without TEXCOORD_1 whose material samples it reads
+// TEXCOORD_0 there, warned; TEXCOORD_2 and up read TEXCOORD_0, warned.
+TEST(GltfLoader, SecondUvSetIsReadByTheTexturesThatAskForIt) {
+    TempDir t;
+    const float glTFuv[4][2] = {{0, 1}, {1, 1}, {0, 0}, {1, 0}};
+    const float glTFuv1[4][2] = {{0, 0}, {0, 1}, {1, 0}, {1, 1}};  // at (0,0) (1,0) (0,1) (1,1): u1 = y, v1 = x
+    auto withSecondSet = [&](nlohmann::json d) {
+        const std::string bytes(reinterpret_cast<const char*>(glTFuv1), sizeof glTFuv1);
+        d["buffers"].push_back({{"byteLength", bytes.size()}, {"uri", "data:application/octet-stream;base64," + base64(bytes)}});
+        d["bufferViews"].push_back({{"buffer", 1}, {"byteOffset", 0}, {"byteLength", bytes.size()}});
+        d["accessors"].push_back({{"bufferView", d["bufferViews"].size() - 1}, {"componentType", 5126}, {"count", 4}, {"type", "VEC2"}});
+        d["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_1"] = d["accessors"].size() - 1;
+        d["meshes"][0]["primitives"][0]["attributes"].erase("TANGENT");
+        return d;
+    };
+    // Base colour on set 0; normal map on set 1 (texCoord); emission on set 1 through its transform's
+    // texCoord, scaled by 2; occlusion asks for TEXCOORD_2.
+    nlohmann::json d = withSecondSet(texturedQuad(nullptr, nullptr));
+    d["materials"][0]["normalTexture"]["texCoord"] = 1;
+    d["materials"][0]["emissiveTexture"] = {{"index", 0}, {"extensions", {{"KHR_texture_transform", {{"texCoord", 1}}}}}};
+    d["materials"][0]["occlusionTexture"] = {{"index", 0}, {"texCoord", 2}};
+    MeshLoadReport report;
+    const MeshData m = loadGltf(t.write("second.gltf", d.dump()), &report).mesh;
+    ASSERT_EQ(m.vertices.size(), 4u);
+    ASSERT_EQ(m.materials.size(), 1u);
+    const Material& mat = m.materials[0];
+    EXPECT_EQ(mat.diffuseMap.uvSet, 0);
+    EXPECT_EQ(mat.normalMap.uvSet, 1);
+    EXPECT_EQ(mat.emissiveMap.uvSet, 1);
+    EXPECT_EQ(mat.occlusionMap.uvSet, 0);
+    EXPECT_TRUE(mat.samplesUv1());
+    for (size_t i = 0; i < 4; ++i) {
+        EXPECT_EQ(m.vertices[i].uv, glm::vec2(glTFuv[i][0], 1.0f - glTFuv[i][1])) << i;
+        EXPECT_EQ(m.vertices[i].uv1, glm::vec2(glTFuv1[i][0], 1.0f - glTFuv1[i][1])) << i;
+        EXPECT_NEAR(glm::distance(glm::vec3(m.vertices[i].tangent), glm::vec3(0, 1, 0)), 0.0f, 1e-5f) << "the tangent follows u1, " << i;
+        // The bitangent cross(N, T) w points up set 1's image: +v1 (after the flip) is -X.
+        EXPECT_GT(glm::dot(glm::cross(m.vertices[i].normal, glm::vec3(m.vertices[i].tangent)) * m.vertices[i].tangent.w, glm::vec3(-1, 0, 0)),
+                  0.99f) << i;
+    }
+    // The warnings besides the one of the texture's image, which is not there.
+    auto uvWarnings = [](const MeshLoadReport& r) {
+        std::string all;
+        for (const auto& w : r.warnings)
+            if (w.find("missing.png") == std::string::npos) all += w + "\n";
+        return all;
+    };
+    const std::string all = uvWarnings(report);
+    EXPECT_NE(all.find("materials[0].occlusionTexture: uses TEXCOORD_2; only TEXCOORD_0 and TEXCOORD_1 are read, so it reads TEXCOORD_0"),
+              std::string::npos) << all;
+    EXPECT_EQ(std::count(all.begin(), all.end(), '\n'), 1) << all;
+
+    // Set 1 has a transform of its own: the emission's scale 2 (with the normal map back on set 0, the
+    // emission is set 1's only texture).
+    d["materials"][0]["normalTexture"].erase("texCoord");
+    d["materials"][0]["emissiveTexture"]["extensions"]["KHR_texture_transform"]["scale"] = {2, 2};
+    d["materials"][0].erase("occlusionTexture");
+    MeshLoadReport scaled;
+    const MeshData s2 = loadGltf(t.write("scaled.gltf", d.dump()), &scaled).mesh;
+    for (size_t i = 0; i < s2.vertices.size() && i < 4; ++i) {
+        EXPECT_EQ(s2.vertices[i].uv1, glm::vec2(2.0f * glTFuv1[i][0], 1.0f - 2.0f * glTFuv1[i][1])) << i;
+        EXPECT_EQ(s2.vertices[i].uv, glm::vec2(glTFuv[i][0], 1.0f - glTFuv[i][1])) << "set 0 keeps no transform, " << i;
+        EXPECT_NEAR(glm::distance(glm::vec3(s2.vertices[i].tangent), glm::vec3(1, 0, 0)), 0.0f, 1e-5f) << "the normal map is on set 0, " << i;
+    }
+    EXPECT_EQ(uvWarnings(scaled), "");
+
+    // No TEXCOORD_1 on the primitive: its textures on set 1 read TEXCOORD_0 (through set 1's transform).
+    d["meshes"][0]["primitives"][0]["attributes"].erase("TEXCOORD_1");
+    MeshLoadReport missing;
+    const MeshData n = loadGltf(t.write("missing.gltf", d.dump()), &missing).mesh;
+    for (size_t i = 0; i < n.vertices.size() && i < 4; ++i)
+        EXPECT_EQ(n.vertices[i].uv1, glm::vec2(2.0f * glTFuv[i][0], 1.0f - 2.0f * glTFuv[i][1])) << i;
+    const std::string missingWarnings = uvWarnings(missing);
+    EXPECT_EQ(std::count(missingWarnings.begin(), missingWarnings.end(), '\n'), 1) << missingWarnings;
+    EXPECT_NE(missingWarnings.find("meshes[0].primitives[0].attributes: has no TEXCOORD_1, which materials[0] samples; those "
+                                   "textures read TEXCOORD_0"), std::string::npos) << missingWarnings;
+
+    // Without a texture on set 1, TEXCOORD_1 is not read: every uv1 stays 0.
+    const MeshData plain = loadGltf(t.write("plain.gltf", withSecondSet(texturedQuad(nullptr, nullptr)).dump())).mesh;
+    EXPECT_FALSE(plain.materials[0].samplesUv1());
+    for (const Vertex& v : plain.vertices) EXPECT_EQ(v.uv1, glm::vec2(0.0f));
 }
 
 // KHR_mesh_quantization (gltfpack's output): u16 positions scaled back by the node, i8 normalised

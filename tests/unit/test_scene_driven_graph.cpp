@@ -573,7 +573,7 @@ TEST(SceneDrivenGraph, GBufferModeAutoFallsBackWhereTheVisibilityBufferCannotHol
     const Scene& scene = bundledScene("cornell");
     uint64_t vertexBytes = 0, indexBytes = 0;
     for (const ModelInstance& m : scene.models) {
-        vertexBytes += m.mesh.vertices.size() * sizeof(Vertex);
+        vertexBytes += m.mesh.vertices.size() * sizeof(GpuVertex);
         indexBytes += m.mesh.indices.size() * sizeof(uint32_t);
     }
     ASSERT_GT(vertexBytes, indexBytes);

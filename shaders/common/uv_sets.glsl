@@ -1,0 +1,17 @@
+// A pixel's texture coordinates: the two uv sets (glTF TEXCOORD_0 and TEXCOORD_1), each with its
+// footprint, the derivatives every material sample passes to textureGrad.
+#ifndef LP_UV_SETS_GLSL
+#define LP_UV_SETS_GLSL
+
+struct TexCoord {
+    vec2 uv;
+    vec2 dx;  // d uv / d window x
+    vec2 dy;  // d uv / d window y
+};
+
+struct UvSets {
+    TexCoord set0;  // TEXCOORD_0 (lp::Vertex::uv)
+    TexCoord set1;  // TEXCOORD_1 (lp::Vertex::uv1): read by the maps a material's secondUvMaps names
+};
+
+#endif
