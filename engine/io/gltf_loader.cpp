@@ -639,10 +639,10 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
         const bool hasNormals = optional("NORMAL", {TINYGLTF_TYPE_VEC3}, directionTypes, nrm);
         const bool hasUv = optional("TEXCOORD_0", {TINYGLTF_TYPE_VEC2}, uvTypes, uv);
         // TEXCOORD_1, read when the material samples it; where the primitive lacks it (the file is
-        // then invalid) its textures read TEXCOORD_0.
+        // then invalid) its textures read TEXCOORD_0, said once per material.
         const Loader::MaterialUvSets uvSets = L.materialUvSets(prim.material);
         const bool hasUv1 = uvSets.reads[1] && optional("TEXCOORD_1", {TINYGLTF_TYPE_VEC2}, uvTypes, uv1);
-        if (uvSets.reads[1] && !hasUv1)
+        if (uvSets.reads[1] && !hasUv1 && notedOnce("no TEXCOORD_1 for materials[" + std::to_string(prim.material) + "]"))
             L.warn(w + ".attributes", "has no TEXCOORD_1, which materials[" + std::to_string(prim.material) +
                                           "] samples; those textures read TEXCOORD_0");
         // COLOR_0: linear RGB or RGBA multiplying the base colour; float, or normalised unsigned bytes
