@@ -23,14 +23,14 @@ struct MaterialRecord {
     glm::vec4 diffuseOpacity, specularMetallic, shininessRoughnessBumpNormal, occlusionCutoff;
     glm::uvec4 flags;
 };
-enum MaterialFlag : uint32_t {
-    DiffuseMap = 1, BumpMap = 2, NormalMap = 4, MetalRoughMap = 8, OcclusionMap = 16, AlphaMask = 32, Flat = 64
-};
-constexpr uint32_t kAnyMap = 31;
+// The maps the resolve samples as their MaterialMapBit (the emissive map is the emission pass's), and
+// two more bits above them.
+enum MaterialFlag : uint32_t { AlphaMask = 64, Flat = 128 };
+constexpr uint32_t kAnyMap = kDiffuseMapBit | kBumpMapBit | kNormalMapBit | kMetalRoughMapBit | kOcclusionMapBit;
 
 uint32_t materialFlags(const GpuMaterial& m) {
-    return (m.diffuseMap ? DiffuseMap : 0u) | (m.bumpMap ? BumpMap : 0u) | (m.normalMap ? NormalMap : 0u) |
-           (m.metallicRoughnessMap ? MetalRoughMap : 0u) | (m.occlusionMap ? OcclusionMap : 0u) |
+    return (m.diffuseMap ? kDiffuseMapBit : 0u) | (m.bumpMap ? kBumpMapBit : 0u) | (m.normalMap ? kNormalMapBit : 0u) |
+           (m.metallicRoughnessMap ? kMetalRoughMapBit : 0u) | (m.occlusionMap ? kOcclusionMapBit : 0u) |
            (m.alphaMask ? AlphaMask : 0u) | (m.flat ? Flat : 0u);
 }
 

@@ -16,7 +16,7 @@ uniform bool uHasDiffuseMap;
 uniform bool uAlphaMask;
 uniform float uAlphaCutoff;
 uniform bool uDoubleSided;
-uniform uint uSecondUvMaps;  // bit 1: the diffuse map, 32: the emissive map read the second uv set (lp::MaterialMapBit)
+uniform uint uSecondUvMaps;  // LP_MAP_* of the maps sampled with the second uv set
 layout(binding = 0) uniform sampler2D uDiffuseMap;   // sRGB: its alpha decides MASK
 layout(binding = 1) uniform sampler2D uEmissiveMap;  // sRGB: sampled as linear
 
@@ -25,9 +25,9 @@ layout(location = 0) out vec4 outHdr;
 void main() {
     if (!uDoubleSided && !gl_FrontFacing) discard;
     float alpha = uOpacity * vColor.a;
-    if (uHasDiffuseMap) alpha *= texture(uDiffuseMap, fragmentUv((uSecondUvMaps & 1u) != 0u)).a;
+    if (uHasDiffuseMap) alpha *= texture(uDiffuseMap, fragmentUv((uSecondUvMaps & LP_MAP_DIFFUSE) != 0u)).a;
     if (uAlphaMask && alpha < uAlphaCutoff) discard;
     vec3 e = max(uEmission, vec3(0.0));
-    if (uHasEmissiveMap) e *= texture(uEmissiveMap, fragmentUv((uSecondUvMaps & 32u) != 0u)).rgb;
+    if (uHasEmissiveMap) e *= texture(uEmissiveMap, fragmentUv((uSecondUvMaps & LP_MAP_EMISSIVE) != 0u)).rgb;
     outHdr = vec4(e, 0.0);
 }

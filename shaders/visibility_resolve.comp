@@ -58,11 +58,10 @@ struct MaterialRecord {
     vec4 specularMetallic;
     vec4 shininessRoughnessBumpNormal;  // shininess, roughness, bump scale, normal scale
     vec4 occlusionCutoff;               // occlusion strength, alpha cutoff
-    uvec4 flags;                        // x: LP_MATERIAL_* bits, y: LP_MAP_* of the maps on the second uv set
+    uvec4 flags;                        // x: LP_MAP_* of its maps and LP_MATERIAL_* bits, y: LP_MAP_* of the maps on the second uv set
 };
-const uint LP_MATERIAL_DIFFUSE_MAP = 1u, LP_MATERIAL_BUMP_MAP = 2u, LP_MATERIAL_NORMAL_MAP = 4u;
-const uint LP_MATERIAL_METAL_ROUGH_MAP = 8u, LP_MATERIAL_OCCLUSION_MAP = 16u, LP_MATERIAL_ALPHA_MASK = 32u;
-const uint LP_MATERIAL_FLAT = 64u, LP_MATERIAL_ANY_MAP = 31u;
+const uint LP_MATERIAL_ALPHA_MASK = 64u, LP_MATERIAL_FLAT = 128u;
+const uint LP_MATERIAL_ANY_MAP = LP_MAP_DIFFUSE | LP_MAP_BUMP | LP_MAP_NORMAL | LP_MAP_METAL_ROUGH | LP_MAP_OCCLUSION;
 
 layout(std430, binding = 0) readonly buffer Vertices { float vertices[]; };
 layout(std430, binding = 1) readonly buffer Indices { uint indices[]; };
@@ -196,9 +195,8 @@ MaterialInputs materialInputs(MaterialRecord r) {
     return MaterialInputs(r.diffuseOpacity.rgb, r.diffuseOpacity.a, r.specularMetallic.rgb, r.specularMetallic.a,
                           r.shininessRoughnessBumpNormal.x, r.shininessRoughnessBumpNormal.y,
                           r.shininessRoughnessBumpNormal.z, r.shininessRoughnessBumpNormal.w, r.occlusionCutoff.x,
-                          r.occlusionCutoff.y, (f & LP_MATERIAL_DIFFUSE_MAP) != 0u, (f & LP_MATERIAL_BUMP_MAP) != 0u,
-                          (f & LP_MATERIAL_NORMAL_MAP) != 0u, (f & LP_MATERIAL_METAL_ROUGH_MAP) != 0u,
-                          (f & LP_MATERIAL_OCCLUSION_MAP) != 0u, (f & LP_MATERIAL_ALPHA_MASK) != 0u,
+                          r.occlusionCutoff.y, (f & LP_MAP_DIFFUSE) != 0u, (f & LP_MAP_BUMP) != 0u,
+                          (f & LP_MAP_NORMAL) != 0u, (f & LP_MAP_METAL_ROUGH) != 0u, (f & LP_MAP_OCCLUSION) != 0u, (f & LP_MATERIAL_ALPHA_MASK) != 0u,
                           (f & LP_MATERIAL_FLAT) != 0u, r.flags.y);
 }
 

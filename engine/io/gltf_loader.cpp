@@ -265,6 +265,7 @@ struct Loader {
         }
         const int n = texCoordOf(texCoord, extensions);
         if (n > 1) warn(where, "uses TEXCOORD_" + std::to_string(n) + "; only TEXCOORD_0 and TEXCOORD_1 are read, so it reads TEXCOORD_0");
+        const int uvSet = uvSetOf(texCoord, extensions);
         const tinygltf::Texture& t = model.textures[size_t(textureIndex)];
         const std::string iw = "textures[" + std::to_string(textureIndex) + "]";
         if (t.source < 0 || size_t(t.source) >= model.images.size()) {
@@ -272,13 +273,13 @@ struct Loader {
             TextureRef r;
             r.encoded = std::make_shared<const std::string>();  // decodes to the checker, with a warning
             r.key = file + "#" + iw;
-            r.uvSet = uvSetOf(texCoord, extensions);
+            r.uvSet = uvSet;
             return r;
         }
         const tinygltf::Image& image = model.images[size_t(t.source)];
         TextureRef r = imageTexture(image, t.source);
         r.sampler = sampler(t.sampler, iw);
-        r.uvSet = uvSetOf(texCoord, extensions);
+        r.uvSet = uvSet;
         return r;
     }
 
@@ -390,11 +391,11 @@ struct Loader {
             {"occlusionTexture", m.occlusionTexture.index, m.occlusionTexture.texCoord, &m.occlusionTexture.extensions},
             {"emissiveTexture", m.emissiveTexture.index, m.emissiveTexture.texCoord, &m.emissiveTexture.extensions}};
         MaterialUvSets out;
+        if (m.normalTexture.index >= 0) out.normalSet = uvSetOf(m.normalTexture.texCoord, m.normalTexture.extensions);
         std::string firstName[2];
         for (const Slot& texture : textures) {
             if (texture.index < 0) continue;
             const int set = uvSetOf(texture.texCoord, *texture.extensions);
-            if (texture.extensions == &m.normalTexture.extensions) out.normalSet = set;
             const UvTransform t = uvTransform(*texture.extensions, w + "." + texture.name);
             if (!out.reads[set]) {
                 out.reads[set] = true;

@@ -137,11 +137,7 @@ SceneGpu::SceneGpu(const Scene& scene) {
             if (!m.metallicRoughnessMap.empty()) g.metallicRoughnessMap = texture(m.metallicRoughnessMap, false);
             if (!m.occlusionMap.empty()) g.occlusionMap = texture(m.occlusionMap, false);
             if (!m.emissiveMap.empty()) g.emissiveMap = texture(m.emissiveMap, true);
-            const std::pair<const TextureRef*, MaterialMapBit> maps[] = {
-                {&m.diffuseMap, kDiffuseMapBit},         {&m.bumpMap, kBumpMapBit},           {&m.normalMap, kNormalMapBit},
-                {&m.metallicRoughnessMap, kMetalRoughMapBit}, {&m.occlusionMap, kOcclusionMapBit}, {&m.emissiveMap, kEmissiveMapBit}};
-            for (const auto& [map, bit] : maps)
-                if (!map->empty() && map->uvSet == 1) g.secondUvMaps |= bit;
+            g.secondUvMaps = m.secondUvMaps();
             secondUvSet |= g.secondUvMaps != 0;
             materials.push_back(g);
         }

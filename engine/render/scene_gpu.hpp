@@ -28,12 +28,6 @@ struct GpuVertex {
 };
 static_assert(sizeof(GpuVertex) == offsetof(Vertex, uv1), "GpuVertex is lp::Vertex up to uv1");
 
-// Which of a material's maps read the second uv set (GpuMaterial::secondUvMaps): the order of the
-// texture units (shaders/common/material.glsl), the emissive map last.
-enum MaterialMapBit : uint32_t {
-    kDiffuseMapBit = 1, kBumpMapBit = 2, kNormalMapBit = 4, kMetalRoughMapBit = 8, kOcclusionMapBit = 16, kEmissiveMapBit = 32
-};
-
 struct GpuMaterial {
     glm::vec3 diffuse{0.8f};  // base colour
     float opacity = 1.0f;
@@ -51,7 +45,7 @@ struct GpuMaterial {
     GLuint occlusionMap = 0;
     float occlusionStrength = 1.0f;
     GLuint emissiveMap = 0;
-    uint32_t secondUvMaps = 0;  // MaterialMapBit of each map sampled with the second uv set (TEXCOORD_1)
+    uint32_t secondUvMaps = 0;  // Material::secondUvMaps: the maps sampled with the second uv set (TEXCOORD_1)
     bool alphaMask = false;
     bool alphaBlend = false;  // BLEND / MTL d < 1: drawn by the transparent pass, not into the G-buffer
     float alphaCutoff = 0.5f;

@@ -2,9 +2,9 @@
 // CPU-side mesh and material data, as loaded from OBJ/MTL or glTF or made by the primitive generators.
 #include <cstdint>
 #include <filesystem>
-#include <initializer_list>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -55,6 +55,12 @@ struct TextureRef {
 
 enum class AlphaMode { Opaque, Mask, Blend };
 
+// A material's maps as bits, in the order of their texture units (shaders/common/material.glsl), the
+// emissive map last; the shaders' LP_MAP_* (common/uv_sets.glsl) are the same values.
+enum MaterialMapBit : uint32_t {
+    kDiffuseMapBit = 1, kBumpMapBit = 2, kNormalMapBit = 4, kMetalRoughMapBit = 8, kOcclusionMapBit = 16, kEmissiveMapBit = 32
+};
+
 // The one material model of both formats: metallic-roughness (glTF 2.0), with the dielectric F0
 // (`specular`) kept as a colour so that MTL's Ks maps onto it exactly. What the lights see per texel:
 //   kd = base (1 - metallic), F0 = mix(specular, base, metallic), GGX alpha = roughness^2,
@@ -85,12 +91,17 @@ struct Material {
     bool doubleSided = true;          // MTL: always (thin walls); glTF: doubleSided
     // Flat-lit (seed 003): shown as its diffuse colour, untouched by any light (lamps, light globes).
     bool flat = false;
-    // Whether a texture of it is sampled with the second uv set (Vertex::uv1).
-    bool samplesUv1() const {
-        for (const TextureRef* t : {&diffuseMap, &metallicRoughnessMap, &normalMap, &bumpMap, &occlusionMap, &emissiveMap})
-            if (!t->empty() && t->uvSet == 1) return true;
-        return false;
+    // The MaterialMapBit of each of its maps sampled with the second uv set (Vertex::uv1).
+    uint32_t secondUvMaps() const {
+        const std::pair<const TextureRef*, MaterialMapBit> maps[] = {
+            {&diffuseMap, kDiffuseMapBit},         {&bumpMap, kBumpMapBit},           {&normalMap, kNormalMapBit},
+            {&metallicRoughnessMap, kMetalRoughMapBit}, {&occlusionMap, kOcclusionMapBit}, {&emissiveMap, kEmissiveMapBit}};
+        uint32_t bits = 0;
+        for (const auto& [map, bit] : maps)
+            if (!map->empty() && map->uvSet == 1) bits |= bit;
+        return bits;
     }
+    bool samplesUv1() const { return secondUvMaps() != 0; }
 };
 
 // Smallest perceptual roughness a material can have (GGX alpha = r^2 = 4e-4). The G-buffer's

@@ -16,10 +16,6 @@
 #define LP_MATERIAL_BIND_METAL_ROUGH 3
 #define LP_MATERIAL_BIND_OCCLUSION 4
 
-// The maps' bits in MaterialInputs.secondUvMaps (lp::MaterialMapBit): which read the second uv set.
-const uint LP_MAP_DIFFUSE = 1u, LP_MAP_BUMP = 2u, LP_MAP_NORMAL = 4u, LP_MAP_METAL_ROUGH = 8u, LP_MAP_OCCLUSION = 16u,
-           LP_MAP_EMISSIVE = 32u;
-
 layout(binding = LP_MATERIAL_BIND_DIFFUSE) uniform sampler2D uDiffuseMap;        // sRGB: sampled as linear; alpha x opacity
 layout(binding = LP_MATERIAL_BIND_BUMP) uniform sampler2D uBumpMap;              // height in r
 layout(binding = LP_MATERIAL_BIND_NORMAL) uniform sampler2D uNormalMap;          // tangent-space normal, xyz * 0.5 + 0.5
