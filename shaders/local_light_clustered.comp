@@ -32,7 +32,7 @@
 // Tiles whose farthest pixel is at most this many times as far as their nearest shade as one froxel
 // (0: only tiles within one slice; 2 and 4 were slower on the H100, and so were tiles with up to 2 or 3
 // occupied slices, or consecutive ones: bench/results/lighting/clustered/variants_run7_*;
-// bench/lighting_clustered.sh's VARIANTS run sets it for its merge2, merge4 and tile_only variants).
+// docs/notes/clustered-kernel-variants.md has the merge variants' numbers).
 #ifndef LP_CLUSTER_MERGE_RATIO
 #define LP_CLUSTER_MERGE_RATIO 0.0
 #endif
