@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Before/after table of `lightpass bench` JSONs taken in one GPU session, interleaved A B A B.
+"""Before/after table of `lightpass bench` JSONs taken in one sitting on one GPU machine, interleaved A B A B.
 
   bench/compare_runs.py DIR NAME...   (DIR holds base1/ new1/ base2/ new2/ with NAME.json in each)
 

@@ -6,7 +6,7 @@ set -euo pipefail
 lp=${1:-build/app/lightpass}
 scene=${2:-scenes/cornell.json}
 frames=${3:-300}
-out=${4:-bench/results}
+out=${4:-bench/results/frame/$(date +%F)_frame-times}
 mkdir -p "$out"
 name=$(basename "$scene" .json)
 for size in 1920x1080 3840x2160; do

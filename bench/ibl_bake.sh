@@ -5,7 +5,7 @@
 # (run-base) where the bundle has one. Run from the repository root on the GPU machine:
 #   bench/ibl_bake.sh BUNDLE OUTDIR      (BUNDLE: run [, run-base], lib/)
 # Table: OUTDIR/ibl_bake.md (bake GPU ms per sample count, per build and map). The error side of the
-# trade (sphere means against Mitsuba per sample count) is in bench/results/mitsuba/samples_sweep.md.
+# trade (sphere means against Mitsuba per sample count) is in bench/results/mitsuba/2026-11-24_ibl-against-mitsuba/README.md.
 set -u
 B=$(cd "$1" && pwd); R=$2; mkdir -p $R
 nvidia-smi --query-gpu=name,driver_version --format=csv,noheader | tee $R/device.txt

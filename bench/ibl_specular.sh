@@ -4,7 +4,7 @@
 # "forward_opaque" (which evaluates the same IBL per fragment), at 1920x1080 and 3840x2160, for the
 # split sum and 4, 8, 16, 32, 64 samples. Scenes: gallery (IBL on every surface) and the Mitsuba
 # sphere grid under the 50,000 lamp (bench/mitsuba/scenes/lamp50k.json). The accuracy side of the
-# trade is bench/results/mitsuba/issue16/sampled_specular.md. From the repository root on the GPU machine:
+# trade is bench/results/mitsuba/2026-11-24_ibl-against-mitsuba/sampled_specular.md. From the repository root on the GPU machine:
 #   bench/ibl_specular.sh BUNDLE OUTDIR    (BUNDLE: run, gl_tests, lib/; the gallery needs ../shared/assets)
 # Writes OUTDIR/ibl_specular_<scene>.json (lightpass bench) and OUTDIR/ibl_specular.md (the table), and
 # for light extraction (0 or 4 sources lit analytically) OUTDIR/ibl_extract_<scene>.json and OUTDIR/ibl_extract.md.

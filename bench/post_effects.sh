@@ -10,7 +10,7 @@ set -euo pipefail
 lp=${1:-build/app/lightpass}
 scene=${2:-scenes/cornell.json}
 frames=${3:-200}
-out=${4:-bench/results/post}
+out=${4:-bench/results/post/$(date +%F)_bloom-toon}
 mkdir -p "$out"
 sizes="1920x1080 3840x2160"
 kernels="5 10 25 50 100"

@@ -8,7 +8,7 @@ lp=${1:-build/app/lightpass}
 size=${2:-1920x1080}
 frames=${3:-200}
 warmup=${4:-30}
-out=${5:-bench/results/scene_driven}
+out=${5:-bench/results/frame/$(date +%F)_scene-driven-graph}
 here=$(cd "$(dirname "$0")" && pwd)
 scenes="$here/../scenes"
 mkdir -p "$out"

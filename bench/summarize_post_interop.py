@@ -88,7 +88,7 @@ def tuning_table(path):
     print("\nMip chain, what each part buys (fused bloom + composite, kernel-only ms; x floor in brackets): default = as "
           "the passes run it; each other row changes one setting (README, MipChainTuning): no_tail = every level its own "
           "launches; tail_16k = levels up to 16384 texels in the one-block tail; no_overlap = no programmatic dependent "
-          "launches. The variants that lost in older runs (bench/results/post_interop/mip_chain/) were removed from the "
+          "launches. The variants that lost in older runs (bench/results/post/2026-11-24_cuda-interop/mip_chain/) were removed from the "
           "kernels after measurement:\n")
     cases = sorted(rows, key=lambda k: (int(k[0].split("x")[0]), k[1]))
     print("| variant | " + " | ".join(f"{size} k{kernel}" for size, kernel in cases) + " |")
@@ -236,4 +236,4 @@ def main(outdir):
 
 
 if __name__ == "__main__":
-    main(sys.argv[1] if len(sys.argv) > 1 else "bench/results/post_interop")
+    main(sys.argv[1] if len(sys.argv) > 1 else "bench/results/post/2026-11-24_cuda-interop")

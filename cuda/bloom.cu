@@ -699,7 +699,7 @@ bool launchTensorBlurChunks(In hdr, Out out, int width, int height, Weights w, i
     return true;
 }
 
-// Auto: the tensor cores from this radius up. On the H100 (bench/results/post_interop/README.md)
+// Auto: the tensor cores from this radius up. On the H100 (bench/results/post/2026-11-24_cuda-interop/README.md)
 // the direct blur was faster at kernel 50 and slower at 100 (fused in place, 1080p and 4K); its
 // time grows with the radius and the tensor-core blur's is flat within one instantiation (M = 8:
 // radius 41..56), so the two meet near kernel 85.

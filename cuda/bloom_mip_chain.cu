@@ -18,7 +18,7 @@
 //   queueing one after another.
 // - The first downsample's HDR reads are evict-first and its divisions __fdividef; downsample
 //   blocks make one output row a thread, upsample blocks two (512 threads).
-// This is the fastest layout measured on the H100 (bench/results/post_interop/README.md). The
+// This is the fastest layout measured on the H100 (bench/results/post/2026-11-24_cuda-interop/README.md). The
 // variants that lost there (wide kernel shapes, exact divisions, plain HDR reads, streamed final
 // accesses, up_0 in its own launch or from 4 x 4 taps, level 0 persisting in L2, a CUDA graph of the
 // launches) were removed after measurement; they are in this file at commit 99b0145. MipChainTuning

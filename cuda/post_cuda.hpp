@@ -105,7 +105,7 @@ bool bloomBlurUsesTensorCores(int kernel, BloomBlur blur);
 // How the mip-chain bloom (cuda/bloom_mip_chain.cu) runs; the defaults are what the passes use. Two
 // settings the passes' launches read anyway, so that the benchmark can measure what the one-block
 // tail and the overlapping launches buy and the tests cover the paths without them. (The variants
-// that lost on the H100 were removed from the kernels: bench/results/post_interop/README.md.)
+// that lost on the H100 were removed from the kernels: bench/results/post/2026-11-24_cuda-interop/README.md.)
 struct MipChainTuning {
     int tailTexels = 4096;          // levels of at most this many texels run down and up in one block (0: none)
     bool programmaticLaunch = true; // sm_90: launches overlap their predecessors' ends (on created streams)

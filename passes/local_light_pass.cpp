@@ -20,7 +20,7 @@ constexpr int kTileSize = 16;           // local_size of local_light_tiled.comp
 // with the tiled kernel: no tile then holds enough lights for its slices to save what they cost. On
 // the H100 the clustered kernel took 1.03-1.22x the tiled kernel's time at 1 and 16 lights on every
 // scene, and was faster from 256 lights on scenes whose tiles span depth
-// (bench/results/stop31/README.md).
+// (bench/results/lighting/2026-11-24_clustered-kernel-variants/README.md).
 constexpr int kClusteredMinLights = 32;
 constexpr float kGlobeScale = 0.04f;    // globe radius as a fraction of the light's range
 constexpr float kGlobeRadiance = 8.0f;  // flat radiance of a globe (brightest channel)
@@ -437,7 +437,7 @@ LocalLightRecords importLocalLightRecords(fg::FrameGraph& graph, LocalLightPass&
                                           const SpotShadowMaps& spotShadows) {
     LocalLightRecords r;
     // CPU work inside a pass's execute would sit inside its GPU timing window (the GPU idles there
-    // whenever it has caught up with the CPU: bench/results/lighting/cpu_in_pass), so made here.
+    // whenever it has caught up with the CPU: bench/results/lighting/2026-11-24_cpu-in-pass-timing), so made here.
     auto records = std::make_shared<std::vector<GpuLocalLight>>();
     makeLightRecords(frame, *frameLocalLights(frame), &spotShadows, *records);
     r.records = std::move(records);

@@ -136,7 +136,7 @@ bool PostBackend::cudaUsable(PostSettings::Backend requested, PostSettings::Cuda
                     interop->semaphoreProblem() + ")");
         } else {
             // auto: host waits leave the GPU idle inside the pass and measured slower than
-            // map/unmap on the H100 (bench/results/post_interop), so auto does not take them.
+            // map/unmap on the H100 (bench/results/post/2026-11-24_cuda-interop), so auto does not take them.
             const std::string semaphores = interop->semaphoreProblem();
             interop = std::make_unique<cuda::PostInterop>();
             interopPath_ = kInteropMap;

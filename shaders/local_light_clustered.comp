@@ -15,7 +15,7 @@
 // one froxel: its lights are exactly the tiled method's. The pass writes no froxel lists (nothing
 // reads them after it): light_clusters_tight.comp builds the same tight lists for the
 // lights-per-cluster view. Unbounded specular reaches every pixel: then every light is added.
-// Measured on the H100 and not kept (bench/results/lighting/clustered/README.md): sorting a tile's
+// Measured on the H100 and not kept (bench/results/lighting/2026-11-24_clustered-vs-tiled/README.md): sorting a tile's
 // pixels by slice so that a warp holds one or two slices (no gain: the shading left is BRDF work),
 // fewer values kept in registers, shared arrays sized for the grid's slices, more tiles shaded as one
 // froxel.
@@ -31,7 +31,7 @@
 #endif
 // Tiles whose farthest pixel is at most this many times as far as their nearest shade as one froxel
 // (0: only tiles within one slice; 2 and 4 were slower on the H100, and so were tiles with up to 2 or 3
-// occupied slices, or consecutive ones: bench/results/lighting/clustered/variants_run7_*;
+// occupied slices, or consecutive ones: bench/results/lighting/2026-11-24_clustered-vs-tiled/variants_run7_*;
 // docs/notes/clustered-kernel-variants.md has the merge variants' numbers).
 #ifndef LP_CLUSTER_MERGE_RATIO
 #define LP_CLUSTER_MERGE_RATIO 0.0

@@ -15,6 +15,7 @@ evaluate the same BRDF and the comparison isolates the visibility of the sky.
 Run through bench/mitsuba/run.sh cornell [flags] (it makes the Python environment).
 """
 import argparse
+import datetime
 import csv
 import json
 import math
@@ -182,7 +183,7 @@ def main():
     ap.add_argument("--size", default="256x256")
     ap.add_argument("--spp", type=int, default=512)
     ap.add_argument("--variant", default="scalar_rgb")
-    ap.add_argument("--out", default=str(REPO / "bench/results/mitsuba"))
+    ap.add_argument("--out", default=str(REPO / "bench/results/mitsuba" / f"{datetime.date.today().isoformat()}_cornell-ao"))
     ap.add_argument("--scenes", default=str(REPO / "bench/mitsuba/scenes"))
     ap.add_argument("--work", default="/tmp/lightpass-mitsuba")
     ap.add_argument("--mitsuba-only", action="store_true", help="render (and keep) the references, no lightpass")

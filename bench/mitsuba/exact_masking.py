@@ -15,6 +15,7 @@ radius) / core (N.V >= 0.7), RGB summed. Run (after run.sh left the 160x90, 128 
     $MITSUBA_VENV/bin/python bench/mitsuba/exact_masking.py [--work /tmp/lightpass-mitsuba] [--out FILE]
 """
 import argparse
+import datetime
 import math
 import sys
 from pathlib import Path
@@ -76,7 +77,7 @@ def main():
     ap.add_argument("--work", default="/tmp/lightpass-mitsuba", help="where ground_truth.py left the Mitsuba composites")
     ap.add_argument("--spp", type=int, default=128)
     ap.add_argument("--maps", nargs="*", default=list(MAPS), help=f"map names ({', '.join(MAPS)})")
-    ap.add_argument("--out", default=str(gt.REPO / "bench/results/mitsuba/issue16/exact_masking.md"))
+    ap.add_argument("--out", default=str(gt.REPO / "bench/results/mitsuba" / f"{datetime.date.today().isoformat()}_ibl-against-mitsuba" / "exact_masking.md"))
     args = ap.parse_args()
     gt.mi.set_variant("scalar_rgb")
     models = ["height-correlated", "separable"]

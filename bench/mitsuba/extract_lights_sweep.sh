@@ -5,13 +5,13 @@
 # 160x90, 128 spp, the Mitsuba composites reused from WORK (made once by bench/mitsuba/run.sh with the
 # same size/spp: copy them there, nothing is path traced again if they exist).
 #   MITSUBA_VENV=/work/venv-mitsuba bench/mitsuba/extract_lights_sweep.sh [WORK] [OUTDIR]
-# WORK defaults to /tmp/lightpass-mitsuba, OUTDIR to bench/results/mitsuba/issue16; LIGHTPASS=PATH
+# WORK defaults to /tmp/lightpass-mitsuba, OUTDIR to bench/results/mitsuba/<today>_ibl-against-mitsuba; LIGHTPASS=PATH
 # renders with another lightpass binary; KEEP=1 keeps configurations already in OUTDIR. Writes
 # OUTDIR/extract_<config>_spheres.csv per configuration and OUTDIR/extract_lights.md (the tables).
 set -euo pipefail
 repo="$(cd "$(dirname "$0")/../.." && pwd)"
 work="${1:-/tmp/lightpass-mitsuba}"
-out="${2:-$repo/bench/results/mitsuba/issue16}"
+out="${2:-$repo/bench/results/mitsuba/$(date +%F)_ibl-against-mitsuba}"
 cd "$repo"
 configs="off-split-sum on-split-sum off-sampled-64 on-sampled-64"
 for c in $configs; do

@@ -18,6 +18,7 @@ table (mean relative error over all plane pixels and over the pixels that reflec
 plane, and the errors against it go to grazing_plane_mitsuba.md.)
 """
 import argparse
+import datetime
 import json
 import math
 import subprocess
@@ -78,7 +79,7 @@ def main():
                     help="lightpass's Smith model (passed on as --specular-masking; the exact DFG uses it too)")
     ap.add_argument("--map-width", type=int, default=512, help="the map is halved to at most this width for the integral")
     ap.add_argument("--label", default="")
-    ap.add_argument("--out", default=str(REPO / "bench/results/mitsuba"))
+    ap.add_argument("--out", default=str(REPO / "bench/results/mitsuba" / f"{datetime.date.today().isoformat()}_grazing-plane"))
     ap.add_argument("--work", default="/tmp/lightpass-grazing")
     ap.add_argument("--mitsuba-spp", type=int, default=0,
                     help="also path trace the same plane with Mitsuba (roughconductor, GGX, F = 1) at this many "

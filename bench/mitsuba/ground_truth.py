@@ -10,6 +10,7 @@ table and a CSV. See bench/mitsuba/README.md for how the two scenes are matched.
 Run through bench/mitsuba/run.sh (it makes the Python environment with mitsuba and numpy).
 """
 import argparse
+import datetime
 import csv
 import json
 import math
@@ -256,7 +257,7 @@ def main():
     ap.add_argument("--size", default="256x144")
     ap.add_argument("--spp", type=int, default=256)
     ap.add_argument("--variant", default="scalar_rgb", help="Mitsuba variant (scalar_rgb; llvm_ad_rgb where its LLVM JIT works)")
-    ap.add_argument("--out", default=str(REPO / "bench/results/mitsuba"))
+    ap.add_argument("--out", default=str(REPO / "bench/results/mitsuba" / f"{datetime.date.today().isoformat()}_spheres"))
     ap.add_argument("--scenes", default=str(REPO / "bench/mitsuba/scenes"), help="where the lightpass scenes go")
     ap.add_argument("--work", default="/tmp/lightpass-mitsuba", help="where both renders' EXRs go")
     ap.add_argument("--reuse-reference", action="store_true",

@@ -5,14 +5,14 @@
 # sampled specular (64) with separable; the Mitsuba composites reused from WORK (made once by
 # bench/mitsuba/run.sh with the same size/spp: nothing is path traced again if they are there).
 #   MITSUBA_VENV=/work/venv-mitsuba bench/mitsuba/masking_sweep.sh [WORK] [OUTDIR]
-# WORK defaults to /tmp/lightpass-mitsuba, OUTDIR to bench/results/mitsuba/issue16; LIGHTPASS=PATH
+# WORK defaults to /tmp/lightpass-mitsuba, OUTDIR to bench/results/mitsuba/<today>_ibl-against-mitsuba; LIGHTPASS=PATH
 # renders with another lightpass binary; KEEP=1 keeps configurations already in OUTDIR. Writes
 # OUTDIR/masking_<config>_spheres.csv per configuration and OUTDIR/masking.md (the tables; the furnace
 # against the exact albedo of each configuration's own model).
 set -euo pipefail
 repo="$(cd "$(dirname "$0")/../.." && pwd)"
 work="${1:-/tmp/lightpass-mitsuba}"
-out="${2:-$repo/bench/results/mitsuba/issue16}"
+out="${2:-$repo/bench/results/mitsuba/$(date +%F)_ibl-against-mitsuba}"
 cd "$repo"
 configs="height-correlated-split-sum separable-split-sum separable-sampled-64"
 maps="bench/mitsuba/maps/lamp50k.hdr ../shared/assets/hdri-polyhaven-1k/royal_esplanade_1k.hdr bench/mitsuba/maps/furnace.hdr"

@@ -5,12 +5,13 @@ Two rows of spheres, dielectric (metallic 0) above metal (metallic 1), roughness
 under each environment map: lightpass (--ibl --no-ao --brdf ggx --exr) against Mitsuba's `principled`
 (base_color, metallic, roughness, specular 0.5 = F0 0.04; no sheen, clearcoat, spec_tint,
 anisotropy or transmission), same camera, map and rotation as ground_truth.py. Writes
-bench/results/mitsuba/principled/table.md, spheres.csv and <map>.png (lightpass above Mitsuba
+bench/results/mitsuba/2026-11-24_principled/table.md, spheres.csv and <map>.png (lightpass above Mitsuba
 above 4 x |difference|).
 
 Run: bench/mitsuba/run.sh principled [--maps ...] [--size 160x90] [--spp 128] [--reuse-reference]
 """
 import argparse
+import datetime
 import csv
 import json
 import os
@@ -105,7 +106,7 @@ def main():
     ap.add_argument("--size", default="160x90")
     ap.add_argument("--spp", type=int, default=128)
     ap.add_argument("--variant", default="scalar_rgb")
-    ap.add_argument("--out", default=str(REPO / "bench/results/mitsuba/principled"))
+    ap.add_argument("--out", default=str(REPO / "bench/results/mitsuba" / f"{datetime.date.today().isoformat()}_principled"))
     ap.add_argument("--scenes", default=str(REPO / "bench/mitsuba/scenes"))
     ap.add_argument("--work", default="/tmp/lightpass-mitsuba-principled")
     ap.add_argument("--reuse-reference", action="store_true",

@@ -19,7 +19,7 @@ files of one lightpass render of the same scene; trilinear, seamless cube lookup
   'cube S 0 N' (source 'cube'): classic filtered importance sampling instead, each L read from the
   environment cube at lod 0.5 log2(sample solid angle / texel solid angle) + S (box-filtered texels,
   no narrowing): against a lamp of a few texels its tent of texels shows the sample pattern.
-  'split sum (measured)': lightpass's render (bench/results/mitsuba/issue16/after_1024_spheres.csv);
+  'split sum (measured)': lightpass's render (bench/results/mitsuba/2026-11-24_ibl-against-mitsuba/after_1024_spheres.csv);
   'split sum (emulated)': the same lookup here (checks this emulation against the renderer);
   'exact BRDF integral' (--exact): lightpass's BRDF integrated over the cube's 256^2 level.
 
@@ -30,6 +30,7 @@ composites of lamp50k and royal_esplanade_1k, 160x90, 128 spp, in --work):
     $MITSUBA_VENV/bin/python bench/mitsuba/sampled_specular.py --work /tmp/lightpass-mitsuba [--exact] [--out FILE]
 """
 import argparse
+import datetime
 import math
 import sys
 from pathlib import Path
@@ -287,9 +288,9 @@ def dfg_ab(nv, alpha, n=128):
 
 
 def measured_split_sum(map_name):
-    """lightpass's split sum as measured (bench/results/mitsuba/issue16/after_1024_spheres.csv)."""
+    """lightpass's split sum as measured (bench/results/mitsuba/2026-11-24_ibl-against-mitsuba/after_1024_spheres.csv)."""
     import csv
-    path = gt.REPO / "bench/results/mitsuba/issue16/after_1024_spheres.csv"
+    path = gt.REPO / "bench/results/mitsuba/2026-11-24_ibl-against-mitsuba/after_1024_spheres.csv"
     out = {}
     if path.is_file():
         for row in csv.DictReader(path.open()):
@@ -342,7 +343,7 @@ def main():
     ap.add_argument("--variants", default="", help="extra columns: source:span:narrow:count, e.g. cube:1:0:32")
     ap.add_argument("--exact", action="store_true", help="add the exact integral of lightpass's BRDF (minutes)")
     ap.add_argument("--min-alpha", type=float, default=0.15)
-    ap.add_argument("--out", default=str(gt.REPO / "bench/results/mitsuba/issue16/sampled_specular.md"))
+    ap.add_argument("--out", default=str(gt.REPO / "bench/results/mitsuba" / f"{datetime.date.today().isoformat()}_ibl-against-mitsuba" / "sampled_specular.md"))
     ap.add_argument("--specular-masking", default="separable", choices=["separable", "height-correlated"],
                     help="lightpass's Smith model (the DFG terms, the weights and --exact)")
     args = ap.parse_args()

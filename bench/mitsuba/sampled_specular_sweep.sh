@@ -3,14 +3,14 @@
 # at 4..128 samples a pixel, on lamp50k, royal_esplanade_1k and the white furnace, 160x90, 128 spp,
 # the Mitsuba composites reused from WORK (made once by bench/mitsuba/run.sh with the same size/spp).
 #   MITSUBA_VENV=/work/venv-mitsuba bench/mitsuba/sampled_specular_sweep.sh [WORK] [OUTDIR]
-# WORK defaults to /tmp/lightpass-mitsuba, OUTDIR to bench/results/mitsuba/issue16; LIGHTPASS=PATH
+# WORK defaults to /tmp/lightpass-mitsuba, OUTDIR to bench/results/mitsuba/<today>_ibl-against-mitsuba; LIGHTPASS=PATH
 # renders with another lightpass binary than build/app/lightpass; KEEP=1 keeps configurations already in
 # OUTDIR. Writes
 # OUTDIR/sampled_<config>_spheres.csv per configuration and OUTDIR/sampled_renderer.md (the tables).
 set -euo pipefail
 repo="$(cd "$(dirname "$0")/../.." && pwd)"
 work="${1:-/tmp/lightpass-mitsuba}"
-out="${2:-$repo/bench/results/mitsuba/issue16}"
+out="${2:-$repo/bench/results/mitsuba/$(date +%F)_ibl-against-mitsuba}"
 cd "$repo"
 configs="split-sum sampled-4 sampled-8 sampled-16 sampled-32 sampled-64 sampled-128"
 for c in $configs; do

@@ -22,6 +22,7 @@ Cells: relative error of the sphere's mean against Mitsuba, whole sphere / core.
     $MITSUBA_VENV/bin/python bench/mitsuba/split_sum_budget.py [--work /tmp/lightpass-mitsuba] [--out FILE]
 """
 import argparse
+import datetime
 import math
 import sys
 from pathlib import Path
@@ -129,7 +130,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--work", default="/tmp/lightpass-mitsuba", help="where ground_truth.py left the Mitsuba composite")
     ap.add_argument("--spp", type=int, default=128)
-    ap.add_argument("--out", default=str(gt.REPO / "bench/results/mitsuba/issue16/split_sum_budget.md"))
+    ap.add_argument("--out", default=str(gt.REPO / "bench/results/mitsuba" / f"{datetime.date.today().isoformat()}_ibl-against-mitsuba" / "split_sum_budget.md"))
     ap.add_argument("--specular-masking", default="separable", choices=["separable", "height-correlated"])
     args = ap.parse_args()
     globals()["MASKING"] = args.specular_masking

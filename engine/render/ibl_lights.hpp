@@ -2,7 +2,7 @@
 // Small, very bright sources of an environment map (a sun, a lamp) taken out of the map at bake time
 // and lit analytically (the way Frostbite, HDRP and Filament treat an HDRI's sun). A prefiltered
 // chain and its round split-sum lobe lose a lamp of a few texels (-5..-9% on rough GGX spheres under
-// a 50,000 lamp, bench/results/mitsuba/issue16); a directional light evaluated with the BRDF itself
+// a 50,000 lamp, bench/results/mitsuba/2026-11-24_ibl-against-mitsuba); a directional light evaluated with the BRDF itself
 // does not. CPU, double precision, on the float equirectangular map before the cube, the prefiltered
 // chain and the SH are made.
 //

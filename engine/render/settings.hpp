@@ -34,7 +34,7 @@ std::optional<Brdf> parseBrdf(const std::string& name);
 // GGX's Smith masking-shadowing term G2 (--specular-masking), everywhere the BRDF is evaluated or
 // integrated (suns, extracted IBL lights, the DFG LUT, the sampled specular IBL). Separable:
 // G1(V) G1(L), the form of path tracers (Mitsuba's roughconductor), which lightpass is measured
-// against (bench/results/mitsuba/issue16); height-correlated: 1 / (1 + Lambda(V) + Lambda(L)) (Heitz
+// against (bench/results/mitsuba/2026-11-24_ibl-against-mitsuba); height-correlated: 1 / (1 + Lambda(V) + Lambda(L)) (Heitz
 // 2014; Filament's and Unreal's form), up to 5% brighter on rough spheres.
 enum class SpecularMasking { Separable = 0, HeightCorrelated = 1 };  // = LP_SPECULAR_MASKING_* (brdf.glsl)
 const char* specularMaskingName(SpecularMasking m);
@@ -71,7 +71,7 @@ struct ShadowSettings {         // directional-light shadow maps (passes/shadow_
     // With the cache on: a cascade whose square only moved by whole texels (same size, light and
     // depth range, casters) keeps the part of its old tile the new square overlaps, moved by that
     // many texels, and redraws only the strips it newly covers (passes/shadow_map_pass.hpp).
-    // On by default: on the H100 it lowers the mean and the median (bench/results/shadow_cost).
+    // On by default: on the H100 it lowers the mean and the median (bench/results/shadows/2026-11-24_cascades-moving-camera).
     bool scroll = true;
     // A cascade's square keeps last frame's size while that still holds its slice and is at most
     // 2^(1/4) larger than needed (engine/render/shadows.hpp): fewer whole redraws on a zooming or
@@ -172,7 +172,7 @@ struct EnvironmentSettings {    // environment, skybox, image-based lighting, to
     int dfgSize = 128;          // split-sum DFG LUT is dfgSize x dfgSize RG16F
     int dfgSamples = 512;       // GGX samples per LUT texel
     IrradianceSource diffuse = IrradianceSource::SphericalHarmonics;
-    IblSpecular specular = IblSpecular::SplitSum;  // bench/results/mitsuba/issue16/sampled_specular.md
+    IblSpecular specular = IblSpecular::SplitSum;  // bench/results/mitsuba/2026-11-24_ibl-against-mitsuba/sampled_specular.md
     int specularRuntimeSamples = 64;  // per pixel, with IblSpecular::Sampled (fewer: the pattern shows in the error)
     // Small, very bright sources taken out of the map at bake time and lit as directional lights
     // (engine/render/ibl_lights.hpp): at most this many (0: off, <= kMaxEnvironmentLights), regions whose

@@ -18,7 +18,7 @@
 // tripled a smooth plane's reflection of small lamps at grazing view against the exact split sum in
 // test_ibl's grazing-plane scene; a round widening of s / (2 sqrt 2) left a roughness-0.05 plane's lamp
 // reflections 23% dark against Mitsuba, a sliver narrower than a pixel; a round widening wide enough
-// across spilled 16% of the lobe below the horizon: bench/results/mitsuba/issue16/README.md.)
+// across spilled 16% of the lobe below the horizon: bench/results/mitsuba/2026-11-24_ibl-against-mitsuba/README.md.)
 // Energy (test_ibl's ExtractedLightKeepsTheLobesEnergyAtEveryAngle): within 1% of the point light's at
 // normal incidence; at grazing view (N.L 0.1) +7% for a 2.9-degree source on alpha 0.05, +2% on alpha 0.2.
 vec3 environmentLightSpecular(vec3 N, vec3 V, vec3 D, float sinRadius, vec3 f0, float alpha) {

@@ -2,7 +2,7 @@
 // split sum's round lobe. The split sum reads the prefiltered chain once, along one direction, with a
 // lobe prefiltered for N = V = R; at grazing view the true lobe is narrower across the plane of
 // incidence and cut by the horizon, and a small bright lamp loses 8-9% of its reflection on rough
-// spheres (bench/results/mitsuba/issue16). Here each pixel draws `samples` directions L from the GGX
+// spheres (bench/results/mitsuba/2026-11-24_ibl-against-mitsuba). Here each pixel draws `samples` directions L from the GGX
 // distribution of visible normals (Heitz 2018) for its own V, one fixed Hammersley set for every pixel
 // (no noise), and reads each from the prefiltered chain at the roughness whose lobe spans
 // LP_SAMPLED_SUBLOBE_SPAN times the sample's solid angle 1 / (samples pdf(L)) (filtered importance

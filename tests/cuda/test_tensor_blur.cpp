@@ -201,7 +201,7 @@ TEST(CudaBloomBench, DISABLED_KernelTimesAgainstFloor) {
 // composite at kernel 5 and 100 (lines "mip_chain_tuning"): as the passes run it (default), and
 // with one setting changed: without the tail and with a larger one, without programmatic dependent
 // launches. For the default also each launch timed alone (lines "mip_chain_step": ms, bytes, GB/s).
-// (The losing layouts measured before, bench/results/post_interop/README.md, were removed from the
+// (The losing layouts measured before, bench/results/post/2026-11-24_cuda-interop/README.md, were removed from the
 // kernels.)
 TEST(CudaBloomBench, DISABLED_MipChainTuning) {
     const std::string device = cuda::postDeviceProblem();
