@@ -7,13 +7,13 @@
 # bloom with --bloom-method mip-chain (effect "mipchain") in GLSL, CUDA on shared textures and auto. `external`
 # is ordered by Vulkan semaphores where info's `sync:` line says so, else by host waits. Per pass: GL-timed ms (what the frame pays, interop and
 # syncs included), CUDA kernel ms, interop ms, the bandwidth floor and measured/floor. Also runs the
-# CUDA tests (shared textures vs the CPU reference), the kernel-only bloom benchmark in cuda_tests
-# (bloom_kernels.txt: separable with the direct and the tensor-core blur, and the mip chain, kernel
+# CUDA tests (shared textures vs the CPU reference), the kernel-only bloom benchmark of post_cuda_bench
+# (bench/cuda/post_cuda_bench.cpp; bloom_kernels.txt: separable with the direct and the tensor-core blur, and the mip chain, kernel
 # 3..100, 1080p and 4K, against the floor; and plain copy kernels, CUDA arrays and linear memory),
 # the cost of one hand-over to CUDA and back by itself (hand_over.txt) and records `info`. From the repository root:
-#   bench/post_interop.sh BUNDLE OUTDIR    (BUNDLE: run, cuda_tests, lib/)
+#   bench/post_interop.sh BUNDLE OUTDIR    (BUNDLE: run, cuda_tests, post_cuda_bench, lib/)
 #   SMOKE=1 bench/post_interop.sh BUNDLE OUTDIR   tiny sizes, few frames (checks the plumbing)
-#   KERNELS_ONLY=1 bench/post_interop.sh BUNDLE OUTDIR   cuda_tests and the kernel-only benchmark alone
+#   KERNELS_ONLY=1 bench/post_interop.sh BUNDLE OUTDIR   cuda_tests and the kernel-only benchmarks alone
 set -u
 B=$(cd "$1" && pwd); R=$2; mkdir -p "$R"
 frames=200; warmup=30
@@ -24,14 +24,20 @@ export LIGHTPASS_CACHE_DIR=$R/cache
 "$B/run" info > "$R/info.txt" 2>&1; grep -E "^(renderer|cuda|interop|sync):" "$R/info.txt"
 if [[ -x "$B/cuda_tests" ]]; then
   LD_LIBRARY_PATH=$B/lib "$B/cuda_tests" > "$R/cuda_tests.txt" 2>&1; tail -2 "$R/cuda_tests.txt"
+fi
+if [[ -x "$B/post_cuda_bench" ]]; then
   # Kernel-only: the fused bloom + composite on RGBA16F CUDA arrays (no GL), separable (direct and
   # tensor-core blur and what auto picks) and mip chain, kernel 3..100 at 1080p and 4K, CUDA events,
-  # vs the floor; and the copy kernels that show what bandwidth CUDA arrays and linear memory reach.
-  LD_LIBRARY_PATH=$B/lib "$B/cuda_tests" --gtest_also_run_disabled_tests --gtest_filter='CudaBloomBench.*' \
-    > "$R/bloom_kernels.txt" 2>&1 || echo "bloom kernel benchmark failed: $(tail -1 "$R/bloom_kernels.txt")"
+  # vs the floor; the mip chain's tuning; and the copy kernels that show what bandwidth CUDA arrays
+  # and linear memory reach.
+  : > "$R/bloom_kernels.txt"
+  for b in kernels mip-chain-tuning copy-kernels; do
+    LD_LIBRARY_PATH=$B/lib "$B/post_cuda_bench" $b >> "$R/bloom_kernels.txt" 2>&1 \
+      || echo "bloom kernel benchmark $b failed: $(tail -1 "$R/bloom_kernels.txt")"
+  done
   # What one GL -> CUDA -> GL hand-over costs a GL frame by itself (a kernel of a few microseconds
   # on 64x48 texels), under each ordering, and one map/unmap call instead.
-  LD_LIBRARY_PATH=$B/lib "$B/cuda_tests" --gtest_also_run_disabled_tests --gtest_filter='*FrameCostOfAHandOver*' \
+  LD_LIBRARY_PATH=$B/lib "$B/post_cuda_bench" hand-over \
     > "$R/hand_over.txt" 2>&1 || echo "hand-over benchmark failed: $(tail -1 "$R/hand_over.txt")"
   grep "hand-over bench" "$R/hand_over.txt"
 fi

@@ -13,7 +13,7 @@ bloom and the composited HDR written once, RGBA16F each, 24 bytes a texel (no in
 re-read), at the measured compute copy bandwidth (the run's `bandwidth.compute_GBps`). The
 per-pass floors of the table are the graph's declared traffic of each pass.
 
-OUTDIR/bloom_kernels.txt (cuda_tests' CudaBloomBench) adds the kernel-only table: the fused
+OUTDIR/bloom_kernels.txt (bench/cuda/post_cuda_bench.cpp: kernels, mip-chain-tuning, copy-kernels) adds the kernel-only table: the fused
 bloom + composite on RGBA16F CUDA arrays timed by CUDA events, the separable bloom with the direct and
 the tensor-core blur and what auto picks, and the mip chain, against the same 24-byte floor at the
 copy bandwidth cudaMemcpy measured there; and plain copy kernels (CUDA array -> CUDA array, linear

@@ -3,7 +3,6 @@
 // buffers (no GL); the interop tests make their own headless GL context and need it on NVIDIA.
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -16,7 +15,6 @@
 #include "cuda/vulkan_semaphores.hpp"
 #include "engine/gl/context.hpp"
 #include "engine/gl/handles.hpp"
-#include "engine/gl/shader.hpp"
 #include "engine/graph/texture_pool.hpp"
 #include "engine/post/post_reference.hpp"
 #include "tests/cuda/post_test_images.hpp"
@@ -341,73 +339,6 @@ TEST_P(CudaSharedTextures, RepeatedHandOversKeepOrder) {
     const ImageF got = download(*hdr);
     for (size_t i = 0; i < got.rgba.size(); i += 4)
         ASSERT_EQ(got.rgba[i], 100.0f + float(kCalls / 2)) << "texel " << i / 4;
-}
-
-// Benchmark (disabled; run on a GPU with --gtest_also_run_disabled_tests): what one hand-over to
-// CUDA and back costs a GL frame by itself. The frame is GL compute work on a 1920x1080 RGBA16F image
-// in two halves; between them the variants hand over nothing, one composite of strength 0 on a
-// 64x48 shared texture (a kernel of a few microseconds: the cost is the hand-over), or two. GPU ms
-// from GL timestamps at the frame's ends, median of 100 frames after 20 (the host waits for each
-// frame, so every frame starts on an idle GPU).
-TEST_P(CudaSharedTextures, DISABLED_FrameCostOfAHandOver) {
-    constexpr int kWorkW = 1920, kWorkH = 1080, kDispatchesPerHalf = 8;
-    gl::ShaderLibrary shaders;
-    gl::Program work = shaders.computeFromSource("hand_over_bench.comp", R"(#version 450
-layout(local_size_x = 16, local_size_y = 16) in;
-layout(rgba16f, binding = 0) uniform image2D target;
-void main() {
-    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(p, imageSize(target)))) return;
-    vec4 v = imageLoad(target, p);
-    for (int i = 0; i < 16; ++i) v = fract(v * 1.0001 + vec4(0.001, 0.002, 0.003, 0.004));
-    imageStore(target, p, v);
-}
-)");
-    gl::Texture image = gl::makeTexture2D(GL_RGBA16F, kWorkW, kWorkH, 1, "test.hand_over_work");
-    auto hdr = make(GL_RGBA16F, "test.shared_hdr"), bloom = make(GL_RGBA16F, "test.shared_bloom");
-    ASSERT_TRUE(hdr && bloom);
-    upload(*hdr, makeImage(kW, kH, 1.0f));
-    upload(*bloom, makeImage(kW, kH, 1.0f));
-    gl::Query begin = gl::makeQuery(GL_TIMESTAMP), end = gl::makeQuery(GL_TIMESTAMP);
-    auto half = [&] {
-        glUseProgram(work.id());
-        glBindImageTexture(0, image.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
-        for (int i = 0; i < kDispatchesPerHalf; ++i) {
-            glDispatchCompute((kWorkW + 15) / 16, (kWorkH + 15) / 16, 1);
-            glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-        }
-        glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
-        glUseProgram(0);
-    };
-    // Plain GL textures: the interop registers and maps them per call instead (the map/unmap path).
-    gl::Texture plainHdr = gl::makeTexture2D(GL_RGBA16F, kW, kH, 1, "test.plain_hdr");
-    gl::Texture plainBloom = gl::makeTexture2D(GL_RGBA16F, kW, kH, 1, "test.plain_bloom");
-    auto frameMs = [&](int handOvers, bool mapped = false) {
-        std::vector<double> ms;
-        for (int f = 0; f < 120; ++f) {
-            glQueryCounter(begin.id(), GL_TIMESTAMP);
-            half();
-            for (int i = 0; i < handOvers; ++i) {
-                if (mapped) interop->composite(plainHdr.id(), plainBloom.id(), kW, kH, 0.0f);
-                else interop->composite(hdr->texture(), bloom->texture(), kW, kH, 0.0f);
-            }
-            half();
-            glQueryCounter(end.id(), GL_TIMESTAMP);
-            glFinish();
-            GLuint64 t0 = 0, t1 = 0;
-            glGetQueryObjectui64v(begin.id(), GL_QUERY_RESULT, &t0);
-            glGetQueryObjectui64v(end.id(), GL_QUERY_RESULT, &t1);
-            if (f >= 20) ms.push_back(double(t1 - t0) * 1e-6);
-        }
-        std::sort(ms.begin(), ms.end());
-        return ms[ms.size() / 2];
-    };
-    const double none = frameMs(0), one = frameMs(1), two = frameMs(2), mapped = frameMs(1, true);
-    const double noneAgain = frameMs(0);
-    std::printf("  hand-over bench (%s): GL frame %.3f ms (again %.3f); one hand-over +%.3f ms; two +%.3f ms;"
-                " one map/unmap call instead +%.3f ms\n",
-                interop->syncName().c_str(), none, noneAgain, one - none, two - none, mapped - none);
-    EXPECT_GT(none, 0.0);
 }
 
 // The Vulkan side alone (runs everywhere, CUDA or not): the loader opens at run time or says why,

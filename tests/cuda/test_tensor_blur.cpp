@@ -6,11 +6,8 @@
 #include <cuda_runtime_api.h>
 
 #include <cmath>
-#include <cstdio>
-#include <exception>
 #include <random>
 #include <string>
-#include <vector>
 
 #include "cuda/post_cuda.hpp"
 #include "engine/gl/context.hpp"
@@ -153,106 +150,5 @@ TEST(CudaTensorBlur, HalfTexturesMatchReferenceWithinOneAndAHalfUlps) {
             interop.forgetTexture(hdr.id());
             interop.forgetTexture(bloom.id());
         }
-    }
-}
-
-// Not a test: the kernel-only benchmark bench/post_interop.sh runs (cuda_tests
-// --gtest_also_run_disabled_tests --gtest_filter='CudaBloomBench.*'). The fused bloom + composite
-// on RGBA16F CUDA arrays against the floor: 24 bytes a texel (the HDR read, the bloom and the HDR
-// written, 8 bytes each) at the measured copy bandwidth; the separable bloom with the direct and
-// the tensor-core blur and what auto picks, and the mip chain (blur=mipchain). Also the bloom
-// buffer alone (no composite: not in place, 16 bytes a texel), lines "bloom_only_kernels".
-TEST(CudaBloomBench, DISABLED_KernelTimesAgainstFloor) {
-    const std::string device = cuda::postDeviceProblem();
-    if (!device.empty()) GTEST_SKIP() << "no CUDA device: " << device;
-    struct Variant {
-        const char* name;
-        BloomMethod method;
-        BloomBlur blur;
-    };
-    const Variant variants[] = {{"direct", BloomMethod::Separable, BloomBlur::Direct},
-                                {"tensor", BloomMethod::Separable, BloomBlur::TensorCore},
-                                {"auto", BloomMethod::Separable, BloomBlur::Auto},
-                                {"mipchain", BloomMethod::MipChain, BloomBlur::Auto}};
-    for (bool composite : {true, false})
-        for (auto [w, h] : {std::pair{1920, 1080}, std::pair{3840, 2160}})
-            for (int kernel : {3, 5, 9, 17, 25, 50, 100})
-                for (const Variant& v : variants) {
-                    BloomParams p = separable(kernel);
-                    p.method = v.method;
-                    cuda::BloomKernelTime t;
-                    try {  // a failing variant is reported and the others still run
-                        t = cuda::timeBloomCompositeKernels(w, h, p, v.blur, 60, composite);
-                    } catch (const std::exception& e) {
-                        ADD_FAILURE() << w << "x" << h << " kernel " << kernel << " " << v.name << ": " << e.what();
-                        continue;
-                    }
-                    const double bytes = composite ? 24.0 : 16.0;
-                    const double floorMs = bytes * double(w) * double(h) / t.copyBytesPerSecond * 1e3;
-                    const char* ran = v.method == BloomMethod::MipChain ? "mipchain" : t.tensorCores ? "tensor" : "direct";
-                    std::printf("%s size=%dx%d kernel=%d blur=%s ran=%s ms=%.5f floor_ms=%.5f copy_GBps=%.1f\n",
-                                composite ? "bloom_kernels" : "bloom_only_kernels", w, h, kernel, v.name, ran,
-                                t.medianMs, floorMs, t.copyBytesPerSecond * 1e-9);
-                    std::fflush(stdout);
-                }
-}
-
-// Not a test: what the mip chain's one-block tail and overlapping launches buy, fused bloom +
-// composite at kernel 5 and 100 (lines "mip_chain_tuning"): as the passes run it (default), and
-// with one setting changed: without the tail and with a larger one, without programmatic dependent
-// launches. For the default also each launch timed alone (lines "mip_chain_step": ms, bytes, GB/s).
-// (The losing layouts measured before, bench/results/post/2026-11-24_cuda-interop/README.md, were removed from the
-// kernels.)
-TEST(CudaBloomBench, DISABLED_MipChainTuning) {
-    const std::string device = cuda::postDeviceProblem();
-    if (!device.empty()) GTEST_SKIP() << "no CUDA device: " << device;
-    const cuda::MipChainTuning defaults;
-    cuda::MipChainTuning noTail = defaults, bigTail = defaults, noOverlap = defaults;
-    noTail.tailTexels = 0;
-    bigTail.tailTexels = 16384;
-    noOverlap.programmaticLaunch = false;
-    const std::pair<const char*, cuda::MipChainTuning> variants[] = {
-        {"default", defaults}, {"no_tail", noTail}, {"tail_16k", bigTail}, {"no_overlap", noOverlap}};
-    for (auto [w, h] : {std::pair{1920, 1080}, std::pair{3840, 2160}})
-        for (int kernel : {5, 100})
-            for (const auto& [name, tuning] : variants) {
-                BloomParams p = separable(kernel);
-                p.method = BloomMethod::MipChain;
-                cuda::BloomKernelTime t;
-                std::vector<cuda::MipChainStep> steps;
-                const bool timeSteps = std::string(name) == "default";
-                try {  // a failing variant is reported and the others still run
-                    t = cuda::timeBloomCompositeKernels(w, h, p, BloomBlur::Auto, 60, true, tuning,
-                                                        timeSteps ? &steps : nullptr);
-                } catch (const std::exception& e) {
-                    ADD_FAILURE() << w << "x" << h << " kernel " << kernel << " " << name << ": " << e.what();
-                    continue;
-                }
-                const double floorMs = 24.0 * double(w) * double(h) / t.copyBytesPerSecond * 1e3;
-                std::printf("mip_chain_tuning size=%dx%d kernel=%d variant=%s ms=%.5f floor_ms=%.5f\n", w, h, kernel, name,
-                            t.medianMs, floorMs);
-                // Each launch alone: its ms and the bandwidth of the bytes it must move.
-                for (const cuda::MipChainStep& s : steps)
-                    std::printf("mip_chain_step size=%dx%d kernel=%d variant=%s step=%s ms=%.5f MB=%.2f GBps=%.0f\n", w, h,
-                                kernel, name, s.name.c_str(), s.ms, s.bytes * 1e-6,
-                                s.ms > 0 ? s.bytes / (s.ms * 1e-3) * 1e-9 : 0.0);
-                std::fflush(stdout);
-            }
-}
-
-// Not a test: the achievable bandwidth the floors assume, for CUDA arrays (the GL textures'
-// layout, surface loads and stores) and for linear memory: a plain copy kernel of an RGBA16F
-// image (16 bytes a texel moved), lines "copy_kernels", next to cudaMemcpy's bandwidth.
-TEST(CudaBloomBench, DISABLED_CopyKernels) {
-    const std::string device = cuda::postDeviceProblem();
-    if (!device.empty()) GTEST_SKIP() << "no CUDA device: " << device;
-    for (auto [w, h] : {std::pair{1920, 1080}, std::pair{3840, 2160}}) {
-        const cuda::CopyKernelTimes t = cuda::timeHalf4Copies(w, h, 60);
-        const double bytes = 16.0 * double(w) * double(h);
-        const double floorMs = bytes / t.copyBytesPerSecond * 1e3;
-        for (auto [kind, ms] : {std::pair{"array", t.arrayMs}, std::pair{"linear", t.linearMs}})
-            std::printf("copy_kernels size=%dx%d kind=%s ms=%.5f GBps=%.1f floor_ms=%.5f copy_GBps=%.1f\n", w, h, kind,
-                        ms, bytes / (ms * 1e-3) * 1e-9, floorMs, t.copyBytesPerSecond * 1e-9);
-        std::fflush(stdout);
     }
 }
