@@ -1,4 +1,5 @@
 #include "engine/render/ibl_lights.hpp"
+#include "engine/render/ibl_sh.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -134,9 +135,7 @@ LightExtraction extractEnvironmentLights(ImageF& map, double rotationDegrees, in
             const double dOmega = rowSolidAngle[i / size_t(w)];
             r.irradiance += excess * dOmega;
             const double u = (double(i % size_t(w)) + 0.5) / w, v = (double(i / size_t(w)) + 0.5) / h;
-            const double phi = (u - 0.5) * 2.0 * kPi - rot, theta = v * kPi;
-            const glm::dvec3 d(std::sin(theta) * std::sin(phi), std::cos(theta), -std::sin(theta) * std::cos(phi));
-            r.weightedDirection += d * (lightLuminance(excess) * dOmega);
+            r.weightedDirection += rotateY(equirectDirection(u, v), rot) * (lightLuminance(excess) * dOmega);
         }
         if (lightLuminance(r.irradiance) > 0.0 && glm::length(r.weightedDirection) > 0.0)
             candidates.push_back(int(id));

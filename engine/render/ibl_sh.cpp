@@ -9,17 +9,18 @@ namespace lp {
 namespace {
 constexpr double kPi = 3.14159265358979323846;
 
-// Visits every texel with its world direction, solid angle and radiance. Rotating about +Y by a
-// shifts the azimuth: world phi = map phi - a, so per-row and per-column tables replace the trig.
+// Visits every texel with its world direction, solid angle and radiance. A texel's direction is
+// rotateY(equirectDirection(u, v), a): sin(theta) times its column's direction on the equator, plus
+// cos(theta) up, so a table per column (and the row's sin and cos) replaces the trig per texel.
 template <typename F>
 void forEachTexel(const ImageF& map, double rotationDegrees, F&& f) {
     const double rot = rotationDegrees * kPi / 180.0;
     const double dPhi = 2.0 * kPi / map.width, dTheta = kPi / map.height;
     std::vector<double> sinPhi(size_t(map.width)), cosPhi(size_t(map.width));
     for (int x = 0; x < map.width; ++x) {
-        const double phi = ((x + 0.5) / map.width - 0.5) * 2.0 * kPi - rot;
-        sinPhi[size_t(x)] = std::sin(phi);
-        cosPhi[size_t(x)] = std::cos(phi);
+        const glm::dvec3 equator = rotateY(equirectDirection((x + 0.5) / map.width, 0.5), rot);
+        sinPhi[size_t(x)] = equator.x;
+        cosPhi[size_t(x)] = -equator.z;
     }
     for (int y = 0; y < map.height; ++y) {
         const double theta = (y + 0.5) / map.height * kPi;

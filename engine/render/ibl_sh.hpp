@@ -13,7 +13,12 @@ namespace lp {
 
 using ShCoefficients = std::array<glm::dvec3, 9>;  // radiance, bands 0..2, order as in ibl.glsl
 
-// Map direction for equirect coordinates (u, v) in [0, 1]^2 (v = 0 is the top row, +Y).
+// Map direction for equirect coordinates (u, v) in [0, 1]^2: lightpass's one convention, the CPU's
+// (light extraction, SH) and the shaders' (common/ibl.glsl: sky, cube, prefilter). v = 0 is the top
+// row (+Y), v = 1 the bottom (-Y); u = 0.5 (the centre column) looks down -Z, where the default
+// camera looks, and u grows to the right seen from inside: u = 0.75 is +X, 0.25 is -X, 0 and 1 +Z.
+// So a map seen from inside reads as the flat image does, not mirrored (as in Blender and Poly
+// Haven's previews; Blender and three.js put the centre at +X, Filament and Mitsuba at +Z).
 glm::dvec3 equirectDirection(double u, double v);
 // Rotation about +Y by `radians` (world = rotateY(map, rotation)).
 glm::dvec3 rotateY(glm::dvec3 d, double radians);

@@ -1,6 +1,9 @@
 // Image-based lighting math shared by the bake kernels, the IBL pass and the shader tests.
 // Conventions (world space, +Y up):
-//   equirect: u = atan(d.x, -d.z) / (2 pi) + 0.5, v = acos(d.y) / pi (v = 0 is the top row, +Y)
+//   equirect: u = atan(d.x, -d.z) / (2 pi) + 0.5, v = acos(d.y) / pi (v = 0 is the top row, +Y):
+//     the centre column looks down -Z and u grows to the right seen from inside (+X at u = 0.75), so
+//     the map reads as the flat image, not mirrored; engine/render/ibl_sh.hpp equirectDirection is
+//     the same on the CPU (light extraction, SH)
 //   cube faces: the GL layer order +X -X +Y -Y +Z -Z, texel (i, j) of a face as imageStore sees it
 //   roughness: perceptual r, GGX alpha = r^2; Blinn-Phong shininess n maps to alpha = sqrt(2 / (n + 2))
 #ifndef LP_IBL_GLSL

@@ -164,3 +164,55 @@ TEST(IblLights, BundledSkyGivesItsSun) {
     const glm::dvec3 after = integral(map) + lights;
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(after[c], before[c], 1e-6 * before[c]);
 }
+
+// The one equirectangular convention (engine/render/ibl_sh.hpp equirectDirection, the shaders'
+// common/ibl.glsl likewise), by its directions written out: the centre column looks down -Z, u = 0.75
+// is +X, 0.25 is -X, the edges +Z, the top row +Y. Seen from inside, the map reads as the flat image:
+// for a viewer looking at any column (up +Y), the column to its right (larger u) lies on its right
+// (forward x up), never mirrored. A positive rotation turns the map right-handed about +Y: +90
+// degrees brings the centre column to -X.
+TEST(EquirectConvention, CentreLooksDownMinusZAndReadsUnmirroredFromInside) {
+    struct Case {
+        double u, v;
+        glm::dvec3 direction;
+    };
+    for (const Case& c : {Case{0.5, 0.5, {0, 0, -1}}, Case{0.75, 0.5, {1, 0, 0}}, Case{0.25, 0.5, {-1, 0, 0}},
+                          Case{0.0, 0.5, {0, 0, 1}}, Case{1.0, 0.5, {0, 0, 1}}, Case{0.3, 0.0, {0, 1, 0}},
+                          Case{0.8, 1.0, {0, -1, 0}}, Case{0.625, 0.25, {0.5, std::sqrt(0.5), -0.5}}}) {
+        const glm::dvec3 d = equirectDirection(c.u, c.v);
+        for (int k = 0; k < 3; ++k) EXPECT_NEAR(d[k], c.direction[k], 1e-12) << "u " << c.u << " v " << c.v;
+    }
+    for (int i = 0; i < 64; ++i) {
+        const double u = (i + 0.5) / 64.0;
+        const glm::dvec3 forward = equirectDirection(u, 0.5);
+        const glm::dvec3 right = glm::cross(forward, glm::dvec3(0, 1, 0));
+        EXPECT_GT(glm::dot(equirectDirection(u + 0.01, 0.5), right), 0.0) << "u " << u;
+        EXPECT_LT(glm::dot(equirectDirection(u - 0.01, 0.5), right), 0.0) << "u " << u;
+        EXPECT_GT(equirectDirection(u, 0.4).y, 0.0) << "u " << u;  // up the image is up
+    }
+    const glm::dvec3 turned = rotateY(equirectDirection(0.5, 0.5), kPi / 2.0);
+    EXPECT_NEAR(turned.x, -1.0, 1e-12);
+    EXPECT_NEAR(turned.z, 0.0, 1e-12);
+}
+
+// An asymmetric map: a lamp of 2 x 2 texels centred on (u, v) = (0.625, 0.25) of a 128 x 64 map, which
+// is world (0.5, 0.707, -0.5): up, ahead and to the right of a viewer looking down -Z. The extracted
+// light points there (within the 2 x 2 block's centroid error, 1 degree), and with the map rotated by
+// +90 degrees to rotateY of it, (-0.5, 0.707, -0.5); the SH irradiance is larger facing the lamp than
+// facing its mirror image (x negated), so no path mirrors it.
+TEST(EquirectConvention, AsymmetricLampLandsAtItsWorldDirection) {
+    const glm::dvec3 expected(0.5, std::sqrt(0.5), -0.5);
+    for (double rotation : {0.0, 90.0}) {
+        ImageF map = uniformMap(128, 64, glm::vec3(0.5f));
+        for (int y : {15, 16})
+            for (int x : {79, 80}) setTexel(map, x, y, glm::vec3(50000.0f));
+        const ShCoefficients sh = projectEquirectSh(map, rotation);
+        const LightExtraction e = extractEnvironmentLights(map, rotation, 4, 100.0);
+        ASSERT_EQ(e.lights.size(), 1u);
+        const glm::dvec3 want = rotation == 0.0 ? expected : glm::dvec3(-0.5, std::sqrt(0.5), -0.5);
+        EXPECT_GT(glm::dot(glm::dvec3(e.lights[0].direction), want), std::cos(kPi / 180.0)) << "rotation " << rotation;
+        const glm::dvec3 mirror(-want.x, want.y, want.z);
+        EXPECT_GT(lightLuminance(shIrradiance(sh, want)), 1.5 * lightLuminance(shIrradiance(sh, mirror)))
+            << "rotation " << rotation;
+    }
+}
