@@ -58,6 +58,19 @@ def load_sidecar(path):
     return side
 
 
+# Where an equirectangular map's centre column faces: lightpass -Z (shaders/common/ibl.glsl, where its
+# default camera looks), Filament through filly's load_environment +Z. Both read the map unmirrored
+# from inside (measured with filly 0.2.1: a map of coloured patches seen from the origin shows them
+# as in the flat image, at +Z in Filament, at -Z in lightpass), and both rotate it right-handed about
+# +Y, so the same map lines up in both with half a turn more in Filament.
+FILAMENT_ENVIRONMENT_TURN_DEG = 180.0
+
+
+def filament_environment_rotation(lightpass_rotation_deg):
+    """Filament's environment_rotation_deg that shows the map as lightpass's `rotation` does."""
+    return lightpass_rotation_deg + FILAMENT_ENVIRONMENT_TURN_DEG
+
+
 def photometric_scale(ev100):
     """Lux (or candela) per lightpass intensity unit: 1 / Filament's exposure factor 1 / (1.2 * 2^EV100)."""
     return 1.2 * 2.0 ** ev100
@@ -128,7 +141,7 @@ def build_scene(filly, renderer, side, width, height, shadow_size, tone_mapping)
     if env:
         scene.environment = renderer.load_environment(env["map"])
         scene.environment_intensity = env["intensity"] * scale
-        scene.environment_rotation_deg = env.get("rotation", 0.0)
+        scene.environment_rotation_deg = filament_environment_rotation(env.get("rotation", 0.0))
         scene.environment_visible = True
 
     scene.shadows = any(s.get("shadows", True) for s in side["suns"])
@@ -143,7 +156,9 @@ def build_scene(filly, renderer, side, width, height, shadow_size, tone_mapping)
     scene.tone_mapping = tone_mapping
     settings = {"suns": len(side["suns"]), "shadow_cascades": 1, "shadow_map_size": shadow_size,
                 "local_lights": len(side["points"]), "ibl": bool(env), "sky": bool(env),
-                "environment_map": env["map"] if env else None, "tone_mapping": tone_mapping,
+                "environment_map": env["map"] if env else None,
+                "environment_rotation_deg": filament_environment_rotation(env.get("rotation", 0.0)) if env else None,
+                "tone_mapping": tone_mapping,
                 "output_path": scene.output_path, "bloom": False, "ssao": False, "antialiasing": "none", "msaa": 1,
                 "exposure_ev100": camera.exposure, "lux_per_lightpass_unit": scale}
     return scene, settings

@@ -201,6 +201,33 @@ class FilamentRunner(unittest.TestCase):
         self.assertEqual(times[0], 3.0)
         self.assertEqual(times, sorted(times))
 
+    def test_environment_rotation_lines_the_map_up_with_lightpass(self):
+        # The two conventions as measured (see FILAMENT_ENVIRONMENT_TURN_DEG): the map coordinate u a
+        # world direction d shows, with the map rotated by r degrees right-handed about +Y.
+        import math
+
+        def unrotate(d, degrees):  # rotateY(d, -r)
+            c, s = math.cos(math.radians(-degrees)), math.sin(math.radians(-degrees))
+            return (c * d[0] + s * d[2], d[1], -s * d[0] + c * d[2])
+
+        def u_lightpass(d, r):
+            x, _, z = unrotate(d, r)
+            return (math.atan2(x, -z) / (2 * math.pi) + 0.5) % 1.0
+
+        def u_filament(d, r):
+            x, _, z = unrotate(d, r)
+            return (math.atan2(-x, z) / (2 * math.pi) + 0.5) % 1.0
+
+        for r in (0.0, 30.0, -75.0, 180.0):
+            for k in range(16):
+                a = 2 * math.pi * (k + 0.25) / 16
+                d = (math.sin(a), 0.3, math.cos(a))
+                got = u_filament(d, filament.filament_environment_rotation(r))
+                diff = abs(got - u_lightpass(d, r))
+                self.assertLess(min(diff, 1.0 - diff), 1e-9, (r, k))
+        # Without the half turn the two disagree: the test tells the conventions apart.
+        self.assertGreater(abs(u_filament((0.0, 0.0, -1.0), 0.0) - u_lightpass((0.0, 0.0, -1.0), 0.0)), 0.4)
+
     def test_gives_up_after_max_renders(self):
         times = filament.collect_gpu_times(lambda: None, lambda: (None, None), frames=5, warmup=2, max_renders=7)
         self.assertEqual(times, [])
