@@ -144,23 +144,28 @@ def rle_channel(data):
     return out
 
 
-def write_hdr(path, pixels):
-    out = bytearray(b"#?RADIANCE\n# lightpass scripts/make_sky.py (Preetham 1999)\nFORMAT=32-bit_rle_rgbe\n\n")
-    out += ("-Y %d +X %d\n" % (H, W)).encode()
+def write_hdr(path, pixels, comment="lightpass scripts/make_sky.py (Preetham 1999)"):
+    """`pixels`: rows top first, each a list of [r, g, b]; the size is theirs."""
+    h, w = len(pixels), len(pixels[0])
+    out = bytearray(b"#?RADIANCE\n# " + comment.encode() + b"\nFORMAT=32-bit_rle_rgbe\n\n")
+    out += ("-Y %d +X %d\n" % (h, w)).encode()
     for row in pixels:
         e = [rgbe(c) for c in row]
-        out += bytes((2, 2, W >> 8, W & 255))
+        out += bytes((2, 2, w >> 8, w & 255))
         for k in range(4):
             out += rle_channel([p[k] for p in e])
     write_atomically(path, bytes(out))
 
 
 def write_exr(path, pixels):
+    """`pixels`: rows top first, each a list of [r, g, b]; the size is theirs."""
+    h, w = len(pixels), len(pixels[0])
+
     def attr(name, typ, data):
         return name.encode() + b"\0" + typ.encode() + b"\0" + struct.pack("<i", len(data)) + data
 
     chlist = b"".join(ch.encode() + b"\0" + struct.pack("<iB3xii", 1, 0, 1, 1) for ch in "BGR") + b"\0"
-    box = struct.pack("<iiii", 0, 0, W - 1, H - 1)
+    box = struct.pack("<iiii", 0, 0, w - 1, h - 1)
     header = (b"\x76\x2f\x31\x01" + struct.pack("<i", 2) + attr("channels", "chlist", chlist) +
               attr("compression", "compression", b"\x03") + attr("dataWindow", "box2i", box) +
               attr("displayWindow", "box2i", box) + attr("lineOrder", "lineOrder", b"\x00") +
@@ -169,9 +174,9 @@ def write_exr(path, pixels):
               attr("screenWindowWidth", "float", struct.pack("<f", 1.0)) + b"\0")
     lines = 16
     chunks = []
-    for y0 in range(0, H, lines):
+    for y0 in range(0, h, lines):
         raw = bytearray()
-        for y in range(y0, min(y0 + lines, H)):
+        for y in range(y0, min(y0 + lines, h)):
             for k in (2, 1, 0):  # B, G, R: channels in alphabetical order
                 raw += b"".join(struct.pack("<e", min(p[k], 65504.0)) for p in pixels[y])
         # OpenEXR ZIP: interleave even/odd bytes, delta predictor, zlib.
