@@ -139,7 +139,9 @@ std::vector<CommandFlag> makeCommandFlags() {
          [](Options& o, V, V) { o.command = "version"; }},
         {{"--scene"}, "F", "scene file (JSON, see README); a bundled one by name from anywhere (cornell, gallery, ...)",
          [](Options& o, V, V v) { o.scene = resolveDataPath(v); }},
-        {{"--model"}, "F", "any OBJ or glTF (.gltf, .glb), framed by the camera (or the glTF's first camera), with a key and a fill light (or the glTF's lights)",
+        {{"--model"}, "F",
+         "any OBJ or glTF (.gltf, .glb), framed by the camera (or the glTF's first camera), lit by the bundled "
+         "studio environment with IBL on (or by the glTF's own lights)",
          [](Options& o, V, V v) { o.model = v; }},
         {{"--up"}, "y|z", "the --model file's up axis: z turns a Z-up model (Blender, CAD, the Vulkan tutorial's viking room) to Y-up",
          [](Options& o, V a, V v) {

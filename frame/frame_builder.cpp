@@ -59,7 +59,7 @@ std::string ambientOcclusionSkipReason(const FrameData& frame, bool iblAdded) {
     if (s.view == DebugView::Ao) return "";
     if (!s.ao.enabled) return "ambient occlusion is off (--no-ao)";
     if (s.allPasses) return "";
-    const bool ambient = glm::any(glm::greaterThan(frame.scene->ambient, glm::vec3(0.0f)));
+    const bool ambient = glm::any(glm::greaterThan(frameAmbient(frame), glm::vec3(0.0f)));
     if (!iblAdded && !ambient) return "no indirect light to occlude (IBL off, ambient 0)";
     return "";
 }
@@ -73,7 +73,7 @@ FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const Fr
     const bool channelView = isChannelView(s.view);
     const bool lightingView = s.view == DebugView::Lighting;
     const bool hasMap = !scene.environment.map.empty();
-    const bool iblWanted = s.environment.ibl.value_or(scene.environment.ibl) && hasMap;
+    const bool iblWanted = iblLightsFrame(scene, s);
     const bool iblAdded = iblWanted || s.allPasses;
     // A black background with no map: the global-light pass already leaves the background at zero.
     const bool skyWanted = hasMap || glm::any(glm::greaterThan(scene.environment.color * scene.environment.intensity, glm::vec3(0.0f)));
@@ -278,7 +278,7 @@ FrameData makeFrameData(const Scene& scene, const RenderSettings& settings, floa
 
 void noteEnvironmentLights(fg::FrameGraph& graph, const Scene& scene, const RenderSettings& settings) {
     const Environment& e = scene.environment;
-    if (e.map.empty() || !settings.environment.ibl.value_or(e.ibl)) return;
+    if (!iblLightsFrame(scene, settings)) return;
     ImageF map = loadHdrImage(e.map);
     const LightExtraction extraction = extractEnvironmentLights(map, e.rotationDegrees, settings.environment.extractLights,
                                                                 settings.environment.extractThreshold);

@@ -142,7 +142,7 @@ fg::ResourceId addDebugViewPass(fg::FrameGraph& graph, DebugViewPass& state, con
             if (m.light == light) shadowMap = &m;
         if (!shadowMap)
             throw Error("view 'shadowmap': directional light " + std::to_string(light) + " has no shadow map (" +
-                        std::to_string(frame.scene->directionalLights.size()) +
+                        std::to_string(frameDirectionalLights(frame).size()) +
                         " directional lights; its \"shadows\" is false, --no-shadows, or it is past the first " +
                         std::to_string(kMaxShadowedLights) + " shadowed lights)");
     }

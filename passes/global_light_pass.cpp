@@ -63,7 +63,7 @@ std::string sunShadowFilterDefine(const FrameData& frame) {
 }
 
 int setSunUniforms(GLuint prog, const FrameData& frame, const ShadowMaps& shadowMaps) {
-    const auto& lights = frame.scene->directionalLights;
+    const auto& lights = frameDirectionalLights(frame);
     if (int(lights.size()) > kMaxLights)
         logWarn("only the first " + std::to_string(kMaxLights) + " of " + std::to_string(lights.size()) +
                 " directional lights are drawn");
@@ -79,7 +79,8 @@ int setSunUniforms(GLuint prog, const FrameData& frame, const ShadowMaps& shadow
         glProgramUniform3fv(prog, loc(prog, "uLightDirEye"), count, glm::value_ptr(dirs[0]));
         glProgramUniform3fv(prog, loc(prog, "uLightIrradiance"), count, glm::value_ptr(irr[0]));
     }
-    glProgramUniform3fv(prog, loc(prog, "uAmbient"), 1, glm::value_ptr(frame.scene->ambient));
+    const glm::vec3 ambient = frameAmbient(frame);
+    glProgramUniform3fv(prog, loc(prog, "uAmbient"), 1, glm::value_ptr(ambient));
     glProgramUniform1i(prog, loc(prog, "uBrdf"), frame.settings->brdf == Brdf::Ggx ? 1 : 0);
     glProgramUniform1i(prog, loc(prog, "uSpecularMasking"), int(frame.settings->specularMasking));
     setShadowUniforms(prog, frame, shadowMaps, count);

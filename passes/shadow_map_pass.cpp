@@ -709,7 +709,7 @@ struct PendingWork {
 ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const FrameData& frame) {
     ShadowMaps maps;
     // Say why a frame has no (or fewer) shadow passes: 'lightpass graph' and the viewer show it.
-    const auto& lights = frame.scene->directionalLights;
+    const auto& lights = frameDirectionalLights(frame);
     int casting = 0;
     for (const auto& l : lights) casting += (l.castsShadows || frame.settings->allPasses) ? 1 : 0;
     if (casting == 0) graph.skipPass("shadow_map", "no directional light casts shadows");
@@ -750,7 +750,7 @@ ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const
         LightShadowMap map;
         map.light = light;
         const auto held = state.previousFrusta.find(light);
-        map.frustum = fitShadowFrustum(frame, frame.scene->directionalLights[size_t(light)].direction,
+        map.frustum = fitShadowFrustum(frame, frameDirectionalLights(frame)[size_t(light)].direction,
                                        held == state.previousFrusta.end() ? nullptr : &held->second);
         state.previousFrusta[light] = map.frustum;  // the squares wanted, whatever lags behind them
         ShadowFrustum& fr = map.frustum;

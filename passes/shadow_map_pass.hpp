@@ -267,7 +267,7 @@ std::string shadowRasterCacheKey();
 std::filesystem::path shadowRasterCachePath();
 
 struct LightShadowMap {
-    int light = -1;          // index into scene.directionalLights
+    int light = -1;          // index into frameDirectionalLights(frame)
     fg::ResourceId depth;    // the atlas
     ShadowFrustum frustum;   // cascades, matrices, tile layout
 };

@@ -61,4 +61,12 @@ struct FrameData {
     EnvironmentCache* environments = nullptr;
 };
 
+// Whether IBL lights a frame: a map to light with, and --ibl / --brdf-only or else the scene's
+// environment.ibl.
+bool iblLightsFrame(const Scene& scene, const RenderSettings& settings);
+// The directional lights and the constant ambient a frame shades with: the scene's own, or its
+// lightsWithoutIbl on a frame that IBL does not light (a frame without settings: the scene's own).
+const std::vector<DirectionalLight>& frameDirectionalLights(const FrameData& frame);
+glm::vec3 frameAmbient(const FrameData& frame);
+
 }  // namespace lp

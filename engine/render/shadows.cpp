@@ -15,7 +15,7 @@ namespace lp {
 std::vector<int> shadowCastingLights(const FrameData& frame) {
     std::vector<int> lights;
     if (!frame.scene || !frame.settings || !frame.settings->shadows.enabled) return lights;
-    const auto& all = frame.scene->directionalLights;
+    const auto& all = frameDirectionalLights(frame);
     for (int i = 0; i < int(all.size()) && int(lights.size()) < kMaxShadowedLights; ++i)
         if (all[size_t(i)].castsShadows || frame.settings->allPasses) lights.push_back(i);
     return lights;

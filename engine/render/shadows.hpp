@@ -60,7 +60,7 @@ struct ShadowFrustum {
     std::vector<std::string> dropped;            // why each cascade not made was dropped
 };
 
-// Indices into scene.directionalLights of the lights that get a shadow map this frame: those with
+// Indices into frameDirectionalLights(frame) of the lights that get a shadow map this frame: those with
 // castsShadows, when settings.shadows.enabled, at most kMaxShadowedLights (the first ones).
 std::vector<int> shadowCastingLights(const FrameData& frame);
 

@@ -97,6 +97,15 @@ struct ModelInstance {
     MeshData mesh;  // filled by the loader
 };
 
+// Lights a scene shades with instead of its own directional lights and ambient on a frame that IBL
+// does not light (no environment map, or IBL off): a bare --model is lit by its environment, and by
+// this key and fill light when the environment goes (--env none, --brdf-only, the viewer's "plain
+// colour"), so it is never left dark, nor lit twice over.
+struct LightsWithoutIbl {
+    std::vector<DirectionalLight> directionalLights;
+    glm::vec3 ambient{0.0f};
+};
+
 struct Scene {
     std::filesystem::path file;  // where it came from (empty for generated scenes)
     Camera camera;
@@ -106,6 +115,7 @@ struct Scene {
     Environment environment;
     glm::vec3 ambient{0.03f};  // constant ambient radiance in BRDF mode
     bool lightGlobes = false;  // "lightGlobes": draw each point light as a small flat-lit globe (seed 003)
+    std::optional<LightsWithoutIbl> lightsWithoutIbl;  // unset: the lights above, whatever the IBL
     Effects effects;
     // "cameraPath" / --camera-path: when set, frames at time t use cameraAt(t) instead of `camera`
     // (up, near and far stay the camera's). --camera removes it.

@@ -12,6 +12,7 @@
 
 #include "engine/core/error.hpp"
 #include "engine/core/log.hpp"
+#include "engine/core/paths.hpp"
 #include "engine/io/file_check.hpp"
 #include "engine/io/gltf_loader.hpp"
 #include "engine/io/obj_loader.hpp"
@@ -535,6 +536,8 @@ bool isModelPath(const fs::path& file) {
 
 glm::mat4 zUpToYUp() { return glm::rotate(glm::mat4(1.0f), glm::radians(-90.0f), glm::vec3(1, 0, 0)); }
 
+fs::path studioEnvironmentPath() { return dataRoot() / "hdr" / "studio.exr"; }
+
 Scene sceneForModel(const fs::path& file, bool zUp) {
     Scene scene;
     scene.file = file;
@@ -556,13 +559,16 @@ Scene sceneForModel(const fs::path& file, bool zUp) {
         m.mesh = loadObj(file);
     }
     scene.models.push_back(std::move(m));
-    // The viewer's key and fill light, unless the file brings its own (a glTF's KHR_lights_punctual).
-    if (fileLights) {
+    frameCamera(scene);
+    if (fileCamera) scene.camera = *fileCamera;  // a glTF's first camera
+    if (fileLights) {  // a glTF's KHR_lights_punctual: its own lighting, no environment added
         scene.ambient = glm::vec3(0.05f);
-        frameCamera(scene);
-        if (fileCamera) scene.camera = *fileCamera;
         return scene;
     }
+    // A bare model: lit by the bundled studio environment (IBL), as model viewers light one; the key
+    // and fill light (a camera-side key from above left, a dimmer cool fill from the right) take
+    // over on a frame without IBL.
+    LightsWithoutIbl rig;
     DirectionalLight key;
     key.direction = glm::normalize(glm::vec3(-0.4f, -1.0f, -0.6f));
     key.intensity = 3.0f;
@@ -571,11 +577,28 @@ Scene sceneForModel(const fs::path& file, bool zUp) {
     fill.intensity = 0.8f;
     fill.color = glm::vec3(0.8f, 0.9f, 1.0f);
     fill.castsShadows = false;
-    scene.directionalLights = {key, fill};
-    scene.ambient = glm::vec3(0.05f);
-    frameCamera(scene);
-    if (fileCamera) scene.camera = *fileCamera;  // a glTF's first camera
+    rig.directionalLights = {key, fill};
+    rig.ambient = glm::vec3(0.05f);
+    scene.lightsWithoutIbl = rig;
+    scene.ambient = glm::vec3(0.0f);  // the environment is the indirect light
+    const fs::path studio = studioEnvironmentPath();
+    std::error_code ec;
+    if (fs::is_regular_file(studio, ec)) {
+        scene.environment.map = studio;
+        scene.environment.ibl = true;
+    } else {
+        logWarn(studio.string() + ": not found; " + file.filename().string() +
+                " is lit by a key and a fill light instead of the bundled studio environment");
+    }
     return scene;
+}
+
+void replaceEnvironment(Scene& scene, const fs::path& map) {
+    Environment& e = scene.environment;
+    e.map = map;
+    e.ibl = !map.empty();
+    e.intensity = 1.0f;
+    e.rotationDegrees = 0.0f;
 }
 
 }  // namespace lp

@@ -18,9 +18,17 @@ Scene parseScene(const std::string& json, const std::filesystem::path& origin, b
 CameraPath loadCameraPath(const std::filesystem::path& file);
 CameraPath parseCameraPathFile(const std::string& json, const std::filesystem::path& origin);
 // A model-viewer scene: the OBJ or glTF (by extension), a camera framed on its bounds (or the glTF's
-// first camera), a key and a fill light (or the glTF's own lights).
+// first camera). A glTF with KHR_lights_punctual brings its own lights; any other model is lit by
+// the bundled studio environment with IBL on (studioEnvironmentPath()), its lightsWithoutIbl a key
+// and a fill light (without the file: those lights alone, with a warning).
 // zUp: the file is Z-up and is turned to Y-up (a -90 degree rotation about +X).
 Scene sceneForModel(const std::filesystem::path& file, bool zUp = false);
+// hdr/studio.exr under the data root (scripts/make_studio.py writes it).
+std::filesystem::path studioEnvironmentPath();
+// --env: `map` becomes the scene's environment, its sky and, with IBL on, its indirect light, at
+// intensity 1 and rotation 0; an empty path removes the map and IBL (the plain colour stays the
+// background, and a bare model's key and fill light take over).
+void replaceEnvironment(Scene& scene, const std::filesystem::path& map);
 // The rotation that turns a Z-up model Y-up: (x, y, z) -> (x, z, -y).
 glm::mat4 zUpToYUp();
 // A model file sceneForModel opens (.obj, .gltf, .glb, any case), not a scene file.

@@ -39,7 +39,8 @@ def render_scene(scene, out="{O}/out.png", more=()):
 
 
 def render_model(model, out="{O}/out.png"):
-    return ["render", "--model", model if model.startswith("/") else "{C}/" + model, "--out", out, *RENDER]
+    # A bare model is lit by the bundled studio environment: its bake kept small too.
+    return ["render", "--model", model if model.startswith("/") else "{C}/" + model, "--out", out, *RENDER, *ENV_SMALL]
 
 
 # ---- well-formed pieces the bad ones are built around --------------------------------------------

@@ -1,0 +1,26 @@
+#include "engine/render/frame_data.hpp"
+
+namespace lp {
+
+bool iblLightsFrame(const Scene& scene, const RenderSettings& settings) {
+    return !scene.environment.map.empty() && settings.environment.ibl.value_or(scene.environment.ibl);
+}
+
+namespace {
+const LightsWithoutIbl* substitute(const FrameData& frame) {
+    if (!frame.scene || !frame.settings || !frame.scene->lightsWithoutIbl) return nullptr;
+    return iblLightsFrame(*frame.scene, *frame.settings) ? nullptr : &*frame.scene->lightsWithoutIbl;
+}
+}  // namespace
+
+const std::vector<DirectionalLight>& frameDirectionalLights(const FrameData& frame) {
+    const LightsWithoutIbl* s = substitute(frame);
+    return s ? s->directionalLights : frame.scene->directionalLights;
+}
+
+glm::vec3 frameAmbient(const FrameData& frame) {
+    const LightsWithoutIbl* s = substitute(frame);
+    return s ? s->ambient : frame.scene->ambient;
+}
+
+}  // namespace lp

@@ -1,0 +1,154 @@
+// The environment a model or scene is lit by (no GL): a bare --model gets the bundled studio map with
+// IBL on and its key and fill light only on frames without IBL; the bundled studio map is small,
+// neutral and lit from above; the graph of each case has the passes that light it.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <map>
+#include <set>
+#include <string>
+
+#include "engine/render/ibl_lights.hpp"
+#include "engine/render/ibl_sh.hpp"
+#include "frame/frame_builder.hpp"
+#include "engine/scene/scene_loader.hpp"
+
+using namespace lp;
+
+namespace {
+
+const std::filesystem::path kSource = LIGHTPASS_SOURCE_DIR;
+
+const Scene& bareModel() {  // models/pbr_spheres.glb: ten spheres, no KHR_lights_punctual
+    static const Scene scene = sceneForModel(kSource / "models/pbr_spheres.glb");
+    return scene;
+}
+
+// Candidate passes that run in the graph of `scene` under `settings`, and why the others do not.
+struct Passes {
+    std::set<std::string> runs;
+    std::map<std::string, std::string> skipped;
+};
+Passes passes(const Scene& scene, const RenderSettings& settings) {
+    FrameData frame = makeFrameData(scene, settings, 0.0f);
+    fg::FrameGraph graph;
+    PassStates states;
+    buildFrameGraph(graph, states, frame);
+    graph.compile();
+    Passes p;
+    for (const fg::PassDecision& d : graph.explain()) {
+        if (d.runs) p.runs.insert(d.name);
+        else p.skipped[d.name] = d.reason;
+    }
+    return p;
+}
+
+RenderSettings small() {
+    RenderSettings s;
+    s.width = 160;
+    s.height = 90;
+    return s;
+}
+
+}  // namespace
+
+// A model without lights of its own: the studio map with IBL on, no directional light and no ambient
+// of its own (the map is its light), and a key (casting shadows) and a fill for frames without IBL.
+TEST(ModelEnvironment, BareModelIsLitByTheBundledStudio) {
+    const Scene& s = bareModel();
+    EXPECT_EQ(s.environment.map, studioEnvironmentPath());
+    EXPECT_TRUE(std::filesystem::is_regular_file(s.environment.map)) << s.environment.map;
+    EXPECT_TRUE(s.environment.ibl);
+    EXPECT_TRUE(s.directionalLights.empty());
+    EXPECT_EQ(s.ambient, glm::vec3(0.0f));
+    ASSERT_TRUE(s.lightsWithoutIbl.has_value());
+    ASSERT_EQ(s.lightsWithoutIbl->directionalLights.size(), 2u);
+    EXPECT_TRUE(s.lightsWithoutIbl->directionalLights[0].castsShadows);
+    EXPECT_GT(s.lightsWithoutIbl->ambient.x, 0.0f);
+}
+
+// A glTF with KHR_lights_punctual keeps its own lights and gets no environment.
+TEST(ModelEnvironment, ModelWithItsOwnLightsGetsNoEnvironment) {
+    const Scene s = sceneForModel(kSource / "tests/data/gltf/lights.gltf");
+    EXPECT_TRUE(s.environment.map.empty());
+    EXPECT_FALSE(s.environment.ibl);
+    EXPECT_FALSE(s.lightsWithoutIbl.has_value());
+    EXPECT_FALSE(s.pointLights.empty() && s.directionalLights.empty());
+}
+
+// The lights a frame shades with: the map while IBL lights it, the key and fill when it does not
+// (IBL switched off, or no map), and a scene without lightsWithoutIbl keeps its own either way.
+TEST(ModelEnvironment, KeyAndFillOnlyOnFramesWithoutIbl) {
+    Scene s = bareModel();
+    RenderSettings on = small();
+    FrameData f = makeFrameData(s, on, 0.0f);
+    EXPECT_TRUE(iblLightsFrame(s, on));
+    EXPECT_TRUE(frameDirectionalLights(f).empty());
+    EXPECT_EQ(frameAmbient(f), glm::vec3(0.0f));
+
+    RenderSettings off = small();
+    off.environment.ibl = false;  // --brdf-only
+    f = makeFrameData(s, off, 0.0f);
+    EXPECT_EQ(frameDirectionalLights(f).size(), 2u);
+    EXPECT_EQ(frameAmbient(f), s.lightsWithoutIbl->ambient);
+
+    replaceEnvironment(s, {});  // no map
+    f = makeFrameData(s, on, 0.0f);
+    EXPECT_FALSE(iblLightsFrame(s, on));
+    EXPECT_EQ(frameDirectionalLights(f).size(), 2u);
+
+    Scene cornell = loadScene(kSource / "scenes/cornell.json");
+    replaceEnvironment(cornell, {});
+    f = makeFrameData(cornell, on, 0.0f);
+    EXPECT_EQ(frameDirectionalLights(f).size(), cornell.directionalLights.size());
+    EXPECT_EQ(frameAmbient(f), cornell.ambient);
+}
+
+// The graph: a bare model runs the bake, the IBL and the sky and no shadow map (no sun); --env none
+// swaps in the sun's shadow map and drops IBL; --brdf-only keeps the sky, drops IBL, adds the sun.
+TEST(ModelEnvironment, GraphLightsTheModelEitherWay) {
+    Scene s = bareModel();
+    Passes p = passes(s, small());
+    for (const char* pass : {"ibl_bake", "ibl", "sky", "global_lights"}) EXPECT_TRUE(p.runs.count(pass)) << pass;
+    EXPECT_EQ(p.skipped["shadow_map"], "skipped: no directional light casts shadows");
+
+    RenderSettings off = small();
+    off.environment.ibl = false;
+    p = passes(s, off);
+    EXPECT_TRUE(p.runs.count("shadow_map_0"));
+    EXPECT_TRUE(p.runs.count("sky"));
+    EXPECT_FALSE(p.runs.count("ibl"));
+
+    replaceEnvironment(s, {});
+    p = passes(s, small());
+    EXPECT_TRUE(p.runs.count("shadow_map_0"));
+    EXPECT_EQ(p.skipped["ibl"], "skipped: scene has no environment map");
+}
+
+// hdr/studio.exr (scripts/make_studio.py): small, grey (R = G = B everywhere), lit from above (a
+// surface facing up receives about 3, as from the key light without an environment; facing down,
+// the floor's light, well under half of that), and its softboxes are too wide for light extraction,
+// so the whole map lights through the cube and the SH.
+TEST(ModelEnvironment, BundledStudioIsSmallNeutralAndLitFromAbove) {
+    const std::filesystem::path file = studioEnvironmentPath();
+    EXPECT_LT(std::filesystem::file_size(file), 300u * 1024u);
+    ImageF map = loadHdrImage(file);
+    EXPECT_EQ(map.width, 2 * map.height);
+    for (size_t i = 0; i < map.rgba.size(); i += 4) {
+        ASSERT_EQ(map.rgba[i], map.rgba[i + 1]) << "texel " << i / 4;
+        ASSERT_EQ(map.rgba[i], map.rgba[i + 2]) << "texel " << i / 4;
+        ASSERT_GT(map.rgba[i], 0.0f) << "texel " << i / 4;
+    }
+    const double up = bruteForceIrradiance(map, 0.0, {0, 1, 0}).x, down = bruteForceIrradiance(map, 0.0, {0, -1, 0}).x;
+    EXPECT_GT(up, 2.5);
+    EXPECT_LT(up, 3.5);
+    EXPECT_GT(down, 0.1 * up);
+    EXPECT_LT(down, 0.4 * up);
+    // The key is in front of the model, above and to the camera's left (-X): the side facing it gets
+    // more light than the side facing away.
+    EXPECT_GT(bruteForceIrradiance(map, 0.0, {-1, 0, 0}).x, bruteForceIrradiance(map, 0.0, {1, 0, 0}).x);
+    EXPECT_GT(bruteForceIrradiance(map, 0.0, {0, 0, 1}).x, bruteForceIrradiance(map, 0.0, {0, 0, -1}).x);
+    const LightExtraction e = extractEnvironmentLights(map, 0.0, EnvironmentSettings{}.extractLights,
+                                                       EnvironmentSettings{}.extractThreshold);
+    EXPECT_TRUE(e.lights.empty());
+}
