@@ -125,6 +125,19 @@ void parseCamera(Options& o, const std::string& flag, const std::string& v) {
     if (n.size() == 7) o.cameraFov = n[6];
 }
 
+// --env: "none" (an empty path), or an .hdr / .exr map that exists (looked up in the data root as
+// --scene is, so hdr/studio.exr works from anywhere).
+std::filesystem::path parseEnvironmentFlag(const std::string& flag, const std::string& v) {
+    if (v == "none") return {};
+    const std::filesystem::path map = resolveDataPath(v);
+    std::string ext = map.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    if (ext != ".hdr" && ext != ".exr") throw Error(flag + " " + v + ": expected an .hdr or .exr map, or none");
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(map, ec)) throw Error(flag + " " + v + ": file not found");
+    return map;
+}
+
 std::string viewList(const std::vector<DebugView>& views, const std::string& separator = " | ") {
     std::string s;
     for (DebugView v : views) s += (s.empty() ? "" : separator) + std::string(viewName(v));
@@ -143,6 +156,11 @@ std::vector<CommandFlag> makeCommandFlags() {
          "any OBJ or glTF (.gltf, .glb), framed by the camera (or the glTF's first camera), lit by the bundled "
          "studio environment with IBL on (or by the glTF's own lights)",
          [](Options& o, V, V v) { o.model = v; }},
+        {{"--env"}, "F|none",
+         "the environment map (.hdr or .exr, equirectangular) of the scene or model instead of its own, "
+         "sky and IBL, at intensity 1 and rotation 0; none: no map and no IBL (a bare model then gets a "
+         "key and a fill light)",
+         [](Options& o, V a, V v) { o.environment = parseEnvironmentFlag(a, v); }},
         {{"--up"}, "y|z", "the --model file's up axis: z turns a Z-up model (Blender, CAD, the Vulkan tutorial's viking room) to Y-up",
          [](Options& o, V a, V v) {
              if (v != "y" && v != "z") throw Error(a + " " + v + ": expected y or z");
@@ -315,6 +333,7 @@ RenderSettings renderSettings(const Options& o) {
 
 Scene sceneFromOptions(const Options& o) {
     Scene scene = o.model.empty() ? loadScene(o.scene) : sceneForModel(o.model, o.modelZUp);
+    if (o.environment) replaceEnvironment(scene, *o.environment);
     if (!o.cameraPath.empty()) scene.cameraPath = loadCameraPath(o.cameraPath);
     if (o.cameraPosition) scene.cameraPath.reset();  // --camera fixes the camera
     if (o.cameraPosition) scene.camera.position = *o.cameraPosition;

@@ -1,5 +1,6 @@
 #pragma once
 // Command-line parsing for the lightpass executable: flags are validated with one-line errors.
+#include <filesystem>
 #include <functional>
 #include <optional>
 #include <string>
@@ -17,6 +18,8 @@ struct Options {
     std::string scene;
     std::string model;
     bool modelZUp = false;  // --up z: the --model file is Z-up (turned to Y-up on load)
+    // --env FILE|none: replaces the scene's or model's environment; an empty path: none.
+    std::optional<std::filesystem::path> environment;
     std::string out;
     std::string exr;
     std::string dot;
@@ -68,8 +71,8 @@ Options parseArgs(const std::vector<std::string>& args);
 // The frame settings the options describe (size, view, exposure, feature flags).
 RenderSettings renderSettings(const Options& options);
 
-// The scene the options name (--scene or --model), with --camera-path's path and --camera's camera
-// applied (--camera removes any path: it fixes the camera).
+// The scene the options name (--scene or --model), with --env's environment, --camera-path's path
+// and --camera's camera applied (--camera removes any path: it fixes the camera).
 Scene sceneFromOptions(const Options& options);
 // --time / --fps: when timed frame i is on the scene's clock (T + i / F; T without --fps).
 double frameTime(const Options& options, int i);

@@ -1,6 +1,7 @@
 // The environment a model or scene is lit by (no GL): a bare --model gets the bundled studio map with
-// IBL on and its key and fill light only on frames without IBL; the bundled studio map is small,
-// neutral and lit from above; the graph of each case has the passes that light it.
+// IBL on and its key and fill light only on frames without IBL; --env FILE|none replaces any scene's
+// environment; the bundled studio map is small, neutral and lit from above; the graph of each case
+// has the passes that light it.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -8,6 +9,8 @@
 #include <set>
 #include <string>
 
+#include "app/cli.hpp"
+#include "engine/core/error.hpp"
 #include "engine/render/ibl_lights.hpp"
 #include "engine/render/ibl_sh.hpp"
 #include "frame/frame_builder.hpp"
@@ -92,7 +95,7 @@ TEST(ModelEnvironment, KeyAndFillOnlyOnFramesWithoutIbl) {
     EXPECT_EQ(frameDirectionalLights(f).size(), 2u);
     EXPECT_EQ(frameAmbient(f), s.lightsWithoutIbl->ambient);
 
-    replaceEnvironment(s, {});  // no map
+    replaceEnvironment(s, {});  // --env none
     f = makeFrameData(s, on, 0.0f);
     EXPECT_FALSE(iblLightsFrame(s, on));
     EXPECT_EQ(frameDirectionalLights(f).size(), 2u);
@@ -123,6 +126,45 @@ TEST(ModelEnvironment, GraphLightsTheModelEitherWay) {
     p = passes(s, small());
     EXPECT_TRUE(p.runs.count("shadow_map_0"));
     EXPECT_EQ(p.skipped["ibl"], "skipped: scene has no environment map");
+}
+
+// --env: none removes map and IBL; a file replaces the map, turns IBL on, at intensity 1 and rotation
+// 0; a missing file and a non-HDR name are one-line errors naming the flag and the file.
+TEST(ModelEnvironment, EnvFlagReplacesAnyScenesEnvironment) {
+    const std::string cornell = (kSource / "scenes/cornell.json").string();
+    const std::string studio = (kSource / "hdr/studio.exr").string();
+    app::Options o = app::parseArgs({"render", "--scene", cornell, "--out", "x.png", "--env", "none"});
+    ASSERT_TRUE(o.environment.has_value());
+    EXPECT_TRUE(o.environment->empty());
+    Scene s = app::sceneFromOptions(o);
+    EXPECT_TRUE(s.environment.map.empty());
+    EXPECT_FALSE(s.environment.ibl);
+
+    o = app::parseArgs({"render", "--scene", cornell, "--out", "x.png", "--env", studio});
+    EXPECT_EQ(*o.environment, studio);
+    s = app::sceneFromOptions(o);
+    EXPECT_EQ(s.environment.map, studio);
+    EXPECT_TRUE(s.environment.ibl);
+    EXPECT_EQ(s.environment.intensity, 1.0f);
+    EXPECT_EQ(s.environment.rotationDegrees, 0.0f);
+    EXPECT_FALSE(s.directionalLights.empty()) << "the scene keeps its own lights";
+
+    o = app::parseArgs({"render", "--model", (kSource / "models/pbr_spheres.glb").string(), "--out", "x.png", "--env",
+                        (kSource / "hdr/sky.hdr").string()});
+    s = app::sceneFromOptions(o);
+    EXPECT_EQ(s.environment.map, kSource / "hdr/sky.hdr");
+    EXPECT_TRUE(s.environment.ibl);
+
+    auto errorOf = [&](const std::string& env) {
+        try {
+            app::parseArgs({"render", "--scene", cornell, "--out", "x.png", "--env", env});
+        } catch (const Error& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    EXPECT_EQ(errorOf("/nonexistent/map.exr"), "--env /nonexistent/map.exr: file not found");
+    EXPECT_EQ(errorOf("picture.png"), "--env picture.png: expected an .hdr or .exr map, or none");
 }
 
 // hdr/studio.exr (scripts/make_studio.py): small, grey (R = G = B everywhere), lit from above (a
