@@ -17,6 +17,7 @@
 #include <backends/imgui_impl_opengl3.h>
 
 #include "app/config_dir.hpp"
+#include "app/environment_pick.hpp"
 #include "engine/core/error.hpp"
 #include "engine/core/log.hpp"
 #include "engine/gl/context.hpp"
@@ -301,10 +302,9 @@ int runViewer(const Options& o) {
             }
             st.sceneRequest.reset();
         }
-        std::optional<std::filesystem::path> previousMap;
+        std::optional<EnvironmentBefore> previousEnvironment;  // a pick this frame, to undo if its map fails
         if (st.environmentRequest) {
-            previousMap = scene->environment.map;
-            scene->environment.map = *st.environmentRequest;
+            previousEnvironment = pickEnvironment(*scene, st.settings, *st.environmentRequest);
             st.environmentRequest.reset();
         }
         reloadChangedShaders(st, *renderer, now);
@@ -340,7 +340,7 @@ int runViewer(const Options& o) {
         st.toonShown = st.settings.post.toon.value_or(scene->effects.toon.enabled);
         try {
             renderer->render(st.settings, float(now), true);
-            if (previousMap) {
+            if (previousEnvironment) {
                 st.sceneError.clear();
                 say("environment " + (scene->environment.map.empty() ? std::string("plain colour") : scene->environment.map.string()));
             }
@@ -349,10 +349,10 @@ int runViewer(const Options& o) {
             // A map that does not load, or a setting the renderer refuses: show the one-line error,
             // go back to what last rendered (the first frame has nothing to go back to).
             if (frame == 0) throw;
-            if (previousMap) scene->environment.map = *previousMap;
             st.settings = lastGoodSettings;
+            if (previousEnvironment) restoreEnvironment(*scene, st.settings, *previousEnvironment);
             st.sceneError = e.what();
-            say(std::string(previousMap ? "environment error: " : "render error: ") + e.what());
+            say(std::string(previousEnvironment ? "environment error: " : "render error: ") + e.what());
             renderer->render(st.settings, float(now), true);
         }
         {  // the passes that ran, whenever they change (checkboxes, '7', '8', settings)

@@ -1,7 +1,7 @@
 // The environment a model or scene is lit by (no GL): a bare --model gets the bundled studio map with
 // IBL on and its key and fill light only on frames without IBL; --env FILE|none replaces any scene's
-// environment; the bundled studio map is small, neutral and lit from above; the graph of each case
-// has the passes that light it.
+// environment; the viewer's picker turns IBL on; the bundled studio map is small, neutral and lit
+// from above; the graph of each case has the passes that light it.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -10,6 +10,7 @@
 #include <string>
 
 #include "app/cli.hpp"
+#include "app/environment_pick.hpp"
 #include "engine/core/error.hpp"
 #include "engine/render/ibl_lights.hpp"
 #include "engine/render/ibl_sh.hpp"
@@ -165,6 +166,33 @@ TEST(ModelEnvironment, EnvFlagReplacesAnyScenesEnvironment) {
     };
     EXPECT_EQ(errorOf("/nonexistent/map.exr"), "--env /nonexistent/map.exr: file not found");
     EXPECT_EQ(errorOf("picture.png"), "--env picture.png: expected an .hdr or .exr map, or none");
+}
+
+// The viewer's picker: a map turns IBL on (the scene's switch, and the knob where it was off);
+// "plain colour" leaves IBL as it was; a failed map puts everything back.
+TEST(ModelEnvironment, PickingAMapTurnsIblOn) {
+    Scene s = loadScene(kSource / "scenes/cornell.json");  // its sky map, IBL off
+    ASSERT_FALSE(s.environment.ibl);
+    const std::filesystem::path sky = s.environment.map;
+    RenderSettings settings;
+    app::EnvironmentBefore before = app::pickEnvironment(s, settings, kSource / "hdr/studio.exr");
+    EXPECT_TRUE(s.environment.ibl);
+    EXPECT_FALSE(settings.environment.ibl.has_value()) << "an unset knob follows the scene";
+    EXPECT_TRUE(iblLightsFrame(s, settings));
+    app::restoreEnvironment(s, settings, before);
+    EXPECT_EQ(s.environment.map, sky);
+    EXPECT_FALSE(s.environment.ibl);
+
+    settings.environment.ibl = false;  // switched off in the panel
+    app::pickEnvironment(s, settings, kSource / "hdr/studio.exr");
+    EXPECT_EQ(settings.environment.ibl, std::optional<bool>(true));
+
+    Scene m = bareModel();
+    RenderSettings mine;
+    app::pickEnvironment(m, mine, {});  // plain colour
+    EXPECT_TRUE(m.environment.map.empty());
+    EXPECT_FALSE(iblLightsFrame(m, mine));
+    EXPECT_EQ(frameDirectionalLights(makeFrameData(m, mine, 0.0f)).size(), 2u) << "the key and fill take over";
 }
 
 // hdr/studio.exr (scripts/make_studio.py): small, grey (R = G = B everywhere), lit from above (a
