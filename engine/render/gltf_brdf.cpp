@@ -1,0 +1,57 @@
+#include "engine/render/gltf_brdf.hpp"
+
+#include <cmath>
+
+namespace lp {
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+}
+
+double gltfDielectricF0(double ior) {
+    const double r = (ior - 1.0) / (ior + 1.0);
+    return r * r;
+}
+
+double gltfIorOfF0(double f0) {
+    const double r = std::sqrt(f0);
+    return (1.0 + r) / (1.0 - r);
+}
+
+double gltfGgxDistribution(double nh, double alpha) {
+    if (nh <= 0.0) return 0.0;
+    const double a2 = alpha * alpha, d = nh * nh * (a2 - 1.0) + 1.0;
+    return a2 / (kPi * d * d);
+}
+
+double gltfSmithVisibility(double nv, double nl, double alpha, SpecularMasking masking) {
+    const double a2 = alpha * alpha;
+    const double lv = std::sqrt(a2 + (1.0 - a2) * nv * nv), ll = std::sqrt(a2 + (1.0 - a2) * nl * nl);
+    if (masking == SpecularMasking::Separable) return 1.0 / ((nl + ll) * (nv + lv));
+    return 0.5 / (nv * ll + nl * lv);
+}
+
+GltfBrdfLobes gltfBrdfLobes(const GltfBrdfMaterial& m, glm::dvec3 N, glm::dvec3 V, glm::dvec3 L, SpecularMasking masking) {
+    const double nl = glm::dot(N, L), nv = glm::dot(N, V);
+    if (nl <= 0.0 || nv <= 0.0) return {};
+    const glm::dvec3 H = glm::normalize(V + L);
+    const double vh = std::abs(glm::dot(V, H));
+    const double alpha = m.roughness * m.roughness;
+    const double specular = gltfGgxDistribution(glm::dot(N, H), alpha) * gltfSmithVisibility(nv, nl, alpha, masking);
+    const double w = std::pow(1.0 - vh, 5.0);
+    const glm::dvec3 metalFresnel = m.baseColor + (glm::dvec3(1.0) - m.baseColor) * w;
+    const double f0 = gltfDielectricF0(m.ior), dielectricFresnel = f0 + (1.0 - f0) * w;
+    // material = mix(dielectric, metal, metallic), dielectric = mix(base / pi, specular, F_dielectric),
+    // metal = F_metal specular.
+    GltfBrdfLobes out;
+    out.diffuse = (1.0 - m.metallic) * (1.0 - dielectricFresnel) * m.baseColor / kPi;
+    out.specular = specular * ((1.0 - m.metallic) * glm::dvec3(dielectricFresnel) + m.metallic * metalFresnel);
+    return out;
+}
+
+glm::dvec3 gltfBrdf(const GltfBrdfMaterial& m, glm::dvec3 N, glm::dvec3 V, glm::dvec3 L, SpecularMasking masking) {
+    const GltfBrdfLobes lobes = gltfBrdfLobes(m, N, V, L, masking);
+    return lobes.diffuse + lobes.specular;
+}
+
+}  // namespace lp

@@ -1,0 +1,45 @@
+#pragma once
+// glTF 2.0's metallic-roughness BRDF (the specification's Appendix B), evaluated exactly in double
+// precision: the reference lightpass's light passes are tested against (shaders/common/brdf.glsl
+// implements it). No clamps and none of the shaders' heuristics: alpha = roughness^2 as it is,
+// Schlick's Fresnel towards 1, the dielectric's diffuse weighted by 1 - F(V.H):
+//   metal_brdf      = specular_brdf(alpha) * (base + (1 - base) (1 - |V.H|)^5)
+//   dielectric_brdf = mix(base / pi, specular_brdf(alpha), F0 + (1 - F0) (1 - |V.H|)^5)
+//   material        = mix(dielectric_brdf, metal_brdf, metallic)
+//   specular_brdf   = D_GGX(alpha) * V_Smith(alpha)  (height-correlated: the specification's; or separable)
+#include <glm/glm.hpp>
+
+#include "engine/render/settings.hpp"
+
+namespace lp {
+
+struct GltfBrdfMaterial {
+    glm::dvec3 baseColor{1.0};
+    double metallic = 1.0;
+    double roughness = 1.0;  // perceptual: alpha = roughness^2
+    double ior = 1.5;        // the dielectric's F0 = ((ior - 1) / (ior + 1))^2 (KHR_materials_ior): 0.04
+};
+
+double gltfDielectricF0(double ior);
+// Its inverse: the index of a dielectric of F0 `f0` in [0, 1) (MTL's Ks as glTF's dielectric).
+double gltfIorOfF0(double f0);
+
+// GGX's D at N.H for alpha (0 where N.H <= 0).
+double gltfGgxDistribution(double nh, double alpha);
+
+// The visibility V = G2 / (4 |N.L| |N.V|) of `masking` at |N.V| = nv, |N.L| = nl.
+double gltfSmithVisibility(double nv, double nl, double alpha, SpecularMasking masking);
+
+// f(N, V, L) for unit vectors (no N.L factor) as its two lobes, the diffuse (1 - metallic) (1 - F(V.H))
+// base / pi and the specular mix(F_dielectric, F_metal, metallic) D V; zero where N.L <= 0 or N.V <= 0
+// (the specification's chi+(H.L) chi+(H.V) follow for a reflection).
+struct GltfBrdfLobes {
+    glm::dvec3 diffuse{0.0}, specular{0.0};
+};
+GltfBrdfLobes gltfBrdfLobes(const GltfBrdfMaterial& m, glm::dvec3 N, glm::dvec3 V, glm::dvec3 L,
+                            SpecularMasking masking = SpecularMasking::HeightCorrelated);
+// Their sum: the material's BRDF.
+glm::dvec3 gltfBrdf(const GltfBrdfMaterial& m, glm::dvec3 N, glm::dvec3 V, glm::dvec3 L,
+                    SpecularMasking masking = SpecularMasking::HeightCorrelated);
+
+}  // namespace lp
