@@ -353,25 +353,27 @@ std::vector<KnobEntry> makeKnobTable() {
     }
     {
         KnobEntry k = choiceKnob("brdf", [](auto& s) -> auto& { return s.brdf; },
-                                 std::vector<Brdf>{Brdf::BlinnPhong, Brdf::Ggx}, brdfName);
+                                 std::vector<Brdf>{Brdf::Ggx, Brdf::BlinnPhong}, brdfName);
         k.flags = {valueFlag("--brdf")};
         k.choiceNoun = "BRDF";
-        k.help = "the analytic BRDF of the lights; ggx: Cook-Torrance, roughness from MTL Ns, F0 = Ks";
+        k.help = "the BRDF of every light; ggx: glTF 2.0's metallic-roughness BRDF for every material (MTL: "
+                 "F0 = Ks, roughness from Ns, Kd weighted by 1 - F); blinn-phong: the seeds' Kd/pi + normalised "
+                 "Blinn-Phong for suns and local lights";
         k.panel = {PanelSection::Lighting, PanelWidget::Combo, "BRDF", ""};
         t.push_back(std::move(k));
     }
     {
         KnobEntry k = choiceKnob("specular-masking", [](auto& s) -> auto& { return s.specularMasking; },
-                                 std::vector<SpecularMasking>{SpecularMasking::Separable, SpecularMasking::HeightCorrelated},
+                                 std::vector<SpecularMasking>{SpecularMasking::HeightCorrelated, SpecularMasking::Separable},
                                  specularMaskingName);
         k.flags = {valueFlag("--specular-masking")};
         k.choiceNoun = "masking";
-        k.help = "GGX's Smith masking-shadowing (suns with --brdf ggx, IBL, extracted lights): separable "
-                 "G1(V) G1(L), as path tracers (Mitsuba), or height-correlated (Filament's, Unreal's form)";
+        k.help = "GGX's Smith masking-shadowing (lights, IBL, extracted lights): height-correlated, the glTF "
+                 "specification's (Filament's, Unreal's), or separable G1(V) G1(L), as Mitsuba's built-in BSDFs";
         k.panel = {PanelSection::Lighting, PanelWidget::Combo, "specular masking", ""};
-        k.sweep = {{"height-correlated", "separable"}, false,
-                   "GGX masking model (--specular-masking, with --ibl): height-correlated against separable "
-                   "(reference, the path tracer's). A different model, not an approximation: not monotone",
+        k.sweep = {{"separable", "height-correlated"}, false,
+                   "GGX masking model (--specular-masking, with --ibl): separable against height-correlated "
+                   "(reference, the glTF specification's). A different model, not an approximation: not monotone",
                    iblOn};
         t.push_back(std::move(k));
     }

@@ -146,6 +146,11 @@ void setBackgroundMotionUniforms(GLuint program, const FrameData& frame) {
                               glm::value_ptr(frame.previousViewProjection));
 }
 
+void setBrdfUniforms(GLuint prog, const RenderSettings& settings) {
+    glProgramUniform1i(prog, glGetUniformLocation(prog, "uBrdf"), int(settings.brdf));  // = LP_BRDF_*
+    glProgramUniform1i(prog, glGetUniformLocation(prog, "uSpecularMasking"), int(settings.specularMasking));
+}
+
 void bindGBuffer(GLuint program, const fg::PassResources& res, const GBuffer& g, const FrameData& frame, bool diffuse) {
     glBindTextureUnit(0, res.texture(g.depth));
     glBindTextureUnit(1, res.texture(g.normal));
@@ -228,6 +233,7 @@ GBuffer addGeometryPass(fg::FrameGraph& graph, GBufferPass& state, const FrameDa
             glUseProgram(prog);
             glProgramUniformMatrix4fv(prog, glGetUniformLocation(prog, "uProjection"), 1, GL_FALSE,
                                       glm::value_ptr(gbufferDepthProjection(frame)));
+            setBrdfUniforms(prog, *frame.settings);
             const GLint locClip = glGetUniformLocation(prog, "uClipFromModel");
             const GLint locPreviousClip = glGetUniformLocation(prog, "uPreviousClipFromModel");
             const GLint locMV = glGetUniformLocation(prog, "uModelView");

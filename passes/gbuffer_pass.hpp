@@ -69,6 +69,10 @@ struct MaterialUniforms {
         hasMetalRough, hasOcclusion, occlusionStrength, mask, cutoff, twoSided, flat, secondUvMaps;
 };
 
+// common/brdf.glsl's uBrdf and uSpecularMasking from the settings, on every program that evaluates the
+// BRDF or stores a material for it (the G-buffer's diffuse colour depends on the BRDF: materialDiffuseAlbedo).
+void setBrdfUniforms(GLuint prog, const RenderSettings& settings);
+
 // GL internal formats of the targets under a layout (README "G-buffer formats").
 GLenum gbufferNormalFormat(GBufferNormalFormat format);
 GLenum gbufferSpecularFormat(GBufferNormalFormat format);

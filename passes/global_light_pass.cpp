@@ -81,8 +81,7 @@ int setSunUniforms(GLuint prog, const FrameData& frame, const ShadowMaps& shadow
     }
     const glm::vec3 ambient = frameAmbient(frame);
     glProgramUniform3fv(prog, loc(prog, "uAmbient"), 1, glm::value_ptr(ambient));
-    glProgramUniform1i(prog, loc(prog, "uBrdf"), frame.settings->brdf == Brdf::Ggx ? 1 : 0);
-    glProgramUniform1i(prog, loc(prog, "uSpecularMasking"), int(frame.settings->specularMasking));
+    setBrdfUniforms(prog, *frame.settings);
     setShadowUniforms(prog, frame, shadowMaps, count);
     return count;
 }

@@ -72,7 +72,7 @@ void setIblUniforms(GLuint prog, const FrameData& frame, const BakedEnvironment&
                               glm::value_ptr(glm::transpose(glm::mat3(frame.view))));
     glProgramUniform1f(prog, glGetUniformLocation(prog, "uIntensity"), frame.scene->environment.intensity);
     glProgramUniform1f(prog, glGetUniformLocation(prog, "uMaxLod"), float(env.prefiltered.levels - 1));
-    glProgramUniform1i(prog, glGetUniformLocation(prog, "uSpecularMasking"), int(frame.settings->specularMasking));
+    setBrdfUniforms(prog, *frame.settings);
     glProgramUniform1i(prog, glGetUniformLocation(prog, "uSpecularSamples"),
                        s.specular == IblSpecular::Sampled ? s.specularRuntimeSamples : 0);
     const int lights = std::min(int(env.lights.size()), kMaxEnvironmentLights);

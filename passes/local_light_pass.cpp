@@ -496,6 +496,7 @@ int bindClusteredLightLists(LocalLightPass& state, GLuint prog, const FrameData&
     setInt(prog, "uLocalLightCount", count);
     setInt(prog, "uUnbounded", unbounded(s));
     setInt(prog, "uSpecularMode", specularMode(s));
+    setBrdfUniforms(prog, *frame.settings);
     return count;
 }
 
@@ -511,6 +512,7 @@ std::uint64_t clusteredRaceKey(const FrameData& frame, bool lightingOnly, bool s
     std::uint64_t h = 1469598103934665603ull;  // FNV-1a over the values
     for (const std::int64_t v : {std::int64_t(lightCount), std::int64_t(frame.width), std::int64_t(frame.height),
                                  std::int64_t(s.clusterSlices), std::int64_t(specularMode(s)), std::int64_t(lightingOnly),
+                                 std::int64_t(frame.settings->brdf), std::int64_t(frame.settings->specularMasking),
                                  std::int64_t(spotShadows), std::int64_t(frame.settings->gbuffer.mode)}) {
         h ^= std::uint64_t(v);
         h *= 1099511628211ull;
@@ -623,6 +625,7 @@ fg::ResourceId addLocalLightPass(fg::FrameGraph& graph, LocalLightPass& state, c
                 setInt(prog, "uUnbounded", unbounded(s));
                 setInt(prog, "uLightingOnly", lightingOnly);
                 setInt(prog, "uSpecularMode", specularMode(s));
+                setBrdfUniforms(prog, *frame.settings);
                 buildSupertiles(state, frame,
                                 makeClusterGrid(frame.width, frame.height, kTileSize, 1, frame.nearPlane, frame.farPlane),
                                 int(lights->size()), {prog}, !unbounded(s));
@@ -644,6 +647,7 @@ fg::ResourceId addLocalLightPass(fg::FrameGraph& graph, LocalLightPass& state, c
                 setInt(prog, "uUnbounded", unbounded(s));
                 setInt(prog, "uLightingOnly", lightingOnly);
                 setInt(prog, "uSpecularMode", specularMode(s));
+                setBrdfUniforms(prog, *frame.settings);
                 glBindImageTexture(0, hdrTexture, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
                 shadeClustered(state, frame, prog, int(lights->size()));
                 state.stats.drawn = int(lights->size());
@@ -657,6 +661,7 @@ fg::ResourceId addLocalLightPass(fg::FrameGraph& graph, LocalLightPass& state, c
                 bindGBuffer(prog, res, data.in, frame, !lightingOnly);
                 setInt(prog, "uLightingOnly", lightingOnly);
                 setInt(prog, "uSpecularMode", specularMode(s));
+                setBrdfUniforms(prog, *frame.settings);
                 drawFragmentMethod(state, frame, *lights, hdrTexture);
                 // Blending can overflow fp16 to +Inf: clamp like every other HDR write.
                 glBindImageTexture(0, hdrTexture, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);

@@ -177,6 +177,7 @@ GBuffer addVisibilityResolvePass(fg::FrameGraph& graph, VisibilityResolvePass& s
             glProgramUniform1i(prog, loc("uDepthZeroToOne"),
                                frame.settings->gbuffer.position == GBufferPositionMode::ReversedZ);
             setBackgroundMotionUniforms(prog, frame);
+            setBrdfUniforms(prog, *frame.settings);
             const GLuint buffers[5] = {state.vertices.id(), state.indices.id(), state.draws.id(), meshBuffer, materialBuffer};
             for (GLuint i = 0; i < 5; ++i) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, buffers[i]);
             if (state.uv1) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, state.uv1.id());

@@ -77,7 +77,7 @@ std::optional<RenderPath> parseRenderPath(const std::string& name) {
 const char* brdfName(Brdf brdf) { return brdf == Brdf::Ggx ? "ggx" : "blinn-phong"; }
 
 std::optional<Brdf> parseBrdf(const std::string& name) {
-    for (Brdf b : {Brdf::BlinnPhong, Brdf::Ggx})
+    for (Brdf b : {Brdf::Ggx, Brdf::BlinnPhong})
         if (name == brdfName(b)) return b;
     return std::nullopt;
 }

@@ -26,17 +26,21 @@ enum class DebugView {
 std::vector<DebugView> localLightViews();
 bool isLocalLightView(DebugView view);
 
-// The analytic BRDF: energy-normalised Blinn-Phong or Cook-Torrance GGX (MTL Ns -> roughness).
-enum class Brdf { BlinnPhong, Ggx };
+// The BRDF of the light passes (--brdf). GGX (the default): glTF 2.0's metallic-roughness BRDF
+// (Appendix B: GGX D, height-correlated Smith, Schlick Fresnel, the dielectric's diffuse weighted by
+// 1 - F) for every material, MTL ones as a dielectric with F0 = Ks and alpha from Ns. Blinn-Phong:
+// the seeds' energy-normalised Blinn-Phong, Kd / pi + Ks (n + 8) / (8 pi) (N.H)^n, for the analytic
+// lights (IBL stays GGX's split sum).
+enum class Brdf { Ggx = 0, BlinnPhong = 1 };  // = LP_BRDF_* (shaders/common/brdf.glsl)
 const char* brdfName(Brdf brdf);
 std::optional<Brdf> parseBrdf(const std::string& name);
 
 // GGX's Smith masking-shadowing term G2 (--specular-masking), everywhere the BRDF is evaluated or
-// integrated (suns, extracted IBL lights, the DFG LUT, the sampled specular IBL). Separable:
-// G1(V) G1(L), the form of path tracers (Mitsuba's roughconductor), which lightpass is measured
-// against (bench/results/mitsuba/2026-11-24_ibl-against-mitsuba); height-correlated: 1 / (1 + Lambda(V) + Lambda(L)) (Heitz
-// 2014; Filament's and Unreal's form), up to 5% brighter on rough spheres.
-enum class SpecularMasking { Separable = 0, HeightCorrelated = 1 };  // = LP_SPECULAR_MASKING_* (brdf.glsl)
+// integrated (suns, local lights, extracted IBL lights, the DFG LUT, the sampled specular IBL).
+// Height-correlated (the default): 1 / (1 + Lambda(V) + Lambda(L)) (Heitz 2014), the glTF
+// specification's V_SmithGGXCorrelated, Filament's and Unreal's form. Separable: G1(V) G1(L), the
+// form of Mitsuba's built-in roughconductor/roughplastic, up to 5% darker on rough spheres.
+enum class SpecularMasking { HeightCorrelated = 0, Separable = 1 };  // = LP_SPECULAR_MASKING_* (brdf.glsl)
 const char* specularMaskingName(SpecularMasking m);
 
 // How opaque surfaces are lit (--render-path): deferred (G-buffer, then the light passes) or
@@ -251,8 +255,8 @@ struct RenderSettings {
     DebugView view = DebugView::Final;
     float exposureEV = 0.0f;     // manual exposure; with autoExposure the compensation added to it
     bool autoExposure = false;   // --auto-exposure: the histogram pass picks the exposure per frame
-    Brdf brdf = Brdf::BlinnPhong;  // analytic BRDF of the light passes
-    SpecularMasking specularMasking = SpecularMasking::Separable;  // GGX's G2, lights and IBL alike
+    Brdf brdf = Brdf::Ggx;  // BRDF of the light passes: glTF 2.0's (GGX) for every material
+    SpecularMasking specularMasking = SpecularMasking::HeightCorrelated;  // GGX's G2, lights and IBL alike
     RenderPath renderPath = RenderPath::Deferred;  // --render-path
     bool keepHdr = false;        // keep the HDR buffer as an output (EXR dumps)
     // --all-passes: add every candidate pass even where the scene does not call for it (shadow maps

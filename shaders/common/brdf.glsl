@@ -25,14 +25,22 @@ vec3 blinnPhongRadiance(vec3 N, vec3 V, vec3 L, vec3 kd, vec3 ks, float shinines
     return blinnPhongBrdf(N, V, L, kd, ks, shininess) * irradiance * nl;
 }
 
-// ---- Cook-Torrance GGX ---------------------------------------------------------------------------
-// f = kd/pi + D(h) Vis(v, l) F(v.h): GGX (Trowbridge-Reitz) distribution, Smith visibility
-// Vis = G2 / (4 N.L N.V) of the model uSpecularMasking selects, Schlick Fresnel. alpha is GGX's width (alpha =
+// ---- GGX: glTF 2.0's metallic-roughness BRDF (Appendix B) ---------------------------------------
+// f = diffuse + D(h) Vis(v, l) F(v.h): GGX (Trowbridge-Reitz) distribution, Smith visibility
+// Vis = G2 / (4 N.L N.V) of the model uSpecularMasking selects, Schlick Fresnel towards f90, and the
+// dielectric's diffuse base / pi weighted by 1 - F(v.h) (ggxDiffuse). alpha is GGX's width (alpha =
 // roughness^2). alpha is clamped to LP_GGX_MIN_ALPHA: D peaks at 1/(pi alpha^2), 3.2e5 there, which
 // float holds; alpha = 0 would be a delta. N.V is clamped to LP_GGX_MIN_NV: normal interpolation
 // and bump maps make slightly back-facing N.V, which must give a bright rim, not NaN.
 const float LP_GGX_MIN_ALPHA = 1e-3;
 const float LP_GGX_MIN_NV = 1e-4;
+
+// The BRDF switch (RenderSettings::brdf, --brdf): what the light passes evaluate, and what the material
+// evaluation stores as the diffuse colour (materialDiffuseAlbedo). A program that never sets uBrdf gets
+// GGX, the default.
+#define LP_BRDF_GGX 0
+#define LP_BRDF_BLINN_PHONG 1
+uniform int uBrdf;
 
 float ggxAlphaFromRoughness(float roughness) {
     float r = clamp(roughness, 0.0, 1.0);
@@ -40,9 +48,10 @@ float ggxAlphaFromRoughness(float roughness) {
 }
 
 // MTL/Blinn-Phong exponent -> GGX alpha by the usual Beckmann equivalence alpha = sqrt(2 / (n + 2)):
-// n = 0 gives alpha = 1 (roughest), n = 10000 gives alpha = 0.0141.
+// n = 0 gives alpha = 1 (roughest). Not clamped to Blinn-Phong's 10000: a glTF roughness below 0.119
+// keeps its own alpha = r^2 (the G-buffer carries n to the 0.02 floor), down to LP_GGX_MIN_ALPHA.
 float ggxAlphaFromShininess(float shininess) {
-    float n = clamp(shininess, 0.0, 10000.0);
+    float n = max(shininess, 0.0);
     return max(sqrt(2.0 / (n + 2.0)), LP_GGX_MIN_ALPHA);
 }
 
@@ -67,20 +76,20 @@ float ggxDistribution(vec3 N, vec3 H, float alpha) {
     return a2 / (LP_PI * max(d * d, 1e-30));
 }
 
-// Smith's masking-shadowing G2 (RenderSettings::specularMasking, --specular-masking): separable
-// G1(V) G1(L) (the path tracer's model, Mitsuba's roughconductor: the default) or height-correlated
-// 1 / (1 + Lambda(V) + Lambda(L)) (Heitz 2014; Filament's and Unreal's). The passes that shade GGX set
-// uSpecularMasking; a program that never sets it gets 0, separable.
-#define LP_SPECULAR_MASKING_SEPARABLE 0
-#define LP_SPECULAR_MASKING_HEIGHT_CORRELATED 1
+// Smith's masking-shadowing G2 (RenderSettings::specularMasking, --specular-masking): height-correlated
+// 1 / (1 + Lambda(V) + Lambda(L)) (Heitz 2014; the glTF specification's V_SmithGGXCorrelated, Filament's
+// and Unreal's: the default) or separable G1(V) G1(L) (Mitsuba's built-in rough BSDFs). The passes that
+// shade GGX set uSpecularMasking; a program that never sets it gets 0, height-correlated.
+#define LP_SPECULAR_MASKING_HEIGHT_CORRELATED 0
+#define LP_SPECULAR_MASKING_SEPARABLE 1
 uniform int uSpecularMasking;
 
 // Vis = G2 / (4 N.L N.V) from each direction's cosine and its length in the alpha-stretched space,
 // lv = |(alpha_x V.x, alpha_y V.y, N.V)| = N.V (1 + 2 Lambda(V)) (likewise ll): separable
 // 1 / ((nv + lv) (nl + ll)), height-correlated 0.5 / (nl lv + nv ll). Isotropic and anisotropic alike.
 float smithVisibilityFromLengths(int masking, float nv, float nl, float lv, float ll) {
-    if (masking == LP_SPECULAR_MASKING_HEIGHT_CORRELATED) return 0.5 / max(nl * lv + nv * ll, 1e-30);
-    return 1.0 / max((nv + lv) * (nl + ll), 1e-30);
+    if (masking == LP_SPECULAR_MASKING_SEPARABLE) return 1.0 / max((nv + lv) * (nl + ll), 1e-30);
+    return 0.5 / max(nl * lv + nv * ll, 1e-30);
 }
 
 // Isotropic GGX: lv = sqrt(N.V^2 (1 - a2) + a2), ll likewise.
@@ -98,33 +107,72 @@ float ggxVisibility(float nv, float nl, float alpha) { return ggxVisibilityOf(uS
 // visible normals (pdf(L) = G1(V) D(H) / (4 N.V)). Separable: G1(L); height-correlated:
 // (1 + Lambda(V)) / (1 + Lambda(V) + Lambda(L)).
 float smithShadowingGivenMasking(int masking, float lambdaV, float lambdaL) {
-    if (masking == LP_SPECULAR_MASKING_HEIGHT_CORRELATED) return (1.0 + lambdaV) / (1.0 + lambdaV + lambdaL);
-    return 1.0 / (1.0 + lambdaL);
+    if (masking == LP_SPECULAR_MASKING_SEPARABLE) return 1.0 / (1.0 + lambdaL);
+    return (1.0 + lambdaV) / (1.0 + lambdaV + lambdaL);
 }
 
-// Schlick's Fresnel towards f90 = clamp(50 * mean(F0), 0, 1) (Filament's specular occlusion): no
-// real material has F0 below 0.02, so F0 = 0 (MTL Ks 0, "no specular") stays exactly Lambertian.
-vec3 fresnelSchlick(vec3 f0, float vh) {
+// Schlick's Fresnel F = F0 + (f90 - F0) (1 - V.H)^5 reaches f90 = clamp(50 * mean(F0), 0, 1) at grazing
+// (Filament's specular occlusion): 1, as in the glTF specification, for every F0 of a real material
+// (0.02 and up); F0 = 0 (MTL Ks 0, "no specular") stays exactly Lambertian.
+float specularF90(vec3 f0) { return clamp(50.0 * dot(f0, vec3(1.0 / 3.0)), 0.0, 1.0); }
+
+float schlickWeight(float vh) {
     float m = clamp(1.0 - vh, 0.0, 1.0);
     float m2 = m * m;
-    float f90 = clamp(50.0 * dot(f0, vec3(1.0 / 3.0)), 0.0, 1.0);
-    return f0 + (vec3(f90) - f0) * (m2 * m2 * m);
+    return m2 * m2 * m;
+}
+
+vec3 fresnelSchlick(vec3 f0, float vh) { return f0 + (vec3(specularF90(f0)) - f0) * schlickWeight(vh); }
+
+// Unit half vector of V and L (N where they cancel).
+vec3 brdfHalfVector(vec3 N, vec3 V, vec3 L) {
+    vec3 h = V + L;
+    float hl = dot(h, h);
+    return hl > 1e-12 ? h * inversesqrt(hl) : N;
 }
 
 // Specular lobe alone: D Vis F (no N.L). Zero for N.L <= 0.
 vec3 ggxSpecular(vec3 N, vec3 V, vec3 L, vec3 f0, float alpha) {
     float nl = dot(N, L);
     if (nl <= 0.0) return vec3(0.0);
-    vec3 h = V + L;
-    float hl = dot(h, h);
-    vec3 H = hl > 1e-12 ? h * inversesqrt(hl) : N;
+    vec3 H = brdfHalfVector(N, V, L);
     float vh = clamp(dot(V, H), 0.0, 1.0);
     return ggxDistribution(N, H, alpha) * ggxVisibility(dot(N, V), nl, alpha) * fresnelSchlick(f0, vh);
 }
 
-// Full GGX BRDF with a Lambert diffuse term; F0 = ks (MTL Ks), alpha from the MTL Ns.
+// ---- The diffuse layer --------------------------------------------------------------------------
+// glTF's dielectric is fresnel_mix(diffuse, specular): base / pi weighted by 1 - F(V.H), F of the
+// dielectric's own F0 (0.04, or KHR_materials_ior's; MTL: Ks). With f90 = 1 that weight factors as
+// (1 - F0) (1 - (1 - V.H)^5): the material evaluation stores kd = base (1 - metallic) (1 - F0_dielectric)
+// (materialDiffuseAlbedo) and the light passes apply the shape (1 - (1 - V.H)^5) alone, so the G-buffer's
+// mixed F0 = mix(F0_dielectric, base, metallic) (Schlick is linear in F0: the metal's and the
+// dielectric's specular mix exactly) needs no second F0 and every metallic is exact. For the rare
+// F0 < 0.02 (f90 < 1: MTL Ks 0, ior below 1.33) the shape is 1 - c (1 - V.H)^5 with
+// c = (f90 - F0) / (1 - F0) of the stored F0: exact where metallic is 0 or 1 (Ks 0: c = 0, Lambertian).
+vec3 ggxDiffuseFresnelScale(vec3 f0) {
+    float f90 = specularF90(f0);
+    return f90 >= 1.0 ? vec3(1.0) : (vec3(f90) - f0) / max(vec3(1.0) - f0, vec3(1e-6));
+}
+
+// The diffuse term, kd as the material evaluation stores it (without N.L).
+vec3 ggxDiffuse(vec3 kd, vec3 f0, float vh) {
+    return kd / LP_PI * (vec3(1.0) - ggxDiffuseFresnelScale(f0) * schlickWeight(vh));
+}
+
+// The same weight averaged over a uniform (white-furnace) light: 1 - c X(N.V), X(N.V) = (1 / pi)
+// integral of (1 - V.H)^5 N.L over the hemisphere of L, which depends on N.V alone; fitted by a cubic in
+// 1 - N.V (X(1) = 8e-5, X(0.5) = 0.0050, X(0) = 0.0282; fit error below 1e-4). The IBL's diffuse: what a
+// path tracer of this BRDF reflects from a uniform environment, exactly.
+vec3 ggxDiffuseFresnelMeanWeight(vec3 f0, float nv) {
+    float t = 1.0 - clamp(nv, 0.0, 1.0);
+    float mean = max(((0.0256872 * t - 0.00200696) * t + 0.00439877) * t - 1.04356e-5, 0.0);
+    return vec3(1.0) - ggxDiffuseFresnelScale(f0) * mean;
+}
+
+// Full GGX BRDF (without N.L); F0 = ks, alpha from the shininess (the roughness's exponent).
 vec3 ggxBrdf(vec3 N, vec3 V, vec3 L, vec3 kd, vec3 ks, float shininess) {
-    return kd / LP_PI + ggxSpecular(N, V, L, ks, ggxAlphaFromShininess(shininess));
+    vec3 H = brdfHalfVector(N, V, L);
+    return ggxDiffuse(kd, ks, clamp(dot(V, H), 0.0, 1.0)) + ggxSpecular(N, V, L, ks, ggxAlphaFromShininess(shininess));
 }
 
 vec3 ggxRadiance(vec3 N, vec3 V, vec3 L, vec3 kd, vec3 ks, float shininess, vec3 irradiance) {
@@ -133,12 +181,29 @@ vec3 ggxRadiance(vec3 N, vec3 V, vec3 L, vec3 kd, vec3 ks, float shininess, vec3
     return ggxBrdf(N, V, L, kd, ks, shininess) * irradiance * nl;
 }
 
-// The BRDF switch (RenderSettings::brdf): 0 Blinn-Phong, 1 GGX.
-#define LP_BRDF_BLINN_PHONG 0
-#define LP_BRDF_GGX 1
+// ---- The switch ---------------------------------------------------------------------------------
+// The diffuse and the specular part of BRDF `brdf` (without N.L; zero for N.L <= 0 is the caller's):
+// the local lights window them apart (LP_LOCAL_SPECULAR_*).
+vec3 brdfDiffuse(int brdf, vec3 N, vec3 V, vec3 L, vec3 kd, vec3 ks) {
+    if (brdf == LP_BRDF_BLINN_PHONG) return kd / LP_PI;
+    return ggxDiffuse(kd, ks, clamp(dot(V, brdfHalfVector(N, V, L)), 0.0, 1.0));
+}
+vec3 brdfSpecular(int brdf, vec3 N, vec3 V, vec3 L, vec3 ks, float shininess) {
+    if (brdf == LP_BRDF_BLINN_PHONG) return blinnPhongBrdf(N, V, L, vec3(0.0), ks, shininess);
+    return ggxSpecular(N, V, L, ks, ggxAlphaFromShininess(shininess));
+}
+
 vec3 brdfRadiance(int brdf, vec3 N, vec3 V, vec3 L, vec3 kd, vec3 ks, float shininess, vec3 irradiance) {
-    return brdf == LP_BRDF_GGX ? ggxRadiance(N, V, L, kd, ks, shininess, irradiance)
-                               : blinnPhongRadiance(N, V, L, kd, ks, shininess, irradiance);
+    return brdf == LP_BRDF_BLINN_PHONG ? blinnPhongRadiance(N, V, L, kd, ks, shininess, irradiance)
+                                       : ggxRadiance(N, V, L, kd, ks, shininess, irradiance);
+}
+
+// What the material evaluation stores as the diffuse colour: the diffuse layer's albedo for the BRDF
+// in use. GGX: base (1 - metallic) (1 - F0_dielectric) (see the diffuse layer above); Blinn-Phong:
+// base (1 - metallic), as the seeds.
+vec3 materialDiffuseAlbedo(int brdf, vec3 baseColor, float metallic, vec3 dielectricF0) {
+    vec3 kd = baseColor * (1.0 - metallic);
+    return brdf == LP_BRDF_BLINN_PHONG ? kd : kd * (vec3(1.0) - dielectricF0);
 }
 
 #endif

@@ -1,7 +1,9 @@
 // The G-buffer's texture bindings, its layouts, and the one API every pass reads it through.
 //   depth     D32F      window depth: standard (near 0, far 1) or reversed-Z (near 1, far 0)
 //   normal    depends on the normal format (below)
-//   diffuse   RGBA8     diffuse albedo kd = base (1 - metallic) (linear); alpha 0 marks a flat-lit
+//   diffuse   RGBA8     diffuse albedo kd (linear): base (1 - metallic) (1 - dielectric F0) under GGX,
+//                       base (1 - metallic) under Blinn-Phong (common/brdf.glsl materialDiffuseAlbedo)
+//                       and for flat-lit materials; alpha 0 marks a flat-lit
 //                       material, else holds the material's ambient occlusion (>= 1/255)
 //   position  RGBA32F   eye-space position in xyz; absent when positions are rebuilt from depth
 //   specular  RGBA16F   F0 = mix(dielectric F0, base, metallic) in rgb, Blinn-Phong shininess in a

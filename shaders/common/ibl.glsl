@@ -170,9 +170,8 @@ float roughnessOfPrefilteredLod(float lod, float maxLod) {
 }
 
 // The split sum's specular reflectance F0 A + f90 B, with f90 as the analytic GGX's Schlick term
-// (shaders/common/brdf.glsl: clamp(50 mean(F0), 0, 1)), so that Ks = 0 reflects nothing and the
-// material is exactly Lambertian under IBL as under the suns.
-float specularF90(vec3 f0) { return clamp(50.0 * dot(f0, vec3(1.0 / 3.0)), 0.0, 1.0); }
+// (shaders/common/brdf.glsl's specularF90: clamp(50 mean(F0), 0, 1)), so that Ks = 0 reflects nothing
+// and the material is exactly Lambertian under IBL as under the suns.
 vec3 splitSumReflectance(vec3 f0, vec2 ab) { return f0 * ab.x + specularF90(f0) * ab.y; }
 
 // Perceptual roughness for an energy-normalised Blinn-Phong exponent (Walter et al. 2007:

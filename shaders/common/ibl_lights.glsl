@@ -1,7 +1,8 @@
 // The small, very bright sources taken out of the environment map at bake time
 // (engine/render/ibl_lights.hpp), lit as distant discs with lightpass's GGX (D, Smith of the chosen
-// masking, Schlick towards f90: common/brdf.glsl) and the IBL's diffuse kd (1 - Fss) / pi, so that
-// residual map + sources shade a surface as the whole map would. No shadows: IBL is unshadowed.
+// masking, Schlick towards f90: common/brdf.glsl) and its diffuse layer (ggxDiffuse; under --brdf
+// blinn-phong the IBL's kd (1 - Fss) / pi), so that residual map + sources shade a surface as the whole
+// map would. No shadows: IBL is unshadowed.
 #ifndef LP_IBL_LIGHTS_GLSL
 #define LP_IBL_LIGHTS_GLSL
 #include "common/brdf.glsl"
@@ -51,13 +52,15 @@ vec3 environmentLightSpecular(vec3 N, vec3 V, vec3 D, float sinRadius, vec3 f0, 
     return distribution * visibility * fresnelSchlick(f0, vh);
 }
 
-// Radiance one source reflects: diffuse kd (1 - fss) / pi and the specular above, times E N.L at the
-// disc's centre; `ao` darkens the diffuse and `specularAo` the specular, as for the IBL terms.
+// Radiance one source reflects: the diffuse layer as a sun's (ggxDiffuse at the disc's centre; kd
+// (1 - fss) / pi under --brdf blinn-phong) and the specular above, times E N.L at the disc's centre;
+// `ao` darkens the diffuse and `specularAo` the specular, as for the IBL terms.
 vec3 environmentLightRadiance(vec3 N, vec3 V, vec3 D, float sinRadius, vec3 E, vec3 kd, vec3 f0, float alpha,
                               vec3 fss, float ao, float specularAo) {
     float nl = dot(N, D);
     if (nl <= 0.0) return vec3(0.0);
-    vec3 diffuse = kd * (1.0 - fss) / LP_PI;
+    vec3 diffuse = uBrdf == LP_BRDF_BLINN_PHONG ? kd * (1.0 - fss) / LP_PI
+                                                : ggxDiffuse(kd, f0, clamp(dot(V, brdfHalfVector(N, V, D)), 0.0, 1.0));
     vec3 specular = environmentLightSpecular(N, V, D, sinRadius, f0, alpha);
     return (ao * diffuse + specularAo * specular) * E * nl;
 }

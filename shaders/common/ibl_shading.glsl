@@ -1,9 +1,17 @@
 // Image-based lighting of one surface point, shared by the deferred ibl pass and the forward passes:
-// diffuse kd (1 - Fss) E / pi from the SH (or the irradiance cube) and specular
+// diffuse kd w E / pi from the SH (or the irradiance cube) and specular
 // prefiltered(R, roughness) * Fss, Fss = F0 A + f90 B from the DFG LUT (splitSumReflectance), the
 // prefiltered mip from the perceptual roughness (prefilteredLodFromRoughness); or, with
 // uSpecularSamples > 0 (--ibl-specular sampled), F0 A La + f90 B Lb with La, Lb the lobe-weighted
-// radiance of that many per-pixel GGX samples (common/ibl_sampled.glsl). Plus the sources extracted
+// radiance of that many per-pixel GGX samples (common/ibl_sampled.glsl). The diffuse weight w: under
+// GGX (the glTF BRDF), the diffuse layer's 1 - F(V.H) averaged over a uniform light,
+// ggxDiffuseFresnelMeanWeight (kd already holds the 1 - F0: common/brdf.glsl), which is what the
+// spec's BRDF reflects from a uniform environment (a path tracer of it gives exactly that). Filament
+// and the Khronos sample viewer weight the diffuse by 1 - Fss instead (the mixed F0's in Filament, the
+// dielectric's in the viewer): an energy balance, not the spec's BRDF integrated, which darkens a
+// smooth dielectric's rim against that path tracer (F0 0.04: x0.57 at N.V 0.15 and roughness 0.1, x0.93
+// at N.V 0.4; x1.03 at roughness 1 head-on). Under Blinn-Phong w stays 1 - Fss (a white material in a
+// white furnace reflects exactly 1). Plus the sources extracted
 // from the map at bake time, as distant discs with the GGX BRDF itself (common/ibl_lights.glsl). The samplers are the includer's
 // (their units differ between passes); the environment's other inputs are these uniforms.
 #ifndef LP_IBL_SHADING_GLSL
@@ -55,7 +63,8 @@ vec3 lpIblRadiance(samplerCube irradiance, samplerCube prefilteredMap, sampler2D
         lights += environmentLightRadiance(N, V, D, uIblLightSinRadius[i], uIblLightIrradiance[i], kd, f0,
                                            roughness * roughness, fss, ao, specularAo);
     }
-    return uIntensity * (ao * kd * (1.0 - fss) * E / LP_IBL_PI + specularAo * specular + lights);
+    vec3 diffuseWeight = uBrdf == LP_BRDF_BLINN_PHONG ? 1.0 - fss : ggxDiffuseFresnelMeanWeight(f0, NdotV);
+    return uIntensity * (ao * kd * diffuseWeight * E / LP_IBL_PI + specularAo * specular + lights);
 }
 
 #endif

@@ -35,7 +35,8 @@ const int LP_LOCAL_SPECULAR_OFF = 0;      // diffuse only
 const int LP_LOCAL_SPECULAR_RANGED = 1;   // diffuse and specular both limited by the range window
 const int LP_LOCAL_SPECULAR_UNRANGED = 2; // seed 003's extra mode: specular keeps 1/d^2 past the range
 
-// Radiance a surface point P (normal N, view direction V) reflects from the light.
+// Radiance a surface point P (normal N, view direction V) reflects from the light, with the BRDF of
+// uBrdf (common/brdf.glsl): the same as the suns'.
 vec3 lpLocalLightRadiance(vec3 lightPos, float range, vec3 intensity, vec3 P, vec3 N, vec3 V, vec3 kd, vec3 ks,
                           float shininess, int specularMode) {
     vec3 toLight = lightPos - P;
@@ -43,12 +44,14 @@ vec3 lpLocalLightRadiance(vec3 lightPos, float range, vec3 intensity, vec3 P, ve
     // A light exactly on the surface: light it from the normal (N.L = 1), the limit of a light
     // approaching along the normal.
     vec3 L = d > 0.0 ? toLight / d : N;
+    float nl = dot(N, L);
+    if (nl <= 0.0) return vec3(0.0);
     float window = lpRangeWindow(d, range);
-    vec3 e = intensity * lpInverseSquare(d, range);  // unwindowed irradiance
-    if (specularMode == LP_LOCAL_SPECULAR_RANGED) return blinnPhongRadiance(N, V, L, kd, ks, shininess, e * window);
-    vec3 c = window > 0.0 ? blinnPhongRadiance(N, V, L, kd, vec3(0.0), shininess, e * window) : vec3(0.0);
-    if (specularMode == LP_LOCAL_SPECULAR_UNRANGED) c += blinnPhongRadiance(N, V, L, vec3(0.0), ks, shininess, e);
-    return c;
+    vec3 e = intensity * (lpInverseSquare(d, range) * nl);  // unwindowed irradiance
+    vec3 c = window > 0.0 ? brdfDiffuse(uBrdf, N, V, L, kd, ks) * window : vec3(0.0);
+    if (specularMode != LP_LOCAL_SPECULAR_OFF)
+        c += brdfSpecular(uBrdf, N, V, L, ks, shininess) * (specularMode == LP_LOCAL_SPECULAR_UNRANGED ? 1.0 : window);
+    return c * e;
 }
 
 // Spot cone falloff: smoothstep from cos(outer) (0) to cos(inner) (1) of the cosine of the angle

@@ -61,7 +61,8 @@ vec4 sampleMap(sampler2D map, TexCoord t) { return textureGrad(map, t.uv, t.dx, 
 // What the G-buffer stores for the pixel.
 struct MaterialSample {
     vec3 normal;     // unit shading normal, eye space
-    vec3 kd;         // base (1 - metallic)
+    vec3 kd;         // the diffuse layer's albedo: base (1 - metallic) (1 - specular) under GGX (brdf.glsl's
+                     // materialDiffuseAlbedo), base (1 - metallic) under Blinn-Phong and for flat-lit materials
     vec3 f0;         // mix(specular, base, metallic)
     float shininess;
     float occlusion;
@@ -117,9 +118,11 @@ MaterialSample materialEvaluate(MaterialInputs m, vec4 base, SurfaceInputs s) {
     }
     MaterialSample o;
     vec3 baseColor = clamp(base.rgb, 0.0, 1.0);
+    vec3 dielectricF0 = clamp(m.specular, 0.0, 1.0);
     o.normal = N;
-    o.kd = baseColor * (1.0 - metallic);
-    o.f0 = mix(clamp(m.specular, 0.0, 1.0), baseColor, metallic);
+    // Flat-lit: the colour shown as it is, no BRDF applies.
+    o.kd = m.flatLit ? baseColor * (1.0 - metallic) : materialDiffuseAlbedo(uBrdf, baseColor, metallic, dielectricF0);
+    o.f0 = mix(dielectricF0, baseColor, metallic);
     o.shininess = shininess;
     o.occlusion = 1.0;
     if (m.hasOcclusionMap)

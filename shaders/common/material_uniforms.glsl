@@ -34,7 +34,7 @@ MaterialInputs materialFromUniforms() {
 // The surface the forward passes shade.
 struct LpSurface {
     vec3 N;           // shading normal, eye space, unit, facing the viewer's side for two-sided
-    vec3 kd;          // diffuse colour (base x (1 - metallic))
+    vec3 kd;          // diffuse colour (MaterialSample::kd)
     vec3 f0;          // specular colour
     float shininess;  // Blinn-Phong exponent (up to the IBL's roughness floor)
     float occlusion;  // the material's ambient occlusion (1: none)

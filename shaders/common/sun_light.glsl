@@ -16,7 +16,6 @@ uniform int uLightCount;
 uniform vec3 uLightDirEye[MAX_LIGHTS];   // towards the light, eye space, unit
 uniform vec3 uLightIrradiance[MAX_LIGHTS];
 uniform vec3 uAmbient;
-uniform int uBrdf;           // LP_BRDF_BLINN_PHONG | LP_BRDF_GGX
 
 // Shadows (engine/render/shadows.hpp): up to 4 shadowed lights, each an atlas of up to 4 cascades.
 const int MAX_SHADOWED = 4;

@@ -290,13 +290,13 @@ TEST(Ibl, SplitSumWithF0OneNeverExceedsOne) {
 TEST(Ibl, DfgMatchesDoublePrecisionIntegral) {
     const double grid[] = {0.0, 0.1, 0.25, 0.5, 0.75, 1.0};
     std::vector<glm::vec4> in;
-    for (int masking : {0, 1})
+    for (SpecularMasking masking : {SpecularMasking::Separable, SpecularMasking::HeightCorrelated})
         for (double nv : grid)
-            for (double r : grid) in.push_back(glm::vec4(float(nv), float(r), float(masking), 0));
+            for (double r : grid) in.push_back(glm::vec4(float(nv), float(r), float(int(masking)), 0));
     auto out = runGlsl({"common/ibl.glsl"}, "return vec4(dfgIntegrate(x.x, x.y, 1024u, int(x.z)), 0.0, 0.0);", in);
     double worst = 0.0;
     for (size_t i = 0; i < in.size(); ++i) {
-        const SpecularMasking m = in[i].z > 0.5f ? SpecularMasking::HeightCorrelated : SpecularMasking::Separable;
+        const SpecularMasking m = SpecularMasking(int(in[i].z));  // = LP_SPECULAR_MASKING_*
         glm::dvec2 ref = dfgReference(std::max(double(in[i].x), 1e-4), in[i].y, m);
         EXPECT_NEAR(out[i].x, ref.x, 0.01) << "N.V " << in[i].x << " roughness " << in[i].y;
         EXPECT_NEAR(out[i].y, ref.y, 0.01) << "N.V " << in[i].x << " roughness " << in[i].y;
@@ -1146,7 +1146,7 @@ TEST(Ibl, ForgetBakesBakesAgainAndReportsItsGpuTime) {
     EnvironmentCache cache;
     EXPECT_EQ(cache.lastBakeGpuMs(), 0.0);
     const GLuint cube = cache.get(scene, s, shaders, true).cube.id();
-    const SpecularMasking masking = RenderSettings{}.specularMasking, other = SpecularMasking::HeightCorrelated;
+    const SpecularMasking masking = RenderSettings{}.specularMasking, other = SpecularMasking::Separable;
     ASSERT_NE(masking, other);
     cache.dfgLut(s, masking, shaders);  // ready(.., true) also wants the LUT, which forgetBakes keeps
     EXPECT_GT(cache.lastBakeGpuMs(), 0.0);

@@ -89,15 +89,17 @@ TEST(LocalLightShader, WindowValueAndSlopeVanishAtTheRange) {
 }
 
 TEST(LocalLightShader, LightOnTheSurfaceIsFiniteAndLitAlongTheNormal) {
-    // P = light position: L falls back to N, E = I / dMin^2 with dMin = min(0.01 R, 1 cm) = 1 cm at R = 2;
-    // diffuse kd/pi E, specular (n+8)/(8pi) E.
+    // P = light position: L falls back to N, E = I / dMin^2 with dMin = min(0.01 R, 1 cm) = 1 cm at R = 2.
+    // The default BRDF (GGX; uBrdf unset) at N = V = L: diffuse kd / pi (V.H = 1: 1 - F's shape is 1),
+    // specular D Vis F = 1 / (pi alpha^2) x 1 / 4 (height-correlated, N.V = N.L = 1) x F0, alpha of n = 16
+    // = sqrt(2 / 18).
     std::vector<glm::vec4> in = {{0.0f, 0.0f, 0.0f, 2.0f}};
     auto out = runGlsl({"common/local_light.glsl"},
                        "vec3 c = lpLocalLightRadiance(x.xyz, x.w, vec3(1.0), x.xyz, vec3(0, 0, 1), vec3(0, 0, 1),"
                        " vec3(0.5), vec3(0.25), 16.0, LP_LOCAL_SPECULAR_RANGED); return vec4(c, 0.0);",
                        in);
-    const double e = 1.0 / (0.01 * 0.01);
-    const double expected = (0.5 / M_PI + 0.25 * 24.0 / (8.0 * M_PI)) * e;
+    const double e = 1.0 / (0.01 * 0.01), a2 = 2.0 / 18.0;
+    const double expected = (0.5 / M_PI + 1.0 / (M_PI * a2) * 0.25 * 0.25) * e;
     EXPECT_TRUE(std::isfinite(out[0].x));
     EXPECT_NEAR(out[0].x, expected, expected * 1e-5);  // float32: 1e-5 relative
 }

@@ -7,6 +7,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "engine/render/gltf_brdf.hpp"
 #include "frame/renderer.hpp"
 #include "engine/scene/primitives.hpp"
 #include "engine/graph/texture_pool.hpp"
@@ -70,17 +71,28 @@ bool planePoint(const Scene& s, int w, int h, int x, int y, glm::dvec3& hit) {
     return std::abs(hit.x) < 9.5 && std::abs(hit.z) < 9.5;
 }
 
-glm::dvec3 expectedRadiance(const Scene& s, glm::dvec3 p) {
+// The radiance under `brdf`: Blinn-Phong's kd / pi + Ks (n + 8) / (8 pi) (N.H)^n, or (GGX) glTF 2.0's
+// BRDF of the MTL material as a dielectric of F0 = Ks (grey) and alpha = sqrt(2 / (n + 2))
+// (engine/render/gltf_brdf.hpp), whose diffuse layer the ambient lights as kd (1 - F0). Ks 0 is
+// Lambertian under both (lightpass's f90 = 0 there: "no specular").
+glm::dvec3 expectedRadiance(const Scene& s, glm::dvec3 p, Brdf brdf) {
     const auto& mat = s.models[0].mesh.materials[0];
     const auto& light = s.directionalLights[0];
     glm::dvec3 N(0, 1, 0), L = -glm::dvec3(light.direction), V = glm::normalize(glm::dvec3(s.camera.position) - p);
     glm::dvec3 H = glm::normalize(L + V);
     double nl = std::max(glm::dot(N, L), 0.0), nh = std::max(glm::dot(N, H), 0.0), n = mat.shininess;
-    // The G-buffer stores albedo in RGBA8: the renderer shades with the 8-bit value (the test's
-    // albedos are chosen away from rounding ties).
-    const glm::dvec3 kd = glm::round(glm::dvec3(mat.diffuse) * 255.0) / 255.0;
-    glm::dvec3 f = kd / M_PI + glm::dvec3(mat.specular) * ((n + 8.0) / (8.0 * M_PI)) * std::pow(nh, n);
-    return f * glm::dvec3(light.color) * double(light.intensity) * nl + glm::dvec3(s.ambient) * kd;
+    // The G-buffer stores the diffuse albedo in RGBA8 (kd, or kd (1 - F0) under GGX): the renderer shades
+    // with the 8-bit value (the test's albedos are chosen away from rounding ties).
+    const double f0 = mat.specular.x, transmitted = brdf == Brdf::Ggx ? 1.0 - f0 : 1.0;
+    const glm::dvec3 kd = glm::round(glm::dvec3(mat.diffuse) * transmitted * 255.0) / 255.0 / transmitted;
+    glm::dvec3 f;
+    if (brdf == Brdf::Ggx && f0 > 0.0) {
+        const GltfBrdfMaterial m{kd, 0.0, std::sqrt(std::sqrt(2.0 / (n + 2.0))), gltfIorOfF0(f0)};
+        f = gltfBrdf(m, N, V, L);
+    } else {
+        f = kd / M_PI + glm::dvec3(mat.specular) * ((n + 8.0) / (8.0 * M_PI)) * std::pow(nh, n);
+    }
+    return f * glm::dvec3(light.color) * double(light.intensity) * nl + glm::dvec3(s.ambient) * kd * transmitted;
 }
 
 // Whether every pixel within `radius` of (x, y) also sees the plane: at render scale < 1 the bilinear
@@ -93,7 +105,7 @@ bool planeAround(const Scene& s, int w, int h, int x, int y, int radius) {
     return true;
 }
 
-void checkPlane(const Scene& s, float renderScale = 1.0f) {
+void checkPlane(const Scene& s, float renderScale = 1.0f, Brdf brdf = RenderSettings{}.brdf) {
     for (GBufferMode mode : allGBufferModes()) {  // the analytic radiance holds for either G-buffer
         SCOPED_TRACE(std::string(gbufferModeName(mode)) + " G-buffer");
         const int w = 96, h = 64;
@@ -104,6 +116,7 @@ void checkPlane(const Scene& s, float renderScale = 1.0f) {
         settings.height = h;
         settings.keepHdr = true;
         settings.renderScale = renderScale;
+        settings.brdf = brdf;
         settings.aa.dither = false;  // the display is checked against plain rounding (+-1 LSB)
         r.render(settings);
         EXPECT_EQ(r.graph().isLive("upscale"), renderScale < 1.0f);
@@ -119,7 +132,7 @@ void checkPlane(const Scene& s, float renderScale = 1.0f) {
                 glm::dvec3 p;
                 if (!planePoint(s, w, h, x, y, p)) continue;
                 if (margin > 0 && !planeAround(s, w, h, x, y, margin)) continue;
-                glm::dvec3 e = expectedRadiance(s, p);
+                glm::dvec3 e = expectedRadiance(s, p, brdf);
                 for (int c = 0; c < 3; ++c) {
                     double got = hdr.rgba[(size_t(y) * w + x) * 4 + c];
                     // fp16 storage: 2^-11 relative rounding; interpolated positions add ~1e-5.
@@ -143,7 +156,15 @@ TEST(RenderAnalytic, LambertPlaneMatchesBlinnPhongThroughToneMap) {
     checkPlane(planeScene({0, 6, 8}, {0, 0, 0}, {0, 1, 0}, {0.55f, 0.42f, 0.33f}, glm::vec3(0.0f), 1.0f));
 }
 
+// --brdf blinn-phong, the seeds' BRDF, stays as it was.
 TEST(RenderAnalytic, GlossyPlaneMatchesBlinnPhongThroughToneMap) {
+    checkPlane(planeScene({1, 4, 5}, {-1, 0, -1}, {0, 1, 0}, {0.21f, 0.33f, 0.62f}, glm::vec3(0.5f), 40.0f), 1.0f,
+               Brdf::BlinnPhong);
+}
+
+// The default BRDF: the MTL's Kd, Ks and Ns shaded as glTF 2.0's dielectric of F0 = Ks.
+TEST(RenderAnalytic, GlossyPlaneMatchesTheGltfBrdfThroughToneMap) {
+    ASSERT_EQ(RenderSettings{}.brdf, Brdf::Ggx);
     checkPlane(planeScene({1, 4, 5}, {-1, 0, -1}, {0, 1, 0}, {0.21f, 0.33f, 0.62f}, glm::vec3(0.5f), 40.0f));
 }
 

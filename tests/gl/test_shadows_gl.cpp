@@ -121,10 +121,10 @@ TEST(ShaderGgx, HardCasesMatchDoubleReference) {
 TEST(ShaderGgx, BothMaskingModelsMatchDoubleReference) {
     std::vector<glm::vec4> in;
     const float cosines[] = {1.0f, 0.5f, 0.1f, 0.01f};
-    for (int masking : {0, 1})
+    for (SpecularMasking masking : {SpecularMasking::Separable, SpecularMasking::HeightCorrelated})
         for (float nl : cosines)
             for (float nv : cosines)
-                for (float a : {0.05f, 0.3f, 1.0f}) in.push_back(glm::vec4(nl, nv, a, float(masking)));
+                for (float a : {0.05f, 0.3f, 1.0f}) in.push_back(glm::vec4(nl, nv, a, float(int(masking))));
     const std::string body = R"(
         int m = int(x.w);
         float lv = length(vec3(0.7 * x.z * sqrt(1.0 - x.y * x.y), 0.0, x.y));
@@ -135,7 +135,7 @@ TEST(ShaderGgx, BothMaskingModelsMatchDoubleReference) {
     auto out = runGlsl({"common/ibl_sampled.glsl"}, body, in);
     for (size_t i = 0; i < in.size(); ++i) {
         const glm::vec4 x = in[i];
-        const SpecularMasking m = x.w > 0.5f ? SpecularMasking::HeightCorrelated : SpecularMasking::Separable;
+        const SpecularMasking m = SpecularMasking(int(x.w));  // = LP_SPECULAR_MASKING_*
         const double nl = x.x, nv = x.y, a = x.z;
         const std::string where = std::string(specularMaskingName(m)) + " N.L=" + std::to_string(nl) +
                                   " N.V=" + std::to_string(nv) + " alpha=" + std::to_string(a);
@@ -165,16 +165,19 @@ TEST(ShaderGgx, BothMaskingModelsMatchDoubleReference) {
     }
 }
 
-// MTL Ns -> GGX alpha = sqrt(2 / (Ns + 2)) to 1e-6 relative; Ns = 0 is the roughest (alpha 1).
+// MTL Ns -> GGX alpha = sqrt(2 / (Ns + 2)) to 1e-6 relative; Ns = 0 is the roughest (alpha 1). Past
+// Blinn-Phong's 10000 the exponent keeps its alpha (a glTF roughness below 0.119: 1.25e7 is the 0.02
+// floor, alpha 4e-4) down to the BRDF's alpha floor 1e-3; negative exponents read as 0.
 TEST(ShaderGgx, ShininessMapsToAlpha) {
     std::vector<glm::vec4> in;
-    for (float n : {0.0f, 1.0f, 10.0f, 128.0f, 1000.0f, 10000.0f, -5.0f, 1e9f}) in.push_back(glm::vec4(n));
+    for (float n : {0.0f, 1.0f, 10.0f, 128.0f, 1000.0f, 10000.0f, 1e5f, 1.25e7f, -5.0f, 1e9f}) in.push_back(glm::vec4(n));
     auto out = runGlsl({"common/brdf.glsl"}, "return vec4(ggxAlphaFromShininess(x.x));", in);
     for (size_t i = 0; i < in.size(); ++i) {
-        double n = std::clamp(double(in[i].x), 0.0, 10000.0);
-        EXPECT_NEAR(out[i].x, std::sqrt(2.0 / (n + 2.0)), 1e-6) << in[i].x;
+        double n = std::max(double(in[i].x), 0.0);
+        EXPECT_NEAR(out[i].x, std::max(std::sqrt(2.0 / (n + 2.0)), 1e-3), 1e-6) << in[i].x;
     }
     EXPECT_FLOAT_EQ(out[0].x, 1.0f);
+    EXPECT_NEAR(out[6].x, std::sqrt(2.0 / 100002.0), 1e-6) << "10^5: roughness 0.067, not clamped to 0.119";
 }
 
 // Energy: with F0 = 1 the directional albedo  integral of D Vis F N.L over the hemisphere  is <= 1
@@ -422,6 +425,7 @@ TEST(ShadowRender, BrdfSwitchChangesGlossyButNotLambert) {
     const int w = 64, h = 48;
     Scene lambert = shadowScene(glm::vec3(-0.3f, -1.0f, -0.2f), false);
     RenderSettings bp, ggx;
+    bp.brdf = Brdf::BlinnPhong;
     ggx.brdf = Brdf::Ggx;
     ImageF a = renderHdr(lambert, bp, w, h), b = renderHdr(lambert, ggx, w, h);
     for (size_t i = 0; i < a.rgba.size(); ++i) ASSERT_NEAR(a.rgba[i], b.rgba[i], 1e-6 * std::abs(a.rgba[i]) + 1e-7) << i;
@@ -450,7 +454,8 @@ TEST(ShadowRender, BrdfSwitchChangesGlossyButNotLambert) {
 }
 
 // GGX end to end: a glossy plane under one light equals the double-precision GGX of its MTL values
-// (alpha = sqrt(2 / (Ns + 2)), F0 = Ks) to 2e-3 relative in the HDR buffer.
+// (alpha = sqrt(2 / (Ns + 2)), F0 = Ks), the diffuse layered under the specular as glTF's dielectric,
+// kd (1 - F(V.H)) / pi (the ambient lights kd (1 - F0)), to 2e-3 relative in the HDR buffer.
 TEST(ShadowRender, GgxPlaneMatchesAnalyticRadiance) {
     const int w = 96, h = 64;
     Scene s = shadowScene(glm::vec3(-0.3f, -1.0f, -0.2f), false, glm::vec3(0.5f), 40.0f);
@@ -458,7 +463,9 @@ TEST(ShadowRender, GgxPlaneMatchesAnalyticRadiance) {
     settings.brdf = Brdf::Ggx;
     ImageF hdr = renderHdr(s, settings, w, h);
     const auto& mat = s.models[0].mesh.materials[0];
-    const glm::dvec3 kd = glm::round(glm::dvec3(mat.diffuse) * 255.0) / 255.0;
+    // The G-buffer holds kd (1 - F0) in 8 bits.
+    const double f0 = 0.5;
+    const glm::dvec3 kdStored = glm::round(glm::dvec3(mat.diffuse) * (1.0 - f0) * 255.0) / 255.0;
     const glm::dvec3 L = -glm::normalize(glm::dvec3(s.directionalLights[0].direction)), N(0, 1, 0);
     const double alpha = std::sqrt(2.0 / (40.0 + 2.0));
     int checked = 0;
@@ -469,11 +476,12 @@ TEST(ShadowRender, GgxPlaneMatchesAnalyticRadiance) {
             glm::dvec3 p;
             if (!hitY(ray, 0.0, p) || std::abs(p.x) > 9.5 || std::abs(p.z) > 9.5) continue;
             const glm::dvec3 V = glm::normalize(glm::dvec3(s.camera.position) - p);
-            const double spec = ggxSpecRef(N, V, L, 0.5, alpha);
+            const double spec = ggxSpecRef(N, V, L, f0, alpha);
+            const double diffuseWeight = (1.0 - fresnelRef(f0, glm::dot(V, halfVector(N, V, L)))) / (1.0 - f0);
             for (int c = 0; c < 3; ++c) {
-                const double e = (kd[c] / M_PI + spec) * double(s.directionalLights[0].color[c]) *
+                const double e = (kdStored[c] * diffuseWeight / M_PI + spec) * double(s.directionalLights[0].color[c]) *
                                      double(s.directionalLights[0].intensity) * glm::dot(N, L) +
-                                 double(s.ambient[c]) * kd[c];
+                                 double(s.ambient[c]) * kdStored[c];
                 worst = std::max(worst, std::abs(hdr.rgba[(size_t(y) * w + x) * 4 + c] - e) / std::max(e, 1e-3));
             }
             ++checked;

@@ -250,11 +250,13 @@ TEST(StabilityShadow, ReceiverGradientAtGrazingLightIsBounded) {
 // A directional light exactly parallel to a floor (N.L = 0) and one a hair below it, shadows on,
 // every filter and both BRDFs: the floor must get exactly its ambient (no acne can appear where no
 // light arrives, and the bias clamp must not produce NaN). Bound: |HDR - ambient * kd| <= 2^-10
-// relative (one fp16 rounding), no NaN/Inf.
+// relative (one fp16 rounding), no NaN/Inf; kd the G-buffer's diffuse albedo: Kd under Blinn-Phong,
+// Kd (1 - Ks) under GGX (the diffuse layer beneath F0 = Ks).
 TEST(StabilityShadow, LightParallelToTheSurfaceAddsNothing) {
     Scene s = baseScene();
+    // Kd 0.62: Kd and Kd (1 - Ks) both clear of 8-bit rounding ties.
     s.models.push_back(coloured("floor", makePlane(1.0f, 4), glm::scale(glm::mat4(1.0f), glm::vec3(20.0f)),
-                                glm::vec3(0.6f), glm::vec3(0.5f), 64.0f));
+                                glm::vec3(0.62f), glm::vec3(0.5f), 64.0f));
     s.ambient = glm::vec3(0.25f);
     s.camera.position = {0.0f, 3.0f, 4.0f};
     s.camera.target = {0.0f, 0.0f, 0.0f};
@@ -274,7 +276,8 @@ TEST(StabilityShadow, LightParallelToTheSurfaceAddsNothing) {
                 r.render(rs, 0.0f, false);
                 ImageF hdr = r.readHdr();
                 EXPECT_EQ(scan(hdr).bad, 0u);
-                const double expected = 0.25 * std::round(0.6 * 255.0) / 255.0;
+                const double kd = brdf == Brdf::Ggx ? 0.62 * (1.0 - 0.5) : 0.62;
+                const double expected = 0.25 * std::round(kd * 255.0) / 255.0;
                 int floorPixels = 0;
                 for (int y = 0; y < rs.height; ++y)
                     for (int x = 0; x < rs.width; ++x) {

@@ -162,6 +162,23 @@ TEST(KnobTable, EachFlagSetsItsFieldAndNoOther) {
     for (const KnobEntry& k : knobTable()) EXPECT_EQ(k.field.get(o.base), k.field.get(defaults)) << k.name;
 }
 
+// What lightpass computes by default is glTF 2.0's BRDF: with no flag the CLI's settings are GGX with
+// the height-correlated Smith masking (the specification's V_SmithGGXCorrelated), --help says so, and
+// --specular-masking separable / --brdf blinn-phong still reach the other models.
+TEST(KnobTable, BrdfDefaultsAreTheGltfSpecifications) {
+    const app::Options o = app::parseArgs({"render", "--scene", "x.json", "--out", "x.png"});
+    EXPECT_EQ(o.base.brdf, Brdf::Ggx);
+    EXPECT_EQ(o.base.specularMasking, SpecularMasking::HeightCorrelated);
+    const std::string help = std::regex_replace(app::helpText(), std::regex("\\s+"), " ");  // lines unwrapped
+    EXPECT_NE(help.find("(ggx | blinn-phong; default ggx)"), std::string::npos);
+    EXPECT_NE(help.find("(height-correlated | separable; default height-correlated;"), std::string::npos);
+    EXPECT_EQ(app::parseArgs({"render", "--scene", "x.json", "--out", "x.png", "--specular-masking", "separable"})
+                  .base.specularMasking,
+              SpecularMasking::Separable);
+    EXPECT_EQ(app::parseArgs({"render", "--scene", "x.json", "--out", "x.png", "--brdf", "blinn-phong"}).base.brdf,
+              Brdf::BlinnPhong);
+}
+
 // The CLI checks the table's range and the panel's widgets are drawn over that same range
 // (app/viewer_panel.cpp's knobWidget reads KnobEntry::range): both ends are accepted, just outside
 // is refused.
@@ -210,7 +227,7 @@ TEST(KnobTable, ErrorsKeepTheirWording) {
         {{"render", "--ibl-diffuse", "x"}, "--ibl-diffuse x: expected sh or cubemap"},
         {{"render", "--bloom-blur", "x"}, "--bloom-blur x: expected compute or fragment"},
         {{"render", "--pcf", "7x7"}, "--pcf 7x7: unknown filter (off, 3x3, 5x5, poisson)"},
-        {{"render", "--brdf", "x"}, "--brdf x: unknown BRDF (blinn-phong, ggx)"},
+        {{"render", "--brdf", "x"}, "--brdf x: unknown BRDF (ggx, blinn-phong)"},
         {{"render", "--tonemap", "x"}, "--tonemap x: unknown operator (lightpass, aces, pbr-neutral, agx)"},
         {{"render", "--local-lights", "x"}, "--local-lights x: unknown method (fullscreen, scissor, volumes, tiled, clustered)"},
         {{"render", "--gbuffer", "oct12"},
