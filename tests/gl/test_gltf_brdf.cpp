@@ -1,0 +1,331 @@
+// glTF 2.0's BRDF (Appendix B) is what lightpass computes by default: the GLSL against the double
+// reference engine/render/gltf_brdf.hpp for every metallic, and the default frame's HDR radiance of
+// sun- and point-lit glTF materials against the same reference in every path that shades them
+// (classic and visibility G-buffers, forward+, the transparent pass).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "engine/io/gltf_loader.hpp"
+#include "engine/io/image_io.hpp"
+#include "engine/render/gltf_brdf.hpp"
+#include "engine/scene/primitives.hpp"
+#include "frame/renderer.hpp"
+#include "tests/gl/gl_fixture.hpp"
+
+using namespace lp;
+using lp::test::runGlsl;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// The materials the GLSL is checked with: dielectrics, metals and the mixes between them.
+const GltfBrdfMaterial kMaterials[] = {
+    {{0.8, 0.5, 0.25}, 0.0, 0.5},  {{1.0, 0.766, 0.336}, 1.0, 1.0}, {{0.9, 0.6, 0.3}, 0.5, 0.3},
+    {{0.2, 0.9, 0.4}, 0.25, 0.8},  {{1.0, 1.0, 1.0}, 0.0, 0.2},     {{0.05, 0.05, 0.05}, 0.9, 0.6},
+};
+
+std::string glslVec3(glm::dvec3 v) {
+    return "vec3(" + std::to_string(v.x) + ", " + std::to_string(v.y) + ", " + std::to_string(v.z) + ")";
+}
+
+// const arrays kBase, kMetallic, kRoughness of kMaterials for the harness.
+std::string materialTable() {
+    const size_t n = std::size(kMaterials);
+    std::string base = "const vec3 kBase[" + std::to_string(n) + "] = vec3[](";
+    std::string metallic = "const float kMetallic[" + std::to_string(n) + "] = float[](";
+    std::string roughness = "const float kRoughness[" + std::to_string(n) + "] = float[](";
+    for (size_t i = 0; i < n; ++i) {
+        const char* sep = i + 1 < n ? ", " : ");\n";
+        base += glslVec3(kMaterials[i].baseColor) + sep;
+        metallic += std::to_string(kMaterials[i].metallic) + sep;
+        roughness += std::to_string(kMaterials[i].roughness) + sep;
+    }
+    return base + metallic + roughness;
+}
+
+// L in the xz plane at N.L = x.x, V at N.V = x.y and azimuth x.z, N = +Z.
+const char* kDirections = R"(
+        vec3 N = vec3(0.0, 0.0, 1.0);
+        float sl = sqrt(max(1.0 - x.x * x.x, 0.0)), sv = sqrt(max(1.0 - x.y * x.y, 0.0));
+        vec3 L = vec3(sl, 0.0, x.x);
+        vec3 V = vec3(sv * cos(x.z), sv * sin(x.z), x.y);
+)";
+void directions(const glm::vec4& x, glm::dvec3& V, glm::dvec3& L) {
+    const double sl = std::sqrt(std::max(1.0 - double(x.x) * x.x, 0.0)), sv = std::sqrt(std::max(1.0 - double(x.y) * x.y, 0.0));
+    L = glm::dvec3(sl, 0.0, x.x);
+    V = glm::dvec3(sv * std::cos(double(x.z)), sv * std::sin(double(x.z)), x.y);
+}
+
+}  // namespace
+
+// The GGX path as a G-buffer pixel feeds it: kd = materialDiffuseAlbedo (base (1 - metallic)
+// (1 - 0.04)), F0 = mix(0.04, base, metallic), the roughness as its exponent n = 2 / r^4 - 2; and the
+// BRDF switch with uBrdf left unset (a program's default: GGX), split into brdfDiffuse + brdfSpecular
+// as the local lights use it. Against gltfBrdf (the specification, height-correlated: the default
+// masking) for dielectrics, metals and metallic 0.25 / 0.5 / 0.9 (the G-buffer's mixed F0 and
+// pre-weighted kd are exact for every metallic), at N.L, N.V in {1, 0.7, 0.3, 0.05} and two azimuths.
+// Bound: 2e-4 relative (+1e-6): float rounding.
+TEST(GltfBrdf, ShaderMatchesTheSpecificationForEveryMetallic) {
+    ASSERT_EQ(RenderSettings{}.brdf, Brdf::Ggx);
+    ASSERT_EQ(RenderSettings{}.specularMasking, SpecularMasking::HeightCorrelated);
+    std::vector<glm::vec4> in;
+    for (size_t k = 0; k < std::size(kMaterials); ++k)
+        for (float nl : {1.0f, 0.7f, 0.3f, 0.05f})
+            for (float nv : {1.0f, 0.7f, 0.3f, 0.05f})
+                for (float phi : {0.4f, 2.8f}) in.push_back(glm::vec4(nl, nv, phi, float(k)));
+    const std::string body = std::string(kDirections) + R"(
+        int k = int(x.w);
+        vec3 base = kBase[k];
+        float m = kMetallic[k], r = kRoughness[k];
+        vec3 kd = materialDiffuseAlbedo(LP_BRDF_GGX, base, m, vec3(0.04));
+        vec3 f0 = mix(vec3(0.04), base, m);
+        float n = 2.0 / (r * r * r * r) - 2.0;
+        vec3 f = ggxBrdf(N, V, L, kd, f0, n);
+        vec3 viaSwitch = brdfRadiance(uBrdf, N, V, L, kd, f0, n, vec3(1.0)) / dot(N, L);
+        vec3 parts = brdfDiffuse(uBrdf, N, V, L, kd, f0) + brdfSpecular(uBrdf, N, V, L, f0, n);
+        float agree = max(length(viaSwitch - f), length(parts - f)) / max(length(f), 1e-20);
+        return vec4(f, agree);)";
+    const auto out = runGlsl({"common/brdf.glsl"}, body, in, materialTable());
+    double worst = 0.0;
+    for (size_t i = 0; i < in.size(); ++i) {
+        glm::dvec3 V, L;
+        directions(in[i], V, L);
+        const GltfBrdfMaterial& m = kMaterials[size_t(in[i].w)];
+        const glm::dvec3 want = gltfBrdf(m, glm::dvec3(0, 0, 1), V, L);
+        const std::string where = "material " + std::to_string(int(in[i].w)) + " N.L " + std::to_string(in[i].x) +
+                                  " N.V " + std::to_string(in[i].y) + " phi " + std::to_string(in[i].z);
+        for (int c = 0; c < 3; ++c) {
+            EXPECT_NEAR(out[i][c], want[c], 2e-4 * want[c] + 1e-6) << where << " channel " << c;
+            worst = std::max(worst, std::abs(out[i][c] - want[c]) / std::max(want[c], 1e-6));
+        }
+        EXPECT_LT(out[i].w, 1e-5f) << where << ": brdfRadiance / brdfDiffuse + brdfSpecular differ from ggxBrdf";
+    }
+    RecordProperty("worst_relative_error", std::to_string(worst));
+}
+
+// Blinn-Phong (--brdf blinn-phong) stays the seeds' BRDF: materialDiffuseAlbedo keeps base (1 - metallic)
+// and brdfRadiance is Kd / pi + Ks (n + 8) / (8 pi) (N.H)^n. Bound: 2e-5 relative.
+TEST(GltfBrdf, BlinnPhongStaysTheSeedsBrdf) {
+    std::vector<glm::vec4> in;
+    for (float nl : {1.0f, 0.6f, 0.2f})
+        for (float nv : {1.0f, 0.5f})
+            for (float n : {0.0f, 32.0f, 500.0f}) in.push_back(glm::vec4(nl, nv, 0.7f, n));
+    const std::string body = std::string(kDirections) + R"(
+        vec3 kd = materialDiffuseAlbedo(LP_BRDF_BLINN_PHONG, vec3(0.6, 0.4, 0.2), 0.25, vec3(0.04));
+        return vec4(brdfRadiance(LP_BRDF_BLINN_PHONG, N, V, L, kd, vec3(0.3), x.w, vec3(1.0)), 0.0);)";
+    const auto out = runGlsl({"common/brdf.glsl"}, body, in);
+    for (size_t i = 0; i < in.size(); ++i) {
+        glm::dvec3 V, L;
+        directions(in[i], V, L);
+        const glm::dvec3 N(0, 0, 1), H = glm::normalize(V + L);
+        const double n = in[i].w, lobe = n == 0.0 ? 1.0 : std::pow(glm::dot(N, H), n);
+        const glm::dvec3 kd = glm::dvec3(0.6, 0.4, 0.2) * 0.75;
+        for (int c = 0; c < 3; ++c) {
+            const double want = (kd[c] / kPi + 0.3 * (n + 8.0) / (8.0 * kPi) * lobe) * L.z;
+            EXPECT_NEAR(out[i][c], want, 2e-5 * want) << "N.L " << in[i].x << " N.V " << in[i].y << " n " << n;
+        }
+    }
+}
+
+// The IBL's diffuse weight (ggxDiffuseFresnelMeanWeight) is the specification's diffuse weight
+// 1 - F(V.H) averaged over a uniform light, divided by the 1 - F0 kd already holds: (1 / pi) integral
+// of (1 - F(V.H)) / (1 - F0) N.L over the hemisphere = 1 - mean of (1 - V.H)^5 for every F0 >= 0.02,
+// here by a 384 x 768 midpoint rule in cosine-weighted coordinates, for F0 0.04 and 0.1 at N.V from 1
+// to 0. And F0 = 0 (MTL Ks 0): exactly 1, Lambertian. Bound: 2e-4 absolute (the cubic fit's error).
+TEST(GltfBrdf, IblDiffuseWeightIsTheUniformLightMeanOfTheSpecificationsWeight) {
+    const float cosines[] = {1.0f, 0.9f, 0.7f, 0.5f, 0.3f, 0.15f, 0.05f, 0.0f};
+    std::vector<glm::vec4> in;
+    for (float f0 : {0.04f, 0.1f, 0.0f})
+        for (float nv : cosines) in.push_back(glm::vec4(nv, f0, 0, 0));
+    const auto out = runGlsl({"common/brdf.glsl"}, "return vec4(ggxDiffuseFresnelMeanWeight(vec3(x.y), x.x), 0.0);", in);
+    std::vector<double> mean;  // per N.V: the cosine-weighted mean of 1 - (1 - V.H)^5
+    for (float c : cosines) {
+        const double nv = c;
+        const glm::dvec3 V(std::sqrt(1.0 - nv * nv), 0.0, nv);
+        const int n = 384;
+        double sum = 0.0;
+        for (int a = 0; a < n; ++a)
+            for (int b = 0; b < 2 * n; ++b) {
+                const double u = (a + 0.5) / n, phi = (b + 0.5) / (2 * n) * 2.0 * kPi;
+                const glm::dvec3 L(std::sqrt(u) * std::cos(phi), std::sqrt(u) * std::sin(phi), std::sqrt(1.0 - u));
+                const double vh = std::abs(glm::dot(V, glm::normalize(V + L)));
+                sum += 1.0 - std::pow(1.0 - vh, 5.0);
+            }
+        mean.push_back(sum / (2.0 * n * n));
+    }
+    double worst = 0.0;
+    for (size_t i = 0; i < in.size(); ++i) {
+        const double f0 = in[i].y, want = f0 == 0.0 ? 1.0 : mean[i % std::size(cosines)];
+        EXPECT_NEAR(out[i].x, want, 2e-4) << "N.V " << in[i].x << " F0 " << f0;
+        worst = std::max(worst, std::abs(out[i].x - want));
+        if (f0 == 0.0) EXPECT_EQ(out[i].x, 1.0f) << "N.V " << in[i].x;
+    }
+    RecordProperty("worst_abs_error", std::to_string(worst));
+}
+
+namespace {
+
+// Four 1.5 m glTF quads in a row at y = 0 (centres x = -2.4, -0.8, 0.8, 2.4): a dielectric (base
+// (0.8, 0.5, 0.25), roughness 0.5), a rough metal (gold, roughness 1), a half metal (metallic 0.5,
+// roughness 0.6) and a normal-mapped gold quad (roughness 0.4; tests/data/gltf/normal_plane.glb turned
+// half a turn about +Y, so its tangent is -X and its bitangent +Z, with tangent-space normal
+// (173, 189, 230) / 255 * 2 - 1: the shading normal leans towards the camera). Lit by one sun and one
+// point light, no ambient, no environment, seen from above at an angle.
+struct QuadCase {
+    GltfBrdfMaterial material;
+    double centreX;
+    bool normalMapped;
+};
+const QuadCase kQuads[] = {
+    {{{0.8, 0.5, 0.25}, 0.0, 0.5}, -2.4, false},
+    {{{1.0, 0.766, 0.336}, 1.0, 1.0}, -0.8, false},
+    {{{0.8, 0.5, 0.3}, 0.5, 0.6}, 0.8, false},
+    {{{1.0, 0.766, 0.336}, 1.0, 0.4}, 2.4, true},
+};
+const glm::dvec3 kToSun = glm::normalize(glm::dvec3(0.3, 0.75, -0.5));
+constexpr double kSunIrradiance = 3.0;
+const glm::dvec3 kPointPosition(0.5, 1.2, 0.4);
+constexpr double kPointIntensity = 4.0, kPointRange = 30.0;
+
+Material materialOf(const GltfBrdfMaterial& g) {
+    Material m;
+    m.diffuse = glm::vec3(g.baseColor);
+    m.specular = glm::vec3(float(gltfDielectricF0(g.ior)));
+    m.metallic = float(g.metallic);
+    m.roughness = float(g.roughness);
+    m.shininess = shininessFromRoughness(m.roughness);
+    m.doubleSided = false;
+    return m;
+}
+
+glm::dvec3 mappedNormal() {
+    const glm::dvec3 t = glm::dvec3(173.0, 189.0, 230.0) / 255.0 * 2.0 - 1.0;
+    return glm::normalize(t.x * glm::dvec3(-1, 0, 0) + t.z * glm::dvec3(0, 1, 0) + t.y * glm::dvec3(0, 0, 1));
+}
+
+Scene quadsScene(AlphaMode mode) {
+    Scene s;
+    for (const QuadCase& q : kQuads) {
+        ModelInstance m;
+        m.name = "quad";
+        if (q.normalMapped) {
+            m.mesh = loadGltf(test::repoPath("tests/data/gltf/normal_plane.glb")).mesh;  // 2 x 2, tangents +X
+            m.transform = glm::translate(glm::mat4(1.0f), glm::vec3(float(q.centreX), 0, 0)) *
+                          glm::rotate(glm::mat4(1.0f), float(kPi), glm::vec3(0, 1, 0)) * glm::scale(glm::mat4(1.0f), glm::vec3(0.75f));
+        } else {
+            m.mesh = makePlane(1.5f);
+            m.transform = glm::translate(glm::mat4(1.0f), glm::vec3(float(q.centreX), 0, 0));
+        }
+        Material mat = materialOf(q.material);
+        if (q.normalMapped) {
+            Image8 normal{8, 8, {}};
+            for (int i = 0; i < 64; ++i) normal.rgba.insert(normal.rgba.end(), {173, 189, 230, 255});
+            mat.normalMap.encoded = std::make_shared<const std::string>(encodePng(normal));
+            mat.normalMap.key = "tilted-normal";
+        }
+        mat.alphaMode = mode;
+        m.mesh.materials.assign(m.mesh.materials.size(), mat);
+        s.models.push_back(std::move(m));
+    }
+    s.ambient = glm::vec3(0.0f);
+    s.environment.color = glm::vec3(0.0f);
+    s.camera.position = {0.0f, 3.2f, 3.0f};
+    s.camera.target = {0.0f, 0.0f, 0.0f};
+    s.camera.fovYDegrees = 50.0f;
+    s.camera.nearPlane = 0.1f;
+    s.camera.farPlane = 20.0f;
+    DirectionalLight sun;
+    sun.direction = -glm::vec3(kToSun);
+    sun.intensity = float(kSunIrradiance);
+    sun.castsShadows = false;
+    s.directionalLights.push_back(sun);
+    PointLight point;
+    point.position = glm::vec3(kPointPosition);
+    point.intensity = float(kPointIntensity);
+    point.range = float(kPointRange);
+    s.pointLights.push_back(point);
+    return s;
+}
+
+// The specification's radiance at world point p on quad q seen from `eye`: f (sun) E N.L + f (point)
+// I window(d / R) / d^2 N.L, the window being lightpass's (and KHR_lights_punctual's) range falloff.
+glm::dvec3 referenceRadiance(const QuadCase& q, glm::dvec3 p, glm::dvec3 eye) {
+    const glm::dvec3 N = q.normalMapped ? mappedNormal() : glm::dvec3(0, 1, 0), V = glm::normalize(eye - p);
+    glm::dvec3 c = gltfBrdf(q.material, N, V, kToSun) * kSunIrradiance * std::max(glm::dot(N, kToSun), 0.0);
+    const glm::dvec3 toPoint = kPointPosition - p;
+    const double d = glm::length(toPoint), x = d / kPointRange, window = std::pow(std::max(1.0 - x * x * x * x, 0.0), 2.0);
+    const glm::dvec3 L = toPoint / d;
+    c += gltfBrdf(q.material, N, V, L) * kPointIntensity * window / (d * d) * std::max(glm::dot(N, L), 0.0);
+    return c;
+}
+
+}  // namespace
+
+// The default frame (RenderSettings{}: GGX, height-correlated) shades glTF materials by the
+// specification: every pixel well inside the four quads (5 cm from their edges) against
+// referenceRadiance at the pixel centre's ray, in the deferred path with each G-buffer mode, forward+
+// and the transparent pass (the quads BLEND with alpha 1). Bound: 1% per channel (+1e-3 absolute): the
+// G-buffer's 8-bit diffuse colour and half-float F0 and radiance. (The seeds' Blinn-Phong default put
+// the rough metal +196% off under a sun; leaving out the spec's 1 - F, the dielectric +4%.)
+TEST(GltfBrdf, SunAndPointLitGltfMaterialsMatchTheSpecificationInEveryPath) {
+    const int w = 128, h = 64;
+    struct Path {
+        const char* name;
+        RenderPath path;
+        GBufferMode mode;
+        AlphaMode alpha;
+    };
+    const Path paths[] = {{"deferred classic", RenderPath::Deferred, GBufferMode::Classic, AlphaMode::Opaque},
+                          {"deferred visibility", RenderPath::Deferred, GBufferMode::Visibility, AlphaMode::Opaque},
+                          {"forward+", RenderPath::ForwardPlus, GBufferMode::Auto, AlphaMode::Opaque},
+                          {"transparent", RenderPath::Deferred, GBufferMode::Auto, AlphaMode::Blend}};
+    for (const Path& path : paths) {
+        SCOPED_TRACE(path.name);
+        const Scene scene = quadsScene(path.alpha);
+        Renderer r(scene);
+        RenderSettings s;
+        s.width = w;
+        s.height = h;
+        s.keepHdr = true;
+        s.renderPath = path.path;
+        s.gbuffer.mode = path.mode;
+        r.render(s, 0.0f, false);
+        const ImageF hdr = r.readHdr();
+        const glm::dmat4 inv = glm::inverse(glm::dmat4(scene.camera.projection(float(w) / float(h))) *
+                                            glm::dmat4(scene.camera.view()));
+        const glm::dvec3 eye(scene.camera.position);
+        std::vector<int> checked(std::size(kQuads), 0);
+        std::vector<double> worst(std::size(kQuads), 0.0);
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                const double nx = (x + 0.5) / w * 2.0 - 1.0, ny = 1.0 - (y + 0.5) / h * 2.0;
+                const glm::dvec4 a = inv * glm::dvec4(nx, ny, -1.0, 1.0), b = inv * glm::dvec4(nx, ny, 1.0, 1.0);
+                const glm::dvec3 o = glm::dvec3(a) / a.w, dir = glm::dvec3(b) / b.w - o;
+                if (dir.y >= 0.0) continue;
+                const glm::dvec3 p = o + dir * (-o.y / dir.y);
+                for (size_t k = 0; k < std::size(kQuads); ++k) {
+                    if (std::abs(p.x - kQuads[k].centreX) > 0.7 || std::abs(p.z) > 0.7) continue;
+                    const glm::dvec3 want = referenceRadiance(kQuads[k], p, eye);
+                    const float* got = &hdr.rgba[(size_t(y) * w + size_t(x)) * 4];
+                    for (int c = 0; c < 3; ++c) {
+                        EXPECT_NEAR(got[c], want[c], 0.01 * want[c] + 1e-3)
+                            << "quad " << k << " pixel " << x << "," << y << " channel " << c;
+                        worst[k] = std::max(worst[k], std::abs(got[c] - want[c]) / std::max(want[c], 1e-2));
+                    }
+                    ++checked[k];
+                }
+            }
+        for (size_t k = 0; k < std::size(kQuads); ++k) {
+            EXPECT_GT(checked[k], 60) << "quad " << k;
+            RecordProperty(std::string(path.name) + " quad " + std::to_string(k) + " worst relative error",
+                           std::to_string(worst[k]));
+        }
+    }
+}
