@@ -2,8 +2,8 @@
 """The exact integral of lightpass's GGX BRDF over a map, under both Smith masking models, against Mitsuba.
 
 lightpass's specular masking is selectable (--specular-masking separable|height-correlated): the
-separable Smith G2 = G1(V) G1(L) (Mitsuba's roughconductor, the path tracer's model, the default) or
-the height-correlated G2 = 1 / (1 + Lambda(V) + Lambda(L)) (Heitz 2014; Filament's and UE's form).
+separable Smith G2 = G1(V) G1(L) (Mitsuba's built-in roughconductor) or
+the height-correlated G2 = 1 / (1 + Lambda(V) + Lambda(L)) (Heitz 2014; the glTF specification's, the default).
 This script integrates f cos = D(h) G2 / (4 N.V) (F = 1) over every texel of the full-resolution map
 (each texel's radiance, direction and exact solid angle; the map rotated as lightpass and Mitsuba
 rotate it), per pixel of ground_truth.py's 160x90 view (analytic sphere normals), for the rough GGX

@@ -43,7 +43,7 @@ def ggx_d(nh, a):
     return a2 / (math.pi * d * d)
 
 
-def dfg(nv, r, masking="separable", nt=512, nphi=128):
+def dfg(nv, r, masking="height-correlated", nt=512, nphi=128):
     """A + B (F0 = f90 = 1) by the midpoint rule over the GGX half-vector CDF, with lightpass's Smith model
     `masking` (--specular-masking: separable G1(V) G1(L) or height-correlated)."""
     a = r * r
@@ -75,7 +75,7 @@ def main():
     g.add_argument("--shininess", type=float, help="Blinn-Phong exponent of the plane (default: --roughness 0.119's)")
     g.add_argument("--roughness", type=float, help="perceptual roughness (scene-file 'roughness')")
     ap.add_argument("--lightpass-args", default="")
-    ap.add_argument("--specular-masking", default="separable", choices=["separable", "height-correlated"],
+    ap.add_argument("--specular-masking", default="height-correlated", choices=["height-correlated", "separable"],
                     help="lightpass's Smith model (passed on as --specular-masking; the exact DFG uses it too)")
     ap.add_argument("--map-width", type=int, default=512, help="the map is halved to at most this width for the integral")
     ap.add_argument("--label", default="")
@@ -161,8 +161,7 @@ def main():
     lampish = e > 4 * np.median(e)
     rel_all = g_.mean() / e.mean() - 1
     rel_lamp = g_[lampish].mean() / e[lampish].mean() - 1 if lampish.any() else float("nan")
-    label = args.label or (args.lightpass_args or "defaults") + (
-        f" ({args.specular_masking})" if args.specular_masking != "separable" else "")
+    label = args.label or (args.lightpass_args or "defaults") + f" ({args.specular_masking})"
     line = (f"| {label} | {rough:.3f} | {int(mask.sum())} | {rel_all:+.3f} | {int(lampish.sum())} | {rel_lamp:+.3f} |")
     md = out / "grazing_plane.md"
     if not md.exists():

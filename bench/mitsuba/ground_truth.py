@@ -195,7 +195,7 @@ def read_rgb(path):
     return np.array(mi.Bitmap(str(path)).convert(mi.Bitmap.PixelFormat.RGB, mi.Struct.Type.Float32, False))
 
 
-def run_lightpass(lightpass, scene_path, exr_path, width, height, extra=(), masking="separable"):
+def run_lightpass(lightpass, scene_path, exr_path, width, height, extra=(), masking="height-correlated"):
     # --no-ao: Mitsuba renders each sphere alone (no occlusion of the environment); screen-space AO
     # (on by default with IBL) would darken the grid's silhouettes against it.
     cmd = [str(lightpass), "render", "--scene", str(scene_path), "--ibl", "--no-ao", "--brdf", "ggx", "--exr", str(exr_path),
@@ -218,7 +218,7 @@ def write_comparison(path, lp, ref):
     mi.Bitmap(stacked, mi.Bitmap.PixelFormat.RGB).write(str(path))
 
 
-def compare(lp, ref, masks, core, furnace=False, nv=None, masking="separable"):
+def compare(lp, ref, masks, core, furnace=False, nv=None, masking="height-correlated"):
     rows = []
     for name, _, kind, p, _ in spheres():
         m = masks[name]
@@ -263,7 +263,7 @@ def main():
     ap.add_argument("--reuse-reference", action="store_true",
                     help="reuse a Mitsuba composite already in --work for the same map, size, spp and variant")
     ap.add_argument("--lightpass-args", default="", help="extra lightpass flags, e.g. '--ibl-samples 1024'")
-    ap.add_argument("--specular-masking", default="separable", choices=["separable", "height-correlated"],
+    ap.add_argument("--specular-masking", default="height-correlated", choices=["height-correlated", "separable"],
                     help="lightpass's GGX Smith model (passed on; the furnace's exact albedo uses it)")
     args = ap.parse_args()
     try:

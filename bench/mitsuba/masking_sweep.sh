@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # GGX Smith masking (--specular-masking) against Mitsuba: the issue-16 sphere grid under lamp50k,
 # royal_esplanade_1k and the white furnace, 160x90, 128 spp, with lightpass's defaults otherwise (split
-# sum, 4 extracted lights), height-correlated (the model before) and separable (the default), and the
-# sampled specular (64) with separable; the Mitsuba composites reused from WORK (made once by
+# sum, 4 extracted lights), height-correlated (the glTF specification's, the default) and separable
+# (Mitsuba's built-in model), and the sampled specular (64) with separable; the Mitsuba composites reused from WORK (made once by
 # bench/mitsuba/run.sh with the same size/spp: nothing is path traced again if they are there).
 #   MITSUBA_VENV=/work/venv-mitsuba bench/mitsuba/masking_sweep.sh [WORK] [OUTDIR]
 # WORK defaults to /tmp/lightpass-mitsuba, OUTDIR to bench/results/mitsuba/<today>_ibl-against-mitsuba; LIGHTPASS=PATH

@@ -194,7 +194,7 @@ def sample_vndf(Ve, alpha, u):
     return ne / np.linalg.norm(ne, axis=-1, keepdims=True)
 
 
-MASKING = "separable"  # lightpass's Smith model (--specular-masking): separable or height-correlated
+MASKING = "height-correlated"  # lightpass's Smith model (--specular-masking): separable or height-correlated
 
 
 def smith_g2(lv, ll):
@@ -344,7 +344,7 @@ def main():
     ap.add_argument("--exact", action="store_true", help="add the exact integral of lightpass's BRDF (minutes)")
     ap.add_argument("--min-alpha", type=float, default=0.15)
     ap.add_argument("--out", default=str(gt.REPO / "bench/results/mitsuba" / f"{datetime.date.today().isoformat()}_ibl-against-mitsuba" / "sampled_specular.md"))
-    ap.add_argument("--specular-masking", default="separable", choices=["separable", "height-correlated"],
+    ap.add_argument("--specular-masking", default="height-correlated", choices=["height-correlated", "separable"],
                     help="lightpass's Smith model (the DFG terms, the weights and --exact)")
     args = ap.parse_args()
     globals()["MASKING"] = args.specular_masking

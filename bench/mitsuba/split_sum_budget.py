@@ -87,7 +87,7 @@ def ggx_d(c, a):
     return a * a / (math.pi * dd * dd)
 
 
-MASKING = "separable"  # lightpass's Smith model (--specular-masking): separable or height-correlated
+MASKING = "height-correlated"  # lightpass's Smith model (--specular-masking): separable or height-correlated
 
 
 def visibility(nv, nl, a):
@@ -131,7 +131,7 @@ def main():
     ap.add_argument("--work", default="/tmp/lightpass-mitsuba", help="where ground_truth.py left the Mitsuba composite")
     ap.add_argument("--spp", type=int, default=128)
     ap.add_argument("--out", default=str(gt.REPO / "bench/results/mitsuba" / f"{datetime.date.today().isoformat()}_ibl-against-mitsuba" / "split_sum_budget.md"))
-    ap.add_argument("--specular-masking", default="separable", choices=["separable", "height-correlated"])
+    ap.add_argument("--specular-masking", default="height-correlated", choices=["height-correlated", "separable"])
     args = ap.parse_args()
     globals()["MASKING"] = args.specular_masking
     ref_path = Path(args.work) / f"lamp50k_mitsuba_{WIDTH}x{HEIGHT}_{args.spp}spp_scalar_rgb.exr"
