@@ -18,7 +18,7 @@ import sys
 
 SKIP = 77
 
-# BEGIN PATTERNS: the only lines of the tree the session-name check does not read.
+# BEGIN PATTERNS: the only lines of the tree that the work-session name check does not read.
 PATH_PATTERN = re.compile(r"(^|/)(stop[0-9]+|merged_stop[0-9]*|review_[0-9a-f]{7})(/|$|_|\.)", re.IGNORECASE)
 TEXT_PATTERNS = [
     re.compile(r"\b[Ss]top ?[0-9]{2}\b"),
