@@ -388,12 +388,11 @@ std::vector<KnobEntry> makeKnobTable() {
     }
     {
         KnobEntry k = choiceKnob("tonemap", [](auto& s) -> auto& { return s.environment.toneMap; },
-                                 std::vector<ToneMapOperator>{ToneMapOperator::Lightpass, ToneMapOperator::Aces,
-                                                              ToneMapOperator::PbrNeutral, ToneMapOperator::Agx},
-                                 toneMapName);
+                                 allToneMapOperators(), toneMapName);
         k.flags = {valueFlag("--tonemap")};
         k.choiceNoun = "operator";
-        k.help = "tone map operator; lightpass: pow(c/(c+1),1.2)";
+        k.help = "tone map operator; lightpass: pow(c/(c+1),1.2); aces: Filament's ACES (RRT + ODT fit); aces-legacy: "
+                 "the Narkowicz fit without its 0.6 input scale (+0.74 EV)";
         k.panel = {PanelSection::View, PanelWidget::Combo, "tone map", ""};
         t.push_back(std::move(k));
     }

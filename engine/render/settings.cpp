@@ -94,12 +94,20 @@ const char* toneMapName(ToneMapOperator op) {
         case ToneMapOperator::Aces: return "aces";
         case ToneMapOperator::PbrNeutral: return "pbr-neutral";
         case ToneMapOperator::Agx: return "agx";
+        case ToneMapOperator::AcesLegacy: return "aces-legacy";
     }
     return "lightpass";
 }
 
+const std::vector<ToneMapOperator>& allToneMapOperators() {
+    static const std::vector<ToneMapOperator> all = {ToneMapOperator::Lightpass, ToneMapOperator::Aces,
+                                                     ToneMapOperator::AcesLegacy, ToneMapOperator::PbrNeutral,
+                                                     ToneMapOperator::Agx};
+    return all;
+}
+
 std::optional<ToneMapOperator> parseToneMap(const std::string& name) {
-    for (ToneMapOperator op : {ToneMapOperator::Lightpass, ToneMapOperator::Aces, ToneMapOperator::PbrNeutral, ToneMapOperator::Agx})
+    for (ToneMapOperator op : allToneMapOperators())
         if (name == toneMapName(op)) return op;
     return std::nullopt;
 }

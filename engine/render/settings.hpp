@@ -156,13 +156,16 @@ struct LocalLightSettings {     // local lights: ranged point lights and spots
     ClusteredKernel clusteredKernel = ClusteredKernel::Auto;  // clustered: which kernel shades (above)
     int clusterSlice = -1;      // lights-per-cluster view: this slice, -1 the most over all slices
 };
-enum class ToneMapOperator { Lightpass, Aces, PbrNeutral, Agx };
+// Tone map operators (shaders/common/tonemap.glsl's applyToneMap numbers them in this order). Aces is
+// Filament's ACES (the RRT + ODT fit); AcesLegacy the Narkowicz fit without its 0.6 input scale.
+enum class ToneMapOperator { Lightpass, Aces, PbrNeutral, Agx, AcesLegacy };
 enum class IrradianceSource { SphericalHarmonics, Cubemap };
 // Specular IBL: the split sum (one prefiltered lookup x the DFG LUT), or per-pixel GGX samples of the
 // prefiltered chain that follow the lobe's shape (shaders/common/ibl_sampled.glsl).
 enum class IblSpecular { SplitSum, Sampled };
 const char* iblSpecularName(IblSpecular m);
 const char* toneMapName(ToneMapOperator op);
+const std::vector<ToneMapOperator>& allToneMapOperators();  // in --tonemap's order
 std::optional<ToneMapOperator> parseToneMap(const std::string& name);
 struct EnvironmentSettings {    // environment, skybox, image-based lighting, tone map operator
     // false: analytic lights + constant ambient; true: + IBL. Unset: the scene's environment.ibl.

@@ -19,6 +19,7 @@
 #include "frame/renderer.hpp"
 #include "engine/scene/primitives.hpp"
 #include "tests/gl/gl_fixture.hpp"
+#include "tests/gl/tonemap_reference.hpp"
 
 using namespace lp;
 using lp::test::runGlsl;
@@ -1322,16 +1323,14 @@ TEST(Ibl, ShaderShIrradianceMatchesCpu) {
 
 // Every tone map at 0, 1e-30, 1, 1e38, +Inf, NaN: finite and in [0, 1]; NaN maps like 0 and +Inf
 // like 65504 (sanitised first); non-decreasing over 2001 grey levels 1e-6 .. 1e5 (bound: each step
-// >= -1e-6). ACES and PBR Neutral also match double references within 1e-5.
+// >= -1e-6; ACES -2e-6, float rounding where Filament's curve has flattened near 0.994). ACES (Filament's) and PBR Neutral also match double references within 2e-5 and 1e-5.
 TEST(Ibl, ToneMapOperatorsAreFiniteAndMonotone) {
     const float inf = std::numeric_limits<float>::infinity(), nan = std::numeric_limits<float>::quiet_NaN();
     std::vector<glm::vec4> in;
     for (float h : {0.0f, 1e-30f, 1.0f, 1e38f, inf, nan, 65504.0f}) in.push_back(glm::vec4(h));
     const size_t sweepStart = in.size();
     for (int i = 0; i <= 2000; ++i) in.push_back(glm::vec4(float(std::pow(10.0, -6.0 + 11.0 * i / 2000.0))));
-    auto aces = [](double x) {
-        return std::clamp((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0);
-    };
+    auto aces = [](double x) { return test::filamentAcesRef(glm::dvec3(x)).x; };
     auto neutral = [](double x) {  // grey input: offset, then the highlight compression
         double off = x < 0.08 ? x - 6.25 * x * x : 0.04;
         double c = x - off;
@@ -1339,7 +1338,7 @@ TEST(Ibl, ToneMapOperatorsAreFiniteAndMonotone) {
         double d = 0.24, np = 1.0 - d * d / (c + d - 0.76);
         return np;  // grey stays grey: the desaturation mix is the identity
     };
-    for (int op = 0; op < 4; ++op) {
+    for (int op = 0; op < int(allToneMapOperators().size()); ++op) {
         auto out = runGlsl({"common/tonemap.glsl"}, "return vec4(applyToneMap(x.xyz, " + std::to_string(op) + "), 0.0);", in);
         for (size_t i = 0; i < in.size(); ++i) {
             for (int c = 0; c < 3; ++c) {
@@ -1352,9 +1351,10 @@ TEST(Ibl, ToneMapOperatorsAreFiniteAndMonotone) {
         EXPECT_EQ(out[4].x, out[6].x) << "op " << op << ": +Inf maps like 65504";
         EXPECT_EQ(out[3].x, out[6].x) << "op " << op << ": 1e38 maps like 65504";
         for (size_t i = sweepStart + 1; i < in.size(); ++i)
-            EXPECT_GE(out[i].x - out[i - 1].x, -1e-6f) << "op " << op << " at " << in[i].x;
+            EXPECT_GE(out[i].x - out[i - 1].x, op == 1 ? -2e-6f : -1e-6f) << "op " << op << " at " << in[i].x;
         if (op == 1 || op == 2)
             for (size_t i = sweepStart; i < in.size(); ++i)
-                EXPECT_NEAR(out[i].x, op == 1 ? aces(in[i].x) : neutral(in[i].x), 1e-5) << "op " << op << " at " << in[i].x;
+                EXPECT_NEAR(out[i].x, op == 1 ? aces(in[i].x) : neutral(in[i].x), op == 1 ? 2e-5 : 1e-5)
+                    << "op " << op << " at " << in[i].x;
     }
 }

@@ -22,6 +22,7 @@
 #include "engine/scene/mesh_ops.hpp"
 #include "engine/scene/primitives.hpp"
 #include "tests/gl/gl_fixture.hpp"
+#include "tests/gl/tonemap_reference.hpp"
 
 using namespace lp;
 using lp::test::runGlsl;
@@ -37,17 +38,7 @@ std::filesystem::path tempPath(const std::string& name) {
 }
 
 // ---- double references of shaders/common/tonemap.glsl ----
-glm::dvec3 sanitizeRef(glm::dvec3 c) {
-    for (int i = 0; i < 3; ++i) c[i] = std::isnan(c[i]) ? 0.0 : std::clamp(c[i], 0.0, 65504.0);
-    return c;
-}
-glm::dvec3 acesRef(glm::dvec3 c) {
-    c = sanitizeRef(c);
-    glm::dvec3 r;
-    for (int i = 0; i < 3; ++i)
-        r[i] = std::clamp((c[i] * (2.51 * c[i] + 0.03)) / (c[i] * (2.43 * c[i] + 0.59) + 0.14), 0.0, 1.0);
-    return r;
-}
+glm::dvec3 sanitizeRef(glm::dvec3 c) { return test::sanitizeHdrRef(c); }
 glm::dvec3 pbrNeutralRef(glm::dvec3 c) {
     c = sanitizeRef(c);
     const double start = 0.8 - 0.04, desat = 0.15;
@@ -138,7 +129,7 @@ EnvironmentSettings smallBake() { return lp::test::smallIblBake(64); }
 // ---------------------------------------------------------------------------------------------
 // Tone map operators (ACES, PBR Neutral, AgX; lightpass's own is in ShaderToneMap) at 0, 1e-30, a
 // denormal, 1, 65504, 1e38, +Inf, NaN, -1, -Inf, mixed channels and a log grid 1e-6 .. 1e5. Bound:
-// |GLSL - double| <= 2e-5 (ACES, PBR Neutral) and <= 2e-4 (AgX: float log2 and a degree-6 polynomial
+// |GLSL - double| <= 2e-5 (both ACES, PBR Neutral) and <= 2e-4 (AgX: float log2 and a degree-6 polynomial
 // with coefficients up to 40), every output finite and in [0, 1].
 TEST(StabilityToneMap, EveryOperatorMatchesDoubleReferenceAtHardInputs) {
     std::vector<glm::vec4> in;
@@ -157,7 +148,8 @@ TEST(StabilityToneMap, EveryOperatorMatchesDoubleReferenceAtHardInputs) {
         const char* call;
         glm::dvec3 (*ref)(glm::dvec3);
         double bound;
-    } ops[] = {{"aces", "tonemapAces", acesRef, 2e-5},
+    } ops[] = {{"aces", "tonemapAces", test::filamentAcesRef, 2e-5},
+               {"aces-legacy", "tonemapAcesLegacy", test::acesLegacyRef, 2e-5},
                {"pbr-neutral", "tonemapPbrNeutral", pbrNeutralRef, 2e-5},
                {"agx", "tonemapAgx", agxRef, 2e-4}};
     for (const auto& op : ops) {
@@ -185,7 +177,7 @@ TEST(StabilityToneMap, ExposureOverflowStaysFinite) {
     std::vector<glm::vec4> in;
     for (float ev : {-20.0f, 0.0f, 20.0f})
         for (float v : {0.0f, 1e-30f, 1e38f, kInf, kNaN, 3e38f}) in.push_back(glm::vec4(v, v, v, ev));
-    for (int op = 0; op < 4; ++op) {
+    for (int op = 0; op < int(allToneMapOperators().size()); ++op) {
         auto out = runGlsl({"common/tonemap.glsl"},
                            "return vec4(applyToneMap(applyExposure(x.xyz, x.w), " + std::to_string(op) + "), 0.0);", in);
         for (size_t i = 0; i < in.size(); ++i)

@@ -131,9 +131,9 @@ TEST(IblSky, BundledSkyFilesAgreeAndCarryTheSun) {
 }
 
 TEST(IblSettings, ToneMapNamesRoundTrip) {
-    for (ToneMapOperator op : {ToneMapOperator::Lightpass, ToneMapOperator::Aces, ToneMapOperator::PbrNeutral,
-                               ToneMapOperator::Agx})
-        EXPECT_EQ(parseToneMap(toneMapName(op)), op);
+    for (ToneMapOperator op : allToneMapOperators()) EXPECT_EQ(parseToneMap(toneMapName(op)), op);
+    EXPECT_EQ(allToneMapOperators().size(), 5u);
+    EXPECT_EQ(parseToneMap("aces-legacy"), ToneMapOperator::AcesLegacy);
     EXPECT_FALSE(parseToneMap("filmic").has_value());
     for (const char* v : {"environment", "irradiance", "prefiltered", "dfg"}) EXPECT_TRUE(parseView(v).has_value()) << v;
 }
