@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "engine/render/exposure.hpp"
 #include "engine/core/error.hpp"
 #include "engine/io/image_io.hpp"
 #include "engine/render/ibl_lights.hpp"
@@ -193,8 +194,9 @@ FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const Fr
     else graph.skipPass("taa", s.aa.method == AntiAliasing::Taa ? "a G-buffer view is not anti-aliased"
                                                                 : "anti-aliasing is " + std::string(antiAliasingName(s.aa.method)) + ", not taa");
     fg::ResourceId exposure;
-    if (s.autoExposure) exposure = addAutoExposurePass(graph, passes.autoExposure, frame, hdr);
-    else graph.skipPass("auto_exposure", "manual exposure (--auto-exposure picks it from a histogram)");
+    if (autoExposureOn(s, scene)) exposure = addAutoExposurePass(graph, passes.autoExposure, frame, hdr);
+    else graph.skipPass("auto_exposure", s.autoExposure ? "manual exposure (--no-auto-exposure)"
+                                                        : "the scene fixes its exposure (its \"exposure\" field)");
     // With FXAA after it, the tone map keeps its result in RGBA16F and FXAA does the one 8-bit
     // quantisation (and its dither).
     const bool fxaa = s.aa.method == AntiAliasing::Fxaa;
@@ -202,7 +204,7 @@ FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const Fr
                                             fxaa ? ToneMapTarget::Float16 : ToneMapTarget::Display8);
     if (fxaa) display = addFxaaPass(graph, passes.fxaa, frame, display);
     else graph.skipPass("fxaa", "anti-aliasing is " + std::string(antiAliasingName(s.aa.method)) + ", not fxaa");
-    if (isHdrView(s.view)) display = addHdrViewPass(graph, passes.hdrView, frame, hdr, s.view);  // culls tonemap
+    if (isHdrView(s.view)) display = addHdrViewPass(graph, passes.hdrView, frame, hdr, exposure, s.view);  // culls tonemap
     if (channelView) {
         display = addDebugViewPass(graph, passes.debugView, frame, gbuffer, shadowMaps, environment, s.view, ao);
         if (scaled) display = addUpscalePass(graph, passes.upscale, frame, display, UpscaleInput::DebugView);

@@ -952,16 +952,19 @@ std::vector<KnobEntry> makeKnobTable() {
     {
         KnobEntry k = floatKnob("exposure", [](auto& s) -> auto& { return s.exposureEV; }, {-16.0, 16.0});
         k.flags = {valueFlag("--exposure")};
-        k.help = "exposure in stops before the tone map (with --auto-exposure: the compensation added to it)";
+        k.help = "stops added to the scene's exposure before the tone map: the compensation of auto exposure, or "
+                 "a change of the scene's fixed \"exposure\"";
         k.panel = {PanelSection::View, PanelWidget::Slider, "exposure (EV)", "%+.1f"};
         t.push_back(std::move(k));
     }
     {
         KnobEntry k = boolKnob("auto-exposure", [](auto& s) -> auto& { return s.autoExposure; });
-        k.flags = {setsFlag("--auto-exposure", 1)};
-        k.help = "expose each frame from a histogram of its luminance (middle 55% on middle grey); "
-                 "--exposure then adds to it";
-        k.panel = {PanelSection::View, PanelWidget::Checkbox, "auto exposure", ""};
+        k.field.sceneValue = [](const Scene& scene) { return double(!scene.exposure.has_value()); };
+        k.flags = {setsFlag("--auto-exposure", 1), setsFlag("--no-auto-exposure", 0)};
+        k.help = "expose each frame from a centre-weighted histogram of its luminance (the mean log luminance "
+                 "of its 20%..70% part on middle grey); --exposure then adds to it. The scene's is on unless "
+                 "its file sets \"exposure\"";
+        k.panel = {PanelSection::View, PanelWidget::Combo, "auto exposure", ""};
         t.push_back(std::move(k));
     }
     {

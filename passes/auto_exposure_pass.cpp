@@ -11,7 +11,8 @@ namespace lp {
 namespace {
 // shaders/common/exposure.glsl
 constexpr int kBins = 128;
-constexpr double kMinLog2 = -16.0, kMaxLog2 = 16.0, kFractionScale = 256.0, kLow = 0.40, kHigh = 0.95, kKey = 0.18;
+constexpr double kMinLog2 = -16.0, kMaxLog2 = 16.0, kWeightScale = 64.0, kCentreSigma = 0.35, kLow = 0.20,
+                 kHigh = 0.70, kKey = 0.18;
 
 struct Data {
     fg::ResourceId hdr, histogram, exposure;
@@ -52,16 +53,22 @@ fg::ResourceId addAutoExposurePass(fg::FrameGraph& graph, AutoExposurePass& stat
     return d.exposure;
 }
 
-double autoExposureEvReference(const std::vector<float>& luminances) {
+double autoExposureEvReference(const std::vector<float>& luminances, int width, int height) {
     std::vector<double> count(kBins, 0.0), place(kBins, 0.0);
-    for (float l : luminances) {
-        if (!(double(l) >= std::exp2(kMinLog2))) continue;
-        const double t = (std::min(std::log2(double(l)), kMaxLog2) - kMinLog2) / (kMaxLog2 - kMinLog2);
-        const double position = std::min(t * kBins, kBins - 1e-3);
-        const int bin = int(position);
-        count[size_t(bin)] += 1.0;
-        place[size_t(bin)] += std::floor((position - bin) * kFractionScale);  // the shader's fixed point
-    }
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            const double l = luminances[size_t(y) * size_t(width) + size_t(x)];
+            if (!(l >= std::exp2(kMinLog2))) continue;
+            const double dx = (x + 0.5) / width * 2.0 - 1.0, dy = (y + 0.5) / height * 2.0 - 1.0;
+            const double w = std::floor(
+                std::exp(-(dx * dx + dy * dy) / (2.0 * kCentreSigma * kCentreSigma)) * kWeightScale + 0.5);
+            if (w <= 0.0) continue;
+            const double t = (std::min(std::log2(l), kMaxLog2) - kMinLog2) / (kMaxLog2 - kMinLog2);
+            const double position = std::min(t * kBins, kBins - 1e-3);
+            const int bin = int(position);
+            count[size_t(bin)] += w;
+            place[size_t(bin)] += std::floor((position - bin) * w + 0.5);  // the shader's fixed point
+        }
     double total = 0.0;
     for (double c : count) total += c;
     const double low = kLow * total, high = kHigh * total;
@@ -72,7 +79,7 @@ double autoExposureEvReference(const std::vector<float>& luminances) {
         const double take = std::clamp(std::min(below + c, high) - std::max(below, low), 0.0, c);
         below += c;
         if (take <= 0.0) continue;
-        const double meanPlace = place[size_t(b)] / kFractionScale / c;
+        const double meanPlace = place[size_t(b)] / c;
         sumLog2 += take * (kMinLog2 + (b + meanPlace) / kBins * (kMaxLog2 - kMinLog2));
         weight += take;
     }

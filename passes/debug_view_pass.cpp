@@ -4,6 +4,7 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include "engine/render/exposure.hpp"
 #include "engine/core/error.hpp"
 #include "engine/gl/shader.hpp"
 #include "engine/gl/state.hpp"
@@ -85,7 +86,7 @@ fg::ResourceId addEnvironmentViewPass(fg::FrameGraph& graph, DebugViewPass& stat
             // Without a map the environment is the plain colour, already scaled here.
             glProgramUniform1f(prog, glGetUniformLocation(prog, "uIntensity"), frame.scene->environment.intensity);
             glProgramUniform1f(prog, glGetUniformLocation(prog, "uMip"), std::min(float(s.debugMip), maxMip));
-            glProgramUniform1f(prog, glGetUniformLocation(prog, "uExposureEV"), frame.settings->exposureEV);
+            glProgramUniform1f(prog, glGetUniformLocation(prog, "uExposureEV"), exposureEvBase(*frame.settings, *frame.scene));
             glProgramUniform1i(prog, glGetUniformLocation(prog, "uOperator"), int(s.toneMap));
             gl::ScopedEnable seamless(GL_TEXTURE_CUBE_MAP_SEAMLESS, true);
             bindGBuffer(prog, res, data.in, frame, false);

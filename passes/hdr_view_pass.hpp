@@ -16,7 +16,8 @@ struct HdrViewPass {
 bool isHdrView(DebugView view);
 
 // A new RGBA8 image at the output size (pass "hdr_view"); `hdr` has that size (after the upscale).
+// `autoExposure`: the auto_exposure pass's 1x1 EV (invalid: not metered), applied as the tone map does.
 fg::ResourceId addHdrViewPass(fg::FrameGraph& graph, HdrViewPass& state, const FrameData& frame, fg::ResourceId hdr,
-                              DebugView view);
+                              fg::ResourceId autoExposure, DebugView view);
 
 }  // namespace lp

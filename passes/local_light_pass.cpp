@@ -6,6 +6,7 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include "engine/render/exposure.hpp"
 #include "engine/core/error.hpp"
 #include "engine/gl/shader.hpp"
 #include "engine/core/log.hpp"
@@ -846,7 +847,7 @@ fg::ResourceId addLocalLightOverlayPasses(fg::FrameGraph& graph, LocalLightPass&
                            setMat4(prog, "uProjection", frame.projection);
                            setInt(prog, "uUnbounded", unbounded(ls));
                            setFloat(prog, "uHeatMax", kHeatMax);
-                           setFloat(prog, "uExposure", frame.settings->exposureEV);
+                           setFloat(prog, "uExposure", exposureEvBase(*frame.settings, *frame.scene));
                            bindGBuffer(prog, res, data.in, frame, true);
                            glBindImageTexture(0, res.texture(data.hdr), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
                            glUseProgram(prog);
@@ -887,7 +888,7 @@ fg::ResourceId addLocalLightOverlayPasses(fg::FrameGraph& graph, LocalLightPass&
                            setClusterUniforms(prog, state.clusterGrid);
                            setInt(prog, "uSlice", frame.settings->localLights.clusterSlice);
                            setFloat(prog, "uHeatMax", kClusterHeatMax);
-                           setFloat(prog, "uExposure", frame.settings->exposureEV);
+                           setFloat(prog, "uExposure", exposureEvBase(*frame.settings, *frame.scene));
                            glBindImageTexture(0, res.texture(data.hdr), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
                            glUseProgram(prog);
                            gl::dispatch2D(frame.width, frame.height);

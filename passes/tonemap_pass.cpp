@@ -1,5 +1,6 @@
 #include "passes/tonemap_pass.hpp"
 
+#include "engine/render/exposure.hpp"
 #include "engine/gl/shader.hpp"
 #include "engine/gl/state.hpp"
 
@@ -30,7 +31,7 @@ fg::ResourceId addToneMapPass(fg::FrameGraph& graph, ToneMapPass& state, const F
                 program = frame.shaders->compute("tonemap.comp", floatTarget ? std::vector<std::string>{"LP_TONEMAP_FLOAT_TARGET"}
                                                                              : std::vector<std::string>{});
             const GLuint prog = program.id();
-            glProgramUniform1f(prog, glGetUniformLocation(prog, "uExposureEV"), frame.settings->exposureEV);
+            glProgramUniform1f(prog, glGetUniformLocation(prog, "uExposureEV"), exposureEvBase(*frame.settings, *frame.scene));
             glProgramUniform1i(prog, glGetUniformLocation(prog, "uOperator"), int(frame.settings->environment.toneMap));
             glProgramUniform1i(prog, glGetUniformLocation(prog, "uAutoExposure"), data.exposure.valid());
             glProgramUniform1i(prog, glGetUniformLocation(prog, "uDither"), frame.settings->aa.dither);

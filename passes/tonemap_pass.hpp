@@ -19,7 +19,7 @@ struct ToneMapPass {
 // does the 8-bit quantisation itself.
 enum class ToneMapTarget { Display8, Float16 };
 
-// `autoExposure`: the auto_exposure pass's 1x1 EV, added to settings.exposureEV; invalid: manual.
+// `autoExposure`: the auto_exposure pass's 1x1 EV, added to exposureEvBase(); invalid: not metered.
 fg::ResourceId addToneMapPass(fg::FrameGraph& graph, ToneMapPass& state, const FrameData& frame, fg::ResourceId hdr,
                               fg::ResourceId autoExposure = {}, ToneMapTarget target = ToneMapTarget::Display8);
 

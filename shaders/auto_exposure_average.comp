@@ -1,6 +1,6 @@
 #version 450
 // Auto exposure, step 2: the mean log2 luminance of the pixels between the LOW and HIGH fractions
-// of the histogram, and the exposure (EV) that puts it on middle grey, into a 1x1 R32F image.
+// of the weighted histogram, and the exposure (EV) that puts it on middle grey, into a 1x1 R32F image.
 #include "common/exposure.glsl"
 
 layout(local_size_x = 1) in;
@@ -19,7 +19,7 @@ void main() {
         float take = clamp(min(below + count, high) - max(below, low), 0.0, count);
         below += count;
         if (take <= 0.0) continue;
-        float meanPlace = float(imageLoad(uHistogram, ivec2(b, 1)).r) / LP_EXPOSURE_FRACTION_SCALE / count;
+        float meanPlace = float(imageLoad(uHistogram, ivec2(b, 1)).r) / count;
         sumLog2 += take * exposureBinLog2(float(b) + meanPlace);
         weight += take;
     }

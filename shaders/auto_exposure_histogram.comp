@@ -1,6 +1,7 @@
 #version 450
-// Auto exposure, step 1: each pixel's log2 luminance into a 128-bin histogram (row 0: counts, row 1:
-// the pixels' places inside their bins in fixed point, so the average is exact within a bin).
+// Auto exposure, step 1: each pixel's log2 luminance into a 128-bin histogram, weighted by its
+// distance from the centre (row 0: weights, row 1: the weighted places of the pixels inside their bins,
+// so the average is exact within a bin), in fixed point (common/exposure.glsl).
 // Per work group in shared memory first, then one atomic per bin into the image.
 #include "common/exposure.glsl"
 #include "common/hdr_inspect.glsl"
@@ -24,10 +25,11 @@ void main() {
     if (p.x < size.x && p.y < size.y) {
         vec3 c = texelFetch(uHdr, p, 0).rgb;
         float position = exposureBinPosition(hdrLuminance(c));
-        if (position >= 0.0) {
+        uint weight = exposureMeteringWeight(p, size);
+        if (position >= 0.0 && weight > 0u) {
             int bin = int(position);
-            atomicAdd(sCount[bin], 1u);
-            atomicAdd(sFraction[bin], uint((position - float(bin)) * LP_EXPOSURE_FRACTION_SCALE));
+            atomicAdd(sCount[bin], weight);
+            atomicAdd(sFraction[bin], uint((position - float(bin)) * float(weight) + 0.5));
         }
     }
     barrier();

@@ -14,10 +14,10 @@ layout(rgba16f, binding = 0) uniform writeonly image2D uLdr;
 #else
 layout(rgba8, binding = 0) uniform writeonly image2D uLdr;
 #endif
-uniform float uExposureEV;      // manual, or the compensation added to auto exposure
+uniform float uExposureEV;      // exposureEvBase(): --exposure, plus a scene's fixed exposure when not metered
 uniform bool uAutoExposure;
 layout(binding = 7) uniform sampler2D uExposure;  // auto_exposure's 1x1 EV
-uniform int uOperator;  // lp::ToneMapOperator: 0 lightpass, 1 aces, 2 pbr-neutral, 3 agx
+uniform int uOperator;  // lp::ToneMapOperator: 0 lightpass, 1 aces, 2 pbr-neutral, 3 agx, 4 aces-legacy
 uniform bool uDither;
 
 void main() {

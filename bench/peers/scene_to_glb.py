@@ -607,7 +607,7 @@ def convert(scene_path, out_dir, name=None, suns=None, points=None, log=print):
     glb_path = os.path.join(out_dir, name + ".glb")
     glb.write(glb_path)
 
-    # The same scene for lightpass: the kept lights, absolute paths, the peer's map, IBL on.
+    # The same scene for lightpass: the kept lights, absolute paths, the peer's map, IBL on, exposure 0.
     matched = json.loads(json.dumps(scene))
     matched["description"] = f"{scene.get('description', name)} [peer-matched: {len(kept_dir)} directional, {len(kept_local)} local lights]"
     for model in matched.get("models", []):
@@ -618,6 +618,9 @@ def convert(scene_path, out_dir, name=None, suns=None, points=None, log=print):
     if peer_env:
         matched["environment"]["map"] = peer_env["map"]
         matched["environment"]["ibl"] = True
+    # A fixed exposure of 0 EV: the intensities are scaled for Filament's default camera (EV100 15) so
+    # that both show the same radiance at lightpass's 0 EV; auto exposure would meter each differently.
+    matched["exposure"] = 0
     lp_path = os.path.join(out_dir, name + ".lightpass.json")
     with open(lp_path, "w", encoding="utf-8") as f:
         json.dump(matched, f, indent=1)

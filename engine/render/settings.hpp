@@ -256,8 +256,12 @@ struct RenderSettings {
     float renderScale = 1.0f;
     AntiAliasSettings aa;
     DebugView view = DebugView::Final;
-    float exposureEV = 0.0f;     // manual exposure; with autoExposure the compensation added to it
-    bool autoExposure = false;   // --auto-exposure: the histogram pass picks the exposure per frame
+    // --exposure: EV added to the scene's exposure (the metered one, or the scene file's fixed
+    // "exposure"); engine/render/exposure.hpp resolves both.
+    float exposureEV = 0.0f;
+    // --auto-exposure / --no-auto-exposure: the histogram pass meters each frame. Unset: the scene's
+    // choice, on unless the scene file fixes an "exposure".
+    std::optional<bool> autoExposure;
     Brdf brdf = Brdf::Ggx;  // BRDF of the light passes: glTF 2.0's (GGX) for every material
     SpecularMasking specularMasking = SpecularMasking::HeightCorrelated;  // GGX's G2, lights and IBL alike
     RenderPath renderPath = RenderPath::Deferred;  // --render-path

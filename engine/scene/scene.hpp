@@ -113,6 +113,9 @@ struct Scene {
     std::vector<DirectionalLight> directionalLights;
     std::vector<PointLight> pointLights;  // the local lights, points and spots, in file order
     Environment environment;
+    // "exposure": a fixed exposure in EV (stops) before the tone map; unset: auto exposure meters
+    // each frame (engine/render/exposure.hpp).
+    std::optional<float> exposure;
     glm::vec3 ambient{0.03f};  // constant ambient radiance in BRDF mode
     bool lightGlobes = false;  // "lightGlobes": draw each point light as a small flat-lit globe (seed 003)
     std::optional<LightsWithoutIbl> lightsWithoutIbl;  // unset: the lights above, whatever the IBL

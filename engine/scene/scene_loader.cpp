@@ -399,7 +399,7 @@ Scene parseScene(const std::string& text, const fs::path& origin, bool loadMeshe
     Reader r{origin.string()};
     const json root = parseJson(text, origin);
     r.onlyKnown(root, "", {"camera", "cameraPath", "models", "lights", "environment", "ambient", "effects", "description",
-                           "lightGlobes"});
+                           "lightGlobes", "exposure"});
     if (root.contains("description") && !root["description"].is_string()) r.fail("description", "expected a string");
     Scene scene;
     scene.file = origin;
@@ -431,6 +431,7 @@ Scene parseScene(const std::string& text, const fs::path& origin, bool loadMeshe
         scene.environment.ibl = r.boolean(e, "ibl", "environment", false);
         if (scene.environment.ibl && scene.environment.map.empty()) r.fail("environment.ibl", "true needs environment.map (an .hdr or .exr)");
     }
+    if (root.contains("exposure")) scene.exposure = r.bounded(root, "exposure", "", 0.0f, -16.0f, 16.0f);
     if (root.contains("ambient")) scene.ambient = r.color(root, "ambient", "", scene.ambient);
     scene.lightGlobes = r.boolean(root, "lightGlobes", "", scene.lightGlobes);
     if (root.contains("effects")) {

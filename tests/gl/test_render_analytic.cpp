@@ -340,7 +340,7 @@ TEST(RenderAnalytic, InvalidPixelsViewPaintsInjectedNanAndInf) {
             glClearTexSubImage(res.texture(out), 0, 3, 2, 0, 1, 1, 1, GL_RGBA, GL_FLOAT, nan);
             glClearTexSubImage(res.texture(out), 0, 10, 5, 0, 1, 1, 1, GL_RGBA, GL_FLOAT, inf);
         });
-    const fg::ResourceId view = addHdrViewPass(graph, state, frame, hdr, DebugView::InvalidPixels);
+    const fg::ResourceId view = addHdrViewPass(graph, state, frame, hdr, {}, DebugView::InvalidPixels);
     graph.markOutput(view);
     graph.compile();
     graph.execute(pool);

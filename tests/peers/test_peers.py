@@ -129,6 +129,7 @@ class Converter(unittest.TestCase):
         self.assertEqual([l["type"] for l in matched["lights"]], ["directional", "point"])
         self.assertEqual(matched["environment"]["map"], side["environment"]["map"])
         self.assertTrue(matched["environment"]["ibl"])
+        self.assertEqual(matched["exposure"], 0)  # Filament's camera, not auto exposure
         self.assertTrue(os.path.isabs(matched["models"][0]["obj"]))
         with open(os.path.join(DATA, "small.json")) as f:
             self.assertEqual(matched["camera"], json.load(f)["camera"])
