@@ -66,7 +66,7 @@ std::string sizeLabel(const RenderSettings& s) {
     std::string label = std::to_string(s.width) + "x" + std::to_string(s.height);
     const glm::ivec2 r = scaledRenderSize(s.width, s.height, internalRenderScale(s));
     if (r.x == s.width && r.y == s.height) return label;
-    if (s.aa.method == AntiAliasing::Ssaa)
+    if (supersampled(s))
         return label + " (rendered at " + std::to_string(r.x) + "x" + std::to_string(r.y) + ", SSAA " +
                std::to_string(s.aa.ssaaScale) + "x" + std::to_string(s.aa.ssaaScale) + ")";
     char scale[16];
@@ -327,8 +327,8 @@ RenderSettings renderSettings(const Options& o) {
     s.height = o.height;
     s.view = o.view;
     s.keepHdr = !o.exr.empty();
-    if (s.aa.method == AntiAliasing::Ssaa && s.renderScale != 1.0f)
-        logWarn("--aa ssaa renders at --ssaa-scale " + std::to_string(s.aa.ssaaScale) + "; --render-scale is not used");
+    if (s.aa.method == AntiAliasing::Ssaa && !supersampled(s))
+        logInfo("--render-scale below 1 renders below the output size: --aa ssaa (the default) is not used");
     return s;
 }
 

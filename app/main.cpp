@@ -230,7 +230,7 @@ int commandRender(const Options& o) {
     j["height"] = settings.height;
     j["render_scale"] = settings.renderScale;
     j["aa"] = antiAliasingName(settings.aa.method);
-    if (settings.aa.method == AntiAliasing::Ssaa) j["ssaa_scale"] = settings.aa.ssaaScale;
+    if (supersampled(settings)) j["ssaa_scale"] = settings.aa.ssaaScale;
     j["frames"] = o.frames;
     j["view"] = viewName(settings.view);
     j["time_s"] = {{"first", frameTime(o, 0)}, {"last", frameTime(o, o.frames - 1)}, {"fps", o.fps}};

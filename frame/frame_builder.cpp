@@ -81,7 +81,7 @@ FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const Fr
     const bool skyAdded = !lightingView && (skyWanted || s.allPasses);
     const std::string localSkip = s.allPasses ? "" : localLightSkipReason(frame);
     const bool scaled = frame.width != frame.outputWidth || frame.height != frame.outputHeight;
-    const bool supersampled = s.aa.method == AntiAliasing::Ssaa;
+    const bool supersampling = supersampled(s);
 
     // The environment's cubes are made (and, for IBL, baked) in the frame where they changed.
     const bool environmentView = isEnvironmentView(s.view);  // shows the cubes or the LUT themselves
@@ -185,11 +185,13 @@ FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const Fr
     if (motionBlurSkip.empty()) hdr = addMotionBlurPasses(graph, passes.motionBlur, frame, gbuffer, hdr);
     else graph.skipPass("motion_blur", motionBlurSkip);
     hdr = addPostPasses(graph, passes.post, frame, gbuffer, hdr);  // bloom, toon (not in the lighting view)
-    if (scaled && !supersampled) hdr = addUpscalePass(graph, passes.upscale, frame, hdr, UpscaleInput::Hdr);
-    else graph.skipPass("upscale", supersampled ? "--aa ssaa: the frame is rendered above the output size"
+    if (scaled && !supersampling) hdr = addUpscalePass(graph, passes.upscale, frame, hdr, UpscaleInput::Hdr);
+    else graph.skipPass("upscale", supersampling ? "--aa ssaa: the frame is rendered above the output size"
                                                 : "render scale 1: the frame is rendered at the output size");
-    if (supersampled) hdr = addDownsamplePass(graph, passes.downsample, frame, hdr, s.aa.ssaaScale);
-    else graph.skipPass("ssaa_downsample", "anti-aliasing is " + std::string(antiAliasingName(s.aa.method)) + ", not ssaa");
+    if (supersampling) hdr = addDownsamplePass(graph, passes.downsample, frame, hdr, s.aa.ssaaScale);
+    else graph.skipPass("ssaa_downsample", s.aa.method == AntiAliasing::Ssaa
+                                               ? "--render-scale below 1: the frame is rendered below the output size"
+                                               : "anti-aliasing is " + std::string(antiAliasingName(s.aa.method)) + ", not ssaa");
     if (taa) hdr = addTaaPass(graph, passes.taa, frame, hdr, gbuffer.velocity, settingsSignature(s));
     else graph.skipPass("taa", s.aa.method == AntiAliasing::Taa ? "a G-buffer view is not anti-aliased"
                                                                 : "anti-aliasing is " + std::string(antiAliasingName(s.aa.method)) + ", not taa");
@@ -249,8 +251,12 @@ std::string settingsSignature(const RenderSettings& settings) {
     return text;
 }
 
+bool supersampled(const RenderSettings& settings) {
+    return settings.aa.method == AntiAliasing::Ssaa && settings.renderScale >= 1.0f;
+}
+
 float internalRenderScale(const RenderSettings& settings) {
-    return settings.aa.method == AntiAliasing::Ssaa ? float(settings.aa.ssaaScale) : settings.renderScale;
+    return supersampled(settings) ? float(settings.aa.ssaaScale) : settings.renderScale;
 }
 
 FrameData makeFrameData(const Scene& scene, const RenderSettings& settings, float time) {

@@ -90,8 +90,11 @@ int localLightsInView(const FrameData& frame);
 // The size the G-buffer and lighting run at: round(output x renderScale), at least 1 x 1
 // (renderScale up to kMaxSsaaScale).
 glm::ivec2 scaledRenderSize(int outputWidth, int outputHeight, float renderScale);
-// The scale the G-buffer, lighting and post effects run at: --ssaa-scale with --aa ssaa (the
-// supersampled image is filtered down to the output), else --render-scale.
+// Whether the frame is supersampled: --aa ssaa (the default) at --render-scale 1. A render scale
+// below 1 asks for fewer pixels than the output, so it is kept and SSAA is not used.
+bool supersampled(const RenderSettings& settings);
+// The scale the G-buffer, lighting and post effects run at: --ssaa-scale when supersampled (the
+// image is filtered down to the output), else --render-scale.
 float internalRenderScale(const RenderSettings& settings);
 
 // Whether the frame runs the taa pass (and so is jittered): --aa taa in a view of the lit image

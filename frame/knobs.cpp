@@ -890,8 +890,9 @@ std::vector<KnobEntry> makeKnobTable() {
         k.panel = {PanelSection::View, PanelWidget::Slider, "render scale", "%.2f"};
         k.sweep = {{"0.25", "0.5", "0.75", "1"}, true,
                    "G-buffer, lighting and post effects at this fraction of the output size (--render-scale), "
-                   "upsampled bilinearly before the tone map; 1 is the reference",
-                   nullptr};
+                   "upsampled bilinearly before the tone map, without anti-aliasing; 1 is the reference",
+                   // Without AA at every value: at 1 the default SSAA would run, below 1 it cannot.
+                   [](RenderSettings& s, double) { s.aa.method = AntiAliasing::Off; }};
         t.push_back(std::move(k));
     }
     {
@@ -901,7 +902,7 @@ std::vector<KnobEntry> makeKnobTable() {
         k.choiceNoun = "anti-aliasing";
         k.help = "anti-aliasing: fxaa filters the tone-mapped image (FXAA 3.11); taa blends Halton-jittered frames "
                  "through the motion vectors; ssaa renders at --ssaa-scale x the size in each axis and box-filters "
-                 "the HDR image down (--render-scale is then not used)";
+                 "the HDR image down (not used at --render-scale below 1)";
         k.panel = {PanelSection::View, PanelWidget::Combo, "anti-aliasing", ""};
         k.sweep = {{"off", "fxaa", "taa"}, false,
                    "anti-aliasing (--aa): off, fxaa, taa (after the warm-up and timed frames), then ssaa at 2x2 and "

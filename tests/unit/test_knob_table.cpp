@@ -13,6 +13,7 @@
 #include "engine/core/paths.hpp"
 #include "app/cli.hpp"
 #include "engine/core/error.hpp"
+#include "engine/scene/scene.hpp"
 #include "frame/knobs.hpp"
 
 using namespace lp;
@@ -408,4 +409,25 @@ TEST(ViewerPanel, KnobWidgetsComeOnlyFromTheTable) {
     EXPECT_GE(knobWidgetCalls, 4) << "the regex no longer finds knobWidget()'s widgets";
     // The dead "directional lights" checkbox is gone (the passes table switches global_lights).
     EXPECT_EQ(readFile(app / "viewer_panel.cpp").find("\"directional lights\""), std::string::npos);
+}
+
+// The defaults of the first frame (issue "the default frame is right"): anti-aliasing on (SSAA 2x2:
+// bench/results/aa), the exposure metered unless the scene fixes it, and --help says so.
+TEST(KnobTable, DefaultFrameIsAntiAliasedAndExposed) {
+    const app::Options o = app::parseArgs({"render", "--scene", "x.json", "--out", "x.png"});
+    EXPECT_EQ(o.base.aa.method, AntiAliasing::Ssaa);
+    EXPECT_EQ(o.base.aa.ssaaScale, 2);
+    EXPECT_FALSE(o.base.autoExposure.has_value());
+    Scene withoutExposure, withExposure;
+    withExposure.exposure = -1.0f;
+    const KnobEntry* autoExposure = nullptr;
+    for (const KnobEntry& k : knobTable())
+        if (k.name == "auto-exposure") autoExposure = &k;
+    ASSERT_NE(autoExposure, nullptr);
+    EXPECT_EQ(autoExposure->field.sceneValue(withoutExposure), 1.0);
+    EXPECT_EQ(autoExposure->field.sceneValue(withExposure), 0.0);
+    EXPECT_FALSE(app::parseArgs({"render", "--scene", "x.json", "--out", "x.png", "--no-auto-exposure"})
+                     .base.autoExposure.value_or(true));
+    const std::string help = app::helpText();
+    EXPECT_NE(help.find("default ssaa"), std::string::npos);
 }
