@@ -138,6 +138,7 @@ RenderSettings aaSettings(int w, int h, AntiAliasing method, int ssaaScale = 2) 
     s.aa.method = method;
     s.aa.ssaaScale = ssaaScale;
     s.aa.dither = false;  // the tests compare quantisations exactly
+    s.autoExposure = false;  // at 0 EV
     return s;
 }
 

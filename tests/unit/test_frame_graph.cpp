@@ -172,17 +172,21 @@ FrameGraph buildFor(const Scene& scene, DebugView view, bool keepHdr = false) {
 }
 }  // namespace
 
+// The default frame: supersampled 2x2 (ssaa_downsample) and metered (auto_exposure: the scene sets
+// no exposure).
 TEST(FrameBuilder, FinalViewRunsLightingSkyAndToneMap) {
     Scene s = oneLightScene();
     FrameGraph g = buildFor(s, DebugView::Final);
-    EXPECT_EQ(g.executionOrder(), (std::vector<std::string>{"gbuffer", "shadow_map_0", "ao", "ao_denoise", "global_lights", "sky", "tonemap"}));
+    EXPECT_EQ(g.executionOrder(), (std::vector<std::string>{"gbuffer", "shadow_map_0", "ao", "ao_denoise", "global_lights",
+                                                            "sky", "ssaa_downsample", "auto_exposure", "tonemap"}));
     EXPECT_FALSE(g.hasPass("debug_view"));
 }
 
 TEST(FrameBuilder, NormalsViewCullsLightingAndToneMap) {
     Scene s = oneLightScene();
     FrameGraph g = buildFor(s, DebugView::Normals);
-    EXPECT_EQ(g.executionOrder(), (std::vector<std::string>{"gbuffer", "debug_view"}));
+    // The supersampled G-buffer's view is brought to the output size nearest-texel (upscale_debug).
+    EXPECT_EQ(g.executionOrder(), (std::vector<std::string>{"gbuffer", "debug_view", "upscale_debug"}));
     EXPECT_FALSE(g.isLive("global_lights"));
     EXPECT_FALSE(g.isLive("tonemap"));
     EXPECT_FALSE(g.isLive("sky"));
@@ -207,12 +211,13 @@ TEST(FrameBuilder, EveryChannelViewReadsOnlyTheGBuffer) {
     }
 }
 
-// The HDR views inspect the final HDR buffer in place of the tone map.
+// The HDR views inspect the final HDR buffer in place of the tone map, with the metered exposure.
 TEST(FrameBuilder, HdrViewsReplaceTheToneMap) {
     Scene s = oneLightScene();
     for (DebugView v : {DebugView::InvalidPixels, DebugView::ExposureEv}) {
         FrameGraph g = buildFor(s, v);
-        EXPECT_EQ(g.executionOrder(), (std::vector<std::string>{"gbuffer", "shadow_map_0", "ao", "ao_denoise", "global_lights", "sky", "hdr_view"}))
+        EXPECT_EQ(g.executionOrder(), (std::vector<std::string>{"gbuffer", "shadow_map_0", "ao", "ao_denoise", "global_lights",
+                                                                "sky", "ssaa_downsample", "auto_exposure", "hdr_view"}))
             << viewName(v);
         EXPECT_FALSE(g.isLive("tonemap"));
     }

@@ -229,7 +229,7 @@ TEST(KnobTable, ErrorsKeepTheirWording) {
         {{"render", "--bloom-blur", "x"}, "--bloom-blur x: expected compute or fragment"},
         {{"render", "--pcf", "7x7"}, "--pcf 7x7: unknown filter (off, 3x3, 5x5, poisson)"},
         {{"render", "--brdf", "x"}, "--brdf x: unknown BRDF (ggx, blinn-phong)"},
-        {{"render", "--tonemap", "x"}, "--tonemap x: unknown operator (lightpass, aces, pbr-neutral, agx)"},
+        {{"render", "--tonemap", "x"}, "--tonemap x: unknown operator (lightpass, aces, aces-legacy, pbr-neutral, agx)"},
         {{"render", "--local-lights", "x"}, "--local-lights x: unknown method (fullscreen, scissor, volumes, tiled, clustered)"},
         {{"render", "--gbuffer", "oct12"},
          "--gbuffer oct12: unknown format (unpacked, seed-packed, seed-packed-signed, two-angle, oct16, oct24, oct32)"},

@@ -401,12 +401,20 @@ TEST(SceneDrivenGraph, ScaledRenderSizeRoundsAndNeverReachesZero) {
 }
 
 // --aa ssaa: the G-buffer, lighting and post effects run at S x the output size, the downsample pass
-// brings the HDR buffer to the output size (no upscale pass), and --render-scale is not used.
+// brings the HDR buffer to the output size (no upscale pass). A --render-scale below 1 is kept
+// instead and SSAA left out.
 TEST(SceneDrivenGraph, SsaaRendersAboveTheOutputSizeAndDownsamples) {
     RenderSettings s = small();  // 320 x 180
     s.post.bloom = true;
-    s.renderScale = 0.5f;  // not used with ssaa
     s.aa.method = AntiAliasing::Ssaa;
+    {
+        RenderSettings scaled = s;
+        scaled.renderScale = 0.5f;
+        EXPECT_FLOAT_EQ(internalRenderScale(scaled), 0.5f);
+        Built built = build(bundledScene("cornell"), scaled);
+        EXPECT_NE(built.reasons["ssaa_downsample"].find("--render-scale below 1"), std::string::npos)
+            << built.reasons["ssaa_downsample"];
+    }
     for (int scale : {2, 3, 4}) {
         s.aa.ssaaScale = scale;
         EXPECT_FLOAT_EQ(internalRenderScale(s), float(scale));
