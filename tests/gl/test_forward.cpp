@@ -22,6 +22,8 @@ namespace {
 
 RenderSettings small(RenderPath path) {
     RenderSettings s;
+    s.aa.method = AntiAliasing::Off;  // one sample a pixel, as the references
+    s.autoExposure = false;       // and 0 EV
     s.width = 64;
     s.height = 48;
     s.keepHdr = true;

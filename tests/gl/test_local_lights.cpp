@@ -225,6 +225,8 @@ Scene twentyLightScene() {
 // AutoRacesBothKernelsAndKeepsTheFaster test the default.
 RenderSettings smallSettings(LocalLightMethod method) {
     RenderSettings r;
+    r.aa.method = AntiAliasing::Off;  // one sample a pixel, as the references
+    r.autoExposure = false;       // and 0 EV
     r.width = 64;
     r.height = 48;
     r.localLights.method = method;

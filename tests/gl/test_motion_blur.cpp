@@ -32,6 +32,8 @@ struct Inject {
 std::vector<glm::vec4> blur(const Inputs& in, float shutter, int samples) {
     Scene scene;
     RenderSettings settings;
+    settings.aa.method = AntiAliasing::Off;  // one sample a pixel, as the references
+    settings.autoExposure = false;       // and 0 EV
     settings.width = kW;
     settings.height = kH;
     settings.motionBlur.enabled = true;
@@ -174,6 +176,8 @@ TEST(MotionBlur, RendererSkipsItWhenNothingMovesAndRunsItWhenTheCameraDoes) {
     scene.camera.position = {0, 0, 3};
     scene.camera.target = {0, 0, 0};
     RenderSettings settings;
+    settings.aa.method = AntiAliasing::Off;  // one sample a pixel, as the references
+    settings.autoExposure = false;       // and 0 EV
     settings.width = 64;
     settings.height = 48;
     Renderer plain(scene), blurred(scene);

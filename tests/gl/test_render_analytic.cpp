@@ -111,6 +111,8 @@ void checkPlane(const Scene& s, float renderScale = 1.0f, Brdf brdf = RenderSett
         const int w = 96, h = 64;
         Renderer r(s);
         RenderSettings settings;
+        settings.aa.method = AntiAliasing::Off;  // one sample a pixel, as the references
+        settings.autoExposure = false;       // and 0 EV
         settings.gbuffer.mode = mode;
         settings.width = w;
         settings.height = h;
@@ -118,7 +120,6 @@ void checkPlane(const Scene& s, float renderScale = 1.0f, Brdf brdf = RenderSett
         settings.renderScale = renderScale;
         settings.brdf = brdf;
         settings.aa.dither = false;  // the display is checked against plain rounding (+-1 LSB)
-        settings.autoExposure = false;  // and at 0 EV
         r.render(settings);
         EXPECT_EQ(r.graph().isLive("upscale"), renderScale < 1.0f);
         ImageF hdr = r.readHdr();
@@ -186,6 +187,8 @@ TEST(RenderAnalytic, NormalsViewEncodesPlaneNormal) {
     for (float scale : {1.0f, 0.25f}) {
         Renderer r(s);
         RenderSettings settings;
+        settings.aa.method = AntiAliasing::Off;  // one sample a pixel, as the references
+        settings.autoExposure = false;       // and 0 EV
         settings.width = 64;
         settings.height = 64;
         settings.view = DebugView::Normals;
@@ -209,6 +212,8 @@ TEST(RenderAnalytic, DepthViewIsMonotoneWithDistance) {
     const int w = 64, h = 96;
     Renderer r(s);
     RenderSettings settings;
+    settings.aa.method = AntiAliasing::Off;  // one sample a pixel, as the references
+    settings.autoExposure = false;       // and 0 EV
     settings.width = w;
     settings.height = h;
     settings.view = DebugView::Depth;
@@ -237,6 +242,8 @@ TEST(RenderAnalytic, HdrBufferHasNoNanOrInf) {
     s.directionalLights[0].intensity = 1e30f;
     Renderer r(s);
     RenderSettings settings;
+    settings.aa.method = AntiAliasing::Off;  // one sample a pixel, as the references
+    settings.autoExposure = false;       // and 0 EV
     settings.width = 48;
     settings.height = 32;
     settings.keepHdr = true;
@@ -254,6 +261,8 @@ TEST(RenderAnalytic, WorldPositionAndEyeVectorViewsEncodeThePlane) {
     const int w = 64, h = 64;
     Renderer r(s);
     RenderSettings settings;
+    settings.aa.method = AntiAliasing::Off;  // one sample a pixel, as the references
+    settings.autoExposure = false;       // and 0 EV
     settings.width = w;
     settings.height = h;
     settings.view = DebugView::WorldPosition;
@@ -289,6 +298,8 @@ TEST(RenderAnalytic, DepthFittedViewSpansTheScenesRange) {
     const int w = 64, h = 96;
     Renderer r(s);
     RenderSettings settings;
+    settings.aa.method = AntiAliasing::Off;  // one sample a pixel, as the references
+    settings.autoExposure = false;       // and 0 EV
     settings.width = w;
     settings.height = h;
     auto column = [&](DebugView view) {
@@ -321,6 +332,8 @@ TEST(RenderAnalytic, DepthFittedViewSpansTheScenesRange) {
 TEST(RenderAnalytic, InvalidPixelsViewPaintsInjectedNanAndInf) {
     Scene s = planeScene({0, 5, 0}, {0, 0, 0}, {0, 0, -1}, glm::vec3(0.5f), glm::vec3(0.0f), 1.0f);
     RenderSettings settings;
+    settings.aa.method = AntiAliasing::Off;  // one sample a pixel, as the references
+    settings.autoExposure = false;       // and 0 EV
     settings.width = 16;
     settings.height = 8;
     settings.view = DebugView::InvalidPixels;
@@ -366,6 +379,8 @@ TEST(RenderAnalytic, ExposureEvViewOfALitPlaneIsOneBand) {
     s.ambient = glm::vec3(0.0f);
     Renderer r(s);
     RenderSettings settings;
+    settings.aa.method = AntiAliasing::Off;  // one sample a pixel, as the references
+    settings.autoExposure = false;       // and 0 EV
     settings.width = 32;
     settings.height = 32;
     settings.shadows.enabled = false;
@@ -388,6 +403,8 @@ TEST(RenderAnalytic, TangentViewEncodesThePlanesTangent) {
     const glm::vec3 eye = glm::normalize(glm::mat3(s.camera.view()) * worldTangent);
     Renderer r(s);
     RenderSettings settings;
+    settings.aa.method = AntiAliasing::Off;  // one sample a pixel, as the references
+    settings.autoExposure = false;       // and 0 EV
     settings.width = 32;
     settings.height = 32;
     settings.view = DebugView::Tangent;
@@ -420,6 +437,8 @@ TEST(RenderAnalytic, FlatLitMaterialIsItsColourUnderEveryLight) {
             for (auto& m : s.models[0].mesh.materials) m.flat = flat;
             Renderer r(s);
             RenderSettings settings;
+            settings.aa.method = AntiAliasing::Off;  // one sample a pixel, as the references
+            settings.autoExposure = false;       // and 0 EV
             settings.width = 24;
             settings.height = 24;
             settings.keepHdr = true;

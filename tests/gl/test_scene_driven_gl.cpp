@@ -17,6 +17,8 @@ namespace {
 
 RenderSettings tiny() {
     RenderSettings s;
+    s.aa.method = AntiAliasing::Off;  // one sample a pixel, as the references
+    s.autoExposure = false;       // and 0 EV
     s.width = 64;
     s.height = 48;
     // small bakes: the software rasteriser bakes in well under a second

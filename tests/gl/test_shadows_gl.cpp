@@ -339,6 +339,8 @@ void checkShadowEdge(glm::vec3 lightDir, ShadowSettings::Filter filter) {
     const int w = 96, h = 64;
     Scene s = shadowScene(lightDir, true);
     RenderSettings settings;
+    settings.aa.method = AntiAliasing::Off;  // one sample a pixel, as the references
+    settings.autoExposure = false;       // and 0 EV
     settings.width = w;
     settings.height = h;
     settings.shadows.size = 512;
@@ -400,11 +402,15 @@ TEST(ShadowRender, GrazingLightDoesNotAcne) {
     s.directionalLights[0].intensity = 40.0f;
     const int w = 80, h = 60;
     RenderSettings off;
+    off.aa.method = AntiAliasing::Off;  // one sample a pixel, as the references
+    off.autoExposure = false;       // and 0 EV
     off.shadows.enabled = false;
     ImageF reference = renderHdr(s, off, w, h);
     for (auto f : {ShadowSettings::Filter::Off, ShadowSettings::Filter::Pcf3x3, ShadowSettings::Filter::Pcf5x5,
                    ShadowSettings::Filter::Poisson}) {
         RenderSettings on;
+        on.aa.method = AntiAliasing::Off;  // one sample a pixel, as the references
+        on.autoExposure = false;       // and 0 EV
         on.shadows.size = 512;
         on.shadows.filter = f;
         ImageF img = renderHdr(s, on, w, h);
@@ -460,6 +466,8 @@ TEST(ShadowRender, GgxPlaneMatchesAnalyticRadiance) {
     const int w = 96, h = 64;
     Scene s = shadowScene(glm::vec3(-0.3f, -1.0f, -0.2f), false, glm::vec3(0.5f), 40.0f);
     RenderSettings settings;
+    settings.aa.method = AntiAliasing::Off;  // one sample a pixel, as the references
+    settings.autoExposure = false;       // and 0 EV
     settings.brdf = Brdf::Ggx;
     ImageF hdr = renderHdr(s, settings, w, h);
     const auto& mat = s.models[0].mesh.materials[0];
@@ -504,6 +512,8 @@ TEST(ShadowRender, SpecularMaskingReachesTheSunInBothRenderPaths) {
     for (RenderPath path : {RenderPath::Deferred, RenderPath::ForwardPlus}) {
         SCOPED_TRACE(renderPathName(path));
         RenderSettings settings;
+        settings.aa.method = AntiAliasing::Off;  // one sample a pixel, as the references
+        settings.autoExposure = false;       // and 0 EV
         settings.brdf = Brdf::Ggx;
         settings.renderPath = path;
         settings.shadows.enabled = false;
@@ -547,6 +557,8 @@ TEST(ShadowRender, SwitchingTheFilterOnOneRendererMatchesAFreshRenderer) {
         for (auto f : {ShadowSettings::Filter::Off, ShadowSettings::Filter::Pcf3x3, ShadowSettings::Filter::Poisson,
                        ShadowSettings::Filter::Pcf5x5, ShadowSettings::Filter::Off}) {
             RenderSettings settings;
+            settings.aa.method = AntiAliasing::Off;  // one sample a pixel, as the references
+            settings.autoExposure = false;       // and 0 EV
             settings.renderPath = path;
             settings.shadows.size = 256;
             settings.shadows.filter = f;
@@ -578,6 +590,8 @@ TEST(ShadowRender, HdrIsFiniteForEveryFilterAndBrdf) {
         for (auto f : {ShadowSettings::Filter::Off, ShadowSettings::Filter::Pcf3x3, ShadowSettings::Filter::Pcf5x5,
                        ShadowSettings::Filter::Poisson}) {
             RenderSettings settings;
+            settings.aa.method = AntiAliasing::Off;  // one sample a pixel, as the references
+            settings.autoExposure = false;       // and 0 EV
             settings.width = 48;
             settings.height = 36;
             settings.keepHdr = true;
@@ -593,6 +607,8 @@ TEST(ShadowRender, HdrIsFiniteForEveryFilterAndBrdf) {
     huge.models[0].transform = glm::scale(glm::mat4(1.0f), glm::vec3(1e7f));
     huge.camera.farPlane = 1e7f;
     RenderSettings settings;
+    settings.aa.method = AntiAliasing::Off;  // one sample a pixel, as the references
+    settings.autoExposure = false;       // and 0 EV
     settings.shadows.size = 256;
     ImageF img = renderHdr(huge, settings, 48, 36);
     for (float v : img.rgba) ASSERT_TRUE(std::isfinite(v));
@@ -604,6 +620,8 @@ TEST(ShadowRender, ShadowMapViewShowsOccluderNearerThanGround) {
     Scene s = shadowScene(glm::vec3(0.0f, -1.0f, 0.0f), true);
     Renderer r(s);
     RenderSettings settings;
+    settings.aa.method = AntiAliasing::Off;  // one sample a pixel, as the references
+    settings.autoExposure = false;       // and 0 EV
     settings.width = 64;
     settings.height = 64;
     settings.view = DebugView::ShadowMap;
@@ -678,6 +696,8 @@ std::string expectNoCreaseLeak(ShadowSettings::Raster raster, ShadowSettings::Co
     for (bool zeroBias : {true, false})
         for (auto f : {ShadowSettings::Filter::Off}) {
             RenderSettings settings;
+            settings.aa.method = AntiAliasing::Off;  // one sample a pixel, as the references
+            settings.autoExposure = false;       // and 0 EV
             settings.shadows.raster = raster;
             settings.shadows.conservativeRaster = conservative;
             settings.shadows.size = 128;
@@ -772,6 +792,8 @@ TEST(ShadowRedrawBudget, LaggingCascadesMissesShadeFromTheNextCascadeAndConverge
     const int w = 96, h = 64;
     Scene s = shadowScene(glm::vec3(-0.3f, -1.0f, -0.2f), true);
     RenderSettings settings;
+    settings.aa.method = AntiAliasing::Off;  // one sample a pixel, as the references
+    settings.autoExposure = false;       // and 0 EV
     settings.width = w;
     settings.height = h;
     settings.keepHdr = true;

@@ -175,6 +175,8 @@ FrameData testFrame(const Scene& scene, const RenderSettings& s) {
 GBufferImages renderGBuffer(const Scene& scene, SceneGpu& gpu, const gl::ShaderLibrary& shaders, PassStates& states,
                             GBufferMode mode, fg::TexturePool* keptPool = nullptr) {
     RenderSettings s;
+    s.aa.method = AntiAliasing::Off;  // one sample a pixel, as the references
+    s.autoExposure = false;       // and 0 EV
     s.width = kWidth;
     s.height = kHeight;
     s.gbuffer.mode = mode;
@@ -507,6 +509,8 @@ HdrError compareHdr(const ImageF& got, const ImageF& ref) {
 
 RenderSettings frameSettings(GBufferMode mode, DebugView view = DebugView::Final) {
     RenderSettings s;
+    s.aa.method = AntiAliasing::Off;  // one sample a pixel, as the references
+    s.autoExposure = false;       // and 0 EV
     s.width = kWidth;
     s.height = kHeight;
     s.view = view;

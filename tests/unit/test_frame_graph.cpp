@@ -164,6 +164,8 @@ FrameGraph buildWith(const Scene& scene, const RenderSettings& settings) {
 
 FrameGraph buildFor(const Scene& scene, DebugView view, bool keepHdr = false) {
     RenderSettings settings;
+    settings.aa.method = AntiAliasing::Off;  // one sample a pixel, as the references
+    settings.autoExposure = false;       // and 0 EV
     settings.width = 320;
     settings.height = 200;
     settings.view = view;
@@ -172,21 +174,32 @@ FrameGraph buildFor(const Scene& scene, DebugView view, bool keepHdr = false) {
 }
 }  // namespace
 
-// The default frame: supersampled 2x2 (ssaa_downsample) and metered (auto_exposure: the scene sets
-// no exposure).
 TEST(FrameBuilder, FinalViewRunsLightingSkyAndToneMap) {
     Scene s = oneLightScene();
     FrameGraph g = buildFor(s, DebugView::Final);
-    EXPECT_EQ(g.executionOrder(), (std::vector<std::string>{"gbuffer", "shadow_map_0", "ao", "ao_denoise", "global_lights",
-                                                            "sky", "ssaa_downsample", "auto_exposure", "tonemap"}));
+    EXPECT_EQ(g.executionOrder(), (std::vector<std::string>{"gbuffer", "shadow_map_0", "ao", "ao_denoise", "global_lights", "sky", "tonemap"}));
     EXPECT_FALSE(g.hasPass("debug_view"));
+}
+
+// The default frame (RenderSettings{} but for its size): supersampled 2x2 (ssaa_downsample) and
+// metered (auto_exposure: the scene sets no exposure); a G-buffer view is brought to the output
+// size nearest-texel (upscale_debug).
+TEST(FrameBuilder, DefaultFrameSupersamplesAndMeters) {
+    Scene s = oneLightScene();
+    RenderSettings settings;
+    settings.width = 320;
+    settings.height = 200;
+    EXPECT_EQ(buildWith(s, settings).executionOrder(),
+              (std::vector<std::string>{"gbuffer", "shadow_map_0", "ao", "ao_denoise", "global_lights", "sky",
+                                        "ssaa_downsample", "auto_exposure", "tonemap"}));
+    settings.view = DebugView::Normals;
+    EXPECT_EQ(buildWith(s, settings).executionOrder(), (std::vector<std::string>{"gbuffer", "debug_view", "upscale_debug"}));
 }
 
 TEST(FrameBuilder, NormalsViewCullsLightingAndToneMap) {
     Scene s = oneLightScene();
     FrameGraph g = buildFor(s, DebugView::Normals);
-    // The supersampled G-buffer's view is brought to the output size nearest-texel (upscale_debug).
-    EXPECT_EQ(g.executionOrder(), (std::vector<std::string>{"gbuffer", "debug_view", "upscale_debug"}));
+    EXPECT_EQ(g.executionOrder(), (std::vector<std::string>{"gbuffer", "debug_view"}));
     EXPECT_FALSE(g.isLive("global_lights"));
     EXPECT_FALSE(g.isLive("tonemap"));
     EXPECT_FALSE(g.isLive("sky"));
@@ -211,13 +224,12 @@ TEST(FrameBuilder, EveryChannelViewReadsOnlyTheGBuffer) {
     }
 }
 
-// The HDR views inspect the final HDR buffer in place of the tone map, with the metered exposure.
+// The HDR views inspect the final HDR buffer in place of the tone map.
 TEST(FrameBuilder, HdrViewsReplaceTheToneMap) {
     Scene s = oneLightScene();
     for (DebugView v : {DebugView::InvalidPixels, DebugView::ExposureEv}) {
         FrameGraph g = buildFor(s, v);
-        EXPECT_EQ(g.executionOrder(), (std::vector<std::string>{"gbuffer", "shadow_map_0", "ao", "ao_denoise", "global_lights",
-                                                                "sky", "ssaa_downsample", "auto_exposure", "hdr_view"}))
+        EXPECT_EQ(g.executionOrder(), (std::vector<std::string>{"gbuffer", "shadow_map_0", "ao", "ao_denoise", "global_lights", "sky", "hdr_view"}))
             << viewName(v);
         EXPECT_FALSE(g.isLive("tonemap"));
     }
@@ -271,6 +283,8 @@ TEST(FrameGraph, DisabledCreatingPassClearsInsteadOfDrawing) {
 TEST(FrameBuilder, DisablingSkyRemovesItFromTheCompiledGraph) {
     Scene s = oneLightScene();
     RenderSettings settings;
+    settings.aa.method = AntiAliasing::Off;  // one sample a pixel, as the references
+    settings.autoExposure = false;       // and 0 EV
     settings.width = 64;
     settings.height = 48;
     settings.disabledPasses = {"sky"};
@@ -425,6 +439,8 @@ TEST(FrameBuilder, PassesDeclareTheirKindAndTheBarriersFollow) {
     s.pointLights.back().range = 5.0f;
     for (LocalLightMethod method : {LocalLightMethod::Tiled, LocalLightMethod::Volumes}) {
         RenderSettings settings;
+        settings.aa.method = AntiAliasing::Off;  // one sample a pixel, as the references
+        settings.autoExposure = false;       // and 0 EV
         settings.width = 320;
         settings.height = 200;
         settings.localLights.method = method;
@@ -454,6 +470,8 @@ TEST(FrameBuilder, BloomScratchIsAGraphTransientCountedInMemory) {
     Scene s = oneLightScene();
     for (auto method : {PostSettings::BloomMethod::Separable, PostSettings::BloomMethod::MipChain}) {
         RenderSettings settings;
+        settings.aa.method = AntiAliasing::Off;  // one sample a pixel, as the references
+        settings.autoExposure = false;       // and 0 EV
         settings.width = 320;
         settings.height = 200;
         settings.post.bloom = true;
@@ -483,6 +501,8 @@ TEST(FrameBuilder, EnvironmentTexturesAreImportedAndWrittenByTheBake) {
     s.environment.map = "sky.exr";  // never read: nothing executes
     s.environment.ibl = true;
     RenderSettings settings;
+    settings.aa.method = AntiAliasing::Off;  // one sample a pixel, as the references
+    settings.autoExposure = false;       // and 0 EV
     settings.width = 64;
     settings.height = 48;
     FrameGraph g = buildWith(s, settings);
@@ -507,6 +527,8 @@ TEST(FrameBuilder, LightGlobesFollowTheSceneUnlessOverridden) {
     auto globes = [&](bool sceneOn, std::optional<bool> setting) {
         s.lightGlobes = sceneOn;
         RenderSettings settings;
+        settings.aa.method = AntiAliasing::Off;  // one sample a pixel, as the references
+        settings.autoExposure = false;       // and 0 EV
         settings.width = 64;
         settings.height = 48;
         settings.localLights.globes = setting;
@@ -591,6 +613,8 @@ TEST(FrameBuilder, OverlaysReadTheLightRecordsTheLightingPassFilled) {
     for (RenderPath path : {RenderPath::Deferred, RenderPath::ForwardPlus})
         for (DebugView view : {DebugView::Final, DebugView::LightRanges, DebugView::LightsPerTile, DebugView::LightsPerCluster}) {
             RenderSettings settings;
+            settings.aa.method = AntiAliasing::Off;  // one sample a pixel, as the references
+            settings.autoExposure = false;       // and 0 EV
             settings.width = 64;
             settings.height = 48;
             settings.renderPath = path;

@@ -149,6 +149,8 @@ TEST(IblGraph, IblPassOnlyWithSwitchAndMap) {
     scene.models.push_back(m);
     auto build = [&](bool ibl, DebugView view) {
         RenderSettings settings;
+        settings.aa.method = AntiAliasing::Off;  // one sample a pixel, as the references
+        settings.autoExposure = false;       // and 0 EV
         settings.width = 64;
         settings.height = 48;
         settings.view = view;

@@ -64,6 +64,8 @@ Built build(const Scene& scene, const RenderSettings& settings, bool softwareRas
 
 RenderSettings small() {
     RenderSettings s;
+    s.aa.method = AntiAliasing::Off;  // one sample a pixel, as the references
+    s.autoExposure = false;       // and 0 EV
     s.width = 320;
     s.height = 180;
     return s;

@@ -52,6 +52,8 @@ std::vector<std::string> orderFor(const Scene& scene, const RenderSettings& sett
 
 RenderSettings small(DebugView view = DebugView::Final) {
     RenderSettings s;
+    s.aa.method = AntiAliasing::Off;  // one sample a pixel, as the references
+    s.autoExposure = false;       // and 0 EV
     s.width = 64;
     s.height = 48;
     s.view = view;
