@@ -133,8 +133,7 @@ FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const Fr
     if (aoSkip.empty()) {
         ao = addAmbientOcclusionPasses(graph, passes.ambientOcclusion, frame, gbuffer);
     } else {
-        graph.skipPass("ao", aoSkip);
-        graph.skipPass("ao_denoise", aoSkip);
+        for (const char* name : ambientOcclusionPassNames()) graph.skipPass(name, aoSkip);
     }
     // What lights forward-shaded surfaces: forward+'s opaque pass and the transparent pass.
     ForwardLighting forwardLighting;

@@ -546,7 +546,7 @@ std::vector<KnobEntry> makeKnobTable() {
     {
         KnobEntry k = intKnob("ao-directions", [](auto& s) -> auto& { return s.ao.directions; }, 1, 16);
         k.flags = {valueFlag("--ao-directions")};
-        k.help = "AO slice directions per pixel (rotated over a 4x4 pixel tile)";
+        k.help = "AO slice directions per AO texel (rotated and offset over an 8x8 tile of texels)";
         k.panel = {PanelSection::Lighting, PanelWidget::Slider, "AO directions", ""};
         k.sweep = {{"1", "2", "4", "8"}, true,
                    "AO slice directions per pixel (--ao-directions, AO on); 8 is the reference", aoOn};

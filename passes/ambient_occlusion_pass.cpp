@@ -8,19 +8,59 @@
 namespace lp {
 
 namespace {
-constexpr GLuint kRawUnit = 13;  // uRaw in ambient_occlusion_denoise.comp
+constexpr GLuint kDepthUnit = 12;  // uAoDepth in ambient_occlusion.comp, _blur.comp and _denoise.comp
+constexpr GLuint kRawUnit = 13;    // uRaw in ambient_occlusion_blur.comp, uBlurred in _denoise.comp
 
+struct DepthData {
+    GBuffer in;
+    fg::ResourceId depth;
+};
 struct GtaoData {
     GBuffer in;
-    fg::ResourceId raw;
+    fg::ResourceId depth, raw;
+};
+struct BlurData {
+    GBuffer in;
+    fg::ResourceId depth, raw, blurred;
 };
 struct DenoiseData {
     GBuffer in;
-    fg::ResourceId raw, ao;
+    fg::ResourceId depth, blurred, ao;
 };
 
 int scaleOf(const FrameData& frame) { return frame.settings->ao.resolution == AoResolution::Half ? 2 : 1; }
+
+// `file`'s program for the frame's G-buffer layout (compiled again when it changed).
+GLuint programFor(gl::Program& program, GBufferProgramKey& key, const FrameData& frame, const char* file) {
+    return programForLayout(program, key, frame, [&](const std::vector<std::string>& defines) {
+               return frame.shaders->compute(file, defines);
+           }).id();
+}
+
+void setInt(GLuint prog, const char* name, int v) { glProgramUniform1i(prog, glGetUniformLocation(prog, name), v); }
+void setFloat(GLuint prog, const char* name, float v) {
+    glProgramUniform1f(prog, glGetUniformLocation(prog, name), v);
+}
+
+// Runs `prog` once per texel of a w x h target bound as image 0 in `format`, with the G-buffer bound,
+// and puts the bindings it made back to 0 (the texture units in `units` too).
+void dispatchOver(GLuint prog, const fg::PassResources& res, const GBuffer& g, const FrameData& frame,
+                  GLuint target, GLenum format, int w, int h, std::initializer_list<GLuint> units) {
+    bindGBuffer(prog, res, g, frame, false);
+    glBindImageTexture(0, target, 0, GL_FALSE, 0, GL_WRITE_ONLY, format);
+    glUseProgram(prog);
+    gl::dispatch2D(w, h);
+    glUseProgram(0);
+    unbindGBuffer();
+    for (GLuint u : units) glBindTextureUnit(u, 0);
+    glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, format);
+}
 }  // namespace
+
+const std::array<const char*, 4>& ambientOcclusionPassNames() {
+    static const std::array<const char*, 4> names = {"ao_depth", "ao", "ao_blur", "ao_denoise"};
+    return names;
+}
 
 glm::ivec2 aoRawSize(const FrameData& frame) {
     const int s = scaleOf(frame);
@@ -30,59 +70,81 @@ glm::ivec2 aoRawSize(const FrameData& frame) {
 fg::ResourceId addAmbientOcclusionPasses(fg::FrameGraph& graph, AmbientOcclusionPass& state, const FrameData& frame,
                                          const GBuffer& gbuffer) {
     const glm::ivec2 rawSize = aoRawSize(frame);
+    const int scale = scaleOf(frame);
+
+    const DepthData& dd = graph.addPass<DepthData>(
+        "ao_depth", fg::PassKind::Compute,
+        [&](fg::PassBuilder& b, DepthData& data) {
+            data.in = gbuffer;
+            readGBuffer(b, gbuffer, false);
+            data.depth = b.create("ao.depth", {rawSize.x, rawSize.y, GL_R32F}, fg::Usage::ImageStore);
+        },
+        [&state, frame, rawSize, scale](const DepthData& data, const fg::PassResources& res) {
+            const GLuint prog = programFor(state.depth, state.depthLayout, frame, "ambient_occlusion_depth.comp");
+            setInt(prog, "uScale", scale);
+            dispatchOver(prog, res, data.in, frame, res.texture(data.depth), GL_R32F, rawSize.x, rawSize.y, {});
+        });
+    const fg::ResourceId depth = dd.depth;
+
     const GtaoData& g = graph.addPass<GtaoData>(
         "ao", fg::PassKind::Compute,
         [&](fg::PassBuilder& b, GtaoData& data) {
             data.in = gbuffer;
             readGBuffer(b, gbuffer, false);
-            data.raw = b.create("ao.raw", {rawSize.x, rawSize.y, GL_RG16F}, fg::Usage::ImageStore);
+            data.depth = b.read(depth, fg::Usage::Sampled);
+            data.raw = b.create("ao.raw", {rawSize.x, rawSize.y, GL_R16F}, fg::Usage::ImageStore);
         },
-        [&state, frame, rawSize](const GtaoData& data, const fg::PassResources& res) {
-            programForLayout(state.gtao, state.gtaoLayout, frame, [&](const std::vector<std::string>& defines) {
-                return frame.shaders->compute("ambient_occlusion.comp", defines);
-            });
+        [&state, frame, rawSize, scale](const GtaoData& data, const fg::PassResources& res) {
+            const GLuint prog = programFor(state.gtao, state.gtaoLayout, frame, "ambient_occlusion.comp");
             const AoSettings& s = frame.settings->ao;
-            const GLuint prog = state.gtao.id();
-            glProgramUniform1i(prog, glGetUniformLocation(prog, "uScale"), scaleOf(frame));
-            glProgramUniform1f(prog, glGetUniformLocation(prog, "uRadius"), s.radius);
-            glProgramUniform1i(prog, glGetUniformLocation(prog, "uDirections"), s.directions);
-            glProgramUniform1i(prog, glGetUniformLocation(prog, "uSteps"), s.steps);
+            setInt(prog, "uScale", scale);
+            setFloat(prog, "uRadius", s.radius);
+            setInt(prog, "uDirections", s.directions);
+            setInt(prog, "uSteps", s.steps);
             // projection[1][1] = 1 / tan(fov / 2): a metre at eye depth 1 spans height / 2 x that pixels.
-            glProgramUniform1f(prog, glGetUniformLocation(prog, "uPixelsPerMetre"),
-                               0.5f * float(frame.height) * frame.projection[1][1]);
-            bindGBuffer(prog, res, data.in, frame, false);
-            glBindImageTexture(0, res.texture(data.raw), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG16F);
-            glUseProgram(prog);
-            gl::dispatch2D(rawSize.x, rawSize.y);
-            glUseProgram(0);
-            unbindGBuffer();
-            glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG16F);
+            setFloat(prog, "uPixelsPerMetre", 0.5f * float(frame.height) * frame.projection[1][1]);
+            glBindTextureUnit(kDepthUnit, res.texture(data.depth));
+            dispatchOver(prog, res, data.in, frame, res.texture(data.raw), GL_R16F, rawSize.x, rawSize.y,
+                         {kDepthUnit});
         });
     const fg::ResourceId raw = g.raw;
+
+    const BlurData& bl = graph.addPass<BlurData>(
+        "ao_blur", fg::PassKind::Compute,
+        [&](fg::PassBuilder& b, BlurData& data) {
+            data.in = gbuffer;
+            readGBuffer(b, gbuffer, false);
+            data.depth = b.read(depth, fg::Usage::Sampled);
+            data.raw = b.read(raw, fg::Usage::Sampled);
+            data.blurred = b.create("ao.blurred", {rawSize.x, rawSize.y, GL_R16F}, fg::Usage::ImageStore);
+        },
+        [&state, frame, rawSize, scale](const BlurData& data, const fg::PassResources& res) {
+            const GLuint prog = programFor(state.blur, state.blurLayout, frame, "ambient_occlusion_blur.comp");
+            setInt(prog, "uScale", scale);
+            glBindTextureUnit(kDepthUnit, res.texture(data.depth));
+            glBindTextureUnit(kRawUnit, res.texture(data.raw));
+            dispatchOver(prog, res, data.in, frame, res.texture(data.blurred), GL_R16F, rawSize.x, rawSize.y,
+                         {kDepthUnit, kRawUnit});
+        });
+    const fg::ResourceId blurred = bl.blurred;
+
     const DenoiseData& d = graph.addPass<DenoiseData>(
         "ao_denoise", fg::PassKind::Compute,
         [&](fg::PassBuilder& b, DenoiseData& data) {
             data.in = gbuffer;
             readGBuffer(b, gbuffer, false);
-            data.raw = b.read(raw, fg::Usage::Sampled);
+            data.depth = b.read(depth, fg::Usage::Sampled);
+            data.blurred = b.read(blurred, fg::Usage::Sampled);
             data.ao = b.create("ao", {frame.width, frame.height, GL_R8}, fg::Usage::ImageStore);
         },
-        [&state, frame](const DenoiseData& data, const fg::PassResources& res) {
-            programForLayout(state.denoise, state.denoiseLayout, frame, [&](const std::vector<std::string>& defines) {
-                return frame.shaders->compute("ambient_occlusion_denoise.comp", defines);
-            });
-            const GLuint prog = state.denoise.id();
-            glProgramUniform1i(prog, glGetUniformLocation(prog, "uScale"), scaleOf(frame));
-            glProgramUniform1f(prog, glGetUniformLocation(prog, "uIntensity"), frame.settings->ao.intensity);
-            bindGBuffer(prog, res, data.in, frame, false);
-            glBindTextureUnit(kRawUnit, res.texture(data.raw));
-            glBindImageTexture(0, res.texture(data.ao), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R8);
-            glUseProgram(prog);
-            gl::dispatch2D(frame.width, frame.height);
-            glUseProgram(0);
-            unbindGBuffer();
-            glBindTextureUnit(kRawUnit, 0);
-            glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R8);
+        [&state, frame, scale](const DenoiseData& data, const fg::PassResources& res) {
+            const GLuint prog = programFor(state.denoise, state.denoiseLayout, frame, "ambient_occlusion_denoise.comp");
+            setInt(prog, "uScale", scale);
+            setFloat(prog, "uIntensity", frame.settings->ao.intensity);
+            glBindTextureUnit(kDepthUnit, res.texture(data.depth));
+            glBindTextureUnit(kRawUnit, res.texture(data.blurred));
+            dispatchOver(prog, res, data.in, frame, res.texture(data.ao), GL_R8, frame.width, frame.height,
+                         {kDepthUnit, kRawUnit});
         });
     return d.ao;
 }

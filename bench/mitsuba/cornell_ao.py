@@ -33,7 +33,7 @@ MAP = REPO / "hdr/sky.exr"
 # lightpass variants: a label and the flags added to `lightpass render`.
 VARIANTS = [
     ("AO off", ["--no-ao"]),
-    ("AO on (defaults: half size, 1 m, 2 x 4)", ["--ao"]),
+    ("AO on (defaults: half size, 1 m, 2 x 8)", ["--ao"]),
     ("AO on, full size", ["--ao", "--ao-resolution", "full"]),
     ("AO on, 0.5 m radius", ["--ao", "--ao-radius", "0.5"]),
     ("AO on, 2 m radius", ["--ao", "--ao-radius", "2"]),

@@ -198,8 +198,8 @@ const char* aoResolutionName(AoResolution r);
 struct AoSettings {
     bool enabled = true;        // --ao / --no-ao
     float radius = 1.0f;        // view-space search radius, metres
-    int directions = 2;         // slice directions per pixel (rotated per pixel over a 4x4 tile)
-    int steps = 4;              // depth samples per side of each slice
+    int directions = 2;         // slice directions per texel (rotated per texel over an 8x8 tile)
+    int steps = 8;              // depth samples per side of each slice
     AoResolution resolution = AoResolution::Half;  // half: computed at half size, depth-aware upsample
     float intensity = 1.0f;     // AO^intensity (1: the physical value)
 };

@@ -9,6 +9,8 @@
 #ifndef LP_AMBIENT_OCCLUSION_GLSL
 #define LP_AMBIENT_OCCLUSION_GLSL
 
+#include "common/depth_reconstruct.glsl"
+
 const float LP_AO_PI = 3.14159265358979;
 const float LP_AO_HALF_PI = 1.57079632679490;
 
@@ -60,12 +62,48 @@ float specularOcclusion(float NdotV, float ao, float alpha) {
     return clamp(pow(max(NdotV + ao, 0.0), exp2(-16.0 * alpha - 1.0)) - 1.0 + ao, 0.0, 1.0);
 }
 
-// The 4x4 pattern that rotates the slices and shifts the steps per pixel: a 4x4 Bayer matrix, so
-// 16 neighbouring pixels together cover 16 rotations and the denoise's 4x4 box averages them out.
-float aoTileNoise(ivec2 p) {
-    int x = p.x & 3, y = p.y & 3;
-    int b = ((x ^ y) & 1) * 8 + (y & 1) * 4 + (((x ^ y) >> 1) & 1) * 2 + ((y >> 1) & 1);
-    return (float(b) + 0.5) / 16.0;
+// Eye-space point of an AO texel from its eye depth z > 0: the centre of the G-buffer pixel it stands
+// for (texel t * scale at fullSize) on the camera's ray, as gbufferPosition rebuilds it from depth.
+// camera: uGbufferCamera (near, far, tan(vertical fov / 2), width / height).
+vec3 aoTexelPosition(ivec2 t, float z, int scale, vec2 fullSize, vec4 camera) {
+    vec2 uv = (min(vec2(t * scale), fullSize - 1.0) + 0.5) / fullSize;
+    return eyePositionFromZ(uv, -z, camera.z, camera.w);
+}
+
+// The period, in texels, of the pattern that spreads the slices and steps over neighbouring texels:
+// the blur and denoise average exactly one period on each axis.
+const int LP_AO_PATTERN_PERIOD = 8;
+
+// Texel p's place in the pattern: an 8x8 Bayer matrix, so each 8x8 block holds 0..63 once and any
+// 2x2, 4x4 block spreads its values evenly.
+int aoPatternIndex(ivec2 p) {
+    int x = p.x & 7, y = p.y & 7, k = 0;
+    for (int bit = 0; bit < 3; ++bit) k = (k << 2) | ((((x ^ y) >> bit) & 1) << 1) | ((y >> bit) & 1);
+    return k;
+}
+
+// The slices' rotation (fraction of the angle between slices) and the steps' offset (fraction of a
+// step) at pattern index k: the 64 indices give the 2D Hammersley set (k / 64, k bit-reversed / 64),
+// so every rotation pairs with a different offset and any rotation x offset stratum of 1/8 x 1/8 holds
+// one pair (rotation and offset both from the Bayer value would pair small with small).
+float aoSliceRotation(int k) { return (float(k) + 0.5) / 64.0; }
+float aoStepOffset(int k) { return (float(bitfieldReverse(uint(k)) >> 26u) + 0.5) / 64.0; }
+
+// The blur's and the denoise's weight of the tap k texels from the centre along their axis: 1 for
+// |k| < 4 and 1/2 at |k| = 4, whose two taps share a phase of the pattern. So each of the 8 phases
+// weighs 1: one period averaged exactly, and the filter centred.
+float aoPeriodWeight(int k) {
+    int a = abs(k);
+    return a < LP_AO_PATTERN_PERIOD / 2 ? 1.0 : (a == LP_AO_PATTERN_PERIOD / 2 ? 0.5 : 0.0);
+}
+
+// A tap's weight from how far its surface point Q lies from the centre's tangent plane (P, N),
+// relative to the centre's eye depth: exp(-1) at 2%. Occlusion does not bleed across depth edges,
+// while on a slanted plane every tap keeps its full weight (a plain depth difference would drop the
+// far taps there and leave the pattern unevenly averaged).
+float aoPlaneWeight(vec3 Q, vec3 P, vec3 N, float depth) {
+    float rel = dot(Q - P, N) / (0.02 * depth);
+    return exp(-rel * rel);
 }
 
 #endif

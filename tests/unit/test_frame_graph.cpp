@@ -177,7 +177,7 @@ FrameGraph buildFor(const Scene& scene, DebugView view, bool keepHdr = false) {
 TEST(FrameBuilder, FinalViewRunsLightingSkyAndToneMap) {
     Scene s = oneLightScene();
     FrameGraph g = buildFor(s, DebugView::Final);
-    EXPECT_EQ(g.executionOrder(), (std::vector<std::string>{"gbuffer", "shadow_map_0", "ao", "ao_denoise", "global_lights", "sky", "tonemap"}));
+    EXPECT_EQ(g.executionOrder(), (std::vector<std::string>{"gbuffer", "shadow_map_0", "ao_depth", "ao", "ao_blur", "ao_denoise", "global_lights", "sky", "tonemap"}));
     EXPECT_FALSE(g.hasPass("debug_view"));
 }
 
@@ -190,7 +190,7 @@ TEST(FrameBuilder, DefaultFrameSupersamplesAndMeters) {
     settings.width = 320;
     settings.height = 200;
     EXPECT_EQ(buildWith(s, settings).executionOrder(),
-              (std::vector<std::string>{"gbuffer", "shadow_map_0", "ao", "ao_denoise", "global_lights", "sky",
+              (std::vector<std::string>{"gbuffer", "shadow_map_0", "ao_depth", "ao", "ao_blur", "ao_denoise", "global_lights", "sky",
                                         "ssaa_downsample", "auto_exposure", "tonemap"}));
     settings.view = DebugView::Normals;
     EXPECT_EQ(buildWith(s, settings).executionOrder(), (std::vector<std::string>{"gbuffer", "debug_view", "upscale_debug"}));
@@ -214,7 +214,7 @@ TEST(FrameBuilder, EveryChannelViewReadsOnlyTheGBuffer) {
         // the ao view shows the AO target, which the ao passes make from the G-buffer
         const std::vector<std::string> expected =
             isEnvironmentView(v) ? std::vector<std::string>{"ibl_bake", "gbuffer", "debug_view"}
-            : v == DebugView::Ao ? std::vector<std::string>{"gbuffer", "ao", "ao_denoise", "debug_view"}
+            : v == DebugView::Ao ? std::vector<std::string>{"gbuffer", "ao_depth", "ao", "ao_blur", "ao_denoise", "debug_view"}
                                  : std::vector<std::string>{"gbuffer", "debug_view"};
         EXPECT_EQ(g.executionOrder(), expected) << viewName(v);
         bool texcoordLive = false;
@@ -229,7 +229,7 @@ TEST(FrameBuilder, HdrViewsReplaceTheToneMap) {
     Scene s = oneLightScene();
     for (DebugView v : {DebugView::InvalidPixels, DebugView::ExposureEv}) {
         FrameGraph g = buildFor(s, v);
-        EXPECT_EQ(g.executionOrder(), (std::vector<std::string>{"gbuffer", "shadow_map_0", "ao", "ao_denoise", "global_lights", "sky", "hdr_view"}))
+        EXPECT_EQ(g.executionOrder(), (std::vector<std::string>{"gbuffer", "shadow_map_0", "ao_depth", "ao", "ao_blur", "ao_denoise", "global_lights", "sky", "hdr_view"}))
             << viewName(v);
         EXPECT_FALSE(g.isLive("tonemap"));
     }
@@ -238,7 +238,7 @@ TEST(FrameBuilder, HdrViewsReplaceTheToneMap) {
 TEST(FrameBuilder, LightingViewSkipsDiffuseAndSky) {
     Scene s = oneLightScene();
     FrameGraph g = buildFor(s, DebugView::Lighting);
-    EXPECT_EQ(g.executionOrder(), (std::vector<std::string>{"gbuffer", "shadow_map_0", "ao", "ao_denoise", "global_lights", "tonemap"}));
+    EXPECT_EQ(g.executionOrder(), (std::vector<std::string>{"gbuffer", "shadow_map_0", "ao_depth", "ao", "ao_blur", "ao_denoise", "global_lights", "tonemap"}));
     for (const auto& r : g.report())
         if (r.name == "global_lights")
             EXPECT_EQ(std::count(r.reads.begin(), r.reads.end(), "gbuffer.diffuse"), 0);
@@ -293,7 +293,7 @@ TEST(FrameBuilder, DisablingSkyRemovesItFromTheCompiledGraph) {
     PassStates passes;
     buildFrameGraph(g, passes, frame);
     g.compile();
-    EXPECT_EQ(g.executionOrder(), (std::vector<std::string>{"gbuffer", "shadow_map_0", "ao", "ao_denoise", "global_lights", "tonemap"}));
+    EXPECT_EQ(g.executionOrder(), (std::vector<std::string>{"gbuffer", "shadow_map_0", "ao_depth", "ao", "ao_blur", "ao_denoise", "global_lights", "tonemap"}));
 }
 
 TEST(FrameGraph, SkippedPassesAreReportedWithTheirReason) {

@@ -95,36 +95,36 @@ TEST(SceneDrivenGraph, TableOfScenesAndSettings) {
     };
     const std::vector<Row> rows = {
         {"cornell", "defaults", [](RenderSettings&) {},
-         {"ibl_bake", "gbuffer", "ao", "ao_denoise", "shadow_map_0", "global_lights", "local_lights", "sky", "tonemap"}, lit},
+         {"ibl_bake", "gbuffer", "ao_depth", "ao", "ao_blur", "ao_denoise", "shadow_map_0", "global_lights", "local_lights", "sky", "tonemap"}, lit},
         {"cornell", "positions rebuilt from depth",
          [](RenderSettings& s) { s.gbuffer.position = GBufferPositionMode::Depth; },
-         {"ibl_bake", "gbuffer", "ao", "ao_denoise", "shadow_map_0", "global_lights", "local_lights", "sky", "tonemap"},
+         {"ibl_bake", "gbuffer", "ao_depth", "ao", "ao_blur", "ao_denoise", "shadow_map_0", "global_lights", "local_lights", "sky", "tonemap"},
          {"depth", "normal", "diffuse", "specular"}},
         {"cornell", "lighting view (no albedo, no sky)", [](RenderSettings& s) { s.view = DebugView::Lighting; },
-         {"gbuffer", "ao", "ao_denoise", "shadow_map_0", "global_lights", "local_lights", "tonemap"},
+         {"gbuffer", "ao_depth", "ao", "ao_blur", "ao_denoise", "shadow_map_0", "global_lights", "local_lights", "tonemap"},
          {"depth", "normal", "position", "specular"}},
         {"cornell", "--no-shadows", [](RenderSettings& s) { s.shadows.enabled = false; },
-         {"ibl_bake", "gbuffer", "ao", "ao_denoise", "global_lights", "local_lights", "sky", "tonemap"}, lit},
+         {"ibl_bake", "gbuffer", "ao_depth", "ao", "ao_blur", "ao_denoise", "global_lights", "local_lights", "sky", "tonemap"}, lit},
         {"cornell", "--no-local-lights", [](RenderSettings& s) { s.localLights.enabled = false; },
-         {"ibl_bake", "gbuffer", "ao", "ao_denoise", "shadow_map_0", "global_lights", "sky", "tonemap"}, lit},
+         {"ibl_bake", "gbuffer", "ao_depth", "ao", "ao_blur", "ao_denoise", "shadow_map_0", "global_lights", "sky", "tonemap"}, lit},
         {"cornell", "--ibl --bloom --toon",
          [](RenderSettings& s) {
              s.environment.ibl = true;
              s.post.bloom = true;
              s.post.toon = true;
          },
-         {"ibl_bake", "gbuffer", "ao", "ao_denoise", "shadow_map_0", "global_lights", "ibl", "local_lights", "sky", "bloom",
+         {"ibl_bake", "gbuffer", "ao_depth", "ao", "ao_blur", "ao_denoise", "shadow_map_0", "global_lights", "ibl", "local_lights", "sky", "bloom",
           "bloom_composite", "toon", "tonemap"},
          lit},
         {"cornell", "texcoords view", [](RenderSettings& s) { s.view = DebugView::Texcoords; },
          {"gbuffer", "debug_view"}, {"depth", "texcoord"}},
-        {"unlit", "defaults", [](RenderSettings&) {}, {"gbuffer", "ao", "ao_denoise", "global_lights", "tonemap"}, lit},
+        {"unlit", "defaults", [](RenderSettings&) {}, {"gbuffer", "ao_depth", "ao", "ao_blur", "ao_denoise", "global_lights", "tonemap"}, lit},
         {"unlit", "--all-passes", [](RenderSettings& s) { s.allPasses = true; },
-         {"ibl_bake", "gbuffer", "ao", "ao_denoise", "global_lights", "ibl", "local_lights", "sky", "bloom", "bloom_composite",
+         {"ibl_bake", "gbuffer", "ao_depth", "ao", "ao_blur", "ao_denoise", "global_lights", "ibl", "local_lights", "sky", "bloom", "bloom_composite",
           "tonemap"},
          lit},
         {"ibl-spheres", "defaults", [](RenderSettings&) {},
-         {"ibl_bake", "gbuffer", "ao", "ao_denoise", "global_lights", "ibl", "sky", "tonemap"}, lit},
+         {"ibl_bake", "gbuffer", "ao_depth", "ao", "ao_blur", "ao_denoise", "global_lights", "ibl", "sky", "tonemap"}, lit},
         {"cornell", "--no-ao", [](RenderSettings& s) { s.ao.enabled = false; },
          {"ibl_bake", "gbuffer", "shadow_map_0", "global_lights", "local_lights", "sky", "tonemap"}, lit},
         {"cornell", "ao view (computed regardless of --no-ao)",
@@ -132,12 +132,12 @@ TEST(SceneDrivenGraph, TableOfScenesAndSettings) {
              s.view = DebugView::Ao;
              s.ao.enabled = false;
          },
-         {"gbuffer", "ao", "ao_denoise", "debug_view"}, {"depth", "normal", "position", "specular"}},
-        {"lights-4k", "defaults", [](RenderSettings&) {}, {"gbuffer", "ao", "ao_denoise", "global_lights", "local_lights", "tonemap"}, lit},
+         {"gbuffer", "ao_depth", "ao", "ao_blur", "ao_denoise", "debug_view"}, {"depth", "normal", "position", "specular"}},
+        {"lights-4k", "defaults", [](RenderSettings&) {}, {"gbuffer", "ao_depth", "ao", "ao_blur", "ao_denoise", "global_lights", "local_lights", "tonemap"}, lit},
         // The visibility buffer: the same targets (plus the id target), made by two passes.
         {"cornell", "--gbuffer-mode visibility",
          [](RenderSettings& s) { s.gbuffer.mode = GBufferMode::Visibility; },
-         {"ibl_bake", "gbuffer_visibility", "gbuffer_resolve", "ao", "ao_denoise", "shadow_map_0", "global_lights",
+         {"ibl_bake", "gbuffer_visibility", "gbuffer_resolve", "ao_depth", "ao", "ao_blur", "ao_denoise", "shadow_map_0", "global_lights",
           "local_lights", "sky", "tonemap"},
          {"depth", "normal", "diffuse", "position", "specular", "visibility"}},
         {"cornell", "--gbuffer-mode visibility, positions from depth",
@@ -145,7 +145,7 @@ TEST(SceneDrivenGraph, TableOfScenesAndSettings) {
              s.gbuffer.mode = GBufferMode::Visibility;
              s.gbuffer.position = GBufferPositionMode::Depth;
          },
-         {"ibl_bake", "gbuffer_visibility", "gbuffer_resolve", "ao", "ao_denoise", "shadow_map_0", "global_lights",
+         {"ibl_bake", "gbuffer_visibility", "gbuffer_resolve", "ao_depth", "ao", "ao_blur", "ao_denoise", "shadow_map_0", "global_lights",
           "local_lights", "sky", "tonemap"},
          {"depth", "normal", "diffuse", "specular", "visibility"}},
         {"cornell", "--gbuffer-mode visibility, texcoords view",
@@ -156,7 +156,7 @@ TEST(SceneDrivenGraph, TableOfScenesAndSettings) {
          {"gbuffer_visibility", "gbuffer_resolve", "debug_view"}, {"depth", "texcoord", "visibility"}},
         // forward+: the pre-pass writes what later passes read: depth, plus AO's normals and specular.
         {"cornell", "forward+", [](RenderSettings& s) { s.renderPath = RenderPath::ForwardPlus; },
-         {"ibl_bake", "depth_prepass", "ao", "ao_denoise", "shadow_map_0", "forward_opaque", "sky", "tonemap"},
+         {"ibl_bake", "depth_prepass", "ao_depth", "ao", "ao_blur", "ao_denoise", "shadow_map_0", "forward_opaque", "sky", "tonemap"},
          {"depth", "normal", "position", "specular"}},
         {"cornell", "forward+ --no-ao (depth alone)",
          [](RenderSettings& s) {
@@ -172,7 +172,7 @@ TEST(SceneDrivenGraph, TableOfScenesAndSettings) {
          },
          {"ibl_bake", "depth_prepass", "shadow_map_0", "forward_opaque", "sky", "taa", "tonemap"}, {"depth", "velocity"}},
         {"glass", "defaults (transparent pass)", [](RenderSettings&) {},
-         {"gbuffer", "ao", "ao_denoise", "shadow_map_0", "global_lights", "local_lights", "sky", "transparent", "tonemap"},
+         {"gbuffer", "ao_depth", "ao", "ao_blur", "ao_denoise", "shadow_map_0", "global_lights", "local_lights", "sky", "transparent", "tonemap"},
          lit},
     };
     for (const Row& row : rows) {
@@ -223,7 +223,7 @@ TEST(SceneDrivenGraph, TogglingAnEffectChangesExactlyItsPasses) {
         {"ibl", [](RenderSettings& s, bool on) { s.environment.ibl = on; }, {"ibl"}, "ibl"},
         {"bloom", [](RenderSettings& s, bool on) { s.post.bloom = on; }, {"bloom", "bloom_composite"}, "bloom"},
         {"toon", [](RenderSettings& s, bool on) { s.post.toon = on; }, {"toon"}, "toon"},
-        {"ambient occlusion", [](RenderSettings& s, bool on) { s.ao.enabled = on; }, {"ao", "ao_denoise"}, "ao"},
+        {"ambient occlusion", [](RenderSettings& s, bool on) { s.ao.enabled = on; }, {"ao_depth", "ao", "ao_blur", "ao_denoise"}, "ao"},
     };
     for (const Toggle& t : toggles) {
         RenderSettings on = small(), off = small();
@@ -247,8 +247,9 @@ TEST(SceneDrivenGraph, SkippedPassesAllocateNothing) {
     s.allPasses = true;
     const Built all = build(bundledScene("unlit"), s);
     auto bytes = [](GLenum format) { return fg::TextureDesc{320, 180, format}.bytes(); };
-    const size_t halfBytes = fg::TextureDesc{160, 90, GL_RG16F}.bytes();
-    // depth, normal, diffuse, position, specular; the AO's half-size raw and full-size target (its
+    // The AO's half-size depth, raw and blurred targets.
+    const size_t halfBytes = fg::TextureDesc{160, 90, GL_R32F}.bytes() + 2 * fg::TextureDesc{160, 90, GL_R16F}.bytes();
+    // depth, normal, diffuse, position, specular; the AO's half-size targets and full-size target (its
     // ambient is lit); hdr; ldr.final: nothing for shadows, lights, sky, IBL.
     EXPECT_EQ(normal.transientBytes, bytes(GL_DEPTH_COMPONENT32F) + bytes(gbufferNormalFormat(s.gbuffer.normal)) +
                                          bytes(GL_RGBA8) + bytes(GL_RGBA32F) + bytes(gbufferSpecularFormat(s.gbuffer.normal)) +
@@ -287,7 +288,7 @@ TEST(SceneDrivenGraph, LocalLightsAllOutOfViewSkipThePass) {
     scene.camera.target = scene.camera.position + (scene.camera.position - scene.camera.target);
     EXPECT_EQ(localLightsInView(makeFrameData(scene, s, 0.0f)), 0);
     const Built b = build(scene, s);
-    EXPECT_EQ(b.runs, (Names{"gbuffer", "ao", "ao_denoise", "global_lights", "tonemap"}));
+    EXPECT_EQ(b.runs, (Names{"gbuffer", "ao_depth", "ao", "ao_blur", "ao_denoise", "global_lights", "tonemap"}));
     EXPECT_EQ(b.reasons.at("local_lights"), "skipped: all 4096 local lights are out of view");
     s.allPasses = true;
     EXPECT_TRUE(build(scene, s).runs.count("local_lights"));
@@ -300,10 +301,10 @@ TEST(SceneDrivenGraph, AmbientOcclusionOnlyWithIndirectLight) {
     EXPECT_TRUE(build(scene, s).runs.count("ao"));
     scene.ambient = glm::vec3(0.0f);
     const Built dark = build(scene, s);
-    EXPECT_FALSE(dark.runs.count("ao"));
-    EXPECT_FALSE(dark.runs.count("ao_denoise"));
-    EXPECT_EQ(dark.reasons.at("ao"), "skipped: no indirect light to occlude (IBL off, ambient 0)");
-    EXPECT_EQ(dark.reasons.at("ao_denoise"), "skipped: no indirect light to occlude (IBL off, ambient 0)");
+    for (const char* pass : {"ao_depth", "ao", "ao_blur", "ao_denoise"}) {
+        EXPECT_FALSE(dark.runs.count(pass)) << pass;
+        EXPECT_EQ(dark.reasons.at(pass), "skipped: no indirect light to occlude (IBL off, ambient 0)") << pass;
+    }
     scene.ambient = glm::vec3(0.0f, 0.0f, 1e-3f);  // one channel is enough
     EXPECT_TRUE(build(scene, s).runs.count("ao_denoise"));
 
