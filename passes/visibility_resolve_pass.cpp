@@ -87,6 +87,26 @@ void buildGeometry(VisibilityResolvePass& state, const SceneGpu& gpu) {
     state.geometryTriangles = gpu.triangleCount;
 }
 
+// An isotropic sampler with `texture`'s wrap modes and filters, for the resolve's own anisotropic
+// filter (LP_ANISOTROPY_FROM_GRADIENTS): made once per sampling state.
+GLuint isotropicSampler(VisibilityResolvePass& state, GLuint texture) {
+    std::array<GLint, 4> key{};
+    glGetTextureParameteriv(texture, GL_TEXTURE_WRAP_S, &key[0]);
+    glGetTextureParameteriv(texture, GL_TEXTURE_WRAP_T, &key[1]);
+    glGetTextureParameteriv(texture, GL_TEXTURE_MIN_FILTER, &key[2]);
+    glGetTextureParameteriv(texture, GL_TEXTURE_MAG_FILTER, &key[3]);
+    for (const auto& [k, sampler] : state.isotropicSamplers)
+        if (k == key) return sampler.id();
+    gl::Sampler sampler = gl::makeSampler("gbuffer_resolve.isotropic");
+    glSamplerParameteri(sampler.id(), GL_TEXTURE_WRAP_S, key[0]);
+    glSamplerParameteri(sampler.id(), GL_TEXTURE_WRAP_T, key[1]);
+    glSamplerParameteri(sampler.id(), GL_TEXTURE_MIN_FILTER, key[2]);
+    glSamplerParameteri(sampler.id(), GL_TEXTURE_MAG_FILTER, key[3]);
+    glSamplerParameterf(sampler.id(), GL_TEXTURE_MAX_ANISOTROPY_EXT, 1.0f);
+    state.isotropicSamplers.emplace_back(key, std::move(sampler));
+    return state.isotropicSamplers.back().second.id();
+}
+
 std::string megabytes(uint64_t bytes) {
     char text[32];
     std::snprintf(text, sizeof text, "%.1f MB", double(bytes) / (1024.0 * 1024.0));
@@ -141,9 +161,13 @@ GBuffer addVisibilityResolvePass(fg::FrameGraph& graph, VisibilityResolvePass& s
                 for (size_t i = 0; i < gpu.materials.size(); ++i)
                     if (materialFlags(gpu.materials[i]) & kAnyMap) state.texturedMaterials.push_back(int(i));
             }
+            if (!state.gradientModel) state.gradientModel = gl::probeGradientSampling(*frame.shaders);
+            const gl::GradientSampling& gradients = *state.gradientModel;
+            const bool ownAnisotropy = !gradients.computeFollowsGradients;
             const GLuint prog = programForLayout(state.program, state.layout, frame, [&](std::vector<std::string> defines) {
                                     addGBufferImageDefines(defines, frame.settings->gbuffer);
                                     defines.push_back("LP_VERTEX_FLOATS " + std::to_string(sizeof(GpuVertex) / sizeof(float)));
+                                    if (ownAnisotropy) defines.push_back("LP_ANISOTROPY_FROM_GRADIENTS");
                                     return frame.shaders->compute("visibility_resolve.comp", defines);
                                 }).id();
             if (!state.rasterModel) state.rasterModel = gl::probeRasterInterpolation(*frame.shaders);
@@ -174,6 +198,11 @@ GBuffer addVisibilityResolvePass(fg::FrameGraph& graph, VisibilityResolvePass& s
                                       glm::value_ptr(glm::inverse(frame.projection)));
             glProgramUniformMatrix4fv(prog, loc("uProjection"), 1, GL_FALSE, glm::value_ptr(frame.projection));
             glProgramUniform1f(prog, loc("uSubpixelSnap"), state.rasterModel->snapScale());
+            if (ownAnisotropy) {
+                glProgramUniform1i(prog, loc("uAnisotropyClampsRatio"), gradients.rasterClampsRatio);
+                glProgramUniform1i(prog, loc("uAnisotropyLevels"), int(gradients.rasterLevels));
+                glProgramUniform1i(prog, loc("uAnisotropyPerQuad"), gradients.rasterLevelPerQuad);
+            }
             glProgramUniform1i(prog, loc("uDepthZeroToOne"),
                                frame.settings->gbuffer.position == GBufferPositionMode::ReversedZ);
             setBackgroundMotionUniforms(prog, frame);
@@ -195,13 +224,18 @@ GBuffer addVisibilityResolvePass(fg::FrameGraph& graph, VisibilityResolvePass& s
             for (int material : state.texturedMaterials) {
                 const GpuMaterial& m = gpu.materials[size_t(material)];
                 glProgramUniform1i(prog, filter, material);
-                glBindTextureUnit(0, m.diffuseMap);
-                glBindTextureUnit(1, m.bumpMap);
-                glBindTextureUnit(2, m.normalMap);
-                glBindTextureUnit(3, m.metallicRoughnessMap);
-                glBindTextureUnit(4, m.occlusionMap);
+                const GLuint maps[5] = {m.diffuseMap, m.bumpMap, m.normalMap, m.metallicRoughnessMap, m.occlusionMap};
+                float anisotropy[5] = {1.0f, 1.0f, 1.0f, 1.0f, 1.0f};
+                for (GLuint u = 0; u < 5; ++u) {
+                    glBindTextureUnit(u, maps[u]);
+                    if (!ownAnisotropy || !maps[u]) continue;
+                    glGetTextureParameterfv(maps[u], GL_TEXTURE_MAX_ANISOTROPY_EXT, &anisotropy[u]);
+                    glBindSampler(u, anisotropy[u] > 1.0f ? isotropicSampler(state, maps[u]) : 0);
+                }
+                if (ownAnisotropy) glProgramUniform1fv(prog, loc("uMapAnisotropy"), 5, anisotropy);
                 glDispatchCompute(groupsX, groupsY, 1);
             }
+            for (GLuint u = 0; u < 5; ++u) glBindSampler(u, 0);
             for (GLuint u = 0; u < 7; ++u) glBindTextureUnit(u, 0);
             unbindGBufferImages();
             for (GLuint i = 0; i < 6; ++i) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, 0);

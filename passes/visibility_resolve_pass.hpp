@@ -5,14 +5,16 @@
 // whichever some pass reads), by image stores; gbuffer.depth passes through from the raster half.
 // The scene's vertex and index buffers are concatenated once into storage buffers, with a draw table
 // and, per frame, the meshes' transforms and the materials (shaders/visibility_resolve.comp).
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "engine/gl/handles.hpp"
-#include "engine/gl/stream_buffer.hpp"
+#include "engine/gl/gradient_probe.hpp"
 #include "engine/gl/raster_probe.hpp"
+#include "engine/gl/stream_buffer.hpp"
 #include "engine/graph/frame_graph.hpp"
 #include "engine/render/frame_data.hpp"
 #include "passes/gbuffer_pass.hpp"
@@ -33,6 +35,11 @@ struct VisibilityResolvePass {
     uint32_t drawCount = 0;
     std::vector<int> texturedMaterials;  // one dispatch each, with its maps bound
     std::optional<gl::RasterInterpolation> rasterModel;  // probed on the first resolve
+    // Whether textureGrad's gradients reach the driver's anisotropic filter in compute; where not,
+    // the program filters anisotropically itself (LP_ANISOTROPY_FROM_GRADIENTS) through isotropic
+    // samplers, one per sampling state (wrap s, wrap t, min and mag filter) of the scene's maps.
+    std::optional<gl::GradientSampling> gradientModel;  // probed before the first compile
+    std::vector<std::pair<std::array<GLint, 4>, gl::Sampler>> isotropicSamplers;
 };
 
 // Why the visibility buffer cannot make `scene`'s G-buffer on a GPU whose shader storage blocks hold

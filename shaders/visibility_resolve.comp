@@ -9,7 +9,10 @@
 // Dispatched once with uMaterialFilter = -1 (every pixel of an untextured material, and the
 // background), then once per textured material with its maps on units 0..4 (no bindless textures in
 // GL 4.5 core): each pixel is written by exactly one dispatch.
-// Defines: gbufferImageDefines (passes/gbuffer_pass.hpp), LP_VERTEX_FLOATS (floats per vertex).
+// Defines: gbufferImageDefines (passes/gbuffer_pass.hpp), LP_VERTEX_FLOATS (floats per vertex), and
+// LP_ANISOTROPY_FROM_GRADIENTS where the driver's anisotropic filter ignores textureGrad's gradients in
+// compute (engine/gl/gradient_probe): the maps are then filtered by common/material.glsl's
+// textureGradAnisotropic, at the level the driver's raster would take (per 2x2 quad where it does).
 #include "common/gbuffer_layout.glsl"
 #include "common/velocity.glsl"
 #include "common/material.glsl"
@@ -185,9 +188,12 @@ bool snappedBarycentrics(vec4 c0, vec4 c1, vec4 c2, vec2 window, vec2 partnerX, 
 
 // A uv set at the pixel (barycentrics b) and its dFdxFine / dFdyFine, from its quad partners' (bx, by).
 TexCoord resolveTexCoord(vec2 t0, vec2 t1, vec2 t2, vec3 b, vec3 bx, vec3 by, bvec2 odd) {
-    vec2 uv = interpolateAttribute(b, t0, t1, t2);
+    TexCoord t;
+    t.uv = interpolateAttribute(b, t0, t1, t2);
     vec2 uvX = interpolateAttribute(bx, t0, t1, t2), uvY = interpolateAttribute(by, t0, t1, t2);
-    return TexCoord(uv, odd.x ? uv - uvX : uvX - uv, odd.y ? uv - uvY : uvY - uv);
+    t.dx = odd.x ? t.uv - uvX : uvX - t.uv;
+    t.dy = odd.y ? t.uv - uvY : uvY - t.uv;
+    return t;
 }
 
 MaterialInputs materialInputs(MaterialRecord r) {
@@ -244,6 +250,36 @@ void main() {
     uvs.set1 = uvs.set0;
 #ifdef LP_SECOND_UV
     if (mr.flags.y != 0u) uvs.set1 = resolveTexCoord(secondUvs[i0], secondUvs[i1], secondUvs[i2], b, bx, by, odd);
+#endif
+#ifdef LP_ANISOTROPY_FROM_GRADIENTS
+    // The footprint the own anisotropic filter takes its level from: the pixel's, or where the
+    // driver's raster takes one level per 2x2 quad, its first pixel's on this pixel's triangle (as
+    // the raster's helper invocations extend it).
+    uvs.set0.quadDx = uvs.set0.dx;
+    uvs.set0.quadDy = uvs.set0.dy;
+    uvs.set1.quadDx = uvs.set1.dx;
+    uvs.set1.quadDy = uvs.set1.dy;
+    if (uAnisotropyPerQuad && any(odd)) {
+        vec2 q = vec2(p & ~1) + 0.5, qx = q + vec2(1.0, 0.0), qy = q + vec2(0.0, 1.0);
+        vec3 bq, bqx, bqy;
+        if (uSubpixelSnap <= 0.0 || !snappedBarycentrics(c0, c1, c2, q, qx, qy, size, bq, bqx, bqy)) {
+            bq = rayTriangleBarycentrics(vec3(0.0), eyeRay(q, size), e0, e1, e2);
+            bqx = rayTriangleBarycentrics(vec3(0.0), eyeRay(qx, size), e0, e1, e2);
+            bqy = rayTriangleBarycentrics(vec3(0.0), eyeRay(qy, size), e0, e1, e2);
+        }
+        TexCoord quad = resolveTexCoord(vertexUv(i0), vertexUv(i1), vertexUv(i2), bq, bqx, bqy, bvec2(false));
+        uvs.set0.quadDx = quad.dx;
+        uvs.set0.quadDy = quad.dy;
+        uvs.set1.quadDx = quad.dx;
+        uvs.set1.quadDy = quad.dy;
+#ifdef LP_SECOND_UV
+        if (mr.flags.y != 0u) {
+            quad = resolveTexCoord(secondUvs[i0], secondUvs[i1], secondUvs[i2], bq, bqx, bqy, bvec2(false));
+            uvs.set1.quadDx = quad.dx;
+            uvs.set1.quadDy = quad.dy;
+        }
+#endif
+    }
 #endif
     vec2 uv = uvs.set0.uv;
     vec3 normal = mat3(mesh.normalMatrix) * interpolateAttribute(b, vertexNormal(i0), vertexNormal(i1), vertexNormal(i2));

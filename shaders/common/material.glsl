@@ -1,7 +1,8 @@
 // The material evaluation both G-buffer paths share: gbuffer.frag (classic raster, derivatives from
 // dFdx/dFdy) and visibility_resolve.comp (compute, derivatives from the neighbouring pixel rays).
 // Texture maps are on units 0..4; every sample is a textureGrad with the caller's uv derivatives, so
-// the two paths pick the same mip level and anisotropy.
+// the two paths pick the same mip level and anisotropy (sampleMap; on a driver whose anisotropic
+// filter ignores those derivatives in compute, the resolve's own filter: LP_ANISOTROPY_FROM_GRADIENTS).
 #ifndef LP_MATERIAL_GLSL
 #define LP_MATERIAL_GLSL
 
@@ -56,7 +57,57 @@ struct SurfaceInputs {
 TexCoord materialTexCoord(MaterialInputs m, UvSets uvs, uint bit) {
     return (m.secondUvMaps & bit) != 0u ? uvs.set1 : uvs.set0;
 }
-vec4 sampleMap(sampler2D map, TexCoord t) { return textureGrad(map, t.uv, t.dx, t.dy); }
+#ifdef LP_ANISOTROPY_FROM_GRADIENTS
+// On a driver whose anisotropic filter takes its footprint from neighbouring invocations rather than
+// from textureGrad's gradients (engine/gl/gradient_probe: llvmpipe, in compute), the visibility
+// resolve filters anisotropically itself: the pass binds an isotropic sampler over each map whose
+// texture is anisotropic and gives that texture's GL_TEXTURE_MAX_ANISOTROPY here (1: none, the map is
+// sampled as it is), per material unit (LP_MATERIAL_BIND_*), with how the driver's raster picks the
+// level (lp::gl::GradientSampling), so both G-buffer modes read the same levels.
+uniform float uMapAnisotropy[5];
+uniform bool uAnisotropyClampsRatio;  // level of the longer axis / min(ratio, max anisotropy); else the shorter's
+uniform int uAnisotropyLevels;        // lp::gl::AnisotropicLevels: 0 blended, 1 floor, 2 nearest
+uniform bool uAnisotropyPerQuad;      // the level from the quad's first pixel (TexCoord.quadDx, quadDy)
+
+// The level of detail the driver's raster takes for footprint axes of lx and ly texels.
+float rasterAnisotropicLod(float lx, float ly, float maxAnisotropy) {
+    float major = max(lx, ly), minor = min(lx, ly);
+    float ratio = minor > 0.0 ? min(major / minor, maxAnisotropy) : maxAnisotropy;
+    float lod = log2(max(uAnisotropyClampsRatio ? major / ratio : minor, 1e-30));
+    if (uAnisotropyLevels == 1) lod = floor(lod);
+    if (uAnisotropyLevels == 2) lod = round(lod);
+    return lod;
+}
+
+// EXT_texture_filter_anisotropic's filter from explicit gradients: the footprint's axes |dx| and |dy|
+// in texels, their ratio clamped to maxAnisotropy, ceil(ratio) probes spread evenly along the longer
+// axis and averaged, each at the level of detail the raster would take.
+vec4 textureGradAnisotropic(sampler2D map, TexCoord t, float maxAnisotropy) {
+    vec2 texels = vec2(textureSize(map, 0));
+    float lx = length(t.dx * texels), ly = length(t.dy * texels);
+    float ratio = min(max(lx, ly) / max(min(lx, ly), 1e-30), maxAnisotropy);
+    float lod = rasterAnisotropicLod(length(t.quadDx * texels), length(t.quadDy * texels), maxAnisotropy);
+    vec2 axis = lx >= ly ? t.dx : t.dy;
+    int probes = max(1, int(ceil(ratio - 1e-3)));
+    vec4 sum = vec4(0.0);
+    for (int i = 0; i < probes; ++i) sum += textureLod(map, t.uv + axis * ((float(i) + 0.5) / float(probes) - 0.5), lod);
+    return sum / float(probes);
+}
+#endif
+
+// `t` moved by `offset` in uv, its footprint kept.
+TexCoord offsetTexCoord(TexCoord t, vec2 offset) {
+    t.uv += offset;
+    return t;
+}
+
+// A map's texel with the footprint the pixel's uv derivatives give; `unit` is its LP_MATERIAL_BIND_*.
+vec4 sampleMap(sampler2D map, int unit, TexCoord t) {
+#ifdef LP_ANISOTROPY_FROM_GRADIENTS
+    if (uMapAnisotropy[unit] > 1.0) return textureGradAnisotropic(map, t, uMapAnisotropy[unit]);
+#endif
+    return textureGrad(map, t.uv, t.dx, t.dy);
+}
 
 // What the G-buffer stores for the pixel.
 struct MaterialSample {
@@ -73,7 +124,7 @@ struct MaterialSample {
 // (glTF: baseColorFactor x baseColorTexture x COLOR_0).
 vec4 materialBaseColor(MaterialInputs m, UvSets uvs, vec4 vertexColor) {
     vec4 base = vec4(m.diffuse, m.opacity) * vertexColor;
-    if (m.hasDiffuseMap) base *= sampleMap(uDiffuseMap, materialTexCoord(m, uvs, LP_MAP_DIFFUSE));
+    if (m.hasDiffuseMap) base *= sampleMap(uDiffuseMap, LP_MATERIAL_BIND_DIFFUSE, materialTexCoord(m, uvs, LP_MAP_DIFFUSE));
     return base;
 }
 
@@ -93,17 +144,17 @@ MaterialSample materialEvaluate(MaterialInputs m, vec4 base, SurfaceInputs s) {
     T = hasFrame ? T / tl : vec3(1.0, 0.0, 0.0);
     vec3 B = cross(N, T) * (s.tangent.w < 0.0 ? -1.0 : 1.0);
     if (m.hasNormalMap && hasFrame) {
-        vec3 t = sampleMap(uNormalMap, materialTexCoord(m, s.uvs, LP_MAP_NORMAL)).xyz * 2.0 - 1.0;
+        vec3 t = sampleMap(uNormalMap, LP_MATERIAL_BIND_NORMAL, materialTexCoord(m, s.uvs, LP_MAP_NORMAL)).xyz * 2.0 - 1.0;
         N = normalMapNormal(N, T, B, t, m.normalScale);
     }
     if (m.hasBumpMap && hasFrame) {
         // Height map -> normal: central differences in texture space, bent along the tangent frame.
         vec2 texel = 1.0 / vec2(textureSize(uBumpMap, 0));
         TexCoord c = materialTexCoord(m, s.uvs, LP_MAP_BUMP);
-        float hl = textureGrad(uBumpMap, c.uv - vec2(texel.x, 0), c.dx, c.dy).r;
-        float hr = textureGrad(uBumpMap, c.uv + vec2(texel.x, 0), c.dx, c.dy).r;
-        float hd = textureGrad(uBumpMap, c.uv - vec2(0, texel.y), c.dx, c.dy).r;
-        float hu = textureGrad(uBumpMap, c.uv + vec2(0, texel.y), c.dx, c.dy).r;
+        float hl = sampleMap(uBumpMap, LP_MATERIAL_BIND_BUMP, offsetTexCoord(c, vec2(-texel.x, 0))).r;
+        float hr = sampleMap(uBumpMap, LP_MATERIAL_BIND_BUMP, offsetTexCoord(c, vec2(texel.x, 0))).r;
+        float hd = sampleMap(uBumpMap, LP_MATERIAL_BIND_BUMP, offsetTexCoord(c, vec2(0, -texel.y))).r;
+        float hu = sampleMap(uBumpMap, LP_MATERIAL_BIND_BUMP, offsetTexCoord(c, vec2(0, texel.y))).r;
         vec3 bent = N - m.bumpScale * 4.0 * ((hr - hl) * T + (hu - hd) * B);
         float bl = length(bent);
         if (bl > 1e-20) N = bent / bl;
@@ -112,7 +163,7 @@ MaterialSample materialEvaluate(MaterialInputs m, vec4 base, SurfaceInputs s) {
     // Up to the IBL's roughness floor (0.02); the analytic BRDFs clamp to 10000 themselves.
     float shininess = clamp(m.shininess, 0.0, LP_IBL_MAX_SHININESS);
     if (m.hasMetalRoughMap) {
-        vec4 mr = sampleMap(uMetalRoughMap, materialTexCoord(m, s.uvs, LP_MAP_METAL_ROUGH));
+        vec4 mr = sampleMap(uMetalRoughMap, LP_MATERIAL_BIND_METAL_ROUGH, materialTexCoord(m, s.uvs, LP_MAP_METAL_ROUGH));
         metallic = clamp(metallic * mr.b, 0.0, 1.0);
         shininess = shininessFromRoughnessToFloor(m.roughness * mr.g);
     }
@@ -126,7 +177,7 @@ MaterialSample materialEvaluate(MaterialInputs m, vec4 base, SurfaceInputs s) {
     o.shininess = shininess;
     o.occlusion = 1.0;
     if (m.hasOcclusionMap)
-        o.occlusion = mix(1.0, sampleMap(uOcclusionMap, materialTexCoord(m, s.uvs, LP_MAP_OCCLUSION)).r,
+        o.occlusion = mix(1.0, sampleMap(uOcclusionMap, LP_MATERIAL_BIND_OCCLUSION, materialTexCoord(m, s.uvs, LP_MAP_OCCLUSION)).r,
                           clamp(m.occlusionStrength, 0.0, 1.0));
     vec3 Tn = s.tangent.xyz - N * dot(N, s.tangent.xyz);
     float tn = length(Tn);

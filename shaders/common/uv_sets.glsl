@@ -12,6 +12,12 @@ struct TexCoord {
     vec2 uv;
     vec2 dx;  // d uv / d window x
     vec2 dy;  // d uv / d window y
+#ifdef LP_ANISOTROPY_FROM_GRADIENTS
+    // The footprint common/material.glsl's own anisotropic filter takes the level from: the same, or
+    // the first pixel's of the pixel's 2x2 quad where the driver's raster takes one level per quad.
+    vec2 quadDx;
+    vec2 quadDy;
+#endif
 };
 
 struct UvSets {
