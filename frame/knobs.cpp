@@ -123,7 +123,8 @@ std::vector<KnobEntry> makeKnobTable() {
                                  allGBufferFormats(), gbufferFormatName);
         k.flags = {valueFlag("--gbuffer")};
         k.choiceNoun = "format";
-        k.help = "G-buffer normal format, see README \"G-buffer formats\"";
+        k.help = "G-buffer normal format, see README \"G-buffer formats\" (every format keeps the base colour in "
+                 "8-bit sRGB: an sRGB texture's codes exactly)";
         k.sweep = {{"oct16", "oct24", "oct32", "seed-packed", "seed-packed-signed", "two-angle", "unpacked"},
                    false,
                    "G-buffer normal format (--gbuffer), fewest bytes first: octahedral 16/24/32 bits, seed 001's "

@@ -25,7 +25,7 @@ GLenum gbufferNormalFormat(GBufferNormalFormat format) {
 }
 
 GLenum gbufferSpecularFormat(GBufferNormalFormat format) {
-    return shininessInNormalTarget(format) ? GL_RGBA8 : GL_RGBA16F;
+    return shininessInNormalTarget(format) ? GL_SRGB8_ALPHA8 : GL_RGBA16F;
 }
 
 MaterialUniforms::MaterialUniforms(GLuint prog) {
@@ -94,7 +94,7 @@ GBuffer createGBufferColourTargets(fg::PassBuilder& b, int w, int h, const GBuff
                                    GBufferChannels channels, fg::Usage how) {
     GBuffer out;
     out.normal = b.createIfRead("gbuffer.normal", {w, h, gbufferNormalFormat(layout.normal)}, how);
-    out.diffuse = b.createIfRead("gbuffer.diffuse", {w, h, GL_RGBA8}, how);
+    out.diffuse = b.createIfRead("gbuffer.diffuse", {w, h, kGBufferDiffuseFormat}, how);
     if (channels.position && !positionFromDepth(layout.position))
         out.position = b.createIfRead("gbuffer.position", {w, h, GL_RGBA32F}, how);
     out.specular = b.createIfRead("gbuffer.specular", {w, h, gbufferSpecularFormat(layout.normal)}, how);
@@ -112,17 +112,19 @@ void addGBufferImageDefines(std::vector<std::string>& d, const GBufferSettings& 
         case GL_R32UI: d.push_back("LP_NORMAL_IMAGE_FORMAT r32ui"); d.push_back("LP_NORMAL_IMAGE uimage2D"); break;
         default: d.push_back("LP_NORMAL_IMAGE_FORMAT rgba32f"); d.push_back("LP_NORMAL_IMAGE image2D"); break;
     }
-    d.push_back(gbufferSpecularFormat(layout.normal) == GL_RGBA8 ? "LP_SPECULAR_IMAGE_FORMAT rgba8"
-                                                                 : "LP_SPECULAR_IMAGE_FORMAT rgba16f");
+    // An sRGB target is stored through its RGBA8 view (gl::imageFormatOf); the shader encodes.
+    d.push_back(gl::imageFormatOf(gbufferSpecularFormat(layout.normal)) == GL_RGBA8 ? "LP_SPECULAR_IMAGE_FORMAT rgba8"
+                                                                                    : "LP_SPECULAR_IMAGE_FORMAT rgba16f");
 }
 
 GLuint bindGBufferImages(const fg::PassResources& res, const GBuffer& g) {
     const fg::ResourceId targets[7] = {g.normal, g.diffuse, g.position, g.specular, g.texcoord, g.tangent, g.velocity};
     GLuint bound = 0;
     for (GLuint i = 0; i < 7; ++i) {
-        const GLuint tex = targets[i].valid() ? res.texture(targets[i]) : 0;
-        if (!tex) continue;
-        glBindImageTexture(i, tex, 0, GL_FALSE, 0, GL_WRITE_ONLY, res.desc(targets[i]).format);
+        if (!targets[i].valid()) continue;
+        const fg::PassResources::ImageBinding image = res.image(targets[i]);  // sRGB targets: an RGBA8 view
+        if (!image.texture) continue;
+        glBindImageTexture(i, image.texture, 0, GL_FALSE, 0, GL_WRITE_ONLY, image.format);
         bound |= 1u << i;
     }
     return bound;
@@ -154,9 +156,10 @@ void setBrdfUniforms(GLuint prog, const RenderSettings& settings) {
 void bindGBuffer(GLuint program, const fg::PassResources& res, const GBuffer& g, const FrameData& frame, bool diffuse) {
     glBindTextureUnit(0, res.texture(g.depth));
     glBindTextureUnit(1, res.texture(g.normal));
-    glBindTextureUnit(2, diffuse ? res.texture(g.diffuse) : 0);
+    // The sRGB targets through their RGBA8 views: gbuffer_layout.glsl decodes them exactly.
+    glBindTextureUnit(2, diffuse ? res.image(g.diffuse).texture : 0);
     glBindTextureUnit(3, g.position.valid() ? res.texture(g.position) : 0);
-    glBindTextureUnit(4, res.texture(g.specular));
+    glBindTextureUnit(4, res.image(g.specular).texture);
     const glm::mat4& p = frame.projection;
     glProgramUniform4f(program, glGetUniformLocation(program, "uGbufferCamera"), frame.nearPlane, frame.farPlane,
                        1.0f / p[1][1], p[1][1] / p[0][0]);
@@ -210,7 +213,8 @@ GBuffer addGeometryPass(fg::FrameGraph& graph, GBufferPass& state, const FrameDa
                                                      out.texcoord, out.tangent, out.velocity};
             GLenum buffers[kTargets];
             for (int i = 0; i < kTargets; ++i) {
-                GLuint tex = colour[i].valid() ? res.texture(colour[i]) : 0;
+                // sRGB targets through their RGBA8 view: the shader writes the encoding (gbuffer.frag).
+                GLuint tex = colour[i].valid() ? res.image(colour[i]).texture : 0;
                 glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0 + i, tex, 0);
                 buffers[i] = tex ? GL_COLOR_ATTACHMENT0 + i : GL_NONE;
             }

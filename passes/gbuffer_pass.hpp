@@ -73,7 +73,12 @@ struct MaterialUniforms {
 // BRDF or stores a material for it (the G-buffer's diffuse colour depends on the BRDF: materialDiffuseAlbedo).
 void setBrdfUniforms(GLuint prog, const RenderSettings& settings);
 
-// GL internal formats of the targets under a layout (README "G-buffer formats").
+// GL internal formats of the targets under a layout (docs/gbuffer.md). The colours that hold a
+// material's base colour in 8 bits are sRGB-encoded, as the textures they come from: kd in diffuse in
+// every layout, and F0 in the seed formats' specular (the others keep F0 in RGBA16F). Writers encode
+// in GLSL through an RGBA8 view of the target, the raster (gbuffer.frag) and compute stores
+// (shaders/common/gbuffer_images.glsl) alike, so both round exactly; texel fetches decode.
+constexpr GLenum kGBufferDiffuseFormat = GL_SRGB8_ALPHA8;
 GLenum gbufferNormalFormat(GBufferNormalFormat format);
 GLenum gbufferSpecularFormat(GBufferNormalFormat format);
 

@@ -1,9 +1,11 @@
 #version 450
 // G-buffer channels as images, decoded from any layout (common/gbuffer_layout.glsl). Values are
-// written directly (no tone map, no sRGB) so a picked pixel reads back the encoding documented in
-// the README.
+// written directly (no tone map) so a picked pixel reads back the encoding documented in the README;
+// the two colours, diffuse and specular, as the sRGB encoding of their linear value, as colour images
+// are: a picked diffuse pixel reads the diffuse target's bytes, the base colour's 8-bit sRGB code.
 #define LP_GBUFFER_READ
 #include "common/gbuffer_layout.glsl"
+#include "common/tonemap.glsl"
 #include "common/velocity.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -84,13 +86,13 @@ void main() {
     } else if (uMode == 2) {
         c = gbufferNormal(p) * 0.5 + 0.5;
     } else if (uMode == 3) {
-        c = gbufferDiffuse(p);
+        c = linearToSrgb(gbufferDiffuse(p));
     } else if (uMode == 4) {
         c = clamp(gbufferPosition(p) * uPositionScale * 0.5 + 0.5, 0.0, 1.0);
     } else if (uMode == 5) {
         c = vec3(clamp(gbufferShininess(p) / 1024.0, 0.0, 1.0));
     } else if (uMode == 6) {
-        c = gbufferSpecular(p);
+        c = linearToSrgb(gbufferSpecular(p));
     } else if (uMode == 9) {
         vec3 world = (uEyeToWorld * vec4(gbufferPosition(p), 1.0)).xyz;
         c = clamp((world - uSceneCenter) / uSceneHalfSize * 0.5 + 0.5, 0.0, 1.0);

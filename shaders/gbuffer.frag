@@ -50,11 +50,17 @@ void main() {
 #else
     outNormal = gbufferEncodeNormal(g.normal, g.shininess);
 #endif
-    outDiffuse = vec4(g.kd, m.flatLit ? 0.0 : gbufferEncodeOcclusion(g.occlusion));
+    // The sRGB targets are attached as RGBA8 views: the encoding is written here, exactly as the compute
+    // stores write it (common/gbuffer_images.glsl), not by the rasteriser's approximate blend-unit encode.
+    outDiffuse = vec4(linearToSrgb(g.kd), m.flatLit ? 0.0 : gbufferEncodeOcclusion(g.occlusion));
 #ifndef LP_GBUFFER_POSITION_FROM_DEPTH
     outPosition = vec4(vPosition, 1.0);
 #endif
+#ifdef LP_GBUFFER_SHININESS_IN_NORMAL
+    outSpecular = vec4(linearToSrgb(g.f0), 0.0);  // the seed formats' sRGB F0
+#else
     outSpecular = vec4(g.f0, g.shininess);
+#endif
     outTexcoord = vec4(vUv, 0.0, 0.0);
     outTangent = g.tangentView;
 #ifdef LP_GBUFFER_VELOCITY

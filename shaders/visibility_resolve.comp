@@ -296,12 +296,11 @@ void main() {
     MaterialSample g = materialEvaluate(m, base, SurfaceInputs(normal, tangent, uvs, eyeTriangleFrontFacing(e0, e1, e2)));
     g.shininess = gbufferEncodeShininess(g.shininess);  // the half-float channel's encoding (to the 0.02 floor)
     if ((uTargets & LP_TARGET_NORMAL) != 0u) storeNormal(p, g.normal, g.shininess);
-    if ((uTargets & LP_TARGET_DIFFUSE) != 0u)
-        imageStore(uDiffuseOut, p, vec4(g.kd, m.flatLit ? 0.0 : gbufferEncodeOcclusion(g.occlusion)));
+    if ((uTargets & LP_TARGET_DIFFUSE) != 0u) storeDiffuse(p, g.kd, m.flatLit ? 0.0 : gbufferEncodeOcclusion(g.occlusion));
 #ifndef LP_GBUFFER_POSITION_FROM_DEPTH
     if ((uTargets & LP_TARGET_POSITION) != 0u) imageStore(uPositionOut, p, vec4(interpolateAttribute(b, e0, e1, e2), 1.0));
 #endif
-    if ((uTargets & LP_TARGET_SPECULAR) != 0u) imageStore(uSpecularOut, p, vec4(g.f0, g.shininess));
+    if ((uTargets & LP_TARGET_SPECULAR) != 0u) storeSpecular(p, g.f0, g.shininess);
     if ((uTargets & LP_TARGET_TEXCOORD) != 0u) imageStore(uTexcoordOut, p, vec4(uv, 0.0, 0.0));
     if ((uTargets & LP_TARGET_TANGENT) != 0u) imageStore(uTangentOut, p, g.tangentView);
     if ((uTargets & LP_TARGET_VELOCITY) != 0u) {

@@ -56,6 +56,19 @@ Texture makeTexture2D(GLenum internalFormat, int width, int height, int levels, 
     return t;
 }
 
+Texture makeTextureView(const Texture& source, GLenum internalFormat, const std::string& name) {
+    GLuint id = 0;
+    glGenTextures(1, &id);  // a view needs a name never bound (glCreateTextures binds it)
+    glTextureView(id, GL_TEXTURE_2D, source.id(), internalFormat, 0, GLuint(source.levels), 0, 1);
+    Texture t{Object<ObjectKind::Texture>(id), GL_TEXTURE_2D, internalFormat, source.width, source.height, source.levels};
+    label(GL_TEXTURE, id, name);
+    checkErrors("creating texture view '" + name + "' (" + formatName(internalFormat) + " of " +
+                formatName(source.format) + ")");
+    return t;
+}
+
+GLenum imageFormatOf(GLenum internalFormat) { return internalFormat == GL_SRGB8_ALPHA8 ? GL_RGBA8 : internalFormat; }
+
 Texture makeTextureCube(GLenum internalFormat, int size, int levels, const std::string& name) {
     GLuint id = 0;
     glCreateTextures(GL_TEXTURE_CUBE_MAP, 1, &id);

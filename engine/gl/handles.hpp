@@ -76,6 +76,12 @@ void label(GLenum identifier, GLuint id, const std::string& name);
 
 Texture makeTexture2D(GLenum internalFormat, int width, int height, int levels, const std::string& name);
 Texture makeTextureCube(GLenum internalFormat, int size, int levels, const std::string& name);
+// A view of every level of 2D texture `source` (made by makeTexture2D: immutable storage) as
+// `internalFormat`, of the same size class: the same texels read or written as another format.
+Texture makeTextureView(const Texture& source, GLenum internalFormat, const std::string& name);
+// The format image load/store reaches a texture of `internalFormat` through: itself, or for an sRGB
+// format (image units take none) its linear twin, GL_RGBA8, whose shader stores the encoding itself.
+GLenum imageFormatOf(GLenum internalFormat);
 Buffer makeBuffer(GLsizeiptr size, const void* data, GLbitfield flags, const std::string& name);
 Framebuffer makeFramebuffer(const std::string& name);
 VertexArray makeVertexArray(const std::string& name);

@@ -583,6 +583,18 @@ GLuint PassResources::texture(ResourceId id) const { return object(id, false); }
 GLuint PassResources::buffer(ResourceId id) const { return object(id, true); }
 const TextureDesc& PassResources::desc(ResourceId id) const { return graph_.resourceOf(id).desc; }
 
+PassResources::ImageBinding PassResources::image(ResourceId id) const {
+    const GLuint tex = texture(id);
+    const GLenum format = desc(id).format, imageFormat = gl::imageFormatOf(format);
+    if (!tex || imageFormat == format) return {tex, format};
+    const GLuint view = graph_.pool_ && !graph_.resourceOf(id).isImported ? graph_.pool_->imageTexture(tex) : 0;
+    if (!view)
+        throw Error("frame graph: pass '" + graph_.passes_[size_t(pass_)].name + "' stores into '" +
+                    graph_.resourceOf(id).name + "' (" + gl::formatName(format) +
+                    ") as an image, which needs a view only the graph's own textures have");
+    return {view, imageFormat};
+}
+
 const FrameGraph::Resource& FrameGraph::resourceOf(ResourceId id) const {
     if (!id.valid() || id.version >= int(versions_.size())) throw Error("frame graph: invalid resource handle");
     return resources_[versions_[id.version].resource];
@@ -602,6 +614,7 @@ void FrameGraph::execute(TexturePool& pool, gl::GpuTimerRing* timers) {
     const gl::WatchedState before = gl::captureWatchedState();
 #endif
     pool.beginFrame();
+    pool_ = &pool;
     for (int i : order_) {
         const Pass& p = passes_[i];
         if (p.beforeFrame && !p.disabled) {
@@ -631,6 +644,7 @@ void FrameGraph::execute(TexturePool& pool, gl::GpuTimerRing* timers) {
             if (r.live && !r.isImported && r.last == i) pool.release(r.texture);
     }
     if (finalBarrier_) glMemoryBarrier(finalBarrier_);
+    pool_ = nullptr;
     pool.endFrame();
 }
 

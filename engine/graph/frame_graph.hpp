@@ -103,6 +103,14 @@ public:
     // The same for a buffer (importBuffer); each throws for the other kind.
     GLuint buffer(ResourceId id) const;
     const TextureDesc& desc(ResourceId id) const;
+    // How the pass binds a texture it declared for image load/store (glBindImageTexture): the texture
+    // and format, which for an sRGB texture are a view of it as its linear twin (image units take no
+    // sRGB format; the shader stores the encoding itself). texture 0 when the resource has none.
+    struct ImageBinding {
+        GLuint texture = 0;
+        GLenum format = 0;
+    };
+    ImageBinding image(ResourceId id) const;
     // The timer ring of this execute (null when untimed): passes timed outside GL (CUDA events)
     // report through GpuTimerRing::addExternal.
     gl::GpuTimerRing* timers() const { return timers_; }
@@ -296,6 +304,7 @@ private:
     std::vector<std::string> namedOutputs_;
     std::vector<int> order_;
     std::vector<PassReport> report_;
+    TexturePool* pool_ = nullptr;  // during execute(): where PassResources::image finds views
     GLbitfield finalBarrier_ = 0;
     bool compiled_ = false;
 };

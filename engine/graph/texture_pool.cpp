@@ -81,6 +81,18 @@ void TexturePool::release(GLuint texture) {
         if (e.id() == texture) e.inUse = false;
 }
 
+GLuint TexturePool::imageTexture(GLuint texture) {
+    for (auto& e : entries_) {
+        if (e.id() != texture) continue;
+        const GLenum format = gl::imageFormatOf(e.desc.format);
+        if (format == e.desc.format) return texture;
+        if (e.external) return 0;  // another API's texture: no view of it
+        if (!e.imageView) e.imageView = gl::makeTextureView(e.texture, format, "image view");
+        return e.imageView.id();
+    }
+    return 0;
+}
+
 void TexturePool::endFrame(int keepUnusedFrames) {
     for (auto& e : entries_) e.idleFrames = e.usedThisFrame ? 0 : e.idleFrames + 1;
     entries_.erase(std::remove_if(entries_.begin(), entries_.end(),

@@ -34,6 +34,10 @@ public:
     void setExternalSource(ExternalTextureSource* source);
     size_t externalCount() const;  // textures made by the external source
     void release(GLuint texture);
+    // What a shader image-stores texture `texture` of this pool through: the texture itself, or for an
+    // sRGB one (image units take no sRGB format) a view of its storage as gl::imageFormatOf(format),
+    // made the first time and kept as long as the texture. 0 for a texture the pool did not make.
+    GLuint imageTexture(GLuint texture);
     void endFrame(int keepUnusedFrames = 3);
     void clear();
 
@@ -46,6 +50,7 @@ private:
     struct Entry {
         TextureDesc desc;
         gl::Texture texture;                        // ordinary
+        gl::Texture imageView;                      // imageTexture's view of an sRGB `texture`
         std::shared_ptr<ExternalTexture> external;  // or from the external source
         const ExternalTextureSource* source = nullptr;  // which one made it
         GLuint id() const { return external ? external->texture() : texture.id(); }

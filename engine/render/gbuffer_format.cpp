@@ -125,9 +125,9 @@ int gbufferBytesPerPixel(const GBufferSettings& g) {
         case GBufferNormalFormat::Oct24:
         case GBufferNormalFormat::Oct32: normal = 4; break;                // R32UI
     }
-    const int specular = shininessInNormalTarget(g.normal) ? 4 : 8;  // RGBA8 ks, or RGBA16F ks + shininess
+    const int specular = shininessInNormalTarget(g.normal) ? 4 : 8;  // SRGB8_A8 F0, or RGBA16F F0 + shininess
     const int position = positionFromDepth(g.position) ? 0 : 16;     // RGBA32F
-    return 4 /* D32F */ + normal + 4 /* RGBA8 diffuse */ + specular + position;
+    return 4 /* D32F */ + normal + 4 /* SRGB8_A8 diffuse */ + specular + position;
 }
 
 }  // namespace lp

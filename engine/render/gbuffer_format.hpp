@@ -72,7 +72,9 @@ inline bool shininessInNormalTarget(GBufferNormalFormat f) {
 inline bool positionFromDepth(GBufferPositionMode m) { return m != GBufferPositionMode::Stored; }
 
 // Bytes per pixel of the targets the lighting reads: depth, normal, diffuse, specular and, when stored,
-// position (not the texcoord target of the texcoords view).
+// position (not the texcoord target of the texcoords view). The base colour costs the same in every
+// layout: kd in 8-bit sRGB (an 8-bit sRGB base colour kept exactly), F0 in RGBA16F or, in the seed
+// formats, 8-bit sRGB (passes/gbuffer_pass.hpp).
 int gbufferBytesPerPixel(const GBufferSettings& g);
 
 }  // namespace lp

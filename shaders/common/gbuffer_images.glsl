@@ -2,13 +2,17 @@
 // visibility resolve, and the classic pass's background: gbuffer_background.comp), and what a pixel
 // where nothing is drawn holds. Defines: gbufferImageDefines (passes/gbuffer_pass.hpp), which sets
 // the normal and specular targets' image formats; binding i = target i of bindGBufferImages.
+// The sRGB targets (diffuse; the seed formats' specular) are bound as RGBA8 views of their storage
+// (image units take no sRGB format): storeDiffuse and storeSpecular write the sRGB encoding, the
+// bytes the raster's hardware encode writes there.
 #ifndef LP_GBUFFER_IMAGES_GLSL
 #define LP_GBUFFER_IMAGES_GLSL
 #include "common/gbuffer_layout.glsl"
+#include "common/tonemap.glsl"
 #include "common/velocity.glsl"
 
 layout(binding = 0, LP_NORMAL_IMAGE_FORMAT) uniform writeonly LP_NORMAL_IMAGE uNormalOut;
-layout(binding = 1, rgba8) uniform writeonly image2D uDiffuseOut;
+layout(binding = 1, rgba8) uniform writeonly image2D uDiffuseOut;  // SRGB8_ALPHA8 target
 #ifndef LP_GBUFFER_POSITION_FROM_DEPTH
 layout(binding = 2, rgba32f) uniform writeonly image2D uPositionOut;
 #endif
@@ -32,6 +36,18 @@ void storeNormal(ivec2 p, vec3 n, float shininess) {
     imageStore(uNormalOut, p, uvec4(gbufferEncodeNormalOct(n), 0u, 0u, 0u));
 #else
     imageStore(uNormalOut, p, gbufferEncodeNormal(n, shininess));
+#endif
+}
+
+// kd (linear) and the diffuse alpha (occlusion, 0 for flat-lit; alpha is not sRGB-encoded).
+void storeDiffuse(ivec2 p, vec3 kd, float alpha) { imageStore(uDiffuseOut, p, vec4(linearToSrgb(kd), alpha)); }
+
+// F0 (linear) and the encoded shininess; the seed formats' sRGB target keeps the colour alone.
+void storeSpecular(ivec2 p, vec3 f0, float encodedShininess) {
+#ifdef LP_GBUFFER_SHININESS_IN_NORMAL
+    imageStore(uSpecularOut, p, vec4(linearToSrgb(f0), 0.0));
+#else
+    imageStore(uSpecularOut, p, vec4(f0, encodedShininess));
 #endif
 }
 

@@ -1,14 +1,17 @@
 // The G-buffer's texture bindings, its layouts, and the one API every pass reads it through.
 //   depth     D32F      window depth: standard (near 0, far 1) or reversed-Z (near 1, far 0)
 //   normal    depends on the normal format (below)
-//   diffuse   RGBA8     diffuse albedo kd (linear): base (1 - metallic) (1 - dielectric F0) under GGX,
-//                       base (1 - metallic) under Blinn-Phong (common/brdf.glsl materialDiffuseAlbedo)
-//                       and for flat-lit materials; alpha 0 marks a flat-lit
+//   diffuse   SRGB8_A8  diffuse albedo kd, sRGB-encoded as the base colour's texture is: base (1 - metallic)
+//                       (1 - dielectric F0) under GGX, base (1 - metallic) under Blinn-Phong
+//                       (common/brdf.glsl materialDiffuseAlbedo) and for flat-lit materials. An 8-bit sRGB
+//                       base colour comes back as it was (linear 8 bits lost 39 of the 256 codes: 1 to 6
+//                       became black); writers encode and readers decode in GLSL through an RGBA8 view
+//                       (bindGBuffer, gbufferDiffuse). Alpha (linear) 0 marks a flat-lit
 //                       material, else holds the material's ambient occlusion (>= 1/255)
 //   position  RGBA32F   eye-space position in xyz; absent when positions are rebuilt from depth
 //   specular  RGBA16F   F0 = mix(dielectric F0, base, metallic) in rgb, Blinn-Phong shininess in a
 //                       (gbufferEncodeShininess; the roughness's exponent: GGX alpha = sqrt(2 / (n + 2)))
-//             (RGBA8, colour only, for the seed-packed formats, which keep shininess with the normal)
+//             (SRGB8_A8, colour only, for the seed-packed formats, which keep shininess with the normal)
 //   texcoord  RG32F     texture coordinates (only when a debug view asks for them)
 //   velocity  RG16F     uv_current - uv_previous, unjittered (only when a pass reads motion;
 //                       common/velocity.glsl); read as a plain sampler by the passes that use it
@@ -33,6 +36,7 @@
 #define LP_BIND_HDR 6
 
 #include "common/depth_reconstruct.glsl"
+#include "common/tonemap.glsl"
 #include "common/normal_encoding.glsl"
 
 #if !defined(LP_GBUFFER_NORMAL_SEED_PACKED) && !defined(LP_GBUFFER_NORMAL_SEED_PACKED_SIGNED) && \
@@ -155,13 +159,21 @@ vec3 gbufferPosition(ivec2 p) {
 #endif
 }
 
-vec3 gbufferDiffuse(ivec2 p) { return texelFetch(uGbufferDiffuse, p, 0).rgb; }
+// The sRGB targets are bound as RGBA8 views (bindGBuffer) and decoded here, exactly: a software
+// rasteriser's sampler decodes sRGB by an approximation up to 0.4% off.
+vec3 gbufferDiffuse(ivec2 p) { return srgbToLinear(texelFetch(uGbufferDiffuse, p, 0).rgb); }
 // A flat-lit material (Material::flat): its radiance is its diffuse colour and no light adds to it.
 // Needs the diffuse target bound (the lighting view does not read it: there every surface is lit).
 bool gbufferIsFlat(ivec2 p) { return texelFetch(uGbufferDiffuse, p, 0).a < 0.5 / 255.0; }
 // The material's ambient occlusion (1 without an occlusion map): scales ambient and IBL light only.
 float gbufferOcclusion(ivec2 p) { return texelFetch(uGbufferDiffuse, p, 0).a; }
-vec3 gbufferSpecular(ivec2 p) { return texelFetch(uGbufferSpecular, p, 0).rgb; }
+vec3 gbufferSpecular(ivec2 p) {
+#ifdef LP_GBUFFER_SHININESS_IN_NORMAL
+    return srgbToLinear(texelFetch(uGbufferSpecular, p, 0).rgb);  // the seed formats' sRGB F0
+#else
+    return texelFetch(uGbufferSpecular, p, 0).rgb;
+#endif
+}
 float gbufferShininess(ivec2 p) {
 #ifdef LP_GBUFFER_SHININESS_IN_NORMAL
     return gbufferDecodeShininess(abs(texelFetch(uGbufferNormal, p, 0).z));

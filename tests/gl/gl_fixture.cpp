@@ -57,6 +57,20 @@ void main() {
     return result;
 }
 
+double srgbEncode(double linear) {
+    linear = std::clamp(linear, 0.0, 1.0);
+    return linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(linear, 1.0 / 2.4) - 0.055;
+}
+
+double srgbDecode(double encoded) {
+    encoded = std::clamp(encoded, 0.0, 1.0);
+    return encoded <= 0.04045 ? encoded / 12.92 : std::pow((encoded + 0.055) / 1.055, 2.4);
+}
+
+double srgb8Stored(double linear) { return srgbDecode(std::round(srgbEncode(linear) * 255.0) / 255.0); }
+
+glm::dvec3 srgb8Stored(glm::dvec3 linear) { return {srgb8Stored(linear.x), srgb8Stored(linear.y), srgb8Stored(linear.z)}; }
+
 EnvironmentSettings smallIblBake(int dfgSamples) {
     EnvironmentSettings s;
     s.ibl = true;

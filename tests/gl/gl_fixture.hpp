@@ -34,6 +34,14 @@ std::string repoPath(const std::string& relative);
 std::vector<glm::vec4> runGlsl(const std::vector<std::string>& includes, const std::string& body,
                                const std::vector<glm::vec4>& inputs, const std::string& globals = "");
 
+// IEC 61966-2-1 sRGB transfer functions in double precision, and what the G-buffer's 8-bit sRGB
+// colour targets give back for a linear colour (kd in gbuffer.diffuse; F0 in the seed formats'
+// specular): the nearest code, decoded (the tests' colours are chosen away from rounding ties).
+double srgbEncode(double linear);
+double srgbDecode(double encoded);
+double srgb8Stored(double linear);
+glm::dvec3 srgb8Stored(glm::dvec3 linear);
+
 // IBL on with a bake small enough for a software rasteriser (32^2 cubes, 64 GGX samples, a 32^2
 // DFG LUT of `dfgSamples` samples per texel).
 EnvironmentSettings smallIblBake(int dfgSamples);

@@ -433,11 +433,10 @@ TEST(ShaderDither, BreaksTheBandsOfASlowGradient) {
 TEST(DitherRender, ToneMapDithersTheDisplayUnlessSwitchedOff) {
     const int w = 64, h = 48;
     HalfPlaneScene hp(0.0, 30.0);  // the edge far out of view: the plane fills it
-    // An albedo the 8-bit G-buffer stores exactly: 0.5 lies on a rounding tie (127.5 / 255), which
-    // drivers break either way (NVIDIA stores 127, llvmpipe 128).
-    const float albedo = 128.0f / 255.0f;
-    for (auto& mat : hp.scene.models[0].mesh.materials) mat.diffuse = glm::vec3(albedo);
-    const double kd = 128.0 / 255.0;
+    // An albedo the 8-bit sRGB G-buffer stores exactly (sRGB code 188), away from the rounding ties
+    // drivers break either way.
+    const double kd = test::srgbDecode(188.0 / 255.0);
+    for (auto& mat : hp.scene.models[0].mesh.materials) mat.diffuse = glm::vec3(float(kd));
     const double t = std::pow(kd / (kd + 1.0), 1.2);
     const double exact = 255.0 * (t <= 0.0031308 ? 12.92 * t : 1.055 * std::pow(t, 1.0 / 2.4) - 0.055);
     for (bool dither : {false, true}) {

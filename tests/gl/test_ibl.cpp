@@ -194,8 +194,9 @@ TEST(Ibl, WhiteFurnaceSphereReflectsTheEnvironmentExactly) {
         const std::vector<SpherePixel> sphere = spherePixels(scene, 64, 48);
         for (const SpherePixel& px : sphere) {
             const float* p = &hdr.rgba[(size_t(px.y) * 64 + size_t(px.x)) * 4];
+            const double stored = test::srgb8Stored(albedo);  // the 8-bit sRGB G-buffer's albedo
             for (int ch = 0; ch < 3; ++ch)
-                EXPECT_NEAR(p[ch], albedo, 0.005 * albedo)
+                EXPECT_NEAR(p[ch], stored, 0.005 * stored)
                     << "pixel " << px.x << "," << px.y << " source " << int(source) << " albedo " << albedo
                     << " specular " << iblSpecularName(specular);
         }

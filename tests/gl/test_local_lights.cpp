@@ -400,7 +400,7 @@ TEST(LocalLights, SingleLightOverPlaneMatchesAnalyticRadiance) {
     Rig rig(s);
     const int w = 64, h = 48;
     const glm::dmat4 inv = glm::inverse(glm::dmat4(s.camera.projection(float(w) / float(h))) * glm::dmat4(s.camera.view()));
-    const glm::dvec3 kd8 = glm::round(glm::dvec3(kd) * 255.0) / 255.0;  // the G-buffer stores RGBA8 albedo
+    const glm::dvec3 kd8 = test::srgb8Stored(glm::dvec3(kd));  // the G-buffer stores 8-bit sRGB albedo
     for (LocalLightMethod m : allLocalLightMethods()) {
         std::vector<float> img = rig.renderHdr(smallSettings(m));
         int lit = 0;
@@ -674,7 +674,7 @@ TEST(LocalLights, SpotOverPlaneMatchesAnalyticRadiance) {
     Rig rig(s);
     const int w = 64, h = 48;
     const glm::dmat4 inv = glm::inverse(glm::dmat4(s.camera.projection(float(w) / float(h))) * glm::dmat4(s.camera.view()));
-    const glm::dvec3 kd8 = glm::round(glm::dvec3(kd) * 255.0) / 255.0;
+    const glm::dvec3 kd8 = test::srgb8Stored(glm::dvec3(kd));
     const double cosOuter = std::cos(glm::radians(35.0)), cosInner = std::cos(glm::radians(20.0));
     for (LocalLightMethod m : allLocalLightMethods()) {
         std::vector<float> img = rig.renderHdr(smallSettings(m));

@@ -81,10 +81,10 @@ glm::dvec3 expectedRadiance(const Scene& s, glm::dvec3 p, Brdf brdf) {
     glm::dvec3 N(0, 1, 0), L = -glm::dvec3(light.direction), V = glm::normalize(glm::dvec3(s.camera.position) - p);
     glm::dvec3 H = glm::normalize(L + V);
     double nl = std::max(glm::dot(N, L), 0.0), nh = std::max(glm::dot(N, H), 0.0), n = mat.shininess;
-    // The G-buffer stores the diffuse albedo in RGBA8 (kd, or kd (1 - F0) under GGX): the renderer shades
-    // with the 8-bit value (the test's albedos are chosen away from rounding ties).
+    // The G-buffer stores the diffuse albedo in 8-bit sRGB (kd, or kd (1 - F0) under GGX): the renderer
+    // shades with the stored value (the test's albedos are chosen away from rounding ties).
     const double f0 = mat.specular.x, transmitted = brdf == Brdf::Ggx ? 1.0 - f0 : 1.0;
-    const glm::dvec3 kd = glm::round(glm::dvec3(mat.diffuse) * transmitted * 255.0) / 255.0 / transmitted;
+    const glm::dvec3 kd = test::srgb8Stored(glm::dvec3(mat.diffuse) * transmitted) / transmitted;
     glm::dvec3 f;
     if (brdf == Brdf::Ggx && f0 > 0.0) {
         const GltfBrdfMaterial m{kd, 0.0, std::sqrt(std::sqrt(2.0 / (n + 2.0))), gltfIorOfF0(f0)};
@@ -448,13 +448,16 @@ TEST(RenderAnalytic, FlatLitMaterialIsItsColourUnderEveryLight) {
             ASSERT_TRUE(r.graph().isLive("local_lights"));
             ASSERT_TRUE(r.graph().isLive("ibl"));
             const ImageF hdr = r.readHdr();
-            double worst = 0.0;
+            double worst = 0.0, worstCodes = 0.0;
             for (size_t i = 0; i < hdr.rgba.size(); i += 4)
-                for (int c = 0; c < 3; ++c)
-                    worst = std::max(worst, std::abs(double(hdr.rgba[i + size_t(c)]) - double(glm::vec3(0.3f, 0.5f, 0.7f)[c])));
-            // The colour through the RGBA8 diffuse target (one 8-bit step: drivers may round
-            // x.5 either way), then fp16 (half an ulp at 0.7).
-            if (flat) EXPECT_LE(worst, 1.0 / 255.0 + 5e-4) << localLightMethodName(method);
+                for (int c = 0; c < 3; ++c) {
+                    const double got = hdr.rgba[i + size_t(c)], want = glm::dvec3(0.3, 0.5, 0.7)[c];
+                    worst = std::max(worst, std::abs(got - want));
+                    worstCodes = std::max(worstCodes, 255.0 * std::abs(test::srgbEncode(got) - test::srgbEncode(want)));
+                }
+            // The colour through the 8-bit sRGB diffuse target (one code: drivers may round x.5
+            // either way), then fp16 (half an ulp at 0.7: 0.04 of a code there).
+            if (flat) EXPECT_LE(worstCodes, 1.05) << localLightMethodName(method);
             else EXPECT_GT(worst, 0.05) << localLightMethodName(method);       // lit: not its colour
         }
 }

@@ -316,7 +316,7 @@ bool visibleGroundPoint(const Scene& s, int w, int h, int x, int y, glm::dvec3& 
 
 glm::dvec3 lambertRadiance(const Scene& s, double nl) {
     const auto& mat = s.models[0].mesh.materials[0];
-    const glm::dvec3 kd = glm::round(glm::dvec3(mat.diffuse) * 255.0) / 255.0;  // RGBA8 G-buffer
+    const glm::dvec3 kd = test::srgb8Stored(glm::dvec3(mat.diffuse));  // the 8-bit sRGB G-buffer
     const auto& light = s.directionalLights[0];
     return kd / M_PI * glm::dvec3(light.color) * double(light.intensity) * std::max(nl, 0.0) + glm::dvec3(s.ambient) * kd;
 }
@@ -471,9 +471,9 @@ TEST(ShadowRender, GgxPlaneMatchesAnalyticRadiance) {
     settings.brdf = Brdf::Ggx;
     ImageF hdr = renderHdr(s, settings, w, h);
     const auto& mat = s.models[0].mesh.materials[0];
-    // The G-buffer holds kd (1 - F0) in 8 bits.
+    // The G-buffer holds kd (1 - F0) in 8-bit sRGB.
     const double f0 = 0.5;
-    const glm::dvec3 kdStored = glm::round(glm::dvec3(mat.diffuse) * (1.0 - f0) * 255.0) / 255.0;
+    const glm::dvec3 kdStored = test::srgb8Stored(glm::dvec3(mat.diffuse) * (1.0 - f0));
     const glm::dvec3 L = -glm::normalize(glm::dvec3(s.directionalLights[0].direction)), N(0, 1, 0);
     const double alpha = std::sqrt(2.0 / (40.0 + 2.0));
     int checked = 0;
@@ -691,7 +691,7 @@ std::string expectNoCreaseLeak(ShadowSettings::Raster raster, ShadowSettings::Co
     const int w = 128, h = 96;
     Scene s = cornerScene();
     const glm::dvec3 toLight = -glm::normalize(glm::dvec3(s.directionalLights[0].direction));
-    const double ambient = double(s.ambient.x) * std::round(0.6 * 255.0) / 255.0;
+    const double ambient = double(s.ambient.x) * test::srgb8Stored(0.6);
     std::string used;
     for (bool zeroBias : {true, false})
         for (auto f : {ShadowSettings::Filter::Off}) {

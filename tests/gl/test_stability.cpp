@@ -269,7 +269,7 @@ TEST(StabilityShadow, LightParallelToTheSurfaceAddsNothing) {
                 ImageF hdr = r.readHdr();
                 EXPECT_EQ(scan(hdr).bad, 0u);
                 const double kd = brdf == Brdf::Ggx ? 0.62 * (1.0 - 0.5) : 0.62;
-                const double expected = 0.25 * std::round(kd * 255.0) / 255.0;
+                const double expected = 0.25 * test::srgb8Stored(kd);  // the 8-bit sRGB G-buffer
                 int floorPixels = 0;
                 for (int y = 0; y < rs.height; ++y)
                     for (int x = 0; x < rs.width; ++x) {
@@ -313,7 +313,7 @@ TEST(StabilityRender, LightAtTheCameraAndOnTheSurface) {
     onFloor.range = 0.4f;
     s.pointLights = {atCamera, onFloor};
     Renderer r(s);
-    const glm::dvec3 kd = glm::round(glm::dvec3(0.55, 0.32, 0.21) * 255.0) / 255.0;  // RGBA8 albedo, away from rounding ties
+    const glm::dvec3 kd = test::srgb8Stored(glm::dvec3(0.55, 0.32, 0.21));  // the 8-bit sRGB G-buffer, away from rounding ties
     for (GBufferMode mode : allGBufferModes())
         for (LocalLightMethod method : allLocalLightMethods())
             for (Brdf brdf : {Brdf::BlinnPhong, Brdf::Ggx}) {

@@ -89,6 +89,44 @@ TEST(GBufferFormat, RebuiltPositionsAllocateNoPositionTarget) {
         }
 }
 
+// The base colour's 8-bit storage is sRGB, as its textures are, in every layout and both G-buffer
+// modes: the live gbuffer.diffuse (kd) is SRGB8_A8, and gbuffer.specular (F0) SRGB8_A8 in the seed
+// formats (8-bit colour) or RGBA16F (11 significant bits) in the others: the two storages
+// GBufferFormats.EverySrgbBaseColourCodeRoundTripsInEveryLayoutAndMode renders every code through.
+TEST(GBufferFormat, BaseColourIsSrgbOrHalfFloatInEveryLayoutAndMode) {
+    const Scene scene = sphereScene();
+    for (GBufferNormalFormat f : allGBufferFormats())
+        for (GBufferPositionMode m : allGBufferPositionModes())
+            for (GBufferMode mode : allGBufferModes()) {
+                RenderSettings settings;
+                settings.width = 64;
+                settings.height = 48;
+                settings.gbuffer = {f, m, mode};
+                FrameData frame = makeFrameData(scene, settings, 0.0f);
+                fg::FrameGraph g;
+                PassStates passes;
+                buildFrameGraph(g, passes, frame);
+                g.compile();
+                const std::string name =
+                    std::string(gbufferFormatName(f)) + "/" + gbufferPositionName(m) + " " + gbufferModeName(mode);
+                int checked = 0;
+                for (const auto& r : g.resources()) {
+                    if (!r.live) continue;
+                    if (r.name == "gbuffer.diffuse") {
+                        EXPECT_EQ(r.desc.format, GLenum(GL_SRGB8_ALPHA8)) << name;
+                        ++checked;
+                    }
+                    if (r.name == "gbuffer.specular") {
+                        EXPECT_EQ(r.desc.format, shininessInNormalTarget(f) ? GLenum(GL_SRGB8_ALPHA8) : GLenum(GL_RGBA16F))
+                            << name;
+                        ++checked;
+                    }
+                }
+                EXPECT_EQ(checked, 2) << name;
+                EXPECT_EQ(g.isLive("gbuffer_resolve"), mode == GBufferMode::Visibility) << name;
+            }
+}
+
 // --light-range-scale: every light's range is scaled (shading, scissor, volumes and tiles agree).
 TEST(GBufferFormat, LightRangeScaleScalesEveryRange) {
     const Scene scene = sphereScene();
