@@ -1,4 +1,4 @@
-// Toon in CUDA: luminance ramp and Sobel outlines on depth and normals, per
+// Toon in CUDA: luminance ramp and outlines on depth steps and normal creases, per
 // engine/post/post_math.hpp (the CPU reference runs the same functions), one launch over
 // shared-memory tiles of the G-buffer.
 #include "cuda/interop.hpp"
@@ -47,8 +47,7 @@ __global__ void __launch_bounds__(kToonBlockX * kToonBlockY)
             n[1][j][i] = nn.y;
             n[2][j][i] = nn.z;
         }
-    const float zc = fmaxf(z[1][1], 1e-6f);
-    const bool edge = post::sobelSquared(z) / (zc * zc) > p.depthEdge * p.depthEdge ||
+    const bool edge = post::depthEdge(z, x > 0 && x < width - 1, y > 0 && y < height - 1) > p.depthEdge ||
                       post::sobelSquared(n[0]) + post::sobelSquared(n[1]) + post::sobelSquared(n[2]) >
                           p.normalEdge * p.normalEdge;
     float4 h = hdr.load(x, y);

@@ -1,7 +1,8 @@
 #version 450
-// Toon: the luminance ramp of common/post.glsl on every covered texel, and black outlines
-// where the Sobel gradient of eye depth (relative to the centre depth) or of the eye-space normal
-// exceeds its threshold. Uncovered texels (G-buffer background) read depth uFarDepth and normal 0.
+// Toon: the luminance ramp of common/post.glsl on every covered texel, and black outlines where the
+// depth steps (depthEdge: the relative step, 0 on any plane) or the Sobel gradient of the eye-space
+// normal exceeds its threshold. Uncovered texels (G-buffer background) read depth uFarDepth and
+// normal 0.
 #include "common/tonemap.glsl"
 #include "common/post.glsl"
 #define LP_GBUFFER_READ
@@ -29,8 +30,8 @@ void main() {
             ny[j * 3 + i] = n.y;
             nz[j * 3 + i] = n.z;
         }
-    float zc = max(z[4], 1e-6);
-    bool edge = sobelSquared(z) / (zc * zc) > uDepthEdge * uDepthEdge ||
+    bvec2 inside = bvec2(p.x > 0 && p.x < size.x - 1, p.y > 0 && p.y < size.y - 1);
+    bool edge = depthEdge(z, inside) > uDepthEdge ||
                 sobelSquared(nx) + sobelSquared(ny) + sobelSquared(nz) > uNormalEdge * uNormalEdge;
     vec3 c = sanitizeHdr(imageLoad(uHdr, p).rgb);
     bool covered = !gbufferIsBackground(p);

@@ -60,6 +60,30 @@ LP_POST_HD inline float sobelSquared(const float v[3][3]) {
     return (gx * gx + gy * gy) * (1.0f / 64.0f);
 }
 
+// The toon's depth edge of a 3x3 neighbourhood of eye depths z[row][col] (> 0): the largest second
+// difference of inverse depth w = 1 / z through the centre (across, down, both diagonals) over the
+// largest w (the nearest depth). A plane's w is affine in screen space, so any plane, at any angle,
+// reads 0; a step from depth z1 to z2 > z1 reads (z2 - z1) / z2 on the pixels either side of it,
+// whatever its distance (the gap over the farther depth, below 1; against the sky almost 1).
+// Directions through a tap past the image's border are left out (clamped to the border, their
+// difference would be a first one: a sloped plane's slope): hasX, the pixel has a neighbour on
+// either side in x; hasY, in y.
+LP_POST_HD inline float depthEdge(const float z[3][3], bool hasX, bool hasY) {
+    float w[3][3];
+    float nearest = 0.0f;
+    for (int j = 0; j < 3; ++j)
+        for (int i = 0; i < 3; ++i) {
+            w[j][i] = 1.0f / fmaxf(z[j][i], 1e-6f);
+            nearest = fmaxf(nearest, w[j][i]);
+        }
+    const float c = 2.0f * w[1][1];
+    const float across = hasX ? fabsf(w[1][0] - c + w[1][2]) : 0.0f;
+    const float down = hasY ? fabsf(w[0][1] - c + w[2][1]) : 0.0f;
+    const float diagonal = hasX && hasY ? fabsf(w[0][0] - c + w[2][2]) : 0.0f;
+    const float antidiagonal = hasX && hasY ? fabsf(w[0][2] - c + w[2][0]) : 0.0f;
+    return fmaxf(fmaxf(across, down), fmaxf(diagonal, antidiagonal)) / nearest;
+}
+
 // Separable 4-tap weights (1, 5, 7, 3) / 16 of the mip chain's upsample: a 3x3 tent (Jimenez 2014)
 // on the coarse level, then bilinear to the fine texel. Even fine x uses coarse x/2 - 2 .. x/2 + 1.
 LP_POST_HD inline float upsampleWeight(int tap, bool odd) {

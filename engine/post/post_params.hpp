@@ -30,7 +30,7 @@ struct BloomParams {
 
 struct ToonParams {
     int levels = 4;             // bands of the ramp
-    float depthEdge = 0.2f;     // outline where |Sobel(z)| / 8 / z exceeds this
+    float depthEdge = 0.1f;     // outline where depthEdge (post_math.hpp), the relative depth step, exceeds this
     float normalEdge = 0.5f;    // outline where |Sobel(n)| / 8 exceeds this (= sin of half the crease angle)
     float farDepth = 100.0f;    // eye depth given to pixels no geometry covers
 };

@@ -207,11 +207,10 @@ std::vector<unsigned char> toonEdges(const ImageF& position, const ImageF& norma
                     n[1][j][i] = nn.g;
                     n[2][j][i] = nn.b;
                 }
-            const float zc = fmaxf(z[1][1], 1e-6f);
-            const float depthEdge = sobelSquared(z) / (zc * zc);
             const float normalEdge = sobelSquared(n[0]) + sobelSquared(n[1]) + sobelSquared(n[2]);
             edges[size_t(y) * size_t(w) + size_t(x)] =
-                depthEdge > p.depthEdge * p.depthEdge || normalEdge > p.normalEdge * p.normalEdge;
+                depthEdge(z, x > 0 && x < w - 1, y > 0 && y < h - 1) > p.depthEdge ||
+                normalEdge > p.normalEdge * p.normalEdge;
         }
     return edges;
 }

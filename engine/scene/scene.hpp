@@ -73,7 +73,7 @@ struct BloomEffect {
 struct ToonEffect {
     bool enabled = false;
     int levels = 4;
-    float edgeThreshold = 0.2f;
+    float edgeThreshold = 0.1f;  // depth steps of more than this over the farther depth are outlined
 };
 
 struct Effects {

@@ -36,6 +36,26 @@ float sobelSquared(float v[9]) {
     return (gx * gx + gy * gy) * (1.0 / 64.0);
 }
 
+// The toon's depth edge of a 3x3 neighbourhood of eye depths z[row * 3 + col] (> 0), as
+// engine/post/post_math.hpp's depthEdge: the largest second difference of 1 / z through the centre
+// over the largest 1 / z, directions through a tap past the image's border left out (has.x: a
+// neighbour on either side in x; has.y: in y). A plane reads 0 at any angle; a step from z1 to
+// z2 > z1 reads (z2 - z1) / z2.
+float depthEdge(float z[9], bvec2 has) {
+    float w[9];
+    float nearest = 0.0;
+    for (int k = 0; k < 9; ++k) {
+        w[k] = 1.0 / max(z[k], 1e-6);
+        nearest = max(nearest, w[k]);
+    }
+    float c = 2.0 * w[4];
+    float across = has.x ? abs(w[3] - c + w[5]) : 0.0;
+    float down = has.y ? abs(w[1] - c + w[7]) : 0.0;
+    float diagonal = all(has) ? abs(w[0] - c + w[8]) : 0.0;
+    float antidiagonal = all(has) ? abs(w[2] - c + w[6]) : 0.0;
+    return max(max(across, down), max(diagonal, antidiagonal)) / nearest;
+}
+
 // Mip-chain upsample taps (1, 5, 7, 3) / 16; reversed for odd fine texels.
 float upsampleWeight(int tap, bool odd) {
     const float w[4] = float[4](1.0 / 16.0, 5.0 / 16.0, 7.0 / 16.0, 3.0 / 16.0);

@@ -3,8 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <functional>
 #include <limits>
 #include <random>
+#include <string>
+
+#include <glm/glm.hpp>
 
 #include "engine/gl/handles.hpp"
 #include "engine/gl/shader.hpp"
@@ -324,9 +329,9 @@ ImageF runGlslToon(const ToonInputs& in, const post::ToonParams& p) {
 
 }  // namespace
 
-// A depth step 2 -> 4 at column 32: Sobel / 8 reads 1 on columns 31 and 32 (relative 0.5 and
-// 0.25 > 0.2) and exactly 0 elsewhere, so the outline is exactly columns 31 and 32 on every row,
-// in the CPU reference and on the GPU (black there, never black elsewhere).
+// A depth step 2 -> 4 at column 32: the depth edge reads (4 - 2) / 4 = 0.5 > 0.2 on columns 31 and 32
+// and exactly 0 elsewhere, so the outline is exactly columns 31 and 32 on every row, in the CPU
+// reference and on the GPU (black there, never black elsewhere).
 TEST(PostToonGlsl, EdgesExactlyOnADepthStep) {
     ToonInputs in = depthStep(32);
     post::ToonParams p;
@@ -359,6 +364,88 @@ TEST(PostToonGlsl, NormalCreaseThresholdIsHalfAngleSine) {
         EXPECT_EQ(bool(edges[size_t(10) * kW + 31]), expected) << degrees;
         EXPECT_EQ(at(gpu, 31, 10, 0) == 0.0f, expected) << degrees;
         EXPECT_EQ(at(gpu, 10, 10, 0) == 0.0f, false) << degrees;
+    }
+}
+
+namespace {
+// Outline mask of the GLSL toon (black texels of a grey image) and of the CPU reference; the first
+// texel where they differ from `expected`, or "" where both match it everywhere.
+std::string firstWrongOutline(const ToonInputs& in, const post::ToonParams& p, const std::function<bool(int, int)>& expected) {
+    const ImageF gpu = runGlslToon(in, p);
+    const std::vector<unsigned char> cpu = post::toonEdges(in.position, in.normal, p);
+    for (int y = 0; y < in.hdr.height; ++y)
+        for (int x = 0; x < in.hdr.width; ++x) {
+            const bool want = expected(x, y);
+            const bool glsl = gpu.rgba[(size_t(y) * size_t(gpu.width) + size_t(x)) * 4] == 0.0f;
+            const bool reference = cpu[size_t(y) * size_t(in.hdr.width) + size_t(x)] != 0;
+            if (glsl != want || reference != want) {
+                char what[160];
+                std::snprintf(what, sizeof what, "texel (%d, %d): outline expected %d, GLSL %d, CPU reference %d", x, y,
+                              int(want), int(glsl), int(reference));
+                return what;
+            }
+        }
+    return "";
+}
+}  // namespace
+
+// A depth step the relative size of the Cornell box's tall block against the back wall (front face
+// at 1.07 m, wall at 1.36 m: (1.36 - 1.07) / 1.36 = 0.21), at 0.5, 5, 50 and 500 times that
+// distance, across columns (the block's side) and across rows (its top), with the default
+// thresholds: outlined exactly on the two texels either side of the step (the edge reads 0.21 on
+// both, 0 elsewhere), on the GLSL path and in the CPU reference. The old measure (|Sobel(z)| / 8 / z
+// over 0.2) read 0.14 and 0.11 there: no outline.
+TEST(PostToonGlsl, RelativeDepthStepIsOutlinedAtAnyDistance) {
+    const post::ToonParams defaults;
+    for (double scale : {0.5, 5.0, 50.0, 500.0})
+        for (bool rows : {false, true}) {
+            ToonInputs in = depthStep(0);
+            for (int y = 0; y < kH; ++y)
+                for (int x = 0; x < kW; ++x)
+                    at(in.position, x, y, 2) = -float(scale * ((rows ? y < 24 : x < 32) ? 1.07 : 1.36));
+            const std::string wrong = firstWrongOutline(in, defaults, [&](int x, int y) {
+                return rows ? (y == 23 || y == 24) : (x == 31 || x == 32);
+            });
+            EXPECT_EQ(wrong, "") << "step at " << scale << " x the Cornell distance, across " << (rows ? "rows" : "columns");
+        }
+}
+
+// No false edges: a flat floor seen at a grazing angle, the camera 1 m above it looking 30 degrees
+// down, the image's top edge 1 degree below the horizon (rows from 1 m to 33 m away), its G-buffer
+// from the analytic ray-plane hits: no outline at the default threshold, nor at a tenth of it, on
+// the GLSL path and in the CPU reference (the old measure, |Sobel(z)| / 8 / z over 0.2, outlined its
+// four farthest rows).
+TEST(PostToonGlsl, GrazingPlaneHasNoOutline) {
+    ToonInputs in = depthStep(0);
+    const double height = 1.0, pitch = 30.0 * M_PI / 180.0;
+    // Vertical field of view such that the top row's ray meets the floor 1 degree below the horizon.
+    const double topAngle = 1.0 * M_PI / 180.0, halfFov = pitch - topAngle;
+    const double tanHalf = std::tan(halfFov), aspect = double(kW) / double(kH);
+    const glm::dvec3 forward(0.0, -std::sin(pitch), -std::cos(pitch)), up(0.0, std::cos(pitch), -std::sin(pitch));
+    const glm::dvec3 floorNormal(0.0, 1.0, 0.0);  // world: camera at (0, height, 0), floor y = 0
+    double nearest = 1e30, farthest = 0.0;
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x) {
+            const double sx = ((x + 0.5) / kW * 2.0 - 1.0) * tanHalf * aspect, sy = (1.0 - (y + 0.5) / kH * 2.0) * tanHalf;
+            const glm::dvec3 dir = forward + sy * up + sx * glm::dvec3(1.0, 0.0, 0.0);
+            const double t = height / -dir.y;
+            // Eye space: x right, y = up, -z = forward; the hit at t * (sx, sy, -1).
+            at(in.position, x, y, 0) = float(t * sx);
+            at(in.position, x, y, 1) = float(t * sy);
+            at(in.position, x, y, 2) = float(-t);
+            nearest = std::min(nearest, t);
+            farthest = std::max(farthest, t);
+            const glm::dvec3 n(0.0, glm::dot(floorNormal, up), -glm::dot(floorNormal, forward));  // eye-space normal
+            at(in.normal, x, y, 0) = 0.0f;
+            at(in.normal, x, y, 1) = float(n.y);
+            at(in.normal, x, y, 2) = float(n.z);
+        }
+    EXPECT_LT(nearest, 1.1);
+    EXPECT_GT(farthest, 30.0);
+    for (float threshold : {post::ToonParams{}.depthEdge, post::ToonParams{}.depthEdge / 10.0f}) {
+        post::ToonParams p;
+        p.depthEdge = threshold;
+        EXPECT_EQ(firstWrongOutline(in, p, [](int, int) { return false; }), "") << "threshold " << threshold;
     }
 }
 
