@@ -31,6 +31,7 @@ void setShadowUniforms(GLuint prog, const FrameData& frame, const ShadowMaps& ma
     std::vector<glm::vec4> cascadeInfo(size_t(kMaxShadowedLights * kMaxShadowCascades), glm::vec4(0.0f));
     std::vector<glm::mat3> eyeToLight(size_t(kMaxShadowedLights), glm::mat3(1.0f));
     int columns = 1, tileSize = 1;
+    bool marked = false;  // every light's atlas is drawn with the same raster
     for (size_t slot = 0; slot < maps.size() && slot < size_t(kMaxShadowedLights); ++slot) {
         const LightShadowMap& m = maps[slot];
         if (m.light < lightCount) slotOfLight[size_t(m.light)] = GLint(slot);
@@ -38,6 +39,7 @@ void setShadowUniforms(GLuint prog, const FrameData& frame, const ShadowMaps& ma
         eyeToLight[slot] = m.frustum.eyeToLight;
         columns = m.frustum.columns;  // the same settings for every light
         tileSize = m.frustum.tileSize;
+        marked = m.marked && *m.marked;
         for (size_t c = 0; c < m.frustum.cascades.size(); ++c) {
             const ShadowCascade& sc = m.frustum.cascades[c];
             eyeToClip[slot * kMaxShadowCascades + c] = sc.eyeToClip;
@@ -53,6 +55,7 @@ void setShadowUniforms(GLuint prog, const FrameData& frame, const ShadowMaps& ma
     glProgramUniformMatrix3fv(prog, loc(prog, "uShadowEyeToLight"), kMaxShadowedLights, GL_FALSE, glm::value_ptr(eyeToLight[0]));
     glProgramUniform1i(prog, loc(prog, "uShadowColumns"), columns);
     glProgramUniform1i(prog, loc(prog, "uShadowTileSize"), tileSize);
+    glProgramUniform1i(prog, loc(prog, "uShadowAtlasMarked"), marked ? 1 : 0);
     glProgramUniform1f(prog, loc(prog, "uShadowDepthBias"), s.depthBias);
     glProgramUniform1f(prog, loc(prog, "uShadowNormalBias"), s.normalBias);
 }

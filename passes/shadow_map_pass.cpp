@@ -114,6 +114,8 @@ uint64_t casterSignature(const FrameData& frame) {
     return f.h;
 }
 
+bool atlasIsMarked(ShadowSettings::Raster resolvedRaster) { return resolvedRaster == ShadowSettings::Raster::Conservative; }
+
 bool growsCastersInHardware(ShadowSettings::Raster resolvedRaster, bool hardwareConservative) {
     return hardwareConservative &&
            (resolvedRaster == ShadowSettings::Raster::Conservative || resolvedRaster == ShadowSettings::Raster::Split);
@@ -932,6 +934,7 @@ ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const
                     raster = resolveAutoRaster(*s, [&](ShadowSettings::Raster r) {
                         drawAtlas(*s, frame, fr, everyTile, r, texture, d.width, d.height);
                     });
+                s->atlasMarked = atlasIsMarked(raster);
                 std::vector<ShadowTileWork> atlasWork = work;
                 for (ShadowTileWork& w : atlasWork) w.fromSpare = false;  // copied below, after the spare is drawn
                 drawAtlas(*s, frame, fr, atlasWork, raster, texture, d.width, d.height);
@@ -991,6 +994,7 @@ ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const
                     }
             });
         map.depth = data.depth;
+        map.marked = &state.atlasMarked;
         maps.push_back(std::move(map));
     }
     state.cacheStats.quarters += quartersThisFrame;

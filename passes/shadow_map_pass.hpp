@@ -233,6 +233,10 @@ struct ShadowMapPass {
     bool autoResolved = false;
     ShadowSettings::Raster autoRaster = ShadowSettings::Raster::Conservative;
     std::string autoReport;  // the line logged: the choice, the measured times or "cached", the file
+    // Whether the atlases' depths are marked (atlasIsMarked of the raster they were drawn with): set
+    // by the shadow passes when they run (auto resolves there), read by the passes that sample the
+    // atlases after them in the same frame (LightShadowMap::marked).
+    bool atlasMarked = false;
     // --shadow-cache on: one kept atlas per shadowed light
     std::map<int, ShadowAtlasCache> atlases;  // by light index
     // --shadow-redraw-budget: the new square being drawn a quarter at a time, and where (D32F, an
@@ -260,6 +264,11 @@ std::vector<ShadowTileKey> shadowTileKeys(const ShadowFrustum& frustum, const Sh
                                           ShadowSettings::Raster resolvedRaster, bool hardwareConservative);
 // Whether `resolvedRaster` grows its casters by GL_NV_conservative_raster (conservative and split only).
 bool growsCastersInHardware(ShadowSettings::Raster resolvedRaster, bool hardwareConservative);
+// Whether an atlas drawn with `resolvedRaster` is marked: each depth's lowest bit says whether a face
+// towards the light covers its texel's centre (shaders/common/shadow_caster_depth.glsl). Conservative,
+// which draws every caster through that file; split draws the faces towards the light plainly, plain
+// and compute all of them: their rasterised depths' lowest bits say nothing.
+bool atlasIsMarked(ShadowSettings::Raster resolvedRaster);
 
 // --shadow-raster auto's cache: one line per GPU, "<raster>\t<GL_VENDOR / GL_RENDERER / GL_VERSION>",
 // in $LIGHTPASS_CACHE_DIR/shadow_raster.txt, else $XDG_CACHE_HOME/lightpass/, else ~/.cache/lightpass/.
@@ -270,6 +279,7 @@ struct LightShadowMap {
     int light = -1;          // index into frameDirectionalLights(frame)
     fg::ResourceId depth;    // the atlas
     ShadowFrustum frustum;   // cascades, matrices, tile layout
+    const bool* marked = nullptr;  // ShadowMapPass::atlasMarked, known once the pass has run this frame
 };
 using ShadowMaps = std::vector<LightShadowMap>;
 

@@ -5,6 +5,7 @@
 // that it only partly covers still occludes the receiver behind that part. Faces towards the light
 // are the lit receivers themselves: they keep the centre depth that the receivers' plane bias
 // (shadow.glsl) expects, so a flat lit surface never shadows itself (common/shadow_caster_depth.glsl).
+// Every depth is marked with whether a face towards the light covers its texel's centre.
 // LP_SHADOW_CONSERVATIVE: the geometry-shader path (shadow_depth.geom grows the triangle by half a
 // texel and passes its box and depth range). LP_SHADOW_HARDWARE_CONSERVATIVE: GL_CONSERVATIVE_-
 // RASTERIZATION_NV makes a fragment for every texel the triangle touches; the triangle's vertices
@@ -19,14 +20,17 @@
 flat in vec4 vTexelBounds;
 flat in vec2 vDepthRange;
 flat in int vFacesAway;
+flat in vec2 vTriangle[3];  // the triangle before growing (window xy)
 uniform float uSlopeBias;  // --shadow-slope-bias: the lit faces' slope-scaled offset (as glPolygonOffset's factor)
 
 void main() {
     if (any(lessThan(gl_FragCoord.xy, vTexelBounds.xy)) || any(greaterThan(gl_FragCoord.xy, vTexelBounds.zw))) discard;
     // Faces away from the light get no slope bias: they are never lit receivers, and pushing them
     // back would undo the half texel that keeps a crease in their shadow.
-    gl_FragDepth = conservativeCasterDepth(gl_FragCoord.z, vec2(dFdx(gl_FragCoord.z), dFdy(gl_FragCoord.z)), vDepthRange,
-                                           vFacesAway == 1, uSlopeBias);
+    bool front = vFacesAway == 0 && windowPointInTriangle(gl_FragCoord.xy, vTriangle[0], vTriangle[1], vTriangle[2]);
+    gl_FragDepth = shadowDepthMarked(conservativeCasterDepth(gl_FragCoord.z, vec2(dFdx(gl_FragCoord.z), dFdy(gl_FragCoord.z)),
+                                                             vDepthRange, vFacesAway == 1, uSlopeBias),
+                                     front);
 }
 #elif defined(LP_SHADOW_HARDWARE_CONSERVATIVE)
 // One draw per facing (the other culled), faces towards the light first, and each promises
@@ -52,9 +56,11 @@ void main() {
 #ifdef LP_SHADOW_FACES_AWAY
     // The centre's depth from the plane too: gl_FragCoord.z carries this draw's polygon offset.
     float centre = a.z + dot(gradient, gl_FragCoord.xy - a.xy);
-    gl_FragDepth = conservativeCasterDepth(centre, gradient, vec2(range.x, 1.0), true, uSlopeBias);
+    gl_FragDepth = shadowDepthMarked(conservativeCasterDepth(centre, gradient, vec2(range.x, 1.0), true, uSlopeBias), false);
 #else
-    gl_FragDepth = max(conservativeCasterDepth(gl_FragCoord.z, gradient, range, false, uSlopeBias), gl_FragCoord.z);
+    gl_FragDepth = shadowDepthMarked(max(conservativeCasterDepth(gl_FragCoord.z, gradient, range, false, uSlopeBias),
+                                         gl_FragCoord.z),
+                                     windowPointInTriangle(gl_FragCoord.xy, a.xy, b.xy, c.xy));
 #endif
 }
 #else

@@ -14,6 +14,7 @@ uniform int uDepthZeroToOne;   // 1 when clip depth is 0..1 (glClipControl), els
 flat out vec4 vTexelBounds;    // window xy min, max of the triangle grown by half a texel
 flat out vec2 vDepthRange;     // the triangle's nearest and farthest window depth
 flat out int vFacesAway;       // 1: the triangle faces away from the light (window winding clockwise)
+flat out vec2 vTriangle[3];    // its window xy before growing: which texel centres it covers
 
 float cross2(vec2 a, vec2 b) { return a.x * b.y - a.y * b.x; }
 
@@ -60,6 +61,7 @@ void main() {
         vTexelBounds = vec4(lo, hi);
         vDepthRange = depthRange;
         vFacesAway = area < 0.0 ? 1 : 0;
+        vTriangle = p;
         EmitVertex();
     }
     EndPrimitive();

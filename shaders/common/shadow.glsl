@@ -6,6 +6,7 @@
 // its slope or the kernel's size, and the constant bias can stay small.
 #ifndef LP_SHADOW_GLSL
 #define LP_SHADOW_GLSL
+#include "common/shadow_caster_depth.glsl"
 
 // ShadowSettings::Filter
 #define LP_SHADOW_FILTER_OFF 0
@@ -20,22 +21,30 @@ vec2 shadowReceiverGradient(vec3 nLight, float texelOverRange) {
     return nLight.xy / max(nLight.z, 0.01) * texelOverRange;
 }
 
-// Texel compare results: lit, occluded, or no caster at all in that texel (cleared to 1.0).
-const float LP_SHADOW_NO_CASTER = -1.0;
+// Texel compare results: lit, occluded, or silent: the texel says nothing about the receiver.
+const float LP_SHADOW_SILENT = -1.0;
 
-// 1 where a texel tc (inside the tile) holding depth `stored` does not occlude the receiver, 0
-// where it does, LP_SHADOW_NO_CASTER where it holds no caster (casters cover every texel they touch:
-// shadow_depth.geom).
-float shadowCompareStored(float stored, ivec2 tc, vec2 pos, float z, vec2 grad, float bias) {
-    if (stored >= 1.0) return LP_SHADOW_NO_CASTER;
+// 1 where a texel tc (inside the tile) holding depth `stored` does not occlude the receiver, 0 where it
+// does, LP_SHADOW_SILENT where it says nothing about the receiver:
+// - it holds no caster (cleared to 1.0; casters cover every texel they touch: shadow_depth.geom);
+// - in a marked atlas (`marked`: shadow_caster_depth.glsl), no face towards the light covers its
+//   centre (a face turned away from the light, or a face grown past its edge) and it does not
+//   occlude the receiver. A receiver lit there would be such a face at that centre, so the receiver's
+//   plane, extrapolated to the texel, runs past the receiver's end. At a closed crease the texels past
+//   the crease hold only the grown edges of its two faces, and the receiver's plane continued past
+//   the crease lies in front of the face that shadows it: lit, though no receiver is there.
+float shadowCompareStored(float stored, ivec2 tc, vec2 pos, float z, vec2 grad, float bias, bool marked) {
+    if (stored >= 1.0) return LP_SHADOW_SILENT;
     float expected = z + dot(grad, vec2(tc) + 0.5 - pos) - bias;
-    return expected <= stored ? 1.0 : 0.0;
+    if (expected > stored) return 0.0;
+    return marked && !shadowDepthFrontAtCentre(stored) ? LP_SHADOW_SILENT : 1.0;
 }
 
 // The same for texel t, clamped into the tile, read from the atlas.
-float shadowTexelCompare(sampler2D map, ivec2 t, ivec2 tileMin, ivec2 tileMax, vec2 pos, float z, vec2 grad, float bias) {
+float shadowTexelCompare(sampler2D map, ivec2 t, ivec2 tileMin, ivec2 tileMax, vec2 pos, float z, vec2 grad, float bias,
+                         bool marked) {
     ivec2 tc = clamp(t, tileMin, tileMax);
-    return shadowCompareStored(texelFetch(map, tc, 0).r, tc, pos, z, grad, bias);
+    return shadowCompareStored(texelFetch(map, tc, 0).r, tc, pos, z, grad, bias, marked);
 }
 
 // The depths of texels t, t + (1, 0), t + (0, 1) and t + (1, 1), each clamped into the tile, in that
@@ -54,13 +63,6 @@ vec4 shadowDepths2x2(sampler2D map, vec2 atlasSize, ivec2 t, ivec2 tileMin, ivec
     vec2 lo = o0.y == 0 ? row0 : row1;  // the row of t.y
     vec2 hi = o1.y == 0 ? row0 : row1;  // the row of t.y + 1
     return vec4(o0.x == 0 ? lo.x : lo.y, o1.x == 0 ? lo.x : lo.y, o0.x == 0 ? hi.x : hi.y, o1.x == 0 ? hi.x : hi.y);
-}
-
-// 1 where texel t does not occlude the receiver, else 0. Cleared texels (no caster) never occlude,
-// even where the receiver's plane, extrapolated to the texel, lies past the far end of the range.
-float shadowTexelLit(sampler2D map, ivec2 t, ivec2 tileMin, ivec2 tileMax, vec2 pos, float z, vec2 grad, float bias) {
-    float r = shadowTexelCompare(map, t, tileMin, tileMax, pos, z, grad, bias);
-    return r == LP_SHADOW_NO_CASTER ? 1.0 : r;
 }
 
 // 16-tap Poisson disc (max radius 1.29), scaled to LP_SHADOW_POISSON_RADIUS texels and rotated per
@@ -116,16 +118,16 @@ void shadowTap(int filterMode, int k, vec2 pos, mat2 rotation, out ivec2 texel, 
     weight = wx * wy / (n * n);
 }
 
-// Sum over a 2x2 block of texels t .. t + (1, 1) (depths d from shadowDepths2x2, in its order) of
-// weight w times the compare, a texel with no caster taking the receiver's own answer.
-float shadowBlockSum(vec4 d, vec4 w, ivec2 t, ivec2 tileMin, ivec2 tileMax, vec2 pos, float z, vec2 grad,
-                     float bias, float own) {
-    vec4 c = vec4(shadowCompareStored(d.x, clamp(t, tileMin, tileMax), pos, z, grad, bias),
-                  shadowCompareStored(d.y, clamp(t + ivec2(1, 0), tileMin, tileMax), pos, z, grad, bias),
-                  shadowCompareStored(d.z, clamp(t + ivec2(0, 1), tileMin, tileMax), pos, z, grad, bias),
-                  shadowCompareStored(d.w, clamp(t + ivec2(1, 1), tileMin, tileMax), pos, z, grad, bias));
-    c = mix(c, vec4(own), equal(c, vec4(LP_SHADOW_NO_CASTER)));
-    return dot(w, c);
+// Over a 2x2 block of texels t .. t + (1, 1) (depths d from shadowDepths2x2, in its order): the sum of
+// weight w times the compare, and the sum of the weights, both over the texels that are not silent.
+vec2 shadowBlockSum(vec4 d, vec4 w, ivec2 t, ivec2 tileMin, ivec2 tileMax, vec2 pos, float z, vec2 grad, float bias,
+                    bool marked) {
+    vec4 c = vec4(shadowCompareStored(d.x, clamp(t, tileMin, tileMax), pos, z, grad, bias, marked),
+                  shadowCompareStored(d.y, clamp(t + ivec2(1, 0), tileMin, tileMax), pos, z, grad, bias, marked),
+                  shadowCompareStored(d.z, clamp(t + ivec2(0, 1), tileMin, tileMax), pos, z, grad, bias, marked),
+                  shadowCompareStored(d.w, clamp(t + ivec2(1, 1), tileMin, tileMax), pos, z, grad, bias, marked));
+    vec4 says = vec4(notEqual(c, vec4(LP_SHADOW_SILENT)));
+    return vec2(dot(w * says, c), dot(w, says));
 }
 
 // Weight of texel column (or row) i of a (2r+2)-wide PCF block, -r <= i <= r + 1, at fraction f.
@@ -133,18 +135,38 @@ float shadowPcfWeight(int i, int r, float f) {
     return i == -r ? 1.0 - f : (i == r + 1 ? f : 1.0);
 }
 
+// The filter off: the receiver's own texel. Where that one is silent, the four texels around the
+// lookup (a bilinear compare, silent ones left out, the others' weights renormalised) decide: next to
+// a closed crease the own texel's centre may lie past the crease, and the lookup's neighbours on the
+// receiver's side of it then say the crease is in shadow. All silent: lit (nothing the light sees
+// lies in front of the receiver there).
+float shadowSingleLookup(sampler2D map, vec2 atlasSize, vec2 pos, ivec2 tileMin, ivec2 tileMax, float z, vec2 grad,
+                         float bias, bool marked) {
+    float own = shadowTexelCompare(map, ivec2(floor(pos)), tileMin, tileMax, pos, z, grad, bias, marked);
+    if (own != LP_SHADOW_SILENT) return own;
+    vec2 p = pos - 0.5;
+    ivec2 t = ivec2(floor(p));
+    vec2 f = p - floor(p);
+    vec4 w = vec4((1.0 - f.x) * (1.0 - f.y), f.x * (1.0 - f.y), (1.0 - f.x) * f.y, f.x * f.y);
+    vec2 sum = shadowBlockSum(shadowDepths2x2(map, atlasSize, t, tileMin, tileMax), w, t, tileMin, tileMax, pos, z, grad,
+                              bias, marked);
+    return sum.y > 0.0 ? sum.x / sum.y : 1.0;
+}
+
 // Fraction of light reaching the receiver (0 shadowed .. 1 lit) with the chosen filter: the texel
 // compares of shadowTap (the same texels and weights), read four at a time (shadowDepths2x2).
+// `marked`: the atlas's depths say whether a face towards the light covers their texel's centre
+// (shadow_caster_depth.glsl).
 float shadowFilter(sampler2D map, int filterMode, vec2 pos, ivec2 tileMin, ivec2 tileMax, float z, vec2 grad,
-                   float bias, vec2 pixel) {
-    // A tap on a texel with no caster lies past the silhouette of everything the light sees; the
-    // receiver is itself a caster, so such a tap only reaches past an edge where the receiver meets
-    // another caster (a concave corner) or ends. It says nothing about the light there: it takes the
-    // answer of the receiver's own texel, so a crease in shadow stays in shadow under any kernel.
-    float own = shadowTexelLit(map, ivec2(floor(pos)), tileMin, tileMax, pos, z, grad, bias);
-    if (filterMode == LP_SHADOW_FILTER_OFF) return own;
+                   float bias, bool marked, vec2 pixel) {
     vec2 atlasSize = vec2(textureSize(map, 0));
-    float sum = 0.0;
+    if (filterMode == LP_SHADOW_FILTER_OFF)
+        return shadowSingleLookup(map, atlasSize, pos, tileMin, tileMax, z, grad, bias, marked);
+    // A silent tap lies where the receiver is not: past the silhouette of everything the light sees
+    // (no caster), or past the receiver's end (the grown edges at a closed crease). It says nothing
+    // about the light on the receiver, so it is left out and the weights of the others are
+    // renormalised: a crease in shadow stays in shadow under any kernel, up to the crease itself.
+    vec2 sum = vec2(0.0);  // (weighted compares, weights) over the taps that are not silent
     if (filterMode == LP_SHADOW_FILTER_POISSON) {
         float angle = 6.28318531 * interleavedGradientNoise(pixel);
         float c = cos(angle), s = sin(angle);
@@ -154,28 +176,30 @@ float shadowFilter(sampler2D map, int filterMode, vec2 pos, ivec2 tileMin, ivec2
             ivec2 t = ivec2(floor(p));
             vec2 f = p - floor(p);
             vec4 w = vec4((1.0 - f.x) * (1.0 - f.y), f.x * (1.0 - f.y), (1.0 - f.x) * f.y, f.x * f.y);
-            sum += shadowBlockSum(shadowDepths2x2(map, atlasSize, t, tileMin, tileMax), w, t, tileMin, tileMax, pos,
-                                  z, grad, bias, own);
+            sum += shadowBlockSum(shadowDepths2x2(map, atlasSize, t, tileMin, tileMax), w, t, tileMin, tileMax, pos, z,
+                                  grad, bias, marked);
         }
-        return sum / 16.0;
-    }
-    // 3x3 and 5x5: (2r+1)^2 bilinear compares at unit offsets, as (2r+2)^2 texels with separable
-    // weights (1 - f, 1, ..., 1, f), read as (r+1)^2 blocks of 2x2.
-    int r = filterMode == LP_SHADOW_FILTER_PCF5 ? 2 : 1;
-    vec2 p = pos - 0.5;
-    ivec2 corner = ivec2(floor(p));
-    vec2 f = p - floor(p);
-    for (int j = -r; j <= r; j += 2) {
-        vec2 wy = vec2(shadowPcfWeight(j, r, f.y), shadowPcfWeight(j + 1, r, f.y));
-        for (int i = -r; i <= r; i += 2) {
-            vec2 wx = vec2(shadowPcfWeight(i, r, f.x), shadowPcfWeight(i + 1, r, f.x));
-            ivec2 t = corner + ivec2(i, j);
-            sum += shadowBlockSum(shadowDepths2x2(map, atlasSize, t, tileMin, tileMax), vec4(wx * wy.x, wx * wy.y), t,
-                                  tileMin, tileMax, pos, z, grad, bias, own);
+    } else {
+        // 3x3 and 5x5: (2r+1)^2 bilinear compares at unit offsets, as (2r+2)^2 texels with separable
+        // weights (1 - f, 1, ..., 1, f), read as (r+1)^2 blocks of 2x2.
+        int r = filterMode == LP_SHADOW_FILTER_PCF5 ? 2 : 1;
+        vec2 p = pos - 0.5;
+        ivec2 corner = ivec2(floor(p));
+        vec2 f = p - floor(p);
+        for (int j = -r; j <= r; j += 2) {
+            vec2 wy = vec2(shadowPcfWeight(j, r, f.y), shadowPcfWeight(j + 1, r, f.y));
+            for (int i = -r; i <= r; i += 2) {
+                vec2 wx = vec2(shadowPcfWeight(i, r, f.x), shadowPcfWeight(i + 1, r, f.x));
+                ivec2 t = corner + ivec2(i, j);
+                sum += shadowBlockSum(shadowDepths2x2(map, atlasSize, t, tileMin, tileMax), vec4(wx * wy.x, wx * wy.y), t,
+                                      tileMin, tileMax, pos, z, grad, bias, marked);
+            }
         }
     }
-    float n = float(2 * r + 1);
-    return sum / (n * n);
+    // Every tap silent (the PCF kernels hold the texels the filter off reads, Poisson's may not):
+    // as the filter off.
+    if (sum.y > 0.0) return sum.x / sum.y;
+    return shadowSingleLookup(map, atlasSize, pos, tileMin, tileMax, z, grad, bias, marked);
 }
 
 #endif

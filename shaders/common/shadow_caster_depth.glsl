@@ -1,6 +1,9 @@
 // The depth a conservatively rasterised shadow caster writes in one texel (issue #16), shared by the
 // geometry-shader path (shadow_depth.geom) and the hardware one (GL_NV_conservative_raster), so both
-// write the same depths. Window units: xy in texels, depth in [0, 1].
+// write the same depths, and what each depth says about the texel's centre (read by
+// common/shadow.glsl). Window units: xy in texels, depth in [0, 1].
+#ifndef LP_SHADOW_CASTER_DEPTH_GLSL
+#define LP_SHADOW_CASTER_DEPTH_GLSL
 
 // The gradient (dz/dx, dz/dy) of the depth plane through a triangle's three window-space vertices
 // (xy, depth). vec2(0) for a triangle of zero area (edge-on to the light: no plane over xy).
@@ -24,3 +27,30 @@ float conservativeCasterDepth(float centreDepth, vec2 gradient, vec2 depthRange,
     float depth = facesAway ? centreDepth - 0.5 * (g.x + g.y) : centreDepth + slopeBias * max(g.x, g.y);
     return clamp(depth, depthRange.x, depthRange.y);
 }
+
+// Whether window point p lies in the triangle a, b, c (either winding; its edges included).
+bool windowPointInTriangle(vec2 p, vec2 a, vec2 b, vec2 c) {
+    float e0 = (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x);
+    float e1 = (c.x - b.x) * (p.y - b.y) - (c.y - b.y) * (p.x - b.x);
+    float e2 = (a.x - c.x) * (p.y - c.y) - (a.y - c.y) * (p.x - c.x);
+    return (e0 >= 0.0 && e1 >= 0.0 && e2 >= 0.0) || (e0 <= 0.0 && e1 <= 0.0 && e2 <= 0.0);
+}
+
+// What a texel's depth says about its centre: --shadow-raster conservative draws every caster through
+// this file, and each depth it writes carries in its lowest bit whether a face towards the light
+// covers the texel's centre (0) or not (1: a face turned away from the light, or a face grown past
+// its edge). Only a texel of the first kind can show a lit receiver where the filter compares it;
+// the shadow filter needs that at a closed crease, where the texels past the crease hold only the
+// grown edges of the two faces (common/shadow.glsl). The depth is rounded up to the next float with
+// that bit, at most one ulp farther (6e-8 at depth 0.5, far under any bias): never nearer, so a draw
+// that promises depth_greater keeps its promise. A depth past 1 clamps to 1: no caster (the depth
+// range is padded, so no caster lies there).
+float shadowDepthMarked(float depth, bool frontAtCentre) {
+    uint bits = floatBitsToUint(clamp(depth, 0.0, 1.0));
+    return (bits & 1u) == (frontAtCentre ? 0u : 1u) ? uintBitsToFloat(bits) : uintBitsToFloat(bits + 1u);
+}
+
+// Whether an atlas depth written by shadowDepthMarked has a face towards the light at its texel's centre.
+bool shadowDepthFrontAtCentre(float depth) { return (floatBitsToUint(depth) & 1u) == 0u; }
+
+#endif

@@ -34,6 +34,7 @@ uniform int uShadowTileSize;
 #ifndef LP_SHADOW_FILTER_MODE
 #error "common/sun_light.glsl needs LP_SHADOW_FILTER_MODE (passes/global_light_pass: sunShadowFilterDefine)"
 #endif
+uniform bool uShadowAtlasMarked; // the atlases' depths are marked (passes/shadow_map_pass: conservative raster)
 uniform float uShadowDepthBias;  // shadow texels of depth
 uniform float uShadowNormalBias; // shadow texels along N, times (1 - N.L)
 
@@ -64,13 +65,13 @@ float shadowVisibility(int slot, vec3 P, vec3 N, float nl, vec2 pixel) {
         // shader that gathers (shadowDepths2x2) through a dynamically indexed sampler array.
         // Compute shaders keep the one call (a quarter of the code to compile).
         switch (slot) {
-        case 0: return shadowFilter(uShadowMap[0], LP_SHADOW_FILTER_MODE, pos, tileMin, tileMax, z, grad, bias, pixel);
-        case 1: return shadowFilter(uShadowMap[1], LP_SHADOW_FILTER_MODE, pos, tileMin, tileMax, z, grad, bias, pixel);
-        case 2: return shadowFilter(uShadowMap[2], LP_SHADOW_FILTER_MODE, pos, tileMin, tileMax, z, grad, bias, pixel);
-        default: return shadowFilter(uShadowMap[3], LP_SHADOW_FILTER_MODE, pos, tileMin, tileMax, z, grad, bias, pixel);
+        case 0: return shadowFilter(uShadowMap[0], LP_SHADOW_FILTER_MODE, pos, tileMin, tileMax, z, grad, bias, uShadowAtlasMarked, pixel);
+        case 1: return shadowFilter(uShadowMap[1], LP_SHADOW_FILTER_MODE, pos, tileMin, tileMax, z, grad, bias, uShadowAtlasMarked, pixel);
+        case 2: return shadowFilter(uShadowMap[2], LP_SHADOW_FILTER_MODE, pos, tileMin, tileMax, z, grad, bias, uShadowAtlasMarked, pixel);
+        default: return shadowFilter(uShadowMap[3], LP_SHADOW_FILTER_MODE, pos, tileMin, tileMax, z, grad, bias, uShadowAtlasMarked, pixel);
         }
 #else
-        return shadowFilter(uShadowMap[slot], LP_SHADOW_FILTER_MODE, pos, tileMin, tileMax, z, grad, bias, pixel);
+        return shadowFilter(uShadowMap[slot], LP_SHADOW_FILTER_MODE, pos, tileMin, tileMax, z, grad, bias, uShadowAtlasMarked, pixel);
 #endif
     }
     return 1.0;  // outside every cascade: nothing there casts
