@@ -503,6 +503,11 @@ void drawAtlas(ShadowMapPass& state, const FrameData& frame, const ShadowFrustum
             glViewport(x, y, fr.tileSize, fr.tileSize);
             glScissor(x + region.rect.x, y + region.rect.y, region.rect.width, region.rect.height);
             const CasterList& regionCasters = region.casters;
+            // Conservative: a face towards the light grown past its edge yields to one covering the
+            // texel's centre by a texel's world size in depth (shadow_caster_depth.glsl).
+            const float texelDepth = fr.cascades[c].texelWorld / fr.cascades[c].depthRange;
+            for (GLuint prog : {conservativeProg, hardwareProgs[0]})
+                if (prog) glProgramUniform1f(prog, glGetUniformLocation(prog, "uTexelDepth"), texelDepth);
             if (plainProg) {
                 // Split: only the faces towards the light (counter-clockwise in the light's window,
                 // as shadow_depth.geom's orientation), which need neither growth nor gl_FragDepth.

@@ -4,7 +4,8 @@
 // the texel's centre): a closed concave corner's shadowed side is cast by such a face, so a texel
 // that it only partly covers still occludes the receiver behind that part. Faces towards the light
 // are the lit receivers themselves: they keep the centre depth that the receivers' plane bias
-// (shadow.glsl) expects, so a flat lit surface never shadows itself (common/shadow_caster_depth.glsl).
+// (shadow.glsl) expects, so a flat lit surface never shadows itself (common/shadow_caster_depth.glsl),
+// where they cover the texel's centre; grown past their edge they yield to a face that covers it.
 // Every depth is marked with whether a face towards the light covers its texel's centre.
 // LP_SHADOW_CONSERVATIVE: the geometry-shader path (shadow_depth.geom grows the triangle by half a
 // texel and passes its box and depth range). LP_SHADOW_HARDWARE_CONSERVATIVE: GL_CONSERVATIVE_-
@@ -22,15 +23,18 @@ flat in vec2 vDepthRange;
 flat in int vFacesAway;
 flat in vec2 vTriangle[3];  // the triangle before growing (window xy)
 uniform float uSlopeBias;  // --shadow-slope-bias: the lit faces' slope-scaled offset (as glPolygonOffset's factor)
+uniform float uTexelDepth; // one texel's world size in window depth (the cascade's texel / depth range)
 
 void main() {
     if (any(lessThan(gl_FragCoord.xy, vTexelBounds.xy)) || any(greaterThan(gl_FragCoord.xy, vTexelBounds.zw))) discard;
+    vec2 gradient = vec2(dFdx(gl_FragCoord.z), dFdy(gl_FragCoord.z));
+    bool covers = windowPointInTriangle(gl_FragCoord.xy, vTriangle[0], vTriangle[1], vTriangle[2]);
     // Faces away from the light get no slope bias: they are never lit receivers, and pushing them
     // back would undo the half texel that keeps a crease in their shadow.
-    bool front = vFacesAway == 0 && windowPointInTriangle(gl_FragCoord.xy, vTriangle[0], vTriangle[1], vTriangle[2]);
-    gl_FragDepth = shadowDepthMarked(conservativeCasterDepth(gl_FragCoord.z, vec2(dFdx(gl_FragCoord.z), dFdy(gl_FragCoord.z)),
-                                                             vDepthRange, vFacesAway == 1, uSlopeBias),
-                                     front);
+    float depth = vFacesAway == 0 && !covers
+                      ? grownFrontCasterDepth(gl_FragCoord.z, gradient, vDepthRange, uSlopeBias, uTexelDepth)
+                      : conservativeCasterDepth(gl_FragCoord.z, gradient, vDepthRange, vFacesAway == 1, uSlopeBias);
+    gl_FragDepth = shadowDepthMarked(depth, vFacesAway == 0 && covers);
 }
 #elif defined(LP_SHADOW_HARDWARE_CONSERVATIVE)
 // One draw per facing (the other culled), faces towards the light first, and each promises
@@ -46,6 +50,7 @@ void main() {
 // the nearest depth over the texel is at most the depth of a point of the triangle in it.
 layout(location = 0) pervertexNV in vec3 vWindow[3];
 uniform float uSlopeBias;
+uniform float uTexelDepth;  // one texel's world size in window depth
 layout(depth_greater) out float gl_FragDepth;
 
 void main() {
@@ -58,9 +63,10 @@ void main() {
     float centre = a.z + dot(gradient, gl_FragCoord.xy - a.xy);
     gl_FragDepth = shadowDepthMarked(conservativeCasterDepth(centre, gradient, vec2(range.x, 1.0), true, uSlopeBias), false);
 #else
-    gl_FragDepth = shadowDepthMarked(max(conservativeCasterDepth(gl_FragCoord.z, gradient, range, false, uSlopeBias),
-                                         gl_FragCoord.z),
-                                     windowPointInTriangle(gl_FragCoord.xy, a.xy, b.xy, c.xy));
+    bool covers = windowPointInTriangle(gl_FragCoord.xy, a.xy, b.xy, c.xy);
+    float depth = covers ? conservativeCasterDepth(gl_FragCoord.z, gradient, range, false, uSlopeBias)
+                         : grownFrontCasterDepth(gl_FragCoord.z, gradient, range, uSlopeBias, uTexelDepth);
+    gl_FragDepth = shadowDepthMarked(max(depth, gl_FragCoord.z), covers);
 #endif
 }
 #else

@@ -28,6 +28,19 @@ float conservativeCasterDepth(float centreDepth, vec2 gradient, vec2 depthRange,
     return clamp(depth, depthRange.x, depthRange.y);
 }
 
+// The depth a face towards the light writes in a texel whose centre it does not cover (it touches the
+// texel only because it is grown: the silhouettes and thin casters that conservative coverage keeps).
+// It yields to any face that covers the centre, which writes its centre depth plus the slope bias:
+// this one writes the farthest depth its plane reaches over the texel past that, plus texelDepth
+// (one texel's world size in window depth), more than a tessellated curved surface's next facet
+// departs from this one's plane within half a texel (up to about 2 radians between facets). So a
+// texel where front faces meet holds the one at its centre, and a grown front face holds a texel
+// only where no front face covers its centre. Never nearer than the triangle's nearest vertex.
+float grownFrontCasterDepth(float centreDepth, vec2 gradient, vec2 depthRange, float slopeBias, float texelDepth) {
+    vec2 g = abs(gradient);
+    return max(centreDepth + slopeBias * max(g.x, g.y) + 0.5 * (g.x + g.y) + texelDepth, depthRange.x);
+}
+
 // Whether window point p lies in the triangle a, b, c (either winding; its edges included).
 bool windowPointInTriangle(vec2 p, vec2 a, vec2 b, vec2 c) {
     float e0 = (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x);

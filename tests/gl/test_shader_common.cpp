@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <functional>
 #include <limits>
 #include <random>
@@ -373,4 +375,60 @@ TEST(ShaderShadowCasterDepth, NearestDepthOverTheTexelMatchesTheDepthPlane) {
     }
     EXPECT_GT(zeroArea, 0);
     EXPECT_GT(checkedPoints, 10000);
+}
+
+// The conservative raster's marks and grown front faces (common/shadow_caster_depth.glsl): a marked
+// depth is the depth rounded up to the next float whose lowest bit says whether a face towards the
+// light covers the texel's centre (0) or not, and reads back so; the point-in-triangle test against
+// double precision (either winding, points off the edges); a front face grown past its edge writes
+// its plane's farthest depth over the texel plus the slope bias and one texel of depth, never nearer
+// than its nearest vertex, so it lies behind a face covering the centre in the same plane.
+TEST(ShaderShadowCasterDepth, MarksRoundUpAndGrownFrontFacesYield) {
+    std::mt19937 rng(37);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    std::vector<glm::vec4> in;
+    for (int k = 0; k < 600; ++k) {
+        // x: a depth in [0, 1) (every 50th exactly representable with few bits), y: front (k odd);
+        // z, w: a gradient (window depth per texel), for the grown depth; then a triangle and a point.
+        const float depth = k % 50 == 0 ? float(k) / 1024.0f : float(unit(rng));
+        in.emplace_back(depth, float(k % 2), float((unit(rng) - 0.5) * 0.02), float((unit(rng) - 0.5) * 0.02));
+        in.emplace_back(float(unit(rng) * 16.0), float(unit(rng) * 16.0), float(unit(rng) * 16.0), float(unit(rng) * 16.0));
+        in.emplace_back(float(unit(rng) * 16.0), float(unit(rng) * 16.0), float(unit(rng) * 16.0), float(unit(rng) * 16.0));
+    }
+    const float slopeBias = 1.0f, texelDepth = 0.003f;
+    const std::string body = R"(
+        uint i = gl_GlobalInvocationID.x;
+        if (i % 3u != 0u) return vec4(0.0);
+        vec4 d = inData[i], t = inData[i + 1u], u = inData[i + 2u];
+        float marked = shadowDepthMarked(d.x, d.y > 0.5);
+        float grown = grownFrontCasterDepth(d.x, d.zw, vec2(0.25, 0.75), 1.0, 0.003);
+        bool inside = windowPointInTriangle(u.zw, t.xy, t.zw, u.xy);
+        return vec4(marked, shadowDepthFrontAtCentre(marked) ? 1.0 : 0.0, grown, inside ? 1.0 : 0.0);)";
+    const std::vector<glm::vec4> out = runGlsl({"common/shadow_caster_depth.glsl"}, body, in);
+    int pointsChecked = 0;
+    for (size_t k = 0; k < in.size() / 3; ++k) {
+        const glm::vec4 d = in[3 * k], t = in[3 * k + 1], u = in[3 * k + 2], got = out[3 * k];
+        const bool front = d.y > 0.5f;
+        const std::string what = "case " + std::to_string(k) + ", depth " + std::to_string(d.x);
+        EXPECT_GE(got.x, d.x) << what;
+        EXPECT_LE(got.x, std::nextafter(d.x, 2.0f)) << what;
+        uint32_t bits;
+        std::memcpy(&bits, &got.x, sizeof bits);
+        EXPECT_EQ((bits & 1u) == 0u, front) << what;
+        EXPECT_EQ(got.y, front ? 1.0f : 0.0f) << what;
+        const double gx = std::abs(double(d.z)), gy = std::abs(double(d.w));
+        const double covering = double(d.x) + slopeBias * std::max(gx, gy);
+        const double grown = std::max(covering + 0.5 * (gx + gy) + texelDepth, 0.25);
+        EXPECT_NEAR(got.z, grown, 1e-6) << what;
+        EXPECT_GT(double(got.z), covering + 0.99 * texelDepth) << what;
+        // The point against the triangle: edge functions in double, points within 1e-3 of an edge skipped.
+        const glm::dvec2 a(t.x, t.y), b(t.z, t.w), c(u.x, u.y), p(u.z, u.w);
+        auto edge = [&](glm::dvec2 e0, glm::dvec2 e1) { return (e1.x - e0.x) * (p.y - e0.y) - (e1.y - e0.y) * (p.x - e0.x); };
+        const double e[3] = {edge(a, b), edge(b, c), edge(c, a)};
+        if (std::min({std::abs(e[0]), std::abs(e[1]), std::abs(e[2])}) < 1e-3) continue;
+        ++pointsChecked;
+        const bool inside = (e[0] > 0 && e[1] > 0 && e[2] > 0) || (e[0] < 0 && e[1] < 0 && e[2] < 0);
+        EXPECT_EQ(got.w, inside ? 1.0f : 0.0f) << what;
+    }
+    EXPECT_GT(pointsChecked, 500);
 }

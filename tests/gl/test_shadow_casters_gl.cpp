@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -173,4 +175,46 @@ TEST(ShadowConservativeRaster, HardwareLiesBetweenTheGeometryShaderAndThePlainRa
     EXPECT_EQ(plainOnly, 0u);
     EXPECT_LE(hardwareOnly + nearerThanGs, covered / 1000);
     EXPECT_EQ(fartherThanPlain, 0u);
+}
+
+namespace {
+bool markedFrontAtCentre(float depth) {  // shaders/common/shadow_caster_depth.glsl's shadowDepthFrontAtCentre
+    uint32_t bits;
+    std::memcpy(&bits, &depth, sizeof bits);
+    return (bits & 1u) == 0u;
+}
+}  // namespace
+
+// The conservative raster's marks (shaders/common/shadow_caster_depth.glsl), against the plain raster
+// at slope bias 0 on rowOfSpheres (a floor of 32 triangles, spheres of 16 x 8 segments): a texel no caster
+// covers at its centre (plain holds none there) is marked "no face towards the light at the centre";
+// a texel where both hold the same depth (1e-5: the same surface at the centre, which faces the
+// light: faces away write a nearer depth, or lie behind) is marked "face towards the light", also
+// where two triangles of one surface meet (their edges: a face grown past its edge yields to the
+// face that covers the centre). Texel-centre ties on an edge may fall either way: 0.1% allowed.
+TEST(ShadowConservativeRaster, MarksTellWhetherAFaceTowardsTheLightCoversTheCentre) {
+    const Scene s = rowOfSpheres();
+    RenderSettings conservative = twoUnbiasedCascades(), plain = twoUnbiasedCascades();
+    conservative.shadows.raster = ShadowSettings::Raster::Conservative;
+    plain.shadows.raster = ShadowSettings::Raster::Plain;
+    const std::vector<float> c = shadowAtlas(s, conservative), p = shadowAtlas(s, plain);
+    ASSERT_EQ(c.size(), p.size());
+    size_t grown = 0, grownMarkedFront = 0, same = 0, sameMarkedNotFront = 0;
+    for (size_t i = 0; i < c.size(); ++i) {
+        if (c[i] >= 1.0f) continue;
+        if (p[i] >= 1.0f) {
+            ++grown;
+            grownMarkedFront += markedFrontAtCentre(c[i]) ? 1 : 0;
+        } else if (std::abs(c[i] - p[i]) <= 1e-5f) {
+            ++same;
+            sameMarkedNotFront += markedFrontAtCentre(c[i]) ? 0 : 1;
+        }
+    }
+    std::printf("conservative raster marks: %zu texels grown past every caster (%zu marked front), %zu holding plain's "
+                "depth (%zu marked not front)\n",
+                grown, grownMarkedFront, same, sameMarkedNotFront);
+    EXPECT_GT(grown, 200u);
+    EXPECT_GT(same, c.size() / 2);
+    EXPECT_LE(grownMarkedFront, grown / 1000);
+    EXPECT_LE(sameMarkedNotFront, same / 1000);
 }
