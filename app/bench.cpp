@@ -61,7 +61,7 @@ std::vector<std::string> commonFlags(const std::vector<std::string>& args) {
 std::vector<std::vector<std::string>> parseVaryAxis(const std::string& spec) {
     std::vector<std::vector<std::string>> axis;
     // An empty or blank axis would multiply the variants by zero: a bench of nothing that "succeeds".
-    if (words(spec).empty()) throw Error("--vary '" + spec + "': empty (expected 'FLAG V1,V2,...' or 'FLAGS|FLAGS')");
+    if (words(spec).empty()) throw Error("--vary " + quoteUserText(spec) + ": empty (expected 'FLAG V1,V2,...' or 'FLAGS|FLAGS')");
     auto alternatives = split(spec, '|');
     if (alternatives.size() == 1) {
         // "--flag v1,v2,v3": one alternative per value.
@@ -73,8 +73,8 @@ std::vector<std::vector<std::string>> parseVaryAxis(const std::string& spec) {
     }
     for (const auto& alt : alternatives) {
         auto w = words(alt);
-        if (w.empty()) throw Error("--vary '" + spec + "': empty alternative");
-        if (w[0].rfind("--", 0) != 0) throw Error("--vary '" + spec + "': '" + w[0] + "' is not a flag");
+        if (w.empty()) throw Error("--vary " + quoteUserText(spec) + ": empty alternative");
+        if (w[0].rfind("--", 0) != 0) throw Error("--vary " + quoteUserText(spec) + ": " + quoteUserText(w[0]) + " is not a flag");
         axis.push_back(w);
     }
     return axis;

@@ -326,6 +326,8 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    // Before any output is written: a temporary left by SIGINT, SIGTERM or SIGHUP is removed.
+    lp::installTemporaryFileCleanup();
     std::string error;
     int code = 1;
     try {
@@ -337,9 +339,8 @@ int main(int argc, char** argv) {
     }
     lp::flushRepeatedWarnings();  // counts of repeated warnings, before the error so it stays last
     if (!error.empty()) {
-        for (char& c : error)  // one line, whatever a library put in its message
-            if (c == '\n' || c == '\r') c = ' ';
-        std::fprintf(stderr, "lightpass: error: %s\n", error.c_str());
+        // One clean line, whatever a library or a file put in the message.
+        std::fprintf(stderr, "lightpass: error: %s\n", lp::oneLineMessage(error).c_str());
         return 1;
     }
     return code;

@@ -56,7 +56,7 @@ int runSweep(const Options& o) {
     for (const auto& name : o.knobs) {
         std::optional<Knob> k = knobByName(name);
         if (!k)
-            throw Error("sweep: unknown knob '" + name + "' (knobs: " + knobNames() +
+            throw Error("sweep: unknown knob " + quoteUserText(name) + " (knobs: " + knobNames() +
                         "; A+B sweeps every combination of two different knobs)");
         knobs.push_back(std::move(*k));
     }

@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <mutex>
 
+#include "engine/core/error.hpp"
+
 namespace lp {
 namespace {
 std::atomic<int> gLevel{static_cast<int>(LogLevel::Info)};
@@ -30,8 +32,10 @@ void printRepeatsLocked(RepeatState& r) {
     r.repeats = 0;
 }
 
-void emit(LogLevel level, const char* tag, const std::string& message) {
+void emit(LogLevel level, const char* tag, const std::string& text) {
     if (static_cast<int>(level) < gLevel.load()) return;  // not shown: neither a repeat nor news
+    // A warning or an error is one clean line, whatever user text or library message it carries.
+    const std::string message = level >= LogLevel::Warn ? oneLineMessage(text) : text;
     RepeatState& r = repeatState();
     std::lock_guard<std::mutex> lock(r.mutex);
     if (level == LogLevel::Warn && message == r.lastWarning) {

@@ -10,7 +10,8 @@ void setLogLevel(LogLevel level);
 LogLevel logLevel();
 void logDebug(const std::string& message);
 void logInfo(const std::string& message);
-// A warning identical to the one logged just before is not printed again, only counted; the count is
+// Warnings and errors are printed as one line (oneLineMessage: control characters escaped, cut after
+// 600 characters). A warning identical to the one logged just before is not printed again, only counted; the count is
 // printed ("<warning> (repeated N more times)") before the next other message or by the flush below.
 void logWarn(const std::string& message);
 // Prints a pending repeat count; the CLI calls it before its last line.

@@ -14,7 +14,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-[[noreturn]] void fail(const fs::path& path, const std::string& what) { throw Error(path.string() + ": " + what); }
+[[noreturn]] void fail(const fs::path& path, const std::string& what) { throw Error(shownPath(path) + ": " + what); }
 
 std::string typeName(mode_t mode) {
     if (S_ISFIFO(mode)) return "a FIFO";

@@ -20,7 +20,9 @@
 #include "engine/core/error.hpp"
 #include "engine/core/log.hpp"
 #include "engine/io/file_check.hpp"
+#include "engine/io/gltf_container.hpp"
 #include "engine/io/gltf_schema.hpp"
+#include "engine/io/json_text.hpp"
 #include "engine/scene/mesh_ops.hpp"
 
 namespace lp {
@@ -48,28 +50,47 @@ constexpr size_t kMaxNodeDepth = 1024;                        // levels of the n
 constexpr size_t kMaxDrawnPrimitives = size_t(1) << 20;       // primitive instances the nodes draw
 constexpr size_t kMaxDrawnVertices = size_t(1) << 26;         // their vertices and indices, instances counted
 
-// The JSON text of a .gltf file, or of a GLB's first chunk (empty when the GLB header does not
-// hold one: tinygltf then names what is wrong).
-std::string gltfJsonText(const std::string& bytes, bool binary) {
-    if (!binary) return bytes;
-    if (bytes.size() < 20) return {};
-    uint32_t length = 0, type = 0;
-    std::memcpy(&length, bytes.data() + 12, 4);
-    std::memcpy(&type, bytes.data() + 16, 4);
-    if (type != 0x4E4F534Au || length > bytes.size() - 20) return {};  // "JSON"
-    return bytes.substr(20, length);
+// tinygltf reads external buffers through these: only the files the document's buffers name, checked
+// by checkBuffers (it would also read every external image, which SceneGpu reads itself with its
+// checks, and look for a missing file in the current folder). It asks for a buffer by its own spelling
+// of the path (the folder, "/", the URI decoded with '+' as a space); `paths` maps that to the file the
+// URI names (RFC 3986: '+' is a plus), read with the same regular-file check as every other input.
+struct BufferFiles {
+    std::map<std::string, fs::path> paths;
+    const fs::path* find(const std::string& asked) const {
+        const auto it = paths.find(asked);
+        return it == paths.end() ? nullptr : &it->second;
+    }
+};
+// The path tinygltf asks for when a buffer's URI is `uri` (its dlib::urldecode and JoinPath).
+std::string tinygltfPath(const std::string& baseDir, const std::string& uri) {
+    auto hex = [](unsigned char c) -> unsigned char {
+        if (c >= '0' && c <= '9') return c - '0';
+        if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+        if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+        return 0;
+    };
+    std::string decoded;
+    for (size_t i = 0; i < uri.size(); ++i) {
+        if (uri[i] == '+') {
+            decoded += ' ';
+        } else if (uri[i] == '%' && uri.size() > i + 2) {
+            decoded += char(hex(static_cast<unsigned char>(uri[i + 1])) << 4 | hex(static_cast<unsigned char>(uri[i + 2])));
+            i += 2;
+        } else {
+            decoded += uri[i];
+        }
+    }
+    if (baseDir.empty()) return decoded;
+    return baseDir.back() == '/' ? baseDir + decoded : baseDir + "/" + decoded;
 }
-
-// tinygltf reads external buffers and images through these: the same regular-file check as every
-// other input (a FIFO named as a buffer would block the read forever).
-bool fileExists(const std::string& path, void*) {
-    std::error_code ec;
-    return fs::exists(path, ec);
-}
+bool fileExists(const std::string& path, void* files) { return static_cast<const BufferFiles*>(files)->find(path) != nullptr; }
 std::string expandPath(const std::string& path, void*) { return path; }
-bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void*) {
+bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* files) {
+    const fs::path* file = static_cast<const BufferFiles*>(files)->find(path);
+    if (!file) return false;
     try {
-        const std::string bytes = readFileChecked(path, kMaxImageFileBytes, "a glTF buffer or image");
+        const std::string bytes = readFileChecked(*file, kMaxImageFileBytes, "a glTF buffer");
         out->assign(bytes.begin(), bytes.end());
         return true;
     } catch (const Error& e) {
@@ -77,6 +98,93 @@ bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std:
         return false;
     }
 }
+
+// The file a relative URI names, beside the glTF.
+fs::path uriFile(const std::string& baseDir, const std::string& uri) {
+    return (fs::path(baseDir) / percentDecoded(uri)).lexically_normal();
+}
+
+// Every buffer's data, checked before tinygltf reads it (it refuses any fault with the whole data URI
+// or path in its message, or none at all): a data URI decoded strictly to exactly byteLength bytes; an
+// external file that exists, is a regular file and holds byteLength bytes; a GLB's first buffer without
+// a URI within the BIN chunk. The external files are listed in `files` for the callbacks above.
+void checkBuffers(const nlohmann::json& root, const GltfSource& source, const std::string& file, const std::string& baseDir,
+                  BufferFiles& files) {
+    const auto buffers = root.find("buffers");
+    if (buffers == root.end()) return;
+    for (size_t i = 0; i < buffers->size(); ++i) {
+        const nlohmann::json& b = (*buffers)[i];
+        const std::string w = file + ": buffers[" + std::to_string(i) + "]";
+        const uint64_t byteLength = b["byteLength"].get<uint64_t>();  // the schema: an integer >= 1
+        const auto uriAt = b.find("uri");
+        if (uriAt == b.end()) {
+            if (!source.binary || i > 0)
+                throw Error(w + ": has no uri (only a GLB's first buffer has none: its data is the GLB's BIN chunk)");
+            if (!source.bin || source.binBytes == 0) throw Error(w + ": has no uri, and the GLB has no BIN chunk to hold its data");
+            if (byteLength > source.binBytes)
+                throw Error(w + ".byteLength: " + std::to_string(byteLength) + " bytes, but the GLB's BIN chunk (chunk 1 at byte " +
+                            std::to_string(source.binOffset) + ") holds " + std::to_string(source.binBytes));
+            continue;
+        }
+        const std::string uri = uriAt->get<std::string>();
+        if (isDataUri(uri)) {
+            const DataUri d = decodeDataUri(uri);
+            if (!d.problem.empty()) throw Error(w + ".uri: " + d.problem);
+            if (d.mediaType != "application/octet-stream" && d.mediaType != "application/gltf-buffer")
+                throw Error(w + ".uri: a data URI of media type " + quoteUserText(d.mediaType) +
+                            "; a buffer's is application/octet-stream or application/gltf-buffer");
+            if (d.bytes.size() != byteLength)
+                throw Error(w + ".uri: the data URI holds " + std::to_string(d.bytes.size()) + " bytes, but byteLength is " +
+                            std::to_string(byteLength));
+            continue;
+        }
+        const fs::path path = uriFile(baseDir, uri);
+        uintmax_t size = 0;
+        try {
+            size = requireRegularFile(path, kMaxImageFileBytes, "a glTF buffer");
+        } catch (const Error& e) {
+            // "<path>: file not found": the path as the file names it (a URI may hold anything).
+            std::string why = e.what();
+            if (why.compare(0, path.string().size() + 2, path.string() + ": ") == 0) why.erase(0, path.string().size() + 2);
+            throw Error(w + ".uri: " + quoteUserText(uri, 120) + ": " + why);
+        }
+        if (size != byteLength)
+            throw Error(w + ".uri: " + quoteUserText(uri, 120) + " is " + std::to_string(size) + " bytes, but byteLength is " +
+                        std::to_string(byteLength));
+        files.paths[tinygltfPath(baseDir, uri)] = path;
+    }
+}
+
+// What one of the document's images holds, as read here rather than by tinygltf.
+struct ImageSource {
+    std::shared_ptr<const std::string> encoded;  // a data URI's bytes
+    fs::path path;                                // an external file
+    std::string problem;                          // a data URI that does not decode: why
+    // None of them: a buffer view's bytes (tinygltf's, range-checked by keepEncodedImage).
+};
+std::vector<ImageSource> imageSources(const nlohmann::json& root, const std::string& baseDir) {
+    std::vector<ImageSource> out;
+    const auto images = root.find("images");
+    if (images == root.end()) return out;
+    for (const nlohmann::json& image : *images) {
+        ImageSource s;
+        const auto uri = image.find("uri");
+        if (uri != image.end()) {
+            const std::string text = uri->get<std::string>();
+            if (isDataUri(text)) {
+                DataUri d = decodeDataUri(text);
+                if (!d.problem.empty()) s.problem = d.problem;
+                else if (d.bytes.empty()) s.problem = "data URI: no data";
+                else s.encoded = std::make_shared<const std::string>(std::move(d.bytes));
+            } else {
+                s.path = uriFile(baseDir, text);
+            }
+        }
+        out.push_back(std::move(s));
+    }
+    return out;
+}
+
 bool writeWholeFile(std::string*, const std::string&, const std::vector<unsigned char>&, void*) { return false; }
 
 // Images are decoded when they are uploaded (SceneGpu), so that a bad one becomes a checker with a
@@ -112,13 +220,12 @@ struct Loader {
     const tinygltf::Model& model;
     std::string file;
     MeshLoadReport& report;
+    const std::vector<ImageSource>& images;  // what the document's images hold, by index
 
     [[noreturn]] void fail(const std::string& where, const std::string& what) const { throw Error(file + ": " + where + ": " + what); }
-    void warn(const std::string& where, const std::string& what) const {
-        const std::string msg = file + ": " + where + ": " + what;
-        report.warnings.push_back(msg);
-        logWarn(msg);
-    }
+    // Kept in the report and printed only once the whole file has loaded: a file that fails prints its
+    // one error line alone.
+    void warn(const std::string& where, const std::string& what) const { report.warnings.push_back(file + ": " + where + ": " + what); }
 
     static int componentCount(int type) {
         switch (type) {
@@ -145,22 +252,28 @@ struct Loader {
     }
 
     // The accessor's bytes, checked to lie inside its buffer view and buffer: tinygltf checks neither.
+    // A sparse accessor's are its dense bytes (or zeros, without a buffer view) with its values put in
+    // at its indices, per the spec; they are held by `owned`.
     struct View {
-        const unsigned char* data = nullptr;  // nullptr: no buffer view (all zeros, per the spec)
+        const unsigned char* data = nullptr;  // nullptr: no buffer view and not sparse (all zeros, per the spec)
         size_t stride = 0, count = 0;
         int components = 0, componentType = 0;
         bool normalized = false;
+        std::shared_ptr<std::vector<unsigned char>> owned;
     };
-    View view(int index, const std::string& where, const std::set<int>& types, const std::set<int>& componentTypes) const {
+    // `count`, when given, is the element count the accessor must have (checked before a sparse one's
+    // bytes are made: its count is bounded by no bytes of the file).
+    View view(int index, const std::string& where, const std::set<int>& types, const std::set<int>& componentTypes,
+              std::optional<size_t> count = std::nullopt) const {
         const std::string aw = where + " (accessors[" + std::to_string(index) + "])";
         if (index < 0 || size_t(index) >= model.accessors.size())
             fail(where, "accessor " + std::to_string(index) + " does not exist (" + std::to_string(model.accessors.size()) + " accessors)");
         const tinygltf::Accessor& a = model.accessors[size_t(index)];
-        if (a.sparse.isSparse) fail(aw, "sparse accessors are not supported");
         if (!types.count(a.type)) fail(aw, "unexpected type " + std::to_string(a.type) + " for this attribute");
         if (!componentTypes.count(a.componentType))
             fail(aw, "unexpected componentType " + std::to_string(a.componentType) + " for this attribute");
         if (a.count > kMaxElements) fail(aw, "count " + std::to_string(a.count) + " is over the limit");
+        if (count && a.count != *count) fail(where, std::to_string(a.count) + " elements, but POSITION has " + std::to_string(*count));
         View v;
         v.components = componentCount(a.type);
         v.componentType = a.componentType;
@@ -168,29 +281,87 @@ struct Loader {
         v.count = a.count;
         const size_t elementSize = size_t(v.components) * size_t(componentSize(a.componentType));
         v.stride = elementSize;
-        if (a.bufferView < 0) return v;
-        if (size_t(a.bufferView) >= model.bufferViews.size())
-            fail(aw, "bufferView " + std::to_string(a.bufferView) + " does not exist (" + std::to_string(model.bufferViews.size()) + " buffer views)");
-        const tinygltf::BufferView& bv = model.bufferViews[size_t(a.bufferView)];
-        const std::string bw = "bufferViews[" + std::to_string(a.bufferView) + "]";
+        if (a.bufferView >= 0) {
+            const auto [bytes, viewBytes, viewStride] = bufferView(a.bufferView);
+            const std::string bw = "bufferViews[" + std::to_string(a.bufferView) + "]";
+            if (viewStride) {
+                if (viewStride < elementSize) fail(bw, "byteStride " + std::to_string(viewStride) + " is smaller than an element");
+                v.stride = viewStride;
+            }
+            if (a.count > 0) {
+                const size_t last = a.byteOffset + v.stride * (a.count - 1) + elementSize;  // < 2^28 * 2^8 + ..., no overflow
+                if (a.byteOffset > viewBytes || last > viewBytes)
+                    fail(aw, std::to_string(a.count) + " elements from byte " + std::to_string(a.byteOffset) + " run past the end of " + bw +
+                                 " (" + std::to_string(viewBytes) + " bytes)");
+            }
+            v.data = bytes + a.byteOffset;
+        }
+        if (a.sparse.isSparse) applySparse(a, aw, elementSize, v);
+        return v;
+    }
+
+    // Buffer view `index`: its first byte, length and stride, checked to lie inside its buffer.
+    std::tuple<const unsigned char*, size_t, size_t> bufferView(int index) const {
+        const std::string bw = "bufferViews[" + std::to_string(index) + "]";
+        if (index < 0 || size_t(index) >= model.bufferViews.size())
+            fail(bw, "does not exist (" + std::to_string(model.bufferViews.size()) + " buffer views)");
+        const tinygltf::BufferView& bv = model.bufferViews[size_t(index)];
         if (bv.buffer < 0 || size_t(bv.buffer) >= model.buffers.size())
             fail(bw, "buffer " + std::to_string(bv.buffer) + " does not exist (" + std::to_string(model.buffers.size()) + " buffers)");
         const tinygltf::Buffer& buffer = model.buffers[size_t(bv.buffer)];
         if (bv.byteOffset > buffer.data.size() || bv.byteLength > buffer.data.size() - bv.byteOffset)
             fail(bw, "bytes " + std::to_string(bv.byteOffset) + "+" + std::to_string(bv.byteLength) + " run past the end of buffers[" +
                          std::to_string(bv.buffer) + "] (" + std::to_string(buffer.data.size()) + " bytes)");
-        if (bv.byteStride) {
-            if (bv.byteStride < elementSize) fail(bw, "byteStride " + std::to_string(bv.byteStride) + " is smaller than an element");
-            v.stride = bv.byteStride;
+        return {buffer.data.data() + bv.byteOffset, bv.byteLength, bv.byteStride};
+    }
+
+    // The spec's sparse storage: `sparse.count` indices (unsigned, strictly increasing, below the
+    // accessor's count) and as many tightly packed values of the accessor's type, each replacing the
+    // element at its index of the dense bytes (zeros without a buffer view).
+    void applySparse(const tinygltf::Accessor& a, const std::string& aw, size_t elementSize, View& v) const {
+        const auto& sp = a.sparse;
+        const std::string sw = aw + ".sparse";
+        const size_t n = size_t(sp.count);
+        if (sp.count < 1 || n > a.count) fail(sw + ".count", std::to_string(sp.count) + " must be from 1 to the accessor's count " + std::to_string(a.count));
+        size_t indexSize = 0;
+        switch (sp.indices.componentType) {
+            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: indexSize = 1; break;
+            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: indexSize = 2; break;
+            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: indexSize = 4; break;
+            default: fail(sw + ".indices.componentType", std::to_string(sp.indices.componentType) + " is not 5121, 5123 or 5125");
         }
-        if (a.count > 0) {
-            const size_t last = a.byteOffset + v.stride * (a.count - 1) + elementSize;  // < 2^28 * 2^8 + ..., no overflow
-            if (a.byteOffset > bv.byteLength || last > bv.byteLength)
-                fail(aw, std::to_string(a.count) + " elements from byte " + std::to_string(a.byteOffset) + " run past the end of " + bw +
-                             " (" + std::to_string(bv.byteLength) + " bytes)");
+        auto part = [&](int viewIndex, int byteOffset, size_t bytes, const std::string& pw) {
+            const auto [data, viewBytes, viewStride] = bufferView(viewIndex);
+            (void)viewStride;  // sparse data is tightly packed whatever the view says
+            if (byteOffset < 0 || size_t(byteOffset) > viewBytes || bytes > viewBytes - size_t(byteOffset))
+                fail(pw, std::to_string(n) + " elements of " + std::to_string(bytes / n) + " bytes from byte " + std::to_string(byteOffset) +
+                             " run past the end of bufferViews[" + std::to_string(viewIndex) + "] (" + std::to_string(viewBytes) + " bytes)");
+            return data + byteOffset;
+        };
+        const unsigned char* indices = part(sp.indices.bufferView, sp.indices.byteOffset, n * indexSize, sw + ".indices");
+        const unsigned char* values = part(sp.values.bufferView, sp.values.byteOffset, n * elementSize, sw + ".values");
+        auto dense = std::make_shared<std::vector<unsigned char>>(v.count * elementSize, 0);
+        if (v.data)
+            for (size_t e = 0; e < v.count; ++e) std::memcpy(dense->data() + e * elementSize, v.data + e * v.stride, elementSize);
+        View indexView;
+        indexView.data = indices;
+        indexView.stride = indexSize;
+        indexView.componentType = sp.indices.componentType;
+        uint64_t previous = 0;
+        for (size_t k = 0; k < n; ++k) {
+            const uint32_t at = index(indexView, k);
+            if (at >= v.count)
+                fail(sw + ".indices", "index " + std::to_string(at) + " at position " + std::to_string(k) + " is beyond the accessor's " +
+                                          std::to_string(v.count) + " elements");
+            if (k > 0 && at <= previous)
+                fail(sw + ".indices", "index " + std::to_string(at) + " at position " + std::to_string(k) + " does not follow " +
+                                          std::to_string(previous) + " (sparse indices are strictly increasing)");
+            std::memcpy(dense->data() + size_t(at) * elementSize, values + k * elementSize, elementSize);
+            previous = at;
         }
-        v.data = buffer.data.data() + bv.byteOffset + a.byteOffset;
-        return v;
+        v.owned = dense;
+        v.data = dense->data();
+        v.stride = elementSize;
     }
 
     static float component(const View& v, size_t element, int c) {
@@ -269,15 +440,13 @@ struct Loader {
         const tinygltf::Texture& t = model.textures[size_t(textureIndex)];
         const std::string iw = "textures[" + std::to_string(textureIndex) + "]";
         if (t.source < 0 || size_t(t.source) >= model.images.size()) {
-            warn(iw, "image " + std::to_string(t.source) + " does not exist; using a checker texture");
             TextureRef r;
-            r.encoded = std::make_shared<const std::string>();  // decodes to the checker, with a warning
+            r.problem = (t.source < 0 ? "has no source image" : "image " + std::to_string(t.source) + " does not exist");
             r.key = file + "#" + iw;
             r.uvSet = uvSet;
             return r;
         }
-        const tinygltf::Image& image = model.images[size_t(t.source)];
-        TextureRef r = imageTexture(image, t.source);
+        TextureRef r = imageTexture(model.images[size_t(t.source)], t.source);
         r.sampler = sampler(t.sampler, iw);
         r.uvSet = uvSet;
         return r;
@@ -303,29 +472,22 @@ struct Loader {
         return s;
     }
 
-    // images[source]: its encoded bytes, or the file its URI names.
+    // images[source]: its encoded bytes (a buffer view's, or a data URI's), the file its URI names, or
+    // why it has neither (the checker then stands in, with a warning).
     TextureRef imageTexture(const tinygltf::Image& image, int source) const {
         TextureRef r;
         r.key = file + "#images[" + std::to_string(source) + "]";
-        if (!image.image.empty()) {
+        const ImageSource& from = images[size_t(source)];
+        if (!from.problem.empty()) {
+            r.problem = from.problem;
+        } else if (from.encoded) {
+            r.encoded = from.encoded;
+        } else if (!from.path.empty()) {
+            r = TextureRef::file(from.path);  // SceneGpu reads it with its checks: missing, FIFO, corrupt
+        } else if (!image.image.empty()) {
             r.encoded = std::make_shared<const std::string>(image.image.begin(), image.image.end());
-        } else if (!image.uri.empty() && image.uri.rfind("data:", 0) != 0) {
-            // Not read (missing or unreadable, tinygltf warned): SceneGpu loads the file or warns and
-            // uses the checker. URIs are percent-encoded.
-            std::string decoded;
-            for (size_t i = 0; i < image.uri.size(); ++i) {
-                if (image.uri[i] == '%' && i + 2 < image.uri.size() && std::isxdigit((unsigned char)image.uri[i + 1]) &&
-                    std::isxdigit((unsigned char)image.uri[i + 2])) {
-                    decoded += char(std::stoi(image.uri.substr(i + 1, 2), nullptr, 16));
-                    i += 2;
-                } else {
-                    decoded += image.uri[i];
-                }
-            }
-            const fs::path p = fs::path(file).parent_path() / decoded;
-            r = TextureRef::file(p.lexically_normal());
         } else {
-            r.encoded = std::make_shared<const std::string>();
+            r.problem = "holds no image data";
         }
         return r;
     }
@@ -483,96 +645,173 @@ struct Loader {
         return out;
     }
 
-    static glm::mat4 localMatrix(const tinygltf::Node& n) {
+    // The rotation a node's (x, y, z, w) stands for: the spec asks for a unit quaternion. Another
+    // length is normalised (divided by its largest component first, so that a denormal one such as
+    // 1e-310 keeps its direction instead of collapsing to no rotation); length 0 is no rotation at all:
+    // the identity. `problem` is set for either (empty for a unit quaternion, or one non-finite: the
+    // transform check refuses that).
+    static glm::dquat rotation(const std::vector<double>& q, std::string& problem) {
+        problem.clear();
+        if (q.size() != 4) return glm::dquat(1.0, 0.0, 0.0, 0.0);
+        const glm::dvec4 v(q[0], q[1], q[2], q[3]);
+        const double largest = std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z), std::abs(v.w)});
+        if (!std::isfinite(largest)) return glm::dquat(v.w, v.x, v.y, v.z);
+        if (largest == 0.0) {
+            problem = "zero";
+            return glm::dquat(1.0, 0.0, 0.0, 0.0);
+        }
+        const glm::dvec4 scaled = v / largest;
+        const double length = glm::length(scaled) * largest;
+        if (std::abs(length - 1.0) > 1e-3) problem = "length";
+        const glm::dvec4 unit = glm::normalize(scaled);
+        return glm::dquat(unit.w, unit.x, unit.y, unit.z);
+    }
+
+    static glm::mat4 localMatrix(const tinygltf::Node& n, const glm::dquat& r) {
         if (n.matrix.size() == 16) {
             glm::dmat4 m;
             for (int i = 0; i < 16; ++i) glm::value_ptr(m)[i] = n.matrix[size_t(i)];  // column-major, like glm
             return glm::mat4(m);
         }
         glm::dvec3 t(0.0), s(1.0);
-        glm::dquat r(1.0, 0.0, 0.0, 0.0);  // w, x, y, z
         if (n.translation.size() == 3) t = glm::dvec3(n.translation[0], n.translation[1], n.translation[2]);
         if (n.scale.size() == 3) s = glm::dvec3(n.scale[0], n.scale[1], n.scale[2]);
-        if (n.rotation.size() == 4) r = glm::normalize(glm::dquat(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2]));
         return glm::mat4(glm::translate(glm::dmat4(1.0), t) * glm::mat4_cast(r) * glm::scale(glm::dmat4(1.0), s));
     }
 };
 
 }  // namespace
 
+// A perspective camera's yfov (radians; the schema made it > 0) as the renderer's vertical field of
+// view in degrees, within its (0.5, 179) limits. At pi or above it is no field of view at all: 45
+// degrees stands in; below or above the limits it is clamped; either with a warning.
+template <typename Warn>
+float gltfFieldOfView(double yfov, const std::string& where, Warn&& warn) {
+    constexpr double kPi = 3.14159265358979323846;
+    if (!(yfov < kPi)) {
+        warn(where, formatNumber(yfov) + " rad is not below pi (a field of view under 180 degrees); 45 degrees used");
+        return 45.0f;
+    }
+    const double degrees = yfov * 180.0 / kPi;
+    if (degrees < 0.5) {
+        warn(where, formatNumber(yfov) + " rad (" + formatNumber(degrees) + " degrees) is below the renderer's 0.5 degrees; 0.5 used");
+        return 0.5f;
+    }
+    if (degrees > 179.0) {
+        warn(where, formatNumber(yfov) + " rad (" + formatNumber(degrees) + " degrees) is above the renderer's 179 degrees; 179 used");
+        return 179.0f;
+    }
+    return float(degrees);
+}
+
+// What the file gets wrong and the loader repairs, said once per kind and file: the first place, its
+// count, and how many more in how many other places ("meshes[0].primitives[0].attributes.NORMAL
+// (accessors[2]): 3 normals not finite or zero-length (and 9 more in 2 other accessors); each replaced
+// by the normal of its triangles"). A place is counted once, however many nodes draw its mesh.
+struct Repairs {
+    struct Kind {
+        std::string problem, repair, unit, first;
+        size_t firstCount = 0, more = 0, otherPlaces = 0;
+    };
+    std::vector<Kind> kinds;
+    std::set<std::pair<std::string, std::string>> counted;  // (problem, place)
+    // `count` 0: the place as a whole (an accessor read as normalized), not a number of values.
+    void add(const std::string& where, size_t count, const std::string& problem, const std::string& repair, const std::string& unit) {
+        if (!counted.insert({problem, where}).second) return;
+        for (Kind& k : kinds)
+            if (k.problem == problem) {
+                ++k.otherPlaces;
+                k.more += count;
+                return;
+            }
+        kinds.push_back({problem, repair, unit, where, count, 0, 0});
+    }
+    void warn(const Loader& L) const {
+        for (const Kind& k : kinds) {
+            std::string text = (k.firstCount ? std::to_string(k.firstCount) + " " : std::string()) + k.problem;
+            if (k.otherPlaces)
+                text += " (and " + (k.firstCount ? std::to_string(k.more) + " more " : std::string()) + "in " +
+                        std::to_string(k.otherPlaces) + " other " + k.unit + ")";
+            L.warn(k.first, text + "; " + k.repair);
+        }
+    }
+};
+
 GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
     MeshLoadReport report;
     const std::string file = path.string();
     const std::string bytes = readFileChecked(path, kMaxImageFileBytes, "a glTF file");
+    if (bytes.size() > 0xFFFFFFFFull) throw Error(file + ": over 4 GiB");
+    std::string extension = path.extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    // Every check before tinygltf: the container's lengths, the JSON (depth, syntax, numbers), the
+    // schema, the extensions, the buffers' data. tinygltf's own messages are raw ("Invalid glTF
+    // binary.", the parser's exception text, a whole data URI) and its recursive walks of the document
+    // overflowed the stack on deep nesting; what it is handed now it reads without complaint.
+    GltfSource source = readGltfContainer(bytes, file, extension == ".glb");
+    if (!source.binary) requireUtf8Text(path, source.json);
+    const nlohmann::json root = parseJsonText(source.json, file);
+    const std::vector<GltfSchemaIssue> schemaIssues = checkGltfSchema(root);
+    for (const GltfSchemaIssue& issue : schemaIssues)
+        if (issue.error) throw Error(file + ": " + issue.where + ": " + issue.what);
+    // Before tinygltf, which fails on what such an extension changes (a Draco mesh's accessors have no
+    // bufferView) with a message that does not name the extension.
+    if (const auto required = root.find("extensionsRequired"); required != root.end())
+        for (size_t i = 0; i < required->size(); ++i) {
+            const std::string name = (*required)[i].get<std::string>();
+            if (kSupportedExtensions.count(name)) continue;
+            std::string supported;
+            for (const std::string& known : kSupportedExtensions) supported += (supported.empty() ? "" : ", ") + known;
+            throw Error(file + ": extensionsRequired[" + std::to_string(i) + "]: " + quoteUserText(name) +
+                        " is not supported (supported: " + supported + ")");
+        }
+    const std::string baseDir = path.has_parent_path() ? path.parent_path().string() : std::string(".");
+    BufferFiles bufferFiles;
+    checkBuffers(root, source, file, baseDir, bufferFiles);
+    // Images: data URIs decoded here (one that does not decode becomes the checker with a warning;
+    // tinygltf would refuse the whole file), external files named for SceneGpu to read.
+    std::vector<ImageSource> images = imageSources(root, baseDir);
+    std::string rewritten;  // the document as tinygltf gets it, where it differs from the file's
+    {
+        nlohmann::json forTinygltf;
+        for (size_t i = 0; i < images.size(); ++i) {
+            if (images[i].problem.empty()) continue;
+            if (forTinygltf.is_null()) forTinygltf = root;
+            forTinygltf["images"][i]["uri"] = "data:image/png;base64,AAAA";  // three zero bytes, which it passes on
+        }
+        if (!forTinygltf.is_null()) rewritten = forTinygltf.dump();
+    }
+
     tinygltf::TinyGLTF gltf;
-    gltf.SetFsCallbacks({&fileExists, &expandPath, &readWholeFile, &writeWholeFile, nullptr});
+    gltf.SetFsCallbacks({&fileExists, &expandPath, &readWholeFile, &writeWholeFile, &bufferFiles});
     tinygltf::Model model;
     gltf.SetImageLoader(&keepEncodedImage, &model);
     std::string err, warnText;
-    const std::string baseDir = path.has_parent_path() ? path.parent_path().string() : std::string(".");
-    const bool binary = bytes.size() >= 4 && bytes.compare(0, 4, "glTF") == 0;
-    if (bytes.size() > 0xFFFFFFFFull) throw Error(file + ": over 4 GiB");
-    if (!binary) requireUtf8Text(path, bytes);
-    if (binary && bytes.size() >= 8) {
-        uint32_t container = 0;
-        std::memcpy(&container, bytes.data() + 4, 4);
-        if (container != 2) throw Error(file + ": GLB container version " + std::to_string(container) + ": lightpass reads glTF 2.0 (GLB version 2)");
+    bool ok = false;
+    if (source.binary) {
+        const std::string glb = !rewritten.empty() || source.rebuild
+                                    ? makeGlb(rewritten.empty() ? source.json : rewritten, source.bin, source.binBytes)
+                                    : std::string();
+        const std::string& handed = glb.empty() ? bytes : glb;
+        ok = gltf.LoadBinaryFromMemory(&model, &err, &warnText, reinterpret_cast<const unsigned char*>(handed.data()),
+                                       unsigned(handed.size()), baseDir);
+    } else {
+        const std::string& handed = rewritten.empty() ? source.json : rewritten;
+        ok = gltf.LoadASCIIFromString(&model, &err, &warnText, handed.data(), unsigned(handed.size()), baseDir);
     }
-    // The schema first: tinygltf skips a property of the wrong type silently, and names the element
-    // of the ones it refuses only by the property. A document that does not parse is tinygltf's to name.
-    std::vector<GltfSchemaIssue> schemaIssues;
-    {
-        const nlohmann::json root = nlohmann::json::parse(gltfJsonText(bytes, binary), nullptr, false);
-        if (!root.is_discarded()) schemaIssues = checkGltfSchema(root);
-        for (const GltfSchemaIssue& issue : schemaIssues)
-            if (issue.error) throw Error(file + ": " + issue.where + ": " + issue.what);
-        // Before tinygltf, which fails on what such an extension changes (a Draco mesh's accessors
-        // have no bufferView) with a message that does not name the extension.
-        if (root.is_object() && root.contains("extensionsRequired"))
-            for (const auto& e : root["extensionsRequired"])
-                if (!kSupportedExtensions.count(e.get<std::string>())) {
-                    std::string supported;
-                    for (const std::string& name : kSupportedExtensions) supported += (supported.empty() ? "" : ", ") + name;
-                    throw Error(file + ": extensionsRequired: " + e.get<std::string>() + " is not supported (supported: " + supported + ")");
-                }
-    }
-    const bool ok = binary ? gltf.LoadBinaryFromMemory(&model, &err, &warnText, reinterpret_cast<const unsigned char*>(bytes.data()),
-                                                      unsigned(bytes.size()), baseDir)
-                           : gltf.LoadASCIIFromString(&model, &err, &warnText, bytes.data(), unsigned(bytes.size()), baseDir);
-    auto firstLine = [](std::string s) {
-        while (!s.empty() && (s.back() == '\n' || s.back() == ' ')) s.pop_back();
-        for (char& c : s)
-            if (c == '\n') c = ' ';
-        return s;
-    };
-    if (!ok) {
-        // tinygltf names a missing buffer file but not the buffer: name it as the file does.
-        if (!binary) {
-            const nlohmann::json root = nlohmann::json::parse(bytes, nullptr, false);
-            if (root.is_object() && root.contains("buffers") && root["buffers"].is_array())
-                for (size_t i = 0; i < root["buffers"].size(); ++i) {
-                    const auto& b = root["buffers"][i];
-                    if (!b.is_object() || !b.contains("uri") || !b["uri"].is_string()) continue;
-                    const std::string uri = b["uri"].get<std::string>();
-                    std::error_code ec;
-                    if (uri.rfind("data:", 0) != 0 && !fs::exists(fs::path(baseDir) / uri, ec))
-                        throw Error(file + ": buffers[" + std::to_string(i) + "]: " + (fs::path(baseDir) / uri).string() + ": file not found");
-                }
-        }
-        throw Error(file + ": " + (err.empty() ? std::string("could not be parsed as glTF") : firstLine(err)));
-    }
-    Loader L{model, file, report};
+    // What the checks above did not foresee, one line of it. Its warnings concern images only, which
+    // are read by SceneGpu instead.
+    if (!ok) throw Error(file + ": " + oneLineMessage(err.empty() ? std::string("could not be read as glTF") : err, 300));
+    Loader L{model, file, report, images};
+    Repairs repairs;
+    for (const std::string& w : source.warnings) report.warnings.push_back(file + ": " + w);
     for (const GltfSchemaIssue& issue : schemaIssues) L.warn(issue.where, issue.what);
     // An extension the file uses but does not require is optional to read, yet the model looks
     // different without it (a texture transform, clearcoat, transmission): say which are ignored.
     for (size_t i = 0; i < model.extensionsUsed.size(); ++i)
         if (!kSupportedExtensions.count(model.extensionsUsed[i]))
-            L.warn("extensionsUsed[" + std::to_string(i) + "]", model.extensionsUsed[i] + " is not supported; ignored (the model may look different)");
-    if (!warnText.empty()) {
-        const std::string msg = file + ": " + firstLine(warnText);
-        report.warnings.push_back(msg);
-        logWarn(msg);
-    }
+            L.warn("extensionsUsed[" + std::to_string(i) + "]",
+                   quoteUserText(model.extensionsUsed[i]) + " is not supported; ignored (the model may look different)");
 
     GltfContent out;
     MeshData& mesh = out.mesh;
@@ -614,22 +853,22 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
         }
         auto attr = prim.attributes.find("POSITION");
         if (attr == prim.attributes.end()) L.fail(w, "has no POSITION attribute");
-        const auto pos = L.view(attr->second, w + ".attributes.POSITION", {TINYGLTF_TYPE_VEC3}, positionTypes);
-        // Without a buffer view (and not sparse) every element is zero: no triangle could come of it, and
+        // Without a buffer view and not sparse, every element is zero: no triangle could come of it, and
         // its count, bounded by no bytes of the file, would size the allocations.
-        auto requireData = [&](const Loader::View& v, int accessor, const std::string& where) {
-            if (!v.data && v.count > 0)
-                L.fail(where + " (accessors[" + std::to_string(accessor) + "])",
-                       "has no bufferView, so its " + std::to_string(v.count) + " elements would all be zero");
-        };
-        requireData(pos, attr->second, w + ".attributes.POSITION");
+        const tinygltf::Accessor* positions =
+            attr->second >= 0 && size_t(attr->second) < model.accessors.size() ? &model.accessors[size_t(attr->second)] : nullptr;
+        if (positions && positions->bufferView < 0 && !positions->sparse.isSparse && positions->count > 0)
+            L.fail(w + ".attributes.POSITION (accessors[" + std::to_string(attr->second) + "])",
+                   "has no bufferView and is not sparse, so its " + std::to_string(positions->count) + " elements would all be zero");
+        const auto pos = L.view(attr->second, w + ".attributes.POSITION", {TINYGLTF_TYPE_VEC3}, positionTypes);
         const size_t vertexCount = pos.count;
+        // An attribute's accessor as the warnings name it: meshes[0].primitives[1].attributes.NORMAL (accessors[4]).
+        std::map<std::string, std::string> named;
         auto optional = [&](const char* name, const std::set<int>& types, const std::set<int>& componentTypes, Loader::View& v) {
             auto it = prim.attributes.find(name);
             if (it == prim.attributes.end()) return false;
-            v = L.view(it->second, w + ".attributes." + name, types, componentTypes);
-            if (v.count != vertexCount)
-                L.fail(w + ".attributes." + name, std::to_string(v.count) + " elements, but POSITION has " + std::to_string(vertexCount));
+            v = L.view(it->second, w + ".attributes." + name, types, componentTypes, vertexCount);
+            named[name] = w + ".attributes." + name + " (accessors[" + std::to_string(it->second) + "])";
             return true;
         };
         // Attributes lightpass does not draw with: said once per file (a model with morph targets
@@ -646,12 +885,23 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
         if (uvSets.reads[1] && !hasUv1 && notedOnce("no TEXCOORD_1 for materials[" + std::to_string(prim.material) + "]"))
             L.warn(w + ".attributes", "has no TEXCOORD_1, which materials[" + std::to_string(prim.material) +
                                           "] samples; those textures read TEXCOORD_0");
+        // Integer texture coordinates must be normalized (the spec's attribute table) unless
+        // KHR_mesh_quantization allows raw integers (scaled by a texture transform): read as normalised,
+        // with a warning, rather than as coordinates up to 255 or 65535.
+        for (auto [set, view] : {std::pair<const char*, Loader::View*>{"TEXCOORD_0", hasUv ? &uv : nullptr},
+                                 std::pair<const char*, Loader::View*>{"TEXCOORD_1", hasUv1 ? &uv1 : nullptr}})
+            if (view && !quantized && view->componentType != TINYGLTF_COMPONENT_TYPE_FLOAT && !view->normalized) {
+                repairs.add(named[set], 0, "integer texture coordinates without \"normalized\": true (required without KHR_mesh_quantization)",
+                            "read as normalized", "accessors");
+                view->normalized = true;
+            }
         // COLOR_0: linear RGB or RGBA multiplying the base colour; float, or normalised unsigned bytes
         // or shorts (the spec requires `normalized`; an integer accessor without it is read as
         // normalised, with a warning, rather than as colours up to 255 or 65535).
         const bool hasColors = optional("COLOR_0", {TINYGLTF_TYPE_VEC3, TINYGLTF_TYPE_VEC4}, colorTypes, col);
         if (hasColors && col.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT && !col.normalized) {
-            L.warn(w + ".attributes.COLOR_0", "integer colours must be normalized; read as normalized");
+            repairs.add(named["COLOR_0"], 0, "integer colours without \"normalized\": true (the spec requires it)", "read as normalized",
+                        "accessors");
             col.normalized = true;
         }
         const int colorComponents = hasColors ? std::min(col.components, 4) : 0;
@@ -659,8 +909,7 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
         // KHR_texture_transform: applied to the uvs here. Where it turns or flips the uv axes of the
         // normal map's set, the file's tangents (made for the untransformed uvs) are replaced by
         // generated ones.
-        const bool hasTangents = optional("TANGENT", {TINYGLTF_TYPE_VEC4}, directionTypes, tan) &&
-                                 !uvSets.transform[uvSets.normalSet].turnsAxes();
+        bool hasTangents = optional("TANGENT", {TINYGLTF_TYPE_VEC4}, directionTypes, tan) && !uvSets.transform[uvSets.normalSet].turnsAxes();
 
         // Triangle list, as vertex numbers of this primitive.
         std::vector<uint32_t> corners;
@@ -696,24 +945,35 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
         const bool mirrored = glm::determinant(linear) < 0.0f;
         MeshData part;
         part.vertices.resize(vertexCount);
+        // Vertices whose normal from the file is not finite or zero-length: given their triangles' normal below.
+        std::vector<uint32_t> badNormals;
+        size_t badUvs = 0, badUvs1 = 0, badTangents = 0;
         for (size_t v = 0; v < vertexCount; ++v) {
             Vertex& vx = part.vertices[v];
             const glm::vec3 p(Loader::component(pos, v, 0), Loader::component(pos, v, 1), Loader::component(pos, v, 2));
             vx.position = glm::vec3(world * glm::vec4(p, 1.0f));
             if (hasNormals) {
-                const glm::vec3 n = normalMatrix * glm::vec3(Loader::component(nrm, v, 0), Loader::component(nrm, v, 1), Loader::component(nrm, v, 2));
+                const glm::vec3 file(Loader::component(nrm, v, 0), Loader::component(nrm, v, 1), Loader::component(nrm, v, 2));
+                const glm::vec3 n = normalMatrix * file;
                 const float len = glm::length(n);
-                vx.normal = (len > 0.0f && std::isfinite(len)) ? n / len : glm::vec3(0.0f, 1.0f, 0.0f);
+                if (len > 0.0f && std::isfinite(len) && std::isfinite(glm::length(file))) {
+                    vx.normal = n / len;
+                } else {
+                    vx.normal = glm::vec3(0.0f, 1.0f, 0.0f);
+                    badNormals.push_back(uint32_t(v));
+                }
             }
-            // A set's uvs through its transform, flipped to v = 0 at the bottom; not finite: 0.
+            // A set's uvs through its transform, flipped to v = 0 at the bottom; not finite: 0, counted.
             auto uvOf = [&](const Loader::View& view, const Loader::UvTransform& transform, glm::vec2& out) {
                 glm::vec2 t(Loader::component(view, v, 0), Loader::component(view, v, 1));
                 if (!transform.identity()) t = glm::vec2(transform.linear * glm::dvec2(t) + transform.offset);
-                if (std::isfinite(t.x) && std::isfinite(t.y)) out = glm::vec2(t.x, 1.0f - t.y);
+                if (!std::isfinite(t.x) || !std::isfinite(t.y)) return false;
+                out = glm::vec2(t.x, 1.0f - t.y);
+                return true;
             };
-            if (hasUv) uvOf(uv, uvSets.transform[0], vx.uv);
-            if (hasUv1) uvOf(uv1, uvSets.transform[1], vx.uv1);
-            else if (uvSets.reads[1] && hasUv) uvOf(uv, uvSets.transform[1], vx.uv1);
+            if (hasUv && !uvOf(uv, uvSets.transform[0], vx.uv)) ++badUvs;
+            if (hasUv1 && !uvOf(uv1, uvSets.transform[1], vx.uv1)) ++badUvs1;
+            else if (!hasUv1 && uvSets.reads[1] && hasUv) uvOf(uv, uvSets.transform[1], vx.uv1);
             if (hasColors) {
                 glm::vec4 c(1.0f);
                 for (int k = 0; k < colorComponents; ++k) c[k] = Loader::component(col, v, k);
@@ -730,12 +990,24 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
                 const float w4 = Loader::component(tan, v, 3);
                 const float len = glm::length(t);
                 const float hand = (w4 < 0.0f ? -1.0f : 1.0f) * (mirrored ? -1.0f : 1.0f);
-                vx.tangent = (len > 0.0f && std::isfinite(len)) ? glm::vec4(t / len, hand) : glm::vec4(anyPerpendicular(vx.normal), 1.0f);
+                // w is +-1 (the handedness); anything else, or no direction, is a tangent the file got
+                // wrong: the primitive's tangents are then generated instead.
+                if (len > 0.0f && std::isfinite(len) && std::abs(std::abs(w4) - 1.0f) <= 1e-3f) vx.tangent = glm::vec4(t / len, hand);
+                else ++badTangents;
             }
         }
         if (colorsClamped > 0)
-            L.warn(w + ".attributes.COLOR_0", std::to_string(colorsClamped) +
-                                                  " colours outside [0, 1] or not finite; clamped (not finite: 1)");
+            repairs.add(named["COLOR_0"], colorsClamped, "colours outside [0, 1] or not finite", "clamped (not finite: 1)",
+                        "accessors");
+        if (badUvs > 0)
+            repairs.add(named["TEXCOORD_0"], badUvs, "texture coordinates not finite", "read as 0", "accessors");
+        if (badUvs1 > 0)
+            repairs.add(named["TEXCOORD_1"], badUvs1, "texture coordinates not finite", "read as 0", "accessors");
+        if (badTangents > 0) {
+            repairs.add(named["TANGENT"], badTangents, "tangents not finite, zero-length or with w other than 1 or -1",
+                        "the primitive's tangents generated instead (MikkTSpace)", "accessors");
+            hasTangents = false;
+        }
         // Triangles: non-finite and degenerate ones dropped (as for OBJ); a mirroring transform
         // reverses the winding so that front faces stay front faces.
         for (size_t i = 0; i + 2 < tris.size(); i += 3) {
@@ -755,6 +1027,20 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
             part.indices.insert(part.indices.end(), {a, b, c});
         }
         if (part.indices.empty()) return;
+        if (!badNormals.empty()) {
+            // The area-weighted normal of the triangles around each such vertex (its smooth normal).
+            std::vector<glm::dvec3> sum(part.vertices.size(), glm::dvec3(0.0));
+            for (size_t i = 0; i + 2 < part.indices.size(); i += 3) {
+                const uint32_t a = part.indices[i], b = part.indices[i + 1], c = part.indices[i + 2];
+                const glm::dvec3 pa(part.vertices[a].position), pb(part.vertices[b].position), pc(part.vertices[c].position);
+                const glm::dvec3 n = glm::cross(pb - pa, pc - pa);
+                for (uint32_t k : {a, b, c}) sum[k] += n;
+            }
+            for (uint32_t v : badNormals)
+                if (glm::length(sum[v]) > 0.0) part.vertices[v].normal = glm::vec3(glm::normalize(sum[v]));
+            repairs.add(named["NORMAL"], badNormals.size(), "normals not finite or zero-length",
+                        "each replaced by the normal of its triangles", "accessors");
+        }
         if (!hasNormals) {
             // The spec's rule: flat normals. Each triangle gets its own three vertices.
             MeshData flat;
@@ -852,7 +1138,6 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
             for (auto it = node.children.rbegin(); it != node.children.rend(); ++it) stack.push_back({*it, p.node, p.depth + 1});
         }
     }
-    std::vector<bool> onPath(model.nodes.size(), false);
     // glTF cone half-angles (radians, 0 <= inner < outer <= pi/2) as the renderer's (degrees, outer < 90).
     auto spotCone = [&](const tinygltf::SpotLight& s, const glm::vec3& direction, const std::string& lw) {
         const double inner = s.innerConeAngle, outer = s.outerConeAngle;
@@ -875,13 +1160,19 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
         }
         return c;
     };
-    std::function<void(int, const glm::mat4&, const std::string&)> visit = [&](int n, const glm::mat4& parent, const std::string& from) {
-        if (n < 0 || size_t(n) >= model.nodes.size()) L.fail(from, "node " + std::to_string(n) + " does not exist (" + std::to_string(model.nodes.size()) + " nodes)");
+    // One node, its parent's world transform given (the tree check above has made sure each exists and
+    // is reached once); its children are returned to the walk below, which keeps its own stack (a
+    // recursive walk of a chain 1023 levels deep overflowed a 1 MiB stack).
+    auto visit = [&](int n, const glm::mat4& parent) -> glm::mat4 {
         const std::string w = "nodes[" + std::to_string(n) + "]";
-        if (onPath[size_t(n)]) L.fail(w, "is its own ancestor (the node hierarchy has a cycle)");
-        onPath[size_t(n)] = true;
         const tinygltf::Node& node = model.nodes[size_t(n)];
-        const glm::mat4 world = parent * Loader::localMatrix(node);
+        std::string rotationProblem;
+        const glm::dquat r = node.matrix.size() == 16 ? glm::dquat(1.0, 0.0, 0.0, 0.0) : Loader::rotation(node.rotation, rotationProblem);
+        if (rotationProblem == "zero")
+            repairs.add(w + ".rotation", 1, "rotations of length 0 (not a rotation)", "no rotation used", "nodes");
+        else if (!rotationProblem.empty())
+            repairs.add(w + ".rotation", 1, "rotations not of unit length", "normalized", "nodes");
+        const glm::mat4 world = parent * Loader::localMatrix(node, r);
         for (int i = 0; i < 16; ++i)
             if (!std::isfinite(glm::value_ptr(world)[i])) L.fail(w, "transform is not finite");
         if (node.mesh >= 0) {
@@ -895,21 +1186,41 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
         if (node.camera >= 0) {
             if (size_t(node.camera) >= model.cameras.size()) L.fail(w + ".camera", std::to_string(node.camera) + " does not exist");
             const tinygltf::Camera& c = model.cameras[size_t(node.camera)];
+            const std::string cw = "cameras[" + std::to_string(node.camera) + "]";
+            // Said once per camera, however many nodes place it.
+            const bool firstUse = notedOnce(cw);
+            auto cameraWarn = [&](const std::string& where, const std::string& what) {
+                if (firstUse) L.warn(where, what);
+            };
+            const glm::vec3 up = glm::mat3(world) * glm::vec3(0, 1, 0);
             if (c.type != "perspective") {
-                L.warn("cameras[" + std::to_string(node.camera) + "]", "type '" + c.type + "' is not supported (perspective only); ignored");
+                cameraWarn(cw, "type " + quoteUserText(c.type) + " is not supported (perspective only); ignored");
+            } else if (!std::isfinite(forward.x + forward.y + forward.z) || !(glm::length(up) > 0.0f) || !std::isfinite(glm::length(up))) {
+                L.warn(w + ".camera", "the node has no direction (a zero scale), so " + cw + " does not either; ignored");
             } else {
                 Camera cam;
                 cam.position = origin;
                 cam.target = origin + forward;
-                cam.up = glm::normalize(glm::mat3(world) * glm::vec3(0, 1, 0));
-                const double fov = glm::degrees(c.perspective.yfov);
-                cam.fovYDegrees = (std::isfinite(fov) && fov > 0.5 && fov < 179.0) ? float(fov) : 45.0f;
-                if (std::isfinite(c.perspective.znear) && c.perspective.znear > 1e-6) cam.nearPlane = float(c.perspective.znear);
-                cam.farPlane = (std::isfinite(c.perspective.zfar) && c.perspective.zfar > cam.nearPlane) ? float(c.perspective.zfar)
-                                                                                                       : cam.nearPlane * 1e5f;
-                cam.farPlane = std::min(cam.farPlane, cam.nearPlane * 1e6f);
-                if (std::isfinite(glm::dot(cam.position, cam.up)) && std::isfinite(forward.x + forward.y + forward.z))
-                    out.cameras.push_back(cam);
+                cam.up = glm::normalize(up);
+                cam.fovYDegrees = gltfFieldOfView(c.perspective.yfov, cw + ".perspective.yfov", cameraWarn);
+                // The schema made znear > 0 and zfar > 0 where given (tinygltf: 0 where not); the
+                // renderer's depth range: near >= 1e-6 m, far / near <= 1e6 (the scene file's limits).
+                const double znear = c.perspective.znear, zfar = c.perspective.zfar;
+                cam.nearPlane = float(std::max(znear, 1e-6));
+                if (znear < 1e-6) cameraWarn(cw + ".perspective.znear", formatNumber(znear) + " is below the 1e-06 m minimum; 1e-06 used");
+                // No zfar: an infinite projection, which the renderer's far plane at znear x 1e5 stands for.
+                cam.farPlane = cam.nearPlane * 1e5f;
+                if (zfar > 0.0 && zfar <= znear)
+                    cameraWarn(cw + ".perspective.zfar", formatNumber(zfar) + " is not beyond znear " + formatNumber(znear) +
+                                                             "; read as no zfar (far = znear x 1e5)");
+                else if (zfar > 0.0 && zfar / double(cam.nearPlane) > 1e6) {
+                    cameraWarn(cw + ".perspective.zfar", formatNumber(zfar) + " is more than 1e6 times znear " + formatNumber(cam.nearPlane) +
+                                                             " (the depth buffer would resolve nothing); far = znear x 1e6 used");
+                    cam.farPlane = cam.nearPlane * 1e6f;
+                } else if (zfar > 0.0) {
+                    cam.farPlane = float(zfar);
+                }
+                out.cameras.push_back(cam);
             }
         }
         auto lightExt = node.extensions.find("KHR_lights_punctual");
@@ -947,22 +1258,34 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
                 if (l.type == "spot") p.spot = spotCone(l.spot, forward, lw);
                 out.pointLights.push_back(p);
             } else {
-                L.warn(lw, "unknown light type '" + l.type + "'; ignored");
+                L.warn(lw, "unknown light type " + quoteUserText(l.type) + "; ignored");
             }
         }
-        for (int c : node.children) visit(c, world, w + ".children");
-        onPath[size_t(n)] = false;
+        return world;
     };
-    for (int r : roots) visit(r, glm::mat4(1.0f), sceneIndex >= 0 ? "scenes[" + std::to_string(sceneIndex) + "].nodes" : "nodes");
-
-    if (report.droppedDegenerate || report.droppedNonFinite) {
-        const std::string msg = file + ": dropped " + std::to_string(report.droppedDegenerate) + " degenerate and " +
-                                std::to_string(report.droppedNonFinite) + " non-finite triangles";
-        report.warnings.push_back(msg);
-        logWarn(msg);
+    // Depth first, children in order: the order primitives are drawn in and cameras listed in.
+    struct Pending {
+        int node;
+        glm::mat4 parentWorld;
+    };
+    std::vector<Pending> pending;
+    for (auto it = roots.rbegin(); it != roots.rend(); ++it) pending.push_back({*it, glm::mat4(1.0f)});
+    while (!pending.empty()) {
+        const Pending p = pending.back();
+        pending.pop_back();
+        const glm::mat4 world = visit(p.node, p.parentWorld);
+        const std::vector<int>& children = model.nodes[size_t(p.node)].children;
+        for (auto it = children.rbegin(); it != children.rend(); ++it) pending.push_back({*it, world});
     }
+
+    repairs.warn(L);
+    if (report.droppedDegenerate || report.droppedNonFinite)
+        report.warnings.push_back(file + ": dropped " + std::to_string(report.droppedDegenerate) + " degenerate and " +
+                                  std::to_string(report.droppedNonFinite) + " non-finite triangles");
     if (mesh.indices.empty()) throw Error(file + ": no triangles (in the scene's nodes)");
     computeBounds(mesh);
+    // The whole file has loaded: now its warnings are news (a file that fails prints its one error alone).
+    for (const std::string& warning : report.warnings) logWarn(warning);
     if (reportOut) *reportOut = report;
     return out;
 }

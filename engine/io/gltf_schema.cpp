@@ -1,6 +1,9 @@
 #include "engine/io/gltf_schema.hpp"
 
+#include <algorithm>
 #include <cstdint>
+
+#include "engine/core/error.hpp"
 #include <initializer_list>
 #include <utility>
 
@@ -10,14 +13,10 @@ namespace {
 
 using nlohmann::json;
 
-// A value as an error message shows it: numbers and booleans as written, strings quoted (cut at 24
-// characters), containers by kind.
+// A value as an error message shows it: numbers and booleans as written, strings quoted (quoteUserText:
+// cut at 24 characters, control characters escaped), containers by kind.
 std::string describe(const json& v) {
-    if (v.is_string()) {
-        std::string s = v.get<std::string>();
-        if (s.size() > 24) s = s.substr(0, 24) + "...";
-        return "a string (\"" + s + "\")";
-    }
+    if (v.is_string()) return "a string (" + quoteUserText(v.get<std::string>(), 24) + ")";
     if (v.is_number() || v.is_boolean()) return v.dump();
     if (v.is_array()) return "an array";
     if (v.is_object()) return "an object";
@@ -305,7 +304,26 @@ public:
                 else numbers(a, bound, w, 1, 16);
             }
         });
-        object(a, "sparse", w);  // refused by the loader, which names it
+        // Sparse storage: `count` indices and values replacing elements of the dense data.
+        if (const json* sp = object(a, "sparse", w)) {
+            const std::string sw = join(w, "sparse");
+            integer(*sp, "count", sw, 1, INT64_MAX, true);
+            const auto count = sp->find("count"), total = a.find("count");
+            if (count != sp->end() && total != a.end() && count->is_number_integer() && total->is_number_integer() &&
+                integerWithin(*count, 1, INT64_MAX) && integerWithin(*total, 1, INT64_MAX) && count->get<int64_t>() > total->get<int64_t>())
+                error(join(sw, "count"), numberText(*count) + " is more than the accessor's count " + numberText(*total));
+            if (const json* idx = object(*sp, "indices", sw, true)) {
+                const std::string iw = join(sw, "indices");
+                index(*idx, "bufferView", iw, true);
+                integer(*idx, "byteOffset", iw, 0, INT32_MAX);
+                enumInteger(*idx, "componentType", iw, {5121, 5123, 5125}, true);
+            }
+            if (const json* val = object(*sp, "values", sw, true)) {
+                const std::string vw = join(sw, "values");
+                index(*val, "bufferView", vw, true);
+                integer(*val, "byteOffset", vw, 0, INT32_MAX);
+            }
+        }
     }
 
     void camera(const json& c, const std::string& w) {
@@ -339,7 +357,9 @@ public:
                 if ((*c)[i].get<double>() < 0.0) error(item(join(w, "color"), i), numberText((*c)[i]) + " must be >= 0");
         positive(l, "intensity", w, false, true);
         positive(l, "range", w, false);
-        if (const json* s = object(l, "spot", w)) {
+        const auto type = l.find("type");
+        const bool spot = type != l.end() && type->is_string() && type->get<std::string>() == "spot";
+        if (const json* s = object(l, "spot", w, spot)) {
             number(*s, "innerConeAngle", join(w, "spot"));  // their ranges: the loader's checks
             number(*s, "outerConeAngle", join(w, "spot"));
         }
@@ -354,7 +374,8 @@ public:
             // glTF 1.0 files differ throughout (named scenes, techniques): say so before anything else.
             const auto version = asset->find("version");
             if (version != asset->end() && !(version->is_string() && version->get<std::string>().rfind("2.", 0) == 0)) {
-                error("asset.version", version->dump().substr(0, 24) + " is not a glTF 2 version: lightpass reads glTF 2.0");
+                error("asset.version", (version->is_string() ? quoteUserText(version->get<std::string>(), 24) : describe(*version)) +
+                                           " is not a glTF 2 version: lightpass reads glTF 2.0");
                 return;
             }
             string(*asset, "version", "asset", true);
@@ -408,6 +429,8 @@ public:
             string(i, "uri", w);
             string(i, "mimeType", w);
             index(i, "bufferView", w);
+            const bool uri = i.contains("uri"), view = i.contains("bufferView");
+            if (uri == view) error(w, uri ? "has both a uri and a bufferView (the schema allows one)" : "has neither a uri nor a bufferView");
         });
         objects(root, "samplers", "", [&](const json& s, const std::string& w) {
             // The loader keeps only valid filters and wraps (Loader::sampler); the rest sample as
@@ -421,12 +444,54 @@ public:
             }, "ignored (the default is used: repeat, trilinear)");
         });
         objects(root, "cameras", "", [&](const json& c, const std::string& w) { camera(c, w); });
-        // Not read by lightpass; their elements must still be objects.
-        objects(root, "skins", "", [](const json&, const std::string&) {});
-        objects(root, "animations", "", [](const json&, const std::string&) {});
+        // Not read by lightpass (a skinned mesh is drawn in its bind pose), but what tinygltf refuses
+        // is named here as the schema words it.
+        objects(root, "skins", "", [&](const json& k, const std::string& w) {
+            index(k, "inverseBindMatrices", w);
+            index(k, "skeleton", w);
+            indexArray(k, "joints", w);
+            member(k, "joints", w, true);
+        });
+        objects(root, "animations", "", [&](const json& an, const std::string& w) {
+            objects(an, "channels", w, [&](const json& c, const std::string& cw) {
+                index(c, "sampler", cw, true);
+                if (const json* t = object(c, "target", cw, true)) {
+                    index(*t, "node", join(cw, "target"));  // optional: a pointer extension may say what moves
+                    string(*t, "path", join(cw, "target"), true);
+                }
+            }, true, 1);
+            objects(an, "samplers", w, [&](const json& sm, const std::string& sw) {
+                index(sm, "input", sw, true);
+                index(sm, "output", sw, true);
+                enumString(sm, "interpolation", sw, {"LINEAR", "STEP", "CUBICSPLINE"});
+            }, true, 1);
+        });
         if (const json* ext = object(root, "extensions", ""))
             if (const json* lights = object(*ext, "KHR_lights_punctual", "extensions"))
                 objects(*lights, "lights", "extensions.KHR_lights_punctual", [&](const json& l, const std::string& w) { light(l, w); }, true);
+        // Only on a document whose types are right (the walk below trusts them).
+        if (std::none_of(issues.begin(), issues.end(), [](const GltfSchemaIssue& i) { return i.error; })) primitiveIndices(root);
+    }
+
+    // A primitive's `indices`: an accessor that exists and has a bufferView (tinygltf, through which
+    // lightpass reads glTF, refuses a sparse index accessor without one, in words that name neither).
+    void primitiveIndices(const json& root) {
+        const auto meshes = root.find("meshes"), accessors = root.find("accessors");
+        if (meshes == root.end()) return;
+        const size_t accessorCount = accessors == root.end() ? 0 : accessors->size();
+        for (size_t m = 0; m < meshes->size(); ++m) {
+            const json& primitives = (*meshes)[m]["primitives"];
+            for (size_t p = 0; p < primitives.size(); ++p) {
+                const auto indices = primitives[p].find("indices");
+                if (indices == primitives[p].end()) continue;
+                const std::string where = "meshes[" + std::to_string(m) + "].primitives[" + std::to_string(p) + "].indices";
+                const size_t a = indices->get<size_t>();
+                if (a >= accessorCount)
+                    error(where, "accessor " + std::to_string(a) + " does not exist (" + std::to_string(accessorCount) + " accessors)");
+                else if (!(*accessors)[a].contains("bufferView"))
+                    error(where + " (accessors[" + std::to_string(a) + "])", "has no bufferView; an index accessor without one is not supported");
+            }
+        }
     }
 };
 

@@ -27,7 +27,11 @@ struct GltfSchemaIssue {
 //   bufferView's byteStride of 0 (read as packed), a sampler's filter or wrap outside its enumeration
 //   (the loader keeps the default), and any rule broken by a property lightpass does not read (an
 //   accessor's min and max).
-// Animations, skins, other extensions and extras are not checked.
+// - errors also for what tinygltf would refuse without naming the element: an image with both or neither
+//   of uri and bufferView, a sparse accessor's parts, a spot light without `spot`, a skin without
+//   joints, an animation channel or sampler missing what the schema requires, a primitive's indices
+//   accessor that does not exist or has no bufferView.
+// Other extensions and extras are not checked.
 std::vector<GltfSchemaIssue> checkGltfSchema(const nlohmann::json& root);
 
 // A sampler's enumerations (OpenGL's enum values), which the check and the loader both hold values to.

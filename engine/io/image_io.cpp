@@ -15,6 +15,7 @@
 #include <array>
 #include <cctype>
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <cmath>
 #include <memory>
@@ -33,7 +34,7 @@ namespace {
 
 const char* const kChannels[4] = {"R", "G", "B", "A"};
 
-[[noreturn]] void fail(const fs::path& path, const std::string& what) { throw Error(path.string() + ": " + what); }
+[[noreturn]] void fail(const fs::path& path, const std::string& what) { throw Error(shownPath(path) + ": " + what); }
 
 // Checked up front (file_check) so a missing file reads "file not found", not a decoder's "can't fopen",
 // and a FIFO or device is refused instead of read.
@@ -152,6 +153,23 @@ void requirePlausibleStbSize(const fs::path& path, const std::string& bytes, uin
         requirePlausibleSize(path, w, h, bytesPerTexel, bytes.size());
 }
 
+std::string formatMiB(uint64_t bytes) {
+    char text[32];
+    std::snprintf(text, sizeof text, bytes % (uint64_t(1) << 20) ? "%.1f" : "%.0f", double(bytes) / double(uint64_t(1) << 20));
+    return text;
+}
+
+// A texture's size from its header against kMaxTextureBytes, before decoding.
+void requireTextureWithinLimit(const fs::path& path, const std::string& bytes) {
+    int w = 0, h = 0, n = 0;
+    if (!stbi_info_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()), int(std::min<size_t>(bytes.size(), INT32_MAX)), &w, &h, &n))
+        return;  // the decoder names what is wrong
+    const uint64_t decoded = uint64_t(w) * uint64_t(h) * 4;
+    if (decoded > kMaxTextureBytes)
+        fail(path, std::to_string(w) + "x" + std::to_string(h) + " texels (" + formatMiB(decoded) + " MiB decoded) are more than one texture may take (" +
+                       formatMiB(kMaxTextureBytes) + " MiB: 8192x8192); refused before decoding");
+}
+
 void requireSize(const fs::path& path, int width, int height, size_t values) {
     if (width <= 0 || height <= 0) fail(path, "cannot write an empty image");
     if (values != size_t(width) * size_t(height) * 4)
@@ -219,7 +237,7 @@ ImageF loadExr(const fs::path& path) {
                 }
                 if (chosen.empty()) throw Error("no R, G, B or Y channel, and no layer with R, G and B");
                 for (std::string& n : names) n = chosen + "." + n;
-                logWarn(path.string() + ": no R, G, B channels; read layer '" + chosen + "' (layers with R, G and B: " + all + ")");
+                logWarn(shownPath(path) + ": no R, G, B channels; read layer " + quoteUserText(chosen) + " (layers with R, G and B: " + all + ")");
             }
         }
         const Imath::Box2i data = header.dataWindow(), display = header.displayWindow();
@@ -300,6 +318,7 @@ Image8 decodeImage8(const std::string& bytes, const fs::path& path) {
         if (!damage.empty()) fail(path, damage);
     }
     requirePlausibleStbSize(path, bytes, 4);
+    requireTextureWithinLimit(path, bytes);
     int w = 0, h = 0, n = 0;
     StbSource source{bytes};
     std::unique_ptr<stbi_uc, void (*)(void*)> px(stbi_load_from_callbacks(&kStbCallbacks, &source, &w, &h, &n, 4),
@@ -383,7 +402,7 @@ Image8 decodeTextureOrChecker(const std::string& bytes, const fs::path& label) {
 ImageF loadHdrImage(const fs::path& path) {
     std::string ext = path.extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-    if (ext != ".hdr" && ext != ".exr") fail(path, "unsupported HDR image type '" + ext + "' (expected .hdr or .exr)");
+    if (ext != ".hdr" && ext != ".exr") fail(path, "unsupported HDR image type " + quoteUserText(ext) + " (expected .hdr or .exr)");
     requireFile(path);
     ImageF img = ext == ".hdr" ? loadRadiance(path) : loadExr(path);
     sanitize(path, img);
@@ -397,6 +416,7 @@ void writeFileAtomically(const fs::path& path, const std::function<void(const fs
     if (!fs::is_directory(folder, ec)) fail(path, "folder " + folder.string() + " does not exist");
     fs::path tmp = path;
     tmp += ".tmp-" + std::to_string(getpid());
+    const TemporaryFileGuard guard(tmp);
     try {
         writer(tmp);
         if (!fs::exists(tmp, ec)) throw Error("nothing was written");
@@ -526,7 +546,7 @@ void OutputFiles::add(const fs::path& path, const std::string& bytes) {
         if (f.path == path) fail(path, "named twice as an output");
     fs::path tmp = path;
     tmp += ".tmp-" + std::to_string(getpid());
-    staged_.push_back({path, tmp});  // before writing, so a partial temporary is removed too
+    staged_.push_back({path, tmp, TemporaryFileGuard(tmp)});  // before writing, so a partial temporary is removed too
     try {
         writeBytesChecked(tmp, bytes);
     } catch (const std::exception& e) {

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "engine/io/temporary_files.hpp"
+
 namespace lp {
 
 // Always 4 channels (RGBA), rows top first.
@@ -21,8 +23,15 @@ struct ImageF {
     std::vector<float> rgba;
 };
 
+// The most one texture may take decoded (RGBA8): 8192x8192 texels. Checked from the header before the
+// decoder allocates anything: a 1 MB PNG of 16384x16384 texels (1 GiB decoded) took 3.5 GiB and 20 s
+// on its way to the GPU. A texture over it is refused (a checker with a warning, as for any texture
+// that cannot be read).
+constexpr uint64_t kMaxTextureBytes = uint64_t(256) << 20;
+
 // PNG/JPG/TGA/BMP (anything stb_image reads), expanded to RGBA. A file the decoder needed more bytes
-// of than it has is "truncated", a PNG chunk whose CRC does not match "corrupt": errors, never garbage.
+// of than it has is "truncated", a PNG chunk whose CRC does not match "corrupt": errors, never garbage;
+// so is a header claiming more than kMaxTextureBytes decoded.
 Image8 loadImage8(const std::filesystem::path& path);
 // The same from an encoded image in memory (a glTF's embedded image); `label` names it in errors.
 Image8 decodeImage8(const std::string& bytes, const std::filesystem::path& label);
@@ -49,7 +58,8 @@ void writePng(const std::filesystem::path& path, const Image8& image);
 void writeExr(const std::filesystem::path& path, const ImageF& image);  // float32 RGBA, ZIP
 
 // Calls writer(tmp) with tmp = path + ".tmp-<pid>" in the same folder, then renames tmp over path.
-// If the writer throws or the rename fails, tmp is removed and an lp::Error naming path is thrown.
+// If the writer throws or the rename fails, tmp is removed and an lp::Error naming path is thrown; so
+// is it if SIGINT, SIGTERM or SIGHUP ends the process meanwhile (installTemporaryFileCleanup).
 void writeFileAtomically(const std::filesystem::path& path,
                          const std::function<void(const std::filesystem::path& tmp)>& writer);
 
@@ -65,7 +75,8 @@ void requireWritableOutput(const std::filesystem::path& path);
 
 // A command's outputs, all or nothing: each add() writes a temporary file beside its target at once
 // (checked), commit() renames them all over their targets; temporaries not committed are removed when
-// this goes out of scope, so a failure anywhere leaves no output and no partial file.
+// this goes out of scope, or by the signal handler of installTemporaryFileCleanup if SIGINT, SIGTERM or
+// SIGHUP ends the process first, so a failure anywhere leaves no output and no partial file.
 class OutputFiles {
 public:
     OutputFiles() = default;
@@ -81,6 +92,7 @@ public:
 private:
     struct Staged {
         std::filesystem::path path, tmp;
+        TemporaryFileGuard guard;  // registered before the temporary is created
     };
     std::vector<Staged> staged_;
 };

@@ -67,7 +67,7 @@ Material convertMaterial(const tinyobj::material_t& m, const fs::path& dir, cons
     if (!bad.empty()) {
         std::string list;
         for (const auto& b : bad) list += (list.empty() ? "" : ", ") + b;
-        std::string msg = file + ": material '" + m.name + "': non-finite " + list + "; using defaults";
+        std::string msg = file + ": material " + quoteUserText(m.name) + ": non-finite " + list + "; using defaults";
         report.warnings.push_back(msg);
         logWarn(msg);
     }

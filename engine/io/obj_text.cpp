@@ -53,11 +53,9 @@ struct LineReader {
     }
 };
 
-// A token as it is quoted in a message: control bytes (a lone CR, ESC) written as \xNN, so that the
-// message stays one clean line on a terminal, and long tokens cut.
-std::string quoted(const std::string& token) {
-    return "'" + printableBytes(token.substr(0, 64)) + (token.size() > 64 ? "...'" : "'");
-}
+// A token as it is quoted in a message (quoteUserText: control bytes such as a lone CR or an ESC
+// written as \xNN, so that the message stays one clean line on a terminal, and long tokens cut).
+std::string quoted(const std::string& token) { return quoteUserText(token); }
 
 [[noreturn]] void failAt(const std::string& file, size_t line, const std::string& what) {
     throw Error(file + ":" + std::to_string(line) + ": " + what);

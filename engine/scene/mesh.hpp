@@ -34,16 +34,19 @@ struct TextureSampler {
     bool isDefault() const { return wrapS == 10497 && wrapT == 10497 && magFilter == 0 && minFilter == 0; }
 };
 
-// A texture: a file, or an image embedded in a glTF (encoded bytes, decoded when uploaded). `key`
+// A texture: a file, or an image embedded in a glTF (encoded bytes, decoded when uploaded), or one
+// known to be unusable (`problem`: a data URI that is not base64, a texture without an image), which
+// is uploaded as the checker with a warning "<key>: <problem>; using a checker texture". `key`
 // identifies the image for sharing ("<file>" or "<gltf>#images[3]"); one image sampled two ways is
 // two textures.
 struct TextureRef {
     std::filesystem::path path;
     std::shared_ptr<const std::string> encoded;
+    std::string problem;
     std::string key;
     TextureSampler sampler;
     int uvSet = 0;  // the uv set it is sampled with: 0 (Vertex::uv, TEXCOORD_0) or 1 (Vertex::uv1, TEXCOORD_1)
-    bool empty() const { return path.empty() && !encoded; }
+    bool empty() const { return path.empty() && !encoded && problem.empty(); }
     void clear() { *this = TextureRef{}; }
     static TextureRef file(const std::filesystem::path& p) {
         TextureRef t;

@@ -207,7 +207,7 @@ void parseModel(const Reader& r, const json& j, const std::string& w, const fs::
     if (int(!obj.empty()) + int(!gltf.empty()) + int(!m.primitive.empty()) != 1)
         r.fail(w, "needs exactly one of \"obj\", \"gltf\" or \"primitive\"");
     if (!m.primitive.empty() && m.primitive != "plane" && m.primitive != "sphere" && m.primitive != "cube")
-        r.fail(w + ".primitive", "unknown primitive '" + m.primitive + "' (plane, sphere, cube)");
+        r.fail(w + ".primitive", "unknown primitive " + quoteUserText(m.primitive) + " (plane, sphere, cube)");
     if (!obj.empty()) {
         m.obj = resolve(base, obj);
         // Read as OBJ text a glTF has no "v" or "f" line: "no triangles" would hide the mix-up.
@@ -234,7 +234,7 @@ void parseModel(const Reader& r, const json& j, const std::string& w, const fs::
     x = glm::rotate(x, glm::radians(rot.z), glm::vec3(0, 0, 1));
     m.transform = glm::scale(x, s);
     const std::string up = r.string(j, "up", w);
-    if (!up.empty() && up != "y" && up != "z") r.fail(w + ".up", "'" + up + "': expected \"y\" or \"z\"");
+    if (!up.empty() && up != "y" && up != "z") r.fail(w + ".up", quoteUserText(up) + ": expected \"y\" or \"z\"");
     if (up == "z") m.transform = m.transform * zUpToYUp();  // turned Y-up first, then placed
     if (j.contains("material")) {
         const json& mat = j["material"];
@@ -317,7 +317,7 @@ void parseLight(const Reader& r, const json& j, const std::string& w, Scene& sce
         scene.pointLights.push_back(l);
     } else {
         r.fail(w + ".type", type.empty() ? "missing (directional, point or spot)"
-                                         : "unknown light type '" + type + "' (directional, point, spot)");
+                                         : "unknown light type " + quoteUserText(type) + " (directional, point, spot)");
     }
 }
 

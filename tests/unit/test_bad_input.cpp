@@ -105,7 +105,7 @@ TEST(ObjText, UnparsableNumbersAndWrappingIndicesNameFileAndLine) {
     // Control bytes in a bad token are shown escaped: raw, an ESC sequence or a backspace garbles the line.
     EXPECT_EQ(scanError(std::string("v 0 1\x08") + "2 3\n"), "m.obj:1: v: '1\\x082' is not a number");
     EXPECT_EQ(scanError("f 1 2 \x1b[2J3\n"), "m.obj:1: '\\x1B[2J3' is not a vertex index");
-    EXPECT_EQ(scanError("v 0 0 " + std::string(100, 'x') + "\n"), "m.obj:1: v: '" + std::string(64, 'x') + "...' is not a number");
+    EXPECT_EQ(scanError("v 0 0 " + std::string(100, 'x') + "\n"), "m.obj:1: v: '" + std::string(64, 'x') + "...' (100 characters) is not a number");
 }
 
 // Triangulating a polygon takes the parser time quadratic in its corners: one face of 90000 corners
