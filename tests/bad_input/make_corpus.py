@@ -361,7 +361,7 @@ def gltf(name, buffers=None, views=None, accessors=None, primitive=None, **extra
 gltf("ok.gltf")
 case(9, "gltf_ok", render_model("ok.gltf"), "ok", r"wrote ", outputs=["{O}/out.png"], forbid=r"warning|error")
 gltf("missing_buffer.gltf", buffers=[{"byteLength": 42, "uri": "nothere.bin"}])
-case(9, "gltf_missing_buffer", render_model("missing_buffer.gltf"), "error", r"missing_buffer.gltf: buffers\[0\]: {C}/nothere.bin: file not found")
+case(9, "gltf_missing_buffer", render_model("missing_buffer.gltf"), "error", r"missing_buffer.gltf: buffers\[0\]\.uri: 'nothere.bin': file not found")
 gltf("accessor_past_end.gltf", accessors=[{"bufferView": 0, "componentType": 5126, "count": 40, "type": "VEC3"}],
      primitive={"attributes": {"POSITION": 0}})
 case(9, "gltf_accessor_out_of_range", render_model("accessor_past_end.gltf"), "error",
@@ -375,7 +375,7 @@ case(9, "gltf_bad_index", render_model("bad_index.gltf"), "error",
      r"bad_index.gltf: meshes\[0\]\.primitives\[0\]\.indices: index 900 at position 2 is beyond the 3 vertices")
 gltf("required_extension.gltf", extensionsRequired=["KHR_draco_mesh_compression"], extensionsUsed=["KHR_draco_mesh_compression"])
 case(9, "gltf_unknown_required_extension", render_model("required_extension.gltf"), "error",
-     r"required_extension.gltf: extensionsRequired: KHR_draco_mesh_compression is not supported")
+     r"required_extension.gltf: extensionsRequired\[0\]: 'KHR_draco_mesh_compression' is not supported")
 gltf("missing_texture.gltf", primitive={"attributes": {"POSITION": 0}, "indices": 1, "material": 0},
      images=[{"uri": "missing.png"}], textures=[{"source": 0}], materials=[{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}])
 case(9, "gltf_missing_texture", render_model("missing_texture.gltf"), "fallback", r"missing.png.*using a checker texture",
@@ -384,21 +384,22 @@ gltf("blend.gltf", primitive={"attributes": {"POSITION": 0}, "indices": 1, "mate
 case(9, "gltf_blend_drawn_blended", render_model("blend.gltf"), "ok", r"wrote ", outputs=["{O}/out.png"],
      forbid=r"warning|error|MASK")
 write("truncated.glb", b"glTF\x02\x00\x00\x00\xff\x00\x00\x00")
-case(9, "glb_truncated", render_model("truncated.glb"), "error", r"truncated.glb: ")
+case(9, "glb_truncated", render_model("truncated.glb"), "error",
+     r"truncated.glb: GLB header \(byte 8\): length 255, but the file has 12 bytes \(truncated\)")
 # Properties of the wrong JSON type or outside their enumeration (tinygltf skipped them silently: the
 # mesh, the emission or the blending were lost without a word); factors outside [0, 1]: clamped, warned.
 gltf("wrong_type_mesh.gltf", nodes=[{"mesh": "0"}])
 case(9, "gltf_wrong_type_index", render_model("wrong_type_mesh.gltf"), "error",
-     r'wrong_type_mesh.gltf: nodes\[0\]\.mesh: expected an index \(an integer >= 0\), got a string \("0"\)')
+     r'wrong_type_mesh.gltf: nodes\[0\]\.mesh: expected an index \(an integer >= 0\), got a string \('0'\)')
 gltf("wrong_type_factor.gltf", primitive={"attributes": {"POSITION": 0}, "indices": 1, "material": 0},
      materials=[{"emissiveFactor": ["1", 0, 0]}])
 case(9, "gltf_wrong_type_factor", render_model("wrong_type_factor.gltf"), "error",
-     r'wrong_type_factor.gltf: materials\[0\]\.emissiveFactor\[0\]: expected a number, got a string \("1"\)')
+     r'wrong_type_factor.gltf: materials\[0\]\.emissiveFactor\[0\]: expected a number, got a string \('1'\)')
 gltf("wrong_enum.gltf", primitive={"attributes": {"POSITION": 0}, "indices": 1, "material": 0}, materials=[{"alphaMode": "blend"}])
 case(9, "gltf_wrong_enum", render_model("wrong_enum.gltf"), "error",
-     r'wrong_enum.gltf: materials\[0\]\.alphaMode: expected one of OPAQUE, MASK, BLEND, got a string \("blend"\)')
+     r'wrong_enum.gltf: materials\[0\]\.alphaMode: expected one of OPAQUE, MASK, BLEND, got a string \('blend'\)')
 gltf("gltf1.gltf", asset={"version": "1.0"}, scene="defaultScene")
-case(9, "gltf_version_1", render_model("gltf1.gltf"), "error", r'gltf1.gltf: asset\.version: "1\.0" is not a glTF 2 version')
+case(9, "gltf_version_1", render_model("gltf1.gltf"), "error", r'gltf1.gltf: asset\.version: '1\.0' is not a glTF 2 version')
 gltf("factor_out_of_range.gltf", primitive={"attributes": {"POSITION": 0}, "indices": 1, "material": 0},
      materials=[{"pbrMetallicRoughness": {"roughnessFactor": 5}}])
 case(9, "gltf_factor_clamped", render_model("factor_out_of_range.gltf"), "fallback",
@@ -446,6 +447,24 @@ write("gigabyte.mtl", "newmtl m\nKd 1 1 1\nmap_Kd gigabyte.tga\n")
 case(10, "texture_header_claims_a_gigabyte", render_model("gigabyte_texture.obj"), "fallback",
      r"warning: {C}/gigabyte.tga: claims 16384x16384 texels \(1024 MiB decoded\) from a 18-byte file.*using a checker texture",
      outputs=["{O}/out.png"])
+
+# ---- 15. outputs: temporaries removed when a signal ends the process ----------------------------
+# A sweep keeps its outputs as temporaries until the last value is rendered; the signal is sent as soon
+# as the first one exists. SIGINT, SIGTERM and SIGHUP end the process (killed by that signal) with no
+# file left; past the file-size limit (SIGXFSZ at its default: it used to kill the process and leave a
+# 4 KB temporary) the write fails and the error names the file.
+SWEEP = ["sweep", "--scene", "{C}/plain.json", "--knob", "shadow-size", "--size", "64x48", "--frames", "40", "--warmup", "1",
+         "--out-dir", "{O}/sweep"]
+for sig in ("INT", "TERM", "HUP"):
+    case(15, f"sweep_sig{sig.lower()}_leaves_no_temporary", SWEEP, "signal", r"", signal=sig, timeout=120)
+case(15, "full_disk_png_sigxfsz_default", render_scene("plain.json", out="{O}/big.png", more=["--size", "64x48"]), "error",
+     r"{O}/big.png: cannot write: File too large", fsize_limit=100, sigxfsz="default", absent=["{O}/big.png"])
+
+# ---- 11 to 19 (but 15): glTF (tests/bad_input/gltf_cases.py) ------------------------------------
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+sys.dont_write_bytecode = True  # no __pycache__ in the source tree
+import gltf_cases  # noqa: E402
+gltf_cases.add_cases(write, case, render_model, C)
 
 with open(os.path.join(C, "manifest.json"), "w") as f:
     json.dump(cases, f, indent=1)
