@@ -19,6 +19,9 @@ const std::vector<DirectionalLight>& frameDirectionalLights(const FrameData& fra
 }
 
 glm::vec3 frameAmbient(const FrameData& frame) {
+    // The environment's irradiance is the indirect light the constant stands in for: under IBL the
+    // constant would count it twice (docs/ibl-and-tonemapping.md).
+    if (frame.scene && frame.settings && iblLightsFrame(*frame.scene, *frame.settings)) return glm::vec3(0.0f);
     const LightsWithoutIbl* s = substitute(frame);
     return s ? s->ambient : frame.scene->ambient;
 }

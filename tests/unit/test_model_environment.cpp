@@ -108,6 +108,22 @@ TEST(ModelEnvironment, KeyAndFillOnlyOnFramesWithoutIbl) {
     EXPECT_EQ(frameAmbient(f), cornell.ambient);
 }
 
+// A scene's constant ambient stands in for indirect light: a frame that IBL lights adds none (the
+// environment's irradiance is that light), the same scene without IBL keeps it.
+TEST(ModelEnvironment, ConstantAmbientOnlyOnFramesWithoutIbl) {
+    const Scene cornell = loadScene(kSource / "scenes/cornell.json");
+    ASSERT_FALSE(cornell.environment.map.empty());
+    ASSERT_GT(cornell.ambient.x, 0.0f);
+    RenderSettings ibl = small();
+    ibl.environment.ibl = true;
+    FrameData f = makeFrameData(cornell, ibl, 0.0f);
+    EXPECT_EQ(frameAmbient(f), glm::vec3(0.0f));
+    RenderSettings analytic = small();
+    analytic.environment.ibl = false;
+    f = makeFrameData(cornell, analytic, 0.0f);
+    EXPECT_EQ(frameAmbient(f), cornell.ambient);
+}
+
 // The graph: a bare model runs the bake, the IBL and the sky and no shadow map (no sun); --env none
 // swaps in the sun's shadow map and drops IBL; --brdf-only keeps the sky, drops IBL, adds the sun.
 TEST(ModelEnvironment, GraphLightsTheModelEitherWay) {
