@@ -33,7 +33,13 @@ void deleteObject(ObjectKind kind, GLuint id) {
 }  // namespace detail
 
 void label(GLenum identifier, GLuint id, const std::string& name) {
-    if (id && !name.empty() && glObjectLabel) glObjectLabel(identifier, id, GLsizei(name.size()), name.c_str());
+    if (!id || name.empty() || !glObjectLabel) return;
+    // A label must be shorter than GL_MAX_LABEL_LENGTH (256 at least): a long name (a file's path,
+    // a model's own text) keeps its end, where the file name is.
+    GLint maxLength = 256;
+    glGetIntegerv(GL_MAX_LABEL_LENGTH, &maxLength);
+    const size_t keep = std::min(name.size(), size_t(std::max(maxLength - 1, 1)));
+    glObjectLabel(identifier, id, GLsizei(keep), name.c_str() + (name.size() - keep));
 }
 
 int fullMipCount(int width, int height) {
