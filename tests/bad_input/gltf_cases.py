@@ -123,7 +123,7 @@ def add_cases(write, case, render_model, C):
          r"{C}/deep_node.gltf:[0-9]+:[0-9]+: arrays and objects nested more than 128 levels deep", absent=["{O}/out.png"])
     write("syntax.gltf", ok_text.replace('"2.0"', '"2.0",', 1))
     case(11, "json_trailing_comma", render_model("syntax.gltf"), "error",
-         r"{C}/syntax.gltf:3:[0-9]+: invalid JSON: syntax error while parsing object key - unexpected '}'; expected string literal")
+         r"{C}/syntax.gltf:4:2: invalid JSON: syntax error while parsing object key - unexpected '}'; expected string literal")
     write("literal.gltf", ok_text.replace('"scene": 0', '"scene": tru', 1))
     case(11, "json_bad_literal", render_model("literal.gltf"), "error",
          r"{C}/literal.gltf:[0-9]+:[0-9]+: invalid JSON: syntax error while parsing value - invalid literal; last read: '[^']*'$")
@@ -167,7 +167,7 @@ def add_cases(write, case, render_model, C):
          r"TEXCOORD_0 \(accessors\[2\]\): 1 texture coordinates not finite; read as 0", outputs=["{O}/out.png"], max_warnings=1)
     write("nan_tangent.gltf", lit_quad(tangents=[1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 0, 0, 0, 0, 1]).as_gltf())
     case(12, "gltf_bad_tangents", render_model("nan_tangent.gltf"), "fallback",
-         r"TANGENT \(accessors\[4\]\): 2 tangents not finite, zero-length or with w other than 1 or -1; the primitive's "
+         r"TANGENT \(accessors\[3\]\): 2 tangents not finite, zero-length or with w other than 1 or -1; the primitive's "
          r"tangents generated instead", outputs=["{O}/out.png"], max_warnings=1)
     write("ubyte_uv.gltf", lit_quad(uvs=[0, 255, 255, 255, 255, 0, 0, 0], uv_type=UBYTE).as_gltf())
     case(12, "gltf_ubyte_texcoord_not_normalized", render_model("ubyte_uv.gltf"), "fallback",
@@ -203,8 +203,8 @@ def add_cases(write, case, render_model, C):
         g.node(mesh=mesh, translation=[3 * (i % 5), 3 * (i // 5), 0], rotation=[0, 0, 0, 0] if i < 10 else [0, 0, 0, 1])
     write("many_repairs.gltf", g.as_gltf())
     case(12, "gltf_repairs_collapsed", render_model("many_repairs.gltf"), "fallback",
-         r"NORMAL \(accessors\[1\]\): 4 normals not finite or zero-length \(and 76 more in 19 other accessors\); each replaced.*"
-         r"nodes\[0\]\.rotation: 1 rotations of length 0 \(not a rotation\) \(and 9 more in 9 other nodes\); no rotation used",
+         r"nodes\[0\]\.rotation: 1 rotations of length 0 \(not a rotation\) \(and 9 more in 9 other nodes\); no rotation used.*"
+         r"NORMAL \(accessors\[1\]\): 4 normals not finite or zero-length \(and 76 more in 19 other accessors\); each replaced",
          outputs=["{O}/out.png"], max_warnings=2)
 
     # ---- 13. text from the file in messages: quoted, cut with its length, control characters escaped
@@ -237,9 +237,9 @@ def add_cases(write, case, render_model, C):
     write("long_buffer_uri.gltf", text.replace(uri, long_uri))
     case(13, "gltf_buffer_data_uri_too_long", render_model("long_buffer_uri.gltf"), "error",
          r"buffers\[0\]\.uri: the data URI holds [0-9]+ bytes, but byteLength is [0-9]+$", max_line=400)
-    write("escape_buffer_name.gltf", text.replace(uri, "\x1b[31mred%20file.bin"))
+    write("escape_buffer_name.gltf", text.replace(uri, "\\u001b[31mred%20file.bin"))
     case(13, "gltf_buffer_file_with_escapes", render_model("escape_buffer_name.gltf"), "error",
-         r"buffers\[0\]\.uri: '\\x1B\[31mred%20file\.bin': file not found$", max_line=400)
+         r"buffers\[0\]\.uri: '\\x1B\[31mred%20file\.bin': '[^']*/\\x1B\[31mred file\.bin': file not found$", max_line=400)
     g = lit_quad(material=None)
     g.doc["meshes"][0]["primitives"][0]["material"] = g.texture({"uri": "\x1b[2J" + "t" * 5000 + ".png"})
     write("escape_image_name.gltf", g.as_gltf())
@@ -337,7 +337,7 @@ def add_cases(write, case, render_model, C):
          rf"glb_bin_long.glb: chunk 1 \(BIN\) at byte {bin_at}: length 4096, but {len(good) - bin_at - 8} bytes follow its header")
     write("glb_bin_first.glb", patched(good, 16, 0x004E4942))
     case(17, "glb_first_chunk_not_json", render_model("glb_bin_first.glb"), "error",
-         r"glb_bin_first.glb: chunk 0 at byte 12: type 'BIN\\x00' \(0x004E4942\), but the first chunk must be JSON 'JSON' \(0x4E4F534A\)$")
+         r"glb_bin_first.glb: chunk 0 \(BIN\) at byte 12: type 'BIN\\x00' \(0x004E4942\), but the first chunk must be JSON 'JSON' \(0x4E4F534A\)$")
     write("glb_bin_odd.glb", patched(good, bin_at, struct.unpack_from("<I", good, bin_at)[0] - 1))
     case(17, "glb_bin_not_padded", render_model("glb_bin_odd.glb"), "error",
          rf"glb_bin_odd.glb: chunk 1 \(BIN\) at byte {bin_at}: length [0-9]+ is not a multiple of 4")

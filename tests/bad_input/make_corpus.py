@@ -390,16 +390,16 @@ case(9, "glb_truncated", render_model("truncated.glb"), "error",
 # mesh, the emission or the blending were lost without a word); factors outside [0, 1]: clamped, warned.
 gltf("wrong_type_mesh.gltf", nodes=[{"mesh": "0"}])
 case(9, "gltf_wrong_type_index", render_model("wrong_type_mesh.gltf"), "error",
-     r'wrong_type_mesh.gltf: nodes\[0\]\.mesh: expected an index \(an integer >= 0\), got a string \('0'\)')
+     r"wrong_type_mesh.gltf: nodes\[0\]\.mesh: expected an index \(an integer >= 0\), got a string \('0'\)")
 gltf("wrong_type_factor.gltf", primitive={"attributes": {"POSITION": 0}, "indices": 1, "material": 0},
      materials=[{"emissiveFactor": ["1", 0, 0]}])
 case(9, "gltf_wrong_type_factor", render_model("wrong_type_factor.gltf"), "error",
-     r'wrong_type_factor.gltf: materials\[0\]\.emissiveFactor\[0\]: expected a number, got a string \('1'\)')
+     r"wrong_type_factor.gltf: materials\[0\]\.emissiveFactor\[0\]: expected a number, got a string \('1'\)")
 gltf("wrong_enum.gltf", primitive={"attributes": {"POSITION": 0}, "indices": 1, "material": 0}, materials=[{"alphaMode": "blend"}])
 case(9, "gltf_wrong_enum", render_model("wrong_enum.gltf"), "error",
-     r'wrong_enum.gltf: materials\[0\]\.alphaMode: expected one of OPAQUE, MASK, BLEND, got a string \('blend'\)')
+     r"wrong_enum.gltf: materials\[0\]\.alphaMode: expected one of OPAQUE, MASK, BLEND, got a string \('blend'\)")
 gltf("gltf1.gltf", asset={"version": "1.0"}, scene="defaultScene")
-case(9, "gltf_version_1", render_model("gltf1.gltf"), "error", r'gltf1.gltf: asset\.version: '1\.0' is not a glTF 2 version')
+case(9, "gltf_version_1", render_model("gltf1.gltf"), "error", r"gltf1.gltf: asset\.version: '1\.0' is not a glTF 2 version")
 gltf("factor_out_of_range.gltf", primitive={"attributes": {"POSITION": 0}, "indices": 1, "material": 0},
      materials=[{"pbrMetallicRoughness": {"roughnessFactor": 5}}])
 case(9, "gltf_factor_clamped", render_model("factor_out_of_range.gltf"), "fallback",

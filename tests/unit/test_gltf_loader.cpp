@@ -782,7 +782,7 @@ TEST(GltfMalformed, NodeHierarchyIsCheckedBeforeItIsWalked) {
 TEST(GltfMalformed, PositionsOrIndicesWithoutABufferView) {
     TempDir t;
     expectOneLineError(t.write("positions.gltf", triangleGltf(R"([{"componentType": 5126, "count": 60000000, "type": "VEC3"}])", kViews, 42)),
-                       "meshes[0].primitives[0].attributes.POSITION (accessors[0]): has no bufferView, so its 60000000 elements would all be zero");
+                       "meshes[0].primitives[0].attributes.POSITION (accessors[0]): has no bufferView and is not sparse, so its 60000000 elements would all be zero");
 }
 
 // Values that parse but poison the frame once turned into floats: a directional light on a node
