@@ -66,6 +66,10 @@ def load_sidecar(path):
 FILAMENT_ENVIRONMENT_TURN_DEG = 180.0
 
 
+# How far (in scene sizes) the point light standing for an extracted environment light is placed.
+ENV_LIGHT_DISTANCE = 1000.0
+
+
 def filament_environment_rotation(lightpass_rotation_deg):
     """Filament's environment_rotation_deg that shows the map as lightpass's `rotation` does."""
     return lightpass_rotation_deg + FILAMENT_ENVIRONMENT_TURN_DEG
@@ -143,6 +147,19 @@ def build_scene(filly, renderer, side, width, height, shadow_size, tone_mapping)
         scene.environment_intensity = env["intensity"] * scale
         scene.environment_rotation_deg = filament_environment_rotation(env.get("rotation", 0.0))
         scene.environment_visible = True
+        # The map's sources that scene_to_glb.py took out of it (lightpass's extracted lights), unshadowed
+        # (lightpass shades them as IBL), at the environment's intensity. Filament draws one directional
+        # light (the scene's sun), so each is a point light ENV_LIGHT_DISTANCE scene sizes away in its
+        # direction, its candela giving the same irradiance at the scene (within 0.1%), its range far beyond.
+        lo, hi = side.get("bounds", [[0, 0, 0], [1, 1, 1]])
+        centre = [(a + b) / 2 for a, b in zip(lo, hi)]
+        far = ENV_LIGHT_DISTANCE * max(1.0, max(b - a for a, b in zip(lo, hi)))
+        for l in env.get("lights", []):
+            e = l["irradiance"]
+            peak = max(e)
+            scene.add_point_light(position=[c + far * t for c, t in zip(centre, l["towards"])],
+                                  intensity=peak * far * far * env["intensity"] * scale,
+                                  color=[x / peak for x in e], range=10.0 * far)
 
     scene.shadows = any(s.get("shadows", True) for s in side["suns"])
     scene.bloom = False

@@ -65,13 +65,17 @@ def roughness_from_shininess(ns):
 def mtl_to_metallic_roughness(kd, ks, ns):
     """Blinn-Phong (Kd, Ks, Ns) to glTF metallic-roughness (base colour, metallic, roughness).
 
-    metallic m = solve_metallic(brightness(Kd), brightness(Ks)): 0 for a dielectric Ks <= 0.04, rising
+    Kd below stands for lightpass's diffuse layer Kd (1 - Ks) (its GGX BRDF: base Kd under a dielectric of
+    F0 = Ks). metallic m = solve_metallic(brightness(Kd), brightness(Ks)): 0 for a dielectric Ks <= 0.04, rising
     towards 1 as Ks outweighs Kd. Base colour per channel: the diffuse estimate Kd / (1 - m) (so that the
     diffuse albedo base (1 - m) stays Kd) blended towards the specular estimate (Ks - 0.04 (1 - m)) / m by
     m^2 (the KHR spec-gloss conversion's blend), clamped to [0, 1]. Roughness: roughness_from_shininess(Ns).
-    A dielectric material (Ks <= 0.04) keeps base = Kd exactly."""
-    kd = [float(x) for x in kd]
-    ks = [float(x) for x in ks]
+    A dielectric material (Ks <= 0.04) keeps base = Kd (1 - Ks) exactly (F0 stays Filament's 0.04)."""
+    ks = [min(max(float(x), 0.0), 1.0) for x in ks]
+    # lightpass's diffuse layer under its GGX BRDF is Kd (1 - Ks) (shaders/common/material.glsl
+    # materialDiffuseAlbedo: glTF's fresnel_mix of a dielectric of F0 = Ks over base Kd), so that is the
+    # albedo base (1 - m) must equal; Kd itself only where Ks = 0.
+    kd = [float(x) * (1.0 - s) for x, s in zip(kd, ks)]
     m = solve_metallic(perceived_brightness(kd), perceived_brightness(ks))
     eps = 1e-6
     base = []
@@ -492,6 +496,122 @@ def peer_environment_map(map_path):
     raise ConvertError(f"environment.map {map_path}: filly reads Radiance .hdr, PNG or JPEG, and no {root}.hdr is beside it")
 
 
+# ---------------------------------------------------------------- environment lights
+
+# lightpass's defaults (--ibl-extract-lights 4, --ibl-extract-threshold 100; engine/render/ibl_lights.hpp)
+ENV_LIGHTS_MAX = 4
+ENV_LIGHTS_THRESHOLD = 100.0
+ENV_LIGHT_MAX_SOLID_ANGLE = 0.005 * 4.0 * math.pi
+LUMA = np.array([0.2126, 0.7152, 0.0722])
+
+
+def read_hdr(path):
+    """A Radiance .hdr (flat or RLE scanlines, -Y H +X W) as float64 RGB rows top first."""
+    with open(path, "rb") as f:
+        data = f.read()
+    end = data.find(b"\n\n")
+    line_end = data.find(b"\n", end + 2)
+    if end < 0 or line_end < 0:
+        raise ConvertError(f"{path}: not a Radiance .hdr")
+    res = data[end + 2:line_end].split()
+    if len(res) != 4 or res[0] != b"-Y" or res[2] != b"+X":
+        raise ConvertError(f"{path}: unsupported .hdr orientation {data[end + 2:line_end]!r}")
+    h, w = int(res[1]), int(res[3])
+    buf, pos = np.frombuffer(data, np.uint8), line_end + 1
+    rgbe = np.zeros((h, w, 4), np.uint8)
+    for y in range(h):
+        if 8 <= w < 32768 and buf[pos] == 2 and buf[pos + 1] == 2 and (int(buf[pos + 2]) << 8 | int(buf[pos + 3])) == w:
+            pos += 4
+            for c in range(4):
+                x = 0
+                while x < w:
+                    n = int(buf[pos]); pos += 1
+                    if n > 128:
+                        rgbe[y, x:x + n - 128, c] = buf[pos]; pos += 1; x += n - 128
+                    else:
+                        rgbe[y, x:x + n, c] = buf[pos:pos + n]; pos += n; x += n
+        else:
+            rgbe[y] = buf[pos:pos + 4 * w].reshape(w, 4); pos += 4 * w
+    e = rgbe[..., 3].astype(np.int32)
+    return np.where(e[..., None] > 0, rgbe[..., :3] * np.ldexp(1.0, e - 136)[..., None], 0.0)
+
+
+def write_hdr(path, img):
+    """Float RGB rows top first as a flat (uncompressed) Radiance .hdr."""
+    m = img.max(-1)
+    e = np.where(m > 1e-32, np.floor(np.log2(np.maximum(m, 1e-32))) + 1, 0).astype(np.int32)
+    rgbe = np.zeros(img.shape[:2] + (4,), np.uint8)
+    rgbe[..., :3] = np.clip(np.floor(img * np.ldexp(256.0, -e)[..., None]), 0, 255)
+    rgbe[..., 3] = np.where(m > 1e-32, e + 128, 0)
+    with open(path, "wb") as f:
+        f.write(b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n" + f"-Y {img.shape[0]} +X {img.shape[1]}\n".encode())
+        f.write(rgbe.tobytes())
+
+
+def extract_environment_lights(img, rotation_deg, max_lights=ENV_LIGHTS_MAX, ratio=ENV_LIGHTS_THRESHOLD):
+    """lightpass's extractEnvironmentLights (engine/render/ibl_lights.cpp) on an equirect map (v = 0 at
+    +Y, centre column at -Z): regions (8-neighbours, wrapping in longitude) of texels above `ratio` times
+    the solid-angle median luminance, at most 0.5% of the sphere; each one's excess over the mean of
+    the texels around it leaves the map (in place) and becomes a light. Returns the lights, brightest
+    first: {"towards": unit world direction (map rotated by rotation_deg about +Y), "irradiance": RGB
+    E at normal incidence}."""
+    h, w, _ = img.shape
+    row_sa = (2 * math.pi / w) * (math.pi / h) * np.sin((np.arange(h) + 0.5) / h * math.pi)
+    sa = np.broadcast_to(row_sa[:, None], (h, w))
+    lum = img @ LUMA
+    order = np.argsort(lum, axis=None)
+    acc = np.cumsum(sa.ravel()[order])
+    median = lum.ravel()[order[np.searchsorted(acc, 0.5 * acc[-1])]]
+    threshold = ratio * max(median, 0.01 * (lum * sa).sum() / sa.sum())
+    label = -np.ones((h, w), np.int64)
+    regions = []
+
+    def neighbours(y, x):
+        for dy in (-1, 0, 1):
+            for dx in (-1, 0, 1):
+                if (dy or dx) and 0 <= y + dy < h:
+                    yield y + dy, (x + dx) % w
+
+    for y0, x0 in zip(*np.nonzero(lum > threshold)):
+        if label[y0, x0] >= 0:
+            continue
+        label[y0, x0] = len(regions)
+        texels, stack = [], [(y0, x0)]
+        while stack:
+            y, x = stack.pop()
+            texels.append((y, x))
+            for yy, xx in neighbours(y, x):
+                if label[yy, xx] < 0 and lum[yy, xx] > threshold:
+                    label[yy, xx] = len(regions)
+                    stack.append((yy, xx))
+        regions.append(texels)
+    rot = math.radians(rotation_deg)
+    lights = []
+    for texels in regions:
+        if sum(row_sa[y] for y, _ in texels) > ENV_LIGHT_MAX_SOLID_ANGLE:
+            continue
+        ring = {(yy, xx) for y, x in texels for yy, xx in neighbours(y, x) if label[yy, xx] < 0}
+        ring_sa = sum(row_sa[y] for y, _ in ring)
+        background = sum(img[y, x] * row_sa[y] for y, x in ring) / ring_sa if ring_sa > 0 else np.zeros(3)
+        irradiance, direction = np.zeros(3), np.zeros(3)
+        for y, x in texels:
+            excess = img[y, x] - np.minimum(img[y, x], background)
+            irradiance += excess * row_sa[y]
+            phi, theta = ((x + 0.5) / w - 0.5) * 2 * math.pi, (y + 0.5) / h * math.pi
+            d = np.array([math.sin(theta) * math.sin(phi), math.cos(theta), -math.sin(theta) * math.cos(phi)])
+            d = np.array([d[0] * math.cos(rot) + d[2] * math.sin(rot), d[1], -d[0] * math.sin(rot) + d[2] * math.cos(rot)])
+            direction += d * float(excess @ LUMA) * row_sa[y]
+        if irradiance @ LUMA > 0 and np.linalg.norm(direction) > 0:
+            lights.append((float(irradiance @ LUMA), texels, background, irradiance, direction / np.linalg.norm(direction)))
+    lights.sort(key=lambda l: -l[0])
+    out = []
+    for _, texels, background, irradiance, direction in lights[:max_lights]:
+        for y, x in texels:
+            img[y, x] = np.minimum(img[y, x], background)
+        out.append({"towards": [float(v) for v in direction], "irradiance": [float(v) for v in irradiance]})
+    return out
+
+
 def load_model_mesh(model, base, where, warnings):
     if "primitive" in model:
         kind = model["primitive"]
@@ -602,6 +722,18 @@ def convert(scene_path, out_dir, name=None, suns=None, points=None, log=print):
         source = resolve(base, env["map"])
         peer_env = {"map": os.path.abspath(peer_environment_map(source)), "source_map": source,
                     "intensity": float(env.get("intensity", 1.0)), "rotation": float(env.get("rotation", 0.0))}
+        # lightpass lights the map's small bright sources (a sun) as distant lights with the BRDF and keeps
+        # the rest in its SH and prefiltered chain. filly gives Filament no SH, so Filament's diffuse IBL is
+        # the prefiltered chain's roughness-1 level, whose lobe is not the cosine: a 4-texel sun lit an
+        # up-facing floor at 46-100% of its irradiance depending on its elevation. Filament gets the same
+        # split: the residual map (NAME.env.hdr) and the sources as unshadowed directional lights.
+        img = read_hdr(peer_env["map"])
+        peer_env["lights"] = extract_environment_lights(img, peer_env["rotation"])
+        if peer_env["lights"]:
+            os.makedirs(out_dir, exist_ok=True)
+            peer_env["unextracted_map"] = peer_env["map"]
+            peer_env["map"] = os.path.abspath(os.path.join(out_dir, name + ".env.hdr"))
+            write_hdr(peer_env["map"], img)
 
     os.makedirs(out_dir, exist_ok=True)
     glb_path = os.path.join(out_dir, name + ".glb")
@@ -616,7 +748,7 @@ def convert(scene_path, out_dir, name=None, suns=None, points=None, log=print):
                 model[key] = resolve(base, model[key])
     matched["lights"] = kept_dir + kept_local
     if peer_env:
-        matched["environment"]["map"] = peer_env["map"]
+        matched["environment"]["map"] = peer_env.get("unextracted_map", peer_env["map"])
         matched["environment"]["ibl"] = True
     # A fixed exposure of 0 EV: the intensities are scaled for Filament's default camera (EV100 15) so
     # that both show the same radiance at lightpass's 0 EV; auto exposure would meter each differently.

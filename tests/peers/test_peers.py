@@ -39,12 +39,13 @@ def read_glb(path):
 
 
 class MaterialMapping(unittest.TestCase):
-    def test_dielectric_keeps_the_diffuse_colour(self):
+    def test_dielectric_keeps_lightpass_diffuse_layer(self):
+        # lightpass's diffuse layer under a dielectric of F0 = Ks is Kd (1 - Ks).
         for ks in ([0.04] * 3, [0.0] * 3, [0.02, 0.03, 0.01]):
             base, metallic, _ = scene_to_glb.mtl_to_metallic_roughness([0.55, 0.5, 0.2], ks, 32)
             self.assertEqual(metallic, 0.0)
-            for got, want in zip(base, [0.55, 0.5, 0.2]):
-                self.assertAlmostEqual(got, want, places=12)
+            for got, kd, s in zip(base, [0.55, 0.5, 0.2], ks):
+                self.assertAlmostEqual(got, kd * (1.0 - s), places=12)
 
     def test_metallic_rises_with_specular_and_stays_in_range(self):
         last = -1.0
@@ -56,12 +57,14 @@ class MaterialMapping(unittest.TestCase):
             last = metallic
 
     def test_grey_material_reproduces_its_diffuse_albedo_and_f0(self):
-        # Below full metal the blend is small: base (1 - m) ~ Kd and 0.04 (1 - m) + base m ~ Ks.
+        # Below full metal the blend is small: base (1 - m) ~ lightpass's diffuse layer Kd (1 - Ks) and
+        # 0.04 (1 - m) + base m ~ Ks.
         kd, ks = 0.8, 0.2
+        layer = kd * (1 - ks)
         base, m, _ = scene_to_glb.mtl_to_metallic_roughness([kd] * 3, [ks] * 3, 64)
-        from_diffuse = kd / (1 - m)
+        from_diffuse = layer / (1 - m)
         self.assertAlmostEqual(0.04 * (1 - m) + from_diffuse * m, ks, places=9)  # the quadratic's root
-        self.assertLess(abs(base[0] * (1 - m) - kd), 0.02)
+        self.assertLess(abs(base[0] * (1 - m) - layer), 0.02)
 
     def test_roughness_inverts_lightpass_gltf_shininess(self):
         # engine/scene/mesh_ops.cpp: shininessFromRoughness(r) = 2 / r^4 - 2.
@@ -121,13 +124,23 @@ class Converter(unittest.TestCase):
         self.assertEqual(side["suns"][0]["intensity"], 3.0)
         self.assertEqual(len(side["points"]), 1)
         self.assertEqual(side["points"][0]["range"], 3.0)
-        self.assertTrue(side["environment"]["map"].endswith("sky.hdr"))  # the .exr's .hdr twin
-        self.assertTrue(os.path.isfile(side["environment"]["map"]))
+        # Filament gets the .exr's .hdr twin, with the sun lightpass extracts taken out of it
+        # (NAME.env.hdr) and listed as a light; lightpass reads the map itself.
+        env = side["environment"]
+        self.assertTrue(os.path.isfile(env["map"]))
+        if env.get("lights"):
+            self.assertTrue(env["map"].endswith("small.env.hdr"))
+            self.assertTrue(env["unextracted_map"].endswith("sky.hdr"))
+            for light in env["lights"]:
+                self.assertAlmostEqual(sum(t * t for t in light["towards"]), 1.0, places=9)
+                self.assertTrue(all(e > 0.0 for e in light["irradiance"]))
+        else:
+            self.assertTrue(env["map"].endswith("sky.hdr"))
         self.assertEqual(side["environment"]["rotation"], 30.0)
         with open(os.path.join(self.out, "small.lightpass.json")) as f:
             matched = json.load(f)
         self.assertEqual([l["type"] for l in matched["lights"]], ["directional", "point"])
-        self.assertEqual(matched["environment"]["map"], side["environment"]["map"])
+        self.assertEqual(matched["environment"]["map"], env.get("unextracted_map", env["map"]))
         self.assertTrue(matched["environment"]["ibl"])
         self.assertEqual(matched["exposure"], 0)  # Filament's camera, not auto exposure
         self.assertTrue(os.path.isabs(matched["models"][0]["obj"]))
