@@ -151,7 +151,7 @@ std::vector<CommandFlag> makeCommandFlags() {
         {{"-h", "--help"}, "", "this text", [](Options& o, V, V) { o.command = "help"; }},
         {{"--version"}, "", "the version, build (CUDA or not) and where shaders and scenes are read from",
          [](Options& o, V, V) { o.command = "version"; }},
-        {{"--scene"}, "F", "scene file (JSON, see README); a bundled one by name from anywhere (cornell, gallery, ...)",
+        {{"--scene"}, "F", "scene file (JSON, see docs/scene-files.md); a bundled one by name from anywhere (cornell, gallery, ...)",
          [](Options& o, V, V v) { o.scene = resolveDataPath(v); }},
         {{"--model"}, "F",
          "any OBJ or glTF (.gltf, .glb), framed by the camera (or the glTF's first camera), lit by the bundled "
@@ -181,7 +181,7 @@ std::vector<CommandFlag> makeCommandFlags() {
         {{"--view"}, "V",
          viewList(allViews()) + " (default final); shadowmap: light-space depth of directional light "
              "--shadow-light N's shadow map; " + viewList(localLightViews()) +
-             ": overlay each light's rectangle/volume, or lights per 16x16 tile (README \"Debug views\")",
+             ": overlay each light's rectangle/volume, or lights per 16x16 tile (docs/viewer.md)",
          [](Options& o, V, V v) {
              auto view = parseView(v);
              if (!view) throw Error("--view " + v + ": unknown view (" + viewList(everyView(), ", ") + ")");

@@ -123,7 +123,7 @@ std::vector<KnobEntry> makeKnobTable() {
                                  allGBufferFormats(), gbufferFormatName);
         k.flags = {valueFlag("--gbuffer")};
         k.choiceNoun = "format";
-        k.help = "G-buffer normal format, see README \"G-buffer formats\" (every format keeps the base colour in "
+        k.help = "G-buffer normal format, see docs/gbuffer.md (every format keeps the base colour in "
                  "8-bit sRGB: an sRGB texture's codes exactly)";
         k.sweep = {{"oct16", "oct24", "oct32", "seed-packed", "seed-packed-signed", "two-angle", "unpacked"},
                    false,
@@ -152,7 +152,7 @@ std::vector<KnobEntry> makeKnobTable() {
         k.flags = {valueFlag("--gbuffer-mode")};
         k.choiceNoun = "mode";
         k.help = "classic: the G-buffer pass rasterises every target; visibility: depth and a triangle id are "
-                 "rasterised and a compute pass rebuilds the same targets (README \"Visibility buffer\"); auto: "
+                 "rasterised and a compute pass rebuilds the same targets (docs/visibility-buffer.md); auto: "
                  "visibility on a GPU, classic on a software rasteriser or for a scene whose geometry exceeds the GPU's "
                  "storage blocks (lightpass info, graph --explain say which)";
         k.panel = {PanelSection::View, PanelWidget::Combo, "G-buffer mode", ""};

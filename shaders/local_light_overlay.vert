@@ -3,7 +3,7 @@
 // globes (icosphere x uGlobeScale x range), mode 2 the outline of light uLightIndex's scissor
 // rectangle (uRectNdc = x0, y0, x1, y1; gl_VertexID 0..3 as a line loop).
 // LP_GLOBE_VELOCITY (globes only): also the unjittered current and previous clip positions of the
-// globe's surface point, which moves rigidly with its light (README "Motion vectors").
+// globe's surface point, which moves rigidly with its light (docs/motion.md).
 #include "common/local_light.glsl"
 
 layout(std430, binding = 0) readonly buffer LocalLights { LpLocalLight uLights[]; };

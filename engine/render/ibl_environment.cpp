@@ -312,7 +312,7 @@ size_t EnvironmentCache::gpuBytes() const {
 
 void EnvironmentCache::equirectToCube(ImageF map, double rotationDegrees, const gl::Texture& cube,
                                       const std::string& label, const gl::ShaderLibrary& shaders) {
-    // Over the GPU's texture limits: halved until it fits, with a warning (README "Bad input").
+    // Over the GPU's texture limits: halved until it fits, with a warning (docs/bad-input.md).
     if (const gl::TextureFit fit = gl::fitTexture(GL_RGBA32F, map.width, map.height); fit.halvings > 0) {
         const int w = map.width, h = map.height;
         map = downscaleToFit(map, std::max(w, h) >> fit.halvings);

@@ -2,7 +2,7 @@
 // Sub-pixel jitter and the previous frame's camera: what motion vectors (gbuffer.velocity) and the
 // passes that read them (velocity view, motion blur, temporal anti-aliasing) need.
 //
-// Conventions (README "Motion vectors"):
+// Conventions (docs/motion.md):
 // - jitterPixels is in OUTPUT pixels, +x right, +y up (GL window coordinates): a point the
 //   unjittered projection puts at window position w is rasterised at w + jitterPixels (at a render
 //   scale below 1 that is jitterPixels x renderScale render pixels: the same fraction of the image).

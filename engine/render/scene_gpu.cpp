@@ -32,7 +32,7 @@ GLuint SceneGpu::texture(const TextureRef& ref, bool srgb) {
     } else {
         img = ref.encoded ? decodeTextureOrChecker(*ref.encoded, path) : loadTextureOrChecker(path);
     }
-    // Over the GPU's texture limits: halved until it fits, with a warning (README "Bad input").
+    // Over the GPU's texture limits: halved until it fits, with a warning (docs/bad-input.md).
     if (const gl::TextureFit fit = gl::fitTexture(srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, img.width, img.height); fit.halvings > 0) {
         const int w = img.width, h = img.height;
         img = downscaleToFit(img, std::max(w, h) >> fit.halvings);

@@ -1,6 +1,6 @@
 #pragma once
 // A camera path: keyframes of position, target and vertical fov over time (scene-file field
-// "cameraPath", or --camera-path FILE holding the same object; README "Camera paths").
+// "cameraPath", or --camera-path FILE holding the same object; docs/motion.md).
 //
 // Interpolation: a cubic Hermite spline through the keys with Catmull-Rom tangents for uneven key
 // times, m_i = (p_{i+1} - p_{i-1}) / (t_{i+1} - t_{i-1}) (units per second), on position, target and

@@ -26,7 +26,7 @@ int evBand(float luminance, float exposureEV) {
 }
 
 // One colour per stop, cold to hot: -6 black (and below), -5 .. -1 blues to teal, 0 green (middle
-// grey), +1 .. +5 yellow to red and magenta, +6 white (and above). README "Debug views" lists them.
+// grey), +1 .. +5 yellow to red and magenta, +6 white (and above). docs/viewer.md ("Debug views") lists them.
 vec3 evBandColor(int band) {
     const vec3 colors[13] = vec3[13](
         vec3(0.0, 0.0, 0.0),     // -6

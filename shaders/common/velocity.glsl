@@ -1,6 +1,6 @@
 // Motion vectors: gbuffer.velocity (RG16F) holds uv_current - uv_previous, uv in [0, 1] over the
 // image (u right, v up), from the UNJITTERED current and previous clip positions (jitter does not
-// move it). The previous position of the pixel at uv is uv - velocity. README "Motion vectors".
+// move it). The previous position of the pixel at uv is uv - velocity. docs/motion.md.
 #ifndef LP_VELOCITY_GLSL
 #define LP_VELOCITY_GLSL
 

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """run_corpus.py LIGHTPASS CORPUS_DIR OUT_DIR [CLASS...]: runs lightpass on every case of the bad-input
-corpus (make_corpus.py) of the given classes and checks the promise of README "Bad input":
+corpus (make_corpus.py) of the given classes and checks the promise of docs/bad-input.md:
   - no hang (each run under a timeout) and no crash (no exit by a signal);
   - an error case exits 1 with exactly one "lightpass: error:" line on stderr, which matches the case's
     regex (the file, and field or line, and what is wrong), no GL error lines, and leaves no file

@@ -247,7 +247,7 @@ double maxAbs(glm::vec4 a, glm::vec4 b, int channels) {
     return d;
 }
 
-// Per pixel, every channel within these bounds (README "Visibility buffer"): the G-buffer's own
+// Per pixel, every channel within these bounds (docs/visibility-buffer.md): the G-buffer's own
 // storage bounds (tests/gl/test_gbuffer_formats.cpp: 1/255 for colours, 0.04 for shininess and
 // 1e-4 deg for unpacked normals) widened only for float rounding in the rebuilt interpolation.
 struct Mismatch {

@@ -1,4 +1,4 @@
-// Bad input, parser by parser (README "Bad input"): special files, numbers tinyobjloader would read as
+// Bad input, parser by parser (docs/bad-input.md): special files, numbers tinyobjloader would read as
 // 0, indices that would wrap, degenerate triangles judged by their own size, a UTF-8 BOM, truncated
 // and corrupt images, an EXR display window around almost nothing, scene values out of range,
 // repeated warnings and all-or-nothing outputs. The CLI side is tests/bad_input/.

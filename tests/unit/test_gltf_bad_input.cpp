@@ -1,4 +1,4 @@
-// Bad glTF (README "Bad input"): JSON errors with file:line:column and a depth limit before any
+// Bad glTF (docs/bad-input.md): JSON errors with file:line:column and a depth limit before any
 // parser recursion, GLB errors naming the chunk, its offset and the lengths, user text quoted, sparse
 // accessors read per the specification, repaired values warned once per kind, iterative node walks
 // under a 1 MiB stack, images that fall back to the checker, and temporaries removed on signals.
