@@ -11,8 +11,7 @@
 //  3. each pixel adds the lights of its own slice's bits, so a tile holding a near pillar and a far
 //     wall shades neither with the lights in the empty depth between them. A pixel no light adds to
 //     leaves its HDR texel alone (neither read nor written).
-// A tile whose pixels lie within LP_CLUSTER_MERGE_RATIO of each other in depth (or in one slice) is
-// one froxel: its lights are exactly the tiled method's. The pass writes no froxel lists (nothing
+// A tile whose pixels lie in one slice is one froxel: its lights are exactly the tiled method's. The pass writes no froxel lists (nothing
 // reads them after it): light_clusters_tight.comp builds the same tight lists for the
 // lights-per-cluster view. Unbounded specular reaches every pixel: then every light is added.
 // Measured on the H100 and not kept (bench/results/lighting/2026-11-24_clustered-vs-tiled/README.md): sorting a tile's
@@ -29,13 +28,8 @@
 #ifndef LP_CLUSTER_TILE
 #define LP_CLUSTER_TILE 16
 #endif
-// Tiles whose farthest pixel is at most this many times as far as their nearest shade as one froxel
-// (0: only tiles within one slice; 2 and 4 were slower on the H100, and so were tiles with up to 2 or 3
-// occupied slices, or consecutive ones: bench/results/lighting/2026-11-24_clustered-vs-tiled/variants_run7_*;
-// docs/notes/clustered-kernel-variants.md has the merge variants' numbers).
-#ifndef LP_CLUSTER_MERGE_RATIO
-#define LP_CLUSTER_MERGE_RATIO 0.0
-#endif
+// Only a tile within one slice shades as one froxel: merging tiles whose depth spans a ratio of 2 or
+// 4, or 2 to 3 occupied slices, was slower on the H100 (docs/notes/clustered-kernel-variants.md).
 const int LP_TILE = LP_CLUSTER_TILE;
 // At most 16 x 16 invocations; a larger tile gives each invocation several pixels, 16 apart.
 const int LP_SIDE = LP_TILE < 16 ? LP_TILE : 16;
@@ -151,7 +145,7 @@ void main() {
     if ((occ.x | occ.y) == 0u) return;  // no surface in the tile: nothing to add
     float tileNear = clusterTileNear(occ), tileFar = clusterTileFar(occ);
     // One froxel for the whole tile (uniform): the tiled method's lights, slice 0's bits.
-    bool merged = bitCount(occ.x) + bitCount(occ.y) == 1 || tileFar <= float(LP_CLUSTER_MERGE_RATIO) * tileNear;
+    bool merged = bitCount(occ.x) + bitCount(occ.y) == 1;
     if (merged)
         for (int k = 0; k < LP_PIXELS; ++k) slice[k] = 0;
     vec2 ndcLo, ndcHi;

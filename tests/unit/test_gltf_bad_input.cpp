@@ -22,6 +22,7 @@
 #include "engine/core/log.hpp"
 #include "engine/io/gltf_container.hpp"
 #include "engine/io/gltf_loader.hpp"
+#include "tests/unit/gltf_test_files.hpp"
 #include "engine/io/image_io.hpp"
 #include "engine/io/json_text.hpp"
 #include "engine/io/temporary_files.hpp"
@@ -30,31 +31,10 @@ using namespace lp;
 namespace fs = std::filesystem;
 using nlohmann::json;
 
+using lp::test::TempDir;
+using lp::test::loadError;
+
 namespace {
-
-struct TempDir {
-    fs::path dir;
-    TempDir() {
-        dir = fs::temp_directory_path() /
-              ("lp_badgltf_" + std::to_string(::getpid()) + "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(dir);
-        fs::create_directories(dir);
-    }
-    ~TempDir() { fs::remove_all(dir); }
-    fs::path write(const std::string& name, const std::string& bytes) const {
-        std::ofstream(dir / name, std::ios::binary) << bytes;
-        return dir / name;
-    }
-};
-
-std::string loadError(const fs::path& p) {
-    try {
-        loadGltf(p);
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "";
-}
 
 std::string base64(const std::string& bytes) {
     static const char* k = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";

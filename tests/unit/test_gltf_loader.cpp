@@ -13,6 +13,7 @@
 
 #include "engine/core/error.hpp"
 #include "engine/io/gltf_loader.hpp"
+#include "tests/unit/gltf_test_files.hpp"
 #include "engine/io/gltf_schema.hpp"
 #include "engine/io/obj_loader.hpp"
 #include "engine/scene/scene_loader.hpp"
@@ -20,35 +21,14 @@
 using namespace lp;
 namespace fs = std::filesystem;
 
+using lp::test::TempDir;
+using lp::test::loadError;
+
 namespace {
 
 const fs::path kData = fs::path(LIGHTPASS_SOURCE_DIR) / "tests/data/gltf";
 
 // Temporary folder of hand-written files, removed at the end of the test.
-struct TempDir {
-    fs::path dir;
-    TempDir() {
-        dir = fs::temp_directory_path() / ("lp_gltf_" + std::to_string(::getpid()) + "_" +
-                                           ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(dir);
-        fs::create_directories(dir);
-    }
-    ~TempDir() { fs::remove_all(dir); }
-    fs::path write(const std::string& name, const std::string& text) const {
-        std::ofstream(dir / name, std::ios::binary) << text;
-        return dir / name;
-    }
-};
-
-std::string loadError(const fs::path& p) {
-    try {
-        loadGltf(p);
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "";
-}
-
 // A one-triangle glTF around a buffer given as a data: URI of `bytes` and the accessor JSON given.
 std::string triangleGltf(const std::string& accessors, const std::string& bufferViews, size_t bufferBytes,
                          const std::string& extra = "", const std::string& primitive = "\"attributes\": {\"POSITION\": 0}") {
