@@ -71,7 +71,12 @@ void keyCallback(GLFWwindow* window, int key, int, int action, int) {
         case GLFW_KEY_P: st->togglePath = true; break;
         case GLFW_KEY_X:
             s.localLights.scissor = !s.localLights.scissor;
-            say(std::string("scissor ") + (s.localLights.scissor ? "on" : "off"));
+            // Only the scissor method reads the switch: say so under the others rather than seem to do nothing.
+            say(std::string("scissor ") + (s.localLights.scissor ? "on" : "off") +
+                (s.localLights.method == LocalLightMethod::Scissor
+                     ? std::string()
+                     : std::string(" (used by the scissor method; now ") + localLightMethodName(s.localLights.method) +
+                           "; the panel's lighting section picks the method)"));
             break;
         case GLFW_KEY_H: st->showHelp = !st->showHelp; break;
         case GLFW_KEY_TAB: st->showPanel = !st->showPanel; break;

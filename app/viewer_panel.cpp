@@ -169,7 +169,7 @@ void drawPasses(ViewerState& st, Renderer& renderer) {
 
 void drawLighting(ViewerState& st, const Scene& scene) {
     knobWidgets(PanelSection::Lighting, st.settings, scene);
-    if (ImGui::TreeNode("shadows")) {
+    if (ImGui::TreeNodeEx("shadows", ImGuiTreeNodeFlags_DefaultOpen)) {  // every section starts open (docs/viewer.md)
         knobWidgets(PanelSection::Shadows, st.settings, scene);
         ImGui::TreePop();
     }
@@ -266,7 +266,7 @@ void drawViewerPanel(ViewerState& st, Renderer& renderer, const Scene& scene, co
         filePicker("scene file", files.scenes, st.sceneFile, st.sceneRequest, nullptr);
         filePicker("environment", files.environments, scene.environment.map, st.environmentRequest, "plain colour");
         // Seed 003's flat lighting, per material: shown as its colour, no light adds to it.
-        if (ImGui::TreeNode("flat-lit materials")) {
+        if (ImGui::TreeNodeEx("flat-lit materials", ImGuiTreeNodeFlags_DefaultOpen)) {
             const std::vector<GpuMaterial>& materials = renderer.sceneGpu().materials;
             for (size_t i = 0; i < materials.size(); ++i) {
                 const GpuMaterial& m = materials[i];

@@ -222,7 +222,12 @@ FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const Fr
 }
 
 void checkDisabledPasses(const fg::FrameGraph& graph, const std::set<std::string>& disabled) {
-    const std::vector<fg::PassDecision> candidates = graph.explain();
+    // Pass names have no spaces; a decision named with one is a note on a pass (the cascades a shadow
+    // map dropped: "shadow_map_0 cascades"), not a pass that can be disabled.
+    std::vector<fg::PassDecision> candidates = graph.explain();
+    candidates.erase(std::remove_if(candidates.begin(), candidates.end(),
+                                    [](const fg::PassDecision& d) { return d.name.find(' ') != std::string::npos; }),
+                     candidates.end());
     for (const std::string& name : disabled) {
         auto named = [&](const fg::PassDecision& d) { return d.name == name; };
         if (std::any_of(candidates.begin(), candidates.end(), named)) continue;

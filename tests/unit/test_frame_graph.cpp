@@ -296,6 +296,30 @@ TEST(FrameBuilder, DisablingSkyRemovesItFromTheCompiledGraph) {
     EXPECT_EQ(g.executionOrder(), (std::vector<std::string>{"gbuffer", "shadow_map_0", "ao_depth", "ao", "ao_blur", "ao_denoise", "global_lights", "tonemap"}));
 }
 
+// --disable-pass checks names against the frame's passes; a note on a pass (a shadow map's dropped
+// cascades, named "shadow_map_0 cascades") is neither a pass to disable nor listed as one.
+TEST(FrameBuilder, DisablePassNamesOnlyPasses) {
+    Scene s = oneLightScene();
+    RenderSettings settings;
+    settings.width = 64;
+    settings.height = 48;
+    FrameData frame = makeFrameData(s, settings, 0.0f);
+    FrameGraph g;
+    PassStates passes;
+    buildFrameGraph(g, passes, frame);
+    g.skipPass("shadow_map_0 cascades", "the scene needs fewer");
+    EXPECT_NO_THROW(checkDisabledPasses(g, {"sky"}));
+    try {
+        checkDisabledPasses(g, {"shadow_map_0 cascades"});
+        ADD_FAILURE() << "a note on a pass was accepted as a pass";
+    } catch (const Error& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("no such pass in this frame"), std::string::npos) << what;
+        EXPECT_NE(what.find("gbuffer"), std::string::npos) << what;
+        EXPECT_EQ(what.find("cascades"), what.rfind("cascades")) << "the note is listed as a pass: " << what;
+    }
+}
+
 TEST(FrameGraph, SkippedPassesAreReportedWithTheirReason) {
     FrameGraph g;
     g.addPass("A", fg::PassKind::Compute, [&](PassBuilder& p) { p.create("out", kDesc, fg::Usage::ImageStore); }, nullptr);
