@@ -1178,7 +1178,8 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
         if (node.mesh >= 0) {
             if (size_t(node.mesh) >= model.meshes.size())
                 L.fail(w + ".mesh", std::to_string(node.mesh) + " does not exist (" + std::to_string(model.meshes.size()) + " meshes)");
-            if (node.skin >= 0) L.warn(w, "skinning is not supported; drawn in its bind pose");
+            // One line for the whole file, however many skinned nodes it has.
+            if (node.skin >= 0) repairs.add(w, 0, "a skin, which lightpass does not apply", "drawn in the bind pose", "nodes");
             for (size_t p = 0; p < model.meshes[size_t(node.mesh)].primitives.size(); ++p) addPrimitive(node.mesh, int(p), world);
         }
         const glm::vec3 origin(world[3]);
@@ -1279,6 +1280,9 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
     }
 
     repairs.warn(L);
+    if (!model.animations.empty())
+        L.warn("animations", std::to_string(model.animations.size()) +
+                                 " animations, which lightpass does not play; drawn at rest");
     if (report.droppedDegenerate || report.droppedNonFinite)
         report.warnings.push_back(file + ": dropped " + std::to_string(report.droppedDegenerate) + " degenerate and " +
                                   std::to_string(report.droppedNonFinite) + " non-finite triangles");

@@ -1055,3 +1055,32 @@ TEST(GltfLoader, ZUpModelsAreTurnedYUp) {
         EXPECT_NE(std::string(e.what()).find("models[0].up: 'x': expected \"y\" or \"z\""), std::string::npos) << e.what();
     }
 }
+
+// What lightpass does not animate is said once per file, however many nodes use it: three skinned
+// nodes give one line naming the first and counting the others, and the animations one line.
+TEST(GltfLoader, SkinsAndAnimationsAreOneWarningEach) {
+    TempDir t;
+    const std::string text =
+        replaced(triangleGltf("[" + kPositions + R"(, {"bufferView": 0, "componentType": 5126, "count": 1, "type": "SCALAR", "min": [0], "max": [0]},
+                                                  {"bufferView": 0, "componentType": 5126, "count": 1, "type": "VEC3"}])",
+                              kViews, 42,
+                              R"("skins": [{"joints": [3]}], "animations": [
+                                  {"channels": [{"sampler": 0, "target": {"node": 3, "path": "translation"}}], "samplers": [{"input": 1, "output": 2}]},
+                                  {"channels": [{"sampler": 0, "target": {"node": 3, "path": "scale"}}], "samplers": [{"input": 1, "output": 2}]}],)"),
+                 R"("nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}])",
+                 R"("nodes": [{"mesh": 0, "skin": 0}, {"mesh": 0, "skin": 0}, {"mesh": 0, "skin": 0}, {}], "scenes": [{"nodes": [0, 1, 2, 3]}])");
+    MeshLoadReport report;
+    const GltfContent g = loadGltf(t.write("skinned.gltf", text), &report);
+    EXPECT_EQ(g.mesh.indices.size(), 9u);
+    int skins = 0, animations = 0;
+    for (const std::string& w : report.warnings) {
+        if (w.find("a skin, which lightpass does not apply") != std::string::npos) {
+            ++skins;
+            EXPECT_NE(w.find("nodes[0]: a skin, which lightpass does not apply (and in 2 other nodes); drawn in the bind pose"),
+                      std::string::npos) << w;
+        }
+        if (w.find("animations: 2 animations, which lightpass does not play; drawn at rest") != std::string::npos) ++animations;
+    }
+    EXPECT_EQ(skins, 1);
+    EXPECT_EQ(animations, 1);
+}
