@@ -4,6 +4,7 @@
 #include <cmath>
 #include <fstream>
 #include <optional>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -341,7 +342,19 @@ void addGltfLights(const GltfContent& g, const glm::mat4& transform, Scene& scen
     }
 }
 
-void loadMesh(const Reader& r, ModelInstance& m, const std::string& where, Scene& scene) {
+// The files a scene's models name, each parsed once: a scene listing the same model N times parsed
+// it N times (0.23 s per copy of the gallery's models) and repeated its warnings N times.
+struct ParsedFiles {
+    std::map<fs::path, MeshData> obj;
+    std::map<fs::path, GltfContent> gltf;
+    static fs::path key(const fs::path& file) {
+        std::error_code ec;
+        const fs::path canonical = fs::weakly_canonical(file, ec);
+        return ec ? file : canonical;
+    }
+};
+
+void loadMesh(const Reader& r, ModelInstance& m, const std::string& where, Scene& scene, ParsedFiles& parsed) {
     if (!m.primitive.empty()) {
         if (m.primitive == "plane") m.mesh = makePlane(1.0f, 8);
         else if (m.primitive == "sphere") m.mesh = makeSphere(0.5f, 64, 32);
@@ -349,16 +362,21 @@ void loadMesh(const Reader& r, ModelInstance& m, const std::string& where, Scene
     } else if (!m.gltf.empty()) {
         if (!fs::exists(m.gltf)) r.fail(where + ".gltf", m.gltf.string() + ": file not found");
         try {
-            GltfContent g = loadGltf(m.gltf);
-            m.mesh = std::move(g.mesh);
-            addGltfLights(g, m.transform, scene);
+            const fs::path key = ParsedFiles::key(m.gltf);
+            auto it = parsed.gltf.find(key);
+            if (it == parsed.gltf.end()) it = parsed.gltf.emplace(key, loadGltf(m.gltf)).first;
+            m.mesh = it->second.mesh;
+            addGltfLights(it->second, m.transform, scene);
         } catch (const Error& e) {  // "<scene>: models[i].gltf: <gltf>: <element>: <what>"
             r.fail(where + ".gltf", e.what());
         }
     } else {
         if (!fs::exists(m.obj)) r.fail(where + ".obj", m.obj.string() + ": file not found");
         try {
-            m.mesh = loadObj(m.obj);
+            const fs::path key = ParsedFiles::key(m.obj);
+            auto it = parsed.obj.find(key);
+            if (it == parsed.obj.end()) it = parsed.obj.emplace(key, loadObj(m.obj)).first;
+            m.mesh = it->second;
         } catch (const Error& e) {  // "<scene>: models[i].obj: <obj>: <what>"
             r.fail(where + ".obj", e.what());
         }
@@ -464,9 +482,10 @@ Scene parseScene(const std::string& text, const fs::path& origin, bool loadMeshe
         // glTF's instanced ones.
         constexpr size_t kMaxSceneElements = size_t(1) << 26;
         size_t sceneElements = 0;
+        ParsedFiles parsed;
         for (size_t i = 0; i < scene.models.size(); ++i) {
             try {
-                loadMesh(r, scene.models[i], "models[" + std::to_string(i) + "]", scene);
+                loadMesh(r, scene.models[i], "models[" + std::to_string(i) + "]", scene, parsed);
                 requirePlacedWithinRange(r, scene.models[i], "models[" + std::to_string(i) + "]");
                 sceneElements += scene.models[i].mesh.vertices.size() + scene.models[i].mesh.indices.size();
                 if (sceneElements > kMaxSceneElements)

@@ -6,7 +6,10 @@
 #include <fstream>
 #include <sstream>
 
+#include <unistd.h>
+
 #include "engine/core/error.hpp"
+#include "engine/core/log.hpp"
 #include "engine/scene/scene_loader.hpp"
 
 using namespace lp;
@@ -219,4 +222,26 @@ TEST(SceneLoader, SpotLightErrorsNameFileAndLight) {
               std::string::npos);
     // NaN cannot be written in JSON; a huge number is the non-finite case a file can hold.
     EXPECT_EQ(spot(R"("outerAngle": 1e400)").find("test.json: invalid JSON"), 0u);
+}
+
+// A file several models name is parsed once: the same OBJ three times gives three equal meshes and
+// its warning (a missing material library) once, not three times.
+TEST(SceneLoader, AModelFileNamedTwiceIsParsedOnce) {
+    namespace fs = std::filesystem;
+    const fs::path dir = fs::temp_directory_path() / ("lp_scene_parsed_once_" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    std::ofstream(dir / "tri.obj") << "mtllib missing.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    std::ofstream(dir / "scene.json") << R"({"models": [
+        {"obj": "tri.obj"}, {"obj": "./tri.obj", "translate": [2, 0, 0]}, {"obj": "tri.obj", "translate": [4, 0, 0]}]})";
+    resetWarningCount();
+    const Scene s = loadScene((dir / "scene.json").string());
+    const int warnings = warningCount();
+    fs::remove_all(dir);
+    ASSERT_EQ(s.models.size(), 3u);
+    for (const ModelInstance& m : s.models) {
+        ASSERT_EQ(m.mesh.vertices.size(), 3u);
+        EXPECT_EQ(m.mesh.indices, s.models[0].mesh.indices);
+        EXPECT_EQ(m.mesh.vertices[1].position, s.models[0].mesh.vertices[1].position);
+    }
+    EXPECT_EQ(warnings, 1) << "the missing material library is said once";
 }
