@@ -32,13 +32,17 @@ TEST(GradientProbe, IsotropicGradientsPickTheirLevelAndTheModelIsKnown) {
                                                                                           : lambda;
     EXPECT_NEAR(g.rasterFractional, expectedFractional, 0.1);
     EXPECT_NEAR(g.rasterStretched, g.rasterClampsRatio ? 3.0 : 1.0, 0.1);
-    // The chosen footprint (per pixel or per quad) predicts the 64 pixels' levels within a tenth of a
-    // level on average; the other misses by more (at pixel (1, 1) they are log2 3 levels apart).
-    const double chosen = g.rasterLevelPerQuad ? g.rasterPerQuadError : g.rasterPerPixelError;
-    const double other = g.rasterLevelPerQuad ? g.rasterPerPixelError : g.rasterPerQuadError;
-    EXPECT_LT(chosen, 0.1 * 64);
-    EXPECT_GT(other, chosen + 1.0);
-    if (g.computeFollowsGradients) {
+    // Where compute ignores the gradients (the only case the resolve uses the model), the chosen
+    // footprint (per pixel or per quad) predicts the 64 pixels' levels within a tenth of a level on
+    // average; the other misses by more (at pixel (1, 1) they are log2 3 levels apart). Where compute
+    // follows them the model is unused, and a GPU's own anisotropic footprint need not fit it (the
+    // H100's: summed error 74 per quad, 94 per pixel).
+    if (!g.computeFollowsGradients) {
+        const double chosen = g.rasterLevelPerQuad ? g.rasterPerQuadError : g.rasterPerPixelError;
+        const double other = g.rasterLevelPerQuad ? g.rasterPerPixelError : g.rasterPerQuadError;
+        EXPECT_LT(chosen, 0.1 * 64);
+        EXPECT_GT(other, chosen + 1.0);
+    } else {
         EXPECT_NEAR(g.computeSquare, 2.0, 0.25);
         EXPECT_NEAR(g.computeStretched, 1.0, 0.25);
     }
