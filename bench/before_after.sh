@@ -3,12 +3,12 @@
 # difference between rounds. Run from the repository root on the GPU machine:
 #   bench/before_after.sh BUNDLE OUTDIR
 # BUNDLE holds run (the new lightpass), run-base (the old one, same libraries), gl_tests and
-# cuda_tests (built with LIGHTPASS_GL_STATE_CHECKS=ON) and lib/. The gallery needs ../shared/assets.
+# cuda_tests and lib/; gl_tests run with the per-pass GL state check (LIGHTPASS_GL_STATE_CHECKS=1). The gallery needs ../shared/assets.
 # Tables: bench/compare_runs.py OUTDIR frame_cornell frame_gallery post lights.
 set -u
 B=$(cd "$1" && pwd); R=$2; mkdir -p $R
 nvidia-smi --query-gpu=name,driver_version --format=csv,noheader | tee $R/device.txt
-LD_LIBRARY_PATH=$B/lib $B/gl_tests --gtest_brief=1 > $R/gl_tests.txt 2>&1; tail -4 $R/gl_tests.txt
+LIGHTPASS_GL_STATE_CHECKS=1 LD_LIBRARY_PATH=$B/lib $B/gl_tests --gtest_brief=1 > $R/gl_tests.txt 2>&1; tail -4 $R/gl_tests.txt
 LD_LIBRARY_PATH=$B/lib $B/cuda_tests > $R/cuda_tests.txt 2>&1; tail -3 $R/cuda_tests.txt
 $B/run graph --scene scenes/cornell.json --bloom --toon --post-backend cuda > $R/graph_cuda.txt 2>&1
 for round in 1 2; do for v in base new; do

@@ -1,5 +1,10 @@
 #include "engine/gl/state_check.hpp"
 
+#include <cctype>
+#include <cstdlib>
+
+#include "engine/core/log.hpp"
+
 namespace lp::gl {
 
 namespace {
@@ -81,6 +86,26 @@ std::string describeStateChange(const WatchedState& before, const WatchedState& 
                " (was " + std::to_string(before.items[i].second) + ")";
     }
     return out;
+}
+
+std::optional<bool> parseStateChecksFlag(std::string_view value) {
+    std::string v;
+    for (char c : value) v += char(std::toupper((unsigned char)c));
+    if (v == "1" || v == "ON") return true;
+    if (v.empty() || v == "0" || v == "OFF") return false;
+    return std::nullopt;
+}
+
+bool stateChecksFromEnvironment() {
+    static const bool on = [] {
+        const char* env = std::getenv("LIGHTPASS_GL_STATE_CHECKS");
+        if (!env) return false;
+        const std::optional<bool> flag = parseStateChecksFlag(env);
+        if (!flag)
+            logWarn(std::string("LIGHTPASS_GL_STATE_CHECKS=") + env + ": expected 1 or 0; the per-pass GL state check stays off");
+        return flag.value_or(false);
+    }();
+    return on;
 }
 
 }  // namespace lp::gl

@@ -600,19 +600,9 @@ const FrameGraph::Resource& FrameGraph::resourceOf(ResourceId id) const {
     return resources_[versions_[id.version].resource];
 }
 
-bool FrameGraph::stateChecksCompiledIn() {
-#ifdef LIGHTPASS_GL_STATE_CHECKS
-    return true;
-#else
-    return false;
-#endif
-}
-
 void FrameGraph::execute(TexturePool& pool, gl::GpuTimerRing* timers) {
     if (!compiled_) compile();
-#ifdef LIGHTPASS_GL_STATE_CHECKS
-    const gl::WatchedState before = gl::captureWatchedState();
-#endif
+    const gl::WatchedState before = stateChecks_ ? gl::captureWatchedState() : gl::WatchedState{};
     pool.beginFrame();
     pool_ = &pool;
     for (int i : order_) {
@@ -636,10 +626,10 @@ void FrameGraph::execute(TexturePool& pool, gl::GpuTimerRing* timers) {
             if (timers) timers->endPass();
         }
         gl::checkErrors("pass '" + p.name + "'");
-#ifdef LIGHTPASS_GL_STATE_CHECKS
-        const std::string changed = gl::describeStateChange(before, gl::captureWatchedState());
-        if (!changed.empty()) throw Error("frame graph: pass '" + p.name + "' left GL state changed: " + changed);
-#endif
+        if (stateChecks_) {
+            const std::string changed = gl::describeStateChange(before, gl::captureWatchedState());
+            if (!changed.empty()) throw Error("frame graph: pass '" + p.name + "' left GL state changed: " + changed);
+        }
         for (auto& r : resources_)
             if (r.live && !r.isImported && r.last == i) pool.release(r.texture);
     }

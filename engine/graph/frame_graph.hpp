@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "engine/gl/gl.hpp"
+#include "engine/gl/state_check.hpp"
 
 namespace lp::gl {
 class GpuTimerRing;
@@ -207,10 +208,12 @@ public:
     void compile();
     // Allocates transient textures from the pool, records every live pass in order with the
     // barriers compile() derived, and releases textures after their last use so later passes can
-    // reuse them. Built with LIGHTPASS_GL_STATE_CHECKS, throws lp::Error naming a pass that leaves
-    // the watched GL state (engine/gl/state_check.hpp) other than it found it.
+    // reuse them. With the state check on, throws lp::Error naming a pass that leaves the watched GL
+    // state (engine/gl/state_check.hpp) other than it found it.
     void execute(TexturePool& pool, gl::GpuTimerRing* timers = nullptr);
-    static bool stateChecksCompiledIn();
+    // The per-pass GL state check: from LIGHTPASS_GL_STATE_CHECKS (off unless it is 1) until set here.
+    void setStateChecks(bool on) { stateChecks_ = on; }
+    bool stateChecks() const { return stateChecks_; }
 
     const std::vector<PassReport>& report() const { return report_; }
     // glMemoryBarrier bits issued before a pass (0 when none, or no such live pass), and after the
@@ -307,6 +310,7 @@ private:
     TexturePool* pool_ = nullptr;  // during execute(): where PassResources::image finds views
     GLbitfield finalBarrier_ = 0;
     bool compiled_ = false;
+    bool stateChecks_ = gl::stateChecksFromEnvironment();
 };
 
 }  // namespace lp::fg

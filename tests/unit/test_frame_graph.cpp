@@ -657,3 +657,15 @@ TEST(FrameBuilder, OverlaysReadTheLightRecordsTheLightingPassFilled) {
             EXPECT_TRUE(has(passReport(off, overlay).reads, "local_lights.records")) << overlay << " without " << filler;
         }
 }
+
+// LIGHTPASS_GL_STATE_CHECKS: 1/ON turn the per-pass GL state check on, 0/OFF/empty leave it off (the
+// default, what `lightpass` users get), anything else is refused (a warning, and off).
+TEST(FrameGraph, StateCheckFlagValues) {
+    for (const char* on : {"1", "ON", "on", "On"}) EXPECT_EQ(gl::parseStateChecksFlag(on), std::optional<bool>(true)) << on;
+    for (const char* off : {"", "0", "OFF", "off"}) EXPECT_EQ(gl::parseStateChecksFlag(off), std::optional<bool>(false)) << off;
+    for (const char* bad : {"2", "yes", " 1", "ONE"}) EXPECT_EQ(gl::parseStateChecksFlag(bad), std::nullopt) << bad;
+    FrameGraph g;
+    EXPECT_EQ(g.stateChecks(), gl::stateChecksFromEnvironment());
+    g.setStateChecks(!g.stateChecks());
+    EXPECT_NE(g.stateChecks(), gl::stateChecksFromEnvironment());
+}
