@@ -6,7 +6,7 @@
 Each SWEEP_DIR holds sweep.csv and the PNGs of one sweep (its name, e.g. gallery_1080p, labels it).
 Writes OUTDIR/aa.md (per sweep and value: frame GPU ms, the anti-aliasing pass's ms, HDR RMSE and
 PSNR against the knob's reference, FLIP on the tone-mapped PNGs when the flip-evaluator package is
-installed) and OUTDIR/aa_pareto.png (error against frame ms, one panel per sweep, Pareto front
+installed: scripts/setup-tools puts it in .venv, which this script re-runs itself under) and OUTDIR/aa_pareto.png (error against frame ms, one panel per sweep, Pareto front
 marked). HDR RMSE cannot see FXAA (it changes only the tone-mapped image): FLIP is the error that
 compares all methods; without it the plot uses HDR RMSE and says so.
 """
@@ -15,6 +15,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from project_python import use_project_venv  # noqa: E402
 from sweep_report import flip_error, pareto  # noqa: E402
 
 AA_PASSES = ("ssaa_downsample", "fxaa", "taa")
@@ -36,7 +37,7 @@ def main(out_dir, folders):
           "sweep's frames. \"AA pass ms\" is the ssaa_downsample / fxaa / taa pass alone; the rest of SSAA's "
           "cost is every pass before it running at S x S the pixels.", ""]
     if not have_flip:
-        md += ["FLIP skipped (`pip install flip-evaluator`); the plot uses HDR RMSE, which cannot see FXAA.", ""]
+        md += ["FLIP skipped (`scripts/setup-tools` installs it); the plot uses HDR RMSE, which cannot see FXAA.", ""]
     for name, rows in sweeps:
         for knob in dict.fromkeys(r["knob"] for r in rows):
             krows = [r for r in rows if r["knob"] == knob]
@@ -80,4 +81,5 @@ def main(out_dir, folders):
 if __name__ == "__main__":
     if len(sys.argv) < 3:
         sys.exit(__doc__)
+    use_project_venv(["flip_evaluator"])
     main(sys.argv[1], sys.argv[2:])

@@ -5,12 +5,16 @@
 
 Reads SWEEP_DIR/sweep.csv and the PNGs beside it; writes SWEEP_DIR/sweep_report.md (the table with
 FLIP on the tone-mapped images) and SWEEP_DIR/sweep_pareto.png (error against GPU ms per knob, the
-Pareto front marked). FLIP needs the `flip-evaluator` package (pip install flip-evaluator) and the
-plot needs matplotlib (Debian: python3-matplotlib); without them those parts are skipped with a note.
+Pareto front marked). FLIP needs the `flip-evaluator` package and the plot matplotlib: scripts/setup-tools
+installs both (FLIP in .venv, which this script re-runs itself under when its python3 lacks FLIP:
+bench/project_python.py); without them those parts are skipped with a note.
 """
 import csv
 import os
 import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from project_python import use_project_venv  # noqa: E402
 
 
 def load_rgb(path):
@@ -56,7 +60,7 @@ def main(folder):
         f = flip_error(os.path.join(folder, r["image"]), os.path.join(knob_dir, "reference.png"))
         r["flip"] = f
     if any(r["flip"] is None for r in rows):
-        notes.append("FLIP skipped: `pip install flip-evaluator` to add it.")
+        notes.append("FLIP skipped: `scripts/setup-tools` installs it (flip-evaluator, in .venv).")
     out = ["# What accuracy costs: " + os.path.basename(os.path.abspath(folder)), ""]
     out += notes
     knobs = []
@@ -109,4 +113,5 @@ def main(folder):
 
 
 if __name__ == "__main__":
+    use_project_venv(["flip_evaluator"])
     main(sys.argv[1] if len(sys.argv) > 1 else "sweep")

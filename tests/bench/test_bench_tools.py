@@ -1,7 +1,7 @@
 """bench/'s forward+ tools without a GPU: forward_terms.sh's shader patches still apply to
 shaders/forward.frag (each variant changes exactly the line it names), summarize_forward_terms.py's
-arithmetic on a fixture, and summarize_render_path.py counting the visibility G-buffer's passes in
-deferred's geometry + lighting. Run from the repository root: python3 -m unittest discover -s tests/bench"""
+arithmetic on a fixture, summarize_render_path.py counting the visibility G-buffer's passes in
+deferred's geometry + lighting, and project_python.py re-running a script under the project's .venv. Run from the repository root: python3 -m unittest discover -s tests/bench"""
 import difflib
 import io
 import json
@@ -15,6 +15,7 @@ from contextlib import redirect_stdout
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 sys.path.insert(0, os.path.join(ROOT, "bench"))
 
+import project_python  # noqa: E402
 import summarize_forward_terms  # noqa: E402
 import summarize_render_path  # noqa: E402
 
@@ -121,6 +122,58 @@ class SummarizeRenderPath(unittest.TestCase):
             self.assertEqual(cells[2], "4.000 / 3.350 (10)")   # classic: 3 + 0.35
             self.assertEqual(cells[3], "8.500 / 8.000 (10)")
             self.assertEqual(cells[4], "2.12")                  # 8.5 / 4
+
+
+class ProjectPython(unittest.TestCase):
+    """bench/*.py that need FLIP find it in .venv (scripts/setup-tools) from the system python3."""
+
+    def fake_root(self, d, with_venv=True):
+        """A tree with bench/project_python.py, a script needing a module nothing has, and (with_venv)
+        a .venv/bin/python3 that only says it ran and with what."""
+        def write(path, text):
+            with open(path, "w") as f:
+                f.write(text)
+        os.makedirs(os.path.join(d, "bench"))
+        with open(os.path.join(ROOT, "bench", "project_python.py")) as f:
+            write(os.path.join(d, "bench", "project_python.py"), f.read())
+        write(os.path.join(d, "bench", "needs_flip.py"),
+            "import sys, os\nsys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))\n"
+            "from project_python import use_project_venv\n"
+            "use_project_venv(['no_such_module_lp', 'os'])\nprint('ran under', sys.executable)\n")
+        if with_venv:
+            python = os.path.join(d, ".venv", "bin", "python3")
+            os.makedirs(os.path.dirname(python))
+            write(python, '#!/bin/sh\necho "venv python: $*"\n')
+            os.chmod(python, 0o755)
+        return os.path.join(d, "bench", "needs_flip.py")
+
+    def test_choice(self):
+        with tempfile.TemporaryDirectory() as d:
+            self.fake_root(d)
+            venv_python = os.path.join(d, ".venv", "bin", "python3")
+            self.assertEqual(project_python.interpreter_for(["x"], d, prefix="/usr", have=lambda m: False), venv_python)
+            self.assertIsNone(project_python.interpreter_for(["x"], d, prefix="/usr", have=lambda m: True))
+            self.assertIsNone(project_python.interpreter_for(["x"], d, prefix=os.path.join(d, ".venv"),
+                                                             have=lambda m: False))  # already there: no loop
+        with tempfile.TemporaryDirectory() as d:
+            self.fake_root(d, with_venv=False)
+            self.assertIsNone(project_python.interpreter_for(["x"], d, prefix="/usr", have=lambda m: False))
+
+    def test_script_reruns_under_venv(self):
+        with tempfile.TemporaryDirectory() as d:
+            script = self.fake_root(d)
+            out = subprocess.run([sys.executable, script, "sweep"], capture_output=True, text=True, check=True).stdout
+            self.assertEqual(out.strip(), f"venv python: {script} sweep")
+        with tempfile.TemporaryDirectory() as d:
+            script = self.fake_root(d, with_venv=False)
+            out = subprocess.run([sys.executable, script], capture_output=True, text=True, check=True).stdout
+            self.assertTrue(out.startswith("ran under"), out)
+
+    def test_flip_scripts_use_it(self):
+        for name in ("sweep_report.py", "summarize_aa.py"):
+            with open(os.path.join(ROOT, "bench", name)) as f:
+                text = f.read()
+            self.assertIn('use_project_venv(["flip_evaluator"])', text, name)
 
 
 if __name__ == "__main__":
