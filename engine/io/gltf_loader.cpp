@@ -20,6 +20,7 @@
 #include "engine/core/error.hpp"
 #include "engine/core/log.hpp"
 #include "engine/io/file_check.hpp"
+#include "engine/io/gltf_compression.hpp"
 #include "engine/io/gltf_container.hpp"
 #include "engine/io/gltf_schema.hpp"
 #include "engine/io/json_text.hpp"
@@ -43,9 +44,11 @@ std::string formatNumber(double v) {
 }
 
 // Extensions this loader understands; a file that requires any other is refused (the spec's rule).
-const std::set<std::string> kSupportedExtensions = {"KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_materials_ior",
-                                                     "KHR_materials_unlit", "KHR_mesh_quantization", "KHR_texture_transform"};
-constexpr size_t kMaxElements = size_t(1) << 28;  // accessor count limit: 268M elements
+// KHR_texture_basisu is not among them: its KTX2 images have no Debian decoder.
+const std::set<std::string> kSupportedExtensions = {"EXT_meshopt_compression", "KHR_draco_mesh_compression", "KHR_lights_punctual",
+                                                     "KHR_materials_emissive_strength", "KHR_materials_ior", "KHR_materials_unlit",
+                                                     "KHR_mesh_quantization", "KHR_texture_transform"};
+constexpr size_t kMaxElements = kMaxGltfElements;  // accessor count limit: 268M elements
 constexpr size_t kMaxNodeDepth = 1024;                        // levels of the node hierarchy
 constexpr size_t kMaxDrawnPrimitives = size_t(1) << 20;       // primitive instances the nodes draw
 constexpr size_t kMaxDrawnVertices = size_t(1) << 26;         // their vertices and indices, instances counted
@@ -108,11 +111,13 @@ fs::path uriFile(const std::string& baseDir, const std::string& uri) {
 // or path in its message, or none at all): a data URI decoded strictly to exactly byteLength bytes; an
 // external file that exists, is a regular file and holds byteLength bytes; a GLB's first buffer without
 // a URI within the BIN chunk. The external files are listed in `files` for the callbacks above.
+// EXT_meshopt_compression's fallback buffers are not read: they hold no data.
 void checkBuffers(const nlohmann::json& root, const GltfSource& source, const std::string& file, const std::string& baseDir,
-                  BufferFiles& files) {
+                  const GltfCompressedParts& compressed, BufferFiles& files) {
     const auto buffers = root.find("buffers");
     if (buffers == root.end()) return;
     for (size_t i = 0; i < buffers->size(); ++i) {
+        if (compressed.fallbackBuffers.count(i)) continue;
         const nlohmann::json& b = (*buffers)[i];
         const std::string w = file + ": buffers[" + std::to_string(i) + "]";
         const uint64_t byteLength = b["byteLength"].get<uint64_t>();  // the schema: an integer >= 1
@@ -754,20 +759,23 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
     const std::vector<GltfSchemaIssue> schemaIssues = checkGltfSchema(root);
     for (const GltfSchemaIssue& issue : schemaIssues)
         if (issue.error) throw Error(file + ": " + issue.where + ": " + issue.what);
-    // Before tinygltf, which fails on what such an extension changes (a Draco mesh's accessors have no
-    // bufferView) with a message that does not name the extension.
+    // Before tinygltf, which would fail on what such an extension changes (a KHR_texture_basisu image is
+    // KTX2) with a message that does not name the extension.
     if (const auto required = root.find("extensionsRequired"); required != root.end())
         for (size_t i = 0; i < required->size(); ++i) {
             const std::string name = (*required)[i].get<std::string>();
             if (kSupportedExtensions.count(name)) continue;
             std::string supported;
             for (const std::string& known : kSupportedExtensions) supported += (supported.empty() ? "" : ", ") + known;
-            throw Error(file + ": extensionsRequired[" + std::to_string(i) + "]: " + quoteUserText(name) +
+            // Quoted to 40 characters (every registered extension name is shorter): with the list of
+            // supported ones the line stays within the 400 characters a terminal line is allowed.
+            throw Error(file + ": extensionsRequired[" + std::to_string(i) + "]: " + quoteUserText(name, 40) +
                         " is not supported (supported: " + supported + ")");
         }
     const std::string baseDir = path.has_parent_path() ? path.parent_path().string() : std::string(".");
+    const GltfCompressedParts compressed = findCompressedParts(root, source.binary);
     BufferFiles bufferFiles;
-    checkBuffers(root, source, file, baseDir, bufferFiles);
+    checkBuffers(root, source, file, baseDir, compressed, bufferFiles);
     // Images: data URIs decoded here (one that does not decode becomes the checker with a warning;
     // tinygltf would refuse the whole file), external files named for SceneGpu to read.
     std::vector<ImageSource> images = imageSources(root, baseDir);
@@ -778,6 +786,10 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
             if (images[i].problem.empty()) continue;
             if (forTinygltf.is_null()) forTinygltf = root;
             forTinygltf["images"][i]["uri"] = "data:image/png;base64,AAAA";  // three zero bytes, which it passes on
+        }
+        if (!compressed.empty()) {
+            if (forTinygltf.is_null()) forTinygltf = root;
+            hideCompressedParts(compressed, forTinygltf);
         }
         if (!forTinygltf.is_null()) rewritten = forTinygltf.dump();
     }
@@ -802,6 +814,8 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
     // What the checks above did not foresee, one line of it. Its warnings concern images only, which
     // are read by SceneGpu instead.
     if (!ok) throw Error(file + ": " + oneLineMessage(err.empty() ? std::string("could not be read as glTF") : err, 300));
+    // Compressed buffer views and Draco meshes decoded: from here on every accessor reads plain bytes.
+    decodeCompressedParts(model, root, compressed, file);
     Loader L{model, file, report, images};
     Repairs repairs;
     for (const std::string& w : source.warnings) report.warnings.push_back(file + ": " + w);

@@ -474,7 +474,8 @@ public:
     }
 
     // A primitive's `indices`: an accessor that exists and has a bufferView (tinygltf, through which
-    // lightpass reads glTF, refuses a sparse index accessor without one, in words that name neither).
+    // lightpass reads glTF, refuses a sparse index accessor without one, in words that name neither),
+    // unless a KHR_draco_mesh_compression stream holds its data (decoded after tinygltf).
     void primitiveIndices(const json& root) {
         const auto meshes = root.find("meshes"), accessors = root.find("accessors");
         if (meshes == root.end()) return;
@@ -484,11 +485,14 @@ public:
             for (size_t p = 0; p < primitives.size(); ++p) {
                 const auto indices = primitives[p].find("indices");
                 if (indices == primitives[p].end()) continue;
+                const auto extensions = primitives[p].find("extensions");
+                const bool draco = extensions != primitives[p].end() && extensions->is_object() &&
+                                   extensions->contains("KHR_draco_mesh_compression");
                 const std::string where = "meshes[" + std::to_string(m) + "].primitives[" + std::to_string(p) + "].indices";
                 const size_t a = indices->get<size_t>();
                 if (a >= accessorCount)
                     error(where, "accessor " + std::to_string(a) + " does not exist (" + std::to_string(accessorCount) + " accessors)");
-                else if (!(*accessors)[a].contains("bufferView"))
+                else if (!draco && !(*accessors)[a].contains("bufferView"))
                     error(where + " (accessors[" + std::to_string(a) + "])", "has no bufferView; an index accessor without one is not supported");
             }
         }

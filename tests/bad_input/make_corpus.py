@@ -375,9 +375,22 @@ gltf("bad_index.gltf", buffers=[{"byteLength": 42, "uri": "data:application/octe
                                  base64.b64encode(struct.pack("<9f", 0, 0, 0, 1, 0, 0, 0, 1, 0) + struct.pack("<3H", 0, 1, 900)).decode()}])
 case(9, "gltf_bad_index", render_model("bad_index.gltf"), "error",
      r"bad_index.gltf: meshes\[0\]\.primitives\[0\]\.indices: index 900 at position 2 is beyond the 3 vertices")
-gltf("required_extension.gltf", extensionsRequired=["KHR_draco_mesh_compression"], extensionsUsed=["KHR_draco_mesh_compression"])
+gltf("required_extension.gltf", extensionsRequired=["KHR_texture_basisu"], extensionsUsed=["KHR_texture_basisu"])
 case(9, "gltf_unknown_required_extension", render_model("required_extension.gltf"), "error",
-     r"required_extension.gltf: extensionsRequired\[0\]: 'KHR_draco_mesh_compression' is not supported")
+     r"required_extension.gltf: extensionsRequired\[0\]: 'KHR_texture_basisu' is not supported")
+# Compressed geometry whose stream is not one: 36 bytes of floats read as a Draco mesh, and a meshopt
+# vertex stream cut to 4 bytes. One line naming the extension, never a crash.
+gltf("draco_not_a_stream.gltf", extensionsUsed=["KHR_draco_mesh_compression"], extensionsRequired=["KHR_draco_mesh_compression"],
+     primitive={"attributes": {"POSITION": 0}, "indices": 1,
+                "extensions": {"KHR_draco_mesh_compression": {"bufferView": 0, "attributes": {"POSITION": 0}}}})
+case(9, "gltf_draco_not_a_stream", render_model("draco_not_a_stream.gltf"), "error",
+     r"draco_not_a_stream.gltf: meshes\[0\]\.primitives\[0\]\.extensions\.KHR_draco_mesh_compression: Draco decoding failed: ")
+gltf("meshopt_truncated.gltf", extensionsUsed=["EXT_meshopt_compression"], extensionsRequired=["EXT_meshopt_compression"],
+     views=[{"buffer": 0, "byteOffset": 0, "byteLength": 36, "extensions": {"EXT_meshopt_compression": {
+                 "buffer": 0, "byteOffset": 0, "byteLength": 4, "byteStride": 12, "count": 3, "mode": "ATTRIBUTES"}}},
+            {"buffer": 0, "byteOffset": 36, "byteLength": 6}])
+case(9, "gltf_meshopt_truncated", render_model("meshopt_truncated.gltf"), "error",
+     r"meshopt_truncated.gltf: bufferViews\[0\]\.extensions\.EXT_meshopt_compression: meshopt decoding failed \(ATTRIBUTES, 3 elements of 12 bytes from 4 bytes\)")
 gltf("missing_texture.gltf", primitive={"attributes": {"POSITION": 0}, "indices": 1, "material": 0},
      images=[{"uri": "missing.png"}], textures=[{"source": 0}], materials=[{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}])
 case(9, "gltf_missing_texture", render_model("missing_texture.gltf"), "fallback", r"missing.png.*using a checker texture",
