@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/io/gltf_loader.hpp"
+#include "engine/io/obj_loader.hpp"
 #include "tests/unit/gltf_test_files.hpp"
 
 using namespace lp;
@@ -186,12 +187,18 @@ nlohmann::json dracoGltf(const Grid& g, const DracoFile& d, bool quantized) {
     return doc;
 }
 
+// An octahedral unit vector whose two coordinates are each rounded by at most `half`: the point on
+// the octahedron moves by at most sqrt(6) half (the third coordinate takes both errors), and
+// normalising it, at least 1/sqrt(3) from the centre, stretches that by at most sqrt(3).
+float octahedralBound(float half) { return std::sqrt(18.0f) * half; }
+
 // Draco's bounds: a quantised component is off by at most half a step of its range (2 for the
-// positions, 1 for the uvs) over 2^bits - 1 steps; octahedral normals of b bits within 2 steps of
-// [-1, 1] over 2^b - 1 on the unit sphere. Normalised bytes and shorts add half their step.
+// positions, 1 for the uvs) over 2^bits - 1 steps; its octahedral normals' coordinates span [-1, 1]
+// in 2^bits - 1 steps. Normalised bytes and shorts add half their step per component.
 Bounds dracoBounds(bool quantized) {
     const float position = std::sqrt(3.0f) * 0.5f * 2.0f / float((1 << kDracoPositionBits) - 1);
-    const float normal = 2.0f * 2.0f / float((1 << kDracoNormalBits) - 1) + (quantized ? std::sqrt(3.0f) * 0.5f / 127.0f : 0.0f);
+    const float normal = octahedralBound(1.0f / float((1 << kDracoNormalBits) - 1)) * 1.001f +
+                         (quantized ? std::sqrt(3.0f) * 0.5f / 127.0f : 0.0f);
     const float uv = std::sqrt(2.0f) * 0.5f / float((1 << kDracoUvBits) - 1) + (quantized ? std::sqrt(2.0f) * 0.5f / 65535.0f : 0.0f);
     return {position * 1.001f + 1e-6f, normal, uv * 1.001f + 1e-6f};
 }
@@ -233,6 +240,31 @@ TEST(GltfCompression, DracoMeshesLoadAsTheOriginalWithinTheQuantisationBound) {
         doc["bufferViews"].push_back({{"buffer", 1}, {"byteOffset", offset}, {"byteLength", bytes}});
     }
     expectGrid(loadGltf(t.write("draco_fallback.gltf", doc.dump())).mesh, g, dracoBounds(false));
+}
+
+// A real scan: the Stanford bunny (low resolution) from ../shared/assets, as the OBJ loader reads it,
+// through Draco's edgebreaker and back. Skipped where the shared assets are absent.
+TEST(GltfCompression, DracoBunnyFromTheSharedAssets) {
+    const fs::path obj = fs::path(LIGHTPASS_SHARED_ASSETS) / "stanford-bunny/bunny-lowres.obj";
+    if (!fs::exists(obj)) GTEST_SKIP() << obj << " is not here";
+    TempDir t;
+    const MeshData source = loadObj(obj);
+    Grid g;
+    glm::vec3 lo(1e9f), hi(-1e9f);
+    for (const Vertex& v : source.vertices) lo = glm::min(lo, v.position), hi = glm::max(hi, v.position);
+    for (const Vertex& v : source.vertices) {
+        g.positions.push_back(v.position);
+        g.normals.push_back(v.normal);
+        g.uvs.push_back(glm::vec2((v.position - lo) / (hi - lo)));  // a planar projection in [0, 1]
+    }
+    g.indices = source.indices;
+    ASSERT_GT(g.indices.size(), 3000u);
+    const DracoFile d = encodeDraco(g, false);
+    Bounds b = dracoBounds(false);
+    b.position = std::sqrt(3.0f) * 0.5f * std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z}) / float((1 << kDracoPositionBits) - 1) * 1.001f + 1e-6f;
+    nlohmann::json doc = dracoGltf(g, d, false);
+    doc["accessors"][3]["componentType"] = 5125;  // more than 255 vertices: 32-bit indices
+    expectGrid(loadGltf(t.write("bunny.gltf", doc.dump())).mesh, g, b);
 }
 
 // A corrupt or truncated stream, or accessors that disagree with it: one line naming the extension.
@@ -360,11 +392,11 @@ MeshoptFile meshoptGltf(const Grid& g, const std::string& indexMode, size_t inde
 }
 
 // meshopt's codecs are lossless; the bounds are the quantisation's: half a step per position
-// component; 8-bit octahedral normals within 2 steps of [-1, 1] over 127, then rounded to normalised
+// component; 8-bit octahedral normals (coordinates in steps of 1/127), then rounded to normalised
 // bytes (half of 1/127 per component); EXPONENTIAL keeps 15-bit mantissas of uvs at most 1.
 Bounds meshoptBounds(float positionStep) {
-    const float octStep = 2.0f / float((1 << (kOctBits - 1)) - 1);
-    return {std::sqrt(3.0f) * 0.5f * positionStep * 1.01f + 1e-6f, 2.0f * octStep + std::sqrt(3.0f) * 0.5f / 127.0f,
+    const float octHalfStep = 0.5f / float((1 << (kOctBits - 1)) - 1);
+    return {std::sqrt(3.0f) * 0.5f * positionStep * 1.01f + 1e-6f, octahedralBound(octHalfStep) * 1.001f + std::sqrt(3.0f) * 0.5f / 127.0f,
             std::sqrt(2.0f) * std::ldexp(1.0f, -(kExpBits - 1))};
 }
 
