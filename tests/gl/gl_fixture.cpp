@@ -6,7 +6,10 @@
 #include <cmath>
 #include <filesystem>
 
+#include <unistd.h>
+
 #include "engine/gl/handles.hpp"
+#include "engine/io/image_io.hpp"
 #include "engine/graph/texture_pool.hpp"
 #include "engine/render/scene_gpu.hpp"
 #include "engine/scene/scene.hpp"
@@ -70,6 +73,20 @@ double srgbDecode(double encoded) {
 double srgb8Stored(double linear) { return srgbDecode(std::round(srgbEncode(linear) * 255.0) / 255.0); }
 
 glm::dvec3 srgb8Stored(glm::dvec3 linear) { return {srgb8Stored(linear.x), srgb8Stored(linear.y), srgb8Stored(linear.z)}; }
+
+WhiteFurnaceMap::WhiteFurnaceMap(const std::string& name)
+    : path(std::filesystem::temp_directory_path() / ("lightpass-test-" + std::to_string(::getpid()) + "-" + name + ".exr")) {
+    ImageF white;
+    white.width = 128;
+    white.height = 64;
+    white.rgba.assign(size_t(128 * 64 * 4), 1.0f);
+    writeExr(path, white);
+}
+
+WhiteFurnaceMap::~WhiteFurnaceMap() {
+    std::error_code ec;
+    std::filesystem::remove(path, ec);
+}
 
 EnvironmentSettings smallIblBake(int dfgSamples) {
     EnvironmentSettings s;

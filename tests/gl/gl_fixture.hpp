@@ -1,5 +1,6 @@
 #pragma once
 // Helpers shared by the GL tests: the context, a GLSL compute harness, and small scenes.
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -41,6 +42,17 @@ double srgbEncode(double linear);
 double srgbDecode(double encoded);
 double srgb8Stored(double linear);
 glm::dvec3 srgb8Stored(glm::dvec3 linear);
+
+// The white furnace's environment: a uniform equirect map of radiance 1, 128 x 64 (the CPU SH
+// projection of a coarser map leaks ~0.5% into the l = 2 band), in a temporary EXR named after `name`
+// and the process, removed with the object.
+struct WhiteFurnaceMap {
+    std::filesystem::path path;
+    explicit WhiteFurnaceMap(const std::string& name);
+    ~WhiteFurnaceMap();
+    WhiteFurnaceMap(const WhiteFurnaceMap&) = delete;
+    WhiteFurnaceMap& operator=(const WhiteFurnaceMap&) = delete;
+};
 
 // IBL on with a bake small enough for a software rasteriser (32^2 cubes, 64 GGX samples, a 32^2
 // DFG LUT of `dfgSamples` samples per texel).

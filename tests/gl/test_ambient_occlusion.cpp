@@ -7,12 +7,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
 #include <iostream>
 #include <set>
 #include <string>
 
-#include <unistd.h>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -361,25 +359,6 @@ TEST(AmbientOcclusion, OpenWallsAreUniform) {
     }
 }
 
-namespace {
-// A uniform white environment map (radiance 1) in a temporary EXR, removed with the object.
-struct WhiteMap {
-    std::filesystem::path path = std::filesystem::temp_directory_path() /
-                                 ("lightpass-ao-test-" + std::to_string(::getpid()) + "-white.exr");
-    WhiteMap() {
-        ImageF white;
-        white.width = 128;  // the CPU SH projection of a coarser map leaks into the l = 2 band
-        white.height = 64;
-        white.rgba.assign(size_t(128 * 64 * 4), 1.0f);
-        writeExr(path, white);
-    }
-    ~WhiteMap() {
-        std::error_code ec;
-        std::filesystem::remove(path, ec);
-    }
-};
-}  // namespace
-
 // White furnace with AO on: white Lambertian spheres (albedo 1, specular 0) of radius 0.5 made of 64 x
 // 32, 24 x 12 and 12 x 6 facets with interpolated normals, on and off the view axis and at three
 // depths, each further than the AO radius (1 m) from the others, in a uniform environment of radiance
@@ -389,7 +368,7 @@ struct WhiteMap {
 // silhouettes, where samples of the sphere itself used to read as horizons: rims up to 30% dark).
 // AO at its defaults (half size) and at full size.
 TEST(AmbientOcclusion, WhiteFurnaceSpheresStayUnoccluded) {
-    const WhiteMap map;
+    const test::WhiteFurnaceMap map("ao-furnace");
     struct Ball {
         glm::vec3 centre;
         int segments;

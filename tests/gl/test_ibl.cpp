@@ -167,13 +167,8 @@ double memoAlbedo(std::map<long, double>& memo, double nv, double roughness,
 // (global_lights is switched off: without lights and ambient it adds 0.)
 TEST(Ibl, WhiteFurnaceSphereReflectsTheEnvironmentExactly) {
   for (float albedo : {1.0f, 0.5f}) {
-    const auto mapPath = tempPath("furnace.exr");
-    ImageF white;
-    // 128 x 64: the CPU SH projection of a coarser map leaks ~0.5% into the l = 2 band.
-    white.width = 128;
-    white.height = 64;
-    white.rgba.assign(size_t(128 * 64 * 4), 1.0f);
-    writeExr(mapPath, white);
+    const test::WhiteFurnaceMap map("furnace");
+    const auto& mapPath = map.path;
 
     const Scene scene = sphereUnderMap(mapPath, glm::vec3(albedo), glm::vec3(0.0f), 32.0f);
 
@@ -202,7 +197,6 @@ TEST(Ibl, WhiteFurnaceSphereReflectsTheEnvironmentExactly) {
         }
         EXPECT_GT(sphere.size(), 200u);
     }
-    std::filesystem::remove(mapPath);
   }
 }
 
@@ -214,12 +208,8 @@ TEST(Ibl, WhiteFurnaceSphereReflectsTheEnvironmentExactly) {
 // specular methods: the sampled one (4 samples a pixel) takes its magnitude from the same LUT, so a
 // uniform environment must come out exactly as the split sum's.
 TEST(Ibl, WhiteFurnaceGgxSphereReflectsItsExactAlbedo) {
-    const auto mapPath = tempPath("furnace-ggx.exr");
-    ImageF white;
-    white.width = 128;
-    white.height = 64;
-    white.rgba.assign(size_t(128 * 64 * 4), 1.0f);
-    writeExr(mapPath, white);
+    const test::WhiteFurnaceMap map("furnace-ggx");
+    const auto& mapPath = map.path;
     for (SpecularMasking masking : {SpecularMasking::Separable, SpecularMasking::HeightCorrelated})
     for (IblSpecular specular : {IblSpecular::SplitSum, IblSpecular::Sampled})
     for (float shininess : {6.0f, 0.0f}) {  // alpha = sqrt(2 / (n + 2)): 0.5 and 1
@@ -255,7 +245,6 @@ TEST(Ibl, WhiteFurnaceGgxSphereReflectsItsExactAlbedo) {
                            "_mean_rel_error_n" + std::to_string(int(shininess)),
                        std::to_string(sum / sumExact - 1.0));
     }
-    std::filesystem::remove(mapPath);
 }
 
 // GGX with F0 = 1: the split sum's white-environment reflectance A + B is at most 1 (a microfacet
@@ -675,12 +664,8 @@ TEST(Ibl, RoughSphereUnderASmallLampMatchesTheExactIntegralWithTheLampExtracted)
     std::filesystem::remove(tempPath("lamp-extracted.exr"));
 
     // White furnace, extraction on: nothing is taken out, the sphere keeps its exact albedo.
-    const auto furnacePath = tempPath("furnace-extract.exr");
-    ImageF white;
-    white.width = 128;
-    white.height = 64;
-    white.rgba.assign(size_t(128 * 64 * 4), 1.0f);
-    writeExr(furnacePath, white);
+    const test::WhiteFurnaceMap furnaceMap("furnace-extract");
+    const auto& furnacePath = furnaceMap.path;
     const Scene furnace = sphereUnderMap(furnacePath, glm::vec3(0.0f), glm::vec3(1.0f), shininess);
     Renderer rf(furnace);
     s.environment.specular = IblSpecular::SplitSum;
@@ -697,7 +682,6 @@ TEST(Ibl, RoughSphereUnderASmallLampMatchesTheExactIntegralWithTheLampExtracted)
     s.environment.extractLights = 0;  // a map with no lamp renders exactly as without extraction
     rf.render(s, 0.0f, false);
     EXPECT_EQ(rf.readHdr().rgba, hdr.rgba) << "white furnace, extraction on vs off";
-    std::filesystem::remove(furnacePath);
 }
 
 // --specular-masking reaches the extracted lights (ibl_lights.glsl) and the IBL's DFG LUT: the lamp
@@ -797,12 +781,8 @@ TEST(Ibl, GltfRoughMetalUnderASmallLampMatchesTheSpecificationsIntegral) {
 // diffuse (ggxDiffuseFresnelMeanWeight) and specular (split sum) under the default BRDF and masking.
 // Bound: the sphere mean within 0.5%, each pixel within 2% (the 32^2 DFG LUT's bilinear error).
 TEST(Ibl, WhiteFurnaceGltfDielectricReflectsTheSpecificationsAlbedo) {
-    const auto mapPath = tempPath("furnace-gltf.exr");
-    ImageF white;
-    white.width = 128;
-    white.height = 64;
-    white.rgba.assign(size_t(128 * 64 * 4), 1.0f);
-    writeExr(mapPath, white);
+    const test::WhiteFurnaceMap map("furnace-gltf");
+    const auto& mapPath = map.path;
     for (const GltfBrdfMaterial& m : {GltfBrdfMaterial{glm::dvec3(0.8), 0.0, 0.5}, GltfBrdfMaterial{glm::dvec3(0.5), 0.0, 1.0}}) {
         SCOPED_TRACE("roughness " + std::to_string(m.roughness));
         const Scene scene = gltfSphereUnderMap(mapPath, m);
@@ -855,7 +835,6 @@ TEST(Ibl, WhiteFurnaceGltfDielectricReflectsTheSpecificationsAlbedo) {
         EXPECT_NEAR(sum / sumExact, 1.0, 0.005);
         RecordProperty("mean_over_exact_roughness_" + std::to_string(m.roughness), std::to_string(sum / sumExact));
     }
-    std::filesystem::remove(mapPath);
 }
 
 // The extracted lights' shading (shaders/common/ibl_lights.glsl) on the driver: a source of radius 0
