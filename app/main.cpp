@@ -17,6 +17,7 @@
 #include "app/sweep.hpp"
 #include "app/viewer.hpp"
 #include "engine/core/error.hpp"
+#include "engine/core/measured_cache.hpp"
 #include "engine/core/paths.hpp"
 #include "engine/post/backend_timings.hpp"
 #include "engine/post/post_config.hpp"
@@ -43,7 +44,7 @@ Scene loadFromOptions(const Options& o) { return sceneFromOptions(o); }
 // (gpu, driver, size, kernel, method, interop, effect) pass `keep`.
 void printCachedPostChoices(const char* title, bool showGpu,
                             const std::function<bool(const std::vector<std::string>&)>& keep) {
-    const std::filesystem::path file = post::timingCachePath([](const char* v) { return std::getenv(v); });
+    const std::filesystem::path file = measuredCachePath();
     if (file.empty()) {
         std::printf("%s: no cache folder ($LIGHTPASS_CACHE_DIR, $XDG_CACHE_HOME and $HOME unset)\n", title);
         return;

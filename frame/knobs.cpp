@@ -756,7 +756,7 @@ std::vector<KnobEntry> makeKnobTable() {
         KnobEntry k = boolKnob("post-remeasure", [](auto& s) -> auto& { return s.post.remeasure; });
         k.flags = {setsFlag("--post-remeasure", 1)};
         k.help = "--post-backend auto: time CUDA and GLSL again instead of reading the cache "
-                 "($LIGHTPASS_CACHE_DIR or ~/.cache/lightpass/post_backend_timings.json), and rewrite it";
+                 "(measured_choices.json in $LIGHTPASS_CACHE_DIR or ~/.cache/lightpass), and rewrite it";
         t.push_back(std::move(k));
     }
 

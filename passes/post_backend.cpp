@@ -6,6 +6,7 @@
 
 #include "engine/core/error.hpp"
 #include "engine/core/log.hpp"
+#include "engine/core/measured_cache.hpp"
 #include "engine/gl/gl.hpp"
 
 #ifdef LIGHTPASS_HAVE_CUDA
@@ -50,7 +51,7 @@ bool sharedInteropWins(const std::map<post::PostEffect, post::BackendTimes>& sha
     return viaMap < 0.0 || viaShared < viaMap;
 }
 
-PostBackend::PostBackend() : cacheFile(post::timingCachePath([](const char* v) { return std::getenv(v); })) {}
+PostBackend::PostBackend() : cacheFile(measuredCachePath()) {}
 PostBackend::~PostBackend() = default;
 PostBackend::PostBackend(PostBackend&&) noexcept = default;
 PostBackend& PostBackend::operator=(PostBackend&&) noexcept = default;

@@ -83,7 +83,7 @@ struct PostBackend {
                                                                const std::vector<post::PostEffect>& effects,
                                                                bool remeasure,
                                                                const std::function<post::BackendTimes(post::PostEffect)>& measure);
-    // Where the timing cache lives (post::timingCachePath of the environment); tests may set it.
+    // The measurement cache holding the timings (measuredCachePath()); tests may set it.
     std::filesystem::path cacheFile;
 
     unsigned long frameIndex = 0;  // counts built frames (addPostPasses)

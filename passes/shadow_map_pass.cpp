@@ -13,6 +13,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "engine/core/log.hpp"
+#include "engine/core/measured_cache.hpp"
 #include "engine/gl/raster_probe.hpp"
 #include "engine/gl/shader.hpp"
 #include "engine/gl/state.hpp"
@@ -27,15 +28,6 @@ std::string shadowRasterCacheKey() {
         return v ? std::string(reinterpret_cast<const char*>(v)) : std::string("?");
     };
     return str(GL_VENDOR) + " / " + str(GL_RENDERER) + " / " + str(GL_VERSION);
-}
-
-std::filesystem::path shadowRasterCachePath() {
-    if (const char* dir = std::getenv("LIGHTPASS_CACHE_DIR"); dir && *dir) return std::filesystem::path(dir) / "shadow_raster.txt";
-    if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg)
-        return std::filesystem::path(xdg) / "lightpass" / "shadow_raster.txt";
-    if (const char* home = std::getenv("HOME"); home && *home)
-        return std::filesystem::path(home) / ".cache" / "lightpass" / "shadow_raster.txt";
-    return std::filesystem::path("lightpass_shadow_raster.txt");
 }
 
 ConservativeRasterSupport queryConservativeRasterSupport() {
@@ -567,6 +559,7 @@ void drawAtlas(ShadowMapPass& state, const FrameData& frame, const ShadowFrustum
 // first frame's cascades (each drawn once to compile, then kAutoRuns times between GL timestamps;
 // the median counts) and cached. Bad cache lines are ignored with a warning and rewritten.
 constexpr int kAutoRuns = 5;
+constexpr const char* kShadowRasterSection = "shadow_raster";  // GPU key -> raster name
 constexpr ShadowSettings::Raster kMeasuredRasters[] = {ShadowSettings::Raster::Conservative, ShadowSettings::Raster::Plain,
                                                        ShadowSettings::Raster::Split, ShadowSettings::Raster::Compute};
 
@@ -584,27 +577,24 @@ ShadowSettings::Raster resolveAutoRaster(ShadowMapPass& state, DrawFn&& draw) {
     if (state.autoResolved) return state.autoRaster;
     state.autoResolved = true;
     const std::string key = shadowRasterCacheKey();
-    const std::filesystem::path path = shadowRasterCachePath();
-    std::vector<std::string> kept;  // other GPUs' lines
-    {
-        std::ifstream in(path);
-        std::string line;
-        while (std::getline(in, line)) {
-            const size_t tab = line.find('\t');
-            if (tab == std::string::npos || line.substr(tab + 1) != key) {
-                if (!line.empty()) kept.push_back(line);
-                continue;
-            }
-            ShadowSettings::Raster cached;
-            if (rasterFromName(line.substr(0, tab), cached)) {
-                state.autoRaster = cached;
-                state.autoReport = std::string("shadow raster auto: ") + ShadowSettings::rasterName(cached) + " (cached in " +
-                                   path.string() + ")";
-                logInfo(state.autoReport);
-                return cached;
-            }
-            logWarn(path.string() + ": unknown shadow raster '" + line.substr(0, tab) + "' for this GPU; measuring again");
+    const std::filesystem::path path = measuredCachePath();
+    MeasuredSection cache;
+    if (!path.empty()) {
+        cache = readMeasuredSection(path, kShadowRasterSection);
+        if (!cache.warning.empty()) logWarn(cache.warning);
+    }
+    if (cache.entries.contains(key)) {
+        ShadowSettings::Raster cached;
+        const nlohmann::json& entry = cache.entries[key];
+        if (entry.is_string() && rasterFromName(entry.get<std::string>(), cached)) {
+            state.autoRaster = cached;
+            state.autoReport = std::string("shadow raster auto: ") + ShadowSettings::rasterName(cached) + " (cached in " +
+                               path.string() + ")";
+            logInfo(state.autoReport);
+            return cached;
         }
+        logWarn(path.string() + ": " + kShadowRasterSection + " entry for this GPU is not a shadow raster (" +
+                entry.dump() + "); measuring again");
     }
     std::string times;
     double best = 0.0;
@@ -631,22 +621,12 @@ ShadowSettings::Raster resolveAutoRaster(ShadowMapPass& state, DrawFn&& draw) {
     }
     state.autoReport = std::string("shadow raster auto: ") + ShadowSettings::rasterName(state.autoRaster) + " (measured: " +
                        times + "; conservative and split on the " + conservativeRasterLabel(state.hardwareConservative) +
-                       " conservative raster; cached in " + path.string() + ")";
+                       " conservative raster; " + (path.empty() ? std::string("not cached: no cache folder") : "cached in " + path.string()) + ")";
     logInfo(state.autoReport);
-    // Written beside and renamed over the cache: a failed write leaves the old file whole.
-    std::error_code ec;
-    std::filesystem::create_directories(path.parent_path(), ec);
-    const std::filesystem::path temporary = path.string() + ".tmp";
-    {
-        std::ofstream out(temporary, std::ios::trunc);
-        for (const std::string& line : kept) out << line << '\n';
-        out << ShadowSettings::rasterName(state.autoRaster) << '\t' << key << '\n';
-        if (!out) ec = std::make_error_code(std::errc::io_error);
-    }
-    if (!ec) std::filesystem::rename(temporary, path, ec);
-    if (ec) {
-        std::filesystem::remove(temporary, ec);
-        logWarn(path.string() + ": could not write the shadow raster cache; auto measures again next start");
+    if (!path.empty()) {
+        cache.entries[key] = ShadowSettings::rasterName(state.autoRaster);  // other GPUs' entries kept
+        const std::string warning = writeMeasuredSection(path, kShadowRasterSection, cache.entries);
+        if (!warning.empty()) logWarn(warning + "; auto measures again next start");
     }
     return state.autoRaster;
 }

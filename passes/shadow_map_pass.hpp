@@ -270,10 +270,9 @@ bool growsCastersInHardware(ShadowSettings::Raster resolvedRaster, bool hardware
 // and compute all of them: their rasterised depths' lowest bits say nothing.
 bool atlasIsMarked(ShadowSettings::Raster resolvedRaster);
 
-// --shadow-raster auto's cache: one line per GPU, "<raster>\t<GL_VENDOR / GL_RENDERER / GL_VERSION>",
-// in $LIGHTPASS_CACHE_DIR/shadow_raster.txt, else $XDG_CACHE_HOME/lightpass/, else ~/.cache/lightpass/.
+// --shadow-raster auto's choice per GPU, the section "shadow_raster" of the measurement cache
+// (engine/core/measured_cache.hpp): "<GL_VENDOR / GL_RENDERER / GL_VERSION>": "<raster>".
 std::string shadowRasterCacheKey();
-std::filesystem::path shadowRasterCachePath();
 
 struct LightShadowMap {
     int light = -1;          // index into frameDirectionalLights(frame)

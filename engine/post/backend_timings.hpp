@@ -1,9 +1,8 @@
 #pragma once
 // `--post-backend auto` per effect: which of CUDA and GLSL compute runs bloom, the composite and
 // toon, from times measured at start-up on this GPU, and the cache that keeps those times between
-// runs (a JSON file; see postTimingCachePath). No GL or CUDA here: passes/post_backend.cpp measures.
+// runs (the section "post_backend" of engine/core/measured_cache.hpp's file). No GL or CUDA here: passes/post_backend.cpp measures.
 #include <filesystem>
-#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -42,16 +41,12 @@ struct CacheRead {
     TimingCache entries;
     std::string warning;  // set when the file exists but cannot be used (it is then remeasured)
 };
-// A missing file is an empty cache without a warning; an unreadable, malformed or wrong-version
-// file, or a bad entry (negative or non-finite time), is an empty cache with a one-line warning
-// naming the file. Never throws.
+// The post backend's section of the measurement cache `file` (lp::measuredCachePath()). A missing
+// file is an empty cache without a warning; an unusable file, or a bad entry (negative or
+// non-finite time), is an empty cache with a one-line warning naming the file. Never throws.
 CacheRead readTimingCache(const std::filesystem::path& file);
-// Writes all entries (to a temporary file renamed into place, so a crash never leaves half a
-// file); returns a one-line warning instead of throwing when it cannot.
+// Replaces the section with all entries, other sections kept (a temporary file renamed into place,
+// so a crash never leaves half a file); returns a one-line warning instead of throwing when it cannot.
 std::string writeTimingCache(const std::filesystem::path& file, const TimingCache& entries);
-
-// $LIGHTPASS_CACHE_DIR/post_backend_timings.json when set, else $XDG_CACHE_HOME/lightpass/..., else
-// $HOME/.cache/lightpass/...; empty when none is set (nothing is cached then).
-std::filesystem::path timingCachePath(const std::function<const char*(const char*)>& getenv);
 
 }  // namespace lp::post

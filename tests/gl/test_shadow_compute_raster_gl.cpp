@@ -19,6 +19,7 @@
 
 #include "engine/graph/texture_pool.hpp"
 #include "engine/core/log.hpp"
+#include "engine/core/measured_cache.hpp"
 #include "engine/render/scene_gpu.hpp"
 #include "engine/scene/mesh_ops.hpp"
 #include "engine/scene/primitives.hpp"
@@ -287,9 +288,10 @@ TEST(ShadowRasterAuto, MeasuresOnceAndCachesTheChoicePerGpu) {
     ASSERT_NE(state.autoRaster, ShadowSettings::Raster::Auto);
     EXPECT_NE(state.autoReport.find("measured: conservative"), std::string::npos) << state.autoReport;
     EXPECT_NE(state.autoReport.find("compute"), std::string::npos) << state.autoReport;
-    EXPECT_EQ(shadowRasterCachePath(), cache.dir / "shadow_raster.txt");
-    EXPECT_EQ(readFile(cache.dir / "shadow_raster.txt"),
-              std::string(ShadowSettings::rasterName(state.autoRaster)) + "\t" + shadowRasterCacheKey() + "\n");
+    EXPECT_EQ(measuredCachePath(), cache.dir / "measured_choices.json");
+    const MeasuredSection cached = readMeasuredSection(measuredCachePath(), "shadow_raster");
+    EXPECT_EQ(cached.warning, "");
+    EXPECT_EQ(cached.entries, nlohmann::json({{shadowRasterCacheKey(), ShadowSettings::rasterName(state.autoRaster)}}));
     EXPECT_EQ(autoAtlas, shadowAtlas(s, autoTestSettings(state.autoRaster)));
     // A second frame of the same pass does not measure again.
     const std::string report = state.autoReport;
@@ -297,31 +299,37 @@ TEST(ShadowRasterAuto, MeasuresOnceAndCachesTheChoicePerGpu) {
     EXPECT_EQ(state.autoReport, report);
 }
 
-// A cached choice for this GPU is used as is (no measurement), other GPUs' lines are left alone.
+// A cached choice for this GPU is used as is (no measurement), other GPUs' entries are left alone.
 TEST(ShadowRasterAuto, UsesTheCachedChoiceForThisGpu) {
     ScopedCacheDir cache("auto_cached");
-    const std::string contents = "plain\tSome Other GPU / 1.0\nsplit\t" + shadowRasterCacheKey() + "\n";
-    std::ofstream(cache.dir / "shadow_raster.txt") << contents;
+    const std::filesystem::path file = cache.dir / "measured_choices.json";
+    ASSERT_EQ(writeMeasuredSection(file, "shadow_raster",
+                                   {{"Some Other GPU / 1.0", "plain"}, {shadowRasterCacheKey(), "split"}}), "");
+    const std::string contents = readFile(file);
     const Scene s = randomCasters(true);
     ShadowMapPass state;
     const std::vector<float> autoAtlas = shadowAtlas(s, autoTestSettings(ShadowSettings::Raster::Auto), &state);
     EXPECT_EQ(state.autoRaster, ShadowSettings::Raster::Split);
     EXPECT_NE(state.autoReport.find("cached in"), std::string::npos) << state.autoReport;
-    EXPECT_EQ(state.autoReport.find("measured"), std::string::npos) << state.autoReport;
-    EXPECT_EQ(readFile(cache.dir / "shadow_raster.txt"), contents);
+    EXPECT_EQ(state.autoReport.find("(measured:"), std::string::npos) << state.autoReport;
+    EXPECT_EQ(readFile(file), contents);
     EXPECT_EQ(autoAtlas, shadowAtlas(s, autoTestSettings(ShadowSettings::Raster::Split)));
 }
 
-// An unknown raster name in this GPU's line: a warning, a new measurement, the line replaced.
-TEST(ShadowRasterAuto, BadCacheLineIsMeasuredAgainAndReplaced) {
+// An unknown raster name in this GPU's entry: a warning, a new measurement, the entry replaced;
+// other GPUs' entries and the other choices' sections are kept.
+TEST(ShadowRasterAuto, BadCacheEntryIsMeasuredAgainAndReplaced) {
     ScopedCacheDir cache("auto_bad");
-    std::ofstream(cache.dir / "shadow_raster.txt") << "plain\tSome Other GPU / 1.0\nbogus\t" + shadowRasterCacheKey() + "\n";
+    const std::filesystem::path file = cache.dir / "measured_choices.json";
+    const nlohmann::json postBackend = {{"gpu|driver|64x48|kernel 9|separable|shared|bloom", {{"cuda_ms", 1.0}, {"glsl_ms", 2.0}}}};
+    ASSERT_EQ(writeMeasuredSection(file, "post_backend", postBackend), "");
+    ASSERT_EQ(writeMeasuredSection(file, "shadow_raster", {{"Some Other GPU / 1.0", "plain"}, {shadowRasterCacheKey(), "bogus"}}), "");
     const int warnings = warningCount();
     ShadowMapPass state;
     shadowAtlas(randomCasters(true), autoTestSettings(ShadowSettings::Raster::Auto), &state);
     EXPECT_GT(warningCount(), warnings);
-    EXPECT_NE(state.autoReport.find("measured"), std::string::npos) << state.autoReport;
-    EXPECT_EQ(readFile(cache.dir / "shadow_raster.txt"), "plain\tSome Other GPU / 1.0\n" +
-                                                             std::string(ShadowSettings::rasterName(state.autoRaster)) + "\t" +
-                                                             shadowRasterCacheKey() + "\n");
+    EXPECT_NE(state.autoReport.find("(measured:"), std::string::npos) << state.autoReport;
+    EXPECT_EQ(readMeasuredSection(file, "shadow_raster").entries,
+              nlohmann::json({{"Some Other GPU / 1.0", "plain"}, {shadowRasterCacheKey(), ShadowSettings::rasterName(state.autoRaster)}}));
+    EXPECT_EQ(readMeasuredSection(file, "post_backend").entries, postBackend);
 }

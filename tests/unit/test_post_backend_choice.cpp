@@ -10,6 +10,7 @@
 
 #include <unistd.h>
 
+#include "engine/core/measured_cache.hpp"
 #include "engine/post/backend_timings.hpp"
 #include "passes/post_backend.hpp"
 
@@ -99,7 +100,7 @@ TEST(PostBackendChoice, KeyNamesEveryField) {
 
 TEST(PostTimingCache, WritesAndReadsBack) {
     const auto dir = scratchDir("roundtrip");
-    const auto file = dir / "sub" / "post_backend_timings.json";  // the folder is made
+    const auto file = dir / "sub" / "measured_choices.json";  // the folder is made
     post::TimingCache entries{{"a|b|1x1|kernel 1|separable|map|bloom", {0.25, 0.5}},
                               {"a|b|1x1|kernel 1|separable|map|toon", {1.0, 0.125}}};
     EXPECT_EQ(post::writeTimingCache(file, entries), "");
@@ -121,16 +122,17 @@ TEST(PostTimingCache, MissingFileIsEmptyWithoutWarning) {
 TEST(PostTimingCache, CorruptFilesWarnNamingTheFileAndReadEmpty) {
     const auto dir = scratchDir("corrupt");
     const std::pair<const char*, const char*> cases[] = {
-        {"{\"version\": 1, \"entries\": {", "not valid JSON"},
+        {"{\"version\": 1, \"sections\": {", "not valid JSON"},
         {"[1, 2]", "not a version 1"},
-        {"{\"version\": 7, \"entries\": {}}", "not a version 1"},
-        {"{\"version\": 1}", "no \"entries\""},
-        {"{\"version\": 1, \"entries\": {\"k\": {\"cuda_ms\": \"fast\", \"glsl_ms\": 1}}}", "needs numbers"},
-        {"{\"version\": 1, \"entries\": {\"k\": {\"cuda_ms\": -2, \"glsl_ms\": 1}}}", "negative or non-finite"},
+        {"{\"version\": 7, \"sections\": {}}", "not a version 1"},
+        {"{\"version\": 1}", "no \"sections\""},
+        {"{\"version\": 1, \"sections\": {\"post_backend\": [1]}}", "not an object"},
+        {"{\"version\": 1, \"sections\": {\"post_backend\": {\"k\": {\"cuda_ms\": \"fast\", \"glsl_ms\": 1}}}}", "needs numbers"},
+        {"{\"version\": 1, \"sections\": {\"post_backend\": {\"k\": {\"cuda_ms\": -2, \"glsl_ms\": 1}}}}", "negative or non-finite"},
         {"", "not valid JSON"},
     };
     for (const auto& [text, expected] : cases) {
-        const auto file = dir / "post_backend_timings.json";
+        const auto file = dir / "measured_choices.json";
         writeText(file, text);
         const post::CacheRead read = post::readTimingCache(file);
         EXPECT_TRUE(read.entries.empty()) << text;
@@ -141,20 +143,33 @@ TEST(PostTimingCache, CorruptFilesWarnNamingTheFileAndReadEmpty) {
     std::filesystem::remove_all(dir);
 }
 
-TEST(PostTimingCache, PathFollowsTheEnvironment) {
+// The post backend's times share the measurement cache with other choices: writing them keeps the
+// other sections whole.
+TEST(PostTimingCache, KeepsTheOtherSectionsOfTheMeasurementCache) {
+    const auto dir = scratchDir("sections");
+    const auto file = dir / "measured_choices.json";
+    const nlohmann::json shadow = {{"Some GPU / 4.5", "compute"}};
+    ASSERT_EQ(writeMeasuredSection(file, "shadow_raster", shadow), "");
+    EXPECT_EQ(post::writeTimingCache(file, {{"a|b|1x1|kernel 1|separable|map|bloom", {0.25, 0.5}}}), "");
+    EXPECT_EQ(readMeasuredSection(file, "shadow_raster").entries, shadow);
+    EXPECT_EQ(post::readTimingCache(file).entries.size(), 1u);
+    std::filesystem::remove_all(dir);
+}
+
+TEST(MeasuredCache, PathFollowsTheEnvironmentAndNeverTheWorkingDirectory) {
     auto env = [](std::map<std::string, std::string> vars) {
         return [vars](const char* name) -> const char* {
             auto it = vars.find(name);
             return it == vars.end() ? nullptr : it->second.c_str();
         };
     };
-    EXPECT_EQ(post::timingCachePath(env({{"LIGHTPASS_CACHE_DIR", "/c"}, {"HOME", "/h"}})),
-              std::filesystem::path("/c/post_backend_timings.json"));
-    EXPECT_EQ(post::timingCachePath(env({{"XDG_CACHE_HOME", "/x"}, {"HOME", "/h"}})),
-              std::filesystem::path("/x/lightpass/post_backend_timings.json"));
-    EXPECT_EQ(post::timingCachePath(env({{"XDG_CACHE_HOME", "relative"}, {"HOME", "/h"}})),
-              std::filesystem::path("/h/.cache/lightpass/post_backend_timings.json"));
-    EXPECT_EQ(post::timingCachePath(env({})), std::filesystem::path());
+    EXPECT_EQ(measuredCachePath(env({{"LIGHTPASS_CACHE_DIR", "/c"}, {"HOME", "/h"}})),
+              std::filesystem::path("/c/measured_choices.json"));
+    EXPECT_EQ(measuredCachePath(env({{"XDG_CACHE_HOME", "/x"}, {"HOME", "/h"}})),
+              std::filesystem::path("/x/lightpass/measured_choices.json"));
+    EXPECT_EQ(measuredCachePath(env({{"XDG_CACHE_HOME", "relative"}, {"HOME", "/h"}})),
+              std::filesystem::path("/h/.cache/lightpass/measured_choices.json"));
+    EXPECT_EQ(measuredCachePath(env({})), std::filesystem::path());
 }
 
 // autoChoice measures what the cache lacks, writes it, and reads it back in a later process
@@ -169,7 +184,7 @@ TEST(PostBackendAuto, MeasuresOnceThenUsesTheCache) {
     };
     {
         PostBackend backend;
-        backend.cacheFile = dir / "post_backend_timings.json";
+        backend.cacheFile = dir / "measured_choices.json";
         const PostBackendChoice c = backend.autoChoice(key1080(5), effects, false, measure);
         EXPECT_TRUE(c.bloom);
         EXPECT_FALSE(c.composite);
@@ -181,7 +196,7 @@ TEST(PostBackendAuto, MeasuresOnceThenUsesTheCache) {
     }
     {
         PostBackend later;
-        later.cacheFile = dir / "post_backend_timings.json";
+        later.cacheFile = dir / "measured_choices.json";
         const PostBackendChoice c = later.autoChoice(key1080(5), effects, false, measure);
         EXPECT_EQ(measured, 4);  // from the file
         EXPECT_TRUE(c.bloom);
@@ -189,14 +204,14 @@ TEST(PostBackendAuto, MeasuresOnceThenUsesTheCache) {
         later.autoChoice(key1080(5), effects, true, measure);  // --post-remeasure
         EXPECT_EQ(measured, 6);
     }
-    writeText(dir / "post_backend_timings.json", "{ not json");
+    writeText(dir / "measured_choices.json", "{ not json");
     {
         PostBackend afterCorruption;
-        afterCorruption.cacheFile = dir / "post_backend_timings.json";
+        afterCorruption.cacheFile = dir / "measured_choices.json";
         const PostBackendChoice c = afterCorruption.autoChoice(key1080(5), effects, false, measure);
         EXPECT_EQ(measured, 8);
         EXPECT_TRUE(c.bloom);
-        EXPECT_EQ(post::readTimingCache(dir / "post_backend_timings.json").warning, "");  // rewritten whole
+        EXPECT_EQ(post::readTimingCache(dir / "measured_choices.json").warning, "");  // rewritten whole
     }
     std::filesystem::remove_all(dir);
 }
@@ -205,7 +220,7 @@ TEST(PostBackendAuto, MeasuresOnceThenUsesTheCache) {
 TEST(PostBackendAuto, FailedMeasurementIsNotCached) {
     const auto dir = scratchDir("failed");
     PostBackend backend;
-    backend.cacheFile = dir / "post_backend_timings.json";
+    backend.cacheFile = dir / "measured_choices.json";
     const PostBackendChoice c =
         backend.autoChoice(key1080(5), {PostEffect::Toon}, false, [](PostEffect) { return BackendTimes{}; });
     EXPECT_FALSE(c.toon);
