@@ -12,6 +12,7 @@
 
 #include "engine/core/error.hpp"
 #include "engine/core/log.hpp"
+#include "app/frame_cost.hpp"
 #include "app/render_checks.hpp"
 #include "engine/gl/context.hpp"
 #include "engine/io/image_io.hpp"
@@ -149,8 +150,13 @@ int runBench(const Options& o, const std::vector<std::string>& args) {
         renderer.cutMotion();  // a new variant: no motion from the last one's frames
         for (int i = 0; i < warmupFrames(o, warmup); ++i) renderer.render(s, float(warmupTime(o)), false);
         renderer.resetShadowCacheStats();  // the timed frames' cascade tiles only
+        renderer.clearCpuTimes();
+        glFinish();  // the wall clock starts with the GPU idle
+        const auto start = std::chrono::steady_clock::now();
         for (int i = 0; i < frames; ++i) renderer.render(s, float(frameTime(o, i)), true);
         glFinish();
+        const double wallMsPerFrame =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() / frames;
         renderer.timers().flush();
         nlohmann::json run;
         run["flags"] = join(variants[vi]);
@@ -175,8 +181,11 @@ int runBench(const Options& o, const std::vector<std::string>& args) {
             run["clustered_kernel"] = {{"shading", lights.slicesShaded ? "froxels" : "tiles"},
                                        {"froxels_ms", lights.froxelKernelMs}, {"tiles_ms", lights.tileKernelMs}};
         const auto& timers = renderer.timers();
-        std::fprintf(stderr, "[%zu/%zu] %-50s frame %9.4f ms (%d frames)\n", vi + 1, variants.size(),
-                     join(variants[vi]).c_str(), timers.median("frame"), frames);
+        const FrameCost cost = frameCost(renderer.cpuTimes().submitMs, renderer.cpuTimes().waitMs, wallMsPerFrame,
+                                         timers.median("frame"));
+        run["cpu"] = frameCostJson(cost);
+        std::fprintf(stderr, "[%zu/%zu] %-50s frame %9.4f ms (%d frames)\n        %s\n", vi + 1, variants.size(),
+                     join(variants[vi]).c_str(), timers.median("frame"), frames, frameCostLine(cost).c_str());
         for (const auto& name : timers.passOrder()) {
             if (timers.samples(name).empty()) continue;
             run["passes"][name]["median_ms"] = timers.median(name);

@@ -1,6 +1,7 @@
 // lightpass: viewer and headless sub-commands. Every failure ends with one line on stderr and a
 // non-zero exit code.
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
@@ -13,6 +14,7 @@
 
 #include "app/bench.hpp"
 #include "app/cli.hpp"
+#include "app/frame_cost.hpp"
 #include "app/render_checks.hpp"
 #include "app/sweep.hpp"
 #include "app/viewer.hpp"
@@ -195,12 +197,17 @@ int commandRender(const Options& o) {
     logInfo("rendering on " + ctx->info().renderer + " (" + ctx->info().platform + ")");
     requireFrameFitsGpu(*ctx, scene, settings);
     Renderer renderer(scene);
+    double wallMsPerFrame = 0.0;
     try {
         // With --fps the untimed frames are one frame step before --time: the first timed frame's
         // previous frame (motion vectors, motion blur) is then where the clock puts it.
         for (int i = 0; i < warmupFrames(o, o.warmup); ++i) renderer.render(settings, float(warmupTime(o)), false);
         renderer.resetShadowCacheStats();  // the timed frames' cascade tiles only
+        glFinish();  // the wall clock starts with the GPU idle
+        const auto start = std::chrono::steady_clock::now();
         for (int i = 0; i < o.frames; ++i) renderer.render(settings, float(frameTime(o, i)), true);
+        glFinish();
+        wallMsPerFrame = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() / o.frames;
     } catch (const Error& e) {  // what the checks above could not foresee still names the size
         if (std::string(e.what()).rfind("GL out of memory", 0) != 0) throw;
         throw Error("--size " + std::to_string(settings.width) + "x" + std::to_string(settings.height) + ": " + e.what());
@@ -251,6 +258,10 @@ int commandRender(const Options& o) {
         }
         say("\n");
     }
+    const FrameCost cost = frameCost(renderer.cpuTimes().submitMs, renderer.cpuTimes().waitMs, wallMsPerFrame,
+                                     timers.median("frame"));
+    say("%s\n", frameCostLine(cost).c_str());
+    j["cpu"] = frameCostJson(cost);
     for (const auto& r : renderer.graph().report())
         if (r.culled) j["culled"][r.name] = r.reason;
     for (const auto& d : renderer.graph().explain())

@@ -1,5 +1,7 @@
 #include "frame/renderer.hpp"
 
+#include <algorithm>
+#include <chrono>
 #include <string>
 
 #include "engine/core/error.hpp"
@@ -17,6 +19,7 @@ Renderer::Renderer(const Scene& scene, gl::ShaderLibrary shaders)
       maxStorageBlockBytes_(gl::maxShaderStorageBlockBytes()) {}
 
 void Renderer::render(const RenderSettings& settings, float time, bool timed) {
+    const auto start = std::chrono::steady_clock::now();
     if (settings.width <= 0 || settings.height <= 0) throw Error("render size must be positive");
     if (!(settings.renderScale >= kMinRenderScale && settings.renderScale <= 1.0f))
         throw Error("render scale " + std::to_string(settings.renderScale) + " is outside [0.25, 1]");
@@ -40,6 +43,11 @@ void Renderer::render(const RenderSettings& settings, float time, bool timed) {
     width_ = settings.width;
     height_ = settings.height;
     history_ = motionHistoryOf(frame);
+    if (timed) {
+        const double total = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+        cpuTimes_.waitMs.push_back(timers_.lastWaitMs());
+        cpuTimes_.submitMs.push_back(std::max(0.0, total - timers_.lastWaitMs()));
+    }
 }
 
 void Renderer::resetPasses() {

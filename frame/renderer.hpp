@@ -33,6 +33,13 @@ public:
 
     const fg::FrameGraph& graph() const { return graph_; }
     gl::GpuTimerRing& timers() { return timers_; }
+    // CPU ms of each timed frame since the last clearCpuTimes(): building, compiling and submitting
+    // the graph (`submitMs`), without the time render() waited for older GPU results (`waitMs`).
+    struct CpuTimes {
+        std::vector<double> submitMs, waitMs;
+    };
+    const CpuTimes& cpuTimes() const { return cpuTimes_; }
+    void clearCpuTimes() { cpuTimes_ = {}; }
     const fg::TexturePool& pool() const { return pool_; }
     // GPU bytes of the textures that outlive a frame outside the pool: environment cubes, IBL bakes,
     // DFG LUT, and the suns' kept shadow atlases (--shadow-cache).
@@ -65,6 +72,7 @@ private:
     PassStates passes_;
     fg::TexturePool pool_;
     gl::GpuTimerRing timers_;
+    CpuTimes cpuTimes_;
     fg::FrameGraph graph_;
     FrameOutputs outputs_;
     int width_ = 0, height_ = 0;

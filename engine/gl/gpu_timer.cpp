@@ -1,6 +1,7 @@
 #include "engine/gl/gpu_timer.hpp"
 
 #include <algorithm>
+#include <chrono>
 
 namespace lp::gl {
 
@@ -28,7 +29,9 @@ GpuTimerRing::Pending& GpuTimerRing::newPending(const std::string& name) {
 
 void GpuTimerRing::beginFrame() {
     current_ = (current_ + 1) % kFramesInFlight;
+    const auto start = std::chrono::steady_clock::now();
     collect(slots_[current_]);
+    lastWaitMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     slots_[current_].used = true;
     glQueryCounter(newPending("frame").begin.id(), GL_TIMESTAMP);
 }

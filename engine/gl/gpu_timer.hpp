@@ -22,6 +22,9 @@ public:
     void addExternal(const std::string& name, double ms);
     // Waits for every outstanding query (end of a headless run).
     void flush();
+    // CPU ms the last beginFrame() waited for the results of the frame kFramesInFlight before: how
+    // far the GPU lags the CPU (0 when the CPU is the bottleneck).
+    double lastWaitMs() const { return lastWaitMs_; }
 
     // Samples in ms per pass name, in first-seen order; "frame" is the whole frame.
     const std::vector<std::string>& passOrder() const { return order_; }
@@ -47,6 +50,7 @@ private:
     std::array<Slot, kFramesInFlight> slots_;
     std::vector<Pending> freeQueries_;
     int current_ = 0;
+    double lastWaitMs_ = 0.0;
     std::map<std::string, std::vector<double>> samples_;
     std::vector<std::string> order_;
 };
