@@ -19,6 +19,7 @@
 #include "engine/scene/scene_loader.hpp"
 #include "frame/renderer.hpp"
 #include "tests/gl/gl_fixture.hpp"
+#include "tests/gl/render_fixture.hpp"
 
 using namespace lp;
 using lp::test::runGlsl;
@@ -584,12 +585,9 @@ TEST(AmbientOcclusion, HalfResolutionFollowsFullResolution) {
 
 namespace {
 ImageF renderHdr(const Scene& s, RenderSettings settings) {
-    Renderer r(s);
-    settings.keepHdr = true;
     settings.post.bloom = false;
     settings.post.toon = false;
-    r.render(settings);
-    return r.readHdr();
+    return test::renderHdr(s, settings);
 }
 }  // namespace
 

@@ -17,6 +17,7 @@
 #include "engine/scene/primitives.hpp"
 #include "frame/renderer.hpp"
 #include "tests/gl/gl_fixture.hpp"
+#include "tests/gl/render_fixture.hpp"
 
 using namespace lp;
 namespace fs = std::filesystem;
@@ -40,15 +41,12 @@ Scene modelScene(MeshData mesh) {
 
 // The HDR buffer of a w x h render in G-buffer mode `mode` on render path `path`.
 ImageF renderHdr(const Scene& s, GBufferMode mode, int w, int h, RenderPath path = RenderPath::Deferred) {
-    Renderer r(s);
     RenderSettings settings;
     settings.gbuffer.mode = mode;
     settings.renderPath = path;
     settings.width = w;
     settings.height = h;
-    settings.keepHdr = true;
-    r.render(settings);
-    return r.readHdr();
+    return test::renderHdr(s, settings);
 }
 
 // HDR radiance at the centre pixel of a w x h render.

@@ -26,6 +26,7 @@
 #include "frame/renderer.hpp"
 #include "passes/shadow_map_pass.hpp"
 #include "tests/gl/gl_fixture.hpp"
+#include "tests/gl/render_fixture.hpp"
 
 using namespace lp;
 
@@ -292,7 +293,8 @@ TEST(ShadowRasterAuto, MeasuresOnceAndCachesTheChoicePerGpu) {
     const MeasuredSection cached = readMeasuredSection(measuredCachePath(), "shadow_raster");
     EXPECT_EQ(cached.warning, "");
     EXPECT_EQ(cached.entries, nlohmann::json({{shadowRasterCacheKey(), ShadowSettings::rasterName(state.autoRaster)}}));
-    EXPECT_EQ(autoAtlas, shadowAtlas(s, autoTestSettings(state.autoRaster)));
+    EXPECT_TRUE(test::valuesNear(autoAtlas, shadowAtlas(s, autoTestSettings(state.autoRaster)), int(autoAtlas.size()), 1, 0.0f,
+                                 "the auto atlas against its raster's"));
     // A second frame of the same pass does not measure again.
     const std::string report = state.autoReport;
     shadowAtlas(s, autoTestSettings(ShadowSettings::Raster::Auto), &state);
@@ -313,7 +315,8 @@ TEST(ShadowRasterAuto, UsesTheCachedChoiceForThisGpu) {
     EXPECT_NE(state.autoReport.find("cached in"), std::string::npos) << state.autoReport;
     EXPECT_EQ(state.autoReport.find("(measured:"), std::string::npos) << state.autoReport;
     EXPECT_EQ(readFile(file), contents);
-    EXPECT_EQ(autoAtlas, shadowAtlas(s, autoTestSettings(ShadowSettings::Raster::Split)));
+    EXPECT_TRUE(test::valuesNear(autoAtlas, shadowAtlas(s, autoTestSettings(ShadowSettings::Raster::Split)),
+                                 int(autoAtlas.size()), 1, 0.0f, "the auto atlas against split's"));
 }
 
 // An unknown raster name in this GPU's entry: a warning, a new measurement, the entry replaced;

@@ -18,6 +18,7 @@
 #include "engine/scene/scene_loader.hpp"
 #include "passes/shadow_map_pass.hpp"
 #include "tests/gl/gl_fixture.hpp"
+#include "tests/gl/render_fixture.hpp"
 
 using namespace lp;
 using lp::test::runGlsl;
@@ -322,14 +323,10 @@ glm::dvec3 lambertRadiance(const Scene& s, double nl) {
     return kd / M_PI * glm::dvec3(light.color) * double(light.intensity) * std::max(nl, 0.0) + glm::dvec3(s.ambient) * kd;
 }
 
-ImageF renderHdr(const Scene& s, const RenderSettings& base, int w, int h) {
-    Renderer r(s);
-    RenderSettings settings = base;
+ImageF renderHdr(const Scene& s, RenderSettings settings, int w, int h) {
     settings.width = w;
     settings.height = h;
-    settings.keepHdr = true;
-    r.render(settings);
-    return r.readHdr();
+    return test::renderHdr(s, settings);
 }
 
 // Shadow on the ground where the occluder square's projection along the light says, with every
@@ -566,11 +563,8 @@ TEST(ShadowRender, SwitchingTheFilterOnOneRendererMatchesAFreshRenderer) {
             const ImageF fresh = renderHdr(s, settings, w, h);
             settings.width = w;
             settings.height = h;
-            settings.keepHdr = true;
-            renderer.render(settings);
-            const ImageF kept = renderer.readHdr();
-            ASSERT_EQ(kept.rgba.size(), fresh.rgba.size());
-            EXPECT_TRUE(kept.rgba == fresh.rgba) << "filter " << ShadowSettings::filterName(f);
+            const ImageF kept = test::renderHdr(renderer, settings);
+            EXPECT_TRUE(test::imagesNear(kept, fresh, 0.0f, std::string("filter ") + ShadowSettings::filterName(f)));
             if (f == ShadowSettings::Filter::Off) {
                 offImage = kept;
             } else {

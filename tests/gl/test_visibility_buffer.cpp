@@ -23,6 +23,7 @@
 #include "frame/frame_builder.hpp"
 #include "frame/renderer.hpp"
 #include "tests/gl/gl_fixture.hpp"
+#include "tests/gl/render_fixture.hpp"
 
 using namespace lp;
 
@@ -592,11 +593,7 @@ TEST(VisibilityBuffer, TexturesAreSampledAtTheRastersLevelOfDetail) {
 
 // The whole frame in both modes: the final HDR image (all lighting passes, emission, sky, AO) and
 // every debug view.
-ImageF renderHdr(Renderer& r, RenderSettings s) {
-    s.keepHdr = true;
-    r.render(s, 1.0f);
-    return r.readHdr();
-}
+ImageF renderHdr(Renderer& r, const RenderSettings& s) { return test::renderHdr(r, s, 1.0f); }
 
 struct HdrError {
     double mean = 0.0, max = 0.0;

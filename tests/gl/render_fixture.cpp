@@ -1,0 +1,55 @@
+#include "tests/gl/render_fixture.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "frame/renderer.hpp"
+
+namespace lp::test {
+
+ImageF renderHdr(Renderer& renderer, RenderSettings settings, float time) {
+    settings.keepHdr = true;
+    renderer.render(settings, time, false);
+    return renderer.readHdr();
+}
+
+ImageF renderHdr(const Scene& scene, RenderSettings settings, float time) {
+    Renderer renderer(scene);
+    return renderHdr(renderer, std::move(settings), time);
+}
+
+testing::AssertionResult valuesNear(const std::vector<float>& a, const std::vector<float>& b, int width, int channels,
+                                    float tolerance, const std::string& what) {
+    const std::string label = what.empty() ? "" : what + ": ";
+    if (a.size() != b.size())
+        return testing::AssertionFailure() << label << "sizes differ (" << a.size() << " and " << b.size() << " values)";
+    size_t differing = 0, first = 0, worst = 0;
+    double largest = 0.0;
+    for (size_t i = 0; i < a.size(); ++i) {
+        const double error = std::abs(double(a[i]) - double(b[i]));
+        if (error <= tolerance) continue;  // NaN compares false: it differs
+        if (differing++ == 0) first = i;
+        if (!(error <= largest)) largest = error, worst = i;
+    }
+    if (differing == 0) return testing::AssertionSuccess();
+    const size_t perRow = size_t(width) * size_t(channels);
+    auto where = [&](size_t i) {
+        std::ostringstream s;
+        s << "texel (" << (i % perRow) / size_t(channels) << ", " << i / perRow << ") channel " << i % size_t(channels);
+        return s.str();
+    };
+    std::ostringstream m;  // 6 significant digits, not gtest's 17
+    m << label << differing << " of " << a.size() << " values differ by more than " << tolerance << "; first at "
+      << where(first) << ": " << a[first] << " vs " << b[first] << "; largest error " << largest << " at " << where(worst)
+      << " (" << a[worst] << " vs " << b[worst] << ")";
+    return testing::AssertionFailure() << m.str();
+}
+
+testing::AssertionResult imagesNear(const ImageF& a, const ImageF& b, float tolerance, const std::string& what) {
+    if (a.width != b.width || a.height != b.height)
+        return testing::AssertionFailure() << (what.empty() ? "" : what + ": ") << "sizes differ (" << a.width << "x"
+                                           << a.height << " and " << b.width << "x" << b.height << ")";
+    return valuesNear(a.rgba, b.rgba, a.width, 4, tolerance, what);
+}
+
+}  // namespace lp::test

@@ -1,0 +1,32 @@
+#pragma once
+// Render-and-read-back for the GL tests: one frame's HDR buffer, and image comparisons whose
+// failure names the texel that differs (not two dumps of float vectors).
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "engine/io/image_io.hpp"
+#include "engine/render/settings.hpp"
+
+namespace lp {
+struct Scene;
+class Renderer;
+}  // namespace lp
+
+namespace lp::test {
+
+// One untimed frame at `time` with the HDR buffer kept (settings.keepHdr), read back (rows top
+// first): by a fresh Renderer of `scene`, or by `renderer` (its caches and history kept).
+ImageF renderHdr(const Scene& scene, RenderSettings settings, float time = 0.0f);
+ImageF renderHdr(Renderer& renderer, RenderSettings settings, float time = 0.0f);
+
+// Every value of `a` within `tolerance` of `b` (absolute; 0: equal, NaN never passes). On failure:
+// how many values differ, the first differing texel (x, y from the top, channel) with both values,
+// and the largest error and where. `what` names the comparison in the message.
+testing::AssertionResult imagesNear(const ImageF& a, const ImageF& b, float tolerance, const std::string& what = "");
+// The same for raw values laid out `width` texels of `channels` values per row.
+testing::AssertionResult valuesNear(const std::vector<float>& a, const std::vector<float>& b, int width, int channels,
+                                    float tolerance, const std::string& what = "");
+
+}  // namespace lp::test
