@@ -86,6 +86,12 @@ KnobEntry choiceKnob(const std::string& name, At at, const std::vector<E>& optio
     return k;
 }
 
+// A choice of every value of an enum's table (engine/core/enum_table.hpp), in the table's order.
+template <typename At, typename E, std::size_t N>
+KnobEntry choiceKnob(const std::string& name, At at, const EnumName<E> (&table)[N]) {
+    return choiceKnob(name, at, enumValues(table), [&table](E e) { return enumName(table, e); });
+}
+
 KnobFlag valueFlag(const std::string& flag) { return {flag, std::nullopt}; }
 KnobFlag setsFlag(const std::string& flag, double value) { return {flag, value}; }
 
@@ -106,10 +112,6 @@ void bloomOn(RenderSettings& s, double) { s.post.bloom = true; }
 void aoOn(RenderSettings& s, double) { s.ao.enabled = true; }  // the method stays --bloom-method's
 
 // The --aa choices a user is offered (each one implemented).
-std::vector<AntiAliasing> offeredAntiAliasing() {
-    return {AntiAliasing::Off, AntiAliasing::Fxaa, AntiAliasing::Taa, AntiAliasing::Ssaa};
-}
-
 std::vector<KnobEntry> makeKnobTable() {
     std::vector<KnobEntry> t;
     // [knobs] one entry per user-facing setting, grouped by feature area. The order is --help's,
@@ -120,7 +122,7 @@ std::vector<KnobEntry> makeKnobTable() {
     // ---- G-buffer layout ----
     {
         KnobEntry k = choiceKnob("gbuffer-format", [](auto& s) -> auto& { return s.gbuffer.normal; },
-                                 allGBufferFormats(), gbufferFormatName);
+                                 kGBufferNormalFormatNames);
         k.flags = {valueFlag("--gbuffer")};
         k.choiceNoun = "format";
         k.help = "G-buffer normal format, see docs/gbuffer.md (every format keeps the base colour in "
@@ -135,7 +137,7 @@ std::vector<KnobEntry> makeKnobTable() {
     }
     {
         KnobEntry k = choiceKnob("gbuffer-position", [](auto& s) -> auto& { return s.gbuffer.position; },
-                                 allGBufferPositionModes(), gbufferPositionName);
+                                 kGBufferPositionModeNames);
         k.flags = {valueFlag("--gbuffer-position")};
         k.choiceNoun = "mode";
         k.help = "eye positions stored (RGBA32F) or rebuilt from standard or reversed-Z depth";
@@ -148,7 +150,7 @@ std::vector<KnobEntry> makeKnobTable() {
     }
     {
         KnobEntry k = choiceKnob("gbuffer-mode", [](auto& s) -> auto& { return s.gbuffer.mode; },
-                                 gbufferModeChoices(), gbufferModeName);
+                                 kGBufferModeNames);
         k.flags = {valueFlag("--gbuffer-mode")};
         k.choiceNoun = "mode";
         k.help = "classic: the G-buffer pass rasterises every target; visibility: depth and a triangle id are "
@@ -183,9 +185,7 @@ std::vector<KnobEntry> makeKnobTable() {
     }
     {
         KnobEntry k = choiceKnob("shadow-pcf", [](auto& s) -> auto& { return s.shadows.filter; },
-                                 std::vector<ShadowSettings::Filter>{ShadowSettings::Filter::Off, ShadowSettings::Filter::Pcf3x3,
-                                                                     ShadowSettings::Filter::Pcf5x5, ShadowSettings::Filter::Poisson},
-                                 ShadowSettings::filterName);
+                                 ShadowSettings::kFilterNames);
         k.flags = {valueFlag("--pcf")};
         k.choiceNoun = "filter";
         k.help = "shadow filter";
@@ -244,12 +244,7 @@ std::vector<KnobEntry> makeKnobTable() {
     }
     {
         KnobEntry k = choiceKnob("shadow-raster", [](auto& s) -> auto& { return s.shadows.raster; },
-                                 std::vector<ShadowSettings::Raster>{ShadowSettings::Raster::Conservative,
-                                                                     ShadowSettings::Raster::Plain,
-                                                                     ShadowSettings::Raster::Split,
-                                                                     ShadowSettings::Raster::Compute,
-                                                                     ShadowSettings::Raster::Auto},
-                                 ShadowSettings::rasterName);
+                                 ShadowSettings::kRasterNames);
         k.flags = {valueFlag("--shadow-raster")};
         k.choiceNoun = "raster";
         k.help = "sun cascades' caster raster: conservative (no crease leaks), plain (early-Z, leaks at creases), "
@@ -318,10 +313,7 @@ std::vector<KnobEntry> makeKnobTable() {
     }
     {
         KnobEntry k = choiceKnob("shadow-conservative", [](auto& s) -> auto& { return s.shadows.conservativeRaster; },
-                                 std::vector<ShadowSettings::ConservativeRaster>{ShadowSettings::ConservativeRaster::Auto,
-                                                                                 ShadowSettings::ConservativeRaster::Hardware,
-                                                                                 ShadowSettings::ConservativeRaster::GeometryShader},
-                                 ShadowSettings::conservativeRasterName);
+                                 ShadowSettings::kConservativeRasterNames);
         k.flags = {valueFlag("--shadow-conservative")};
         k.choiceNoun = "conservative raster";
         k.help = "how conservative and split grow casters: hardware (GL_NV_conservative_raster, no geometry shader), "
@@ -354,7 +346,7 @@ std::vector<KnobEntry> makeKnobTable() {
     }
     {
         KnobEntry k = choiceKnob("brdf", [](auto& s) -> auto& { return s.brdf; },
-                                 std::vector<Brdf>{Brdf::Ggx, Brdf::BlinnPhong}, brdfName);
+                                 kBrdfNames);
         k.flags = {valueFlag("--brdf")};
         k.choiceNoun = "BRDF";
         k.help = "the BRDF of every light; ggx: glTF 2.0's metallic-roughness BRDF for every material (MTL: "
@@ -365,8 +357,7 @@ std::vector<KnobEntry> makeKnobTable() {
     }
     {
         KnobEntry k = choiceKnob("specular-masking", [](auto& s) -> auto& { return s.specularMasking; },
-                                 std::vector<SpecularMasking>{SpecularMasking::HeightCorrelated, SpecularMasking::Separable},
-                                 specularMaskingName);
+                                 kSpecularMaskingNames);
         k.flags = {valueFlag("--specular-masking")};
         k.choiceNoun = "masking";
         k.help = "GGX's Smith masking-shadowing (lights, IBL, extracted lights): height-correlated, the glTF "
@@ -389,7 +380,7 @@ std::vector<KnobEntry> makeKnobTable() {
     }
     {
         KnobEntry k = choiceKnob("tonemap", [](auto& s) -> auto& { return s.environment.toneMap; },
-                                 allToneMapOperators(), toneMapName);
+                                 kToneMapNames);
         k.flags = {valueFlag("--tonemap")};
         k.choiceNoun = "operator";
         k.help = "tone map operator; lightpass: pow(c/(c+1),1.2); aces: Filament's ACES (RRT + ODT fit); aces-legacy: "
@@ -426,8 +417,7 @@ std::vector<KnobEntry> makeKnobTable() {
     }
     {
         KnobEntry k = choiceKnob("ibl-diffuse", [](auto& s) -> auto& { return s.environment.diffuse; },
-                                 std::vector<IrradianceSource>{IrradianceSource::SphericalHarmonics, IrradianceSource::Cubemap},
-                                 [](IrradianceSource d) { return d == IrradianceSource::Cubemap ? "cubemap" : "sh"; });
+                                 kIrradianceSourceNames);
         k.flags = {valueFlag("--ibl-diffuse")};
         k.help = "diffuse IBL from 9 SH coefficients or the irradiance cube";
         k.sweep = {{"sh", "cubemap"}, true,
@@ -438,7 +428,7 @@ std::vector<KnobEntry> makeKnobTable() {
     }
     {
         KnobEntry k = choiceKnob("ibl-specular", [](auto& s) -> auto& { return s.environment.specular; },
-                                 std::vector<IblSpecular>{IblSpecular::SplitSum, IblSpecular::Sampled}, iblSpecularName);
+                                 kIblSpecularNames);
         k.flags = {valueFlag("--ibl-specular")};
         k.choiceNoun = "method";
         k.help = "specular IBL: split-sum (one prefiltered lookup x DFG LUT) or sampled (per-pixel GGX samples "
@@ -564,7 +554,7 @@ std::vector<KnobEntry> makeKnobTable() {
     }
     {
         KnobEntry k = choiceKnob("ao-resolution", [](auto& s) -> auto& { return s.ao.resolution; },
-                                 std::vector<AoResolution>{AoResolution::Half, AoResolution::Full}, aoResolutionName);
+                                 kAoResolutionNames);
         k.flags = {valueFlag("--ao-resolution")};
         k.choiceNoun = "resolution";
         k.help = "AO computed at half size (depth-aware upsample) or at the full G-buffer size";
@@ -605,11 +595,7 @@ std::vector<KnobEntry> makeKnobTable() {
     }
     {
         KnobEntry k = choiceKnob("bloom-method", [](auto& s) -> auto& { return s.post.bloomMethod; },
-                                 std::vector<PostSettings::BloomMethod>{PostSettings::BloomMethod::Separable,
-                                                                        PostSettings::BloomMethod::MipChain},
-                                 [](PostSettings::BloomMethod m) {
-                                     return m == PostSettings::BloomMethod::MipChain ? "mip-chain" : "separable";
-                                 });
+                                 PostSettings::kBloomMethodNames);
         k.flags = {valueFlag("--bloom-method")};
         k.help = "bloom blur; mip-chain: Jimenez 2014";
         k.panel = {PanelSection::Post, PanelWidget::Combo, "bloom method", ""};
@@ -732,9 +718,7 @@ std::vector<KnobEntry> makeKnobTable() {
     }
     {
         KnobEntry k = choiceKnob("post-backend", [](auto& s) -> auto& { return s.post.backend; },
-                                 std::vector<PostSettings::Backend>{PostSettings::Backend::Auto, PostSettings::Backend::Cuda,
-                                                                    PostSettings::Backend::Glsl},
-                                 post::backendName);
+                                 PostSettings::kBackendNames);
         k.flags = {valueFlag("--post-backend")};
         k.help = "who runs bloom, the bloom composite and toon; auto: per effect, whichever of CUDA and GLSL "
                  "measured faster at start-up on this GPU at this size and kernel (cached, see --post-remeasure)";
@@ -742,10 +726,7 @@ std::vector<KnobEntry> makeKnobTable() {
     }
     {
         KnobEntry k = choiceKnob("cuda-interop", [](auto& s) -> auto& { return s.post.cudaInterop; },
-                                 std::vector<PostSettings::CudaInterop>{PostSettings::CudaInterop::Auto,
-                                                                        PostSettings::CudaInterop::External,
-                                                                        PostSettings::CudaInterop::Map},
-                                 post::cudaInteropName);
+                                 PostSettings::kCudaInteropNames);
         k.flags = {valueFlag("--cuda-interop")};
         k.help = "how the CUDA post effects reach GL textures: external (GL memory objects on CUDA memory, shared "
                  "once, ordered on the GPU by Vulkan semaphores, else by host waits), map (map/unmap per use); "
@@ -770,7 +751,7 @@ std::vector<KnobEntry> makeKnobTable() {
     }
     {
         KnobEntry k = choiceKnob("local-light-method", [](auto& s) -> auto& { return s.localLights.method; },
-                                 allLocalLightMethods(), localLightMethodName);
+                                 kLocalLightMethodNames);
         k.flags = {valueFlag("--local-lights")};
         k.choiceNoun = "method";
         k.help = "how local lights are drawn; all five give the same image";
@@ -864,7 +845,7 @@ std::vector<KnobEntry> makeKnobTable() {
     }
     {
         KnobEntry k = choiceKnob("clustered-kernel", [](auto& s) -> auto& { return s.localLights.clusteredKernel; },
-                                 allClusteredKernels(), clusteredKernelName);
+                                 kClusteredKernelNames);
         k.flags = {valueFlag("--clustered-kernel")};
         k.choiceNoun = "kernel";
         k.help = "clustered method, 16-pixel tiles: the kernel that shades (the same image). froxels: the clustered "
@@ -897,8 +878,7 @@ std::vector<KnobEntry> makeKnobTable() {
         t.push_back(std::move(k));
     }
     {
-        KnobEntry k = choiceKnob("aa", [](auto& s) -> auto& { return s.aa.method; }, offeredAntiAliasing(),
-                                 antiAliasingName);
+        KnobEntry k = choiceKnob("aa", [](auto& s) -> auto& { return s.aa.method; }, kAntiAliasingNames);
         k.flags = {valueFlag("--aa")};
         k.choiceNoun = "anti-aliasing";
         k.help = "anti-aliasing: fxaa filters the tone-mapped image (FXAA 3.11); taa blends Halton-jittered frames "

@@ -33,37 +33,4 @@ PostConfig resolvePostConfig(const Effects& fx, const PostSettings& s, float far
     return c;
 }
 
-const char* bloomMethodName(BloomMethod m) { return m == BloomMethod::MipChain ? "mip-chain" : "separable"; }
-
-std::optional<BloomMethod> parseBloomMethod(const std::string& name) {
-    if (name == "separable") return BloomMethod::Separable;
-    if (name == "mip-chain") return BloomMethod::MipChain;
-    return std::nullopt;
-}
-
-const char* cudaInteropName(PostSettings::CudaInterop i) {
-    switch (i) {
-        case PostSettings::CudaInterop::External: return "external";
-        case PostSettings::CudaInterop::Map: return "map";
-        case PostSettings::CudaInterop::Auto: break;
-    }
-    return "auto";
-}
-
-const char* backendName(PostSettings::Backend b) {
-    switch (b) {
-        case PostSettings::Backend::Cuda: return "cuda";
-        case PostSettings::Backend::Glsl: return "glsl";
-        case PostSettings::Backend::Auto: break;
-    }
-    return "auto";
-}
-
-std::optional<PostSettings::Backend> parseBackend(const std::string& name) {
-    if (name == "auto") return PostSettings::Backend::Auto;
-    if (name == "cuda") return PostSettings::Backend::Cuda;
-    if (name == "glsl") return PostSettings::Backend::Glsl;
-    return std::nullopt;
-}
-
 }  // namespace lp::post

@@ -26,10 +26,14 @@ int bloomKernelAtRenderSize(int outputKernel, int renderWidth, int outputWidth);
 
 PostConfig resolvePostConfig(const Effects& sceneEffects, const PostSettings& settings, float farPlane);
 
-const char* bloomMethodName(BloomMethod m);
-std::optional<BloomMethod> parseBloomMethod(const std::string& name);  // "separable" | "mip-chain"
-const char* backendName(PostSettings::Backend b);
-std::optional<PostSettings::Backend> parseBackend(const std::string& name);  // "auto" | "cuda" | "glsl"
-const char* cudaInteropName(PostSettings::CudaInterop i);                     // "auto" | "external" | "map"
+inline constexpr EnumName<BloomMethod> kBloomMethodNames[] = {{BloomMethod::Separable, "separable"},
+                                                              {BloomMethod::MipChain, "mip-chain"}};
+inline const char* bloomMethodName(BloomMethod m) { return enumName(kBloomMethodNames, m); }
+inline std::optional<BloomMethod> parseBloomMethod(const std::string& name) { return parseEnum(kBloomMethodNames, name); }
+inline const char* backendName(PostSettings::Backend b) { return enumName(PostSettings::kBackendNames, b); }
+inline std::optional<PostSettings::Backend> parseBackend(const std::string& name) {
+    return parseEnum(PostSettings::kBackendNames, name);
+}
+inline const char* cudaInteropName(PostSettings::CudaInterop i) { return enumName(PostSettings::kCudaInteropNames, i); }
 
 }  // namespace lp::post

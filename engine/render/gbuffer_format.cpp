@@ -4,61 +4,7 @@
 
 namespace lp {
 
-const char* gbufferFormatName(GBufferNormalFormat format) {
-    switch (format) {
-        case GBufferNormalFormat::Unpacked: return "unpacked";
-        case GBufferNormalFormat::SeedPacked: return "seed-packed";
-        case GBufferNormalFormat::SeedPackedSigned: return "seed-packed-signed";
-        case GBufferNormalFormat::TwoAngle: return "two-angle";
-        case GBufferNormalFormat::Oct16: return "oct16";
-        case GBufferNormalFormat::Oct24: return "oct24";
-        case GBufferNormalFormat::Oct32: return "oct32";
-    }
-    return "unpacked";
-}
-
-std::vector<GBufferNormalFormat> allGBufferFormats() {
-    return {GBufferNormalFormat::Unpacked, GBufferNormalFormat::SeedPacked, GBufferNormalFormat::SeedPackedSigned,
-            GBufferNormalFormat::TwoAngle, GBufferNormalFormat::Oct16,      GBufferNormalFormat::Oct24,
-            GBufferNormalFormat::Oct32};
-}
-
-std::optional<GBufferNormalFormat> parseGBufferFormat(const std::string& name) {
-    for (GBufferNormalFormat f : allGBufferFormats())
-        if (name == gbufferFormatName(f)) return f;
-    return std::nullopt;
-}
-
-const char* gbufferPositionName(GBufferPositionMode mode) {
-    switch (mode) {
-        case GBufferPositionMode::Stored: return "stored";
-        case GBufferPositionMode::Depth: return "depth";
-        case GBufferPositionMode::ReversedZ: return "reversed-z";
-    }
-    return "stored";
-}
-
-std::vector<GBufferPositionMode> allGBufferPositionModes() {
-    return {GBufferPositionMode::Stored, GBufferPositionMode::Depth, GBufferPositionMode::ReversedZ};
-}
-
-std::optional<GBufferPositionMode> parseGBufferPosition(const std::string& name) {
-    for (GBufferPositionMode m : allGBufferPositionModes())
-        if (name == gbufferPositionName(m)) return m;
-    return std::nullopt;
-}
-
-const char* gbufferModeName(GBufferMode mode) {
-    switch (mode) {
-        case GBufferMode::Visibility: return "visibility";
-        case GBufferMode::Auto: return "auto";
-        default: return "classic";
-    }
-}
-
 std::vector<GBufferMode> allGBufferModes() { return {GBufferMode::Classic, GBufferMode::Visibility}; }
-
-std::vector<GBufferMode> gbufferModeChoices() { return {GBufferMode::Auto, GBufferMode::Classic, GBufferMode::Visibility}; }
 
 GBufferModeChoice chooseGBufferMode(GBufferMode requested, bool softwareRaster, const std::string& visibilityUnsupported) {
     switch (requested) {
@@ -82,18 +28,9 @@ GBufferModeChoice chooseGBufferMode(GBufferMode requested, bool softwareRaster, 
                                      "buffer costs a third of the classic G-buffer pass"};
 }
 
-std::string gbufferFormatNames() {
-    std::string s;
-    for (GBufferNormalFormat f : allGBufferFormats()) s += (s.empty() ? "" : ", ") + std::string(gbufferFormatName(f));
-    return s;
-}
+std::string gbufferFormatNames() { return enumNameList(kGBufferNormalFormatNames); }
 
-std::string gbufferPositionNames() {
-    std::string s;
-    for (GBufferPositionMode m : allGBufferPositionModes())
-        s += (s.empty() ? "" : ", ") + std::string(gbufferPositionName(m));
-    return s;
-}
+std::string gbufferPositionNames() { return enumNameList(kGBufferPositionModeNames); }
 
 std::vector<std::string> gbufferDefines(const GBufferSettings& g) {
     std::vector<std::string> d;

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "engine/core/enum_table.hpp"
+
 namespace lp {
 
 enum class GBufferNormalFormat {
@@ -43,15 +45,28 @@ struct GBufferSettings {
     bool operator!=(const GBufferSettings& o) const { return !(*this == o); }
 };
 
-const char* gbufferFormatName(GBufferNormalFormat format);
-std::optional<GBufferNormalFormat> parseGBufferFormat(const std::string& name);
-std::vector<GBufferNormalFormat> allGBufferFormats();
-const char* gbufferPositionName(GBufferPositionMode mode);
-std::optional<GBufferPositionMode> parseGBufferPosition(const std::string& name);
-std::vector<GBufferPositionMode> allGBufferPositionModes();
-const char* gbufferModeName(GBufferMode mode);
+inline constexpr EnumName<GBufferNormalFormat> kGBufferNormalFormatNames[] = {
+    {GBufferNormalFormat::Unpacked, "unpacked"},   {GBufferNormalFormat::SeedPacked, "seed-packed"},
+    {GBufferNormalFormat::SeedPackedSigned, "seed-packed-signed"}, {GBufferNormalFormat::TwoAngle, "two-angle"},
+    {GBufferNormalFormat::Oct16, "oct16"},         {GBufferNormalFormat::Oct24, "oct24"},
+    {GBufferNormalFormat::Oct32, "oct32"}};
+inline constexpr EnumName<GBufferPositionMode> kGBufferPositionModeNames[] = {
+    {GBufferPositionMode::Stored, "stored"}, {GBufferPositionMode::Depth, "depth"}, {GBufferPositionMode::ReversedZ, "reversed-z"}};
+inline constexpr EnumName<GBufferMode> kGBufferModeNames[] = {  // what --gbuffer-mode takes
+    {GBufferMode::Auto, "auto"}, {GBufferMode::Classic, "classic"}, {GBufferMode::Visibility, "visibility"}};
+
+inline const char* gbufferFormatName(GBufferNormalFormat f) { return enumName(kGBufferNormalFormatNames, f); }
+inline std::optional<GBufferNormalFormat> parseGBufferFormat(const std::string& name) {
+    return parseEnum(kGBufferNormalFormatNames, name);
+}
+inline std::vector<GBufferNormalFormat> allGBufferFormats() { return enumValues(kGBufferNormalFormatNames); }
+inline const char* gbufferPositionName(GBufferPositionMode m) { return enumName(kGBufferPositionModeNames, m); }
+inline std::optional<GBufferPositionMode> parseGBufferPosition(const std::string& name) {
+    return parseEnum(kGBufferPositionModeNames, name);
+}
+inline std::vector<GBufferPositionMode> allGBufferPositionModes() { return enumValues(kGBufferPositionModeNames); }
+inline const char* gbufferModeName(GBufferMode mode) { return enumName(kGBufferModeNames, mode); }
 std::vector<GBufferMode> allGBufferModes();  // the two ways (classic, visibility); not auto
-std::vector<GBufferMode> gbufferModeChoices();  // what --gbuffer-mode takes: auto, classic, visibility
 // The way a frame makes its G-buffer and why (the skipped passes' reasons, `lightpass info`).
 struct GBufferModeChoice {
     GBufferMode mode = GBufferMode::Classic;  // classic or visibility

@@ -11,41 +11,6 @@
 
 namespace lp {
 
-const char* localLightMethodName(LocalLightMethod m) {
-    switch (m) {
-        case LocalLightMethod::Fullscreen: return "fullscreen";
-        case LocalLightMethod::Scissor: return "scissor";
-        case LocalLightMethod::Volumes: return "volumes";
-        case LocalLightMethod::Tiled: return "tiled";
-        case LocalLightMethod::Clustered: return "clustered";
-    }
-    return "tiled";
-}
-
-std::vector<LocalLightMethod> allLocalLightMethods() {
-    return {LocalLightMethod::Fullscreen, LocalLightMethod::Scissor, LocalLightMethod::Volumes, LocalLightMethod::Tiled,
-            LocalLightMethod::Clustered};
-}
-
-std::optional<LocalLightMethod> parseLocalLightMethod(const std::string& name) {
-    for (LocalLightMethod m : allLocalLightMethods())
-        if (name == localLightMethodName(m)) return m;
-    return std::nullopt;
-}
-
-const char* clusteredKernelName(ClusteredKernel k) {
-    switch (k) {
-        case ClusteredKernel::Auto: return "auto";
-        case ClusteredKernel::Froxels: return "froxels";
-        case ClusteredKernel::Tiles: return "tiles";
-    }
-    return "auto";
-}
-
-std::vector<ClusteredKernel> allClusteredKernels() {
-    return {ClusteredKernel::Auto, ClusteredKernel::Froxels, ClusteredKernel::Tiles};
-}
-
 namespace {
 // Deterministic hash to [0, 1): light i of a demo set does not depend on how many are asked for.
 float hash01(uint32_t x) {

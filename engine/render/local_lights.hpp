@@ -16,7 +16,6 @@ namespace lp {
 
 struct FrameData;
 
-std::vector<LocalLightMethod> allLocalLightMethods();
 
 // One light as the shaders' SSBO holds it (std430, common/local_light.glsl's LpLocalLight).
 struct GpuLocalLight {

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/core/enum_table.hpp"
 #include "engine/render/gbuffer_format.hpp"
 
 namespace lp {
@@ -32,8 +33,9 @@ bool isLocalLightView(DebugView view);
 // the seeds' energy-normalised Blinn-Phong, Kd / pi + Ks (n + 8) / (8 pi) (N.H)^n, for the analytic
 // lights (IBL stays GGX's split sum).
 enum class Brdf { Ggx = 0, BlinnPhong = 1 };  // = LP_BRDF_* (shaders/common/brdf.glsl)
-const char* brdfName(Brdf brdf);
-std::optional<Brdf> parseBrdf(const std::string& name);
+inline constexpr EnumName<Brdf> kBrdfNames[] = {{Brdf::Ggx, "ggx"}, {Brdf::BlinnPhong, "blinn-phong"}};
+inline const char* brdfName(Brdf brdf) { return enumName(kBrdfNames, brdf); }
+inline std::optional<Brdf> parseBrdf(const std::string& name) { return parseEnum(kBrdfNames, name); }
 
 // GGX's Smith masking-shadowing term G2 (--specular-masking), everywhere the BRDF is evaluated or
 // integrated (suns, local lights, extracted IBL lights, the DFG LUT, the sampled specular IBL).
@@ -41,7 +43,9 @@ std::optional<Brdf> parseBrdf(const std::string& name);
 // specification's V_SmithGGXCorrelated, Filament's and Unreal's form. Separable: G1(V) G1(L), the
 // form of Mitsuba's built-in roughconductor/roughplastic, up to 5% darker on rough spheres.
 enum class SpecularMasking { HeightCorrelated = 0, Separable = 1 };  // = LP_SPECULAR_MASKING_* (brdf.glsl)
-const char* specularMaskingName(SpecularMasking m);
+inline constexpr EnumName<SpecularMasking> kSpecularMaskingNames[] = {{SpecularMasking::HeightCorrelated, "height-correlated"},
+                                                                      {SpecularMasking::Separable, "separable"}};
+inline const char* specularMaskingName(SpecularMasking m) { return enumName(kSpecularMaskingNames, m); }
 
 // How opaque surfaces are lit (--render-path): deferred (G-buffer, then the light passes) or
 // forward+ (a depth pre-pass, then one forward pass shading each fragment from the clustered light
@@ -100,11 +104,10 @@ struct ShadowSettings {         // directional-light shadow maps (passes/shadow_
     // auto: the fastest of those four on this GPU (measured once, cached; passes/shadow_map_pass.hpp).
     enum class Raster { Conservative, Plain, Split, Compute, Auto };
     Raster raster = Raster::Conservative;
-    static const char* rasterName(Raster r) {
-        return r == Raster::Plain ? "plain" : r == Raster::Split ? "split" : r == Raster::Compute ? "compute"
-               : r == Raster::Auto  ? "auto"
-                                    : "conservative";
-    }
+    static constexpr EnumName<Raster> kRasterNames[] = {{Raster::Conservative, "conservative"}, {Raster::Plain, "plain"},
+                                                        {Raster::Split, "split"},               {Raster::Compute, "compute"},
+                                                        {Raster::Auto, "auto"}};
+    static const char* rasterName(Raster r) { return enumName(kRasterNames, r); }
 
     // How conservative and split grow their casters: hardware (GL_NV_conservative_raster, the nearest
     // depth over the texel from the triangle's depth plane in the fragment shader, needs
@@ -113,35 +116,35 @@ struct ShadowSettings {         // directional-light shadow maps (passes/shadow_
     // on a GPU without them falls back to the geometry shader with a warning.
     enum class ConservativeRaster { Auto, Hardware, GeometryShader };
     ConservativeRaster conservativeRaster = ConservativeRaster::Auto;
-    static const char* conservativeRasterName(ConservativeRaster c) {
-        return c == ConservativeRaster::Hardware ? "hardware" : c == ConservativeRaster::GeometryShader ? "geometry-shader" : "auto";
-    }
+    static constexpr EnumName<ConservativeRaster> kConservativeRasterNames[] = {
+        {ConservativeRaster::Auto, "auto"}, {ConservativeRaster::Hardware, "hardware"},
+        {ConservativeRaster::GeometryShader, "geometry-shader"}};
+    static const char* conservativeRasterName(ConservativeRaster c) { return enumName(kConservativeRasterNames, c); }
 
-    static const char* filterName(Filter f) {
-        switch (f) {
-            case Filter::Off: return "off";
-            case Filter::Pcf3x3: return "3x3";
-            case Filter::Pcf5x5: return "5x5";
-            case Filter::Poisson: return "poisson";
-        }
-        return "off";
-    }
-    static std::optional<Filter> parseFilter(const std::string& name) {
-        for (Filter f : {Filter::Off, Filter::Pcf3x3, Filter::Pcf5x5, Filter::Poisson})
-            if (name == filterName(f)) return f;
-        return std::nullopt;
-    }
+    static constexpr EnumName<Filter> kFilterNames[] = {
+        {Filter::Off, "off"}, {Filter::Pcf3x3, "3x3"}, {Filter::Pcf5x5, "5x5"}, {Filter::Poisson, "poisson"}};
+    static const char* filterName(Filter f) { return enumName(kFilterNames, f); }
+    static std::optional<Filter> parseFilter(const std::string& name) { return parseEnum(kFilterNames, name); }
 };
 // how local lights (points and spots) are drawn; all five give the same image (see README).
 enum class LocalLightMethod { Fullscreen, Scissor, Volumes, Tiled, Clustered };
-const char* localLightMethodName(LocalLightMethod method);  // defined in engine/render/local_lights.cpp
-std::optional<LocalLightMethod> parseLocalLightMethod(const std::string& name);
+inline constexpr EnumName<LocalLightMethod> kLocalLightMethodNames[] = {
+    {LocalLightMethod::Fullscreen, "fullscreen"}, {LocalLightMethod::Scissor, "scissor"},
+    {LocalLightMethod::Volumes, "volumes"},       {LocalLightMethod::Tiled, "tiled"},
+    {LocalLightMethod::Clustered, "clustered"}};
+inline const char* localLightMethodName(LocalLightMethod m) { return enumName(kLocalLightMethodNames, m); }
+inline std::optional<LocalLightMethod> parseLocalLightMethod(const std::string& name) {
+    return parseEnum(kLocalLightMethodNames, name);
+}
+inline std::vector<LocalLightMethod> allLocalLightMethods() { return enumValues(kLocalLightMethodNames); }
 // Which kernel the clustered method shades with (16-pixel froxel tiles; other sizes always froxels):
 // auto races the two per view (engine/render/kernel_race.hpp) and takes the faster; froxels is the
 // clustered kernel, tiles the tiled kernel on the same tiles without slices. The same image.
 enum class ClusteredKernel { Auto, Froxels, Tiles };
-const char* clusteredKernelName(ClusteredKernel kernel);  // defined in engine/render/local_lights.cpp
-std::vector<ClusteredKernel> allClusteredKernels();
+inline constexpr EnumName<ClusteredKernel> kClusteredKernelNames[] = {
+    {ClusteredKernel::Auto, "auto"}, {ClusteredKernel::Froxels, "froxels"}, {ClusteredKernel::Tiles, "tiles"}};
+inline const char* clusteredKernelName(ClusteredKernel k) { return enumName(kClusteredKernelNames, k); }
+inline std::vector<ClusteredKernel> allClusteredKernels() { return enumValues(kClusteredKernelNames); }
 struct LocalLightSettings {     // local lights: ranged point lights and spots
     bool enabled = true;
     LocalLightMethod method = LocalLightMethod::Tiled;
@@ -159,14 +162,21 @@ struct LocalLightSettings {     // local lights: ranged point lights and spots
 // Tone map operators (shaders/common/tonemap.glsl's applyToneMap numbers them in this order). Aces is
 // Filament's ACES (the RRT + ODT fit); AcesLegacy the Narkowicz fit without its 0.6 input scale.
 enum class ToneMapOperator { Lightpass, Aces, PbrNeutral, Agx, AcesLegacy };
+inline constexpr EnumName<ToneMapOperator> kToneMapNames[] = {  // in --tonemap's order
+    {ToneMapOperator::Lightpass, "lightpass"},    {ToneMapOperator::Aces, "aces"}, {ToneMapOperator::AcesLegacy, "aces-legacy"},
+    {ToneMapOperator::PbrNeutral, "pbr-neutral"}, {ToneMapOperator::Agx, "agx"}};
+inline const char* toneMapName(ToneMapOperator op) { return enumName(kToneMapNames, op); }
+inline std::optional<ToneMapOperator> parseToneMap(const std::string& name) { return parseEnum(kToneMapNames, name); }
+inline std::vector<ToneMapOperator> allToneMapOperators() { return enumValues(kToneMapNames); }
 enum class IrradianceSource { SphericalHarmonics, Cubemap };
+inline constexpr EnumName<IrradianceSource> kIrradianceSourceNames[] = {{IrradianceSource::SphericalHarmonics, "sh"},
+                                                                        {IrradianceSource::Cubemap, "cubemap"}};
 // Specular IBL: the split sum (one prefiltered lookup x the DFG LUT), or per-pixel GGX samples of the
 // prefiltered chain that follow the lobe's shape (shaders/common/ibl_sampled.glsl).
 enum class IblSpecular { SplitSum, Sampled };
-const char* iblSpecularName(IblSpecular m);
-const char* toneMapName(ToneMapOperator op);
-const std::vector<ToneMapOperator>& allToneMapOperators();  // in --tonemap's order
-std::optional<ToneMapOperator> parseToneMap(const std::string& name);
+inline constexpr EnumName<IblSpecular> kIblSpecularNames[] = {{IblSpecular::SplitSum, "split-sum"},
+                                                              {IblSpecular::Sampled, "sampled"}};
+inline const char* iblSpecularName(IblSpecular m) { return enumName(kIblSpecularNames, m); }
 struct EnvironmentSettings {    // environment, skybox, image-based lighting, tone map operator
     // false: analytic lights + constant ambient; true: + IBL. Unset: the scene's environment.ibl.
     std::optional<bool> ibl;
@@ -194,7 +204,8 @@ struct EnvironmentSettings {    // environment, skybox, image-based lighting, to
 // (IBL diffuse and the constant ambient; IBL specular through specular occlusion), never the suns or
 // local lights. The frame builder runs it only where indirect light exists.
 enum class AoResolution { Full, Half };
-const char* aoResolutionName(AoResolution r);
+inline constexpr EnumName<AoResolution> kAoResolutionNames[] = {{AoResolution::Half, "half"}, {AoResolution::Full, "full"}};
+inline const char* aoResolutionName(AoResolution r) { return enumName(kAoResolutionNames, r); }
 struct AoSettings {
     bool enabled = true;        // --ao / --no-ao
     float radius = 1.0f;        // view-space search radius, metres
@@ -205,7 +216,10 @@ struct AoSettings {
 };
 struct PostSettings {           // bloom and toon (engine/post/post_config.hpp resolves them)
     enum class BloomMethod { Separable, MipChain };
+    static constexpr EnumName<BloomMethod> kBloomMethodNames[] = {{BloomMethod::Separable, "separable"},
+                                                                  {BloomMethod::MipChain, "mip-chain"}};
     enum class Backend { Auto, Cuda, Glsl };  // auto: CUDA on an NVIDIA GL context with a CUDA device
+    static constexpr EnumName<Backend> kBackendNames[] = {{Backend::Auto, "auto"}, {Backend::Cuda, "cuda"}, {Backend::Glsl, "glsl"}};
     // Unset: the scene's effects.bloom / effects.toon value.
     std::optional<bool> bloom, toon;
     std::optional<int> bloomKernel;  // 1..101 px
@@ -222,6 +236,8 @@ struct PostSettings {           // bloom and toon (engine/post/post_config.hpp r
     // How CUDA reaches the GL textures: external (GL memory objects on CUDA allocations, shared once),
     // map (cudaGraphicsMapResources per use), auto: map (external is experimental: README).
     enum class CudaInterop { Auto, External, Map };
+    static constexpr EnumName<CudaInterop> kCudaInteropNames[] = {
+        {CudaInterop::Auto, "auto"}, {CudaInterop::External, "external"}, {CudaInterop::Map, "map"}};
     CudaInterop cudaInterop = CudaInterop::Auto;
     bool remeasure = false;  // --post-remeasure: auto measures again instead of reading its cache
 };
@@ -238,7 +254,9 @@ inline constexpr float kMinRenderScale = 0.25f;  // --render-scale's lower bound
 // samples a pixel) and box-filters the HDR image down before the tone map; fxaa filters the
 // tone-mapped image; taa blends jittered frames through the motion vectors.
 enum class AntiAliasing { Off, Fxaa, Taa, Ssaa };
-const char* antiAliasingName(AntiAliasing aa);
+inline constexpr EnumName<AntiAliasing> kAntiAliasingNames[] = {
+    {AntiAliasing::Off, "off"}, {AntiAliasing::Fxaa, "fxaa"}, {AntiAliasing::Taa, "taa"}, {AntiAliasing::Ssaa, "ssaa"}};
+inline const char* antiAliasingName(AntiAliasing aa) { return enumName(kAntiAliasingNames, aa); }
 inline constexpr int kMaxSsaaScale = 4;
 struct AntiAliasSettings {
     // SSAA 2x2 by default: of the methods it alone lowers the error against 4x4 SSAA on a moving
