@@ -6,12 +6,14 @@
 #include <iterator>
 #include <cstdio>
 #include <fstream>
+#include <iostream>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
 
 #include "engine/core/error.hpp"
 #include "engine/core/log.hpp"
+#include "engine/core/progress.hpp"
 #include "app/frame_cost.hpp"
 #include "app/render_checks.hpp"
 #include "engine/gl/context.hpp"
@@ -130,6 +132,9 @@ int runBench(const Options& o, const std::vector<std::string>& args) {
         fragment = measureFragmentBandwidth(shaders);
         j["bandwidth"] = {{"compute_GBps", compute.bytesPerSecond * 1e-9}, {"fragment_GBps", fragment.bytesPerSecond * 1e-9}};
     }
+    ProgressStyle progressStyle = stderrProgressStyle();
+    progressStyle.plainLinePerStep = true;  // each variant's frame time, in a log too
+    ProgressReporter progress("bench", variants.size(), std::cerr, progressStyle, steadySeconds);
     for (size_t vi = 0; vi < variants.size(); ++vi) {
         const RenderSettings& s = settings[vi];
         renderer.timers().clear();
@@ -184,8 +189,10 @@ int runBench(const Options& o, const std::vector<std::string>& args) {
         const FrameCost cost = frameCost(renderer.cpuTimes().submitMs, renderer.cpuTimes().waitMs, wallMsPerFrame,
                                          timers.median("frame"));
         run["cpu"] = frameCostJson(cost);
-        std::fprintf(stderr, "[%zu/%zu] %-50s frame %9.4f ms (%d frames)\n        %s\n", vi + 1, variants.size(),
-                     join(variants[vi]).c_str(), timers.median("frame"), frames, frameCostLine(cost).c_str());
+        char result[64];
+        std::snprintf(result, sizeof result, ": frame %.4f ms (%d frames)", timers.median("frame"), frames);
+        progress.step(join(variants[vi]) + result);
+        logInfo(join(variants[vi]) + ": " + frameCostLine(cost));
         for (const auto& name : timers.passOrder()) {
             if (timers.samples(name).empty()) continue;
             run["passes"][name]["median_ms"] = timers.median(name);
@@ -211,6 +218,7 @@ int runBench(const Options& o, const std::vector<std::string>& args) {
         }
         j["runs"].push_back(run);
     }
+    progress.finish();
     OutputFiles outputs;
     outputs.add(out, j.dump(1) + "\n");
     outputs.commit();

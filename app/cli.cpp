@@ -252,7 +252,9 @@ std::vector<CommandFlag> makeCommandFlags() {
          "rows (name, checkbox centre, state) to F",
          [](Options& o, V, V v) { o.panelRowsOut = v; }},
         {{"-v", "--verbose"}, "", "log debug messages (GL debug output included)", [](Options& o, V, V) { o.verbose = true; }},
-        {{"-q", "--quiet"}, "", "log errors only", [](Options& o, V, V) { o.quiet = true; }},
+        {{"-q", "--quiet"}, "", "log errors only (no progress either)", [](Options& o, V, V) { o.quiet = true; }},
+        {{"--progress"}, "", "show progress (frames, IBL bake, bench, sweep) from the start, not only for work "
+         "past 2 s", [](Options& o, V, V) { o.progress = true; }},
     };
 }
 

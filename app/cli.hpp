@@ -53,6 +53,7 @@ struct Options {
     RenderSettings base;  // the knob flags (frame/knobs.cpp's table) set these
     bool verbose = false;
     bool quiet = false;
+    bool progress = false;  // progress from the first step (engine/core/progress.hpp), not after 2 s
 };
 
 // A flag that is not a knob (commands' inputs and outputs, size, view, timing, viewer options): the

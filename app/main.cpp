@@ -21,6 +21,7 @@
 #include "engine/core/error.hpp"
 #include "engine/core/measured_cache.hpp"
 #include "engine/core/paths.hpp"
+#include "engine/core/progress.hpp"
 #include "engine/post/backend_timings.hpp"
 #include "engine/post/post_config.hpp"
 #include "passes/post_backend.hpp"
@@ -201,13 +202,22 @@ int commandRender(const Options& o) {
     try {
         // With --fps the untimed frames are one frame step before --time: the first timed frame's
         // previous frame (motion vectors, motion blur) is then where the clock puts it.
-        for (int i = 0; i < warmupFrames(o, o.warmup); ++i) renderer.render(settings, float(warmupTime(o)), false);
+        const int warmup = warmupFrames(o, o.warmup);
+        ProgressReporter progress("render: frames", size_t(warmup + o.frames), std::cerr, stderrProgressStyle(), steadySeconds);
+        for (int i = 0; i < warmup; ++i) {
+            renderer.render(settings, float(warmupTime(o)), false);
+            progress.step("warm-up " + std::to_string(i + 1) + "/" + std::to_string(warmup));
+        }
         renderer.resetShadowCacheStats();  // the timed frames' cascade tiles only
         glFinish();  // the wall clock starts with the GPU idle
         const auto start = std::chrono::steady_clock::now();
-        for (int i = 0; i < o.frames; ++i) renderer.render(settings, float(frameTime(o, i)), true);
-        glFinish();
+        for (int i = 0; i < o.frames; ++i) {
+            renderer.render(settings, float(frameTime(o, i)), true);
+            progress.step("timed " + std::to_string(i + 1) + "/" + std::to_string(o.frames));
+        }
+        glFinish();  // the last frames' GPU work inside the progress and the wall time
         wallMsPerFrame = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() / o.frames;
+        progress.finish();
     } catch (const Error& e) {  // what the checks above could not foresee still names the size
         if (std::string(e.what()).rfind("GL out of memory", 0) != 0) throw;
         throw Error("--size " + std::to_string(settings.width) + "x" + std::to_string(settings.height) + ": " + e.what());
@@ -318,6 +328,7 @@ int run(int argc, char** argv) {
     app::Options o = app::parseArgs(args);
     if (o.verbose) setLogLevel(LogLevel::Debug);
     if (o.quiet) setLogLevel(LogLevel::Error);
+    setProgressFromStart(o.progress);
     if (o.command == "help") {
         std::fputs(app::helpText().c_str(), stdout);
         return 0;

@@ -4,13 +4,13 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <map>
 #include <sstream>
 
-#include <unistd.h>
-
 #include "engine/core/error.hpp"
 #include "engine/core/log.hpp"
+#include "engine/core/progress.hpp"
 #include "app/render_checks.hpp"
 #include "engine/gl/context.hpp"
 #include "engine/io/image_io.hpp"
@@ -31,20 +31,6 @@ struct Row {
     ImageError error;
     bool reference = false;
 };
-
-// One progress line per knob value ("[1/2] shadow-size [########......] 2/4 1024"): redrawn in place
-// on a terminal, one line each in a log (CI).
-void progress(const std::string& knob, size_t knobIndex, size_t knobCount, size_t step, size_t steps,
-              const std::string& value) {
-    const int width = 30;
-    int filled = steps ? int(width * step / steps) : width;
-    static const bool terminal = isatty(fileno(stderr)) != 0;
-    std::fprintf(stderr, "%s[%zu/%zu] %-22s [%s%s] %zu/%zu %s", terminal ? "\r\033[K" : "", knobIndex + 1, knobCount,
-                 knob.c_str(), std::string(size_t(filled), '#').c_str(), std::string(size_t(width - filled), '.').c_str(),
-                 step, steps, step == steps ? "done" : value.c_str());
-    if (step == steps || !terminal) std::fprintf(stderr, "\n");
-    std::fflush(stderr);
-}
 
 std::string csvEscape(const std::string& s) { return s.find(',') == std::string::npos ? s : "\"" + s + "\""; }
 
@@ -99,6 +85,11 @@ int runSweep(const Options& o) {
     auto addColumn = [&](const std::string& name) {
         if (std::find(allPasses.begin(), allPasses.end(), name) == allPasses.end()) allPasses.push_back(name);
     };
+    size_t valueCount = 0;
+    for (const Knob& knob : knobs) valueCount += knob.values.size();
+    ProgressStyle progressStyle = stderrProgressStyle();
+    progressStyle.plainLinePerStep = true;  // a line per knob value in a log
+    ProgressReporter progress("sweep", valueCount, std::cerr, progressStyle, steadySeconds);
     for (size_t ki = 0; ki < knobs.size(); ++ki) {
         const Knob& knob = knobs[ki];
         const fs::path dir = outDir / knob.name;
@@ -114,7 +105,6 @@ int runSweep(const Options& o) {
 
         const size_t steps = knob.values.size();
         for (size_t vi = 0; vi < steps; ++vi) {
-            progress(knob.name, ki, knobs.size(), vi, steps, knob.values[vi].label);
             const KnobValue& value = knob.values[vi];
             RenderSettings s = settingsFor(value);
             // Each value bakes its IBL afresh in its first (untimed) frame: the bake is a one-off cost,
@@ -143,9 +133,10 @@ int runSweep(const Options& o) {
             std::string file = std::to_string(vi) + ".png";
             outputs.addPng(dir / file, renderer.readDisplay());
             rows.push_back(row);
+            progress.step(knob.name + " " + value.label);
         }
-        progress(knob.name, ki, knobs.size(), steps, steps, "");
     }
+    progress.finish();
 
     // CSV: one row per knob value; pass times in columns.
     {

@@ -5,10 +5,12 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <vector>
 
 #include "engine/core/error.hpp"
 #include "engine/core/log.hpp"
+#include "engine/core/progress.hpp"
 #include "engine/gl/limits.hpp"
 #include "engine/gl/state.hpp"
 #include "engine/graph/frame_graph.hpp"
@@ -381,8 +383,15 @@ void EnvironmentCache::bakeIbl(BakedEnvironment& env, const Scene& scene, const 
     }
     const auto t0 = std::chrono::steady_clock::now();
     const std::string what = env.hasMap ? scene.environment.map.string() : std::string("uniform environment");
+    // Steps: light extraction, SH, the irradiance cube, each prefiltered mip past the copied mip 0.
+    // On stderr as a progress bar (lines in a log) when the bake takes seconds; each step's detail
+    // with -v. A uniform environment bakes in milliseconds and shows nothing.
+    ProgressStyle style = stderrProgressStyle();
+    style.quiet = style.quiet || !env.hasMap;
+    ProgressReporter bakeProgress("ibl: baking " + what, size_t(2 + s.specularLevels), std::cerr, style, steadySeconds);
     auto progress = [&](const std::string& step) {
-        if (env.hasMap) logInfo("ibl: " + what + ": " + step);
+        if (env.hasMap) logDebug("ibl: " + what + ": " + step);
+        bakeProgress.step(step);
     };
 
     // Diffuse SH: on the CPU, in double, from the equirectangular map (not from the clamped cube).
@@ -395,8 +404,9 @@ void EnvironmentCache::bakeIbl(BakedEnvironment& env, const Scene& scene, const 
             extractEnvironmentLights(map, scene.environment.rotationDegrees, s.extractLights, s.extractThreshold);
         env.lights = extraction.lights;
         env.lightSummary = describeExtraction(extraction, s.extractLights);
-        for (const std::string& line : env.lightSummary) progress(line);
+        for (const std::string& line : env.lightSummary) logInfo("ibl: " + what + ": " + line);
     }
+    progress("bright sources extracted");
     ShCoefficients sh = projectEquirectSh(map, scene.environment.rotationDegrees);
     for (size_t i = 0; i < 9; ++i) env.sh[i] = glm::vec3(sh[i]);
     progress("SH (CPU, double) done");
@@ -425,6 +435,7 @@ void EnvironmentCache::bakeIbl(BakedEnvironment& env, const Scene& scene, const 
     glBindImageTexture(0, env.irradiance.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glUseProgram(prog);
     dispatchCube(s.irradianceSize);
+    if (env.hasMap) glFinish();  // its own progress step
     progress("irradiance cube " + std::to_string(s.irradianceSize) + "^2 x " + std::to_string(s.irradianceSamples) +
              " samples recorded");
 
@@ -458,6 +469,7 @@ void EnvironmentCache::bakeIbl(BakedEnvironment& env, const Scene& scene, const 
     glQueryCounter(gpuEnd.id(), GL_TIMESTAMP);
     gl::checkErrors("baking image-based lighting");
     glFinish();
+    bakeProgress.finish();  // before the summary line below
     env.bakeKey = key;
     GLuint64 gpuT0 = 0, gpuT1 = 0;
     glGetQueryObjectui64v(gpuBegin.id(), GL_QUERY_RESULT, &gpuT0);

@@ -1,13 +1,14 @@
 #!/usr/bin/env python3
 """Checks a `lightpass sweep` run of one knob: sweep.csv has one row per value with the expected
 columns, the reference (last) row has error 0, every image was written and finite, sweep.md has the
-knob's table, stderr has a progress line per value, and for a monotone knob the HDR RMSE never
+knob's table, stderr (run with --progress) has a progress line per value and a done line, and for a monotone knob the HDR RMSE never
 rises as the value moves towards the reference (equal is allowed).
 With --positive COLUMN, that column must be > 0 in every row of the knob (e.g. ibl_bake_gpu_ms).
 With --max-rmse E, every row's HDR RMSE must be at most E (a knob that gives the same image by design).
 With --timed-in VALUE:COLUMN, that value's row must have COLUMN > 0 (a pass only that value runs).
   check_sweep.py OUTDIR STDERR_FILE KNOB VALUES [--monotone] [--positive COLUMN] [--max-rmse E] [--timed-in V:C]"""
 import csv
+import re
 import os
 import sys
 
@@ -59,8 +60,13 @@ table_rows = [l for l in section.splitlines() if l.startswith("| ") and not l.st
 assert len(table_rows) == values, f"{len(table_rows)} Markdown rows, expected {values}"
 
 with open(progress_file) as f:
-    progress = [l for l in f.read().splitlines() if l.startswith("[") and knob in l]
-assert len(progress) == values + 1, f"{len(progress)} progress lines, expected one per value and a final one"
+    text = f.read()
+# Run with --progress and stderr not a terminal: one plain line per value, then the done line.
+assert "\r" not in text, "a redrawn progress line in a log"
+progress = [l for l in text.splitlines() if re.match(r"sweep +\d+% ", l)]
+assert len(progress) == values, f"{len(progress)} progress lines, expected one per value: {progress}"
 for i, r in enumerate(rows):
-    assert progress[i].endswith(f"{i}/{values} {r['value']}"), f"progress line {progress[i]!r}"
+    pattern = rf"sweep +{100 * (i + 1) // values}% {i + 1}/{values}(, about \d+( min \d+)? s left)?: {re.escape(knob)} {re.escape(r['value'])}$"
+    assert re.match(pattern, progress[i]), f"progress line {progress[i]!r} (want {pattern})"
+assert re.search(rf"^sweep done in [0-9.]+ s \({values}/{values}\)$", text, re.M), "no done line"
 print(f"sweep ok: {knob}, {values} values, RMSE {' >= '.join(f'{e:.3g}' for e in rmse)}")
