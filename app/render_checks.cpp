@@ -18,6 +18,9 @@ void requireFrameFitsGpu(const gl::GpuContext& context, const Scene& scene, cons
     PassStates passes;  // never executed: sizing the graph needs no GPU
     buildFrameGraph(graph, passes, frame);
     graph.compile();
+    // A misspelt --disable-pass is known from the candidates alone: said now, before an IBL bake's
+    // seconds (the first frame's), not after the frames.
+    checkDisabledPasses(graph, settings.disabledPasses);
     gl::requireRenderSizeFits(settings.width, settings.height, graph.liveTransientBytes(), limits);
     // One texture can be over a driver's own limit while the total fits (llvmpipe refuses one 4 GiB texture).
     for (const fg::ResourceReport& r : graph.resources()) {
