@@ -249,6 +249,7 @@ int runViewer(const Options& o) {
     if (!o.screenshotDir.empty()) st.screenshotDir = o.screenshotDir;
     st.showPanel = !o.hidePanel;
     st.screenshotWithPanel = o.screenshotUi;
+    st.passRows = candidatePassRows(*scene, st.settings);  // every row from the start: none appears later
     st.shaderWatcher = gl::watchShaderFiles(shaders.root());
     const PickerFiles pickerFiles = findPickerFiles(shaders.root().parent_path());
     GLFWwindow* window = ctx->window();
@@ -297,7 +298,7 @@ int runViewer(const Options& o) {
                 st.home = scene->camera;
                 st.cameraPath = scene->cameraPath;
                 st.followPath = st.cameraPath.has_value();
-                st.passRows.clear();  // the new scene's candidates, in its order
+                st.passRows = candidatePassRows(*scene, st.settings);  // the new scene's, in its order
                 st.sceneError.clear();
                 st.sceneFile = file;
                 say("scene " + file.string());
@@ -346,6 +347,7 @@ int runViewer(const Options& o) {
         try {
             renderer->render(st.settings, float(now), true);
             if (previousEnvironment) {
+                st.passRows = candidatePassRows(*scene, st.settings);  // a map brings ibl and sky
                 st.sceneError.clear();
                 say("environment " + (scene->environment.map.empty() ? std::string("plain colour") : scene->environment.map.string()));
             }

@@ -2,7 +2,8 @@
 # The viewer's panel as a new user meets it at 1280x720 (Xvfb, Mesa): at most 380 px wide by default,
 # so most of the frame stays in view; its pass rows keep their names, order and places when a pass is
 # switched off, and a second click at the same spot switches the same pass on again (the rows, read
-# from --panel-rows-out, come back identical); its layout goes to $LIGHTPASS_CONFIG_DIR/imgui.ini,
+# from --panel-rows-out, come back identical); every candidate pass has its row from the start, so
+# '8' (bloom) inserts none; its layout goes to $LIGHTPASS_CONFIG_DIR/imgui.ini,
 # never the working directory, and the next run opens where that file says.
 #   viewer_panel_under_xvfb.sh LIGHTPASS SCENE OUTDIR
 set -uo pipefail
@@ -62,7 +63,18 @@ cp "$rows" "$out/rows-after.txt"
   { echo "switching sky on again moved rows:"; diff "$out/rows-before.txt" "$out/rows-after.txt"; exit 1; }
 diff "$out/rows-before.txt" "$out/rows-after.txt" >/dev/null ||
   { echo "the rows differ after switching sky off and on:"; diff "$out/rows-before.txt" "$out/rows-after.txt"; exit 1; }
-xdotool mousemove 900 400
+# '8' (the bloom buffer alone, bloom switched on): bloom's row was there from the start, greyed; it
+# now runs, and no row is inserted or moved. '8' again: back as it was.
+grep -qE "^pass${tab}bloom${tab}.*${tab}(skipped|not in this frame)" "$rows" ||
+  { echo "no greyed bloom row before '8':"; cat "$rows"; exit 1; }
+xdotool mousemove 900 400 key 8
+wait_for "^pass${tab}bloom${tab}.*${tab}runs" "$rows"
+cp "$rows" "$out/rows-bloom.txt"
+[ "$(places "$out/rows-before.txt")" = "$(places "$out/rows-bloom.txt")" ] ||
+  { echo "'8' moved, added or removed rows:"; diff "$out/rows-before.txt" "$out/rows-bloom.txt"; exit 1; }
+xdotool key 8
+wait_for "^pass${tab}bloom${tab}.*${tab}(skipped|not in this frame)" "$rows"
+[ "$(places "$out/rows-before.txt")" = "$(places "$rows")" ] || { echo "'8' twice moved rows"; exit 1; }
 quit_viewer
 ini="$out/config/imgui.ini"
 [ -f "$ini" ] || { echo "no $ini after the run"; ls -la "$out/config"; exit 1; }

@@ -6,6 +6,8 @@
 
 #include "app/config_dir.hpp"
 #include "app/pass_rows.hpp"
+#include "engine/scene/scene_loader.hpp"
+#include "frame/frame_builder.hpp"
 
 namespace lp::app {
 namespace {
@@ -69,6 +71,44 @@ TEST(PanelPassRows, APassAddedTwiceIsOneRowThatRunsIfEitherRuns) {
     updatePassRows(rows, {{"upscale", false, "culled: nothing live reads its writes (hdr)"}, {"debug_view", true, ""}, {"upscale", true, ""}}, {});
     EXPECT_EQ(names(rows), (std::vector<std::string>{"upscale", "debug_view"}));
     EXPECT_EQ(row(rows, "upscale").state, PassRowState::Runs);
+}
+
+// The frame's decisions for `settings`, as the viewer's renderer makes them (built on the CPU).
+std::vector<fg::PassDecision> frameDecisions(const Scene& scene, const RenderSettings& settings) {
+    FrameData frame = makeFrameData(scene, settings, 0.0f);
+    fg::FrameGraph graph;
+    PassStates passes;
+    buildFrameGraph(graph, passes, frame);
+    graph.compile();
+    return graph.explain();
+}
+
+TEST(PanelPassRows, EveryRowIsThereFromTheStartAndBloomInsertsNone) {
+    const Scene scene = loadScene(std::string(LIGHTPASS_SOURCE_DIR) + "/scenes/cornell.json");
+    RenderSettings settings;
+    std::vector<PassRow> rows = candidatePassRows(scene, settings);
+    for (const PassRow& r : rows) EXPECT_EQ(r.state, PassRowState::Absent) << r.name;
+    for (const char* name : {"gbuffer", "global_lights", "bloom", "toon", "debug_view", "taa", "fxaa", "upscale",
+                             "motion_blur", "forward_opaque", "tonemap"})
+        EXPECT_NO_THROW(row(rows, name)) << name;
+    for (const PassRow& r : rows) EXPECT_EQ(r.name.find(' '), std::string::npos) << r.name;  // notes are no rows
+    const std::vector<std::string> start = names(rows);
+
+    // The viewer's first frame, then '8' (the bloom buffer alone), then a channel view: the same rows,
+    // in the same order; only their states change.
+    updatePassRows(rows, frameDecisions(scene, settings), {});
+    EXPECT_EQ(names(rows), start);
+    const PassRowState bloomBefore = row(rows, "bloom").state;
+    EXPECT_NE(bloomBefore, PassRowState::Runs);  // cornell has no bloom of its own
+    settings.post.bloom = true;
+    settings.post.bloomOnly = true;
+    updatePassRows(rows, frameDecisions(scene, settings), {});
+    EXPECT_EQ(names(rows), start);
+    EXPECT_EQ(row(rows, "bloom").state, PassRowState::Runs);
+    settings.view = DebugView::Normals;
+    updatePassRows(rows, frameDecisions(scene, settings), {});
+    EXPECT_EQ(names(rows), start);
+    EXPECT_EQ(row(rows, "debug_view").state, PassRowState::Runs);
 }
 
 TEST(ViewerConfigDir, OverrideThenXdgThenHome) {
