@@ -112,7 +112,13 @@ bool moveCamera(GLFWwindow* window, ViewerState& st, Camera& cam, float dt) {
     }
     double x, y;
     glfwGetCursorPos(window, &x, &y);
-    bool down = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS && !io.WantCaptureMouse;
+    // A drag starts on the image (not on the panel beside it) and goes on wherever the cursor goes.
+    int windowWidth = 0, windowHeight = 0, fbWidth = 0, fbHeight = 0;
+    glfwGetWindowSize(window, &windowWidth, &windowHeight);
+    glfwGetFramebufferSize(window, &fbWidth, &fbHeight);
+    const bool onImage = insideViewport(st.viewport, fbWidth, fbHeight, float(windowWidth), float(windowHeight), x, y);
+    bool down = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS && !io.WantCaptureMouse &&
+                (st.dragging || onImage);
     if (down && st.dragging) {
         float yaw = float(x - st.lastX) * -0.005f, pitch = float(y - st.lastY) * -0.005f;
         glm::vec3 dir = cam.target - cam.position;
@@ -202,7 +208,12 @@ std::string panelLayoutFile() {
 // What --panel-rows-out writes: the panel's place, then one tab-separated line per pass row.
 std::string panelRowsText(const ViewerState& st) {
     std::ostringstream out;
-    out << "panel\t" << st.panelX << "," << st.panelY << "\t" << st.panelWidth << "x" << st.panelHeight << "\n";
+    if (st.showPanel)
+        out << "panel\t" << st.panelX << "," << st.panelY << "\t" << st.panelWidth << "x" << st.panelHeight << "\n";
+    else
+        out << "panel\thidden\n";
+    // Framebuffer pixels, from the top left as the panel's.
+    out << "viewport\t" << st.viewport.x << ",0\t" << st.viewport.width << "x" << st.viewport.height << "\n";
     for (const PassRow& row : st.passRows) {
         out << "pass\t" << row.name << "\t" << row.checkboxX << "," << row.checkboxY << "\t" << passRowStateName(row.state);
         if (!row.reason.empty()) out << ": " << row.reason;
@@ -262,7 +273,7 @@ int runViewer(const Options& o) {
     ImGui::GetIO().IniFilename = layoutFile.empty() ? nullptr : layoutFile.c_str();
     ImGui::StyleColorsDark();
     ImGui::GetStyle().WindowRounding = 4.0f;
-    ImGui::GetStyle().Colors[ImGuiCol_WindowBg].w = 0.88f;  // the frame shows faintly through
+    ImGui::GetStyle().Colors[ImGuiCol_WindowBg].w = 1.0f;  // the panel sits beside the image, nothing under it
     ImGui_ImplGlfw_InitForOpenGL(window, true);
     ImGui_ImplOpenGL3_Init("#version 450");
     struct ImGuiShutdown {
@@ -341,8 +352,13 @@ int runViewer(const Options& o) {
             ImGui::EndFrame();
             continue;
         }
-        st.settings.width = fb.x;
-        st.settings.height = fb.y;
+        int windowWidth = 0, windowHeight = 0;
+        glfwGetWindowSize(window, &windowWidth, &windowHeight);
+        // The image beside the panel (the panel's width as last drawn), or the whole window without
+        // it: rendered at the viewport's size, so the camera's aspect is the viewport's.
+        st.viewport = viewerViewport(fb.x, fb.y, float(windowWidth), st.showPanel, st.panelWidth);
+        st.settings.width = st.viewport.width;
+        st.settings.height = st.viewport.height;
         st.toonShown = st.settings.post.toon.value_or(scene->effects.toon.enabled);
         try {
             renderer->render(st.settings, float(now), true);
@@ -375,11 +391,17 @@ int runViewer(const Options& o) {
             takeScreenshot(st, *renderer);
         }
         glNamedFramebufferTexture(blit.id(), GL_COLOR_ATTACHMENT0, renderer->displayTexture(), 0);
-        glBlitNamedFramebuffer(blit.id(), 0, 0, 0, fb.x, fb.y, 0, 0, fb.x, fb.y, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+        const GLfloat black[4] = {0.0f, 0.0f, 0.0f, 1.0f};  // the window cleared, the frame blitted into the viewport
+        glClearNamedFramebufferfv(0, GL_COLOR, 0, black);
+        const ViewerViewport& vp = st.viewport;
+        glBlitNamedFramebuffer(blit.id(), 0, 0, 0, vp.width, vp.height, vp.x, vp.y, vp.x + vp.width, vp.y + vp.height,
+                               GL_COLOR_BUFFER_BIT, GL_NEAREST);
         renderer->timers().trim(120);
         if (st.showPanel) drawViewerPanel(st, *renderer, *scene, *ctx, pickerFiles);
         if (st.showHelp) {
-            ImGui::SetNextWindowPos(ImVec2(fb.x * 0.5f, fb.y * 0.5f), ImGuiCond_Always, ImVec2(0.5f, 0.5f));
+            const float toWindow = windowWidth > 0 ? float(windowWidth) / float(fb.x) : 1.0f;  // over the image
+            ImGui::SetNextWindowPos(ImVec2((st.viewport.x + st.viewport.width * 0.5f) * toWindow, windowHeight * 0.5f),
+                                    ImGuiCond_Always, ImVec2(0.5f, 0.5f));
             ImGui::Begin("keys (h closes)", &st.showHelp, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse);
             ImGui::TextUnformatted(kViewerHelp);
             ImGui::End();

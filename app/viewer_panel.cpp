@@ -23,8 +23,6 @@ const char* const kViewerHelp =
 
 namespace {
 
-constexpr float kPanelDefaultWidth = 340.0f;
-
 std::vector<fs::path> filesWithExtensions(const fs::path& dir, std::initializer_list<const char*> extensions) {
     std::vector<fs::path> found;
     std::error_code ec;
@@ -201,14 +199,16 @@ PickerFiles findPickerFiles(const fs::path& repositoryRoot) {
 
 void drawViewerPanel(ViewerState& st, Renderer& renderer, const Scene& scene, const gl::GpuContext& ctx,
                      const PickerFiles& files) {
-    // Narrow by default so most of a 1280x720 frame stays in view; resizable and movable, and ImGui's
-    // ini file (app/viewer.cpp) remembers where the user left it. Never larger than the window.
+    // A sidebar docked at the window's left edge, full height: the image is rendered beside it
+    // (app/viewer_layout.hpp), never under it. Its right edge drags to widen it (up to all but 64 px
+    // of the window); ImGui's ini file (app/viewer.cpp) remembers the width.
     const ImVec2 display = ImGui::GetIO().DisplaySize;
-    ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize(ImVec2(kPanelDefaultWidth, std::max(120.0f, display.y - 16)), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSizeConstraints(ImVec2(220, 120), ImVec2(std::max(220.0f, display.x - 16), std::max(120.0f, display.y - 16)));
+    ImGui::SetNextWindowPos(ImVec2(0, 0), ImGuiCond_Always);
+    ImGui::SetNextWindowSize(ImVec2(kPanelDefaultWidth, display.y), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSizeConstraints(ImVec2(220, display.y), ImVec2(std::max(220.0f, display.x - 64), display.y));
     // "###": the ini file keys the layout by this id, not by the title text.
-    ImGui::Begin("lightpass   (Tab hides, h lists the keys)###lightpass panel");
+    ImGui::Begin("lightpass   (Tab hides, h lists the keys)###lightpass panel", nullptr,
+                 ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoCollapse);
     st.panelX = ImGui::GetWindowPos().x;
     st.panelY = ImGui::GetWindowPos().y;
     st.panelWidth = ImGui::GetWindowWidth();

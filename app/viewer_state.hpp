@@ -9,12 +9,16 @@
 #include <vector>
 
 #include "app/pass_rows.hpp"
+#include "app/viewer_layout.hpp"
 #include "engine/gl/context.hpp"
 #include "engine/gl/shader_reload.hpp"
 #include "frame/renderer.hpp"
 #include "engine/scene/scene.hpp"
 
 namespace lp::app {
+
+// The panel's width until the user drags its right edge (ImGui's ini file then remembers theirs).
+constexpr float kPanelDefaultWidth = 340.0f;
 
 struct ViewerState {
     RenderSettings settings;
@@ -39,7 +43,9 @@ struct ViewerState {
     std::string lastScreenshot;
     std::deque<float> frameMs;  // frame-time graph (CPU time between frames)
     std::vector<PassRow> passRows;  // the panel's pass list, in a stable order (app/pass_rows.hpp)
-    float panelX = 0, panelY = 0, panelWidth = 0, panelHeight = 0;  // where the panel was last drawn
+    // Where the panel was last drawn (window coordinates); the next frame's image goes beside it.
+    float panelX = 0, panelY = 0, panelWidth = kPanelDefaultWidth, panelHeight = 0;
+    ViewerViewport viewport;  // where this frame's image goes (app/viewer_layout.hpp)
 
     // Scene and environment pickers: the panel asks, the frame loop loads between frames.
     std::filesystem::path sceneFile;  // the scene (.json) or model (.obj) on screen

@@ -1,11 +1,12 @@
-// The viewer panel's pass rows (app/pass_rows.hpp) and where the viewer keeps its layout
-// (app/config_dir.hpp): no GL, no window.
+// The viewer panel's pass rows (app/pass_rows.hpp), the viewport beside it (app/viewer_layout.hpp)
+// and where the viewer keeps its layout (app/config_dir.hpp): no GL, no window.
 #include <gtest/gtest.h>
 
 #include <map>
 
 #include "app/config_dir.hpp"
 #include "app/pass_rows.hpp"
+#include "app/viewer_layout.hpp"
 #include "engine/scene/scene_loader.hpp"
 #include "frame/frame_builder.hpp"
 
@@ -109,6 +110,39 @@ TEST(PanelPassRows, EveryRowIsThereFromTheStartAndBloomInsertsNone) {
     updatePassRows(rows, frameDecisions(scene, settings), {});
     EXPECT_EQ(names(rows), start);
     EXPECT_EQ(row(rows, "debug_view").state, PassRowState::Runs);
+}
+
+TEST(ViewerViewport, BesideThePanelOrTheWholeWindow) {
+    // 1280x720 window, 1:1 framebuffer: the 340-px panel's width is the image's left edge.
+    ViewerViewport v = viewerViewport(1280, 720, 1280.0f, true, 340.0f);
+    EXPECT_EQ(v.x, 340);
+    EXPECT_EQ(v.width, 940);
+    EXPECT_EQ(v.height, 720);
+    // Panel hidden: the whole window.
+    v = viewerViewport(1280, 720, 1280.0f, false, 340.0f);
+    EXPECT_EQ(v.x, 0);
+    EXPECT_EQ(v.width, 1280);
+    // A framebuffer twice the window's size (a high-DPI display): the panel's width in pixels doubles.
+    v = viewerViewport(2560, 1440, 1280.0f, true, 340.0f);
+    EXPECT_EQ(v.x, 680);
+    EXPECT_EQ(v.width, 1880);
+    // A panel as wide as the window still leaves the image a pixel.
+    v = viewerViewport(300, 200, 300.0f, true, 400.0f);
+    EXPECT_EQ(v.width, 1);
+    EXPECT_EQ(v.x, 299);
+}
+
+TEST(ViewerViewport, DragsStartOnTheImageNotOnThePanel) {
+    const ViewerViewport v = viewerViewport(1280, 720, 1280.0f, true, 340.0f);
+    EXPECT_FALSE(insideViewport(v, 1280, 720, 1280.0f, 720.0f, 100.0, 300.0));  // on the panel
+    EXPECT_FALSE(insideViewport(v, 1280, 720, 1280.0f, 720.0f, 339.5, 300.0));
+    EXPECT_TRUE(insideViewport(v, 1280, 720, 1280.0f, 720.0f, 340.0, 300.0));
+    EXPECT_TRUE(insideViewport(v, 1280, 720, 1280.0f, 720.0f, 1279.0, 0.0));
+    EXPECT_FALSE(insideViewport(v, 1280, 720, 1280.0f, 720.0f, 1280.0, 300.0));  // off the window
+    // High DPI: window coordinates scale to framebuffer pixels.
+    const ViewerViewport hi = viewerViewport(2560, 1440, 1280.0f, true, 340.0f);
+    EXPECT_FALSE(insideViewport(hi, 2560, 1440, 1280.0f, 720.0f, 339.0, 300.0));
+    EXPECT_TRUE(insideViewport(hi, 2560, 1440, 1280.0f, 720.0f, 341.0, 300.0));
 }
 
 TEST(ViewerConfigDir, OverrideThenXdgThenHome) {
