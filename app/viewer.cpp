@@ -23,6 +23,7 @@
 #include "engine/gl/context.hpp"
 #include "engine/io/image_io.hpp"
 #include "frame/renderer.hpp"
+#include "passes/hdr_view_pass.hpp"
 #include "engine/scene/scene_loader.hpp"
 
 namespace lp::app {
@@ -50,8 +51,12 @@ void keyCallback(GLFWwindow* window, int key, int, int action, int) {
         case GLFW_KEY_5: setView(DebugView::Lighting); break;
         case GLFW_KEY_6: setView(DebugView::Shininess); break;
         case GLFW_KEY_9: setView(DebugView::Velocity); break;
-        case GLFW_KEY_7:  // toon on/off over the standard view
+        case GLFW_KEY_7:  // toon on/off over the standard view (which the bloom buffer alone is not)
             s.view = DebugView::Final;
+            if (s.post.bloomOnly) {
+                s.post.bloomOnly = false;
+                s.post.bloom = st->startBloom;
+            }
             s.post.toon = !st->toonShown;
             say(std::string("toon ") + (*s.post.toon ? "on" : "off"));
             break;
@@ -59,7 +64,8 @@ void keyCallback(GLFWwindow* window, int key, int, int action, int) {
             s.view = DebugView::Final;
             s.post.bloomOnly = !s.post.bloomOnly;
             s.post.bloom = s.post.bloomOnly ? std::optional<bool>(true) : st->startBloom;
-            say(std::string("bloom only ") + (s.post.bloomOnly ? "on" : "off"));
+            say(std::string("bloom only ") + (s.post.bloomOnly ? "on" : "off") +
+                (s.post.bloomOnly && st->toonShown ? " (toon is not shown meanwhile: 7 or 0 goes back)" : ""));
             break;
         case GLFW_KEY_0:
             s.post.bloomOnly = false;
@@ -67,22 +73,46 @@ void keyCallback(GLFWwindow* window, int key, int, int action, int) {
             s.post.toon = st->startToon;
             setView(DebugView::Final);
             break;
-        case GLFW_KEY_R: st->resetCamera = true; break;
-        case GLFW_KEY_P: st->togglePath = true; break;
-        case GLFW_KEY_X:
-            s.localLights.scissor = !s.localLights.scissor;
-            // Only the scissor method reads the switch: say so under the others rather than seem to do nothing.
-            say(std::string("scissor ") + (s.localLights.scissor ? "on" : "off") +
-                (s.localLights.method == LocalLightMethod::Scissor
-                     ? std::string()
-                     : std::string(" (used by the scissor method; now ") + localLightMethodName(s.localLights.method) +
-                           "; the panel's lighting section picks the method)"));
+        case GLFW_KEY_R:
+            st->resetCamera = true;
+            say("camera reset");
             break;
+        case GLFW_KEY_P:
+            // Without a path there is nothing to follow: say so rather than seem to do nothing.
+            if (st->cameraPath) st->togglePath = true;
+            else say("no camera path (a scene's \"cameraPath\" or --camera-path gives one)");
+            break;
+        case GLFW_KEY_X: {
+            s.localLights.scissor = !s.localLights.scissor;
+            // Only the deferred path's scissor method reads the switch: say so under the others.
+            std::string why;
+            if (s.renderPath == RenderPath::ForwardPlus)
+                why = " (used by the deferred path's scissor method; forward+ shades local lights in forward_opaque)";
+            else if (!s.localLights.enabled)
+                why = " (local lights are off; used by the scissor method)";
+            else if (s.localLights.method != LocalLightMethod::Scissor)
+                why = std::string(" (used by the scissor method; now ") + localLightMethodName(s.localLights.method) +
+                      "; the panel's lighting section picks the method)";
+            say(std::string("scissor ") + (s.localLights.scissor ? "on" : "off") + why);
+            break;
+        }
         case GLFW_KEY_H: st->showHelp = !st->showHelp; break;
-        case GLFW_KEY_TAB: st->showPanel = !st->showPanel; break;
+        case GLFW_KEY_TAB:
+            st->showPanel = !st->showPanel;
+            say(st->showPanel ? "panel shown (the image beside it)" : "panel hidden (the image fills the window)");
+            break;
         case GLFW_KEY_F12: st->screenshotRequested = true; break;
-        case GLFW_KEY_EQUAL: case GLFW_KEY_KP_ADD: s.exposureEV += 0.5f; break;
-        case GLFW_KEY_MINUS: case GLFW_KEY_KP_SUBTRACT: s.exposureEV -= 0.5f; break;
+        case GLFW_KEY_EQUAL: case GLFW_KEY_KP_ADD: case GLFW_KEY_MINUS: case GLFW_KEY_KP_SUBTRACT: {
+            s.exposureEV += (key == GLFW_KEY_EQUAL || key == GLFW_KEY_KP_ADD) ? 0.5f : -0.5f;
+            // The G-buffer views write raw values: exposure shows again in the lit views.
+            const bool exposed = s.view == DebugView::Final || s.view == DebugView::Lighting || isLocalLightView(s.view) ||
+                                 isHdrView(s.view);
+            char line[160];
+            std::snprintf(line, sizeof line, "exposure %+.1f EV%s", s.exposureEV,
+                          exposed ? "" : " (not in this view: the G-buffer views show raw values; 0 or 5 shows it)");
+            say(line);
+            break;
+        }
         case GLFW_KEY_ESCAPE: glfwSetWindowShouldClose(window, GLFW_TRUE); break;
         default: break;
     }

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The viewer as a user drives it: starts on the default scene under Xvfb (Mesa), key '2' switches to
-# the normals view and F12's screenshot shows the normal encoding, 'x' toggles scissor, '7' adds the
+# the normals view and F12's screenshot shows the normal encoding, '+'/'-' there say exposure is not
+# shown in it, 'p' says the scene has no camera path, 'r' resets the camera, 'x' toggles scissor, '7' adds the
 # toon pass and '8' the bloom pass (alone: toon is moot) to the compiled graph, '0' takes them out again, unticking the
 # panel's "sky" checkbox removes that pass from the compiled graph, Esc quits.
 #   viewer_under_xvfb.sh LIGHTPASS SCENE OUTDIR
@@ -22,6 +23,16 @@ xdotool key 2
 wait_for "view normals" "$out/viewer.log"
 xdotool key F12
 wait_for "screenshot" "$out/viewer.log"
+# Every key answers: exposure in a G-buffer view says it shows raw values; 'p' on a scene without a
+# camera path says so; 'r' says it reset the camera.
+xdotool key equal
+wait_for "^exposure \+0\.5 EV \(not in this view" "$out/viewer.log"
+xdotool key minus
+wait_for "^exposure \+0\.0 EV \(not in this view" "$out/viewer.log"
+xdotool key p
+wait_for "^no camera path" "$out/viewer.log"
+xdotool key r
+wait_for "^camera reset" "$out/viewer.log"
 xdotool key x
 wait_for "scissor off \(used by the scissor method; now tiled" "$out/viewer.log"  # the default method says it ignores it
 # "graph:" lines list the passes that ran, printed whenever that list changes.
@@ -34,6 +45,9 @@ wait_for "bloom only on" "$out/viewer.log"
 wait_for "^graph:.* bloom" "$out/viewer.log"
 xdotool key 0
 wait_for "view final" "$out/viewer.log"
+xdotool key equal
+wait_for "^exposure \+0\.5 EV$" "$out/viewer.log"  # the final image shows it: no reason given
+xdotool key minus
 for i in $(seq 100); do last_graph | grep -qE ' (bloom|toon)' || break; sleep 0.1; done
 last_graph | grep -qE ' (bloom|toon)' && { echo "'0' left bloom or toon on: $(last_graph)"; exit 1; }
 last_graph | grep -q ' sky' || { echo "sky missing before the checkbox test: $(last_graph)"; exit 1; }
