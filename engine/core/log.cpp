@@ -10,6 +10,7 @@ namespace lp {
 namespace {
 std::atomic<int> gLevel{static_cast<int>(LogLevel::Info)};
 std::atomic<int> gWarnings{0};
+std::atomic<bool> gProgressLineOpen{false};
 
 // A warning identical to the one just before it is counted, not printed: a broken file repeating one
 // complaint 500 times gives one line and "(repeated 499 more times)" when something else is logged
@@ -42,6 +43,7 @@ void emit(LogLevel level, const char* tag, const std::string& text) {
         ++r.repeats;
         return;
     }
+    if (gProgressLineOpen.exchange(false)) std::fputs("\r\033[K", stderr);  // the bar's line, cleared for this one
     printRepeatsLocked(r);
     r.lastWarning = level == LogLevel::Warn ? message : std::string();
     std::fprintf(stderr, "lightpass: %s%s\n", tag, message.c_str());
@@ -49,6 +51,7 @@ void emit(LogLevel level, const char* tag, const std::string& text) {
 }  // namespace
 
 void setLogLevel(LogLevel level) { gLevel = static_cast<int>(level); }
+void setProgressLineOpen(bool open) { gProgressLineOpen = open; }
 LogLevel logLevel() { return static_cast<LogLevel>(gLevel.load()); }
 void logDebug(const std::string& m) { emit(LogLevel::Debug, "debug: ", m); }
 void logInfo(const std::string& m) { emit(LogLevel::Info, "", m); }

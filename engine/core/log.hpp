@@ -17,6 +17,9 @@ void logWarn(const std::string& message);
 // Prints a pending repeat count; the CLI calls it before its last line.
 void flushRepeatedWarnings();
 void logError(const std::string& message);
+// Whether stderr's last line is an unfinished progress line (engine/core/progress.hpp): the next
+// message first clears it, so it starts on a clean line (the bar is drawn again at its next step).
+void setProgressLineOpen(bool open);
 // Number of warnings logged since start (or since the last reset); lets tests assert "warned".
 int warningCount();
 void resetWarningCount();

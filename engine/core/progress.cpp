@@ -66,6 +66,7 @@ void ProgressReporter::draw(const std::string& note) {
     const std::string line = progressLineText(label_, done_, total_, left, note, style_.terminal);
     if (style_.terminal) *out_ << "\r\033[K" << line << std::flush;  // the same line, redrawn
     else *out_ << line << "\n" << std::flush;
+    if (style_.terminal && style_.sharesLogStream) setProgressLineOpen(true);
     lastDraw_ = now;
     shown_ = true;
 }
@@ -97,6 +98,7 @@ void ProgressReporter::finish() {
     if (finished_) return;
     finished_ = true;
     if (style_.quiet || !(shown_ || style_.showAfterSeconds <= 0.0)) return;
+    if (style_.sharesLogStream) setProgressLineOpen(false);  // ended below with a newline
     if (done_ < total_) {  // cut short (an error): end the bar's line where it stopped, claim nothing
         if (shown_ && style_.terminal) *out_ << "\n" << std::flush;
         return;
@@ -114,6 +116,7 @@ ProgressStyle stderrProgressStyle() {
     ProgressStyle style;
     style.terminal = isatty(fileno(stderr)) != 0;
     style.quiet = logLevel() >= LogLevel::Error;
+    style.sharesLogStream = true;
     if (gFromStart.load()) style.showAfterSeconds = 0.0;
     return style;
 }

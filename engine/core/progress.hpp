@@ -19,6 +19,7 @@ struct ProgressStyle {
     double showAfterSeconds = 2.0;   // work that finishes sooner shows nothing; 0: from the first step
     double redrawSeconds = 0.1;      // a terminal line is redrawn at most this often (the last step always)
     bool plainLinePerStep = false;   // plain lines: one per step (bench variants, sweep values), not per tenth
+    bool sharesLogStream = false;    // drawn on stderr, where the log writes: a log line clears an open bar first
 };
 
 // Seconds left at the average rate so far; negative when unknown (nothing done yet).

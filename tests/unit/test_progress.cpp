@@ -4,6 +4,7 @@
 
 #include <sstream>
 
+#include "engine/core/log.hpp"
 #include "engine/core/progress.hpp"
 
 using namespace lp;
@@ -203,4 +204,30 @@ TEST(Progress, WorkCutShortEndsTheBarWithoutClaimingDone) {
     const std::string s = out.str();
     EXPECT_EQ(s.find("done"), std::string::npos) << s;
     EXPECT_EQ(s.back(), '\n');
+}
+
+TEST(Progress, ALogLineClearsAnOpenBarFirst) {
+    // The bar on stderr (where the log writes), left open mid-work: a warning starts on a clean line.
+    FakeClock t;
+    std::ostringstream out;
+    ProgressStyle style;
+    style.terminal = true;
+    style.sharesLogStream = true;
+    style.showAfterSeconds = 0.0;
+    ProgressReporter p("frames", 4, out, style, t.clock());
+    t.now += 1.0;
+    p.step();
+    ::testing::internal::CaptureStderr();
+    logWarn("a warning while the bar is open");
+    logWarn("and the next one");  // the line is clean already: nothing to clear
+    flushRepeatedWarnings();
+    EXPECT_EQ(::testing::internal::GetCapturedStderr(),
+              "\r\033[Klightpass: warning: a warning while the bar is open\n"
+              "lightpass: warning: and the next one\n");
+    for (int i = 0; i < 3; ++i) p.step();
+    p.finish();
+    ::testing::internal::CaptureStderr();
+    logWarn("after the bar ended");
+    flushRepeatedWarnings();
+    EXPECT_EQ(::testing::internal::GetCapturedStderr(), "lightpass: warning: after the bar ended\n");
 }
