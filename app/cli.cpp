@@ -39,6 +39,13 @@ usage:
                                     floors with --floors -> --timings-json F (default bench.json);
                                     --max-seconds S caps a slow variant's frames and warm-up
                                     (never below --min-frames N, default 10)
+  lightpass report (--scene F | --model F) --out DIR [render flags]
+                                    one HTML page, DIR/index.html: the frame graph drawn, every
+                                    view the frame has, GPU ms per pass against its floor (median
+                                    of --frames, default 10, after --warmup), memory, device
+  lightpass report --sweep D --out DIR
+                                    the same kind of page for a sweep folder: error against GPU
+                                    ms per knob (Pareto front) with each value's image
   lightpass info                    print the OpenGL device headless rendering would use
   lightpass --help                  this text
 
@@ -167,7 +174,7 @@ std::vector<CommandFlag> makeCommandFlags() {
              if (v != "y" && v != "z") throw Error(a + " " + v + ": expected y or z");
              o.modelZUp = v == "z";
          }},
-        {{"--out"}, "F.png", "tone-mapped image (written to a temporary name, then renamed)",
+        {{"--out"}, "F.png", "tone-mapped image (written to a temporary name, then renamed); report: the folder of index.html",
          [](Options& o, V, V v) { o.out = v; }},
         {{"--exr"}, "F.exr", "the linear HDR buffer before tone mapping (float32 EXR)", [](Options& o, V, V v) { o.exr = v; }},
         {{"--size"}, "WxH", "render size (default 1280x720)",
@@ -204,7 +211,10 @@ std::vector<CommandFlag> makeCommandFlags() {
          "replaces the scene's cameraPath; --camera overrides it)",
          [](Options& o, V, V v) { o.cameraPath = v; }},
         {{"--frames"}, "N", "frames to render and time (default 1; the image is the last frame)",
-         [](Options& o, V a, V v) { o.frames = parseInt(a, v, 1, 100000); }},
+         [](Options& o, V a, V v) {
+             o.frames = parseInt(a, v, 1, 100000);
+             o.framesGiven = true;
+         }},
         {{"--warmup"}, "N", "untimed frames before timing (default 5 when --frames > 1, else 0; sweep and bench: 10)",
          [](Options& o, V a, V v) {
              o.warmup = parseInt(a, v, 0, 100000);
@@ -231,6 +241,8 @@ std::vector<CommandFlag> makeCommandFlags() {
          [](Options& o, V, V v) { o.knobs.push_back(v); }},
         {{"--out-dir"}, "D", "sweep: where sweep.csv, sweep.md and the images go (default sweep)",
          [](Options& o, V, V v) { o.outDir = v; }},
+        {{"--sweep"}, "D", "report: the page of a sweep output folder D (its sweep.csv and images) instead of a frame",
+         [](Options& o, V, V v) { o.sweepDir = v; }},
         {{"--vary"}, "AXIS", "bench: 'FLAG V1,V2,..' or 'FLAGS A|FLAGS B' (repeatable)",
          [](Options& o, V, V v) { o.varies.push_back(v); }},
         {{"--max-seconds"}, "S", "bench: about S seconds of frames per variant at most",
@@ -278,8 +290,8 @@ Options parseArgs(const std::vector<std::string>& args) {
         o.command = args[0];
         i = 1;
         if (o.command != "render" && o.command != "graph" && o.command != "view" && o.command != "info" &&
-            o.command != "sweep" && o.command != "bench")
-            throw Error("unknown command '" + o.command + "' (render, graph, view, sweep, bench, info; see --help)");
+            o.command != "sweep" && o.command != "bench" && o.command != "report")
+            throw Error("unknown command '" + o.command + "' (render, graph, view, sweep, bench, report, info; see --help)");
         if (o.command == "view") {
             if (i >= args.size() || args[i].rfind("-", 0) == 0) throw Error("view: expected a .json scene or an .obj, .gltf or .glb model");
             std::string f = args[i++];
@@ -305,6 +317,7 @@ Options parseArgs(const std::vector<std::string>& args) {
         throw Error("unknown flag '" + a + "' (see --help)");
     }
     o.exposure = o.base.exposureEV;
+    if (o.command == "report" && !o.framesGiven) o.frames = 10;  // a median needs several frames
     if (!o.warmupGiven) o.warmup = o.frames > 1 ? 5 : 0;
     if (o.command == "help" || o.command == "info" || o.command == "version") return o;
     if (!o.scene.empty() && !o.model.empty()) throw Error("give --scene or --model, not both");
@@ -312,6 +325,16 @@ Options parseArgs(const std::vector<std::string>& args) {
     if (o.command == "render" || o.command == "graph" || o.command == "sweep" || o.command == "bench") {
         if (o.scene.empty() && o.model.empty()) throw Error(o.command + ": --scene F or --model F is required");
     }
+    if (o.command == "report") {
+        if (o.out.empty()) throw Error("report: --out DIR is required (the folder index.html is written to)");
+        if (!o.sweepDir.empty() && (!o.scene.empty() || !o.model.empty()))
+            throw Error("report: give --sweep D or --scene F / --model F, not both");
+        if (o.sweepDir.empty() && o.scene.empty() && o.model.empty())
+            throw Error("report: --scene F, --model F or --sweep D is required");
+        if (!o.exr.empty()) throw Error("report: --exr is not used (the page shows the tone-mapped views)");
+        return o;
+    }
+    if (!o.sweepDir.empty()) throw Error("--sweep: only for report (lightpass report --sweep D --out DIR)");
     if (o.command == "render" && o.out.empty() && o.exr.empty()) throw Error("render: --out F.png (or --exr F.exr) is required");
     if (!o.out.empty() && std::filesystem::path(o.out).extension() != ".png")
         throw Error("--out " + o.out + ": expected a .png file name");

@@ -14,7 +14,7 @@
 namespace lp::app {
 
 struct Options {
-    std::string command;  // "viewer", "render", "graph", "info", "help"
+    std::string command;  // "viewer", "render", "graph", "sweep", "bench", "report", "info", "help"
     std::string scene;
     std::string model;
     bool modelZUp = false;  // --up z: the --model file is Z-up (turned to Y-up on load)
@@ -29,6 +29,7 @@ struct Options {
     bool sizeGiven = false;
     DebugView view = DebugView::Final;
     int frames = 1;
+    bool framesGiven = false;
     int warmup = 5;
     // --time T, --fps F: timed frame i is at T + i / F seconds (F 0: every frame at T); warm-up at T.
     double time = 0.0;
@@ -46,6 +47,7 @@ struct Options {
     std::string panelRowsOut;  // viewer: where the panel's pass rows go when they change (for tests)
     std::vector<std::string> knobs;  // sweep
     std::string outDir;              // sweep
+    std::string sweepDir;            // report --sweep: a sweep output folder to draw
     std::vector<std::string> varies; // bench: one axis of variants per --vary
     double maxSeconds = 0;           // bench: time cap per variant (0: none)
     int minFrames = 10;              // bench: timed frames a capped variant still gets

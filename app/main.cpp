@@ -16,6 +16,7 @@
 #include "app/cli.hpp"
 #include "app/frame_cost.hpp"
 #include "app/render_checks.hpp"
+#include "app/report.hpp"
 #include "app/sweep.hpp"
 #include "app/viewer.hpp"
 #include "engine/core/error.hpp"
@@ -344,6 +345,7 @@ int run(int argc, char** argv) {
     if (o.command == "render") return app::commandRender(o);
     if (o.command == "sweep") return app::runSweep(o);
     if (o.command == "bench") return app::runBench(o, args);
+    if (o.command == "report") return app::runReport(o, args);
     return app::runViewer(o);
 }
 }  // namespace
