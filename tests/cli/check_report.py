@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """Renders a `lightpass report` page and checks it in a real headless browser (Chromium).
 
-    check_report.py frame LIGHTPASS OUTDIR SCENE SIZE     # lightpass report --scene SCENE
-    check_report.py sweep LIGHTPASS OUTDIR SCENE SIZE     # lightpass sweep, then report --sweep
+    check_report.py frame LIGHTPASS OUTDIR SCENE SIZE [FLAGS...]   # lightpass report --scene SCENE
+    check_report.py sweep LIGHTPASS OUTDIR SCENE SIZE               # lightpass sweep, then report --sweep
 
 Chromium loads OUTDIR/.../index.html twice at one fixed window size: --dump-dom gives the DOM after the
 page's closing script ran (its title ends with "[page ok]" when no script error, console error or
@@ -10,8 +10,9 @@ undecoded image was recorded; #page-layout holds the page-coordinate box of ever
 data-check), --screenshot the pixels. The checks then look at the screenshot inside those boxes: the
 graph's boxes in their colours (app/report_html.cpp's kLiveBox / kSkippedBox), each view's thumbnail
 showing the very image embedded for it, the time and floor bars, the sweep plot's points. Every
-candidate pass of `lightpass graph --explain` must have its box. Exits 77 (skipped) only when no
-chromium is installed (scripts/setup installs the Debian package).
+candidate pass of `lightpass graph --explain` must have its box, and the thumbnails must be exactly
+the views whose passes run there. Exits 77 (skipped) when no chromium is installed (scripts/setup
+installs the Debian package), or for the gallery scene without ../shared/assets.
 """
 import base64
 import io
@@ -121,15 +122,15 @@ def same_image(shot, box, image, label):
              f"({worst % image.size[0]}, {worst // image.size[0]}) shows {a[worst]}, the image has {b[worst]}")
 
 
-def check_frame(browser, lightpass, outdir, scene, size):
+def check_frame(browser, lightpass, outdir, scene, size, flags):
     out = os.path.join(outdir, "report-" + scene)
-    run([lightpass, "report", "--scene", scene, "--size", size, "--frames", "3", "--warmup", "1", "--out", out, "-q"])
+    run([lightpass, "report", "--scene", scene, "--size", size, "--frames", "3", "--warmup", "1", "--out", out, "-q"] + flags)
     page = os.path.join(out, "index.html")
     html = open(page, encoding="utf-8").read()
     dom, boxes, shot = load_page(browser, page)
 
     # (c) Every candidate pass of the frame (graph --explain) has its box, drawn in its colour.
-    explain = run([lightpass, "graph", "--scene", scene, "--size", size, "--explain"]).stdout
+    explain = run([lightpass, "graph", "--scene", scene, "--size", size, "--explain"] + flags).stdout
     names = re.findall(r"^  runs     (.+)$", explain, re.M) + re.findall(r"^  -        (.+?)  \(", explain, re.M)
     if len(names) < 10:
         fail(f"graph --explain listed only {len(names)} passes")
@@ -155,11 +156,25 @@ def check_frame(browser, lightpass, outdir, scene, size):
     if live < 5 or skipped < 1:
         fail(f"{live} boxes of passes that run and {skipped} of passes that do not: expected both kinds")
 
-    # The thumbnails: every view the frame has, each showing its own embedded image.
+    # The thumbnails: every view the frame has (the G-buffer's always, the others where their pass
+    # runs), each showing its own embedded image.
     views = [k[len("view:"):] for k in boxes if k.startswith("view:")]
-    for expected in ["final", "depth", "normals", "diffuse", "specular", "velocity"]:
-        if expected not in views:
-            fail(f"view {expected}: no thumbnail")
+    running = set(re.findall(r"^  runs     (.+)$", explain, re.M))
+    expected = {"final", "depth", "normals", "diffuse", "specular", "velocity", "lighting"}
+    if "ao_denoise" in running:
+        expected.add("ao")
+    if "ibl" in running:
+        expected |= {"environment", "irradiance", "prefiltered", "dfg"}
+    if "shadow_map_0" in running:
+        expected.add("shadowmap")
+    if "local_lights" in running:
+        expected |= {"light-ranges", "lights-per-tile", "lights-per-cluster"}
+    for view in sorted(expected - set(views)):
+        fail(f"view {view}: no thumbnail, though the frame has it")
+    for view, needs in (("ao", "ao_denoise"), ("environment", "ibl"), ("shadowmap", "shadow_map_0"),
+                        ("light-ranges", "local_lights")):
+        if view in views and needs not in running:
+            fail(f"view {view}: a thumbnail, though {needs} does not run")
     for view in views:
         image = embedded_image(html, "view:" + view)
         if image is None:
@@ -236,15 +251,23 @@ def check_sweep(browser, lightpass, outdir, scene, size):
 
 def main():
     mode, lightpass, outdir, scene, size = sys.argv[1:6]
+    flags = sys.argv[6:]
     browser = shutil.which("chromium") or shutil.which("chromium-browser")
     if not browser:
         print("SKIP: chromium is not installed (scripts/setup installs the Debian package)")
+        return 77
+    assets = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "shared", "assets")
+    if scene == "gallery" and not os.path.isdir(assets):
+        print(f"SKIP: the gallery scene needs {os.path.normpath(assets)}, which is absent")
         return 77
     try:
         import PIL  # noqa: F401
     except ImportError:
         sys.exit("FAIL: python3-pil is missing (scripts/setup installs it)")
-    summary = (check_frame if mode == "frame" else check_sweep)(browser, lightpass, outdir, scene, size)
+    if mode == "frame":
+        summary = check_frame(browser, lightpass, outdir, scene, size, flags)
+    else:
+        summary = check_sweep(browser, lightpass, outdir, scene, size)
     if failures:
         print(f"{len(failures)} checks failed")
         return 1
