@@ -43,9 +43,10 @@ usage:
                                     one HTML page, DIR/index.html: the frame graph drawn, every
                                     view the frame has, GPU ms per pass against its floor (median
                                     of --frames, default 10, after --warmup), memory, device
-  lightpass report --sweep D --out DIR
-                                    the same kind of page for a sweep folder: error against GPU
-                                    ms per knob (Pareto front) with each value's image
+  lightpass report (--sweep D | --bench F.json) --out DIR
+                                    the same kind of page for a sweep folder (error against GPU
+                                    ms per knob, Pareto front, each value's image) or a bench's
+                                    --timings-json (GPU ms per variant and pass, floors)
   lightpass info                    print the OpenGL device headless rendering would use
   lightpass --help                  this text
 
@@ -243,6 +244,8 @@ std::vector<CommandFlag> makeCommandFlags() {
          [](Options& o, V, V v) { o.outDir = v; }},
         {{"--sweep"}, "D", "report: the page of a sweep output folder D (its sweep.csv and images) instead of a frame",
          [](Options& o, V, V v) { o.sweepDir = v; }},
+        {{"--bench"}, "F.json", "report: the page of a bench --timings-json file instead of a frame",
+         [](Options& o, V, V v) { o.benchJson = v; }},
         {{"--vary"}, "AXIS", "bench: 'FLAG V1,V2,..' or 'FLAGS A|FLAGS B' (repeatable)",
          [](Options& o, V, V v) { o.varies.push_back(v); }},
         {{"--max-seconds"}, "S", "bench: about S seconds of frames per variant at most",
@@ -327,14 +330,14 @@ Options parseArgs(const std::vector<std::string>& args) {
     }
     if (o.command == "report") {
         if (o.out.empty()) throw Error("report: --out DIR is required (the folder index.html is written to)");
-        if (!o.sweepDir.empty() && (!o.scene.empty() || !o.model.empty()))
-            throw Error("report: give --sweep D or --scene F / --model F, not both");
-        if (o.sweepDir.empty() && o.scene.empty() && o.model.empty())
-            throw Error("report: --scene F, --model F or --sweep D is required");
+        const int sources = int(!o.sweepDir.empty()) + int(!o.benchJson.empty()) + int(!o.scene.empty() || !o.model.empty());
+        if (sources > 1) throw Error("report: give one of --scene F / --model F, --sweep D and --bench F.json");
+        if (sources == 0) throw Error("report: --scene F, --model F, --sweep D or --bench F.json is required");
         if (!o.exr.empty()) throw Error("report: --exr is not used (the page shows the tone-mapped views)");
         return o;
     }
     if (!o.sweepDir.empty()) throw Error("--sweep: only for report (lightpass report --sweep D --out DIR)");
+    if (!o.benchJson.empty()) throw Error("--bench: only for report (lightpass report --bench F.json --out DIR)");
     if (o.command == "render" && o.out.empty() && o.exr.empty()) throw Error("render: --out F.png (or --exr F.exr) is required");
     if (!o.out.empty() && std::filesystem::path(o.out).extension() != ".png")
         throw Error("--out " + o.out + ": expected a .png file name");

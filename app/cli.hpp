@@ -48,6 +48,7 @@ struct Options {
     std::vector<std::string> knobs;  // sweep
     std::string outDir;              // sweep
     std::string sweepDir;            // report --sweep: a sweep output folder to draw
+    std::string benchJson;           // report --bench: a bench --timings-json file to draw
     std::vector<std::string> varies; // bench: one axis of variants per --vary
     double maxSeconds = 0;           // bench: time cap per variant (0: none)
     int minFrames = 10;              // bench: timed frames a capped variant still gets

@@ -70,6 +70,20 @@ int runSweepReport(const Options& o, const std::vector<std::string>& args) {
     return 0;
 }
 
+int runBenchReport(const Options& o, const std::vector<std::string>& args) {
+    const fs::path file(o.benchJson);
+    std::error_code ec;
+    if (!fs::is_regular_file(file, ec)) throw Error("--bench " + o.benchJson + ": file not found");
+    BenchReport report = parseBenchJson(readFile(file), o.benchJson);
+    report.commandLine = commandLine(args);
+    const fs::path page = prepareOutputFolder(o.out);
+    OutputFiles outputs;
+    outputs.add(page, benchReportHtml(report));
+    outputs.commit();
+    if (!o.quiet) std::printf("wrote %s (%zu variants)\n", page.c_str(), report.runs.size());
+    return 0;
+}
+
 int runFrameReport(const Options& o, const std::vector<std::string>& args) {
     Scene scene = sceneFromOptions(o);  // a bad scene fails before any folder is made
     const RenderSettings settings = renderSettings(o);
@@ -144,6 +158,8 @@ int runFrameReport(const Options& o, const std::vector<std::string>& args) {
         if (bytes > 0) {
             t.floorMs = passFloorMs(graph.passKind(name), bytes, compute, fragment);
             t.floorBasis = floorBasis(graph.passKind(name));
+        } else {
+            t.noFloorReason = "moves no texture bytes";
         }
         report.timings.push_back(t);
     }
@@ -171,7 +187,9 @@ int runFrameReport(const Options& o, const std::vector<std::string>& args) {
 }  // namespace
 
 int runReport(const Options& o, const std::vector<std::string>& args) {
-    return o.sweepDir.empty() ? runFrameReport(o, args) : runSweepReport(o, args);
+    if (!o.sweepDir.empty()) return runSweepReport(o, args);
+    if (!o.benchJson.empty()) return runBenchReport(o, args);
+    return runFrameReport(o, args);
 }
 
 }  // namespace lp::app

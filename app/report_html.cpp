@@ -7,6 +7,8 @@
 #include <set>
 #include <sstream>
 
+#include <nlohmann/json.hpp>
+
 #include "engine/core/error.hpp"
 
 namespace lp::app {
@@ -257,9 +259,10 @@ std::string frameGraphSvg(const std::vector<ReportPass>& passes) {
     return s.str();
 }
 
-std::vector<TimingBar> layoutTimingBars(const std::vector<PassTiming>& timings, double width) {
-    double most = 0;
-    for (const auto& t : timings) most = std::max({most, t.medianMs, t.floorMs.value_or(0.0)});
+std::vector<TimingBar> layoutTimingBars(const std::vector<PassTiming>& timings, double width, double scaleMs) {
+    double most = scaleMs;
+    if (most <= 0)
+        for (const auto& t : timings) most = std::max({most, t.medianMs, t.floorMs.value_or(0.0)});
     std::vector<TimingBar> bars;
     for (const auto& t : timings) {
         TimingBar b;
@@ -270,32 +273,36 @@ std::vector<TimingBar> layoutTimingBars(const std::vector<PassTiming>& timings, 
     return bars;
 }
 
-std::string timingBarsSvg(const std::vector<PassTiming>& timings) {
-    const std::vector<TimingBar> bars = layoutTimingBars(timings, kBarArea);
-    const double width = kBarLabel + kBarArea + 260, height = 10 + kBarRow * double(timings.size());
+std::string timingBarsSvg(const std::vector<PassTiming>& timings, double scaleMs, const std::string& checkPrefix) {
+    const std::vector<TimingBar> bars = layoutTimingBars(timings, kBarArea, scaleMs);
+    // The label column fits the longest name (a bench variant's flags), at about 7 px a character.
+    size_t longest = 0;
+    for (const auto& t : timings) longest = std::max(longest, t.name.size());
+    const double column = std::clamp(7.0 * double(longest) + 12.0, kBarLabel, 3 * kBarLabel);
+    const double width = column + kBarArea + 260, height = 10 + kBarRow * double(timings.size());
     std::ostringstream s;
-    s << "<svg xmlns=\"http://www.w3.org/2000/svg\" id=\"timings\" width=\"" << width << "\" height=\"" << height
+    s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "\" height=\"" << height
       << "\" viewBox=\"0 0 " << width << " " << height << "\">\n";
     for (size_t i = 0; i < timings.size(); ++i) {
         const PassTiming& t = timings[i];
         const double y = 5 + kBarRow * double(i);
-        s << "<text x=\"" << kBarLabel - 6 << "\" y=\"" << y + 13 << "\" font-size=\"12\" text-anchor=\"end\">"
+        s << "<text x=\"" << column - 6 << "\" y=\"" << y + 13 << "\" font-size=\"12\" text-anchor=\"end\">"
           << htmlEscape(t.name) << "</text>\n";
-        s << "<rect data-check=\"bar:" << htmlEscape(t.name) << "\" x=\"" << kBarLabel << "\" y=\"" << y << "\" width=\""
+        s << "<rect data-check=\"bar:" << htmlEscape(checkPrefix + t.name) << "\" x=\"" << column << "\" y=\"" << y << "\" width=\""
           << bars[i].timeWidth << "\" height=\"12\" fill=\"" << kTimeBar << "\"><title>" << htmlEscape(t.name) << ": "
           << num(t.medianMs, 4) << " ms</title></rect>\n";
-        std::string label = num(t.medianMs, 3) + " ms";
+        std::string text = num(t.medianMs, 3) + " ms";
         if (bars[i].floorWidth) {
-            s << "<rect data-check=\"floor:" << htmlEscape(t.name) << "\" x=\"" << kBarLabel << "\" y=\"" << y + 14
+            s << "<rect data-check=\"floor:" << htmlEscape(checkPrefix + t.name) << "\" x=\"" << column << "\" y=\"" << y + 14
               << "\" width=\"" << *bars[i].floorWidth << "\" height=\"6\" fill=\"" << kFloorBar << "\"><title>floor "
               << num(*t.floorMs, 4) << " ms (" << htmlEscape(t.floorBasis) << ")</title></rect>\n";
-            label += ", floor " + num(*t.floorMs, 3) + " ms" +
+            text += ", floor " + num(*t.floorMs, 3) + " ms" +
                      (*t.floorMs > 0 ? " (" + num(t.medianMs / *t.floorMs, 1) + "x)" : "");
-        } else {
-            label += ", no floor (moves no texture bytes)";
+        } else if (!t.noFloorReason.empty()) {
+            text += ", no floor (" + t.noFloorReason + ")";
         }
-        s << "<text x=\"" << kBarLabel + std::max(bars[i].timeWidth, bars[i].floorWidth.value_or(0.0)) + 6 << "\" y=\""
-          << y + 13 << "\" font-size=\"12\" fill=\"#444\">" << htmlEscape(label) << "</text>\n";
+        s << "<text x=\"" << column + std::max(bars[i].timeWidth, bars[i].floorWidth.value_or(0.0)) + 6 << "\" y=\""
+          << y + 13 << "\" font-size=\"12\" fill=\"#444\">" << htmlEscape(text) << "</text>\n";
     }
     s << "</svg>\n";
     return s.str();
@@ -574,6 +581,101 @@ std::string sweepReportHtml(const SweepReport& r) {
               << (pts[i].front ? ", on the front" : "") << "</figcaption></figure>\n";
         }
         s << "</div>\n";
+    }
+    s << pageTail();
+    return s.str();
+}
+
+BenchReport parseBenchJson(const std::string& text, const std::string& label) {
+    nlohmann::json j;
+    try {
+        j = nlohmann::json::parse(text);
+    } catch (const nlohmann::json::parse_error& e) {
+        throw Error(label + ": invalid JSON at byte " + std::to_string(e.byte));
+    }
+    const auto runs = j.find("runs");
+    if (!j.is_object() || runs == j.end() || !runs->is_array() || runs->empty())
+        throw Error(label + ": no \"runs\" (not a lightpass bench --timings-json file)");
+    auto text_ = [](const nlohmann::json& o, const char* key) {
+        const auto at = o.find(key);
+        return at != o.end() && at->is_string() ? at->get<std::string>() : std::string();
+    };
+    auto number = [&](const nlohmann::json& o, const char* key, const std::string& where) {
+        const auto at = o.find(key);
+        if (at == o.end() || !at->is_number()) throw Error(label + ": " + where + ": no number \"" + key + "\"");
+        return at->get<double>();
+    };
+    BenchReport r;
+    r.file = label;
+    r.device = text_(j, "device");
+    r.scene = text_(j, "scene");
+    r.commonFlags = text_(j, "common_flags");
+    if (const auto bw = j.find("bandwidth"); bw != j.end() && bw->is_object())
+        r.bandwidth = "compute copy " + num(number(*bw, "compute_GBps", "bandwidth"), 1) + " GB/s, fragment fill " +
+                      num(number(*bw, "fragment_GBps", "bandwidth"), 1) + " GB/s";
+    for (size_t i = 0; i < runs->size(); ++i) {
+        const nlohmann::json& run = (*runs)[i];
+        const std::string where = "runs[" + std::to_string(i) + "]";
+        if (!run.is_object()) throw Error(label + ": " + where + ": not an object");
+        BenchRun b;
+        b.flags = text_(run, "flags");
+        b.width = int(number(run, "width", where));
+        b.height = int(number(run, "height", where));
+        b.frames = int(number(run, "frames", where));
+        if (run.contains("transient_texture_bytes")) b.transientBytes = size_t(number(run, "transient_texture_bytes", where));
+        const auto passes = run.find("passes");
+        if (passes == run.end() || !passes->is_object() || !passes->contains("frame"))
+            throw Error(label + ": " + where + ": no \"passes\" with a \"frame\" time");
+        for (const auto& [name, p] : passes->items()) {
+            const double ms = number(p, "median_ms", where + ".passes." + name);
+            if (name == "frame") {
+                b.frameMs = ms;
+                continue;
+            }
+            PassTiming t;
+            t.name = name;
+            t.medianMs = ms;
+            if (p.contains("floor_ms")) {
+                t.floorMs = number(p, "floor_ms", where + ".passes." + name);
+                t.floorBasis = text_(p, "floor_basis");
+            } else if (j.contains("bandwidth")) {
+                t.noFloorReason = "moves no texture bytes";
+            }
+            b.passes.push_back(t);
+        }
+        std::stable_sort(b.passes.begin(), b.passes.end(),
+                         [](const PassTiming& a, const PassTiming& c) { return a.medianMs > c.medianMs; });
+        r.runs.push_back(std::move(b));
+    }
+    return r;
+}
+
+std::string benchReportHtml(const BenchReport& r) {
+    std::ostringstream s;
+    s << pageHead("lightpass bench report: " + r.scene);
+    s << "<h1>lightpass bench report: " << htmlEscape(r.scene) << "</h1>\n<table class=\"meta\">\n"
+      << "<tr><td>command</td><td><code id=\"command\">" << htmlEscape(r.commandLine) << "</code></td></tr>\n"
+      << "<tr><td>file</td><td><code>" << htmlEscape(r.file) << "</code></td></tr>\n"
+      << "<tr><td>device</td><td id=\"device\">" << htmlEscape(r.device) << "</td></tr>\n"
+      << "<tr><td>flags of every variant</td><td><code>" << htmlEscape(r.commonFlags) << "</code></td></tr>\n"
+      << "<tr><td>floors</td><td>"
+      << (r.bandwidth.empty() ? std::string("not measured (bench without --floors)") : htmlEscape(r.bandwidth))
+      << "</td></tr>\n</table>\n";
+    // The frame per variant, then each variant's passes, all on one scale.
+    std::vector<PassTiming> frames;
+    double most = 0;
+    for (const BenchRun& run : r.runs) {
+        frames.push_back({run.flags.empty() ? "(no flags)" : run.flags, run.frameMs, std::nullopt, "", ""});
+        for (const auto& p : run.passes) most = std::max({most, p.medianMs, p.floorMs.value_or(0.0)});
+    }
+    s << "<h2>Frame GPU ms per variant</h2>\n" << timingBarsSvg(frames, 0, "variant:");
+    for (size_t i = 0; i < r.runs.size(); ++i) {
+        const BenchRun& run = r.runs[i];
+        s << "<h2>" << htmlEscape(run.flags.empty() ? "(no flags)" : run.flags) << "</h2>\n<p>" << run.width << "x"
+          << run.height << ", median of " << run.frames << " frames: " << num(run.frameMs, 3) << " GPU ms; transient textures "
+          << mib(run.transientBytes) << ". Passes by GPU time (orange), with floors (teal) where measured; one scale for "
+          << "every variant.</p>\n"
+          << timingBarsSvg(run.passes, most, std::to_string(i) + ":");
     }
     s << pageTail();
     return s.str();

@@ -67,14 +67,17 @@ struct PassTiming {
     double medianMs = 0;
     std::optional<double> floorMs;
     std::string floorBasis;  // "compute copy", "fragment fill"
+    std::string noFloorReason;  // shown where floorMs is empty ("moves no texture bytes"); may be empty
 };
 // Bars on one scale: the largest time or floor spans `width` pixels.
 struct TimingBar {
     double timeWidth = 0;
     std::optional<double> floorWidth;
 };
-std::vector<TimingBar> layoutTimingBars(const std::vector<PassTiming>& timings, double width);
-std::string timingBarsSvg(const std::vector<PassTiming>& timings);
+// scaleMs > 0: that many ms span `width` instead (several charts on one scale).
+std::vector<TimingBar> layoutTimingBars(const std::vector<PassTiming>& timings, double width, double scaleMs = 0);
+// Each bar is marked data-check="bar:<checkPrefix><name>" (and "floor:..." for its floor).
+std::string timingBarsSvg(const std::vector<PassTiming>& timings, double scaleMs = 0, const std::string& checkPrefix = "");
 
 // The views a report shows: one row per view --view accepts, what it shows and the pass that must
 // run in the report's frame for it to be there ("" : every frame has it). shadowmap's pass is the
@@ -151,5 +154,22 @@ struct SweepReport {
     std::vector<SweepImage> images;  // one per row
 };
 std::string sweepReportHtml(const SweepReport& report);
+
+// A `lightpass bench` JSON (--timings-json): one run per variant.
+struct BenchRun {
+    std::string flags;
+    int width = 0, height = 0, frames = 0;
+    size_t transientBytes = 0;
+    double frameMs = 0;
+    std::vector<PassTiming> passes;  // most GPU time first (the JSON keeps no execution order)
+};
+struct BenchReport {
+    std::string file, commandLine, device, scene, commonFlags, bandwidth;
+    std::vector<BenchRun> runs;
+};
+// Throws lp::Error "<label>: ..." for text that is not JSON or not a bench's (no runs, a run without
+// a frame time).
+BenchReport parseBenchJson(const std::string& text, const std::string& label);
+std::string benchReportHtml(const BenchReport& report);
 
 }  // namespace lp::app

@@ -3,6 +3,7 @@
 
     check_report.py frame LIGHTPASS OUTDIR SCENE SIZE [FLAGS...]   # lightpass report --scene SCENE
     check_report.py sweep LIGHTPASS OUTDIR SCENE SIZE               # lightpass sweep, then report --sweep
+    check_report.py bench LIGHTPASS OUTDIR SCENE SIZE               # lightpass bench, then report --bench
 
 Chromium loads OUTDIR/.../index.html twice at one fixed window size: --dump-dom gives the DOM after the
 page's closing script ran (its title ends with "[page ok]" when no script error, console error or
@@ -249,6 +250,38 @@ def check_sweep(browser, lightpass, outdir, scene, size):
     return f"{len(rows)} values, {front} on the front"
 
 
+def check_bench(browser, lightpass, outdir, scene, size):
+    bench = os.path.join(outdir, "report-bench-" + scene + ".json")
+    out = os.path.join(outdir, "report-bench-page-" + scene)
+    run([lightpass, "bench", "--scene", scene, "--size", size, "--frames", "2", "--warmup", "0",
+         "--vary", "--shadow-size 512,1024", "--vary", "--aa off|--aa fxaa", "--timings-json", bench, "-q"])
+    run([lightpass, "report", "--bench", bench, "--out", out, "-q"])
+    dom, boxes, shot = load_page(browser, os.path.join(out, "index.html"))
+    runs = json.load(open(bench))["runs"]
+    if len(runs) != 4:
+        fail(f"bench wrote {len(runs)} variants, expected 4")
+    wide = 0
+    for i, r in enumerate(runs):
+        if "bar:variant:" + r["flags"] not in boxes:
+            fail(f"variant {r['flags']!r}: no frame bar")
+        for name, p in r["passes"].items():
+            if name == "frame":
+                continue
+            box = boxes.get(f"bar:{i}:{name}")
+            if not box:
+                fail(f"variant {r['flags']!r}: no bar for pass {name}")
+                continue
+            if box["w"] >= 4:
+                region = pixels(shot, box)
+                share = share_of(region, TIME_BAR) if region else 0
+                if share < 0.8:
+                    fail(f"variant {r['flags']!r}, pass {name}: {share:.0%} of its bar in the bar colour")
+                wide += 1
+    if wide < 4:
+        fail(f"only {wide} pass bars wide enough to see")
+    return f"{len(runs)} variants, {wide} pass bars seen"
+
+
 def main():
     mode, lightpass, outdir, scene, size = sys.argv[1:6]
     flags = sys.argv[6:]
@@ -266,8 +299,10 @@ def main():
         sys.exit("FAIL: python3-pil is missing (scripts/setup installs it)")
     if mode == "frame":
         summary = check_frame(browser, lightpass, outdir, scene, size, flags)
-    else:
+    elif mode == "sweep":
         summary = check_sweep(browser, lightpass, outdir, scene, size)
+    else:
+        summary = check_bench(browser, lightpass, outdir, scene, size)
     if failures:
         print(f"{len(failures)} checks failed")
         return 1

@@ -280,5 +280,54 @@ TEST(ReportHtml, SweepPageHasAPointAndAnImagePerValue) {
     EXPECT_NE(html.find("1,024"), std::string::npos);
 }
 
+const char* kBenchJson = R"({"device": "GPU <x>", "scene": "s.json", "common_flags": "--size 64x36",
+  "bandwidth": {"compute_GBps": 1000.0, "fragment_GBps": 2000.0},
+  "runs": [
+    {"flags": "--aa off", "width": 64, "height": 36, "frames": 2, "transient_texture_bytes": 1048576,
+     "passes": {"frame": {"median_ms": 3.0}, "a": {"median_ms": 1.0, "floor_ms": 0.5, "floor_basis": "compute copy"},
+                "b": {"median_ms": 2.0}}},
+    {"flags": "--aa fxaa", "width": 64, "height": 36, "frames": 2,
+     "passes": {"frame": {"median_ms": 4.0}, "a": {"median_ms": 0.5}}}]})";
+
+TEST(ReportHtml, BenchJsonGivesEachVariantItsPassesByTime) {
+    const BenchReport r = parseBenchJson(kBenchJson, "b.json");
+    EXPECT_EQ(r.device, "GPU <x>");
+    EXPECT_EQ(r.commonFlags, "--size 64x36");
+    EXPECT_NE(r.bandwidth.find("compute copy 1000.0 GB/s"), std::string::npos);
+    ASSERT_EQ(r.runs.size(), 2u);
+    EXPECT_EQ(r.runs[0].flags, "--aa off");
+    EXPECT_DOUBLE_EQ(r.runs[0].frameMs, 3.0);
+    EXPECT_EQ(r.runs[0].transientBytes, 1048576u);
+    ASSERT_EQ(r.runs[0].passes.size(), 2u);  // the frame is not a pass
+    EXPECT_EQ(r.runs[0].passes[0].name, "b");  // most time first
+    EXPECT_FALSE(r.runs[0].passes[0].floorMs);
+    EXPECT_EQ(r.runs[0].passes[0].noFloorReason, "moves no texture bytes");  // floors measured, none for it
+    EXPECT_DOUBLE_EQ(*r.runs[0].passes[1].floorMs, 0.5);
+    const std::string html = benchReportHtml(r);
+    EXPECT_EQ(html.find("GPU <x>"), std::string::npos);
+    for (const char* id : {"bar:variant:--aa off", "bar:variant:--aa fxaa", "bar:0:a", "floor:0:a", "bar:0:b", "bar:1:a"})
+        EXPECT_NE(html.find(std::string("data-check=\"") + id + "\""), std::string::npos) << id;
+}
+
+std::string benchErrorOf(const std::string& json) {
+    try {
+        parseBenchJson(json, "b.json");
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "";
+}
+
+TEST(ReportHtml, BadBenchJsonIsOneLineNamingTheFileAndPlace) {
+    EXPECT_EQ(benchErrorOf("{\"runs\": [1,"), "b.json: invalid JSON at byte 13");  // 12 bytes: it ends too early
+    EXPECT_EQ(benchErrorOf("{\"runs\": x}"), "b.json: invalid JSON at byte 10");   // nlohmann counts from 1
+    EXPECT_EQ(benchErrorOf("{}"), "b.json: no \"runs\" (not a lightpass bench --timings-json file)");
+    EXPECT_EQ(benchErrorOf(R"({"runs": [{"width": 1, "height": 1, "frames": 1, "passes": {}}]})"),
+              "b.json: runs[0]: no \"passes\" with a \"frame\" time");
+    EXPECT_EQ(benchErrorOf(R"({"runs": [{"width": 1, "height": 1, "frames": 1, "passes": {"frame": {"median_ms": "x"}}}]})"),
+              "b.json: runs[0].passes.frame: no number \"median_ms\"");
+    EXPECT_EQ(benchErrorOf(R"({"runs": [{"height": 1}]})"), "b.json: runs[0]: no number \"width\"");
+}
+
 }  // namespace
 }  // namespace lp::app
