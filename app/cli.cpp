@@ -211,7 +211,7 @@ std::vector<CommandFlag> makeCommandFlags() {
          "JSON file of camera keyframes ({\"keys\": [{\"time\", \"position\", \"target\", \"fov\"}, ...], \"loop\"}; "
          "replaces the scene's cameraPath; --camera overrides it)",
          [](Options& o, V, V v) { o.cameraPath = v; }},
-        {{"--frames"}, "N", "frames to render and time (default 1; the image is the last frame)",
+        {{"--frames"}, "N", "frames to render and time (default 1, report: 10; the image is the last frame)",
          [](Options& o, V a, V v) {
              o.frames = parseInt(a, v, 1, 100000);
              o.framesGiven = true;
