@@ -53,7 +53,11 @@ def chromium(binary, page, profile, extra):
     cmd = [binary, "--headless", "--no-sandbox", "--disable-gpu", "--user-data-dir=" + profile,
            "--force-color-profile=srgb", "--force-device-scale-factor=1", "--hide-scrollbars",
            "--enable-logging=stderr", "--v=0", f"--window-size={WINDOW[0]},{WINDOW[1]}"] + extra + ["file://" + page]
-    p = subprocess.run(cmd, capture_output=True, text=True, timeout=60)
+    # Its home, config and cache in the temporary profile too: Chromium writes "Crash Reports" under
+    # the config folder whatever --user-data-dir says, and a test leaves nothing in the user's home.
+    env = dict(os.environ, HOME=profile, XDG_CONFIG_HOME=os.path.join(profile, "config"),
+               XDG_CACHE_HOME=os.path.join(profile, "cache"))
+    p = subprocess.run(cmd, capture_output=True, text=True, timeout=60, env=env)
     if p.returncode != 0:
         print(p.stderr[-3000:])
         sys.exit(f"chromium failed ({p.returncode})")
