@@ -63,6 +63,7 @@ usage:
 viewer keys (seed 001):
   1 depth  2 normals  3 diffuse  4 eye-space position  5 lighting  6 shininess  7 toon on/off
   8 bloom buffer alone  9 velocity  0 standard view  r reset camera  x toggle scissor  W/S/A/D/Q/Z move
+  m next material input (base-color, metallic, roughness, occlusion, emissive)  t next term (term-diffuse, term-specular)
   mouse drag: look  p follow the camera path  +/- exposure  Tab panel  h help  F12 screenshot  Esc quit
   (the panel also picks scenes and environments, a picked map lighting the scene with IBL on,
   and shaders/ edits reload while it runs)
@@ -343,8 +344,9 @@ Options parseArgs(const std::vector<std::string>& args) {
         throw Error("--out " + o.out + ": expected a .png file name");
     if (!o.exr.empty() && std::filesystem::path(o.exr).extension() != ".exr")
         throw Error("--exr " + o.exr + ": expected a .exr file name");
-    if (!o.exr.empty() && o.view != DebugView::Final && o.view != DebugView::Lighting)
-        throw Error("--exr: the '" + std::string(viewName(o.view)) + "' view has no HDR buffer; use --view final or lighting");
+    if (!o.exr.empty() && o.view != DebugView::Final && o.view != DebugView::Lighting && !isShadingTermView(o.view))
+        throw Error("--exr: the '" + std::string(viewName(o.view)) + "' view has no HDR buffer; use --view final, lighting, " +
+                    viewList(termViews(), ", ") + " or emissive");
     if (o.command == "viewer" && o.scene.empty() && o.model.empty()) o.scene = defaultScenePath();
     return o;
 }

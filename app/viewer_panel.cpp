@@ -17,6 +17,8 @@ const char* const kViewerHelp =
     "1 depth   2 eye-space normals   3 diffuse colour   4 eye-space position\n"
     "5 lighting only   6 shininess   7 toon on/off   8 bloom buffer alone   9 velocity\n"
     "0 standard view (toon and bloom-only back to the start)\n"
+    "m next material input (base-color, metallic, roughness, occlusion, emissive)\n"
+    "t next lit term (term-diffuse, term-specular)\n"
     "r reset camera   p follow the camera path   x toggle scissor (local lights, scissor method)\n"
     "W/S forward/back   A/D left/right   Q/Z up/down   left-drag look\n"
     "+/- exposure   Tab hide/show panel   h this help   F12 screenshot   Esc quit";

@@ -38,6 +38,7 @@ namespace {
 // A view of one G-buffer channel (or the environment), not of the lit image.
 bool isChannelView(DebugView view) {
     return view != DebugView::Final && view != DebugView::Lighting &&
+           !isShadingTermView(view) &&  // the lit frame's terms (term-*, emissive)
            !isLocalLightView(view) &&  // overlays on the final image
            !isHdrView(view);           // the final HDR buffer inspected
 }
@@ -73,12 +74,18 @@ FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const Fr
     const Scene& scene = *frame.scene;
     const bool channelView = isChannelView(s.view);
     const bool lightingView = s.view == DebugView::Lighting;
+    // The lighting view and the term views (term-diffuse, term-specular, emissive) show the opaque
+    // surfaces' light alone: no sky, no transparent surfaces, no overlays.
+    const bool termView = isShadingTermView(s.view);
+    const bool lightAlone = lightingView || termView;
+    const std::string lightAloneWhy = lightingView ? "the lighting view shows light alone"
+                                                   : "the " + std::string(viewName(s.view)) + " view shows its term alone";
     const bool hasMap = !scene.environment.map.empty();
     const bool iblWanted = iblLightsFrame(scene, s);
     const bool iblAdded = iblWanted || s.allPasses;
     // A black background with no map: the global-light pass already leaves the background at zero.
     const bool skyWanted = hasMap || glm::any(glm::greaterThan(scene.environment.color * scene.environment.intensity, glm::vec3(0.0f)));
-    const bool skyAdded = !lightingView && (skyWanted || s.allPasses);
+    const bool skyAdded = !lightAlone && (skyWanted || s.allPasses);
     const std::string localSkip = s.allPasses ? "" : localLightSkipReason(frame);
     const bool scaled = frame.width != frame.outputWidth || frame.height != frame.outputHeight;
     const bool supersampling = supersampled(s);
@@ -168,17 +175,18 @@ FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const Fr
         if (localSkip.empty())
             hdr = addLocalLightPass(graph, passes.localLights, frame, gbuffer, hdr, lightingView, spotShadows, lightRecords);
         else graph.skipPass("local_lights", localSkip);
-        if (!lightingView && sceneHasEmission(frame)) hdr = addEmissionPass(graph, passes.emission, frame, gbuffer, hdr);
-        else graph.skipPass("emission", lightingView ? "the lighting view shows light alone" : "no material of the scene emits");
+        const bool emissionHidden = lightingView || (hiddenShadingTerms(s.view) & kHideEmission) != 0;
+        if (!emissionHidden && sceneHasEmission(frame)) hdr = addEmissionPass(graph, passes.emission, frame, gbuffer, hdr);
+        else graph.skipPass("emission", emissionHidden ? lightAloneWhy : "no material of the scene emits");
     }
     if (skyAdded) hdr = addSkyPass(graph, passes.sky, frame, gbuffer.depth, hasMap ? environment.cube : fg::ResourceId{}, hdr);
-    else graph.skipPass("sky", lightingView ? "the lighting view shows light alone" : "scene has no environment (black, no map)");
+    else graph.skipPass("sky", lightAlone ? lightAloneWhy : "scene has no environment (black, no map)");
     // Alpha-blended surfaces over the opaque frame and the sky, back to front.
-    if (lightingView) graph.skipPass("transparent", "the lighting view shows the opaque surfaces' light alone");
+    if (lightAlone) graph.skipPass("transparent", lightAloneWhy + " (the opaque surfaces')");
     else if (!sceneHasTransparency(scene)) graph.skipPass("transparent", "no material of the scene is alpha-blended");
     else hdr = addTransparentPass(graph, passes.transparent, passes.localLights, frame, gbuffer.depth, hdr, forwardLighting);
     // globes and the light-ranges / lights-per-tile / lights-per-cluster overlays, over the sky too.
-    if (!lightingView && localSkip.empty() && localLightCount(scene, s.localLights) > 0)
+    if (!lightAlone && localSkip.empty() && localLightCount(scene, s.localLights) > 0)
         hdr = addLocalLightOverlayPasses(graph, passes.localLights, frame, gbuffer, hdr, lightRecords);
     // Motion blur on the HDR buffer, before bloom and the tone map.
     if (motionBlurSkip.empty()) hdr = addMotionBlurPasses(graph, passes.motionBlur, frame, gbuffer, hdr);

@@ -35,6 +35,8 @@ int modeOf(DebugView v) {
         case DebugView::Tangent: return 12;
         case DebugView::Velocity: return 13;
         case DebugView::Ao: return 14;
+        case DebugView::Metallic: case DebugView::Roughness: case DebugView::Occlusion: return 15;
+        case DebugView::BaseColor: return 16;
         default: return 0;
     }
 }
@@ -127,6 +129,7 @@ GBufferChannels channelsForView(DebugView view) {
     c.texcoord = view == DebugView::Texcoords;
     c.tangent = view == DebugView::Tangent;
     c.velocity = view == DebugView::Velocity;
+    c.materialInput = materialInputShown(view) != 0;
     return c;
 }
 
@@ -150,11 +153,12 @@ fg::ResourceId addDebugViewPass(fg::FrameGraph& graph, DebugViewPass& state, con
     const Data& d = graph.addPass<Data>(
         std::string("debug_view"), fg::PassKind::Compute,
         [&](fg::PassBuilder& b, Data& data) {
-            if (mode == 7 || mode == 8 || mode == 12 || mode == 13 || mode == 14) {
+            if (mode == 7 || mode == 8 || mode >= 12) {
                 fg::ResourceId ch = shadowMap     ? shadowMap->depth
                                     : mode == 12 ? gbuffer.tangent
                                     : mode == 13 ? gbuffer.velocity
                                     : mode == 14 ? ao
+                                    : mode >= 15 ? gbuffer.materialInput
                                                  : gbuffer.texcoord;
                 if (!ch.valid())
                     throw Error(std::string("debug view '") + viewName(view) + "': the G-buffer lacks its channel");

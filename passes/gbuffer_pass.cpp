@@ -101,6 +101,8 @@ GBuffer createGBufferColourTargets(fg::PassBuilder& b, int w, int h, const GBuff
     if (channels.texcoord) out.texcoord = b.createIfRead("gbuffer.texcoord", {w, h, GL_RG32F}, how);
     if (channels.tangent) out.tangent = b.createIfRead("gbuffer.tangent", {w, h, GL_RGBA16F}, how);
     if (channels.velocity) out.velocity = b.createIfRead("gbuffer.velocity", {w, h, GL_RG16F}, how);
+    if (channels.materialInput)
+        out.materialInput = b.createIfRead("gbuffer.material_input", {w, h, GL_RGBA16F}, how);
     return out;
 }
 
@@ -118,9 +120,10 @@ void addGBufferImageDefines(std::vector<std::string>& d, const GBufferSettings& 
 }
 
 GLuint bindGBufferImages(const fg::PassResources& res, const GBuffer& g) {
-    const fg::ResourceId targets[7] = {g.normal, g.diffuse, g.position, g.specular, g.texcoord, g.tangent, g.velocity};
+    const fg::ResourceId targets[8] = {g.normal,   g.diffuse, g.position, g.specular,
+                                       g.texcoord, g.tangent, g.velocity, g.materialInput};
     GLuint bound = 0;
-    for (GLuint i = 0; i < 7; ++i) {
+    for (GLuint i = 0; i < 8; ++i) {
         if (!targets[i].valid()) continue;
         const fg::PassResources::ImageBinding image = res.image(targets[i]);  // sRGB targets: an RGBA8 view
         if (!image.texture) continue;
@@ -131,7 +134,7 @@ GLuint bindGBufferImages(const fg::PassResources& res, const GBuffer& g) {
 }
 
 void unbindGBufferImages() {
-    for (GLuint i = 0; i < 7; ++i) glBindImageTexture(i, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+    for (GLuint i = 0; i < 8; ++i) glBindImageTexture(i, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
 }
 
 void setBackgroundMotionUniforms(GLuint program, const FrameData& frame) {
@@ -151,6 +154,8 @@ void setBackgroundMotionUniforms(GLuint program, const FrameData& frame) {
 void setBrdfUniforms(GLuint prog, const RenderSettings& settings) {
     glProgramUniform1i(prog, glGetUniformLocation(prog, "uBrdf"), int(settings.brdf));  // = LP_BRDF_*
     glProgramUniform1i(prog, glGetUniformLocation(prog, "uSpecularMasking"), int(settings.specularMasking));
+    glProgramUniform1i(prog, glGetUniformLocation(prog, "uHiddenTerms"), hiddenShadingTerms(settings.view));
+    glProgramUniform1i(prog, glGetUniformLocation(prog, "uMaterialInput"), materialInputShown(settings.view));
 }
 
 void bindGBuffer(GLuint program, const fg::PassResources& res, const GBuffer& g, const FrameData& frame, bool diffuse) {
@@ -190,7 +195,8 @@ GBuffer addGeometryPass(fg::FrameGraph& graph, GBufferPass& state, const FrameDa
             const bool velocity = out.velocity.valid() && res.texture(out.velocity) != 0;
             // No material channel is read (forward+ without AO or a channel view): depth and motion only.
             bool depthOnly = true;
-            for (fg::ResourceId c : {out.normal, out.diffuse, out.position, out.specular, out.texcoord, out.tangent})
+            for (fg::ResourceId c :
+                 {out.normal, out.diffuse, out.position, out.specular, out.texcoord, out.tangent, out.materialInput})
                 depthOnly = depthOnly && (!c.valid() || res.texture(c) == 0);
             auto variant = [&](gl::Program& program, GBufferProgramKey& builtFor, bool withVelocity,
                                bool withDepthOnly) -> const gl::Program& {
@@ -208,9 +214,9 @@ GBuffer addGeometryPass(fg::FrameGraph& graph, GBufferPass& state, const FrameDa
             if (!state.fbo) state.fbo = gl::makeFramebuffer("gbuffer");
             const GLuint fbo = state.fbo.id();
             glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, res.texture(out.depth), 0);
-            constexpr int kTargets = 7;
+            constexpr int kTargets = 8;  // = gbuffer.frag's outputs (location i) and gbuffer_images.glsl's bindings
             const fg::ResourceId colour[kTargets] = {out.normal,   out.diffuse, out.position, out.specular,
-                                                     out.texcoord, out.tangent, out.velocity};
+                                                     out.texcoord, out.tangent, out.velocity, out.materialInput};
             GLenum buffers[kTargets];
             for (int i = 0; i < kTargets; ++i) {
                 // sRGB targets through their RGBA8 view: the shader writes the encoding (gbuffer.frag).

@@ -17,11 +17,15 @@ struct GBufferChannels {
     // gbuffer.velocity (RG16F, uv_current - uv_previous; engine/render/motion.hpp): only when a pass
     // reads motion (the velocity view, motion blur, temporal AA).
     bool velocity = false;
+    // gbuffer.material_input (RGBA16F): the input a material-input view shows (base-color, metallic,
+    // roughness, occlusion), only in those views.
+    bool materialInput = false;
 };
 
 struct GBuffer {
     fg::ResourceId depth, normal, diffuse, position, specular, texcoord, tangent;  // position invalid when rebuilt
     fg::ResourceId velocity;  // invalid unless GBufferChannels::velocity
+    fg::ResourceId materialInput;  // invalid unless GBufferChannels::materialInput
 };
 
 // What a program that reads or draws the G-buffer was compiled for: the layout, whether the scene's
@@ -69,8 +73,10 @@ struct MaterialUniforms {
         hasMetalRough, hasOcclusion, occlusionStrength, mask, cutoff, twoSided, flat, secondUvMaps;
 };
 
-// common/brdf.glsl's uBrdf and uSpecularMasking from the settings, on every program that evaluates the
-// BRDF or stores a material for it (the G-buffer's diffuse colour depends on the BRDF: materialDiffuseAlbedo).
+// common/brdf.glsl's uBrdf, uSpecularMasking and uHiddenTerms (the term views: lp::hiddenShadingTerms)
+// and common/material.glsl's uMaterialInput (lp::materialInputShown) from the settings, on every program
+// that evaluates the BRDF or stores a material for it (the G-buffer's diffuse colour depends on the
+// BRDF: materialDiffuseAlbedo).
 void setBrdfUniforms(GLuint prog, const RenderSettings& settings);
 
 // GL internal formats of the targets under a layout (docs/gbuffer.md). The colours that hold a
@@ -100,7 +106,7 @@ GBuffer createGBufferColourTargets(fg::PassBuilder& b, int w, int h, const GBuff
                                    GBufferChannels channels, fg::Usage how);
 // The G-buffer's colour targets as images (shaders/common/gbuffer_images.glsl): the defines that give
 // their image formats (added to `defines`, e.g. programForLayout's), binding the created ones to image
-// units 0..6 (returns uTargets' bits) and unbinding them, and the uniforms of the background's motion.
+// units 0..7 (returns uTargets' bits) and unbinding them, and the uniforms of the background's motion.
 void addGBufferImageDefines(std::vector<std::string>& defines, const GBufferSettings& layout);
 GLuint bindGBufferImages(const fg::PassResources& res, const GBuffer& g);
 void unbindGBufferImages();

@@ -193,7 +193,8 @@ fg::ResourceId addPostPasses(fg::FrameGraph& graph, PostPasses& state, const Fra
     }
     config.bloomParams.kernel = post::bloomKernelAtRenderSize(config.bloomParams.kernel, frame.width, frame.outputWidth);
     ++state.backend.frameIndex;  // every built frame, so CUDA registrations age even when culled
-    if (frame.settings->view == DebugView::Lighting) return hdr;  // light alone: no post effects
+    // light alone, or one of its terms: no post effects
+    if (frame.settings->view == DebugView::Lighting || isShadingTermView(frame.settings->view)) return hdr;
     const PostBackendChoice cuda = postBackendChoice(state, frame, config);
     if (config.bloom) {
         // CUDA fuses the composite into bloom's last kernel when both run in CUDA, unless the bloom

@@ -9,12 +9,13 @@
 #include "common/velocity.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(binding = 12) uniform sampler2D uChannel;  // texcoords (7), the shadow-map atlas (8), tangents (12), velocity (13), AO (14)
+layout(binding = 12) uniform sampler2D uChannel;  // texcoords (7), the shadow-map atlas (8), tangents (12), velocity (13), AO (14), material input (15, 16)
 layout(rgba8, binding = 0) uniform writeonly image2D uLdr;
 
 // 1 depth, 2 normals, 3 diffuse, 4 position, 5 shininess, 6 specular, 7 texcoords, 8 shadow map,
 // 9 world position, 10 eye vector, 11 depth fitted to the scene's range, 12 tangent, 13 velocity, 14 ambient
-// occlusion (1 white = unoccluded; the sky is 1)
+// occlusion (1 white = unoccluded; the sky is 1), 15 gbuffer.material_input as it is (metallic, roughness,
+// occlusion: grey), 16 gbuffer.material_input's sRGB encoding (the base colour, as an image shows it)
 uniform int uMode;
 uniform float uNear;
 uniform float uFar;
@@ -59,6 +60,11 @@ void main() {
     }
     if (uMode == 14) {
         imageStore(uLdr, p, vec4(vec3(texelFetch(uChannel, p, 0).r), 1.0));
+        return;
+    }
+    if (uMode == 15 || uMode == 16) {  // background 0 (black)
+        vec3 c = clamp(texelFetch(uChannel, p, 0).rgb, 0.0, 1.0);
+        imageStore(uLdr, p, vec4(uMode == 16 ? linearToSrgb(c) : c, 1.0));
         return;
     }
     if (uMode == 12) {  // stored encoded by the G-buffer (t x 0.5 + 0.5); the background is cleared to 0

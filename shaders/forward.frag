@@ -80,7 +80,7 @@ void main() {
                 c += lpShadeLocalLight(uLights[uLists[base + k]], P, N, V, kd, s.f0, s.shininess, uSpecularMode);
         }
     }
-    if (!uLightingOnly) {
+    if (!uLightingOnly && (uHiddenTerms & LP_HIDE_EMISSION) == 0) {
         vec3 e = max(uEmission, vec3(0.0));
         if (uHasEmissiveMap) e *= texture(uEmissiveMap, fragmentUv((uSecondUvMaps & LP_MAP_EMISSIVE) != 0u)).rgb;
         c += e;

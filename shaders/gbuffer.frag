@@ -23,6 +23,7 @@ layout(location = 2) out vec4 outPosition;
 layout(location = 3) out vec4 outSpecular;
 layout(location = 4) out vec4 outTexcoord;
 layout(location = 5) out vec4 outTangent;  // the tangent view: eye-space tangent x 0.5 + 0.5, handedness
+layout(location = 7) out vec4 outMaterialInput;  // the material-input views (uMaterialInput != 0)
 #ifdef LP_GBUFFER_VELOCITY
 in vec4 vCurrentClip;
 in vec4 vPreviousClip;
@@ -63,6 +64,7 @@ void main() {
 #endif
     outTexcoord = vec4(vUv, 0.0, 0.0);
     outTangent = g.tangentView;
+    if (uMaterialInput != 0) outMaterialInput = materialInputValue(g);
 #ifdef LP_GBUFFER_VELOCITY
     outVelocity = velocityFromClip(vCurrentClip, vPreviousClip);
 #endif

@@ -303,6 +303,7 @@ void main() {
     if ((uTargets & LP_TARGET_SPECULAR) != 0u) storeSpecular(p, g.f0, g.shininess);
     if ((uTargets & LP_TARGET_TEXCOORD) != 0u) imageStore(uTexcoordOut, p, vec4(uv, 0.0, 0.0));
     if ((uTargets & LP_TARGET_TANGENT) != 0u) imageStore(uTangentOut, p, g.tangentView);
+    if ((uTargets & LP_TARGET_MATERIAL_INPUT) != 0u) imageStore(uMaterialInputOut, p, materialInputValue(g));
     if ((uTargets & LP_TARGET_VELOCITY) != 0u) {
         vec4 object = vec4(interpolateAttribute(b, o0, o1, o2), 1.0);
         vec2 v = velocityFromClip(mesh.clipFromModel * object, mesh.previousClipFromModel * object);

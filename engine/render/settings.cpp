@@ -29,6 +29,13 @@ const char* viewName(DebugView v) {
         case DebugView::ExposureEv: return "exposure-ev";
         case DebugView::Velocity: return "velocity";
         case DebugView::Ao: return "ao";
+        case DebugView::BaseColor: return "base-color";
+        case DebugView::Metallic: return "metallic";
+        case DebugView::Roughness: return "roughness";
+        case DebugView::Occlusion: return "occlusion";
+        case DebugView::Emissive: return "emissive";
+        case DebugView::TermDiffuse: return "term-diffuse";
+        case DebugView::TermSpecular: return "term-specular";
     }
     return "final";
 }
@@ -38,8 +45,43 @@ std::vector<DebugView> allViews() {
             DebugView::Shininess, DebugView::Specular, DebugView::Texcoords, DebugView::Lighting,
             DebugView::Environment, DebugView::Irradiance, DebugView::Prefiltered, DebugView::Dfg,
             DebugView::WorldPosition, DebugView::EyeVector, DebugView::DepthFitted, DebugView::Tangent,
-            DebugView::InvalidPixels, DebugView::ExposureEv, DebugView::Velocity, DebugView::Ao};
+            DebugView::InvalidPixels, DebugView::ExposureEv, DebugView::Velocity, DebugView::Ao,
+            DebugView::BaseColor, DebugView::Metallic, DebugView::Roughness, DebugView::Occlusion,
+            DebugView::Emissive, DebugView::TermDiffuse, DebugView::TermSpecular};
 }
+
+std::vector<DebugView> materialInputViews() {
+    return {DebugView::BaseColor, DebugView::Metallic, DebugView::Roughness, DebugView::Occlusion, DebugView::Emissive};
+}
+
+std::vector<DebugView> termViews() { return {DebugView::TermDiffuse, DebugView::TermSpecular}; }
+
+DebugView nextViewInCycle(const std::vector<DebugView>& cycle, DebugView view) {
+    for (size_t i = 0; i < cycle.size(); ++i)
+        if (cycle[i] == view) return i + 1 < cycle.size() ? cycle[i + 1] : DebugView::Final;
+    return cycle.empty() ? DebugView::Final : cycle.front();
+}
+
+int hiddenShadingTerms(DebugView view) {
+    switch (view) {
+        case DebugView::TermDiffuse: return kHideSpecular | kHideEmission;
+        case DebugView::TermSpecular: return kHideDiffuse | kHideEmission;
+        case DebugView::Emissive: return kHideDiffuse | kHideSpecular;
+        default: return 0;
+    }
+}
+
+int materialInputShown(DebugView view) {
+    switch (view) {  // = LP_MATERIAL_INPUT_* (shaders/common/material.glsl)
+        case DebugView::BaseColor: return 1;
+        case DebugView::Metallic: return 2;
+        case DebugView::Roughness: return 3;
+        case DebugView::Occlusion: return 4;
+        default: return 0;
+    }
+}
+
+bool isShadingTermView(DebugView view) { return hiddenShadingTerms(view) != 0; }
 
 std::vector<DebugView> everyView() {
     std::vector<DebugView> views = allViews();

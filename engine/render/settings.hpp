@@ -20,12 +20,32 @@ enum class DebugView {
     WorldPosition, EyeVector, DepthFitted, Tangent,  // more G-buffer views (seed 003; depth over the scene's range)
     InvalidPixels, ExposureEv,  // the HDR buffer inspected (passes/hdr_view_pass): NaN/Inf, EV false colour
     Velocity,  // gbuffer.velocity: screen-space motion as hue (direction) and brightness (length)
-    Ao  // the ambient-occlusion target (passes/ambient_occlusion_pass)
+    Ao,  // the ambient-occlusion target (passes/ambient_occlusion_pass)
+    // The glTF material's inputs as the material evaluation of either G-buffer mode reads them
+    // (gbuffer.material_input, written only in these views); emissive: the emitted radiance alone (HDR).
+    BaseColor, Metallic, Roughness, Occlusion, Emissive,
+    TermDiffuse, TermSpecular  // the lit frame with one BRDF term alone (every light, every path)
 };
 // overlay views (not in allViews(): they are the final image with the local lights'
 // bounds or per-tile light counts drawn over it).
 std::vector<DebugView> localLightViews();
 bool isLocalLightView(DebugView view);
+// base-color, metallic, roughness, occlusion, emissive (the viewer's `m` key cycles through them).
+std::vector<DebugView> materialInputViews();
+// term-diffuse, term-specular (the viewer's `t` key cycles through them).
+std::vector<DebugView> termViews();
+// The view after `view` in `cycle` (the first when `view` is not in it, Final after the last).
+DebugView nextViewInCycle(const std::vector<DebugView>& cycle, DebugView view);
+// What the lit frame leaves out in `view`, as LP_HIDE_* bits (shaders/common/brdf.glsl: 1 the
+// diffuse term, 2 the specular term, 4 emission): term-diffuse hides 2 | 4, term-specular 1 | 4,
+// emissive 1 | 2; every other view 0.
+int hiddenShadingTerms(DebugView view);
+constexpr int kHideDiffuse = 1, kHideSpecular = 2, kHideEmission = 4;  // = LP_HIDE_* (shaders/common/brdf.glsl)
+// The input gbuffer.material_input holds in `view`, as LP_MATERIAL_INPUT_* (shaders/common/material.glsl:
+// 1 base colour, 2 metallic, 3 roughness, 4 occlusion); 0 in every other view.
+int materialInputShown(DebugView view);
+// Views of the lit frame made of some of its terms (term-*, emissive): no sky, no transparent pass.
+bool isShadingTermView(DebugView view);
 
 // The BRDF of the light passes (--brdf). GGX (the default): glTF 2.0's metallic-roughness BRDF
 // (Appendix B: GGX D, height-correlated Smith, Schlick Fresnel, the dielectric's diffuse weighted by

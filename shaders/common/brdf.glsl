@@ -5,6 +5,18 @@
 
 const float LP_PI = 3.14159265358979;
 
+// What the lit frame leaves out (lp::hiddenShadingTerms: the term-diffuse, term-specular and emissive
+// views); a program that never sets it hides nothing. The diffuse term is hidden by the material
+// evaluation (kd = 0: every diffuse and ambient term scales with it); the specular by
+// lpSpecularShown() at each specular lobe (the suns', the local lights', the IBL's and its extracted
+// sources'), F0 kept, since the diffuse weight 1 - F depends on it; the forward passes and the
+// emission pass leave out emission.
+#define LP_HIDE_DIFFUSE 1
+#define LP_HIDE_SPECULAR 2
+#define LP_HIDE_EMISSION 4
+uniform int uHiddenTerms;
+float lpSpecularShown() { return (uHiddenTerms & LP_HIDE_SPECULAR) != 0 ? 0.0 : 1.0; }
+
 // Energy-normalised Blinn-Phong: f = kd/pi + ks * (n + 8) / (8 pi) * (N.H)^n.
 // The (n+8)/(8 pi) factor keeps the lobe's reflected energy roughly constant as n changes.
 // Safe for n = 0 and n = 10000, for N.L or N.V at or below 0, and for V = -L (H undefined).
@@ -16,7 +28,7 @@ vec3 blinnPhongBrdf(vec3 N, vec3 V, vec3 L, vec3 kd, vec3 ks, float shininess) {
     float n = clamp(shininess, 0.0, 10000.0);
     // pow(0, 0) is undefined in GLSL: exp2(n * log2(nh)) with nh = 0 and n = 0 must be 1.
     float lobe = (n == 0.0) ? 1.0 : (nh > 0.0 ? exp2(n * log2(nh)) : 0.0);
-    return kd / LP_PI + ks * ((n + 8.0) / (8.0 * LP_PI)) * lobe;
+    return kd / LP_PI + ks * ((n + 8.0) / (8.0 * LP_PI)) * lobe * lpSpecularShown();
 }
 
 vec3 blinnPhongRadiance(vec3 N, vec3 V, vec3 L, vec3 kd, vec3 ks, float shininess, vec3 irradiance) {
@@ -137,7 +149,7 @@ vec3 ggxSpecular(vec3 N, vec3 V, vec3 L, vec3 f0, float alpha) {
     if (nl <= 0.0) return vec3(0.0);
     vec3 H = brdfHalfVector(N, V, L);
     float vh = clamp(dot(V, H), 0.0, 1.0);
-    return ggxDistribution(N, H, alpha) * ggxVisibility(dot(N, V), nl, alpha) * fresnelSchlick(f0, vh);
+    return ggxDistribution(N, H, alpha) * ggxVisibility(dot(N, V), nl, alpha) * fresnelSchlick(f0, vh) * lpSpecularShown();
 }
 
 // ---- The diffuse layer --------------------------------------------------------------------------

@@ -49,7 +49,7 @@ vec3 environmentLightSpecular(vec3 N, vec3 V, vec3 D, float sinRadius, vec3 f0, 
     float ll = length(vec3(along * dot(D, T), across * dot(D, B), nl));
     float visibility = smithVisibilityFromLengths(uSpecularMasking, nv, nl, lv, ll);
     float vh = clamp(dot(V, H), 0.0, 1.0);
-    return distribution * visibility * fresnelSchlick(f0, vh);
+    return distribution * visibility * fresnelSchlick(f0, vh) * lpSpecularShown();
 }
 
 // Radiance one source reflects: the diffuse layer as a sun's (ggxDiffuse at the disc's centre; kd

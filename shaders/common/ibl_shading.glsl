@@ -64,7 +64,7 @@ vec3 lpIblRadiance(samplerCube irradiance, samplerCube prefilteredMap, sampler2D
                                            roughness * roughness, fss, ao, specularAo);
     }
     vec3 diffuseWeight = uBrdf == LP_BRDF_BLINN_PHONG ? 1.0 - fss : ggxDiffuseFresnelMeanWeight(f0, NdotV);
-    return uIntensity * (ao * kd * diffuseWeight * E / LP_IBL_PI + specularAo * specular + lights);
+    return uIntensity * (ao * kd * diffuseWeight * E / LP_IBL_PI + specularAo * specular * lpSpecularShown() + lights);
 }
 
 #endif

@@ -118,7 +118,18 @@ struct MaterialSample {
     float shininess;
     float occlusion;
     vec4 tangentView;  // the tangent view's value: unit tangent orthogonal to normal x 0.5 + 0.5, handedness 0/1
+    vec3 baseColor;    // the material's inputs at the texel, for the material-input views
+    float metallic;
+    float roughness;   // perceptual: the factor x the map's g
 };
+
+// The material-input views (lp::materialInputShown): which input gbuffer.material_input holds; 0 (a
+// program that never sets it) writes none.
+#define LP_MATERIAL_INPUT_BASE_COLOR 1
+#define LP_MATERIAL_INPUT_METALLIC 2
+#define LP_MATERIAL_INPUT_ROUGHNESS 3
+#define LP_MATERIAL_INPUT_OCCLUSION 4
+uniform int uMaterialInput;
 
 // Base colour and alpha (the alpha test reads .a): the factor x the texture x the vertex colour
 // (glTF: baseColorFactor x baseColorTexture x COLOR_0).
@@ -162,10 +173,12 @@ MaterialSample materialEvaluate(MaterialInputs m, vec4 base, SurfaceInputs s) {
     float metallic = clamp(m.metallic, 0.0, 1.0);
     // Up to the IBL's roughness floor (0.02); the analytic BRDFs clamp to 10000 themselves.
     float shininess = clamp(m.shininess, 0.0, LP_IBL_MAX_SHININESS);
+    float roughness = m.roughness;
     if (m.hasMetalRoughMap) {
         vec4 mr = sampleMap(uMetalRoughMap, LP_MATERIAL_BIND_METAL_ROUGH, materialTexCoord(m, s.uvs, LP_MAP_METAL_ROUGH));
         metallic = clamp(metallic * mr.b, 0.0, 1.0);
-        shininess = shininessFromRoughnessToFloor(m.roughness * mr.g);
+        roughness = m.roughness * mr.g;
+        shininess = shininessFromRoughnessToFloor(roughness);
     }
     MaterialSample o;
     vec3 baseColor = clamp(base.rgb, 0.0, 1.0);
@@ -174,6 +187,10 @@ MaterialSample materialEvaluate(MaterialInputs m, vec4 base, SurfaceInputs s) {
     // Flat-lit: the colour shown as it is, no BRDF applies.
     o.kd = m.flatLit ? baseColor * (1.0 - metallic) : materialDiffuseAlbedo(uBrdf, baseColor, metallic, dielectricF0);
     o.f0 = mix(dielectricF0, baseColor, metallic);
+    if ((uHiddenTerms & LP_HIDE_DIFFUSE) != 0) o.kd = vec3(0.0);
+    o.baseColor = baseColor;
+    o.metallic = metallic;
+    o.roughness = clamp(roughness, 0.0, 1.0);
     o.shininess = shininess;
     o.occlusion = 1.0;
     if (m.hasOcclusionMap)
@@ -183,6 +200,14 @@ MaterialSample materialEvaluate(MaterialInputs m, vec4 base, SurfaceInputs s) {
     float tn = length(Tn);
     o.tangentView = vec4(tn > 1e-20 ? Tn / tn * 0.5 + 0.5 : vec3(0.5), s.tangent.w < 0.0 ? 0.0 : 1.0);
     return o;
+}
+
+// gbuffer.material_input's value: the input uMaterialInput names, linear (base colour) or grey.
+vec4 materialInputValue(MaterialSample g) {
+    if (uMaterialInput == LP_MATERIAL_INPUT_BASE_COLOR) return vec4(g.baseColor, 1.0);
+    if (uMaterialInput == LP_MATERIAL_INPUT_METALLIC) return vec4(vec3(g.metallic), 1.0);
+    if (uMaterialInput == LP_MATERIAL_INPUT_ROUGHNESS) return vec4(vec3(g.roughness), 1.0);
+    return vec4(vec3(g.occlusion), 1.0);
 }
 
 #endif

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The viewer as a user drives it: starts on the default scene under Xvfb (Mesa), key '2' switches to
 # the normals view and F12's screenshot shows the normal encoding, '+'/'-' there say exposure is not
-# shown in it, 'p' says the scene has no camera path, 'r' resets the camera, 'x' toggles scissor, '7' adds the
+# shown in it, 'p' says the scene has no camera path, 'r' resets the camera, 'm' and 't' step through the
+# material-input and term views, 'x' toggles scissor, '7' adds the
 # toon pass and '8' the bloom pass (alone: toon is moot) to the compiled graph, '0' takes them out again, unticking the
 # panel's "sky" checkbox removes that pass from the compiled graph, Esc quits.
 #   viewer_under_xvfb.sh LIGHTPASS SCENE OUTDIR
@@ -33,6 +34,15 @@ xdotool key p
 wait_for "^no camera path" "$out/viewer.log"
 xdotool key r
 wait_for "^camera reset" "$out/viewer.log"
+# 'm' steps through the material inputs, 't' through the lit frame's terms.
+xdotool key m
+wait_for "view base-color" "$out/viewer.log"
+xdotool key m
+wait_for "view metallic" "$out/viewer.log"
+xdotool key t
+wait_for "view term-diffuse" "$out/viewer.log"
+xdotool key t
+wait_for "view term-specular" "$out/viewer.log"
 xdotool key x
 wait_for "scissor off \(used by the scissor method; now tiled" "$out/viewer.log"  # the default method says it ignores it
 # "graph:" lines list the passes that ran, printed whenever that list changes.

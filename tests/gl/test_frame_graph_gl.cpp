@@ -264,6 +264,8 @@ TEST(FrameGraphGl, DefaultSceneRendersEveryViewWithoutNan) {
     EXPECT_GT(sum, 0.0);  // something is lit
     for (DebugView v : allViews()) {
         if (v == DebugView::Velocity) continue;  // black while the camera stands still (test_motion.cpp)
+        // The Cornell box's MTL materials are dielectrics that emit nothing (test_material_views.cpp).
+        if (v == DebugView::Metallic || v == DebugView::Emissive) continue;
         s.view = v;
         s.keepHdr = false;
         r.render(s);

@@ -208,7 +208,7 @@ TEST(FrameBuilder, NormalsViewCullsLightingAndToneMap) {
 TEST(FrameBuilder, EveryChannelViewReadsOnlyTheGBuffer) {
     Scene s = oneLightScene();
     for (DebugView v : allViews()) {
-        if (v == DebugView::Final || v == DebugView::Lighting || isHdrView(v)) continue;
+        if (v == DebugView::Final || v == DebugView::Lighting || isHdrView(v) || isShadingTermView(v)) continue;
         FrameGraph g = buildFor(s, v);
         // the environment views show the cubes / LUT, made by the bake in the first frame
         // the ao view shows the AO target, which the ao passes make from the G-buffer
@@ -217,10 +217,13 @@ TEST(FrameBuilder, EveryChannelViewReadsOnlyTheGBuffer) {
             : v == DebugView::Ao ? std::vector<std::string>{"gbuffer", "ao_depth", "ao", "ao_blur", "ao_denoise", "debug_view"}
                                  : std::vector<std::string>{"gbuffer", "debug_view"};
         EXPECT_EQ(g.executionOrder(), expected) << viewName(v);
-        bool texcoordLive = false;
-        for (const auto& r : g.resources())
+        bool texcoordLive = false, materialInputLive = false;
+        for (const auto& r : g.resources()) {
             if (r.name == "gbuffer.texcoord") texcoordLive = r.live;
+            if (r.name == "gbuffer.material_input") materialInputLive = r.live;
+        }
         EXPECT_EQ(texcoordLive, v == DebugView::Texcoords) << viewName(v);
+        EXPECT_EQ(materialInputLive, materialInputShown(v) != 0) << viewName(v);
     }
 }
 
