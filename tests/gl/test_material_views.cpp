@@ -246,3 +246,33 @@ TEST(MaterialViews, GraphAddsOnlyWhatEachViewShows) {
     r.render(viewSettings(classic, DebugView::Roughness), 0.0f, false);
     EXPECT_TRUE(hasTarget("gbuffer.material_input"));
 }
+
+// The C++ side's numbers are the shaders' constants: LP_HIDE_* (common/brdf.glsl) for the term views
+// and LP_MATERIAL_INPUT_* (common/material.glsl) for the input views; the viewer's m / t keys step
+// through each cycle and back to the final view.
+TEST(MaterialViews, ViewTablesAreTheShadersConstants) {
+    const auto out = test::runGlsl({"common/material.glsl"},
+                                   "return x.x == 0.0 ? vec4(LP_HIDE_DIFFUSE, LP_HIDE_SPECULAR, LP_HIDE_EMISSION, 0)"
+                                   " : vec4(LP_MATERIAL_INPUT_BASE_COLOR, LP_MATERIAL_INPUT_METALLIC,"
+                                   " LP_MATERIAL_INPUT_ROUGHNESS, LP_MATERIAL_INPUT_OCCLUSION);",
+                                   {glm::vec4(0.0f), glm::vec4(1.0f)});
+    EXPECT_EQ(out[0], glm::vec4(float(kHideDiffuse), float(kHideSpecular), float(kHideEmission), 0.0f));
+    EXPECT_EQ(hiddenShadingTerms(DebugView::TermDiffuse), kHideSpecular | kHideEmission);
+    EXPECT_EQ(hiddenShadingTerms(DebugView::TermSpecular), kHideDiffuse | kHideEmission);
+    EXPECT_EQ(hiddenShadingTerms(DebugView::Emissive), kHideDiffuse | kHideSpecular);
+    EXPECT_EQ(hiddenShadingTerms(DebugView::Final), 0);
+    EXPECT_EQ(hiddenShadingTerms(DebugView::Lighting), 0);
+    EXPECT_EQ(out[1], glm::vec4(float(materialInputShown(DebugView::BaseColor)), float(materialInputShown(DebugView::Metallic)),
+                                float(materialInputShown(DebugView::Roughness)), float(materialInputShown(DebugView::Occlusion))));
+    for (DebugView v : allViews()) {
+        const bool input = v == DebugView::BaseColor || v == DebugView::Metallic || v == DebugView::Roughness ||
+                           v == DebugView::Occlusion;
+        EXPECT_EQ(materialInputShown(v) != 0, input) << viewName(v);
+    }
+    DebugView v = DebugView::Normals;
+    std::vector<std::string> seen;
+    for (int i = 0; i < 6; ++i) seen.push_back(viewName(v = nextViewInCycle(materialInputViews(), v)));
+    EXPECT_EQ(seen, (std::vector<std::string>{"base-color", "metallic", "roughness", "occlusion", "emissive", "final"}));
+    EXPECT_EQ(nextViewInCycle(termViews(), DebugView::TermDiffuse), DebugView::TermSpecular);
+    EXPECT_EQ(nextViewInCycle(termViews(), DebugView::TermSpecular), DebugView::Final);
+}
