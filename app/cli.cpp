@@ -47,6 +47,10 @@ usage:
                                     the same kind of page for a sweep folder (error against GPU
                                     ms per knob, Pareto front, each value's image) or a bench's
                                     --timings-json (GPU ms per variant and pass, floors)
+  lightpass reference (--scene F | --model F) --spp N [--bounces B | --direct-only] --out F.png [--exr F.exr]
+                                    the path tracer's image (docs/path-tracer.md): N samples a
+                                    pixel, the tone map of render; the HDR mean in --exr; prints
+                                    the noise (mean relative standard error)
   lightpass info                    print the OpenGL device headless rendering would use
   lightpass --help                  this text
 
@@ -212,6 +216,18 @@ std::vector<CommandFlag> makeCommandFlags() {
          "JSON file of camera keyframes ({\"keys\": [{\"time\", \"position\", \"target\", \"fov\"}, ...], \"loop\"}; "
          "replaces the scene's cameraPath; --camera overrides it)",
          [](Options& o, V, V v) { o.cameraPath = v; }},
+        {{"--spp"}, "N", "path tracer (--render-path pathtraced, reference): samples a pixel (default 64)",
+         [](Options& o, V a, V v) { o.base.pathTrace.samples = parseInt(a, v, 1, 1 << 20); }},
+        {{"--bounces"}, "B",
+         "path tracer: surface interactions whose scattered light counts (default 8; Russian roulette from the 3rd)",
+         [](Options& o, V a, V v) {
+             o.base.pathTrace.bounces = parseInt(a, v, 1, 1024);
+             o.bouncesGiven = true;
+         }},
+        {{"--direct-only"}, "", "path tracer: direct light only (one interaction: lights, environment and emitters seen from it)",
+         [](Options& o, V, V) { o.base.pathTrace.directOnly = true; }},
+        {{"--pixel-centre"}, "", "path tracer: every sample through the pixel's centre (default: jittered over the pixel)",
+         [](Options& o, V, V) { o.base.pathTrace.pixelCentre = true; }},
         {{"--frames"}, "N", "frames to render and time (default 1, report: 10; the image is the last frame)",
          [](Options& o, V a, V v) {
              o.frames = parseInt(a, v, 1, 100000);
@@ -294,8 +310,8 @@ Options parseArgs(const std::vector<std::string>& args) {
         o.command = args[0];
         i = 1;
         if (o.command != "render" && o.command != "graph" && o.command != "view" && o.command != "info" &&
-            o.command != "sweep" && o.command != "bench" && o.command != "report")
-            throw Error("unknown command '" + o.command + "' (render, graph, view, sweep, bench, report, info; see --help)");
+            o.command != "sweep" && o.command != "bench" && o.command != "report" && o.command != "reference")
+            throw Error("unknown command '" + o.command + "' (render, reference, graph, view, sweep, bench, report, info; see --help)");
         if (o.command == "view") {
             if (i >= args.size() || args[i].rfind("-", 0) == 0) throw Error("view: expected a .json scene or an .obj, .gltf or .glb model");
             std::string f = args[i++];
@@ -326,7 +342,10 @@ Options parseArgs(const std::vector<std::string>& args) {
     if (o.command == "help" || o.command == "info" || o.command == "version") return o;
     if (!o.scene.empty() && !o.model.empty()) throw Error("give --scene or --model, not both");
     if ((o.command == "sweep" || o.command == "bench") && !o.warmupGiven) o.warmup = 10;
-    if (o.command == "render" || o.command == "graph" || o.command == "sweep" || o.command == "bench") {
+    if (o.bouncesGiven && o.base.pathTrace.directOnly) throw Error("--bounces and --direct-only: give one of them");
+    if (o.command == "reference") o.base.renderPath = RenderPath::PathTraced;
+    if (o.command == "render" || o.command == "graph" || o.command == "sweep" || o.command == "bench" ||
+        o.command == "reference") {
         if (o.scene.empty() && o.model.empty()) throw Error(o.command + ": --scene F or --model F is required");
     }
     if (o.command == "report") {
@@ -339,7 +358,8 @@ Options parseArgs(const std::vector<std::string>& args) {
     }
     if (!o.sweepDir.empty()) throw Error("--sweep: only for report (lightpass report --sweep D --out DIR)");
     if (!o.benchJson.empty()) throw Error("--bench: only for report (lightpass report --bench F.json --out DIR)");
-    if (o.command == "render" && o.out.empty() && o.exr.empty()) throw Error("render: --out F.png (or --exr F.exr) is required");
+    if ((o.command == "render" || o.command == "reference") && o.out.empty() && o.exr.empty())
+        throw Error(o.command + ": --out F.png (or --exr F.exr) is required");
     if (!o.out.empty() && std::filesystem::path(o.out).extension() != ".png")
         throw Error("--out " + o.out + ": expected a .png file name");
     if (!o.exr.empty() && std::filesystem::path(o.exr).extension() != ".exr")
@@ -357,7 +377,7 @@ RenderSettings renderSettings(const Options& o) {
     s.height = o.height;
     s.view = o.view;
     s.keepHdr = !o.exr.empty();
-    if (s.aa.method == AntiAliasing::Ssaa && !supersampled(s))
+    if (s.aa.method == AntiAliasing::Ssaa && s.renderScale < 1.0f)
         logInfo("--render-scale below 1 renders below the output size: --aa ssaa (the default) is not used");
     return s;
 }

@@ -14,7 +14,7 @@
 namespace lp::app {
 
 struct Options {
-    std::string command;  // "viewer", "render", "graph", "sweep", "bench", "report", "info", "help"
+    std::string command;  // "viewer", "render", "reference", "graph", "sweep", "bench", "report", "info", "help"
     std::string scene;
     std::string model;
     bool modelZUp = false;  // --up z: the --model file is Z-up (turned to Y-up on load)
@@ -53,6 +53,7 @@ struct Options {
     double maxSeconds = 0;           // bench: time cap per variant (0: none)
     int minFrames = 10;              // bench: timed frames a capped variant still gets
     bool warmupGiven = false;
+    bool bouncesGiven = false;       // --bounces (not with --direct-only)
     RenderSettings base;  // the knob flags (frame/knobs.cpp's table) set these
     bool verbose = false;
     bool quiet = false;

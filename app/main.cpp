@@ -187,6 +187,40 @@ void requireOutputs(const std::vector<std::string>& paths) {
     }
 }
 
+// The path tracer's noise estimate, one line (render --render-path pathtraced, reference).
+std::string describeNoise(const RenderSettings& s, const PathTraceNoise& n) {
+    char line[320];
+    std::snprintf(line, sizeof line,
+                  "path tracer: %dx%d, %d samples a pixel, %s: mean relative standard error %.3f%% over %zu lit pixels "
+                  "(mean luminance %.6g)",
+                  s.width, s.height, n.samples,
+                  s.pathTrace.directOnly ? "direct light only" : ("up to " + std::to_string(s.pathTrace.bounces) + " bounces").c_str(),
+                  100.0 * n.meanRelativeStandardError, n.pixels, n.meanLuminance);
+    return line;
+}
+
+// lightpass reference: one path-traced frame (--spp samples a pixel), its tone-mapped PNG and HDR EXR.
+int commandReference(const Options& o) {
+    requireOutputs({o.out, o.exr});
+    Scene scene = loadFromOptions(o);
+    RenderSettings settings = settingsFromOptions(o);
+    auto ctx = gl::createHeadlessContext();
+    logInfo("tracing on " + ctx->info().renderer + " (" + ctx->info().platform + ")");
+    requireFrameFitsGpu(*ctx, scene, settings);
+    Renderer renderer(scene);
+    renderer.render(settings, float(o.time), false);
+    checkDisabledPasses(renderer.graph(), settings.disabledPasses);
+    glFinish();
+    if (!o.quiet) std::printf("%s\n", describeNoise(settings, renderer.pathTraceNoise()).c_str());
+    OutputFiles outputs;
+    if (!o.out.empty()) outputs.addPng(o.out, renderer.readDisplay());
+    if (!o.exr.empty()) outputs.addExr(o.exr, renderer.readHdr());
+    outputs.commit();
+    if (!o.quiet && !o.out.empty()) std::printf("wrote %s\n", o.out.c_str());
+    if (!o.quiet && !o.exr.empty()) std::printf("wrote %s\n", o.exr.c_str());
+    return 0;
+}
+
 int commandRender(const Options& o) {
     // -q: errors only, so no table either (the JSON still has every number).
     auto say = [&](const char* format, auto... args) {
@@ -307,6 +341,13 @@ int commandRender(const Options& o) {
                    {"total_bytes", poolBytes + persistentBytes},
                    {"graph_transient_bytes", renderer.graph().liveTransientBytes()}};
 
+    if (settings.renderPath == RenderPath::PathTraced) {
+        const PathTraceNoise& noise = renderer.pathTraceNoise();
+        say("%s\n", describeNoise(settings, noise).c_str());
+        j["path_trace"] = {{"samples", noise.samples}, {"bounces", settings.pathTrace.interactions()},
+                           {"mean_relative_standard_error", noise.meanRelativeStandardError},
+                           {"lit_pixels", noise.pixels}, {"mean_luminance", noise.meanLuminance}};
+    }
     // All or nothing: every output goes to a temporary name first; they are renamed only when all
     // were written.
     OutputFiles outputs;
@@ -343,6 +384,7 @@ int run(int argc, char** argv) {
     }
     if (o.command == "graph") return app::commandGraph(o);
     if (o.command == "render") return app::commandRender(o);
+    if (o.command == "reference") return app::commandReference(o);
     if (o.command == "sweep") return app::runSweep(o);
     if (o.command == "bench") return app::runBench(o, args);
     if (o.command == "report") return app::runReport(o, args);

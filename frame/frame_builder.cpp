@@ -65,11 +65,63 @@ std::string ambientOcclusionSkipReason(const FrameData& frame, bool iblAdded) {
     if (!iblAdded && !ambient) return "no indirect light to occlude (IBL off, ambient 0)";
     return "";
 }
+// From the HDR frame to the displayed one: auto exposure, the tone map, FXAA, the HDR views. The
+// same for every render path, so a path-traced frame compares with a raster one.
+fg::ResourceId addDisplayPasses(fg::FrameGraph& graph, PassStates& passes, const FrameData& frame, fg::ResourceId hdr,
+                                fg::ResourceId& exposure) {
+    const RenderSettings& s = *frame.settings;
+    const Scene& scene = *frame.scene;
+    if (autoExposureOn(s, scene)) exposure = addAutoExposurePass(graph, passes.autoExposure, frame, hdr);
+    else graph.skipPass("auto_exposure", s.autoExposure ? "manual exposure (--no-auto-exposure)"
+                                                        : "the scene fixes its exposure (its \"exposure\" field)");
+    // With FXAA after it, the tone map keeps its result in RGBA16F and FXAA does the one 8-bit
+    // quantisation (and its dither).
+    const bool fxaa = s.aa.method == AntiAliasing::Fxaa;
+    fg::ResourceId display = addToneMapPass(graph, passes.tonemap, frame, hdr, exposure,
+                                            fxaa ? ToneMapTarget::Float16 : ToneMapTarget::Display8);
+    if (fxaa) display = addFxaaPass(graph, passes.fxaa, frame, display);
+    else graph.skipPass("fxaa", "anti-aliasing is " + std::string(antiAliasingName(s.aa.method)) + ", not fxaa");
+    if (isHdrView(s.view)) display = addHdrViewPass(graph, passes.hdrView, frame, hdr, exposure, s.view);  // culls tonemap
+    return display;
+}
+
+// --render-path pathtraced: the path tracer makes the HDR frame; the raster passes are left out with
+// the reason, and the display passes are the raster frame's.
+FrameOutputs buildPathTracedFrame(fg::FrameGraph& graph, PassStates& passes, const FrameData& frame) {
+    const RenderSettings& s = *frame.settings;
+    if (isChannelView(s.view))
+        throw Error("--render-path pathtraced: the '" + std::string(viewName(s.view)) +
+                    "' view shows a G-buffer channel, which the path tracer does not make; use the final image or an "
+                    "HDR view");
+    if (s.view == DebugView::Lighting || isLocalLightView(s.view))
+        throw Error("--render-path pathtraced: the '" + std::string(viewName(s.view)) + "' view shows the raster passes' light; use the final image or an HDR view");
+    const std::string why = "pathtraced: the path tracer makes the HDR frame";
+    for (const char* pass : {"ibl_bake", "gbuffer", "gbuffer_visibility", "gbuffer_resolve", "depth_prepass", "spot_shadows",
+                             "forward_opaque", "global_lights", "ibl", "local_lights", "emission", "sky", "transparent",
+                             "motion_blur", "bloom", "bloom_composite", "toon", "taa", "ssaa_downsample"})
+        graph.skipPass(pass, why);
+    for (const char* name : ambientOcclusionPassNames()) graph.skipPass(name, why);
+    fg::ResourceId hdr = addPathTracePass(graph, passes.pathTrace, frame);
+    if (frame.width != frame.outputWidth || frame.height != frame.outputHeight)
+        hdr = addUpscalePass(graph, passes.upscale, frame, hdr, UpscaleInput::Hdr);
+    else graph.skipPass("upscale", "render scale 1: the frame is rendered at the output size");
+    fg::ResourceId exposure;
+    const fg::ResourceId display = addDisplayPasses(graph, passes, frame, hdr, exposure);
+    for (const auto& name : s.disabledPasses) graph.disablePass(name);
+    graph.markOutput(display);
+    FrameOutputs out{display, {}};
+    if (s.keepHdr) {
+        graph.markOutput(hdr);
+        out.hdr = hdr;
+    }
+    return out;
+}
 }  // namespace
 
 FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const FrameData& frameIn) {
     FrameData frame = frameIn;
     frame.environments = &passes.environments;
+    if (frame.settings->renderPath == RenderPath::PathTraced) return buildPathTracedFrame(graph, passes, frame);
     const RenderSettings& s = *frame.settings;
     const Scene& scene = *frame.scene;
     const bool channelView = isChannelView(s.view);
@@ -203,17 +255,7 @@ FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const Fr
     else graph.skipPass("taa", s.aa.method == AntiAliasing::Taa ? "a G-buffer view is not anti-aliased"
                                                                 : "anti-aliasing is " + std::string(antiAliasingName(s.aa.method)) + ", not taa");
     fg::ResourceId exposure;
-    if (autoExposureOn(s, scene)) exposure = addAutoExposurePass(graph, passes.autoExposure, frame, hdr);
-    else graph.skipPass("auto_exposure", s.autoExposure ? "manual exposure (--no-auto-exposure)"
-                                                        : "the scene fixes its exposure (its \"exposure\" field)");
-    // With FXAA after it, the tone map keeps its result in RGBA16F and FXAA does the one 8-bit
-    // quantisation (and its dither).
-    const bool fxaa = s.aa.method == AntiAliasing::Fxaa;
-    fg::ResourceId display = addToneMapPass(graph, passes.tonemap, frame, hdr, exposure,
-                                            fxaa ? ToneMapTarget::Float16 : ToneMapTarget::Display8);
-    if (fxaa) display = addFxaaPass(graph, passes.fxaa, frame, display);
-    else graph.skipPass("fxaa", "anti-aliasing is " + std::string(antiAliasingName(s.aa.method)) + ", not fxaa");
-    if (isHdrView(s.view)) display = addHdrViewPass(graph, passes.hdrView, frame, hdr, exposure, s.view);  // culls tonemap
+    fg::ResourceId display = addDisplayPasses(graph, passes, frame, hdr, exposure);
     if (channelView) {
         display = addDebugViewPass(graph, passes.debugView, frame, gbuffer, shadowMaps, environment, s.view, ao);
         if (scaled) display = addUpscalePass(graph, passes.upscale, frame, display, UpscaleInput::DebugView);
@@ -252,7 +294,8 @@ glm::ivec2 scaledRenderSize(int outputWidth, int outputHeight, float renderScale
 }
 
 bool temporalAntiAliasing(const RenderSettings& settings) {
-    return settings.aa.method == AntiAliasing::Taa && !isChannelView(settings.view);
+    return settings.aa.method == AntiAliasing::Taa && !isChannelView(settings.view) &&
+           settings.renderPath != RenderPath::PathTraced;
 }
 
 std::string settingsSignature(const RenderSettings& settings) {
@@ -264,7 +307,8 @@ std::string settingsSignature(const RenderSettings& settings) {
 }
 
 bool supersampled(const RenderSettings& settings) {
-    return settings.aa.method == AntiAliasing::Ssaa && settings.renderScale >= 1.0f;
+    return settings.aa.method == AntiAliasing::Ssaa && settings.renderScale >= 1.0f &&
+           settings.renderPath != RenderPath::PathTraced;  // its samples are spread over each pixel
 }
 
 float internalRenderScale(const RenderSettings& settings) {

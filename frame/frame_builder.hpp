@@ -21,6 +21,7 @@
 #include "passes/ibl_pass.hpp"
 #include "passes/local_light_pass.hpp"
 #include "passes/motion_blur_pass.hpp"
+#include "passes/path_trace_pass.hpp"
 #include "passes/sky_pass.hpp"
 #include "passes/spot_shadow_pass.hpp"
 #include "passes/taa_pass.hpp"
@@ -58,6 +59,7 @@ struct PassStates {
     HdrViewPass hdrView;
     AutoExposurePass autoExposure;
     AmbientOcclusionPass ambientOcclusion;
+    PathTracePass pathTrace;  // --render-path pathtraced: the BVH, scene buffers and accumulated samples
     // Environment cubes, IBL bakes and the DFG LUT, kept across frames; imported into the graph
     // (written there by ibl_bake in the frame where they change).
     EnvironmentCache environments;
@@ -91,7 +93,8 @@ int localLightsInView(const FrameData& frame);
 // (renderScale up to kMaxSsaaScale).
 glm::ivec2 scaledRenderSize(int outputWidth, int outputHeight, float renderScale);
 // Whether the frame is supersampled: --aa ssaa (the default) at --render-scale 1. A render scale
-// below 1 asks for fewer pixels than the output, so it is kept and SSAA is not used.
+// below 1 asks for fewer pixels than the output, so it is kept and SSAA is not used; nor is it for
+// --render-path pathtraced, whose samples are spread over each pixel.
 bool supersampled(const RenderSettings& settings);
 // The scale the G-buffer, lighting and post effects run at: --ssaa-scale when supersampled (the
 // image is filtered down to the output), else --render-scale.

@@ -332,11 +332,13 @@ std::vector<KnobEntry> makeKnobTable() {
     // ---- lighting model, environment, image-based lighting, tone map ----
     {
         KnobEntry k = choiceKnob("render-path", [](auto& s) -> auto& { return s.renderPath; },
-                                 std::vector<RenderPath>{RenderPath::Deferred, RenderPath::ForwardPlus}, renderPathName);
+                                 std::vector<RenderPath>{RenderPath::Deferred, RenderPath::ForwardPlus, RenderPath::PathTraced},
+                                 renderPathName);
         k.flags = {valueFlag("--render-path")};
         k.choiceNoun = "render path";
         k.help = "how opaque surfaces are lit: deferred (G-buffer, then light passes) or forward+ (depth pre-pass, "
-                 "then one forward pass over the clustered light lists)";
+                 "then one forward pass over the clustered light lists) or pathtraced (the reference path tracer, --spp samples a "
+                 "pixel; docs/path-tracer.md)";
         k.panel = {PanelSection::Lighting, PanelWidget::Combo, "render path", ""};
         k.sweep = {{"forward+", "deferred"}, false,
                    "render path (--render-path): forward+ against deferred (reference). The same shading by design: "

@@ -46,6 +46,8 @@ public:
     size_t persistentTextureBytes() const { return passes_.environments.gpuBytes() + passes_.shadowMaps.cacheBytes(); }
     // Sun cascade tiles drawn and kept (--shadow-cache) since the last resetShadowCacheStats().
     const ShadowCacheStats& shadowCacheStats() const { return passes_.shadowMaps.cacheStats; }
+    // --render-path pathtraced: the noise of the last finished accumulation.
+    const PathTraceNoise& pathTraceNoise() const { return passes_.pathTrace.noise; }
     void resetShadowCacheStats() { passes_.shadowMaps.cacheStats = {}; }
     // What the last frame's local-light pass did (the clustered method: which kernel shaded, the race's times).
     const LocalLightStats& localLightStats() const { return passes_.localLights.stats; }

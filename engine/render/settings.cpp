@@ -108,10 +108,17 @@ bool isLocalLightView(DebugView v) {
     return v == DebugView::LightRanges || v == DebugView::LightsPerTile || v == DebugView::LightsPerCluster;
 }
 
-const char* renderPathName(RenderPath path) { return path == RenderPath::ForwardPlus ? "forward+" : "deferred"; }
+const char* renderPathName(RenderPath path) {
+    switch (path) {
+        case RenderPath::Deferred: return "deferred";
+        case RenderPath::ForwardPlus: return "forward+";
+        case RenderPath::PathTraced: return "pathtraced";
+    }
+    return "deferred";
+}
 
 std::optional<RenderPath> parseRenderPath(const std::string& name) {
-    for (RenderPath p : {RenderPath::Deferred, RenderPath::ForwardPlus})
+    for (RenderPath p : {RenderPath::Deferred, RenderPath::ForwardPlus, RenderPath::PathTraced})
         if (name == renderPathName(p)) return p;
     return std::nullopt;
 }

@@ -70,7 +70,9 @@ inline const char* specularMaskingName(SpecularMasking m) { return enumName(kSpe
 // How opaque surfaces are lit (--render-path): deferred (G-buffer, then the light passes) or
 // forward+ (a depth pre-pass, then one forward pass shading each fragment from the clustered light
 // lists). Transparent surfaces are drawn forward in both.
-enum class RenderPath { Deferred, ForwardPlus };
+// pathtraced: the reference path tracer (passes/path_trace_pass, docs/path-tracer.md) makes the HDR
+// frame instead of the raster passes; the post effects, exposure and tone map are the same.
+enum class RenderPath { Deferred, ForwardPlus, PathTraced };
 const char* renderPathName(RenderPath path);
 std::optional<RenderPath> parseRenderPath(const std::string& name);
 
@@ -287,6 +289,15 @@ struct AntiAliasSettings {
     bool dither = true;             // triangular-PDF noise of +-1 LSB before every 8-bit quantisation
 };
 
+// The path tracer's sampling (--spp, --bounces, --direct-only, --pixel-centre).
+struct PathTraceSettings {
+    int samples = 64;         // samples per pixel, accumulated before the frame is shown
+    int bounces = 8;          // surface interactions whose scattered light counts (Russian roulette from 3)
+    bool directOnly = false;  // one interaction: the lights, the environment and emitters seen from it
+    bool pixelCentre = false; // every sample through the pixel's centre (else jittered: box-filtered)
+    int interactions() const { return directOnly ? 1 : bounces; }
+};
+
 struct RenderSettings {
     int width = 1280;
     int height = 720;
@@ -306,6 +317,7 @@ struct RenderSettings {
     Brdf brdf = Brdf::Ggx;  // BRDF of the light passes: glTF 2.0's (GGX) for every material
     SpecularMasking specularMasking = SpecularMasking::HeightCorrelated;  // GGX's G2, lights and IBL alike
     RenderPath renderPath = RenderPath::Deferred;  // --render-path
+    PathTraceSettings pathTrace;  // --render-path pathtraced and `lightpass reference`
     bool keepHdr = false;        // keep the HDR buffer as an output (EXR dumps)
     // --all-passes: add every candidate pass even where the scene does not call for it (shadow maps
     // for every sun, local lights with none in view, a colour sky, bloom at strength 0); measuring only.

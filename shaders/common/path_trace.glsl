@@ -1,0 +1,103 @@
+// The path tracer's scene (engine/render/path_trace_scene.hpp, engine/render/bvh.hpp): storage
+// blocks, the BVH traversal and the triangle test. World space.
+#ifndef LP_PATH_TRACE_GLSL
+#define LP_PATH_TRACE_GLSL
+
+// Storage-block bindings; passes/path_trace_pass.hpp's PathTraceBinding has the same numbers.
+#define LP_PT_BIND_NODES 0
+#define LP_PT_BIND_TRIANGLES 1
+#define LP_PT_BIND_MATERIALS 2
+#define LP_PT_BIND_LIGHTS 3
+#define LP_PT_STACK 64  // traversal stack; the pass refuses a BVH deeper than this
+
+struct LpBvhNode {
+    vec4 lo;  // w: first (int bits): the left child, or a leaf's first triangle
+    vec4 hi;  // w: count (int bits): 0 for an interior node
+};
+struct LpPathTraceTriangle {
+    vec4 position[3];  // position[0].w: material index
+    vec4 normal[3];
+};
+struct LpPathTraceMaterial {
+    vec4 baseOpacity;
+    vec4 specularMetallic;
+    vec4 emissionShininess;
+    vec4 flags;  // x: flat-lit, y: double-sided
+};
+
+layout(std430, binding = LP_PT_BIND_NODES) readonly buffer PtNodes { LpBvhNode uPtNodes[]; };
+layout(std430, binding = LP_PT_BIND_TRIANGLES) readonly buffer PtTriangles { LpPathTraceTriangle uPtTriangles[]; };
+layout(std430, binding = LP_PT_BIND_MATERIALS) readonly buffer PtMaterials { LpPathTraceMaterial uPtMaterials[]; };
+
+uniform int uPtNodeCount;  // 0: no geometry
+
+// Moller-Trumbore, both faces (bvh.cpp's intersectTriangle).
+bool lpPtIntersectTriangle(vec3 o, vec3 d, vec3 a, vec3 b, vec3 c, float tMin, float tMax, out float t, out vec2 uv) {
+    vec3 e1 = b - a, e2 = c - a;
+    vec3 p = cross(d, e2);
+    float det = dot(e1, p);
+    t = 0.0;
+    uv = vec2(0.0);
+    if (det == 0.0) return false;
+    float inv = 1.0 / det;
+    vec3 s = o - a;
+    float u = dot(s, p) * inv;
+    if (u < 0.0 || u > 1.0) return false;
+    vec3 q = cross(s, e1);
+    float v = dot(d, q) * inv;
+    if (v < 0.0 || u + v > 1.0) return false;
+    t = dot(e2, q) * inv;
+    uv = vec2(u, v);
+    return t > tMin && t < tMax;
+}
+
+// Whether a hit on triangle `tri` counts for a ray along d: a single-sided material is seen from the
+// side its normals face only (the raster passes cull its back faces).
+bool lpPtFaceCounts(int tri, vec3 d) {
+    LpPathTraceTriangle T = uPtTriangles[tri];
+    if (uPtMaterials[int(T.position[0].w)].flags.y != 0.0) return true;
+    vec3 n = T.normal[0].xyz + T.normal[1].xyz + T.normal[2].xyz;
+    return dot(n, d) < 0.0;
+}
+
+// Nearest hit in (tMin, tMax): triangle index (or -1), t, barycentrics. `anyHit`: stop at the first.
+int lpPtTrace(vec3 o, vec3 d, float tMin, float tMax, bool anyHit, out float tHit, out vec2 uvHit) {
+    tHit = tMax;
+    uvHit = vec2(0.0);
+    if (uPtNodeCount == 0) return -1;
+    int hit = -1;
+    vec3 invD = 1.0 / d;
+    int stack[LP_PT_STACK];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+        LpBvhNode n = uPtNodes[stack[--top]];
+        vec3 t0 = (n.lo.xyz - o) * invD, t1 = (n.hi.xyz - o) * invD;
+        vec3 tn = min(t0, t1), tf = max(t0, t1);
+        float enter = max(max(tn.x, tn.y), max(tn.z, tMin));
+        float leave = min(min(tf.x, tf.y), min(tf.z, tHit));
+        if (enter > leave) continue;
+        int first = floatBitsToInt(n.lo.w), count = floatBitsToInt(n.hi.w);
+        if (count == 0) {
+            if (top + 2 > LP_PT_STACK) continue;  // deeper than the pass allows; never with its check
+            stack[top++] = first;
+            stack[top++] = first + 1;
+            continue;
+        }
+        for (int i = first; i < first + count; ++i) {
+            LpPathTraceTriangle T = uPtTriangles[i];
+            float t;
+            vec2 uv;
+            if (lpPtIntersectTriangle(o, d, T.position[0].xyz, T.position[1].xyz, T.position[2].xyz, tMin, tHit, t, uv) &&
+                lpPtFaceCounts(i, d)) {
+                tHit = t;
+                uvHit = uv;
+                hit = i;
+                if (anyHit) return hit;
+            }
+        }
+    }
+    return hit;
+}
+
+#endif

@@ -1,0 +1,192 @@
+#version 450
+// The path tracer (passes/path_trace_pass, docs/path-tracer.md): one sample per pixel per dispatch,
+// added into the accumulation image (rgb: sum of radiance, a: sum of squared luminance, for the noise
+// estimate); the HDR target gets the mean so far. Materials and lights are lightpass's own: the BRDF
+// of common/brdf.glsl (uBrdf, uSpecularMasking), the suns' irradiance, the local lights' ranged
+// falloff and spot cones of common/local_light.glsl; the environment (map or colour) lights every
+// ray that leaves the scene.
+#include "common/brdf.glsl"
+#include "common/ibl.glsl"
+#include "common/local_light.glsl"
+#include "common/path_trace.glsl"
+#include "common/tonemap.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+layout(rgba32f, binding = 0) uniform image2D uAccumulation;
+layout(rgba16f, binding = 1) uniform writeonly image2D uHdr;
+layout(std430, binding = LP_PT_BIND_LIGHTS) readonly buffer PtLights { LpLocalLight uPtLights[]; };
+layout(binding = 0) uniform sampler2D uEnvironmentMap;  // equirectangular, linear radiance
+
+uniform mat4 uClipToWorld;     // inverse of projection x view
+uniform vec3 uCameraPosition;
+uniform int uSample;           // index of this dispatch's sample (0 .. N - 1)
+uniform bool uTrace;           // false: no new sample, the HDR target gets the sums over uSample + 1
+uniform bool uPixelCentre;     // every sample through the pixel's centre; else jittered over the pixel
+uniform int uBounces;          // surface interactions whose scattered light counts (1: direct light only)
+uniform int uRouletteFrom;     // Russian roulette from this interaction on
+#define MAX_SUNS 16
+uniform int uSunCount;
+uniform vec3 uSunToLight[MAX_SUNS];     // unit, world space, towards the sun
+uniform vec3 uSunIrradiance[MAX_SUNS];  // colour x intensity: irradiance at normal incidence
+uniform int uLocalLightCount;
+uniform int uSpecularMode;     // LP_LOCAL_SPECULAR_*, as the local-light passes
+uniform bool uHasEnvironmentMap;
+uniform vec3 uEnvironmentColor;  // colour x intensity, without a map
+uniform float uEnvironmentIntensity;
+uniform float uEnvironmentRotation;  // radians about +Y
+uniform float uRayEpsilon;     // offset of secondary rays, scaled to the scene
+
+// PCG hash (Jarzynski and Olano 2020) -> uniform floats in [0, 1).
+uint lpPcg(uint v) {
+    uint state = v * 747796405u + 2891336453u;
+    uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+    return (word >> 22u) ^ word;
+}
+uint gRng = 0u;  // set per invocation in main()
+float rand() {
+    gRng = lpPcg(gRng);
+    return float(gRng >> 8) * (1.0 / 16777216.0);
+}
+
+vec3 environmentRadiance(vec3 d) {
+    if (!uHasEnvironmentMap) return uEnvironmentColor;
+    return textureLod(uEnvironmentMap, equirectUv(rotateY(d, -uEnvironmentRotation)), 0.0).rgb * uEnvironmentIntensity;
+}
+
+float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
+float maxComponent(vec3 c) { return max(c.r, max(c.g, c.b)); }
+
+// An orthonormal basis around unit n (Duff et al. 2017).
+void basis(vec3 n, out vec3 t, out vec3 b) {
+    float s = n.z >= 0.0 ? 1.0 : -1.0;
+    float a = -1.0 / (s + n.z);
+    float c = n.x * n.y * a;
+    t = vec3(1.0 + s * n.x * n.x * a, s * c, -s * n.x);
+    b = vec3(c, s + n.y * n.y * a, -n.y);
+}
+
+bool visible(vec3 P, vec3 L, float distance) {
+    float t;
+    vec2 uv;
+    return lpPtTrace(P, L, 0.0, distance, true, t, uv) < 0;
+}
+
+void main() {
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 size = imageSize(uAccumulation);
+    if (p.x >= size.x || p.y >= size.y) return;
+    if (!uTrace) {
+        imageStore(uHdr, p, vec4(sanitizeHdr(imageLoad(uAccumulation, p).rgb / float(uSample + 1)), 1.0));
+        return;
+    }
+    gRng = lpPcg(uint(p.x) + lpPcg(uint(p.y) + lpPcg(uint(uSample))));
+    vec2 jitter = uPixelCentre ? vec2(0.5) : vec2(rand(), rand());
+    // Pixel (0, 0) is the bottom-left one, as in every GL target of the frame.
+    vec2 ndc = (vec2(p) + jitter) / vec2(size) * 2.0 - 1.0;
+    vec4 far = uClipToWorld * vec4(ndc, 1.0, 1.0);
+    vec3 origin = uCameraPosition;
+    vec3 dir = normalize(far.xyz / far.w - origin);
+
+    vec3 radiance = vec3(0.0), throughput = vec3(1.0);
+    float tMin = 0.0;
+    for (int bounce = 0; bounce <= uBounces; ++bounce) {
+        float t;
+        vec2 bary;
+        int tri = lpPtTrace(origin, dir, tMin, 3.0e38, false, t, bary);
+        if (tri < 0) {
+            radiance += throughput * environmentRadiance(dir);
+            break;
+        }
+        LpPathTraceTriangle T = uPtTriangles[tri];
+        LpPathTraceMaterial m = uPtMaterials[int(T.position[0].w)];
+        vec3 P = origin + t * dir;
+        vec3 V = -dir;
+        vec3 Ng = normalize(cross(T.position[1].xyz - T.position[0].xyz, T.position[2].xyz - T.position[0].xyz));
+        vec3 N = normalize((1.0 - bary.x - bary.y) * T.normal[0].xyz + bary.x * T.normal[1].xyz + bary.y * T.normal[2].xyz);
+        // Both normals on the side the ray came from (a double-sided material's back face is lit
+        // like its front, as in the raster passes; a single-sided one is never hit from behind).
+        if (dot(Ng, V) < 0.0) Ng = -Ng;
+        if (dot(N, Ng) < 0.0) N = -N;
+        vec3 base = m.baseOpacity.rgb;
+        float metallic = m.specularMetallic.w;
+        if (m.flags.x != 0.0) {  // flat-lit: its colour, untouched by light (material.glsl)
+            radiance += throughput * base * (1.0 - metallic);
+            break;
+        }
+        radiance += throughput * m.emissionShininess.rgb;
+        if (bounce == uBounces) break;
+        vec3 dielectricF0 = m.specularMetallic.rgb;
+        vec3 kd = materialDiffuseAlbedo(uBrdf, base, metallic, dielectricF0);
+        vec3 ks = mix(dielectricF0, base, metallic);
+        float shininess = m.emissionShininess.w;
+        vec3 Po = P + Ng * uRayEpsilon * (1.0 + maxComponent(abs(P)));
+
+        // Direct light from the suns and the local lights (delta lights: no other way to reach them).
+        for (int i = 0; i < uSunCount; ++i) {
+            vec3 L = uSunToLight[i];
+            if (dot(N, L) <= 0.0 || dot(Ng, L) <= 0.0) continue;
+            if (visible(Po, L, 3.0e38))
+                radiance += throughput * brdfRadiance(uBrdf, N, V, L, kd, ks, shininess, uSunIrradiance[i]);
+        }
+        for (int i = 0; i < uLocalLightCount; ++i) {
+            LpLocalLight l = uPtLights[i];
+            vec3 toLight = l.positionRange.xyz - P;
+            float d = length(toLight);
+            if (d >= l.positionRange.w && uSpecularMode != LP_LOCAL_SPECULAR_UNRANGED) continue;
+            vec3 L = d > 0.0 ? toLight / d : N;
+            if (dot(Ng, L) <= 0.0) continue;
+            float spot = lpSpotFalloff(dot(-L, l.directionCos.xyz), l.directionCos.w, l.intensity.w);
+            if (spot <= 0.0) continue;
+            vec3 c = lpLocalLightRadiance(l.positionRange.xyz, l.positionRange.w, l.intensity.rgb, P, N, V, kd, ks,
+                                          shininess, uSpecularMode) * spot;
+            if (maxComponent(c) <= 0.0) continue;
+            vec3 toLightO = l.positionRange.xyz - Po;
+            float dO = length(toLightO);
+            if (dO > 0.0 && visible(Po, toLightO / dO, dO * (1.0 - 1e-4))) radiance += throughput * c;
+        }
+
+        // The next direction: a mixture of cosine-weighted (diffuse) and GGX half-vector (specular)
+        // sampling, weighted by the mixture's pdf; the environment and emitters are reached this way.
+        float alpha = ggxAlphaFromShininess(shininess);
+        float wd = maxComponent(kd), ws = maxComponent(ks);
+        if (wd + ws <= 0.0) break;
+        float pSpecular = wd <= 0.0 ? 1.0 : (ws <= 0.0 ? 0.0 : clamp(ws / (wd + ws), 0.1, 0.9));
+        vec3 tx, ty;
+        basis(N, tx, ty);
+        vec3 L;
+        float u1 = rand(), u2 = rand();
+        if (rand() < pSpecular) {
+            float a2 = alpha * alpha;
+            float cosTheta = sqrt((1.0 - u1) / (1.0 + (a2 - 1.0) * u1));
+            float sinTheta = sqrt(max(1.0 - cosTheta * cosTheta, 0.0));
+            float phi = 2.0 * LP_PI * u2;
+            vec3 H = normalize(tx * (sinTheta * cos(phi)) + ty * (sinTheta * sin(phi)) + N * cosTheta);
+            L = reflect(-V, H);
+        } else {
+            float r = sqrt(u1), phi = 2.0 * LP_PI * u2;
+            L = normalize(tx * (r * cos(phi)) + ty * (r * sin(phi)) + N * sqrt(max(1.0 - u1, 0.0)));
+        }
+        float nl = dot(N, L);
+        if (nl <= 0.0 || dot(Ng, L) <= 0.0) break;
+        vec3 H = brdfHalfVector(N, V, L);
+        float vh = max(dot(V, H), 1e-6);
+        float pdf = (1.0 - pSpecular) * nl / LP_PI +
+                    pSpecular * ggxDistribution(N, H, alpha) * max(dot(N, H), 0.0) / (4.0 * vh);
+        if (!(pdf > 0.0)) break;
+        vec3 f = brdfDiffuse(uBrdf, N, V, L, kd, ks) + brdfSpecular(uBrdf, N, V, L, ks, shininess);
+        throughput *= f * nl / pdf;
+        if (bounce + 1 >= uRouletteFrom) {
+            float survive = min(maxComponent(throughput), 0.95);
+            if (!(rand() < survive)) break;
+            throughput /= survive;
+        }
+        origin = Po;
+        dir = L;
+    }
+    radiance = max(radiance, vec3(0.0));
+    if (any(isnan(radiance)) || any(isinf(radiance))) radiance = vec3(0.0);  // never poisons the mean
+    vec4 sum = (uSample == 0 ? vec4(0.0) : imageLoad(uAccumulation, p)) + vec4(radiance, luminance(radiance) * luminance(radiance));
+    imageStore(uAccumulation, p, sum);
+    imageStore(uHdr, p, vec4(sanitizeHdr(sum.rgb / float(uSample + 1)), 1.0));
+}

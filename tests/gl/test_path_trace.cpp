@@ -1,0 +1,265 @@
+// The path tracer (passes/path_trace_pass, shaders/path_trace.comp) against analytic answers, and
+// against the raster frame where both model the same light. Small images: seconds on llvmpipe.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "engine/render/gltf_brdf.hpp"
+#include "engine/scene/primitives.hpp"
+#include "frame/renderer.hpp"
+#include "tests/gl/gl_fixture.hpp"
+
+using namespace lp;
+
+namespace {
+
+ModelInstance model(const std::string& name, MeshData mesh, const glm::mat4& transform, glm::vec3 albedo, glm::vec3 ks) {
+    ModelInstance m;
+    m.name = name;
+    m.primitive = name;
+    m.mesh = std::move(mesh);
+    for (auto& mat : m.mesh.materials) {
+        mat.diffuse = albedo;
+        mat.specular = ks;  // Ks 0: Lambertian (docs/brdf.md)
+        mat.shininess = 32.0f;
+    }
+    m.transform = transform;
+    return m;
+}
+
+// The camera straight down at the origin from `height`.
+Camera topDown(float height, float fov) {
+    Camera c;
+    c.position = glm::vec3(0.0f, height, 0.0f);
+    c.target = glm::vec3(0.0f);
+    c.up = glm::vec3(0.0f, 0.0f, -1.0f);
+    c.fovYDegrees = fov;
+    c.nearPlane = 0.05f;
+    c.farPlane = 100.0f;
+    return c;
+}
+
+RenderSettings tracerSettings(int size, int samples) {
+    RenderSettings s;
+    s.renderPath = RenderPath::PathTraced;
+    s.width = s.height = size;
+    s.keepHdr = true;
+    s.autoExposure = false;
+    s.aa.method = AntiAliasing::Off;
+    s.aa.dither = false;
+    s.pathTrace.samples = samples;
+    return s;
+}
+
+// A white furnace: everything white and Lambertian (albedo 1) under a uniform white environment.
+Scene furnaceScene(bool withCube) {
+    Scene s;
+    s.environment.color = glm::vec3(1.0f);
+    s.environment.intensity = 1.0f;
+    s.ambient = glm::vec3(0.0f);
+    if (withCube) {
+        s.models.push_back(model("plane", makePlane(1.0f), glm::scale(glm::mat4(1.0f), glm::vec3(6.0f)), glm::vec3(1.0f),
+                                 glm::vec3(0.0f)));
+        s.models.push_back(model("cube", makeCube(1.0f), glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.5f, 0.0f)),
+                                 glm::vec3(1.0f), glm::vec3(0.0f)));
+    } else {
+        s.models.push_back(model("cube", makeCube(1.0f), glm::rotate(glm::mat4(1.0f), 0.6f, glm::vec3(1.0f, 1.0f, 0.0f)),
+                                 glm::vec3(1.0f), glm::vec3(0.0f)));
+    }
+    s.camera = topDown(4.0f, 50.0f);
+    return s;
+}
+
+float channel(const ImageF& img, int x, int y, int c) { return img.rgba[(size_t(y) * size_t(img.width) + size_t(x)) * 4 + size_t(c)]; }
+
+// Where a pixel-centre ray of the top-down camera meets y = 0 (row 0 = top, as readHdr gives it).
+glm::dvec3 groundPoint(const Scene& s, int size, int x, int y) {
+    const glm::dmat4 inv = glm::inverse(glm::dmat4(s.camera.projection(1.0f)) * glm::dmat4(s.camera.view()));
+    const double nx = (x + 0.5) / size * 2.0 - 1.0, ny = 1.0 - (y + 0.5) / size * 2.0;
+    const glm::dvec4 a = inv * glm::dvec4(nx, ny, -1.0, 1.0), b = inv * glm::dvec4(nx, ny, 1.0, 1.0);
+    const glm::dvec3 p0 = glm::dvec3(a) / a.w, p1 = glm::dvec3(b) / b.w;
+    return p0 + (-p0.y / (p1.y - p0.y)) * (p1 - p0);
+}
+
+TEST(PathTracer, WhiteConvexObjectInAWhiteFurnaceIsOne) {
+    // A convex object: a ray leaving it never meets it again, so each sample is exactly 1 (cosine
+    // sampling of albedo 1 weighs 1): any error is the estimator's, not noise.
+    const Scene s = furnaceScene(false);
+    Renderer r(s);
+    const RenderSettings settings = tracerSettings(24, 8);
+    r.render(settings);
+    const ImageF hdr = r.readHdr();
+    for (int y = 0; y < hdr.height; ++y)
+        for (int x = 0; x < hdr.width; ++x)
+            for (int c = 0; c < 3; ++c) ASSERT_NEAR(channel(hdr, x, y, c), 1.0f, 1e-3f) << "pixel " << x << "," << y;
+    const PathTraceNoise& noise = r.pathTraceNoise();
+    EXPECT_EQ(noise.samples, 8);
+    EXPECT_LT(noise.meanRelativeStandardError, 1e-3);  // no noise at all
+}
+
+TEST(PathTracer, FurnaceWithInterreflectionIsOneWithinTheStatedNoiseAndDirectLightIsNot) {
+    // A cube on a plane, all albedo 1: under the uniform environment the full transport is exactly 1
+    // everywhere (L = 1 solves the rendering equation); direct light alone loses what bounces between
+    // the cube and the plane, and only there: the cube's top sees the sky alone.
+    const Scene s = furnaceScene(true);
+    const int size = 24;
+    RenderSettings full = tracerSettings(size, 64);
+    full.pathTrace.bounces = 64;
+    Renderer r(s);
+    r.render(full);
+    const ImageF traced = r.readHdr();
+    const double rse = r.pathTraceNoise().meanRelativeStandardError;
+    EXPECT_GT(rse, 0.0);
+    RenderSettings direct = full;
+    direct.pathTrace.directOnly = true;
+    r.render(direct);
+    const ImageF directOnly = r.readHdr();
+    double sum = 0.0;
+    int pixels = 0, darkerDirect = 0;
+    for (int y = 0; y < size; ++y) {
+        for (int x = 0; x < size; ++x) {
+            const double v = channel(traced, x, y, 1);
+            // A pixel's own error: loose (pixels beside the cube vary most); the image mean below is
+            // held to the stated noise.
+            EXPECT_NEAR(v, 1.0, 0.25) << "pixel " << x << "," << y;
+            sum += v;
+            ++pixels;
+            const double d = channel(directOnly, x, y, 1);
+            EXPECT_LE(d, 1.0 + 1e-3) << "pixel " << x << "," << y;
+            darkerDirect += d < 0.97 ? 1 : 0;
+        }
+    }
+    // The image's mean: within 4 standard errors of it (pixels are independent).
+    EXPECT_NEAR(sum / pixels, 1.0, 4.0 * rse / std::sqrt(double(pixels)) + 1e-3);
+    EXPECT_GT(darkerDirect, size * size / 8) << "direct light alone misses the interreflection beside the cube";
+    // The cube's top face (the centre of the view) sees only the sky: direct is the whole light.
+    for (int y = size / 2 - 2; y < size / 2 + 2; ++y)
+        for (int x = size / 2 - 2; x < size / 2 + 2; ++x)
+            EXPECT_NEAR(channel(directOnly, x, y, 1), 1.0f, 1e-3f) << "pixel " << x << "," << y;
+}
+
+TEST(PathTracer, SunOnALambertianPlaneIsAlbedoOverPiTimesIrradianceTimesCosine) {
+    for (double thetaDegrees : {0.0, 35.0, 70.0}) {
+        SCOPED_TRACE(thetaDegrees);
+        Scene s;
+        s.environment.color = glm::vec3(0.0f);
+        const glm::vec3 albedo(0.5f, 0.25f, 0.8f);
+        s.models.push_back(model("plane", makePlane(1.0f), glm::scale(glm::mat4(1.0f), glm::vec3(20.0f)), albedo, glm::vec3(0.0f)));
+        const double theta = glm::radians(thetaDegrees);
+        DirectionalLight sun;
+        sun.direction = glm::vec3(-std::sin(theta), -std::cos(theta), 0.0);
+        sun.intensity = 3.0f;
+        sun.color = glm::vec3(1.0f, 0.9f, 0.5f);
+        s.directionalLights.push_back(sun);
+        s.camera = topDown(3.0f, 60.0f);
+        Renderer r(s);
+        r.render(tracerSettings(16, 4));
+        const ImageF hdr = r.readHdr();
+        for (int y = 0; y < 16; ++y)
+            for (int x = 0; x < 16; ++x)
+                for (int c = 0; c < 3; ++c) {
+                    const double e = albedo[c] / M_PI * sun.intensity * sun.color[c] * std::cos(theta);
+                    ASSERT_NEAR(channel(hdr, x, y, c), e, 1e-3 * e + 1e-6) << "pixel " << x << "," << y << " channel " << c;
+                }
+    }
+}
+
+TEST(PathTracer, PointLightOverAPlaneFollowsLightpasssRangedInverseSquare) {
+    Scene s;
+    s.environment.color = glm::vec3(0.0f);
+    const float albedo = 0.7f;
+    s.models.push_back(model("plane", makePlane(1.0f), glm::scale(glm::mat4(1.0f), glm::vec3(20.0f)), glm::vec3(albedo),
+                             glm::vec3(0.0f)));
+    PointLight light;
+    light.position = glm::vec3(0.3f, 1.0f, -0.2f);
+    light.intensity = 5.0f;
+    light.range = 2.5f;  // the window reaches into the view: the falloff is lightpass's, not 1/d^2 alone
+    s.pointLights.push_back(light);
+    s.camera = topDown(3.0f, 80.0f);
+    s.camera.position.x = 0.01f;  // off the light's own vertical
+    const int size = 20;
+    RenderSettings settings = tracerSettings(size, 1);
+    settings.pathTrace.pixelCentre = true;
+    Renderer r(s);
+    r.render(settings);
+    const ImageF hdr = r.readHdr();
+    int lit = 0, dark = 0;
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) {
+            const glm::dvec3 p = groundPoint(s, size, x, y);
+            const glm::dvec3 toLight = glm::dvec3(light.position) - p;
+            const double d = glm::length(toLight), cosine = toLight.y / d;
+            const double window = std::pow(std::clamp(1.0 - std::pow(d / light.range, 4.0), 0.0, 1.0), 2.0);
+            const double dMin = std::min(0.01 * light.range, 0.01);
+            const double e = albedo / M_PI * light.intensity / std::max(d * d, dMin * dMin) * window * cosine;
+            EXPECT_NEAR(channel(hdr, x, y, 0), e, 2e-3 * e + 1e-5) << "pixel " << x << "," << y << " at " << d << " m";
+            lit += e > 0.0 ? 1 : 0;
+            dark += e == 0.0 ? 1 : 0;
+        }
+    EXPECT_GT(lit, size * size / 4);
+    EXPECT_GT(dark, 0);  // pixels past the range: exactly 0
+}
+
+TEST(PathTracer, MatchesTheRasterFrameOnASunlitGlossyPlane) {
+    // One plane (no shadow to disagree on) with a GGX dielectric: the tracer's sun term is the raster's
+    // own BRDF function; the raster stores kd in 8-bit sRGB, hence 1%.
+    Scene s;
+    s.environment.color = glm::vec3(0.0f);
+    s.ambient = glm::vec3(0.0f);
+    s.models.push_back(model("plane", makePlane(1.0f, 4), glm::scale(glm::mat4(1.0f), glm::vec3(20.0f)),
+                             glm::vec3(0.6f, 0.4f, 0.3f), glm::vec3(0.04f)));
+    DirectionalLight sun;
+    sun.direction = glm::normalize(glm::vec3(-0.3f, -1.0f, -0.2f));
+    sun.intensity = 2.0f;
+    s.directionalLights.push_back(sun);
+    s.camera.position = glm::vec3(0.0f, 2.0f, 4.0f);
+    s.camera.target = glm::vec3(0.0f, 0.0f, 0.0f);
+    s.camera.fovYDegrees = 50.0f;
+    const int w = 48, h = 32;
+    RenderSettings raster;
+    raster.width = w;
+    raster.height = h;
+    raster.keepHdr = true;
+    raster.autoExposure = false;
+    raster.aa.method = AntiAliasing::Off;
+    raster.aa.dither = false;
+    RenderSettings traced = raster;
+    traced.renderPath = RenderPath::PathTraced;
+    traced.pathTrace.samples = 2;
+    traced.pathTrace.pixelCentre = true;  // the raster's one sample a pixel
+    Renderer r(s);
+    r.render(raster);
+    const ImageF a = r.readHdr();
+    const Image8 aDisplay = r.readDisplay();
+    r.render(traced);
+    const ImageF b = r.readHdr();
+    const Image8 bDisplay = r.readDisplay();
+    int compared = 0;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            if (channel(a, x, y, 1) <= 0.0f) continue;  // the background: black in both
+            ++compared;
+            for (int c = 0; c < 3; ++c) {
+                const float ra = channel(a, x, y, c), rb = channel(b, x, y, c);
+                EXPECT_NEAR(rb, ra, 0.01f * ra + 1e-4f) << "pixel " << x << "," << y << " channel " << c;
+                const int da = aDisplay.rgba[(size_t(y) * w + x) * 4 + c], db = bDisplay.rgba[(size_t(y) * w + x) * 4 + c];
+                EXPECT_LE(std::abs(da - db), 2) << "display pixel " << x << "," << y << " channel " << c;
+            }
+        }
+    EXPECT_GT(compared, w * h / 3);
+}
+
+TEST(PathTracer, GraphRunsThePathTracerInsteadOfTheRasterPasses) {
+    const Scene s = furnaceScene(false);
+    Renderer r(s);
+    r.render(tracerSettings(8, 1));
+    EXPECT_TRUE(r.graph().isLive("path_trace"));
+    EXPECT_TRUE(r.graph().isLive("tonemap"));
+    EXPECT_FALSE(r.graph().isLive("gbuffer"));
+    EXPECT_FALSE(r.graph().isLive("global_lights"));
+}
+
+}  // namespace
