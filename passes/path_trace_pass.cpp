@@ -80,17 +80,22 @@ void uploadScene(PathTracePass& state, const Scene& scene) {
     state.scene = &scene;
 }
 
-// Everything the traced image depends on besides the scene: a change starts the accumulation again.
-std::string accumulationKey(const FrameData& frame) {
+// Everything the traced image depends on besides the scene's geometry: a change starts the
+// accumulation again. The frame's time only through what moves with it (the camera, orbiting lights),
+// so an unchanged view keeps its samples while the clock runs (the viewer).
+std::string accumulationKey(const FrameData& frame, const std::vector<GpuLocalLight>& lights) {
     const RenderSettings& s = *frame.settings;
     std::ostringstream key;
     key.precision(9);
-    key << frame.scene << ' ' << frame.width << 'x' << frame.height << ' ' << frame.time << ' ' << s.pathTrace.samples << ' '
+    key << frame.scene << ' ' << frame.width << 'x' << frame.height << ' ' << s.pathTrace.samples << ' '
         << s.pathTrace.interactions() << ' ' << s.pathTrace.pixelCentre << ' ' << int(s.brdf) << ' '
         << int(s.specularMasking) << ' ' << s.localLights.specular << s.localLights.specularOutsideRange << ' '
         << s.localLights.enabled << ' ' << s.localLights.rangeScale;
     for (int i = 0; i < 4; ++i)
         for (int j = 0; j < 4; ++j) key << ' ' << frame.view[i][j] << ' ' << frame.projection[i][j];
+    for (const GpuLocalLight& l : lights)
+        key << ' ' << l.positionRange.x << ' ' << l.positionRange.y << ' ' << l.positionRange.z << ' ' << l.directionCos.x
+            << ' ' << l.directionCos.y << ' ' << l.directionCos.z;
     return key.str();
 }
 
@@ -167,15 +172,15 @@ fg::ResourceId addPathTracePass(fg::FrameGraph& graph, PathTracePass& state, con
                 state.accumulatedFor.clear();
             }
             const int samples = std::max(frame.settings->pathTrace.samples, 1);
-            const std::string key = accumulationKey(frame);
+            std::vector<GpuLocalLight> records;  // world space
+            if (frame.settings->localLights.enabled)
+                for (const PointLight& l : *frameLocalLights(frame)) records.push_back(gpuLocalLight(l, glm::mat4(1.0f), -1));
+            const std::string key = accumulationKey(frame, records);
             if (key != state.accumulatedFor) {
                 state.accumulatedFor = key;
                 state.accumulated = 0;
                 if (!state.accumulation || state.accumulation.width != frame.width || state.accumulation.height != frame.height)
                     state.accumulation = gl::makeTexture2D(GL_RGBA32F, frame.width, frame.height, 1, "path_trace.accumulation");
-                std::vector<GpuLocalLight> records;
-                if (frame.settings->localLights.enabled)
-                    for (const PointLight& l : *frameLocalLights(frame)) records.push_back(gpuLocalLight(l, glm::mat4(1.0f), -1));
                 state.lights = storage(records, "path_trace.lights");
                 state.localLightCount = int(records.size());
             }
