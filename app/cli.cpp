@@ -228,6 +228,13 @@ std::vector<CommandFlag> makeCommandFlags() {
          [](Options& o, V, V) { o.base.pathTrace.directOnly = true; }},
         {{"--pixel-centre"}, "", "path tracer: every sample through the pixel's centre (default: jittered over the pixel)",
          [](Options& o, V, V) { o.base.pathTrace.pixelCentre = true; }},
+        {{"--animation"}, "A",
+         "the glTF animations models play on the scene's clock: a clip's NAME or INDEX, all, or none (the rest pose); "
+         "default: each model's first clip",
+         [](Options& o, V a, V v) {
+             if (v.empty()) throw Error(a + ": expected a clip's name or index, all or none");
+             o.animation = v;
+         }},
         {{"--frames"}, "N", "frames to render and time (default 1, report: 10; the image is the last frame)",
          [](Options& o, V a, V v) {
              o.frames = parseInt(a, v, 1, 100000);
@@ -386,6 +393,7 @@ Scene sceneFromOptions(const Options& o) {
     Scene scene = o.model.empty() ? loadScene(o.scene) : sceneForModel(o.model, o.modelZUp);
     if (o.environment) replaceEnvironment(scene, *o.environment);
     if (!o.cameraPath.empty()) scene.cameraPath = loadCameraPath(o.cameraPath);
+    if (o.animation) playAnimations(scene, *o.animation);
     if (o.cameraPosition) scene.cameraPath.reset();  // --camera fixes the camera
     if (o.cameraPosition) scene.camera.position = *o.cameraPosition;
     if (o.cameraTarget) scene.camera.target = *o.cameraTarget;

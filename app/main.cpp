@@ -317,6 +317,18 @@ int commandRender(const Options& o) {
     const size_t poolBytes = renderer.pool().totalBytes(), persistentBytes = renderer.persistentTextureBytes();
     say("texture memory: %.2f MiB pooled transients + %.2f MiB persistent (environment, IBL, kept shadow atlases)\n",
                 poolBytes / 1048576.0, persistentBytes / 1048576.0);
+    if (!renderer.poseMilliseconds().empty()) {  // animated glTF models: posing them is CPU work before the graph
+        std::vector<double> ms = renderer.poseMilliseconds();
+        std::sort(ms.begin(), ms.end());
+        size_t vertices = 0;
+        for (const ModelInstance& m : scene.models)
+            if (m.animation && !m.playingClips.empty())
+                for (const NodeVertexRange& r : m.animation->ranges) vertices += r.vertexCount;
+        say("animation pose: CPU median %.4f ms, min %.4f, max %.4f over %zu frames (%zu animated vertices; evaluate, pose, upload)\n",
+            ms[ms.size() / 2], ms.front(), ms.back(), ms.size(), vertices);
+        j["animation_pose_ms"] = {{"median_ms", ms[ms.size() / 2]}, {"min_ms", ms.front()}, {"max_ms", ms.back()},
+                                  {"samples", ms.size()}, {"vertices", vertices}};
+    }
     const ShadowCacheStats& cache = renderer.shadowCacheStats();
     if (cache.drawn + cache.kept + cache.scrolled + cache.completed > 0) {
         say("shadow cascades: %llu of %llu tiles kept from an earlier frame (%llu of them lagging behind a resized square), "

@@ -28,6 +28,11 @@ void Renderer::render(const RenderSettings& settings, float time, bool timed) {
     FrameData frame = makeFrameData(*scene_, settings, time);
     // TAA jitters every frame through its Halton phases; otherwise the jitter setJitterPixels chose.
     applyMotion(frame, history_, temporalAntiAliasing(settings) ? taaJitterPixels(taaFrames_++) : jitterPixels_);
+    // Animated models posed at the frame's time, and at the previous frame's for their motion vectors.
+    const auto poseStart = std::chrono::steady_clock::now();
+    gpu_->pose(*scene_, frame.time, frame.previousTime);
+    if (timed && gpu_->animated)
+        poseMs_.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - poseStart).count());
     frame.gpu = gpu_.get();
     frame.shaders = &shaders_;
     frame.softwareRaster = softwareRaster_;

@@ -2,6 +2,7 @@
 // Owns everything a scene needs on the GPU (meshes, textures, pass programs, the transient texture
 // pool, the timers) and renders frames through a freshly built frame graph.
 #include <memory>
+#include <vector>
 
 #include "engine/gl/gpu_timer.hpp"
 #include "engine/gl/shader.hpp"
@@ -54,6 +55,9 @@ public:
     // The environment cubes and IBL bakes (imported into each frame's graph), e.g. to time a fresh bake.
     EnvironmentCache& environments() { return passes_.environments; }
     const SceneGpu& sceneGpu() const { return *gpu_; }
+    // CPU milliseconds each timed frame spent posing its animated models (SceneGpu::pose: evaluating
+    // the clips, posing the vertices, handing the uploads to the driver); empty without animation.
+    const std::vector<double>& poseMilliseconds() const { return poseMs_; }
     // Switches a material (index into sceneGpu().materials) flat-lit or lit from the next frame.
     void setMaterialFlat(size_t material, bool flat) { gpu_->materials.at(material).flat = flat; }
     const gl::ShaderLibrary& shaders() const { return shaders_; }
@@ -81,6 +85,7 @@ private:
     glm::vec2 jitterPixels_{0.0f};
     uint64_t taaFrames_ = 0;  // TAA frames rendered: the next one's jitter phase
     MotionHistory history_;
+    std::vector<double> poseMs_;
     bool softwareRaster_ = true;        // the current context's rasteriser (--gbuffer-mode auto)
     uint64_t maxStorageBlockBytes_ = 0;  // its GL_MAX_SHADER_STORAGE_BLOCK_SIZE (the same)
 };

@@ -202,6 +202,7 @@ GBuffer addGeometryPass(fg::FrameGraph& graph, GBufferPass& state, const FrameDa
                                bool withDepthOnly) -> const gl::Program& {
                 return programForLayout(program, builtFor, frame, [&](std::vector<std::string> defines) {
                     if (withVelocity) defines.push_back("LP_GBUFFER_VELOCITY");
+                    if (withVelocity) defines.push_back("LP_PREVIOUS_POSITION_ATTRIBUTE " + std::to_string(kPreviousPositionAttribute));
                     if (withDepthOnly) defines.push_back("LP_GBUFFER_DEPTH_ONLY");
                     return frame.shaders->graphics("gbuffer.vert", "gbuffer.frag", defines);
                 });
@@ -254,7 +255,7 @@ GBuffer addGeometryPass(fg::FrameGraph& graph, GBufferPass& state, const FrameDa
                 glm::mat3 nm = glm::inverseTranspose(glm::mat3(mv));
                 glProgramUniformMatrix4fv(prog, locMV, 1, GL_FALSE, glm::value_ptr(mv));
                 glProgramUniformMatrix3fv(prog, locN, 1, GL_FALSE, glm::value_ptr(nm));
-                if (velocity) {  // models are static: the previous model matrix is the current one
+                if (velocity) {  // the model matrix does not move; an animated mesh's vertices bring their previous positions
                     const glm::mat4 clip = viewProjection * mesh.model, previous = frame.previousViewProjection * mesh.model;
                     glProgramUniformMatrix4fv(prog, locClip, 1, GL_FALSE, glm::value_ptr(clip));
                     glProgramUniformMatrix4fv(prog, locPreviousClip, 1, GL_FALSE, glm::value_ptr(previous));

@@ -6,6 +6,7 @@
 #include "engine/gl/shader.hpp"
 #include "engine/gl/state.hpp"
 #include "engine/render/local_lights.hpp"
+#include "engine/render/scene_gpu.hpp"
 
 namespace lp {
 
@@ -30,6 +31,14 @@ bool globesMoved(const FrameData& frame) {
         if (now[i].position != before[i].position) return true;
     return false;
 }
+// Whether an animated model puts some vertex elsewhere than at the previous frame's time.
+bool modelsMoved(const FrameData& frame) {
+    if (frame.time == frame.previousTime) return false;
+    if (frame.gpu) return frame.gpu->animatedMotion;  // what SceneGpu::pose found
+    for (const ModelInstance& m : frame.scene->models)  // 'lightpass graph': nothing is posed
+        if (m.movesBetween(frame.previousTime, frame.time)) return true;
+    return false;
+}
 }  // namespace
 
 int motionBlurTileSize(int renderHeight) { return std::max(8, int(std::lround(renderHeight / 36.0))); }
@@ -38,9 +47,9 @@ std::string motionBlurSkipReason(const FrameData& frame) {
     const MotionBlurSettings& s = frame.settings->motionBlur;
     if (!s.enabled) return "motion blur is off (--motion-blur)";
     if (!frame.hasPrevious) return "no previous frame (first frame or a camera cut): nothing moves";
-    // Models are static: only the camera and the globes of orbiting lights move pixels.
-    if (frame.previousViewProjection == frame.unjitteredProjection * frame.view && !globesMoved(frame))
-        return "the camera did not move since the previous frame and no light globe moved: nothing moves";
+    // The camera, the globes of orbiting lights and animated models move pixels.
+    if (frame.previousViewProjection == frame.unjitteredProjection * frame.view && !globesMoved(frame) && !modelsMoved(frame))
+        return "the camera did not move since the previous frame and no light globe or animated model moved: nothing moves";
     return "";
 }
 

@@ -95,6 +95,7 @@ uint64_t casterSignature(const FrameData& frame) {
         f.add(mesh.vao.id());
         f.add(mesh.vertices.id());
         f.add(mesh.indices.id());
+        f.add(mesh.poseVersion);  // an animated mesh that moved since the atlas was drawn
     }
     for (const GpuMaterial& m : gpu.materials) f.add(m.alphaBlend);
     f.add(gpu.casterClusters.size());

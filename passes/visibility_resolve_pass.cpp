@@ -15,6 +15,10 @@ namespace lp {
 
 namespace {
 
+// The storage block of the animated meshes' previous positions (visibility_resolve.comp's
+// LP_PREVIOUS_POSITIONS_BINDING); 0 to 5 are the geometry's, the draws', meshes' and materials'.
+constexpr GLuint kPreviousPositionsBinding = 6;
+
 // std430 records of visibility_resolve.comp.
 struct MeshRecord {
     glm::mat4 modelView, normalMatrix, clipFromModel, previousClipFromModel;
@@ -78,6 +82,13 @@ void buildGeometry(VisibilityResolvePass& state, const SceneGpu& gpu) {
             uo += GLintptr(vb / GLint(sizeof(GpuVertex))) * GLintptr(sizeof(glm::vec2));
         }
     }
+    state.previousPositions = {};
+    if (gpu.animated) {
+        const GLsizeiptr bytes = vertexBytes / GLsizeiptr(sizeof(GpuVertex)) * GLsizeiptr(sizeof(glm::vec4));
+        state.previousPositions = gl::makeBuffer(std::max<GLsizeiptr>(bytes, 16), nullptr, 0, "gbuffer_resolve.previous_positions");
+        const float zero = 0.0f;
+        glClearNamedBufferData(state.previousPositions.id(), GL_R32F, GL_RED, GL_FLOAT, &zero);
+    }
     std::vector<VisibilityDrawRecord> records = visibilityDrawRecords(gpu, indexCounts, vertexCounts);
     state.drawCount = uint32_t(records.size());
     if (records.empty()) records.emplace_back();
@@ -85,6 +96,21 @@ void buildGeometry(VisibilityResolvePass& state, const SceneGpu& gpu) {
                                  "gbuffer_resolve.draws");
     state.geometryOf = &gpu;
     state.geometryTriangles = gpu.triangleCount;
+}
+
+// An animated mesh's pose of this frame into the concatenated buffers: its vertices, and its previous
+// positions for the velocity. Copies on the GPU, ordered by GL after earlier frames' reads.
+void copyPoses(VisibilityResolvePass& state, const SceneGpu& gpu) {
+    GLintptr vo = 0;
+    for (const GpuMesh& m : gpu.meshes) {
+        const GLint vb = bufferSize(m.vertices.id());
+        if (m.animated && vb > 0) {
+            glCopyNamedBufferSubData(m.vertices.id(), state.vertices.id(), 0, vo, vb);
+            const GLintptr po = vo / GLintptr(sizeof(GpuVertex)) * GLintptr(sizeof(glm::vec4));
+            glCopyNamedBufferSubData(m.previousPositions.id(), state.previousPositions.id(), 0, po, bufferSize(m.previousPositions.id()));
+        }
+        vo += vb;
+    }
 }
 
 // An isotropic sampler with `texture`'s wrap modes and filters, for the resolve's own anisotropic
@@ -161,12 +187,14 @@ GBuffer addVisibilityResolvePass(fg::FrameGraph& graph, VisibilityResolvePass& s
                 for (size_t i = 0; i < gpu.materials.size(); ++i)
                     if (materialFlags(gpu.materials[i]) & kAnyMap) state.texturedMaterials.push_back(int(i));
             }
+            if (gpu.animated) copyPoses(state, gpu);
             if (!state.gradientModel) state.gradientModel = gl::probeGradientSampling(*frame.shaders);
             const gl::GradientSampling& gradients = *state.gradientModel;
             const bool ownAnisotropy = !gradients.computeFollowsGradients;
             const GLuint prog = programForLayout(state.program, state.layout, frame, [&](std::vector<std::string> defines) {
                                     addGBufferImageDefines(defines, frame.settings->gbuffer);
                                     defines.push_back("LP_VERTEX_FLOATS " + std::to_string(sizeof(GpuVertex) / sizeof(float)));
+                                    defines.push_back("LP_PREVIOUS_POSITIONS_BINDING " + std::to_string(kPreviousPositionsBinding));
                                     if (ownAnisotropy) defines.push_back("LP_ANISOTROPY_FROM_GRADIENTS");
                                     return frame.shaders->compute("visibility_resolve.comp", defines);
                                 }).id();
@@ -210,6 +238,8 @@ GBuffer addVisibilityResolvePass(fg::FrameGraph& graph, VisibilityResolvePass& s
             const GLuint buffers[5] = {state.vertices.id(), state.indices.id(), state.draws.id(), meshBuffer, materialBuffer};
             for (GLuint i = 0; i < 5; ++i) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, buffers[i]);
             if (state.uv1) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, state.uv1.id());
+            glProgramUniform1i(prog, loc("uAnimated"), gpu.animated);
+            if (gpu.animated) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPreviousPositionsBinding, state.previousPositions.id());
             glBindTextureUnit(5, res.texture(d.ids));
             glBindTextureUnit(6, res.texture(d.depth));
             glProgramUniform1f(prog, loc("uBackgroundDepth"),
@@ -239,6 +269,7 @@ GBuffer addVisibilityResolvePass(fg::FrameGraph& graph, VisibilityResolvePass& s
             for (GLuint u = 0; u < 7; ++u) glBindTextureUnit(u, 0);
             unbindGBufferImages();
             for (GLuint i = 0; i < 6; ++i) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, 0);
+            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPreviousPositionsBinding, 0);
             glUseProgram(0);
         });
     return data.out;

@@ -30,6 +30,9 @@ struct VisibilityResolvePass {
     const SceneGpu* geometryOf = nullptr;
     size_t geometryTriangles = 0;
     gl::Buffer vertices, indices, draws;
+    // Every vertex's previous-frame position (vec4, w = 1) where its mesh is animated, else 0: the
+    // velocity reads it when the scene animates (uAnimated).
+    gl::Buffer previousPositions;
     gl::Buffer uv1;  // every mesh's second uv set, a vec2 a vertex (0 where a mesh has none), when the scene samples it
     gl::StreamBuffer meshes{"gbuffer_resolve.meshes"}, materials{"gbuffer_resolve.materials"};  // refilled every frame
     uint32_t drawCount = 0;

@@ -24,6 +24,9 @@ out vec4 vTangent;    // eye space xyz, handedness w
 // Unjittered clip positions this frame and the previous one (common/velocity.glsl).
 uniform mat4 uClipFromModel;
 uniform mat4 uPreviousClipFromModel;
+// The vertex's position in the previous frame: an animated mesh's pose then, else its position
+// (GpuMesh::previousPositions; the location is SceneGpu's kPreviousPositionAttribute).
+layout(location = LP_PREVIOUS_POSITION_ATTRIBUTE) in vec3 inPreviousPosition;
 out vec4 vCurrentClip;
 out vec4 vPreviousClip;
 #endif
@@ -45,6 +48,6 @@ void main() {
     gl_Position = uProjection * p;
 #ifdef LP_GBUFFER_VELOCITY
     vCurrentClip = uClipFromModel * vec4(inPosition, 1.0);
-    vPreviousClip = uPreviousClipFromModel * vec4(inPosition, 1.0);
+    vPreviousClip = uPreviousClipFromModel * vec4(inPreviousPosition, 1.0);
 #endif
 }

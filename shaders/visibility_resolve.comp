@@ -74,6 +74,15 @@ layout(std430, binding = 4) readonly buffer Materials { MaterialRecord materials
 #ifdef LP_SECOND_UV  // a material samples TEXCOORD_1: every vertex's second uv set, numbered as `vertices`
 layout(std430, binding = 5) readonly buffer SecondUvs { vec2 secondUvs[]; };
 #endif
+// The previous frame's position of every vertex of an animated mesh (w = 1), 0 elsewhere: read
+// only when the scene animates (uAnimated); a still vertex's previous position is its position.
+layout(std430, binding = LP_PREVIOUS_POSITIONS_BINDING) readonly buffer PreviousPositions { vec4 previousPositions[]; };
+uniform bool uAnimated;
+vec3 previousPosition(uint v, vec3 current) {
+    if (!uAnimated) return current;
+    vec4 p = previousPositions[v];
+    return p.w == 1.0 ? p.xyz : current;
+}
 
 // The last draw whose first triangle is <= triangle.
 uint findDraw(uint triangle) {
@@ -306,7 +315,8 @@ void main() {
     if ((uTargets & LP_TARGET_MATERIAL_INPUT) != 0u) imageStore(uMaterialInputOut, p, materialInputValue(g));
     if ((uTargets & LP_TARGET_VELOCITY) != 0u) {
         vec4 object = vec4(interpolateAttribute(b, o0, o1, o2), 1.0);
-        vec2 v = velocityFromClip(mesh.clipFromModel * object, mesh.previousClipFromModel * object);
+        vec4 previousObject = vec4(interpolateAttribute(b, previousPosition(i0, o0), previousPosition(i1, o1), previousPosition(i2, o2)), 1.0);
+        vec2 v = velocityFromClip(mesh.clipFromModel * object, mesh.previousClipFromModel * previousObject);
         imageStore(uVelocityOut, p, vec4(v, 0.0, 0.0));
     }
 }

@@ -24,6 +24,7 @@
 #include "engine/io/gltf_container.hpp"
 #include "engine/io/gltf_schema.hpp"
 #include "engine/io/json_text.hpp"
+#include "engine/scene/animation.hpp"
 #include "engine/scene/mesh_ops.hpp"
 
 namespace lp {
@@ -849,6 +850,8 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
     const std::set<int> integers = {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
                                     TINYGLTF_COMPONENT_TYPE_SHORT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT};
     const std::set<int> signedNormalised = {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_COMPONENT_TYPE_SHORT};
+    const std::set<int> signedNormalisedOrUnsigned = {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
+                                                      TINYGLTF_COMPONENT_TYPE_SHORT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT};
     const std::set<int>& positionTypes = quantized ? integers : floats;
     const std::set<int>& directionTypes = quantized ? signedNormalised : floats;  // normals and tangents
     const std::set<int> uvTypes = quantized ? integers
@@ -1091,6 +1094,116 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
         mesh.vertices.insert(mesh.vertices.end(), part.vertices.begin(), part.vertices.end());
     };
 
+    // Animations, every clip checked whole before anything is drawn (docs/bad-input.md): a channel's
+    // node, path and sampler, a sampler's interpolation, its key times (finite, strictly increasing)
+    // and values (finite, as many as the interpolation needs). Channels on morph weights are not
+    // applied (said once).
+    auto animation = std::make_shared<NodeAnimation>();
+    std::vector<char> targeted(model.nodes.size(), 0);
+    size_t weightChannels = 0, pointerChannels = 0;
+    std::string firstWeightChannel, firstPointerChannel;
+    for (size_t a = 0; a < model.animations.size(); ++a) {
+        const tinygltf::Animation& an = model.animations[a];
+        const std::string aw = "animations[" + std::to_string(a) + "]";
+        AnimationClip clip;
+        clip.name = an.name;
+        std::vector<int> samplerSlot(an.samplers.size(), -1);  // an.samplers -> clip.samplers
+        std::vector<AnimationPath> samplerPath(an.samplers.size());
+        std::set<std::pair<int, int>> moved;  // (node, path) of this clip's channels
+        for (size_t c = 0; c < an.channels.size(); ++c) {
+            const tinygltf::AnimationChannel& ch = an.channels[c];
+            const std::string cw = aw + ".channels[" + std::to_string(c) + "]";
+            if (ch.sampler < 0 || size_t(ch.sampler) >= an.samplers.size())
+                L.fail(cw + ".sampler", std::to_string(ch.sampler) + " does not exist (" + aw + " has " +
+                                            std::to_string(an.samplers.size()) + " samplers)");
+            if (ch.target_path == "weights") {
+                if (weightChannels++ == 0) firstWeightChannel = cw;
+                continue;
+            }
+            AnimationPath path = AnimationPath::Translation;
+            if (ch.target_path == "rotation") path = AnimationPath::Rotation;
+            else if (ch.target_path == "scale") path = AnimationPath::Scale;
+            else if (ch.target_path != "translation")
+                L.fail(cw + ".target.path", quoteUserText(ch.target_path) + " is not translation, rotation, scale or weights");
+            if (ch.target_node < 0) {  // an extension (KHR_animation_pointer) says what moves
+                if (pointerChannels++ == 0) firstPointerChannel = cw;
+                continue;
+            }
+            const std::string nw = "nodes[" + std::to_string(ch.target_node) + "]";
+            if (size_t(ch.target_node) >= model.nodes.size())
+                L.fail(cw + ".target.node", std::to_string(ch.target_node) + " does not exist (" + std::to_string(model.nodes.size()) + " nodes)");
+            if (model.nodes[size_t(ch.target_node)].matrix.size() == 16)
+                L.fail(cw + ".target.node", nw + " has a matrix; an animated node must have translation, rotation and scale instead");
+            if (!moved.insert({ch.target_node, int(path)}).second)
+                L.fail(cw + ".target", nw + " " + ch.target_path + " is already the target of another channel of " + aw);
+            if (samplerSlot[size_t(ch.sampler)] >= 0 && samplerPath[size_t(ch.sampler)] != path &&
+                (path == AnimationPath::Rotation || samplerPath[size_t(ch.sampler)] == AnimationPath::Rotation))
+                L.fail(cw + ".sampler", std::to_string(ch.sampler) + " also drives a channel of another type (a rotation's values are VEC4, a translation's and scale's VEC3)");
+            if (samplerSlot[size_t(ch.sampler)] < 0) {
+                samplerSlot[size_t(ch.sampler)] = int(clip.samplers.size());
+                samplerPath[size_t(ch.sampler)] = path;
+                clip.samplers.emplace_back();
+            }
+            clip.channels.push_back({ch.target_node, path, samplerSlot[size_t(ch.sampler)]});
+            targeted[size_t(ch.target_node)] = 1;
+        }
+        for (size_t s = 0; s < an.samplers.size(); ++s) {
+            if (samplerSlot[s] < 0) continue;  // drives no channel lightpass applies
+            const tinygltf::AnimationSampler& sm = an.samplers[s];
+            const std::string sw = aw + ".samplers[" + std::to_string(s) + "]";
+            AnimationSampler& out = clip.samplers[size_t(samplerSlot[s])];
+            const auto named = std::find_if(std::begin(kAnimationInterpolationNames), std::end(kAnimationInterpolationNames),
+                                            [&](const AnimationInterpolationName& n) { return sm.interpolation == n.name; });
+            if (named == std::end(kAnimationInterpolationNames))
+                L.fail(sw + ".interpolation", quoteUserText(sm.interpolation) + " is not LINEAR, STEP or CUBICSPLINE");
+            out.interpolation = named->interpolation;
+            const bool rotation = samplerPath[s] == AnimationPath::Rotation;
+            const std::string iw = sw + ".input (accessors[" + std::to_string(sm.input) + "])";
+            const std::string ow = sw + ".output (accessors[" + std::to_string(sm.output) + "])";
+            const Loader::View in = L.view(sm.input, sw + ".input", {TINYGLTF_TYPE_SCALAR}, {TINYGLTF_COMPONENT_TYPE_FLOAT});
+            // A rotation may be a normalised integer (KHR_mesh_quantization's and the spec's table).
+            const Loader::View values = L.view(sm.output, sw + ".output", {rotation ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3},
+                                               rotation ? signedNormalisedOrUnsigned : floats);
+            if (values.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT && !values.normalized)
+                L.fail(ow, "integer rotations must be \"normalized\"");
+            const size_t perKey = out.interpolation == AnimationInterpolation::CubicSpline ? 3 : 1;
+            if (in.count == 0) L.fail(iw, "has no key times");
+            if (perKey == 3 && in.count < 2) L.fail(iw, "CUBICSPLINE needs at least 2 key times, this has 1");
+            if (values.count != in.count * perKey)
+                L.fail(ow, std::to_string(values.count) + " values for " + std::to_string(in.count) + " key times: " + sm.interpolation +
+                               " needs " + std::to_string(in.count * perKey) + (perKey == 3 ? " (in-tangent, value, out-tangent a key)" : " (one a key)"));
+            out.times.resize(in.count);
+            for (size_t k = 0; k < in.count; ++k) {
+                const float t = Loader::component(in, k, 0);
+                if (!std::isfinite(t)) L.fail(iw, "key time " + std::to_string(k) + " is not finite");
+                if (k > 0 && !(t > out.times[k - 1]))
+                    L.fail(iw, "key time " + std::to_string(k) + " (" + formatNumber(t) + ") is not after key time " + std::to_string(k - 1) +
+                                   " (" + formatNumber(out.times[k - 1]) + "): key times must increase");
+                out.times[k] = t;
+            }
+            out.values.resize(values.count);
+            for (size_t k = 0; k < values.count; ++k) {
+                glm::vec4 v(0.0f);
+                for (int i = 0; i < (rotation ? 4 : 3); ++i) v[i] = Loader::component(values, k, i);
+                if (!std::isfinite(v.x + v.y + v.z + v.w)) L.fail(ow, "value " + std::to_string(k) + " is not finite");
+                out.values[k] = v;
+            }
+            // A key rotation of length 0 is no rotation (slerp needs a direction); a tangent may be 0.
+            if (rotation)
+                for (size_t k = perKey == 3 ? 1 : 0; k < values.count; k += perKey)
+                    if (glm::length(out.values[k]) == 0.0f) L.fail(ow, "value " + std::to_string(k) + " is a rotation of length 0");
+            clip.duration = std::max(clip.duration, out.times.back());
+        }
+        animation->clips.push_back(std::move(clip));
+    }
+    if (weightChannels > 0)
+        L.warn(firstWeightChannel, std::to_string(weightChannels) + " channel" + (weightChannels > 1 ? "s" : "") +
+                                       " on morph target weights, which lightpass does not apply; ignored");
+    if (pointerChannels > 0)
+        L.warn(firstPointerChannel, std::to_string(pointerChannels) + " channel" + (pointerChannels > 1 ? "s" : "") +
+                                        " without a target node (an extension's target); ignored");
+    animation->nodes.resize(model.nodes.size());
+
     // The scene's nodes, depth first; a node met twice on one path is a cycle.
     std::vector<int> roots;
     int sceneIndex = model.defaultScene >= 0 ? model.defaultScene : (model.scenes.empty() ? -1 : 0);
@@ -1177,11 +1290,20 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
     // One node, its parent's world transform given (the tree check above has made sure each exists and
     // is reached once); its children are returned to the walk below, which keeps its own stack (a
     // recursive walk of a chain 1023 levels deep overflowed a 1 MiB stack).
-    auto visit = [&](int n, const glm::mat4& parent) -> glm::mat4 {
+    auto visit = [&](int n, const glm::mat4& parent, int parentNode, bool animated) -> glm::mat4 {
         const std::string w = "nodes[" + std::to_string(n) + "]";
         const tinygltf::Node& node = model.nodes[size_t(n)];
         std::string rotationProblem;
         const glm::dquat r = node.matrix.size() == 16 ? glm::dquat(1.0, 0.0, 0.0, 0.0) : Loader::rotation(node.rotation, rotationProblem);
+        // The node's rest transform, for posing it and its children (NodeAnimation).
+        AnimatedNode& rest = animation->nodes[size_t(n)];
+        rest.parent = parentNode;
+        rest.hasMatrix = node.matrix.size() == 16;
+        rest.matrix = Loader::localMatrix(node, r);
+        if (node.translation.size() == 3) rest.translation = glm::vec3(node.translation[0], node.translation[1], node.translation[2]);
+        if (node.scale.size() == 3) rest.scale = glm::vec3(node.scale[0], node.scale[1], node.scale[2]);
+        rest.rotation = glm::quat(float(r.w), float(r.x), float(r.y), float(r.z));
+        animation->order.push_back(n);
         if (rotationProblem == "zero")
             repairs.add(w + ".rotation", 1, "rotations of length 0 (not a rotation)", "no rotation used", "nodes");
         else if (!rotationProblem.empty())
@@ -1194,7 +1316,28 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
                 L.fail(w + ".mesh", std::to_string(node.mesh) + " does not exist (" + std::to_string(model.meshes.size()) + " meshes)");
             // One line for the whole file, however many skinned nodes it has.
             if (node.skin >= 0) repairs.add(w, 0, "a skin, which lightpass does not apply", "drawn in the bind pose", "nodes");
-            for (size_t p = 0; p < model.meshes[size_t(node.mesh)].primitives.size(); ++p) addPrimitive(node.mesh, int(p), world);
+            for (size_t p = 0; p < model.meshes[size_t(node.mesh)].primitives.size(); ++p) {
+                if (!animated) {
+                    addPrimitive(node.mesh, int(p), world);
+                    continue;
+                }
+                // A node that moves: its primitive read in the node's own space (kept for posing), then
+                // placed at rest as addPrimitive places any other.
+                const size_t firstVertex = mesh.vertices.size(), firstIndex = mesh.indices.size();
+                addPrimitive(node.mesh, int(p), glm::mat4(1.0f));
+                const size_t count = mesh.vertices.size() - firstVertex;
+                if (count == 0) continue;
+                NodeVertexRange range;
+                range.node = n;
+                range.firstVertex = uint32_t(firstVertex);
+                range.vertexCount = uint32_t(count);
+                range.firstLocal = uint32_t(animation->restLocal.size());
+                range.mirrored = glm::determinant(glm::mat3(world)) < 0.0f;
+                animation->restLocal.insert(animation->restLocal.end(), mesh.vertices.begin() + ptrdiff_t(firstVertex), mesh.vertices.end());
+                animation->ranges.push_back(range);
+                if (range.mirrored)  // front faces stay front faces, as addPrimitive does for a mirroring node
+                    for (size_t i = firstIndex; i + 2 < mesh.indices.size(); i += 3) std::swap(mesh.indices[i + 1], mesh.indices[i + 2]);
+            }
         }
         const glm::vec3 origin(world[3]);
         const glm::vec3 forward = glm::normalize(glm::mat3(world) * glm::vec3(0, 0, -1));
@@ -1282,21 +1425,25 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
     struct Pending {
         int node;
         glm::mat4 parentWorld;
+        int parent;
+        bool parentAnimated;  // a channel moves the parent or one of its ancestors
     };
     std::vector<Pending> pending;
-    for (auto it = roots.rbegin(); it != roots.rend(); ++it) pending.push_back({*it, glm::mat4(1.0f)});
+    for (auto it = roots.rbegin(); it != roots.rend(); ++it) pending.push_back({*it, glm::mat4(1.0f), -1, false});
     while (!pending.empty()) {
         const Pending p = pending.back();
         pending.pop_back();
-        const glm::mat4 world = visit(p.node, p.parentWorld);
+        const bool animated = p.parentAnimated || targeted[size_t(p.node)];
+        const glm::mat4 world = visit(p.node, p.parentWorld, p.parent, animated);
         const std::vector<int>& children = model.nodes[size_t(p.node)].children;
-        for (auto it = children.rbegin(); it != children.rend(); ++it) pending.push_back({*it, world});
+        for (auto it = children.rbegin(); it != children.rend(); ++it) pending.push_back({*it, world, p.node, animated});
     }
+    // The rest pose placed through the same math as every other pose: the ranges' vertices as
+    // poseVertices puts them (positions, normals and tangents placed by the node's world matrix).
+    if (!animation->ranges.empty()) poseVertices(*animation, animatedNodeWorlds(*animation, {}, 0.0), mesh.vertices);
+    if (!animation->clips.empty()) out.animation = animation;
 
     repairs.warn(L);
-    if (!model.animations.empty())
-        L.warn("animations", std::to_string(model.animations.size()) +
-                                 " animations, which lightpass does not play; drawn at rest");
     if (report.droppedDegenerate || report.droppedNonFinite)
         report.warnings.push_back(file + ": dropped " + std::to_string(report.droppedDegenerate) + " degenerate and " +
                                   std::to_string(report.droppedNonFinite) + " non-finite triangles");

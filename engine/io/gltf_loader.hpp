@@ -2,9 +2,11 @@
 // glTF 2.0 (.gltf + .bin, .glb) through tinygltf, into the same MeshData the OBJ loader makes, plus the
 // file's cameras and KHR_lights_punctual lights.
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "engine/scene/animation.hpp"
 #include "engine/scene/mesh.hpp"
 #include "engine/scene/scene.hpp"
 
@@ -19,6 +21,10 @@ struct GltfContent {
     std::vector<Camera> cameras;  // perspective cameras placed by their nodes, in file order
     std::vector<DirectionalLight> directionalLights;
     std::vector<PointLight> pointLights;  // point lights, and spot lights (`spot` set: the node's -Z, the cone)
+    // The file's animations (node translation, rotation and scale), checked whole; null when it has
+    // none. The mesh above is the rest pose; the vertices of nodes a channel moves are also kept in
+    // their node's space (NodeAnimation::ranges). Cameras and lights stay where the rest pose puts them.
+    std::shared_ptr<const NodeAnimation> animation;
 };
 
 // Throws lp::Error("<path>: <element>: <what>"), the element as the file names it

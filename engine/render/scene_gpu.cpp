@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstring>
+#include <cmath>
 #include <limits>
 
 #include "engine/core/log.hpp"
@@ -80,7 +81,10 @@ SceneGpu::SceneGpu(const Scene& scene) {
         gm.vao = gl::makeVertexArray(model.name);
         std::vector<GpuVertex> vertices(mesh.vertices.size());
         for (size_t i = 0; i < vertices.size(); ++i) std::memcpy(&vertices[i], &mesh.vertices[i], sizeof(GpuVertex));
-        gm.vertices = gl::makeBuffer(GLsizeiptr(vertices.size() * sizeof(GpuVertex)), vertices.data(), 0, model.name + ".vertices");
+        // An animated model's vertices are rewritten each frame it moves (pose); every other buffer is immutable.
+        gm.animated = model.animation && !model.playingClips.empty() && !model.animation->ranges.empty() && !vertices.empty();
+        gm.vertices = gl::makeBuffer(GLsizeiptr(vertices.size() * sizeof(GpuVertex)), vertices.data(),
+                                     gm.animated ? GL_DYNAMIC_STORAGE_BIT : 0, model.name + ".vertices");
         gm.indices = gl::makeBuffer(GLsizeiptr(mesh.indices.size() * sizeof(uint32_t)), mesh.indices.data(), 0,
                                     model.name + ".indices");
         geometryBytes += vertices.size() * sizeof(GpuVertex) + mesh.indices.size() * sizeof(uint32_t);
@@ -111,6 +115,26 @@ SceneGpu::SceneGpu(const Scene& scene) {
         attrib(2, 2, offsetof(GpuVertex, uv));
         attrib(3, 4, offsetof(GpuVertex, tangent));
         attrib(4, 4, offsetof(GpuVertex, color));
+        // Attribute kPreviousPositionAttribute, the previous frame's position (gbuffer.vert's velocity): an animated mesh's own
+        // buffer, else the vertex's position.
+        Pose pose;
+        if (gm.animated) {
+            std::vector<glm::vec4> previous(vertices.size());
+            for (size_t i = 0; i < previous.size(); ++i) previous[i] = glm::vec4(vertices[i].position, 1.0f);
+            gm.previousPositions = gl::makeBuffer(GLsizeiptr(previous.size() * sizeof(glm::vec4)), previous.data(), GL_DYNAMIC_STORAGE_BIT,
+                                                  model.name + ".previous_positions");
+            geometryBytes += previous.size() * sizeof(glm::vec4);
+            glVertexArrayVertexBuffer(vao, 2, gm.previousPositions.id(), 0, sizeof(glm::vec4));
+            pose.vertices = mesh.vertices;
+            pose.previous = std::move(previous);
+            animated = true;
+        } else {
+            glVertexArrayVertexBuffer(vao, 2, gm.vertices.id(), 0, sizeof(GpuVertex));
+        }
+        poses_.push_back(std::move(pose));
+        glEnableVertexArrayAttrib(vao, kPreviousPositionAttribute);
+        glVertexArrayAttribFormat(vao, kPreviousPositionAttribute, 3, GL_FLOAT, GL_FALSE, 0);
+        glVertexArrayAttribBinding(vao, kPreviousPositionAttribute, 2);
         if (gm.uv1.id() != 0) {  // without it attribute 5 reads (0, 0): no material of the mesh samples it
             glVertexArrayVertexBuffer(vao, 1, gm.uv1.id(), 0, sizeof(glm::vec2));
             glEnableVertexArrayAttrib(vao, 5);
@@ -161,6 +185,69 @@ SceneGpu::SceneGpu(const Scene& scene) {
         meshes.push_back(std::move(gm));
     }
     casterClusters = buildCasterClusters(scene);
+}
+
+void SceneGpu::pose(const Scene& scene, double time, double previousTime) {
+    animatedMotion = false;
+    for (size_t i = 0; i < meshes.size() && i < scene.models.size(); ++i) {
+        GpuMesh& gm = meshes[i];
+        if (!gm.animated) continue;
+        const ModelInstance& model = scene.models[i];
+        const NodeAnimation& animation = *model.animation;
+        Pose& p = poses_[i];
+        std::vector<glm::mat4> worlds = animatedNodeWorlds(animation, model.playingClips, time);
+        std::vector<glm::mat4> previousWorlds =
+            previousTime == time ? worlds : animatedNodeWorlds(animation, model.playingClips, previousTime);
+        animatedMotion |= worlds != previousWorlds;
+        if (previousWorlds != p.previousWorlds) {
+            // Playing on, the previous frame's pose is the one the vertex buffer holds: its positions
+            // are kept; otherwise (a jump, the first frame) they are placed from the rest pose.
+            if (previousWorlds == p.worlds) {
+                for (const NodeVertexRange& r : animation.ranges)
+                    for (uint32_t k = r.firstVertex; k < r.firstVertex + r.vertexCount; ++k) p.previous[k] = glm::vec4(p.vertices[k].position, 1.0f);
+            } else {
+                for (const NodeVertexRange& r : animation.ranges) {
+                    const glm::mat4& world = previousWorlds[size_t(r.node)];
+                    for (uint32_t k = 0; k < r.vertexCount; ++k)
+                        p.previous[r.firstVertex + k] = world * glm::vec4(animation.restLocal[r.firstLocal + k].position, 1.0f);
+                }
+            }
+            glNamedBufferSubData(gm.previousPositions.id(), 0, GLsizeiptr(p.previous.size() * sizeof(glm::vec4)), p.previous.data());
+            p.previousWorlds = std::move(previousWorlds);
+        }
+        if (worlds != p.worlds) {
+            poseVertices(animation, worlds, p.vertices);
+            // Only the ranges that move are written: the vertices of still nodes are never touched.
+            std::vector<GpuVertex> range;
+            for (const NodeVertexRange& r : animation.ranges) {
+                range.resize(r.vertexCount);
+                for (uint32_t k = 0; k < r.vertexCount; ++k) std::memcpy(&range[k], &p.vertices[r.firstVertex + k], sizeof(GpuVertex));
+                glNamedBufferSubData(gm.vertices.id(), GLintptr(r.firstVertex * sizeof(GpuVertex)),
+                                     GLsizeiptr(range.size() * sizeof(GpuVertex)), range.data());
+            }
+            p.worlds = std::move(worlds);
+            ++gm.poseVersion;
+            // The shadow casters' bounds and the transparent sort's centres, from the posed vertices.
+            const MeshData& mesh = model.mesh;
+            auto boundsOf = [&](uint32_t first, uint32_t count, glm::vec3& lo, glm::vec3& hi) {
+                lo = glm::vec3(std::numeric_limits<float>::max());
+                hi = glm::vec3(-std::numeric_limits<float>::max());
+                for (uint32_t k = first; k < first + count && k < mesh.indices.size(); ++k) {
+                    const glm::vec3& v = p.vertices[mesh.indices[k]].position;
+                    if (!std::isfinite(v.x + v.y + v.z)) continue;
+                    lo = glm::min(lo, v);
+                    hi = glm::max(hi, v);
+                }
+            };
+            for (CasterCluster& c : casterClusters)
+                if (c.model == int(i)) boundsOf(c.firstIndex, c.indexCount, c.boundsMin, c.boundsMax);
+            for (GpuDraw& d : gm.draws) {
+                glm::vec3 lo, hi;
+                boundsOf(d.firstIndex, d.indexCount, lo, hi);
+                if (d.indexCount > 0) d.centre = 0.5f * (lo + hi);
+            }
+        }
+    }
 }
 
 }  // namespace lp

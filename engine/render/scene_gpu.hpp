@@ -28,6 +28,10 @@ struct GpuVertex {
 };
 static_assert(sizeof(GpuVertex) == offsetof(Vertex, uv1), "GpuVertex is lp::Vertex up to uv1");
 
+// The vertex attribute of the previous frame's position (gbuffer.vert's LP_PREVIOUS_POSITION_ATTRIBUTE):
+// 0-4 are GpuVertex's members, 5 the second uv set.
+constexpr GLuint kPreviousPositionAttribute = 6;
+
 struct GpuMaterial {
     glm::vec3 diffuse{0.8f};  // base colour
     float opacity = 1.0f;
@@ -70,6 +74,15 @@ struct GpuMesh {
     gl::Buffer uv1;  // the second uv set, a vec2 a vertex (attribute 5), where its materials sample it; else none
     glm::mat4 model{1.0f};
     std::vector<GpuDraw> draws;
+    // An animated model (a glTF clip playing, SceneGpu::pose): `vertices` holds the pose at the frame's
+    // time and `previousPositions` (a vec4 a vertex, w = 1; vertex attribute 6) the positions at the
+    // previous frame's time, for motion vectors. A still mesh reads attribute 6 from `vertices`' own
+    // positions: its previous position is its position.
+    bool animated = false;
+    gl::Buffer previousPositions;
+    // Changes whenever the pose in `vertices` changes (the shadow cascade cache and the visibility
+    // resolve's copy of the geometry follow it); 0 for a mesh that never moves.
+    uint64_t poseVersion = 0;
 };
 
 class SceneGpu {
@@ -83,9 +96,26 @@ public:
     size_t triangleCount = 0;
     bool vertexColors = false;  // some vertex has a colour other than white (the G-buffer programs read them: LP_VERTEX_COLOR)
     bool secondUvSet = false;   // some material samples TEXCOORD_1 (the programs read it: LP_SECOND_UV)
+    bool animated = false;      // some mesh is animated (the visibility resolve reads previous positions)
+    // Whether some animated vertex is elsewhere at the previous frame's time than at this frame's
+    // (set by pose): motion blur then runs with a still camera.
+    bool animatedMotion = false;
+
+    // Poses every animated model of `scene` (the scene this was made from) at `time`: positions,
+    // normals and tangents into its vertex buffer, positions at `previousTime` into its previous
+    // positions; a pose the buffers already hold is not uploaded again. The casters' bounds and the
+    // draws' centres follow. CPU work (engine/scene/animation), one upload per moved mesh.
+    void pose(const Scene& scene, double time, double previousTime);
 
 private:
     GLuint texture(const TextureRef& ref, bool srgb);
+    // What an animated mesh's buffers hold: the node matrices of its current and previous pose.
+    struct Pose {
+        std::vector<glm::mat4> worlds, previousWorlds;
+        std::vector<Vertex> vertices;  // the mesh's vertices as loaded, posed in place
+        std::vector<glm::vec4> previous;
+    };
+    std::vector<Pose> poses_;  // one a mesh; empty for meshes that are not animated
     std::map<std::string, gl::Texture> textures_;
 };
 

@@ -1,8 +1,11 @@
 #include "engine/scene/scene.hpp"
 
 #include <limits>
+#include <string>
 
 #include <glm/gtc/matrix_transform.hpp>
+
+#include "engine/core/error.hpp"
 
 namespace lp {
 
@@ -41,6 +44,27 @@ void Scene::bounds(glm::vec3& lo, glm::vec3& hi) const {
         }
     }
     if (models.empty()) lo = hi = glm::vec3(0.0f);
+}
+
+bool ModelInstance::movesBetween(double t0, double t1) const {
+    if (!animation || playingClips.empty() || animation->ranges.empty() || t0 == t1) return false;
+    return animatedNodeWorlds(*animation, playingClips, t0) != animatedNodeWorlds(*animation, playingClips, t1);
+}
+
+void playAnimations(Scene& scene, const std::string& choice) {
+    bool found = choice.empty() || choice == "none" || choice == "all";
+    std::string clips;  // what there is, for the error
+    for (ModelInstance& m : scene.models) {
+        if (!m.animation) continue;
+        m.playingClips = chooseClips(*m.animation, choice);
+        found |= !m.playingClips.empty();
+        for (size_t c = 0; c < m.animation->clips.size() && clips.size() < 300; ++c)
+            clips += (clips.empty() ? "" : ", ") + std::to_string(c) + " " + quoteUserText(m.animation->clips[c].name);
+    }
+    if (!found)
+        throw Error("--animation " + choice + ": no model has an animation of that " +
+                    (choice.find_first_not_of("0123456789") == std::string::npos ? "index" : "name") +
+                    (clips.empty() ? std::string(" (the scene has no animations)") : " (animations: " + clips + ")"));
 }
 
 }  // namespace lp

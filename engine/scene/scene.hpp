@@ -3,12 +3,14 @@
 // Units: metres for lengths; a directional light's intensity is its irradiance at normal incidence;
 // a point light's intensity is its radiant intensity (irradiance = intensity / d^2 before the window).
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
 
+#include "engine/scene/animation.hpp"
 #include "engine/scene/camera_path.hpp"
 #include "engine/scene/mesh.hpp"
 
@@ -94,7 +96,13 @@ struct ModelInstance {
     std::optional<bool> flatOverride;  // "material": {"flat": true}: every material of the model flat-lit
     // "material": {"opacity": a}: every material's opacity; below 1 it is alpha-blended (transparent pass)
     std::optional<float> opacityOverride;
-    MeshData mesh;  // filled by the loader
+    MeshData mesh;  // filled by the loader (a glTF's rest pose)
+    // A glTF's animations (null: none) and the clips that play on the scene's clock (--animation;
+    // by default the first clip), indices into animation->clips.
+    std::shared_ptr<const NodeAnimation> animation;
+    std::vector<int> playingClips;
+    // Whether the model's playing clips put some vertex elsewhere at time t1 than at t0.
+    bool movesBetween(double t0, double t1) const;
 };
 
 // Lights a scene shades with instead of its own directional lights and ambient on a frame that IBL
@@ -130,5 +138,10 @@ struct Scene {
     // World-space bounds of every model (after transforms).
     void bounds(glm::vec3& lo, glm::vec3& hi) const;
 };
+
+// --animation CHOICE: the clips every animated model plays ("" the first, "none", "all", an index or
+// a name; chooseClips). Throws lp::Error naming the choice and the clips there are when no model has
+// the index or name asked for.
+void playAnimations(Scene& scene, const std::string& choice);
 
 }  // namespace lp

@@ -366,6 +366,8 @@ void loadMesh(const Reader& r, ModelInstance& m, const std::string& where, Scene
             auto it = parsed.gltf.find(key);
             if (it == parsed.gltf.end()) it = parsed.gltf.emplace(key, loadGltf(m.gltf)).first;
             m.mesh = it->second.mesh;
+            m.animation = it->second.animation;
+            if (m.animation) m.playingClips = chooseClips(*m.animation, "");  // the first clip, as glTF viewers play
             addGltfLights(it->second, m.transform, scene);
         } catch (const Error& e) {  // "<scene>: models[i].gltf: <gltf>: <element>: <what>"
             r.fail(where + ".gltf", e.what());
@@ -571,6 +573,8 @@ Scene sceneForModel(const fs::path& file, bool zUp) {
         m.gltf = file;
         GltfContent g = loadGltf(file);
         m.mesh = std::move(g.mesh);
+        m.animation = g.animation;
+        if (m.animation) m.playingClips = chooseClips(*m.animation, "");  // the first clip, as glTF viewers play
         addGltfLights(g, m.transform, scene);
         fileLights = !g.directionalLights.empty() || !g.pointLights.empty();
         if (!g.cameras.empty()) fileCamera = g.cameras.front();

@@ -1,0 +1,253 @@
+// Animated models on the GPU: the velocity of an animated vertex in gbuffer.velocity (classic and
+// visibility G-buffer) against its analytic screen motion, motion blur under a still camera, and the
+// shadow cascade cache invalidated by what moved, not by the clock.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "engine/graph/texture_pool.hpp"
+#include "engine/render/motion.hpp"
+#include "engine/render/scene_gpu.hpp"
+#include "engine/scene/animation.hpp"
+#include "engine/scene/primitives.hpp"
+#include "frame/frame_builder.hpp"
+#include "frame/renderer.hpp"
+#include "passes/shadow_map_pass.hpp"
+#include "tests/gl/gl_fixture.hpp"
+
+namespace lp {
+namespace {
+
+constexpr float kSpeed = 2.0f;  // metres per second along +x
+constexpr float kHeight = 0.5f;
+
+// `mesh` on one node whose translation runs linearly from (0, kHeight, 0) at t = 0 to (kSpeed,
+// kHeight, 0) at t = 1 s, looping: the rest pose at (0, kHeight, 0).
+ModelInstance slidingModel(const char* name, MeshData mesh) {
+    auto animation = std::make_shared<NodeAnimation>();
+    AnimatedNode node;
+    node.translation = glm::vec3(0.0f, kHeight, 0.0f);
+    animation->nodes.push_back(node);
+    animation->order = {0};
+    animation->restLocal = mesh.vertices;
+    animation->ranges.push_back({0, 0, uint32_t(mesh.vertices.size()), 0, false});
+    AnimationClip clip;
+    clip.name = "slide";
+    AnimationSampler sampler;
+    sampler.times = {0.0f, 1.0f};
+    sampler.values = {glm::vec4(0.0f, kHeight, 0.0f, 0.0f), glm::vec4(kSpeed, kHeight, 0.0f, 0.0f)};
+    clip.samplers.push_back(sampler);
+    clip.channels.push_back({0, AnimationPath::Translation, 0});
+    clip.duration = 1.0f;
+    animation->clips.push_back(clip);
+    for (Vertex& v : mesh.vertices) v.position.y += kHeight;  // the rest pose, as the loader places it
+    ModelInstance m;
+    m.name = name;
+    m.mesh = std::move(mesh);
+    m.animation = animation;
+    m.playingClips = {0};
+    return m;
+}
+
+// A still 6 m floor and a 1 m plane sliding above it, seen from above and in front.
+Scene slidingScene() {
+    Scene s;
+    ModelInstance floor;
+    floor.name = "floor";
+    floor.mesh = makePlane(6.0f, 2);
+    s.models.push_back(std::move(floor));
+    s.models.push_back(slidingModel("slider", makePlane(1.0f, 2)));
+    s.camera.position = {0.5f, 4.0f, 3.0f};
+    s.camera.target = {0.5f, 0.0f, 0.0f};
+    s.camera.fovYDegrees = 50.0f;
+    s.camera.nearPlane = 0.1f;
+    s.camera.farPlane = 30.0f;
+    return s;
+}
+
+RenderSettings smallSettings() {
+    RenderSettings s;
+    s.aa.method = AntiAliasing::Off;
+    s.autoExposure = false;
+    s.width = 64;
+    s.height = 48;
+    return s;
+}
+
+struct Velocities {
+    std::vector<float> depth;
+    std::vector<glm::vec2> velocity;
+};
+
+// The G-buffer of `mode` alone, with velocity, for the frame at `time` after one at `previousTime`,
+// the models posed as the Renderer poses them.
+Velocities renderVelocity(const Scene& scene, GBufferMode mode, float previousTime, float time, FrameData* frameOut) {
+    RenderSettings settings = smallSettings();
+    settings.gbuffer.mode = mode;
+    const FrameData previous = makeFrameData(scene, settings, previousTime);
+    FrameData frame = makeFrameData(scene, settings, time);
+    applyMotion(frame, motionHistoryOf(previous), glm::vec2(0.0f));
+    SceneGpu gpu(scene);
+    gpu.pose(scene, frame.time, frame.previousTime);
+    gl::ShaderLibrary shaders;
+    frame.gpu = &gpu;
+    frame.shaders = &shaders;
+    PassStates states;
+    fg::FrameGraph graph;
+    fg::TexturePool pool;
+    GBufferChannels channels;
+    channels.velocity = true;
+    GBuffer g;
+    if (mode == GBufferMode::Visibility) {
+        const VisibilityBuffer v = addVisibilityPass(graph, states.visibility, frame);
+        g = addVisibilityResolvePass(graph, states.visibilityResolve, frame, v, channels);
+    } else {
+        g = addGBufferPass(graph, states.gbuffer, frame, channels);
+    }
+    graph.markOutput(g.depth);
+    graph.markOutput(g.velocity);
+    graph.compile();
+    graph.execute(pool);
+    const size_t n = size_t(frame.width) * size_t(frame.height);
+    Velocities out;
+    out.depth.resize(n);
+    out.velocity.resize(n);
+    glGetTextureImage(graph.outputTexture(g.depth), 0, GL_DEPTH_COMPONENT, GL_FLOAT, GLsizei(n * sizeof(float)), out.depth.data());
+    glGetTextureImage(graph.outputTexture(g.velocity), 0, GL_RG, GL_FLOAT, GLsizei(n * sizeof(glm::vec2)), out.velocity.data());
+    frame.gpu = nullptr;
+    frame.shaders = nullptr;
+    *frameOut = frame;
+    return out;
+}
+
+}  // namespace
+
+// Every pixel of the sliding plane moves as its point does: the point rebuilt from the pixel's depth,
+// moved back by the plane's motion over the frame (kSpeed x dt along x), projected with the same
+// (still) camera; the floor's pixels do not move. In both G-buffer modes, within 0.02 output pixels.
+TEST(AnimationGl, AnimatedVelocityMatchesTheAnalyticScreenMotion) {
+    const Scene scene = slidingScene();
+    const float dt = 1.0f / 30.0f, time = 0.5f;
+    for (GBufferMode mode : {GBufferMode::Classic, GBufferMode::Visibility}) {
+        SCOPED_TRACE(mode == GBufferMode::Classic ? "classic" : "visibility");
+        FrameData frame;
+        const Velocities img = renderVelocity(scene, mode, time - dt, time, &frame);
+        ASSERT_TRUE(frame.hasPrevious);
+        const glm::dmat4 viewProjection = glm::dmat4(frame.unjitteredProjection) * glm::dmat4(frame.view);
+        const glm::dmat4 inverse = glm::inverse(glm::dmat4(frame.projection) * glm::dmat4(frame.view));
+        const glm::dmat4 movedBack = viewProjection * glm::translate(glm::dmat4(1.0), glm::dvec3(-double(kSpeed) * dt, 0.0, 0.0));
+        int sliderPixels = 0, floorPixels = 0;
+        double worst = 0.0;
+        for (int y = 0; y < frame.height; ++y)
+            for (int x = 0; x < frame.width; ++x) {
+                const size_t i = size_t(y) * size_t(frame.width) + size_t(x);
+                if (!(img.depth[i] < 1.0f)) continue;
+                const glm::dvec2 ndc((x + 0.5) / frame.width * 2.0 - 1.0, (y + 0.5) / frame.height * 2.0 - 1.0);
+                const glm::dvec4 h = inverse * glm::dvec4(ndc, img.depth[i] * 2.0 - 1.0, 1.0);
+                const glm::dvec3 p = glm::dvec3(h) / h.w;
+                const bool slider = p.y > 0.5 * kHeight;
+                (slider ? sliderPixels : floorPixels)++;
+                const glm::dvec2 expected = velocityOfPoint(viewProjection, slider ? movedBack : viewProjection, p);
+                const glm::dvec2 error = (glm::dvec2(img.velocity[i]) - expected) * glm::dvec2(frame.width, frame.height);
+                worst = std::max(worst, glm::length(error));
+                if (!slider) EXPECT_EQ(img.velocity[i], glm::vec2(0.0f)) << x << "," << y;
+            }
+        EXPECT_LT(worst, 0.02);
+        EXPECT_GT(sliderPixels, 50);  // 91 of 3072 on this 64x48 frame
+        EXPECT_GT(floorPixels, 100);
+        // Not trivially small: the plane moves 2/30 m, about a pixel or more on this 64 px image.
+        float largest = 0.0f;
+        for (const glm::vec2& v : img.velocity) largest = std::max(largest, std::abs(v.x) * float(frame.width));
+        EXPECT_GT(largest, 0.5f);
+    }
+}
+
+// With no clip playing (--animation none) the model keeps its rest pose and writes no motion.
+TEST(AnimationGl, NoClipPlayingIsStill) {
+    Scene scene = slidingScene();
+    scene.models[1].playingClips.clear();
+    FrameData frame;
+    const Velocities img = renderVelocity(scene, GBufferMode::Classic, 0.4f, 0.5f, &frame);
+    for (const glm::vec2& v : img.velocity) ASSERT_EQ(v, glm::vec2(0.0f));
+}
+
+// Motion blur runs under a still camera when an animated model moves, and not when it holds still.
+TEST(AnimationGl, MotionBlurRunsForAMovingModelUnderAStillCamera) {
+    RenderSettings settings = smallSettings();
+    settings.motionBlur.enabled = true;
+    auto blurRuns = [&](const Scene& scene, float t0, float t1) {
+        Renderer renderer(scene);
+        renderer.render(settings, t0, false);
+        renderer.render(settings, t1, false);
+        for (const auto& d : renderer.graph().explain())
+            if (d.name == "motion_blur") return d.runs;
+        return false;
+    };
+    const Scene scene = slidingScene();
+    EXPECT_TRUE(blurRuns(scene, 0.5f, 0.55f));
+    EXPECT_FALSE(blurRuns(scene, 1.0f, 2.0f));  // the same point of the loop: nothing moved
+    Scene still = scene;
+    still.models[1].playingClips.clear();
+    EXPECT_FALSE(blurRuns(still, 0.5f, 0.55f));
+}
+
+// The sun's cascade cache: an animated caster that moved redraws the tiles (as a fresh redraw draws
+// them); the clock moving a model that does not move (no clip playing), or not moving at all, keeps them.
+TEST(AnimationGl, ShadowCacheFollowsWhatMovedNotTheClock) {
+    RenderSettings settings = smallSettings();
+    settings.shadows.size = 256;
+    settings.shadows.cascades = 2;
+    settings.shadows.redrawBudget = 0;
+    Scene scene = slidingScene();
+    scene.models[1] = slidingModel("slider", makeCube(0.5f));
+    DirectionalLight sun;
+    sun.direction = glm::normalize(glm::vec3(0.4f, -1.0f, 0.3f));
+    scene.directionalLights.push_back(sun);
+    auto allNotes = [](const std::vector<std::string>& notes, const std::string& text) {
+        return !notes.empty() && std::all_of(notes.begin(), notes.end(), [&](const std::string& n) { return n.find(text) != std::string::npos; });
+    };
+    {
+        SceneGpu gpu(scene);
+        ShadowMapPass state;
+        fg::TexturePool pool;
+        gpu.pose(scene, 0.2, 0.2);
+        test::drawShadowAtlas(scene, gpu, settings, state, pool);
+        gpu.pose(scene, 0.2, 0.2);
+        EXPECT_TRUE(allNotes(test::drawShadowAtlas(scene, gpu, settings, state, pool).notes, "kept (unchanged)"));
+        gpu.pose(scene, 0.4, 0.2);
+        const test::ShadowAtlasFrame moved = test::drawShadowAtlas(scene, gpu, settings, state, pool);
+        EXPECT_TRUE(allNotes(moved.notes, "redrawn (casters changed)")) << moved.notes[0];
+        // The kept atlas holds what a fresh one draws of the moved caster, tile by tile.
+        RenderSettings fresh = settings;
+        fresh.shadows.cache = false;
+        ShadowMapPass freshState;
+        fg::TexturePool freshPool;
+        const test::ShadowAtlasFrame redrawn = test::drawShadowAtlas(scene, gpu, fresh, freshState, freshPool);
+        const ShadowFrustum& fr = moved.frustum;
+        const size_t side = size_t(fr.tileSize), width = side * size_t(fr.columns);
+        size_t differing = 0;
+        for (const auto& cascade : fr.cascades) {
+            const size_t x0 = size_t(cascade.tile % fr.columns) * side, y0 = size_t(cascade.tile / fr.columns) * side;
+            for (size_t y = 0; y < side; ++y)
+                for (size_t x = 0; x < side; ++x) differing += moved.depth[(y0 + y) * width + x0 + x] != redrawn.depth[(y0 + y) * width + x0 + x];
+        }
+        EXPECT_EQ(differing, 0u);
+    }
+    {
+        Scene still = scene;
+        still.models[1].playingClips.clear();
+        SceneGpu gpu(still);
+        ShadowMapPass state;
+        fg::TexturePool pool;
+        gpu.pose(still, 0.2, 0.2);
+        test::drawShadowAtlas(still, gpu, settings, state, pool);
+        gpu.pose(still, 0.4, 0.2);
+        EXPECT_TRUE(allNotes(test::drawShadowAtlas(still, gpu, settings, state, pool).notes, "kept (unchanged)"));
+    }
+}
+
+}  // namespace lp
