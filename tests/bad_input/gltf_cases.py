@@ -457,3 +457,50 @@ def add_cases(write, case, render_model, C):
             name = f"mutant_{stem}_byte{k:02d}{os.path.splitext(original)[1]}"
             write(name, data[:at] + bytes([rng.randrange(256)]) + data[at + 1:])
             case(19, name, graph(name), "any", r"{C}/" + name.replace(".", r"\."), max_line=400, timeout=20)
+
+    # ---- 20. animations: a bad channel or sampler is one line naming the file and the element --------
+    def animated(times=(0, 1), values=(0, 0, 0, 1, 0, 0), path="translation", interpolation="LINEAR", kind="VEC3", node=0):
+        g = lit_quad()
+        inp = g.accessor(list(times), FLOAT, "SCALAR", len(times))
+        out = g.accessor(list(values), FLOAT, kind, len(values) // (4 if kind == "VEC4" else 3))
+        g.doc["animations"] = [{"name": "a", "channels": [{"sampler": 0, "target": {"node": node, "path": path}}],
+                                "samplers": [{"input": inp, "output": out, "interpolation": interpolation}]}]
+        return g
+    write("anim_ok.gltf", animated().as_gltf())
+    case(20, "gltf_animation_ok", render_model("anim_ok.gltf") + ["--time", "0.5", "--fps", "30"], "ok", r"animation pose: CPU median",
+         outputs=["{O}/out.png"])
+    write("anim_node.gltf", animated(node=9).as_gltf())
+    case(20, "gltf_animation_node_out_of_range", render_model("anim_node.gltf"), "error",
+         r"{C}/anim_node\.gltf: animations\[0\]\.channels\[0\]\.target\.node: 9 does not exist \([0-9]+ nodes\)$", absent=["{O}/out.png"])
+    write("anim_counts.gltf", animated(values=(0, 0, 0, 1, 0, 0, 2, 0, 0)).as_gltf())
+    case(20, "gltf_animation_counts_mismatch", render_model("anim_counts.gltf"), "error",
+         r"{C}/anim_counts\.gltf: animations\[0\]\.samplers\[0\]\.output \(accessors\[5\]\): 3 values for 2 key times: LINEAR needs 2 \(one a key\)$")
+    write("anim_cubic_counts.gltf", animated(interpolation="CUBICSPLINE").as_gltf())
+    case(20, "gltf_animation_cubic_counts", render_model("anim_cubic_counts.gltf"), "error",
+         r"{C}/anim_cubic_counts\.gltf: animations\[0\]\.samplers\[0\]\.output \(accessors\[5\]\): 2 values for 2 key times: CUBICSPLINE needs 6")
+    write("anim_times.gltf", animated(times=(0, 2, 1), values=(0, 0, 0, 1, 0, 0, 2, 0, 0)).as_gltf())
+    case(20, "gltf_animation_times_not_increasing", render_model("anim_times.gltf"), "error",
+         r"{C}/anim_times\.gltf: animations\[0\]\.samplers\[0\]\.input \(accessors\[4\]\): key time 2 \(1\) is not after key time 1 \(2\): key times must increase$")
+    write("anim_nan_time.gltf", animated(times=(0, float("nan"))).as_gltf())
+    case(20, "gltf_animation_nan_time", render_model("anim_nan_time.gltf"), "error",
+         r"{C}/anim_nan_time\.gltf: animations\[0\]\.samplers\[0\]\.input \(accessors\[4\]\): key time 1 is not finite$")
+    write("anim_inf_value.gltf", animated(values=(0, 0, 0, float("inf"), 0, 0)).as_gltf())
+    case(20, "gltf_animation_inf_value", render_model("anim_inf_value.gltf"), "error",
+         r"{C}/anim_inf_value\.gltf: animations\[0\]\.samplers\[0\]\.output \(accessors\[5\]\): value 1 is not finite$")
+    zero_rotation = animated(values=(0, 0, 0, 1, 0, 0, 0, 0), path="rotation", kind="VEC4")
+    write("anim_zero_rotation.gltf", zero_rotation.as_gltf())
+    case(20, "gltf_animation_zero_rotation", render_model("anim_zero_rotation.gltf"), "error",
+         r"{C}/anim_zero_rotation\.gltf: animations\[0\]\.samplers\[0\]\.output \(accessors\[5\]\): value 1 is a rotation of length 0$")
+    on_matrix = animated()
+    on_matrix.doc["nodes"][0]["matrix"] = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]
+    write("anim_matrix.gltf", on_matrix.as_gltf())
+    case(20, "gltf_animation_on_matrix_node", render_model("anim_matrix.gltf"), "error",
+         r"{C}/anim_matrix\.gltf: animations\[0\]\.channels\[0\]\.target\.node: nodes\[0\] has a matrix; an animated node must have translation, rotation and scale instead$")
+    # The animated file mutated as class 19 mutates: it loads or fails with one clean line.
+    anim_doc = json.loads(animated().as_gltf())
+    anim_paths = [p for p in paths(anim_doc) if p and p[0] in ("animations", "accessors")]
+    for k, at in enumerate(sorted(rng.sample(anim_paths, min(len(anim_paths), 30)), key=anim_paths.index)):
+        choice = rng.randrange(len(values) + 1)
+        name = f"mutant_anim_{k:02d}.gltf"
+        write(name, json.dumps(mutated(anim_doc, at, values[choice - 1] if choice else None, choice == 0)))
+        case(20, name, graph(name), "any", r"{C}/" + name.replace(".", r"\."), max_line=400, timeout=20)
