@@ -332,8 +332,7 @@ std::vector<KnobEntry> makeKnobTable() {
     // ---- lighting model, environment, image-based lighting, tone map ----
     {
         KnobEntry k = choiceKnob("render-path", [](auto& s) -> auto& { return s.renderPath; },
-                                 std::vector<RenderPath>{RenderPath::Deferred, RenderPath::ForwardPlus, RenderPath::PathTraced},
-                                 renderPathName);
+                                 kRenderPathNames);
         k.flags = {valueFlag("--render-path")};
         k.choiceNoun = "render path";
         k.help = "how opaque surfaces are lit: deferred (G-buffer, then light passes) or forward+ (depth pre-pass, "

@@ -73,14 +73,51 @@ inline const char* specularMaskingName(SpecularMasking m) { return enumName(kSpe
 // pathtraced: the reference path tracer (passes/path_trace_pass, docs/path-tracer.md) makes the HDR
 // frame instead of the raster passes; the post effects, exposure and tone map are the same.
 enum class RenderPath { Deferred, ForwardPlus, PathTraced };
-const char* renderPathName(RenderPath path);
-std::optional<RenderPath> parseRenderPath(const std::string& name);
+inline constexpr EnumName<RenderPath> kRenderPathNames[] = {
+    {RenderPath::Deferred, "deferred"}, {RenderPath::ForwardPlus, "forward+"}, {RenderPath::PathTraced, "pathtraced"}};
+inline const char* renderPathName(RenderPath path) { return enumName(kRenderPathNames, path); }
+inline std::optional<RenderPath> parseRenderPath(const std::string& name) { return parseEnum(kRenderPathNames, name); }
 
-const char* viewName(DebugView view);
-std::optional<DebugView> parseView(const std::string& name);
-std::vector<DebugView> allViews();
-// Every view --view accepts, in the order --help and the panel list them.
-std::vector<DebugView> everyView();
+// Every view --view accepts, in the order --help and the panel list them: the camera's views, then
+// the shadow map (a light's depth, needing a shadow-casting light) and the local-light overlays.
+inline constexpr EnumName<DebugView> kViewNames[] = {
+    {DebugView::Final, "final"},
+    {DebugView::Depth, "depth"},
+    {DebugView::Normals, "normals"},
+    {DebugView::Diffuse, "diffuse"},
+    {DebugView::Position, "position"},
+    {DebugView::Shininess, "shininess"},
+    {DebugView::Specular, "specular"},
+    {DebugView::Texcoords, "texcoords"},
+    {DebugView::Lighting, "lighting"},
+    {DebugView::Environment, "environment"},
+    {DebugView::Irradiance, "irradiance"},
+    {DebugView::Prefiltered, "prefiltered"},
+    {DebugView::Dfg, "dfg"},
+    {DebugView::WorldPosition, "world-position"},
+    {DebugView::EyeVector, "eye-vector"},
+    {DebugView::DepthFitted, "depth-fitted"},
+    {DebugView::Tangent, "tangent"},
+    {DebugView::InvalidPixels, "invalid-pixels"},
+    {DebugView::ExposureEv, "exposure-ev"},
+    {DebugView::Velocity, "velocity"},
+    {DebugView::Ao, "ao"},
+    {DebugView::BaseColor, "base-color"},
+    {DebugView::Metallic, "metallic"},
+    {DebugView::Roughness, "roughness"},
+    {DebugView::Occlusion, "occlusion"},
+    {DebugView::Emissive, "emissive"},
+    {DebugView::TermDiffuse, "term-diffuse"},
+    {DebugView::TermSpecular, "term-specular"},
+    {DebugView::ShadowMap, "shadowmap"},
+    {DebugView::LightRanges, "light-ranges"},
+    {DebugView::LightsPerTile, "lights-per-tile"},
+    {DebugView::LightsPerCluster, "lights-per-cluster"},
+};
+inline const char* viewName(DebugView view) { return enumName(kViewNames, view); }
+inline std::optional<DebugView> parseView(const std::string& name) { return parseEnum(kViewNames, name); }
+inline std::vector<DebugView> everyView() { return enumValues(kViewNames); }
+std::vector<DebugView> allViews();  // the camera's views: everyView() without the shadow map and overlays
 
 // Each feature area owns one of these structs (and only its own fields).
 struct ShadowSettings {         // directional-light shadow maps (passes/shadow_map_pass)

@@ -55,6 +55,16 @@ TEST(EnumTables, EveryTableHoldsEachValueOnceUnderOneName) {
     expectCompleteTable(kGBufferNormalFormatNames, GBufferNormalFormat::Oct32, "G-buffer normal format");
     expectCompleteTable(kGBufferPositionModeNames, GBufferPositionMode::ReversedZ, "G-buffer position");
     expectCompleteTable(kGBufferModeNames, GBufferMode::Auto, "G-buffer mode");
+    expectCompleteTable(kRenderPathNames, RenderPath::PathTraced, "render path");
+    expectCompleteTable(kViewNames, DebugView::TermSpecular, "view");
+}
+
+TEST(EnumTables, CameraViewsAreEveryViewButTheShadowMapAndOverlays) {
+    std::vector<DebugView> expected;
+    for (DebugView v : everyView())
+        if (v != DebugView::ShadowMap && !isLocalLightView(v)) expected.push_back(v);
+    EXPECT_EQ(allViews(), expected);
+    EXPECT_EQ(everyView().size(), allViews().size() + 1 + localLightViews().size());
 }
 
 TEST(EnumTables, NameListIsTheTableInOrder) {
