@@ -23,6 +23,7 @@ namespace {
 constexpr int kMaxSuns = 16;        // MAX_SUNS in path_trace.comp
 constexpr int kTraversalStack = 64; // LP_PT_STACK in common/path_trace.glsl
 constexpr int kRouletteFrom = 3;    // interactions traced before Russian roulette may end a path
+constexpr int kSamplesPerWait = 32; // samples queued before the tracer waits for the GPU (below)
 constexpr GLuint kEnvironmentUnit = 0;
 
 struct Data {
@@ -204,7 +205,14 @@ fg::ResourceId addPathTracePass(fg::FrameGraph& graph, PathTracePass& state, con
                     glProgramUniform1i(prog, loc(prog, "uSample"), i);
                     gl::dispatch2D(frame.width, frame.height);
                     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+                    // Seconds of samples queued at once lost the context on an H100 (1024 samples of
+                    // the Cornell box at 1080p, 16 s, came back black): waited on in batches instead.
+                    if ((i + 1) % kSamplesPerWait == 0) glFinish();
                 }
+                if (glGetGraphicsResetStatus() != GL_NO_ERROR)
+                    throw Error("path tracer: the GPU reset the GL context while tracing " + std::to_string(samples) +
+                                " samples a pixel at " + std::to_string(frame.width) + "x" + std::to_string(frame.height) +
+                                " (fewer --spp or a smaller --size)");
             } else {
                 glProgramUniform1i(prog, loc(prog, "uTrace"), 0);
                 glProgramUniform1i(prog, loc(prog, "uSample"), samples - 1);
