@@ -30,10 +30,8 @@ inline constexpr EnumName<BloomMethod> kBloomMethodNames[] = {{BloomMethod::Sepa
                                                               {BloomMethod::MipChain, "mip-chain"}};
 inline const char* bloomMethodName(BloomMethod m) { return enumName(kBloomMethodNames, m); }
 inline std::optional<BloomMethod> parseBloomMethod(const std::string& name) { return parseEnum(kBloomMethodNames, name); }
-inline const char* backendName(PostSettings::Backend b) { return enumName(PostSettings::kBackendNames, b); }
 inline std::optional<PostSettings::Backend> parseBackend(const std::string& name) {
     return parseEnum(PostSettings::kBackendNames, name);
 }
-inline const char* cudaInteropName(PostSettings::CudaInterop i) { return enumName(PostSettings::kCudaInteropNames, i); }
 
 }  // namespace lp::post

@@ -76,7 +76,6 @@ enum class RenderPath { Deferred, ForwardPlus, PathTraced };
 inline constexpr EnumName<RenderPath> kRenderPathNames[] = {
     {RenderPath::Deferred, "deferred"}, {RenderPath::ForwardPlus, "forward+"}, {RenderPath::PathTraced, "pathtraced"}};
 inline const char* renderPathName(RenderPath path) { return enumName(kRenderPathNames, path); }
-inline std::optional<RenderPath> parseRenderPath(const std::string& name) { return parseEnum(kRenderPathNames, name); }
 
 // Every view --view accepts, in the order --help and the panel list them: the camera's views, then
 // the shadow map (a light's depth, needing a shadow-casting light) and the local-light overlays.
@@ -203,7 +202,6 @@ enum class ClusteredKernel { Auto, Froxels, Tiles };
 inline constexpr EnumName<ClusteredKernel> kClusteredKernelNames[] = {
     {ClusteredKernel::Auto, "auto"}, {ClusteredKernel::Froxels, "froxels"}, {ClusteredKernel::Tiles, "tiles"}};
 inline const char* clusteredKernelName(ClusteredKernel k) { return enumName(kClusteredKernelNames, k); }
-inline std::vector<ClusteredKernel> allClusteredKernels() { return enumValues(kClusteredKernelNames); }
 struct LocalLightSettings {     // local lights: ranged point lights and spots
     bool enabled = true;
     LocalLightMethod method = LocalLightMethod::Tiled;
