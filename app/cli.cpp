@@ -216,6 +216,15 @@ std::vector<CommandFlag> makeCommandFlags() {
          "JSON file of camera keyframes ({\"keys\": [{\"time\", \"position\", \"target\", \"fov\"}, ...], \"loop\"}; "
          "replaces the scene's cameraPath; --camera overrides it)",
          [](Options& o, V, V v) { o.cameraPath = v; }},
+        {{"--reference"}, "R",
+         "sweep: what each knob's error is measured against: best (its last value; the default) or pathtraced "
+         "(the path tracer at the best value's settings, --spp samples a pixel, --bounces or --direct-only)",
+         [](Options& o, V a, V v) {
+             const std::optional<SweepReference> r = parseEnum(kSweepReferenceNames, v);
+             if (!r) throw Error(a + " " + v + ": expected one of " + enumNameList(kSweepReferenceNames));
+             o.sweepReference = *r;
+             o.sweepReferenceGiven = true;
+         }},
         {{"--spp"}, "N", "path tracer (--render-path pathtraced, reference): samples a pixel (default 64)",
          [](Options& o, V a, V v) { o.base.pathTrace.samples = parseInt(a, v, 1, 1 << 20); }},
         {{"--bounces"}, "B",
@@ -228,6 +237,13 @@ std::vector<CommandFlag> makeCommandFlags() {
          [](Options& o, V, V) { o.base.pathTrace.directOnly = true; }},
         {{"--pixel-centre"}, "", "path tracer: every sample through the pixel's centre (default: jittered over the pixel)",
          [](Options& o, V, V) { o.base.pathTrace.pixelCentre = true; }},
+        {{"--env-sampling"}, "S",
+         "path tracer: how rays find an environment map's light: importance (by the map's luminance and the BRDF, "
+         "combined by multiple importance sampling; the default) or brdf (the BRDF's samples alone)",
+         [](Options& o, V a, V v) {
+             if (v != "importance" && v != "brdf") throw Error(a + " " + v + ": expected importance or brdf");
+             o.base.pathTrace.environmentSampling = v == "importance";
+         }},
         {{"--animation"}, "A",
          "the glTF animations models play on the scene's clock: a clip's NAME or INDEX, all, or none (the rest pose); "
          "default: each model's first clip",
@@ -351,6 +367,7 @@ Options parseArgs(const std::vector<std::string>& args) {
     if ((o.command == "sweep" || o.command == "bench") && !o.warmupGiven) o.warmup = 10;
     if (o.bouncesGiven && o.base.pathTrace.directOnly) throw Error("--bounces and --direct-only: give one of them");
     if (o.command == "reference") o.base.renderPath = RenderPath::PathTraced;
+    if (o.sweepReferenceGiven && o.command != "sweep") throw Error("--reference: only for sweep (lightpass sweep --reference pathtraced)");
     if (o.command == "render" || o.command == "graph" || o.command == "sweep" || o.command == "bench" ||
         o.command == "reference") {
         if (o.scene.empty() && o.model.empty()) throw Error(o.command + ": --scene F or --model F is required");

@@ -8,10 +8,19 @@
 
 #include <glm/glm.hpp>
 
+#include "engine/core/enum_table.hpp"
 #include "engine/render/settings.hpp"
 #include "engine/scene/scene.hpp"
 
 namespace lp::app {
+
+// What `sweep` measures each knob's error against (--reference).
+enum class SweepReference {
+    BestValue,   // the knob's last (most accurate) value
+    PathTraced,  // the path tracer (--spp, --bounces / --direct-only) at the best value's settings
+};
+inline constexpr EnumName<SweepReference> kSweepReferenceNames[] = {
+    {SweepReference::BestValue, "best"}, {SweepReference::PathTraced, "pathtraced"}};
 
 struct Options {
     std::string command;  // "viewer", "render", "reference", "graph", "sweep", "bench", "report", "info", "help"
@@ -48,6 +57,8 @@ struct Options {
     std::string panelRowsOut;  // viewer: where the panel's pass rows go when they change (for tests)
     std::vector<std::string> knobs;  // sweep
     std::string outDir;              // sweep
+    SweepReference sweepReference = SweepReference::BestValue;  // sweep --reference
+    bool sweepReferenceGiven = false;
     std::string sweepDir;            // report --sweep: a sweep output folder to draw
     std::string benchJson;           // report --bench: a bench --timings-json file to draw
     std::vector<std::string> varies; // bench: one axis of variants per --vary

@@ -187,18 +187,6 @@ void requireOutputs(const std::vector<std::string>& paths) {
     }
 }
 
-// The path tracer's noise estimate, one line (render --render-path pathtraced, reference).
-std::string describeNoise(const RenderSettings& s, const PathTraceNoise& n) {
-    char line[320];
-    std::snprintf(line, sizeof line,
-                  "path tracer: %dx%d, %d samples a pixel, %s: mean relative standard error %.3f%% over %zu lit pixels "
-                  "(mean luminance %.6g)",
-                  s.width, s.height, n.samples,
-                  s.pathTrace.directOnly ? "direct light only" : ("up to " + std::to_string(s.pathTrace.bounces) + " bounces").c_str(),
-                  100.0 * n.meanRelativeStandardError, n.pixels, n.meanLuminance);
-    return line;
-}
-
 // lightpass reference: one path-traced frame (--spp samples a pixel), its tone-mapped PNG and HDR EXR.
 int commandReference(const Options& o) {
     requireOutputs({o.out, o.exr});
@@ -211,7 +199,7 @@ int commandReference(const Options& o) {
     renderer.render(settings, float(o.time), false);
     checkDisabledPasses(renderer.graph(), settings.disabledPasses);
     glFinish();
-    if (!o.quiet) std::printf("%s\n", describeNoise(settings, renderer.pathTraceNoise()).c_str());
+    if (!o.quiet) std::printf("%s\n", describePathTraceNoise(settings, renderer.pathTraceNoise()).c_str());
     OutputFiles outputs;
     if (!o.out.empty()) outputs.addPng(o.out, renderer.readDisplay());
     if (!o.exr.empty()) outputs.addExr(o.exr, renderer.readHdr());
@@ -355,7 +343,7 @@ int commandRender(const Options& o) {
 
     if (settings.renderPath == RenderPath::PathTraced) {
         const PathTraceNoise& noise = renderer.pathTraceNoise();
-        say("%s\n", describeNoise(settings, noise).c_str());
+        say("%s\n", describePathTraceNoise(settings, noise).c_str());
         j["path_trace"] = {{"samples", noise.samples}, {"bounces", settings.pathTrace.interactions()},
                            {"mean_relative_standard_error", noise.meanRelativeStandardError},
                            {"lit_pixels", noise.pixels}, {"mean_luminance", noise.meanLuminance}};

@@ -440,7 +440,9 @@ std::vector<SweepRow> parseSweepCsv(const std::string& text, const std::string& 
     };
     const int knob = column("knob", true), value = column("value", true), reference = column("reference", true),
               frame = column("frame_ms", true), rmse = column("rmse", true), psnr = column("psnr_db", true),
-              image = column("image", true), bake = column("ibl_bake_gpu_ms", false);
+              image = column("image", true), bake = column("ibl_bake_gpu_ms", false),
+              source = column("reference_source", false), spp = column("reference_spp", false),
+              noise = column("reference_noise_rmse", false);
     std::vector<SweepRow> rows;
     for (int lineNo = 2; std::getline(in, line); ++lineNo) {
         if (line.empty() || line == "\r") continue;
@@ -468,6 +470,9 @@ std::vector<SweepRow> parseSweepCsv(const std::string& text, const std::string& 
         r.rmse = number(rmse);
         r.psnrDb = number(psnr);
         if (bake >= 0) r.iblBakeMs = number(bake);
+        if (source >= 0) r.referenceSource = f[size_t(source)];
+        if (spp >= 0) r.referenceSpp = int(number(spp));
+        if (noise >= 0) r.referenceNoiseRmse = number(noise);
         rows.push_back(r);
     }
     if (rows.empty()) throw Error(label + ": no rows (the sweep wrote no values)");
@@ -533,7 +538,11 @@ std::string sweepReportHtml(const SweepReport& r) {
     s << pageHead("lightpass sweep report: " + r.folder);
     s << "<h1>lightpass sweep report: " << htmlEscape(r.folder) << "</h1>\n<table class=\"meta\">\n"
       << "<tr><td>command</td><td><code id=\"command\">" << htmlEscape(r.commandLine) << "</code></td></tr>\n"
-      << "</table>\n<p>Per knob: error against the knob's best value (RMSE of the linear HDR buffer, log scale) "
+      << "</table>\n<p>Per knob: error against "
+      << (std::any_of(r.rows.begin(), r.rows.end(), [](const SweepRow& row) { return row.referenceSource == "pathtraced"; })
+              ? "the path tracer at the knob's best value's settings (its samples and noise under each plot)"
+              : "the knob's best value")
+      << " (RMSE of the linear HDR buffer, log scale) "
          "against GPU ms; the Pareto front (no other value both faster and better) in red. Each value's image "
          "below its plot, numbered as its point.</p>\n";
     std::vector<std::string> knobs;
@@ -576,7 +585,11 @@ std::string sweepReportHtml(const SweepReport& r) {
               << "</title></circle>\n<text x=\"" << m + pts[i].x + 7 << "\" y=\"" << m + pts[i].y - 6
               << "\" font-size=\"11\">" << i << ": " << htmlEscape(rows[i].value) << "</text>\n";
         }
-        s << "</svg>\n<div class=\"views\">\n";
+        s << "</svg>\n";
+        if (rows[0].referenceSource == "pathtraced")
+            s << "<p class=\"reference\">Reference: the path tracer, " << rows[0].referenceSpp
+              << " samples a pixel; its own noise adds about " << general(rows[0].referenceNoiseRmse) << " RMSE.</p>\n";
+        s << "<div class=\"views\">\n";
         for (size_t i = 0; i < rows.size(); ++i) {
             const SweepImage& img = r.images[index[i]];
             const int width = std::min(img.width, 320);

@@ -126,6 +126,11 @@ struct SweepRow {
     std::string knob, value, image;  // image: relative to the folder ("shadow-size/0.png")
     bool reference = false;
     double frameMs = 0, iblBakeMs = 0, rmse = 0, psnrDb = 0;
+    // What the error is against (sweep --reference): "best" (the knob's last value) or "pathtraced"
+    // with the path tracer's samples a pixel and RMS noise; "best" for a CSV without the columns.
+    std::string referenceSource = "best";
+    int referenceSpp = 0;
+    double referenceNoiseRmse = 0;
 };
 // Throws lp::Error "<label>: line N: ..." for a missing column or a value that is not a number.
 std::vector<SweepRow> parseSweepCsv(const std::string& text, const std::string& label);

@@ -16,6 +16,7 @@
 #include "engine/io/image_io.hpp"
 #include "engine/render/image_metrics.hpp"
 #include "frame/knobs.hpp"
+#include "passes/path_trace_pass.hpp"
 #include "frame/renderer.hpp"
 #include "engine/scene/scene_loader.hpp"
 
@@ -80,6 +81,9 @@ int runSweep(const Options& o) {
     // Every image, the CSV and the Markdown are renamed into place together at the end.
     OutputFiles outputs;
 
+    const bool pathTraced = o.sweepReference == SweepReference::PathTraced;
+    // Per knob: the path tracer's samples and noise where it is the reference (sweep.csv and .md record them).
+    std::map<std::string, PathTraceNoise> referenceNoise;
     std::vector<Row> rows;
     std::vector<std::string> allPasses;  // the CSV's time columns, in order of first appearance
     auto addColumn = [&](const std::string& name) {
@@ -93,12 +97,21 @@ int runSweep(const Options& o) {
     for (size_t ki = 0; ki < knobs.size(); ++ki) {
         const Knob& knob = knobs[ki];
         const fs::path dir = outDir / knob.name;
-        // The reference: the knob's best value, at the time of the last timed frame.
+        // The reference: the knob's best value, or the path tracer at its settings (one frame holds
+        // every --spp sample), at the time of the last timed frame.
         RenderSettings refSettings = settingsFor(knob.values.back());
-        // On the scene's clock as render puts it (--time, --fps): the reference and every value end on
-        // the same frame, with the same previous frame (motion blur, camera paths).
-        for (int i = 0; i < warmupFrames(o, o.warmup + 1); ++i) renderer.render(refSettings, float(warmupTime(o)), false);
-        for (int i = 0; o.fps > 0.0 && i < o.frames; ++i) renderer.render(refSettings, float(frameTime(o, i)), false);
+        if (pathTraced) {
+            refSettings.renderPath = RenderPath::PathTraced;
+            renderer.render(refSettings, float(frameTime(o, o.frames - 1)), false);
+            glFinish();
+            referenceNoise[knob.name] = renderer.pathTraceNoise();
+            logInfo(knob.name + ": reference " + describePathTraceNoise(refSettings, renderer.pathTraceNoise()));
+        } else {
+            // On the scene's clock as render puts it (--time, --fps): the reference and every value end
+            // on the same frame, with the same previous frame (motion blur, camera paths).
+            for (int i = 0; i < warmupFrames(o, o.warmup + 1); ++i) renderer.render(refSettings, float(warmupTime(o)), false);
+            for (int i = 0; o.fps > 0.0 && i < o.frames; ++i) renderer.render(refSettings, float(frameTime(o, i)), false);
+        }
         const ImageF reference = renderer.readHdr();
         outputs.addPng(dir / "reference.png", renderer.readDisplay());
         outputs.addExr(dir / "reference.exr", reference);
@@ -119,7 +132,7 @@ int runSweep(const Options& o) {
             Row row;
             row.knob = knob.name;
             row.value = value.label;
-            row.reference = vi + 1 == steps;
+            row.reference = !pathTraced && vi + 1 == steps;
             for (const auto& name : renderer.timers().passOrder()) {
                 row.passMs[name] = renderer.timers().median(name);
                 row.passOrder.push_back(name);
@@ -144,7 +157,7 @@ int runSweep(const Options& o) {
         f << "knob,value,index,reference,frame_ms";
         for (const auto& p : allPasses)
             if (p != "frame") f << "," << p << "_ms";
-        f << ",rmse,psnr_db,max_abs,non_finite,image\n";
+        f << ",rmse,psnr_db,max_abs,non_finite,image,reference_source,reference_spp,reference_noise_rmse\n";
         std::map<std::string, int> index;
         for (const auto& r : rows) {
             int i = index[r.knob]++;
@@ -153,7 +166,12 @@ int runSweep(const Options& o) {
             for (const auto& p : allPasses)
                 if (p != "frame") f << "," << (r.passMs.count(p) ? r.passMs.at(p) : 0.0);
             f << "," << r.error.rmse << "," << (std::isinf(r.error.psnr) ? 999.0 : r.error.psnr) << "," << r.error.maxAbs
-              << "," << r.error.nonFinite << "," << r.knob << "/" << i << ".png\n";
+              << "," << r.error.nonFinite << "," << r.knob << "/" << i << ".png";
+            // The reference: best (0 samples, no noise) or pathtraced with its samples and RMS noise.
+            const auto noise = referenceNoise.find(r.knob);
+            f << "," << enumName(kSweepReferenceNames, o.sweepReference) << ","
+              << (noise == referenceNoise.end() ? 0 : noise->second.samples) << ","
+              << (noise == referenceNoise.end() ? 0.0 : noise->second.rmsStandardError) << "\n";
         }
         outputs.add(outDir / "sweep.csv", f.str());
     }
@@ -161,9 +179,20 @@ int runSweep(const Options& o) {
     std::ostringstream md;
     md << "# Sweep: " << (o.model.empty() ? o.scene : o.model) << ", " << o.width << "x" << o.height << ", "
        << ctx->info().renderer << "\n\nGPU ms are medians of " << o.frames << " frames after " << o.warmup
-       << " warm-up frames; errors are against each knob's best value, on the linear HDR buffer (PSNR peak 1).\n";
+       << " warm-up frames; errors are against "
+       << (pathTraced ? "the path tracer at each knob's best value's settings" : "each knob's best value")
+       << ", on the linear HDR buffer (PSNR peak 1).\n";
     for (const Knob& k : knobs) {
-        md << "\n## " << k.name << "\n\n" << k.description << "\n\n| value | frame ms | RMSE | PSNR dB |\n| --- | --- | --- | --- |\n";
+        md << "\n## " << k.name << "\n\n" << k.description << "\n\n";
+        if (const auto noise = referenceNoise.find(k.name); noise != referenceNoise.end()) {
+            char line[256];
+            std::snprintf(line, sizeof line,
+                          "Reference: the path tracer, %d samples a pixel; its own noise adds about %.3g RMSE "
+                          "(mean relative standard error %.3f%%).\n\n",
+                          noise->second.samples, noise->second.rmsStandardError, 100.0 * noise->second.meanRelativeStandardError);
+            md << line;
+        }
+        md << "| value | frame ms | RMSE | PSNR dB |\n| --- | --- | --- | --- |\n";
         for (const auto& r : rows) {
             if (r.knob != k.name) continue;
             char line[256];

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 #include <vector>
 
@@ -16,6 +17,7 @@
 #include "engine/render/local_lights.hpp"
 #include "engine/render/path_trace_scene.hpp"
 #include "passes/gbuffer_pass.hpp"
+#include "passes/path_trace_environment.hpp"
 
 namespace lp {
 
@@ -63,6 +65,8 @@ void uploadScene(PathTracePass& state, const Scene& scene) {
     // rounding of a hit point, far below any scene feature.
     state.rayEpsilon = 2e-5f;
     state.environment = {};
+    state.environmentTables = {};
+    state.environmentCells = glm::ivec2(0);
     if (!scene.environment.map.empty()) {
         ImageF map = loadHdrImage(scene.environment.map);
         if (const gl::TextureFit fit = gl::fitTexture(GL_RGBA32F, map.width, map.height); fit.halvings > 0) {
@@ -77,6 +81,14 @@ void uploadScene(PathTracePass& state, const Scene& scene) {
         glTextureParameteri(state.environment.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
         glTextureParameteri(state.environment.id(), GL_TEXTURE_WRAP_S, GL_REPEAT);
         glTextureParameteri(state.environment.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+        const EnvironmentDistribution cells = buildEnvironmentDistribution(map);
+        if (!cells.empty()) {
+            std::vector<float> tables = cells.marginal;  // the order common/path_trace_environment.glsl reads
+            tables.insert(tables.end(), cells.conditional.begin(), cells.conditional.end());
+            tables.insert(tables.end(), cells.cellPdf.begin(), cells.cellPdf.end());
+            state.environmentTables = storage(tables, "path_trace.environment_tables");
+            state.environmentCells = glm::ivec2(cells.width, cells.height);
+        }
     }
     state.scene = &scene;
 }
@@ -91,7 +103,7 @@ std::string accumulationKey(const FrameData& frame, const std::vector<GpuLocalLi
     key << frame.scene << ' ' << frame.width << 'x' << frame.height << ' ' << s.pathTrace.samples << ' '
         << s.pathTrace.interactions() << ' ' << s.pathTrace.pixelCentre << ' ' << int(s.brdf) << ' '
         << int(s.specularMasking) << ' ' << s.localLights.specular << s.localLights.specularOutsideRange << ' '
-        << s.localLights.enabled << ' ' << s.localLights.rangeScale;
+        << s.localLights.enabled << ' ' << s.localLights.rangeScale << ' ' << s.pathTrace.environmentSampling;
     for (int i = 0; i < 4; ++i)
         for (int j = 0; j < 4; ++j) key << ' ' << frame.view[i][j] << ' ' << frame.projection[i][j];
     for (const GpuLocalLight& l : lights)
@@ -132,6 +144,8 @@ void setUniforms(GLuint prog, const PathTracePass& state, const FrameData& frame
                        !s.localLights.specular ? 0 : (s.localLights.specularOutsideRange ? 2 : 1));
     const Environment& e = scene.environment;
     glProgramUniform1i(prog, loc(prog, "uHasEnvironmentMap"), bool(state.environment));
+    const glm::ivec2 cells = s.pathTrace.environmentSampling ? state.environmentCells : glm::ivec2(0);
+    glProgramUniform2i(prog, loc(prog, "uEnvironmentCells"), cells.x, cells.y);
     const glm::vec3 color = e.color * e.intensity;
     glProgramUniform3fv(prog, loc(prog, "uEnvironmentColor"), 1, glm::value_ptr(color));
     glProgramUniform1f(prog, loc(prog, "uEnvironmentIntensity"), e.intensity);
@@ -146,18 +160,32 @@ PathTraceNoise pathTraceNoise(const std::vector<float>& sums, int samples) {
     const size_t pixels = sums.size() / 4;
     if (pixels == 0 || samples <= 0) return noise;
     const double n = double(samples);
-    double relative = 0.0, luminance = 0.0;
+    double relative = 0.0, luminance = 0.0, variance = 0.0;
     for (size_t i = 0; i < pixels; ++i) {
         const double y = (0.2126 * sums[4 * i] + 0.7152 * sums[4 * i + 1] + 0.0722 * sums[4 * i + 2]) / n;
         luminance += y;
         if (!(y > 0.0) || samples < 2) continue;
         const double sampleVariance = std::max(0.0, (double(sums[4 * i + 3]) - n * y * y) / (n - 1.0));
+        variance += sampleVariance / n;
         relative += std::sqrt(sampleVariance / n) / y;
         ++noise.pixels;
     }
     noise.meanLuminance = luminance / double(pixels);
+    noise.rmsStandardError = std::sqrt(variance / double(pixels));
     noise.meanRelativeStandardError = noise.pixels ? relative / double(noise.pixels) : 0.0;
     return noise;
+}
+
+// The path tracer's noise estimate, one line (render --render-path pathtraced, reference).
+std::string describePathTraceNoise(const RenderSettings& s, const PathTraceNoise& n) {
+    char line[320];
+    std::snprintf(line, sizeof line,
+                  "path tracer: %dx%d, %d samples a pixel, %s: mean relative standard error %.3f%% over %zu lit pixels "
+                  "(mean luminance %.6g)",
+                  s.width, s.height, n.samples,
+                  s.pathTrace.directOnly ? "direct light only" : ("up to " + std::to_string(s.pathTrace.bounces) + " bounces").c_str(),
+                  100.0 * n.meanRelativeStandardError, n.pixels, n.meanLuminance);
+    return line;
 }
 
 fg::ResourceId addPathTracePass(fg::FrameGraph& graph, PathTracePass& state, const FrameData& frame) {
@@ -191,6 +219,9 @@ fg::ResourceId addPathTracePass(fg::FrameGraph& graph, PathTracePass& state, con
             glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPtBindTriangles, state.triangles.id());
             glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPtBindMaterials, state.materials.id());
             glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPtBindLights, state.lights.id());
+            // An unread block still needs a buffer bound: the lights' when the map has no tables.
+            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPtBindEnvironment,
+                             state.environmentTables ? state.environmentTables.id() : state.lights.id());
             if (state.environment) glBindTextureUnit(kEnvironmentUnit, state.environment.id());
             glBindImageTexture(0, state.accumulation.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
             glBindImageTexture(1, res.texture(data.hdr), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
@@ -198,8 +229,8 @@ fg::ResourceId addPathTracePass(fg::FrameGraph& graph, PathTracePass& state, con
             // The samples still missing, the last dispatch writing the mean into the HDR target; with
             // none missing (an unchanged view) one dispatch only divides the sums again (the target is
             // a new transient each frame).
-            const bool finished = state.accumulated < samples;
-            if (finished) {
+            const bool tracing = state.accumulated < samples;  // samples missing: trace them now
+            if (tracing) {
                 glProgramUniform1i(prog, loc(prog, "uTrace"), 1);
                 for (int i = state.accumulated; i < samples; ++i) {
                     glProgramUniform1i(prog, loc(prog, "uSample"), i);
@@ -223,9 +254,9 @@ fg::ResourceId addPathTracePass(fg::FrameGraph& graph, PathTracePass& state, con
             glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
             glBindImageTexture(1, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
             if (state.environment) glBindTextureUnit(kEnvironmentUnit, 0);
-            for (GLuint b : {kPtBindNodes, kPtBindTriangles, kPtBindMaterials, kPtBindLights})
+            for (GLuint b : {kPtBindNodes, kPtBindTriangles, kPtBindMaterials, kPtBindLights, kPtBindEnvironment})
                 glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, 0);
-            if (finished) {
+            if (tracing) {  // the accumulation is now complete: its noise
                 glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
                 std::vector<float> sums(size_t(frame.width) * size_t(frame.height) * 4);
                 glGetTextureImage(state.accumulation.id(), 0, GL_RGBA, GL_FLOAT, GLsizei(sums.size() * sizeof(float)),

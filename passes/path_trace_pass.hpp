@@ -14,7 +14,13 @@
 namespace lp {
 
 // Storage-block bindings of shaders/common/path_trace.glsl (LP_PT_BIND_*).
-enum PathTraceBinding : GLuint { kPtBindNodes = 0, kPtBindTriangles = 1, kPtBindMaterials = 2, kPtBindLights = 3 };
+enum PathTraceBinding : GLuint {
+    kPtBindNodes = 0,
+    kPtBindTriangles = 1,
+    kPtBindMaterials = 2,
+    kPtBindLights = 3,
+    kPtBindEnvironment = 4,  // the environment map's sampling tables (passes/path_trace_environment.hpp)
+};
 
 // The noise of an accumulated image: per pixel the variance of the mean of its samples' luminance,
 // s^2 / N with s^2 the samples' unbiased variance; its square root over the mean luminance is the
@@ -24,15 +30,23 @@ struct PathTraceNoise {
     size_t pixels = 0;                      // pixels with a mean above zero
     double meanRelativeStandardError = 0.0;  // average of sqrt(var(mean)) / mean over those pixels
     double meanLuminance = 0.0;             // over every pixel
+    // sqrt of the mean over every pixel of var(mean luminance): the RMSE the reference's own noise
+    // puts into an error measured against it (the floor of `sweep --reference pathtraced`).
+    double rmsStandardError = 0.0;
 };
 // `sums`: RGBA per pixel, rgb the sum of the samples' radiance, a the sum of their squared luminance
 // (the accumulation image), after `samples` samples (at least 2 for a variance).
 PathTraceNoise pathTraceNoise(const std::vector<float>& sums, int samples);
+// One line for a user: size, samples, bounces and the noise (render --render-path pathtraced,
+// reference, sweep --reference pathtraced).
+std::string describePathTraceNoise(const RenderSettings& settings, const PathTraceNoise& noise);
 
 struct PathTracePass {
     gl::Program program;
     gl::Buffer nodes, triangles, materials, lights;
     gl::Texture environment;   // the equirectangular map, when the scene has one
+    gl::Buffer environmentTables;  // its sampling tables (passes/path_trace_environment.hpp), when it has light
+    glm::ivec2 environmentCells{0};  // their width and height; 0: none
     gl::Texture accumulation;  // RGBA32F sums (rgb radiance, a squared luminance)
     const Scene* scene = nullptr;  // what the buffers hold
     int nodeCount = 0;

@@ -4,11 +4,14 @@
 // estimate); the HDR target gets the mean so far. Materials and lights are lightpass's own: the BRDF
 // of common/brdf.glsl (uBrdf, uSpecularMasking), the suns' irradiance, the local lights' ranged
 // falloff and spot cones of common/local_light.glsl; the environment (map or colour) lights every
-// ray that leaves the scene.
+// ray that leaves the scene. A map is also sampled by its luminance at every surface (next-event
+// estimation, common/path_trace_environment.glsl), combined with the BRDF's own samples by multiple
+// importance sampling (the power heuristic), so a small bright lamp in a map converges.
 #include "common/brdf.glsl"
 #include "common/ibl.glsl"
 #include "common/local_light.glsl"
 #include "common/path_trace.glsl"
+#include "common/path_trace_environment.glsl"
 #include "common/tonemap.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -54,6 +57,16 @@ vec3 environmentRadiance(vec3 d) {
     return textureLod(uEnvironmentMap, equirectUv(rotateY(d, -uEnvironmentRotation)), 0.0).rgb * uEnvironmentIntensity;
 }
 
+// The density per steradian of the next-direction mixture below (cosine-weighted diffuse and GGX
+// half-vector specular) for direction L.
+float mixturePdf(vec3 N, vec3 V, vec3 L, float pSpecular, float alpha) {
+    float nl = dot(N, L);
+    if (nl <= 0.0) return 0.0;
+    vec3 H = brdfHalfVector(N, V, L);
+    float vh = max(dot(V, H), 1e-6);
+    return (1.0 - pSpecular) * nl / LP_PI + pSpecular * ggxDistribution(N, H, alpha) * max(dot(N, H), 0.0) / (4.0 * vh);
+}
+
 float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
 float maxComponent(vec3 c) { return max(c.r, max(c.g, c.b)); }
 
@@ -90,12 +103,20 @@ void main() {
 
     vec3 radiance = vec3(0.0), throughput = vec3(1.0);
     float tMin = 0.0;
+    // With the map's tables its light comes by two strategies; each is weighted by the power heuristic.
+    bool sampleEnvironment = uHasEnvironmentMap && uEnvironmentCells.x > 0;
+    float lastPdf = 0.0;  // the mixture's density of the ray being traced (0: the camera's ray)
     for (int bounce = 0; bounce <= uBounces; ++bounce) {
         float t;
         vec2 bary;
         int tri = lpPtTrace(origin, dir, tMin, 3.0e38, false, t, bary);
         if (tri < 0) {
-            radiance += throughput * environmentRadiance(dir);
+            float weight = 1.0;
+            if (sampleEnvironment && lastPdf > 0.0) {
+                float pe = lpPtEnvironmentPdf(rotateY(dir, -uEnvironmentRotation));
+                weight = lastPdf * lastPdf / (lastPdf * lastPdf + pe * pe);
+            }
+            radiance += throughput * environmentRadiance(dir) * weight;
             break;
         }
         LpPathTraceTriangle T = uPtTriangles[tri];
@@ -147,11 +168,23 @@ void main() {
         }
 
         // The next direction: a mixture of cosine-weighted (diffuse) and GGX half-vector (specular)
-        // sampling, weighted by the mixture's pdf; the environment and emitters are reached this way.
+        // sampling, weighted by the mixture's pdf; emitters are reached this way, the environment this
+        // way and by its own samples.
         float alpha = ggxAlphaFromShininess(shininess);
         float wd = maxComponent(kd), ws = maxComponent(ks);
         if (wd + ws <= 0.0) break;
         float pSpecular = wd <= 0.0 ? 1.0 : (ws <= 0.0 ? 0.0 : clamp(ws / (wd + ws), 0.1, 0.9));
+        if (sampleEnvironment) {
+            float pe;
+            vec3 Le = rotateY(lpPtSampleEnvironment(vec2(rand(), rand()), pe), uEnvironmentRotation);
+            float nl = dot(N, Le);
+            if (pe > 0.0 && nl > 0.0 && dot(Ng, Le) > 0.0 && visible(Po, Le, 3.0e38)) {
+                float pb = mixturePdf(N, V, Le, pSpecular, alpha);
+                vec3 f = brdfDiffuse(uBrdf, N, V, Le, kd, ks) + brdfSpecular(uBrdf, N, V, Le, ks, shininess);
+                // f cos L / pe, weighted pe^2 / (pe^2 + pb^2).
+                radiance += throughput * f * nl * environmentRadiance(Le) * (pe / (pe * pe + pb * pb));
+            }
+        }
         vec3 tx, ty;
         basis(N, tx, ty);
         vec3 L;
@@ -169,11 +202,9 @@ void main() {
         }
         float nl = dot(N, L);
         if (nl <= 0.0 || dot(Ng, L) <= 0.0) break;
-        vec3 H = brdfHalfVector(N, V, L);
-        float vh = max(dot(V, H), 1e-6);
-        float pdf = (1.0 - pSpecular) * nl / LP_PI +
-                    pSpecular * ggxDistribution(N, H, alpha) * max(dot(N, H), 0.0) / (4.0 * vh);
+        float pdf = mixturePdf(N, V, L, pSpecular, alpha);
         if (!(pdf > 0.0)) break;
+        lastPdf = pdf;
         vec3 f = brdfDiffuse(uBrdf, N, V, L, kd, ks) + brdfSpecular(uBrdf, N, V, L, ks, shininess);
         throughput *= f * nl / pdf;
         if (bounce + 1 >= uRouletteFrom) {

@@ -330,6 +330,9 @@ struct PathTraceSettings {
     int bounces = 8;          // surface interactions whose scattered light counts (Russian roulette from 3)
     bool directOnly = false;  // one interaction: the lights, the environment and emitters seen from it
     bool pixelCentre = false; // every sample through the pixel's centre (else jittered: box-filtered)
+    // --env-sampling: an environment map is sampled by its luminance too (multiple importance
+    // sampling with the BRDF), or by the BRDF alone (slower to converge on a small bright lamp).
+    bool environmentSampling = true;
     int interactions() const { return directOnly ? 1 : bounces; }
 };
 

@@ -8,6 +8,7 @@
 #define LP_PT_BIND_TRIANGLES 1
 #define LP_PT_BIND_MATERIALS 2
 #define LP_PT_BIND_LIGHTS 3
+#define LP_PT_BIND_ENVIRONMENT 4  // common/path_trace_environment.glsl
 #define LP_PT_STACK 64  // traversal stack; the pass refuses a BVH deeper than this
 
 struct LpBvhNode {

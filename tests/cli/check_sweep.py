@@ -6,7 +6,10 @@ rises as the value moves towards the reference (equal is allowed).
 With --positive COLUMN, that column must be > 0 in every row of the knob (e.g. ibl_bake_gpu_ms).
 With --max-rmse E, every row's HDR RMSE must be at most E (a knob that gives the same image by design).
 With --timed-in VALUE:COLUMN, that value's row must have COLUMN > 0 (a pass only that value runs).
-  check_sweep.py OUTDIR STDERR_FILE KNOB VALUES [--monotone] [--positive COLUMN] [--max-rmse E] [--timed-in V:C]"""
+With --pathtraced SPP (sweep --reference pathtraced --spp SPP): no row is the reference, every row has
+an error above zero, the CSV and sweep.md record the path tracer's samples and its noise (> 0).
+  check_sweep.py OUTDIR STDERR_FILE KNOB VALUES [--monotone] [--positive COLUMN] [--max-rmse E] [--timed-in V:C]
+                 [--pathtraced SPP]"""
 import csv
 import re
 import os
@@ -17,21 +20,33 @@ monotone = "--monotone" in sys.argv[5:]
 positive = [sys.argv[i + 1] for i in range(5, len(sys.argv) - 1) if sys.argv[i] == "--positive"]
 max_rmse = [float(sys.argv[i + 1]) for i in range(5, len(sys.argv) - 1) if sys.argv[i] == "--max-rmse"]
 timed_in = [sys.argv[i + 1].split(":", 1) for i in range(5, len(sys.argv) - 1) if sys.argv[i] == "--timed-in"]
+pathtraced = [int(sys.argv[i + 1]) for i in range(5, len(sys.argv) - 1) if sys.argv[i] == "--pathtraced"]
 
 with open(os.path.join(out_dir, "sweep.csv")) as f:
     reader = csv.DictReader(f)
     columns = reader.fieldnames
     rows = [r for r in reader if r["knob"] == knob]
-expected = ["knob", "value", "index", "reference", "frame_ms", "rmse", "psnr_db", "max_abs", "non_finite", "image"]
+expected = ["knob", "value", "index", "reference", "frame_ms", "rmse", "psnr_db", "max_abs", "non_finite", "image",
+            "reference_source", "reference_spp", "reference_noise_rmse"]
 missing = [c for c in expected if c not in columns]
 assert not missing, f"columns missing: {missing} (have {columns})"
 assert any(c.endswith("_ms") and c != "frame_ms" for c in columns), f"no per-pass time columns: {columns}"
 assert len(rows) == values, f"{len(rows)} rows for {knob}, expected {values}"
 assert [int(r["index"]) for r in rows] == list(range(values)), "rows out of order"
 assert len({r["value"] for r in rows}) == values, "values are not distinct"
-assert [r["reference"] for r in rows] == ["0"] * (values - 1) + ["1"], "the last value must be the reference"
 rmse = [float(r["rmse"]) for r in rows]
-assert rmse[-1] == 0.0 and float(rows[-1]["max_abs"]) == 0.0, f"reference error {rmse[-1]}"
+if pathtraced:
+    assert [r["reference"] for r in rows] == ["0"] * values, "no value is the reference against the path tracer"
+    for r in rows:
+        assert r["reference_source"] == "pathtraced", f"reference_source {r['reference_source']}"
+        assert int(r["reference_spp"]) == pathtraced[0], f"reference_spp {r['reference_spp']}, expected {pathtraced[0]}"
+        assert float(r["reference_noise_rmse"]) > 0.0, "the path tracer's noise is not recorded"
+        assert float(r["rmse"]) > 0.0, f"{r['value']}: error 0 against the path tracer"
+    assert os.path.isfile(os.path.join(out_dir, knob, "reference.exr")), "no reference.exr"
+else:
+    assert [r["reference"] for r in rows] == ["0"] * (values - 1) + ["1"], "the last value must be the reference"
+    assert all(r["reference_source"] == "best" and r["reference_spp"] == "0" for r in rows), "reference columns"
+    assert rmse[-1] == 0.0 and float(rows[-1]["max_abs"]) == 0.0, f"reference error {rmse[-1]}"
 for r in rows:
     assert int(r["non_finite"]) == 0, f"{r['value']}: {r['non_finite']} non-finite pixels"
     assert float(r["frame_ms"]) > 0.0, f"{r['value']}: no frame time"
@@ -55,6 +70,8 @@ if monotone:
 with open(os.path.join(out_dir, "sweep.md")) as f:
     md = f.read()
 assert f"## {knob}" in md, "no Markdown section for the knob"
+if pathtraced:
+    assert f"Reference: the path tracer, {pathtraced[0]} samples a pixel" in md, "sweep.md does not name the path tracer"
 section = md.split(f"## {knob}", 1)[1].split("\n## ", 1)[0]
 table_rows = [l for l in section.splitlines() if l.startswith("| ") and not l.startswith("| value") and "---" not in l]
 assert len(table_rows) == values, f"{len(table_rows)} Markdown rows, expected {values}"

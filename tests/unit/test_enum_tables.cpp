@@ -6,6 +6,7 @@
 #include <set>
 #include <string>
 
+#include "app/cli.hpp"
 #include "engine/post/post_config.hpp"
 #include "engine/render/settings.hpp"
 
@@ -57,6 +58,7 @@ TEST(EnumTables, EveryTableHoldsEachValueOnceUnderOneName) {
     expectCompleteTable(kGBufferModeNames, GBufferMode::Auto, "G-buffer mode");
     expectCompleteTable(kRenderPathNames, RenderPath::PathTraced, "render path");
     expectCompleteTable(kViewNames, DebugView::TermSpecular, "view");
+    expectCompleteTable(app::kSweepReferenceNames, app::SweepReference::PathTraced, "sweep reference");
 }
 
 TEST(EnumTables, CameraViewsAreEveryViewButTheShadowMapAndOverlays) {

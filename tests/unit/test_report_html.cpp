@@ -218,6 +218,29 @@ TEST(ReportHtml, SweepCsvIsReadWithQuotedFields) {
     EXPECT_EQ(rows[2].image, "shadow-size/2.png");
 }
 
+TEST(ReportHtml, SweepAgainstThePathTracerNamesItsSamplesAndNoise) {
+    const std::string csv =
+        "knob,value,index,reference,frame_ms,rmse,psnr_db,max_abs,non_finite,image,reference_source,reference_spp,"
+        "reference_noise_rmse\n"
+        "shadow-pcf,off,0,0,1.5,0.03,30,0.1,0,shadow-pcf/0.png,pathtraced,256,0.0042\n"
+        "shadow-pcf,poisson,1,0,2.5,0.02,34,0.1,0,shadow-pcf/1.png,pathtraced,256,0.0042\n";
+    SweepReport report;
+    report.folder = "s";
+    report.rows = parseSweepCsv(csv, "s/sweep.csv");
+    ASSERT_EQ(report.rows.size(), 2u);
+    EXPECT_EQ(report.rows[0].referenceSource, "pathtraced");
+    EXPECT_EQ(report.rows[1].referenceSpp, 256);
+    EXPECT_DOUBLE_EQ(report.rows[1].referenceNoiseRmse, 0.0042);
+    EXPECT_FALSE(report.rows[1].reference);
+    // Without the columns (an older sweep.csv): against the best value.
+    EXPECT_EQ(parseSweepCsv(kSweepCsv, "s/sweep.csv")[0].referenceSource, "best");
+    report.images.assign(2, SweepImage{});
+    const std::string page = sweepReportHtml(report);
+    EXPECT_NE(page.find("error against the path tracer"), std::string::npos);
+    EXPECT_NE(page.find("Reference: the path tracer, 256 samples a pixel; its own noise adds about 0.0042 RMSE."),
+              std::string::npos);
+}
+
 std::string errorOf(const std::string& csv) {
     try {
         parseSweepCsv(csv, "s/sweep.csv");
