@@ -125,12 +125,11 @@ int runBench(const Options& o, const std::vector<std::string>& args) {
     j["device"] = ctx->info().renderer;
     j["scene"] = o.model.empty() ? o.scene : o.model;
     j["common_flags"] = join(common);
-    Bandwidth compute, fragment;
+    FloorBandwidths bandwidths;
     if (o.floors) {
-        gl::ShaderLibrary shaders;
-        compute = measureComputeBandwidth(shaders);
-        fragment = measureFragmentBandwidth(shaders);
-        j["bandwidth"] = {{"compute_GBps", compute.bytesPerSecond * 1e-9}, {"fragment_GBps", fragment.bytesPerSecond * 1e-9}};
+        bandwidths = measureFloorBandwidths(gl::ShaderLibrary());
+        j["bandwidth"] = {{"compute_GBps", bandwidths.compute.bytesPerSecond * 1e-9},
+                          {"fragment_GBps", bandwidths.fragment.bytesPerSecond * 1e-9}};
     }
     ProgressStyle progressStyle = stderrProgressStyle();
     progressStyle.plainLinePerStep = true;  // each variant's frame time, in a log too
@@ -208,12 +207,10 @@ int runBench(const Options& o, const std::vector<std::string>& args) {
             std::sort(sorted.begin(), sorted.end());
             run["passes"][name]["p99_ms"] = sorted[std::min(sorted.size() - 1, size_t(std::ceil(0.99 * double(sorted.size()))) - 1)];
             run["passes"][name]["samples_ms"] = samples;
-            const size_t bytes = renderer.graph().passTrafficBytes(name);
-            if (o.floors && bytes > 0) {
-                const fg::PassKind kind = renderer.graph().passKind(name);  // what the pass declared
-                run["passes"][name]["bytes"] = bytes;
-                run["passes"][name]["floor_ms"] = passFloorMs(kind, bytes, compute, fragment);
-                run["passes"][name]["floor_basis"] = floorBasis(kind);
+            if (const std::optional<PassFloor> floor = o.floors ? passFloor(renderer.graph(), name, bandwidths) : std::nullopt) {
+                run["passes"][name]["bytes"] = floor->bytes;
+                run["passes"][name]["floor_ms"] = floor->ms;
+                run["passes"][name]["floor_basis"] = floor->basis;
             }
         }
         j["runs"].push_back(run);

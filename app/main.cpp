@@ -251,20 +251,19 @@ int commandRender(const Options& o) {
 
     // Per-pass GPU time table, with floors when asked.
     const auto& timers = renderer.timers();
-    Bandwidth compute, fragment;
+    FloorBandwidths bandwidths;
     if (o.floors) {
-        gl::ShaderLibrary shaders;
-        compute = measureComputeBandwidth(shaders);
-        fragment = measureFragmentBandwidth(shaders);
+        bandwidths = measureFloorBandwidths(gl::ShaderLibrary());
         say("bandwidth: compute copy %.1f GB/s, fragment fill %.1f GB/s (RGBA32F 3840x2160, median of 30)\n",
-                    compute.bytesPerSecond * 1e-9, fragment.bytesPerSecond * 1e-9);
+            bandwidths.compute.bytesPerSecond * 1e-9, bandwidths.fragment.bytesPerSecond * 1e-9);
     }
     say("%-16s %10s %10s %10s%s  (GPU ms over %d frames, %s%s)\n", "pass", "median", "min", "max",
                 o.floors ? "   floor ms  meas/floor" : "", o.frames, sizeLabel(settings).c_str(),
                 ctx->isSoftware() ? ", software rasteriser: not meaningful" : "");
     nlohmann::json j;
     if (o.floors) {
-        j["bandwidth"] = {{"compute_GBps", compute.bytesPerSecond * 1e-9}, {"fragment_GBps", fragment.bytesPerSecond * 1e-9}};
+        j["bandwidth"] = {{"compute_GBps", bandwidths.compute.bytesPerSecond * 1e-9},
+                          {"fragment_GBps", bandwidths.fragment.bytesPerSecond * 1e-9}};
     }
     j["device"] = ctx->info().renderer;
     j["width"] = settings.width;
@@ -280,14 +279,11 @@ int commandRender(const Options& o) {
         double lo = *std::min_element(s.begin(), s.end()), hi = *std::max_element(s.begin(), s.end());
         say("%-16s %10.4f %10.4f %10.4f", name.c_str(), timers.median(name), lo, hi);
         j["passes"][name] = {{"median_ms", timers.median(name)}, {"min_ms", lo}, {"max_ms", hi}, {"samples", s.size()}};
-        const size_t bytes = renderer.graph().passTrafficBytes(name);
-        if (o.floors && bytes > 0) {
-            const fg::PassKind kind = renderer.graph().passKind(name);  // what the pass declared
-            const double floorMs = passFloorMs(kind, bytes, compute, fragment);
-            say(" %11.4f %10.1fx", floorMs, timers.median(name) / floorMs);
-            j["passes"][name]["bytes"] = bytes;
-            j["passes"][name]["floor_ms"] = floorMs;
-            j["passes"][name]["floor_basis"] = floorBasis(kind);
+        if (const std::optional<PassFloor> floor = o.floors ? passFloor(renderer.graph(), name, bandwidths) : std::nullopt) {
+            say(" %11.4f %10.1fx", floor->ms, timers.median(name) / floor->ms);
+            j["passes"][name]["bytes"] = floor->bytes;
+            j["passes"][name]["floor_ms"] = floor->ms;
+            j["passes"][name]["floor_basis"] = floor->basis;
         }
         say("\n");
     }

@@ -139,10 +139,9 @@ int runFrameReport(const Options& o, const std::vector<std::string>& args) {
     // nothing, so there a smaller copy, measured fewer times, keeps the report quick.
     gl::ShaderLibrary shaders;
     const int bw = ctx->isSoftware() ? 960 : 3840, bh = ctx->isSoftware() ? 540 : 2160, repeats = ctx->isSoftware() ? 5 : 30;
-    const Bandwidth compute = measureComputeBandwidth(shaders, bw, bh, repeats);
-    const Bandwidth fragment = measureFragmentBandwidth(shaders, bw, bh, repeats);
-    report.bandwidth = "compute copy bandwidth (" + std::to_string(int(compute.bytesPerSecond * 1e-9 + 0.5)) +
-                       " GB/s) or fragment fill rate (" + std::to_string(int(fragment.bytesPerSecond * 1e-9 + 0.5)) +
+    const FloorBandwidths bandwidths = measureFloorBandwidths(shaders, bw, bh, repeats);
+    report.bandwidth = "compute copy bandwidth (" + std::to_string(int(bandwidths.compute.bytesPerSecond * 1e-9 + 0.5)) +
+                       " GB/s) or fragment fill rate (" + std::to_string(int(bandwidths.fragment.bytesPerSecond * 1e-9 + 0.5)) +
                        " GB/s), RGBA32F " + std::to_string(bw) + "x" + std::to_string(bh) + ", median of " +
                        std::to_string(repeats);
     const auto& timers = renderer.timers();
@@ -154,10 +153,9 @@ int runFrameReport(const Options& o, const std::vector<std::string>& args) {
         PassTiming t;
         t.name = name;
         t.medianMs = timers.median(name);
-        const size_t bytes = graph.passTrafficBytes(name);
-        if (bytes > 0) {
-            t.floorMs = passFloorMs(graph.passKind(name), bytes, compute, fragment);
-            t.floorBasis = floorBasis(graph.passKind(name));
+        if (const std::optional<PassFloor> floor = passFloor(graph, name, bandwidths)) {
+            t.floorMs = floor->ms;
+            t.floorBasis = floor->basis;
         } else {
             t.noFloorReason = "moves no texture bytes";
         }

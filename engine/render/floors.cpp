@@ -77,4 +77,15 @@ double passFloorMs(fg::PassKind kind, size_t bytes, const Bandwidth& compute, co
 
 const char* floorBasis(fg::PassKind kind) { return kind == fg::PassKind::Raster ? "fragment fill" : "compute copy"; }
 
+FloorBandwidths measureFloorBandwidths(const gl::ShaderLibrary& shaders, int width, int height, int repeats) {
+    return {measureComputeBandwidth(shaders, width, height, repeats), measureFragmentBandwidth(shaders, width, height, repeats)};
+}
+
+std::optional<PassFloor> passFloor(const fg::FrameGraph& graph, const std::string& pass, const FloorBandwidths& bandwidths) {
+    const size_t bytes = graph.passTrafficBytes(pass);
+    if (bytes == 0) return std::nullopt;
+    const fg::PassKind kind = graph.passKind(pass);  // what the pass declared
+    return PassFloor{bytes, passFloorMs(kind, bytes, bandwidths.compute, bandwidths.fragment), floorBasis(kind)};
+}
+
 }  // namespace lp
