@@ -98,6 +98,19 @@ void keyCallback(GLFWwindow* window, int key, int, int action, int) {
             say(std::string("scissor ") + (s.localLights.scissor ? "on" : "off") + why);
             break;
         }
+        case GLFW_KEY_C: {
+            // Truth beside the frame: the path tracer of the same view, and the raster's error against it.
+            const std::string why = truthComparisonUnavailable(s);
+            if (!st->compareWithTruth && !why.empty()) {
+                say("compare with the path tracer: " + why);
+                break;
+            }
+            st->compareWithTruth = !st->compareWithTruth;
+            st->comparison.describedStats.clear();
+            say(st->compareWithTruth ? "compare with the path tracer on (raster | path tracer / heat map of the error)"
+                                     : "compare with the path tracer off");
+            break;
+        }
         case GLFW_KEY_H: st->showHelp = !st->showHelp; break;
         case GLFW_KEY_TAB:
             st->showPanel = !st->showPanel;
@@ -389,8 +402,17 @@ int runViewer(const Options& o) {
         // The image beside the panel (the panel's width as last drawn), or the whole window without
         // it: rendered at the viewport's size, so the camera's aspect is the viewport's.
         st.viewport = viewerViewport(fb.x, fb.y, float(windowWidth), st.showPanel, st.panelWidth);
-        st.settings.width = st.viewport.width;
-        st.settings.height = st.viewport.height;
+        // Comparing with the path tracer: both render at a quarter of the viewport (the 2 x 2 grid),
+        // the raster frame keeping its HDR buffer for the heat map. A setting the tracer cannot show
+        // (a G-buffer view, the tracer itself) ends the comparison, saying why.
+        if (st.compareWithTruth && !truthComparisonUnavailable(st.settings).empty()) {
+            st.compareWithTruth = false;
+            say("compare with the path tracer off: " + truthComparisonUnavailable(st.settings));
+        }
+        const ViewerViewport renderSize = st.compareWithTruth ? comparisonTile(st.viewport) : st.viewport;
+        st.settings.width = renderSize.width;
+        st.settings.height = renderSize.height;
+        st.settings.keepHdr = st.compareWithTruth;
         st.toonShown = st.settings.post.toon.value_or(scene->effects.toon.enabled);
         try {
             renderer->render(st.settings, float(now), true);
@@ -422,12 +444,23 @@ int runViewer(const Options& o) {
             st.screenshotRequested = false;
             takeScreenshot(st, *renderer);
         }
-        glNamedFramebufferTexture(blit.id(), GL_COLOR_ATTACHMENT0, renderer->displayTexture(), 0);
         const GLfloat black[4] = {0.0f, 0.0f, 0.0f, 1.0f};  // the window cleared, the frame blitted into the viewport
         glClearNamedFramebufferfv(0, GL_COLOR, 0, black);
         const ViewerViewport& vp = st.viewport;
-        glBlitNamedFramebuffer(blit.id(), 0, 0, 0, vp.width, vp.height, vp.x, vp.y, vp.x + vp.width, vp.y + vp.height,
-                               GL_COLOR_BUFFER_BIT, GL_NEAREST);
+        if (st.compareWithTruth) {
+            try {
+                const std::string line = drawTruthComparison(st.comparison, *renderer, *scene, st.settings, float(now), vp, blit.id());
+                if (!line.empty()) say(line);
+            } catch (const Error& e) {  // e.g. a scene the tracer refuses: the frame alone again
+                st.compareWithTruth = false;
+                say(std::string("compare with the path tracer off: ") + e.what());
+            }
+        }
+        if (!st.compareWithTruth) {
+            glNamedFramebufferTexture(blit.id(), GL_COLOR_ATTACHMENT0, renderer->displayTexture(), 0);
+            glBlitNamedFramebuffer(blit.id(), 0, 0, 0, vp.width, vp.height, vp.x, vp.y, vp.x + vp.width, vp.y + vp.height,
+                                   GL_COLOR_BUFFER_BIT, GL_NEAREST);
+        }
         renderer->timers().trim(120);
         if (st.showPanel) drawViewerPanel(st, *renderer, *scene, *ctx, pickerFiles);
         if (st.showHelp) {
@@ -436,6 +469,15 @@ int runViewer(const Options& o) {
                                     ImGuiCond_Always, ImVec2(0.5f, 0.5f));
             ImGui::Begin("keys (h closes)", &st.showHelp, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse);
             ImGui::TextUnformatted(kViewerHelp);
+            ImGui::End();
+        }
+        if (st.compareWithTruth) {  // the legend and numbers in the grid's empty quarter (bottom right)
+            const float toWindow = windowWidth > 0 ? float(windowWidth) / float(fb.x) : 1.0f;
+            ImGui::SetNextWindowPos(ImVec2((vp.x + vp.width * 0.75f) * toWindow, windowHeight * 0.75f), ImGuiCond_Always,
+                                    ImVec2(0.5f, 0.5f));
+            ImGui::Begin("compare with the path tracer", nullptr,
+                         ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoSavedSettings);
+            ImGui::TextUnformatted(truthComparisonLegend(st.comparison.stats).c_str());
             ImGui::End();
         }
         if (!o.panelRowsOut.empty() && frame >= 3) {  // from "viewer ready" on: the panel has settled

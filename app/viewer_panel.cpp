@@ -20,6 +20,7 @@ const char* const kViewerHelp =
     "m next material input (base-color, metallic, roughness, occlusion, emissive)\n"
     "t next lit term (term-diffuse, term-specular)\n"
     "r reset camera   p follow the camera path   x toggle scissor (local lights, scissor method)\n"
+    "c compare with the path tracer: raster, path tracer and a heat map of the error\n"
     "W/S forward/back   A/D left/right   Q/Z up/down   left-drag look\n"
     "+/- exposure   Tab hide/show panel   h this help   F12 screenshot   Esc quit";
 
@@ -259,6 +260,12 @@ void drawViewerPanel(ViewerState& st, Renderer& renderer, const Scene& scene, co
             bool follow = st.followPath;
             if (ImGui::Checkbox("follow camera path (p)", &follow)) st.togglePath = true;
         }
+        // Truth beside the frame (app/viewer_compare.hpp): greyed, with the reason, where it cannot run.
+        const std::string why = truthComparisonUnavailable(st.settings);
+        ImGui::BeginDisabled(!why.empty() && !st.compareWithTruth);
+        if (ImGui::Checkbox("compare with the path tracer (c)", &st.compareWithTruth)) st.comparison.describedStats.clear();
+        ImGui::EndDisabled();
+        if (!why.empty() && !st.compareWithTruth) ImGui::TextDisabled("  %s", why.c_str());
     }
     if (ImGui::CollapsingHeader("lighting", ImGuiTreeNodeFlags_DefaultOpen)) drawLighting(st, scene);
     if (ImGui::CollapsingHeader("bloom, toon and motion blur", ImGuiTreeNodeFlags_DefaultOpen))

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "app/pass_rows.hpp"
+#include "app/viewer_compare.hpp"
 #include "app/viewer_layout.hpp"
 #include "engine/gl/context.hpp"
 #include "engine/gl/shader_reload.hpp"
@@ -46,6 +47,9 @@ struct ViewerState {
     // Where the panel was last drawn (window coordinates); the next frame's image goes beside it.
     float panelX = 0, panelY = 0, panelWidth = kPanelDefaultWidth, panelHeight = 0;
     ViewerViewport viewport;  // where this frame's image goes (app/viewer_layout.hpp)
+    // 'c' / the panel: the raster frame beside the path tracer's and a heat map of its error.
+    bool compareWithTruth = false;
+    TruthComparison comparison;
 
     // Scene and environment pickers: the panel asks, the frame loop loads between frames.
     std::filesystem::path sceneFile;  // the scene (.json) or model (.obj) on screen

@@ -2,7 +2,8 @@
 # The viewer as a user drives it: starts on the default scene under Xvfb (Mesa), key '2' switches to
 # the normals view and F12's screenshot shows the normal encoding, '+'/'-' there say exposure is not
 # shown in it, 'p' says the scene has no camera path, 'r' resets the camera, 'm' and 't' step through the
-# material-input and term views, 'x' toggles scissor, '7' adds the
+# material-input and term views, 'c' compares the final view with the path tracer (and says why not in
+# another view), 'x' toggles scissor, '7' adds the
 # toon pass and '8' the bloom pass (alone: toon is moot) to the compiled graph, '0' takes them out again, unticking the
 # panel's "sky" checkbox removes that pass from the compiled graph, Esc quits.
 #   viewer_under_xvfb.sh LIGHTPASS SCENE OUTDIR
@@ -11,7 +12,7 @@ lp=$1 scene=$2 out=$3
 rm -rf "$out" && mkdir -p "$out"
 . "$(dirname "$0")/xvfb_lib.sh"
 start_xvfb 640x720x24 "$out"  # tall enough for the passes table down to "sky"
-"$lp" view "$scene" --size 600x680 --screenshot-dir "$out" --hide-panel --panel-rows-out "$out/rows.txt" \
+"$lp" view "$scene" --size 600x680 --spp 4 --screenshot-dir "$out" --hide-panel --panel-rows-out "$out/rows.txt" \
   >"$out/viewer.log" 2>&1 &
 viewer=$!
 wait_for() {  # wait_for PATTERN FILE (an extended regular expression)
@@ -43,6 +44,9 @@ xdotool key t
 wait_for "view term-diffuse" "$out/viewer.log"
 xdotool key t
 wait_for "view term-specular" "$out/viewer.log"
+# 'c' compares with the path tracer only in the final view; there it prints the error against it.
+xdotool key c
+wait_for "^compare with the path tracer: only in the final view" "$out/viewer.log"
 xdotool key x
 wait_for "scissor off \(used by the scissor method; now tiled" "$out/viewer.log"  # the default method says it ignores it
 # "graph:" lines list the passes that ran, printed whenever that list changes.
@@ -55,6 +59,11 @@ wait_for "bloom only on" "$out/viewer.log"
 wait_for "^graph:.* bloom" "$out/viewer.log"
 xdotool key 0
 wait_for "view final" "$out/viewer.log"
+xdotool key c
+wait_for "^compare with the path tracer on" "$out/viewer.log"
+wait_for "^compare: path tracer 4 samples a pixel \(noise [0-9.]+%\); raster against it: mean \|relative error\| [0-9.]+%, RMSE [0-9.e-]+$" "$out/viewer.log"
+xdotool key c
+wait_for "^compare with the path tracer off$" "$out/viewer.log"
 xdotool key equal
 wait_for "^exposure \+0\.5 EV$" "$out/viewer.log"  # the final image shows it: no reason given
 xdotool key minus
