@@ -97,12 +97,21 @@ uint64_t casterSignature(const FrameData& frame) {
         f.add(mesh.indices.id());
         f.add(mesh.poseVersion);  // an animated mesh that moved since the atlas was drawn
     }
-    for (const GpuMaterial& m : gpu.materials) f.add(m.alphaBlend);
+    for (const GpuMaterial& m : gpu.materials) {  // what the alpha-tested casters read
+        f.add(m.alphaMask);
+        f.add(m.alphaBlend);
+        f.add(m.alphaCutoff);
+        f.add(m.opacity);
+        f.add(m.diffuseMap);
+        f.add(m.secondUvMaps);
+    }
     f.add(gpu.casterClusters.size());
     for (const CasterCluster& c : gpu.casterClusters) {
         f.add(c.model);
         f.add(c.firstIndex);
         f.add(c.indexCount);
+        f.add(c.alpha);
+        f.add(c.material);
     }
     return f.h;
 }
@@ -237,10 +246,12 @@ struct DrawArraysCommand {
 // --shadow-raster compute, inside the pass's framebuffer (the atlas bound as its depth, cleared to
 // 1, depth clamp and the polygon offset factor set): every cascade's culled casters through
 // shadow_raster.comp into the R32UI image, that image into the atlas, then each cascade's large
-// triangles drawn plainly over it with the depth test.
+// triangles drawn plainly over it with the depth test, and its alpha-tested casters (MASK, BLEND)
+// likewise with `alphaProgram` (the plain program's alpha-tested twin): the compute raster takes the
+// opaque casters only.
 void drawCascadesByCompute(ShadowMapPass& state, const FrameData& frame, const ShadowFrustum& fr,
                            const std::vector<CasterList>& casters, int width, int height, bool depthZeroToOne,
-                           const std::vector<bool>& redraw) {
+                           const std::vector<bool>& redraw, GLuint alphaProgram) {
     if (!state.rasterProgram)
         state.rasterProgram = frame.shaders->compute(
             "shadow_raster.comp", std::vector<std::string>{"LP_VERTEX_FLOATS " + std::to_string(sizeof(GpuVertex) / sizeof(float))});
@@ -340,6 +351,15 @@ void drawCascadesByCompute(ShadowMapPass& state, const FrameData& frame, const S
         glScissor(origin.x, origin.y, fr.tileSize, fr.tileSize);
         glDrawArraysIndirect(GL_TRIANGLES, reinterpret_cast<const void*>(c * sizeof(DrawArraysCommand)));
     }
+    // The alpha-tested casters: the plain path's hardware draws, the fragments their alpha drops discarded.
+    for (size_t c = 0; c < fr.cascades.size() && alphaProgram; ++c) {
+        if (!redraw[c] || casters[c].alphaDraws.empty()) continue;
+        const glm::ivec2 origin = tileOrigin(fr, c);
+        glViewport(origin.x, origin.y, fr.tileSize, fr.tileSize);
+        glScissor(origin.x, origin.y, fr.tileSize, fr.tileSize);
+        glUseProgram(alphaProgram);
+        drawAlphaCasterList(frame, alphaProgram, fr.cascades[c].worldToClip, casters[c]);
+    }
     glDisable(GL_SCISSOR_TEST);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, 0);
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
@@ -429,6 +449,32 @@ void drawAtlas(ShadowMapPass& state, const FrameData& frame, const ShadowFrustum
                                                         {"LP_SHADOW_CONSERVATIVE", "LP_SHADOW_AWAY_ONLY"});
         if ((raster == Raster::Plain || raster == Raster::Split) && !state.plainProgram)
             state.plainProgram = frame.shaders->graphics("shadow_depth.vert", "shadow_depth.frag");
+        // The alpha-tested twins, with the same defines and LP_SHADOW_ALPHA_TEST.
+        const bool alphaTested = hasAlphaTestedCasters(frame.gpu->casterClusters);
+        auto twin = [&](gl::Program& program, bool needed, std::vector<std::string> defines, bool geometryShader) {
+            if (!alphaTested || !needed || program) return;
+            defines.push_back("LP_SHADOW_ALPHA_TEST");
+            program = geometryShader ? frame.shaders->graphics("shadow_depth.vert", "shadow_depth.geom", "shadow_depth.frag", defines)
+                                     : frame.shaders->graphics("shadow_depth.vert", "shadow_depth.frag", defines);
+        };
+        twin(state.hardwareTowardAlphaProgram, hardware && raster == Raster::Conservative, {"LP_SHADOW_HARDWARE_CONSERVATIVE"}, false);
+        twin(state.hardwareAwayAlphaProgram, hardware, {"LP_SHADOW_HARDWARE_CONSERVATIVE", "LP_SHADOW_FACES_AWAY"}, false);
+        twin(state.alphaProgram, !hardware && raster == Raster::Conservative, {"LP_SHADOW_CONSERVATIVE"}, true);
+        twin(state.awayAlphaProgram, !hardware && raster == Raster::Split, {"LP_SHADOW_CONSERVATIVE", "LP_SHADOW_AWAY_ONLY"}, true);
+        twin(state.plainAlphaProgram, raster == Raster::Plain || raster == Raster::Split || raster == Raster::Compute, {}, false);
+        // A program's alpha-tested twin (0: none, or no alpha-tested casters).
+        auto alphaTwin = [&](GLuint prog) -> GLuint {
+            if (!alphaTested || !prog) return 0;
+            const std::pair<const gl::Program*, const gl::Program*> twins[] = {
+                {&state.program, &state.alphaProgram},
+                {&state.awayProgram, &state.awayAlphaProgram},
+                {&state.plainProgram, &state.plainAlphaProgram},
+                {&state.hardwareTowardProgram, &state.hardwareTowardAlphaProgram},
+                {&state.hardwareAwayProgram, &state.hardwareAwayAlphaProgram}};
+            for (const auto& [opaque, alpha] : twins)
+                if (opaque->id() == prog) return alpha->id();
+            return 0;
+        };
         const GLuint fbo = state.fbo.id();
         glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, depthTexture, 0);
         glNamedFramebufferDrawBuffer(fbo, GL_NONE);
@@ -471,7 +517,8 @@ void drawAtlas(ShadowMapPass& state, const FrameData& frame, const ShadowFrustum
         // Hardware: faces towards the light (conservative only; split draws them plainly), then away.
         const GLuint hardwareProgs[2] = {hardware && raster == Raster::Conservative ? state.hardwareTowardProgram.id() : 0,
                                          hardware ? state.hardwareAwayProgram.id() : 0};
-        for (GLuint prog : {conservativeProg, hardwareProgs[0], hardwareProgs[1]}) {
+        for (GLuint prog : {conservativeProg, hardwareProgs[0], hardwareProgs[1], alphaTwin(conservativeProg),
+                            alphaTwin(hardwareProgs[0]), alphaTwin(hardwareProgs[1])}) {
             if (!prog) continue;
             glProgramUniform1i(prog, glGetUniformLocation(prog, "uDepthZeroToOne"), clipDepth == GL_ZERO_TO_ONE ? 1 : 0);
             // Slope-scaled bias against acne, for the faces towards the light only (shadow_depth.frag);
@@ -480,7 +527,8 @@ void drawAtlas(ShadowMapPass& state, const FrameData& frame, const ShadowFrustum
         }
         if (raster == Raster::Compute) {
             gl::ScopedEnable scissor(GL_SCISSOR_TEST, false);  // drawCascadesByCompute scissors per tile
-            drawCascadesByCompute(state, frame, fr, casters, width, height, clipDepth == GL_ZERO_TO_ONE, redraw);
+            drawCascadesByCompute(state, frame, fr, casters, width, height, clipDepth == GL_ZERO_TO_ONE, redraw,
+                                  alphaTested ? state.plainAlphaProgram.id() : 0);
             glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, 0, 0);
             return;
         }
@@ -499,26 +547,24 @@ void drawAtlas(ShadowMapPass& state, const FrameData& frame, const ShadowFrustum
             // Conservative: a face towards the light grown past its edge yields to one covering the
             // texel's centre by a texel's world size in depth (shadow_caster_depth.glsl).
             const float texelDepth = fr.cascades[c].texelWorld / fr.cascades[c].depthRange;
-            for (GLuint prog : {conservativeProg, hardwareProgs[0]})
+            for (GLuint prog : {conservativeProg, hardwareProgs[0], alphaTwin(conservativeProg), alphaTwin(hardwareProgs[0])})
                 if (prog) glProgramUniform1f(prog, glGetUniformLocation(prog, "uTexelDepth"), texelDepth);
             if (plainProg) {
                 // Split: only the faces towards the light (counter-clockwise in the light's window,
                 // as shadow_depth.geom's orientation), which need neither growth nor gl_FragDepth.
-                glUseProgram(plainProg);
                 glEnable(GL_POLYGON_OFFSET_FILL);
                 if (raster == Raster::Split) glEnable(GL_CULL_FACE);
                 glCullFace(GL_BACK);
-                drawCasterList(frame, plainProg, glGetUniformLocation(plainProg, "uModelToClip"),
-                               fr.cascades[c].worldToClip, regionCasters);
+                drawCasters(frame, plainProg, alphaTwin(plainProg), fr.cascades[c].worldToClip, regionCasters);
                 glDisable(GL_POLYGON_OFFSET_FILL);
                 glDisable(GL_CULL_FACE);
             }
             if (conservativeProg) {
-                glUseProgram(conservativeProg);
-                glProgramUniform4f(conservativeProg, glGetUniformLocation(conservativeProg, "uViewport"), float(x),
-                                   float(y), float(fr.tileSize), float(fr.tileSize));
-                drawCasterList(frame, conservativeProg, glGetUniformLocation(conservativeProg, "uModelToClip"),
-                               fr.cascades[c].worldToClip, regionCasters);
+                for (GLuint prog : {conservativeProg, alphaTwin(conservativeProg)})
+                    if (prog)
+                        glProgramUniform4f(prog, glGetUniformLocation(prog, "uViewport"), float(x), float(y),
+                                           float(fr.tileSize), float(fr.tileSize));
+                drawCasters(frame, conservativeProg, alphaTwin(conservativeProg), fr.cascades[c].worldToClip, regionCasters);
             }
             if (hardware) {
                 // Every texel a triangle touches gets a fragment; no geometry shader, no box to clip to.
@@ -539,11 +585,11 @@ void drawAtlas(ShadowMapPass& state, const FrameData& frame, const ShadowFrustum
                         glEnable(GL_POLYGON_OFFSET_FILL);
                         glPolygonOffset(-1.25f, -4.0f);
                     }
-                    glUseProgram(prog);
-                    glProgramUniform4f(prog, glGetUniformLocation(prog, "uViewport"), float(x), float(y),
-                                       float(fr.tileSize), float(fr.tileSize));
-                    drawCasterList(frame, prog, glGetUniformLocation(prog, "uModelToClip"), fr.cascades[c].worldToClip,
-                                   regionCasters);
+                    for (GLuint p : {prog, alphaTwin(prog)})
+                        if (p)
+                            glProgramUniform4f(p, glGetUniformLocation(p, "uViewport"), float(x), float(y),
+                                               float(fr.tileSize), float(fr.tileSize));
+                    drawCasters(frame, prog, alphaTwin(prog), fr.cascades[c].worldToClip, regionCasters);
                 }
                 glDisable(GL_POLYGON_OFFSET_FILL);
                 glPolygonOffset(frame.settings->shadows.slopeBias, 0.0f);
@@ -881,9 +927,11 @@ ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const
             if (!why[c].kept() && !work[c].scrolled && !work[c].fromSpare && !lags[c])
                 work[c].regions.push_back({{0, 0, fr.tileSize, fr.tileSize}, casters[c]});
             const CasterList& l = casters[c];
-            graph.notePass(name, "cascade " + std::to_string(c) + ": " + std::to_string(l.draws.size()) + " draws, " +
-                                     std::to_string(l.clusters) + " of " + std::to_string(clusters.size()) + " clusters, " +
-                                     std::to_string(l.triangles) + " of " + std::to_string(sceneTriangles) + " triangles (" +
+            graph.notePass(name, "cascade " + std::to_string(c) + ": " + std::to_string(l.draws.size() + l.alphaDraws.size()) +
+                                     " draws, " + std::to_string(l.clusters) + " of " + std::to_string(clusters.size()) +
+                                     " clusters, " + std::to_string(l.triangles) + " of " + std::to_string(sceneTriangles) +
+                                     " triangles" +
+                                     (l.alphaTriangles ? ", " + std::to_string(l.alphaTriangles) + " alpha-tested" : "") + " (" +
                                      rasterNote +
                                      (frame.settings->shadows.cullCasters ? "" : ", culling off") + "); " + what[c]);
             if (c < size_t(kMaxShadowCascades) && lags[c]) ++state.cacheStats.laggingPerCascade[c];
@@ -1005,16 +1053,59 @@ void drawCasterList(const FrameData& frame, GLuint prog, GLint locMvp, const glm
     }
 }
 
-void drawShadowCasters(const FrameData& frame, GLuint prog, GLint locMvp, const glm::mat4& worldToClip) {
-    for (const auto& mesh : frame.gpu->meshes) {
-        const glm::mat4 mvp = worldToClip * mesh.model;
-        glProgramUniformMatrix4fv(prog, locMvp, 1, GL_FALSE, glm::value_ptr(mvp));
-        glBindVertexArray(mesh.vao.id());
-        for (const auto& draw : mesh.draws) {
-            if (frame.gpu->materials[size_t(draw.material)].alphaBlend) continue;  // blended surfaces cast no shadow
-            glDrawElements(GL_TRIANGLES, GLsizei(draw.indexCount), GL_UNSIGNED_INT,
-                           reinterpret_cast<const void*>(size_t(draw.firstIndex) * sizeof(uint32_t)));
+namespace {
+// The uniforms of common/shadow_alpha.glsl in an LP_SHADOW_ALPHA_TEST program.
+struct ShadowAlphaUniforms {
+    GLint modelToClip, opacity, hasDiffuseMap, secondUvMaps, alphaCutoff, alphaHashed;
+    explicit ShadowAlphaUniforms(GLuint prog) {
+        auto loc = [prog](const char* name) { return glGetUniformLocation(prog, name); };
+        modelToClip = loc("uModelToClip"); opacity = loc("uOpacity"); hasDiffuseMap = loc("uHasDiffuseMap");
+        secondUvMaps = loc("uSecondUvMaps"); alphaCutoff = loc("uAlphaCutoff"); alphaHashed = loc("uAlphaHashed");
+    }
+    void set(GLuint prog, const GpuMaterial& m) const {
+        glProgramUniform1f(prog, opacity, m.opacity);
+        glProgramUniform1i(prog, hasDiffuseMap, m.diffuseMap != 0);
+        glProgramUniform1ui(prog, secondUvMaps, m.secondUvMaps);
+        glProgramUniform1f(prog, alphaCutoff, m.alphaCutoff);
+        glProgramUniform1i(prog, alphaHashed, m.alphaBlend);  // BLEND and MTL d < 1: hashed; MASK: the cutoff
+        glBindTextureUnit(0, m.diffuseMap);  // LP_MATERIAL_BIND_DIFFUSE (common/material.glsl)
+    }
+};
+}  // namespace
+
+void drawAlphaCasterList(const FrameData& frame, GLuint prog, const glm::mat4& worldToClip, const CasterList& casters) {
+    if (casters.alphaDraws.empty()) return;
+    const ShadowAlphaUniforms u(prog);
+    int boundModel = -1, boundMaterial = -1;
+    for (const CasterDraw& draw : casters.alphaDraws) {
+        if (draw.model < 0 || size_t(draw.model) >= frame.gpu->meshes.size()) continue;
+        if (draw.material < 0 || size_t(draw.material) >= frame.gpu->materials.size()) continue;
+        const GpuMesh& mesh = frame.gpu->meshes[size_t(draw.model)];
+        if (draw.model != boundModel) {
+            const glm::mat4 mvp = worldToClip * mesh.model;
+            glProgramUniformMatrix4fv(prog, u.modelToClip, 1, GL_FALSE, glm::value_ptr(mvp));
+            glBindVertexArray(mesh.vao.id());
+            boundModel = draw.model;
         }
+        if (draw.material != boundMaterial) {
+            u.set(prog, frame.gpu->materials[size_t(draw.material)]);
+            boundMaterial = draw.material;
+        }
+        glDrawElements(GL_TRIANGLES, GLsizei(draw.indexCount), GL_UNSIGNED_INT,
+                       reinterpret_cast<const void*>(size_t(draw.firstIndex) * sizeof(uint32_t)));
+    }
+    glBindTextureUnit(0, 0);
+}
+
+void drawCasters(const FrameData& frame, GLuint opaque, GLuint alphaTested, const glm::mat4& worldToClip,
+                 const CasterList& casters) {
+    if (!casters.draws.empty()) {
+        glUseProgram(opaque);
+        drawCasterList(frame, opaque, glGetUniformLocation(opaque, "uModelToClip"), worldToClip, casters);
+    }
+    if (alphaTested && !casters.alphaDraws.empty()) {
+        glUseProgram(alphaTested);
+        drawAlphaCasterList(frame, alphaTested, worldToClip, casters);
     }
 }
 

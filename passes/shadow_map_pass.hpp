@@ -217,6 +217,10 @@ struct ShadowMapPass {
     bool warnedNoHardware = false;
     gl::Program plainProgram;  // --shadow-raster plain, and split's faces towards the light
     gl::Program awayProgram;   // --shadow-raster split: conservative, faces away from the light only
+    // The alpha-tested twins of the five programs above (LP_SHADOW_ALPHA_TEST: the MASK and BLEND
+    // casters' draws, CasterList::alphaDraws), made when a frame first has such casters; the compute
+    // raster draws its alpha-tested casters with plainAlphaProgram.
+    gl::Program alphaProgram, hardwareTowardAlphaProgram, hardwareAwayAlphaProgram, plainAlphaProgram, awayAlphaProgram;
     gl::Framebuffer fbo;
     gl::Texture scrollScratch;  // D32F, one tile: --shadow-scroll moves through it what would take too many bands
     // --shadow-raster compute
@@ -251,7 +255,8 @@ struct ShadowMapPass {
 };
 
 // A hash of what every cascade's casters are: the SceneGpu, each mesh's model matrix and buffers,
-// which materials are alpha-blended (those cast no shadow) and the caster clusters.
+// every material's alpha inputs (mode, cutoff, opacity, base colour map and its uv set) and the
+// caster clusters with their CasterAlpha.
 uint64_t casterSignature(const FrameData& frame);
 
 // Per cascade of `frustum`: why its tile must be drawn this frame, or None when `cache` already
@@ -284,11 +289,17 @@ using ShadowMaps = std::vector<LightShadowMap>;
 
 ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const FrameData& frame);
 
-// Draws every mesh of the frame's scene with `prog` (bound), its uniform `locMvp` set to
-// worldToClip x model: the caster loop the sun cascades and the spot shadow maps share.
-void drawShadowCasters(const FrameData& frame, GLuint prog, GLint locMvp, const glm::mat4& worldToClip);
-
-// Draws one cascade's culled caster list (engine/render/shadow_casters.hpp) the same way.
+// Draws the opaque draws of a caster list (engine/render/shadow_casters.hpp) with `prog` (bound),
+// its uniform `locMvp` set to worldToClip x model.
 void drawCasterList(const FrameData& frame, GLuint prog, GLint locMvp, const glm::mat4& worldToClip, const CasterList& casters);
+// Draws the alpha-tested draws of a caster list with `prog` (bound; an LP_SHADOW_ALPHA_TEST program
+// of shadow_depth.frag), each with its material's alpha inputs (common/shadow_alpha.glsl) and base
+// colour map on unit 0, which it leaves unbound.
+void drawAlphaCasterList(const FrameData& frame, GLuint prog, const glm::mat4& worldToClip, const CasterList& casters);
+// Both: the opaque draws with `opaque`, then the alpha-tested ones with `alphaTested` (its
+// alpha-tested twin; 0 where the list has none), each program bound for its draws. The caster loop
+// the sun cascades and the spot shadow maps share.
+void drawCasters(const FrameData& frame, GLuint opaque, GLuint alphaTested, const glm::mat4& worldToClip,
+                 const CasterList& casters);
 
 }  // namespace lp

@@ -77,6 +77,13 @@ SpotShadowMaps addSpotShadowPass(fg::FrameGraph& graph, SpotShadowPass& state, c
                 state.program = frame.shaders->graphics("shadow_depth.vert", "shadow_depth.frag");
                 state.fbo = gl::makeFramebuffer("spot_shadows");
             }
+            // MASK and BLEND casters: drawn after the opaque ones by the alpha-tested twin.
+            const bool alphaTested = hasAlphaTestedCasters(frame.gpu->casterClusters);
+            if (alphaTested && !state.alphaProgram)
+                state.alphaProgram = frame.shaders->graphics("shadow_depth.vert", "shadow_depth.frag",
+                                                             std::vector<std::string>{"LP_SHADOW_ALPHA_TEST"});
+            // Every caster (the sun cascades' clusters, not culled), opaque and alpha-tested draws apart.
+            const CasterList casters = cullCasters(frame.gpu->casterClusters, *frame.scene, glm::mat4(1.0f), 0.0f, false);
             const GLuint fbo = state.fbo.id();
             glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, res.texture(out.depth), 0);
             glNamedFramebufferDrawBuffer(fbo, GL_NONE);
@@ -94,12 +101,9 @@ SpotShadowMaps addSpotShadowPass(fg::FrameGraph& graph, SpotShadowPass& state, c
             glPolygonOffset(frame.settings->shadows.slopeBias, 0.0f);
             const float one = 1.0f;
             glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &one);
-            const GLuint prog = state.program.id();
-            const GLint locMvp = glGetUniformLocation(prog, "uModelToClip");
-            glUseProgram(prog);
             for (size_t t = 0; t < matrices.size(); ++t) {
                 glViewport(GLint(t % size_t(columns)) * tile, GLint(t / size_t(columns)) * tile, tile, tile);
-                drawShadowCasters(frame, prog, locMvp, matrices[t]);
+                drawCasters(frame, state.program.id(), alphaTested ? state.alphaProgram.id() : 0, matrices[t], casters);
             }
             glBindVertexArray(0);
             glUseProgram(0);

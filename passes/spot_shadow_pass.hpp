@@ -2,7 +2,8 @@
 // "spot_shadows": one depth-only raster pass drawing a perspective shadow map for every local spot
 // light with castsShadow (up to kMaxSpotShadows, the first ones), as square tiles of one D32F atlas
 // "spot_shadows.depth". The local-light pass reads it and filters it like the suns' maps (PCF,
-// settings.shadows.filter). No shadow-casting spot in the frame, or shadows off: no pass.
+// settings.shadows.filter). No shadow-casting spot in the frame, or shadows off: no pass. Opaque
+// casters are drawn plainly; MASK and BLEND ones test their alpha (alphaProgram, as the suns').
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -16,7 +17,8 @@ namespace lp {
 constexpr int kMaxSpotShadows = 16;
 
 struct SpotShadowPass {
-    gl::Program program;
+    gl::Program program;       // opaque casters: no texture fetch, no discard
+    gl::Program alphaProgram;  // MASK and BLEND casters (LP_SHADOW_ALPHA_TEST), made when the scene has some
     gl::Framebuffer fbo;
 };
 

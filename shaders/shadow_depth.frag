@@ -17,6 +17,21 @@
 #endif
 #include "common/shadow_caster_depth.glsl"
 
+// LP_SHADOW_ALPHA_TEST (with any of the above): the MASK and BLEND casters' draws, which first drop
+// the fragments whose base colour alpha lets the light through (common/shadow_alpha.glsl).
+#ifdef LP_SHADOW_ALPHA_TEST
+#include "common/shadow_alpha.glsl"
+layout(location = 1) in ShadowCasterAlpha {
+    vec2 uv;
+    vec2 uv1;
+    vec4 color;
+    vec3 objectPosition;
+} casterIn;
+bool casterAlphaDiscards() { return shadowCasterAlphaDiscards(casterIn.uv, casterIn.uv1, casterIn.color, casterIn.objectPosition); }
+#else
+bool casterAlphaDiscards() { return false; }
+#endif
+
 #if defined(LP_SHADOW_CONSERVATIVE)
 flat in vec4 vTexelBounds;
 flat in vec2 vDepthRange;
@@ -26,6 +41,7 @@ uniform float uSlopeBias;  // --shadow-slope-bias: the lit faces' slope-scaled o
 uniform float uTexelDepth; // one texel's world size in window depth (the cascade's texel / depth range)
 
 void main() {
+    if (casterAlphaDiscards()) discard;
     if (any(lessThan(gl_FragCoord.xy, vTexelBounds.xy)) || any(greaterThan(gl_FragCoord.xy, vTexelBounds.zw))) discard;
     vec2 gradient = vec2(dFdx(gl_FragCoord.z), dFdy(gl_FragCoord.z));
     bool covers = windowPointInTriangle(gl_FragCoord.xy, vTriangle[0], vTriangle[1], vTriangle[2]);
@@ -54,6 +70,7 @@ uniform float uTexelDepth;  // one texel's world size in window depth
 layout(depth_greater) out float gl_FragDepth;
 
 void main() {
+    if (casterAlphaDiscards()) discard;
     vec3 a = vWindow[0], b = vWindow[1], c = vWindow[2];
     vec2 range = vec2(min(a.z, min(b.z, c.z)), max(a.z, max(b.z, c.z)));
     // The plane from the vertices, not dFdx/dFdy: exact, and unaffected by depth clamp.
@@ -70,5 +87,7 @@ void main() {
 #endif
 }
 #else
-void main() {}
+void main() {
+    if (casterAlphaDiscards()) discard;
+}
 #endif

@@ -15,6 +15,22 @@ flat out vec4 vTexelBounds;    // window xy min, max of the triangle grown by ha
 flat out vec2 vDepthRange;     // the triangle's nearest and farthest window depth
 flat out int vFacesAway;       // 1: the triangle faces away from the light (window winding clockwise)
 flat out vec2 vTriangle[3];    // its window xy before growing: which texel centres it covers
+#ifdef LP_SHADOW_ALPHA_TEST
+// Alpha-tested casters: the vertex attributes carried to the grown vertices along the triangle's
+// planes (extrapolated), so a texel the growth adds reads the alpha the triangle would have there.
+layout(location = 1) in ShadowCasterAlpha {
+    vec2 uv;
+    vec2 uv1;
+    vec4 color;
+    vec3 objectPosition;
+} casterIn[];
+layout(location = 1) out ShadowCasterAlpha {
+    vec2 uv;
+    vec2 uv1;
+    vec4 color;
+    vec3 objectPosition;
+} casterOut;
+#endif
 
 float cross2(vec2 a, vec2 b) { return a.x * b.y - a.y * b.x; }
 
@@ -56,6 +72,15 @@ void main() {
         float det = cross2(n[j], n[i]);
         vec2 q = vec2(c[j] * n[i].y - c[i] * n[j].y, n[j].x * c[i] - n[i].x * c[j]) / det;
         float zq = z[0] + dot(gradZ, q - p[0]);
+#ifdef LP_SHADOW_ALPHA_TEST
+        // q's barycentric coordinates in the original triangle (outside it: some negative).
+        float b1 = cross2(q - p[0], e2) / area, b2 = cross2(e1, q - p[0]) / area, b0 = 1.0 - b1 - b2;
+        casterOut.uv = b0 * casterIn[0].uv + b1 * casterIn[1].uv + b2 * casterIn[2].uv;
+        casterOut.uv1 = b0 * casterIn[0].uv1 + b1 * casterIn[1].uv1 + b2 * casterIn[2].uv1;
+        casterOut.color = b0 * casterIn[0].color + b1 * casterIn[1].color + b2 * casterIn[2].color;
+        casterOut.objectPosition =
+            b0 * casterIn[0].objectPosition + b1 * casterIn[1].objectPosition + b2 * casterIn[2].objectPosition;
+#endif
         vec2 ndc = (q - uViewport.xy) / uViewport.zw * 2.0 - 1.0;
         gl_Position = vec4(ndc, zq, 1.0);
         vTexelBounds = vec4(lo, hi);

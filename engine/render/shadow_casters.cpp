@@ -6,22 +6,45 @@
 
 namespace lp {
 
+CasterAlpha casterAlpha(const MeshData& mesh, const SubMesh& sm) {
+    if (sm.material < 0 || size_t(sm.material) >= mesh.materials.size()) return CasterAlpha::Opaque;
+    const Material& m = mesh.materials[size_t(sm.material)];
+    if (m.alphaMode == AlphaMode::Opaque) return CasterAlpha::Opaque;
+    const bool mask = m.alphaMode == AlphaMode::Mask;
+    if (!m.diffuseMap.empty()) return mask ? CasterAlpha::Mask : CasterAlpha::Hashed;
+    // The base colour's alpha (common/material.glsl's materialBaseColor): opacity x vertex alpha,
+    // interpolated linearly between the vertices, so it stays within their range.
+    float lo = std::numeric_limits<float>::max(), hi = -std::numeric_limits<float>::max();
+    const uint32_t end = std::min<uint32_t>(sm.firstIndex + sm.indexCount, uint32_t(mesh.indices.size()));
+    for (uint32_t i = sm.firstIndex; i < end; ++i) {
+        const uint32_t v = mesh.indices[i];
+        if (v >= mesh.vertices.size()) continue;
+        const float a = m.opacity * mesh.vertices[v].color.w;
+        lo = std::min(lo, a);
+        hi = std::max(hi, a);
+    }
+    if (lo > hi) return CasterAlpha::Opaque;  // no vertex: nothing is drawn either way
+    if (mask) return lo >= m.alphaCutoff ? CasterAlpha::Opaque : hi < m.alphaCutoff ? CasterAlpha::None : CasterAlpha::Mask;
+    return lo >= 1.0f ? CasterAlpha::Opaque : hi <= 0.0f ? CasterAlpha::None : CasterAlpha::Hashed;
+}
+
 std::vector<CasterCluster> buildCasterClusters(const Scene& scene, uint32_t trianglesPerCluster) {
     std::vector<CasterCluster> clusters;
     const uint32_t perCluster = std::max<uint32_t>(trianglesPerCluster, 1u) * 3u;
+    int materialBase = 0;  // SceneGpu::materials holds every model's materials in model order
     for (size_t m = 0; m < scene.models.size(); ++m) {
         const MeshData& mesh = scene.models[m].mesh;
         for (const SubMesh& sm : mesh.subMeshes) {
-            // Alpha-blended surfaces cast no shadow (the transparent pass draws them; scene_gpu's alphaBlend).
-            if (sm.material >= 0 && size_t(sm.material) < mesh.materials.size() &&
-                mesh.materials[size_t(sm.material)].alphaMode == AlphaMode::Blend)
-                continue;
+            const CasterAlpha alpha = casterAlpha(mesh, sm);
+            if (alpha == CasterAlpha::None) continue;  // casts nothing
             const uint32_t end = std::min<uint32_t>(sm.firstIndex + sm.indexCount, uint32_t(mesh.indices.size()));
             for (uint32_t first = sm.firstIndex; first < end; first += perCluster) {
                 CasterCluster c;
                 c.model = int(m);
                 c.firstIndex = first;
                 c.indexCount = std::min(perCluster, end - first);
+                c.alpha = alpha;
+                c.material = alpha == CasterAlpha::Opaque ? -1 : materialBase + sm.material;
                 glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
                 for (uint32_t i = first; i < first + c.indexCount; ++i) {
                     const uint32_t v = mesh.indices[i];
@@ -37,8 +60,13 @@ std::vector<CasterCluster> buildCasterClusters(const Scene& scene, uint32_t tria
                 clusters.push_back(c);
             }
         }
+        materialBase += int(mesh.materials.size());
     }
     return clusters;
+}
+
+bool hasAlphaTestedCasters(const std::vector<CasterCluster>& clusters) {
+    return std::any_of(clusters.begin(), clusters.end(), [](const CasterCluster& c) { return c.alpha != CasterAlpha::Opaque; });
 }
 
 bool casterBoxMayCast(const glm::mat4& objectToClip, glm::vec3 lo, glm::vec3 hi, float margin) {
@@ -69,11 +97,15 @@ CasterList cullCasters(const std::vector<CasterCluster>& clusters, const Scene& 
         if (cull && !casterBoxMayCast(objectToClip, c.boundsMin, c.boundsMax, margin)) continue;
         ++list.clusters;
         list.triangles += c.indexCount / 3;
-        if (!list.draws.empty() && list.draws.back().model == c.model &&
-            list.draws.back().firstIndex + list.draws.back().indexCount == c.firstIndex)
-            list.draws.back().indexCount += c.indexCount;
+        const bool tested = c.alpha != CasterAlpha::Opaque;
+        if (tested) list.alphaTriangles += c.indexCount / 3;
+        std::vector<CasterDraw>& draws = tested ? list.alphaDraws : list.draws;
+        const int material = tested ? c.material : -1;
+        if (!draws.empty() && draws.back().model == c.model && draws.back().material == material &&
+            draws.back().firstIndex + draws.back().indexCount == c.firstIndex)
+            draws.back().indexCount += c.indexCount;
         else
-            list.draws.push_back({c.model, c.firstIndex, c.indexCount});
+            draws.push_back({c.model, c.firstIndex, c.indexCount, material});
     }
     return list;
 }

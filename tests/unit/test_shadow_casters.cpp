@@ -139,3 +139,87 @@ TEST(ShadowCasters, ExplainListsEachCascadesDrawsAndTriangles) {
         EXPECT_EQ(drawsAll, !cull) << notes[0];
     }
 }
+
+// Alpha in shadows: which sub-meshes test their alpha (CasterAlpha), from the material and, without
+// a base colour texture, from the range of opacity x vertex alpha over the sub-mesh.
+TEST(ShadowCasterAlpha, KindFollowsTheMaterialsAlphaModeTextureAndConstantAlpha) {
+    ModelInstance m = rowOfTriangles("card", glm::vec3(0.0f), 2);
+    const SubMesh sm = m.mesh.subMeshes[0];
+    Material& mat = m.mesh.materials[0];
+    EXPECT_EQ(casterAlpha(m.mesh, sm), CasterAlpha::Opaque);  // OPAQUE
+    mat.alphaMode = AlphaMode::Mask;
+    mat.alphaCutoff = 0.5f;
+    mat.opacity = 0.7f;
+    EXPECT_EQ(casterAlpha(m.mesh, sm), CasterAlpha::Opaque);  // constant 0.7 >= 0.5: never cut
+    mat.opacity = 0.3f;
+    EXPECT_EQ(casterAlpha(m.mesh, sm), CasterAlpha::None);  // constant 0.3 < 0.5: always cut
+    m.mesh.vertices[1].color.w = 2.0f;  // 0.3 .. 0.6 across the first triangle: tested per fragment
+    EXPECT_EQ(casterAlpha(m.mesh, sm), CasterAlpha::Mask);
+    m.mesh.vertices[1].color.w = 1.0f;
+    mat.diffuseMap.path = "leaf.png";  // a texture: only the GPU knows its alpha
+    EXPECT_EQ(casterAlpha(m.mesh, sm), CasterAlpha::Mask);
+    mat.alphaMode = AlphaMode::Blend;
+    EXPECT_EQ(casterAlpha(m.mesh, sm), CasterAlpha::Hashed);
+    mat.diffuseMap.clear();
+    mat.opacity = 1.0f;
+    EXPECT_EQ(casterAlpha(m.mesh, sm), CasterAlpha::Opaque);  // BLEND at opacity 1 everywhere shadows as opaque
+    mat.opacity = 0.0f;
+    EXPECT_EQ(casterAlpha(m.mesh, sm), CasterAlpha::None);  // opacity 0 casts nothing
+    mat.opacity = 0.5f;  // MTL d = 0.5
+    EXPECT_EQ(casterAlpha(m.mesh, sm), CasterAlpha::Hashed);
+    SubMesh noMaterial = sm;
+    noMaterial.material = 7;  // out of range: the default material, opaque
+    EXPECT_EQ(casterAlpha(m.mesh, noMaterial), CasterAlpha::Opaque);
+}
+
+// The opaque and alpha-tested casters are separate draws: the opaque ones merge as before (the
+// alpha-tested sub-mesh between them splits them), the alpha-tested ones carry their material's
+// index in SceneGpu::materials (every model's materials in model order), and casters of no
+// occlusion have no cluster.
+TEST(ShadowCasterAlpha, CullingSplitsOpaqueAndAlphaTestedDrawsWithTheirMaterials) {
+    Scene s;
+    s.models.push_back(rowOfTriangles("first", glm::vec3(0.0f, 0.0f, -0.5f), 3));  // one material: index 0
+    ModelInstance m = rowOfTriangles("tree", glm::vec3(-0.9f, 0.0f, 0.0f), 12);
+    // Sub-meshes: trunk (opaque) 0..2, leaves (MASK, textured) 3..5, trunk again 6..8, glass (BLEND
+    // d 0.5) 9..10, invisible (BLEND d 0) 11.
+    m.mesh.materials.resize(4);
+    m.mesh.materials[1].alphaMode = AlphaMode::Mask;
+    m.mesh.materials[1].diffuseMap.path = "leaves.png";
+    m.mesh.materials[2].alphaMode = AlphaMode::Blend;
+    m.mesh.materials[2].opacity = 0.5f;
+    m.mesh.materials[3].alphaMode = AlphaMode::Blend;
+    m.mesh.materials[3].opacity = 0.0f;
+    m.mesh.subMeshes = {{0, 9, 0}, {9, 9, 1}, {18, 9, 0}, {27, 6, 2}, {33, 3, 3}};
+    s.models.push_back(m);
+    const std::vector<CasterCluster> clusters = buildCasterClusters(s, 4);
+    ASSERT_EQ(clusters.size(), 1u + 4u);  // the invisible sub-mesh has none
+    EXPECT_EQ(clusters[2].alpha, CasterAlpha::Mask);
+    EXPECT_EQ(clusters[2].material, 1 + 1);  // after "first"'s one material
+    EXPECT_EQ(clusters[4].alpha, CasterAlpha::Hashed);
+    EXPECT_EQ(clusters[4].material, 1 + 2);
+    EXPECT_EQ(clusters[1].material, -1);
+    EXPECT_TRUE(hasAlphaTestedCasters(clusters));
+
+    const CasterList all = cullCasters(clusters, s, downwardCascade(), 0.0f, false);
+    EXPECT_EQ(all.triangles, 3u + 11u);
+    EXPECT_EQ(all.alphaTriangles, 3u + 2u);
+    ASSERT_EQ(all.draws.size(), 3u);  // "first"; the trunk's two parts (the leaves between them)
+    EXPECT_EQ(all.draws[1].model, 1);
+    EXPECT_EQ(all.draws[1].firstIndex, 0u);
+    EXPECT_EQ(all.draws[1].indexCount, 9u);
+    EXPECT_EQ(all.draws[2].firstIndex, 18u);
+    for (const CasterDraw& d : all.draws) EXPECT_EQ(d.material, -1);
+    ASSERT_EQ(all.alphaDraws.size(), 2u);
+    EXPECT_EQ(all.alphaDraws[0].firstIndex, 9u);
+    EXPECT_EQ(all.alphaDraws[0].indexCount, 9u);
+    EXPECT_EQ(all.alphaDraws[0].material, 2);
+    EXPECT_EQ(all.alphaDraws[1].firstIndex, 27u);
+    EXPECT_EQ(all.alphaDraws[1].material, 3);
+
+    // A scene of opaque casters only has no alpha-tested draw (its cost stays what it was).
+    Scene opaque;
+    opaque.models.push_back(rowOfTriangles("row", glm::vec3(0.0f), 10));
+    const std::vector<CasterCluster> plain = buildCasterClusters(opaque, 4);
+    EXPECT_FALSE(hasAlphaTestedCasters(plain));
+    EXPECT_TRUE(cullCasters(plain, opaque, downwardCascade(), 0.0f, false).alphaDraws.empty());
+}
