@@ -10,11 +10,14 @@
 #include <string>
 #include <vector>
 
+#include <random>
+
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "engine/io/image_io.hpp"
 #include "engine/scene/primitives.hpp"
 #include "frame/renderer.hpp"
+#include "tests/gl/gl_fixture.hpp"
 #include "tests/gl/render_fixture.hpp"
 
 using namespace lp;
@@ -358,4 +361,50 @@ TEST(ShadowAlpha, BlendCardAtHalfOpacityLetsHalfTheLightThroughOnAverage) {
         // Deterministic: a second renderer draws the same frame.
         EXPECT_TRUE(test::imagesNear(test::renderHdr(half, settings), img, 0.0f, "BLEND 0.5, second render"));
     }
+}
+
+// shaders/common/hashed_alpha.glsl on the driver: the threshold is uniform in (0, 1] (so alpha >=
+// threshold keeps a fraction alpha), both on a grid level (texel a power of two: one hash) and
+// between levels, where the blend of two hashes is triangular until the paper's correction makes it
+// uniform again (without it the middle bins hold twice the outer ones' share): 10 bins of 20000
+// thresholds each within 5 standard errors (sqrt(0.1 x 0.9 / 20000) = 0.0021) of 0.1. And it
+// depends on the object-space point only through its cell: a point moved within its cell, on a
+// level, keeps its threshold bit for bit.
+TEST(ShaderHashedAlpha, ThresholdIsUniformAndStableWithinACell) {
+    std::mt19937 rng(2017);
+    std::uniform_real_distribution<float> coord(-50.0f, 50.0f), unit(0.0f, 1.0f);
+    const int n = 20000;
+    for (const char* which : {"on a level", "between levels", "any footprint"}) {
+        std::vector<glm::vec4> in;
+        for (int i = 0; i < n; ++i) {
+            const float level = std::floor(unit(rng) * 12.0f) - 2.0f;  // cells from 4 units down to 1/1024
+            const float fraction = which[0] == 'o' ? 0.0f : which[0] == 'b' ? 0.5f : unit(rng);
+            in.push_back(glm::vec4(coord(rng), coord(rng), coord(rng), std::exp2(-(level + fraction))));
+        }
+        const std::vector<glm::vec4> out =
+            test::runGlsl({"common/hashed_alpha.glsl"}, "return vec4(hashedAlphaThreshold(x.xyz, x.w));", in);
+        int bins[10] = {};
+        for (const glm::vec4& t : out) {
+            ASSERT_GT(t.x, 0.0f) << which;
+            ASSERT_LE(t.x, 1.0f) << which;
+            ++bins[std::min(int(t.x * 10.0f), 9)];
+        }
+        for (int b = 0; b < 10; ++b)
+            EXPECT_NEAR(bins[b] / double(n), 0.1, 5.0 * std::sqrt(0.1 * 0.9 / n)) << which << ", bin " << b;
+    }
+    // Within a cell on a level (texel 1/8: cells 1/8 wide): the cell's corner and points inside it.
+    std::vector<glm::vec4> in;
+    for (int i = 0; i < 1000; ++i) {
+        const glm::vec3 corner = glm::floor(glm::vec3(coord(rng), coord(rng), coord(rng)) * 8.0f) / 8.0f;
+        in.push_back(glm::vec4(corner + glm::vec3(1.0f / 64.0f), 0.125f));
+        in.push_back(glm::vec4(corner + glm::vec3(unit(rng), unit(rng), unit(rng)) * (7.0f / 64.0f) + glm::vec3(1.0f / 128.0f), 0.125f));
+    }
+    const std::vector<glm::vec4> out =
+        test::runGlsl({"common/hashed_alpha.glsl"}, "return vec4(hashedAlphaThreshold(x.xyz, x.w));", in);
+    int differentCells = 0;
+    for (size_t i = 0; i + 1 < out.size(); i += 2) {
+        ASSERT_EQ(out[i].x, out[i + 1].x) << "points " << i << " and " << i + 1 << " of one cell";
+        if (i >= 2 && out[i].x != out[i - 2].x) ++differentCells;
+    }
+    EXPECT_GT(differentCells, 990);  // and different cells differ
 }
