@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -14,9 +15,12 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "engine/graph/texture_pool.hpp"
 #include "engine/io/image_io.hpp"
+#include "engine/render/scene_gpu.hpp"
 #include "engine/scene/primitives.hpp"
 #include "frame/renderer.hpp"
+#include "passes/shadow_map_pass.hpp"
 #include "tests/gl/gl_fixture.hpp"
 #include "tests/gl/render_fixture.hpp"
 
@@ -407,4 +411,107 @@ TEST(ShaderHashedAlpha, ThresholdIsUniformAndStableWithinACell) {
         if (i >= 2 && out[i].x != out[i - 2].x) ++differentCells;
     }
     EXPECT_GT(differentCells, 990);  // and different cells differ
+}
+
+namespace {
+// The cascade tiles of a frame's atlas (the unused tiles left out).
+std::vector<std::vector<float>> cascadeTiles(const test::ShadowAtlasFrame& a) {
+    const size_t side = size_t(a.frustum.tileSize), width = side * size_t(a.frustum.columns);
+    std::vector<std::vector<float>> tiles;
+    for (const ShadowCascade& c : a.frustum.cascades) {
+        const size_t x0 = size_t(c.tile % a.frustum.columns) * side, y0 = size_t(c.tile / a.frustum.columns) * side;
+        std::vector<float> t;
+        for (size_t y = 0; y < side; ++y)
+            t.insert(t.end(), a.depth.begin() + std::ptrdiff_t((y0 + y) * width + x0),
+                     a.depth.begin() + std::ptrdiff_t((y0 + y) * width + x0 + side));
+        tiles.push_back(std::move(t));
+    }
+    return tiles;
+}
+
+// Bit for bit, naming the first differing texel.
+testing::AssertionResult sameTiles(const test::ShadowAtlasFrame& kept, const test::ShadowAtlasFrame& fresh) {
+    const auto a = cascadeTiles(kept), b = cascadeTiles(fresh);
+    if (a.size() != b.size()) return testing::AssertionFailure() << a.size() << " cascades against " << b.size();
+    for (size_t c = 0; c < a.size(); ++c)
+        for (size_t i = 0; i < a[c].size(); ++i)
+            if (std::memcmp(&a[c][i], &b[c][i], sizeof(float)) != 0)
+                return testing::AssertionFailure() << "cascade " << c << " texel " << i % size_t(kept.frustum.tileSize) << ", "
+                                                   << i / size_t(kept.frustum.tileSize) << ": kept " << a[c][i]
+                                                   << ", redrawn " << b[c][i];
+    return testing::AssertionSuccess();
+}
+}  // namespace
+
+// The cascade cache with alpha-tested casters: MASK cards and BLEND cards (opacity 0.5, hashed)
+// tilted over a floor; a camera walking along them keeps some tiles and redraws others, and every
+// frame's kept atlas equals a fresh pass (cache off) bit for bit, for each raster: the hashed test
+// reads the object-space position only, never the camera, so a kept tile stays valid. Changing a
+// card's cutoff changes the casters: every tile redrawn ("casters changed"), again bit-exact.
+TEST(ShadowAlpha, KeptTilesWithAlphaTestedCastersEqualAFreshRedraw) {
+    Scene scene;
+    ModelInstance floor;
+    floor.name = "floor";
+    floor.mesh = makePlane(12.0f, 4);
+    scene.models.push_back(std::move(floor));
+    std::mt19937 rng(31);
+    std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+    for (int i = 0; i < 8; ++i) {
+        ModelInstance m = card(i % 2 == 0 ? maskMaterial() : blendMaterial(-1, 0.5f));
+        m.name = "card" + std::to_string(i);
+        m.transform = glm::translate(glm::mat4(1.0f), glm::vec3(4.0f * unit(rng), 1.0f + 0.3f * unit(rng), 5.0f * unit(rng))) *
+                      glm::rotate(glm::mat4(1.0f), 0.6f * unit(rng), glm::vec3(1.0f, 0.0f, 0.0f)) *
+                      glm::scale(glm::mat4(1.0f), glm::vec3(1.2f));
+        scene.models.push_back(std::move(m));
+    }
+    DirectionalLight sun;
+    sun.direction = glm::normalize(glm::vec3(0.4f, -1.0f, 0.3f));
+    scene.directionalLights.push_back(sun);
+    scene.camera.position = glm::vec3(0.0f, 1.6f, 6.0f);
+    scene.camera.target = glm::vec3(0.0f, 0.6f, 0.0f);
+    scene.camera.nearPlane = 0.1f;
+    scene.camera.farPlane = 40.0f;
+    for (ShadowSettings::Raster raster : {ShadowSettings::Raster::Plain, ShadowSettings::Raster::Conservative,
+                                          ShadowSettings::Raster::Split, ShadowSettings::Raster::Compute}) {
+        const std::string name = ShadowSettings::rasterName(raster);
+        Scene walk = scene;
+        SceneGpu gpu(walk);
+        RenderSettings settings;
+        settings.width = 64;
+        settings.height = 48;
+        settings.shadows.size = 256;
+        settings.shadows.raster = raster;
+        settings.shadows.conservativeRaster = ShadowSettings::ConservativeRaster::GeometryShader;
+        settings.shadows.redrawBudget = 0;
+        settings.shadows.scroll = false;
+        RenderSettings fresh = settings;
+        fresh.shadows.cache = false;
+        ShadowMapPass state;
+        fg::TexturePool pool;
+        const test::ShadowAtlasFrame first = test::drawShadowAtlas(walk, gpu, settings, state, pool);
+        size_t alphaNotes = 0;
+        for (const std::string& n : first.notes) alphaNotes += n.find("alpha-tested") != std::string::npos ? 1 : 0;
+        EXPECT_GT(alphaNotes, 0u) << name << ": no cascade drew alpha-tested casters";
+        const uint64_t firstDrawn = state.cacheStats.drawn;
+        for (int step = 1; step <= 4; ++step) {
+            walk.camera.position += glm::vec3(0.02f, 0.0f, -0.35f);
+            walk.camera.target += glm::vec3(0.02f, 0.0f, -0.35f);
+            const test::ShadowAtlasFrame kept = test::drawShadowAtlas(walk, gpu, settings, state, pool);
+            ShadowMapPass freshState;
+            fg::TexturePool freshPool;
+            EXPECT_TRUE(sameTiles(kept, test::drawShadowAtlas(walk, gpu, fresh, freshState, freshPool)))
+                << name << ", step " << step;
+        }
+        EXPECT_GT(state.cacheStats.kept, 0u) << name << ": the walk kept nothing";
+        EXPECT_GT(state.cacheStats.drawn, firstDrawn) << name << ": the walk redrew nothing";
+        for (GpuMaterial& m : gpu.materials)
+            if (m.alphaMask) m.alphaCutoff = 0.8f;
+        const test::ShadowAtlasFrame changed = test::drawShadowAtlas(walk, gpu, settings, state, pool);
+        size_t castersChanged = 0;
+        for (const std::string& n : changed.notes) castersChanged += n.find("redrawn (casters changed)") != std::string::npos ? 1 : 0;
+        EXPECT_EQ(castersChanged, changed.frustum.cascades.size()) << name;
+        ShadowMapPass freshState;
+        fg::TexturePool freshPool;
+        EXPECT_TRUE(sameTiles(changed, test::drawShadowAtlas(walk, gpu, fresh, freshState, freshPool))) << name << ", new cutoff";
+    }
 }
