@@ -2,9 +2,15 @@
 // box test and the counts 'lightpass graph --explain' shows. No GL.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
+
+#include <unistd.h>
+
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "engine/graph/frame_graph.hpp"
+#include "engine/io/obj_loader.hpp"
 #include "engine/render/shadow_casters.hpp"
 #include "frame/frame_builder.hpp"
 
@@ -222,4 +228,24 @@ TEST(ShadowCasterAlpha, CullingSplitsOpaqueAndAlphaTestedDrawsWithTheirMaterials
     const std::vector<CasterCluster> plain = buildCasterClusters(opaque, 4);
     EXPECT_FALSE(hasAlphaTestedCasters(plain));
     EXPECT_TRUE(cullCasters(plain, opaque, downwardCascade(), 0.0f, false).alphaDraws.empty());
+}
+
+// OBJ transparency follows the BLEND rule: an MTL material with d < 1 (or Tr > 0) is hashed by its
+// opacity, d 0 (Tr 1) casts nothing, d 1 is opaque.
+TEST(ShadowCasterAlpha, MtlTransparencyIsHashedByItsOpacity) {
+    namespace fs = std::filesystem;
+    const fs::path dir = fs::temp_directory_path() / ("lightpass-caster-alpha-" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    std::ofstream(dir / "m.mtl") << "newmtl glass\nKd 0.8 0.8 0.8\nd 0.5\nnewmtl ghost\nKd 1 1 1\nTr 1\n"
+                                    "newmtl wall\nKd 0.5 0.5 0.5\nd 1\n";
+    std::ofstream(dir / "a.obj") << "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl glass\nf 1 2 3\nusemtl ghost\nf 1 3 2\n"
+                                    "usemtl wall\nf 2 3 1\n";
+    const MeshData mesh = loadObj(dir / "a.obj");
+    fs::remove_all(dir);
+    ASSERT_EQ(mesh.subMeshes.size(), 3u);
+    std::vector<CasterAlpha> kinds;
+    for (const SubMesh& sm : mesh.subMeshes) kinds.push_back(casterAlpha(mesh, sm));
+    EXPECT_EQ(kinds[0], CasterAlpha::Hashed);  // glass, d 0.5
+    EXPECT_EQ(kinds[1], CasterAlpha::None);    // ghost, Tr 1 = d 0
+    EXPECT_EQ(kinds[2], CasterAlpha::Opaque);  // wall
 }
