@@ -27,6 +27,12 @@ constexpr int kTraversalStack = 64; // LP_PT_STACK in common/path_trace.glsl
 constexpr int kRouletteFrom = 3;    // interactions traced before Russian roulette may end a path
 constexpr int kSamplesPerWait = 32; // samples queued before the tracer waits for the GPU (below)
 constexpr GLuint kEnvironmentUnit = 0;
+constexpr GLuint kSrgbMapsUnit = 1;    // uPtSrgbMaps in path_trace.comp
+constexpr GLuint kLinearMapsUnit = 2;  // uPtLinearMaps
+// The maps' layers: every image resampled to the largest one's size, at most this (a reference
+// samples level 0 with every pixel's jittered rays, so no mips), and the array at most this many bytes.
+constexpr int kMaxMapSize = 2048;
+constexpr uint64_t kMaxMapBytes = uint64_t(1) << 30;
 
 struct Data {
     fg::ResourceId hdr;
@@ -42,17 +48,90 @@ gl::Buffer storage(const std::vector<T>& records, const std::string& name) {
     return gl::makeBuffer(GLsizeiptr(data.size() * sizeof(T)), data.data(), 0, name);
 }
 
+// `img` bilinearly resampled to size x size (texel centres onto texel centres).
+Image8 resampleSquare(const Image8& img, int size) {
+    if (img.width == size && img.height == size) return img;
+    Image8 out;
+    out.width = out.height = size;
+    out.rgba.resize(size_t(size) * size_t(size) * 4);
+    for (int y = 0; y < size; ++y) {
+        const float fy = std::clamp((float(y) + 0.5f) * float(img.height) / float(size) - 0.5f, 0.0f, float(img.height - 1));
+        const int y0 = int(fy), y1 = std::min(y0 + 1, img.height - 1);
+        const float ty = fy - float(y0);
+        for (int x = 0; x < size; ++x) {
+            const float fx = std::clamp((float(x) + 0.5f) * float(img.width) / float(size) - 0.5f, 0.0f, float(img.width - 1));
+            const int x0 = int(fx), x1 = std::min(x0 + 1, img.width - 1);
+            const float tx = fx - float(x0);
+            for (int c = 0; c < 4; ++c) {
+                auto at = [&](int xx, int yy) { return float(img.rgba[(size_t(yy) * size_t(img.width) + size_t(xx)) * 4 + size_t(c)]); };
+                const float v = (1 - ty) * ((1 - tx) * at(x0, y0) + tx * at(x1, y0)) + ty * ((1 - tx) * at(x0, y1) + tx * at(x1, y1));
+                out.rgba[(size_t(y) * size_t(size) + size_t(x)) * 4 + size_t(c)] = uint8_t(std::clamp(v + 0.5f, 0.0f, 255.0f));
+            }
+        }
+    }
+    return out;
+}
+
+// The maps as one array texture, one layer per image (rows bottom first, as the raster uploads
+// them: v = 0 at the bottom); a 1x1 white layer when there are none (the sampler needs a texture).
+gl::Texture uploadMapArray(const std::vector<TextureRef>& refs, bool srgb, const char* label) {
+    std::vector<Image8> images;
+    int size = 1;
+    for (const TextureRef& ref : refs) {
+        const std::filesystem::path path = ref.encoded || !ref.problem.empty() ? std::filesystem::path(ref.key) : ref.path;
+        Image8 img;
+        if (!ref.problem.empty()) img = makeCheckerImage();  // the raster frame warned already
+        else img = ref.encoded ? decodeTextureOrChecker(*ref.encoded, path) : loadTextureOrChecker(path);
+        size = std::max({size, img.width, img.height});
+        images.push_back(std::move(img));
+    }
+    GLint maxSize = 0, maxLayers = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
+    glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
+    if (int(images.size()) > maxLayers)
+        throw Error("path tracer: the scene has " + std::to_string(images.size()) + " " + label + " maps, above the " +
+                    std::to_string(maxLayers) + " layers of an array texture on this GPU");
+    size = std::min({size, kMaxMapSize, int(maxSize)});
+    while (size > 64 && uint64_t(size) * uint64_t(size) * 4 * images.size() > kMaxMapBytes) size /= 2;
+    const int layers = std::max<int>(1, int(images.size()));
+    if (images.empty()) size = 1;
+    const GLenum format = srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8;
+    GLuint id = 0;
+    glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &id);
+    gl::Texture t{gl::Object<gl::ObjectKind::Texture>(id), GL_TEXTURE_2D_ARRAY, format, size, size, 1};
+    glTextureStorage3D(id, 1, format, size, size, layers);
+    gl::label(GL_TEXTURE, id, std::string("path_trace.") + label + "_maps");
+    if (images.empty()) {
+        const uint8_t white[4] = {255, 255, 255, 255};
+        glTextureSubImage3D(t.id(), 0, 0, 0, 0, 1, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, white);
+    }
+    for (size_t i = 0; i < images.size(); ++i) {
+        Image8 img = resampleSquare(images[i], size);
+        std::vector<uint8_t> flipped(img.rgba.size());
+        const size_t row = size_t(size) * 4;
+        for (int y = 0; y < size; ++y) std::copy_n(&img.rgba[size_t(size - 1 - y) * row], row, &flipped[size_t(y) * row]);
+        glTextureSubImage3D(t.id(), 0, 0, 0, GLint(i), size, size, 1, GL_RGBA, GL_UNSIGNED_BYTE, flipped.data());
+    }
+    // Wrapping is the shader's (each map's own sampler wraps); the hardware clamps at the edges.
+    glTextureParameteri(t.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(t.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(t.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(t.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    return t;
+}
+
 // The scene's triangles, materials and BVH, and its environment map, uploaded once per scene.
 void uploadScene(PathTracePass& state, const Scene& scene) {
     const PathTraceScene traced = buildPathTraceScene(scene);
     if (traced.bvh.depth + 1 > kTraversalStack)
         throw Error("path tracer: the scene's BVH is " + std::to_string(traced.bvh.depth) + " levels deep, above the " +
                     std::to_string(kTraversalStack - 1) + " its traversal stack holds");
-    if (traced.texturedMaterials > 0)
-        logWarn("path tracer: " + std::to_string(traced.texturedMaterials) +
-                " textured materials are traced with their factors alone (no texture, normal or bump map)");
-    if (traced.blendedMaterials > 0)
-        logWarn("path tracer: " + std::to_string(traced.blendedMaterials) + " alpha-blended materials are traced as opaque");
+    if (traced.bumpMappedMaterials > 0)
+        logWarn("path tracer: " + std::to_string(traced.bumpMappedMaterials) +
+                " materials have a height (bump) map, which the tracer does not sample");
+    state.srgbMaps = uploadMapArray(traced.srgbMaps, true, "srgb");
+    state.linearMaps = uploadMapArray(traced.linearMaps, false, "linear");
+    state.hasMaskedMaterials = traced.hasMaskedMaterials;
     std::vector<BvhNode> nodes = traced.bvh.nodes;
     // Leaves index the triangle buffer, which is already in leaf order: first is a position there.
     state.nodes = storage(nodes, "path_trace.bvh_nodes");
@@ -124,6 +203,7 @@ void setUniforms(GLuint prog, const PathTracePass& state, const FrameData& frame
     glProgramUniform1i(prog, loc(prog, "uRouletteFrom"), kRouletteFrom);
     glProgramUniform1i(prog, loc(prog, "uPtNodeCount"), state.nodeCount);
     glProgramUniform1f(prog, loc(prog, "uRayEpsilon"), state.rayEpsilon);
+    glProgramUniform1i(prog, loc(prog, "uHasMaskedMaterials"), state.hasMaskedMaterials);
     const auto& suns = frameDirectionalLights(frame);
     if (int(suns.size()) > kMaxSuns)
         logWarn("path tracer: only the first " + std::to_string(kMaxSuns) + " of " + std::to_string(suns.size()) +
@@ -223,6 +303,8 @@ fg::ResourceId addPathTracePass(fg::FrameGraph& graph, PathTracePass& state, con
             glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPtBindEnvironment,
                              state.environmentTables ? state.environmentTables.id() : state.lights.id());
             if (state.environment) glBindTextureUnit(kEnvironmentUnit, state.environment.id());
+            glBindTextureUnit(kSrgbMapsUnit, state.srgbMaps.id());
+            glBindTextureUnit(kLinearMapsUnit, state.linearMaps.id());
             glBindImageTexture(0, state.accumulation.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
             glBindImageTexture(1, res.texture(data.hdr), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
             glUseProgram(prog);
@@ -254,6 +336,8 @@ fg::ResourceId addPathTracePass(fg::FrameGraph& graph, PathTracePass& state, con
             glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
             glBindImageTexture(1, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
             if (state.environment) glBindTextureUnit(kEnvironmentUnit, 0);
+            glBindTextureUnit(kSrgbMapsUnit, 0);
+            glBindTextureUnit(kLinearMapsUnit, 0);
             for (GLuint b : {kPtBindNodes, kPtBindTriangles, kPtBindMaterials, kPtBindLights, kPtBindEnvironment})
                 glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, 0);
             if (tracing) {  // the accumulation is now complete: its noise

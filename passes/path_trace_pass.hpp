@@ -48,6 +48,8 @@ struct PathTracePass {
     gl::Buffer environmentTables;  // its sampling tables (passes/path_trace_environment.hpp), when it has light
     glm::ivec2 environmentCells{0};  // their width and height; 0: none
     gl::Texture accumulation;  // RGBA32F sums (rgb radiance, a squared luminance)
+    gl::Texture srgbMaps, linearMaps;  // the materials' maps as array textures (one layer each), or 1x1
+    bool hasMaskedMaterials = false;   // rays test MASK / BLEND alpha at their hits
     const Scene* scene = nullptr;  // what the buffers hold
     int nodeCount = 0;
     int localLightCount = 0;

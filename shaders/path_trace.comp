@@ -12,6 +12,7 @@
 #include "common/local_light.glsl"
 #include "common/path_trace.glsl"
 #include "common/path_trace_environment.glsl"
+#include "common/normal_map.glsl"
 #include "common/tonemap.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -82,6 +83,8 @@ void basis(vec3 n, out vec3 t, out vec3 b) {
 bool visible(vec3 P, vec3 L, float distance) {
     float t;
     vec2 uv;
+    gLpPtAlphaSeed = lpPcg(gRng + 0x9e3779b9u);  // each shadow ray its own BLEND draws
+    gRng = gLpPtAlphaSeed;
     return lpPtTrace(P, L, 0.0, distance, true, t, uv) < 0;
 }
 
@@ -109,6 +112,8 @@ void main() {
     for (int bounce = 0; bounce <= uBounces; ++bounce) {
         float t;
         vec2 bary;
+        gLpPtAlphaSeed = lpPcg(gRng + 0x85ebca6bu);
+        gRng = gLpPtAlphaSeed;
         int tri = lpPtTrace(origin, dir, tMin, 3.0e38, false, t, bary);
         if (tri < 0) {
             float weight = 1.0;
@@ -129,18 +134,38 @@ void main() {
         // like its front, as in the raster passes; a single-sided one is never hit from behind).
         if (dot(Ng, V) < 0.0) Ng = -Ng;
         if (dot(N, Ng) < 0.0) N = -N;
+        // The maps (lp::PathTraceMap): base colour, metallic-roughness, normal, emissive, as
+        // common/material.glsl applies them (no height map, no vertex colour).
         vec3 base = m.baseOpacity.rgb;
+        if (m.maps.x >= 0.0) base = clamp(base * lpPtSampleMap(m, T, bary, 0, true).rgb, 0.0, 1.0);
         float metallic = m.specularMetallic.w;
+        float shininess = m.emissionShininess.w;
+        if (m.maps.y >= 0.0) {
+            vec4 mr = lpPtSampleMap(m, T, bary, 1, false);
+            metallic = clamp(metallic * mr.b, 0.0, 1.0);
+            shininess = shininessFromRoughnessToFloor(m.mapParams.y * mr.g);
+        }
+        vec3 emission = m.emissionShininess.rgb;
+        if (m.maps.w >= 0.0) emission *= lpPtSampleMap(m, T, bary, 3, true).rgb;
+        if (m.maps.z >= 0.0) {
+            vec4 tw = (1.0 - bary.x - bary.y) * T.tangent[0] + bary.x * T.tangent[1] + bary.y * T.tangent[2];
+            vec3 Tn = tw.xyz - N * dot(N, tw.xyz);
+            float tl = length(Tn);
+            if (tl > 1e-20) {
+                Tn /= tl;
+                vec3 Bn = cross(N, Tn) * (tw.w < 0.0 ? -1.0 : 1.0);
+                N = normalMapNormal(N, Tn, Bn, lpPtSampleMap(m, T, bary, 2, false).xyz * 2.0 - 1.0, m.mapParams.x);
+            }
+        }
         if (m.flags.x != 0.0) {  // flat-lit: its colour, untouched by light (material.glsl)
             radiance += throughput * base * (1.0 - metallic);
             break;
         }
-        radiance += throughput * m.emissionShininess.rgb;
+        radiance += throughput * emission;
         if (bounce == uBounces) break;
         vec3 dielectricF0 = m.specularMetallic.rgb;
         vec3 kd = materialDiffuseAlbedo(uBrdf, base, metallic, dielectricF0);
         vec3 ks = mix(dielectricF0, base, metallic);
-        float shininess = m.emissionShininess.w;
         vec3 Po = P + Ng * uRayEpsilon * (1.0 + maxComponent(abs(P)));
 
         // Direct light from the suns and the local lights (delta lights: no other way to reach them).

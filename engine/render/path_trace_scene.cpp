@@ -1,6 +1,8 @@
 #include "engine/render/path_trace_scene.hpp"
 
 #include <algorithm>
+#include <map>
+#include <string>
 
 namespace lp {
 
@@ -10,13 +12,36 @@ namespace {
 float materialShininess(const Material& m) {
     return std::clamp(m.shininess, 0.0f, shininessFromRoughness(kMinRoughness));
 }
+int wrapCode(int glWrap) { return glWrap == 33071 ? 1 : glWrap == 33648 ? 2 : 0; }  // clamp, mirrored, else repeat
+
+// The layer of `ref` in `layers`, added when new (one layer per image and sampler).
+float layerOf(const TextureRef& ref, std::vector<TextureRef>& layers, std::map<std::string, int>& index) {
+    if (ref.empty()) return -1.0f;
+    const std::string key = ref.key + "#" + std::to_string(ref.sampler.wrapS) + "," + std::to_string(ref.sampler.wrapT);
+    auto [it, added] = index.emplace(key, int(layers.size()));
+    if (added) layers.push_back(ref);
+    return float(it->second);
+}
 }  // namespace
+
+int pathTraceMapBits(const TextureRef* const maps[kPtMapCount]) {
+    int bits = 0;
+    for (int i = 0; i < kPtMapCount; ++i) {
+        if (!maps[i] || maps[i]->empty()) continue;
+        bits |= (maps[i]->uvSet == 1 ? 1 : 0) << (4 * i);
+        bits |= wrapCode(maps[i]->sampler.wrapS) << (4 * i + 1);
+        bits |= wrapCode(maps[i]->sampler.wrapT) << (16 + 2 * i);
+    }
+    return bits;
+}
 
 PathTraceScene buildPathTraceScene(const Scene& scene) {
     PathTraceScene out;
     std::vector<glm::vec3> positions;
     std::vector<glm::vec3> normals;
+    std::vector<glm::vec4> uvs, tangents;
     std::vector<int> materialOfTriangle;
+    std::map<std::string, int> srgbIndex, linearIndex;
     for (const ModelInstance& model : scene.models) {
         const MeshData& mesh = model.mesh;
         const int firstMaterial = int(out.materials.size());
@@ -25,12 +50,17 @@ PathTraceScene buildPathTraceScene(const Scene& scene) {
             g.baseOpacity = glm::vec4(glm::clamp(m.diffuse, 0.0f, 1.0f), m.opacity);
             g.specularMetallic = glm::vec4(glm::clamp(m.specular, 0.0f, 1.0f), std::clamp(m.metallic, 0.0f, 1.0f));
             g.emissionShininess = glm::vec4(m.emission, materialShininess(m));
-            g.flags = glm::vec4(m.flat ? 1.0f : 0.0f, m.doubleSided ? 1.0f : 0.0f, 0.0f, 0.0f);
+            const float alphaMode = m.alphaMode == AlphaMode::Mask ? 1.0f : m.alphaMode == AlphaMode::Blend ? 2.0f : 0.0f;
+            g.flags = glm::vec4(m.flat ? 1.0f : 0.0f, m.doubleSided ? 1.0f : 0.0f, alphaMode, m.alphaCutoff);
+            g.maps = glm::vec4(layerOf(m.diffuseMap, out.srgbMaps, srgbIndex),
+                               layerOf(m.metallicRoughnessMap, out.linearMaps, linearIndex),
+                               layerOf(m.normalMap, out.linearMaps, linearIndex),
+                               layerOf(m.emissiveMap, out.srgbMaps, srgbIndex));
+            const TextureRef* const maps[kPtMapCount] = {&m.diffuseMap, &m.metallicRoughnessMap, &m.normalMap, &m.emissiveMap};
+            g.mapParams = glm::vec4(m.normalScale, m.roughness, float(pathTraceMapBits(maps)), 0.0f);
             out.materials.push_back(g);
-            const bool textured = !m.diffuseMap.empty() || !m.metallicRoughnessMap.empty() || !m.normalMap.empty() ||
-                                  !m.bumpMap.empty() || !m.emissiveMap.empty() || !m.occlusionMap.empty();
-            out.texturedMaterials += textured ? 1 : 0;
-            out.blendedMaterials += (m.alphaMode == AlphaMode::Blend || m.opacity < 1.0f) ? 1 : 0;
+            out.bumpMappedMaterials += m.bumpMap.empty() ? 0 : 1;
+            out.hasMaskedMaterials = out.hasMaskedMaterials || alphaMode != 0.0f;
         }
         const glm::mat4 toWorld = model.transform;
         const glm::mat3 normalToWorld = glm::transpose(glm::inverse(glm::mat3(toWorld)));
@@ -44,6 +74,11 @@ PathTraceScene buildPathTraceScene(const Scene& scene) {
                     const glm::vec3 n = normalToWorld * v.normal;
                     const float len = glm::length(n);
                     normals.push_back(len > 0.0f ? n / len : glm::vec3(0.0f, 1.0f, 0.0f));
+                    uvs.push_back(glm::vec4(v.uv, v.uv1));
+                    // A tangent is a direction on the surface: it goes with the model matrix itself.
+                    const glm::vec3 t = glm::mat3(toWorld) * glm::vec3(v.tangent);
+                    const float tl = glm::length(t);
+                    tangents.push_back(glm::vec4(tl > 0.0f ? t / tl : glm::vec3(1.0f, 0.0f, 0.0f), v.tangent.w < 0.0f ? -1.0f : 1.0f));
                 }
                 materialOfTriangle.push_back(material);
             }
@@ -56,6 +91,8 @@ PathTraceScene buildPathTraceScene(const Scene& scene) {
         for (int k = 0; k < 3; ++k) {
             g.position[k] = glm::vec4(positions[3 * t + k], 0.0f);
             g.normal[k] = glm::vec4(normals[3 * t + k], 0.0f);
+            g.uv[k] = uvs[3 * t + k];
+            g.tangent[k] = tangents[3 * t + k];
         }
         g.position[0].w = float(materialOfTriangle[t]);
         out.triangles.push_back(g);

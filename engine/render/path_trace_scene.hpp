@@ -12,30 +12,50 @@
 
 namespace lp {
 
-// One triangle: world positions (position[0].w: the material index) and shading normals.
+// One triangle: world positions (position[0].w: the material index), shading normals, both uv sets
+// (xy: TEXCOORD_0, zw: TEXCOORD_1) and world tangents (w: the bitangent's handedness).
 struct PathTraceTriangle {
     glm::vec4 position[3];
     glm::vec4 normal[3];
+    glm::vec4 uv[3];
+    glm::vec4 tangent[3];
 };
-static_assert(sizeof(PathTraceTriangle) == 96, "std430 layout of LpPathTraceTriangle");
+static_assert(sizeof(PathTraceTriangle) == 192, "std430 layout of LpPathTraceTriangle");
 
-// A material's factors (lp::Material after the scene file's overrides): what material.glsl makes of
-// them where no texture is sampled.
+// The maps the tracer samples, in this order in PathTraceMaterial::maps and its bit fields.
+enum PathTraceMap : int { kPtMapBase = 0, kPtMapMetalRough = 1, kPtMapNormal = 2, kPtMapEmissive = 3, kPtMapCount = 4 };
+
+// A material's factors (lp::Material after the scene file's overrides) and maps: what material.glsl
+// makes of them, per hit.
 struct PathTraceMaterial {
     glm::vec4 baseOpacity;        // base colour, opacity
     glm::vec4 specularMetallic;   // dielectric F0 (MTL Ks), metallic
     glm::vec4 emissionShininess;  // emitted radiance, Blinn-Phong exponent (the roughness's)
-    glm::vec4 flags;              // x: flat-lit, y: double-sided
+    glm::vec4 flags;              // x: flat-lit, y: double-sided, z: alpha mode (0 opaque, 1 MASK, 2 BLEND), w: cutoff
+    // Layer of each PathTraceMap in its array (base colour and emissive: the sRGB array; metallic-
+    // roughness and normal: the linear one), -1 without the map.
+    glm::vec4 maps;
+    // x: normal scale, y: perceptual roughness factor (multiplied by the map's g), z: the maps'
+    // sampling bits (pathTraceMapBits), w: 0.
+    glm::vec4 mapParams;
 };
-static_assert(sizeof(PathTraceMaterial) == 64, "std430 layout of LpPathTraceMaterial");
+static_assert(sizeof(PathTraceMaterial) == 96, "std430 layout of LpPathTraceMaterial");
+
+// How each map (PathTraceMap i) is sampled, as bits (exact in a float): bit 4i the second uv set;
+// bits 4i + 1, 4i + 2 the wrap across u and bits 16 + 2i, 17 + 2i across v (0 repeat, 1 clamp to
+// edge, 2 mirrored repeat). The shader (lpPtMapUv in path_trace.comp) reads the same layout.
+int pathTraceMapBits(const TextureRef* const maps[kPtMapCount]);
 
 struct PathTraceScene {
     Bvh bvh;
     std::vector<PathTraceTriangle> triangles;  // in bvh.triangleOrder
     std::vector<PathTraceMaterial> materials;
+    // The maps' images, in layer order: base colour and emissive (sRGB), metallic-roughness and normal
+    // (linear); one entry per distinct image and sampler (TextureRef::key).
+    std::vector<TextureRef> srgbMaps, linearMaps;
+    bool hasMaskedMaterials = false;  // MASK or BLEND: rays test the base colour's alpha at hits
     // What the tracer leaves out of lightpass's material model (warned once by the pass).
-    size_t texturedMaterials = 0;  // materials with a map; traced with their factors alone
-    size_t blendedMaterials = 0;   // alpha-blended materials; traced as opaque
+    size_t bumpMappedMaterials = 0;  // height maps are not sampled (normal maps are)
 };
 
 // Every model's triangles through its transform (normals by the inverse transpose).

@@ -18,12 +18,16 @@ struct LpBvhNode {
 struct LpPathTraceTriangle {
     vec4 position[3];  // position[0].w: material index
     vec4 normal[3];
+    vec4 uv[3];       // xy: TEXCOORD_0, zw: TEXCOORD_1
+    vec4 tangent[3];  // world, w: handedness
 };
 struct LpPathTraceMaterial {
     vec4 baseOpacity;
     vec4 specularMetallic;
     vec4 emissionShininess;
-    vec4 flags;  // x: flat-lit, y: double-sided
+    vec4 flags;      // x: flat-lit, y: double-sided, z: alpha mode (0 opaque, 1 MASK, 2 BLEND), w: cutoff
+    vec4 maps;       // layers of base colour, metallic-roughness, normal, emissive (-1: none)
+    vec4 mapParams;  // x: normal scale, y: roughness factor, z: sampling bits (pathTraceMapBits)
 };
 
 layout(std430, binding = LP_PT_BIND_NODES) readonly buffer PtNodes { LpBvhNode uPtNodes[]; };
@@ -31,6 +35,55 @@ layout(std430, binding = LP_PT_BIND_TRIANGLES) readonly buffer PtTriangles { LpP
 layout(std430, binding = LP_PT_BIND_MATERIALS) readonly buffer PtMaterials { LpPathTraceMaterial uPtMaterials[]; };
 
 uniform int uPtNodeCount;  // 0: no geometry
+
+// The materials' maps, one layer each (passes/path_trace_pass: base colour and emissive sRGB,
+// metallic-roughness and normal linear); level 0 only: the jittered rays of a pixel filter them.
+layout(binding = 1) uniform sampler2DArray uPtSrgbMaps;
+layout(binding = 2) uniform sampler2DArray uPtLinearMaps;
+uniform bool uHasMaskedMaterials;  // some material is MASK or BLEND: hits test its alpha
+uint gLpPtAlphaSeed = 0u;          // BLEND's stochastic test: the caller's number for this ray
+
+// A coordinate wrapped as its sampler says: 0 repeat, 1 clamp to edge, 2 mirrored repeat.
+float lpPtWrap(float x, int mode) {
+    if (mode == 1) return clamp(x, 0.0, 1.0);
+    if (mode == 2) {
+        float m = mod(x, 2.0);
+        return m > 1.0 ? 2.0 - m : m;
+    }
+    return fract(x);
+}
+
+// Map `map` (lp::PathTraceMap) of material m at barycentrics `bary` of triangle T, in its uv set and
+// wraps (lp::pathTraceMapBits).
+vec4 lpPtSampleMap(LpPathTraceMaterial m, LpPathTraceTriangle T, vec2 bary, int map, bool srgb) {
+    int bits = int(m.mapParams.z);
+    vec4 uvs = (1.0 - bary.x - bary.y) * T.uv[0] + bary.x * T.uv[1] + bary.y * T.uv[2];
+    vec2 st = ((bits >> (4 * map)) & 1) != 0 ? uvs.zw : uvs.xy;
+    vec2 uv = vec2(lpPtWrap(st.x, (bits >> (4 * map + 1)) & 3), lpPtWrap(st.y, (bits >> (16 + 2 * map)) & 3));
+    vec3 at = vec3(uv, m.maps[map]);
+    return srgb ? textureLod(uPtSrgbMaps, at, 0.0) : textureLod(uPtLinearMaps, at, 0.0);
+}
+
+uint lpPtHash(uint v) {
+    v ^= v >> 16;
+    v *= 0x7feb352du;
+    v ^= v >> 15;
+    v *= 0x846ca68bu;
+    return v ^ (v >> 16);
+}
+
+// Whether a hit on triangle `tri` at `bary` is cut away: MASK below its cutoff, or BLEND passed
+// through with the probability 1 - alpha (its opacity: what the transparent pass blends by).
+bool lpPtAlphaCuts(int tri, vec2 bary) {
+    LpPathTraceTriangle T = uPtTriangles[tri];
+    LpPathTraceMaterial m = uPtMaterials[int(T.position[0].w)];
+    if (m.flags.z == 0.0) return false;
+    float alpha = m.baseOpacity.a;
+    if (m.maps.x >= 0.0) alpha *= lpPtSampleMap(m, T, bary, 0, true).a;
+    if (m.flags.z == 1.0) return alpha < m.flags.w;
+    uint h = lpPtHash(gLpPtAlphaSeed ^ lpPtHash(uint(tri) * 9781u + floatBitsToUint(bary.x) * 6271u + floatBitsToUint(bary.y)));
+    return float(h >> 8) * (1.0 / 16777216.0) >= alpha;
+}
 
 // Moller-Trumbore, both faces (bvh.cpp's intersectTriangle).
 bool lpPtIntersectTriangle(vec3 o, vec3 d, vec3 a, vec3 b, vec3 c, float tMin, float tMax, out float t, out vec2 uv) {
@@ -90,7 +143,7 @@ int lpPtTrace(vec3 o, vec3 d, float tMin, float tMax, bool anyHit, out float tHi
             float t;
             vec2 uv;
             if (lpPtIntersectTriangle(o, d, T.position[0].xyz, T.position[1].xyz, T.position[2].xyz, tMin, tHit, t, uv) &&
-                lpPtFaceCounts(i, d)) {
+                lpPtFaceCounts(i, d) && !(uHasMaskedMaterials && lpPtAlphaCuts(i, uv))) {
                 tHit = t;
                 uvHit = uv;
                 hit = i;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <unistd.h>
 
@@ -349,6 +350,70 @@ TEST(PathTracer, SmallLampInAMapConvergesWithEnvironmentSamplingAndAgreesWithThe
     EXPECT_LT(rms, 2.0 * rse + 2e-3);
     EXPECT_LT(rse, 0.3) << "64 samples, nearly all towards the lamp";
     EXPECT_GT(brdfRms, 5.0 * rms) << "the BRDF's samples alone: relative RMS error " << brdfRms << " against " << rms;
+}
+
+// The maps at the hit: a 1 m card 0.5 m over a white ground, both Lambertian, under a sun straight
+// down (E = 1), seen from above. The card's base-colour map is opaque grey (sRGB 188: linear 0.5029)
+// where u < 0.5 and alpha 0 where u >= 0.5, alphaMode MASK: the grey half shows 0.5029 / π; through
+// the cut half the camera ray and the sun's shadow ray both pass, so the ground there shows 1 / π.
+TEST(PathTracer, BaseColourMapIsSampledAndMaskCutsCameraAndShadowRays) {
+    Image8 img;
+    img.width = img.height = 8;
+    img.rgba.assign(8 * 8 * 4, 0);
+    for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 8; ++x) {
+            uint8_t* t = &img.rgba[size_t(y * 8 + x) * 4];
+            t[0] = t[1] = t[2] = 188;
+            t[3] = x < 4 ? 255 : 0;
+        }
+    TextureRef map;
+    map.encoded = std::make_shared<const std::string>(encodePng(img));
+    map.key = "test#card";
+    Scene s;
+    s.environment.color = glm::vec3(0.0f);
+    s.ambient = glm::vec3(0.0f);
+    s.models.push_back(model("ground", makePlane(1.0f), glm::scale(glm::mat4(1.0f), glm::vec3(6.0f)), glm::vec3(1.0f),
+                             glm::vec3(0.0f)));
+    ModelInstance card = model("card", makePlane(1.0f), glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.5f, 0.0f)),
+                               glm::vec3(1.0f), glm::vec3(0.0f));
+    for (auto& mat : card.mesh.materials) {
+        mat.diffuseMap = map;
+        mat.alphaMode = AlphaMode::Mask;
+        mat.alphaCutoff = 0.5f;
+    }
+    s.models.push_back(std::move(card));
+    DirectionalLight sun;
+    sun.direction = glm::vec3(0.0f, -1.0f, 0.0f);
+    sun.intensity = 1.0f;
+    sun.color = glm::vec3(1.0f);
+    s.directionalLights.push_back(sun);
+    s.camera = topDown(4.0f, 40.0f);
+    const int size = 32;
+    RenderSettings settings = tracerSettings(size, 1);
+    settings.pathTrace.directOnly = true;
+    settings.pathTrace.pixelCentre = true;
+    Renderer r(s);
+    r.render(settings);
+    const ImageF hdr = r.readHdr();
+    const double grey = std::pow((188.0 / 255.0 + 0.055) / 1.055, 2.4) / M_PI, ground = 1.0 / M_PI;
+    int onCard = 0, throughCut = 0;
+    const glm::dmat4 inv = glm::inverse(glm::dmat4(s.camera.projection(1.0f)) * glm::dmat4(s.camera.view()));
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) {
+            // Where the pixel's centre ray crosses the card's height.
+            const double nx = (x + 0.5) / size * 2.0 - 1.0, ny = 1.0 - (y + 0.5) / size * 2.0;
+            const glm::dvec4 a = inv * glm::dvec4(nx, ny, -1.0, 1.0), b = inv * glm::dvec4(nx, ny, 1.0, 1.0);
+            const glm::dvec3 p0 = glm::dvec3(a) / a.w, p1 = glm::dvec3(b) / b.w;
+            const glm::dvec3 p = p0 + ((0.5 - p0.y) / (p1.y - p0.y)) * (p1 - p0);
+            if (std::fabs(p.z) > 0.45 || std::fabs(p.x) > 0.45 || std::fabs(p.x) < 0.1) continue;
+            const bool opaque = p.x < 0.0;  // u = x + 0.5 on the card
+            const double expected = opaque ? grey : ground;
+            ASSERT_NEAR(channel(hdr, x, y, 1), expected, 2e-3 * expected)
+                << "pixel " << x << "," << y << (opaque ? " (the card's grey half)" : " (the ground through the cut half)");
+            ++(opaque ? onCard : throughCut);
+        }
+    EXPECT_GT(onCard, 20);
+    EXPECT_GT(throughCut, 20);
 }
 
 }  // namespace
