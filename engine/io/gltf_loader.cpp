@@ -53,6 +53,7 @@ constexpr size_t kMaxElements = kMaxGltfElements;  // accessor count limit: 268M
 constexpr size_t kMaxNodeDepth = 1024;                        // levels of the node hierarchy
 constexpr size_t kMaxDrawnPrimitives = size_t(1) << 20;       // primitive instances the nodes draw
 constexpr size_t kMaxDrawnVertices = size_t(1) << 26;         // their vertices and indices, instances counted
+constexpr size_t kMaxMorphDeltas = size_t(1) << 25;           // morph-target deltas held for posing, all targets and vertices
 
 // tinygltf reads external buffers through these: only the files the document's buffers name, checked
 // by checkBuffers (it would also read every external image, which SceneGpu reads itself with its
@@ -861,9 +862,18 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
                                       TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT};
     std::set<std::string> noted;  // what notedOnce has seen
     auto notedOnce = [&noted](const std::string& what) { return noted.insert(what).second; };
+    // What the last addPrimitive appended: for each vertex the accessor element it came from (flat
+    // normals and tangent seams copy vertices), and whether its normals and tangents are the file's
+    // (a skin's joints and a morph target's deltas are read per element and follow the copies).
+    struct EmittedPrimitive {
+        std::vector<uint32_t> source;
+        bool fileNormals = false, fileTangents = false;
+        size_t elements = 0;  // the POSITION accessor's count
+    } emitted;
     auto addPrimitive = [&](int meshIndex, int primIndex, const glm::mat4& world) {
         const tinygltf::Primitive& prim = model.meshes[size_t(meshIndex)].primitives[size_t(primIndex)];
         const std::string w = "meshes[" + std::to_string(meshIndex) + "].primitives[" + std::to_string(primIndex) + "]";
+        emitted = EmittedPrimitive{};
         if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != TINYGLTF_MODE_TRIANGLE_STRIP && prim.mode != TINYGLTF_MODE_TRIANGLE_FAN) {
             L.warn(w, "mode " + std::to_string(prim.mode) + " (points or lines) is not drawn");
             return;
@@ -888,10 +898,6 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
             named[name] = w + ".attributes." + name + " (accessors[" + std::to_string(it->second) + "])";
             return true;
         };
-        // Attributes lightpass does not draw with: said once per file (a model with morph targets
-        // looks different without them).
-        if (!prim.targets.empty() && notedOnce("targets"))
-            L.warn(w + ".targets", "morph targets are not applied; drawn with the base shape");
         Loader::View nrm, uv, uv1, tan, col;
         const bool hasNormals = optional("NORMAL", {TINYGLTF_TYPE_VEC3}, directionTypes, nrm);
         const bool hasUv = optional("TEXCOORD_0", {TINYGLTF_TYPE_VEC2}, uvTypes, uv);
@@ -962,6 +968,8 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
         const bool mirrored = glm::determinant(linear) < 0.0f;
         MeshData part;
         part.vertices.resize(vertexCount);
+        std::vector<uint32_t> source(vertexCount);  // each vertex's accessor element
+        for (size_t v = 0; v < vertexCount; ++v) source[v] = uint32_t(v);
         // Vertices whose normal from the file is not finite or zero-length: given their triangles' normal below.
         std::vector<uint32_t> badNormals;
         size_t badUvs = 0, badUvs1 = 0, badTangents = 0;
@@ -1061,7 +1069,9 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
         if (!hasNormals) {
             // The spec's rule: flat normals. Each triangle gets its own three vertices.
             MeshData flat;
+            std::vector<uint32_t> flatSource;
             for (size_t i = 0; i + 2 < part.indices.size(); i += 3) {
+                for (int k = 0; k < 3; ++k) flatSource.push_back(source[part.indices[i + size_t(k)]]);
                 const Vertex &a = part.vertices[part.indices[i]], &b = part.vertices[part.indices[i + 1]], &c = part.vertices[part.indices[i + 2]];
                 // In double: at coordinates near 1e18 the cross product's squared length overflows a float.
                 const glm::vec3 n(glm::normalize(glm::cross(glm::dvec3(b.position - a.position), glm::dvec3(c.position - a.position))));
@@ -1074,6 +1084,7 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
             }
             part.vertices = std::move(flat.vertices);
             part.indices = std::move(flat.indices);
+            source = std::move(flatSource);
             report.generatedNormals = true;
         }
         if (!hasTangents) {
@@ -1082,7 +1093,9 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
                 for (Vertex& vx : part.vertices) std::swap(vx.uv, vx.uv1);
             };
             if (uvSets.normalSet == 1) swapSets();
-            computeTangents(part);
+            std::vector<uint32_t> copiedFrom;
+            computeTangents(part, &copiedFrom);
+            for (uint32_t c : copiedFrom) source.push_back(source[c]);
             if (uvSets.normalSet == 1) swapSets();
             report.generatedTangents = true;
         }
@@ -1092,16 +1105,25 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
         mesh.subMeshes.push_back(SubMesh{uint32_t(mesh.indices.size()), uint32_t(part.indices.size()), mat});
         for (uint32_t i : part.indices) mesh.indices.push_back(base + i);
         mesh.vertices.insert(mesh.vertices.end(), part.vertices.begin(), part.vertices.end());
+        emitted.source = std::move(source);
+        emitted.fileNormals = hasNormals;
+        emitted.fileTangents = hasTangents;
+        emitted.elements = vertexCount;
     };
 
     // Animations, every clip checked whole before anything is drawn (docs/bad-input.md): a channel's
     // node, path and sampler, a sampler's interpolation, its key times (finite, strictly increasing)
-    // and values (finite, as many as the interpolation needs). Channels on morph weights are not
-    // applied (said once).
+    // and values (finite, as many as the interpolation needs; a weights channel's, one a morph target
+    // of its node's mesh).
     auto animation = std::make_shared<NodeAnimation>();
     std::vector<char> targeted(model.nodes.size(), 0);
-    size_t weightChannels = 0, pointerChannels = 0;
-    std::string firstWeightChannel, firstPointerChannel;
+    size_t pointerChannels = 0;
+    std::string firstPointerChannel;
+    // The morph targets of a mesh (every primitive has as many, checked where the mesh is drawn).
+    auto meshTargets = [&](int meshIndex) -> size_t {
+        if (meshIndex < 0 || size_t(meshIndex) >= model.meshes.size() || model.meshes[size_t(meshIndex)].primitives.empty()) return 0;
+        return model.meshes[size_t(meshIndex)].primitives[0].targets.size();
+    };
     for (size_t a = 0; a < model.animations.size(); ++a) {
         const tinygltf::Animation& an = model.animations[a];
         const std::string aw = "animations[" + std::to_string(a) + "]";
@@ -1109,6 +1131,7 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
         clip.name = an.name;
         std::vector<int> samplerSlot(an.samplers.size(), -1);  // an.samplers -> clip.samplers
         std::vector<AnimationPath> samplerPath(an.samplers.size());
+        std::vector<size_t> samplerWeights(an.samplers.size(), 0);  // a weights sampler's values a key
         std::set<std::pair<int, int>> moved;  // (node, path) of this clip's channels
         for (size_t c = 0; c < an.channels.size(); ++c) {
             const tinygltf::AnimationChannel& ch = an.channels[c];
@@ -1116,13 +1139,10 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
             if (ch.sampler < 0 || size_t(ch.sampler) >= an.samplers.size())
                 L.fail(cw + ".sampler", std::to_string(ch.sampler) + " does not exist (" + aw + " has " +
                                             std::to_string(an.samplers.size()) + " samplers)");
-            if (ch.target_path == "weights") {
-                if (weightChannels++ == 0) firstWeightChannel = cw;
-                continue;
-            }
             AnimationPath path = AnimationPath::Translation;
             if (ch.target_path == "rotation") path = AnimationPath::Rotation;
             else if (ch.target_path == "scale") path = AnimationPath::Scale;
+            else if (ch.target_path == "weights") path = AnimationPath::Weights;
             else if (ch.target_path != "translation")
                 L.fail(cw + ".target.path", quoteUserText(ch.target_path) + " is not translation, rotation, scale or weights");
             if (ch.target_node < 0) {  // an extension (KHR_animation_pointer) says what moves
@@ -1132,16 +1152,26 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
             const std::string nw = "nodes[" + std::to_string(ch.target_node) + "]";
             if (size_t(ch.target_node) >= model.nodes.size())
                 L.fail(cw + ".target.node", std::to_string(ch.target_node) + " does not exist (" + std::to_string(model.nodes.size()) + " nodes)");
-            if (model.nodes[size_t(ch.target_node)].matrix.size() == 16)
+            if (path != AnimationPath::Weights && model.nodes[size_t(ch.target_node)].matrix.size() == 16)
                 L.fail(cw + ".target.node", nw + " has a matrix; an animated node must have translation, rotation and scale instead");
+            const size_t weightCount = path == AnimationPath::Weights ? meshTargets(model.nodes[size_t(ch.target_node)].mesh) : 0;
+            if (path == AnimationPath::Weights && weightCount == 0)
+                L.fail(cw + ".target.node", nw + " has no mesh with morph targets for its weights to move");
             if (!moved.insert({ch.target_node, int(path)}).second)
                 L.fail(cw + ".target", nw + " " + ch.target_path + " is already the target of another channel of " + aw);
-            if (samplerSlot[size_t(ch.sampler)] >= 0 && samplerPath[size_t(ch.sampler)] != path &&
-                (path == AnimationPath::Rotation || samplerPath[size_t(ch.sampler)] == AnimationPath::Rotation))
-                L.fail(cw + ".sampler", std::to_string(ch.sampler) + " also drives a channel of another type (a rotation's values are VEC4, a translation's and scale's VEC3)");
+            const AnimationPath sharedPath = samplerPath[size_t(ch.sampler)];
+            if (samplerSlot[size_t(ch.sampler)] >= 0 && sharedPath != path &&
+                (path == AnimationPath::Rotation || sharedPath == AnimationPath::Rotation || path == AnimationPath::Weights ||
+                 sharedPath == AnimationPath::Weights))
+                L.fail(cw + ".sampler", std::to_string(ch.sampler) + " also drives a channel of another type (a rotation's values are VEC4, a translation's and scale's VEC3, weights SCALAR)");
+            if (samplerSlot[size_t(ch.sampler)] >= 0 && path == AnimationPath::Weights && samplerWeights[size_t(ch.sampler)] != weightCount)
+                L.fail(cw + ".sampler", std::to_string(ch.sampler) + " also drives the weights of a mesh with " +
+                                            std::to_string(samplerWeights[size_t(ch.sampler)]) + " morph targets; " + nw + "'s has " +
+                                            std::to_string(weightCount));
             if (samplerSlot[size_t(ch.sampler)] < 0) {
                 samplerSlot[size_t(ch.sampler)] = int(clip.samplers.size());
                 samplerPath[size_t(ch.sampler)] = path;
+                samplerWeights[size_t(ch.sampler)] = weightCount;
                 clip.samplers.emplace_back();
             }
             clip.channels.push_back({ch.target_node, path, samplerSlot[size_t(ch.sampler)]});
@@ -1158,18 +1188,27 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
                 L.fail(sw + ".interpolation", quoteUserText(sm.interpolation) + " is not LINEAR, STEP or CUBICSPLINE");
             out.interpolation = named->interpolation;
             const bool rotation = samplerPath[s] == AnimationPath::Rotation;
+            const bool weights = samplerPath[s] == AnimationPath::Weights;
             const std::string iw = sw + ".input (accessors[" + std::to_string(sm.input) + "])";
             const std::string ow = sw + ".output (accessors[" + std::to_string(sm.output) + "])";
             const Loader::View in = L.view(sm.input, sw + ".input", {TINYGLTF_TYPE_SCALAR}, {TINYGLTF_COMPONENT_TYPE_FLOAT});
-            // A rotation may be a normalised integer (KHR_mesh_quantization's and the spec's table).
-            const Loader::View values = L.view(sm.output, sw + ".output", {rotation ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3},
-                                               rotation ? signedNormalisedOrUnsigned : floats);
+            // A rotation and morph weights may be normalised integers (KHR_mesh_quantization's and the spec's table).
+            const Loader::View values =
+                L.view(sm.output, sw + ".output", {rotation ? TINYGLTF_TYPE_VEC4 : weights ? TINYGLTF_TYPE_SCALAR : TINYGLTF_TYPE_VEC3},
+                       rotation || weights ? signedNormalisedOrUnsigned : floats);
             if (values.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT && !values.normalized)
-                L.fail(ow, "integer rotations must be \"normalized\"");
+                L.fail(ow, std::string("integer ") + (weights ? "weights" : "rotations") + " must be \"normalized\"");
             const size_t perKey = out.interpolation == AnimationInterpolation::CubicSpline ? 3 : 1;
             if (in.count == 0) L.fail(iw, "has no key times");
             if (perKey == 3 && in.count < 2) L.fail(iw, "CUBICSPLINE needs at least 2 key times, this has 1");
-            if (values.count != in.count * perKey)
+            if (weights) {
+                // One value a morph target a key: CUBICSPLINE's in-tangents of every target, their values, their out-tangents.
+                const size_t n = samplerWeights[s];
+                if (values.count != in.count * perKey * n)
+                    L.fail(ow, std::to_string(values.count) + " values for " + std::to_string(in.count) + " key times of " + std::to_string(n) +
+                                   " morph weights: " + sm.interpolation + " needs " + std::to_string(in.count * perKey * n) +
+                                   (perKey == 3 ? " (in-tangents, values, out-tangents of every weight, a key)" : " (every weight, a key)"));
+            } else if (values.count != in.count * perKey)
                 L.fail(ow, std::to_string(values.count) + " values for " + std::to_string(in.count) + " key times: " + sm.interpolation +
                                " needs " + std::to_string(in.count * perKey) + (perKey == 3 ? " (in-tangent, value, out-tangent a key)" : " (one a key)"));
             out.times.resize(in.count);
@@ -1180,6 +1219,16 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
                     L.fail(iw, "key time " + std::to_string(k) + " (" + formatNumber(t) + ") is not after key time " + std::to_string(k - 1) +
                                    " (" + formatNumber(out.times[k - 1]) + "): key times must increase");
                 out.times[k] = t;
+            }
+            if (weights) {
+                out.weightCount = uint32_t(samplerWeights[s]);
+                out.weights.resize(values.count);
+                for (size_t k = 0; k < values.count; ++k) {
+                    out.weights[k] = Loader::component(values, k, 0);
+                    if (!std::isfinite(out.weights[k])) L.fail(ow, "value " + std::to_string(k) + " is not finite");
+                }
+                clip.duration = std::max(clip.duration, out.times.back());
+                continue;
             }
             out.values.resize(values.count);
             for (size_t k = 0; k < values.count; ++k) {
@@ -1196,9 +1245,6 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
         }
         animation->clips.push_back(std::move(clip));
     }
-    if (weightChannels > 0)
-        L.warn(firstWeightChannel, std::to_string(weightChannels) + " channel" + (weightChannels > 1 ? "s" : "") +
-                                       " on morph target weights, which lightpass does not apply; ignored");
     if (pointerChannels > 0)
         L.warn(firstPointerChannel, std::to_string(pointerChannels) + " channel" + (pointerChannels > 1 ? "s" : "") +
                                         " without a target node (an extension's target); ignored");
@@ -1287,6 +1333,135 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
         }
         return c;
     };
+    // Skins, read once each where a drawn node first uses one: joints that exist, inverse bind
+    // matrices (identity when absent) that are finite, at least one a joint.
+    std::vector<int> skinSlot(model.skins.size(), -1);
+    auto skinFor = [&](int index, const std::string& nw) {
+        if (index < 0 || size_t(index) >= model.skins.size())
+            L.fail(nw + ".skin", std::to_string(index) + " does not exist (" + std::to_string(model.skins.size()) + " skins)");
+        int& slot = skinSlot[size_t(index)];
+        if (slot >= 0) return slot;
+        const tinygltf::Skin& sk = model.skins[size_t(index)];
+        const std::string sw = "skins[" + std::to_string(index) + "]";
+        if (sk.joints.empty()) L.fail(sw + ".joints", "is empty (a skin needs at least one joint)");
+        Skin skin;
+        for (size_t j = 0; j < sk.joints.size(); ++j)
+            if (sk.joints[j] < 0 || size_t(sk.joints[j]) >= model.nodes.size())
+                L.fail(sw + ".joints[" + std::to_string(j) + "]", "node " + std::to_string(sk.joints[j]) + " does not exist (" +
+                                                                    std::to_string(model.nodes.size()) + " nodes)");
+        skin.joints = sk.joints;
+        skin.inverseBind.assign(sk.joints.size(), glm::mat4(1.0f));
+        if (sk.inverseBindMatrices >= 0) {
+            const std::string iw = sw + ".inverseBindMatrices (accessors[" + std::to_string(sk.inverseBindMatrices) + "])";
+            const Loader::View m = L.view(sk.inverseBindMatrices, sw + ".inverseBindMatrices", {TINYGLTF_TYPE_MAT4}, floats);
+            if (m.count < sk.joints.size())
+                L.fail(iw, std::to_string(m.count) + " matrices for " + std::to_string(sk.joints.size()) + " joints (one a joint)");
+            for (size_t j = 0; j < sk.joints.size(); ++j)
+                for (int c = 0; c < 16; ++c) {
+                    const float f = Loader::component(m, j, c);  // column-major, as glm stores it
+                    if (!std::isfinite(f)) L.fail(iw, "matrix " + std::to_string(j) + " (for joint " + std::to_string(j) + ") is not finite");
+                    glm::value_ptr(skin.inverseBind[j])[c] = f;
+                }
+        }
+        slot = int(animation->skins.size());
+        animation->skins.push_back(std::move(skin));
+        return slot;
+    };
+    // The joints and weights of the primitive addPrimitive just appended (`emitted`), one VertexJoints
+    // a vertex into animation->vertexJoints: JOINTS_0/WEIGHTS_0, and JOINTS_1/WEIGHTS_1 when present.
+    auto readJoints = [&](const tinygltf::Primitive& prim, const std::string& w, const Skin& skin, const std::string& skinName) {
+        std::vector<VertexJoints> perElement(emitted.elements);
+        for (int set = 0; set < 2; ++set) {
+            const std::string jn = "JOINTS_" + std::to_string(set), wn = "WEIGHTS_" + std::to_string(set);
+            const auto ji = prim.attributes.find(jn), wi = prim.attributes.find(wn);
+            if (ji == prim.attributes.end() && wi == prim.attributes.end() && set == 1) break;
+            if (ji == prim.attributes.end() || wi == prim.attributes.end())
+                L.fail(w + ".attributes", "has " + (ji == prim.attributes.end() ? "no " + jn : jn) + " and " +
+                                              (wi == prim.attributes.end() ? "no " + wn : wn) + ", but its node has " + skinName +
+                                              " (a skinned primitive needs both)");
+            const Loader::View joints = L.view(ji->second, w + ".attributes." + jn, {TINYGLTF_TYPE_VEC4},
+                                               {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT}, emitted.elements);
+            Loader::View weights = L.view(wi->second, w + ".attributes." + wn, {TINYGLTF_TYPE_VEC4},
+                                          {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
+                                           TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
+                                          emitted.elements);
+            const std::string jw = w + ".attributes." + jn + " (accessors[" + std::to_string(ji->second) + "])";
+            const std::string ww = w + ".attributes." + wn + " (accessors[" + std::to_string(wi->second) + "])";
+            if (weights.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT && !weights.normalized) {
+                repairs.add(ww, 0, "integer joint weights without \"normalized\": true (the spec requires it)", "read as normalized", "accessors");
+                weights.normalized = true;
+            }
+            for (size_t e = 0; e < emitted.elements; ++e)
+                for (int k = 0; k < 4; ++k) {
+                    const float weight = Loader::component(weights, e, k);
+                    const uint32_t joint = uint32_t(Loader::component(joints, e, k));
+                    if (!std::isfinite(weight) || weight < 0.0f)
+                        L.fail(ww, "weight " + std::to_string(k) + " of vertex " + std::to_string(e) + " is " +
+                                       (std::isfinite(weight) ? "negative" : "not finite"));
+                    // A joint with weight 0 may be any number (exporters pad with 0); one that counts must exist.
+                    if (weight > 0.0f && joint >= skin.joints.size())
+                        L.fail(jw, "joint " + std::to_string(joint) + " of vertex " + std::to_string(e) + " is beyond " + skinName + "'s " +
+                                       std::to_string(skin.joints.size()) + " joints");
+                    perElement[e].joint[4 * set + k] = weight > 0.0f ? joint : 0u;
+                    perElement[e].weight[4 * set + k] = weight;
+                }
+        }
+        // Weights sum to 1 within their type's precision (four rounded bytes: 2/255); others are normalised.
+        const auto wi = prim.attributes.find("WEIGHTS_0");
+        const std::string ww = w + ".attributes.WEIGHTS_0 (accessors[" + std::to_string(wi->second) + "])";
+        const float tolerance = model.accessors[size_t(wi->second)].componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ? 2.0f / 255.0f : 2e-3f;
+        size_t unnormalised = 0, unweighted = 0;
+        for (VertexJoints& vj : perElement) {
+            float sum = 0.0f;
+            for (float x : vj.weight) sum += x;
+            if (sum == 0.0f) {
+                ++unweighted;
+                continue;
+            }
+            if (std::abs(sum - 1.0f) > tolerance) ++unnormalised;
+            for (float& x : vj.weight) x /= sum;
+        }
+        if (unnormalised > 0) repairs.add(ww, unnormalised, "vertices whose joint weights do not sum to 1", "normalized", "accessors");
+        if (unweighted > 0)
+            repairs.add(ww, unweighted, "vertices without a joint weight", "left where the mesh places them (not skinned)", "accessors");
+        for (uint32_t src : emitted.source) animation->vertexJoints.push_back(perElement[src]);
+    };
+    // The morph targets' deltas of the primitive addPrimitive just appended, `targets` x its vertices
+    // into animation->morphDeltas (target-major). NORMAL and TANGENT deltas apply where the normals
+    // and tangents are the file's (generated ones are not morphed).
+    auto readTargets = [&](const tinygltf::Primitive& prim, const std::string& w, size_t targets) {
+        const size_t count = emitted.source.size();
+        const size_t first = animation->morphDeltas.size();
+        // Bounded as the drawn vertices are: 2^25 deltas (36 bytes each) in all.
+        if (targets > kMaxMorphDeltas / std::max<size_t>(count, 1) || first + targets * count > kMaxMorphDeltas)
+            L.fail(w + ".targets", std::to_string(targets) + " morph targets of " + std::to_string(count) + " vertices: the file's targets hold more than " +
+                                       std::to_string(kMaxMorphDeltas) + " vertex deltas in all");
+        animation->morphDeltas.resize(first + targets * count);
+        for (size_t t = 0; t < targets; ++t) {
+            const std::string tw = w + ".targets[" + std::to_string(t) + "]";
+            for (const auto& [name, accessor] : prim.targets[t]) {
+                const int kind = name == "POSITION" ? 0 : name == "NORMAL" ? 1 : name == "TANGENT" ? 2 : -1;
+                if (kind < 0) {
+                    repairs.add(tw + "." + name, 0, "morph target attributes other than POSITION, NORMAL and TANGENT", "not applied", "targets");
+                    continue;
+                }
+                if ((kind == 1 && !emitted.fileNormals) || (kind == 2 && !emitted.fileTangents)) continue;
+                const Loader::View d = L.view(accessor, tw + "." + name, {TINYGLTF_TYPE_VEC3},
+                                              {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_COMPONENT_TYPE_SHORT},
+                                              emitted.elements);
+                std::vector<glm::vec3> perElement(emitted.elements);
+                for (size_t e = 0; e < emitted.elements; ++e) {
+                    perElement[e] = glm::vec3(Loader::component(d, e, 0), Loader::component(d, e, 1), Loader::component(d, e, 2));
+                    if (!std::isfinite(perElement[e].x + perElement[e].y + perElement[e].z))
+                        L.fail(tw + "." + name + " (accessors[" + std::to_string(accessor) + "])", "value " + std::to_string(e) + " is not finite");
+                }
+                for (size_t i = 0; i < count; ++i) {
+                    MorphDelta& md = animation->morphDeltas[first + t * count + i];
+                    (kind == 0 ? md.position : kind == 1 ? md.normal : md.tangent) = perElement[emitted.source[i]];
+                }
+            }
+        }
+    };
     // One node, its parent's world transform given (the tree check above has made sure each exists and
     // is reached once); its children are returned to the walk below, which keeps its own stack (a
     // recursive walk of a chain 1023 levels deep overflowed a 1 MiB stack).
@@ -1314,15 +1489,30 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
         if (node.mesh >= 0) {
             if (size_t(node.mesh) >= model.meshes.size())
                 L.fail(w + ".mesh", std::to_string(node.mesh) + " does not exist (" + std::to_string(model.meshes.size()) + " meshes)");
-            // One line for the whole file, however many skinned nodes it has.
-            if (node.skin >= 0) repairs.add(w, 0, "a skin, which lightpass does not apply", "drawn in the bind pose", "nodes");
-            for (size_t p = 0; p < model.meshes[size_t(node.mesh)].primitives.size(); ++p) {
-                if (!animated) {
+            const tinygltf::Mesh& drawn = model.meshes[size_t(node.mesh)];
+            const std::string mw = "meshes[" + std::to_string(node.mesh) + "]";
+            // Morph targets: as many in every primitive; weights (the node's over the mesh's) one a target.
+            const size_t targets = meshTargets(node.mesh);
+            for (size_t p = 1; p < drawn.primitives.size(); ++p)
+                if (drawn.primitives[p].targets.size() != targets)
+                    L.fail(mw + ".primitives[" + std::to_string(p) + "].targets",
+                           std::to_string(drawn.primitives[p].targets.size()) + " morph targets, but primitives[0] has " +
+                               std::to_string(targets) + " (every primitive of a mesh has as many)");
+            const std::vector<double>& restWeights = !node.weights.empty() ? node.weights : drawn.weights;
+            if (!restWeights.empty() && restWeights.size() != targets)
+                L.fail((!node.weights.empty() ? w : mw) + ".weights",
+                       std::to_string(restWeights.size()) + " weights for " + std::to_string(targets) + " morph targets (one a target)");
+            rest.weights.assign(targets, 0.0f);
+            for (size_t t = 0; t < restWeights.size(); ++t) rest.weights[t] = float(restWeights[t]);
+            const int skin = node.skin >= 0 ? skinFor(node.skin, w) : -1;
+            for (size_t p = 0; p < drawn.primitives.size(); ++p) {
+                if (!animated && skin < 0 && targets == 0) {
                     addPrimitive(node.mesh, int(p), world);
                     continue;
                 }
-                // A node that moves: its primitive read in the node's own space (kept for posing), then
-                // placed at rest as addPrimitive places any other.
+                // A node that moves, is skinned or morphed: its primitive read in the node's own space
+                // (a skinned one's: the mesh's, since a skin ignores the node's transform) and kept for
+                // posing, then placed at rest through the same math as any pose (below).
                 const size_t firstVertex = mesh.vertices.size(), firstIndex = mesh.indices.size();
                 addPrimitive(node.mesh, int(p), glm::mat4(1.0f));
                 const size_t count = mesh.vertices.size() - firstVertex;
@@ -1332,7 +1522,18 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
                 range.firstVertex = uint32_t(firstVertex);
                 range.vertexCount = uint32_t(count);
                 range.firstLocal = uint32_t(animation->restLocal.size());
-                range.mirrored = glm::determinant(glm::mat3(world)) < 0.0f;
+                range.mirrored = skin < 0 && glm::determinant(glm::mat3(world)) < 0.0f;
+                const std::string pw = mw + ".primitives[" + std::to_string(p) + "]";
+                if (skin >= 0) {
+                    range.skin = skin;
+                    range.firstJoints = uint32_t(animation->vertexJoints.size());
+                    readJoints(drawn.primitives[p], pw, animation->skins[size_t(skin)], "skins[" + std::to_string(node.skin) + "]");
+                }
+                if (targets > 0) {
+                    range.morphTargets = uint32_t(targets);
+                    range.firstDelta = uint32_t(animation->morphDeltas.size());
+                    readTargets(drawn.primitives[p], pw, targets);
+                }
                 animation->restLocal.insert(animation->restLocal.end(), mesh.vertices.begin() + ptrdiff_t(firstVertex), mesh.vertices.end());
                 animation->ranges.push_back(range);
                 if (range.mirrored)  // front faces stay front faces, as addPrimitive does for a mirroring node
@@ -1439,7 +1640,8 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
         for (auto it = children.rbegin(); it != children.rend(); ++it) pending.push_back({*it, world, p.node, animated});
     }
     // The rest pose placed through the same math as every other pose: the ranges' vertices as
-    // poseVertices puts them (positions, normals and tangents placed by the node's world matrix).
+    // poseVertices puts them (morphed by the rest weights, then skinned or placed by the node's world
+    // matrix): a skinned or morphed model that no clip moves costs nothing after loading.
     if (!animation->ranges.empty()) poseVertices(*animation, animatedNodeWorlds(*animation, {}, 0.0), mesh.vertices);
     if (!animation->clips.empty()) out.animation = animation;
 

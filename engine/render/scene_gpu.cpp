@@ -195,28 +195,26 @@ void SceneGpu::pose(const Scene& scene, double time, double previousTime) {
         const ModelInstance& model = scene.models[i];
         const NodeAnimation& animation = *model.animation;
         Pose& p = poses_[i];
-        std::vector<glm::mat4> worlds = animatedNodeWorlds(animation, model.playingClips, time);
-        std::vector<glm::mat4> previousWorlds =
-            previousTime == time ? worlds : animatedNodeWorlds(animation, model.playingClips, previousTime);
-        animatedMotion |= worlds != previousWorlds;
-        if (previousWorlds != p.previousWorlds) {
+        NodePose current = animatedPose(animation, model.playingClips, time);
+        NodePose previousPose = previousTime == time ? current : animatedPose(animation, model.playingClips, previousTime);
+        animatedMotion |= current != previousPose;
+        if (previousPose != p.previousPose) {
             // Playing on, the previous frame's pose is the one the vertex buffer holds: its positions
-            // are kept; otherwise (a jump, the first frame) they are placed from the rest pose.
-            if (previousWorlds == p.worlds) {
+            // are kept; otherwise (a jump, the first frame) they are posed from the rest pose.
+            if (previousPose == p.current) {
                 for (const NodeVertexRange& r : animation.ranges)
                     for (uint32_t k = r.firstVertex; k < r.firstVertex + r.vertexCount; ++k) p.previous[k] = glm::vec4(p.vertices[k].position, 1.0f);
             } else {
-                for (const NodeVertexRange& r : animation.ranges) {
-                    const glm::mat4& world = previousWorlds[size_t(r.node)];
-                    for (uint32_t k = 0; k < r.vertexCount; ++k)
-                        p.previous[r.firstVertex + k] = world * glm::vec4(animation.restLocal[r.firstLocal + k].position, 1.0f);
-                }
+                std::vector<Vertex> posed = p.vertices;
+                poseVertices(animation, previousPose, posed);
+                for (const NodeVertexRange& r : animation.ranges)
+                    for (uint32_t k = r.firstVertex; k < r.firstVertex + r.vertexCount; ++k) p.previous[k] = glm::vec4(posed[k].position, 1.0f);
             }
             glNamedBufferSubData(gm.previousPositions.id(), 0, GLsizeiptr(p.previous.size() * sizeof(glm::vec4)), p.previous.data());
-            p.previousWorlds = std::move(previousWorlds);
+            p.previousPose = std::move(previousPose);
         }
-        if (worlds != p.worlds) {
-            poseVertices(animation, worlds, p.vertices);
+        if (current != p.current) {
+            poseVertices(animation, current, p.vertices);
             // Only the ranges that move are written: the vertices of still nodes are never touched.
             std::vector<GpuVertex> range;
             for (const NodeVertexRange& r : animation.ranges) {
@@ -225,7 +223,7 @@ void SceneGpu::pose(const Scene& scene, double time, double previousTime) {
                 glNamedBufferSubData(gm.vertices.id(), GLintptr(r.firstVertex * sizeof(GpuVertex)),
                                      GLsizeiptr(range.size() * sizeof(GpuVertex)), range.data());
             }
-            p.worlds = std::move(worlds);
+            p.current = std::move(current);
             ++gm.poseVersion;
             // The shadow casters' bounds and the transparent sort's centres, from the posed vertices.
             const MeshData& mesh = model.mesh;

@@ -104,14 +104,15 @@ public:
     // Poses every animated model of `scene` (the scene this was made from) at `time`: positions,
     // normals and tangents into its vertex buffer, positions at `previousTime` into its previous
     // positions; a pose the buffers already hold is not uploaded again. The casters' bounds and the
-    // draws' centres follow. CPU work (engine/scene/animation), one upload per moved mesh.
+    // draws' centres follow. CPU work (engine/scene/animation: node matrices, morph targets, skins),
+    // one upload per moved mesh.
     void pose(const Scene& scene, double time, double previousTime);
 
 private:
     GLuint texture(const TextureRef& ref, bool srgb);
-    // What an animated mesh's buffers hold: the node matrices of its current and previous pose.
+    // What an animated mesh's buffers hold: the node matrices and morph weights of its current and previous pose.
     struct Pose {
-        std::vector<glm::mat4> worlds, previousWorlds;
+        NodePose current, previousPose;
         std::vector<Vertex> vertices;  // the mesh's vertices as loaded, posed in place
         std::vector<glm::vec4> previous;
     };

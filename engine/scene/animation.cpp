@@ -61,6 +61,40 @@ glm::vec4 sampleAnimation(const AnimationSampler& sampler, AnimationPath path, f
     return unit(value(k));
 }
 
+std::vector<float> sampleWeights(const AnimationSampler& sampler, float time) {
+    const std::vector<float>& t = sampler.times;
+    const size_t n = sampler.weightCount;
+    const bool cubic = sampler.interpolation == AnimationInterpolation::CubicSpline;
+    // Weight i of key k's value (the middle third of a cubic key), in-tangent and out-tangent.
+    auto value = [&](size_t k, size_t i) { return sampler.weights[(cubic ? 3 * k + 1 : k) * n + i]; };
+    auto inTangent = [&](size_t k, size_t i) { return sampler.weights[3 * k * n + i]; };
+    auto outTangent = [&](size_t k, size_t i) { return sampler.weights[(3 * k + 2) * n + i]; };
+    std::vector<float> out(n, 0.0f);
+    if (t.empty() || sampler.weights.size() < t.size() * n * (cubic ? 3 : 1)) return out;
+    size_t held = t.size();  // a key whose value holds, or t.size() when interpolating
+    if (!(time > t.front())) held = 0;
+    else if (time >= t.back()) held = t.size() - 1;
+    if (held < t.size()) {
+        for (size_t i = 0; i < n; ++i) out[i] = value(held, i);
+        return out;
+    }
+    const size_t k = size_t(std::upper_bound(t.begin(), t.end(), time) - t.begin()) - 1;
+    const float d = t[k + 1] - t[k];
+    const float s = (time - t[k]) / d;
+    const float s2 = s * s, s3 = s2 * s;
+    for (size_t i = 0; i < n; ++i) {
+        switch (sampler.interpolation) {
+            case AnimationInterpolation::Step: out[i] = value(k, i); break;
+            case AnimationInterpolation::Linear: out[i] = value(k, i) + (value(k + 1, i) - value(k, i)) * s; break;
+            case AnimationInterpolation::CubicSpline:
+                out[i] = (2 * s3 - 3 * s2 + 1) * value(k, i) + (s3 - 2 * s2 + s) * d * outTangent(k, i) +
+                         (-2 * s3 + 3 * s2) * value(k + 1, i) + (s3 - s2) * d * inTangent(k + 1, i);
+                break;
+        }
+    }
+    return out;
+}
+
 float clipTime(const AnimationClip& clip, double time) {
     if (!(clip.duration > 0.0f)) return 0.0f;
     const double d = clip.duration;
@@ -68,28 +102,39 @@ float clipTime(const AnimationClip& clip, double time) {
     return float(std::min(std::max(wrapped, 0.0), std::nextafter(d, 0.0)));
 }
 
-std::vector<glm::mat4> animatedNodeWorlds(const NodeAnimation& animation, const std::vector<int>& playing, double time) {
+NodePose animatedPose(const NodeAnimation& animation, const std::vector<int>& playing, double time) {
     struct Trs {
         glm::vec3 t, s;
         glm::vec4 r;  // x, y, z, w
     };
+    NodePose pose;
     std::vector<Trs> local(animation.nodes.size());
+    pose.weights.resize(animation.nodes.size());
     for (size_t n = 0; n < local.size(); ++n) {
         const AnimatedNode& node = animation.nodes[n];
         local[n] = {node.translation, node.scale, glm::vec4(node.rotation.x, node.rotation.y, node.rotation.z, node.rotation.w)};
+        pose.weights[n] = node.weights;
     }
     for (int c : playing) {
         const AnimationClip& clip = animation.clips[size_t(c)];
         const float t = clipTime(clip, time);
         for (const AnimationChannel& ch : clip.channels) {
-            const glm::vec4 v = sampleAnimation(clip.samplers[size_t(ch.sampler)], ch.path, t);
+            const AnimationSampler& sampler = clip.samplers[size_t(ch.sampler)];
+            if (ch.path == AnimationPath::Weights) {
+                std::vector<float>& w = pose.weights[size_t(ch.node)];
+                const std::vector<float> v = sampleWeights(sampler, t);
+                for (size_t i = 0; i < w.size() && i < v.size(); ++i) w[i] = v[i];
+                continue;
+            }
+            const glm::vec4 v = sampleAnimation(sampler, ch.path, t);
             Trs& trs = local[size_t(ch.node)];
             if (ch.path == AnimationPath::Translation) trs.t = glm::vec3(v);
             else if (ch.path == AnimationPath::Scale) trs.s = glm::vec3(v);
             else trs.r = v;
         }
     }
-    std::vector<glm::mat4> worlds(animation.nodes.size(), glm::mat4(1.0f));
+    pose.worlds.assign(animation.nodes.size(), glm::mat4(1.0f));
+    std::vector<glm::mat4>& worlds = pose.worlds;
     for (int n : animation.order) {
         const AnimatedNode& node = animation.nodes[size_t(n)];
         const Trs& trs = local[size_t(n)];
@@ -99,28 +144,92 @@ std::vector<glm::mat4> animatedNodeWorlds(const NodeAnimation& animation, const 
                                                    glm::scale(glm::mat4(1.0f), trs.s);
         worlds[size_t(n)] = node.parent >= 0 ? worlds[size_t(node.parent)] * own : own;
     }
-    return worlds;
+    return pose;
 }
 
-void poseVertices(const NodeAnimation& animation, const std::vector<glm::mat4>& worlds, std::vector<Vertex>& vertices) {
+std::vector<glm::mat4> animatedNodeWorlds(const NodeAnimation& animation, const std::vector<int>& playing, double time) {
+    return animatedPose(animation, playing, time).worlds;
+}
+
+std::vector<glm::mat4> jointMatrices(const Skin& skin, const std::vector<glm::mat4>& worlds) {
+    std::vector<glm::mat4> m(skin.joints.size());
+    for (size_t j = 0; j < m.size(); ++j) {
+        const int node = skin.joints[j];
+        const glm::mat4 world = node >= 0 && size_t(node) < worlds.size() ? worlds[size_t(node)] : glm::mat4(1.0f);
+        m[j] = world * (j < skin.inverseBind.size() ? skin.inverseBind[j] : glm::mat4(1.0f));
+    }
+    return m;
+}
+
+namespace {
+// The cofactor matrix of m: its inverse transpose times its determinant, defined also where m is
+// singular. With the sign of the determinant it turns normals as the inverse transpose does.
+glm::mat3 cofactor(const glm::mat3& m) { return glm::mat3(glm::cross(m[1], m[2]), glm::cross(m[2], m[0]), glm::cross(m[0], m[1])); }
+}  // namespace
+
+void poseVertices(const NodeAnimation& animation, const NodePose& pose, std::vector<Vertex>& vertices) {
+    const std::vector<glm::mat4>& worlds = pose.worlds;
+    std::vector<std::vector<glm::mat4>> joints(animation.skins.size());
+    for (size_t s = 0; s < joints.size(); ++s)
+        if (std::any_of(animation.ranges.begin(), animation.ranges.end(), [&](const NodeVertexRange& r) { return r.skin == int(s); }))
+            joints[s] = jointMatrices(animation.skins[s], worlds);
     for (const NodeVertexRange& range : animation.ranges) {
         const glm::mat4& world = worlds[size_t(range.node)];
         const glm::mat3 linear(world);
         // A pose that scales the node to nothing has no normal: the rest normal's direction stands in.
         const float det = glm::determinant(linear);
         const glm::mat3 normalMatrix = det != 0.0f && std::isfinite(det) ? glm::inverseTranspose(linear) : glm::mat3(1.0f);
+        const std::vector<float>& weights = pose.weights[size_t(range.node)];
+        const uint32_t targets = std::min(range.morphTargets, uint32_t(weights.size()));
+        const float hand = range.mirrored ? -1.0f : 1.0f;
         for (uint32_t i = 0; i < range.vertexCount; ++i) {
-            const Vertex& rest = animation.restLocal[range.firstLocal + i];
+            Vertex local = animation.restLocal[range.firstLocal + i];
+            for (uint32_t t = 0; t < targets; ++t) {
+                const float w = weights[t];
+                if (w == 0.0f) continue;
+                const MorphDelta& d = animation.morphDeltas[range.firstDelta + size_t(t) * range.vertexCount + i];
+                local.position += w * d.position;
+                local.normal += w * d.normal;
+                local.tangent += glm::vec4(w * d.tangent, 0.0f);
+            }
             Vertex& v = vertices[range.firstVertex + i];
-            v.position = glm::vec3(world * glm::vec4(rest.position, 1.0f));
-            const glm::vec3 n = normalMatrix * rest.normal;
+            glm::vec3 n, t;
+            if (range.skin >= 0) {
+                const VertexJoints& vj = animation.vertexJoints[range.firstJoints + i];
+                const std::vector<glm::mat4>& jm = joints[size_t(range.skin)];
+                glm::mat4 m(0.0f);
+                float sum = 0.0f;
+                for (int k = 0; k < 8; ++k)
+                    if (vj.weight[k] != 0.0f) {
+                        m += vj.weight[k] * jm[vj.joint[k]];
+                        sum += vj.weight[k];
+                    }
+                if (sum == 0.0f) m = glm::mat4(1.0f);
+                const glm::mat3 ml(m);
+                const float md = glm::determinant(ml);
+                v.position = glm::vec3(m * glm::vec4(local.position, 1.0f));
+                n = (md < 0.0f ? -1.0f : 1.0f) * (cofactor(ml) * local.normal);
+                if (!(glm::length(n) > 0.0f)) n = ml * local.normal;  // a joint matrix scaling a plane to a line
+                t = ml * glm::vec3(local.tangent);
+            } else {
+                v.position = glm::vec3(world * glm::vec4(local.position, 1.0f));
+                n = normalMatrix * local.normal;
+                t = linear * glm::vec3(local.tangent);
+            }
             const float nl = glm::length(n);
-            if (nl > 0.0f) v.normal = n / nl;
-            const glm::vec3 t = linear * glm::vec3(rest.tangent);
+            if (nl > 0.0f && std::isfinite(nl)) v.normal = n / nl;
             const float tl = glm::length(t);
-            if (tl > 0.0f) v.tangent = glm::vec4(t / tl, rest.tangent.w * (range.mirrored ? -1.0f : 1.0f));
+            if (tl > 0.0f && std::isfinite(tl)) v.tangent = glm::vec4(t / tl, local.tangent.w * hand);
         }
     }
+}
+
+void poseVertices(const NodeAnimation& animation, const std::vector<glm::mat4>& worlds, std::vector<Vertex>& vertices) {
+    NodePose pose;
+    pose.worlds = worlds;
+    pose.weights.resize(animation.nodes.size());
+    for (size_t n = 0; n < animation.nodes.size(); ++n) pose.weights[n] = animation.nodes[n].weights;
+    poseVertices(animation, pose, vertices);
 }
 
 std::vector<int> chooseClips(const NodeAnimation& animation, const std::string& choice) {

@@ -63,7 +63,8 @@ glm::vec3 projectedUnit(glm::vec3 v, glm::vec3 n) {
 
 }  // namespace
 
-void computeTangents(MeshData& mesh) {
+void computeTangents(MeshData& mesh, std::vector<uint32_t>* copiedFrom) {
+    if (copiedFrom) copiedFrom->clear();
     const size_t triCount = mesh.indices.size() / 3;
     // Weld identical vertices.
     std::vector<uint32_t> weld(mesh.vertices.size());
@@ -193,6 +194,7 @@ void computeTangents(MeshData& mesh) {
         if (!list.empty()) {
             target = uint32_t(mesh.vertices.size());
             mesh.vertices.push_back(mesh.vertices[v]);
+            if (copiedFrom) copiedFrom->push_back(v);
         }
         mesh.vertices[target].tangent = t;
         list.emplace_back(t, target);

@@ -17,7 +17,9 @@ void computeNormals(MeshData& mesh);
 // A vertex whose corners fall into different groups is split (mesh.vertices grows, indices are
 // rewritten). Triangles with no UV area join their neighbours' group; a vertex with no usable UV
 // mapping gets any unit tangent perpendicular to its normal (Duff et al. 2017).
-void computeTangents(MeshData& mesh);
+// `copiedFrom`, when given, gets one entry a vertex the call appended (a vertex split by a break in its
+// tangent frame): the vertex it copies (the glTF loader follows each vertex back to its accessor element).
+void computeTangents(MeshData& mesh, std::vector<uint32_t>* copiedFrom = nullptr);
 void computeBounds(MeshData& mesh);  // of the finite positions (none: zero)
 // A unit vector perpendicular to unit n, continuous except on a measure-zero set, never 0/0
 // (Duff et al., "Building an Orthonormal Basis, Revisited", JCGT 2017).

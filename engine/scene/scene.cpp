@@ -48,7 +48,7 @@ void Scene::bounds(glm::vec3& lo, glm::vec3& hi) const {
 
 bool ModelInstance::movesBetween(double t0, double t1) const {
     if (!animation || playingClips.empty() || animation->ranges.empty() || t0 == t1) return false;
-    return animatedNodeWorlds(*animation, playingClips, t0) != animatedNodeWorlds(*animation, playingClips, t1);
+    return animatedPose(*animation, playingClips, t0) != animatedPose(*animation, playingClips, t1);
 }
 
 void playAnimations(Scene& scene, const std::string& choice) {

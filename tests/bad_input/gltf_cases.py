@@ -504,3 +504,59 @@ def add_cases(write, case, render_model, C):
         name = f"mutant_anim_{k:02d}.gltf"
         write(name, json.dumps(mutated(anim_doc, at, values[choice - 1] if choice else None, choice == 0)))
         case(20, name, graph(name), "any", r"{C}/" + name.replace(".", r"\."), max_line=400, timeout=20)
+
+    # ---- 21. skins and morph targets: a bad joint, weight, bind matrix or target is one line -------
+    def skinned(joints=(0, 0, 0, 0) * 4, weights=(1, 0, 0, 0) * 4, weight_count=4, ibm=None):
+        """The lit quad skinned to one joint (node 2, a root); accessors 4 JOINTS_0, 5 WEIGHTS_0, 6 the
+        inverse bind matrices when given."""
+        g = lit_quad()
+        attributes = g.doc["meshes"][0]["primitives"][0]["attributes"]
+        attributes["JOINTS_0"] = g.accessor(list(joints), UBYTE, "VEC4", 4)
+        attributes["WEIGHTS_0"] = g.accessor(list(weights)[:4 * weight_count], FLOAT, "VEC4", weight_count)
+        skin = {"joints": [g.node(translation=[0, 0, 0])]}
+        if ibm is not None:
+            skin["inverseBindMatrices"] = g.accessor(list(ibm), FLOAT, "MAT4", len(ibm) // 16)
+        g.doc["nodes"][0]["skin"] = 0
+        g.doc["skins"] = [skin]
+        return g
+    identity = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]
+    write("skin_ok.gltf", skinned(ibm=identity).as_gltf())
+    case(21, "gltf_skin_ok", render_model("skin_ok.gltf"), "ok", r"wrote ", outputs=["{O}/out.png"], forbid=r"warning|error")
+    write("skin_joint_range.gltf", skinned(joints=(0, 0, 0, 0) * 3 + (3, 0, 0, 0)).as_gltf())
+    case(21, "gltf_skin_joint_out_of_range", render_model("skin_joint_range.gltf"), "error",
+         r"{C}/skin_joint_range\.gltf: meshes\[0\]\.primitives\[0\]\.attributes\.JOINTS_0 \(accessors\[4\]\): joint 3 of vertex 3 is beyond skins\[0\]'s 1 joints$",
+         absent=["{O}/out.png"])
+    write("skin_weight_count.gltf", skinned(weight_count=3).as_gltf())
+    case(21, "gltf_skin_weights_count_mismatch", render_model("skin_weight_count.gltf"), "error",
+         r"{C}/skin_weight_count\.gltf: meshes\[0\]\.primitives\[0\]\.attributes\.WEIGHTS_0: 3 elements, but POSITION has 4$")
+    write("skin_nan_ibm.gltf", skinned(ibm=identity[:12] + [float("nan")] + identity[13:]).as_gltf())
+    case(21, "gltf_skin_nan_inverse_bind", render_model("skin_nan_ibm.gltf"), "error",
+         r"{C}/skin_nan_ibm\.gltf: skins\[0\]\.inverseBindMatrices \(accessors\[6\]\): matrix 0 \(for joint 0\) is not finite$")
+    write("skin_weights_sum.gltf", skinned(weights=(2, 0, 0, 0) * 4).as_gltf())
+    case(21, "gltf_skin_weights_normalised", render_model("skin_weights_sum.gltf"), "fallback",
+         r"warning: {C}/skin_weights_sum\.gltf: meshes\[0\]\.primitives\[0\]\.attributes\.WEIGHTS_0 \(accessors\[5\]\): 4 vertices whose "
+         r"joint weights do not sum to 1; normalized", outputs=["{O}/out.png"], max_warnings=1)
+    # Ten skinned primitives with unnormalised weights: one line with the count.
+    g = skinned(weights=(2, 0, 0, 0) * 4)
+    for _ in range(9):
+        g.doc["meshes"][0]["primitives"].append(json.loads(json.dumps(g.doc["meshes"][0]["primitives"][0])))
+    for k in range(1, 10):
+        attributes = g.doc["meshes"][0]["primitives"][k]["attributes"]
+        attributes["WEIGHTS_0"] = g.accessor([3, 0, 0, 0] * 4, FLOAT, "VEC4", 4)
+    write("skin_weights_many.gltf", g.as_gltf())
+    case(21, "gltf_skin_weights_collapsed", render_model("skin_weights_many.gltf"), "fallback",
+         r"WEIGHTS_0 \(accessors\[5\]\): 4 vertices whose joint weights do not sum to 1 \(and 36 more in 9 other accessors\); normalized",
+         outputs=["{O}/out.png"], max_warnings=1)
+    def morphed(target_count=4, mesh_weights=(0.5,)):
+        g = lit_quad()
+        g.doc["meshes"][0]["primitives"][0]["targets"] = [{"POSITION": g.accessor([0, 0, 1] * target_count, FLOAT, "VEC3", target_count)}]
+        g.doc["meshes"][0]["weights"] = list(mesh_weights)
+        return g
+    write("morph_ok.gltf", morphed().as_gltf())
+    case(21, "gltf_morph_ok", render_model("morph_ok.gltf"), "ok", r"wrote ", outputs=["{O}/out.png"], forbid=r"warning|error")
+    write("morph_count.gltf", morphed(target_count=3).as_gltf())
+    case(21, "gltf_morph_target_count_mismatch", render_model("morph_count.gltf"), "error",
+         r"{C}/morph_count\.gltf: meshes\[0\]\.primitives\[0\]\.targets\[0\]\.POSITION: 3 elements, but POSITION has 4$")
+    write("morph_weights.gltf", morphed(mesh_weights=(0.5, 0.5)).as_gltf())
+    case(21, "gltf_morph_weights_mismatch", render_model("morph_weights.gltf"), "error",
+         r"{C}/morph_weights\.gltf: meshes\[0\]\.weights: 2 weights for 1 morph targets \(one a target\)$")

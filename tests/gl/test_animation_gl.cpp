@@ -1,11 +1,12 @@
 // Animated models on the GPU: the velocity of an animated vertex in gbuffer.velocity (classic and
-// visibility G-buffer) against its analytic screen motion, motion blur under a still camera, and the
+// visibility G-buffer; moved by a node, a skin or a morph target) against its analytic screen motion, motion blur under a still camera, and the
 // shadow cascade cache invalidated by what moved, not by the clock.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <string>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -25,23 +26,65 @@ namespace {
 constexpr float kSpeed = 2.0f;  // metres per second along +x
 constexpr float kHeight = 0.5f;
 
-// `mesh` on one node whose translation runs linearly from (0, kHeight, 0) at t = 0 to (kSpeed,
-// kHeight, 0) at t = 1 s, looping: the rest pose at (0, kHeight, 0).
-ModelInstance slidingModel(const char* name, MeshData mesh) {
+// How the sliding plane is moved: by its node's translation, by a skin (its one joint translated;
+// the mesh's own node placed far away, which a skin ignores), or by a morph target (a delta of
+// (kSpeed, 0, 0) whose weight runs from 0 to 1). The same motion all three ways.
+enum class Motion { Node, Skin, Morph };
+
+// `mesh` moving linearly from (0, kHeight, 0) at t = 0 to (kSpeed, kHeight, 0) at t = 1 s, looping:
+// the rest pose at (0, kHeight, 0).
+ModelInstance slidingModel(const char* name, MeshData mesh, Motion motion = Motion::Node) {
     auto animation = std::make_shared<NodeAnimation>();
-    AnimatedNode node;
-    node.translation = glm::vec3(0.0f, kHeight, 0.0f);
-    animation->nodes.push_back(node);
-    animation->order = {0};
-    animation->restLocal = mesh.vertices;
-    animation->ranges.push_back({0, 0, uint32_t(mesh.vertices.size()), 0, false});
     AnimationClip clip;
     clip.name = "slide";
     AnimationSampler sampler;
     sampler.times = {0.0f, 1.0f};
-    sampler.values = {glm::vec4(0.0f, kHeight, 0.0f, 0.0f), glm::vec4(kSpeed, kHeight, 0.0f, 0.0f)};
+    const uint32_t count = uint32_t(mesh.vertices.size());
+    if (motion == Motion::Morph) {
+        AnimatedNode node;
+        node.translation = glm::vec3(0.0f, kHeight, 0.0f);
+        node.weights = {0.0f};
+        animation->nodes.push_back(node);
+        NodeVertexRange range{0, 0, count, 0, false};
+        range.morphTargets = 1;
+        animation->ranges.push_back(range);
+        MorphDelta delta;
+        delta.position = glm::vec3(kSpeed, 0.0f, 0.0f);
+        animation->morphDeltas.assign(count, delta);
+        animation->restLocal = mesh.vertices;
+        sampler.weights = {0.0f, 1.0f};
+        sampler.weightCount = 1;
+        clip.channels.push_back({0, AnimationPath::Weights, 0});
+    } else if (motion == Motion::Skin) {
+        AnimatedNode joint, meshNode;
+        joint.translation = glm::vec3(0.0f, kHeight, 0.0f);
+        meshNode.translation = glm::vec3(50.0f, -20.0f, 7.0f);  // ignored: the skin places the vertices
+        animation->nodes = {joint, meshNode};
+        Skin skin;
+        skin.joints = {0};
+        skin.inverseBind = {glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, -kHeight, 0.0f))};
+        animation->skins.push_back(skin);
+        NodeVertexRange range{1, 0, count, 0, false};
+        range.skin = 0;
+        animation->ranges.push_back(range);
+        VertexJoints joints;
+        joints.weight[0] = 1.0f;
+        animation->vertexJoints.assign(count, joints);
+        animation->restLocal = mesh.vertices;  // the bind pose, in the mesh's space
+        for (Vertex& v : animation->restLocal) v.position.y += kHeight;
+        sampler.values = {glm::vec4(0.0f, kHeight, 0.0f, 0.0f), glm::vec4(kSpeed, kHeight, 0.0f, 0.0f)};
+        clip.channels.push_back({0, AnimationPath::Translation, 0});
+    } else {
+        AnimatedNode node;
+        node.translation = glm::vec3(0.0f, kHeight, 0.0f);
+        animation->nodes.push_back(node);
+        animation->restLocal = mesh.vertices;
+        animation->ranges.push_back({0, 0, count, 0, false});
+        sampler.values = {glm::vec4(0.0f, kHeight, 0.0f, 0.0f), glm::vec4(kSpeed, kHeight, 0.0f, 0.0f)};
+        clip.channels.push_back({0, AnimationPath::Translation, 0});
+    }
+    animation->order = motion == Motion::Skin ? std::vector<int>{0, 1} : std::vector<int>{0};
     clip.samplers.push_back(sampler);
-    clip.channels.push_back({0, AnimationPath::Translation, 0});
     clip.duration = 1.0f;
     animation->clips.push_back(clip);
     for (Vertex& v : mesh.vertices) v.position.y += kHeight;  // the rest pose, as the loader places it
@@ -54,13 +97,13 @@ ModelInstance slidingModel(const char* name, MeshData mesh) {
 }
 
 // A still 6 m floor and a 1 m plane sliding above it, seen from above and in front.
-Scene slidingScene() {
+Scene slidingScene(Motion motion = Motion::Node) {
     Scene s;
     ModelInstance floor;
     floor.name = "floor";
     floor.mesh = makePlane(6.0f, 2);
     s.models.push_back(std::move(floor));
-    s.models.push_back(slidingModel("slider", makePlane(1.0f, 2)));
+    s.models.push_back(slidingModel("slider", makePlane(1.0f, 2), motion));
     s.camera.position = {0.5f, 4.0f, 3.0f};
     s.camera.target = {0.5f, 0.0f, 0.0f};
     s.camera.fovYDegrees = 50.0f;
@@ -128,12 +171,15 @@ Velocities renderVelocity(const Scene& scene, GBufferMode mode, float previousTi
 
 // Every pixel of the sliding plane moves as its point does: the point rebuilt from the pixel's depth,
 // moved back by the plane's motion over the frame (kSpeed x dt along x), projected with the same
-// (still) camera; the floor's pixels do not move. In both G-buffer modes, within 0.02 output pixels.
+// (still) camera; the floor's pixels do not move. In both G-buffer modes, within 0.02 output pixels;
+// moved by its node, by a skin and by a morph target (posed once a frame into the buffers every pass reads).
 TEST(AnimationGl, AnimatedVelocityMatchesTheAnalyticScreenMotion) {
-    const Scene scene = slidingScene();
     const float dt = 1.0f / 30.0f, time = 0.5f;
+    for (Motion motion : {Motion::Node, Motion::Skin, Motion::Morph})
     for (GBufferMode mode : {GBufferMode::Classic, GBufferMode::Visibility}) {
-        SCOPED_TRACE(mode == GBufferMode::Classic ? "classic" : "visibility");
+        const Scene scene = slidingScene(motion);
+        SCOPED_TRACE(std::string(motion == Motion::Node ? "node" : motion == Motion::Skin ? "skin" : "morph") +
+                     (mode == GBufferMode::Classic ? ", classic" : ", visibility"));
         FrameData frame;
         const Velocities img = renderVelocity(scene, mode, time - dt, time, &frame);
         ASSERT_TRUE(frame.hasPrevious);
@@ -195,15 +241,17 @@ TEST(AnimationGl, MotionBlurRunsForAMovingModelUnderAStillCamera) {
     EXPECT_FALSE(blurRuns(still, 0.5f, 0.55f));
 }
 
-// The sun's cascade cache: an animated caster that moved redraws the tiles (as a fresh redraw draws
-// them); the clock moving a model that does not move (no clip playing), or not moving at all, keeps them.
+// The sun's cascade cache: an animated caster that moved (by its node, a skin or a morph target)
+// redraws the tiles (as a fresh redraw draws them); the clock moving a model that does not move (no clip playing), or not moving at all, keeps them.
 TEST(AnimationGl, ShadowCacheFollowsWhatMovedNotTheClock) {
     RenderSettings settings = smallSettings();
     settings.shadows.size = 256;
     settings.shadows.cascades = 2;
     settings.shadows.redrawBudget = 0;
+    for (Motion motion : {Motion::Node, Motion::Skin, Motion::Morph}) {
+    SCOPED_TRACE(motion == Motion::Node ? "node" : motion == Motion::Skin ? "skin" : "morph");
     Scene scene = slidingScene();
-    scene.models[1] = slidingModel("slider", makeCube(0.5f));
+    scene.models[1] = slidingModel("slider", makeCube(0.5f), motion);
     DirectionalLight sun;
     sun.direction = glm::normalize(glm::vec3(0.4f, -1.0f, 0.3f));
     scene.directionalLights.push_back(sun);
@@ -247,6 +295,7 @@ TEST(AnimationGl, ShadowCacheFollowsWhatMovedNotTheClock) {
         test::drawShadowAtlas(still, gpu, settings, state, pool);
         gpu.pose(still, 0.4, 0.2);
         EXPECT_TRUE(allNotes(test::drawShadowAtlas(still, gpu, settings, state, pool).notes, "kept (unchanged)"));
+    }
     }
 }
 

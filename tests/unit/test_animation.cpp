@@ -312,22 +312,3 @@ TEST(Animation, BadChannelsAndSamplersNameTheElement) {
         EXPECT_EQ(error(a), "animations[0].samplers[0].input (accessors[2]): CUBICSPLINE needs at least 2 key times, this has 1");
     }
 }
-
-// Channels on morph weights are not applied yet: the file loads, with one warning naming the first.
-TEST(Animation, WeightChannelsAreIgnoredWithAWarning) {
-    TempDir dir;
-    AnimatedQuad a({0, 1}, {0, 0, 0, 1, 0, 0});
-    const int in = a.doc.floatArray({0, 1}, "SCALAR", 2);
-    const int out = a.doc.floatArray({0, 1}, "SCALAR", 2);
-    a.doc.j["animations"][0]["samplers"].push_back({{"input", in}, {"output", out}});
-    a.doc.j["animations"][0]["channels"].push_back({{"sampler", 1}, {"target", {{"node", 0}, {"path", "weights"}}}});
-    MeshLoadReport report;
-    const GltfContent g = loadGltf(dir.write("w.gltf", a.doc.text()), &report);
-    ASSERT_TRUE(g.animation);
-    EXPECT_EQ(g.animation->clips[0].channels.size(), 1u);
-    bool warned = false;
-    for (const std::string& w : report.warnings)
-        warned |= w.find("animations[0].channels[1]: 1 channel on morph target weights, which lightpass does not apply; ignored") != std::string::npos;
-    EXPECT_TRUE(warned);
-    for (const std::string& w : report.warnings) EXPECT_EQ(w.find("does not play"), std::string::npos) << w;
-}
