@@ -111,6 +111,21 @@ void keyCallback(GLFWwindow* window, int key, int, int action, int) {
                                      : "compare with the path tracer off");
             break;
         }
+        case GLFW_KEY_SPACE: {
+            ViewerClock& c = st->clock;
+            c.playing = !c.playing;
+            char line[96];
+            std::snprintf(line, sizeof line, "clock %s at %.2f s (speed x%.2f)", c.playing ? "playing" : "paused", c.time, c.speed);
+            say(line);
+            break;
+        }
+        case GLFW_KEY_LEFT_BRACKET: case GLFW_KEY_RIGHT_BRACKET: {
+            st->clock.scaleSpeed(key == GLFW_KEY_RIGHT_BRACKET ? 2.0f : 0.5f);
+            char line[96];
+            std::snprintf(line, sizeof line, "clock speed x%.2f%s", st->clock.speed, st->clock.playing ? "" : " (paused: Space plays)");
+            say(line);
+            break;
+        }
         case GLFW_KEY_H: st->showHelp = !st->showHelp; break;
         case GLFW_KEY_TAB:
             st->showPanel = !st->showPanel;
@@ -383,10 +398,15 @@ int runViewer(const Options& o) {
             }
         }
         if (st.resetCamera) renderer->cutMotion();  // a jump: no motion vectors across it
+        // The scene clock: wall time times the speed while playing; a scrub on the panel is a jump.
+        st.clock.advance(dt);
+        if (st.clockJumped) renderer->cutMotion();
+        st.clockJumped = false;
+        const double sceneTime = st.clock.time;
         // Following, the camera is the path's at the viewer's clock (the time orbits use); the
         // user's moves start from there and stop following.
         scene->cameraPath = st.followPath ? st.cameraPath : std::nullopt;
-        if (st.followPath) scene->camera = scene->cameraAt(now);
+        if (st.followPath) scene->camera = scene->cameraAt(sceneTime);
         if (moveCamera(window, st, scene->camera, dt) && st.followPath) {
             st.followPath = false;
             scene->cameraPath.reset();
@@ -415,7 +435,7 @@ int runViewer(const Options& o) {
         st.settings.keepHdr = st.compareWithTruth;
         st.toonShown = st.settings.post.toon.value_or(scene->effects.toon.enabled);
         try {
-            renderer->render(st.settings, float(now), true);
+            renderer->render(st.settings, float(sceneTime), true);
             if (previousEnvironment) {
                 st.passRows = candidatePassRows(*scene, st.settings);  // a map brings ibl and sky
                 st.sceneError.clear();
@@ -430,7 +450,7 @@ int runViewer(const Options& o) {
             if (previousEnvironment) restoreEnvironment(*scene, st.settings, *previousEnvironment);
             st.sceneError = e.what();
             say(std::string(previousEnvironment ? "environment error: " : "render error: ") + e.what());
-            renderer->render(st.settings, float(now), true);
+            renderer->render(st.settings, float(sceneTime), true);
         }
         {  // the passes that ran, whenever they change (checkboxes, '7', '8', settings)
             std::string live;
@@ -449,7 +469,7 @@ int runViewer(const Options& o) {
         const ViewerViewport& vp = st.viewport;
         if (st.compareWithTruth) {
             try {
-                const std::string line = drawTruthComparison(st.comparison, *renderer, *scene, st.settings, float(now), vp, blit.id());
+                const std::string line = drawTruthComparison(st.comparison, *renderer, *scene, st.settings, float(sceneTime), now, vp, blit.id());
                 if (!line.empty()) say(line);
             } catch (const Error& e) {  // e.g. a scene the tracer refuses: the frame alone again
                 st.compareWithTruth = false;

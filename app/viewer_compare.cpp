@@ -68,7 +68,7 @@ TruthComparisonStats compareWithTruth(const ImageF& raster, const ImageF& truth,
 }
 
 std::string drawTruthComparison(TruthComparison& state, Renderer& raster, const Scene& scene, const RenderSettings& settings,
-                                float time, const ViewerViewport& viewport, GLuint readFramebuffer) {
+                                float time, double wallSeconds, const ViewerViewport& viewport, GLuint readFramebuffer) {
     if (state.scene != &scene || !state.tracer) {
         state.tracer = std::make_unique<Renderer>(scene, raster.shaders());
         state.scene = &scene;
@@ -112,9 +112,9 @@ std::string drawTruthComparison(TruthComparison& state, Renderer& raster, const 
                   "compare: path tracer %d samples a pixel (noise %.1f%%); raster against it: mean |relative error| "
                   "%.1f%%, RMSE %.4g",
                   stats.samples, 100.0 * stats.truthNoise, 100.0 * stats.meanRelativeError, stats.rmse);
-    if (line == state.describedStats || (!state.describedStats.empty() && time - state.describedAt < 2.0f)) return "";
+    if (line == state.describedStats || (!state.describedStats.empty() && wallSeconds - state.describedAt < 2.0)) return "";
     state.describedStats = line;
-    state.describedAt = time;
+    state.describedAt = wallSeconds;
     return line;
 }
 

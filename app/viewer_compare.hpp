@@ -28,7 +28,7 @@ struct TruthComparison {
     gl::Texture grid;                   // the 2 x 2 tiles, RGBA8
     TruthComparisonStats stats;
     std::string describedStats;         // the last "compare: ..." line printed (empty: print the next)
-    float describedAt = 0.0f;           // and when (the viewer's clock): a line at most every 2 s
+    double describedAt = 0.0;           // and when (wall seconds): a line at most every 2 s
 };
 
 // Why the frame's settings cannot be compared with the path tracer (empty when they can): it is the
@@ -43,10 +43,10 @@ ViewerViewport comparisonTile(const ViewerViewport& viewport);
 
 // Renders the path tracer with `settings` (the raster frame's, just rendered by `raster` with
 // keepHdr at comparisonTile's size) at `time`, fills the grid and blits it into `viewport` through
-// `readFramebuffer`. Returns the stats line when they changed, at most every 2 s (lights that move
-// with the clock trace again every frame), else empty.
+// `readFramebuffer`. Returns the stats line when they changed, at most every 2 s of `wallSeconds`
+// (lights that move with the clock trace again every frame), else empty.
 std::string drawTruthComparison(TruthComparison& state, Renderer& raster, const Scene& scene, const RenderSettings& settings,
-                                float time, const ViewerViewport& viewport, GLuint readFramebuffer);
+                                float time, double wallSeconds, const ViewerViewport& viewport, GLuint readFramebuffer);
 
 // Mean |a - b| / max(lum(b), floor) over the pixels where b's luminance is above `floor`, and the RMSE
 // over every pixel's RGB, of two HDR images of one size (a: the raster frame, b: the truth).

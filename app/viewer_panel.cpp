@@ -21,6 +21,7 @@ const char* const kViewerHelp =
     "t next lit term (term-diffuse, term-specular)\n"
     "r reset camera   p follow the camera path   x toggle scissor (local lights, scissor method)\n"
     "c compare with the path tracer: raster, path tracer and a heat map of the error\n"
+    "Space play/pause the scene clock   [ / ] clock speed halved/doubled\n"
     "W/S forward/back   A/D left/right   Q/Z up/down   left-drag look\n"
     "+/- exposure   Tab hide/show panel   h this help   F12 screenshot   Esc quit";
 
@@ -266,6 +267,21 @@ void drawViewerPanel(ViewerState& st, Renderer& renderer, const Scene& scene, co
         if (ImGui::Checkbox("compare with the path tracer (c)", &st.compareWithTruth)) st.comparison.describedStats.clear();
         ImGui::EndDisabled();
         if (!why.empty() && !st.compareWithTruth) ImGui::TextDisabled("  %s", why.c_str());
+    }
+    if (ImGui::CollapsingHeader("animation", ImGuiTreeNodeFlags_DefaultOpen)) {
+        // The scene clock (animated models, orbiting lights, the camera path): play/pause, scrub, speed.
+        ViewerClock& clock = st.clock;
+        if (ImGui::Button(clock.playing ? "pause (Space)" : "play (Space)")) clock.playing = !clock.playing;
+        ImGui::SameLine();
+        ImGui::Text("%.2f s", clock.time);
+        const double range = clockRange(scene);
+        float t = float(clock.time - std::floor(clock.time / range) * range);  // where in the loop
+        if (ImGui::SliderFloat("time (s)", &t, 0.0f, float(range), "%.2f")) {
+            clock.time = double(t);
+            st.clockJumped = true;
+        }
+        ImGui::SliderFloat("speed ([ ])", &clock.speed, ViewerClock::kMinSpeed, ViewerClock::kMaxSpeed, "x%.2f",
+                           ImGuiSliderFlags_Logarithmic);
     }
     if (ImGui::CollapsingHeader("lighting", ImGuiTreeNodeFlags_DefaultOpen)) drawLighting(st, scene);
     if (ImGui::CollapsingHeader("bloom, toon and motion blur", ImGuiTreeNodeFlags_DefaultOpen))

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "app/pass_rows.hpp"
+#include "app/viewer_clock.hpp"
 #include "app/viewer_compare.hpp"
 #include "app/viewer_layout.hpp"
 #include "engine/gl/context.hpp"
@@ -36,6 +37,11 @@ struct ViewerState {
     std::optional<CameraPath> cameraPath;
     bool followPath = false;
     bool togglePath = false;  // 'p' or the checkbox asked; the frame loop applies it
+    // The scene clock frames are rendered at: Space plays and pauses it, '[' and ']' halve and
+    // double its speed, the panel's "animation" section also scrubs it. A scrub is a jump
+    // (`clockJumped`: the frame loop cuts the motion vectors across it).
+    ViewerClock clock;
+    bool clockJumped = false;
     bool toonShown = false;         // toon as the last frame resolved it (scene or flag), for '7'
     bool dragging = false;
     double lastX = 0, lastY = 0;

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The viewer as a user drives it: starts on the default scene under Xvfb (Mesa), key '2' switches to
 # the normals view and F12's screenshot shows the normal encoding, '+'/'-' there say exposure is not
-# shown in it, 'p' says the scene has no camera path, 'r' resets the camera, 'm' and 't' step through the
+# shown in it, 'p' says the scene has no camera path, 'r' resets the camera, Space pauses and plays the
+# scene clock and ']' / '[' double and halve its speed, 'm' and 't' step through the
 # material-input and term views, 'c' compares the final view with the path tracer (and says why not in
 # another view), 'x' toggles scissor, '7' adds the
 # toon pass and '8' the bloom pass (alone: toon is moot) to the compiled graph, '0' takes them out again, unticking the
@@ -35,6 +36,15 @@ xdotool key p
 wait_for "^no camera path" "$out/viewer.log"
 xdotool key r
 wait_for "^camera reset" "$out/viewer.log"
+# Space pauses and plays the scene clock; ']' and '[' double and halve its speed.
+xdotool key space
+wait_for "^clock paused at [0-9.]+ s \(speed x1\.00\)" "$out/viewer.log"
+xdotool key bracketright
+wait_for "^clock speed x2\.00 \(paused: Space plays\)" "$out/viewer.log"
+xdotool key bracketleft
+wait_for "^clock speed x1\.00 \(paused" "$out/viewer.log"
+xdotool key space
+wait_for "^clock playing at" "$out/viewer.log"
 # 'm' steps through the material inputs, 't' through the lit frame's terms.
 xdotool key m
 wait_for "view base-color" "$out/viewer.log"
