@@ -1,9 +1,12 @@
 #!/bin/bash
-# What playing a glTF node animation costs per frame: a 102,400-vertex model whose 16 nodes all move
-# (scripts/make_animated_grid.py), at 60 fps from t = 1 s, 1080p and 4K, still (--animation none) and
-# playing (its first clip), with motion blur on so the G-buffer writes velocity (the previous
-# positions are read). Reports the passes' GPU ms and the CPU ms of posing (SceneGpu::pose). From the
-# repository root:
+# What playing glTF animation costs per frame, at 60 fps from t = 1 s, 1080p and 4K, still
+# (--animation none) and playing (its first clip), with motion blur on so the G-buffer writes velocity
+# (the previous positions are read), on two models of about 102,400 vertices:
+#   grid:    16 nodes that all move (scripts/make_animated_grid.py): node animation;
+#   skinned: one mesh skinned to 8 joints that all bend, with 2 animated morph targets
+#            (scripts/make_skinned_grid.py): every vertex morphed and skinned every frame.
+# Reports the passes' GPU ms and the CPU ms of posing (SceneGpu::pose: `animation pose: CPU median`,
+# `animation_pose_ms` in the JSON). From the repository root:
 #   bench/animation.sh BUNDLE OUTDIR    (BUNDLE: run, gl_tests, lib/)
 set -u
 B=$(cd "$1" && pwd); R=$2; mkdir -p $R
@@ -11,11 +14,14 @@ nvidia-smi --query-gpu=name,driver_version --format=csv,noheader | tee $R/device
 LD_LIBRARY_PATH=$B/lib $B/gl_tests --gtest_brief=1 --gtest_filter='AnimationGl*' > $R/gl_tests_animation.txt 2>&1
 tail -3 $R/gl_tests_animation.txt
 python3 scripts/make_animated_grid.py $R/grid.gltf 102400 | tee $R/model.txt
-for size in 1920x1080 3840x2160; do
-  for animation in none 0; do
-    echo "== $size --animation $animation" | tee -a $R/animation.txt
-    $B/run render --model $R/grid.gltf --size $size --time 1 --fps 60 --frames 200 --warmup 20 --motion-blur \
-      --animation $animation --out $R/grid_${size}_$animation.png --timings-json $R/grid_${size}_$animation.json \
-      | tee -a $R/animation.txt
+python3 scripts/make_skinned_grid.py $R/skinned.gltf 102400 | tee -a $R/model.txt
+for model in grid skinned; do
+  for size in 1920x1080 3840x2160; do
+    for animation in none 0; do
+      echo "== $model $size --animation $animation" | tee -a $R/animation.txt
+      $B/run render --model $R/$model.gltf --size $size --time 1 --fps 60 --frames 200 --warmup 20 --motion-blur \
+        --animation $animation --out $R/${model}_${size}_$animation.png --timings-json $R/${model}_${size}_$animation.json \
+        | tee -a $R/animation.txt
+    done
   done
 done
