@@ -375,6 +375,8 @@ TEST(ViewerPanel, KnobWidgetsComeOnlyFromTheTable) {
         {"\"debug view\"", "--view, a command flag"},
         {"\"with panel\"", "--screenshot-ui, a viewer option"},
         {"\"follow camera path (p)\"", "whether the viewer's camera follows the scene's cameraPath (viewer state, 'p')"},
+        {"\"time (s)\"", "the viewer's scene clock, scrubbed (viewer state, not a render setting: app/viewer_clock.hpp)"},
+        {"\"speed ([ ])\"", "the viewer's scene clock speed (viewer state, '[' and ']')"},
     };
     const std::regex widget(
         R"(ImGui::(Checkbox\w*|RadioButton|Combo|BeginCombo|ListBox|BeginListBox|Slider\w*|VSlider\w*|Drag\w*|Input\w*|ColorEdit\w*|ColorPicker\w*)\s*\()");
