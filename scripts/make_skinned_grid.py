@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """make_skinned_grid.py OUT.gltf [VERTICES]: a glTF (OUT.gltf + OUT.bin, no dependencies) of one square
-grid of about VERTICES vertices (default 102400) skinned to a chain of 8 joints along it and carrying
+grid of about VERTICES vertices (default 102400), 1 m wide and 4 m tall in the XY plane facing +Z,
+skinned to a chain of 8 joints up +Y and carrying
 2 morph targets, with one LINEAR clip of 2 s that bends every joint about X and moves both morph
 weights: every vertex is morphed and skinned every frame. Each vertex follows the two joints nearest
 to it along the chain (weights summing to 1; JOINTS_0 unsigned bytes, WEIGHTS_0 floats). Target 0
@@ -14,7 +15,7 @@ out = sys.argv[1]
 vertices = int(sys.argv[2]) if len(sys.argv) > 2 else 102400
 side = max(2, int(math.sqrt(vertices)))
 joints = 8
-length = 4.0  # metres along +Z, the chain's length
+length = 4.0  # metres up +Y, the chain's length
 blob = bytearray()
 views, accessors = [], []
 
@@ -35,49 +36,49 @@ positions, normals, joint_ids, weights, bump, bump_normals, ripple = [], [], [],
 segment = length / joints
 for j in range(side):
     for i in range(side):
-        x, z = (i / (side - 1) - 0.5) * 1.0, j / (side - 1) * length
-        positions += [x, 0.0, z]
-        normals += [0.0, 1.0, 0.0]
-        # The two joints whose centres (k + 0.5) * segment are nearest along z, blended linearly.
-        f = min(max(z / segment - 0.5, 0.0), joints - 1.0)
+        x, y = (i / (side - 1) - 0.5) * 1.0, j / (side - 1) * length
+        positions += [x, y, 0.0]
+        normals += [0.0, 0.0, 1.0]
+        # The two joints whose centres (k + 0.5) * segment are nearest along y, blended linearly.
+        f = min(max(y / segment - 0.5, 0.0), joints - 1.0)
         k0 = min(int(f), joints - 2)
         w1 = min(max(f - k0, 0.0), 1.0)
         joint_ids += [k0, k0 + 1, 0, 0]
         weights += [1.0 - w1, w1, 0.0, 0.0]
-        r2 = (x * x + (z - length / 2) ** 2) / 0.5
+        r2 = (x * x + (y - length / 2) ** 2) / 0.5
         h = 0.3 * math.exp(-r2)
-        bump += [0.0, h, 0.0]
-        # d(height)/dx and /dz of the bump: the normal's change, (-dh/dx, 0, -dh/dz) to first order.
-        bump_normals += [2 * x / 0.5 * h, 0.0, 2 * (z - length / 2) / 0.5 * h]
-        ripple += [0.0, 0.1 * math.sin(8 * x), 0.0]
+        bump += [0.0, 0.0, h]
+        # The bump's slopes: the normal's change, (-dh/dx, -dh/dy, 0) to first order.
+        bump_normals += [2 * x / 0.5 * h, 2 * (y - length / 2) / 0.5 * h, 0.0]
+        ripple += [0.0, 0.0, 0.1 * math.sin(8 * x)]
 count = side * side
 indices = []
 for j in range(side - 1):
     for i in range(side - 1):
         a = j * side + i
-        indices += [a, a + side, a + 1, a + 1, a + side, a + side + 1]
+        indices += [a, a + 1, a + side, a + 1, a + side + 1, a + side]  # counter-clockwise seen from +Z
 pos = add(struct.pack(f"<{3 * count}f", *positions), "VEC3", count, target=34962,
-          minmax=([-0.5, 0.0, 0.0], [0.5, 0.0, length]))
+          minmax=([-0.5, 0.0, 0.0], [0.5, length, 0.0]))
 nrm = add(struct.pack(f"<{3 * count}f", *normals), "VEC3", count, target=34962)
 jnt = add(struct.pack(f"<{4 * count}B", *joint_ids), "VEC4", count, component=5121, target=34962)
 wgt = add(struct.pack(f"<{4 * count}f", *weights), "VEC4", count, target=34962)
 t0p = add(struct.pack(f"<{3 * count}f", *bump), "VEC3", count,
-          minmax=([0.0, min(bump[1::3]), 0.0], [0.0, max(bump[1::3]), 0.0]))
+          minmax=([0.0, 0.0, min(bump[2::3])], [0.0, 0.0, max(bump[2::3])]))
 t0n = add(struct.pack(f"<{3 * count}f", *bump_normals), "VEC3", count)
 t1p = add(struct.pack(f"<{3 * count}f", *ripple), "VEC3", count,
-          minmax=([0.0, min(ripple[1::3]), 0.0], [0.0, max(ripple[1::3]), 0.0]))
+          minmax=([0.0, 0.0, min(ripple[2::3])], [0.0, 0.0, max(ripple[2::3])]))
 idx = add(struct.pack(f"<{len(indices)}I", *indices), "SCALAR", len(indices), component=5125, target=34963)
 
-# Joint k at z = k * segment, each the previous one's child (k = 0 a root); inverse bind: translate(0, 0, -k segment).
+# Joint k at y = k * segment, each the previous one's child (k = 0 a root); inverse bind: translate(0, -k segment, 0).
 nodes = [{"mesh": 0, "skin": 0}]
 for k in range(joints):
-    node = {"translation": [0.0, 0.0, segment if k > 0 else 0.0]}
+    node = {"translation": [0.0, segment if k > 0 else 0.0, 0.0]}
     if k + 1 < joints:
         node["children"] = [k + 2]
     nodes.append(node)
 ibm = []
 for k in range(joints):
-    ibm += [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, -k * segment, 1]
+    ibm += [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, -k * segment, 0, 1]
 ibm_accessor = add(struct.pack(f"<{16 * joints}f", *ibm), "MAT4", joints)
 
 keys = 9
