@@ -15,6 +15,7 @@
 #include "engine/render/scene_gpu.hpp"
 #include "engine/scene/animation.hpp"
 #include "engine/scene/primitives.hpp"
+#include "engine/scene/scene_loader.hpp"
 #include "frame/frame_builder.hpp"
 #include "frame/renderer.hpp"
 #include "passes/shadow_map_pass.hpp"
@@ -210,6 +211,37 @@ TEST(AnimationGl, AnimatedVelocityMatchesTheAnalyticScreenMotion) {
         for (const glm::vec2& v : img.velocity) largest = std::max(largest, std::abs(v.x) * float(frame.width));
         EXPECT_GT(largest, 0.5f);
     }
+}
+
+// A skinned and morphed glTF (tests/data/gltf/skinned_grid.gltf: 8 bending joints, 2 animated morph
+// targets), loaded as `lightpass render --model` loads it: under a still camera every pixel it covers
+// moves (the whole surface is morphed, and skinned by at least one bending joint) and the background
+// does not, in both G-buffer modes; with no clip playing nothing moves.
+TEST(AnimationGl, LoadedSkinnedModelMovesWhereItIsDrawn) {
+    Scene scene = sceneForModel(test::repoPath("tests/data/gltf/skinned_grid.gltf"));
+    ASSERT_EQ(scene.models.size(), 1u);
+    ASSERT_TRUE(scene.models[0].animation);
+    ASSERT_EQ(scene.models[0].animation->skins.size(), 1u);
+    for (GBufferMode mode : {GBufferMode::Classic, GBufferMode::Visibility}) {
+        SCOPED_TRACE(mode == GBufferMode::Classic ? "classic" : "visibility");
+        FrameData frame;
+        const Velocities img = renderVelocity(scene, mode, 0.5f - 1.0f / 30.0f, 0.5f, &frame);
+        size_t covered = 0, moving = 0;
+        for (size_t i = 0; i < img.depth.size(); ++i) {
+            if (img.depth[i] < 1.0f) {
+                ++covered;
+                moving += img.velocity[i] != glm::vec2(0.0f);
+            } else {
+                EXPECT_EQ(img.velocity[i], glm::vec2(0.0f)) << "background pixel " << i;
+            }
+        }
+        EXPECT_GT(covered, 100u);
+        EXPECT_EQ(moving, covered);
+    }
+    scene.models[0].playingClips.clear();
+    FrameData frame;
+    const Velocities still = renderVelocity(scene, GBufferMode::Classic, 0.4f, 0.5f, &frame);
+    for (const glm::vec2& v : still.velocity) ASSERT_EQ(v, glm::vec2(0.0f));
 }
 
 // With no clip playing (--animation none) the model keeps its rest pose and writes no motion.
