@@ -1639,6 +1639,17 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
         const std::vector<int>& children = model.nodes[size_t(p.node)].children;
         for (auto it = children.rbegin(); it != children.rend(); ++it) pending.push_back({*it, world, p.node, animated});
     }
+    // A joint is placed by the scene's node trees; one outside them has no world transform to give.
+    {
+        std::vector<char> drawn(model.nodes.size(), 0);
+        for (int n : animation->order) drawn[size_t(n)] = 1;
+        for (size_t k = 0; k < skinSlot.size(); ++k)
+            if (skinSlot[k] >= 0)
+                for (size_t j = 0; j < model.skins[k].joints.size(); ++j)
+                    if (!drawn[size_t(model.skins[k].joints[j])])
+                        repairs.add("skins[" + std::to_string(k) + "].joints[" + std::to_string(j) + "]", 1,
+                                    "joints outside the scene's node trees", "placed as if at the origin (identity world matrix)", "joints");
+    }
     // The rest pose placed through the same math as every other pose: the ranges' vertices as
     // poseVertices puts them (morphed by the rest weights, then skinned or placed by the node's world
     // matrix): a skinned or morphed model that no clip moves costs nothing after loading.

@@ -153,6 +153,22 @@ TEST(SkinMorph, UnnormalisedWeightsAreNormalisedWithOneWarning) {
     expectNear(posedAt(g, 1.0)[vertexAt(g.mesh.vertices, {0.5f, 1, 0})].position, {0.25f, 1.25f, 0}, 1e-5f, "normalised blend");
 }
 
+// A joint outside the scene's node trees has no world transform: identity, with one warning.
+TEST(SkinMorph, JointOutsideTheSceneIsWarnedOnce) {
+    TempDir dir;
+    SkinnedStrip strip;
+    strip.doc.j["nodes"][0].erase("children");  // node 1, joint 1, is now in no tree of the scene
+    MeshLoadReport report;
+    const GltfContent g = loadGltf(dir.write("j.gltf", strip.doc.text()), &report);
+    ASSERT_EQ(report.warnings.size(), 1u);
+    EXPECT_NE(report.warnings[0].find("skins[0].joints[1]: 1 joints outside the scene's node trees; placed as if at the origin"),
+              std::string::npos)
+        << report.warnings[0];
+    // Joint 1's matrix is its inverse bind matrix alone, T(0, -1, 0): the half-and-half vertex at
+    // (0.5, 1) rests at the blend of (0.5, 1) and (0.5, 0).
+    (void)vertexAt(g.mesh.vertices, {0.5f, 0.5f, 0});
+}
+
 namespace {
 // The unit quad (z = 0, normal +Z) with morph targets whose POSITION deltas are `deltas` (one vec3 a
 // target, the same at every vertex), mesh weights `meshWeights`, drawn by node 0.
