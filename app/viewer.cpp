@@ -111,21 +111,10 @@ void keyCallback(GLFWwindow* window, int key, int, int action, int) {
                                      : "compare with the path tracer off");
             break;
         }
-        case GLFW_KEY_SPACE: {
-            ViewerClock& c = st->clock;
-            c.playing = !c.playing;
-            char line[96];
-            std::snprintf(line, sizeof line, "clock %s at %.2f s (speed x%.2f)", c.playing ? "playing" : "paused", c.time, c.speed);
-            say(line);
+        case GLFW_KEY_SPACE: say(st->clock.togglePlaying()); break;
+        case GLFW_KEY_LEFT_BRACKET: case GLFW_KEY_RIGHT_BRACKET:
+            say(st->clock.changeSpeed(key == GLFW_KEY_RIGHT_BRACKET ? 2.0f : 0.5f));
             break;
-        }
-        case GLFW_KEY_LEFT_BRACKET: case GLFW_KEY_RIGHT_BRACKET: {
-            st->clock.scaleSpeed(key == GLFW_KEY_RIGHT_BRACKET ? 2.0f : 0.5f);
-            char line[96];
-            std::snprintf(line, sizeof line, "clock speed x%.2f%s", st->clock.speed, st->clock.playing ? "" : " (paused: Space plays)");
-            say(line);
-            break;
-        }
         case GLFW_KEY_H: st->showHelp = !st->showHelp; break;
         case GLFW_KEY_TAB:
             st->showPanel = !st->showPanel;

@@ -1,6 +1,7 @@
 #include "app/viewer_clock.hpp"
 
 #include <algorithm>
+#include <cstdio>
 
 namespace lp::app {
 
@@ -9,6 +10,20 @@ void ViewerClock::advance(double wallSeconds) {
 }
 
 void ViewerClock::scaleSpeed(float factor) { speed = std::clamp(speed * factor, kMinSpeed, kMaxSpeed); }
+
+std::string ViewerClock::togglePlaying() {
+    playing = !playing;
+    char line[96];
+    std::snprintf(line, sizeof line, "clock %s at %.2f s (speed x%.2f)", playing ? "playing" : "paused", time, double(speed));
+    return line;
+}
+
+std::string ViewerClock::changeSpeed(float factor) {
+    scaleSpeed(factor);
+    char line[96];
+    std::snprintf(line, sizeof line, "clock speed x%.2f%s", double(speed), playing ? "" : " (paused: Space plays)");
+    return line;
+}
 
 double clockRange(const Scene& scene) {
     double range = 0.0;

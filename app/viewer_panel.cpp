@@ -271,7 +271,10 @@ void drawViewerPanel(ViewerState& st, Renderer& renderer, const Scene& scene, co
     if (ImGui::CollapsingHeader("animation", ImGuiTreeNodeFlags_DefaultOpen)) {
         // The scene clock (animated models, orbiting lights, the camera path): play/pause, scrub, speed.
         ViewerClock& clock = st.clock;
-        if (ImGui::Button(clock.playing ? "pause (Space)" : "play (Space)")) clock.playing = !clock.playing;
+        if (ImGui::Button(clock.playing ? "pause (Space)" : "play (Space)")) {  // says what it did, as Space does
+            std::printf("%s\n", clock.togglePlaying().c_str());
+            std::fflush(stdout);
+        }
         ImGui::SameLine();
         ImGui::Text("%.2f s", clock.time);
         const double range = clockRange(scene);

@@ -28,6 +28,17 @@ TEST(ViewerClock, PlaysAtItsSpeedAndHoldsWhilePaused) {
     EXPECT_EQ(c.speed, ViewerClock::kMinSpeed);
 }
 
+// What Space, '[' and ']' (and the panel's button) print: the state, the time and the speed.
+TEST(ViewerClock, KeysSayWhatTheyDid) {
+    ViewerClock c;
+    c.advance(3.2);
+    EXPECT_EQ(c.togglePlaying(), "clock paused at 3.20 s (speed x1.00)");
+    EXPECT_FALSE(c.playing);
+    EXPECT_EQ(c.changeSpeed(2.0f), "clock speed x2.00 (paused: Space plays)");
+    EXPECT_EQ(c.togglePlaying(), "clock playing at 3.20 s (speed x2.00)");
+    EXPECT_EQ(c.changeSpeed(0.5f), "clock speed x1.00");
+}
+
 TEST(ViewerClock, RangeIsTheLongestPlayingClipElseThePath) {
     Scene scene;
     EXPECT_EQ(clockRange(scene), 10.0);
