@@ -139,6 +139,30 @@ TEST(SkinMorph, TwoJointSkinBentNinetyDegrees) {
     }
 }
 
+// JOINTS_1/WEIGHTS_1 carry influences 5 to 8: the tip row's joint 1 given there (its WEIGHTS_0 all 0),
+// the middle row's half split over both sets, bends as before.
+TEST(SkinMorph, SecondJointSetCounts) {
+    TempDir dir;
+    SkinnedStrip strip(false, false, {1, 0, 0, 0, 1, 0, 0, 0, 0.5f, 0, 0, 0, 0.5f, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0});
+    std::string joints1;
+    for (int v = 0; v < 6; ++v) joints1 += std::string{char(1), char(0), char(0), char(0)};
+    const int j1 = strip.doc.accessor({{"bufferView", strip.doc.view(joints1)}, {"componentType", 5121}, {"type", "VEC4"}, {"count", 6}});
+    const int w1 = strip.doc.floatArray({0, 0, 0, 0, 0, 0, 0, 0, 0.5f, 0, 0, 0, 0.5f, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0}, "VEC4", 6);
+    strip.doc.j["meshes"][0]["primitives"][0]["attributes"]["JOINTS_1"] = j1;
+    strip.doc.j["meshes"][0]["primitives"][0]["attributes"]["WEIGHTS_1"] = w1;
+    MeshLoadReport report;
+    const GltfContent g = loadGltf(dir.write("j1.gltf", strip.doc.text()), &report);
+    EXPECT_TRUE(report.warnings.empty()) << report.warnings.front();
+    const std::vector<Vertex> bent = posedAt(g, 1.0);
+    expectNear(bent[vertexAt(g.mesh.vertices, {0.5f, 2, 0})].position, {-1.0f, 1.5f, 0}, 1e-6f, "tip right");
+    expectNear(bent[vertexAt(g.mesh.vertices, {0.5f, 1, 0})].position, {0.25f, 1.25f, 0}, 1e-6f, "middle right");
+    // Only one of the two sets: one line naming what is missing.
+    strip.doc.j["meshes"][0]["primitives"][0]["attributes"].erase("WEIGHTS_1");
+    const auto path = dir.write("half.gltf", strip.doc.text());
+    EXPECT_EQ(loadError(path), path.string() + ": meshes[0].primitives[0].attributes: has JOINTS_1 and no WEIGHTS_1, but its node has "
+                                               "skins[0] (a skinned primitive needs both)");
+}
+
 // Weights that do not sum to 1 are normalised, said in one line with the count.
 TEST(SkinMorph, UnnormalisedWeightsAreNormalisedWithOneWarning) {
     TempDir dir;
