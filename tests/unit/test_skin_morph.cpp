@@ -240,6 +240,30 @@ TEST(SkinMorph, MorphWeightHalfLandsHalfway) {
     }
 }
 
+// NORMAL and TANGENT deltas are added with the weights, then renormalised: (0, 0, 1) + 0.5 (1, 0, -1)
+// is (1, 0, 1) / sqrt 2; the tangent (1, 0, 0) + 0.5 (0, 2, 0) is (1, 1, 0) / sqrt 2.
+TEST(SkinMorph, NormalAndTangentDeltas) {
+    TempDir dir;
+    Doc doc;
+    const int m = doc.quad({{"NORMAL", doc.floats({0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1}, "VEC3", 4)},
+                            {"TANGENT", doc.floats({1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1}, "VEC4", 4)}});
+    doc.j["meshes"][size_t(m)]["primitives"][0]["targets"] = {
+        {{"NORMAL", doc.floats({1, 0, -1, 1, 0, -1, 1, 0, -1, 1, 0, -1}, "VEC3", 4)},
+         {"TANGENT", doc.floats({0, 2, 0, 0, 2, 0, 0, 2, 0, 0, 2, 0}, "VEC3", 4)}}};
+    doc.j["meshes"][size_t(m)]["weights"] = {0.5};
+    doc.node({{"mesh", m}});
+    MeshLoadReport report;
+    const GltfContent g = loadGltf(dir.write("nt.gltf", doc.text()), &report);
+    EXPECT_TRUE(report.warnings.empty()) << report.warnings.front();
+    const float h = std::sqrt(0.5f);
+    for (const Vertex& v : g.mesh.vertices) {
+        expectNear(v.normal, {h, 0, h}, 1e-6f, "normal");
+        expectNear(glm::vec3(v.tangent), {h, h, 0}, 1e-6f, "tangent");
+        EXPECT_EQ(v.tangent.w, 1.0f);
+        EXPECT_EQ(v.position.z, 0.0f);  // no POSITION target: the shape stays
+    }
+}
+
 // CUBICSPLINE weights: per key the in-tangents of every weight, then their values, then their
 // out-tangents; at a mid time the spec's Hermite form, v = h00 v_k + h10 d b_k + h01 v_k+1 + h11 d a_k+1.
 TEST(SkinMorph, CubicSplineWeightsFollowTheHermiteForm) {
