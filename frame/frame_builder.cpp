@@ -161,6 +161,7 @@ FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const Fr
     const bool taa = temporalAntiAliasing(s);
     GBufferChannels channels = channelsForView(s.view);
     channels.velocity = channels.velocity || motionBlurSkip.empty() || taa;
+    channels.fresnel = gbufferCarriesFresnel(frame);
     // The G-buffer: rasterised target by target, a visibility buffer resolved into the same targets,
     // or (forward+) a depth pre-pass that writes only what later passes read.
     const bool forwardPlus = s.renderPath == RenderPath::ForwardPlus;

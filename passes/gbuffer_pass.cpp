@@ -36,6 +36,7 @@ MaterialUniforms::MaterialUniforms(GLuint prog) {
     normalScale = loc("uNormalScale"); hasMetalRough = loc("uHasMetalRoughMap"); hasOcclusion = loc("uHasOcclusionMap");
     occlusionStrength = loc("uOcclusionStrength"); mask = loc("uAlphaMask"); cutoff = loc("uAlphaCutoff");
     twoSided = loc("uDoubleSided"); flat = loc("uFlat"); secondUvMaps = loc("uSecondUvMaps");
+    specularF90 = loc("uSpecularF90"); specularF90Given = loc("uSpecularF90Given");
 }
 
 void MaterialUniforms::set(GLuint prog, const GpuMaterial& m) const {
@@ -58,6 +59,8 @@ void MaterialUniforms::set(GLuint prog, const GpuMaterial& m) const {
     glProgramUniform1i(prog, twoSided, m.doubleSided);
     glProgramUniform1i(prog, flat, m.flat);
     glProgramUniform1ui(prog, secondUvMaps, m.secondUvMaps);
+    glProgramUniform1f(prog, specularF90, m.dielectricF90.value_or(1.0f));
+    glProgramUniform1i(prog, specularF90Given, m.dielectricF90.has_value());
     glBindTextureUnit(0, m.diffuseMap);
     glBindTextureUnit(1, m.bumpMap);
     glBindTextureUnit(2, m.normalMap);
@@ -81,13 +84,23 @@ void setGBufferDepthTest(const GBufferSettings& layout) {
     glDepthFunc(reversed ? GL_GREATER : GL_LESS);
 }
 
-void readGBuffer(fg::PassBuilder& b, const GBuffer& g, bool diffuse) {
+bool gbufferCarriesFresnel(const FrameData& frame) {
+    if (frame.scene == nullptr || materialInputShown(frame.settings->view) != 0) return false;
+    for (const ModelInstance& model : frame.scene->models)
+        for (const Material& m : model.mesh.materials)
+            // Blended surfaces are shaded forward (the transparent pass): the G-buffer never holds them.
+            if (m.dielectricF90 && m.alphaMode != AlphaMode::Blend) return true;
+    return false;
+}
+
+void readGBuffer(fg::PassBuilder& b, const GBuffer& g, bool diffuse, bool fresnel) {
     constexpr fg::Usage sampled = fg::Usage::Sampled;  // bindGBuffer binds them to texture units
     b.read(g.depth, sampled);
     b.read(g.normal, sampled);
     if (diffuse) b.read(g.diffuse, sampled);
     if (g.position.valid()) b.read(g.position, sampled);
     b.read(g.specular, sampled);
+    if (fresnel && g.fresnel.valid()) b.read(g.fresnel, sampled);
 }
 
 GBuffer createGBufferColourTargets(fg::PassBuilder& b, int w, int h, const GBufferSettings& layout,
@@ -103,6 +116,8 @@ GBuffer createGBufferColourTargets(fg::PassBuilder& b, int w, int h, const GBuff
     if (channels.velocity) out.velocity = b.createIfRead("gbuffer.velocity", {w, h, GL_RG16F}, how);
     if (channels.materialInput)
         out.materialInput = b.createIfRead("gbuffer.material_input", {w, h, GL_RGBA16F}, how);
+    else if (channels.fresnel)
+        out.fresnel = b.createIfRead("gbuffer.fresnel", {w, h, GL_RG16F}, how);
     return out;
 }
 
@@ -120,8 +135,9 @@ void addGBufferImageDefines(std::vector<std::string>& d, const GBufferSettings& 
 }
 
 GLuint bindGBufferImages(const fg::PassResources& res, const GBuffer& g) {
+    // Unit 7: the material input, or (never both: GBufferChannels::fresnel) the Fresnel ends.
     const fg::ResourceId targets[8] = {g.normal,   g.diffuse, g.position, g.specular,
-                                       g.texcoord, g.tangent, g.velocity, g.materialInput};
+                                       g.texcoord, g.tangent, g.velocity, g.fresnel.valid() ? g.fresnel : g.materialInput};
     GLuint bound = 0;
     for (GLuint i = 0; i < 8; ++i) {
         if (!targets[i].valid()) continue;
@@ -158,13 +174,15 @@ void setBrdfUniforms(GLuint prog, const RenderSettings& settings) {
     glProgramUniform1i(prog, glGetUniformLocation(prog, "uMaterialInput"), materialInputShown(settings.view));
 }
 
-void bindGBuffer(GLuint program, const fg::PassResources& res, const GBuffer& g, const FrameData& frame, bool diffuse) {
+void bindGBuffer(GLuint program, const fg::PassResources& res, const GBuffer& g, const FrameData& frame, bool diffuse,
+                 bool fresnel) {
     glBindTextureUnit(0, res.texture(g.depth));
     glBindTextureUnit(1, res.texture(g.normal));
     // The sRGB targets through their RGBA8 views: gbuffer_layout.glsl decodes them exactly.
     glBindTextureUnit(2, diffuse ? res.image(g.diffuse).texture : 0);
     glBindTextureUnit(3, g.position.valid() ? res.texture(g.position) : 0);
     glBindTextureUnit(4, res.image(g.specular).texture);
+    if (fresnel && g.fresnel.valid()) glBindTextureUnit(kGBufferFresnelUnit, res.texture(g.fresnel));
     const glm::mat4& p = frame.projection;
     glProgramUniform4f(program, glGetUniformLocation(program, "uGbufferCamera"), frame.nearPlane, frame.farPlane,
                        1.0f / p[1][1], p[1][1] / p[0][0]);
@@ -172,6 +190,7 @@ void bindGBuffer(GLuint program, const fg::PassResources& res, const GBuffer& g,
 
 void unbindGBuffer() {
     for (GLuint u = 0; u < 5; ++u) glBindTextureUnit(u, 0);
+    glBindTextureUnit(kGBufferFresnelUnit, 0);
 }
 
 namespace {
@@ -196,7 +215,7 @@ GBuffer addGeometryPass(fg::FrameGraph& graph, GBufferPass& state, const FrameDa
             // No material channel is read (forward+ without AO or a channel view): depth and motion only.
             bool depthOnly = true;
             for (fg::ResourceId c :
-                 {out.normal, out.diffuse, out.position, out.specular, out.texcoord, out.tangent, out.materialInput})
+                 {out.normal, out.diffuse, out.position, out.specular, out.texcoord, out.tangent, out.materialInput, out.fresnel})
                 depthOnly = depthOnly && (!c.valid() || res.texture(c) == 0);
             auto variant = [&](gl::Program& program, GBufferProgramKey& builtFor, bool withVelocity,
                                bool withDepthOnly) -> const gl::Program& {
@@ -216,8 +235,9 @@ GBuffer addGeometryPass(fg::FrameGraph& graph, GBufferPass& state, const FrameDa
             const GLuint fbo = state.fbo.id();
             glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, res.texture(out.depth), 0);
             constexpr int kTargets = 8;  // = gbuffer.frag's outputs (location i) and gbuffer_images.glsl's bindings
-            const fg::ResourceId colour[kTargets] = {out.normal,   out.diffuse, out.position, out.specular,
-                                                     out.texcoord, out.tangent, out.velocity, out.materialInput};
+            const fg::ResourceId colour[kTargets] = {out.normal,   out.diffuse,  out.position,
+                                                     out.specular, out.texcoord, out.tangent,
+                                                     out.velocity, out.fresnel.valid() ? out.fresnel : out.materialInput};
             GLenum buffers[kTargets];
             for (int i = 0; i < kTargets; ++i) {
                 // sRGB targets through their RGBA8 view: the shader writes the encoding (gbuffer.frag).

@@ -20,12 +20,17 @@ struct GBufferChannels {
     // gbuffer.material_input (RGBA16F): the input a material-input view shows (base-color, metallic,
     // roughness, occlusion), only in those views.
     bool materialInput = false;
+    // gbuffer.fresnel (RG16F: Schlick's f90 and the diffuse layer's Fresnel shape): only when a material
+    // of the scene gives its f90 (KHR_materials_specular; gbufferCarriesFresnel), never beside
+    // materialInput, whose colour location and image unit it takes.
+    bool fresnel = false;
 };
 
 struct GBuffer {
     fg::ResourceId depth, normal, diffuse, position, specular, texcoord, tangent;  // position invalid when rebuilt
     fg::ResourceId velocity;  // invalid unless GBufferChannels::velocity
     fg::ResourceId materialInput;  // invalid unless GBufferChannels::materialInput
+    fg::ResourceId fresnel;        // invalid unless GBufferChannels::fresnel
 };
 
 // What a program that reads or draws the G-buffer was compiled for: the layout, whether the scene's
@@ -36,8 +41,10 @@ struct GBufferProgramKey {
     GBufferSettings layout;
     bool vertexColors = false;
     bool secondUvSet = false;
+    bool fresnel = false;  // gbufferCarriesFresnel: LP_GBUFFER_FRESNEL
     bool operator==(const GBufferProgramKey& o) const {
-        return layout == o.layout && vertexColors == o.vertexColors && secondUvSet == o.secondUvSet;
+        return layout == o.layout && vertexColors == o.vertexColors && secondUvSet == o.secondUvSet &&
+               fresnel == o.fresnel;
     }
     bool operator!=(const GBufferProgramKey& o) const { return !(*this == o); }
 };
@@ -70,7 +77,8 @@ struct MaterialUniforms {
     explicit MaterialUniforms(GLuint prog);
     void set(GLuint prog, const GpuMaterial& m) const;  // also binds the material's textures (units 0..4)
     GLint kd, opacity, ks, metallic, shininess, roughness, hasDiffuse, hasBump, bumpScale, hasNormal, normalScale,
-        hasMetalRough, hasOcclusion, occlusionStrength, mask, cutoff, twoSided, flat, secondUvMaps;
+        hasMetalRough, hasOcclusion, occlusionStrength, mask, cutoff, twoSided, flat, secondUvMaps, specularF90,
+        specularF90Given;
 };
 
 // common/brdf.glsl's uBrdf, uSpecularMasking and uHiddenTerms (the term views: lp::hiddenShadingTerms)
@@ -85,6 +93,8 @@ void setBrdfUniforms(GLuint prog, const RenderSettings& settings);
 // in GLSL through an RGBA8 view of the target, the raster (gbuffer.frag) and compute stores
 // (shaders/common/gbuffer_images.glsl) alike, so both round exactly; texel fetches decode.
 constexpr GLenum kGBufferDiffuseFormat = GL_SRGB8_ALPHA8;
+// The texture unit bindGBuffer gives gbuffer.fresnel: common/gbuffer_layout.glsl's LP_BIND_FRESNEL.
+constexpr GLuint kGBufferFresnelUnit = 15;
 GLenum gbufferNormalFormat(GBufferNormalFormat format);
 GLenum gbufferSpecularFormat(GBufferNormalFormat format);
 
@@ -97,8 +107,9 @@ glm::mat4 gbufferDepthProjection(const FrameData& frame);
 // gl::ScopedRasterState puts both back.
 void setGBufferDepthTest(const GBufferSettings& layout);
 
-// Declares reads of the targets the decode API needs (position only when stored; diffuse when asked).
-void readGBuffer(fg::PassBuilder& b, const GBuffer& g, bool diffuse = true);
+// Declares reads of the targets the decode API needs (position only when stored; diffuse when asked;
+// gbuffer.fresnel when asked and the G-buffer carries it: the passes that shade, gbufferFresnel).
+void readGBuffer(fg::PassBuilder& b, const GBuffer& g, bool diffuse = true, bool fresnel = false);
 // Creates the colour targets (every one but depth) of a w x h G-buffer in `layout`, each only if some
 // pass reads it and its channel is asked for, written with `how`: the classic pass's attachments and
 // the visibility resolve's image stores are the same targets, names and formats.
@@ -113,21 +124,29 @@ void unbindGBufferImages();
 void setBackgroundMotionUniforms(GLuint program, const FrameData& frame);
 // Binds the targets to units LP_BIND_* and sets `program`'s uGbufferCamera; unbindGBuffer clears the units.
 void bindGBuffer(GLuint program, const fg::PassResources& res, const GBuffer& g, const FrameData& frame,
-                 bool diffuse = true);
+                 bool diffuse = true, bool fresnel = false);
 void unbindGBuffer();
 
+// Whether the frame's G-buffer carries gbuffer.fresnel: an opaque material of the scene gives its f90
+// (KHR_materials_specular), and the view is no material-input view (those light nothing, and their
+// target takes the fresnel target's colour location and image unit). Without it every pass derives f90
+// from F0, as for a scene without the extension, and pays nothing.
+bool gbufferCarriesFresnel(const FrameData& frame);
+
 // `program`, compiled by compile(defines) for the frame's G-buffer layout (and LP_VERTEX_COLOR where
-// the scene has vertex colours, LP_SECOND_UV where it samples TEXCOORD_1); compiled again when any
+// the scene has vertex colours, LP_SECOND_UV where it samples TEXCOORD_1, LP_GBUFFER_FRESNEL where the
+// G-buffer carries gbuffer.fresnel); compiled again when any
 // changed since (lightpass sweep changes the layout within one process, the viewer the scene).
 template <class Compile>
 const gl::Program& programForLayout(gl::Program& program, GBufferProgramKey& builtFor, const FrameData& frame,
                                     Compile compile) {
     const GBufferProgramKey key{frame.settings->gbuffer, frame.gpu != nullptr && frame.gpu->vertexColors,
-                                frame.gpu != nullptr && frame.gpu->secondUvSet};
+                                frame.gpu != nullptr && frame.gpu->secondUvSet, gbufferCarriesFresnel(frame)};
     if (!program || builtFor != key) {
         std::vector<std::string> defines = gbufferDefines(key.layout);
         if (key.vertexColors) defines.push_back("LP_VERTEX_COLOR");
         if (key.secondUvSet) defines.push_back("LP_SECOND_UV");
+        if (key.fresnel) defines.push_back("LP_GBUFFER_FRESNEL");
         program = compile(defines);
         builtFor = key;
     }

@@ -96,7 +96,7 @@ fg::ResourceId addGlobalLightPass(fg::FrameGraph& graph, GlobalLightPass& state,
         "global_lights", fg::PassKind::Compute,
         [&](fg::PassBuilder& b, Data& data) {
             data.in = gbuffer;
-            readGBuffer(b, gbuffer, !lightingOnly);
+            readGBuffer(b, gbuffer, !lightingOnly, true);
             for (const auto& m : shadowMaps) data.shadowMaps.push_back(b.read(m.depth, fg::Usage::Sampled));
             if (ao.valid()) data.ao = b.read(ao, fg::Usage::Sampled);
             data.hdr = b.create("hdr", {frame.width, frame.height, GL_RGBA16F}, fg::Usage::ImageStore);
@@ -113,7 +113,7 @@ fg::ResourceId addGlobalLightPass(fg::FrameGraph& graph, GlobalLightPass& state,
             setSunUniforms(prog, frame, shadowMaps);
             glProgramUniform1i(prog, loc(prog, "uLightingOnly"), lightingOnly);
             glProgramUniform1i(prog, loc(prog, "uAmbientOcclusion"), data.ao.valid());
-            bindGBuffer(prog, res, data.in, frame, !lightingOnly);
+            bindGBuffer(prog, res, data.in, frame, !lightingOnly, true);
             for (size_t i = 0; i < data.shadowMaps.size(); ++i)
                 glBindTextureUnit(kShadowMapUnit + GLuint(i), res.texture(data.shadowMaps[i]));
             if (data.ao.valid()) glBindTextureUnit(kAoTextureUnit, res.texture(data.ao));

@@ -98,7 +98,7 @@ fg::ResourceId addIblPass(fg::FrameGraph& graph, IblPass& state, const FrameData
         "ibl", fg::PassKind::Compute,
         [&](fg::PassBuilder& b, Data& data) {
             data.in = gbuffer;
-            readGBuffer(b, gbuffer, !lightingOnly);
+            readGBuffer(b, gbuffer, !lightingOnly, true);
             data.environment.irradiance = b.read(environment.irradiance, fg::Usage::Sampled);
             data.environment.prefiltered = b.read(environment.prefiltered, fg::Usage::Sampled);
             data.environment.dfg = b.read(environment.dfg, fg::Usage::Sampled);
@@ -117,7 +117,7 @@ fg::ResourceId addIblPass(fg::FrameGraph& graph, IblPass& state, const FrameData
             glProgramUniform1i(prog, glGetUniformLocation(prog, "uLightingOnly"), lightingOnly);
             glProgramUniform1i(prog, glGetUniformLocation(prog, "uAmbientOcclusion"), data.ao.valid());
             gl::ScopedEnable seamless(GL_TEXTURE_CUBE_MAP_SEAMLESS, true);
-            bindGBuffer(prog, res, data.in, frame, !lightingOnly);
+            bindGBuffer(prog, res, data.in, frame, !lightingOnly, true);
             glBindTextureUnit(7, res.texture(data.environment.irradiance));
             glBindTextureUnit(8, res.texture(data.environment.prefiltered));
             glBindTextureUnit(9, res.texture(data.environment.dfg));
@@ -126,7 +126,8 @@ fg::ResourceId addIblPass(fg::FrameGraph& graph, IblPass& state, const FrameData
             glUseProgram(prog);
             gl::dispatch2D(frame.width, frame.height);
             glUseProgram(0);
-            for (GLuint u : {0u, 1u, 2u, 3u, 4u, 7u, 8u, 9u, GLuint(kAoTextureUnit)}) glBindTextureUnit(u, 0);
+            unbindGBuffer();
+            for (GLuint u : {7u, 8u, 9u, GLuint(kAoTextureUnit)}) glBindTextureUnit(u, 0);
             glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
         });
     return d.hdr;

@@ -120,6 +120,7 @@ void unbindAll(const LocalLightPass& state) {
         glNamedFramebufferTexture(state.fbo.id(), GL_DEPTH_ATTACHMENT, 0, 0);
     }
     for (GLuint u = 0; u < 6; ++u) glBindTextureUnit(u, 0);
+    glBindTextureUnit(kGBufferFresnelUnit, 0);
     glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
     for (GLuint b = 0; b < 5; ++b) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, 0);
     glBindVertexArray(0);
@@ -594,7 +595,7 @@ fg::ResourceId addLocalLightPass(fg::FrameGraph& graph, LocalLightPass& state, c
         "local_lights", tiled ? fg::PassKind::Compute : fg::PassKind::Raster,
         [&](fg::PassBuilder& b, LightData& data) {
             data.in = gbuffer;
-            readGBuffer(b, gbuffer, !lightingOnly);
+            readGBuffer(b, gbuffer, !lightingOnly, true);
             data.hdr = b.write(hdr, tiled ? fg::Usage::ImageLoadStore : fg::Usage::Blend | fg::Usage::ImageLoadStore);
             if (spotShadows.any()) data.spotShadows = b.read(spotShadows.depth, fg::Usage::Sampled);
             writeLightRecords(b, state, records);
@@ -620,7 +621,7 @@ fg::ResourceId addLocalLightPass(fg::FrameGraph& graph, LocalLightPass& state, c
             if (timing) glQueryCounter(timing->begin.id(), GL_TIMESTAMP);
             if (s.method == LocalLightMethod::Tiled || clusteredAsTiled) {
                 const GLuint prog = state.tiledProgram.id();
-                bindGBuffer(prog, res, data.in, frame, !lightingOnly);
+                bindGBuffer(prog, res, data.in, frame, !lightingOnly, true);
                 setInt(prog, "uLightCount", int(lights->size()));
                 setMat4(prog, "uProjection", frame.projection);
                 setInt(prog, "uUnbounded", unbounded(s));
@@ -644,7 +645,7 @@ fg::ResourceId addLocalLightPass(fg::FrameGraph& graph, LocalLightPass& state, c
                     state.clusteredSupertileProgram = frame.shaders->compute("local_light_clustered.comp", d);
                 }
                 const GLuint prog = supertiles ? state.clusteredSupertileProgram.id() : state.clusteredProgram.id();
-                bindGBuffer(prog, res, data.in, frame, !lightingOnly);
+                bindGBuffer(prog, res, data.in, frame, !lightingOnly, true);
                 setInt(prog, "uUnbounded", unbounded(s));
                 setInt(prog, "uLightingOnly", lightingOnly);
                 setInt(prog, "uSpecularMode", specularMode(s));
@@ -659,7 +660,7 @@ fg::ResourceId addLocalLightPass(fg::FrameGraph& graph, LocalLightPass& state, c
             }
             if (s.method != LocalLightMethod::Tiled && s.method != LocalLightMethod::Clustered) {
                 const GLuint prog = state.fragmentProgram.id();
-                bindGBuffer(prog, res, data.in, frame, !lightingOnly);
+                bindGBuffer(prog, res, data.in, frame, !lightingOnly, true);
                 setInt(prog, "uLightingOnly", lightingOnly);
                 setInt(prog, "uSpecularMode", specularMode(s));
                 setBrdfUniforms(prog, *frame.settings);

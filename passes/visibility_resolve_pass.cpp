@@ -28,14 +28,14 @@ struct MaterialRecord {
     glm::uvec4 flags;
 };
 // The maps the resolve samples as their MaterialMapBit (the emissive map is the emission pass's), and
-// two more bits above them.
-enum MaterialFlag : uint32_t { AlphaMask = 64, Flat = 128 };
+// three more bits above them (visibility_resolve.comp's LP_MATERIAL_*).
+enum MaterialFlag : uint32_t { AlphaMask = 64, Flat = 128, SpecularF90 = 256 };
 constexpr uint32_t kAnyMap = kDiffuseMapBit | kBumpMapBit | kNormalMapBit | kMetalRoughMapBit | kOcclusionMapBit;
 
 uint32_t materialFlags(const GpuMaterial& m) {
     return (m.diffuseMap ? kDiffuseMapBit : 0u) | (m.bumpMap ? kBumpMapBit : 0u) | (m.normalMap ? kNormalMapBit : 0u) |
            (m.metallicRoughnessMap ? kMetalRoughMapBit : 0u) | (m.occlusionMap ? kOcclusionMapBit : 0u) |
-           (m.alphaMask ? AlphaMask : 0u) | (m.flat ? Flat : 0u);
+           (m.alphaMask ? AlphaMask : 0u) | (m.flat ? Flat : 0u) | (m.dielectricF90 ? SpecularF90 : 0u);
 }
 
 GLint bufferSize(GLuint buffer) {
@@ -214,7 +214,7 @@ GBuffer addVisibilityResolvePass(fg::FrameGraph& graph, VisibilityResolvePass& s
             for (const GpuMaterial& m : gpu.materials)
                 materials.push_back({glm::vec4(m.diffuse, m.opacity), glm::vec4(m.specular, m.metallic),
                                      glm::vec4(m.shininess, m.roughness, m.bumpScale, m.normalScale),
-                                     glm::vec4(m.occlusionStrength, m.alphaCutoff, 0.0f, 0.0f),
+                                     glm::vec4(m.occlusionStrength, m.alphaCutoff, m.dielectricF90.value_or(1.0f), 0.0f),
                                      glm::uvec4(materialFlags(m), m.secondUvMaps, 0u, 0u)});
             const GLuint materialBuffer = state.materials.fill(materials.data(), materials.size() * sizeof(MaterialRecord));
 

@@ -64,20 +64,20 @@ void main() {
     ivec2 pixel = ivec2(gl_FragCoord.xy);
     float screenAo = uAmbientOcclusion ? texelFetch(uAo, pixel, 0).r : 1.0;
     vec3 c = uAmbient * kd * screenAo * occlusion;  // occlusion darkens ambient light only
-    c += lpSunRadiance(P, N, V, kd, s.f0, s.shininess, vec2(pixel));
+    c += lpSunRadiance(P, N, V, kd, s.fresnel, s.shininess, vec2(pixel));
     if (uIbl)
-        c += lpIblRadiance(uIrradiance, uPrefiltered, uDfg, N, V, kd, s.f0, s.shininess, occlusion, screenAo,
+        c += lpIblRadiance(uIrradiance, uPrefiltered, uDfg, N, V, kd, s.fresnel, s.shininess, occlusion, screenAo,
                            uAmbientOcclusion);
     if (uLocalLightCount > 0) {
         if (uUnbounded) {
             for (int i = 0; i < uLocalLightCount; ++i)
-                c += lpShadeLocalLight(uLights[i], P, N, V, kd, s.f0, s.shininess, uSpecularMode);
+                c += lpShadeLocalLight(uLights[i], P, N, V, kd, s.fresnel, s.shininess, uSpecularMode);
         } else {
             int cluster = clusterIndex(ivec3(pixel / uClusterTileSize, clusterSliceOf(-P.z)));
             uint n = min(uCounts[cluster], LP_MAX_LIGHTS_PER_CLUSTER);
             uint base = uint(cluster) * LP_MAX_LIGHTS_PER_CLUSTER;
             for (uint k = 0u; k < n; ++k)
-                c += lpShadeLocalLight(uLights[uLists[base + k]], P, N, V, kd, s.f0, s.shininess, uSpecularMode);
+                c += lpShadeLocalLight(uLights[uLists[base + k]], P, N, V, kd, s.fresnel, s.shininess, uSpecularMode);
         }
     }
     if (!uLightingOnly && (uHiddenTerms & LP_HIDE_EMISSION) == 0) {

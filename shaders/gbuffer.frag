@@ -23,7 +23,11 @@ layout(location = 2) out vec4 outPosition;
 layout(location = 3) out vec4 outSpecular;
 layout(location = 4) out vec4 outTexcoord;
 layout(location = 5) out vec4 outTangent;  // the tangent view: eye-space tangent x 0.5 + 0.5, handedness
+#ifdef LP_GBUFFER_FRESNEL
+layout(location = 7) out vec2 outFresnel;  // gbuffer.fresnel: f90 and the diffuse shape (KHR_materials_specular)
+#else
 layout(location = 7) out vec4 outMaterialInput;  // the material-input views (uMaterialInput != 0)
+#endif
 #ifdef LP_GBUFFER_VELOCITY
 in vec4 vCurrentClip;
 in vec4 vPreviousClip;
@@ -64,7 +68,11 @@ void main() {
 #endif
     outTexcoord = vec4(vUv, 0.0, 0.0);
     outTangent = g.tangentView;
+#ifdef LP_GBUFFER_FRESNEL
+    outFresnel = materialFresnelValue(g);
+#else
     if (uMaterialInput != 0) outMaterialInput = materialInputValue(g);
+#endif
 #ifdef LP_GBUFFER_VELOCITY
     outVelocity = velocityFromClip(vCurrentClip, vPreviousClip);
 #endif

@@ -31,7 +31,7 @@ void main() {
     vec3 P = gbufferPosition(p);
     vec4 spec = vec4(gbufferSpecular(p), gbufferShininess(p));
     vec3 kd = uLightingOnly ? vec3(1.0) : gbufferDiffuse(p);
-    vec3 ks = spec.rgb;
+    FresnelEnds ks = gbufferFresnel(p);
     float pl = length(P);
     vec3 V = pl > 0.0 ? -P / pl : vec3(0.0, 0.0, 1.0);
     float ao = uAmbientOcclusion ? texelFetch(uAo, p, 0).r : 1.0;

@@ -34,7 +34,7 @@ void main() {
     vec3 V = pl > 0.0 ? -P / pl : vec3(0.0, 0.0, 1.0);
     float occlusion = uLightingOnly ? 1.0 : gbufferOcclusion(p);  // the material's ambient occlusion
     float screenAo = uAmbientOcclusion ? texelFetch(uAo, p, 0).r : 1.0;
-    vec3 c = lpIblRadiance(uIrradiance, uPrefiltered, uDfg, N, V, kd, spec.rgb, spec.a, occlusion, screenAo,
+    vec3 c = lpIblRadiance(uIrradiance, uPrefiltered, uDfg, N, V, kd, gbufferFresnel(p), spec.a, occlusion, screenAo,
                            uAmbientOcclusion);
     vec3 hdr = imageLoad(uHdr, p).rgb;
     imageStore(uHdr, p, vec4(sanitizeHdr(hdr + c), 1.0));

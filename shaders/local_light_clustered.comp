@@ -107,6 +107,9 @@ void main() {
     bool surface[LP_PIXELS];
     vec3 P[LP_PIXELS], N[LP_PIXELS], kd[LP_PIXELS], V[LP_PIXELS], sum[LP_PIXELS];
     vec4 spec[LP_PIXELS];
+#ifdef LP_GBUFFER_FRESNEL
+    vec2 fresnel[LP_PIXELS];  // the stored f90 and diffuse shape (gbuffer.fresnel)
+#endif
     int slice[LP_PIXELS];
     ivec2 at[LP_PIXELS];  // the pixel within the tile
     for (int k = 0; k < LP_PIXELS; ++k) {
@@ -120,11 +123,17 @@ void main() {
         kd[k] = vec3(0.0);
         V[k] = vec3(0.0, 0.0, 1.0);
         spec[k] = vec4(0.0);
+#ifdef LP_GBUFFER_FRESNEL
+        fresnel[k] = vec2(0.0);
+#endif
         sum[k] = vec3(0.0);
         slice[k] = 0;
         if (surface[k]) {
             P[k] = gbufferPosition(p);
             readShadingTexels(p, P[k], N[k], spec[k], kd[k], V[k]);
+#ifdef LP_GBUFFER_FRESNEL
+            fresnel[k] = gbufferFresnelStored(p);
+#endif
             slice[k] = clusterSliceOf(max(-P[k].z, 0.0));
         }
     }
@@ -199,9 +208,14 @@ void main() {
                 int w = findLSB(ws);
                 uint bits = sMask[mask + slice[k] * LP_WORDS + w];
                 if (uUnbounded) bits = batch - 32 * w >= 32 ? ~0u : (1u << uint(batch - 32 * w)) - 1u;
+#ifdef LP_GBUFFER_FRESNEL
+                FresnelEnds ends = gbufferFresnelEnds(spec[k].rgb, fresnel[k]);
+#else
+                FresnelEnds ends = fresnelEndsOfF0(spec[k].rgb);  // f90 and the shape from F0
+#endif
                 for (; bits != 0u; bits &= bits - 1u)
                     sum[k] += lpShadeLocalLight(uLights[lightOfBit(listed, first, 32 * w + findLSB(bits))], P[k], N[k], V[k], kd[k],
-                                                spec[k].rgb, spec[k].a, uSpecularMode);
+                                                ends, spec[k].a, uSpecularMode);
             }
         }
         if (first + LP_BATCH >= candidates) break;  // uniform

@@ -164,8 +164,9 @@ void main() {
         radiance += throughput * emission;
         if (bounce == uBounces) break;
         vec3 dielectricF0 = m.specularMetallic.rgb;
-        vec3 kd = materialDiffuseAlbedo(uBrdf, base, metallic, dielectricF0);
-        vec3 ks = mix(dielectricF0, base, metallic);
+        bool givenF90 = m.mapParams.w >= 0.0;  // KHR_materials_specular
+        vec3 kd = materialDiffuseAlbedo(uBrdf, base, metallic, dielectricF0, givenF90);
+        FresnelEnds ks = materialFresnelEnds(base, metallic, dielectricF0, max(m.mapParams.w, 0.0), givenF90);
         vec3 Po = P + Ng * uRayEpsilon * (1.0 + maxComponent(abs(P)));
 
         // Direct light from the suns and the local lights (delta lights: no other way to reach them).
@@ -196,7 +197,7 @@ void main() {
         // sampling, weighted by the mixture's pdf; emitters are reached this way, the environment this
         // way and by its own samples.
         float alpha = ggxAlphaFromShininess(shininess);
-        float wd = maxComponent(kd), ws = maxComponent(ks);
+        float wd = maxComponent(kd), ws = maxComponent(ks.f0);
         if (wd + ws <= 0.0) break;
         float pSpecular = wd <= 0.0 ? 1.0 : (ws <= 0.0 ? 0.0 : clamp(ws / (wd + ws), 0.1, 0.9));
         if (sampleEnvironment) {

@@ -60,10 +60,10 @@ struct MaterialRecord {
     vec4 diffuseOpacity;
     vec4 specularMetallic;
     vec4 shininessRoughnessBumpNormal;  // shininess, roughness, bump scale, normal scale
-    vec4 occlusionCutoff;               // occlusion strength, alpha cutoff
+    vec4 occlusionCutoff;               // occlusion strength, alpha cutoff, KHR_materials_specular's f90
     uvec4 flags;                        // x: LP_MAP_* of its maps and LP_MATERIAL_* bits, y: LP_MAP_* of the maps on the second uv set
 };
-const uint LP_MATERIAL_ALPHA_MASK = 64u, LP_MATERIAL_FLAT = 128u;
+const uint LP_MATERIAL_ALPHA_MASK = 64u, LP_MATERIAL_FLAT = 128u, LP_MATERIAL_SPECULAR_F90 = 256u;
 const uint LP_MATERIAL_ANY_MAP = LP_MAP_DIFFUSE | LP_MAP_BUMP | LP_MAP_NORMAL | LP_MAP_METAL_ROUGH | LP_MAP_OCCLUSION;
 
 layout(std430, binding = 0) readonly buffer Vertices { float vertices[]; };
@@ -212,7 +212,7 @@ MaterialInputs materialInputs(MaterialRecord r) {
                           r.shininessRoughnessBumpNormal.z, r.shininessRoughnessBumpNormal.w, r.occlusionCutoff.x,
                           r.occlusionCutoff.y, (f & LP_MAP_DIFFUSE) != 0u, (f & LP_MAP_BUMP) != 0u,
                           (f & LP_MAP_NORMAL) != 0u, (f & LP_MAP_METAL_ROUGH) != 0u, (f & LP_MAP_OCCLUSION) != 0u, (f & LP_MATERIAL_ALPHA_MASK) != 0u,
-                          (f & LP_MATERIAL_FLAT) != 0u, r.flags.y);
+                          (f & LP_MATERIAL_FLAT) != 0u, r.flags.y, r.occlusionCutoff.z, (f & LP_MATERIAL_SPECULAR_F90) != 0u);
 }
 
 void main() {
@@ -312,7 +312,11 @@ void main() {
     if ((uTargets & LP_TARGET_SPECULAR) != 0u) storeSpecular(p, g.f0, g.shininess);
     if ((uTargets & LP_TARGET_TEXCOORD) != 0u) imageStore(uTexcoordOut, p, vec4(uv, 0.0, 0.0));
     if ((uTargets & LP_TARGET_TANGENT) != 0u) imageStore(uTangentOut, p, g.tangentView);
+#ifdef LP_GBUFFER_FRESNEL
+    if ((uTargets & LP_TARGET_FRESNEL) != 0u) imageStore(uFresnelOut, p, vec4(materialFresnelValue(g), 0.0, 0.0));
+#else
     if ((uTargets & LP_TARGET_MATERIAL_INPUT) != 0u) imageStore(uMaterialInputOut, p, materialInputValue(g));
+#endif
     if ((uTargets & LP_TARGET_VELOCITY) != 0u) {
         vec4 object = vec4(interpolateAttribute(b, o0, o1, o2), 1.0);
         vec4 previousObject = vec4(interpolateAttribute(b, previousPosition(i0, o0), previousPosition(i1, o1), previousPosition(i2, o2)), 1.0);

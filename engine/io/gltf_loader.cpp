@@ -47,7 +47,8 @@ std::string formatNumber(double v) {
 // Extensions this loader understands; a file that requires any other is refused (the spec's rule).
 // KHR_texture_basisu is not among them: its KTX2 images have no Debian decoder.
 const std::set<std::string> kSupportedExtensions = {"EXT_meshopt_compression", "KHR_draco_mesh_compression", "KHR_lights_punctual",
-                                                     "KHR_materials_emissive_strength", "KHR_materials_ior", "KHR_materials_unlit",
+                                                     "KHR_materials_emissive_strength", "KHR_materials_ior", "KHR_materials_specular",
+                                                     "KHR_materials_unlit",
                                                      "KHR_mesh_quantization", "KHR_texture_transform"};
 constexpr size_t kMaxElements = kMaxGltfElements;  // accessor count limit: 268M elements
 constexpr size_t kMaxNodeDepth = 1024;                        // levels of the node hierarchy
@@ -635,6 +636,27 @@ struct Loader {
         if (auto ior = m.extensions.find("KHR_materials_ior"); ior != m.extensions.end() && ior->second.Has("ior")) {
             const double n = ior->second.Get("ior").GetNumberAsDouble();
             out.specular = glm::vec3(float(((n - 1.0) / (n + 1.0)) * ((n - 1.0) / (n + 1.0))));
+        }
+        // KHR_materials_specular: the dielectric's F0 = min(F0_ior x specularColorFactor, 1) x specularFactor
+        // and its f90 = specularFactor, given (shaders/common/brdf.glsl's materialFresnelEnds). The
+        // schema refused values outside [0, 1] and colours below 0; the clamps only keep the promise.
+        if (auto sp = m.extensions.find("KHR_materials_specular"); sp != m.extensions.end()) {
+            const tinygltf::Value& v = sp->second;
+            const std::string sw = w + ".extensions.KHR_materials_specular";
+            double weight = 1.0;
+            if (v.Has("specularFactor") && v.Get("specularFactor").IsNumber()) weight = v.Get("specularFactor").GetNumberAsDouble();
+            weight = std::isfinite(weight) ? std::clamp(weight, 0.0, 1.0) : 1.0;
+            glm::dvec3 colour(1.0);
+            if (v.Has("specularColorFactor") && v.Get("specularColorFactor").IsArray() &&
+                v.Get("specularColorFactor").ArrayLen() == 3)
+                for (int c = 0; c < 3; ++c) {
+                    const double x = v.Get("specularColorFactor").Get(c).GetNumberAsDouble();
+                    colour[c] = std::isfinite(x) ? std::max(x, 0.0) : 1.0;
+                }
+            out.specular = glm::vec3(glm::min(glm::dvec3(out.specular) * colour, glm::dvec3(1.0)) * weight);
+            out.dielectricF90 = float(weight);
+            for (const char* map : {"specularTexture", "specularColorTexture"})
+                if (v.Has(map)) warn(sw + "." + map, "not supported; the factors alone are used");
         }
         // KHR_materials_unlit: the base colour as it is, untouched by light: lightpass's flat-lit material
         // (which shows base x (1 - metallic)).

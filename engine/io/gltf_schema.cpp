@@ -247,6 +247,18 @@ public:
                 if (const json* n = number(*s, "ior", join(ew, "KHR_materials_ior")))
                     if (n->get<double>() != 0.0 && n->get<double>() < 1.0)
                         error(join(ew, "KHR_materials_ior.ior"), numberText(*n) + " must be >= 1 (or 0)");
+            if (const json* s = object(*ext, "KHR_materials_specular", ew)) {
+                const std::string sw = join(ew, "KHR_materials_specular");
+                if (const json* f = number(*s, "specularFactor", sw))
+                    if (f->get<double>() < 0.0 || f->get<double>() > 1.0)
+                        error(join(sw, "specularFactor"), numberText(*f) + " must be in [0, 1]");
+                if (const json* c = numbers(*s, "specularColorFactor", sw, 3, 3))
+                    for (size_t i = 0; i < 3; ++i)
+                        if ((*c)[i].get<double>() < 0.0)
+                            error(item(join(sw, "specularColorFactor"), i), numberText((*c)[i]) + " must be >= 0");
+                textureInfo(*s, "specularTexture", sw);
+                textureInfo(*s, "specularColorTexture", sw);
+            }
             object(*ext, "KHR_materials_unlit", ew);
         }
     }

@@ -1,5 +1,6 @@
 #include "engine/render/gltf_brdf.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace lp {
@@ -40,12 +41,17 @@ GltfBrdfLobes gltfBrdfLobes(const GltfBrdfMaterial& m, glm::dvec3 N, glm::dvec3 
     const double specular = gltfGgxDistribution(glm::dot(N, H), alpha) * gltfSmithVisibility(nv, nl, alpha, masking);
     const double w = std::pow(1.0 - vh, 5.0);
     const glm::dvec3 metalFresnel = m.baseColor + (glm::dvec3(1.0) - m.baseColor) * w;
-    const double f0 = gltfDielectricF0(m.ior), dielectricFresnel = f0 + (1.0 - f0) * w;
-    // material = mix(dielectric, metal, metallic), dielectric = mix(base / pi, specular, F_dielectric),
+    // KHR_materials_specular's fresnel_mix: f0 = min(F0_ior specularColor, 1), fr = f0 + (1 - f0)(1 - V.H)^5,
+    // the layer weighted by specular fr and the base by 1 - specular max_value(fr) (without the
+    // extension specular = 1 and specularColor = 1: Appendix B's mix(base, layer, F)).
+    const glm::dvec3 f0 = glm::min(gltfDielectricF0(m.ior) * m.specularColor, glm::dvec3(1.0));
+    const glm::dvec3 fr = f0 + (glm::dvec3(1.0) - f0) * w;
+    const double frMax = std::max(fr.x, std::max(fr.y, fr.z));
+    // material = mix(dielectric, metal, metallic), dielectric = fresnel_mix(base / pi, specular),
     // metal = F_metal specular.
     GltfBrdfLobes out;
-    out.diffuse = (1.0 - m.metallic) * (1.0 - dielectricFresnel) * m.baseColor / kPi;
-    out.specular = specular * ((1.0 - m.metallic) * glm::dvec3(dielectricFresnel) + m.metallic * metalFresnel);
+    out.diffuse = (1.0 - m.metallic) * (1.0 - m.specular * frMax) * m.baseColor / kPi;
+    out.specular = specular * ((1.0 - m.metallic) * m.specular * fr + m.metallic * metalFresnel);
     return out;
 }
 

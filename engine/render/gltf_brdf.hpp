@@ -4,7 +4,10 @@
 // implements it). No clamps and none of the shaders' heuristics: alpha = roughness^2 as it is,
 // Schlick's Fresnel towards 1, the dielectric's diffuse weighted by 1 - F(V.H):
 //   metal_brdf      = specular_brdf(alpha) * (base + (1 - base) (1 - |V.H|)^5)
-//   dielectric_brdf = mix(base / pi, specular_brdf(alpha), F0 + (1 - F0) (1 - |V.H|)^5)
+//   dielectric_brdf = fresnel_mix(base / pi, specular_brdf(alpha)): the layer weighted by s F, the base
+//                     by 1 - s max3(F), F = f0 + (1 - f0) (1 - |V.H|)^5, f0 = min(F0_ior c, 1)
+//                     (KHR_materials_specular's s = specular, c = specularColor; without it 1 and 1,
+//                     Appendix B's mix(base / pi, specular_brdf, F))
 //   material        = mix(dielectric_brdf, metal_brdf, metallic)
 //   specular_brdf   = D_GGX(alpha) * V_Smith(alpha)  (height-correlated: the specification's; or separable)
 #include <glm/glm.hpp>
@@ -18,6 +21,8 @@ struct GltfBrdfMaterial {
     double metallic = 1.0;
     double roughness = 1.0;  // perceptual: alpha = roughness^2
     double ior = 1.5;        // the dielectric's F0 = ((ior - 1) / (ior + 1))^2 (KHR_materials_ior): 0.04
+    double specular = 1.0;   // KHR_materials_specular's specularFactor (x specularTexture.a): the weight
+    glm::dvec3 specularColor{1.0};  // its specularColorFactor (x specularColorTexture.rgb)
 };
 
 double gltfDielectricF0(double ior);

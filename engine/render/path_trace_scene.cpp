@@ -57,7 +57,9 @@ PathTraceScene buildPathTraceScene(const Scene& scene) {
                                layerOf(m.normalMap, out.linearMaps, linearIndex),
                                layerOf(m.emissiveMap, out.srgbMaps, srgbIndex));
             const TextureRef* const maps[kPtMapCount] = {&m.diffuseMap, &m.metallicRoughnessMap, &m.normalMap, &m.emissiveMap};
-            g.mapParams = glm::vec4(m.normalScale, m.roughness, float(pathTraceMapBits(maps)), 0.0f);
+            // w: KHR_materials_specular's dielectric f90 where the material gives one, else -1 (derived).
+            g.mapParams = glm::vec4(m.normalScale, m.roughness, float(pathTraceMapBits(maps)),
+                                    m.dielectricF90 ? std::clamp(*m.dielectricF90, 0.0f, 1.0f) : -1.0f);
             out.materials.push_back(g);
             out.bumpMappedMaterials += m.bumpMap.empty() ? 0 : 1;
             out.hasMaskedMaterials = out.hasMaskedMaterials || alphaMode != 0.0f;

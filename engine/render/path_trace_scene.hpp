@@ -36,7 +36,8 @@ struct PathTraceMaterial {
     // roughness and normal: the linear one), -1 without the map.
     glm::vec4 maps;
     // x: normal scale, y: perceptual roughness factor (multiplied by the map's g), z: the maps'
-    // sampling bits (pathTraceMapBits), w: 0.
+    // sampling bits (pathTraceMapBits), w: the dielectric f90 KHR_materials_specular gives (its
+    // factor; the maps are not sampled), -1 without it (f90 derived from F0 as the raster does).
     glm::vec4 mapParams;
 };
 static_assert(sizeof(PathTraceMaterial) == 96, "std430 layout of LpPathTraceMaterial");

@@ -148,6 +148,7 @@ SceneGpu::SceneGpu(const Scene& scene) {
             g.diffuse = m.diffuse;
             g.opacity = m.opacity;
             g.specular = m.specular;
+            g.dielectricF90 = m.dielectricF90;
             g.metallic = m.metallic;
             g.shininess = m.shininess;
             g.roughness = m.roughness;

@@ -4,6 +4,7 @@
 // missing texture becomes a visible checker with a warning.
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <map>
 #include <string>
 #include <vector>
@@ -36,6 +37,7 @@ struct GpuMaterial {
     glm::vec3 diffuse{0.8f};  // base colour
     float opacity = 1.0f;
     glm::vec3 specular{0.04f};  // dielectric F0
+    std::optional<float> dielectricF90;  // Material::dielectricF90 (KHR_materials_specular)
     float metallic = 0.0f;
     float shininess = 32.0f;
     float roughness = 0.5f;

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -75,7 +76,10 @@ struct Material {
     std::string name = "default";
     glm::vec3 diffuse{0.8f};    // base colour: Kd, or baseColorFactor.rgb
     float opacity = 1.0f;       // baseColorFactor.a, or MTL d (1 - Tr)
-    glm::vec3 specular{0.04f};  // dielectric F0: Ks, or 0.04 for glTF
+    glm::vec3 specular{0.04f};  // dielectric F0: Ks, or 0.04 for glTF (KHR_materials_specular: below)
+    // KHR_materials_specular: the dielectric's f90, its specular weight, given instead of derived from
+    // F0 (shaders/common/brdf.glsl); `specular` then holds min(F0_ior x specularColor, 1) x the weight.
+    std::optional<float> dielectricF90;
     float metallic = 0.0f;      // metallicFactor (MTL: 0)
     float shininess = 32.0f;    // Ns (Blinn-Phong exponent), clamped to [0, 10000]; glTF: from roughness
     float roughness = 0.5f;     // perceptual roughness: roughnessFactor, or from Ns (used with metallicRoughnessMap)

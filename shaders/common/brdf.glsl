@@ -134,7 +134,18 @@ float schlickWeight(float vh) {
     return m2 * m2 * m;
 }
 
-vec3 fresnelSchlick(vec3 f0, float vh) { return f0 + (vec3(specularF90(f0)) - f0) * schlickWeight(vh); }
+// Schlick's two ends at a surface point, and the diffuse layer's Fresnel shape under them (ggxDiffuse):
+// the diffuse weight is 1 - diffuseScale (1 - V.H)^5 on top of the kd the material evaluation stores.
+// Most materials derive f90 and the shape from F0 (fresnelEndsOfF0, the clamp above); a material with
+// KHR_materials_specular gives them (materialFresnelEnds), and the G-buffer carries them then
+// (gbuffer.fresnel: common/gbuffer_layout.glsl's gbufferFresnel).
+struct FresnelEnds {
+    vec3 f0;
+    float f90;
+    vec3 diffuseScale;
+};
+
+vec3 fresnelSchlick(FresnelEnds e, float vh) { return e.f0 + (vec3(e.f90) - e.f0) * schlickWeight(vh); }
 
 // Unit half vector of V and L (N where they cancel).
 vec3 brdfHalfVector(vec3 N, vec3 V, vec3 L) {
@@ -144,12 +155,12 @@ vec3 brdfHalfVector(vec3 N, vec3 V, vec3 L) {
 }
 
 // Specular lobe alone: D Vis F (no N.L). Zero for N.L <= 0.
-vec3 ggxSpecular(vec3 N, vec3 V, vec3 L, vec3 f0, float alpha) {
+vec3 ggxSpecular(vec3 N, vec3 V, vec3 L, FresnelEnds e, float alpha) {
     float nl = dot(N, L);
     if (nl <= 0.0) return vec3(0.0);
     vec3 H = brdfHalfVector(N, V, L);
     float vh = clamp(dot(V, H), 0.0, 1.0);
-    return ggxDistribution(N, H, alpha) * ggxVisibility(dot(N, V), nl, alpha) * fresnelSchlick(f0, vh) * lpSpecularShown();
+    return ggxDistribution(N, H, alpha) * ggxVisibility(dot(N, V), nl, alpha) * fresnelSchlick(e, vh) * lpSpecularShown();
 }
 
 // ---- The diffuse layer --------------------------------------------------------------------------
@@ -166,48 +177,65 @@ vec3 ggxDiffuseFresnelScale(vec3 f0) {
     return f90 >= 1.0 ? vec3(1.0) : (vec3(f90) - f0) / max(vec3(1.0) - f0, vec3(1e-6));
 }
 
+// The ends every material without KHR_materials_specular has: f90 and the diffuse shape from F0.
+FresnelEnds fresnelEndsOfF0(vec3 f0) { return FresnelEnds(f0, specularF90(f0), ggxDiffuseFresnelScale(f0)); }
+
 // The diffuse term, kd as the material evaluation stores it (without N.L).
-vec3 ggxDiffuse(vec3 kd, vec3 f0, float vh) {
-    return kd / LP_PI * (vec3(1.0) - ggxDiffuseFresnelScale(f0) * schlickWeight(vh));
+vec3 ggxDiffuse(vec3 kd, FresnelEnds e, float vh) {
+    return kd / LP_PI * (vec3(1.0) - e.diffuseScale * schlickWeight(vh));
 }
 
 // The same weight averaged over a uniform (white-furnace) light: 1 - c X(N.V), X(N.V) = (1 / pi)
 // integral of (1 - V.H)^5 N.L over the hemisphere of L, which depends on N.V alone; fitted by a cubic in
 // 1 - N.V (X(1) = 8e-5, X(0.5) = 0.0050, X(0) = 0.0282; fit error below 1e-4). The IBL's diffuse: what a
 // path tracer of this BRDF reflects from a uniform environment, exactly.
-vec3 ggxDiffuseFresnelMeanWeight(vec3 f0, float nv) {
+vec3 ggxDiffuseFresnelMeanWeight(FresnelEnds e, float nv) {
     float t = 1.0 - clamp(nv, 0.0, 1.0);
     float mean = max(((0.0256872 * t - 0.00200696) * t + 0.00439877) * t - 1.04356e-5, 0.0);
-    return vec3(1.0) - ggxDiffuseFresnelScale(f0) * mean;
+    return vec3(1.0) - e.diffuseScale * mean;
 }
 
-// Full GGX BRDF (without N.L); F0 = ks, alpha from the shininess (the roughness's exponent).
-vec3 ggxBrdf(vec3 N, vec3 V, vec3 L, vec3 kd, vec3 ks, float shininess) {
+// Full GGX BRDF (without N.L); F0 and f90 from `e`, alpha from the shininess (the roughness's exponent).
+vec3 ggxBrdf(vec3 N, vec3 V, vec3 L, vec3 kd, FresnelEnds e, float shininess) {
     vec3 H = brdfHalfVector(N, V, L);
-    return ggxDiffuse(kd, ks, clamp(dot(V, H), 0.0, 1.0)) + ggxSpecular(N, V, L, ks, ggxAlphaFromShininess(shininess));
+    return ggxDiffuse(kd, e, clamp(dot(V, H), 0.0, 1.0)) + ggxSpecular(N, V, L, e, ggxAlphaFromShininess(shininess));
 }
 
-vec3 ggxRadiance(vec3 N, vec3 V, vec3 L, vec3 kd, vec3 ks, float shininess, vec3 irradiance) {
+vec3 ggxRadiance(vec3 N, vec3 V, vec3 L, vec3 kd, FresnelEnds e, float shininess, vec3 irradiance) {
     float nl = dot(N, L);
     if (nl <= 0.0) return vec3(0.0);
-    return ggxBrdf(N, V, L, kd, ks, shininess) * irradiance * nl;
+    return ggxBrdf(N, V, L, kd, e, shininess) * irradiance * nl;
 }
 
 // ---- The switch ---------------------------------------------------------------------------------
 // The diffuse and the specular part of BRDF `brdf` (without N.L; zero for N.L <= 0 is the caller's):
-// the local lights window them apart (LP_LOCAL_SPECULAR_*).
-vec3 brdfDiffuse(int brdf, vec3 N, vec3 V, vec3 L, vec3 kd, vec3 ks) {
+// the local lights window them apart (LP_LOCAL_SPECULAR_*). Blinn-Phong takes e.f0 as its ks.
+vec3 brdfDiffuse(int brdf, vec3 N, vec3 V, vec3 L, vec3 kd, FresnelEnds e) {
     if (brdf == LP_BRDF_BLINN_PHONG) return kd / LP_PI;
-    return ggxDiffuse(kd, ks, clamp(dot(V, brdfHalfVector(N, V, L)), 0.0, 1.0));
+    return ggxDiffuse(kd, e, clamp(dot(V, brdfHalfVector(N, V, L)), 0.0, 1.0));
 }
-vec3 brdfSpecular(int brdf, vec3 N, vec3 V, vec3 L, vec3 ks, float shininess) {
-    if (brdf == LP_BRDF_BLINN_PHONG) return blinnPhongBrdf(N, V, L, vec3(0.0), ks, shininess);
-    return ggxSpecular(N, V, L, ks, ggxAlphaFromShininess(shininess));
+vec3 brdfSpecular(int brdf, vec3 N, vec3 V, vec3 L, FresnelEnds e, float shininess) {
+    if (brdf == LP_BRDF_BLINN_PHONG) return blinnPhongBrdf(N, V, L, vec3(0.0), e.f0, shininess);
+    return ggxSpecular(N, V, L, e, ggxAlphaFromShininess(shininess));
 }
 
+vec3 brdfRadiance(int brdf, vec3 N, vec3 V, vec3 L, vec3 kd, FresnelEnds e, float shininess, vec3 irradiance) {
+    return brdf == LP_BRDF_BLINN_PHONG ? blinnPhongRadiance(N, V, L, kd, e.f0, shininess, irradiance)
+                                       : ggxRadiance(N, V, L, kd, e, shininess, irradiance);
+}
+
+// The same with f90 and the diffuse shape derived from F0 = ks (a material without KHR_materials_specular).
+vec3 fresnelSchlick(vec3 f0, float vh) { return fresnelSchlick(fresnelEndsOfF0(f0), vh); }
+vec3 ggxSpecular(vec3 N, vec3 V, vec3 L, vec3 f0, float alpha) { return ggxSpecular(N, V, L, fresnelEndsOfF0(f0), alpha); }
+vec3 ggxDiffuse(vec3 kd, vec3 f0, float vh) { return ggxDiffuse(kd, fresnelEndsOfF0(f0), vh); }
+vec3 ggxDiffuseFresnelMeanWeight(vec3 f0, float nv) { return ggxDiffuseFresnelMeanWeight(fresnelEndsOfF0(f0), nv); }
+vec3 ggxBrdf(vec3 N, vec3 V, vec3 L, vec3 kd, vec3 ks, float shininess) { return ggxBrdf(N, V, L, kd, fresnelEndsOfF0(ks), shininess); }
+vec3 brdfDiffuse(int brdf, vec3 N, vec3 V, vec3 L, vec3 kd, vec3 ks) { return brdfDiffuse(brdf, N, V, L, kd, fresnelEndsOfF0(ks)); }
+vec3 brdfSpecular(int brdf, vec3 N, vec3 V, vec3 L, vec3 ks, float shininess) {
+    return brdfSpecular(brdf, N, V, L, fresnelEndsOfF0(ks), shininess);
+}
 vec3 brdfRadiance(int brdf, vec3 N, vec3 V, vec3 L, vec3 kd, vec3 ks, float shininess, vec3 irradiance) {
-    return brdf == LP_BRDF_BLINN_PHONG ? blinnPhongRadiance(N, V, L, kd, ks, shininess, irradiance)
-                                       : ggxRadiance(N, V, L, kd, ks, shininess, irradiance);
+    return brdfRadiance(brdf, N, V, L, kd, fresnelEndsOfF0(ks), shininess, irradiance);
 }
 
 // What the material evaluation stores as the diffuse colour: the diffuse layer's albedo for the BRDF
@@ -216,6 +244,31 @@ vec3 brdfRadiance(int brdf, vec3 N, vec3 V, vec3 L, vec3 kd, vec3 ks, float shin
 vec3 materialDiffuseAlbedo(int brdf, vec3 baseColor, float metallic, vec3 dielectricF0) {
     vec3 kd = baseColor * (1.0 - metallic);
     return brdf == LP_BRDF_BLINN_PHONG ? kd : kd * (vec3(1.0) - dielectricF0);
+}
+
+// ---- KHR_materials_specular ---------------------------------------------------------------------
+// A dielectric with a given f90 (the extension's specular weight s) and F0 = min(F0_ior specularColor,
+// 1) s. The specification's fresnel_mix weights the layer by F = F0 + (f90 - F0) (1 - V.H)^5 and the
+// diffuse by 1 - max3(F) (max_value: a scalar, so a coloured F0 tints no diffuse); max3 of F is
+// m + (f90 - m) (1 - V.H)^5 with m = max3(F0), so the weight factors as
+// (1 - m) (1 - c (1 - V.H)^5), c = (f90 - m) / (1 - m): kd holds (1 - m), the lights apply the shape c.
+// The metal keeps F0 = base, f90 = 1; Schlick is linear in both ends, so mixing them by metallic is
+// exact, and kd's (1 - metallic) with c of the dielectric alone keeps every metallic exact.
+float specularDiffuseShape(vec3 dielectricF0, float dielectricF90) {
+    float m = max(max(dielectricF0.r, dielectricF0.g), dielectricF0.b);
+    return m >= 1.0 ? 0.0 : clamp((dielectricF90 - m) / (1.0 - m), 0.0, 1.0);
+}
+
+// The material's kd and Fresnel ends at a texel. givenF90: KHR_materials_specular (dielectricF90 its
+// weight); otherwise f90 and the shape come from the mixed F0 as for every other material.
+vec3 materialDiffuseAlbedo(int brdf, vec3 baseColor, float metallic, vec3 dielectricF0, bool givenF90) {
+    if (!givenF90 || brdf == LP_BRDF_BLINN_PHONG) return materialDiffuseAlbedo(brdf, baseColor, metallic, dielectricF0);
+    return baseColor * (1.0 - metallic) * (1.0 - max(max(dielectricF0.r, dielectricF0.g), dielectricF0.b));
+}
+FresnelEnds materialFresnelEnds(vec3 baseColor, float metallic, vec3 dielectricF0, float dielectricF90, bool givenF90) {
+    vec3 f0 = mix(dielectricF0, baseColor, metallic);
+    if (!givenF90) return fresnelEndsOfF0(f0);
+    return FresnelEnds(f0, mix(dielectricF90, 1.0, metallic), vec3(specularDiffuseShape(dielectricF0, dielectricF90)));
 }
 
 #endif

@@ -20,8 +20,13 @@ layout(binding = 3, LP_SPECULAR_IMAGE_FORMAT) uniform writeonly image2D uSpecula
 layout(binding = 4, rg32f) uniform writeonly image2D uTexcoordOut;
 layout(binding = 5, rgba16f) uniform writeonly image2D uTangentOut;
 layout(binding = 6, rg16f) uniform writeonly image2D uVelocityOut;
+#ifdef LP_GBUFFER_FRESNEL
+layout(binding = 7, rg16f) uniform writeonly image2D uFresnelOut;  // gbuffer.fresnel: unit 7 outside the material-input views
+#else
 layout(binding = 7, rgba16f) uniform writeonly image2D uMaterialInputOut;
-// Bit i set: target i (normal, diffuse, position, specular, texcoord, tangent, velocity, material input) is bound.
+#endif
+// Bit i set: target i (normal, diffuse, position, specular, texcoord, tangent, velocity, material input
+// or, with LP_GBUFFER_FRESNEL, fresnel) is bound.
 uniform uint uTargets;
 // Background velocity (common/velocity.glsl's backgroundVelocity).
 uniform vec2 uJitterNdc;
@@ -31,6 +36,7 @@ uniform mat4 uPreviousViewProjection;
 
 const uint LP_TARGET_NORMAL = 1u, LP_TARGET_DIFFUSE = 2u, LP_TARGET_POSITION = 4u, LP_TARGET_SPECULAR = 8u;
 const uint LP_TARGET_TEXCOORD = 16u, LP_TARGET_TANGENT = 32u, LP_TARGET_VELOCITY = 64u, LP_TARGET_MATERIAL_INPUT = 128u;
+const uint LP_TARGET_FRESNEL = 128u;  // the same unit: a program compiled with LP_GBUFFER_FRESNEL has no material input
 
 void storeNormal(ivec2 p, vec3 n, float shininess) {
 #ifdef LP_GBUFFER_NORMAL_OCT
@@ -66,7 +72,11 @@ void storeBackground(ivec2 p, vec2 size) {
     if ((uTargets & LP_TARGET_SPECULAR) != 0u) imageStore(uSpecularOut, p, vec4(0.0));
     if ((uTargets & LP_TARGET_TEXCOORD) != 0u) imageStore(uTexcoordOut, p, vec4(0.0));
     if ((uTargets & LP_TARGET_TANGENT) != 0u) imageStore(uTangentOut, p, vec4(0.0));
+#ifdef LP_GBUFFER_FRESNEL
+    if ((uTargets & LP_TARGET_FRESNEL) != 0u) imageStore(uFresnelOut, p, vec4(0.0));
+#else
     if ((uTargets & LP_TARGET_MATERIAL_INPUT) != 0u) imageStore(uMaterialInputOut, p, vec4(0.0));
+#endif
     if ((uTargets & LP_TARGET_VELOCITY) != 0u) {
         vec2 ndc = (vec2(p) + 0.5) / size * 2.0 - 1.0;
         vec2 v = backgroundVelocity(ndc, uJitterNdc, uInverseRotationProjection, uViewProjection, uPreviousViewProjection);

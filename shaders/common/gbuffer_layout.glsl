@@ -15,6 +15,12 @@
 //   texcoord  RG32F     texture coordinates (only when a debug view asks for them)
 //   velocity  RG16F     uv_current - uv_previous, unjittered (only when a pass reads motion;
 //                       common/velocity.glsl); read as a plain sampler by the passes that use it
+//   fresnel   RG16F     Schlick's f90 and the diffuse layer's Fresnel shape (common/brdf.glsl's
+//                       FresnelEnds), only when a material of the scene gives them
+//                       (KHR_materials_specular) and the program is compiled with LP_GBUFFER_FRESNEL;
+//                       it takes the material-input views' colour location and image unit (7), which
+//                       those views, lighting nothing, never share with it. Without it f90 and the
+//                       shape come from F0 (fresnelEndsOfF0)
 // The layout is chosen by the #defines a program is compiled with (lp::gbufferDefines):
 //   LP_GBUFFER_NORMAL_UNPACKED (default)  RGBA32F  xyz
 //   LP_GBUFFER_NORMAL_SEED_PACKED         RGBA16F  (x, y, shininess); z = sqrt(1 - x² - y²) >= 0
@@ -34,6 +40,7 @@
 #define LP_BIND_SPECULAR 4
 #define LP_BIND_TEXCOORD 5
 #define LP_BIND_HDR 6
+#define LP_BIND_FRESNEL 15
 
 #include "common/depth_reconstruct.glsl"
 #include "common/tonemap.glsl"
@@ -118,6 +125,9 @@ layout(binding = LP_BIND_DIFFUSE) uniform sampler2D uGbufferDiffuse;
 layout(binding = LP_BIND_POSITION) uniform sampler2D uGbufferPosition;
 #endif
 layout(binding = LP_BIND_SPECULAR) uniform sampler2D uGbufferSpecular;
+#ifdef LP_GBUFFER_FRESNEL
+layout(binding = LP_BIND_FRESNEL) uniform sampler2D uGbufferFresnel;
+#endif
 uniform vec4 uGbufferCamera;  // near, far, tan(vertical fov / 2), width / height
 
 float gbufferRawDepth(ivec2 p) { return texelFetch(uGbufferDepth, p, 0).r; }
@@ -181,6 +191,22 @@ float gbufferShininess(ivec2 p) {
     return gbufferDecodeShininess(texelFetch(uGbufferSpecular, p, 0).a);
 #endif
 }
+#ifdef LP_BRDF_GLSL
+// The Fresnel ends at p (common/brdf.glsl, included before this file): the stored f90 and shape where
+// the G-buffer carries them, else derived from F0 as every material without KHR_materials_specular has.
+#ifdef LP_GBUFFER_FRESNEL
+// The stored (f90, shape) and the ends they make with F0.
+vec2 gbufferFresnelStored(ivec2 p) { return texelFetch(uGbufferFresnel, p, 0).rg; }
+FresnelEnds gbufferFresnelEnds(vec3 f0, vec2 stored) { return FresnelEnds(f0, stored.x, vec3(stored.y)); }
+#endif
+FresnelEnds gbufferFresnel(ivec2 p) {
+#ifdef LP_GBUFFER_FRESNEL
+    return gbufferFresnelEnds(gbufferSpecular(p), gbufferFresnelStored(p));
+#else
+    return fresnelEndsOfF0(gbufferSpecular(p));
+#endif
+}
+#endif
 #endif  // LP_GBUFFER_READ
 
 #endif

@@ -170,9 +170,10 @@ float roughnessOfPrefilteredLod(float lod, float maxLod) {
 }
 
 // The split sum's specular reflectance F0 A + f90 B, with f90 as the analytic GGX's Schlick term
-// (shaders/common/brdf.glsl's specularF90: clamp(50 mean(F0), 0, 1)), so that Ks = 0 reflects nothing
-// and the material is exactly Lambertian under IBL as under the suns.
-vec3 splitSumReflectance(vec3 f0, vec2 ab) { return f0 * ab.x + specularF90(f0) * ab.y; }
+// (shaders/common/brdf.glsl's FresnelEnds: clamp(50 mean(F0), 0, 1), or KHR_materials_specular's
+// weight), so that Ks = 0 or a specular weight 0 reflects nothing and the material is exactly
+// Lambertian under IBL as under the suns.
+vec3 splitSumReflectance(FresnelEnds e, vec2 ab) { return e.f0 * ab.x + e.f90 * ab.y; }
 
 // Perceptual roughness for an energy-normalised Blinn-Phong exponent (Walter et al. 2007:
 // alpha = sqrt(2 / (n + 2))); n = 0 gives the roughest lobe, 1. The floor is roughness 0.02

@@ -22,7 +22,7 @@
 // across spilled 16% of the lobe below the horizon: bench/results/mitsuba/2026-11-24_ibl-against-mitsuba/README.md.)
 // Energy (test_ibl's ExtractedLightKeepsTheLobesEnergyAtEveryAngle): within 1% of the point light's at
 // normal incidence; at grazing view (N.L 0.1) +7% for a 2.9-degree source on alpha 0.05, +2% on alpha 0.2.
-vec3 environmentLightSpecular(vec3 N, vec3 V, vec3 D, float sinRadius, vec3 f0, float alpha) {
+vec3 environmentLightSpecular(vec3 N, vec3 V, vec3 D, float sinRadius, FresnelEnds f0, float alpha) {
     float nl = dot(N, D);
     if (nl <= 0.0 || sinRadius <= 0.0) return ggxSpecular(N, V, D, f0, alpha);
     float nv = max(dot(N, V), LP_GGX_MIN_NV);
@@ -51,11 +51,14 @@ vec3 environmentLightSpecular(vec3 N, vec3 V, vec3 D, float sinRadius, vec3 f0, 
     float vh = clamp(dot(V, H), 0.0, 1.0);
     return distribution * visibility * fresnelSchlick(f0, vh) * lpSpecularShown();
 }
+vec3 environmentLightSpecular(vec3 N, vec3 V, vec3 D, float sinRadius, vec3 f0, float alpha) {
+    return environmentLightSpecular(N, V, D, sinRadius, fresnelEndsOfF0(f0), alpha);
+}
 
 // Radiance one source reflects: the diffuse layer as a sun's (ggxDiffuse at the disc's centre; kd
 // (1 - fss) / pi under --brdf blinn-phong) and the specular above, times E N.L at the disc's centre;
 // `ao` darkens the diffuse and `specularAo` the specular, as for the IBL terms.
-vec3 environmentLightRadiance(vec3 N, vec3 V, vec3 D, float sinRadius, vec3 E, vec3 kd, vec3 f0, float alpha,
+vec3 environmentLightRadiance(vec3 N, vec3 V, vec3 D, float sinRadius, vec3 E, vec3 kd, FresnelEnds f0, float alpha,
                               vec3 fss, float ao, float specularAo) {
     float nl = dot(N, D);
     if (nl <= 0.0) return vec3(0.0);

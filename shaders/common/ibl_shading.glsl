@@ -38,7 +38,7 @@ uniform float uIblLightSinRadius[LP_MAX_IBL_LIGHTS];  // sin of the source's ang
 // `occlusion`: the material's; `screenAo`: the ambient-occlusion pass's (1 without it), and whether
 // that pass ran (then the specular term is darkened by the specular occlusion derived from both).
 vec3 lpIblRadiance(samplerCube irradiance, samplerCube prefilteredMap, sampler2D dfg, vec3 N, vec3 V, vec3 kd,
-                   vec3 f0, float shininess, float occlusion, float screenAo, bool aoOn) {
+                   FresnelEnds f0, float shininess, float occlusion, float screenAo, bool aoOn) {
     float NdotV = clamp(dot(N, V), 0.0, 1.0);
     float roughness = roughnessFromShininess(shininess);
     // The prefiltered chain assumes N = V = R; for rough lobes the reflected energy leans from R
@@ -53,7 +53,7 @@ vec3 lpIblRadiance(samplerCube irradiance, samplerCube prefilteredMap, sampler2D
     bool sampled = uSpecularSamples > 0 &&
                    sampledSpecularRadiance(prefilteredMap, uMaxLod, Nw, normalize(uEyeToWorld * V), roughness * roughness,
                                            uSpecularSamples, uSpecularMasking, la, lb);
-    vec3 specular = sampled ? f0 * ab.x * la + specularF90(f0) * ab.y * lb
+    vec3 specular = sampled ? f0.f0 * ab.x * la + f0.f90 * ab.y * lb
                             : textureLod(prefilteredMap, Rw, prefilteredLodFromRoughness(roughness, uMaxLod)).rgb * fss;
     float ao = screenAo * occlusion;
     float specularAo = aoOn ? specularOcclusion(NdotV, ao, roughness * roughness) : occlusion;

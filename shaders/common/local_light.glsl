@@ -37,7 +37,7 @@ const int LP_LOCAL_SPECULAR_UNRANGED = 2; // seed 003's extra mode: specular kee
 
 // Radiance a surface point P (normal N, view direction V) reflects from the light, with the BRDF of
 // uBrdf (common/brdf.glsl): the same as the suns'.
-vec3 lpLocalLightRadiance(vec3 lightPos, float range, vec3 intensity, vec3 P, vec3 N, vec3 V, vec3 kd, vec3 ks,
+vec3 lpLocalLightRadiance(vec3 lightPos, float range, vec3 intensity, vec3 P, vec3 N, vec3 V, vec3 kd, FresnelEnds ks,
                           float shininess, int specularMode) {
     vec3 toLight = lightPos - P;
     float d = length(toLight);
@@ -52,6 +52,10 @@ vec3 lpLocalLightRadiance(vec3 lightPos, float range, vec3 intensity, vec3 P, ve
     if (specularMode != LP_LOCAL_SPECULAR_OFF)
         c += brdfSpecular(uBrdf, N, V, L, ks, shininess) * (specularMode == LP_LOCAL_SPECULAR_UNRANGED ? 1.0 : window);
     return c * e;
+}
+vec3 lpLocalLightRadiance(vec3 lightPos, float range, vec3 intensity, vec3 P, vec3 N, vec3 V, vec3 kd, vec3 ks,
+                          float shininess, int specularMode) {
+    return lpLocalLightRadiance(lightPos, range, intensity, P, N, V, kd, fresnelEndsOfF0(ks), shininess, specularMode);
 }
 
 // Spot cone falloff: smoothstep from cos(outer) (0) to cos(inner) (1) of the cosine of the angle
@@ -108,7 +112,7 @@ float lpSpotShadow(int layer, vec3 P, vec3 N, vec3 L) {
 
 // Radiance from light l (a point light or a spot; with LP_SPOT_SHADOWS shadowed by its map) at P: lpLocalLightRadiance times the
 // cone falloff. Zero exactly outside the cone and past the range, so every method can cut at the bound.
-vec3 lpShadeLocalLight(LpLocalLight l, vec3 P, vec3 N, vec3 V, vec3 kd, vec3 ks, float shininess, int specularMode) {
+vec3 lpShadeLocalLight(LpLocalLight l, vec3 P, vec3 N, vec3 V, vec3 kd, FresnelEnds ks, float shininess, int specularMode) {
     vec3 toLight = l.positionRange.xyz - P;
     // Past the range the window is exactly 0 (the unranged specular mode aside): skip the rest. The
     // tiled and clustered methods' lists hold many lights that reach the tile but not this pixel.

@@ -27,7 +27,7 @@ layout(binding = LP_MATERIAL_BIND_OCCLUSION) uniform sampler2D uOcclusionMap;   
 struct MaterialInputs {
     vec3 diffuse;     // base colour
     float opacity;    // base alpha
-    vec3 specular;    // dielectric F0
+    vec3 specular;    // dielectric F0 (KHR_materials_specular: min(F0_ior specularColor, 1) x specular)
     float metallic;
     float shininess;  // Blinn-Phong exponent of the roughness factor (used without a roughness map)
     float roughness;  // perceptual roughness factor (multiplies the map's g)
@@ -43,6 +43,8 @@ struct MaterialInputs {
     bool alphaMask;
     bool flatLit;  // flat-lit: diffuse alpha 0 tells the light passes to leave it alone
     uint secondUvMaps;  // LP_MAP_* of the maps sampled with the second uv set (glTF texCoord 1)
+    float dielectricF90;  // KHR_materials_specular's specular weight: the dielectric's f90 (with givenF90)
+    bool givenF90;        // KHR_materials_specular: f90 given, the diffuse weighted by 1 - max3(F) (brdf.glsl)
 };
 
 // The interpolated vertex attributes at a pixel, eye space, and its uv sets with their footprints.
@@ -115,6 +117,7 @@ struct MaterialSample {
     vec3 kd;         // the diffuse layer's albedo: base (1 - metallic) (1 - specular) under GGX (brdf.glsl's
                      // materialDiffuseAlbedo), base (1 - metallic) under Blinn-Phong and for flat-lit materials
     vec3 f0;         // mix(specular, base, metallic)
+    FresnelEnds fresnel;  // f0 with Schlick's f90 and the diffuse shape (brdf.glsl's materialFresnelEnds)
     float shininess;
     float occlusion;
     vec4 tangentView;  // the tangent view's value: unit tangent orthogonal to normal x 0.5 + 0.5, handedness 0/1
@@ -185,8 +188,10 @@ MaterialSample materialEvaluate(MaterialInputs m, vec4 base, SurfaceInputs s) {
     vec3 dielectricF0 = clamp(m.specular, 0.0, 1.0);
     o.normal = N;
     // Flat-lit: the colour shown as it is, no BRDF applies.
-    o.kd = m.flatLit ? baseColor * (1.0 - metallic) : materialDiffuseAlbedo(uBrdf, baseColor, metallic, dielectricF0);
-    o.f0 = mix(dielectricF0, baseColor, metallic);
+    o.kd = m.flatLit ? baseColor * (1.0 - metallic)
+                     : materialDiffuseAlbedo(uBrdf, baseColor, metallic, dielectricF0, m.givenF90);
+    o.fresnel = materialFresnelEnds(baseColor, metallic, dielectricF0, clamp(m.dielectricF90, 0.0, 1.0), m.givenF90);
+    o.f0 = o.fresnel.f0;
     if ((uHiddenTerms & LP_HIDE_DIFFUSE) != 0) o.kd = vec3(0.0);
     o.baseColor = baseColor;
     o.metallic = metallic;
@@ -200,6 +205,13 @@ MaterialSample materialEvaluate(MaterialInputs m, vec4 base, SurfaceInputs s) {
     float tn = length(Tn);
     o.tangentView = vec4(tn > 1e-20 ? Tn / tn * 0.5 + 0.5 : vec3(0.5), s.tangent.w < 0.0 ? 0.0 : 1.0);
     return o;
+}
+
+// gbuffer.fresnel's value (common/gbuffer_layout.glsl): f90 and the diffuse shape, one scalar (the
+// shape of a material without KHR_materials_specular is grey but for MTL's coloured Ks below 0.02: its
+// largest channel stands for it).
+vec2 materialFresnelValue(MaterialSample g) {
+    return vec2(g.fresnel.f90, max(max(g.fresnel.diffuseScale.r, g.fresnel.diffuseScale.g), g.fresnel.diffuseScale.b));
 }
 
 // gbuffer.material_input's value: the input uMaterialInput names, linear (base colour) or grey.

@@ -24,11 +24,13 @@ uniform bool uFlat;          // flat-lit material: shown as its diffuse colour, 
 uniform bool uHasBumpMap;
 uniform float uBumpScale;
 uniform uint uSecondUvMaps;  // LP_MAP_* of the maps sampled with the second uv set
+uniform float uSpecularF90;  // KHR_materials_specular's weight: the dielectric's f90 (with uSpecularF90Given)
+uniform bool uSpecularF90Given;
 
 MaterialInputs materialFromUniforms() {
     return MaterialInputs(uDiffuse, uOpacity, uSpecular, uMetallic, uShininess, uRoughness, uBumpScale, uNormalScale,
                           uOcclusionStrength, uAlphaCutoff, uHasDiffuseMap, uHasBumpMap, uHasNormalMap,
-                          uHasMetalRoughMap, uHasOcclusionMap, uAlphaMask, uFlat, uSecondUvMaps);
+                          uHasMetalRoughMap, uHasOcclusionMap, uAlphaMask, uFlat, uSecondUvMaps, uSpecularF90, uSpecularF90Given);
 }
 
 // The surface the forward passes shade.
@@ -36,6 +38,7 @@ struct LpSurface {
     vec3 N;           // shading normal, eye space, unit, facing the viewer's side for two-sided
     vec3 kd;          // diffuse colour (MaterialSample::kd)
     vec3 f0;          // specular colour
+    FresnelEnds fresnel;  // f0 with Schlick's f90 and the diffuse shape (MaterialSample::fresnel)
     float shininess;  // Blinn-Phong exponent (up to the IBL's roughness floor)
     float occlusion;  // the material's ambient occlusion (1: none)
     float alpha;      // base alpha (opacity x texture alpha)
@@ -57,6 +60,7 @@ LpSurface lpEvaluateSurface(vec3 normal, vec4 tangent, UvSets uvs, vec4 vertexCo
     s.N = g.normal;
     s.kd = g.kd;
     s.f0 = g.f0;
+    s.fresnel = g.fresnel;
     s.shininess = g.shininess;
     s.occlusion = g.occlusion;
     s.alpha = clamp(base.a, 0.0, 1.0);

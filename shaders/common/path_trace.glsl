@@ -27,7 +27,8 @@ struct LpPathTraceMaterial {
     vec4 emissionShininess;
     vec4 flags;      // x: flat-lit, y: double-sided, z: alpha mode (0 opaque, 1 MASK, 2 BLEND), w: cutoff
     vec4 maps;       // layers of base colour, metallic-roughness, normal, emissive (-1: none)
-    vec4 mapParams;  // x: normal scale, y: roughness factor, z: sampling bits (pathTraceMapBits)
+    vec4 mapParams;  // x: normal scale, y: roughness factor, z: sampling bits (pathTraceMapBits),
+                     // w: KHR_materials_specular's dielectric f90 (-1: none given)
 };
 
 layout(std430, binding = LP_PT_BIND_NODES) readonly buffer PtNodes { LpBvhNode uPtNodes[]; };

@@ -79,7 +79,7 @@ float shadowVisibility(int slot, vec3 P, vec3 N, float nl, vec2 pixel) {
 
 // Radiance the suns reflect at eye-space P (normal N, view direction V), shadows included; `pixel`
 // (integer pixel coordinates) seeds the filters' per-pixel rotation. Ambient not included.
-vec3 lpSunRadiance(vec3 P, vec3 N, vec3 V, vec3 kd, vec3 ks, float shininess, vec2 pixel) {
+vec3 lpSunRadiance(vec3 P, vec3 N, vec3 V, vec3 kd, FresnelEnds ks, float shininess, vec2 pixel) {
     vec3 c = vec3(0.0);
     for (int i = 0; i < uLightCount; ++i) {
         vec3 L = uLightDirEye[i];

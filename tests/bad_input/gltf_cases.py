@@ -560,3 +560,21 @@ def add_cases(write, case, render_model, C):
     write("morph_weights.gltf", morphed(mesh_weights=(0.5, 0.5)).as_gltf())
     case(21, "gltf_morph_weights_mismatch", render_model("morph_weights.gltf"), "error",
          r"{C}/morph_weights\.gltf: meshes\[0\]\.weights: 2 weights for 1 morph targets \(one a target\)$")
+
+    # ---- 22. material extensions: a value outside the schema is one line naming the field ----------
+    for name, spec, regex in [
+            ("specular_factor", {"specularFactor": 1.5},
+             r"materials\[0\]\.extensions\.KHR_materials_specular\.specularFactor: 1\.5 must be in \[0, 1\]$"),
+            ("specular_colour", {"specularColorFactor": [1, -0.25, 1]},
+             r"materials\[0\]\.extensions\.KHR_materials_specular\.specularColorFactor\[1\]: -0\.25 must be >= 0$"),
+            ("specular_colour_length", {"specularColorFactor": [1, 1]},
+             r"materials\[0\]\.extensions\.KHR_materials_specular\.specularColorFactor: expected an array of 3 numbers, got an array of 2$"),
+            ("specular_factor_string", {"specularFactor": "high"},
+             r"materials\[0\]\.extensions\.KHR_materials_specular\.specularFactor: expected a number, got a string"),
+    ]:
+        g = lit_quad(material=0)
+        g.doc["materials"] = [{"extensions": {"KHR_materials_specular": spec}}]
+        g.doc["extensionsUsed"] = ["KHR_materials_specular"]
+        write(f"{name}.gltf", g.as_gltf())
+        case(22, f"gltf_{name}", render_model(f"{name}.gltf"), "error", r"{C}/" + name + r"\.gltf: " + regex,
+             absent=["{O}/out.png"])

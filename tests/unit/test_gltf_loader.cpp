@@ -587,6 +587,46 @@ TEST(GltfLoader, UnlitAndIorMaterials) {
     expectOneLineError(t.write("ior.gltf", d.dump()), "materials[1].extensions.KHR_materials_ior.ior: 0.5 must be >= 1 (or 0)");
 }
 
+// KHR_materials_specular: the dielectric's F0 = min(F0_ior x specularColorFactor, 1) x specularFactor
+// and its f90 = specularFactor, given (with KHR_materials_ior's F0 when both are there); a material
+// without it keeps f90 derived (no dielectricF90). Textures fall back to the factors with a warning;
+// values outside the schema are one line naming the field.
+TEST(GltfLoader, SpecularExtensionGivesF0AndF90) {
+    TempDir t;
+    nlohmann::json d = texturedQuad(nullptr, nullptr);
+    d["extensionsUsed"] = {"KHR_materials_specular", "KHR_materials_ior"};
+    nlohmann::json tinted = {{"extensions", {{"KHR_materials_specular", {{"specularFactor", 0.5}, {"specularColorFactor", {2.0, 1.0, 30.0}}}}}}};
+    nlohmann::json withIor = {{"extensions",
+                               {{"KHR_materials_specular", {{"specularColorFactor", {0.5, 0.5, 0.5}}, {"specularTexture", {{"index", 0}}}}},
+                                {"KHR_materials_ior", {{"ior", 2.0}}}}}};
+    d["materials"] = {tinted, withIor, nlohmann::json::object()};
+    d["meshes"][0]["primitives"] = {d["meshes"][0]["primitives"][0], d["meshes"][0]["primitives"][0], d["meshes"][0]["primitives"][0]};
+    for (int i = 0; i < 3; ++i) d["meshes"][0]["primitives"][size_t(i)]["material"] = i;
+    MeshLoadReport report;
+    const MeshData m = loadGltf(t.write("specular.gltf", d.dump()), &report).mesh;
+    ASSERT_EQ(m.materials.size(), 3u);
+    EXPECT_NEAR(m.materials[0].specular.x, 0.08 * 0.5, 1e-7);
+    EXPECT_NEAR(m.materials[0].specular.y, 0.04 * 0.5, 1e-7);
+    EXPECT_NEAR(m.materials[0].specular.z, 1.0 * 0.5, 1e-7);  // 1.2 clamped to 1 before the weight
+    ASSERT_TRUE(m.materials[0].dielectricF90.has_value());
+    EXPECT_EQ(*m.materials[0].dielectricF90, 0.5f);
+    EXPECT_NEAR(m.materials[1].specular.x, 0.5 / 9.0, 1e-7);  // ((2 - 1) / (2 + 1))^2 x 0.5
+    EXPECT_EQ(m.materials[1].dielectricF90, std::optional<float>(1.0f));
+    EXPECT_FALSE(m.materials[2].dielectricF90.has_value()) << "no extension: f90 derived from F0";
+    std::string all;
+    for (const auto& w : report.warnings) all += w + "\n";
+    EXPECT_NE(all.find("materials[1].extensions.KHR_materials_specular.specularTexture: not supported; the factors alone are used"),
+              std::string::npos)
+        << all;
+    d["materials"][0]["extensions"]["KHR_materials_specular"]["specularFactor"] = -0.5;
+    expectOneLineError(t.write("weight.gltf", d.dump()),
+                       "materials[0].extensions.KHR_materials_specular.specularFactor: -0.5 must be in [0, 1]");
+    d["materials"][0]["extensions"]["KHR_materials_specular"]["specularFactor"] = 1;
+    d["materials"][0]["extensions"]["KHR_materials_specular"]["specularColorFactor"] = {1, 1, -2};
+    expectOneLineError(t.write("colour.gltf", d.dump()),
+                       "materials[0].extensions.KHR_materials_specular.specularColorFactor[2]: -2 must be >= 0");
+}
+
 TEST(GltfLoader, SceneFileModelsGltf) {
     TempDir t;
     const std::string scene = R"({"models": [{"gltf": ")" + (kData / "lights.gltf").string() +
