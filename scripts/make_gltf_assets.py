@@ -30,6 +30,10 @@ Files (all small):
                            by its node's rotation, its texture embedded
   pbr_spheres.glb          (models/) 2 rows of 5 spheres: dielectric and metal, roughness
                            0.2, 0.4, 0.6, 0.8, 1.0
+  specular_spheres.glb     (models/) 2 rows of 5 dielectric spheres with KHR_materials_specular
+                           (roughness 0.3): specularFactor 0, 0.25, 0.5, 0.75, 1 (bottom), and
+                           specularColorFactor red, green, blue, (2, 1.6, 0.8) and, with
+                           KHR_materials_ior 0 (F0 1), a specular-glossiness gold (top)
 """
 import base64, io, math, os, struct, sys
 
@@ -269,6 +273,29 @@ def pbr_spheres():
     b.save_glb(os.path.join(MODELS, "pbr_spheres.glb"))
 
 
+def specular_spheres():
+    b = Builder()
+    b.gltf.extensionsUsed = ["KHR_materials_specular", "KHR_materials_ior"]
+    P, N, UV, I = sphere()
+    attrs = dict(POSITION=b.floats(P, g.VEC3, bounds=True), NORMAL=b.floats(N, g.VEC3), TEXCOORD_0=b.floats(UV, g.VEC2))
+    idx = b.indices(I, U16)
+    tops = [({"specularColorFactor": [1, 0, 0]}, None), ({"specularColorFactor": [0, 1, 0]}, None),
+            ({"specularColorFactor": [0, 0, 1]}, None), ({"specularColorFactor": [2, 1.6, 0.8]}, None),
+            ({"specularColorFactor": [1.0, 0.77, 0.34]}, {"ior": 0})]
+    for col in range(5):
+        for row in range(2):
+            spec, ior = ({"specularFactor": 0.25 * col}, None) if row == 0 else tops[col]
+            ext = {"KHR_materials_specular": spec}
+            if ior:
+                ext["KHR_materials_ior"] = ior
+            base = [0.05, 0.05, 0.05, 1] if ior else [0.5, 0.5, 0.5, 1]
+            m = b.material(name="specular_%d_%d" % (row, col), extensions=ext,
+                           pbrMetallicRoughness=g.PbrMetallicRoughness(baseColorFactor=base, metallicFactor=0.0, roughnessFactor=0.3))
+            b.node(mesh=b.mesh([g.Primitive(attributes=g.Attributes(**attrs), indices=idx, material=m)]),
+                   translation=[1.2 * col - 2.4, 0.5 + 1.2 * row, 0])
+    b.save_glb(os.path.join(MODELS, "specular_spheres.glb"))
+
+
 def viking_room():
     src = os.path.join(ROOT, "..", "shared", "assets", "viking-room")
     if not os.path.exists(os.path.join(src, "viking_room.obj")):
@@ -315,5 +342,6 @@ alpha_mask()
 emissive()
 lights()
 pbr_spheres()
+specular_spheres()
 viking_room()
 print("wrote", OUT, "and", os.path.join(MODELS, "pbr_spheres.glb"))
