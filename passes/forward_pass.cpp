@@ -110,7 +110,7 @@ void ForwardMaterialUniforms::set(GLuint prog, const GpuMaterial& m) const {
 }
 
 void finishForwardDraws(GLuint fbo) {
-    for (GLuint u = 0; u < 5; ++u) glBindTextureUnit(u, 0);
+    unbindMaterialTextures();
     glBindTextureUnit(kEmissiveUnit, 0);
     unbindForwardLighting();
     glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, 0, 0);

@@ -37,6 +37,7 @@ MaterialUniforms::MaterialUniforms(GLuint prog) {
     occlusionStrength = loc("uOcclusionStrength"); mask = loc("uAlphaMask"); cutoff = loc("uAlphaCutoff");
     twoSided = loc("uDoubleSided"); flat = loc("uFlat"); secondUvMaps = loc("uSecondUvMaps");
     specularF90 = loc("uSpecularF90"); specularF90Given = loc("uSpecularF90Given");
+    hasSpecularMap = loc("uHasSpecularMap"); hasSpecularColorMap = loc("uHasSpecularColorMap");
 }
 
 void MaterialUniforms::set(GLuint prog, const GpuMaterial& m) const {
@@ -61,11 +62,21 @@ void MaterialUniforms::set(GLuint prog, const GpuMaterial& m) const {
     glProgramUniform1ui(prog, secondUvMaps, m.secondUvMaps);
     glProgramUniform1f(prog, specularF90, m.dielectricF90.value_or(1.0f));
     glProgramUniform1i(prog, specularF90Given, m.dielectricF90.has_value());
+    glProgramUniform1i(prog, hasSpecularMap, m.specularMap != 0);
+    glProgramUniform1i(prog, hasSpecularColorMap, m.specularColorMap != 0);
     glBindTextureUnit(0, m.diffuseMap);
     glBindTextureUnit(1, m.bumpMap);
     glBindTextureUnit(2, m.normalMap);
     glBindTextureUnit(3, m.metallicRoughnessMap);
     glBindTextureUnit(4, m.occlusionMap);
+    glBindTextureUnit(kMaterialSpecularUnit, m.specularMap);
+    glBindTextureUnit(kMaterialSpecularColorUnit, m.specularColorMap);
+}
+
+void unbindMaterialTextures() {
+    for (GLuint u = 0; u < 5; ++u) glBindTextureUnit(u, 0);
+    glBindTextureUnit(kMaterialSpecularUnit, 0);
+    glBindTextureUnit(kMaterialSpecularColorUnit, 0);
 }
 
 glm::mat4 gbufferDepthProjection(const FrameData& frame) {
@@ -290,7 +301,7 @@ GBuffer addGeometryPass(fg::FrameGraph& graph, GBufferPass& state, const FrameDa
                 }
             }
             glBindVertexArray(0);
-            for (GLuint u = 0; u < 5; ++u) glBindTextureUnit(u, 0);
+            unbindMaterialTextures();
 
             // The background of every target written (gbuffer_background.comp); none with depth alone.
             const GLuint bound = bindGBufferImages(res, out);

@@ -70,15 +70,21 @@ GBuffer addGBufferPass(fg::FrameGraph& graph, GBufferPass& state, const FrameDat
 // reads a channel (ambient occlusion: depth and normals; a channel view) makes it write that channel.
 GBuffer addDepthPrepass(fg::FrameGraph& graph, GBufferPass& state, const FrameData& frame, GBufferChannels channels);
 
+// The texture units of KHR_materials_specular's maps (common/material.glsl's LP_MATERIAL_BIND_SPECULAR*):
+// above the 0..15 the light passes and the forward passes' lighting use.
+constexpr GLuint kMaterialSpecularUnit = 16, kMaterialSpecularColorUnit = 17;
+// Unbinds the material's texture units (0..4 and the specular maps').
+void unbindMaterialTextures();
+
 // The material uniforms of common/material_uniforms.glsl in a program (the G-buffer raster, the
 // forward passes): their locations, looked up once per program.
 struct GpuMaterial;
 struct MaterialUniforms {
     explicit MaterialUniforms(GLuint prog);
-    void set(GLuint prog, const GpuMaterial& m) const;  // also binds the material's textures (units 0..4)
+    void set(GLuint prog, const GpuMaterial& m) const;  // also binds the material's textures (units 0..4, 16, 17)
     GLint kd, opacity, ks, metallic, shininess, roughness, hasDiffuse, hasBump, bumpScale, hasNormal, normalScale,
         hasMetalRough, hasOcclusion, occlusionStrength, mask, cutoff, twoSided, flat, secondUvMaps, specularF90,
-        specularF90Given;
+        specularF90Given, hasSpecularMap, hasSpecularColorMap;
 };
 
 // common/brdf.glsl's uBrdf, uSpecularMasking and uHiddenTerms (the term views: lp::hiddenShadingTerms)

@@ -126,9 +126,10 @@ void uploadScene(PathTracePass& state, const Scene& scene) {
     if (traced.bvh.depth + 1 > kTraversalStack)
         throw Error("path tracer: the scene's BVH is " + std::to_string(traced.bvh.depth) + " levels deep, above the " +
                     std::to_string(kTraversalStack - 1) + " its traversal stack holds");
-    if (traced.bumpMappedMaterials > 0)
-        logWarn("path tracer: " + std::to_string(traced.bumpMappedMaterials) +
-                " materials have a height (bump) map, which the tracer does not sample");
+    if (traced.unsampledMapMaterials > 0)
+        logWarn("path tracer: " + std::to_string(traced.unsampledMapMaterials) +
+                " materials have a height (bump) map or KHR_materials_specular maps, which the tracer does not sample "
+                "(their factors are used)");
     state.srgbMaps = uploadMapArray(traced.srgbMaps, true, "srgb");
     state.linearMaps = uploadMapArray(traced.linearMaps, false, "linear");
     state.hasMaskedMaterials = traced.hasMaskedMaterials;

@@ -29,12 +29,14 @@ struct MaterialRecord {
 };
 // The maps the resolve samples as their MaterialMapBit (the emissive map is the emission pass's), and
 // three more bits above them (visibility_resolve.comp's LP_MATERIAL_*).
-enum MaterialFlag : uint32_t { AlphaMask = 64, Flat = 128, SpecularF90 = 256 };
-constexpr uint32_t kAnyMap = kDiffuseMapBit | kBumpMapBit | kNormalMapBit | kMetalRoughMapBit | kOcclusionMapBit;
+enum MaterialFlag : uint32_t { AlphaMask = 256, Flat = 512, SpecularF90 = 1024 };
+constexpr uint32_t kAnyMap = kDiffuseMapBit | kBumpMapBit | kNormalMapBit | kMetalRoughMapBit | kOcclusionMapBit |
+                             kSpecularMapBit | kSpecularColorMapBit;
 
 uint32_t materialFlags(const GpuMaterial& m) {
     return (m.diffuseMap ? kDiffuseMapBit : 0u) | (m.bumpMap ? kBumpMapBit : 0u) | (m.normalMap ? kNormalMapBit : 0u) |
            (m.metallicRoughnessMap ? kMetalRoughMapBit : 0u) | (m.occlusionMap ? kOcclusionMapBit : 0u) |
+           (m.specularMap ? kSpecularMapBit : 0u) | (m.specularColorMap ? kSpecularColorMapBit : 0u) |
            (m.alphaMask ? AlphaMask : 0u) | (m.flat ? Flat : 0u) | (m.dielectricF90 ? SpecularF90 : 0u);
 }
 
@@ -254,19 +256,24 @@ GBuffer addVisibilityResolvePass(fg::FrameGraph& graph, VisibilityResolvePass& s
             for (int material : state.texturedMaterials) {
                 const GpuMaterial& m = gpu.materials[size_t(material)];
                 glProgramUniform1i(prog, filter, material);
-                const GLuint maps[5] = {m.diffuseMap, m.bumpMap, m.normalMap, m.metallicRoughnessMap, m.occlusionMap};
-                float anisotropy[5] = {1.0f, 1.0f, 1.0f, 1.0f, 1.0f};
-                for (GLuint u = 0; u < 5; ++u) {
-                    glBindTextureUnit(u, maps[u]);
-                    if (!ownAnisotropy || !maps[u]) continue;
-                    glGetTextureParameterfv(maps[u], GL_TEXTURE_MAX_ANISOTROPY_EXT, &anisotropy[u]);
-                    glBindSampler(u, anisotropy[u] > 1.0f ? isotropicSampler(state, maps[u]) : 0);
+                // material.glsl's maps: units 0..4 and the specular maps' (its uMapAnisotropy order).
+                constexpr int kMaps = 7;
+                const GLuint units[kMaps] = {0, 1, 2, 3, 4, kMaterialSpecularUnit, kMaterialSpecularColorUnit};
+                const GLuint maps[kMaps] = {m.diffuseMap,   m.bumpMap,     m.normalMap,       m.metallicRoughnessMap,
+                                            m.occlusionMap, m.specularMap, m.specularColorMap};
+                float anisotropy[kMaps] = {1.0f, 1.0f, 1.0f, 1.0f, 1.0f, 1.0f, 1.0f};
+                for (int i = 0; i < kMaps; ++i) {
+                    glBindTextureUnit(units[i], maps[i]);
+                    if (!ownAnisotropy || !maps[i]) continue;
+                    glGetTextureParameterfv(maps[i], GL_TEXTURE_MAX_ANISOTROPY_EXT, &anisotropy[i]);
+                    glBindSampler(units[i], anisotropy[i] > 1.0f ? isotropicSampler(state, maps[i]) : 0);
                 }
-                if (ownAnisotropy) glProgramUniform1fv(prog, loc("uMapAnisotropy"), 5, anisotropy);
+                if (ownAnisotropy) glProgramUniform1fv(prog, loc("uMapAnisotropy"), kMaps, anisotropy);
                 glDispatchCompute(groupsX, groupsY, 1);
             }
-            for (GLuint u = 0; u < 5; ++u) glBindSampler(u, 0);
+            for (GLuint u : {0u, 1u, 2u, 3u, 4u, kMaterialSpecularUnit, kMaterialSpecularColorUnit}) glBindSampler(u, 0);
             for (GLuint u = 0; u < 7; ++u) glBindTextureUnit(u, 0);
+            unbindMaterialTextures();
             unbindGBufferImages();
             for (GLuint i = 0; i < 6; ++i) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, 0);
             glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPreviousPositionsBinding, 0);

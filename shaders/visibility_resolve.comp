@@ -63,8 +63,9 @@ struct MaterialRecord {
     vec4 occlusionCutoff;               // occlusion strength, alpha cutoff, KHR_materials_specular's f90
     uvec4 flags;                        // x: LP_MAP_* of its maps and LP_MATERIAL_* bits, y: LP_MAP_* of the maps on the second uv set
 };
-const uint LP_MATERIAL_ALPHA_MASK = 64u, LP_MATERIAL_FLAT = 128u, LP_MATERIAL_SPECULAR_F90 = 256u;
-const uint LP_MATERIAL_ANY_MAP = LP_MAP_DIFFUSE | LP_MAP_BUMP | LP_MAP_NORMAL | LP_MAP_METAL_ROUGH | LP_MAP_OCCLUSION;
+const uint LP_MATERIAL_ALPHA_MASK = 256u, LP_MATERIAL_FLAT = 512u, LP_MATERIAL_SPECULAR_F90 = 1024u;
+const uint LP_MATERIAL_ANY_MAP = LP_MAP_DIFFUSE | LP_MAP_BUMP | LP_MAP_NORMAL | LP_MAP_METAL_ROUGH | LP_MAP_OCCLUSION |
+                                 LP_MAP_SPECULAR | LP_MAP_SPECULAR_COLOR;
 
 layout(std430, binding = 0) readonly buffer Vertices { float vertices[]; };
 layout(std430, binding = 1) readonly buffer Indices { uint indices[]; };
@@ -212,7 +213,8 @@ MaterialInputs materialInputs(MaterialRecord r) {
                           r.shininessRoughnessBumpNormal.z, r.shininessRoughnessBumpNormal.w, r.occlusionCutoff.x,
                           r.occlusionCutoff.y, (f & LP_MAP_DIFFUSE) != 0u, (f & LP_MAP_BUMP) != 0u,
                           (f & LP_MAP_NORMAL) != 0u, (f & LP_MAP_METAL_ROUGH) != 0u, (f & LP_MAP_OCCLUSION) != 0u, (f & LP_MATERIAL_ALPHA_MASK) != 0u,
-                          (f & LP_MATERIAL_FLAT) != 0u, r.flags.y, r.occlusionCutoff.z, (f & LP_MATERIAL_SPECULAR_F90) != 0u);
+                          (f & LP_MATERIAL_FLAT) != 0u, r.flags.y, r.occlusionCutoff.z, (f & LP_MATERIAL_SPECULAR_F90) != 0u,
+                          (f & LP_MAP_SPECULAR) != 0u, (f & LP_MAP_SPECULAR_COLOR) != 0u);
 }
 
 void main() {

@@ -541,6 +541,24 @@ struct Loader {
         bool reads[2] = {false, false};
         int normalSet = 0;
     };
+    // A textureInfo inside a material extension (tinygltf keeps an extension's JSON as a Value; the
+    // schema checked its index and texCoord): index -1 when absent.
+    struct ExtensionTexture {
+        int index = -1, texCoord = 0;
+        tinygltf::ExtensionMap extensions;
+    };
+    static ExtensionTexture extensionTexture(const tinygltf::Material& m, const char* extension, const char* key) {
+        ExtensionTexture t;
+        const auto ext = m.extensions.find(extension);
+        if (ext == m.extensions.end() || !ext->second.Has(key)) return t;
+        const tinygltf::Value& v = ext->second.Get(key);
+        if (v.Has("index") && v.Get("index").IsInt()) t.index = v.Get("index").GetNumberAsInt();
+        if (v.Has("texCoord") && v.Get("texCoord").IsInt()) t.texCoord = v.Get("texCoord").GetNumberAsInt();
+        if (v.Has("extensions") && v.Get("extensions").IsObject())
+            for (const std::string& k : v.Get("extensions").Keys()) t.extensions[k] = v.Get("extensions").Get(k);
+        return t;
+    }
+
     mutable std::map<int, MaterialUvSets> materialUvSetsKnown{};
     MaterialUvSets materialUvSets(int index) const {
         if (index < 0 || size_t(index) >= model.materials.size()) return {};
@@ -553,13 +571,18 @@ struct Loader {
             const tinygltf::ExtensionMap* extensions;
         };
         const auto& pbr = m.pbrMetallicRoughness;
+        const ExtensionTexture specular = extensionTexture(m, "KHR_materials_specular", "specularTexture");
+        const ExtensionTexture specularColor = extensionTexture(m, "KHR_materials_specular", "specularColorTexture");
         const Slot textures[] = {
             {"pbrMetallicRoughness.baseColorTexture", pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, &pbr.baseColorTexture.extensions},
             {"pbrMetallicRoughness.metallicRoughnessTexture", pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
              &pbr.metallicRoughnessTexture.extensions},
             {"normalTexture", m.normalTexture.index, m.normalTexture.texCoord, &m.normalTexture.extensions},
             {"occlusionTexture", m.occlusionTexture.index, m.occlusionTexture.texCoord, &m.occlusionTexture.extensions},
-            {"emissiveTexture", m.emissiveTexture.index, m.emissiveTexture.texCoord, &m.emissiveTexture.extensions}};
+            {"emissiveTexture", m.emissiveTexture.index, m.emissiveTexture.texCoord, &m.emissiveTexture.extensions},
+            {"extensions.KHR_materials_specular.specularTexture", specular.index, specular.texCoord, &specular.extensions},
+            {"extensions.KHR_materials_specular.specularColorTexture", specularColor.index, specularColor.texCoord,
+             &specularColor.extensions}};
         MaterialUvSets out;
         if (m.normalTexture.index >= 0) out.normalSet = uvSetOf(m.normalTexture.texCoord, m.normalTexture.extensions);
         std::string firstName[2];
@@ -637,9 +660,11 @@ struct Loader {
             const double n = ior->second.Get("ior").GetNumberAsDouble();
             out.specular = glm::vec3(float(((n - 1.0) / (n + 1.0)) * ((n - 1.0) / (n + 1.0))));
         }
-        // KHR_materials_specular: the dielectric's F0 = min(F0_ior x specularColorFactor, 1) x specularFactor
-        // and its f90 = specularFactor, given (shaders/common/brdf.glsl's materialFresnelEnds). The
-        // schema refused values outside [0, 1] and colours below 0; the clamps only keep the promise.
+        // KHR_materials_specular: the dielectric's F0 = min(F0_ior x specularColor, 1) x specular and its
+        // f90 = specular, given (shaders/common/brdf.glsl's materialFresnelEnds), each factor times its
+        // texture: `specular` keeps F0_ior x specularColorFactor (clamped with the texture, in the shader)
+        // and dielectricF90 the factor. The schema refused values outside [0, 1] and colours below 0;
+        // the clamps only keep the promise.
         if (auto sp = m.extensions.find("KHR_materials_specular"); sp != m.extensions.end()) {
             const tinygltf::Value& v = sp->second;
             const std::string sw = w + ".extensions.KHR_materials_specular";
@@ -653,10 +678,13 @@ struct Loader {
                     const double x = v.Get("specularColorFactor").Get(c).GetNumberAsDouble();
                     colour[c] = std::isfinite(x) ? std::max(x, 0.0) : 1.0;
                 }
-            out.specular = glm::vec3(glm::min(glm::dvec3(out.specular) * colour, glm::dvec3(1.0)) * weight);
+            out.specular = glm::vec3(glm::dvec3(out.specular) * colour);
             out.dielectricF90 = float(weight);
-            for (const char* map : {"specularTexture", "specularColorTexture"})
-                if (v.Has(map)) warn(sw + "." + map, "not supported; the factors alone are used");
+            const ExtensionTexture weightMap = extensionTexture(m, "KHR_materials_specular", "specularTexture");
+            const ExtensionTexture colourMap = extensionTexture(m, "KHR_materials_specular", "specularColorTexture");
+            out.specularMap = texture(weightMap.index, weightMap.texCoord, weightMap.extensions, sw + ".specularTexture");
+            out.specularColorMap =
+                texture(colourMap.index, colourMap.texCoord, colourMap.extensions, sw + ".specularColorTexture");
         }
         // KHR_materials_unlit: the base colour as it is, untouched by light: lightpass's flat-lit material
         // (which shows base x (1 - metallic)).

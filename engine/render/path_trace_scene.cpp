@@ -48,7 +48,7 @@ PathTraceScene buildPathTraceScene(const Scene& scene) {
         for (const Material& m : mesh.materials) {
             PathTraceMaterial g;
             g.baseOpacity = glm::vec4(glm::clamp(m.diffuse, 0.0f, 1.0f), m.opacity);
-            g.specularMetallic = glm::vec4(glm::clamp(m.specular, 0.0f, 1.0f), std::clamp(m.metallic, 0.0f, 1.0f));
+            g.specularMetallic = glm::vec4(m.dielectricF0Of(), std::clamp(m.metallic, 0.0f, 1.0f));
             g.emissionShininess = glm::vec4(m.emission, materialShininess(m));
             const float alphaMode = m.alphaMode == AlphaMode::Mask ? 1.0f : m.alphaMode == AlphaMode::Blend ? 2.0f : 0.0f;
             g.flags = glm::vec4(m.flat ? 1.0f : 0.0f, m.doubleSided ? 1.0f : 0.0f, alphaMode, m.alphaCutoff);
@@ -61,7 +61,7 @@ PathTraceScene buildPathTraceScene(const Scene& scene) {
             g.mapParams = glm::vec4(m.normalScale, m.roughness, float(pathTraceMapBits(maps)),
                                     m.dielectricF90 ? std::clamp(*m.dielectricF90, 0.0f, 1.0f) : -1.0f);
             out.materials.push_back(g);
-            out.bumpMappedMaterials += m.bumpMap.empty() ? 0 : 1;
+            out.unsampledMapMaterials += (!m.bumpMap.empty() || !m.specularMap.empty() || !m.specularColorMap.empty()) ? 1 : 0;
             out.hasMaskedMaterials = out.hasMaskedMaterials || alphaMode != 0.0f;
         }
         const glm::mat4 toWorld = model.transform;

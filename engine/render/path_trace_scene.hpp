@@ -56,7 +56,9 @@ struct PathTraceScene {
     std::vector<TextureRef> srgbMaps, linearMaps;
     bool hasMaskedMaterials = false;  // MASK or BLEND: rays test the base colour's alpha at hits
     // What the tracer leaves out of lightpass's material model (warned once by the pass).
-    size_t bumpMappedMaterials = 0;  // height maps are not sampled (normal maps are)
+    // Materials with maps the tracer does not sample (their factors are used): height (bump) maps
+    // (normal maps are sampled) and KHR_materials_specular's two maps.
+    size_t unsampledMapMaterials = 0;
 };
 
 // Every model's triangles through its transform (normals by the inverse transpose).

@@ -168,6 +168,8 @@ SceneGpu::SceneGpu(const Scene& scene) {
             if (!m.metallicRoughnessMap.empty()) g.metallicRoughnessMap = texture(m.metallicRoughnessMap, false);
             if (!m.occlusionMap.empty()) g.occlusionMap = texture(m.occlusionMap, false);
             if (!m.emissiveMap.empty()) g.emissiveMap = texture(m.emissiveMap, true);
+            if (!m.specularMap.empty()) g.specularMap = texture(m.specularMap, false);
+            if (!m.specularColorMap.empty()) g.specularColorMap = texture(m.specularColorMap, true);
             g.secondUvMaps = m.secondUvMaps();
             secondUvSet |= g.secondUvMaps != 0;
             materials.push_back(g);

@@ -38,6 +38,8 @@ struct GpuMaterial {
     float opacity = 1.0f;
     glm::vec3 specular{0.04f};  // dielectric F0
     std::optional<float> dielectricF90;  // Material::dielectricF90 (KHR_materials_specular)
+    GLuint specularMap = 0;       // its specularTexture (weight in a), 0: none
+    GLuint specularColorMap = 0;  // its specularColorTexture (sRGB rgb), 0: none
     float metallic = 0.0f;
     float shininess = 32.0f;
     float roughness = 0.5f;

@@ -1,5 +1,6 @@
 #pragma once
 // CPU-side mesh and material data, as loaded from OBJ/MTL or glTF or made by the primitive generators.
+#include <algorithm>
 #include <cstdint>
 #include <filesystem>
 #include <memory>
@@ -62,7 +63,8 @@ enum class AlphaMode { Opaque, Mask, Blend };
 // A material's maps as bits, in the order of their texture units (shaders/common/material.glsl), the
 // emissive map last; the shaders' LP_MAP_* (common/uv_sets.glsl) are the same values.
 enum MaterialMapBit : uint32_t {
-    kDiffuseMapBit = 1, kBumpMapBit = 2, kNormalMapBit = 4, kMetalRoughMapBit = 8, kOcclusionMapBit = 16, kEmissiveMapBit = 32
+    kDiffuseMapBit = 1, kBumpMapBit = 2, kNormalMapBit = 4, kMetalRoughMapBit = 8, kOcclusionMapBit = 16, kEmissiveMapBit = 32,
+    kSpecularMapBit = 64, kSpecularColorMapBit = 128
 };
 
 // The one material model of both formats: metallic-roughness (glTF 2.0), with the dielectric F0
@@ -77,9 +79,13 @@ struct Material {
     glm::vec3 diffuse{0.8f};    // base colour: Kd, or baseColorFactor.rgb
     float opacity = 1.0f;       // baseColorFactor.a, or MTL d (1 - Tr)
     glm::vec3 specular{0.04f};  // dielectric F0: Ks, or 0.04 for glTF (KHR_materials_specular: below)
-    // KHR_materials_specular: the dielectric's f90, its specular weight, given instead of derived from
-    // F0 (shaders/common/brdf.glsl); `specular` then holds min(F0_ior x specularColor, 1) x the weight.
+    // KHR_materials_specular: the dielectric's f90, its specular weight (specularFactor), given instead
+    // of derived from F0 (shaders/common/brdf.glsl); `specular` then holds F0_ior x specularColorFactor,
+    // unclamped: the dielectric's F0 is min(specular x specularColorMap.rgb, 1) x weight x specularMap.a
+    // (dielectricF0Of on the CPU, material.glsl on the GPU).
     std::optional<float> dielectricF90;
+    TextureRef specularMap;       // KHR_materials_specular specularTexture: the weight in a (linear)
+    TextureRef specularColorMap;  // specularColorTexture: F0's colour in rgb (sRGB)
     float metallic = 0.0f;      // metallicFactor (MTL: 0)
     float shininess = 32.0f;    // Ns (Blinn-Phong exponent), clamped to [0, 10000]; glTF: from roughness
     float roughness = 0.5f;     // perceptual roughness: roughnessFactor, or from Ns (used with metallicRoughnessMap)
@@ -102,13 +108,20 @@ struct Material {
     uint32_t secondUvMaps() const {
         const std::pair<const TextureRef*, MaterialMapBit> maps[] = {
             {&diffuseMap, kDiffuseMapBit},         {&bumpMap, kBumpMapBit},           {&normalMap, kNormalMapBit},
-            {&metallicRoughnessMap, kMetalRoughMapBit}, {&occlusionMap, kOcclusionMapBit}, {&emissiveMap, kEmissiveMapBit}};
+            {&metallicRoughnessMap, kMetalRoughMapBit}, {&occlusionMap, kOcclusionMapBit}, {&emissiveMap, kEmissiveMapBit},
+            {&specularMap, kSpecularMapBit}, {&specularColorMap, kSpecularColorMapBit}};
         uint32_t bits = 0;
         for (const auto& [map, bit] : maps)
             if (!map->empty() && map->uvSet == 1) bits |= bit;
         return bits;
     }
     bool samplesUv1() const { return secondUvMaps() != 0; }
+    // The dielectric's F0 of the factors alone (the maps taken as white): Ks, F0_ior, or with
+    // KHR_materials_specular min(F0_ior x colour, 1) x weight.
+    glm::vec3 dielectricF0Of() const {
+        const glm::vec3 f0 = glm::clamp(specular, 0.0f, 1.0f);
+        return dielectricF90 ? f0 * std::clamp(*dielectricF90, 0.0f, 1.0f) : f0;
+    }
 };
 
 // Smallest perceptual roughness a material can have (GGX alpha = r^2 = 4e-4). The G-buffer's

@@ -16,18 +16,26 @@
 #define LP_MATERIAL_BIND_NORMAL 2
 #define LP_MATERIAL_BIND_METAL_ROUGH 3
 #define LP_MATERIAL_BIND_OCCLUSION 4
+// KHR_materials_specular's maps, on units above those the light passes use (lp::kMaterialSpecularUnit);
+// their uMapAnisotropy entries are LP_MATERIAL_SLOT_*.
+#define LP_MATERIAL_BIND_SPECULAR 16
+#define LP_MATERIAL_BIND_SPECULAR_COLOR 17
+#define LP_MATERIAL_SLOT_SPECULAR 5
+#define LP_MATERIAL_SLOT_SPECULAR_COLOR 6
 
 layout(binding = LP_MATERIAL_BIND_DIFFUSE) uniform sampler2D uDiffuseMap;        // sRGB: sampled as linear; alpha x opacity
 layout(binding = LP_MATERIAL_BIND_BUMP) uniform sampler2D uBumpMap;              // height in r
 layout(binding = LP_MATERIAL_BIND_NORMAL) uniform sampler2D uNormalMap;          // tangent-space normal, xyz * 0.5 + 0.5
 layout(binding = LP_MATERIAL_BIND_METAL_ROUGH) uniform sampler2D uMetalRoughMap; // roughness in g, metallic in b
 layout(binding = LP_MATERIAL_BIND_OCCLUSION) uniform sampler2D uOcclusionMap;    // occlusion in r
+layout(binding = LP_MATERIAL_BIND_SPECULAR) uniform sampler2D uSpecularMap;       // KHR_materials_specular weight in a
+layout(binding = LP_MATERIAL_BIND_SPECULAR_COLOR) uniform sampler2D uSpecularColorMap;  // its F0 colour (sRGB: sampled as linear)
 
 // lp::GpuMaterial: metallic-roughness, with the dielectric F0 as a colour (MTL Ks).
 struct MaterialInputs {
     vec3 diffuse;     // base colour
     float opacity;    // base alpha
-    vec3 specular;    // dielectric F0 (KHR_materials_specular: min(F0_ior specularColor, 1) x specular)
+    vec3 specular;    // dielectric F0 (KHR_materials_specular: F0_ior x specularColorFactor, unclamped)
     float metallic;
     float shininess;  // Blinn-Phong exponent of the roughness factor (used without a roughness map)
     float roughness;  // perceptual roughness factor (multiplies the map's g)
@@ -45,6 +53,8 @@ struct MaterialInputs {
     uint secondUvMaps;  // LP_MAP_* of the maps sampled with the second uv set (glTF texCoord 1)
     float dielectricF90;  // KHR_materials_specular's specular weight: the dielectric's f90 (with givenF90)
     bool givenF90;        // KHR_materials_specular: f90 given, the diffuse weighted by 1 - max3(F) (brdf.glsl)
+    bool hasSpecularMap;       // its specularTexture (weight in a)
+    bool hasSpecularColorMap;  // its specularColorTexture
 };
 
 // The interpolated vertex attributes at a pixel, eye space, and its uv sets with their footprints.
@@ -66,7 +76,7 @@ TexCoord materialTexCoord(MaterialInputs m, UvSets uvs, uint bit) {
 // texture is anisotropic and gives that texture's GL_TEXTURE_MAX_ANISOTROPY here (1: none, the map is
 // sampled as it is), per material unit (LP_MATERIAL_BIND_*), with how the driver's raster picks the
 // level (lp::gl::GradientSampling), so both G-buffer modes read the same levels.
-uniform float uMapAnisotropy[5];
+uniform float uMapAnisotropy[7];  // units 0..4, then the LP_MATERIAL_SLOT_* maps
 uniform bool uAnisotropyClampsRatio;  // level of the longer axis / min(ratio, max anisotropy); else the shorter's
 uniform int uAnisotropyLevels;        // lp::gl::AnisotropicLevels: 0 blended, 1 floor, 2 nearest
 uniform bool uAnisotropyPerQuad;      // the level from the quad's first pixel (TexCoord.quadDx, quadDy)
@@ -103,7 +113,8 @@ TexCoord offsetTexCoord(TexCoord t, vec2 offset) {
     return t;
 }
 
-// A map's texel with the footprint the pixel's uv derivatives give; `unit` is its LP_MATERIAL_BIND_*.
+// A map's texel with the footprint the pixel's uv derivatives give; `unit` is its LP_MATERIAL_BIND_*
+// (0..4) or LP_MATERIAL_SLOT_* (the specular maps): its uMapAnisotropy entry.
 vec4 sampleMap(sampler2D map, int unit, TexCoord t) {
 #ifdef LP_ANISOTROPY_FROM_GRADIENTS
     if (uMapAnisotropy[unit] > 1.0) return textureGradAnisotropic(map, t, uMapAnisotropy[unit]);
@@ -186,11 +197,22 @@ MaterialSample materialEvaluate(MaterialInputs m, vec4 base, SurfaceInputs s) {
     MaterialSample o;
     vec3 baseColor = clamp(base.rgb, 0.0, 1.0);
     vec3 dielectricF0 = clamp(m.specular, 0.0, 1.0);
+    float dielectricF90 = clamp(m.dielectricF90, 0.0, 1.0);
+    if (m.givenF90) {
+        // KHR_materials_specular: F0 = min(F0_ior x colour x colour map, 1) x weight x weight map's a.
+        vec3 colour = max(m.specular, vec3(0.0));
+        if (m.hasSpecularColorMap)
+            colour *= sampleMap(uSpecularColorMap, LP_MATERIAL_SLOT_SPECULAR_COLOR,
+                                materialTexCoord(m, s.uvs, LP_MAP_SPECULAR_COLOR)).rgb;
+        if (m.hasSpecularMap)
+            dielectricF90 *= sampleMap(uSpecularMap, LP_MATERIAL_SLOT_SPECULAR, materialTexCoord(m, s.uvs, LP_MAP_SPECULAR)).a;
+        dielectricF0 = min(colour, vec3(1.0)) * dielectricF90;
+    }
     o.normal = N;
     // Flat-lit: the colour shown as it is, no BRDF applies.
     o.kd = m.flatLit ? baseColor * (1.0 - metallic)
                      : materialDiffuseAlbedo(uBrdf, baseColor, metallic, dielectricF0, m.givenF90);
-    o.fresnel = materialFresnelEnds(baseColor, metallic, dielectricF0, clamp(m.dielectricF90, 0.0, 1.0), m.givenF90);
+    o.fresnel = materialFresnelEnds(baseColor, metallic, dielectricF0, dielectricF90, m.givenF90);
     o.f0 = o.fresnel.f0;
     if ((uHiddenTerms & LP_HIDE_DIFFUSE) != 0) o.kd = vec3(0.0);
     o.baseColor = baseColor;

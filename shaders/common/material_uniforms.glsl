@@ -26,11 +26,14 @@ uniform float uBumpScale;
 uniform uint uSecondUvMaps;  // LP_MAP_* of the maps sampled with the second uv set
 uniform float uSpecularF90;  // KHR_materials_specular's weight: the dielectric's f90 (with uSpecularF90Given)
 uniform bool uSpecularF90Given;
+uniform bool uHasSpecularMap;
+uniform bool uHasSpecularColorMap;
 
 MaterialInputs materialFromUniforms() {
     return MaterialInputs(uDiffuse, uOpacity, uSpecular, uMetallic, uShininess, uRoughness, uBumpScale, uNormalScale,
                           uOcclusionStrength, uAlphaCutoff, uHasDiffuseMap, uHasBumpMap, uHasNormalMap,
-                          uHasMetalRoughMap, uHasOcclusionMap, uAlphaMask, uFlat, uSecondUvMaps, uSpecularF90, uSpecularF90Given);
+                          uHasMetalRoughMap, uHasOcclusionMap, uAlphaMask, uFlat, uSecondUvMaps, uSpecularF90, uSpecularF90Given, uHasSpecularMap,
+                          uHasSpecularColorMap);
 }
 
 // The surface the forward passes shade.

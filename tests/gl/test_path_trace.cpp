@@ -277,7 +277,7 @@ TEST(PathTracer, SpecularExtensionMatchesTheReferenceOnASunlitPlane) {
         ModelInstance plane = model("plane", makePlane(1.0f, 4), glm::scale(glm::mat4(1.0f), glm::vec3(20.0f)),
                                     glm::vec3(ref.baseColor), glm::vec3(0.0f));
         for (auto& mat : plane.mesh.materials) {
-            mat.specular = glm::vec3(glm::min(gltfDielectricF0(1.5) * k.colour, glm::dvec3(1.0)) * k.s);
+            mat.specular = glm::vec3(gltfDielectricF0(1.5) * k.colour);  // the loader's: F0_ior x colour
             mat.dielectricF90 = float(k.s);
             mat.metallic = 0.0f;
             mat.roughness = float(ref.roughness);

@@ -588,9 +588,10 @@ TEST(GltfLoader, UnlitAndIorMaterials) {
 }
 
 // KHR_materials_specular: the dielectric's F0 = min(F0_ior x specularColorFactor, 1) x specularFactor
-// and its f90 = specularFactor, given (with KHR_materials_ior's F0 when both are there); a material
-// without it keeps f90 derived (no dielectricF90). Textures fall back to the factors with a warning;
-// values outside the schema are one line naming the field.
+// and its f90 = specularFactor, given (with KHR_materials_ior's F0 when both are there): `specular` keeps
+// F0_ior x colour (the shader clamps it after the colour map), dielectricF0Of() the factors' F0; a
+// material without it keeps f90 derived (no dielectricF90). Its textures are read as maps; values
+// outside the schema are one line naming the field.
 TEST(GltfLoader, SpecularExtensionGivesF0AndF90) {
     TempDir t;
     nlohmann::json d = texturedQuad(nullptr, nullptr);
@@ -605,19 +606,19 @@ TEST(GltfLoader, SpecularExtensionGivesF0AndF90) {
     MeshLoadReport report;
     const MeshData m = loadGltf(t.write("specular.gltf", d.dump()), &report).mesh;
     ASSERT_EQ(m.materials.size(), 3u);
-    EXPECT_NEAR(m.materials[0].specular.x, 0.08 * 0.5, 1e-7);
-    EXPECT_NEAR(m.materials[0].specular.y, 0.04 * 0.5, 1e-7);
-    EXPECT_NEAR(m.materials[0].specular.z, 1.0 * 0.5, 1e-7);  // 1.2 clamped to 1 before the weight
+    EXPECT_NEAR(m.materials[0].specular.z, 0.04 * 30.0, 1e-6);  // unclamped: the colour map comes first
+    EXPECT_NEAR(m.materials[0].dielectricF0Of().x, 0.08 * 0.5, 1e-7);
+    EXPECT_NEAR(m.materials[0].dielectricF0Of().y, 0.04 * 0.5, 1e-7);
+    EXPECT_NEAR(m.materials[0].dielectricF0Of().z, 1.0 * 0.5, 1e-7);  // 1.2 clamped to 1 before the weight
     ASSERT_TRUE(m.materials[0].dielectricF90.has_value());
     EXPECT_EQ(*m.materials[0].dielectricF90, 0.5f);
-    EXPECT_NEAR(m.materials[1].specular.x, 0.5 / 9.0, 1e-7);  // ((2 - 1) / (2 + 1))^2 x 0.5
+    EXPECT_NEAR(m.materials[1].dielectricF0Of().x, 0.5 / 9.0, 1e-7);  // ((2 - 1) / (2 + 1))^2 x 0.5
+    EXPECT_FALSE(m.materials[1].specularMap.empty()) << "specularTexture read";
+    EXPECT_TRUE(m.materials[1].specularColorMap.empty());
+    EXPECT_TRUE(m.materials[0].specularMap.empty());
     EXPECT_EQ(m.materials[1].dielectricF90, std::optional<float>(1.0f));
     EXPECT_FALSE(m.materials[2].dielectricF90.has_value()) << "no extension: f90 derived from F0";
-    std::string all;
-    for (const auto& w : report.warnings) all += w + "\n";
-    EXPECT_NE(all.find("materials[1].extensions.KHR_materials_specular.specularTexture: not supported; the factors alone are used"),
-              std::string::npos)
-        << all;
+    for (const auto& w : report.warnings) EXPECT_EQ(w.find("KHR_materials_specular"), std::string::npos) << w;
     d["materials"][0]["extensions"]["KHR_materials_specular"]["specularFactor"] = -0.5;
     expectOneLineError(t.write("weight.gltf", d.dump()),
                        "materials[0].extensions.KHR_materials_specular.specularFactor: -0.5 must be in [0, 1]");
