@@ -377,6 +377,7 @@ TEST(ViewerPanel, KnobWidgetsComeOnlyFromTheTable) {
         {"\"follow camera path (p)\"", "whether the viewer's camera follows the scene's cameraPath (viewer state, 'p')"},
         {"\"time (s)\"", "the viewer's scene clock, scrubbed (viewer state, not a render setting: app/viewer_clock.hpp)"},
         {"\"speed ([ ])\"", "the viewer's scene clock speed (viewer state, '[' and ']')"},
+        {"\"compare with the path tracer (c)\"", "the viewer's side-by-side with the path tracer (viewer state, 'c')"},
     };
     const std::regex widget(
         R"(ImGui::(Checkbox\w*|RadioButton|Combo|BeginCombo|ListBox|BeginListBox|Slider\w*|VSlider\w*|Drag\w*|Input\w*|ColorEdit\w*|ColorPicker\w*)\s*\()");
