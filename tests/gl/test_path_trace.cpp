@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <unistd.h>
 
@@ -80,14 +81,20 @@ Scene furnaceScene(bool withCube) {
 
 float channel(const ImageF& img, int x, int y, int c) { return img.rgba[(size_t(y) * size_t(img.width) + size_t(x)) * 4 + size_t(c)]; }
 
-// Where a pixel-centre ray of the top-down camera meets y = 0 (row 0 = top, as readHdr gives it).
-glm::dvec3 groundPoint(const Scene& s, int size, int x, int y) {
-    const glm::dmat4 inv = glm::inverse(glm::dmat4(s.camera.projection(1.0f)) * glm::dmat4(s.camera.view()));
-    const double nx = (x + 0.5) / size * 2.0 - 1.0, ny = 1.0 - (y + 0.5) / size * 2.0;
+// Where the centre ray of pixel (x, y) of a width x height image of the scene's camera meets the plane
+// y = planeY (row 0 = top, as readHdr gives it); none where the ray does not reach it.
+std::optional<glm::dvec3> planePoint(const Scene& s, int width, int height, int x, int y, double planeY = 0.0) {
+    const glm::dmat4 inv =
+        glm::inverse(glm::dmat4(s.camera.projection(float(width) / float(height))) * glm::dmat4(s.camera.view()));
+    const double nx = (x + 0.5) / width * 2.0 - 1.0, ny = 1.0 - (y + 0.5) / height * 2.0;
     const glm::dvec4 a = inv * glm::dvec4(nx, ny, -1.0, 1.0), b = inv * glm::dvec4(nx, ny, 1.0, 1.0);
-    const glm::dvec3 p0 = glm::dvec3(a) / a.w, p1 = glm::dvec3(b) / b.w;
-    return p0 + (-p0.y / (p1.y - p0.y)) * (p1 - p0);
+    const glm::dvec3 o = glm::dvec3(a) / a.w, dir = glm::dvec3(b) / b.w - o;
+    if ((planeY - o.y) * dir.y <= 0.0) return std::nullopt;
+    return o + dir * ((planeY - o.y) / dir.y);
 }
+
+// The same for the top-down camera's square image and the ground (it always looks down onto it).
+glm::dvec3 groundPoint(const Scene& s, int size, int x, int y) { return *planePoint(s, size, size, x, y); }
 
 TEST(PathTracer, WhiteConvexObjectInAWhiteFurnaceIsOne) {
     // A convex object: a ray leaving it never meets it again, so each sample is exactly 1 (cosine
@@ -298,16 +305,13 @@ TEST(PathTracer, SpecularExtensionMatchesTheReferenceOnASunlitPlane) {
         Renderer r(s);
         r.render(traced);
         const ImageF hdr = r.readHdr();
-        const glm::dmat4 inv = glm::inverse(glm::dmat4(s.camera.projection(float(w) / float(h))) * glm::dmat4(s.camera.view()));
         const glm::dvec3 eye(s.camera.position), toSun = -glm::normalize(glm::dvec3(sun.direction));
         int compared = 0;
         for (int y = 0; y < h; ++y)
             for (int x = 0; x < w; ++x) {
-                const double nx = (x + 0.5) / w * 2.0 - 1.0, ny = 1.0 - (y + 0.5) / h * 2.0;
-                const glm::dvec4 a = inv * glm::dvec4(nx, ny, -1.0, 1.0), b = inv * glm::dvec4(nx, ny, 1.0, 1.0);
-                const glm::dvec3 o = glm::dvec3(a) / a.w, dir = glm::dvec3(b) / b.w - o;
-                if (dir.y >= 0.0) continue;
-                const glm::dvec3 p = o + dir * (-o.y / dir.y);
+                const std::optional<glm::dvec3> hit = planePoint(s, w, h, x, y);
+                if (!hit) continue;
+                const glm::dvec3 p = *hit;
                 if (std::abs(p.x) > 9.0 || std::abs(p.z) > 9.0) continue;
                 const glm::dvec3 N(0, 1, 0), want = gltfBrdf(ref, N, glm::normalize(eye - p), toSun) * 2.0 * toSun.y;
                 ++compared;
@@ -458,14 +462,9 @@ TEST(PathTracer, BaseColourMapIsSampledAndMaskCutsCameraAndShadowRays) {
     const ImageF hdr = r.readHdr();
     const double grey = std::pow((188.0 / 255.0 + 0.055) / 1.055, 2.4) / M_PI, ground = 1.0 / M_PI;
     int onCard = 0, throughCut = 0;
-    const glm::dmat4 inv = glm::inverse(glm::dmat4(s.camera.projection(1.0f)) * glm::dmat4(s.camera.view()));
     for (int y = 0; y < size; ++y)
         for (int x = 0; x < size; ++x) {
-            // Where the pixel's centre ray crosses the card's height.
-            const double nx = (x + 0.5) / size * 2.0 - 1.0, ny = 1.0 - (y + 0.5) / size * 2.0;
-            const glm::dvec4 a = inv * glm::dvec4(nx, ny, -1.0, 1.0), b = inv * glm::dvec4(nx, ny, 1.0, 1.0);
-            const glm::dvec3 p0 = glm::dvec3(a) / a.w, p1 = glm::dvec3(b) / b.w;
-            const glm::dvec3 p = p0 + ((0.5 - p0.y) / (p1.y - p0.y)) * (p1 - p0);
+            const glm::dvec3 p = *planePoint(s, size, size, x, y, 0.5);  // where it crosses the card's height
             if (std::fabs(p.z) > 0.45 || std::fabs(p.x) > 0.45 || std::fabs(p.x) < 0.1) continue;
             const bool opaque = p.x < 0.0;  // u = x + 0.5 on the card
             const double expected = opaque ? grey : ground;
