@@ -95,12 +95,8 @@ gl::Texture uploadMapArray(const std::vector<TextureRef>& refs, bool srgb, const
     while (size > 64 && uint64_t(size) * uint64_t(size) * 4 * images.size() > kMaxMapBytes) size /= 2;
     const int layers = std::max<int>(1, int(images.size()));
     if (images.empty()) size = 1;
-    const GLenum format = srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8;
-    GLuint id = 0;
-    glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &id);
-    gl::Texture t{gl::Object<gl::ObjectKind::Texture>(id), GL_TEXTURE_2D_ARRAY, format, size, size, 1};
-    glTextureStorage3D(id, 1, format, size, size, layers);
-    gl::label(GL_TEXTURE, id, std::string("path_trace.") + label + "_maps");
+    gl::Texture t = gl::makeTexture2DArray(srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, size, size, layers,
+                                           std::string("path_trace.") + label + "_maps");
     if (images.empty()) {
         const uint8_t white[4] = {255, 255, 255, 255};
         glTextureSubImage3D(t.id(), 0, 0, 0, 0, 1, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, white);
@@ -112,11 +108,7 @@ gl::Texture uploadMapArray(const std::vector<TextureRef>& refs, bool srgb, const
         for (int y = 0; y < size; ++y) std::copy_n(&img.rgba[size_t(size - 1 - y) * row], row, &flipped[size_t(y) * row]);
         glTextureSubImage3D(t.id(), 0, 0, 0, GLint(i), size, size, 1, GL_RGBA, GL_UNSIGNED_BYTE, flipped.data());
     }
-    // Wrapping is the shader's (each map's own sampler wraps); the hardware clamps at the edges.
-    glTextureParameteri(t.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTextureParameteri(t.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTextureParameteri(t.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTextureParameteri(t.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    // Wrapping is the shader's (each map's own sampler wraps); the array clamps at the edges.
     return t;
 }
 

@@ -75,6 +75,22 @@ Texture makeTextureView(const Texture& source, GLenum internalFormat, const std:
 
 GLenum imageFormatOf(GLenum internalFormat) { return internalFormat == GL_SRGB8_ALPHA8 ? GL_RGBA8 : internalFormat; }
 
+Texture makeTexture2DArray(GLenum internalFormat, int width, int height, int layers, const std::string& name) {
+    if (width <= 0 || height <= 0 || layers <= 0) throw Error("texture array '" + name + "': invalid size");
+    GLuint id = 0;
+    glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &id);
+    Texture t{Object<ObjectKind::Texture>(id), GL_TEXTURE_2D_ARRAY, internalFormat, width, height, 1};
+    glTextureStorage3D(id, 1, internalFormat, width, height, layers);
+    glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(id, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(id, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    label(GL_TEXTURE, id, name);
+    checkErrors("creating texture array '" + name + "' (" + std::to_string(width) + "x" + std::to_string(height) + " x " +
+                std::to_string(layers) + " " + formatName(internalFormat) + ")");
+    return t;
+}
+
 Texture makeTextureCube(GLenum internalFormat, int size, int levels, const std::string& name) {
     GLuint id = 0;
     glCreateTextures(GL_TEXTURE_CUBE_MAP, 1, &id);

@@ -76,6 +76,8 @@ void label(GLenum identifier, GLuint id, const std::string& name);
 
 Texture makeTexture2D(GLenum internalFormat, int width, int height, int levels, const std::string& name);
 Texture makeTextureCube(GLenum internalFormat, int size, int levels, const std::string& name);
+// One level of `layers` width x height layers (GL_TEXTURE_2D_ARRAY), linear filtering, clamped.
+Texture makeTexture2DArray(GLenum internalFormat, int width, int height, int layers, const std::string& name);
 // A view of every level of 2D texture `source` (made by makeTexture2D: immutable storage) as
 // `internalFormat`, of the same size class: the same texels read or written as another format.
 Texture makeTextureView(const Texture& source, GLenum internalFormat, const std::string& name);
