@@ -11,25 +11,15 @@ tests/data/gltf/skinned_grid.gltf (256 vertices, the CLI tests) is `make_skinned
 tests/data/gltf/skinned_grid.gltf 256`."""
 import json, math, os, struct, sys
 
+from gltf_buffer import GltfBuffer
+
 out = sys.argv[1]
 vertices = int(sys.argv[2]) if len(sys.argv) > 2 else 102400
 side = max(2, int(math.sqrt(vertices)))
 joints = 8
 length = 4.0  # metres up +Y, the chain's length
-blob = bytearray()
-views, accessors = [], []
-
-
-def add(data, kind, count, component=5126, target=None, minmax=None):
-    while len(blob) % 4:
-        blob.append(0)
-    views.append({"buffer": 0, "byteOffset": len(blob), "byteLength": len(data), **({"target": target} if target else {})})
-    blob.extend(data)
-    a = {"bufferView": len(views) - 1, "componentType": component, "count": count, "type": kind}
-    if minmax:
-        a["min"], a["max"] = minmax
-    accessors.append(a)
-    return len(accessors) - 1
+buffer = GltfBuffer()
+blob, views, accessors, add = buffer.blob, buffer.views, buffer.accessors, buffer.add
 
 
 positions, normals, joint_ids, weights, bump, bump_normals, ripple = [], [], [], [], [], [], []
