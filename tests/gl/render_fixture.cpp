@@ -3,9 +3,20 @@
 #include <cmath>
 #include <sstream>
 
+#include "engine/scene/scene.hpp"
 #include "frame/renderer.hpp"
 
 namespace lp::test {
+
+std::optional<glm::dvec3> planePoint(const Camera& camera, int width, int height, int x, int y, double planeY) {
+    const glm::dmat4 inv =
+        glm::inverse(glm::dmat4(camera.projection(float(width) / float(height))) * glm::dmat4(camera.view()));
+    const double nx = (x + 0.5) / width * 2.0 - 1.0, ny = 1.0 - (y + 0.5) / height * 2.0;
+    const glm::dvec4 a = inv * glm::dvec4(nx, ny, -1.0, 1.0), b = inv * glm::dvec4(nx, ny, 1.0, 1.0);
+    const glm::dvec3 o = glm::dvec3(a) / a.w, dir = glm::dvec3(b) / b.w - o;
+    if ((planeY - o.y) * dir.y <= 0.0) return std::nullopt;
+    return o + dir * ((planeY - o.y) / dir.y);
+}
 
 ImageF renderHdr(Renderer& renderer, RenderSettings settings, float time) {
     settings.keepHdr = true;

@@ -1,8 +1,11 @@
 #pragma once
 // Render-and-read-back for the GL tests: one frame's HDR buffer, and image comparisons whose
 // failure names the texel that differs (not two dumps of float vectors).
+#include <optional>
 #include <string>
 #include <vector>
+
+#include <glm/glm.hpp>
 
 #include <gtest/gtest.h>
 
@@ -10,6 +13,7 @@
 #include "engine/render/settings.hpp"
 
 namespace lp {
+struct Camera;
 struct Scene;
 class Renderer;
 }  // namespace lp
@@ -20,6 +24,11 @@ namespace lp::test {
 // first): by a fresh Renderer of `scene`, or by `renderer` (its caches and history kept).
 ImageF renderHdr(const Scene& scene, RenderSettings settings, float time = 0.0f);
 ImageF renderHdr(Renderer& renderer, RenderSettings settings, float time = 0.0f);
+
+// Where the centre ray of pixel (x, y) of a width x height image from `camera` meets the plane
+// y = planeY (row 0 = top, as readHdr gives it); none where the ray does not reach it: the analytic
+// expectation's surface point of a pixel.
+std::optional<glm::dvec3> planePoint(const Camera& camera, int width, int height, int x, int y, double planeY = 0.0);
 
 // Every value of `a` within `tolerance` of `b` (absolute; 0: equal, NaN never passes). On failure:
 // how many values differ, the first differing texel (x, y from the top, channel) with both values,

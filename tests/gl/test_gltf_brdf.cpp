@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -18,6 +19,7 @@
 #include "engine/scene/primitives.hpp"
 #include "frame/renderer.hpp"
 #include "tests/gl/gl_fixture.hpp"
+#include "tests/gl/render_fixture.hpp"
 
 using namespace lp;
 using lp::test::runGlsl;
@@ -383,18 +385,14 @@ void expectQuadsMatchTheSpecification(const std::vector<QuadCase>& quads, const 
     Scene scene = quadsScene(path.alpha, quads);
     if (edit) edit(scene);
     const ImageF hdr = renderQuads(scene, path, w, h);
-    const glm::dmat4 inv = glm::inverse(glm::dmat4(scene.camera.projection(float(w) / float(h))) *
-                                        glm::dmat4(scene.camera.view()));
     const glm::dvec3 eye(scene.camera.position);
     std::vector<int> checked(quads.size(), 0);
     std::vector<double> worst(quads.size(), 0.0);
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
-            const double nx = (x + 0.5) / w * 2.0 - 1.0, ny = 1.0 - (y + 0.5) / h * 2.0;
-            const glm::dvec4 a = inv * glm::dvec4(nx, ny, -1.0, 1.0), b = inv * glm::dvec4(nx, ny, 1.0, 1.0);
-            const glm::dvec3 o = glm::dvec3(a) / a.w, dir = glm::dvec3(b) / b.w - o;
-            if (dir.y >= 0.0) continue;
-            const glm::dvec3 p = o + dir * (-o.y / dir.y);
+            const std::optional<glm::dvec3> hit = test::planePoint(scene.camera, w, h, x, y);
+            if (!hit) continue;
+            const glm::dvec3 p = *hit;
             for (size_t k = 0; k < quads.size(); ++k) {
                 if (std::abs(p.x - quads[k].centreX) > 0.7 || std::abs(p.z) > 0.7) continue;
                 const glm::dvec3 want = referenceRadiance(quads[k], p, eye);

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,7 @@
 #include "engine/render/gltf_brdf.hpp"
 #include "frame/renderer.hpp"
 #include "tests/gl/gl_fixture.hpp"
+#include "tests/gl/render_fixture.hpp"
 #include "tests/unit/gltf_test_files.hpp"
 
 using namespace lp;
@@ -123,16 +125,12 @@ RenderSettings viewSettings(const Path& path, DebugView view) {
 // Calls f(x, y, p) for each pixel whose ray meets the quad 0.1 inside its edges (p: the world point).
 template <class F>
 int forQuadPixels(const Scene& scene, F f) {
-    const glm::dmat4 inv = glm::inverse(glm::dmat4(scene.camera.projection(float(kWidth) / float(kHeight))) *
-                                        glm::dmat4(scene.camera.view()));
     int n = 0;
     for (int y = 0; y < kHeight; ++y)
         for (int x = 0; x < kWidth; ++x) {
-            const double nx = (x + 0.5) / kWidth * 2.0 - 1.0, ny = 1.0 - (y + 0.5) / kHeight * 2.0;
-            const glm::dvec4 a = inv * glm::dvec4(nx, ny, -1.0, 1.0), b = inv * glm::dvec4(nx, ny, 1.0, 1.0);
-            const glm::dvec3 o = glm::dvec3(a) / a.w, dir = glm::dvec3(b) / b.w - o;
-            if (dir.y >= 0.0) continue;
-            const glm::dvec3 p = o + dir * (-o.y / dir.y);
+            const std::optional<glm::dvec3> hit = test::planePoint(scene.camera, kWidth, kHeight, x, y);
+            if (!hit) continue;
+            const glm::dvec3 p = *hit;
             if (std::abs(p.x) > 0.9 || std::abs(p.z) > 0.9) continue;
             f(x, y, p);
             ++n;

@@ -17,6 +17,7 @@
 #include "engine/scene/primitives.hpp"
 #include "frame/renderer.hpp"
 #include "tests/gl/gl_fixture.hpp"
+#include "tests/gl/render_fixture.hpp"
 
 using namespace lp;
 
@@ -81,20 +82,8 @@ Scene furnaceScene(bool withCube) {
 
 float channel(const ImageF& img, int x, int y, int c) { return img.rgba[(size_t(y) * size_t(img.width) + size_t(x)) * 4 + size_t(c)]; }
 
-// Where the centre ray of pixel (x, y) of a width x height image of the scene's camera meets the plane
-// y = planeY (row 0 = top, as readHdr gives it); none where the ray does not reach it.
-std::optional<glm::dvec3> planePoint(const Scene& s, int width, int height, int x, int y, double planeY = 0.0) {
-    const glm::dmat4 inv =
-        glm::inverse(glm::dmat4(s.camera.projection(float(width) / float(height))) * glm::dmat4(s.camera.view()));
-    const double nx = (x + 0.5) / width * 2.0 - 1.0, ny = 1.0 - (y + 0.5) / height * 2.0;
-    const glm::dvec4 a = inv * glm::dvec4(nx, ny, -1.0, 1.0), b = inv * glm::dvec4(nx, ny, 1.0, 1.0);
-    const glm::dvec3 o = glm::dvec3(a) / a.w, dir = glm::dvec3(b) / b.w - o;
-    if ((planeY - o.y) * dir.y <= 0.0) return std::nullopt;
-    return o + dir * ((planeY - o.y) / dir.y);
-}
-
-// The same for the top-down camera's square image and the ground (it always looks down onto it).
-glm::dvec3 groundPoint(const Scene& s, int size, int x, int y) { return *planePoint(s, size, size, x, y); }
+// Where a pixel-centre ray of the top-down camera's square image meets the ground (it always looks down).
+glm::dvec3 groundPoint(const Scene& s, int size, int x, int y) { return *test::planePoint(s.camera, size, size, x, y); }
 
 TEST(PathTracer, WhiteConvexObjectInAWhiteFurnaceIsOne) {
     // A convex object: a ray leaving it never meets it again, so each sample is exactly 1 (cosine
@@ -309,7 +298,7 @@ TEST(PathTracer, SpecularExtensionMatchesTheReferenceOnASunlitPlane) {
         int compared = 0;
         for (int y = 0; y < h; ++y)
             for (int x = 0; x < w; ++x) {
-                const std::optional<glm::dvec3> hit = planePoint(s, w, h, x, y);
+                const std::optional<glm::dvec3> hit = test::planePoint(s.camera, w, h, x, y);
                 if (!hit) continue;
                 const glm::dvec3 p = *hit;
                 if (std::abs(p.x) > 9.0 || std::abs(p.z) > 9.0) continue;
@@ -464,7 +453,7 @@ TEST(PathTracer, BaseColourMapIsSampledAndMaskCutsCameraAndShadowRays) {
     int onCard = 0, throughCut = 0;
     for (int y = 0; y < size; ++y)
         for (int x = 0; x < size; ++x) {
-            const glm::dvec3 p = *planePoint(s, size, size, x, y, 0.5);  // where it crosses the card's height
+            const glm::dvec3 p = *test::planePoint(s.camera, size, size, x, y, 0.5);  // where it crosses the card's height
             if (std::fabs(p.z) > 0.45 || std::fabs(p.x) > 0.45 || std::fabs(p.x) < 0.1) continue;
             const bool opaque = p.x < 0.0;  // u = x + 0.5 on the card
             const double expected = opaque ? grey : ground;
