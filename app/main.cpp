@@ -192,9 +192,7 @@ int commandReference(const Options& o) {
     requireOutputs({o.out, o.exr});
     Scene scene = loadFromOptions(o);
     RenderSettings settings = settingsFromOptions(o);
-    auto ctx = gl::createHeadlessContext();
-    logInfo("tracing on " + ctx->info().renderer + " (" + ctx->info().platform + ")");
-    requireFrameFitsGpu(*ctx, scene, settings);
+    auto ctx = openHeadlessFor("tracing", scene, settings);
     Renderer renderer(scene);
     renderer.render(settings, float(o.time), false);
     checkDisabledPasses(renderer.graph(), settings.disabledPasses);
@@ -217,9 +215,7 @@ int commandRender(const Options& o) {
     requireOutputs({o.out, o.exr, o.timingsJson});
     Scene scene = loadFromOptions(o);
     RenderSettings settings = settingsFromOptions(o);
-    auto ctx = gl::createHeadlessContext();
-    logInfo("rendering on " + ctx->info().renderer + " (" + ctx->info().platform + ")");
-    requireFrameFitsGpu(*ctx, scene, settings);
+    auto ctx = openHeadlessFor("rendering", scene, settings);
     Renderer renderer(scene);
     double wallMsPerFrame = 0.0;
     try {

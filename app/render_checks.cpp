@@ -3,11 +3,19 @@
 #include <cstdio>
 
 #include "engine/core/error.hpp"
+#include "engine/core/log.hpp"
 #include "engine/gl/handles.hpp"
 #include "engine/gl/limits.hpp"
 #include "frame/frame_builder.hpp"
 
 namespace lp::app {
+
+std::unique_ptr<gl::GpuContext> openHeadlessFor(const std::string& verb, const Scene& scene, const RenderSettings& settings) {
+    auto ctx = gl::createHeadlessContext();
+    logInfo(verb + " on " + ctx->info().renderer + " (" + ctx->info().platform + ")");
+    requireFrameFitsGpu(*ctx, scene, settings);
+    return ctx;
+}
 
 void requireFrameFitsGpu(const gl::GpuContext& context, const Scene& scene, const RenderSettings& settings) {
     const gl::RenderTargetLimits limits = gl::queryRenderTargetLimits(context.isSoftware());

@@ -88,9 +88,7 @@ int runFrameReport(const Options& o, const std::vector<std::string>& args) {
     Scene scene = sceneFromOptions(o);  // a bad scene fails before any folder is made
     const RenderSettings settings = renderSettings(o);
     const fs::path page = prepareOutputFolder(o.out);
-    auto ctx = gl::createHeadlessContext();
-    logInfo("report on " + ctx->info().renderer + " (" + ctx->info().platform + ")");
-    requireFrameFitsGpu(*ctx, scene, settings);
+    auto ctx = openHeadlessFor("report", scene, settings);
     Renderer renderer(scene);
     for (int i = 0; i < warmupFrames(o, o.warmup); ++i) renderer.render(settings, float(warmupTime(o)), false);
     for (int i = 0; i < o.frames; ++i) renderer.render(settings, float(frameTime(o, i)), true);
