@@ -16,6 +16,7 @@
 #include "engine/io/image_io.hpp"
 #include "engine/render/local_lights.hpp"
 #include "engine/render/path_trace_scene.hpp"
+#include "engine/render/scene_gpu.hpp"
 #include "passes/gbuffer_pass.hpp"
 #include "passes/path_trace_environment.hpp"
 
@@ -78,10 +79,7 @@ gl::Texture uploadMapArray(const std::vector<TextureRef>& refs, bool srgb, const
     std::vector<Image8> images;
     int size = 1;
     for (const TextureRef& ref : refs) {
-        const std::filesystem::path path = ref.encoded || !ref.problem.empty() ? std::filesystem::path(ref.key) : ref.path;
-        Image8 img;
-        if (!ref.problem.empty()) img = makeCheckerImage();  // the raster frame warned already
-        else img = ref.encoded ? decodeTextureOrChecker(*ref.encoded, path) : loadTextureOrChecker(path);
+        Image8 img = decodeTextureRef(ref);  // the raster frame warned about an unusable one already
         size = std::max({size, img.width, img.height});
         images.push_back(std::move(img));
     }

@@ -21,18 +21,19 @@ std::string samplerKey(const TextureSampler& s) {
 }
 }  // namespace
 
+Image8 decodeTextureRef(const TextureRef& ref) {
+    if (!ref.problem.empty()) return makeCheckerImage();
+    const std::filesystem::path path = ref.encoded ? std::filesystem::path(ref.key) : ref.path;
+    return ref.encoded ? decodeTextureOrChecker(*ref.encoded, path) : loadTextureOrChecker(path);
+}
+
 GLuint SceneGpu::texture(const TextureRef& ref, bool srgb) {
     const std::string key = ref.key + samplerKey(ref.sampler) + (srgb ? "#srgb" : "#linear");
     auto it = textures_.find(key);
     if (it != textures_.end()) return it->second.id();
     const std::filesystem::path path = ref.encoded || !ref.problem.empty() ? std::filesystem::path(ref.key) : ref.path;
-    Image8 img;
-    if (!ref.problem.empty()) {
-        logWarn(ref.key + ": " + ref.problem + "; using a checker texture");
-        img = makeCheckerImage();
-    } else {
-        img = ref.encoded ? decodeTextureOrChecker(*ref.encoded, path) : loadTextureOrChecker(path);
-    }
+    if (!ref.problem.empty()) logWarn(ref.key + ": " + ref.problem + "; using a checker texture");
+    Image8 img = decodeTextureRef(ref);
     // Over the GPU's texture limits: halved until it fits, with a warning (docs/bad-input.md).
     if (const gl::TextureFit fit = gl::fitTexture(srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, img.width, img.height); fit.halvings > 0) {
         const int w = img.width, h = img.height;

@@ -12,10 +12,16 @@
 #include <glm/glm.hpp>
 
 #include "engine/gl/handles.hpp"
+#include "engine/io/image_io.hpp"
 #include "engine/render/shadow_casters.hpp"
 #include "engine/scene/scene.hpp"
 
 namespace lp {
+
+// A material map's image, decoded (rows top first): its file or embedded bytes, or the checker for a
+// texture known to be unusable (TextureRef::problem; the caller says why) or one that does not load
+// (loadTextureOrChecker warns). The raster's textures and the path tracer's maps read maps this way.
+Image8 decodeTextureRef(const TextureRef& ref);
 
 // A vertex in the GPU's vertex buffers: lp::Vertex up to its second uv set, which a mesh whose
 // materials sample it keeps in a buffer of its own (GpuMesh::uv1). 64 bytes: the visibility resolve
