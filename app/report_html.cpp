@@ -442,7 +442,8 @@ std::vector<SweepRow> parseSweepCsv(const std::string& text, const std::string& 
               frame = column("frame_ms", true), rmse = column("rmse", true), psnr = column("psnr_db", true),
               image = column("image", true), bake = column("ibl_bake_gpu_ms", false),
               source = column("reference_source", false), spp = column("reference_spp", false),
-              noise = column("reference_noise_rmse", false);
+              noise = column("reference_noise_rmse", false), term = column("term", false),
+              surfaceRel = column("surface_relative_error", false), termRel = column("term_relative_error", false);
     std::vector<SweepRow> rows;
     for (int lineNo = 2; std::getline(in, line); ++lineNo) {
         if (line.empty() || line == "\r") continue;
@@ -473,6 +474,11 @@ std::vector<SweepRow> parseSweepCsv(const std::string& text, const std::string& 
         if (source >= 0) r.referenceSource = f[size_t(source)];
         if (spp >= 0) r.referenceSpp = int(number(spp));
         if (noise >= 0) r.referenceNoiseRmse = number(noise);
+        if (term >= 0 && surfaceRel >= 0 && termRel >= 0) {
+            r.term = f[size_t(term)];
+            r.surfaceRelativeError = number(surfaceRel);
+            r.termRelativeError = number(termRel);
+        }
         rows.push_back(r);
     }
     if (rows.empty()) throw Error(label + ": no rows (the sweep wrote no values)");
@@ -589,6 +595,11 @@ std::string sweepReportHtml(const SweepReport& r) {
         if (rows[0].referenceSource == "pathtraced")
             s << "<p class=\"reference\">Reference: the path tracer, " << rows[0].referenceSpp
               << " samples a pixel; its own noise adds about " << general(rows[0].referenceNoiseRmse) << " RMSE.</p>\n";
+        if (!rows[0].term.empty())
+            s << "<p class=\"term\">Relative luminance error over the surfaces: of the frame, and of "
+              << (rows[0].term == "frame" ? std::string("the same (the knob changes every light)")
+                                          : "the scene lit by its " + htmlEscape(rows[0].term) + " alone")
+              << ".</p>\n";
         s << "<div class=\"views\">\n";
         for (size_t i = 0; i < rows.size(); ++i) {
             const SweepImage& img = r.images[index[i]];
@@ -599,6 +610,9 @@ std::string sweepReportHtml(const SweepReport& r) {
               << pngDataUri(img.png) << "\"><figcaption><b>" << i << ": " << htmlEscape(rows[i].value) << "</b>"
               << (rows[i].reference ? " (reference)" : "") << ", " << num(rows[i].frameMs, 3) << " ms"
               << (rows[i].iblBakeMs > 0 ? ", bake " + num(rows[i].iblBakeMs, 3) + " ms" : "") << ", RMSE " << general(rows[i].rmse)
+              << (rows[i].term.empty() ? ""
+                                       : ", surfaces " + general(100.0 * rows[i].surfaceRelativeError) + "%, " +
+                                             htmlEscape(rows[i].term) + " " + general(100.0 * rows[i].termRelativeError) + "%")
               << (pts[i].front ? ", on the front" : "") << "</figcaption></figure>\n";
         }
         s << "</div>\n";

@@ -131,6 +131,11 @@ struct SweepRow {
     std::string referenceSource = "best";
     int referenceSpp = 0;
     double referenceNoiseRmse = 0;
+    // Relative luminance error over the pixels that see a surface, of the frame and of the knob's light
+    // term alone ("suns", "environment", "local-lights"; "frame": the frame's); empty term: a CSV
+    // without the columns.
+    std::string term;
+    double surfaceRelativeError = 0, termRelativeError = 0;
 };
 // Throws lp::Error "<label>: line N: ..." for a missing column or a value that is not a number.
 std::vector<SweepRow> parseSweepCsv(const std::string& text, const std::string& label);

@@ -15,6 +15,7 @@
 #include "engine/gl/context.hpp"
 #include "engine/io/image_io.hpp"
 #include "engine/render/image_metrics.hpp"
+#include "engine/render/surface_mask.hpp"
 #include "frame/knobs.hpp"
 #include "passes/path_trace_pass.hpp"
 #include "frame/renderer.hpp"
@@ -30,10 +31,18 @@ struct Row {
     std::map<std::string, double> passMs;
     std::vector<std::string> passOrder;
     ImageError error;
+    ImageError surface;  // the same frame over the pixels that see a surface
+    ImageError term;     // the knob's light term alone (frame/light_terms.hpp), over those pixels
     bool reference = false;
 };
 
 std::string csvEscape(const std::string& s) { return s.find(',') == std::string::npos ? s : "\"" + s + "\""; }
+
+const Knob* findKnobIn(const std::vector<Knob>& knobs, const std::string& name) {
+    for (const Knob& k : knobs)
+        if (k.name == name) return &k;
+    return nullptr;
+}
 
 }  // namespace
 
@@ -75,6 +84,29 @@ int runSweep(const Options& o) {
     for (const Knob& knob : knobs)
         for (const KnobValue& v : knob.values) requireFrameFitsGpu(*ctx, scene, settingsFor(v));
     Renderer renderer(scene);
+    // The pixels that see a surface, at the camera of the last timed frame (the one every error is
+    // taken on): the errors over surfaces leave the background out.
+    const std::vector<uint8_t> mask = surfaceMask(scene, scene.cameraAt(frameTime(o, o.frames - 1)), o.width, o.height);
+    // Per light term a knob isolates: the scene lit by it alone and a renderer of its own (made when
+    // a knob first asks).
+    struct TermRenderer {
+        std::unique_ptr<Scene> scene;
+        std::unique_ptr<Renderer> renderer;
+    };
+    std::map<LightTerm, TermRenderer> termRenderers;
+    auto termRendererFor = [&](LightTerm term, const RenderSettings& settings) -> Renderer& {
+        TermRenderer& t = termRenderers[term];
+        if (!t.renderer) {
+            t.scene = std::make_unique<Scene>(sceneLitBy(scene, settings, term));
+            t.renderer = std::make_unique<Renderer>(*t.scene, renderer.shaders());
+        }
+        return *t.renderer;
+    };
+    // A frame of `s` on `r` as a value's timed frames end (warm-up, then the timed frames untimed).
+    auto renderUntimed = [&](Renderer& r, const RenderSettings& s) {
+        for (int i = 0; i < std::max(o.warmup, 1); ++i) r.render(s, float(warmupTime(o)), false);
+        for (int i = 0; i < o.frames; ++i) r.render(s, float(frameTime(o, i)), false);
+    };
     // --time T / --fps F as for render: warm-up frames at T - 1 / F (at T without --fps), timed frame
     // i at T + i / F (a moving camera or orbit moves through the timed frames; temporal methods carry
     // their history along).
@@ -115,6 +147,19 @@ int runSweep(const Options& o) {
         const ImageF reference = renderer.readHdr();
         outputs.addPng(dir / "reference.png", renderer.readDisplay());
         outputs.addExr(dir / "reference.exr", reference);
+        // The same reference in the scene lit by the knob's term alone.
+        Renderer* termRenderer = knob.term == LightTerm::Frame ? nullptr : &termRendererFor(knob.term, refSettings);
+        ImageF termReference;
+        if (termRenderer) {
+            if (pathTraced) {
+                termRenderer->render(refSettings, float(frameTime(o, o.frames - 1)), false);
+                glFinish();
+            } else {
+                renderUntimed(*termRenderer, refSettings);
+            }
+            termReference = termRenderer->readHdr();
+            outputs.addExr(dir / "reference_term.exr", termReference);
+        }
 
         const size_t steps = knob.values.size();
         for (size_t vi = 0; vi < steps; ++vi) {
@@ -142,7 +187,14 @@ int runSweep(const Options& o) {
                 row.passMs["ibl_bake_gpu"] = bakeMs;
                 addColumn("ibl_bake_gpu");
             }
-            row.error = compareHdr(renderer.readHdr(), reference);
+            const ImageF image = renderer.readHdr();
+            row.error = compareHdr(image, reference);
+            row.surface = compareHdr(image, reference, &mask);
+            row.term = row.surface;
+            if (termRenderer) {
+                renderUntimed(*termRenderer, s);
+                row.term = compareHdr(termRenderer->readHdr(), termReference, &mask);
+            }
             std::string file = std::to_string(vi) + ".png";
             outputs.addPng(dir / file, renderer.readDisplay());
             rows.push_back(row);
@@ -157,7 +209,8 @@ int runSweep(const Options& o) {
         f << "knob,value,index,reference,frame_ms";
         for (const auto& p : allPasses)
             if (p != "frame") f << "," << p << "_ms";
-        f << ",rmse,psnr_db,max_abs,non_finite,image,reference_source,reference_spp,reference_noise_rmse\n";
+        f << ",rmse,psnr_db,max_abs,non_finite,image,reference_source,reference_spp,reference_noise_rmse"
+          << ",surface_pixels,surface_rmse,surface_relative_error,term,term_rmse,term_relative_error\n";
         std::map<std::string, int> index;
         for (const auto& r : rows) {
             int i = index[r.knob]++;
@@ -171,7 +224,12 @@ int runSweep(const Options& o) {
             const auto noise = referenceNoise.find(r.knob);
             f << "," << enumName(kSweepReferenceNames, o.sweepReference) << ","
               << (noise == referenceNoise.end() ? 0 : noise->second.samples) << ","
-              << (noise == referenceNoise.end() ? 0.0 : noise->second.rmsStandardError) << "\n";
+              << (noise == referenceNoise.end() ? 0.0 : noise->second.rmsStandardError);
+            // Over the surfaces, and the knob's term alone over them (the frame's figures for a Frame knob).
+            const Knob* k = findKnobIn(knobs, r.knob);
+            f << "," << r.surface.pixels << "," << r.surface.rmse << "," << r.surface.relativeError << ","
+              << enumName(kLightTermNames, k ? k->term : LightTerm::Frame) << "," << r.term.rmse << ","
+              << r.term.relativeError << "\n";
         }
         outputs.add(outDir / "sweep.csv", f.str());
     }
@@ -181,7 +239,9 @@ int runSweep(const Options& o) {
        << ctx->info().renderer << "\n\nGPU ms are medians of " << o.frames << " frames after " << o.warmup
        << " warm-up frames; errors are against "
        << (pathTraced ? "the path tracer at each knob's best value's settings" : "each knob's best value")
-       << ", on the linear HDR buffer (PSNR peak 1).\n";
+       << ", on the linear HDR buffer (PSNR peak 1). `surface` is the error over the pixels that see a surface "
+          "(Σ|ΔY| / ΣY of the reference's luminance Y); `term` the same with the scene lit by the knob's light "
+          "term alone (suns, environment or local lights; the frame for a knob of every light).\n";
     for (const Knob& k : knobs) {
         md << "\n## " << k.name << "\n\n" << k.description << "\n\n";
         if (const auto noise = referenceNoise.find(k.name); noise != referenceNoise.end()) {
@@ -192,13 +252,15 @@ int runSweep(const Options& o) {
                           noise->second.samples, noise->second.rmsStandardError, 100.0 * noise->second.meanRelativeStandardError);
             md << line;
         }
-        md << "| value | frame ms | RMSE | PSNR dB |\n| --- | --- | --- | --- |\n";
+        md << "Term: " << enumName(kLightTermNames, k.term) << ".\n\n";
+        md << "| value | frame ms | RMSE | PSNR dB | surface rel. error | term rel. error |\n| --- | --- | --- | --- | --- | --- |\n";
         for (const auto& r : rows) {
             if (r.knob != k.name) continue;
             char line[256];
-            std::snprintf(line, sizeof line, "| %s%s | %.4f | %.3g | %s |\n", r.value.c_str(), r.reference ? " (reference)" : "",
-                          r.passMs.count("frame") ? r.passMs.at("frame") : 0.0, r.error.rmse,
-                          std::isinf(r.error.psnr) ? "inf" : std::to_string(r.error.psnr).substr(0, 6).c_str());
+            std::snprintf(line, sizeof line, "| %s%s | %.4f | %.3g | %s | %.2f%% | %.2f%% |\n", r.value.c_str(),
+                          r.reference ? " (reference)" : "", r.passMs.count("frame") ? r.passMs.at("frame") : 0.0,
+                          r.error.rmse, std::isinf(r.error.psnr) ? "inf" : std::to_string(r.error.psnr).substr(0, 6).c_str(),
+                          100.0 * r.surface.relativeError, 100.0 * r.term.relativeError);
             md << line;
         }
     }

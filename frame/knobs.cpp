@@ -181,6 +181,7 @@ std::vector<KnobEntry> makeKnobTable() {
         k.panel = {PanelSection::Shadows, PanelWidget::PowersOfTwo, "map size", ""};
         k.sweep = {{"512", "1024", "2048", "4096"}, true,
                    "texels per side of each cascade's shadow map (--shadow-size); 4096 is the reference", shadowsOn};
+        k.sweep.term = LightTerm::Suns;
         t.push_back(std::move(k));
     }
     {
@@ -194,6 +195,7 @@ std::vector<KnobEntry> makeKnobTable() {
                    "shadow filter (--pcf): off, 3x3, 5x5, poisson (reference). Not monotone: the filters "
                    "differ in penumbra shape, not only in sample count",
                    shadowsOn};
+        k.sweep.term = LightTerm::Suns;
         t.push_back(std::move(k));
     }
     {
@@ -205,6 +207,7 @@ std::vector<KnobEntry> makeKnobTable() {
                    "cascades per shadowed light (--shadow-cascades), 4 is the reference. Not monotone: each "
                    "count splits the depth range differently",
                    shadowsOn};
+        k.sweep.term = LightTerm::Suns;
         t.push_back(std::move(k));
     }
     {
@@ -309,6 +312,7 @@ std::vector<KnobEntry> makeKnobTable() {
                    "that much less resolution, fewer redraws with --shadow-cache on a moving camera; 0 (a one-texel grid) "
                    "is the reference",
                    shadowsOn};
+        k.sweep.term = LightTerm::Suns;
         t.push_back(std::move(k));
     }
     {
@@ -401,6 +405,7 @@ std::vector<KnobEntry> makeKnobTable() {
         k.help = "GGX samples per prefiltered texel";
         k.sweep = {{"64", "256", "1024", "4096"}, true,
                    "GGX samples per prefiltered texel (--ibl-samples, with --ibl); 4096 is the reference", iblOn};
+        k.sweep.term = LightTerm::Environment;
         t.push_back(std::move(k));
     }
     {
@@ -414,6 +419,7 @@ std::vector<KnobEntry> makeKnobTable() {
                        s.environment.ibl = true;
                        s.environment.specularSize = int(v) / 2;
                    }};
+        k.sweep.term = LightTerm::Environment;
         t.push_back(std::move(k));
     }
     {
@@ -425,6 +431,7 @@ std::vector<KnobEntry> makeKnobTable() {
                    "diffuse IBL (--ibl-diffuse, with --ibl): 9 SH coefficients, or the cosine-sampled "
                    "irradiance cube (reference)",
                    iblOn};
+        k.sweep.term = LightTerm::Environment;
         t.push_back(std::move(k));
     }
     {
@@ -439,6 +446,7 @@ std::vector<KnobEntry> makeKnobTable() {
                    "specular IBL (--ibl-specular, with --ibl): the split sum, or per-pixel GGX samples of the "
                    "prefiltered chain (reference)",
                    iblOn};
+        k.sweep.term = LightTerm::Environment;
         t.push_back(std::move(k));
     }
     {
@@ -455,6 +463,7 @@ std::vector<KnobEntry> makeKnobTable() {
                        s.environment.ibl = true;
                        s.environment.specular = IblSpecular::Sampled;
                    }};
+        k.sweep.term = LightTerm::Environment;
         t.push_back(std::move(k));
     }
     {
@@ -468,6 +477,7 @@ std::vector<KnobEntry> makeKnobTable() {
                    "sources taken out of the map and lit analytically (--ibl-extract-lights, with --ibl): "
                    "0 leaves a small lamp to the prefilter",
                    iblOn};
+        k.sweep.term = LightTerm::Environment;
         t.push_back(std::move(k));
     }
     {
@@ -533,6 +543,7 @@ std::vector<KnobEntry> makeKnobTable() {
                    "AO search radius in metres (--ao-radius, AO on): occluders further away are ignored; 2 m "
                    "is the reference. Not monotone: sampling gets sparser as the radius grows",
                    aoOn};
+        k.sweep.term = LightTerm::Environment;
         t.push_back(std::move(k));
     }
     {
@@ -542,6 +553,7 @@ std::vector<KnobEntry> makeKnobTable() {
         k.panel = {PanelSection::Lighting, PanelWidget::Slider, "AO directions", ""};
         k.sweep = {{"1", "2", "4", "8"}, true,
                    "AO slice directions per pixel (--ao-directions, AO on); 8 is the reference", aoOn};
+        k.sweep.term = LightTerm::Environment;
         t.push_back(std::move(k));
     }
     {
@@ -551,6 +563,7 @@ std::vector<KnobEntry> makeKnobTable() {
         k.panel = {PanelSection::Lighting, PanelWidget::Slider, "AO steps", ""};
         k.sweep = {{"2", "4", "8", "16"}, true, "AO samples per side of a slice (--ao-steps, AO on); 16 is the reference",
                    aoOn};
+        k.sweep.term = LightTerm::Environment;
         t.push_back(std::move(k));
     }
     {
@@ -563,6 +576,7 @@ std::vector<KnobEntry> makeKnobTable() {
         k.sweep = {{"half", "full"}, true, "AO resolution (--ao-resolution, AO on): half size upsampled by depth, "
                                            "or full size (reference)",
                    aoOn};
+        k.sweep.term = LightTerm::Environment;
         t.push_back(std::move(k));
     }
     {
@@ -761,6 +775,7 @@ std::vector<KnobEntry> makeKnobTable() {
                    "local-light method (--local-lights): tiled, clustered, volumes, scissor, fullscreen (reference). The "
                    "same image by design: errors should be ~0 (fp16 sums in different orders), so not monotone",
                    nullptr};
+        k.sweep.term = LightTerm::LocalLights;
         t.push_back(std::move(k));
     }
     {
@@ -817,6 +832,7 @@ std::vector<KnobEntry> makeKnobTable() {
                    "each local light's range x this (--light-range-scale): lights stop sooner, fewer pixels per "
                    "light; 1 (the full range) is the reference",
                    nullptr};
+        k.sweep.term = LightTerm::LocalLights;
         t.push_back(std::move(k));
     }
 
@@ -830,6 +846,7 @@ std::vector<KnobEntry> makeKnobTable() {
                    "froxels on): smaller tiles, shorter light lists, more froxels to build; the same image by design, "
                    "so not monotone",
                    sweepClusteredKernel};
+        k.sweep.term = LightTerm::LocalLights;
         t.push_back(std::move(k));
     }
     {
@@ -842,6 +859,7 @@ std::vector<KnobEntry> makeKnobTable() {
                    "--clustered-kernel froxels on: the kernel that uses them, at any light count): the same image by "
                    "design, so not monotone",
                    sweepClusteredKernel};
+        k.sweep.term = LightTerm::LocalLights;
         t.push_back(std::move(k));
     }
     {
@@ -1003,7 +1021,7 @@ std::vector<Knob> makeSweepKnobs() {
     std::vector<Knob> knobs;
     for (const KnobEntry& e : knobTable()) {
         if (e.sweep.values.empty()) continue;
-        Knob k{e.name, e.sweep.description, {}, e.sweep.monotone};
+        Knob k{e.name, e.sweep.description, {}, e.sweep.monotone, e.sweep.term};
         const KnobEntry* entry = &e;  // the table is a function-local static: the address stays
         for (const std::string& text : e.sweep.values) {
             const double v = parseKnobValue(e, "sweep " + e.name, text);
@@ -1170,8 +1188,9 @@ std::optional<Knob> knobByName(const std::string& spec) {
         start = plus + 1;
     }
     if (parts.size() == 1) return *parts[0];
-    Knob product{spec, "every combination of", {KnobValue{"", [](RenderSettings&) {}}}, false};
+    Knob product{spec, "every combination of", {KnobValue{"", [](RenderSettings&) {}}}, false, parts.front()->term};
     for (const Knob* k : parts) {
+        if (k->term != product.term) product.term = LightTerm::Frame;  // two terms: the frame holds both
         product.description += (k == parts.front() ? " " : " x ") + k->name;
         std::vector<KnobValue> combined;
         for (const KnobValue& a : product.values)

@@ -13,6 +13,7 @@
 
 #include "engine/render/settings.hpp"
 #include "engine/scene/scene.hpp"
+#include "frame/light_terms.hpp"
 
 namespace lp {
 
@@ -71,6 +72,8 @@ struct KnobSweep {
     std::string description;
     // What a swept value switches on besides the field (shadows, IBL, bloom), given the value.
     std::function<void(RenderSettings&, double)> alsoSet;
+    // The light the knob changes: the sweep also measures it alone (frame/light_terms.hpp).
+    LightTerm term = LightTerm::Frame;
 };
 
 struct KnobEntry {
@@ -113,6 +116,7 @@ struct Knob {
     std::string description;
     std::vector<KnobValue> values;  // cheapest first; the last is the reference
     bool monotone = true;           // error should fall as the value rises (tests check it)
+    LightTerm term = LightTerm::Frame;  // the light it changes; a product of knobs of two terms: Frame
 };
 
 const std::vector<Knob>& allKnobs();

@@ -8,8 +8,12 @@ With --max-rmse E, every row's HDR RMSE must be at most E (a knob that gives the
 With --timed-in VALUE:COLUMN, that value's row must have COLUMN > 0 (a pass only that value runs).
 With --pathtraced SPP (sweep --reference pathtraced --spp SPP): no row is the reference, every row has
 an error above zero, the CSV and sweep.md record the path tracer's samples and its noise (> 0).
+With --term T: every row names the knob's light term T, its errors over the surfaces and of the term
+alone are finite and at least 0 (0 for the reference against its own best value), and for --term frame
+the term's error is the surface error. With --term-below-surface: every row's term error is below its
+surface error (the term alone leaves out what the knob does not change).
   check_sweep.py OUTDIR STDERR_FILE KNOB VALUES [--monotone] [--positive COLUMN] [--max-rmse E] [--timed-in V:C]
-                 [--pathtraced SPP]"""
+                 [--pathtraced SPP] [--term T] [--term-below-surface]"""
 import csv
 import re
 import os
@@ -21,13 +25,16 @@ positive = [sys.argv[i + 1] for i in range(5, len(sys.argv) - 1) if sys.argv[i] 
 max_rmse = [float(sys.argv[i + 1]) for i in range(5, len(sys.argv) - 1) if sys.argv[i] == "--max-rmse"]
 timed_in = [sys.argv[i + 1].split(":", 1) for i in range(5, len(sys.argv) - 1) if sys.argv[i] == "--timed-in"]
 pathtraced = [int(sys.argv[i + 1]) for i in range(5, len(sys.argv) - 1) if sys.argv[i] == "--pathtraced"]
+term = [sys.argv[i + 1] for i in range(5, len(sys.argv) - 1) if sys.argv[i] == "--term"]
+term_below_surface = "--term-below-surface" in sys.argv[5:]
 
 with open(os.path.join(out_dir, "sweep.csv")) as f:
     reader = csv.DictReader(f)
     columns = reader.fieldnames
     rows = [r for r in reader if r["knob"] == knob]
 expected = ["knob", "value", "index", "reference", "frame_ms", "rmse", "psnr_db", "max_abs", "non_finite", "image",
-            "reference_source", "reference_spp", "reference_noise_rmse"]
+            "reference_source", "reference_spp", "reference_noise_rmse", "surface_pixels", "surface_rmse",
+            "surface_relative_error", "term", "term_rmse", "term_relative_error"]
 missing = [c for c in expected if c not in columns]
 assert not missing, f"columns missing: {missing} (have {columns})"
 assert any(c.endswith("_ms") and c != "frame_ms" for c in columns), f"no per-pass time columns: {columns}"
@@ -51,6 +58,21 @@ for r in rows:
     assert int(r["non_finite"]) == 0, f"{r['value']}: {r['non_finite']} non-finite pixels"
     assert float(r["frame_ms"]) > 0.0, f"{r['value']}: no frame time"
     assert os.path.isfile(os.path.join(out_dir, r["image"])), f"missing {r['image']}"
+for r in rows:
+    assert int(r["surface_pixels"]) > 0, f"{r['value']}: no pixel sees a surface"
+    for c in ("surface_rmse", "surface_relative_error", "term_rmse", "term_relative_error"):
+        assert 0.0 <= float(r[c]) < float("inf"), f"{r['value']}: {c} = {r[c]}"
+for t in term:
+    assert all(r["term"] == t for r in rows), f"terms {[r['term'] for r in rows]}, expected {t}"
+    if t == "frame":
+        assert all(r["term_relative_error"] == r["surface_relative_error"] for r in rows), "a frame knob's term is the frame"
+    if not pathtraced:
+        assert float(rows[-1]["term_relative_error"]) == 0.0 and float(rows[-1]["surface_relative_error"]) == 0.0, \
+            "the reference's own term and surface errors are not 0"
+if term_below_surface:
+    for r in rows:
+        assert float(r["term_relative_error"]) < float(r["surface_relative_error"]), \
+            f"{r['value']}: term error {r['term_relative_error']} not below the surface error {r['surface_relative_error']}"
 for column in positive:
     assert column in columns, f"no {column} column (have {columns})"
     for r in rows:

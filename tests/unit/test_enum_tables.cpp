@@ -9,6 +9,7 @@
 #include "app/cli.hpp"
 #include "engine/post/post_config.hpp"
 #include "engine/render/settings.hpp"
+#include "frame/light_terms.hpp"
 
 using namespace lp;
 
@@ -59,6 +60,7 @@ TEST(EnumTables, EveryTableHoldsEachValueOnceUnderOneName) {
     expectCompleteTable(kRenderPathNames, RenderPath::PathTraced, "render path");
     expectCompleteTable(kViewNames, DebugView::TermSpecular, "view");
     expectCompleteTable(app::kSweepReferenceNames, app::SweepReference::PathTraced, "sweep reference");
+    expectCompleteTable(kLightTermNames, LightTerm::LocalLights, "light term");
 }
 
 TEST(EnumTables, CameraViewsAreEveryViewButTheShadowMapAndOverlays) {

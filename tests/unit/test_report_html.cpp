@@ -241,6 +241,26 @@ TEST(ReportHtml, SweepAgainstThePathTracerNamesItsSamplesAndNoise) {
               std::string::npos);
 }
 
+TEST(ReportHtml, SweepShowsTheErrorOverSurfacesAndOfTheKnobsLightTerm) {
+    const std::string csv =
+        "knob,value,index,reference,frame_ms,rmse,psnr_db,max_abs,non_finite,image,reference_source,reference_spp,"
+        "reference_noise_rmse,surface_pixels,surface_rmse,surface_relative_error,term,term_rmse,term_relative_error\n"
+        "shadow-pcf,off,0,0,1.5,0.03,30,0.1,0,shadow-pcf/0.png,pathtraced,256,0.0042,900,0.2,0.47,suns,0.03,0.0301\n"
+        "shadow-pcf,poisson,1,0,2.5,0.02,34,0.1,0,shadow-pcf/1.png,pathtraced,256,0.0042,900,0.2,0.46,suns,0.03,0.0299\n";
+    SweepReport report;
+    report.folder = "s";
+    report.rows = parseSweepCsv(csv, "s/sweep.csv");
+    ASSERT_EQ(report.rows.size(), 2u);
+    EXPECT_EQ(report.rows[0].term, "suns");
+    EXPECT_DOUBLE_EQ(report.rows[1].surfaceRelativeError, 0.46);
+    EXPECT_DOUBLE_EQ(report.rows[1].termRelativeError, 0.0299);
+    EXPECT_TRUE(parseSweepCsv(kSweepCsv, "s/sweep.csv")[0].term.empty());  // an older sweep.csv
+    report.images.assign(2, SweepImage{});
+    const std::string page = sweepReportHtml(report);
+    EXPECT_NE(page.find("the scene lit by its suns alone"), std::string::npos);
+    EXPECT_NE(page.find("surfaces 46%, suns 2.99%"), std::string::npos) << page;
+}
+
 std::string errorOf(const std::string& csv) {
     try {
         parseSweepCsv(csv, "s/sweep.csv");
