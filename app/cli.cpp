@@ -245,6 +245,10 @@ std::vector<CommandFlag> makeCommandFlags() {
              if (v != "importance" && v != "brdf") throw Error(a + " " + v + ": expected importance or brdf");
              o.base.pathTrace.environmentSampling = v == "importance";
          }},
+        {{"--material-variant"}, "NAME",
+         "glTF models draw their KHR_materials_variants variant NAME (every model that has it; an error when none "
+         "has); default: each file's own materials",
+         [](Options& o, V, V v) { o.materialVariant = v; }},
         {{"--animation"}, "A",
          "the glTF animations models play on the scene's clock: a clip's NAME or INDEX, all, or none (the rest pose); "
          "default: each model's first clip",
@@ -411,6 +415,7 @@ Scene sceneFromOptions(const Options& o) {
     Scene scene = o.model.empty() ? loadScene(o.scene) : sceneForModel(o.model, o.modelZUp);
     if (o.environment) replaceEnvironment(scene, *o.environment);
     if (!o.cameraPath.empty()) scene.cameraPath = loadCameraPath(o.cameraPath);
+    if (o.materialVariant) chooseMaterialVariant(scene, *o.materialVariant);
     if (o.animation) playAnimations(scene, *o.animation);
     if (o.cameraPosition) scene.cameraPath.reset();  // --camera fixes the camera
     if (o.cameraPosition) scene.camera.position = *o.cameraPosition;

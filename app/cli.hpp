@@ -47,6 +47,7 @@ struct Options {
     std::optional<glm::vec3> cameraPosition, cameraTarget;
     std::optional<float> cameraFov;
     std::string cameraPath;  // --camera-path F: a JSON file holding a "cameraPath" object (--camera wins)
+    std::optional<std::string> materialVariant;  // --material-variant NAME: the KHR_materials_variants variant glTF models draw
     std::optional<std::string> animation;  // --animation NAME|INDEX|all|none: the clips glTF models play (default: the first)
     float exposure = 0.0f;  // = base.exposureEV (the --exposure knob), for the viewer's start
     bool vsync = true;

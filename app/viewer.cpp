@@ -368,6 +368,18 @@ int runViewer(const Options& o) {
             }
             st.sceneRequest.reset();
         }
+        // A material variant: the models' sub-meshes draw other materials, so the GPU scene is made again.
+        if (st.materialVariantRequest) {
+            try {
+                chooseMaterialVariant(*scene, *st.materialVariantRequest);
+                renderer.reset();
+                renderer = std::make_unique<Renderer>(*scene, shaders);
+                say("material variant " + (st.materialVariantRequest->empty() ? std::string("(the files' own)") : *st.materialVariantRequest));
+            } catch (const Error& e) {
+                st.sceneError = e.what();
+            }
+            st.materialVariantRequest.reset();
+        }
         std::optional<EnvironmentBefore> previousEnvironment;  // a pick this frame, to undo if its map fails
         if (st.environmentRequest) {
             previousEnvironment = pickEnvironment(*scene, st.settings, *st.environmentRequest);

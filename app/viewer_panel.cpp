@@ -190,6 +190,24 @@ void filePicker(const char* pickerLabel, const std::vector<fs::path>& files, con
     ImGui::EndCombo();
 }
 
+// KHR_materials_variants: every variant the scene's glTF models name, once each; "file's own" for none.
+void materialVariantPicker(const Scene& scene, std::optional<std::string>& request) {
+    std::vector<std::string> variants;
+    std::string current;
+    for (const ModelInstance& m : scene.models) {
+        for (const std::string& v : m.mesh.materialVariants)
+            if (std::find(variants.begin(), variants.end(), v) == variants.end()) variants.push_back(v);
+        if (!m.materialVariant.empty()) current = m.materialVariant;
+    }
+    if (variants.empty()) return;
+    const char* own = "file's own";
+    if (!ImGui::BeginCombo("material variant", current.empty() ? own : current.c_str())) return;
+    if (ImGui::Selectable(own, current.empty())) request = std::string();
+    for (const std::string& v : variants)
+        if (ImGui::Selectable(v.c_str(), v == current)) request = v;
+    ImGui::EndCombo();
+}
+
 }  // namespace
 
 PickerFiles findPickerFiles(const fs::path& repositoryRoot) {
@@ -293,6 +311,7 @@ void drawViewerPanel(ViewerState& st, Renderer& renderer, const Scene& scene, co
     if (ImGui::CollapsingHeader("scene", ImGuiTreeNodeFlags_DefaultOpen)) {
         filePicker("scene file", files.scenes, st.sceneFile, st.sceneRequest, nullptr);
         filePicker("environment", files.environments, scene.environment.map, st.environmentRequest, "plain colour");
+        materialVariantPicker(scene, st.materialVariantRequest);
         // Seed 003's flat lighting, per material: shown as its colour, no light adds to it.
         if (ImGui::TreeNodeEx("flat-lit materials", ImGuiTreeNodeFlags_DefaultOpen)) {
             const std::vector<GpuMaterial>& materials = renderer.sceneGpu().materials;

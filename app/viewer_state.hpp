@@ -61,6 +61,7 @@ struct ViewerState {
     std::filesystem::path sceneFile;  // the scene (.json) or model (.obj) on screen
     std::optional<std::filesystem::path> sceneRequest;
     std::optional<std::filesystem::path> environmentRequest;  // empty path: the scene's plain colour
+    std::optional<std::string> materialVariantRequest;          // KHR_materials_variants; "": the files' own
     std::string sceneError;        // the one-line error of the last failed load
     std::string shaderError;       // the first compile error of the last shader reload, file:line
     std::string shaderStatus;      // "reloaded 3 programs (common/post.glsl)"

@@ -22,6 +22,8 @@ Files (all small):
                            alpha 0 and right half alpha 255 (half drawn)
   emissive.gltf            a black quad facing +Z with emissiveFactor (1, 0.5, 0.25) and
                            KHR_materials_emissive_strength 4: radiance (4, 2, 1)
+  variants.gltf            two quads facing +Z (at x 0 and 1.5), white by their own materials, with
+                           KHR_materials_variants "red" (left red, right blue) and "blue" (both blue)
   lights.gltf              a quad lit by a directional, a point (range 5) and a spot light (under a
                            rotated parent: at (2, 3, 0), pointing at (-1, -1, 0)/sqrt 2), and a camera
   emissive_panel.glb       (models/) the emissive quad again, for scenes/pbr-spheres.json
@@ -214,6 +216,21 @@ def emissive():
     b.save_glb(os.path.join(MODELS, "emissive_panel.glb"))
 
 
+def material_variants():
+    b = Builder()
+    b.gltf.extensionsUsed = ["KHR_materials_variants"]
+    for name, rgb in (("white", [1, 1, 1]), ("red", [1, 0, 0]), ("blue", [0, 0, 1])):
+        b.material(name=name, pbrMetallicRoughness=g.PbrMetallicRoughness(baseColorFactor=rgb + [1], metallicFactor=0, roughnessFactor=1))
+    b.gltf.extensions = {"KHR_materials_variants": {"variants": [{"name": "red"}, {"name": "blue"}]}}
+    attrs = g.Attributes(POSITION=b.floats(QUAD_P, g.VEC3, bounds=True), NORMAL=b.floats(QUAD_N, g.VEC3))
+    idx = b.indices(QUAD_I, U16)
+    mappings = [[{"material": 1, "variants": [0]}, {"material": 2, "variants": [1]}], [{"material": 2, "variants": [0, 1]}]]
+    for i, m in enumerate(mappings):
+        prim = g.Primitive(attributes=attrs, indices=idx, material=0, extensions={"KHR_materials_variants": {"mappings": m}})
+        b.node(mesh=b.mesh([prim]), translation=[1.5 * i, 0, 0])
+    b.save_gltf_embedded(os.path.join(OUT, "variants.gltf"))
+
+
 def lights():
     b = Builder()
     b.gltf.extensionsUsed = ["KHR_lights_punctual"]
@@ -340,6 +357,7 @@ normal_plane(True, "normal_plane.glb")
 normal_plane(False, "normal_plane_notangent.glb")
 alpha_mask()
 emissive()
+material_variants()
 lights()
 pbr_spheres()
 specular_spheres()

@@ -48,7 +48,7 @@ std::string formatNumber(double v) {
 // KHR_texture_basisu is not among them: its KTX2 images have no Debian decoder.
 const std::set<std::string> kSupportedExtensions = {"EXT_meshopt_compression", "KHR_draco_mesh_compression", "KHR_lights_punctual",
                                                      "KHR_materials_emissive_strength", "KHR_materials_ior", "KHR_materials_specular",
-                                                     "KHR_materials_unlit",
+                                                     "KHR_materials_unlit", "KHR_materials_variants",
                                                      "KHR_mesh_quantization", "KHR_texture_transform"};
 constexpr size_t kMaxElements = kMaxGltfElements;  // accessor count limit: 268M elements
 constexpr size_t kMaxNodeDepth = 1024;                        // levels of the node hierarchy
@@ -893,6 +893,45 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
         }
         return slot;
     };
+    // KHR_materials_variants: the variants' names (the schema checked their types).
+    if (auto ext = model.extensions.find("KHR_materials_variants"); ext != model.extensions.end()) {
+        const tinygltf::Value& variants = ext->second.Get("variants");
+        for (size_t i = 0; variants.IsArray() && i < variants.ArrayLen(); ++i)
+            mesh.materialVariants.push_back(variants.Get(int(i)).Get("name").Get<std::string>());
+    }
+    // A primitive's material per variant: its mapping's, else its own (`material`); a mapping must name
+    // a material and variants that exist, each variant at most once a primitive.
+    auto variantMaterialsFor = [&](const tinygltf::Primitive& prim, int material, const std::string& w) {
+        std::vector<int> perVariant;
+        const auto ext = prim.extensions.find("KHR_materials_variants");
+        if (ext == prim.extensions.end()) return perVariant;
+        const std::string vw = w + ".extensions.KHR_materials_variants";
+        if (mesh.materialVariants.empty())
+            L.fail(vw, "maps materials to variants, but the file's extensions.KHR_materials_variants lists none");
+        perVariant.assign(mesh.materialVariants.size(), material);
+        std::vector<char> mapped(mesh.materialVariants.size(), 0);
+        const tinygltf::Value& mappings = ext->second.Get("mappings");
+        for (size_t i = 0; mappings.IsArray() && i < mappings.ArrayLen(); ++i) {
+            const tinygltf::Value& m = mappings.Get(int(i));
+            const std::string mw = vw + ".mappings[" + std::to_string(i) + "]";
+            const int mat = m.Get("material").GetNumberAsInt();
+            if (mat < 0 || mat >= int(model.materials.size()))
+                L.fail(mw + ".material", "material " + std::to_string(mat) + " does not exist (" +
+                                             std::to_string(model.materials.size()) + " materials)");
+            const tinygltf::Value& vs = m.Get("variants");
+            for (size_t k = 0; vs.IsArray() && k < vs.ArrayLen(); ++k) {
+                const int v = vs.Get(int(k)).GetNumberAsInt();
+                const std::string where = mw + ".variants[" + std::to_string(k) + "]";
+                if (v < 0 || size_t(v) >= mesh.materialVariants.size())
+                    L.fail(where, "variant " + std::to_string(v) + " does not exist (" +
+                                      std::to_string(mesh.materialVariants.size()) + " variants)");
+                if (mapped[size_t(v)]) L.fail(where, "variant " + std::to_string(v) + " is mapped twice in this primitive");
+                mapped[size_t(v)] = 1;
+                perVariant[size_t(v)] = materialFor(mat);
+            }
+        }
+        return perVariant;
+    };
 
     // KHR_mesh_quantization (gltfpack's output): integer positions and uvs, normalised integer
     // normals and tangents; the node transform (and a texture transform) scales them back.
@@ -1152,7 +1191,10 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
         const int mat = materialFor(prim.material);
         const uint32_t base = uint32_t(mesh.vertices.size());
         if (mesh.vertices.size() + part.vertices.size() > 0xFFFFFFFFull) L.fail(w, "too many vertices in the file");
-        mesh.subMeshes.push_back(SubMesh{uint32_t(mesh.indices.size()), uint32_t(part.indices.size()), mat});
+        SubMesh sub{uint32_t(mesh.indices.size()), uint32_t(part.indices.size()), mat};
+        sub.defaultMaterial = mat;
+        sub.variantMaterials = variantMaterialsFor(prim, mat, w);
+        mesh.subMeshes.push_back(sub);
         for (uint32_t i : part.indices) mesh.indices.push_back(base + i);
         mesh.vertices.insert(mesh.vertices.end(), part.vertices.begin(), part.vertices.end());
         emitted.source = std::move(source);

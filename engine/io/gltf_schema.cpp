@@ -293,6 +293,16 @@ public:
         objects(p, "targets", w, [&](const json& t, const std::string& tw) {
             for (auto it = t.begin(); it != t.end(); ++it) indexValue(it.value(), join(tw, it.key()));
         });
+        if (const json* ext = object(p, "extensions", w))
+            if (const json* v = object(*ext, "KHR_materials_variants", join(w, "extensions"))) {
+                const std::string vw = join(w, "extensions.KHR_materials_variants");
+                objects(*v, "mappings", vw, [&](const json& m, const std::string& mw) {
+                    index(m, "material", mw, true);
+                    indexArray(m, "variants", mw);
+                    if (!m.count("variants")) error(join(mw, "variants"), "missing (the extension requires it)");
+                    string(m, "name", mw);
+                }, true);
+            }
     }
 
     void accessor(const json& a, const std::string& w) {
@@ -478,9 +488,13 @@ public:
                 enumString(sm, "interpolation", sw, {"LINEAR", "STEP", "CUBICSPLINE"});
             }, true, 1);
         });
-        if (const json* ext = object(root, "extensions", ""))
+        if (const json* ext = object(root, "extensions", "")) {
             if (const json* lights = object(*ext, "KHR_lights_punctual", "extensions"))
                 objects(*lights, "lights", "extensions.KHR_lights_punctual", [&](const json& l, const std::string& w) { light(l, w); }, true);
+            if (const json* variants = object(*ext, "KHR_materials_variants", "extensions"))
+                objects(*variants, "variants", "extensions.KHR_materials_variants",
+                        [&](const json& v, const std::string& w) { string(v, "name", w, true); }, true);
+        }
         // Only on a document whose types are right (the walk below trusts them).
         if (std::none_of(issues.begin(), issues.end(), [](const GltfSchemaIssue& i) { return i.error; })) primitiveIndices(root);
     }

@@ -137,7 +137,11 @@ float roughnessFromShininess(float shininess);
 struct SubMesh {
     uint32_t firstIndex = 0;
     uint32_t indexCount = 0;
-    int material = 0;  // index into MeshData::materials
+    int material = 0;  // index into MeshData::materials: the one drawn
+    // KHR_materials_variants: the material of each of MeshData::materialVariants (empty: the same for
+    // every variant), and the one drawn without a variant (selectMaterialVariant switches between them).
+    std::vector<int> variantMaterials;
+    int defaultMaterial = 0;
 };
 
 struct MeshData {
@@ -146,6 +150,8 @@ struct MeshData {
     std::vector<uint32_t> indices;  // triangles
     std::vector<SubMesh> subMeshes;
     std::vector<Material> materials;  // at least one
+    // KHR_materials_variants: the file's variant names, in its order (empty: none).
+    std::vector<std::string> materialVariants;
     glm::vec3 boundsMin{0.0f};
     glm::vec3 boundsMax{0.0f};
 };

@@ -7,6 +7,8 @@
 #include <unordered_map>
 #include <utility>
 
+#include "engine/core/error.hpp"
+
 namespace lp {
 
 glm::vec3 anyPerpendicular(glm::vec3 n) {
@@ -245,6 +247,26 @@ bool degenerateTriangle(const glm::vec3& a, const glm::vec3& b, const glm::vec3&
     const double area2 = glm::length(glm::cross(e0, e1));
     const double longest2 = std::max({glm::dot(e0, e0), glm::dot(e1, e1), glm::dot(e2, e2)});
     return !(area2 > 1e-10 * longest2) || !std::isfinite(area2);
+}
+
+bool selectMaterialVariant(MeshData& mesh, const std::string& variant) {
+    if (mesh.materialVariants.empty()) return variant.empty();  // nothing to switch (an OBJ, a primitive)
+    int index = -1;
+    if (!variant.empty()) {
+        const auto it = std::find(mesh.materialVariants.begin(), mesh.materialVariants.end(), variant);
+        if (it == mesh.materialVariants.end()) return false;
+        index = int(it - mesh.materialVariants.begin());
+    }
+    for (SubMesh& sub : mesh.subMeshes)
+        sub.material = index >= 0 && size_t(index) < sub.variantMaterials.size() ? sub.variantMaterials[size_t(index)]
+                                                                                  : sub.defaultMaterial;
+    return true;
+}
+
+std::string materialVariantList(const MeshData& mesh) {
+    std::string list;
+    for (const std::string& v : mesh.materialVariants) list += (list.empty() ? "" : ", ") + quoteUserText(v);
+    return list;
 }
 
 }  // namespace lp

@@ -28,5 +28,11 @@ glm::vec3 anyPerpendicular(glm::vec3 n);
 // double, so edges of 1e20 do not overflow) is about the sine of its smallest angle. Below 1e-10 it
 // is a sliver no rasteriser can shade; a 5 mm face beside a 20 km one keeps its angles and survives.
 bool degenerateTriangle(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c);
+// KHR_materials_variants: every sub-mesh draws its material for `variant` (one of
+// mesh.materialVariants; "" the file's own materials). False, and nothing changed, when the mesh has
+// no variant of that name.
+bool selectMaterialVariant(MeshData& mesh, const std::string& variant);
+// The variants' names quoted and joined ("'red', 'blue'"), for messages; "" when it has none.
+std::string materialVariantList(const MeshData& mesh);
 
 }  // namespace lp

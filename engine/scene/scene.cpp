@@ -6,6 +6,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "engine/core/error.hpp"
+#include "engine/scene/mesh_ops.hpp"
 
 namespace lp {
 
@@ -65,6 +66,22 @@ void playAnimations(Scene& scene, const std::string& choice) {
         throw Error("--animation " + choice + ": no model has an animation of that " +
                     (choice.find_first_not_of("0123456789") == std::string::npos ? "index" : "name") +
                     (clips.empty() ? std::string(" (the scene has no animations)") : " (animations: " + clips + ")"));
+}
+
+void chooseMaterialVariant(Scene& scene, const std::string& variant) {
+    bool found = variant.empty();
+    std::string variants;  // what there is, for the error
+    for (ModelInstance& m : scene.models) {
+        if (selectMaterialVariant(m.mesh, variant) && !m.mesh.materialVariants.empty()) {
+            m.materialVariant = variant;
+            found = true;
+        }
+        const std::string list = materialVariantList(m.mesh);
+        if (!list.empty() && variants.size() < 300) variants += (variants.empty() ? "" : "; ") + m.name + ": " + list;
+    }
+    if (!found)
+        throw Error("--material-variant " + quoteUserText(variant) + ": no model has a material variant of that name" +
+                    (variants.empty() ? std::string(" (the scene's models have none)") : " (" + variants + ")"));
 }
 
 }  // namespace lp

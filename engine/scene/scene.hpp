@@ -101,6 +101,8 @@ struct ModelInstance {
     // by default the first clip), indices into animation->clips.
     std::shared_ptr<const NodeAnimation> animation;
     std::vector<int> playingClips;
+    // "materialVariant": the KHR_materials_variants variant its glTF draws ("": the file's own materials).
+    std::string materialVariant;
     // Whether the model's playing clips put some vertex elsewhere at time t1 than at t0.
     bool movesBetween(double t0, double t1) const;
 };
@@ -143,5 +145,10 @@ struct Scene {
 // a name; chooseClips). Throws lp::Error naming the choice and the clips there are when no model has
 // the index or name asked for.
 void playAnimations(Scene& scene, const std::string& choice);
+
+// --material-variant NAME: every model whose glTF has a KHR_materials_variants variant of that name
+// draws it ("": each file's own materials). Throws lp::Error naming the choice and the variants there
+// are when no model has it.
+void chooseMaterialVariant(Scene& scene, const std::string& variant);
 
 }  // namespace lp

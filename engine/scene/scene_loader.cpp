@@ -17,6 +17,7 @@
 #include "engine/io/file_check.hpp"
 #include "engine/io/gltf_loader.hpp"
 #include "engine/io/obj_loader.hpp"
+#include "engine/scene/mesh_ops.hpp"
 #include "engine/scene/primitives.hpp"
 
 namespace lp {
@@ -200,7 +201,7 @@ CameraPath parseCameraPath(const Reader& r, const json& j, const std::string& w)
 }
 
 void parseModel(const Reader& r, const json& j, const std::string& w, const fs::path& base, ModelInstance& m) {
-    r.onlyKnown(j, w, {"name", "obj", "gltf", "primitive", "translate", "rotate", "scale", "up", "material"});
+    r.onlyKnown(j, w, {"name", "obj", "gltf", "primitive", "translate", "rotate", "scale", "up", "material", "materialVariant"});
     m.name = r.string(j, "name", w);
     std::string obj = r.string(j, "obj", w);
     std::string gltf = r.string(j, "gltf", w);
@@ -217,6 +218,10 @@ void parseModel(const Reader& r, const json& j, const std::string& w, const fs::
     if (!gltf.empty()) {
         m.gltf = resolve(base, gltf);
         if (!isGltfPath(m.gltf)) r.fail(w + ".gltf", gltf + ": expected a .gltf or .glb file");
+    }
+    if (j.contains("materialVariant")) {
+        if (gltf.empty()) r.fail(w + ".materialVariant", "only a glTF model has material variants (KHR_materials_variants)");
+        m.materialVariant = r.string(j, "materialVariant", w);
     }
     if (m.name.empty()) m.name = !obj.empty() ? fs::path(obj).stem().string() : !gltf.empty() ? fs::path(gltf).stem().string() : m.primitive;
     glm::vec3 t = r.point(j, "translate", w, glm::vec3(0.0f));
@@ -366,6 +371,11 @@ void loadMesh(const Reader& r, ModelInstance& m, const std::string& where, Scene
             auto it = parsed.gltf.find(key);
             if (it == parsed.gltf.end()) it = parsed.gltf.emplace(key, loadGltf(m.gltf)).first;
             m.mesh = it->second.mesh;
+            if (!selectMaterialVariant(m.mesh, m.materialVariant))
+                r.fail(where + ".materialVariant", quoteUserText(m.materialVariant) + " is not a material variant of " +
+                                                       m.gltf.filename().string() +
+                                                       (m.mesh.materialVariants.empty() ? std::string(" (it has none)")
+                                                                                        : " (" + materialVariantList(m.mesh) + ")"));
             m.animation = it->second.animation;
             if (m.animation) m.playingClips = chooseClips(*m.animation, "");  // the first clip, as glTF viewers play
             addGltfLights(it->second, m.transform, scene);

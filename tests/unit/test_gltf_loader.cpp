@@ -16,6 +16,7 @@
 #include "tests/unit/gltf_test_files.hpp"
 #include "engine/io/gltf_schema.hpp"
 #include "engine/io/obj_loader.hpp"
+#include "engine/scene/mesh_ops.hpp"
 #include "engine/scene/scene_loader.hpp"
 
 using namespace lp;
@@ -626,6 +627,91 @@ TEST(GltfLoader, SpecularExtensionGivesF0AndF90) {
     d["materials"][0]["extensions"]["KHR_materials_specular"]["specularColorFactor"] = {1, 1, -2};
     expectOneLineError(t.write("colour.gltf", d.dump()),
                        "materials[0].extensions.KHR_materials_specular.specularColorFactor[2]: -2 must be >= 0");
+}
+
+// KHR_materials_variants: every variant's materials are loaded; a sub-mesh draws its own material until
+// a variant is chosen (--material-variant, a scene model's "materialVariant"), then its mapping's, or its
+// own where the variant maps none. Bad mappings are one line naming the element.
+TEST(GltfLoader, MaterialVariantsSwitchEachPrimitivesMaterial) {
+    TempDir t;
+    nlohmann::json d = texturedQuad(nullptr, nullptr);
+    d["extensionsUsed"] = {"KHR_materials_variants"};
+    auto colour = [](double r, double g, double b) {
+        return nlohmann::json{{"pbrMetallicRoughness", {{"baseColorFactor", {r, g, b, 1.0}}}}};
+    };
+    d["materials"] = {colour(1, 1, 1), colour(1, 0, 0), colour(0, 0, 1)};
+    d["extensions"]["KHR_materials_variants"]["variants"] = {{{"name", "red"}}, {{"name", "blue"}}, {{"name", "plain"}}};
+    nlohmann::json first = d["meshes"][0]["primitives"][0];
+    first["material"] = 0;
+    nlohmann::json second = first;
+    first["extensions"]["KHR_materials_variants"]["mappings"] = {{{"material", 1}, {"variants", {0}}},
+                                                                 {{"material", 2}, {"variants", {1}}}};
+    second["extensions"]["KHR_materials_variants"]["mappings"] = {{{"material", 2}, {"variants", {0, 1}}}};
+    d["meshes"][0]["primitives"] = {first, second};
+    const fs::path file = t.write("variants.gltf", d.dump());
+    MeshData m = loadGltf(file).mesh;
+    ASSERT_EQ(m.materialVariants, (std::vector<std::string>{"red", "blue", "plain"}));
+    ASSERT_EQ(m.subMeshes.size(), 2u);
+    auto base = [&](size_t sub) { return m.materials.at(size_t(m.subMeshes[sub].material)).diffuse; };
+    EXPECT_EQ(base(0), glm::vec3(1, 1, 1));  // no variant: the file's materials
+    EXPECT_EQ(base(1), glm::vec3(1, 1, 1));
+    ASSERT_TRUE(selectMaterialVariant(m, "red"));
+    EXPECT_EQ(base(0), glm::vec3(1, 0, 0));
+    EXPECT_EQ(base(1), glm::vec3(0, 0, 1));
+    ASSERT_TRUE(selectMaterialVariant(m, "blue"));
+    EXPECT_EQ(base(0), glm::vec3(0, 0, 1));
+    ASSERT_TRUE(selectMaterialVariant(m, "plain"));  // mapped by neither primitive: their own
+    EXPECT_EQ(base(0), glm::vec3(1, 1, 1));
+    EXPECT_EQ(base(1), glm::vec3(1, 1, 1));
+    EXPECT_FALSE(selectMaterialVariant(m, "green"));
+    EXPECT_EQ(base(0), glm::vec3(1, 1, 1)) << "an unknown variant changes nothing";
+    ASSERT_TRUE(selectMaterialVariant(m, ""));
+
+    // In a scene: per model, or for every model that has it.
+    const std::string model = R"({"gltf": ")" + file.string() + R"(", "materialVariant": "blue"})";
+    Scene s = parseScene(R"({"models": [)" + model + "]}", t.dir / "s.json");
+    EXPECT_EQ(s.models[0].mesh.materials.at(size_t(s.models[0].mesh.subMeshes[0].material)).diffuse, glm::vec3(0, 0, 1));
+    chooseMaterialVariant(s, "red");
+    EXPECT_EQ(s.models[0].mesh.materials.at(size_t(s.models[0].mesh.subMeshes[0].material)).diffuse, glm::vec3(1, 0, 0));
+    try {
+        chooseMaterialVariant(s, "green");
+        FAIL();
+    } catch (const Error& e) {
+        EXPECT_EQ(std::string(e.what()), "--material-variant 'green': no model has a material variant of that name "
+                                         "(variants: 'red', 'blue', 'plain')");
+    }
+    try {
+        parseScene(R"({"models": [{"gltf": ")" + file.string() + R"(", "materialVariant": "green"}]})", t.dir / "s.json");
+        FAIL();
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("models[0].materialVariant: 'green' is not a material variant of variants.gltf "
+                                             "('red', 'blue', 'plain')"),
+                  std::string::npos)
+            << e.what();
+    }
+    EXPECT_THROW(parseScene(R"({"models": [{"primitive": "plane", "materialVariant": "red"}]})", t.dir / "s.json"), Error);
+
+    // Mappings that name what is not there.
+    nlohmann::json bad = d;
+    bad["meshes"][0]["primitives"][0]["extensions"]["KHR_materials_variants"]["mappings"][0]["material"] = 7;
+    expectOneLineError(t.write("material.gltf", bad.dump()),
+                       "meshes[0].primitives[0].extensions.KHR_materials_variants.mappings[0].material: material 7 does not exist");
+    bad = d;
+    bad["meshes"][0]["primitives"][0]["extensions"]["KHR_materials_variants"]["mappings"][1]["variants"] = {3};
+    expectOneLineError(t.write("variant.gltf", bad.dump()),
+                       "meshes[0].primitives[0].extensions.KHR_materials_variants.mappings[1].variants[0]: variant 3 does not exist");
+    bad = d;
+    bad["meshes"][0]["primitives"][0]["extensions"]["KHR_materials_variants"]["mappings"][1]["variants"] = {0};
+    expectOneLineError(t.write("twice.gltf", bad.dump()), "variants[0]: variant 0 is mapped twice in this primitive");
+    bad = d;
+    bad["extensions"].erase("KHR_materials_variants");
+    expectOneLineError(t.write("nolist.gltf", bad.dump()), "the file's extensions.KHR_materials_variants lists none");
+    bad = d;
+    bad["extensions"]["KHR_materials_variants"]["variants"][0] = {{"name", 3}};
+    expectOneLineError(t.write("name.gltf", bad.dump()), "extensions.KHR_materials_variants.variants[0].name: expected a string");
+    bad = d;
+    bad["meshes"][0]["primitives"][1]["extensions"]["KHR_materials_variants"]["mappings"][0].erase("material");
+    expectOneLineError(t.write("nomaterial.gltf", bad.dump()), "mappings[0].material: missing");
 }
 
 TEST(GltfLoader, SceneFileModelsGltf) {
