@@ -77,13 +77,14 @@ def lightpass_scene(map_path, scene_path):
     scene_path.write_text(json.dumps(scene, indent=1) + "\n")
 
 
-def mitsuba_scene(map_path, width, height, spp, only):
+def mitsuba_scene(map_path, width, height, spp, only, max_depth=2):
     # lightpass: u = atan2(x, -z) / 2pi + 0.5 (u = 0.5 looks down -Z), world = rotateY(map, rotation).
     # Mitsuba's envmap: u = atan2(x, -z) / 2pi in its local frame, i.e. half a turn away; so its
     # to_world is a rotation about +Y by rotation + 180 degrees.
     scene = {
         "type": "scene",
-        "integrator": {"type": "path", "max_depth": 2},  # camera -> sphere -> environment: no interreflection
+        # max depth 2: camera -> sphere -> environment (no interreflection)
+        "integrator": {"type": "path", "max_depth": max_depth},
         "sensor": {
             "type": "perspective",
             "fov": CAMERA["fov"],
@@ -100,7 +101,7 @@ def mitsuba_scene(map_path, width, height, spp, only):
                 "to_world": mi.ScalarTransform4f().rotate(axis=[0, 1, 0], angle=ROTATION_DEGREES + 180.0)},
     }
     for name, c, kind, p, _ in spheres():
-        if name != only:
+        if only is not None and name != only:  # None: the whole grid at once
             continue
         if kind == "ggx":
             # material "none": eta 0, k 1, a perfect mirror Fresnel (F = 1), like lightpass's Ks = 1

@@ -6,6 +6,7 @@
 #   bench/mitsuba/run.sh --maps hdr/sky.exr --spp 64
 #   bench/mitsuba/run.sh principled --spp 128   (metallic-roughness spheres vs Mitsuba's principled: principled.py)
 #   bench/mitsuba/run.sh cornell --size 256x256 --spp 512   (the IBL-lit Cornell box, AO off / on: cornell_ao.py)
+#   bench/mitsuba/run.sh tracer --spp 256 [--bounces 4]     (lightpass's path tracer vs Mitsuba: tracer_check.py)
 # lightpass must be built (build/app/lightpass, or --lightpass PATH).
 set -euo pipefail
 repo="$(cd "$(dirname "$0")/../.." && pwd)"
@@ -19,6 +20,10 @@ cd "$repo"
 if [ "${1:-}" = cornell ]; then
     shift
     exec "$venv/bin/python" bench/mitsuba/cornell_ao.py "$@"
+fi
+if [ "${1:-}" = tracer ]; then
+    shift
+    exec "$venv/bin/python" bench/mitsuba/tracer_check.py "$@"
 fi
 if [ "${1:-}" = principled ]; then
     shift
