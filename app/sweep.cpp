@@ -86,7 +86,8 @@ int runSweep(const Options& o) {
     Renderer renderer(scene);
     // The pixels that see a surface, at the camera of the last timed frame (the one every error is
     // taken on): the errors over surfaces leave the background out.
-    const std::vector<uint8_t> mask = surfaceMask(scene, scene.cameraAt(frameTime(o, o.frames - 1)), o.width, o.height);
+    const double lastFrameTime = frameTime(o, o.frames - 1);
+    const std::vector<uint8_t> mask = surfaceMask(scene, scene.cameraAt(lastFrameTime), o.width, o.height, lastFrameTime);
     // Per light term a knob isolates: the scene lit by it alone and a renderer of its own (made when
     // a knob first asks).
     struct TermRenderer {

@@ -111,8 +111,8 @@ gl::Texture uploadMapArray(const std::vector<TextureRef>& refs, bool srgb, const
 }
 
 // The scene's triangles, materials and BVH, and its environment map, uploaded once per scene.
-void uploadScene(PathTracePass& state, const Scene& scene) {
-    const PathTraceScene traced = buildPathTraceScene(scene);
+void uploadScene(PathTracePass& state, const Scene& scene, double time) {
+    const PathTraceScene traced = buildPathTraceScene(scene, time);
     if (traced.bvh.depth + 1 > kTraversalStack)
         throw Error("path tracer: the scene's BVH is " + std::to_string(traced.bvh.depth) + " levels deep, above the " +
                     std::to_string(kTraversalStack - 1) + " its traversal stack holds");
@@ -161,12 +161,23 @@ void uploadScene(PathTracePass& state, const Scene& scene) {
         }
     }
     state.scene = &scene;
+    state.poseTime = time;
+    state.animated = std::any_of(scene.models.begin(), scene.models.end(),
+                                 [](const ModelInstance& m) { return m.animation && !m.playingClips.empty(); });
+}
+
+// Whether the uploaded triangles are no longer where the frame at `time` has them: a scene whose
+// animated models moved since their upload is posed and uploaded again (the BVH rebuilt on the CPU).
+bool poseChanged(const PathTracePass& state, const Scene& scene, double time) {
+    if (!state.animated || time == state.poseTime) return false;
+    return std::any_of(scene.models.begin(), scene.models.end(),
+                       [&](const ModelInstance& m) { return m.movesBetween(state.poseTime, time); });
 }
 
 // Everything the traced image depends on besides the scene's geometry: a change starts the
 // accumulation again. The frame's time only through what moves with it (the camera, orbiting lights),
 // so an unchanged view keeps its samples while the clock runs (the viewer).
-std::string accumulationKey(const FrameData& frame, const std::vector<GpuLocalLight>& lights) {
+std::string accumulationKey(const PathTracePass& state, const FrameData& frame, const std::vector<GpuLocalLight>& lights) {
     const RenderSettings& s = *frame.settings;
     std::ostringstream key;
     key.precision(9);
@@ -174,6 +185,7 @@ std::string accumulationKey(const FrameData& frame, const std::vector<GpuLocalLi
         << s.pathTrace.interactions() << ' ' << s.pathTrace.pixelCentre << ' ' << int(s.brdf) << ' '
         << int(s.specularMasking) << ' ' << s.localLights.specular << s.localLights.specularOutsideRange << ' '
         << s.localLights.enabled << ' ' << s.localLights.rangeScale << ' ' << s.pathTrace.environmentSampling;
+    key << " pose " << state.poseTime;  // where the animated models were posed (a still scene: never changes)
     for (int i = 0; i < 4; ++i)
         for (int j = 0; j < 4; ++j) key << ' ' << frame.view[i][j] << ' ' << frame.projection[i][j];
     for (const GpuLocalLight& l : lights)
@@ -267,15 +279,15 @@ fg::ResourceId addPathTracePass(fg::FrameGraph& graph, PathTracePass& state, con
         },
         [&state, frame](const Data& data, const fg::PassResources& res) {
             if (!state.program) state.program = frame.shaders->compute("path_trace.comp");
-            if (state.scene != frame.scene) {
-                uploadScene(state, *frame.scene);
+            if (state.scene != frame.scene || poseChanged(state, *frame.scene, frame.time)) {
+                uploadScene(state, *frame.scene, frame.time);
                 state.accumulatedFor.clear();
             }
             const int samples = std::max(frame.settings->pathTrace.samples, 1);
             std::vector<GpuLocalLight> records;  // world space
             if (frame.settings->localLights.enabled)
                 for (const PointLight& l : *frameLocalLights(frame)) records.push_back(gpuLocalLight(l, glm::mat4(1.0f), -1));
-            const std::string key = accumulationKey(frame, records);
+            const std::string key = accumulationKey(state, frame, records);
             if (key != state.accumulatedFor) {
                 state.accumulatedFor = key;
                 state.accumulated = 0;

@@ -51,6 +51,8 @@ struct PathTracePass {
     gl::Texture srgbMaps, linearMaps;  // the materials' maps as array textures (one layer each), or 1x1
     bool hasMaskedMaterials = false;   // rays test MASK / BLEND alpha at their hits
     const Scene* scene = nullptr;  // what the buffers hold
+    bool animated = false;         // the scene has a model whose clips play: its pose follows the clock
+    double poseTime = 0.0;         // the time the buffers' animated models are posed at
     int nodeCount = 0;
     int localLightCount = 0;
     float rayEpsilon = 1e-4f;

@@ -4,6 +4,8 @@
 #include <map>
 #include <string>
 
+#include "engine/scene/animation.hpp"
+
 namespace lp {
 
 namespace {
@@ -35,7 +37,7 @@ int pathTraceMapBits(const TextureRef* const maps[kPtMapCount]) {
     return bits;
 }
 
-PathTraceScene buildPathTraceScene(const Scene& scene) {
+PathTraceScene buildPathTraceScene(const Scene& scene, double time) {
     PathTraceScene out;
     std::vector<glm::vec3> positions;
     std::vector<glm::vec3> normals;
@@ -64,6 +66,13 @@ PathTraceScene buildPathTraceScene(const Scene& scene) {
             out.unsampledMapMaterials += (!m.bumpMap.empty() || !m.specularMap.empty() || !m.specularColorMap.empty()) ? 1 : 0;
             out.hasMaskedMaterials = out.hasMaskedMaterials || alphaMode != 0.0f;
         }
+        // An animated model's vertices where its clips put them at `time` (the rest pose otherwise).
+        std::vector<Vertex> posed;
+        if (model.animation && !model.playingClips.empty()) {
+            posed = mesh.vertices;
+            poseVertices(*model.animation, animatedPose(*model.animation, model.playingClips, time), posed);
+        }
+        const std::vector<Vertex>& vertices = posed.empty() ? mesh.vertices : posed;
         const glm::mat4 toWorld = model.transform;
         const glm::mat3 normalToWorld = glm::transpose(glm::inverse(glm::mat3(toWorld)));
         for (const SubMesh& sub : mesh.subMeshes) {
@@ -71,7 +80,7 @@ PathTraceScene buildPathTraceScene(const Scene& scene) {
             const size_t end = std::min<size_t>(size_t(sub.firstIndex) + sub.indexCount, mesh.indices.size());
             for (size_t i = sub.firstIndex; i + 2 < end; i += 3) {
                 for (int k = 0; k < 3; ++k) {
-                    const Vertex& v = mesh.vertices[mesh.indices[i + size_t(k)]];
+                    const Vertex& v = vertices[mesh.indices[i + size_t(k)]];
                     positions.push_back(glm::vec3(toWorld * glm::vec4(v.position, 1.0f)));
                     const glm::vec3 n = normalToWorld * v.normal;
                     const float len = glm::length(n);

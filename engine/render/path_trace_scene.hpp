@@ -61,7 +61,8 @@ struct PathTraceScene {
     size_t unsampledMapMaterials = 0;
 };
 
-// Every model's triangles through its transform (normals by the inverse transpose).
-PathTraceScene buildPathTraceScene(const Scene& scene);
+// Every model's triangles through its transform (normals by the inverse transpose), an animated
+// glTF's posed at `time` as the raster frame poses it (its playing clips: skins, morph targets, nodes).
+PathTraceScene buildPathTraceScene(const Scene& scene, double time = 0.0);
 
 }  // namespace lp

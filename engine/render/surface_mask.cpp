@@ -3,19 +3,26 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "engine/render/bvh.hpp"
+#include "engine/scene/animation.hpp"
 
 namespace lp {
 
-std::vector<uint8_t> surfaceMask(const Scene& scene, const Camera& camera, int width, int height) {
+std::vector<uint8_t> surfaceMask(const Scene& scene, const Camera& camera, int width, int height, double time) {
     std::vector<uint8_t> mask(size_t(width) * size_t(height), 0);
     std::vector<glm::vec3> positions;
     for (const ModelInstance& model : scene.models) {
         const MeshData& mesh = model.mesh;
+        std::vector<Vertex> posed;
+        if (model.animation && !model.playingClips.empty()) {
+            posed = mesh.vertices;
+            poseVertices(*model.animation, animatedPose(*model.animation, model.playingClips, time), posed);
+        }
+        const std::vector<Vertex>& vertices = posed.empty() ? mesh.vertices : posed;
         for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3)
             for (size_t k = 0; k < 3; ++k) {
                 const uint32_t index = mesh.indices[i + k];
-                if (index >= mesh.vertices.size()) return mask;  // the loader never leaves one; nothing to cast against
-                positions.push_back(glm::vec3(model.transform * glm::vec4(mesh.vertices[index].position, 1.0f)));
+                if (index >= vertices.size()) return mask;  // the loader never leaves one; nothing to cast against
+                positions.push_back(glm::vec3(model.transform * glm::vec4(vertices[index].position, 1.0f)));
             }
     }
     if (positions.empty() || width <= 0 || height <= 0) return mask;
