@@ -122,6 +122,14 @@ FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const Fr
     FrameData frame = frameIn;
     frame.environments = &passes.environments;
     if (frame.settings->renderPath == RenderPath::PathTraced) return buildPathTracedFrame(graph, passes, frame);
+    // Animated models' vertices posed on the GPU, before every pass that draws them.
+    const std::string skinningSkip = skinningSkipReason(frame);
+    if (skinningSkip.empty()) {
+        addSkinningPass(graph, passes.skinning, frame);
+        frame.posedVerticesOnGpu = true;
+    } else {
+        graph.skipPass("skinning", skinningSkip);
+    }
     const RenderSettings& s = *frame.settings;
     const Scene& scene = *frame.scene;
     const bool channelView = isChannelView(s.view);

@@ -22,6 +22,7 @@
 #include "passes/local_light_pass.hpp"
 #include "passes/motion_blur_pass.hpp"
 #include "passes/path_trace_pass.hpp"
+#include "passes/skinning_pass.hpp"
 #include "passes/sky_pass.hpp"
 #include "passes/spot_shadow_pass.hpp"
 #include "passes/taa_pass.hpp"
@@ -36,6 +37,7 @@ namespace lp {
 // GL state of every pass (programs, framebuffers), made lazily on first execute; and the textures
 // that outlive a frame, which each frame's graph imports.
 struct PassStates {
+    SkinningPass skinning;  // --skinning gpu: animated models posed once a frame for every pass
     GBufferPass gbuffer;
     VisibilityPass visibility;          // --gbuffer-mode visibility: gbuffer_visibility
     VisibilityResolvePass visibilityResolve;  // and gbuffer_resolve

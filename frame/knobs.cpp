@@ -350,6 +350,15 @@ std::vector<KnobEntry> makeKnobTable() {
         t.push_back(std::move(k));
     }
     {
+        KnobEntry k = choiceKnob("skinning", [](auto& s) -> auto& { return s.skinning; }, kSkinningModeNames);
+        k.flags = {valueFlag("--skinning")};
+        k.choiceNoun = "skinning mode";
+        k.help = "where animated glTF models are posed each frame (skins, morph targets, animated nodes): gpu, the "
+                 "skinning compute pass; cpu, posed on the CPU and uploaded (the reference). docs/motion.md";
+        k.panel = {PanelSection::View, PanelWidget::Combo, "skinning", ""};
+        t.push_back(std::move(k));
+    }
+    {
         KnobEntry k = choiceKnob("brdf", [](auto& s) -> auto& { return s.brdf; },
                                  kBrdfNames);
         k.flags = {valueFlag("--brdf")};

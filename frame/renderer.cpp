@@ -30,7 +30,7 @@ void Renderer::render(const RenderSettings& settings, float time, bool timed) {
     applyMotion(frame, history_, temporalAntiAliasing(settings) ? taaJitterPixels(taaFrames_++) : jitterPixels_);
     // Animated models posed at the frame's time, and at the previous frame's for their motion vectors.
     const auto poseStart = std::chrono::steady_clock::now();
-    gpu_->pose(*scene_, frame.time, frame.previousTime);
+    gpu_->pose(*scene_, frame.time, frame.previousTime, settings.skinning);
     if (timed && gpu_->animated)
         poseMs_.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - poseStart).count());
     frame.gpu = gpu_.get();

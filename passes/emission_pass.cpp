@@ -6,6 +6,7 @@
 #include "engine/gl/shader.hpp"
 #include "engine/gl/state.hpp"
 #include "engine/render/scene_gpu.hpp"
+#include "passes/skinning_pass.hpp"
 
 namespace lp {
 
@@ -30,6 +31,7 @@ fg::ResourceId addEmissionPass(fg::FrameGraph& graph, EmissionPass& state, const
         [&](fg::PassBuilder& b, Data& data) {
             data.depth = b.read(gbuffer.depth, fg::Usage::DepthTest);
             data.hdr = b.write(hdr, fg::Usage::Blend);
+            readPosedVertices(b, frame);
         },
         [&state, frame](const Data& data, const fg::PassResources& res) {
             const GBufferSettings layout = frame.settings->gbuffer;

@@ -7,6 +7,7 @@
 #include "engine/gl/state.hpp"
 #include "passes/ambient_occlusion_pass.hpp"
 #include "passes/global_light_pass.hpp"
+#include "passes/skinning_pass.hpp"
 
 namespace lp {
 
@@ -125,6 +126,7 @@ fg::ResourceId addForwardOpaquePass(fg::FrameGraph& graph, ForwardPass& state, L
             data.depth = b.read(depthPrepass.depth, fg::Usage::DepthTest);
             data.reads = declareForwardLighting(b, localLights, lighting);
             data.hdr = b.create("hdr", {frame.width, frame.height, GL_RGBA16F}, fg::Usage::ColorAttachment);
+            readPosedVertices(b, frame);
         },
         [&state, &localLights, frame, lighting](const OpaqueData& data, const fg::PassResources& res) {
             if (!state.fbo) state.fbo = gl::makeFramebuffer("forward");

@@ -8,6 +8,7 @@
 #include "engine/gl/shader.hpp"
 #include "engine/gl/state.hpp"
 #include "engine/render/scene_gpu.hpp"
+#include "passes/skinning_pass.hpp"
 
 namespace lp {
 
@@ -220,6 +221,7 @@ GBuffer addGeometryPass(fg::FrameGraph& graph, GBufferPass& state, const FrameDa
             out = createGBufferColourTargets(b, w, h, layout, channels,
                                              fg::Usage::ColorAttachment | fg::Usage::ImageStore);
             out.depth = depth;
+            readPosedVertices(b, frame);
         },
         [&state, frame, layout](const GBuffer& out, const fg::PassResources& res) {
             const bool velocity = out.velocity.valid() && res.texture(out.velocity) != 0;

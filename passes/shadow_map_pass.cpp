@@ -19,6 +19,7 @@
 #include "engine/gl/state.hpp"
 #include "engine/render/scene_gpu.hpp"
 #include "engine/render/shadow_casters.hpp"
+#include "passes/skinning_pass.hpp"
 
 namespace lp {
 
@@ -958,6 +959,7 @@ ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const
             [&](fg::PassBuilder& b, Data& out) {
                 out.depth = caching ? b.write(keptAtlas, fg::Usage::DepthAttachment)
                                     : b.create(name + ".depth", desc, fg::Usage::DepthAttachment);
+                readPosedVertices(b, frame);
             },
             [s, frame, fr, casters, caching, light, keys, work, casterKey, pending](const Data& out, const fg::PassResources& res) {
                 const fg::TextureDesc& d = res.desc(out.depth);

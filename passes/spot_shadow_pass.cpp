@@ -13,6 +13,7 @@
 #include "engine/gl/state.hpp"
 #include "engine/render/local_lights.hpp"
 #include "engine/render/scene_gpu.hpp"
+#include "passes/skinning_pass.hpp"
 
 namespace lp {
 
@@ -71,7 +72,10 @@ SpotShadowMaps addSpotShadowPass(fg::FrameGraph& graph, SpotShadowPass& state, c
     const int columns = maps.columns, tile = maps.tileSize;
     const Data& data = graph.addPass<Data>(
         "spot_shadows", fg::PassKind::Raster,
-        [&](fg::PassBuilder& b, Data& out) { out.depth = b.create("spot_shadows.depth", desc, fg::Usage::DepthAttachment); },
+        [&](fg::PassBuilder& b, Data& out) {
+            out.depth = b.create("spot_shadows.depth", desc, fg::Usage::DepthAttachment);
+            readPosedVertices(b, frame);
+        },
         [&state, frame, matrices, columns, tile](const Data& out, const fg::PassResources& res) {
             if (!state.program) {
                 state.program = frame.shaders->graphics("shadow_depth.vert", "shadow_depth.frag");

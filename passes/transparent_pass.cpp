@@ -5,6 +5,7 @@
 
 #include "engine/gl/shader.hpp"
 #include "engine/gl/state.hpp"
+#include "passes/skinning_pass.hpp"
 
 namespace lp {
 
@@ -49,6 +50,7 @@ fg::ResourceId addTransparentPass(fg::FrameGraph& graph, TransparentPass& state,
             data.depth = b.read(depth, fg::Usage::DepthTest);
             data.reads = declareForwardLighting(b, localLights, withoutAo);
             data.hdr = b.write(hdr, fg::Usage::Blend);
+            readPosedVertices(b, frame);
         },
         [&state, &localLights, frame, withoutAo](const Data& data, const fg::PassResources& res) {
             ForwardPass& forward = state.forward;

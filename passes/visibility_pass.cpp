@@ -5,6 +5,7 @@
 #include "engine/gl/shader.hpp"
 #include "engine/gl/state.hpp"
 #include "engine/render/scene_gpu.hpp"
+#include "passes/skinning_pass.hpp"
 
 namespace lp {
 
@@ -38,6 +39,7 @@ VisibilityBuffer addVisibilityPass(fg::FrameGraph& graph, VisibilityPass& state,
         [&](fg::PassBuilder& b, VisibilityBuffer& out) {
             out.depth = b.create("gbuffer.depth", {w, h, GL_DEPTH_COMPONENT32F}, fg::Usage::DepthAttachment);
             out.ids = b.create("gbuffer.visibility", {w, h, GL_R32UI}, fg::Usage::ColorAttachment);
+            readPosedVertices(b, frame);
         },
         [&state, frame, layout](const VisibilityBuffer& out, const fg::PassResources& res) {
             auto build = [&](const char* define) {

@@ -10,6 +10,7 @@
 
 #include "engine/gl/shader.hpp"
 #include "engine/render/scene_gpu.hpp"
+#include "passes/skinning_pass.hpp"
 
 namespace lp {
 
@@ -180,6 +181,7 @@ GBuffer addVisibilityResolvePass(fg::FrameGraph& graph, VisibilityResolvePass& s
             d.depth = b.read(visibility.depth, fg::Usage::Sampled);  // where the ids hold a triangle
             d.out = createGBufferColourTargets(b, w, h, layout, channels, fg::Usage::ImageStore);
             d.out.depth = d.depth;  // written by gbuffer_visibility, only read here
+            readPosedVertices(b, frame, fg::Usage::Transfer);  // copies the animated meshes' vertices (copyPoses)
         },
         [&state, frame](const Data& d, const fg::PassResources& res) {
             const SceneGpu& gpu = *frame.gpu;

@@ -22,7 +22,7 @@ std::string usageName(Usage u) {
         {Usage::ColorAttachment, "color"},          {Usage::Blend, "blend"},
         {Usage::DepthAttachment, "depth"},          {Usage::DepthTest, "depth-test"},
         {Usage::Transfer, "transfer"},              {Usage::Cuda, "cuda"},
-        {Usage::StorageBuffer, "storage-buffer"}};
+        {Usage::StorageBuffer, "storage-buffer"},   {Usage::VertexBuffer, "vertex-buffer"}};
     std::string out;
     uint32_t left = uint32_t(u);
     for (const auto& [bits, name] : names) {
@@ -41,6 +41,7 @@ GLbitfield barrierBitsFor(Usage u) {
         bits |= GL_FRAMEBUFFER_BARRIER_BIT;
     if (any(u, Usage::Transfer)) bits |= GL_TEXTURE_UPDATE_BARRIER_BIT;
     if (any(u, Usage::StorageBuffer)) bits |= GL_SHADER_STORAGE_BARRIER_BIT;
+    if (any(u, Usage::VertexBuffer)) bits |= GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT;
     // CUDA reads the texture's memory once mapped: every way GL may still hold image stores back.
     if (any(u, Usage::Cuda))
         bits |= GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT;
@@ -99,18 +100,19 @@ ResourceId PassBuilder::createIfRead(const std::string& name, const TextureDesc&
     return id;
 }
 
-// A buffer is uploaded to (Transfer) and read as a storage block (StorageBuffer, or Transfer for a
-// copy); a texture never as a storage block.
+// A buffer is uploaded to (Transfer) or written by a shader (StorageBuffer), and read as a storage
+// block, as vertex attributes or by a copy (Transfer); a texture is neither.
 void FrameGraph::checkUsage(int pass, int version, Usage how, bool write) const {
     const Resource& r = resources_[versions_[version].resource];
-    const Usage allowed = !r.buffer ? Usage(~uint32_t(Usage::StorageBuffer))
-                          : write   ? Usage::Transfer
-                                    : Usage::StorageBuffer | Usage::Transfer;
+    const Usage allowed = !r.buffer ? Usage(~uint32_t(Usage::StorageBuffer | Usage::VertexBuffer))
+                          : write   ? Usage::Transfer | Usage::StorageBuffer
+                                    : Usage::StorageBuffer | Usage::Transfer | Usage::VertexBuffer;
     if ((uint32_t(how) & ~uint32_t(allowed)) == 0) return;
     throw Error("frame graph: pass '" + passes_[pass].name + "' " + (write ? "writes " : "reads ") +
                 (r.buffer ? "buffer '" : "texture '") + r.name + "' as " + usageName(how) + " (" +
-                (!r.buffer ? "a texture is not a storage buffer" : write ? "a buffer is written by an upload: transfer"
-                                                                         : "a buffer is read as storage-buffer or transfer") +
+                (!r.buffer ? "a texture is not a storage or vertex buffer"
+                 : write   ? "a buffer is written by an upload or a shader: transfer or storage-buffer"
+                           : "a buffer is read as storage-buffer, vertex-buffer or transfer") +
                 ")");
 }
 
@@ -453,13 +455,21 @@ void FrameGraph::planBarriers() {
         GLbitfield bits = 0;
         auto need = [&](int version, Usage how) {
             const int r = versions_[version].resource;
-            if (dirty[r]) bits |= barrierBitsFor(how) & ~covered[r];
+            // A copy out of a buffer that a shader wrote waits for buffer updates, not texture ones.
+            const GLbitfield want = resources_[r].buffer && any(how, Usage::Transfer)
+                                        ? (barrierBitsFor(how) & ~GLbitfield(GL_TEXTURE_UPDATE_BARRIER_BIT)) | GL_BUFFER_UPDATE_BARRIER_BIT
+                                        : barrierBitsFor(how);
+            if (dirty[r]) bits |= want & ~covered[r];
         };
         for (size_t k = 0; k < p.reads.size(); ++k) need(p.reads[k], p.readUsage[k]);
         for (size_t k = 0; k < p.writes.size(); ++k) need(p.writes[k], p.writeUsage[k]);
         for (size_t k = 0; k < p.writes.size(); ++k) {
-            if (!any(p.writeUsage[k], Usage::ImageStore)) continue;
             const int r = versions_[p.writes[k]].resource;
+            // A shader writing a buffer that commands since the last barrier may still read (an
+            // imported one: the previous frame's draws).
+            if (resources_[r].buffer && any(p.writeUsage[k], Usage::StorageBuffer) && readSinceBarrier[r])
+                bits |= GL_SHADER_STORAGE_BARRIER_BIT | GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT;
+            if (!any(p.writeUsage[k], Usage::ImageStore)) continue;
             const bool fresh = !writtenThisFrame[r] && !resources_[r].isImported;
             if (readSinceBarrier[r] || (fresh && releasedSinceBarrier)) bits |= GL_SHADER_IMAGE_ACCESS_BARRIER_BIT;
         }
@@ -470,7 +480,7 @@ void FrameGraph::planBarriers() {
             if (any(p.readUsage[k], Usage::Sampled | Usage::ImageLoad)) readSinceBarrier[versions_[p.reads[k]].resource] = 1;
         for (size_t k = 0; k < p.writes.size(); ++k) {
             const int r = versions_[p.writes[k]].resource;
-            dirty[r] = any(p.writeUsage[k], Usage::ImageStore);
+            dirty[r] = any(p.writeUsage[k], Usage::ImageStore) || (resources_[r].buffer && any(p.writeUsage[k], Usage::StorageBuffer));
             covered[r] = 0;
             writtenThisFrame[r] = 1;
             if (any(p.writeUsage[k], Usage::Sampled | Usage::ImageLoad)) readSinceBarrier[r] = 1;
@@ -714,7 +724,8 @@ std::string barrierText(GLbitfield bits) {
     static const std::pair<GLbitfield, const char*> names[] = {
         {GL_TEXTURE_FETCH_BARRIER_BIT, "texture-fetch"}, {GL_SHADER_IMAGE_ACCESS_BARRIER_BIT, "image-access"},
         {GL_FRAMEBUFFER_BARRIER_BIT, "framebuffer"},     {GL_TEXTURE_UPDATE_BARRIER_BIT, "texture-update"},
-        {GL_PIXEL_BUFFER_BARRIER_BIT, "pixel-buffer"}};
+        {GL_PIXEL_BUFFER_BARRIER_BIT, "pixel-buffer"},   {GL_SHADER_STORAGE_BARRIER_BIT, "shader-storage"},
+        {GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT, "vertex-attrib"}, {GL_BUFFER_UPDATE_BARRIER_BIT, "buffer-update"}};
     std::string out;
     for (const auto& [bit, name] : names)
         if (bits & bit) out += (out.empty() ? "" : " | ") + std::string(name);

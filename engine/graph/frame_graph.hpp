@@ -53,7 +53,8 @@ enum class Usage : uint32_t {
     DepthTest = 1u << 6,        // bound as the depth attachment, tested, not written
     Transfer = 1u << 7,         // glClearTexImage, glGetTextureImage, copies
     Cuda = 1u << 8,             // mapped into CUDA (map and unmap synchronise with GL)
-    StorageBuffer = 1u << 9,    // a buffer read through a shader storage block
+    StorageBuffer = 1u << 9,    // a buffer read (or written: incoherent) through a shader storage block
+    VertexBuffer = 1u << 10,    // a buffer drawn from: vertex attributes, or copied into a pass's own (Transfer)
     ImageLoadStore = (1u << 1) | (1u << 2),
 };
 constexpr Usage operator|(Usage a, Usage b) { return Usage(uint32_t(a) | uint32_t(b)); }
@@ -178,9 +179,12 @@ public:
     // A buffer that lives outside the graph, such as one a pass refills each frame (gl::StreamBuffer):
     // passes declare how they write it (an upload: Usage::Transfer) and read it (StorageBuffer), so
     // the graph orders its readers after its writer and a pass touches it only if it declared it.
-    // `buffer` is asked each time a pass asks for it (a refill may change it). Only uploads write
-    // it: GL orders them with later reads by itself, so the graph issues no barrier for buffers. A
-    // disabled writer passes its input through, as for textures: readers get the version before it.
+    // `buffer` is asked each time a pass asks for it (a refill may change it). An upload (Transfer)
+    // GL orders with later reads by itself; a shader's storage writes (StorageBuffer, the skinning
+    // pass's posed vertices) are incoherent, so its readers get the barrier bits of how they read
+    // (storage block, vertex attributes, copies), and the writer one against the reads since the last
+    // barrier (the previous frame's draws). A disabled writer passes its input through, as for
+    // textures: readers get the version before it.
     ResourceId importBuffer(const std::string& name, std::function<GLuint()> buffer);
     // The graph's result(s): what is presented, saved or read back. At least one is required.
     void markOutput(ResourceId id);

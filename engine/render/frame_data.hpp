@@ -57,6 +57,9 @@ struct FrameData {
     uint64_t maxStorageBlockBytes = 0;
     const SceneGpu* gpu = nullptr;
     const gl::ShaderLibrary* shaders = nullptr;
+    // The frame's graph has the skinning pass (passes/skinning_pass.hpp): the passes that draw the
+    // meshes read its posed vertices, so they run after it.
+    bool posedVerticesOnGpu = false;
     // Environment cubes and IBL bakes, kept across frames (imported into each frame's graph).
     EnvironmentCache* environments = nullptr;
 };

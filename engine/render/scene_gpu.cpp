@@ -79,6 +79,8 @@ SceneGpu::SceneGpu(const Scene& scene) {
         GpuMesh gm;
         gm.name = model.name;
         gm.model = model.transform;
+        gm.boundsMin = mesh.boundsMin;
+        gm.boundsMax = mesh.boundsMax;
         gm.vao = gl::makeVertexArray(model.name);
         std::vector<GpuVertex> vertices(mesh.vertices.size());
         for (size_t i = 0; i < vertices.size(); ++i) std::memcpy(&vertices[i], &mesh.vertices[i], sizeof(GpuVertex));
@@ -191,65 +193,174 @@ SceneGpu::SceneGpu(const Scene& scene) {
     casterClusters = buildCasterClusters(scene);
 }
 
-void SceneGpu::pose(const Scene& scene, double time, double previousTime) {
+void SceneGpu::pose(const Scene& scene, double time, double previousTime, SkinningMode mode) {
     animatedMotion = false;
+    // Dispatches listed last time that never ran: those meshes' buffers do not hold what their
+    // Pose says, so they are posed again in full.
+    const bool lostWork = !skinningWork_.empty() && !skinningWorkDone_;
+    skinningWork_.clear();
+    skinningWorkDone_ = false;
     for (size_t i = 0; i < meshes.size() && i < scene.models.size(); ++i) {
-        GpuMesh& gm = meshes[i];
-        if (!gm.animated) continue;
+        if (!meshes[i].animated) continue;
         const ModelInstance& model = scene.models[i];
         const NodeAnimation& animation = *model.animation;
         Pose& p = poses_[i];
         NodePose current = animatedPose(animation, model.playingClips, time);
         NodePose previousPose = previousTime == time ? current : animatedPose(animation, model.playingClips, previousTime);
         animatedMotion |= current != previousPose;
-        if (previousPose != p.previousPose) {
-            // Playing on, the previous frame's pose is the one the vertex buffer holds: its positions
-            // are kept; otherwise (a jump, the first frame) they are posed from the rest pose.
-            if (previousPose == p.current) {
-                for (const NodeVertexRange& r : animation.ranges)
-                    for (uint32_t k = r.firstVertex; k < r.firstVertex + r.vertexCount; ++k) p.previous[k] = glm::vec4(p.vertices[k].position, 1.0f);
-            } else {
-                std::vector<Vertex> posed = p.vertices;
-                poseVertices(animation, previousPose, posed);
-                for (const NodeVertexRange& r : animation.ranges)
-                    for (uint32_t k = r.firstVertex; k < r.firstVertex + r.vertexCount; ++k) p.previous[k] = glm::vec4(posed[k].position, 1.0f);
-            }
-            glNamedBufferSubData(gm.previousPositions.id(), 0, GLsizeiptr(p.previous.size() * sizeof(glm::vec4)), p.previous.data());
-            p.previousPose = std::move(previousPose);
+        if (p.mode != mode || (lostWork && p.mode == SkinningMode::Gpu)) {
+            // The other mode's bookkeeping says nothing about what this one would keep.
+            p.current = {};
+            p.previousPose = {};
+            p.mode = mode;
         }
-        if (current != p.current) {
-            poseVertices(animation, current, p.vertices);
-            // Only the ranges that move are written: the vertices of still nodes are never touched.
-            std::vector<GpuVertex> range;
-            for (const NodeVertexRange& r : animation.ranges) {
-                range.resize(r.vertexCount);
-                for (uint32_t k = 0; k < r.vertexCount; ++k) std::memcpy(&range[k], &p.vertices[r.firstVertex + k], sizeof(GpuVertex));
-                glNamedBufferSubData(gm.vertices.id(), GLintptr(r.firstVertex * sizeof(GpuVertex)),
-                                     GLsizeiptr(range.size() * sizeof(GpuVertex)), range.data());
-            }
-            p.current = std::move(current);
-            ++gm.poseVersion;
-            // The shadow casters' bounds and the transparent sort's centres, from the posed vertices.
-            const MeshData& mesh = model.mesh;
-            auto boundsOf = [&](uint32_t first, uint32_t count, glm::vec3& lo, glm::vec3& hi) {
-                lo = glm::vec3(std::numeric_limits<float>::max());
-                hi = glm::vec3(-std::numeric_limits<float>::max());
-                for (uint32_t k = first; k < first + count && k < mesh.indices.size(); ++k) {
-                    const glm::vec3& v = p.vertices[mesh.indices[k]].position;
-                    if (!std::isfinite(v.x + v.y + v.z)) continue;
-                    lo = glm::min(lo, v);
-                    hi = glm::max(hi, v);
-                }
-            };
-            for (CasterCluster& c : casterClusters)
-                if (c.model == int(i)) boundsOf(c.firstIndex, c.indexCount, c.boundsMin, c.boundsMax);
-            for (GpuDraw& d : gm.draws) {
-                glm::vec3 lo, hi;
-                boundsOf(d.firstIndex, d.indexCount, lo, hi);
-                if (d.indexCount > 0) d.centre = 0.5f * (lo + hi);
-            }
+        if (mode == SkinningMode::Gpu) poseOnGpu(i, model, std::move(current), std::move(previousPose));
+        else poseOnCpu(i, model, std::move(current), std::move(previousPose));
+    }
+    if (skinningWork_.empty()) skinningWorkDone_ = true;
+}
+
+void SceneGpu::poseOnCpu(size_t i, const ModelInstance& model, NodePose current, NodePose previousPose) {
+    GpuMesh& gm = meshes[i];
+    const NodeAnimation& animation = *model.animation;
+    Pose& p = poses_[i];
+    if (previousPose != p.previousPose) {
+        // Playing on, the previous frame's pose is the one the vertex buffer holds: its positions
+        // are kept; otherwise (a jump, the first frame) they are posed from the rest pose.
+        if (previousPose == p.current) {
+            for (const NodeVertexRange& r : animation.ranges)
+                for (uint32_t k = r.firstVertex; k < r.firstVertex + r.vertexCount; ++k) p.previous[k] = glm::vec4(p.vertices[k].position, 1.0f);
+        } else {
+            std::vector<Vertex> posed = p.vertices;
+            poseVertices(animation, previousPose, posed);
+            for (const NodeVertexRange& r : animation.ranges)
+                for (uint32_t k = r.firstVertex; k < r.firstVertex + r.vertexCount; ++k) p.previous[k] = glm::vec4(posed[k].position, 1.0f);
+        }
+        glNamedBufferSubData(gm.previousPositions.id(), 0, GLsizeiptr(p.previous.size() * sizeof(glm::vec4)), p.previous.data());
+        p.previousPose = std::move(previousPose);
+    }
+    if (current == p.current) return;
+    poseVertices(animation, current, p.vertices);
+    // Only the ranges that move are written: the vertices of still nodes are never touched.
+    std::vector<GpuVertex> range;
+    for (const NodeVertexRange& r : animation.ranges) {
+        range.resize(r.vertexCount);
+        for (uint32_t k = 0; k < r.vertexCount; ++k) std::memcpy(&range[k], &p.vertices[r.firstVertex + k], sizeof(GpuVertex));
+        glNamedBufferSubData(gm.vertices.id(), GLintptr(r.firstVertex * sizeof(GpuVertex)), GLsizeiptr(range.size() * sizeof(GpuVertex)),
+                             range.data());
+    }
+    p.current = std::move(current);
+    ++gm.poseVersion;
+    // The shadow casters' bounds, the transparent sort's centres and the mesh's bounds, from the posed vertices.
+    const MeshData& mesh = model.mesh;
+    auto boundsOf = [&](uint32_t first, uint32_t count, glm::vec3& lo, glm::vec3& hi) {
+        lo = glm::vec3(std::numeric_limits<float>::max());
+        hi = glm::vec3(-std::numeric_limits<float>::max());
+        for (uint32_t k = first; k < first + count && k < mesh.indices.size(); ++k) {
+            const glm::vec3& v = p.vertices[mesh.indices[k]].position;
+            if (!std::isfinite(v.x + v.y + v.z)) continue;
+            lo = glm::min(lo, v);
+            hi = glm::max(hi, v);
+        }
+    };
+    for (CasterCluster& c : casterClusters)
+        if (c.model == int(i)) boundsOf(c.firstIndex, c.indexCount, c.boundsMin, c.boundsMax);
+    for (GpuDraw& d : gm.draws) {
+        glm::vec3 lo, hi;
+        boundsOf(d.firstIndex, d.indexCount, lo, hi);
+        if (d.indexCount > 0) d.centre = 0.5f * (lo + hi);
+    }
+    glm::vec3 lo, hi;
+    boundsOf(0, uint32_t(mesh.indices.size()), lo, hi);
+    if (lo.x <= hi.x) {
+        gm.boundsMin = lo;
+        gm.boundsMax = hi;
+    }
+}
+
+void SceneGpu::poseOnGpu(size_t i, const ModelInstance& model, NodePose current, NodePose previousPose) {
+    GpuMesh& gm = meshes[i];
+    const NodeAnimation& animation = *model.animation;
+    const MeshData& mesh = model.mesh;
+    Pose& p = poses_[i];
+    if (!gm.skinning) {
+        // Uploaded once: what the skinning pass reads that no pose changes.
+        auto s = std::make_unique<GpuSkinning>();
+        s->layout = makeSkinningLayout(animation);
+        SkinningLayout& l = s->layout;
+        auto upload = [&](const auto& v, const char* what) {
+            const size_t bytes = v.size() * sizeof(v[0]);
+            geometryBytes += bytes;
+            return gl::makeBuffer(GLsizeiptr(std::max<size_t>(bytes, 16)), bytes > 0 ? v.data() : nullptr, 0, model.name + ".skinning." + what);
+        };
+        s->rest = upload(l.rest, "rest");
+        s->joints = upload(l.joints, "joints");
+        s->deltas = upload(l.deltas, "deltas");
+        s->ranges = upload(l.ranges, "ranges");
+        s->workRange = upload(l.workRange, "work_range");
+        // Only the ranges and counts stay on the CPU.
+        l.rest = {};
+        l.joints = {};
+        l.deltas = {};
+        for (size_t c = 0; c < casterClusters.size(); ++c)
+            if (casterClusters[c].model == int(i))
+                s->casterBounds.emplace_back(c, makePoseBounds(animation, mesh.vertices, mesh.indices, casterClusters[c].firstIndex,
+                                                               casterClusters[c].indexCount));
+        for (const GpuDraw& d : gm.draws) s->drawBounds.push_back(makePoseBounds(animation, mesh.vertices, mesh.indices, d.firstIndex, d.indexCount));
+        s->meshBounds = makePoseBounds(animation, mesh.vertices, mesh.indices, 0, uint32_t(mesh.indices.size()));
+        gm.skinning = std::move(s);
+    }
+    GpuSkinning& s = *gm.skinning;
+    const bool previousChanges = previousPose != p.previousPose;
+    const bool currentChanges = current != p.current;
+    if (!previousChanges && !currentChanges) return;
+    // Playing on, the positions the vertex buffer holds are the previous frame's: the dispatch that
+    // poses this frame keeps them (kSkinningKeepPrevious) instead of posing the previous frame again.
+    const bool keep = previousChanges && previousPose == p.current;
+    const std::vector<std::vector<glm::mat4>> joints = usedJointMatrices(animation, current);
+    std::vector<glm::vec4> packed = packSkinningPose(animation, s.layout, current, joints);
+    const uint32_t block = uint32_t(packed.size());
+    if (previousChanges && !keep) {
+        const std::vector<glm::vec4> earlier = packSkinningPose(animation, s.layout, previousPose, usedJointMatrices(animation, previousPose));
+        packed.insert(packed.end(), earlier.begin(), earlier.end());
+        skinningWork_.push_back({i, kSkinningPosePrevious, block});
+    }
+    const unsigned mode = (currentChanges ? kSkinningPoseVertices : 0u) | (keep ? kSkinningKeepPrevious : 0u);
+    if (mode != 0) skinningWork_.push_back({i, mode, 0});
+    s.pose.fill(packed.data(), packed.size() * sizeof(glm::vec4));
+    if (previousChanges) p.previousPose = std::move(previousPose);
+    if (!currentChanges) return;
+    ++gm.poseVersion;
+    // Bounds without the posed vertices: joint-transformed rest boxes (gpu_skinning.hpp).
+    for (auto& [c, bounds] : s.casterBounds) poseBoundsBox(bounds, animation, current, joints, casterClusters[c].boundsMin, casterClusters[c].boundsMax);
+    for (size_t d = 0; d < gm.draws.size() && d < s.drawBounds.size(); ++d) {
+        glm::vec3 lo, hi;
+        poseBoundsBox(s.drawBounds[d], animation, current, joints, lo, hi);
+        if (gm.draws[d].indexCount > 0 && lo.x <= hi.x) gm.draws[d].centre = 0.5f * (lo + hi);
+    }
+    glm::vec3 lo, hi;
+    poseBoundsBox(s.meshBounds, animation, current, joints, lo, hi);
+    if (lo.x <= hi.x) {
+        gm.boundsMin = lo;
+        gm.boundsMax = hi;
+    }
+    p.current = std::move(current);
+}
+
+void SceneGpu::bounds(const Scene& scene, glm::vec3& lo, glm::vec3& hi) const {
+    lo = glm::vec3(std::numeric_limits<float>::max());
+    hi = glm::vec3(std::numeric_limits<float>::lowest());
+    for (size_t m = 0; m < scene.models.size() && m < meshes.size(); ++m) {
+        const GpuMesh& gm = meshes[m];
+        for (int c = 0; c < 8; ++c) {
+            const glm::vec3 p((c & 1) ? gm.boundsMax.x : gm.boundsMin.x, (c & 2) ? gm.boundsMax.y : gm.boundsMin.y,
+                              (c & 4) ? gm.boundsMax.z : gm.boundsMin.z);
+            const glm::vec3 w = glm::vec3(scene.models[m].transform * glm::vec4(p, 1.0f));
+            lo = glm::min(lo, w);
+            hi = glm::max(hi, w);
         }
     }
+    if (scene.models.empty()) lo = hi = glm::vec3(0.0f);
 }
 
 }  // namespace lp

@@ -4,6 +4,7 @@
 // missing texture becomes a visible checker with a warning.
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <map>
 #include <string>
@@ -12,7 +13,10 @@
 #include <glm/glm.hpp>
 
 #include "engine/gl/handles.hpp"
+#include "engine/gl/stream_buffer.hpp"
 #include "engine/io/image_io.hpp"
+#include "engine/render/gpu_skinning.hpp"
+#include "engine/render/settings.hpp"
 #include "engine/render/shadow_casters.hpp"
 #include "engine/scene/scene.hpp"
 
@@ -76,6 +80,27 @@ struct GpuDraw {
     glm::vec3 centre{0.0f};  // model space, the centre of the draw's bounding box
 };
 
+// An animated mesh's inputs to the skinning pass (--skinning gpu), made on its first pose on the
+// GPU: the storage buffers of its SkinningLayout, uploaded once, and the stream its poses are packed
+// into each frame the pose changes. The PoseBounds give the casters', draws' and mesh's bounds in
+// any pose without reading the posed vertices back.
+struct GpuSkinning {
+    SkinningLayout layout;  // the ranges and counts (the per-vertex arrays are on the GPU only)
+    gl::Buffer rest, joints, deltas, ranges, workRange;
+    gl::StreamBuffer pose{"skinning.pose"};
+    std::vector<std::pair<size_t, PoseBounds>> casterBounds;  // (SceneGpu::casterClusters index, bounds)
+    std::vector<PoseBounds> drawBounds;                       // one a GpuMesh::draws entry
+    PoseBounds meshBounds;
+};
+
+// One dispatch of the skinning pass: mesh `mesh`'s vertices, doing `mode` (kSkinningPose*,
+// kSkinningKeepPrevious) with the pose `poseBase` vec4s into its last filled pose buffer.
+struct SkinningDispatch {
+    size_t mesh = 0;
+    unsigned mode = 0;
+    uint32_t poseBase = 0;
+};
+
 struct GpuMesh {
     std::string name;
     gl::VertexArray vao;
@@ -93,6 +118,10 @@ struct GpuMesh {
     // Changes whenever the pose in `vertices` changes (the shadow cascade cache and the visibility
     // resolve's copy of the geometry follow it); 0 for a mesh that never moves.
     uint64_t poseVersion = 0;
+    // The box of the vertices in the pose `vertices` holds (mesh space): the rest pose's, then
+    // posed vertices' (--skinning cpu) or joint-transformed bounds (gpu, conservative).
+    glm::vec3 boundsMin{0.0f}, boundsMax{0.0f};
+    std::unique_ptr<GpuSkinning> skinning;  // --skinning gpu; null until the mesh is first posed there
 };
 
 class SceneGpu {
@@ -113,19 +142,34 @@ public:
 
     // Poses every animated model of `scene` (the scene this was made from) at `time`: positions,
     // normals and tangents into its vertex buffer, positions at `previousTime` into its previous
-    // positions; a pose the buffers already hold is not uploaded again. The casters' bounds and the
-    // draws' centres follow. CPU work (engine/scene/animation: node matrices, morph targets, skins),
-    // one upload per moved mesh.
-    void pose(const Scene& scene, double time, double previousTime);
+    // positions; a pose the buffers already hold is not made again. The casters' bounds, the
+    // draws' centres and the mesh bounds follow. Node matrices and morph weights are CPU work
+    // (engine/scene/animation); the vertices are posed on the CPU and uploaded (SkinningMode::Cpu),
+    // or by the skinning pass (Gpu): this uploads the poses and lists its dispatches (skinningWork).
+    void pose(const Scene& scene, double time, double previousTime, SkinningMode mode);
+
+    // The dispatches the frame's skinning pass runs (passes/skinning_pass.hpp), set by pose; empty
+    // when no vertex buffer changes. The pass calls skinningWorkDone() once it recorded them: a pose
+    // whose dispatches never ran (the pass culled or disabled) is made again in full next time.
+    const std::vector<SkinningDispatch>& skinningWork() const { return skinningWork_; }
+    void skinningWorkDone() const { skinningWorkDone_ = true; }
+    // World-space bounds of every model in the pose its vertex buffer holds (Scene::bounds, posed):
+    // what the shadow cascades fit.
+    void bounds(const Scene& scene, glm::vec3& lo, glm::vec3& hi) const;
 
 private:
     GLuint texture(const TextureRef& ref, bool srgb);
     // What an animated mesh's buffers hold: the node matrices and morph weights of its current and previous pose.
     struct Pose {
         NodePose current, previousPose;
-        std::vector<Vertex> vertices;  // the mesh's vertices as loaded, posed in place
+        std::vector<Vertex> vertices;  // the mesh's vertices as loaded, posed in place (--skinning cpu)
         std::vector<glm::vec4> previous;
+        SkinningMode mode = SkinningMode::Cpu;  // how the buffers' pose was made
     };
+    void poseOnCpu(size_t mesh, const ModelInstance& model, NodePose current, NodePose previousPose);
+    void poseOnGpu(size_t mesh, const ModelInstance& model, NodePose current, NodePose previousPose);
+    std::vector<SkinningDispatch> skinningWork_;
+    mutable bool skinningWorkDone_ = true;
     std::vector<Pose> poses_;  // one a mesh; empty for meshes that are not animated
     std::map<std::string, gl::Texture> textures_;
 };

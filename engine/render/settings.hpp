@@ -77,6 +77,13 @@ inline constexpr EnumName<RenderPath> kRenderPathNames[] = {
     {RenderPath::Deferred, "deferred"}, {RenderPath::ForwardPlus, "forward+"}, {RenderPath::PathTraced, "pathtraced"}};
 inline const char* renderPathName(RenderPath path) { return enumName(kRenderPathNames, path); }
 
+// --skinning: where an animated glTF model's vertices are posed each frame (skins, morph targets,
+// animated nodes): by the skinning compute pass on the GPU, or on the CPU and uploaded (the
+// reference the GPU pass is tested against). docs/motion.md, "Skinning on the GPU".
+enum class SkinningMode { Gpu, Cpu };
+inline constexpr EnumName<SkinningMode> kSkinningModeNames[] = {{SkinningMode::Gpu, "gpu"}, {SkinningMode::Cpu, "cpu"}};
+inline const char* skinningModeName(SkinningMode mode) { return enumName(kSkinningModeNames, mode); }
+
 // Every view --view accepts, in the order --help and the panel list them: the camera's views, then
 // the shadow map (a light's depth, needing a shadow-casting light) and the local-light overlays.
 inline constexpr EnumName<DebugView> kViewNames[] = {
@@ -355,6 +362,7 @@ struct RenderSettings {
     Brdf brdf = Brdf::Ggx;  // BRDF of the light passes: glTF 2.0's (GGX) for every material
     SpecularMasking specularMasking = SpecularMasking::HeightCorrelated;  // GGX's G2, lights and IBL alike
     RenderPath renderPath = RenderPath::Deferred;  // --render-path
+    SkinningMode skinning = SkinningMode::Gpu;     // --skinning
     PathTraceSettings pathTrace;  // --render-path pathtraced and `lightpass reference`
     bool keepHdr = false;        // keep the HDR buffer as an output (EXR dumps)
     // --all-passes: add every candidate pass even where the scene does not call for it (shadow maps

@@ -1,5 +1,7 @@
 #include "engine/render/shadows.hpp"
 
+#include "engine/render/scene_gpu.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -133,9 +135,11 @@ ShadowFrustum fitShadowFrustum(const FrameData& frame, glm::vec3 lightDirection,
         lightView[i][2] = -f[i];
     }
 
-    // Scene bounds, clamped; an empty scene is a unit box at the origin.
+    // Scene bounds in the frame's pose (an animated model's bounds follow it), clamped; an empty
+    // scene is a unit box at the origin. Without the GPU scene (a graph only described) the rest pose's.
     glm::vec3 flo, fhi;
-    frame.scene->bounds(flo, fhi);
+    if (frame.gpu) frame.gpu->bounds(*frame.scene, flo, fhi);
+    else frame.scene->bounds(flo, fhi);
     glm::dvec3 lo = clampCoordinate(glm::dvec3(flo)), hi = clampCoordinate(glm::dvec3(fhi));
     if (!(lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z)) lo = glm::dvec3(-0.5), hi = glm::dvec3(0.5);
     const double magnitude = std::max({1.0, glm::length(lo), glm::length(hi)});

@@ -129,20 +129,26 @@ struct Velocities {
 
 // The G-buffer of `mode` alone, with velocity, for the frame at `time` after one at `previousTime`,
 // the models posed as the Renderer poses them.
-Velocities renderVelocity(const Scene& scene, GBufferMode mode, float previousTime, float time, FrameData* frameOut) {
+Velocities renderVelocity(const Scene& scene, GBufferMode mode, float previousTime, float time, FrameData* frameOut,
+                          SkinningMode skinning = SkinningMode::Gpu) {
     RenderSettings settings = smallSettings();
     settings.gbuffer.mode = mode;
+    settings.skinning = skinning;
     const FrameData previous = makeFrameData(scene, settings, previousTime);
     FrameData frame = makeFrameData(scene, settings, time);
     applyMotion(frame, motionHistoryOf(previous), glm::vec2(0.0f));
     SceneGpu gpu(scene);
-    gpu.pose(scene, frame.time, frame.previousTime);
+    gpu.pose(scene, frame.time, frame.previousTime, skinning);
     gl::ShaderLibrary shaders;
     frame.gpu = &gpu;
     frame.shaders = &shaders;
     PassStates states;
     fg::FrameGraph graph;
     fg::TexturePool pool;
+    if (skinningSkipReason(frame).empty()) {  // --skinning gpu: posed by the skinning pass, before the G-buffer
+        addSkinningPass(graph, states.skinning, frame);
+        frame.posedVerticesOnGpu = true;
+    }
     GBufferChannels channels;
     channels.velocity = true;
     GBuffer g;
@@ -173,16 +179,27 @@ Velocities renderVelocity(const Scene& scene, GBufferMode mode, float previousTi
 // Every pixel of the sliding plane moves as its point does: the point rebuilt from the pixel's depth,
 // moved back by the plane's motion over the frame (kSpeed x dt along x), projected with the same
 // (still) camera; the floor's pixels do not move. In both G-buffer modes, within 0.02 output pixels;
-// moved by its node, by a skin and by a morph target (posed once a frame into the buffers every pass reads).
+// moved by its node, by a skin and by a morph target (posed once a frame into the buffers every pass reads),
+// posed by the skinning pass (--skinning gpu) and on the CPU; the two give the same motion vectors.
 TEST(AnimationGl, AnimatedVelocityMatchesTheAnalyticScreenMotion) {
     const float dt = 1.0f / 30.0f, time = 0.5f;
     for (Motion motion : {Motion::Node, Motion::Skin, Motion::Morph})
-    for (GBufferMode mode : {GBufferMode::Classic, GBufferMode::Visibility}) {
+    for (GBufferMode mode : {GBufferMode::Classic, GBufferMode::Visibility})
+    for (SkinningMode skinning : {SkinningMode::Gpu, SkinningMode::Cpu}) {
         const Scene scene = slidingScene(motion);
         SCOPED_TRACE(std::string(motion == Motion::Node ? "node" : motion == Motion::Skin ? "skin" : "morph") +
-                     (mode == GBufferMode::Classic ? ", classic" : ", visibility"));
+                     (mode == GBufferMode::Classic ? ", classic" : ", visibility") + ", --skinning " + skinningModeName(skinning));
         FrameData frame;
-        const Velocities img = renderVelocity(scene, mode, time - dt, time, &frame);
+        const Velocities img = renderVelocity(scene, mode, time - dt, time, &frame, skinning);
+        if (skinning == SkinningMode::Gpu) {  // the same motion vectors as the CPU's posing, texel by texel
+            FrameData cpuFrame;
+            const Velocities cpu = renderVelocity(scene, mode, time - dt, time, &cpuFrame, SkinningMode::Cpu);
+            for (size_t i = 0; i < img.velocity.size(); ++i) {
+                ASSERT_EQ(img.depth[i] < 1.0f, cpu.depth[i] < 1.0f) << "texel " << i % size_t(frame.width) << "," << i / size_t(frame.width);
+                ASSERT_LT(glm::length(img.velocity[i] - cpu.velocity[i]) * float(frame.width), 1e-3f)
+                    << "texel " << i % size_t(frame.width) << "," << i / size_t(frame.width);
+            }
+        }
         ASSERT_TRUE(frame.hasPrevious);
         const glm::dmat4 viewProjection = glm::dmat4(frame.unjitteredProjection) * glm::dmat4(frame.view);
         const glm::dmat4 inverse = glm::inverse(glm::dmat4(frame.projection) * glm::dmat4(frame.view));
@@ -294,11 +311,11 @@ TEST(AnimationGl, ShadowCacheFollowsWhatMovedNotTheClock) {
         SceneGpu gpu(scene);
         ShadowMapPass state;
         fg::TexturePool pool;
-        gpu.pose(scene, 0.2, 0.2);
+        gpu.pose(scene, 0.2, 0.2, SkinningMode::Cpu);
         test::drawShadowAtlas(scene, gpu, settings, state, pool);
-        gpu.pose(scene, 0.2, 0.2);
+        gpu.pose(scene, 0.2, 0.2, SkinningMode::Cpu);
         EXPECT_TRUE(allNotes(test::drawShadowAtlas(scene, gpu, settings, state, pool).notes, "kept (unchanged)"));
-        gpu.pose(scene, 0.4, 0.2);
+        gpu.pose(scene, 0.4, 0.2, SkinningMode::Cpu);
         const test::ShadowAtlasFrame moved = test::drawShadowAtlas(scene, gpu, settings, state, pool);
         EXPECT_TRUE(allNotes(moved.notes, "redrawn (casters changed)")) << moved.notes[0];
         // The kept atlas holds what a fresh one draws of the moved caster, tile by tile.
@@ -323,9 +340,9 @@ TEST(AnimationGl, ShadowCacheFollowsWhatMovedNotTheClock) {
         SceneGpu gpu(still);
         ShadowMapPass state;
         fg::TexturePool pool;
-        gpu.pose(still, 0.2, 0.2);
+        gpu.pose(still, 0.2, 0.2, SkinningMode::Cpu);
         test::drawShadowAtlas(still, gpu, settings, state, pool);
-        gpu.pose(still, 0.4, 0.2);
+        gpu.pose(still, 0.4, 0.2, SkinningMode::Cpu);
         EXPECT_TRUE(allNotes(test::drawShadowAtlas(still, gpu, settings, state, pool).notes, "kept (unchanged)"));
     }
     }

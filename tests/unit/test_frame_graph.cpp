@@ -620,6 +620,39 @@ TEST(FrameGraph, ImportedBuffersAreOrderedAndTheirUsagesChecked) {
                 }).empty());
 }
 
+// A buffer a shader writes (the skinning pass's posed vertices: storage-buffer) is incoherent: the
+// passes that draw from it get the vertex-attrib barrier, a copy out of it the buffer-update one,
+// and the writer itself one against the previous frame's reads (the buffer is imported).
+TEST(FrameGraph, ShaderWrittenBufferGetsTheBarriersOfItsReaders) {
+    FrameGraph g;
+    const ResourceId posed = g.importBuffer("posed", [] { return GLuint(0); });
+    ResourceId out;
+    g.addPass("writer", fg::PassKind::Compute, [&](PassBuilder& b) { b.write(posed, fg::Usage::StorageBuffer); }, nullptr);
+    g.addPass("draw", fg::PassKind::Raster,
+              [&](PassBuilder& b) {
+                  b.read("posed", fg::Usage::VertexBuffer);
+                  out = b.create("out", kDesc, fg::Usage::ColorAttachment);
+              },
+              nullptr);
+    g.addPass("copy", fg::PassKind::Compute,
+              [&](PassBuilder& b) {
+                  b.read("posed", fg::Usage::Transfer);
+                  b.write(out, fg::Usage::ImageStore);
+              },
+              nullptr);
+    g.markOutput("out");
+    g.compile();
+    EXPECT_EQ(g.executionOrder(), (std::vector<std::string>{"writer", "draw", "copy"}));
+    EXPECT_NE(g.barriersBefore("writer") & GL_SHADER_STORAGE_BARRIER_BIT, 0u);
+    EXPECT_EQ(g.barriersBefore("draw"), GLbitfield(GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT));
+    EXPECT_NE(g.barriersBefore("copy") & GL_BUFFER_UPDATE_BARRIER_BIT, 0u);
+    EXPECT_EQ(g.barriersBefore("copy") & GL_TEXTURE_UPDATE_BARRIER_BIT, 0u);
+    // A texture is no vertex buffer.
+    FrameGraph m;
+    const ResourceId texture = m.importTexture("tex", kDesc, GLuint(0));
+    EXPECT_THROW(m.addPass("p", fg::PassKind::Raster, [&](PassBuilder& b) { b.read(texture, fg::Usage::VertexBuffer); }, nullptr), Error);
+}
+
 // The local lights' GPU records are one buffer a frame: the pass that shades the lights first fills
 // it (local_lights; forward_opaque on the forward+ path) and the transparent pass and every overlay
 // read that version. A disabled filler passes the imported version through (the first overlay then
