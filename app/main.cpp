@@ -304,10 +304,14 @@ int commandRender(const Options& o) {
         for (const ModelInstance& m : scene.models)
             if (m.animation && !m.playingClips.empty())
                 for (const NodeVertexRange& r : m.animation->ranges) vertices += r.vertexCount;
-        say("animation pose: CPU median %.4f ms, min %.4f, max %.4f over %zu frames (%zu animated vertices; evaluate, pose, upload)\n",
-            ms[ms.size() / 2], ms.front(), ms.back(), ms.size(), vertices);
+        // --skinning gpu: the CPU evaluates the clips and uploads the matrices and weights; the
+        // skinning pass (its own GPU row) poses the vertices.
+        const bool onGpu = settings.skinning == SkinningMode::Gpu;
+        say("animation pose: CPU median %.4f ms, min %.4f, max %.4f over %zu frames (%zu animated vertices; %s)\n",
+            ms[ms.size() / 2], ms.front(), ms.back(), ms.size(), vertices,
+            onGpu ? "--skinning gpu: evaluate, upload matrices and weights" : "--skinning cpu: evaluate, pose, upload");
         j["animation_pose_ms"] = {{"median_ms", ms[ms.size() / 2]}, {"min_ms", ms.front()}, {"max_ms", ms.back()},
-                                  {"samples", ms.size()}, {"vertices", vertices}};
+                                  {"samples", ms.size()}, {"vertices", vertices}, {"skinning", skinningModeName(settings.skinning)}};
     }
     const ShadowCacheStats& cache = renderer.shadowCacheStats();
     if (cache.drawn + cache.kept + cache.scrolled + cache.completed > 0) {
