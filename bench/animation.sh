@@ -10,7 +10,8 @@
 # own row with gpu), the CPU ms of SceneGpu::pose (`animation pose: CPU median`, `animation_pose_ms`
 # in the JSON: with gpu only node matrices, joint matrices and the pose upload) and the CPU frame
 # (submit) ms. From the repository root:
-#   bench/animation.sh BUNDLE OUTDIR    (BUNDLE: run, gl_tests, lib/)
+#   bench/animation.sh BUNDLE OUTDIR    (BUNDLE: run, gl_tests, lib/); OUTDIR/skinning.md: the table
+#   (bench/summarize_skinning.py)
 set -u
 B=$(cd "$1" && pwd); R=$2; mkdir -p $R
 nvidia-smi --query-gpu=name,driver_version --format=csv,noheader | tee $R/device.txt
@@ -29,3 +30,4 @@ for model in grid skinned; do
     done
   done
 done
+python3 bench/summarize_skinning.py $R
