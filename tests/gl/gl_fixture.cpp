@@ -127,6 +127,11 @@ ShadowAtlasFrame drawShadowAtlas(const Scene& scene, const SceneGpu& gpu, const 
     frame.gpu = &gpu;
     frame.shaders = &shaders;
     fg::FrameGraph graph;
+    SkinningPass skinning;  // --skinning gpu: the animated models posed first, as the frame builder does
+    if (skinningSkipReason(frame).empty()) {
+        addSkinningPass(graph, skinning, frame);
+        frame.posedVerticesOnGpu = true;
+    }
     const ShadowMaps maps = addShadowMapPasses(graph, state, frame);
     EXPECT_EQ(maps.size(), 1u);
     if (maps.empty()) return {};

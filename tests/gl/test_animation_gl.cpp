@@ -292,13 +292,17 @@ TEST(AnimationGl, MotionBlurRunsForAMovingModelUnderAStillCamera) {
 
 // The sun's cascade cache: an animated caster that moved (by its node, a skin or a morph target)
 // redraws the tiles (as a fresh redraw draws them); the clock moving a model that does not move (no clip playing), or not moving at all, keeps them.
+// Posed by the skinning pass (--skinning gpu) and on the CPU alike.
 TEST(AnimationGl, ShadowCacheFollowsWhatMovedNotTheClock) {
     RenderSettings settings = smallSettings();
     settings.shadows.size = 256;
     settings.shadows.cascades = 2;
     settings.shadows.redrawBudget = 0;
-    for (Motion motion : {Motion::Node, Motion::Skin, Motion::Morph}) {
-    SCOPED_TRACE(motion == Motion::Node ? "node" : motion == Motion::Skin ? "skin" : "morph");
+    for (Motion motion : {Motion::Node, Motion::Skin, Motion::Morph})
+    for (SkinningMode mode : {SkinningMode::Gpu, SkinningMode::Cpu}) {
+    settings.skinning = mode;
+    SCOPED_TRACE(std::string(motion == Motion::Node ? "node" : motion == Motion::Skin ? "skin" : "morph") + ", --skinning " +
+                 skinningModeName(mode));
     Scene scene = slidingScene();
     scene.models[1] = slidingModel("slider", makeCube(0.5f), motion);
     DirectionalLight sun;
@@ -311,11 +315,11 @@ TEST(AnimationGl, ShadowCacheFollowsWhatMovedNotTheClock) {
         SceneGpu gpu(scene);
         ShadowMapPass state;
         fg::TexturePool pool;
-        gpu.pose(scene, 0.2, 0.2, SkinningMode::Cpu);
+        gpu.pose(scene, 0.2, 0.2, mode);
         test::drawShadowAtlas(scene, gpu, settings, state, pool);
-        gpu.pose(scene, 0.2, 0.2, SkinningMode::Cpu);
+        gpu.pose(scene, 0.2, 0.2, mode);
         EXPECT_TRUE(allNotes(test::drawShadowAtlas(scene, gpu, settings, state, pool).notes, "kept (unchanged)"));
-        gpu.pose(scene, 0.4, 0.2, SkinningMode::Cpu);
+        gpu.pose(scene, 0.4, 0.2, mode);
         const test::ShadowAtlasFrame moved = test::drawShadowAtlas(scene, gpu, settings, state, pool);
         EXPECT_TRUE(allNotes(moved.notes, "redrawn (casters changed)")) << moved.notes[0];
         // The kept atlas holds what a fresh one draws of the moved caster, tile by tile.
@@ -340,9 +344,9 @@ TEST(AnimationGl, ShadowCacheFollowsWhatMovedNotTheClock) {
         SceneGpu gpu(still);
         ShadowMapPass state;
         fg::TexturePool pool;
-        gpu.pose(still, 0.2, 0.2, SkinningMode::Cpu);
+        gpu.pose(still, 0.2, 0.2, mode);
         test::drawShadowAtlas(still, gpu, settings, state, pool);
-        gpu.pose(still, 0.4, 0.2, SkinningMode::Cpu);
+        gpu.pose(still, 0.4, 0.2, mode);
         EXPECT_TRUE(allNotes(test::drawShadowAtlas(still, gpu, settings, state, pool).notes, "kept (unchanged)"));
     }
     }
