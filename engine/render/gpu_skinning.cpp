@@ -97,14 +97,17 @@ std::vector<glm::vec4> packSkinningPose(const NodeAnimation& animation, const Sk
     return packed;
 }
 
-PoseBounds makePoseBounds(const NodeAnimation& animation, const std::vector<Vertex>& vertices, const std::vector<uint32_t>& indices,
-                          uint32_t first, uint32_t count) {
-    // Which range moves each vertex.
-    std::vector<int> rangeOf(vertices.size(), -1);
+std::vector<int> vertexRanges(const NodeAnimation& animation, size_t vertexCount) {
+    std::vector<int> rangeOf(vertexCount, -1);
     for (size_t ri = 0; ri < animation.ranges.size(); ++ri) {
         const NodeVertexRange& r = animation.ranges[ri];
-        for (uint32_t k = r.firstVertex; k < r.firstVertex + r.vertexCount && k < vertices.size(); ++k) rangeOf[k] = int(ri);
+        for (uint32_t k = r.firstVertex; k < r.firstVertex + r.vertexCount && k < vertexCount; ++k) rangeOf[k] = int(ri);
     }
+    return rangeOf;
+}
+
+PoseBounds makePoseBounds(const NodeAnimation& animation, const std::vector<Vertex>& vertices, const std::vector<int>& rangeOf,
+                          const std::vector<uint32_t>& indices, uint32_t first, uint32_t count) {
     std::map<std::pair<int, int>, size_t> partOf;
     PoseBounds bounds;
     auto add = [&](int range, int joint, const glm::vec3& p, const MorphDelta* deltas, uint32_t targets, uint32_t stride) {
@@ -128,7 +131,7 @@ PoseBounds makePoseBounds(const NodeAnimation& animation, const std::vector<Vert
     };
     for (uint32_t k = first; k < first + count && k < indices.size(); ++k) {
         const uint32_t v = indices[k];
-        if (v >= vertices.size()) continue;
+        if (v >= vertices.size() || v >= rangeOf.size()) continue;
         const int ri = rangeOf[v];
         if (ri < 0) {
             add(-1, -1, vertices[v].position, nullptr, 0, 0);

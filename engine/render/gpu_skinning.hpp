@@ -96,9 +96,12 @@ struct PoseBounds {
     std::vector<PoseBoundsPart> parts;
     bool empty() const { return parts.empty(); }
 };
-// The bounds of mesh vertices `indices[first, first + count)` refer to (`vertices`: the mesh's, as loaded).
-PoseBounds makePoseBounds(const NodeAnimation& animation, const std::vector<Vertex>& vertices, const std::vector<uint32_t>& indices,
-                          uint32_t first, uint32_t count);
+// Which range moves each of a mesh's `vertexCount` vertices (index into animation.ranges; -1: none).
+std::vector<int> vertexRanges(const NodeAnimation& animation, size_t vertexCount);
+// The bounds of mesh vertices `indices[first, first + count)` refer to (`vertices`: the mesh's, as
+// loaded; `ranges`: vertexRanges of them).
+PoseBounds makePoseBounds(const NodeAnimation& animation, const std::vector<Vertex>& vertices, const std::vector<int>& ranges,
+                          const std::vector<uint32_t>& indices, uint32_t first, uint32_t count);
 // The box in `pose` (mesh space); jointMatrices: every skin's (jointMatrices(skin, pose.worlds)). lo > hi when empty.
 void poseBoundsBox(const PoseBounds& bounds, const NodeAnimation& animation, const NodePose& pose,
                    const std::vector<std::vector<glm::mat4>>& jointMatrices, glm::vec3& lo, glm::vec3& hi);

@@ -302,12 +302,12 @@ void SceneGpu::poseOnGpu(size_t i, const ModelInstance& model, NodePose current,
         l.rest = {};
         l.joints = {};
         l.deltas = {};
+        const std::vector<int> ranges = vertexRanges(animation, mesh.vertices.size());
+        auto boundsOf = [&](uint32_t first, uint32_t count) { return makePoseBounds(animation, mesh.vertices, ranges, mesh.indices, first, count); };
         for (size_t c = 0; c < casterClusters.size(); ++c)
-            if (casterClusters[c].model == int(i))
-                s->casterBounds.emplace_back(c, makePoseBounds(animation, mesh.vertices, mesh.indices, casterClusters[c].firstIndex,
-                                                               casterClusters[c].indexCount));
-        for (const GpuDraw& d : gm.draws) s->drawBounds.push_back(makePoseBounds(animation, mesh.vertices, mesh.indices, d.firstIndex, d.indexCount));
-        s->meshBounds = makePoseBounds(animation, mesh.vertices, mesh.indices, 0, uint32_t(mesh.indices.size()));
+            if (casterClusters[c].model == int(i)) s->casterBounds.emplace_back(c, boundsOf(casterClusters[c].firstIndex, casterClusters[c].indexCount));
+        for (const GpuDraw& d : gm.draws) s->drawBounds.push_back(boundsOf(d.firstIndex, d.indexCount));
+        s->meshBounds = boundsOf(0, uint32_t(mesh.indices.size()));
         gm.skinning = std::move(s);
     }
     GpuSkinning& s = *gm.skinning;
