@@ -67,7 +67,8 @@ usage:
 viewer keys (seed 001):
   1 depth  2 normals  3 diffuse  4 eye-space position  5 lighting  6 shininess  7 toon on/off
   8 bloom buffer alone  9 velocity  0 standard view  r reset camera  x toggle scissor  W/S/A/D/Q/Z move
-  m next material input (base-color, metallic, roughness, occlusion, emissive)  t next term (term-diffuse, term-specular)
+  m next material input (base-color, metallic, roughness, occlusion, emissive)
+  t next term (term-diffuse, term-specular, clearcoat)  k the clearcoat layer alone (KHR_materials_clearcoat)
   c compare with the path tracer (raster | path tracer / heat map of the raster's error)
   mouse drag: look  p follow the camera path  +/- exposure  Tab panel  h help  F12 screenshot  Esc quit
   (the panel also picks scenes and environments, a picked map lighting the scene with IBL on,

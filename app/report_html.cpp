@@ -341,6 +341,7 @@ std::vector<ReportViewRule> reportViewRules(int shadowLight) {
         {DebugView::Emissive, "emission (the emitted radiance alone)", ""},
         {DebugView::TermDiffuse, "global_lights, local_lights (the diffuse term alone)", ""},
         {DebugView::TermSpecular, "global_lights, local_lights (the specular term alone)", ""},
+        {DebugView::TermClearcoat, "global_lights, ibl, local_lights (KHR_materials_clearcoat's layer alone)", ""},
         {DebugView::ShadowMap, shadowPass, shadowPass},
         {DebugView::LightRanges, "local_lights (light bounds)", "local_lights"},
         {DebugView::LightsPerTile, "local_lights (lights per tile)", "local_lights"},

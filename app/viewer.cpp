@@ -53,6 +53,7 @@ void keyCallback(GLFWwindow* window, int key, int, int action, int) {
         case GLFW_KEY_9: setView(DebugView::Velocity); break;
         case GLFW_KEY_M: setView(nextViewInCycle(materialInputViews(), s.view)); break;  // the material's inputs
         case GLFW_KEY_T: setView(nextViewInCycle(termViews(), s.view)); break;           // the lit frame's terms
+        case GLFW_KEY_K: setView(DebugView::TermClearcoat); break;                      // the clearcoat layer alone
         case GLFW_KEY_7:  // toon on/off over the standard view (which the bloom buffer alone is not)
             s.view = DebugView::Final;
             if (s.post.bloomOnly) {

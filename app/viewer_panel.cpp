@@ -18,7 +18,7 @@ const char* const kViewerHelp =
     "5 lighting only   6 shininess   7 toon on/off   8 bloom buffer alone   9 velocity\n"
     "0 standard view (toon and bloom-only back to the start)\n"
     "m next material input (base-color, metallic, roughness, occlusion, emissive)\n"
-    "t next lit term (term-diffuse, term-specular)\n"
+    "t next lit term (term-diffuse, term-specular, clearcoat)   k clearcoat layer alone\n"
     "r reset camera   p follow the camera path   x toggle scissor (local lights, scissor method)\n"
     "c compare with the path tracer: raster, path tracer and a heat map of the error\n"
     "Space play/pause the scene clock   [ / ] clock speed halved/doubled\n"

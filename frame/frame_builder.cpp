@@ -170,6 +170,7 @@ FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const Fr
     GBufferChannels channels = channelsForView(s.view);
     channels.velocity = channels.velocity || motionBlurSkip.empty() || taa;
     channels.fresnel = gbufferCarriesFresnel(frame);
+    channels.clearcoat = gbufferCarriesClearcoat(frame);
     // The G-buffer: rasterised target by target, a visibility buffer resolved into the same targets,
     // or (forward+) a depth pre-pass that writes only what later passes read.
     const bool forwardPlus = s.renderPath == RenderPath::ForwardPlus;
@@ -192,6 +193,9 @@ FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const Fr
             graph.skipPass("gbuffer_visibility", mode.why);
             graph.skipPass("gbuffer_resolve", mode.why);
         }
+        // --explain: whether the G-buffer carries KHR_materials_clearcoat's layer, and why not.
+        const std::string coat = gbufferClearcoatNote(frame);
+        for (const char* pass : {"gbuffer", "gbuffer_resolve"}) graph.notePass(pass, coat);
     }
     // one depth pass per shadow-casting directional light; global_lights and the shadowmap view read them.
     const ShadowMaps shadowMaps = addShadowMapPasses(graph, passes.shadowMaps, frame);

@@ -11,8 +11,11 @@
 namespace lp {
 
 namespace {
+// emission.frag's uClearcoatLayer (beside the diffuse and emissive maps on 0 and 1).
+constexpr GLuint kEmissionClearcoatUnit = 2;
 struct Data {
     fg::ResourceId depth, hdr;
+    fg::ResourceId clearcoat;  // gbuffer.clearcoat where the G-buffer carries it: the coat over the emission
 };
 }  // namespace
 
@@ -32,6 +35,7 @@ fg::ResourceId addEmissionPass(fg::FrameGraph& graph, EmissionPass& state, const
             data.depth = b.read(gbuffer.depth, fg::Usage::DepthTest);
             data.hdr = b.write(hdr, fg::Usage::Blend);
             readPosedVertices(b, frame);
+            if (gbuffer.clearcoat.valid()) data.clearcoat = b.read(gbuffer.clearcoat, fg::Usage::Sampled);
         },
         [&state, frame](const Data& data, const fg::PassResources& res) {
             const GBufferSettings layout = frame.settings->gbuffer;
@@ -56,6 +60,7 @@ fg::ResourceId addEmissionPass(fg::FrameGraph& graph, EmissionPass& state, const
 
             const GLuint prog = state.program.id();
             glUseProgram(prog);
+            if (data.clearcoat.valid()) glBindTextureUnit(kEmissionClearcoatUnit, res.texture(data.clearcoat));
             glProgramUniformMatrix4fv(prog, glGetUniformLocation(prog, "uProjection"), 1, GL_FALSE,
                                       glm::value_ptr(gbufferDepthProjection(frame)));
             auto loc = [prog](const char* name) { return glGetUniformLocation(prog, name); };
@@ -95,6 +100,7 @@ fg::ResourceId addEmissionPass(fg::FrameGraph& graph, EmissionPass& state, const
             glBindVertexArray(0);
             glBindTextureUnit(0, 0);
             glBindTextureUnit(1, 0);
+            glBindTextureUnit(kEmissionClearcoatUnit, 0);
             glUseProgram(0);
         });
     return d.hdr;

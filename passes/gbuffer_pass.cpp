@@ -39,6 +39,9 @@ MaterialUniforms::MaterialUniforms(GLuint prog) {
     twoSided = loc("uDoubleSided"); flat = loc("uFlat"); secondUvMaps = loc("uSecondUvMaps");
     specularF90 = loc("uSpecularF90"); specularF90Given = loc("uSpecularF90Given");
     hasSpecularMap = loc("uHasSpecularMap"); hasSpecularColorMap = loc("uHasSpecularColorMap");
+    clearcoat = loc("uClearcoat"); clearcoatRoughness = loc("uClearcoatRoughness");
+    clearcoatNormalScale = loc("uClearcoatNormalScale"); hasClearcoatMap = loc("uHasClearcoatMap");
+    hasClearcoatRoughnessMap = loc("uHasClearcoatRoughnessMap"); hasClearcoatNormalMap = loc("uHasClearcoatNormalMap");
 }
 
 void MaterialUniforms::set(GLuint prog, const GpuMaterial& m) const {
@@ -72,12 +75,23 @@ void MaterialUniforms::set(GLuint prog, const GpuMaterial& m) const {
     glBindTextureUnit(4, m.occlusionMap);
     glBindTextureUnit(kMaterialSpecularUnit, m.specularMap);
     glBindTextureUnit(kMaterialSpecularColorUnit, m.specularColorMap);
+    glProgramUniform1f(prog, clearcoat, m.clearcoat);
+    glProgramUniform1f(prog, clearcoatRoughness, m.clearcoatRoughness);
+    glProgramUniform1f(prog, clearcoatNormalScale, m.clearcoatNormalScale);
+    glProgramUniform1i(prog, hasClearcoatMap, m.clearcoatMap != 0);
+    glProgramUniform1i(prog, hasClearcoatRoughnessMap, m.clearcoatRoughnessMap != 0);
+    glProgramUniform1i(prog, hasClearcoatNormalMap, m.clearcoatNormalMap != 0);
+    glBindTextureUnit(kMaterialClearcoatUnit, m.clearcoatMap);
+    glBindTextureUnit(kMaterialClearcoatRoughnessUnit, m.clearcoatRoughnessMap);
+    glBindTextureUnit(kMaterialClearcoatNormalUnit, m.clearcoatNormalMap);
 }
 
 void unbindMaterialTextures() {
     for (GLuint u = 0; u < 5; ++u) glBindTextureUnit(u, 0);
     glBindTextureUnit(kMaterialSpecularUnit, 0);
     glBindTextureUnit(kMaterialSpecularColorUnit, 0);
+    for (GLuint u : {kMaterialClearcoatUnit, kMaterialClearcoatRoughnessUnit, kMaterialClearcoatNormalUnit})
+        glBindTextureUnit(u, 0);
 }
 
 glm::mat4 gbufferDepthProjection(const FrameData& frame) {
@@ -105,14 +119,38 @@ bool gbufferCarriesFresnel(const FrameData& frame) {
     return false;
 }
 
-void readGBuffer(fg::PassBuilder& b, const GBuffer& g, bool diffuse, bool fresnel) {
+bool gbufferCarriesClearcoat(const FrameData& frame) {
+    if (frame.scene == nullptr || frame.settings->view == DebugView::Texcoords) return false;
+    for (const ModelInstance& model : frame.scene->models)
+        for (const Material& m : model.mesh.materials)
+            if (m.hasClearcoat() && m.alphaMode != AlphaMode::Blend) return true;
+    return false;
+}
+
+std::string gbufferClearcoatNote(const FrameData& frame) {
+    size_t coated = 0, blended = 0;
+    if (frame.scene != nullptr)
+        for (const ModelInstance& model : frame.scene->models)
+            for (const Material& m : model.mesh.materials)
+                if (m.hasClearcoat()) (m.alphaMode == AlphaMode::Blend ? blended : coated) += 1;
+    const std::string what = "KHR_materials_clearcoat: ";
+    if (coated == 0)
+        return what + "no gbuffer.clearcoat (no opaque material has a coat" +
+               (blended > 0 ? "; " + std::to_string(blended) + " blended ones are coated in the transparent pass)" : ")");
+    if (!gbufferCarriesClearcoat(frame))
+        return what + "no gbuffer.clearcoat in the texcoords view (its target takes the location; nothing is lit)";
+    return what + "gbuffer.clearcoat carries the coat of " + std::to_string(coated) + " opaque material(s)";
+}
+
+void readGBuffer(fg::PassBuilder& b, const GBuffer& g, bool diffuse, bool shading) {
     constexpr fg::Usage sampled = fg::Usage::Sampled;  // bindGBuffer binds them to texture units
     b.read(g.depth, sampled);
     b.read(g.normal, sampled);
     if (diffuse) b.read(g.diffuse, sampled);
     if (g.position.valid()) b.read(g.position, sampled);
     b.read(g.specular, sampled);
-    if (fresnel && g.fresnel.valid()) b.read(g.fresnel, sampled);
+    if (shading && g.fresnel.valid()) b.read(g.fresnel, sampled);
+    if (shading && g.clearcoat.valid()) b.read(g.clearcoat, sampled);
 }
 
 GBuffer createGBufferColourTargets(fg::PassBuilder& b, int w, int h, const GBufferSettings& layout,
@@ -124,6 +162,7 @@ GBuffer createGBufferColourTargets(fg::PassBuilder& b, int w, int h, const GBuff
         out.position = b.createIfRead("gbuffer.position", {w, h, GL_RGBA32F}, how);
     out.specular = b.createIfRead("gbuffer.specular", {w, h, gbufferSpecularFormat(layout.normal)}, how);
     if (channels.texcoord) out.texcoord = b.createIfRead("gbuffer.texcoord", {w, h, GL_RG32F}, how);
+    else if (channels.clearcoat) out.clearcoat = b.createIfRead("gbuffer.clearcoat", {w, h, GL_RGBA16}, how);
     if (channels.tangent) out.tangent = b.createIfRead("gbuffer.tangent", {w, h, GL_RGBA16F}, how);
     if (channels.velocity) out.velocity = b.createIfRead("gbuffer.velocity", {w, h, GL_RG16F}, how);
     if (channels.materialInput)
@@ -147,9 +186,11 @@ void addGBufferImageDefines(std::vector<std::string>& d, const GBufferSettings& 
 }
 
 GLuint bindGBufferImages(const fg::PassResources& res, const GBuffer& g) {
-    // Unit 7: the material input, or (never both: GBufferChannels::fresnel) the Fresnel ends.
+    // Unit 7: the material input, or (never both: GBufferChannels::fresnel) the Fresnel ends; unit 4 the
+    // texcoords or (never both: GBufferChannels::clearcoat) the clearcoat layer.
     const fg::ResourceId targets[8] = {g.normal,   g.diffuse, g.position, g.specular,
-                                       g.texcoord, g.tangent, g.velocity, g.fresnel.valid() ? g.fresnel : g.materialInput};
+                                       g.clearcoat.valid() ? g.clearcoat : g.texcoord, g.tangent, g.velocity,
+                                       g.fresnel.valid() ? g.fresnel : g.materialInput};
     GLuint bound = 0;
     for (GLuint i = 0; i < 8; ++i) {
         if (!targets[i].valid()) continue;
@@ -187,14 +228,15 @@ void setBrdfUniforms(GLuint prog, const RenderSettings& settings) {
 }
 
 void bindGBuffer(GLuint program, const fg::PassResources& res, const GBuffer& g, const FrameData& frame, bool diffuse,
-                 bool fresnel) {
+                 bool shading) {
     glBindTextureUnit(0, res.texture(g.depth));
     glBindTextureUnit(1, res.texture(g.normal));
     // The sRGB targets through their RGBA8 views: gbuffer_layout.glsl decodes them exactly.
     glBindTextureUnit(2, diffuse ? res.image(g.diffuse).texture : 0);
     glBindTextureUnit(3, g.position.valid() ? res.texture(g.position) : 0);
     glBindTextureUnit(4, res.image(g.specular).texture);
-    if (fresnel && g.fresnel.valid()) glBindTextureUnit(kGBufferFresnelUnit, res.texture(g.fresnel));
+    if (shading && g.fresnel.valid()) glBindTextureUnit(kGBufferFresnelUnit, res.texture(g.fresnel));
+    if (shading && g.clearcoat.valid()) glBindTextureUnit(kGBufferClearcoatUnit, res.texture(g.clearcoat));
     const glm::mat4& p = frame.projection;
     glProgramUniform4f(program, glGetUniformLocation(program, "uGbufferCamera"), frame.nearPlane, frame.farPlane,
                        1.0f / p[1][1], p[1][1] / p[0][0]);
@@ -203,6 +245,7 @@ void bindGBuffer(GLuint program, const fg::PassResources& res, const GBuffer& g,
 void unbindGBuffer() {
     for (GLuint u = 0; u < 5; ++u) glBindTextureUnit(u, 0);
     glBindTextureUnit(kGBufferFresnelUnit, 0);
+    glBindTextureUnit(kGBufferClearcoatUnit, 0);
 }
 
 namespace {
@@ -228,7 +271,8 @@ GBuffer addGeometryPass(fg::FrameGraph& graph, GBufferPass& state, const FrameDa
             // No material channel is read (forward+ without AO or a channel view): depth and motion only.
             bool depthOnly = true;
             for (fg::ResourceId c :
-                 {out.normal, out.diffuse, out.position, out.specular, out.texcoord, out.tangent, out.materialInput, out.fresnel})
+                 {out.normal, out.diffuse, out.position, out.specular, out.texcoord, out.tangent, out.materialInput, out.fresnel,
+                  out.clearcoat})
                 depthOnly = depthOnly && (!c.valid() || res.texture(c) == 0);
             auto variant = [&](gl::Program& program, GBufferProgramKey& builtFor, bool withVelocity,
                                bool withDepthOnly) -> const gl::Program& {
@@ -249,7 +293,7 @@ GBuffer addGeometryPass(fg::FrameGraph& graph, GBufferPass& state, const FrameDa
             glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, res.texture(out.depth), 0);
             constexpr int kTargets = 8;  // = gbuffer.frag's outputs (location i) and gbuffer_images.glsl's bindings
             const fg::ResourceId colour[kTargets] = {out.normal,   out.diffuse,  out.position,
-                                                     out.specular, out.texcoord, out.tangent,
+                                                     out.specular, out.clearcoat.valid() ? out.clearcoat : out.texcoord, out.tangent,
                                                      out.velocity, out.fresnel.valid() ? out.fresnel : out.materialInput};
             GLenum buffers[kTargets];
             for (int i = 0; i < kTargets; ++i) {

@@ -24,6 +24,10 @@ struct GBufferChannels {
     // of the scene gives its f90 (KHR_materials_specular; gbufferCarriesFresnel), never beside
     // materialInput, whose colour location and image unit it takes.
     bool fresnel = false;
+    // gbuffer.clearcoat (RGBA16 unorm: KHR_materials_clearcoat's weight, sqrt alpha, octahedral normal): only
+    // when an opaque material of the scene has a coat (gbufferCarriesClearcoat), never beside texcoord,
+    // whose colour location and image unit (4) it takes.
+    bool clearcoat = false;
 };
 
 struct GBuffer {
@@ -31,6 +35,7 @@ struct GBuffer {
     fg::ResourceId velocity;  // invalid unless GBufferChannels::velocity
     fg::ResourceId materialInput;  // invalid unless GBufferChannels::materialInput
     fg::ResourceId fresnel;        // invalid unless GBufferChannels::fresnel
+    fg::ResourceId clearcoat;      // invalid unless GBufferChannels::clearcoat
 };
 
 // What a program that reads or draws the G-buffer was compiled for: the layout, whether the scene's
@@ -42,9 +47,10 @@ struct GBufferProgramKey {
     bool vertexColors = false;
     bool secondUvSet = false;
     bool fresnel = false;  // gbufferCarriesFresnel: LP_GBUFFER_FRESNEL
+    bool clearcoat = false;  // gbufferCarriesClearcoat: LP_GBUFFER_CLEARCOAT
     bool operator==(const GBufferProgramKey& o) const {
         return layout == o.layout && vertexColors == o.vertexColors && secondUvSet == o.secondUvSet &&
-               fresnel == o.fresnel;
+               fresnel == o.fresnel && clearcoat == o.clearcoat;
     }
     bool operator!=(const GBufferProgramKey& o) const { return !(*this == o); }
 };
@@ -73,7 +79,9 @@ GBuffer addDepthPrepass(fg::FrameGraph& graph, GBufferPass& state, const FrameDa
 // The texture units of KHR_materials_specular's maps (common/material.glsl's LP_MATERIAL_BIND_SPECULAR*):
 // above the 0..15 the light passes and the forward passes' lighting use.
 constexpr GLuint kMaterialSpecularUnit = 16, kMaterialSpecularColorUnit = 17;
-// Unbinds the material's texture units (0..4 and the specular maps').
+// KHR_materials_clearcoat's three maps (LP_MATERIAL_BIND_CLEARCOAT*): factor, roughness, normal.
+constexpr GLuint kMaterialClearcoatUnit = 18, kMaterialClearcoatRoughnessUnit = 19, kMaterialClearcoatNormalUnit = 20;
+// Unbinds the material's texture units (0..4, the specular maps' and the clearcoat maps').
 void unbindMaterialTextures();
 
 // The material uniforms of common/material_uniforms.glsl in a program (the G-buffer raster, the
@@ -84,7 +92,8 @@ struct MaterialUniforms {
     void set(GLuint prog, const GpuMaterial& m) const;  // also binds the material's textures (units 0..4, 16, 17)
     GLint kd, opacity, ks, metallic, shininess, roughness, hasDiffuse, hasBump, bumpScale, hasNormal, normalScale,
         hasMetalRough, hasOcclusion, occlusionStrength, mask, cutoff, twoSided, flat, secondUvMaps, specularF90,
-        specularF90Given, hasSpecularMap, hasSpecularColorMap;
+        specularF90Given, hasSpecularMap, hasSpecularColorMap, clearcoat, clearcoatRoughness, clearcoatNormalScale,
+        hasClearcoatMap, hasClearcoatRoughnessMap, hasClearcoatNormalMap;
 };
 
 // common/brdf.glsl's uBrdf, uSpecularMasking and uHiddenTerms (the term views: lp::hiddenShadingTerms)
@@ -101,6 +110,8 @@ void setBrdfUniforms(GLuint prog, const RenderSettings& settings);
 constexpr GLenum kGBufferDiffuseFormat = GL_SRGB8_ALPHA8;
 // The texture unit bindGBuffer gives gbuffer.fresnel: common/gbuffer_layout.glsl's LP_BIND_FRESNEL.
 constexpr GLuint kGBufferFresnelUnit = 15;
+// The texture unit bindGBuffer gives gbuffer.clearcoat: common/gbuffer_layout.glsl's LP_BIND_CLEARCOAT.
+constexpr GLuint kGBufferClearcoatUnit = 21;
 GLenum gbufferNormalFormat(GBufferNormalFormat format);
 GLenum gbufferSpecularFormat(GBufferNormalFormat format);
 
@@ -114,8 +125,9 @@ glm::mat4 gbufferDepthProjection(const FrameData& frame);
 void setGBufferDepthTest(const GBufferSettings& layout);
 
 // Declares reads of the targets the decode API needs (position only when stored; diffuse when asked;
-// gbuffer.fresnel when asked and the G-buffer carries it: the passes that shade, gbufferFresnel).
-void readGBuffer(fg::PassBuilder& b, const GBuffer& g, bool diffuse = true, bool fresnel = false);
+// with `shading`, gbuffer.fresnel and gbuffer.clearcoat where the G-buffer carries them: the passes that
+// shade, gbufferFresnel and gbufferClearcoat).
+void readGBuffer(fg::PassBuilder& b, const GBuffer& g, bool diffuse = true, bool shading = false);
 // Creates the colour targets (every one but depth) of a w x h G-buffer in `layout`, each only if some
 // pass reads it and its channel is asked for, written with `how`: the classic pass's attachments and
 // the visibility resolve's image stores are the same targets, names and formats.
@@ -130,7 +142,7 @@ void unbindGBufferImages();
 void setBackgroundMotionUniforms(GLuint program, const FrameData& frame);
 // Binds the targets to units LP_BIND_* and sets `program`'s uGbufferCamera; unbindGBuffer clears the units.
 void bindGBuffer(GLuint program, const fg::PassResources& res, const GBuffer& g, const FrameData& frame,
-                 bool diffuse = true, bool fresnel = false);
+                 bool diffuse = true, bool shading = false);
 void unbindGBuffer();
 
 // Whether the frame's G-buffer carries gbuffer.fresnel: an opaque material of the scene gives its f90
@@ -138,6 +150,14 @@ void unbindGBuffer();
 // target takes the fresnel target's colour location and image unit). Without it every pass derives f90
 // from F0, as for a scene without the extension, and pays nothing.
 bool gbufferCarriesFresnel(const FrameData& frame);
+// Whether it carries gbuffer.clearcoat: an opaque material of the scene has a coat
+// (KHR_materials_clearcoat, Material::hasClearcoat), and the view is not the texcoords view (which
+// lights nothing; its target takes the clearcoat target's colour location and image unit). Without
+// it no pass reads or pays for a coat.
+bool gbufferCarriesClearcoat(const FrameData& frame);
+// What 'graph --explain' says under the G-buffer pass about gbuffer.clearcoat: written for how many
+// coated materials, or why not (no opaque material has a coat; the texcoords view).
+std::string gbufferClearcoatNote(const FrameData& frame);
 
 // `program`, compiled by compile(defines) for the frame's G-buffer layout (and LP_VERTEX_COLOR where
 // the scene has vertex colours, LP_SECOND_UV where it samples TEXCOORD_1, LP_GBUFFER_FRESNEL where the
@@ -147,12 +167,14 @@ template <class Compile>
 const gl::Program& programForLayout(gl::Program& program, GBufferProgramKey& builtFor, const FrameData& frame,
                                     Compile compile) {
     const GBufferProgramKey key{frame.settings->gbuffer, frame.gpu != nullptr && frame.gpu->vertexColors,
-                                frame.gpu != nullptr && frame.gpu->secondUvSet, gbufferCarriesFresnel(frame)};
+                                frame.gpu != nullptr && frame.gpu->secondUvSet, gbufferCarriesFresnel(frame),
+                                gbufferCarriesClearcoat(frame)};
     if (!program || builtFor != key) {
         std::vector<std::string> defines = gbufferDefines(key.layout);
         if (key.vertexColors) defines.push_back("LP_VERTEX_COLOR");
         if (key.secondUvSet) defines.push_back("LP_SECOND_UV");
         if (key.fresnel) defines.push_back("LP_GBUFFER_FRESNEL");
+        if (key.clearcoat) defines.push_back("LP_GBUFFER_CLEARCOAT");
         program = compile(defines);
         builtFor = key;
     }

@@ -46,16 +46,20 @@ void makeMesh(const std::vector<glm::vec3>& tris, const std::string& name, gl::B
     vertices = int(tris.size());
 }
 
-// The G-buffer-reading programs' defines: the G-buffer layout and spot shadows.
-std::vector<std::string> lightingDefines(const GBufferSettings& layout, bool spotShadows) {
+// The G-buffer-reading programs' defines: the G-buffer layout, spot shadows, and the material
+// extensions' targets the G-buffer carries (the state's variant flags).
+std::vector<std::string> lightingDefines(const GBufferSettings& layout, bool spotShadows, const LocalLightPass& state) {
     std::vector<std::string> d = gbufferDefines(layout);
     if (spotShadows) d.push_back("LP_SPOT_SHADOWS");
+    if (state.fresnelVariant) d.push_back("LP_GBUFFER_FRESNEL");
+    if (state.clearcoatVariant) d.push_back("LP_GBUFFER_CLEARCOAT");
     return d;
 }
 
 // The fused clustered programs' defines: those and the grid's tile size (their work-group shape).
-std::vector<std::string> clusteredDefines(const GBufferSettings& layout, bool spotShadows, int clusterTile) {
-    std::vector<std::string> d = lightingDefines(layout, spotShadows);
+std::vector<std::string> clusteredDefines(const GBufferSettings& layout, bool spotShadows, int clusterTile,
+                                          const LocalLightPass& state) {
+    std::vector<std::string> d = lightingDefines(layout, spotShadows, state);
     d.push_back("LP_CLUSTER_TILE " + std::to_string(clusterTile));
     return d;
 }
@@ -66,13 +70,16 @@ void ensureState(LocalLightPass& state, const FrameData& frame, bool spotShadows
     const GBufferSettings& layout = frame.settings->gbuffer;
     // The fused clustered programs are compiled for the grid's tile size (their work-group shape).
     const int clusterTile = frame.settings->localLights.clusterSize;
+    const bool fresnel = gbufferCarriesFresnel(frame), clearcoat = gbufferCarriesClearcoat(frame);
     if (!state.fbo || state.layout != layout || state.spotShadowVariant != spotShadows ||
-        state.clusterTileCompiled != clusterTile) {
-        std::vector<std::string> defines = lightingDefines(layout, spotShadows);
+        state.clusterTileCompiled != clusterTile || state.fresnelVariant != fresnel || state.clearcoatVariant != clearcoat) {
+        state.fresnelVariant = fresnel;
+        state.clearcoatVariant = clearcoat;
+        std::vector<std::string> defines = lightingDefines(layout, spotShadows, state);
         state.spotShadowVariant = spotShadows;
         state.fragmentProgram = frame.shaders->graphics("local_light.vert", "local_light.frag", defines);
         state.tiledProgram = frame.shaders->compute("local_light_tiled.comp", defines);
-        const std::vector<std::string> clustered = clusteredDefines(layout, spotShadows, clusterTile);
+        const std::vector<std::string> clustered = clusteredDefines(layout, spotShadows, clusterTile, state);
         state.clusteredProgram = frame.shaders->compute("local_light_clustered.comp", clustered);
         state.clusteredSupertileProgram = {};  // compiled when first needed (many lights)
         state.clusterTightBuildProgram = frame.shaders->compute("light_clusters_tight.comp", clustered);
@@ -121,6 +128,7 @@ void unbindAll(const LocalLightPass& state) {
     }
     for (GLuint u = 0; u < 6; ++u) glBindTextureUnit(u, 0);
     glBindTextureUnit(kGBufferFresnelUnit, 0);
+    glBindTextureUnit(kGBufferClearcoatUnit, 0);
     glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
     for (GLuint b = 0; b < 5; ++b) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, 0);
     glBindVertexArray(0);
@@ -640,7 +648,7 @@ fg::ResourceId addLocalLightPass(fg::FrameGraph& graph, LocalLightPass& state, c
                 // With many lights the variant that reads the supertile lists (LP_SUPERTILES).
                 const bool supertiles = useSupertiles(state, int(lights->size()), !unbounded(s));
                 if (supertiles && !state.clusteredSupertileProgram) {
-                    std::vector<std::string> d = clusteredDefines(state.layout, state.spotShadowVariant, state.clusterTileCompiled);
+                    std::vector<std::string> d = clusteredDefines(state.layout, state.spotShadowVariant, state.clusterTileCompiled, state);
                     d.push_back("LP_SUPERTILES");
                     state.clusteredSupertileProgram = frame.shaders->compute("local_light_clustered.comp", d);
                 }

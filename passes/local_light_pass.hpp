@@ -97,6 +97,9 @@ struct LocalLightPass {
     gl::Program globeVelocityProgram;  // the same with LP_GLOBE_VELOCITY: globes and their motion vectors
     GBufferSettings layout;       // the G-buffer layout the fragment, tiled and heatmap programs were compiled for
     bool spotShadowVariant = false;  // ... and whether with LP_SPOT_SHADOWS (only frames with a shadowed spot)
+    // ... and with the material extensions' targets the G-buffer carries (LP_GBUFFER_FRESNEL,
+    // LP_GBUFFER_CLEARCOAT: gbufferCarriesFresnel, gbufferCarriesClearcoat)
+    bool fresnelVariant = false, clearcoatVariant = false;
     gl::StreamBuffer spotShadows{"spot_shadows.ssbo"};  // LpSpotShadow per atlas tile (binding 4)
     gl::Framebuffer fbo;
     // GpuLocalLight per light (binding 0): the frame's "local_lights.records", filled once a frame

@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
+#include <iterator>
 
 #include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/type_ptr.hpp>
@@ -26,18 +27,29 @@ struct MeshRecord {
 };
 struct MaterialRecord {
     glm::vec4 diffuseOpacity, specularMetallic, shininessRoughnessBumpNormal, occlusionCutoff;
+    glm::vec4 clearcoat;  // KHR_materials_clearcoat's factor, roughness, normal map scale
     glm::uvec4 flags;
 };
 // The maps the resolve samples as their MaterialMapBit (the emissive map is the emission pass's), and
 // three more bits above them (visibility_resolve.comp's LP_MATERIAL_*).
-enum MaterialFlag : uint32_t { AlphaMask = 256, Flat = 512, SpecularF90 = 1024 };
+enum MaterialFlag : uint32_t { AlphaMask = 2048, Flat = 4096, SpecularF90 = 8192 };
 constexpr uint32_t kAnyMap = kDiffuseMapBit | kBumpMapBit | kNormalMapBit | kMetalRoughMapBit | kOcclusionMapBit |
-                             kSpecularMapBit | kSpecularColorMapBit;
+                             kSpecularMapBit | kSpecularColorMapBit | kClearcoatMapBit | kClearcoatRoughnessMapBit |
+                             kClearcoatNormalMapBit;
+static_assert(kClearcoatNormalMapBit < AlphaMask, "the material flags lie above the map bits");
+
+// material.glsl's maps, in its uMapAnisotropy order: units 0..4, the specular maps', the clearcoat maps'.
+constexpr int kResolveMaps = 10;
+constexpr GLuint kResolveMapUnits[kResolveMaps] = {0, 1, 2, 3, 4, kMaterialSpecularUnit, kMaterialSpecularColorUnit,
+                                                   kMaterialClearcoatUnit, kMaterialClearcoatRoughnessUnit,
+                                                   kMaterialClearcoatNormalUnit};
 
 uint32_t materialFlags(const GpuMaterial& m) {
     return (m.diffuseMap ? kDiffuseMapBit : 0u) | (m.bumpMap ? kBumpMapBit : 0u) | (m.normalMap ? kNormalMapBit : 0u) |
            (m.metallicRoughnessMap ? kMetalRoughMapBit : 0u) | (m.occlusionMap ? kOcclusionMapBit : 0u) |
            (m.specularMap ? kSpecularMapBit : 0u) | (m.specularColorMap ? kSpecularColorMapBit : 0u) |
+           (m.clearcoatMap ? kClearcoatMapBit : 0u) | (m.clearcoatRoughnessMap ? kClearcoatRoughnessMapBit : 0u) |
+           (m.clearcoatNormalMap ? kClearcoatNormalMapBit : 0u) |
            (m.alphaMask ? AlphaMask : 0u) | (m.flat ? Flat : 0u) | (m.dielectricF90 ? SpecularF90 : 0u);
 }
 
@@ -219,6 +231,7 @@ GBuffer addVisibilityResolvePass(fg::FrameGraph& graph, VisibilityResolvePass& s
                 materials.push_back({glm::vec4(m.diffuse, m.opacity), glm::vec4(m.specular, m.metallic),
                                      glm::vec4(m.shininess, m.roughness, m.bumpScale, m.normalScale),
                                      glm::vec4(m.occlusionStrength, m.alphaCutoff, m.dielectricF90.value_or(1.0f), 0.0f),
+                                     glm::vec4(m.clearcoat, m.clearcoatRoughness, m.clearcoatNormalScale, 0.0f),
                                      glm::uvec4(materialFlags(m), m.secondUvMaps, 0u, 0u)});
             const GLuint materialBuffer = state.materials.fill(materials.data(), materials.size() * sizeof(MaterialRecord));
 
@@ -259,11 +272,14 @@ GBuffer addVisibilityResolvePass(fg::FrameGraph& graph, VisibilityResolvePass& s
                 const GpuMaterial& m = gpu.materials[size_t(material)];
                 glProgramUniform1i(prog, filter, material);
                 // material.glsl's maps: units 0..4 and the specular maps' (its uMapAnisotropy order).
-                constexpr int kMaps = 7;
-                const GLuint units[kMaps] = {0, 1, 2, 3, 4, kMaterialSpecularUnit, kMaterialSpecularColorUnit};
-                const GLuint maps[kMaps] = {m.diffuseMap,   m.bumpMap,     m.normalMap,       m.metallicRoughnessMap,
-                                            m.occlusionMap, m.specularMap, m.specularColorMap};
-                float anisotropy[kMaps] = {1.0f, 1.0f, 1.0f, 1.0f, 1.0f, 1.0f, 1.0f};
+                const GLuint maps[kResolveMaps] = {m.diffuseMap,        m.bumpMap,      m.normalMap,
+                                                   m.metallicRoughnessMap, m.occlusionMap, m.specularMap,
+                                                   m.specularColorMap,    m.clearcoatMap, m.clearcoatRoughnessMap,
+                                                   m.clearcoatNormalMap};
+                float anisotropy[kResolveMaps];
+                std::fill(std::begin(anisotropy), std::end(anisotropy), 1.0f);
+                const int kMaps = kResolveMaps;
+                const GLuint* units = kResolveMapUnits;
                 for (int i = 0; i < kMaps; ++i) {
                     glBindTextureUnit(units[i], maps[i]);
                     if (!ownAnisotropy || !maps[i]) continue;
@@ -273,7 +289,7 @@ GBuffer addVisibilityResolvePass(fg::FrameGraph& graph, VisibilityResolvePass& s
                 if (ownAnisotropy) glProgramUniform1fv(prog, loc("uMapAnisotropy"), kMaps, anisotropy);
                 glDispatchCompute(groupsX, groupsY, 1);
             }
-            for (GLuint u : {0u, 1u, 2u, 3u, 4u, kMaterialSpecularUnit, kMaterialSpecularColorUnit}) glBindSampler(u, 0);
+            for (GLuint u : kResolveMapUnits) glBindSampler(u, 0);
             for (GLuint u = 0; u < 7; ++u) glBindTextureUnit(u, 0);
             unbindMaterialTextures();
             unbindGBufferImages();

@@ -19,6 +19,11 @@ uniform bool uDoubleSided;
 uniform uint uSecondUvMaps;  // LP_MAP_* of the maps sampled with the second uv set
 layout(binding = 0) uniform sampler2D uDiffuseMap;   // sRGB: its alpha decides MASK
 layout(binding = 1) uniform sampler2D uEmissiveMap;  // sRGB: sampled as linear
+#ifdef LP_GBUFFER_CLEARCOAT
+// gbuffer.clearcoat (common/gbuffer_layout.glsl): KHR_materials_clearcoat's weight w in r; the coat lies
+// over the emission, which it passes times 1 - w.
+layout(binding = 2) uniform sampler2D uClearcoatLayer;
+#endif
 
 layout(location = 0) out vec4 outHdr;
 
@@ -29,5 +34,8 @@ void main() {
     if (uAlphaMask && alpha < uAlphaCutoff) discard;
     vec3 e = max(uEmission, vec3(0.0));
     if (uHasEmissiveMap) e *= texture(uEmissiveMap, fragmentUv((uSecondUvMaps & LP_MAP_EMISSIVE) != 0u)).rgb;
+#ifdef LP_GBUFFER_CLEARCOAT
+    e *= 1.0 - texelFetch(uClearcoatLayer, ivec2(gl_FragCoord.xy), 0).r;
+#endif
     outHdr = vec4(e, 0.0);
 }

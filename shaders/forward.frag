@@ -44,7 +44,7 @@ void main() {
     // Derivatives before any discard (they need the whole quad).
     UvSets uvs = fragmentUvSets();
     if (lpMaterialDiscards(uvs, vColor, gl_FrontFacing)) discard;
-    LpSurface s = lpEvaluateSurface(vNormal, vTangent, uvs, vColor, gl_FrontFacing);
+    LpSurface s = lpEvaluateSurface(vPosition, vNormal, vTangent, uvs, vColor, gl_FrontFacing);
 #ifdef LP_FORWARD_TRANSPARENT
     float alpha = s.alpha;
     if (alpha <= 0.0) discard;
@@ -64,26 +64,26 @@ void main() {
     ivec2 pixel = ivec2(gl_FragCoord.xy);
     float screenAo = uAmbientOcclusion ? texelFetch(uAo, pixel, 0).r : 1.0;
     vec3 c = uAmbient * kd * screenAo * occlusion;  // occlusion darkens ambient light only
-    c += lpSunRadiance(P, N, V, kd, s.fresnel, s.shininess, vec2(pixel));
+    c += lpSunRadiance(P, N, V, kd, s.fresnel, s.shininess, vec2(pixel), s.coat);
     if (uIbl)
         c += lpIblRadiance(uIrradiance, uPrefiltered, uDfg, N, V, kd, s.fresnel, s.shininess, occlusion, screenAo,
-                           uAmbientOcclusion);
+                           uAmbientOcclusion, s.coat);
     if (uLocalLightCount > 0) {
         if (uUnbounded) {
             for (int i = 0; i < uLocalLightCount; ++i)
-                c += lpShadeLocalLight(uLights[i], P, N, V, kd, s.fresnel, s.shininess, uSpecularMode);
+                c += lpShadeLocalLight(uLights[i], P, N, V, kd, s.fresnel, s.shininess, uSpecularMode, s.coat);
         } else {
             int cluster = clusterIndex(ivec3(pixel / uClusterTileSize, clusterSliceOf(-P.z)));
             uint n = min(uCounts[cluster], LP_MAX_LIGHTS_PER_CLUSTER);
             uint base = uint(cluster) * LP_MAX_LIGHTS_PER_CLUSTER;
             for (uint k = 0u; k < n; ++k)
-                c += lpShadeLocalLight(uLights[uLists[base + k]], P, N, V, kd, s.fresnel, s.shininess, uSpecularMode);
+                c += lpShadeLocalLight(uLights[uLists[base + k]], P, N, V, kd, s.fresnel, s.shininess, uSpecularMode, s.coat);
         }
     }
     if (!uLightingOnly && (uHiddenTerms & LP_HIDE_EMISSION) == 0) {
         vec3 e = max(uEmission, vec3(0.0));
         if (uHasEmissiveMap) e *= texture(uEmissiveMap, fragmentUv((uSecondUvMaps & LP_MAP_EMISSIVE) != 0u)).rgb;
-        c += e;
+        c += e * (1.0 - s.coat.weight);  // KHR_materials_clearcoat: the coat lies over the emission too
     }
     outHdr = vec4(sanitizeHdr(c) * alpha, alpha);
 }

@@ -21,7 +21,11 @@ layout(location = 1) out vec4 outDiffuse;
 layout(location = 2) out vec4 outPosition;
 #endif
 layout(location = 3) out vec4 outSpecular;
+#ifdef LP_GBUFFER_CLEARCOAT
+layout(location = 4) out vec4 outClearcoat;  // gbuffer.clearcoat: the coat's weight, alpha, normal (KHR_materials_clearcoat)
+#else
 layout(location = 4) out vec4 outTexcoord;
+#endif
 layout(location = 5) out vec4 outTangent;  // the tangent view: eye-space tangent x 0.5 + 0.5, handedness
 #ifdef LP_GBUFFER_FRESNEL
 layout(location = 7) out vec2 outFresnel;  // gbuffer.fresnel: f90 and the diffuse shape (KHR_materials_specular)
@@ -48,7 +52,7 @@ void main() {
 #endif
     return;
 #else
-    MaterialSample g = materialEvaluate(m, base, SurfaceInputs(vNormal, vTangent, uvs, gl_FrontFacing));
+    MaterialSample g = materialEvaluate(m, base, SurfaceInputs(vNormal, vTangent, uvs, gl_FrontFacing, vPosition));
     g.shininess = gbufferEncodeShininess(g.shininess);  // the half-float channel's encoding (to the 0.02 floor)
 #ifdef LP_GBUFFER_NORMAL_OCT
     outNormal = gbufferEncodeNormalOct(g.normal);
@@ -66,7 +70,11 @@ void main() {
 #else
     outSpecular = vec4(g.f0, g.shininess);
 #endif
+#ifdef LP_GBUFFER_CLEARCOAT
+    outClearcoat = materialClearcoatValue(g);
+#else
     outTexcoord = vec4(vUv, 0.0, 0.0);
+#endif
     outTangent = g.tangentView;
 #ifdef LP_GBUFFER_FRESNEL
     outFresnel = materialFresnelValue(g);

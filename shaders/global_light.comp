@@ -36,6 +36,6 @@ void main() {
     vec3 V = pl > 0.0 ? -P / pl : vec3(0.0, 0.0, 1.0);
     float ao = uAmbientOcclusion ? texelFetch(uAo, p, 0).r : 1.0;
     vec3 c = uAmbient * kd * ao * (uLightingOnly ? 1.0 : gbufferOcclusion(p));  // occlusion darkens ambient light only
-    c += lpSunRadiance(P, N, V, kd, ks, spec.a, vec2(p));
+    c += lpSunRadiance(P, N, V, kd, ks, spec.a, vec2(p), gbufferClearcoat(p));
     imageStore(uHdr, p, vec4(sanitizeHdr(c), 1.0));
 }

@@ -35,7 +35,7 @@ void main() {
     float occlusion = uLightingOnly ? 1.0 : gbufferOcclusion(p);  // the material's ambient occlusion
     float screenAo = uAmbientOcclusion ? texelFetch(uAo, p, 0).r : 1.0;
     vec3 c = lpIblRadiance(uIrradiance, uPrefiltered, uDfg, N, V, kd, gbufferFresnel(p), spec.a, occlusion, screenAo,
-                           uAmbientOcclusion);
+                           uAmbientOcclusion, gbufferClearcoat(p));
     vec3 hdr = imageLoad(uHdr, p).rgb;
     imageStore(uHdr, p, vec4(sanitizeHdr(hdr + c), 1.0));
 }

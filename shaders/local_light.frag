@@ -23,6 +23,6 @@ void main() {
     float pl = length(P);
     vec3 V = pl > 0.0 ? -P / pl : vec3(0.0, 0.0, 1.0);
     LpLocalLight l = uLights[vLight];
-    vec3 c = lpShadeLocalLight(l, P, N, V, kd, gbufferFresnel(p), spec.a, uSpecularMode);
+    vec3 c = lpShadeLocalLight(l, P, N, V, kd, gbufferFresnel(p), spec.a, uSpecularMode, gbufferClearcoat(p));
     oColor = vec4(sanitizeHdr(c), 0.0);
 }

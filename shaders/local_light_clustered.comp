@@ -110,6 +110,9 @@ void main() {
 #ifdef LP_GBUFFER_FRESNEL
     vec2 fresnel[LP_PIXELS];  // the stored f90 and diffuse shape (gbuffer.fresnel)
 #endif
+#ifdef LP_GBUFFER_CLEARCOAT
+    ClearcoatLayer coat[LP_PIXELS];  // KHR_materials_clearcoat's layer (gbuffer.clearcoat)
+#endif
     int slice[LP_PIXELS];
     ivec2 at[LP_PIXELS];  // the pixel within the tile
     for (int k = 0; k < LP_PIXELS; ++k) {
@@ -126,6 +129,9 @@ void main() {
 #ifdef LP_GBUFFER_FRESNEL
         fresnel[k] = vec2(0.0);
 #endif
+#ifdef LP_GBUFFER_CLEARCOAT
+        coat[k] = noClearcoat();
+#endif
         sum[k] = vec3(0.0);
         slice[k] = 0;
         if (surface[k]) {
@@ -133,6 +139,9 @@ void main() {
             readShadingTexels(p, P[k], N[k], spec[k], kd[k], V[k]);
 #ifdef LP_GBUFFER_FRESNEL
             fresnel[k] = gbufferFresnelStored(p);
+#endif
+#ifdef LP_GBUFFER_CLEARCOAT
+            coat[k] = gbufferClearcoat(p);
 #endif
             slice[k] = clusterSliceOf(max(-P[k].z, 0.0));
         }
@@ -213,9 +222,15 @@ void main() {
 #else
                 FresnelEnds ends = fresnelEndsOfF0(spec[k].rgb);  // f90 and the shape from F0
 #endif
+#ifdef LP_GBUFFER_CLEARCOAT
+                ClearcoatLayer layer = coat[k];
+                ends = clearcoatBaseEnds(ends, layer);
+#else
+                ClearcoatLayer layer = noClearcoat();
+#endif
                 for (; bits != 0u; bits &= bits - 1u)
                     sum[k] += lpShadeLocalLight(uLights[lightOfBit(listed, first, 32 * w + findLSB(bits))], P[k], N[k], V[k], kd[k],
-                                                ends, spec[k].a, uSpecularMode);
+                                                ends, spec[k].a, uSpecularMode, layer);
             }
         }
         if (first + LP_BATCH >= candidates) break;  // uniform

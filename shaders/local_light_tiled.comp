@@ -59,10 +59,12 @@ void main() {
     vec3 N = vec3(0.0), kd = vec3(0.0), V = vec3(0.0, 0.0, 1.0);
     vec4 spec = vec4(0.0);
     FresnelEnds fresnel = fresnelEndsOfF0(vec3(0.0));
+    ClearcoatLayer coat = noClearcoat();
     if (surface) {
         N = gbufferNormal(p);
         spec = vec4(gbufferSpecular(p), gbufferShininess(p));
         fresnel = gbufferFresnel(p);
+        coat = gbufferClearcoat(p);
         kd = uLightingOnly ? vec3(1.0) : gbufferDiffuse(p);
         float pl = length(P);
         V = pl > 0.0 ? -P / pl : vec3(0.0, 0.0, 1.0);
@@ -101,7 +103,7 @@ void main() {
             if (surface)
                 for (uint k = 0u; k < n; ++k) {
                     LpLocalLight l = uLights[sList[k]];
-                    sum += lpShadeLocalLight(l, P, N, V, kd, fresnel, spec.a, uSpecularMode);
+                    sum += lpShadeLocalLight(l, P, N, V, kd, fresnel, spec.a, uSpecularMode, coat);
                 }
 #endif
             if (lid == 0u) sTotal += n;

@@ -61,11 +61,13 @@ struct MaterialRecord {
     vec4 specularMetallic;
     vec4 shininessRoughnessBumpNormal;  // shininess, roughness, bump scale, normal scale
     vec4 occlusionCutoff;               // occlusion strength, alpha cutoff, KHR_materials_specular's f90
+    vec4 clearcoat;                     // KHR_materials_clearcoat's factor, roughness, normal map scale
     uvec4 flags;                        // x: LP_MAP_* of its maps and LP_MATERIAL_* bits, y: LP_MAP_* of the maps on the second uv set
 };
-const uint LP_MATERIAL_ALPHA_MASK = 256u, LP_MATERIAL_FLAT = 512u, LP_MATERIAL_SPECULAR_F90 = 1024u;
+const uint LP_MATERIAL_ALPHA_MASK = 2048u, LP_MATERIAL_FLAT = 4096u, LP_MATERIAL_SPECULAR_F90 = 8192u;
 const uint LP_MATERIAL_ANY_MAP = LP_MAP_DIFFUSE | LP_MAP_BUMP | LP_MAP_NORMAL | LP_MAP_METAL_ROUGH | LP_MAP_OCCLUSION |
-                                 LP_MAP_SPECULAR | LP_MAP_SPECULAR_COLOR;
+                                 LP_MAP_SPECULAR | LP_MAP_SPECULAR_COLOR | LP_MAP_CLEARCOAT | LP_MAP_CLEARCOAT_ROUGHNESS |
+                                 LP_MAP_CLEARCOAT_NORMAL;
 
 layout(std430, binding = 0) readonly buffer Vertices { float vertices[]; };
 layout(std430, binding = 1) readonly buffer Indices { uint indices[]; };
@@ -214,7 +216,9 @@ MaterialInputs materialInputs(MaterialRecord r) {
                           r.occlusionCutoff.y, (f & LP_MAP_DIFFUSE) != 0u, (f & LP_MAP_BUMP) != 0u,
                           (f & LP_MAP_NORMAL) != 0u, (f & LP_MAP_METAL_ROUGH) != 0u, (f & LP_MAP_OCCLUSION) != 0u, (f & LP_MATERIAL_ALPHA_MASK) != 0u,
                           (f & LP_MATERIAL_FLAT) != 0u, r.flags.y, r.occlusionCutoff.z, (f & LP_MATERIAL_SPECULAR_F90) != 0u,
-                          (f & LP_MAP_SPECULAR) != 0u, (f & LP_MAP_SPECULAR_COLOR) != 0u);
+                          (f & LP_MAP_SPECULAR) != 0u, (f & LP_MAP_SPECULAR_COLOR) != 0u, r.clearcoat.x, r.clearcoat.y,
+                          r.clearcoat.z, (f & LP_MAP_CLEARCOAT) != 0u, (f & LP_MAP_CLEARCOAT_ROUGHNESS) != 0u,
+                          (f & LP_MAP_CLEARCOAT_NORMAL) != 0u);
 }
 
 void main() {
@@ -304,15 +308,21 @@ void main() {
     vec4 vertexColors = vec4(1.0);  // the scene has none (common/vertex_color.glsl)
 #endif
     vec4 base = materialBaseColor(m, uvs, vertexColors);
-    MaterialSample g = materialEvaluate(m, base, SurfaceInputs(normal, tangent, uvs, eyeTriangleFrontFacing(e0, e1, e2)));
+    vec3 position = interpolateAttribute(b, e0, e1, e2);
+    MaterialSample g =
+        materialEvaluate(m, base, SurfaceInputs(normal, tangent, uvs, eyeTriangleFrontFacing(e0, e1, e2), position));
     g.shininess = gbufferEncodeShininess(g.shininess);  // the half-float channel's encoding (to the 0.02 floor)
     if ((uTargets & LP_TARGET_NORMAL) != 0u) storeNormal(p, g.normal, g.shininess);
     if ((uTargets & LP_TARGET_DIFFUSE) != 0u) storeDiffuse(p, g.kd, m.flatLit ? 0.0 : gbufferEncodeOcclusion(g.occlusion));
 #ifndef LP_GBUFFER_POSITION_FROM_DEPTH
-    if ((uTargets & LP_TARGET_POSITION) != 0u) imageStore(uPositionOut, p, vec4(interpolateAttribute(b, e0, e1, e2), 1.0));
+    if ((uTargets & LP_TARGET_POSITION) != 0u) imageStore(uPositionOut, p, vec4(position, 1.0));
 #endif
     if ((uTargets & LP_TARGET_SPECULAR) != 0u) storeSpecular(p, g.f0, g.shininess);
+#ifdef LP_GBUFFER_CLEARCOAT
+    if ((uTargets & LP_TARGET_CLEARCOAT) != 0u) imageStore(uClearcoatOut, p, materialClearcoatValue(g));
+#else
     if ((uTargets & LP_TARGET_TEXCOORD) != 0u) imageStore(uTexcoordOut, p, vec4(uv, 0.0, 0.0));
+#endif
     if ((uTargets & LP_TARGET_TANGENT) != 0u) imageStore(uTangentOut, p, g.tangentView);
 #ifdef LP_GBUFFER_FRESNEL
     if ((uTargets & LP_TARGET_FRESNEL) != 0u) imageStore(uFresnelOut, p, vec4(materialFresnelValue(g), 0.0, 0.0));

@@ -47,7 +47,7 @@ std::string formatNumber(double v) {
 // Extensions this loader understands; a file that requires any other is refused (the spec's rule).
 // KHR_texture_basisu is not among them: its KTX2 images have no Debian decoder.
 const std::set<std::string> kSupportedExtensions = {"EXT_meshopt_compression", "KHR_draco_mesh_compression", "KHR_lights_punctual",
-                                                     "KHR_materials_emissive_strength", "KHR_materials_ior", "KHR_materials_specular",
+                                                     "KHR_materials_clearcoat", "KHR_materials_emissive_strength", "KHR_materials_ior", "KHR_materials_specular",
                                                      "KHR_materials_unlit", "KHR_materials_variants",
                                                      "KHR_mesh_quantization", "KHR_texture_transform"};
 constexpr size_t kMaxElements = kMaxGltfElements;  // accessor count limit: 268M elements
@@ -573,6 +573,9 @@ struct Loader {
         const auto& pbr = m.pbrMetallicRoughness;
         const ExtensionTexture specular = extensionTexture(m, "KHR_materials_specular", "specularTexture");
         const ExtensionTexture specularColor = extensionTexture(m, "KHR_materials_specular", "specularColorTexture");
+        const ExtensionTexture coat = extensionTexture(m, "KHR_materials_clearcoat", "clearcoatTexture");
+        const ExtensionTexture coatRoughness = extensionTexture(m, "KHR_materials_clearcoat", "clearcoatRoughnessTexture");
+        const ExtensionTexture coatNormal = extensionTexture(m, "KHR_materials_clearcoat", "clearcoatNormalTexture");
         const Slot textures[] = {
             {"pbrMetallicRoughness.baseColorTexture", pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, &pbr.baseColorTexture.extensions},
             {"pbrMetallicRoughness.metallicRoughnessTexture", pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
@@ -582,9 +585,17 @@ struct Loader {
             {"emissiveTexture", m.emissiveTexture.index, m.emissiveTexture.texCoord, &m.emissiveTexture.extensions},
             {"extensions.KHR_materials_specular.specularTexture", specular.index, specular.texCoord, &specular.extensions},
             {"extensions.KHR_materials_specular.specularColorTexture", specularColor.index, specularColor.texCoord,
-             &specularColor.extensions}};
+             &specularColor.extensions},
+            {"extensions.KHR_materials_clearcoat.clearcoatTexture", coat.index, coat.texCoord, &coat.extensions},
+            {"extensions.KHR_materials_clearcoat.clearcoatRoughnessTexture", coatRoughness.index, coatRoughness.texCoord,
+             &coatRoughness.extensions},
+            {"extensions.KHR_materials_clearcoat.clearcoatNormalTexture", coatNormal.index, coatNormal.texCoord,
+             &coatNormal.extensions}};
         MaterialUvSets out;
         if (m.normalTexture.index >= 0) out.normalSet = uvSetOf(m.normalTexture.texCoord, m.normalTexture.extensions);
+        // The clearcoat's normal map shares the base's tangent space (the extension asks both to use the
+        // same texture coordinates); alone, its set decides where tangents are made.
+        else if (coatNormal.index >= 0) out.normalSet = uvSetOf(coatNormal.texCoord, coatNormal.extensions);
         std::string firstName[2];
         for (const Slot& texture : textures) {
             if (texture.index < 0) continue;
@@ -685,6 +696,35 @@ struct Loader {
             out.specularMap = texture(weightMap.index, weightMap.texCoord, weightMap.extensions, sw + ".specularTexture");
             out.specularColorMap =
                 texture(colourMap.index, colourMap.texCoord, colourMap.extensions, sw + ".specularColorTexture");
+        }
+        // KHR_materials_clearcoat: a GGX coat over the material (Material::clearcoat), each factor times its
+        // texture (r, g), its own normal map or none. The schema refused factors outside [0, 1] and
+        // non-numbers; the clamps only keep the promise. Next to KHR_materials_unlit (which the
+        // extension excludes) the coat is dropped with the unlit material below.
+        if (auto cc = m.extensions.find("KHR_materials_clearcoat"); cc != m.extensions.end()) {
+            const tinygltf::Value& v = cc->second;
+            const std::string cw = w + ".extensions.KHR_materials_clearcoat";
+            auto factor = [&](const char* key) {
+                double x = 0.0;
+                if (v.Has(key) && v.Get(key).IsNumber()) x = v.Get(key).GetNumberAsDouble();
+                return float(std::isfinite(x) ? std::clamp(x, 0.0, 1.0) : 0.0);
+            };
+            out.clearcoat = factor("clearcoatFactor");
+            out.clearcoatRoughness = factor("clearcoatRoughnessFactor");
+            const ExtensionTexture coat = extensionTexture(m, "KHR_materials_clearcoat", "clearcoatTexture");
+            const ExtensionTexture roughness = extensionTexture(m, "KHR_materials_clearcoat", "clearcoatRoughnessTexture");
+            const ExtensionTexture normal = extensionTexture(m, "KHR_materials_clearcoat", "clearcoatNormalTexture");
+            if (out.clearcoat > 0.0f) {
+                out.clearcoatMap = texture(coat.index, coat.texCoord, coat.extensions, cw + ".clearcoatTexture");
+                out.clearcoatRoughnessMap =
+                    texture(roughness.index, roughness.texCoord, roughness.extensions, cw + ".clearcoatRoughnessTexture");
+                out.clearcoatNormalMap = texture(normal.index, normal.texCoord, normal.extensions, cw + ".clearcoatNormalTexture");
+                if (v.Has("clearcoatNormalTexture") && v.Get("clearcoatNormalTexture").Has("scale") &&
+                    v.Get("clearcoatNormalTexture").Get("scale").IsNumber()) {
+                    const double scale = v.Get("clearcoatNormalTexture").Get("scale").GetNumberAsDouble();
+                    out.clearcoatNormalScale = std::isfinite(scale) ? float(scale) : 1.0f;
+                }
+            }
         }
         // KHR_materials_unlit: the base colour as it is, untouched by light: lightpass's flat-lit material
         // (which shows base x (1 - metallic)).

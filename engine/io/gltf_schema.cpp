@@ -259,6 +259,16 @@ public:
                 textureInfo(*s, "specularTexture", sw);
                 textureInfo(*s, "specularColorTexture", sw);
             }
+            if (const json* c = object(*ext, "KHR_materials_clearcoat", ew)) {
+                const std::string cw = join(ew, "KHR_materials_clearcoat");
+                for (const char* key : {"clearcoatFactor", "clearcoatRoughnessFactor"})
+                    if (const json* f = number(*c, key, cw))
+                        if (!(f->get<double>() >= 0.0 && f->get<double>() <= 1.0))
+                            error(join(cw, key), numberText(*f) + " must be in [0, 1]");
+                textureInfo(*c, "clearcoatTexture", cw);
+                textureInfo(*c, "clearcoatRoughnessTexture", cw);
+                textureInfo(*c, "clearcoatNormalTexture", cw, "scale");
+            }
             object(*ext, "KHR_materials_unlit", ew);
         }
     }

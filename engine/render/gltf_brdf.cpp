@@ -60,4 +60,24 @@ glm::dvec3 gltfBrdf(const GltfBrdfMaterial& m, glm::dvec3 N, glm::dvec3 V, glm::
     return lobes.diffuse + lobes.specular;
 }
 
+double gltfClearcoatWeight(double clearcoat, glm::dvec3 Nc, glm::dvec3 V) {
+    const double f0 = gltfDielectricF0(1.5);
+    return clearcoat * (f0 + (1.0 - f0) * std::pow(1.0 - std::abs(glm::dot(V, Nc)), 5.0));
+}
+
+double gltfClearcoatLobe(const GltfBrdfMaterial& m, glm::dvec3 Nc, glm::dvec3 V, glm::dvec3 L, SpecularMasking masking) {
+    const double nl = glm::dot(Nc, L), nv = glm::dot(Nc, V);
+    if (nl <= 0.0 || nv <= 0.0) return 0.0;
+    const double alpha = m.clearcoatRoughness * m.clearcoatRoughness;
+    return gltfGgxDistribution(glm::dot(Nc, glm::normalize(V + L)), alpha) * gltfSmithVisibility(nv, nl, alpha, masking);
+}
+
+glm::dvec3 gltfCoatedBrdfCosine(const GltfBrdfMaterial& m, glm::dvec3 N, glm::dvec3 Nc, glm::dvec3 V, glm::dvec3 L,
+                                SpecularMasking masking) {
+    const glm::dvec3 base = gltfBrdf(m, N, V, L, masking) * std::max(glm::dot(N, L), 0.0);
+    if (m.clearcoat <= 0.0) return base;
+    const double w = gltfClearcoatWeight(m.clearcoat, Nc, V);
+    return base * (1.0 - w) + glm::dvec3(w * gltfClearcoatLobe(m, Nc, V, L, masking) * std::max(glm::dot(Nc, L), 0.0));
+}
+
 }  // namespace lp

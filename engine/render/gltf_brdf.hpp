@@ -10,6 +10,9 @@
 //                     Appendix B's mix(base / pi, specular_brdf, F))
 //   material        = mix(dielectric_brdf, metal_brdf, metallic)
 //   specular_brdf   = D_GGX(alpha) * V_Smith(alpha)  (height-correlated: the specification's; or separable)
+// KHR_materials_clearcoat layers a coat over that material (gltfCoatedBrdf):
+//   coated          = material (1 - w) + specular_brdf(Nc, alpha_c) w,
+//   w               = clearcoat (0.04 + 0.96 (1 - |V.Nc|)^5)   (fresnel_coat with ior 1.5)
 #include <glm/glm.hpp>
 
 #include "engine/render/settings.hpp"
@@ -23,6 +26,8 @@ struct GltfBrdfMaterial {
     double ior = 1.5;        // the dielectric's F0 = ((ior - 1) / (ior + 1))^2 (KHR_materials_ior): 0.04
     double specular = 1.0;   // KHR_materials_specular's specularFactor (x specularTexture.a): the weight
     glm::dvec3 specularColor{1.0};  // its specularColorFactor (x specularColorTexture.rgb)
+    double clearcoat = 0.0;           // KHR_materials_clearcoat's clearcoatFactor (x clearcoatTexture.r); 0: none
+    double clearcoatRoughness = 0.0;  // its clearcoatRoughnessFactor (x clearcoatRoughnessTexture.g): alpha_c = r^2
 };
 
 double gltfDielectricF0(double ior);
@@ -46,5 +51,17 @@ GltfBrdfLobes gltfBrdfLobes(const GltfBrdfMaterial& m, glm::dvec3 N, glm::dvec3 
 // Their sum: the material's BRDF.
 glm::dvec3 gltfBrdf(const GltfBrdfMaterial& m, glm::dvec3 N, glm::dvec3 V, glm::dvec3 L,
                     SpecularMasking masking = SpecularMasking::HeightCorrelated);
+
+// KHR_materials_clearcoat's weight w = clearcoat (0.04 + 0.96 (1 - |V.Nc|)^5) for unit Nc and V.
+double gltfClearcoatWeight(double clearcoat, glm::dvec3 Nc, glm::dvec3 V);
+// The coat's lobe alone, specular_brdf(Nc, clearcoatRoughness^2) (no N.L, no weight); zero where
+// Nc.L <= 0 or Nc.V <= 0.
+double gltfClearcoatLobe(const GltfBrdfMaterial& m, glm::dvec3 Nc, glm::dvec3 V, glm::dvec3 L,
+                         SpecularMasking masking = SpecularMasking::HeightCorrelated);
+// The coated material's radiance factor f cos from L: gltfBrdf(N) (1 - w) N.L + lobe(Nc) w Nc.L, each
+// cosine on its own normal (N the base's shading normal, Nc the coat's); the base's part is zero below
+// its horizon and the coat's below the coat's. Without a coat (clearcoat 0) exactly gltfBrdf N.L.
+glm::dvec3 gltfCoatedBrdfCosine(const GltfBrdfMaterial& m, glm::dvec3 N, glm::dvec3 Nc, glm::dvec3 V, glm::dvec3 L,
+                                SpecularMasking masking = SpecularMasking::HeightCorrelated);
 
 }  // namespace lp

@@ -64,6 +64,7 @@ PathTraceScene buildPathTraceScene(const Scene& scene, double time) {
                                     m.dielectricF90 ? std::clamp(*m.dielectricF90, 0.0f, 1.0f) : -1.0f);
             out.materials.push_back(g);
             out.unsampledMapMaterials += (!m.bumpMap.empty() || !m.specularMap.empty() || !m.specularColorMap.empty()) ? 1 : 0;
+            out.clearcoatMaterials += m.hasClearcoat() ? 1 : 0;
             out.hasMaskedMaterials = out.hasMaskedMaterials || alphaMode != 0.0f;
         }
         // An animated model's vertices where its clips put them at `time` (the rest pose otherwise).

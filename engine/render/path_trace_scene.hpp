@@ -59,6 +59,9 @@ struct PathTraceScene {
     // Materials with maps the tracer does not sample (their factors are used): height (bump) maps
     // (normal maps are sampled) and KHR_materials_specular's two maps.
     size_t unsampledMapMaterials = 0;
+    // Materials with a KHR_materials_clearcoat layer, which the tracer does not trace: their base is
+    // traced as if uncoated.
+    size_t clearcoatMaterials = 0;
 };
 
 // Every model's triangles through its transform (normals by the inverse transpose), an animated

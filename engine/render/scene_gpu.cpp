@@ -173,6 +173,14 @@ SceneGpu::SceneGpu(const Scene& scene) {
             if (!m.emissiveMap.empty()) g.emissiveMap = texture(m.emissiveMap, true);
             if (!m.specularMap.empty()) g.specularMap = texture(m.specularMap, false);
             if (!m.specularColorMap.empty()) g.specularColorMap = texture(m.specularColorMap, true);
+            if (m.hasClearcoat()) {
+                g.clearcoat = m.clearcoat;
+                g.clearcoatRoughness = m.clearcoatRoughness;
+                g.clearcoatNormalScale = m.clearcoatNormalScale;
+                if (!m.clearcoatMap.empty()) g.clearcoatMap = texture(m.clearcoatMap, false);
+                if (!m.clearcoatRoughnessMap.empty()) g.clearcoatRoughnessMap = texture(m.clearcoatRoughnessMap, false);
+                if (!m.clearcoatNormalMap.empty()) g.clearcoatNormalMap = texture(m.clearcoatNormalMap, false);
+            }
             g.secondUvMaps = m.secondUvMaps();
             secondUvSet |= g.secondUvMaps != 0;
             materials.push_back(g);

@@ -50,6 +50,10 @@ struct GpuMaterial {
     std::optional<float> dielectricF90;  // Material::dielectricF90 (KHR_materials_specular)
     GLuint specularMap = 0;       // its specularTexture (weight in a), 0: none
     GLuint specularColorMap = 0;  // its specularColorTexture (sRGB rgb), 0: none
+    float clearcoat = 0.0f;  // Material::clearcoat (KHR_materials_clearcoat; 0: no coat), and the rest
+    float clearcoatRoughness = 0.0f;
+    float clearcoatNormalScale = 1.0f;
+    GLuint clearcoatMap = 0, clearcoatRoughnessMap = 0, clearcoatNormalMap = 0;  // linear, 0: none
     float metallic = 0.0f;
     float shininess = 32.0f;
     float roughness = 0.5f;

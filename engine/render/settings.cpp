@@ -13,7 +13,7 @@ std::vector<DebugView> materialInputViews() {
     return {DebugView::BaseColor, DebugView::Metallic, DebugView::Roughness, DebugView::Occlusion, DebugView::Emissive};
 }
 
-std::vector<DebugView> termViews() { return {DebugView::TermDiffuse, DebugView::TermSpecular}; }
+std::vector<DebugView> termViews() { return {DebugView::TermDiffuse, DebugView::TermSpecular, DebugView::TermClearcoat}; }
 
 DebugView nextViewInCycle(const std::vector<DebugView>& cycle, DebugView view) {
     for (size_t i = 0; i < cycle.size(); ++i)
@@ -23,9 +23,10 @@ DebugView nextViewInCycle(const std::vector<DebugView>& cycle, DebugView view) {
 
 int hiddenShadingTerms(DebugView view) {
     switch (view) {
-        case DebugView::TermDiffuse: return kHideSpecular | kHideEmission;
-        case DebugView::TermSpecular: return kHideDiffuse | kHideEmission;
-        case DebugView::Emissive: return kHideDiffuse | kHideSpecular;
+        case DebugView::TermDiffuse: return kHideSpecular | kHideEmission | kHideClearcoat;
+        case DebugView::TermSpecular: return kHideDiffuse | kHideEmission | kHideClearcoat;
+        case DebugView::TermClearcoat: return kHideDiffuse | kHideSpecular | kHideEmission;
+        case DebugView::Emissive: return kHideDiffuse | kHideSpecular | kHideClearcoat;
         default: return 0;
     }
 }

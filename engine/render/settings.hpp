@@ -24,7 +24,8 @@ enum class DebugView {
     // The glTF material's inputs as the material evaluation of either G-buffer mode reads them
     // (gbuffer.material_input, written only in these views); emissive: the emitted radiance alone (HDR).
     BaseColor, Metallic, Roughness, Occlusion, Emissive,
-    TermDiffuse, TermSpecular  // the lit frame with one BRDF term alone (every light, every path)
+    TermDiffuse, TermSpecular,  // the lit frame with one BRDF term alone (every light, every path)
+    TermClearcoat  // ... KHR_materials_clearcoat's layer alone ("clearcoat")
 };
 // overlay views (not in allViews(): they are the final image with the local lights'
 // bounds or per-tile light counts drawn over it).
@@ -32,15 +33,16 @@ std::vector<DebugView> localLightViews();
 bool isLocalLightView(DebugView view);
 // base-color, metallic, roughness, occlusion, emissive (the viewer's `m` key cycles through them).
 std::vector<DebugView> materialInputViews();
-// term-diffuse, term-specular (the viewer's `t` key cycles through them).
+// term-diffuse, term-specular, clearcoat (the viewer's `t` key cycles through them).
 std::vector<DebugView> termViews();
 // The view after `view` in `cycle` (the first when `view` is not in it, Final after the last).
 DebugView nextViewInCycle(const std::vector<DebugView>& cycle, DebugView view);
 // What the lit frame leaves out in `view`, as LP_HIDE_* bits (shaders/common/brdf.glsl: 1 the
-// diffuse term, 2 the specular term, 4 emission): term-diffuse hides 2 | 4, term-specular 1 | 4,
-// emissive 1 | 2; every other view 0.
+// diffuse term, 2 the specular term, 4 emission, 8 the clearcoat layer): term-diffuse hides 2 | 4 | 8,
+// term-specular 1 | 4 | 8, clearcoat 1 | 2 | 4, emissive 1 | 2 | 8; every other view 0. The four term
+// views add up to the final frame's lit surfaces.
 int hiddenShadingTerms(DebugView view);
-constexpr int kHideDiffuse = 1, kHideSpecular = 2, kHideEmission = 4;  // = LP_HIDE_* (shaders/common/brdf.glsl)
+constexpr int kHideDiffuse = 1, kHideSpecular = 2, kHideEmission = 4, kHideClearcoat = 8;  // = LP_HIDE_*
 // The input gbuffer.material_input holds in `view`, as LP_MATERIAL_INPUT_* (shaders/common/material.glsl:
 // 1 base colour, 2 metallic, 3 roughness, 4 occlusion); 0 in every other view.
 int materialInputShown(DebugView view);
@@ -115,6 +117,7 @@ inline constexpr EnumName<DebugView> kViewNames[] = {
     {DebugView::Emissive, "emissive"},
     {DebugView::TermDiffuse, "term-diffuse"},
     {DebugView::TermSpecular, "term-specular"},
+    {DebugView::TermClearcoat, "clearcoat"},
     {DebugView::ShadowMap, "shadowmap"},
     {DebugView::LightRanges, "light-ranges"},
     {DebugView::LightsPerTile, "lights-per-tile"},

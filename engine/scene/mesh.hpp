@@ -64,7 +64,8 @@ enum class AlphaMode { Opaque, Mask, Blend };
 // emissive map last; the shaders' LP_MAP_* (common/uv_sets.glsl) are the same values.
 enum MaterialMapBit : uint32_t {
     kDiffuseMapBit = 1, kBumpMapBit = 2, kNormalMapBit = 4, kMetalRoughMapBit = 8, kOcclusionMapBit = 16, kEmissiveMapBit = 32,
-    kSpecularMapBit = 64, kSpecularColorMapBit = 128
+    kSpecularMapBit = 64, kSpecularColorMapBit = 128, kClearcoatMapBit = 256, kClearcoatRoughnessMapBit = 512,
+    kClearcoatNormalMapBit = 1024
 };
 
 // The one material model of both formats: metallic-roughness (glTF 2.0), with the dielectric F0
@@ -86,6 +87,16 @@ struct Material {
     std::optional<float> dielectricF90;
     TextureRef specularMap;       // KHR_materials_specular specularTexture: the weight in a (linear)
     TextureRef specularColorMap;  // specularColorTexture: F0's colour in rgb (sRGB)
+    // KHR_materials_clearcoat: a GGX layer over the whole material (shaders/common/brdf.glsl's
+    // ClearcoatLayer): clearcoat = clearcoat x clearcoatMap.r (0: no coat, the plain material), its
+    // roughness = clearcoatRoughness x clearcoatRoughnessMap.g, its normal the interpolated one or
+    // clearcoatNormalMap's (scaled by clearcoatNormalScale). The maps are linear.
+    float clearcoat = 0.0f;
+    float clearcoatRoughness = 0.0f;
+    TextureRef clearcoatMap;
+    TextureRef clearcoatRoughnessMap;
+    TextureRef clearcoatNormalMap;
+    float clearcoatNormalScale = 1.0f;
     float metallic = 0.0f;      // metallicFactor (MTL: 0)
     float shininess = 32.0f;    // Ns (Blinn-Phong exponent), clamped to [0, 10000]; glTF: from roughness
     float roughness = 0.5f;     // perceptual roughness: roughnessFactor, or from Ns (used with metallicRoughnessMap)
@@ -109,13 +120,17 @@ struct Material {
         const std::pair<const TextureRef*, MaterialMapBit> maps[] = {
             {&diffuseMap, kDiffuseMapBit},         {&bumpMap, kBumpMapBit},           {&normalMap, kNormalMapBit},
             {&metallicRoughnessMap, kMetalRoughMapBit}, {&occlusionMap, kOcclusionMapBit}, {&emissiveMap, kEmissiveMapBit},
-            {&specularMap, kSpecularMapBit}, {&specularColorMap, kSpecularColorMapBit}};
+            {&specularMap, kSpecularMapBit}, {&specularColorMap, kSpecularColorMapBit},
+            {&clearcoatMap, kClearcoatMapBit}, {&clearcoatRoughnessMap, kClearcoatRoughnessMapBit},
+            {&clearcoatNormalMap, kClearcoatNormalMapBit}};
         uint32_t bits = 0;
         for (const auto& [map, bit] : maps)
             if (!map->empty() && map->uvSet == 1) bits |= bit;
         return bits;
     }
     bool samplesUv1() const { return secondUvMaps() != 0; }
+    // KHR_materials_clearcoat with a layer (the factor above 0; unlit materials take none).
+    bool hasClearcoat() const { return clearcoat > 0.0f && !flat; }
     // The dielectric's F0 of the factors alone (the maps taken as white): Ks, F0_ior, or with
     // KHR_materials_specular min(F0_ior x colour, 1) x weight.
     glm::vec3 dielectricF0Of() const {

@@ -14,8 +14,10 @@ const float LP_PI = 3.14159265358979;
 #define LP_HIDE_DIFFUSE 1
 #define LP_HIDE_SPECULAR 2
 #define LP_HIDE_EMISSION 4
+#define LP_HIDE_CLEARCOAT 8  // KHR_materials_clearcoat's layer (clearcoatSpecular and its IBL)
 uniform int uHiddenTerms;
 float lpSpecularShown() { return (uHiddenTerms & LP_HIDE_SPECULAR) != 0 ? 0.0 : 1.0; }
+float lpClearcoatShown() { return (uHiddenTerms & LP_HIDE_CLEARCOAT) != 0 ? 0.0 : 1.0; }
 
 // Energy-normalised Blinn-Phong: f = kd/pi + ks * (n + 8) / (8 pi) * (N.H)^n.
 // The (n+8)/(8 pi) factor keeps the lobe's reflected energy roughly constant as n changes.
@@ -269,6 +271,54 @@ FresnelEnds materialFresnelEnds(vec3 baseColor, float metallic, vec3 dielectricF
     vec3 f0 = mix(dielectricF0, baseColor, metallic);
     if (!givenF90) return fresnelEndsOfF0(f0);
     return FresnelEnds(f0, mix(dielectricF90, 1.0, metallic), vec3(specularDiffuseShape(dielectricF0, dielectricF90)));
+}
+
+// ---- KHR_materials_clearcoat -------------------------------------------------------------------
+// The extension's fresnel_coat layers a GGX specular lobe (its own normal Nc and alpha = clearcoat
+// roughness^2, no Fresnel inside) over the whole material, emission included:
+//   coated = material (1 - w) + clearcoat_brdf w,   w = clearcoat (0.04 + 0.96 (1 - |V.Nc|)^5)
+// w depends on V and Nc alone (the spec's N.V Fresnel, not V.H): one number a pixel. So the base is
+// scaled once where the surface is evaluated (kd by the material evaluation, the Fresnel ends by
+// clearcoatBaseEnds: the base BRDF is linear in kd, F0 and f90 under GGX and Blinn-Phong alike), and
+// each light adds the layer's lobe (clearcoatSpecular). Weight 0 (noClearcoat) is the plain material,
+// bit for bit.
+struct ClearcoatLayer {
+    float weight;  // w = clearcoat x the coat's Fresnel at V: the layer's share of the reflection
+    float alpha;   // GGX alpha of the coat (clearcoat roughness^2, floored as ggxAlphaFromRoughness)
+    vec3 normal;   // Nc: the coat's unit normal (the interpolated normal, or its own normal map's)
+};
+const float LP_CLEARCOAT_F0 = 0.04;  // ior 1.5
+
+ClearcoatLayer noClearcoat() { return ClearcoatLayer(0.0, 1.0, vec3(0.0, 0.0, 1.0)); }
+
+// w = clearcoat (F0 + (1 - F0) (1 - |V.Nc|)^5), F0 of ior 1.5.
+float clearcoatWeight(float clearcoat, vec3 Nc, vec3 V) {
+    return clamp(clearcoat, 0.0, 1.0) * (LP_CLEARCOAT_F0 + (1.0 - LP_CLEARCOAT_F0) * schlickWeight(abs(dot(Nc, V))));
+}
+
+ClearcoatLayer clearcoatLayer(float clearcoat, float roughness, vec3 Nc, vec3 V) {
+    return ClearcoatLayer(clearcoatWeight(clearcoat, Nc, V), ggxAlphaFromRoughness(roughness), Nc);
+}
+
+// The base's Fresnel ends under the coat: f0 and f90 times 1 - w (the diffuse shape is a ratio: kept).
+FresnelEnds clearcoatBaseEnds(FresnelEnds e, ClearcoatLayer c) {
+    float b = 1.0 - c.weight;
+    return FresnelEnds(e.f0 * b, e.f90 * b, e.diffuseScale);
+}
+
+// The layer's lobe w D(Nc, H) Vis(Nc.V, Nc.L) (no N.L; zero for Nc.L <= 0 or without a coat): the
+// glTF specular_brdf on the coat's normal and alpha, weighted by w.
+float clearcoatSpecular(ClearcoatLayer c, vec3 V, vec3 L) {
+    float nl = dot(c.normal, L);
+    if (c.weight <= 0.0 || nl <= 0.0) return 0.0;
+    vec3 H = brdfHalfVector(c.normal, V, L);
+    return c.weight * ggxDistribution(c.normal, H, c.alpha) * ggxVisibility(dot(c.normal, V), nl, c.alpha) *
+           lpClearcoatShown();
+}
+
+// Radiance the layer reflects from a light of irradiance E (at normal incidence) from L: lobe x E x Nc.L.
+vec3 clearcoatRadiance(ClearcoatLayer c, vec3 V, vec3 L, vec3 E) {
+    return clearcoatSpecular(c, V, L) * E * max(dot(c.normal, L), 0.0);
 }
 
 #endif

@@ -17,7 +17,11 @@ layout(binding = 1, rgba8) uniform writeonly image2D uDiffuseOut;  // SRGB8_ALPH
 layout(binding = 2, rgba32f) uniform writeonly image2D uPositionOut;
 #endif
 layout(binding = 3, LP_SPECULAR_IMAGE_FORMAT) uniform writeonly image2D uSpecularOut;
+#ifdef LP_GBUFFER_CLEARCOAT
+layout(binding = 4, rgba16) uniform writeonly image2D uClearcoatOut;  // gbuffer.clearcoat: unit 4 outside the texcoords view
+#else
 layout(binding = 4, rg32f) uniform writeonly image2D uTexcoordOut;
+#endif
 layout(binding = 5, rgba16f) uniform writeonly image2D uTangentOut;
 layout(binding = 6, rg16f) uniform writeonly image2D uVelocityOut;
 #ifdef LP_GBUFFER_FRESNEL
@@ -25,8 +29,8 @@ layout(binding = 7, rg16f) uniform writeonly image2D uFresnelOut;  // gbuffer.fr
 #else
 layout(binding = 7, rgba16f) uniform writeonly image2D uMaterialInputOut;
 #endif
-// Bit i set: target i (normal, diffuse, position, specular, texcoord, tangent, velocity, material input
-// or, with LP_GBUFFER_FRESNEL, fresnel) is bound.
+// Bit i set: target i (normal, diffuse, position, specular, texcoord or, with LP_GBUFFER_CLEARCOAT,
+// clearcoat, tangent, velocity, material input or, with LP_GBUFFER_FRESNEL, fresnel) is bound.
 uniform uint uTargets;
 // Background velocity (common/velocity.glsl's backgroundVelocity).
 uniform vec2 uJitterNdc;
@@ -37,6 +41,7 @@ uniform mat4 uPreviousViewProjection;
 const uint LP_TARGET_NORMAL = 1u, LP_TARGET_DIFFUSE = 2u, LP_TARGET_POSITION = 4u, LP_TARGET_SPECULAR = 8u;
 const uint LP_TARGET_TEXCOORD = 16u, LP_TARGET_TANGENT = 32u, LP_TARGET_VELOCITY = 64u, LP_TARGET_MATERIAL_INPUT = 128u;
 const uint LP_TARGET_FRESNEL = 128u;  // the same unit: a program compiled with LP_GBUFFER_FRESNEL has no material input
+const uint LP_TARGET_CLEARCOAT = 16u;  // the same unit: a program compiled with LP_GBUFFER_CLEARCOAT has no texcoord
 
 void storeNormal(ivec2 p, vec3 n, float shininess) {
 #ifdef LP_GBUFFER_NORMAL_OCT
@@ -70,7 +75,11 @@ void storeBackground(ivec2 p, vec2 size) {
     if ((uTargets & LP_TARGET_POSITION) != 0u) imageStore(uPositionOut, p, vec4(0.0));
 #endif
     if ((uTargets & LP_TARGET_SPECULAR) != 0u) imageStore(uSpecularOut, p, vec4(0.0));
+#ifdef LP_GBUFFER_CLEARCOAT
+    if ((uTargets & LP_TARGET_CLEARCOAT) != 0u) imageStore(uClearcoatOut, p, vec4(0.0));
+#else
     if ((uTargets & LP_TARGET_TEXCOORD) != 0u) imageStore(uTexcoordOut, p, vec4(0.0));
+#endif
     if ((uTargets & LP_TARGET_TANGENT) != 0u) imageStore(uTangentOut, p, vec4(0.0));
 #ifdef LP_GBUFFER_FRESNEL
     if ((uTargets & LP_TARGET_FRESNEL) != 0u) imageStore(uFresnelOut, p, vec4(0.0));

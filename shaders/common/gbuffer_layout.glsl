@@ -21,6 +21,14 @@
 //                       it takes the material-input views' colour location and image unit (7), which
 //                       those views, lighting nothing, never share with it. Without it f90 and the
 //                       shape come from F0 (fresnelEndsOfF0)
+//   clearcoat RGBA16    KHR_materials_clearcoat's layer (common/brdf.glsl's ClearcoatLayer), unorm: its
+//                       weight w = clearcoat x Fresnel(V.Nc), sqrt of its GGX alpha, its normal Nc (eye
+//                       space, octahedral x 0.5 + 0.5 in ba: 16 bits, 3e-5 rad, where half floats'
+//                       1e-3 rad moved a smooth coat's highlight by 2%); only when an opaque material of the scene has a coat and the
+//                       program is compiled with LP_GBUFFER_CLEARCOAT. It takes the texcoord view's
+//                       colour location and image unit (4), which that view, lighting nothing, never
+//                       shares with it; read on unit LP_BIND_CLEARCOAT. kd (diffuse) already holds the
+//                       base's 1 - w; gbufferFresnel applies it to F0 and f90. Without it: no coat
 // The layout is chosen by the #defines a program is compiled with (lp::gbufferDefines):
 //   LP_GBUFFER_NORMAL_UNPACKED (default)  RGBA32F  xyz
 //   LP_GBUFFER_NORMAL_SEED_PACKED         RGBA16F  (x, y, shininess); z = sqrt(1 - x² - y²) >= 0
@@ -41,6 +49,7 @@
 #define LP_BIND_TEXCOORD 5
 #define LP_BIND_HDR 6
 #define LP_BIND_FRESNEL 15
+#define LP_BIND_CLEARCOAT 21
 
 #include "common/depth_reconstruct.glsl"
 #include "common/tonemap.glsl"
@@ -128,6 +137,9 @@ layout(binding = LP_BIND_SPECULAR) uniform sampler2D uGbufferSpecular;
 #ifdef LP_GBUFFER_FRESNEL
 layout(binding = LP_BIND_FRESNEL) uniform sampler2D uGbufferFresnel;
 #endif
+#ifdef LP_GBUFFER_CLEARCOAT
+layout(binding = LP_BIND_CLEARCOAT) uniform sampler2D uGbufferClearcoat;
+#endif
 uniform vec4 uGbufferCamera;  // near, far, tan(vertical fov / 2), width / height
 
 float gbufferRawDepth(ivec2 p) { return texelFetch(uGbufferDepth, p, 0).r; }
@@ -199,11 +211,29 @@ float gbufferShininess(ivec2 p) {
 vec2 gbufferFresnelStored(ivec2 p) { return texelFetch(uGbufferFresnel, p, 0).rg; }
 FresnelEnds gbufferFresnelEnds(vec3 f0, vec2 stored) { return FresnelEnds(f0, stored.x, vec3(stored.y)); }
 #endif
-FresnelEnds gbufferFresnel(ivec2 p) {
+// KHR_materials_clearcoat's layer at p (gbuffer.clearcoat), none without the target.
+ClearcoatLayer gbufferClearcoat(ivec2 p) {
+#ifdef LP_GBUFFER_CLEARCOAT
+    vec4 c = texelFetch(uGbufferClearcoat, p, 0);
+    return ClearcoatLayer(c.x, c.y * c.y, octahedralDecode(c.zw * 2.0 - 1.0));
+#else
+    return noClearcoat();
+#endif
+}
+// The material's ends as stored (the base's, before the coat).
+FresnelEnds gbufferMaterialFresnel(ivec2 p) {
 #ifdef LP_GBUFFER_FRESNEL
     return gbufferFresnelEnds(gbufferSpecular(p), gbufferFresnelStored(p));
 #else
     return fresnelEndsOfF0(gbufferSpecular(p));
+#endif
+}
+// The ends the lights see: the base's under the coat (exactly the stored ones without a coat).
+FresnelEnds gbufferFresnel(ivec2 p) {
+#ifdef LP_GBUFFER_CLEARCOAT
+    return clearcoatBaseEnds(gbufferMaterialFresnel(p), gbufferClearcoat(p));
+#else
+    return gbufferMaterialFresnel(p);
 #endif
 }
 #endif

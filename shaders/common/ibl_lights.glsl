@@ -22,9 +22,17 @@
 // across spilled 16% of the lobe below the horizon: bench/results/mitsuba/2026-11-24_ibl-against-mitsuba/README.md.)
 // Energy (test_ibl's ExtractedLightKeepsTheLobesEnergyAtEveryAngle): within 1% of the point light's at
 // normal incidence; at grazing view (N.L 0.1) +7% for a 2.9-degree source on alpha 0.05, +2% on alpha 0.2.
-vec3 environmentLightSpecular(vec3 N, vec3 V, vec3 D, float sinRadius, FresnelEnds f0, float alpha) {
+// The lobe D Vis alone (no Fresnel, nothing hidden), and V.H for the caller's Fresnel: the base's
+// specular below and KHR_materials_clearcoat's layer (lpIblRadiance) share it.
+float environmentLightLobe(vec3 N, vec3 V, vec3 D, float sinRadius, float alpha, out float vh) {
     float nl = dot(N, D);
-    if (nl <= 0.0 || sinRadius <= 0.0) return ggxSpecular(N, V, D, f0, alpha);
+    vh = 0.0;
+    if (nl <= 0.0) return 0.0;
+    if (sinRadius <= 0.0) {
+        vec3 Hp = brdfHalfVector(N, V, D);
+        vh = clamp(dot(V, Hp), 0.0, 1.0);
+        return ggxDistribution(N, Hp, alpha) * ggxVisibility(dot(N, V), nl, alpha);
+    }
     float nv = max(dot(N, V), LP_GGX_MIN_NV);
     float a = max(alpha, LP_GGX_MIN_ALPHA);
     float s2 = 0.125 * sinRadius * sinRadius;
@@ -34,7 +42,7 @@ vec3 environmentLightSpecular(vec3 N, vec3 V, vec3 D, float sinRadius, FresnelEn
     float hl = dot(h, h);
     vec3 H = hl > 1e-12 ? h * inversesqrt(hl) : N;
     float nh = dot(N, H);
-    if (nh <= 0.0) return vec3(0.0);
+    if (nh <= 0.0) return 0.0;
     // The plane of incidence: the tangential part of V - D (V's and D's are opposite near the mirror).
     vec3 t = (V - D) - dot(V - D, N) * N;
     float tl = dot(t, t);
@@ -48,8 +56,13 @@ vec3 environmentLightSpecular(vec3 N, vec3 V, vec3 D, float sinRadius, FresnelEn
     float lv = length(vec3(along * dot(V, T), across * dot(V, B), nv));
     float ll = length(vec3(along * dot(D, T), across * dot(D, B), nl));
     float visibility = smithVisibilityFromLengths(uSpecularMasking, nv, nl, lv, ll);
-    float vh = clamp(dot(V, H), 0.0, 1.0);
-    return distribution * visibility * fresnelSchlick(f0, vh) * lpSpecularShown();
+    vh = clamp(dot(V, H), 0.0, 1.0);
+    return distribution * visibility;
+}
+vec3 environmentLightSpecular(vec3 N, vec3 V, vec3 D, float sinRadius, FresnelEnds f0, float alpha) {
+    float vh;
+    float lobe = environmentLightLobe(N, V, D, sinRadius, alpha, vh);
+    return lobe * fresnelSchlick(f0, vh) * lpSpecularShown();
 }
 vec3 environmentLightSpecular(vec3 N, vec3 V, vec3 D, float sinRadius, vec3 f0, float alpha) {
     return environmentLightSpecular(N, V, D, sinRadius, fresnelEndsOfF0(f0), alpha);

@@ -37,8 +37,32 @@ uniform float uIblLightSinRadius[LP_MAX_IBL_LIGHTS];  // sin of the source's ang
 // Radiance the environment reflects at a point with eye-space normal N and view direction V.
 // `occlusion`: the material's; `screenAo`: the ambient-occlusion pass's (1 without it), and whether
 // that pass ran (then the specular term is darkened by the specular occlusion derived from both).
+// `coat`: KHR_materials_clearcoat's layer (kd and f0 already the base under it): its own split sum,
+// w prefiltered(Rc, coat roughness) (A + B)(Nc.V) (the lobe has no Fresnel inside: F0 = f90 = 1), and
+// the extracted sources through its lobe.
+vec3 lpIblClearcoatRadiance(samplerCube prefilteredMap, sampler2D dfg, ClearcoatLayer coat, vec3 V, float ao,
+                            float occlusion, bool aoOn) {
+    if (coat.weight <= 0.0) return vec3(0.0);
+    vec3 Nc = coat.normal;
+    float ncv = clamp(dot(Nc, V), 0.0, 1.0);
+    float roughness = sqrt(coat.alpha);
+    vec3 R = specularDominantDirection(Nc, 2.0 * dot(Nc, V) * Nc - V, coat.alpha);
+    vec2 ab = textureLod(dfg, dfgLutCoordinate(ncv, roughness, textureSize(dfg, 0).x), 0.0).rg;
+    vec3 specular = textureLod(prefilteredMap, normalize(uEyeToWorld * R), prefilteredLodFromRoughness(roughness, uMaxLod)).rgb *
+                    (ab.x + ab.y);
+    float specularAo = aoOn ? specularOcclusion(ncv, ao, coat.alpha) : occlusion;
+    vec3 lights = vec3(0.0);
+    for (int i = 0; i < min(uIblLightCount, LP_MAX_IBL_LIGHTS); ++i) {
+        vec3 D = uIblLightDirection[i] * uEyeToWorld;
+        float vh;
+        lights += environmentLightLobe(Nc, V, D, uIblLightSinRadius[i], coat.alpha, vh) * max(dot(Nc, D), 0.0) *
+                  uIblLightIrradiance[i];
+    }
+    return coat.weight * specularAo * (specular + lights) * lpClearcoatShown();
+}
+
 vec3 lpIblRadiance(samplerCube irradiance, samplerCube prefilteredMap, sampler2D dfg, vec3 N, vec3 V, vec3 kd,
-                   FresnelEnds f0, float shininess, float occlusion, float screenAo, bool aoOn) {
+                   FresnelEnds f0, float shininess, float occlusion, float screenAo, bool aoOn, ClearcoatLayer coat) {
     float NdotV = clamp(dot(N, V), 0.0, 1.0);
     float roughness = roughnessFromShininess(shininess);
     // The prefiltered chain assumes N = V = R; for rough lobes the reflected energy leans from R
@@ -64,7 +88,12 @@ vec3 lpIblRadiance(samplerCube irradiance, samplerCube prefilteredMap, sampler2D
                                            roughness * roughness, fss, ao, specularAo);
     }
     vec3 diffuseWeight = uBrdf == LP_BRDF_BLINN_PHONG ? 1.0 - fss : ggxDiffuseFresnelMeanWeight(f0, NdotV);
-    return uIntensity * (ao * kd * diffuseWeight * E / LP_IBL_PI + specularAo * specular * lpSpecularShown() + lights);
+    return uIntensity * (ao * kd * diffuseWeight * E / LP_IBL_PI + specularAo * specular * lpSpecularShown() + lights +
+                         lpIblClearcoatRadiance(prefilteredMap, dfg, coat, V, ao, occlusion, aoOn));
+}
+vec3 lpIblRadiance(samplerCube irradiance, samplerCube prefilteredMap, sampler2D dfg, vec3 N, vec3 V, vec3 kd,
+                   FresnelEnds f0, float shininess, float occlusion, float screenAo, bool aoOn) {
+    return lpIblRadiance(irradiance, prefilteredMap, dfg, N, V, kd, f0, shininess, occlusion, screenAo, aoOn, noClearcoat());
 }
 
 #endif

@@ -37,21 +37,32 @@ const int LP_LOCAL_SPECULAR_UNRANGED = 2; // seed 003's extra mode: specular kee
 
 // Radiance a surface point P (normal N, view direction V) reflects from the light, with the BRDF of
 // uBrdf (common/brdf.glsl): the same as the suns'.
+// `coat`: KHR_materials_clearcoat's layer (kd and ks already the base under it), windowed as the specular.
 vec3 lpLocalLightRadiance(vec3 lightPos, float range, vec3 intensity, vec3 P, vec3 N, vec3 V, vec3 kd, FresnelEnds ks,
-                          float shininess, int specularMode) {
+                          float shininess, int specularMode, ClearcoatLayer coat) {
     vec3 toLight = lightPos - P;
     float d = length(toLight);
     // A light exactly on the surface: light it from the normal (N.L = 1), the limit of a light
     // approaching along the normal.
     vec3 L = d > 0.0 ? toLight / d : N;
     float nl = dot(N, L);
-    if (nl <= 0.0) return vec3(0.0);
+    float coatNl = coat.weight > 0.0 ? dot(coat.normal, L) : 0.0;
+    if (nl <= 0.0 && coatNl <= 0.0) return vec3(0.0);
     float window = lpRangeWindow(d, range);
+    float specularWindow = specularMode == LP_LOCAL_SPECULAR_UNRANGED ? 1.0 : window;
+    vec3 coatLight = specularMode != LP_LOCAL_SPECULAR_OFF && coatNl > 0.0
+                         ? clearcoatRadiance(coat, V, L, intensity * (lpInverseSquare(d, range) * specularWindow))
+                         : vec3(0.0);
+    if (nl <= 0.0) return coatLight;
     vec3 e = intensity * (lpInverseSquare(d, range) * nl);  // unwindowed irradiance
     vec3 c = window > 0.0 ? brdfDiffuse(uBrdf, N, V, L, kd, ks) * window : vec3(0.0);
     if (specularMode != LP_LOCAL_SPECULAR_OFF)
-        c += brdfSpecular(uBrdf, N, V, L, ks, shininess) * (specularMode == LP_LOCAL_SPECULAR_UNRANGED ? 1.0 : window);
-    return c * e;
+        c += brdfSpecular(uBrdf, N, V, L, ks, shininess) * specularWindow;
+    return c * e + coatLight;
+}
+vec3 lpLocalLightRadiance(vec3 lightPos, float range, vec3 intensity, vec3 P, vec3 N, vec3 V, vec3 kd, FresnelEnds ks,
+                          float shininess, int specularMode) {
+    return lpLocalLightRadiance(lightPos, range, intensity, P, N, V, kd, ks, shininess, specularMode, noClearcoat());
 }
 vec3 lpLocalLightRadiance(vec3 lightPos, float range, vec3 intensity, vec3 P, vec3 N, vec3 V, vec3 kd, vec3 ks,
                           float shininess, int specularMode) {
@@ -112,7 +123,8 @@ float lpSpotShadow(int layer, vec3 P, vec3 N, vec3 L) {
 
 // Radiance from light l (a point light or a spot; with LP_SPOT_SHADOWS shadowed by its map) at P: lpLocalLightRadiance times the
 // cone falloff. Zero exactly outside the cone and past the range, so every method can cut at the bound.
-vec3 lpShadeLocalLight(LpLocalLight l, vec3 P, vec3 N, vec3 V, vec3 kd, FresnelEnds ks, float shininess, int specularMode) {
+vec3 lpShadeLocalLight(LpLocalLight l, vec3 P, vec3 N, vec3 V, vec3 kd, FresnelEnds ks, float shininess, int specularMode,
+                       ClearcoatLayer coat) {
     vec3 toLight = l.positionRange.xyz - P;
     // Past the range the window is exactly 0 (the unranged specular mode aside): skip the rest. The
     // tiled and clustered methods' lists hold many lights that reach the tile but not this pixel.
@@ -123,12 +135,16 @@ vec3 lpShadeLocalLight(LpLocalLight l, vec3 P, vec3 N, vec3 V, vec3 kd, FresnelE
     float cone = lpSpotFalloff(cosAngle, l.directionCos.w, l.intensity.w);
     if (cone <= 0.0) return vec3(0.0);
     vec3 c = cone * lpLocalLightRadiance(l.positionRange.xyz, l.positionRange.w, l.intensity.rgb, P, N, V, kd, ks,
-                                         shininess, specularMode);
+                                         shininess, specularMode, coat);
 #ifdef LP_SPOT_SHADOWS
     if (l.shadow.x >= 0.0 && d > 0.0 && any(greaterThan(c, vec3(0.0))))
         c *= lpSpotShadow(int(l.shadow.x), P, N, toLight / d);
 #endif
     return c;
+}
+
+vec3 lpShadeLocalLight(LpLocalLight l, vec3 P, vec3 N, vec3 V, vec3 kd, FresnelEnds ks, float shininess, int specularMode) {
+    return lpShadeLocalLight(l, P, N, V, kd, ks, shininess, specularMode, noClearcoat());
 }
 
 #endif

@@ -10,6 +10,7 @@
 #include "common/normal_map.glsl"
 #include "common/ibl.glsl"
 #include "common/uv_sets.glsl"
+#include "common/normal_encoding.glsl"
 
 #define LP_MATERIAL_BIND_DIFFUSE 0
 #define LP_MATERIAL_BIND_BUMP 1
@@ -22,6 +23,14 @@
 #define LP_MATERIAL_BIND_SPECULAR_COLOR 17
 #define LP_MATERIAL_SLOT_SPECULAR 5
 #define LP_MATERIAL_SLOT_SPECULAR_COLOR 6
+// KHR_materials_clearcoat's maps (lp::kMaterialClearcoatUnit and the two after it).
+#define LP_MATERIAL_BIND_CLEARCOAT 18
+#define LP_MATERIAL_BIND_CLEARCOAT_ROUGHNESS 19
+#define LP_MATERIAL_BIND_CLEARCOAT_NORMAL 20
+#define LP_MATERIAL_SLOT_CLEARCOAT 7
+#define LP_MATERIAL_SLOT_CLEARCOAT_ROUGHNESS 8
+#define LP_MATERIAL_SLOT_CLEARCOAT_NORMAL 9
+#define LP_MATERIAL_SLOTS 10
 
 layout(binding = LP_MATERIAL_BIND_DIFFUSE) uniform sampler2D uDiffuseMap;        // sRGB: sampled as linear; alpha x opacity
 layout(binding = LP_MATERIAL_BIND_BUMP) uniform sampler2D uBumpMap;              // height in r
@@ -30,6 +39,9 @@ layout(binding = LP_MATERIAL_BIND_METAL_ROUGH) uniform sampler2D uMetalRoughMap;
 layout(binding = LP_MATERIAL_BIND_OCCLUSION) uniform sampler2D uOcclusionMap;    // occlusion in r
 layout(binding = LP_MATERIAL_BIND_SPECULAR) uniform sampler2D uSpecularMap;       // KHR_materials_specular weight in a
 layout(binding = LP_MATERIAL_BIND_SPECULAR_COLOR) uniform sampler2D uSpecularColorMap;  // its F0 colour (sRGB: sampled as linear)
+layout(binding = LP_MATERIAL_BIND_CLEARCOAT) uniform sampler2D uClearcoatMap;                   // the coat's factor in r
+layout(binding = LP_MATERIAL_BIND_CLEARCOAT_ROUGHNESS) uniform sampler2D uClearcoatRoughnessMap;  // its roughness in g
+layout(binding = LP_MATERIAL_BIND_CLEARCOAT_NORMAL) uniform sampler2D uClearcoatNormalMap;        // its tangent-space normal
 
 // lp::GpuMaterial: metallic-roughness, with the dielectric F0 as a colour (MTL Ks).
 struct MaterialInputs {
@@ -55,6 +67,12 @@ struct MaterialInputs {
     bool givenF90;        // KHR_materials_specular: f90 given, the diffuse weighted by 1 - max3(F) (brdf.glsl)
     bool hasSpecularMap;       // its specularTexture (weight in a)
     bool hasSpecularColorMap;  // its specularColorTexture
+    float clearcoat;           // KHR_materials_clearcoat's clearcoatFactor (0: no coat)
+    float clearcoatRoughness;  // its clearcoatRoughnessFactor
+    float clearcoatNormalScale;  // its clearcoatNormalTexture.scale
+    bool hasClearcoatMap;           // clearcoatTexture (r)
+    bool hasClearcoatRoughnessMap;  // clearcoatRoughnessTexture (g)
+    bool hasClearcoatNormalMap;     // clearcoatNormalTexture
 };
 
 // The interpolated vertex attributes at a pixel, eye space, and its uv sets with their footprints.
@@ -63,6 +81,7 @@ struct SurfaceInputs {
     vec4 tangent;  // xyz interpolated, w handedness (for the normal map's uv set)
     UvSets uvs;
     bool frontFacing;
+    vec3 position;  // eye space: the view direction the clearcoat's Fresnel weight needs
 };
 
 // Where map `bit` (LP_MAP_*) of material m samples.
@@ -76,7 +95,7 @@ TexCoord materialTexCoord(MaterialInputs m, UvSets uvs, uint bit) {
 // texture is anisotropic and gives that texture's GL_TEXTURE_MAX_ANISOTROPY here (1: none, the map is
 // sampled as it is), per material unit (LP_MATERIAL_BIND_*), with how the driver's raster picks the
 // level (lp::gl::GradientSampling), so both G-buffer modes read the same levels.
-uniform float uMapAnisotropy[7];  // units 0..4, then the LP_MATERIAL_SLOT_* maps
+uniform float uMapAnisotropy[LP_MATERIAL_SLOTS];  // units 0..4, then the LP_MATERIAL_SLOT_* maps
 uniform bool uAnisotropyClampsRatio;  // level of the longer axis / min(ratio, max anisotropy); else the shorter's
 uniform int uAnisotropyLevels;        // lp::gl::AnisotropicLevels: 0 blended, 1 floor, 2 nearest
 uniform bool uAnisotropyPerQuad;      // the level from the quad's first pixel (TexCoord.quadDx, quadDy)
@@ -135,6 +154,9 @@ struct MaterialSample {
     vec3 baseColor;    // the material's inputs at the texel, for the material-input views
     float metallic;
     float roughness;   // perceptual: the factor x the map's g
+    // KHR_materials_clearcoat's layer at the texel (weight 0: none); kd above already holds its 1 - w,
+    // `fresnel` does not (clearcoatBaseEnds: the G-buffer keeps the material's F0 and f90).
+    ClearcoatLayer coat;
 };
 
 // The material-input views (lp::materialInputShown): which input gbuffer.material_input holds; 0 (a
@@ -161,6 +183,7 @@ MaterialSample materialEvaluate(MaterialInputs m, vec4 base, SurfaceInputs s) {
     float len = length(N);
     N = len > 1e-20 ? N / len : vec3(0.0, 0.0, 1.0);
     if (!s.frontFacing) N = -N;  // two-sided: thin walls are lit from either side
+    vec3 interpolatedNormal = N;  // the clearcoat's, unless its own map bends it (not the base's maps)
     // The tangent frame: the interpolated tangent made orthogonal to the normal; the bitangent
     // cross(N, T) w points along +v (up the image), the +Y of normal maps and of height steps.
     vec3 T = s.tangent.xyz - N * dot(N, s.tangent.xyz);
@@ -209,11 +232,33 @@ MaterialSample materialEvaluate(MaterialInputs m, vec4 base, SurfaceInputs s) {
         dielectricF0 = min(colour, vec3(1.0)) * dielectricF90;
     }
     o.normal = N;
+    o.coat = noClearcoat();
+    if (m.clearcoat > 0.0 && !m.flatLit) {
+        // KHR_materials_clearcoat: clearcoat = factor x map.r, roughness = factor x map.g, the normal the
+        // interpolated one or the coat's own map's (the base's normal and bump maps leave it alone).
+        float clearcoat = m.clearcoat;
+        if (m.hasClearcoatMap)
+            clearcoat *= sampleMap(uClearcoatMap, LP_MATERIAL_SLOT_CLEARCOAT, materialTexCoord(m, s.uvs, LP_MAP_CLEARCOAT)).r;
+        float coatRoughness = m.clearcoatRoughness;
+        if (m.hasClearcoatRoughnessMap)
+            coatRoughness *= sampleMap(uClearcoatRoughnessMap, LP_MATERIAL_SLOT_CLEARCOAT_ROUGHNESS,
+                                       materialTexCoord(m, s.uvs, LP_MAP_CLEARCOAT_ROUGHNESS)).g;
+        vec3 Nc = interpolatedNormal;
+        if (m.hasClearcoatNormalMap && hasFrame) {
+            vec3 t = sampleMap(uClearcoatNormalMap, LP_MATERIAL_SLOT_CLEARCOAT_NORMAL,
+                               materialTexCoord(m, s.uvs, LP_MAP_CLEARCOAT_NORMAL)).xyz * 2.0 - 1.0;
+            Nc = normalMapNormal(interpolatedNormal, T, B, t, m.clearcoatNormalScale);
+        }
+        float pl = length(s.position);
+        vec3 V = pl > 0.0 ? -s.position / pl : vec3(0.0, 0.0, 1.0);
+        o.coat = clearcoatLayer(clearcoat, coatRoughness, Nc, V);
+    }
     // Flat-lit: the colour shown as it is, no BRDF applies.
     o.kd = m.flatLit ? baseColor * (1.0 - metallic)
                      : materialDiffuseAlbedo(uBrdf, baseColor, metallic, dielectricF0, m.givenF90);
     o.fresnel = materialFresnelEnds(baseColor, metallic, dielectricF0, dielectricF90, m.givenF90);
     o.f0 = o.fresnel.f0;
+    o.kd *= 1.0 - o.coat.weight;  // the base under the coat (exact: 1 without one)
     if ((uHiddenTerms & LP_HIDE_DIFFUSE) != 0) o.kd = vec3(0.0);
     o.baseColor = baseColor;
     o.metallic = metallic;
@@ -234,6 +279,13 @@ MaterialSample materialEvaluate(MaterialInputs m, vec4 base, SurfaceInputs s) {
 // largest channel stands for it).
 vec2 materialFresnelValue(MaterialSample g) {
     return vec2(g.fresnel.f90, max(max(g.fresnel.diffuseScale.r, g.fresnel.diffuseScale.g), g.fresnel.diffuseScale.b));
+}
+
+// gbuffer.clearcoat's value (common/gbuffer_layout.glsl, RGBA16 unorm): the coat's weight w, sqrt of its
+// GGX alpha (the perceptual roughness: 16 bits keep alpha's floor 1e-3 within 0.1%) and its normal,
+// octahedral, mapped to [0, 1].
+vec4 materialClearcoatValue(MaterialSample g) {
+    return vec4(g.coat.weight, sqrt(g.coat.alpha), octahedralEncode(g.coat.normal) * 0.5 + 0.5);
 }
 
 // gbuffer.material_input's value: the input uMaterialInput names, linear (base colour) or grey.

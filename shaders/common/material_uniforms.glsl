@@ -28,12 +28,19 @@ uniform float uSpecularF90;  // KHR_materials_specular's weight: the dielectric'
 uniform bool uSpecularF90Given;
 uniform bool uHasSpecularMap;
 uniform bool uHasSpecularColorMap;
+uniform float uClearcoat;  // KHR_materials_clearcoat's factor (0: no coat), roughness and normal map scale
+uniform float uClearcoatRoughness;
+uniform float uClearcoatNormalScale;
+uniform bool uHasClearcoatMap;
+uniform bool uHasClearcoatRoughnessMap;
+uniform bool uHasClearcoatNormalMap;
 
 MaterialInputs materialFromUniforms() {
     return MaterialInputs(uDiffuse, uOpacity, uSpecular, uMetallic, uShininess, uRoughness, uBumpScale, uNormalScale,
                           uOcclusionStrength, uAlphaCutoff, uHasDiffuseMap, uHasBumpMap, uHasNormalMap,
                           uHasMetalRoughMap, uHasOcclusionMap, uAlphaMask, uFlat, uSecondUvMaps, uSpecularF90, uSpecularF90Given, uHasSpecularMap,
-                          uHasSpecularColorMap);
+                          uHasSpecularColorMap, uClearcoat, uClearcoatRoughness, uClearcoatNormalScale, uHasClearcoatMap,
+                          uHasClearcoatRoughnessMap, uHasClearcoatNormalMap);
 }
 
 // The surface the forward passes shade.
@@ -41,7 +48,8 @@ struct LpSurface {
     vec3 N;           // shading normal, eye space, unit, facing the viewer's side for two-sided
     vec3 kd;          // diffuse colour (MaterialSample::kd)
     vec3 f0;          // specular colour
-    FresnelEnds fresnel;  // f0 with Schlick's f90 and the diffuse shape (MaterialSample::fresnel)
+    FresnelEnds fresnel;  // f0 with Schlick's f90 and the diffuse shape, the base's under the coat
+    ClearcoatLayer coat;  // KHR_materials_clearcoat's layer (weight 0: none)
     float shininess;  // Blinn-Phong exponent (up to the IBL's roughness floor)
     float occlusion;  // the material's ambient occlusion (1: none)
     float alpha;      // base alpha (opacity x texture alpha)
@@ -55,15 +63,16 @@ bool lpMaterialDiscards(UvSets uvs, vec4 vertexColor, bool frontFacing) {
     return materialAlphaRejects(m, materialBaseColor(m, uvs, vertexColor));
 }
 
-LpSurface lpEvaluateSurface(vec3 normal, vec4 tangent, UvSets uvs, vec4 vertexColor, bool frontFacing) {
+LpSurface lpEvaluateSurface(vec3 position, vec3 normal, vec4 tangent, UvSets uvs, vec4 vertexColor, bool frontFacing) {
     MaterialInputs m = materialFromUniforms();
     vec4 base = materialBaseColor(m, uvs, vertexColor);
-    MaterialSample g = materialEvaluate(m, base, SurfaceInputs(normal, tangent, uvs, frontFacing));
+    MaterialSample g = materialEvaluate(m, base, SurfaceInputs(normal, tangent, uvs, frontFacing, position));
     LpSurface s;
     s.N = g.normal;
     s.kd = g.kd;
     s.f0 = g.f0;
-    s.fresnel = g.fresnel;
+    s.fresnel = clearcoatBaseEnds(g.fresnel, g.coat);
+    s.coat = g.coat;
     s.shininess = g.shininess;
     s.occlusion = g.occlusion;
     s.alpha = clamp(base.a, 0.0, 1.0);

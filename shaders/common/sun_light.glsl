@@ -78,19 +78,27 @@ float shadowVisibility(int slot, vec3 P, vec3 N, float nl, vec2 pixel) {
 }
 
 // Radiance the suns reflect at eye-space P (normal N, view direction V), shadows included; `pixel`
-// (integer pixel coordinates) seeds the filters' per-pixel rotation. Ambient not included.
-vec3 lpSunRadiance(vec3 P, vec3 N, vec3 V, vec3 kd, FresnelEnds ks, float shininess, vec2 pixel) {
+// (integer pixel coordinates) seeds the filters' per-pixel rotation. Ambient not included. `coat`:
+// KHR_materials_clearcoat's layer (kd and ks already the base under it), its lobe added per sun.
+vec3 lpSunRadiance(vec3 P, vec3 N, vec3 V, vec3 kd, FresnelEnds ks, float shininess, vec2 pixel, ClearcoatLayer coat) {
     vec3 c = vec3(0.0);
     for (int i = 0; i < uLightCount; ++i) {
         vec3 L = uLightDirEye[i];
         float nl = dot(N, L);
-        if (nl <= 0.0) continue;
+        // The coat's own normal may face a sun the base's does not.
+        float coatNl = coat.weight > 0.0 ? dot(coat.normal, L) : 0.0;
+        if (nl <= 0.0 && coatNl <= 0.0) continue;
         float visible = 1.0;
         int slot = uLightShadowSlot[i];
-        if (slot >= 0) visible = shadowVisibility(slot, P, N, nl, pixel);
-        if (visible > 0.0) c += visible * brdfRadiance(uBrdf, N, V, L, kd, ks, shininess, uLightIrradiance[i]);
+        if (slot >= 0) visible = shadowVisibility(slot, P, N, nl > 0.0 ? nl : coatNl, pixel);
+        if (visible > 0.0)
+            c += visible * (brdfRadiance(uBrdf, N, V, L, kd, ks, shininess, uLightIrradiance[i]) +
+                            clearcoatRadiance(coat, V, L, uLightIrradiance[i]));
     }
     return c;
+}
+vec3 lpSunRadiance(vec3 P, vec3 N, vec3 V, vec3 kd, FresnelEnds ks, float shininess, vec2 pixel) {
+    return lpSunRadiance(P, N, V, kd, ks, shininess, pixel, noClearcoat());
 }
 
 #endif

@@ -6,7 +6,8 @@
 // A material's maps as bits (lp::MaterialMapBit), as MaterialInputs.secondUvMaps names those on the
 // second set.
 const uint LP_MAP_DIFFUSE = 1u, LP_MAP_BUMP = 2u, LP_MAP_NORMAL = 4u, LP_MAP_METAL_ROUGH = 8u, LP_MAP_OCCLUSION = 16u,
-           LP_MAP_EMISSIVE = 32u, LP_MAP_SPECULAR = 64u, LP_MAP_SPECULAR_COLOR = 128u;
+           LP_MAP_EMISSIVE = 32u, LP_MAP_SPECULAR = 64u, LP_MAP_SPECULAR_COLOR = 128u,
+           LP_MAP_CLEARCOAT = 256u, LP_MAP_CLEARCOAT_ROUGHNESS = 512u, LP_MAP_CLEARCOAT_NORMAL = 1024u;
 
 struct TexCoord {
     vec2 uv;

@@ -54,6 +54,12 @@ xdotool key t
 wait_for "view term-diffuse" "$out/viewer.log"
 xdotool key t
 wait_for "view term-specular" "$out/viewer.log"
+xdotool key t
+wait_for "view clearcoat" "$out/viewer.log"
+# 'k' the clearcoat term directly (KHR_materials_clearcoat's layer): a second "view clearcoat" line.
+xdotool key k
+for i in $(seq 300); do [ "$(grep -c 'view clearcoat' "$out/viewer.log")" -ge 2 ] && break; sleep 0.1; done
+[ "$(grep -c 'view clearcoat' "$out/viewer.log")" -ge 2 ] || { echo "'k' printed no view clearcoat"; cat "$out/viewer.log"; exit 1; }
 # 'c' compares with the path tracer only in the final view; there it prints the error against it.
 xdotool key c
 wait_for "^compare with the path tracer: only in the final view" "$out/viewer.log"

@@ -250,14 +250,16 @@ TEST(MaterialViews, GraphAddsOnlyWhatEachViewShows) {
 // through each cycle and back to the final view.
 TEST(MaterialViews, ViewTablesAreTheShadersConstants) {
     const auto out = test::runGlsl({"common/material.glsl"},
-                                   "return x.x == 0.0 ? vec4(LP_HIDE_DIFFUSE, LP_HIDE_SPECULAR, LP_HIDE_EMISSION, 0)"
+                                   "return x.x == 0.0 ? vec4(LP_HIDE_DIFFUSE, LP_HIDE_SPECULAR, LP_HIDE_EMISSION, LP_HIDE_CLEARCOAT)"
                                    " : vec4(LP_MATERIAL_INPUT_BASE_COLOR, LP_MATERIAL_INPUT_METALLIC,"
                                    " LP_MATERIAL_INPUT_ROUGHNESS, LP_MATERIAL_INPUT_OCCLUSION);",
                                    {glm::vec4(0.0f), glm::vec4(1.0f)});
-    EXPECT_EQ(out[0], glm::vec4(float(kHideDiffuse), float(kHideSpecular), float(kHideEmission), 0.0f));
-    EXPECT_EQ(hiddenShadingTerms(DebugView::TermDiffuse), kHideSpecular | kHideEmission);
-    EXPECT_EQ(hiddenShadingTerms(DebugView::TermSpecular), kHideDiffuse | kHideEmission);
-    EXPECT_EQ(hiddenShadingTerms(DebugView::Emissive), kHideDiffuse | kHideSpecular);
+    EXPECT_EQ(out[0], glm::vec4(float(kHideDiffuse), float(kHideSpecular), float(kHideEmission), float(kHideClearcoat)));
+    // Each term view hides the other three terms (KHR_materials_clearcoat's layer is the fourth).
+    EXPECT_EQ(hiddenShadingTerms(DebugView::TermDiffuse), kHideSpecular | kHideEmission | kHideClearcoat);
+    EXPECT_EQ(hiddenShadingTerms(DebugView::TermSpecular), kHideDiffuse | kHideEmission | kHideClearcoat);
+    EXPECT_EQ(hiddenShadingTerms(DebugView::TermClearcoat), kHideDiffuse | kHideSpecular | kHideEmission);
+    EXPECT_EQ(hiddenShadingTerms(DebugView::Emissive), kHideDiffuse | kHideSpecular | kHideClearcoat);
     EXPECT_EQ(hiddenShadingTerms(DebugView::Final), 0);
     EXPECT_EQ(hiddenShadingTerms(DebugView::Lighting), 0);
     EXPECT_EQ(out[1], glm::vec4(float(materialInputShown(DebugView::BaseColor)), float(materialInputShown(DebugView::Metallic)),
@@ -272,5 +274,6 @@ TEST(MaterialViews, ViewTablesAreTheShadersConstants) {
     for (int i = 0; i < 6; ++i) seen.push_back(viewName(v = nextViewInCycle(materialInputViews(), v)));
     EXPECT_EQ(seen, (std::vector<std::string>{"base-color", "metallic", "roughness", "occlusion", "emissive", "final"}));
     EXPECT_EQ(nextViewInCycle(termViews(), DebugView::TermDiffuse), DebugView::TermSpecular);
-    EXPECT_EQ(nextViewInCycle(termViews(), DebugView::TermSpecular), DebugView::Final);
+    EXPECT_EQ(nextViewInCycle(termViews(), DebugView::TermSpecular), DebugView::TermClearcoat);
+    EXPECT_EQ(nextViewInCycle(termViews(), DebugView::TermClearcoat), DebugView::Final);
 }

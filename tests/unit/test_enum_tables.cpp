@@ -59,7 +59,7 @@ TEST(EnumTables, EveryTableHoldsEachValueOnceUnderOneName) {
     expectCompleteTable(kGBufferModeNames, GBufferMode::Auto, "G-buffer mode");
     expectCompleteTable(kRenderPathNames, RenderPath::PathTraced, "render path");
     expectCompleteTable(kSkinningModeNames, SkinningMode::Cpu, "skinning");
-    expectCompleteTable(kViewNames, DebugView::TermSpecular, "view");
+    expectCompleteTable(kViewNames, DebugView::TermClearcoat, "view");
     expectCompleteTable(app::kSweepReferenceNames, app::SweepReference::PathTraced, "sweep reference");
     expectCompleteTable(kLightTermNames, LightTerm::LocalLights, "light term");
 }

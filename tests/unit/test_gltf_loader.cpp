@@ -714,6 +714,54 @@ TEST(GltfLoader, MaterialVariantsSwitchEachPrimitivesMaterial) {
     expectOneLineError(t.write("nomaterial.gltf", bad.dump()), "mappings[0].material: missing");
 }
 
+// KHR_materials_clearcoat: the factors (defaults 0 and 0: no coat), the three textures with their
+// texCoord, the normal map's scale; a coat without a factor is none (its maps are not loaded); factors
+// outside [0, 1] are one-line errors naming the field, a texture without its index too.
+TEST(GltfLoader, ClearcoatFactorsAndTextures) {
+    TempDir t;
+    nlohmann::json d = texturedQuad(nullptr, nullptr);
+    d["extensionsUsed"] = {"KHR_materials_clearcoat"};
+    nlohmann::json factors = {{"extensions", {{"KHR_materials_clearcoat", {{"clearcoatFactor", 0.75}, {"clearcoatRoughnessFactor", 0.2}}}}}};
+    nlohmann::json maps = {{"extensions",
+                            {{"KHR_materials_clearcoat",
+                              {{"clearcoatFactor", 1.0},
+                               {"clearcoatTexture", {{"index", 0}}},
+                               {"clearcoatRoughnessTexture", {{"index", 0}, {"texCoord", 0}}},
+                               {"clearcoatNormalTexture", {{"index", 0}, {"scale", 0.5}}}}}}}};
+    nlohmann::json zero = {{"extensions", {{"KHR_materials_clearcoat", {{"clearcoatTexture", {{"index", 0}}}}}}}};
+    d["materials"] = {factors, maps, zero};
+    d["meshes"][0]["primitives"] = {d["meshes"][0]["primitives"][0], d["meshes"][0]["primitives"][0], d["meshes"][0]["primitives"][0]};
+    for (int i = 0; i < 3; ++i) d["meshes"][0]["primitives"][size_t(i)]["material"] = i;
+    MeshLoadReport report;
+    const MeshData m = loadGltf(t.write("clearcoat.gltf", d.dump()), &report).mesh;
+    ASSERT_EQ(m.materials.size(), 3u);
+    EXPECT_EQ(m.materials[0].clearcoat, 0.75f);
+    EXPECT_EQ(m.materials[0].clearcoatRoughness, 0.2f);
+    EXPECT_TRUE(m.materials[0].hasClearcoat());
+    EXPECT_TRUE(m.materials[0].clearcoatMap.empty());
+    EXPECT_EQ(m.materials[1].clearcoat, 1.0f);
+    EXPECT_EQ(m.materials[1].clearcoatRoughness, 0.0f) << "the extension's default roughness";
+    EXPECT_FALSE(m.materials[1].clearcoatMap.empty()) << "clearcoatTexture read";
+    EXPECT_FALSE(m.materials[1].clearcoatRoughnessMap.empty()) << "clearcoatRoughnessTexture read";
+    EXPECT_FALSE(m.materials[1].clearcoatNormalMap.empty()) << "clearcoatNormalTexture read";
+    EXPECT_EQ(m.materials[1].clearcoatNormalScale, 0.5f);
+    EXPECT_EQ(m.materials[1].secondUvMaps() & (kClearcoatMapBit | kClearcoatRoughnessMapBit | kClearcoatNormalMapBit), 0u);
+    EXPECT_FALSE(m.materials[2].hasClearcoat()) << "clearcoatFactor defaults to 0: no coat";
+    EXPECT_TRUE(m.materials[2].clearcoatMap.empty());
+    for (const auto& w : report.warnings) EXPECT_EQ(w.find("KHR_materials_clearcoat"), std::string::npos) << w;
+    d["materials"][0]["extensions"]["KHR_materials_clearcoat"]["clearcoatFactor"] = -0.5;
+    expectOneLineError(t.write("factor.gltf", d.dump()),
+                       "materials[0].extensions.KHR_materials_clearcoat.clearcoatFactor: -0.5 must be in [0, 1]");
+    d["materials"][0]["extensions"]["KHR_materials_clearcoat"]["clearcoatFactor"] = 1;
+    d["materials"][0]["extensions"]["KHR_materials_clearcoat"]["clearcoatRoughnessFactor"] = 2;
+    expectOneLineError(t.write("roughness.gltf", d.dump()),
+                       "materials[0].extensions.KHR_materials_clearcoat.clearcoatRoughnessFactor: 2 must be in [0, 1]");
+    d["materials"][0]["extensions"]["KHR_materials_clearcoat"]["clearcoatRoughnessFactor"] = 0.5;
+    d["materials"][0]["extensions"]["KHR_materials_clearcoat"]["clearcoatNormalTexture"] = {{"scale", 1.0}};
+    expectOneLineError(t.write("index.gltf", d.dump()),
+                       "materials[0].extensions.KHR_materials_clearcoat.clearcoatNormalTexture.index: missing (the glTF schema requires it)");
+}
+
 TEST(GltfLoader, SceneFileModelsGltf) {
     TempDir t;
     const std::string scene = R"({"models": [{"gltf": ")" + (kData / "lights.gltf").string() +
@@ -1060,13 +1108,15 @@ TEST(GltfSchema, WrongTypesLengthsAndEnumerationsAreErrorsNamingTheElement) {
 TEST(GltfSchema, UnsupportedOptionalExtensionsAreNamedInAWarning) {
     TempDir t;
     nlohmann::json d = schemaBase();
-    d["extensionsUsed"] = {"KHR_lights_punctual", "KHR_materials_transmission", "KHR_materials_clearcoat", "KHR_texture_transform"};
+    d["extensionsUsed"] = {"KHR_lights_punctual", "KHR_materials_transmission", "KHR_materials_sheen", "KHR_texture_transform",
+                           "KHR_materials_clearcoat"};
     MeshLoadReport report;
     loadGltf(t.write("ext.gltf", d.dump()), &report);
     std::string all;
     for (const auto& w : report.warnings) all += w + "\n";
     EXPECT_NE(all.find("extensionsUsed[1]: 'KHR_materials_transmission' is not supported; ignored (the model may look different)"), std::string::npos) << all;
-    EXPECT_NE(all.find("extensionsUsed[2]: 'KHR_materials_clearcoat' is not supported"), std::string::npos) << all;
+    EXPECT_NE(all.find("extensionsUsed[2]: 'KHR_materials_sheen' is not supported"), std::string::npos) << all;
+    EXPECT_EQ(all.find("KHR_materials_clearcoat is not supported"), std::string::npos) << all;
     EXPECT_EQ(all.find("KHR_lights_punctual is not supported"), std::string::npos) << all;
     EXPECT_EQ(all.find("KHR_texture_transform is not supported"), std::string::npos) << all;
 }
