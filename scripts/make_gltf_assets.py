@@ -36,6 +36,9 @@ Files (all small):
                            (roughness 0.3): specularFactor 0, 0.25, 0.5, 0.75, 1 (bottom), and
                            specularColorFactor red, green, blue, (2, 1.6, 0.8) and, with
                            KHR_materials_ior 0 (F0 1), a specular-glossiness gold (top)
+  clearcoat_spheres.glb    (models/) 3 rows of 5 red dielectric spheres (roughness 0.5) under a
+                           KHR_materials_clearcoat coat: clearcoatFactor 0, 0.25, 0.5, 0.75, 1
+                           (left to right) x clearcoatRoughnessFactor 0.05, 0.3, 0.6 (bottom to top)
 """
 import base64, io, math, os, struct, sys
 
@@ -313,6 +316,23 @@ def specular_spheres():
     b.save_glb(os.path.join(MODELS, "specular_spheres.glb"))
 
 
+def clearcoat_spheres():
+    b = Builder()
+    b.gltf.extensionsUsed = ["KHR_materials_clearcoat"]
+    P, N, UV, I = sphere()
+    attrs = dict(POSITION=b.floats(P, g.VEC3, bounds=True), NORMAL=b.floats(N, g.VEC3), TEXCOORD_0=b.floats(UV, g.VEC2))
+    idx = b.indices(I, U16)
+    for col in range(5):
+        for row, coat_roughness in enumerate((0.05, 0.3, 0.6)):
+            ext = {"KHR_materials_clearcoat": {"clearcoatFactor": 0.25 * col, "clearcoatRoughnessFactor": coat_roughness}}
+            m = b.material(name="clearcoat_%d_%d" % (row, col), extensions=ext,
+                           pbrMetallicRoughness=g.PbrMetallicRoughness(baseColorFactor=[0.6, 0.04, 0.03, 1], metallicFactor=0.0,
+                                                                       roughnessFactor=0.5))
+            b.node(mesh=b.mesh([g.Primitive(attributes=g.Attributes(**attrs), indices=idx, material=m)]),
+                   translation=[1.2 * col - 2.4, 0.5 + 1.2 * row, 0])
+    b.save_glb(os.path.join(MODELS, "clearcoat_spheres.glb"))
+
+
 def viking_room():
     src = os.path.join(ROOT, "..", "shared", "assets", "viking-room")
     if not os.path.exists(os.path.join(src, "viking_room.obj")):
@@ -361,5 +381,6 @@ material_variants()
 lights()
 pbr_spheres()
 specular_spheres()
+clearcoat_spheres()
 viking_room()
 print("wrote", OUT, "and", os.path.join(MODELS, "pbr_spheres.glb"))
