@@ -578,3 +578,21 @@ def add_cases(write, case, render_model, C):
         write(f"{name}.gltf", g.as_gltf())
         case(22, f"gltf_{name}", render_model(f"{name}.gltf"), "error", r"{C}/" + name + r"\.gltf: " + regex,
              absent=["{O}/out.png"])
+    # KHR_materials_clearcoat: factors outside [0, 1] (a negative one, one above), a string, and a
+    # textureInfo without its index (1e999, JSON's only way to write a non-finite number, fails the parse).
+    for name, coat, regex in [
+            ("clearcoat_factor", {"clearcoatFactor": 1.5},
+             r"materials\[0\]\.extensions\.KHR_materials_clearcoat\.clearcoatFactor: 1\.5 must be in \[0, 1\]$"),
+            ("clearcoat_roughness_negative", {"clearcoatFactor": 1, "clearcoatRoughnessFactor": -0.25},
+             r"materials\[0\]\.extensions\.KHR_materials_clearcoat\.clearcoatRoughnessFactor: -0\.25 must be in \[0, 1\]$"),
+            ("clearcoat_factor_string", {"clearcoatFactor": "glossy"},
+             r"materials\[0\]\.extensions\.KHR_materials_clearcoat\.clearcoatFactor: expected a number, got a string"),
+            ("clearcoat_texture_no_index", {"clearcoatFactor": 1, "clearcoatTexture": {"texCoord": 0}},
+             r"materials\[0\]\.extensions\.KHR_materials_clearcoat\.clearcoatTexture\.index: missing \(the glTF schema requires it\)$"),
+    ]:
+        g = lit_quad(material=0)
+        g.doc["materials"] = [{"extensions": {"KHR_materials_clearcoat": coat}}]
+        g.doc["extensionsUsed"] = ["KHR_materials_clearcoat"]
+        write(f"{name}.gltf", g.as_gltf())
+        case(22, f"gltf_{name}", render_model(f"{name}.gltf"), "error", r"{C}/" + name + r"\.gltf: " + regex,
+             absent=["{O}/out.png"])
