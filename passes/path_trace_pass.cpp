@@ -118,12 +118,8 @@ void uploadScene(PathTracePass& state, const Scene& scene, double time) {
                     std::to_string(kTraversalStack - 1) + " its traversal stack holds");
     if (traced.unsampledMapMaterials > 0)
         logWarn("path tracer: " + std::to_string(traced.unsampledMapMaterials) +
-                " materials have a height (bump) map or KHR_materials_specular maps, which the tracer does not sample "
-                "(their factors are used)");
-    if (traced.clearcoatMaterials > 0)
-        logWarn("path tracer: " + std::to_string(traced.clearcoatMaterials) +
-                " materials have a KHR_materials_clearcoat layer, which the tracer does not trace (their base is traced "
-                "uncoated: the reference is not the coated material's)");
+                " materials have a height (bump) map or KHR_materials_specular or KHR_materials_clearcoat maps, which "
+                "the tracer does not sample (their factors are used)");
     state.srgbMaps = uploadMapArray(traced.srgbMaps, true, "srgb");
     state.linearMaps = uploadMapArray(traced.linearMaps, false, "linear");
     state.hasMaskedMaterials = traced.hasMaskedMaterials;

@@ -68,6 +68,26 @@ float mixturePdf(vec3 N, vec3 V, vec3 L, float pSpecular, float alpha) {
     return (1.0 - pSpecular) * nl / LP_PI + pSpecular * ggxDistribution(N, H, alpha) * max(dot(N, H), 0.0) / (4.0 * vh);
 }
 
+// The same with KHR_materials_clearcoat's lobe as a third strategy, drawn with probability pCoat
+// (GGX half vectors about the coat's normal and alpha).
+float coatedMixturePdf(vec3 N, vec3 V, vec3 L, float pSpecular, float alpha, ClearcoatLayer coat, float pCoat) {
+    float pdf = (1.0 - pCoat) * mixturePdf(N, V, L, pSpecular, alpha);
+    if (pCoat <= 0.0) return pdf;
+    vec3 H = brdfHalfVector(coat.normal, V, L);
+    float vh = max(dot(V, H), 1e-6);
+    if (dot(coat.normal, L) > 0.0)
+        pdf += pCoat * ggxDistribution(coat.normal, H, coat.alpha) * max(dot(coat.normal, H), 0.0) / (4.0 * vh);
+    return pdf;
+}
+
+// f cos of the coated material towards L: the base's (kd and ks already under the coat) with N.L, the
+// coat's lobe with Nc.L (each cosine on its own normal, as the raster passes).
+vec3 coatedBrdfCosine(vec3 N, vec3 V, vec3 L, vec3 kd, FresnelEnds ks, float shininess, ClearcoatLayer coat) {
+    float nl = dot(N, L);
+    vec3 base = nl > 0.0 ? (brdfDiffuse(uBrdf, N, V, L, kd, ks) + brdfSpecular(uBrdf, N, V, L, ks, shininess)) * nl : vec3(0.0);
+    return base + vec3(clearcoatSpecular(coat, V, L) * max(dot(coat.normal, L), 0.0));
+}
+
 float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
 float maxComponent(vec3 c) { return max(c.r, max(c.g, c.b)); }
 
@@ -134,6 +154,9 @@ void main() {
         // like its front, as in the raster passes; a single-sided one is never hit from behind).
         if (dot(Ng, V) < 0.0) Ng = -Ng;
         if (dot(N, Ng) < 0.0) N = -N;
+        // KHR_materials_clearcoat's layer on the interpolated normal (the base's normal map leaves it
+        // alone; its own map is not sampled): the factors.
+        ClearcoatLayer coat = m.clearcoat.x > 0.0 ? clearcoatLayer(m.clearcoat.x, m.clearcoat.y, N, V) : noClearcoat();
         // The maps (lp::PathTraceMap): base colour, metallic-roughness, normal, emissive, as
         // common/material.glsl applies them (no height map, no vertex colour).
         vec3 base = m.baseOpacity.rgb;
@@ -161,20 +184,21 @@ void main() {
             radiance += throughput * base * (1.0 - metallic);
             break;
         }
-        radiance += throughput * emission;
+        radiance += throughput * emission * (1.0 - coat.weight);  // the coat lies over the emission too
         if (bounce == uBounces) break;
         vec3 dielectricF0 = m.specularMetallic.rgb;
         bool givenF90 = m.mapParams.w >= 0.0;  // KHR_materials_specular
-        vec3 kd = materialDiffuseAlbedo(uBrdf, base, metallic, dielectricF0, givenF90);
-        FresnelEnds ks = materialFresnelEnds(base, metallic, dielectricF0, max(m.mapParams.w, 0.0), givenF90);
+        vec3 kd = materialDiffuseAlbedo(uBrdf, base, metallic, dielectricF0, givenF90) * (1.0 - coat.weight);
+        FresnelEnds ks = clearcoatBaseEnds(materialFresnelEnds(base, metallic, dielectricF0, max(m.mapParams.w, 0.0), givenF90), coat);
         vec3 Po = P + Ng * uRayEpsilon * (1.0 + maxComponent(abs(P)));
 
         // Direct light from the suns and the local lights (delta lights: no other way to reach them).
         for (int i = 0; i < uSunCount; ++i) {
             vec3 L = uSunToLight[i];
-            if (dot(N, L) <= 0.0 || dot(Ng, L) <= 0.0) continue;
+            if ((dot(N, L) <= 0.0 && (coat.weight <= 0.0 || dot(coat.normal, L) <= 0.0)) || dot(Ng, L) <= 0.0) continue;
             if (visible(Po, L, 3.0e38))
-                radiance += throughput * brdfRadiance(uBrdf, N, V, L, kd, ks, shininess, uSunIrradiance[i]);
+                radiance += throughput * (brdfRadiance(uBrdf, N, V, L, kd, ks, shininess, uSunIrradiance[i]) +
+                                          clearcoatRadiance(coat, V, L, uSunIrradiance[i]));
         }
         for (int i = 0; i < uLocalLightCount; ++i) {
             LpLocalLight l = uPtLights[i];
@@ -186,7 +210,7 @@ void main() {
             float spot = lpSpotFalloff(dot(-L, l.directionCos.xyz), l.directionCos.w, l.intensity.w);
             if (spot <= 0.0) continue;
             vec3 c = lpLocalLightRadiance(l.positionRange.xyz, l.positionRange.w, l.intensity.rgb, P, N, V, kd, ks,
-                                          shininess, uSpecularMode) * spot;
+                                          shininess, uSpecularMode, coat) * spot;
             if (maxComponent(c) <= 0.0) continue;
             vec3 toLightO = l.positionRange.xyz - Po;
             float dO = length(toLightO);
@@ -198,24 +222,38 @@ void main() {
         // way and by its own samples.
         float alpha = ggxAlphaFromShininess(shininess);
         float wd = maxComponent(kd), ws = maxComponent(ks.f0);
-        if (wd + ws <= 0.0) break;
+        if (wd + ws + coat.weight <= 0.0) break;
         float pSpecular = wd <= 0.0 ? 1.0 : (ws <= 0.0 ? 0.0 : clamp(ws / (wd + ws), 0.1, 0.9));
+        // KHR_materials_clearcoat's lobe: its share of the reflection, at least 5% and at most 90%.
+        float pCoat = coat.weight <= 0.0 ? 0.0 : (wd + ws <= 0.0 ? 1.0 : clamp(coat.weight / (wd + ws + coat.weight), 0.05, 0.9));
         if (sampleEnvironment) {
             float pe;
             vec3 Le = rotateY(lpPtSampleEnvironment(vec2(rand(), rand()), pe), uEnvironmentRotation);
             float nl = dot(N, Le);
-            if (pe > 0.0 && nl > 0.0 && dot(Ng, Le) > 0.0 && visible(Po, Le, 3.0e38)) {
-                float pb = mixturePdf(N, V, Le, pSpecular, alpha);
-                vec3 f = brdfDiffuse(uBrdf, N, V, Le, kd, ks) + brdfSpecular(uBrdf, N, V, Le, ks, shininess);
+            float coatNl = coat.weight > 0.0 ? dot(coat.normal, Le) : 0.0;
+            if (pe > 0.0 && (nl > 0.0 || coatNl > 0.0) && dot(Ng, Le) > 0.0 && visible(Po, Le, 3.0e38)) {
+                float pb = coatedMixturePdf(N, V, Le, pSpecular, alpha, coat, pCoat);
+                vec3 f = nl > 0.0 ? brdfDiffuse(uBrdf, N, V, Le, kd, ks) + brdfSpecular(uBrdf, N, V, Le, ks, shininess) : vec3(0.0);
+                vec3 coatCos = vec3(clearcoatSpecular(coat, V, Le) * max(coatNl, 0.0));
                 // f cos L / pe, weighted pe^2 / (pe^2 + pb^2).
-                radiance += throughput * f * nl * environmentRadiance(Le) * (pe / (pe * pe + pb * pb));
+                radiance += (throughput * f * max(nl, 0.0) + throughput * coatCos) * environmentRadiance(Le) *
+                            (pe / (pe * pe + pb * pb));
             }
         }
         vec3 tx, ty;
         basis(N, tx, ty);
         vec3 L;
         float u1 = rand(), u2 = rand();
-        if (rand() < pSpecular) {
+        if (pCoat > 0.0 && rand() < pCoat) {
+            vec3 cx, cy;
+            basis(coat.normal, cx, cy);
+            float a2 = coat.alpha * coat.alpha;
+            float cosTheta = sqrt((1.0 - u1) / (1.0 + (a2 - 1.0) * u1));
+            float sinTheta = sqrt(max(1.0 - cosTheta * cosTheta, 0.0));
+            float phi = 2.0 * LP_PI * u2;
+            vec3 H = normalize(cx * (sinTheta * cos(phi)) + cy * (sinTheta * sin(phi)) + coat.normal * cosTheta);
+            L = reflect(-V, H);
+        } else if (rand() < pSpecular) {
             float a2 = alpha * alpha;
             float cosTheta = sqrt((1.0 - u1) / (1.0 + (a2 - 1.0) * u1));
             float sinTheta = sqrt(max(1.0 - cosTheta * cosTheta, 0.0));
@@ -226,13 +264,13 @@ void main() {
             float r = sqrt(u1), phi = 2.0 * LP_PI * u2;
             L = normalize(tx * (r * cos(phi)) + ty * (r * sin(phi)) + N * sqrt(max(1.0 - u1, 0.0)));
         }
-        float nl = dot(N, L);
-        if (nl <= 0.0 || dot(Ng, L) <= 0.0) break;
-        float pdf = mixturePdf(N, V, L, pSpecular, alpha);
+        if (dot(Ng, L) <= 0.0) break;
+        vec3 fcos = coatedBrdfCosine(N, V, L, kd, ks, shininess, coat);
+        if (maxComponent(fcos) <= 0.0) break;
+        float pdf = coatedMixturePdf(N, V, L, pSpecular, alpha, coat, pCoat);
         if (!(pdf > 0.0)) break;
         lastPdf = pdf;
-        vec3 f = brdfDiffuse(uBrdf, N, V, L, kd, ks) + brdfSpecular(uBrdf, N, V, L, ks, shininess);
-        throughput *= f * nl / pdf;
+        throughput *= fcos / pdf;
         if (bounce + 1 >= uRouletteFrom) {
             float survive = min(maxComponent(throughput), 0.95);
             if (!(rand() < survive)) break;

@@ -62,9 +62,12 @@ PathTraceScene buildPathTraceScene(const Scene& scene, double time) {
             // w: KHR_materials_specular's dielectric f90 where the material gives one, else -1 (derived).
             g.mapParams = glm::vec4(m.normalScale, m.roughness, float(pathTraceMapBits(maps)),
                                     m.dielectricF90 ? std::clamp(*m.dielectricF90, 0.0f, 1.0f) : -1.0f);
+            if (m.hasClearcoat()) g.clearcoat = glm::vec4(m.clearcoat, m.clearcoatRoughness, 0.0f, 0.0f);
             out.materials.push_back(g);
-            out.unsampledMapMaterials += (!m.bumpMap.empty() || !m.specularMap.empty() || !m.specularColorMap.empty()) ? 1 : 0;
-            out.clearcoatMaterials += m.hasClearcoat() ? 1 : 0;
+            const bool coatMaps = m.hasClearcoat() && (!m.clearcoatMap.empty() || !m.clearcoatRoughnessMap.empty() ||
+                                                       !m.clearcoatNormalMap.empty());
+            out.unsampledMapMaterials +=
+                (!m.bumpMap.empty() || !m.specularMap.empty() || !m.specularColorMap.empty() || coatMaps) ? 1 : 0;
             out.hasMaskedMaterials = out.hasMaskedMaterials || alphaMode != 0.0f;
         }
         // An animated model's vertices where its clips put them at `time` (the rest pose otherwise).

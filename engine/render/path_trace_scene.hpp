@@ -39,8 +39,11 @@ struct PathTraceMaterial {
     // sampling bits (pathTraceMapBits), w: the dielectric f90 KHR_materials_specular gives (its
     // factor; the maps are not sampled), -1 without it (f90 derived from F0 as the raster does).
     glm::vec4 mapParams;
+    // KHR_materials_clearcoat: x its factor (0: no coat), y its roughness factor (the coat's maps are
+    // not sampled: the factors alone, warned with the other unsampled maps), zw 0.
+    glm::vec4 clearcoat{0.0f};
 };
-static_assert(sizeof(PathTraceMaterial) == 96, "std430 layout of LpPathTraceMaterial");
+static_assert(sizeof(PathTraceMaterial) == 112, "std430 layout of LpPathTraceMaterial");
 
 // How each map (PathTraceMap i) is sampled, as bits (exact in a float): bit 4i the second uv set;
 // bits 4i + 1, 4i + 2 the wrap across u and bits 16 + 2i, 17 + 2i across v (0 repeat, 1 clamp to
@@ -59,9 +62,7 @@ struct PathTraceScene {
     // Materials with maps the tracer does not sample (their factors are used): height (bump) maps
     // (normal maps are sampled) and KHR_materials_specular's two maps.
     size_t unsampledMapMaterials = 0;
-    // Materials with a KHR_materials_clearcoat layer, which the tracer does not trace: their base is
-    // traced as if uncoated.
-    size_t clearcoatMaterials = 0;
+    // (KHR_materials_clearcoat's three maps count among them: the tracer takes the coat's factors.)
 };
 
 // Every model's triangles through its transform (normals by the inverse transpose), an animated

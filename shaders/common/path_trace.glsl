@@ -29,6 +29,7 @@ struct LpPathTraceMaterial {
     vec4 maps;       // layers of base colour, metallic-roughness, normal, emissive (-1: none)
     vec4 mapParams;  // x: normal scale, y: roughness factor, z: sampling bits (pathTraceMapBits),
                      // w: KHR_materials_specular's dielectric f90 (-1: none given)
+    vec4 clearcoat;  // x: KHR_materials_clearcoat's factor (0: no coat), y: its roughness
 };
 
 layout(std430, binding = LP_PT_BIND_NODES) readonly buffer PtNodes { LpBvhNode uPtNodes[]; };

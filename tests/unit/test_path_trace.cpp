@@ -54,6 +54,26 @@ TEST(PathTraceScene, TrianglesAreInWorldSpaceInLeafOrderWithTheirMaterials) {
     EXPECT_EQ(planeTriangles, int(plane.mesh.indices.size() / 3));
 }
 
+// KHR_materials_clearcoat reaches the tracer's material records: factor and roughness where a material
+// has a coat, zeros for a coat of 0 and for a flat-lit material (which takes none).
+TEST(PathTraceScene, MaterialsCarryTheirClearcoat) {
+    Scene scene;
+    for (const float clearcoat : {1.0f, 0.0f, 0.3f, 1.0f}) {
+        ModelInstance plane;
+        plane.mesh = makePlane(1.0f);
+        plane.mesh.materials[0].clearcoat = clearcoat;
+        plane.mesh.materials[0].clearcoatRoughness = 0.25f;
+        plane.mesh.materials[0].flat = scene.models.size() == 3;
+        scene.models.push_back(plane);
+    }
+    const PathTraceScene traced = buildPathTraceScene(scene);
+    ASSERT_EQ(traced.materials.size(), 4u);
+    EXPECT_EQ(traced.materials[0].clearcoat, glm::vec4(1.0f, 0.25f, 0.0f, 0.0f));
+    EXPECT_EQ(traced.materials[1].clearcoat, glm::vec4(0.0f));
+    EXPECT_EQ(traced.materials[2].clearcoat, glm::vec4(0.3f, 0.25f, 0.0f, 0.0f));
+    EXPECT_EQ(traced.materials[3].clearcoat, glm::vec4(0.0f)) << "flat-lit: no coat";
+}
+
 TEST(PathTraceNoise, IsTheRelativeStandardErrorOfEachPixelsMeanAveraged) {
     // Pixel 0: samples of luminance 1 and 3 (grey): mean 2, sample variance 2, variance of the mean 1:
     // relative standard error 1 / 2. Pixel 1: every sample 4: none. Pixel 2: black: not counted.
