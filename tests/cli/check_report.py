@@ -25,7 +25,7 @@ import subprocess
 import sys
 import tempfile
 
-WINDOW = (1400, 3600)
+WINDOW = (1400, 3800)  # tall enough for every view thumbnail of the gallery report (its last row ends at ~3630)
 LIVE_BOX = (0x3B, 0x7D, 0xD8)
 SKIPPED_BOX = (0xD9, 0xD9, 0xD9)
 TIME_BAR = (0xE4, 0x57, 0x2E)
