@@ -596,3 +596,23 @@ def add_cases(write, case, render_model, C):
         write(f"{name}.gltf", g.as_gltf())
         case(22, f"gltf_{name}", render_model(f"{name}.gltf"), "error", r"{C}/" + name + r"\.gltf: " + regex,
              absent=["{O}/out.png"])
+    # KHR_materials_variants: a mapping to a material or a variant that is not there, a variant mapped
+    # twice in one primitive, a variant name that is not a string.
+    for name, mappings, variants, regex in [
+            ("variants_material", [{"material": 7, "variants": [0]}], [{"name": "a"}],
+             r"meshes\[0\]\.primitives\[0\]\.extensions\.KHR_materials_variants\.mappings\[0\]\.material: material 7 does not exist \(1 materials\)$"),
+            ("variants_index", [{"material": 0, "variants": [2]}], [{"name": "a"}],
+             r"meshes\[0\]\.primitives\[0\]\.extensions\.KHR_materials_variants\.mappings\[0\]\.variants\[0\]: variant 2 does not exist \(1 variants\)$"),
+            ("variants_twice", [{"material": 0, "variants": [0]}, {"material": 0, "variants": [0]}], [{"name": "a"}],
+             r"mappings\[1\]\.variants\[0\]: variant 0 is mapped twice in this primitive$"),
+            ("variants_name", [{"material": 0, "variants": [0]}], [{"name": 5}],
+             r"extensions\.KHR_materials_variants\.variants\[0\]\.name: expected a string, got 5$"),
+    ]:
+        g = lit_quad(material=0)
+        g.doc["materials"] = [{}]
+        g.doc["extensionsUsed"] = ["KHR_materials_variants"]
+        g.doc["extensions"] = {"KHR_materials_variants": {"variants": variants}}
+        g.doc["meshes"][0]["primitives"][0]["extensions"] = {"KHR_materials_variants": {"mappings": mappings}}
+        write(f"{name}.gltf", g.as_gltf())
+        case(22, f"gltf_{name}", render_model(f"{name}.gltf"), "error", r"{C}/" + name + r"\.gltf: " + regex,
+             absent=["{O}/out.png"])
