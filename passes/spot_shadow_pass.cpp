@@ -29,7 +29,7 @@ SpotShadowMaps addSpotShadowPass(fg::FrameGraph& graph, SpotShadowPass& state, c
     const std::shared_ptr<const std::vector<PointLight>> frameLights = frameLocalLights(frame);
     const std::vector<PointLight>& lights = *frameLights;
     int casting = 0;
-    for (const auto& l : lights) casting += (l.spot && l.spot->castsShadow) ? 1 : 0;
+    for (const auto& l : lights) casting += (l.spot && l.castsShadow) ? 1 : 0;
     if (casting == 0) {
         graph.skipPass("spot_shadows", "no spot light casts a shadow");
         return maps;
@@ -40,7 +40,7 @@ SpotShadowMaps addSpotShadowPass(fg::FrameGraph& graph, SpotShadowPass& state, c
     }
     for (size_t i = 0; i < lights.size() && int(maps.light.size()) < kMaxSpotShadows; ++i) {
         const PointLight& l = lights[i];
-        if (!l.spot || !l.spot->castsShadow) continue;
+        if (!l.spot || !l.castsShadow) continue;
         // The frustum holds the outer cone (+1 degree so PCF taps at the edge stay inside the tile);
         // its depth runs from 0.5% of the range (at least 1 mm) to the range, where the light ends.
         const float fovY = 2.0f * std::min(l.spot->outerDegrees + 1.0f, 89.5f);

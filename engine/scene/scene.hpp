@@ -41,7 +41,6 @@ struct SpotCone {
     glm::vec3 direction{0.0f, -1.0f, 0.0f};  // unit, world space: where the spot points
     float innerDegrees = 20.0f;              // half-angles from the axis, 0 <= inner <= outer < 90
     float outerDegrees = 30.0f;
-    bool castsShadow = false;                // one perspective shadow map (passes/spot_shadow_pass)
 };
 
 // A local light: a ranged point light, or a spot when `spot` is set.
@@ -54,6 +53,9 @@ struct PointLight {
     glm::vec3 orbitCenter{0.0f};
     float orbitSpeed = 0.0f;
     std::optional<SpotCone> spot;
+    // "castsShadow": a spot gets one perspective shadow map (passes/spot_shadow_pass), a point light a
+    // cube of six (passes/point_shadow_pass).
+    bool castsShadow = false;
 };
 
 struct Environment {
@@ -96,6 +98,9 @@ struct ModelInstance {
     std::optional<bool> flatOverride;  // "material": {"flat": true}: every material of the model flat-lit
     // "material": {"opacity": a}: every material's opacity; below 1 it is alpha-blended (transparent pass)
     std::optional<float> opacityOverride;
+    // "lightShadows": castsShadow of every point and spot light of the glTF (KHR_lights_punctual has
+    // no shadow flag); unset: they cast none.
+    std::optional<bool> lightShadows;
     MeshData mesh;  // filled by the loader (a glTF's rest pose)
     // A glTF's animations (null: none) and the clips that play on the scene's clock (--animation;
     // by default the first clip), indices into animation->clips.

@@ -201,7 +201,8 @@ CameraPath parseCameraPath(const Reader& r, const json& j, const std::string& w)
 }
 
 void parseModel(const Reader& r, const json& j, const std::string& w, const fs::path& base, ModelInstance& m) {
-    r.onlyKnown(j, w, {"name", "obj", "gltf", "primitive", "translate", "rotate", "scale", "up", "material", "materialVariant"});
+    r.onlyKnown(j, w, {"name", "obj", "gltf", "primitive", "translate", "rotate", "scale", "up", "material", "materialVariant",
+                       "lightShadows"});
     m.name = r.string(j, "name", w);
     std::string obj = r.string(j, "obj", w);
     std::string gltf = r.string(j, "gltf", w);
@@ -222,6 +223,10 @@ void parseModel(const Reader& r, const json& j, const std::string& w, const fs::
     if (j.contains("materialVariant")) {
         if (gltf.empty()) r.fail(w + ".materialVariant", "only a glTF model has material variants (KHR_materials_variants)");
         m.materialVariant = r.string(j, "materialVariant", w);
+    }
+    if (j.contains("lightShadows")) {
+        if (gltf.empty()) r.fail(w + ".lightShadows", "only a glTF model has lights (KHR_lights_punctual)");
+        m.lightShadows = r.boolean(j, "lightShadows", w, false);
     }
     if (m.name.empty()) m.name = !obj.empty() ? fs::path(obj).stem().string() : !gltf.empty() ? fs::path(gltf).stem().string() : m.primitive;
     glm::vec3 t = r.point(j, "translate", w, glm::vec3(0.0f));
@@ -294,7 +299,7 @@ void parseLight(const Reader& r, const json& j, const std::string& w, Scene& sce
             r.onlyKnown(j, w, {"type", "position", "direction", "color", "intensity", "range", "innerAngle",
                                "outerAngle", "castsShadow", "orbit"});
         else
-            r.onlyKnown(j, w, {"type", "position", "color", "intensity", "range", "orbit"});
+            r.onlyKnown(j, w, {"type", "position", "color", "intensity", "range", "castsShadow", "orbit"});
         PointLight l;
         l.position = r.point(j, "position", w, l.position);
         l.color = r.color(j, "color", w, l.color);
@@ -317,9 +322,9 @@ void parseLight(const Reader& r, const json& j, const std::string& w, Scene& sce
             if (c.outerDegrees < c.innerDegrees)
                 r.fail(w + ".outerAngle", formatNumber(c.outerDegrees) + " degrees is less than innerAngle " +
                                               formatNumber(c.innerDegrees));
-            c.castsShadow = r.boolean(j, "castsShadow", w, c.castsShadow);
             l.spot = c;
         }
+        l.castsShadow = r.boolean(j, "castsShadow", w, l.castsShadow);
         scene.pointLights.push_back(l);
     } else {
         r.fail(w + ".type", type.empty() ? "missing (directional, point or spot)"
@@ -327,8 +332,9 @@ void parseLight(const Reader& r, const json& j, const std::string& w, Scene& sce
     }
 }
 
-// The glTF's lights join the scene's, placed by the model's transform.
-void addGltfLights(const GltfContent& g, const glm::mat4& transform, Scene& scene) {
+// The glTF's lights join the scene's, placed by the model's transform; its point and spot lights
+// cast shadows where the model says so ("lightShadows").
+void addGltfLights(const GltfContent& g, const glm::mat4& transform, std::optional<bool> lightShadows, Scene& scene) {
     for (DirectionalLight d : g.directionalLights) {
         const glm::vec3 dir = glm::mat3(transform) * d.direction;
         if (!(glm::length(dir) > 0.0f)) continue;
@@ -338,6 +344,7 @@ void addGltfLights(const GltfContent& g, const glm::mat4& transform, Scene& scen
     for (PointLight p : g.pointLights) {
         p.position = glm::vec3(transform * glm::vec4(p.position, 1.0f));
         p.orbitCenter = p.position;
+        if (lightShadows) p.castsShadow = *lightShadows;
         if (p.spot) {
             const glm::vec3 dir = glm::mat3(transform) * p.spot->direction;
             if (!(glm::length(dir) > 0.0f)) continue;
@@ -378,7 +385,7 @@ void loadMesh(const Reader& r, ModelInstance& m, const std::string& where, Scene
                                                                                         : " (" + materialVariantList(m.mesh) + ")"));
             m.animation = it->second.animation;
             if (m.animation) m.playingClips = chooseClips(*m.animation, "");  // the first clip, as glTF viewers play
-            addGltfLights(it->second, m.transform, scene);
+            addGltfLights(it->second, m.transform, m.lightShadows, scene);
         } catch (const Error& e) {  // "<scene>: models[i].gltf: <gltf>: <element>: <what>"
             r.fail(where + ".gltf", e.what());
         }
@@ -585,7 +592,7 @@ Scene sceneForModel(const fs::path& file, bool zUp) {
         m.mesh = std::move(g.mesh);
         m.animation = g.animation;
         if (m.animation) m.playingClips = chooseClips(*m.animation, "");  // the first clip, as glTF viewers play
-        addGltfLights(g, m.transform, scene);
+        addGltfLights(g, m.transform, std::nullopt, scene);
         fileLights = !g.directionalLights.empty() || !g.pointLights.empty();
         if (!g.cameras.empty()) fileCamera = g.cameras.front();
     } else {

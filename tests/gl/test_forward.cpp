@@ -219,7 +219,7 @@ TEST(ForwardPlus, LocalLightsMatchTheDeferredClusteredMethod) {
     spot.position = {0.0f, 1.5f, 1.0f};
     spot.range = 5.0f;
     spot.intensity = 3.0f;
-    spot.spot = SpotCone{glm::normalize(glm::vec3(0.0f, -1.0f, -1.0f)), 10.0f, 25.0f, false};
+    spot.spot = SpotCone{glm::normalize(glm::vec3(0.0f, -1.0f, -1.0f)), 10.0f, 25.0f};
     s.pointLights.push_back(spot);
     RenderSettings d = small(RenderPath::Deferred), f = small(RenderPath::ForwardPlus);
     d.localLights.method = LocalLightMethod::Clustered;

@@ -615,7 +615,7 @@ Scene spotScene() {
     for (size_t i = 0; i < s.pointLights.size(); i += 3) {
         const float outer = 15.0f + 5.0f * float(i);  // 15..105 -> clamped below 90
         s.pointLights[i].spot = SpotCone{glm::normalize(glm::vec3(0.2f * float(i % 4) - 0.3f, -1.0f, 0.1f * float(i % 3))),
-                                         0.5f * std::min(outer, 85.0f), std::min(outer, 85.0f), false};
+                                         0.5f * std::min(outer, 85.0f), std::min(outer, 85.0f)};
         s.pointLights[i].range *= 1.5f;
         s.pointLights[i].intensity *= 3.0f;
     }
@@ -669,7 +669,7 @@ TEST(LocalLights, SpotOverPlaneMatchesAnalyticRadiance) {
     l.range = 2.0f;
     l.intensity = 0.7f;
     l.color = {1.0f, 0.8f, 0.5f};
-    l.spot = SpotCone{{0.0f, -1.0f, 0.0f}, 20.0f, 35.0f, false};
+    l.spot = SpotCone{{0.0f, -1.0f, 0.0f}, 20.0f, 35.0f};
     s.pointLights.push_back(l);
     Rig rig(s);
     const int w = 64, h = 48;
@@ -875,7 +875,7 @@ TEST(ClusteredLights, TightFroxelsListEveryLightReachingTheirPixels) {
         l.intensity = 0.2f;
         if (i % 3 == 0)
             l.spot = SpotCone{glm::normalize(glm::vec3(float(next() - 0.5), float(next() - 0.5), float(next() - 0.5))),
-                              15.0f, float(20.0 + 50.0 * next()), false};
+                              15.0f, float(20.0 + 50.0 * next())};
         s.pointLights.push_back(l);
     }
     Rig rig(s);
@@ -1231,10 +1231,10 @@ TEST(LocalLights, ShadowedSpotDarkensBehindAnOccluder) {
     l.position = {0.0f, 1.5f, 0.0f};
     l.range = 4.0f;
     l.intensity = 1.0f;
-    l.spot = SpotCone{{0.0f, -1.0f, 0.0f}, 40.0f, 55.0f, false};
+    l.spot = SpotCone{{0.0f, -1.0f, 0.0f}, 40.0f, 55.0f};
     s.pointLights.push_back(l);
     Scene shadowed = s;
-    shadowed.pointLights[0].spot->castsShadow = true;
+    shadowed.pointLights[0].castsShadow = true;
     Rig plain(s), shaded(shadowed);
     const int w = 64, h = 48;
     const glm::dmat4 inv = glm::inverse(glm::dmat4(s.camera.projection(float(w) / float(h))) * glm::dmat4(s.camera.view()));

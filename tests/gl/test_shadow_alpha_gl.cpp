@@ -127,8 +127,8 @@ Scene groundScene(bool spot) {
         cone.direction = glm::normalize(glm::vec3(0.0f, 0.0f, 1.25f) - kSpotPosition);
         cone.innerDegrees = 39.0f;
         cone.outerDegrees = 40.0f;
-        cone.castsShadow = true;
         l.spot = cone;
+        l.castsShadow = true;
         s.pointLights.push_back(l);
     } else {
         DirectionalLight sun;

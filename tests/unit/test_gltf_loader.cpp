@@ -131,7 +131,7 @@ TEST(GltfLoader, LightsAndCameras) {
     EXPECT_NEAR(glm::distance(spot.spot->direction, expectedAxis), 0.0f, 1e-5f);
     EXPECT_NEAR(spot.spot->innerDegrees, glm::degrees(0.2f), 1e-4f);
     EXPECT_NEAR(spot.spot->outerDegrees, glm::degrees(0.5f), 1e-4f);
-    EXPECT_FALSE(spot.spot->castsShadow);
+    EXPECT_FALSE(spot.castsShadow);
     for (const auto& w : report.warnings) EXPECT_EQ(w.find("spot"), std::string::npos) << w;
     ASSERT_EQ(g.cameras.size(), 1u);
     EXPECT_NEAR(g.cameras[0].fovYDegrees, glm::degrees(0.8f), 1e-3f);
@@ -786,6 +786,46 @@ TEST(GltfLoader, SceneFileModelsGltf) {
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find("models[0].gltf: a.txt: expected a .gltf or .glb file"), std::string::npos) << e.what();
     }
+}
+
+// "lightShadows": the model's glTF point and spot lights cast shadows (a point's cube, a spot's map);
+// without it they cast none (KHR_lights_punctual has no such flag); false says so explicitly; the
+// field needs a glTF model and a boolean, and the scene's own lights keep their own castsShadow.
+TEST(GltfLoader, SceneFileGivesAModelsLightsShadows) {
+    TempDir t;
+    const std::string gltf = (kData / "lights.gltf").string();
+    auto scene = [&](const std::string& extra) {
+        return parseScene(R"({"models": [{"gltf": ")" + gltf + "\"" + extra + R"(}],
+                             "lights": [{"type": "point", "position": [0, 1, 0]}]})",
+                          t.dir / "s.json");
+    };
+    const Scene on = scene(R"(, "lightShadows": true)");
+    ASSERT_EQ(on.pointLights.size(), 3u);  // the file's point light, then the glTF's point and spot
+    EXPECT_FALSE(on.pointLights[0].castsShadow);
+    EXPECT_TRUE(on.pointLights[1].castsShadow);
+    EXPECT_FALSE(on.pointLights[1].spot.has_value());
+    EXPECT_TRUE(on.pointLights[2].castsShadow);
+    EXPECT_TRUE(on.pointLights[2].spot.has_value());
+    ASSERT_TRUE(on.models[0].lightShadows.has_value());
+    for (const Scene& s : {scene(""), scene(R"(, "lightShadows": false)")}) {
+        ASSERT_EQ(s.pointLights.size(), 3u);
+        for (const PointLight& l : s.pointLights) EXPECT_FALSE(l.castsShadow);
+    }
+    auto error = [&](const std::string& model) {
+        try {
+            parseScene(R"({"models": [)" + model + "]}", t.dir / "s.json");
+        } catch (const Error& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    EXPECT_NE(error(R"({"gltf": ")" + gltf + R"(", "lightShadows": 1})").find("models[0].lightShadows: expected true or false"),
+              std::string::npos);
+    EXPECT_NE(error(R"({"primitive": "cube", "lightShadows": true})")
+                  .find("models[0].lightShadows: only a glTF model has lights (KHR_lights_punctual)"),
+              std::string::npos);
+    EXPECT_NE(error(R"({"gltf": ")" + gltf + R"(", "lightShadow": true})").find("models[0].lightShadow: unknown field"),
+              std::string::npos);
 }
 
 // Bad input: one-line errors naming the file and the element.

@@ -283,7 +283,7 @@ TEST(LocalLightBounds, SpotBoundingSphereHoldsTheWholeCone) {
         PointLight l;
         l.position = {0.5f, 2.0f, -1.0f};
         l.range = 3.0f;
-        l.spot = SpotCone{glm::normalize(glm::vec3(0.3f, -1.0f, 0.2f)), 0.0f, outer, false};
+        l.spot = SpotCone{glm::normalize(glm::vec3(0.3f, -1.0f, 0.2f)), 0.0f, outer};
         const BoundingSphere b = localLightBounds(l);
         EXPECT_LE(b.radius, l.range * (1.0f + 1e-6f)) << outer;
         const glm::dvec3 axis(l.spot->direction);
@@ -313,7 +313,8 @@ TEST(LocalLightSelection, GpuRecordEncodesTheCone) {
     EXPECT_LT(g.intensity.w, -1.0f);
     EXPECT_EQ(g.bound, glm::vec4(0.0f, 0.0f, 0.0f, 2.0f));
     EXPECT_EQ(g.shadow.x, -1.0f);
-    p.spot = SpotCone{{1.0f, 0.0f, 0.0f}, 30.0f, 60.0f, true};
+    p.spot = SpotCone{{1.0f, 0.0f, 0.0f}, 30.0f, 60.0f};
+    p.castsShadow = true;
     const glm::mat4 view = glm::rotate(glm::mat4(1.0f), glm::radians(90.0f), glm::vec3(0, 1, 0));
     g = gpuLocalLight(p, view, 2);
     EXPECT_NEAR(g.directionCos.z, -1.0f, 1e-6f);  // +X world is -Z after this rotation

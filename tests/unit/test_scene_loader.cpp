@@ -196,12 +196,30 @@ TEST(SceneLoader, SpotLightFields) {
     EXPECT_EQ(c.direction, glm::vec3(0.0f, -1.0f, 0.0f));  // normalised
     EXPECT_EQ(c.innerDegrees, 10.0f);
     EXPECT_EQ(c.outerDegrees, 25.0f);
-    EXPECT_TRUE(c.castsShadow);
+    EXPECT_TRUE(s.pointLights[0].castsShadow);
     EXPECT_EQ(s.pointLights[0].range, 4.0f);
     ASSERT_TRUE(s.pointLights[1].spot.has_value());  // defaults: straight down, 20 / 30 degrees, no shadow
     EXPECT_EQ(s.pointLights[1].spot->outerDegrees, 30.0f);
-    EXPECT_FALSE(s.pointLights[1].spot->castsShadow);
+    EXPECT_FALSE(s.pointLights[1].castsShadow);
     EXPECT_FALSE(s.pointLights[2].spot.has_value());
+}
+
+// "castsShadow" on a point light: a cube shadow map (passes/point_shadow_pass); off by default.
+TEST(SceneLoader, PointLightCastsShadow) {
+    Scene s = parseScene(R"({"lights": [
+      {"type": "point", "position": [0, 1, 0], "castsShadow": true},
+      {"type": "point", "position": [1, 1, 0]},
+      {"type": "point", "position": [2, 1, 0], "castsShadow": false}]})",
+                         "test.json", false);
+    ASSERT_EQ(s.pointLights.size(), 3u);
+    EXPECT_TRUE(s.pointLights[0].castsShadow);
+    EXPECT_FALSE(s.pointLights[0].spot.has_value());
+    EXPECT_FALSE(s.pointLights[1].castsShadow);
+    EXPECT_FALSE(s.pointLights[2].castsShadow);
+    EXPECT_EQ(errorFor(R"({"lights": [{"type": "point", "castsShadow": "yes"}]})"),
+              "test.json: lights[0].castsShadow: expected true or false");
+    EXPECT_NE(errorFor(R"({"lights": [{"type": "point", "castShadow": true}]})").find("test.json: lights[0].castShadow: unknown field"),
+              std::string::npos);
 }
 
 TEST(SceneLoader, SpotLightErrorsNameFileAndLight) {
