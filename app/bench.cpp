@@ -180,6 +180,8 @@ int runBench(const Options& o, const std::vector<std::string>& args) {
                                    {"lagging_per_cascade", std::vector<uint64_t>(std::begin(cache.laggingPerCascade), std::end(cache.laggingPerCascade))},
                                    {"tiles_lagging", cache.lagging}, {"tiles_completed", cache.completed},
                                    {"quarters_drawn", cache.quarters}, {"most_budget_units_in_a_frame", cache.mostBudgetUnitsInAFrame}};
+        const PointShadowStats& cubes = renderer.pointShadowStats();
+        if (cubes.drawn + cubes.kept > 0) run["point_shadow_cache"] = {{"cubes_drawn", cubes.drawn}, {"cubes_kept", cubes.kept}};
         const LocalLightStats& lights = renderer.localLightStats();
         if (lights.froxelKernelMs >= 0.0)  // --clustered-kernel auto raced its two kernels: what it found
             run["clustered_kernel"] = {{"shading", lights.slicesShaded ? "froxels" : "tiles"},

@@ -333,6 +333,13 @@ int commandRender(const Options& o) {
                                    {"tiles_lagging", cache.lagging}, {"tiles_completed", cache.completed},
                                    {"quarters_drawn", cache.quarters}, {"most_budget_units_in_a_frame", cache.mostBudgetUnitsInAFrame}};
     }
+    const PointShadowStats& cubes = renderer.pointShadowStats();
+    if (cubes.drawn + cubes.kept > 0) {
+        say("point-light shadow cubes: %llu of %llu kept from an earlier frame, %llu drawn (--shadow-cache %s)\n",
+            (unsigned long long)cubes.kept, (unsigned long long)(cubes.kept + cubes.drawn), (unsigned long long)cubes.drawn,
+            settings.shadows.cache ? "on" : "off");
+        j["point_shadow_cache"] = {{"cubes_drawn", cubes.drawn}, {"cubes_kept", cubes.kept}};
+    }
     j["memory"] = {{"pool_bytes", poolBytes}, {"persistent_bytes", persistentBytes},
                    {"total_bytes", poolBytes + persistentBytes},
                    {"graph_transient_bytes", renderer.graph().liveTransientBytes()}};

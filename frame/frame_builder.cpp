@@ -96,7 +96,7 @@ FrameOutputs buildPathTracedFrame(fg::FrameGraph& graph, PassStates& passes, con
     if (s.view == DebugView::Lighting || isLocalLightView(s.view))
         throw Error("--render-path pathtraced: the '" + std::string(viewName(s.view)) + "' view shows the raster passes' light; use the final image or an HDR view");
     const std::string why = "pathtraced: the path tracer makes the HDR frame";
-    for (const char* pass : {"ibl_bake", "gbuffer", "gbuffer_visibility", "gbuffer_resolve", "depth_prepass", "spot_shadows",
+    for (const char* pass : {"ibl_bake", "gbuffer", "gbuffer_visibility", "gbuffer_resolve", "depth_prepass", "spot_shadows", "point_shadows",
                              "forward_opaque", "global_lights", "ibl", "local_lights", "emission", "sky", "transparent",
                              "motion_blur", "bloom", "bloom_composite", "toon", "taa", "ssaa_downsample"})
         graph.skipPass(pass, why);
@@ -212,17 +212,20 @@ FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const Fr
     forwardLighting.shadowMaps = shadowMaps;
     if (iblAdded) forwardLighting.environment = environment;
     forwardLighting.lightingOnly = lightingView;
-    // one perspective depth map per shadow-casting spot, read by local_lights and the forward passes.
-    SpotShadowMaps spotShadows;
+    // One perspective depth map per shadow-casting spot and a cube of six per shadow-casting point
+    // light, read by local_lights and the forward passes.
+    LocalShadowMaps localShadows;
     LocalLightRecords lightRecords;  // uploaded once a frame by the first pass that shades the lights
     if (localSkip.empty()) {
-        spotShadows = addSpotShadowPass(graph, passes.spotShadows, frame);
-        lightRecords = importLocalLightRecords(graph, passes.localLights, frame, spotShadows);
+        localShadows.spot = addSpotShadowPass(graph, passes.spotShadows, frame);
+        localShadows.point = addPointShadowPass(graph, passes.pointShadows, frame);
+        lightRecords = importLocalLightRecords(graph, passes.localLights, frame, localShadows);
         forwardLighting.localLights = true;
-        forwardLighting.spotShadows = spotShadows;
+        forwardLighting.localShadows = localShadows;
         forwardLighting.lightRecords = lightRecords;
     } else {
         graph.skipPass("spot_shadows", localSkip);
+        graph.skipPass("point_shadows", localSkip);
     }
     fg::ResourceId hdr;
     if (forwardPlus) {
@@ -238,7 +241,7 @@ FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const Fr
         if (iblAdded) hdr = addIblPass(graph, passes.ibl, frame, gbuffer, environment, hdr, lightingView, ao);
         else graph.skipPass("ibl", hasMap ? "IBL is off (environment.ibl false, no --ibl)" : "scene has no environment map");
         if (localSkip.empty())
-            hdr = addLocalLightPass(graph, passes.localLights, frame, gbuffer, hdr, lightingView, spotShadows, lightRecords);
+            hdr = addLocalLightPass(graph, passes.localLights, frame, gbuffer, hdr, lightingView, localShadows, lightRecords);
         else graph.skipPass("local_lights", localSkip);
         const bool emissionHidden = lightingView || (hiddenShadingTerms(s.view) & kHideEmission) != 0;
         if (!emissionHidden && sceneHasEmission(frame)) hdr = addEmissionPass(graph, passes.emission, frame, gbuffer, hdr);

@@ -24,6 +24,7 @@
 #include "passes/path_trace_pass.hpp"
 #include "passes/skinning_pass.hpp"
 #include "passes/sky_pass.hpp"
+#include "passes/point_shadow_pass.hpp"
 #include "passes/spot_shadow_pass.hpp"
 #include "passes/taa_pass.hpp"
 #include "passes/tonemap_pass.hpp"
@@ -47,6 +48,7 @@ struct PassStates {
     DebugViewPass debugView;
     ShadowMapPass shadowMaps;  // the depth-only program and framebuffer
     SpotShadowPass spotShadows;
+    PointShadowPass pointShadows;  // kept cube atlas (--shadow-cache)
     IblPass ibl;
     LocalLightPass localLights;
     ForwardPass forward;          // forward+'s forward_opaque

@@ -43,13 +43,20 @@ public:
     void clearCpuTimes() { cpuTimes_ = {}; }
     const fg::TexturePool& pool() const { return pool_; }
     // GPU bytes of the textures that outlive a frame outside the pool: environment cubes, IBL bakes,
-    // DFG LUT, and the suns' kept shadow atlases (--shadow-cache).
-    size_t persistentTextureBytes() const { return passes_.environments.gpuBytes() + passes_.shadowMaps.cacheBytes(); }
+    // DFG LUT, and the suns' and point lights' kept shadow atlases (--shadow-cache).
+    size_t persistentTextureBytes() const {
+        return passes_.environments.gpuBytes() + passes_.shadowMaps.cacheBytes() + passes_.pointShadows.cacheBytes();
+    }
     // Sun cascade tiles drawn and kept (--shadow-cache) since the last resetShadowCacheStats().
     const ShadowCacheStats& shadowCacheStats() const { return passes_.shadowMaps.cacheStats; }
     // --render-path pathtraced: the noise of the last finished accumulation.
     const PathTraceNoise& pathTraceNoise() const { return passes_.pathTrace.noise; }
-    void resetShadowCacheStats() { passes_.shadowMaps.cacheStats = {}; }
+    // Point-light cubes drawn and kept (--shadow-cache) since the last resetShadowCacheStats().
+    const PointShadowStats& pointShadowStats() const { return passes_.pointShadows.stats; }
+    void resetShadowCacheStats() {
+        passes_.shadowMaps.cacheStats = {};
+        passes_.pointShadows.stats = {};
+    }
     // What the last frame's local-light pass did (the clustered method: which kernel shaded, the race's times).
     const LocalLightStats& localLightStats() const { return passes_.localLights.stats; }
     // The environment cubes and IBL bakes (imported into each frame's graph), e.g. to time a fresh bake.

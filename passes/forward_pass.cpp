@@ -34,8 +34,10 @@ ForwardLightingReads declareForwardLighting(fg::PassBuilder& b, LocalLightPass& 
         r.dfg = b.read(lighting.environment.dfg, fg::Usage::Sampled);
     }
     if (lighting.ao.valid()) r.ao = b.read(lighting.ao, fg::Usage::Sampled);
-    if (lighting.localLights && lighting.spotShadows.any())
-        r.spotAtlas = b.read(lighting.spotShadows.depth, fg::Usage::Sampled);
+    if (lighting.localLights && lighting.localShadows.spot.any())
+        r.spotAtlas = b.read(lighting.localShadows.spot.depth, fg::Usage::Sampled);
+    if (lighting.localLights && lighting.localShadows.point.any())
+        r.pointAtlas = b.read(lighting.localShadows.point.depth, fg::Usage::Sampled);
     if (lighting.localLights) {
         if (lighting.fillsLightRecords) writeLightRecords(b, localLights, lighting.lightRecords);
         else readLightRecords(b);
@@ -46,19 +48,23 @@ ForwardLightingReads declareForwardLighting(fg::PassBuilder& b, LocalLightPass& 
 void bindForwardLighting(ForwardPass& state, LocalLightPass& localLights, const FrameData& frame,
                          const ForwardLighting& lighting, const ForwardLightingReads& reads,
                          const fg::PassResources& res, const std::vector<std::string>& defines) {
-    const bool spotShadows = lighting.localLights && lighting.spotShadows.any();
+    const bool spotShadows = lighting.localLights && lighting.localShadows.spot.any();
+    const bool pointShadows = lighting.localLights && lighting.localShadows.point.any();
     const int filter = int(frame.settings->shadows.filter);
     const bool vertexColors = frame.gpu != nullptr && frame.gpu->vertexColors;
     const bool secondUvSet = frame.gpu != nullptr && frame.gpu->secondUvSet;
-    if (!state.program || state.spotShadowVariant != spotShadows || state.shadowFilter != filter ||
+    if (!state.program || state.spotShadowVariant != spotShadows || state.pointShadowVariant != pointShadows ||
+        state.shadowFilter != filter ||
         state.vertexColors != vertexColors || state.secondUvSet != secondUvSet) {
         std::vector<std::string> d = defines;
         if (spotShadows) d.push_back("LP_SPOT_SHADOWS");
+        if (pointShadows) d.push_back("LP_POINT_SHADOWS");
         if (vertexColors) d.push_back("LP_VERTEX_COLOR");
         if (secondUvSet) d.push_back("LP_SECOND_UV");
         d.push_back(sunShadowFilterDefine(frame));
         state.program = frame.shaders->graphics("gbuffer.vert", "forward.frag", d);
         state.spotShadowVariant = spotShadows;
+        state.pointShadowVariant = pointShadows;
         state.shadowFilter = filter;
         state.vertexColors = vertexColors;
         state.secondUvSet = secondUvSet;
@@ -80,8 +86,8 @@ void bindForwardLighting(ForwardPass& state, LocalLightPass& localLights, const 
     glProgramUniform1i(prog, loc(prog, "uLightingOnly"), lighting.lightingOnly);
     glProgramUniform1i(prog, loc(prog, "uLocalLightCount"), 0);
     if (lighting.localLights)
-        bindClusteredLightLists(localLights, prog, frame, lighting.lightRecords, res, lighting.spotShadows,
-                                spotShadows ? res.texture(reads.spotAtlas) : 0);
+        bindClusteredLightLists(localLights, prog, frame, lighting.lightRecords, res, lighting.localShadows,
+                                {spotShadows ? res.texture(reads.spotAtlas) : 0, pointShadows ? res.texture(reads.pointAtlas) : 0});
     glProgramUniformMatrix4fv(prog, loc(prog, "uProjection"), 1, GL_FALSE, glm::value_ptr(gbufferDepthProjection(frame)));
 }
 

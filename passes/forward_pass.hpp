@@ -23,6 +23,7 @@ namespace lp {
 struct ForwardPass {
     gl::Program program;
     bool spotShadowVariant = false;  // `program` compiled with LP_SPOT_SHADOWS
+    bool pointShadowVariant = false; // and with LP_POINT_SHADOWS
     int shadowFilter = -1;           // and for this sun shadow filter (sunShadowFilterDefine)
     bool vertexColors = false;       // and with LP_VERTEX_COLOR (the scene has vertex colours)
     bool secondUvSet = false;        // and with LP_SECOND_UV (a material samples TEXCOORD_1)
@@ -35,7 +36,7 @@ struct ForwardLighting {
     EnvironmentTextures environment;  // irradiance, prefiltered, dfg valid: IBL on
     fg::ResourceId ao;                // the ambient-occlusion target (opaque surfaces only)
     bool localLights = false;         // the frame has local lights in view
-    SpotShadowMaps spotShadows;       // with localLights: the spot shadow atlas
+    LocalShadowMaps localShadows;     // with localLights: the spot shadow atlas and the point shadow cubes
     LocalLightRecords lightRecords;   // with localLights: the frame's light records
     bool fillsLightRecords = false;   // the pass uploads them (forward_opaque); else it reads them
     bool lightingOnly = false;        // the lighting view
@@ -44,7 +45,7 @@ struct ForwardLighting {
 // The ids a pass using ForwardLighting got from its reads (declareForwardLighting), for execute.
 struct ForwardLightingReads {
     std::vector<fg::ResourceId> shadowMaps;
-    fg::ResourceId irradiance, prefiltered, dfg, ao, spotAtlas;
+    fg::ResourceId irradiance, prefiltered, dfg, ao, spotAtlas, pointAtlas;
 };
 
 // Declares the reads of `lighting`'s textures (sampled) and of its light records (or, with
@@ -52,7 +53,7 @@ struct ForwardLightingReads {
 ForwardLightingReads declareForwardLighting(fg::PassBuilder& b, LocalLightPass& localLights, const ForwardLighting& lighting);
 
 // Compiles `program` (shaders/gbuffer.vert + forward.frag with `defines`, and LP_SPOT_SHADOWS when a spot
-// casts a shadow) if needed, sets every lighting uniform, binds the textures and builds and binds the
+// casts a shadow, LP_POINT_SHADOWS when a point light does) if needed, sets every lighting uniform, binds the textures and builds and binds the
 // clustered light lists; unbindForwardLighting undoes the bindings.
 void bindForwardLighting(ForwardPass& state, LocalLightPass& localLights, const FrameData& frame,
                          const ForwardLighting& lighting, const ForwardLightingReads& reads,

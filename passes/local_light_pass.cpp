@@ -28,6 +28,8 @@ constexpr float kGlobeRadiance = 8.0f;  // flat radiance of a globe (brightest c
 constexpr float kOverlayRadiance = 3.0f;
 constexpr float kHeatMax = 32.0f;       // lights per tile shown as red
 constexpr float kClusterHeatMax = 64.0f;  // lights per cluster shown as red
+constexpr GLuint kPointShadowBuffer = 5;  // LP_POINT_SHADOW_BUFFER in common/local_light.glsl
+constexpr GLuint kPointShadowUnit = 18;   // LP_POINT_SHADOW_UNIT in common/local_light.glsl
 
 int specularMode(const LocalLightSettings& s) {
     if (!s.specular) return 0;                 // LP_LOCAL_SPECULAR_OFF
@@ -46,40 +48,44 @@ void makeMesh(const std::vector<glm::vec3>& tris, const std::string& name, gl::B
     vertices = int(tris.size());
 }
 
-// The G-buffer-reading programs' defines: the G-buffer layout, spot shadows, and the material
-// extensions' targets the G-buffer carries (the state's variant flags).
-std::vector<std::string> lightingDefines(const GBufferSettings& layout, bool spotShadows, const LocalLightPass& state) {
+// The G-buffer-reading programs' defines: the G-buffer layout, spot and point shadows, and the
+// material extensions' targets the G-buffer carries (the state's variant flags).
+std::vector<std::string> lightingDefines(const GBufferSettings& layout, bool spotShadows, bool pointShadows,
+                                         const LocalLightPass& state) {
     std::vector<std::string> d = gbufferDefines(layout);
     if (spotShadows) d.push_back("LP_SPOT_SHADOWS");
+    if (pointShadows) d.push_back("LP_POINT_SHADOWS");
     if (state.fresnelVariant) d.push_back("LP_GBUFFER_FRESNEL");
     if (state.clearcoatVariant) d.push_back("LP_GBUFFER_CLEARCOAT");
     return d;
 }
 
 // The fused clustered programs' defines: those and the grid's tile size (their work-group shape).
-std::vector<std::string> clusteredDefines(const GBufferSettings& layout, bool spotShadows, int clusterTile,
-                                          const LocalLightPass& state) {
-    std::vector<std::string> d = lightingDefines(layout, spotShadows, state);
+std::vector<std::string> clusteredDefines(const GBufferSettings& layout, bool spotShadows, bool pointShadows,
+                                          int clusterTile, const LocalLightPass& state) {
+    std::vector<std::string> d = lightingDefines(layout, spotShadows, pointShadows, state);
     d.push_back("LP_CLUSTER_TILE " + std::to_string(clusterTile));
     return d;
 }
 
-void ensureState(LocalLightPass& state, const FrameData& frame, bool spotShadows = false) {
+void ensureState(LocalLightPass& state, const FrameData& frame, bool spotShadows = false, bool pointShadows = false) {
     // The programs that read the G-buffer follow its layout (recompiled when it changes), and
-    // sample spot shadow maps only in frames that have one.
+    // sample spot and point shadow maps only in frames that have one.
     const GBufferSettings& layout = frame.settings->gbuffer;
     // The fused clustered programs are compiled for the grid's tile size (their work-group shape).
     const int clusterTile = frame.settings->localLights.clusterSize;
     const bool fresnel = gbufferCarriesFresnel(frame), clearcoat = gbufferCarriesClearcoat(frame);
     if (!state.fbo || state.layout != layout || state.spotShadowVariant != spotShadows ||
-        state.clusterTileCompiled != clusterTile || state.fresnelVariant != fresnel || state.clearcoatVariant != clearcoat) {
+        state.pointShadowVariant != pointShadows || state.clusterTileCompiled != clusterTile ||
+        state.fresnelVariant != fresnel || state.clearcoatVariant != clearcoat) {
         state.fresnelVariant = fresnel;
         state.clearcoatVariant = clearcoat;
-        std::vector<std::string> defines = lightingDefines(layout, spotShadows, state);
+        std::vector<std::string> defines = lightingDefines(layout, spotShadows, pointShadows, state);
         state.spotShadowVariant = spotShadows;
+        state.pointShadowVariant = pointShadows;
         state.fragmentProgram = frame.shaders->graphics("local_light.vert", "local_light.frag", defines);
         state.tiledProgram = frame.shaders->compute("local_light_tiled.comp", defines);
-        const std::vector<std::string> clustered = clusteredDefines(layout, spotShadows, clusterTile, state);
+        const std::vector<std::string> clustered = clusteredDefines(layout, spotShadows, pointShadows, clusterTile, state);
         state.clusteredProgram = frame.shaders->compute("local_light_clustered.comp", clustered);
         state.clusteredSupertileProgram = {};  // compiled when first needed (many lights)
         state.clusterTightBuildProgram = frame.shaders->compute("light_clusters_tight.comp", clustered);
@@ -99,16 +105,16 @@ void ensureState(LocalLightPass& state, const FrameData& frame, bool spotShadows
     state.fbo = gl::makeFramebuffer("local_lights");
 }
 
-// The frame's lights as GPU records (eye space) into `gpu`. With spot shadow maps, each shadowed
-// light's record names its atlas tile.
-void makeLightRecords(const FrameData& frame, const std::vector<PointLight>& lights, const SpotShadowMaps* spotShadows,
+// The frame's lights as GPU records (eye space) into `gpu`. With shadow maps, each shadowed spot's
+// record names its atlas tile, each shadowed point light's its cube.
+void makeLightRecords(const FrameData& frame, const std::vector<PointLight>& lights, const LocalShadowMaps& shadows,
                       std::vector<GpuLocalLight>& gpu) {
-    std::vector<int> layer(lights.size(), -1);
-    if (spotShadows)
-        for (size_t t = 0; t < spotShadows->light.size(); ++t) layer[size_t(spotShadows->light[t])] = int(t);
+    std::vector<int> layer(lights.size(), -1), cube(lights.size(), -1);
+    for (size_t t = 0; t < shadows.spot.light.size(); ++t) layer[size_t(shadows.spot.light[t])] = int(t);
+    for (size_t c = 0; c < shadows.point.light.size(); ++c) cube[size_t(shadows.point.light[c])] = int(c);
     gpu.clear();
     gpu.reserve(lights.size());
-    for (size_t i = 0; i < lights.size(); ++i) gpu.push_back(gpuLocalLight(lights[i], frame.view, layer[i]));
+    for (size_t i = 0; i < lights.size(); ++i) gpu.push_back(gpuLocalLight(lights[i], frame.view, layer[i], cube[i]));
 }
 
 constexpr const char* kLightRecordsName = "local_lights.records";
@@ -129,8 +135,9 @@ void unbindAll(const LocalLightPass& state) {
     for (GLuint u = 0; u < 6; ++u) glBindTextureUnit(u, 0);
     glBindTextureUnit(kGBufferFresnelUnit, 0);
     glBindTextureUnit(kGBufferClearcoatUnit, 0);
+    glBindTextureUnit(kPointShadowUnit, 0);
     glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
-    for (GLuint b = 0; b < 5; ++b) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, 0);
+    for (GLuint b = 0; b <= kPointShadowBuffer; ++b) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, 0);
     glBindVertexArray(0);
     glUseProgram(0);
 }
@@ -138,32 +145,57 @@ void unbindAll(const LocalLightPass& state) {
 struct LightData {
     GBuffer in;
     fg::ResourceId hdr;
-    fg::ResourceId spotShadows;  // the atlas, when some spot casts a shadow
+    fg::ResourceId spotShadows;   // the atlas, when some spot casts a shadow
+    fg::ResourceId pointShadows;  // the cubes' atlas, when some point light casts a shadow
 };
 
 constexpr GLuint kSpotShadowUnit = 5;  // layout(binding = 5) in common/local_light.glsl
 
-// One LpSpotShadow (common/local_light.glsl) per atlas tile into the SSBO at binding 4, the atlas at
-// unit 5.
-struct GpuSpotShadow {
+// One LpPerspectiveShadow (common/local_light.glsl) per map: a spot's tile or a cube's face.
+struct GpuPerspectiveShadow {
     glm::mat4 eyeToClip;
     glm::vec4 tile, depth, bias;
 };
+GpuPerspectiveShadow gpuPerspectiveShadow(const ShadowSettings& ss, const glm::mat4& worldToClip, const glm::mat4& eyeToWorld,
+                                          glm::ivec2 tileOrigin, int tileSize, float texelSlope, float nearPlane, float farPlane) {
+    GpuPerspectiveShadow g;
+    g.eyeToClip = worldToClip * eyeToWorld;
+    g.tile = glm::vec4(float(tileOrigin.x), float(tileOrigin.y), float(tileSize), texelSlope);
+    g.depth = glm::vec4(nearPlane, farPlane, float(int(ss.filter)), ss.normalBias);
+    g.bias = glm::vec4(ss.depthBias, 0.0f, 0.0f, 0.0f);
+    return g;
+}
+
+// The spots' maps into the SSBO at binding 4, the atlas at unit 5.
 void bindSpotShadows(LocalLightPass& state, const FrameData& frame, const SpotShadowMaps& maps, GLuint atlas) {
-    const ShadowSettings& ss = frame.settings->shadows;
     const glm::mat4 eyeToWorld = glm::inverse(frame.view);
-    std::vector<GpuSpotShadow> gpu;
-    for (size_t t = 0; t < maps.light.size(); ++t) {
-        GpuSpotShadow g;
-        g.eyeToClip = maps.worldToClip[t] * eyeToWorld;
-        g.tile = glm::vec4(float(int(t) % maps.columns * maps.tileSize), float(int(t) / maps.columns * maps.tileSize),
-                           float(maps.tileSize), maps.texelSlope[t]);
-        g.depth = glm::vec4(maps.nearPlane[t], maps.farPlane[t], float(int(ss.filter)), ss.normalBias);
-        g.bias = glm::vec4(ss.depthBias, 0.0f, 0.0f, 0.0f);
-        gpu.push_back(g);
-    }
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, state.spotShadows.fill(gpu.data(), gpu.size() * sizeof(GpuSpotShadow)));
+    std::vector<GpuPerspectiveShadow> gpu;
+    for (size_t t = 0; t < maps.light.size(); ++t)
+        gpu.push_back(gpuPerspectiveShadow(frame.settings->shadows, maps.worldToClip[t], eyeToWorld,
+                                           glm::ivec2(int(t) % maps.columns, int(t) / maps.columns) * maps.tileSize,
+                                           maps.tileSize, maps.texelSlope[t], maps.nearPlane[t], maps.farPlane[t]));
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, state.spotShadows.fill(gpu.data(), gpu.size() * sizeof(GpuPerspectiveShadow)));
     glBindTextureUnit(kSpotShadowUnit, atlas);
+}
+
+// The point lights' cube faces (six a cube, in face order; cube c is the atlas's row c) into the
+// SSBO at kPointShadowBuffer, the atlas at kPointShadowUnit.
+void bindPointShadows(LocalLightPass& state, const FrameData& frame, const PointShadowMaps& maps, GLuint atlas) {
+    const glm::mat4 eyeToWorld = glm::inverse(frame.view);
+    std::vector<GpuPerspectiveShadow> gpu;
+    for (size_t c = 0; c < maps.light.size(); ++c)
+        for (int f = 0; f < kPointShadowFaces; ++f)
+            gpu.push_back(gpuPerspectiveShadow(frame.settings->shadows, maps.worldToClip[c][size_t(f)], eyeToWorld,
+                                               glm::ivec2(f, int(c)) * maps.tileSize, maps.tileSize, maps.texelSlope,
+                                               maps.nearPlane[c], maps.farPlane[c]));
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPointShadowBuffer,
+                     state.pointShadows.fill(gpu.data(), gpu.size() * sizeof(GpuPerspectiveShadow)));
+    glBindTextureUnit(kPointShadowUnit, atlas);
+}
+
+void bindLocalShadows(LocalLightPass& state, const FrameData& frame, const LocalShadowMaps& shadows, LocalShadowAtlases atlases) {
+    if (shadows.spot.any()) bindSpotShadows(state, frame, shadows.spot, atlases.spot);
+    if (shadows.point.any()) bindPointShadows(state, frame, shadows.point, atlases.point);
 }
 
 void setClusterUniforms(GLuint prog, const ClusterGrid& g) {
@@ -444,12 +476,12 @@ void drawFragmentMethod(LocalLightPass& state, const FrameData& frame, const std
 }  // namespace
 
 LocalLightRecords importLocalLightRecords(fg::FrameGraph& graph, LocalLightPass& state, const FrameData& frame,
-                                          const SpotShadowMaps& spotShadows) {
+                                          const LocalShadowMaps& shadows) {
     LocalLightRecords r;
     // CPU work inside a pass's execute would sit inside its GPU timing window (the GPU idles there
     // whenever it has caught up with the CPU: bench/results/lighting/2026-11-24_cpu-in-pass-timing), so made here.
     auto records = std::make_shared<std::vector<GpuLocalLight>>();
-    makeLightRecords(frame, *frameLocalLights(frame), &spotShadows, *records);
+    makeLightRecords(frame, *frameLocalLights(frame), shadows, *records);
     r.records = std::move(records);
     r.buffer = graph.importBuffer(kLightRecordsName, [&state] { return state.lights.current(); });
     return r;
@@ -495,12 +527,12 @@ void bindWholeClusters(LocalLightPass& state, const FrameData& frame, const Loca
 }
 
 int bindClusteredLightLists(LocalLightPass& state, GLuint prog, const FrameData& frame, const LocalLightRecords& records,
-                            const fg::PassResources& res, const SpotShadowMaps& spotShadows, GLuint spotAtlas) {
-    ensureState(state, frame, spotShadows.any());
+                            const fg::PassResources& res, const LocalShadowMaps& shadows, LocalShadowAtlases atlases) {
+    ensureState(state, frame, shadows.spot.any(), shadows.point.any());
     const LocalLightSettings& s = frame.settings->localLights;
     bindLightRecords(state, records, res);
     const int count = int(records.records->size());
-    if (spotShadows.any()) bindSpotShadows(state, frame, spotShadows, spotAtlas);
+    bindLocalShadows(state, frame, shadows, atlases);
     bindWholeClusters(state, frame, records);
     setClusterUniforms(prog, state.clusterGrid);
     setInt(prog, "uLocalLightCount", count);
@@ -511,19 +543,20 @@ int bindClusteredLightLists(LocalLightPass& state, GLuint prog, const FrameData&
 }
 
 void unbindClusteredLightLists() {
-    for (GLuint b = 0; b < 5; ++b) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, 0);
+    for (GLuint b = 0; b <= kPointShadowBuffer; ++b) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, 0);
     glBindTextureUnit(kSpotShadowUnit, 0);
+    glBindTextureUnit(kPointShadowUnit, 0);
 }
 
 namespace {
 // What the clustered race's time depends on besides the view: a change begins a new round.
-std::uint64_t clusteredRaceKey(const FrameData& frame, bool lightingOnly, bool spotShadows, int lightCount) {
+std::uint64_t clusteredRaceKey(const FrameData& frame, bool lightingOnly, int shadowVariant, int lightCount) {
     const LocalLightSettings& s = frame.settings->localLights;
     std::uint64_t h = 1469598103934665603ull;  // FNV-1a over the values
     for (const std::int64_t v : {std::int64_t(lightCount), std::int64_t(frame.width), std::int64_t(frame.height),
                                  std::int64_t(s.clusterSlices), std::int64_t(specularMode(s)), std::int64_t(lightingOnly),
                                  std::int64_t(frame.settings->brdf), std::int64_t(frame.settings->specularMasking),
-                                 std::int64_t(spotShadows), std::int64_t(frame.settings->gbuffer.mode)}) {
+                                 std::int64_t(shadowVariant), std::int64_t(frame.settings->gbuffer.mode)}) {
         h ^= std::uint64_t(v);
         h *= 1099511628211ull;
     }
@@ -560,7 +593,7 @@ struct ClusteredChoice {
 // clustered kernel. 16-pixel tiles: --clustered-kernel froxels or tiles as asked; auto: the tiled
 // kernel below kClusteredMinLights, else the race's pick for the view (kernel 1 is the tiled one).
 ClusteredChoice chooseClusteredKernel(LocalLightPass& state, const FrameData& frame, bool lightingOnly,
-                                      bool spotShadows, int lightCount) {
+                                      int shadowVariant, int lightCount) {
     const LocalLightSettings& s = frame.settings->localLights;
     ClusteredChoice c;
     if (s.clusterSize != kTileSize || s.clusteredKernel == ClusteredKernel::Froxels) return c;
@@ -569,7 +602,7 @@ ClusteredChoice chooseClusteredKernel(LocalLightPass& state, const FrameData& fr
         return c;
     }
     collectRaceTimings(state);
-    const std::uint64_t key = clusteredRaceKey(frame, lightingOnly, spotShadows, lightCount);
+    const std::uint64_t key = clusteredRaceKey(frame, lightingOnly, shadowVariant, lightCount);
     bool timed = false;
     const int kernel = kernelRaceNext(state.clusteredRace, key, timed);
     c.tiles = kernel == 1;
@@ -594,7 +627,7 @@ ClusteredChoice chooseClusteredKernel(LocalLightPass& state, const FrameData& fr
 
 fg::ResourceId addLocalLightPass(fg::FrameGraph& graph, LocalLightPass& state, const FrameData& frame,
                                  const GBuffer& gbuffer, fg::ResourceId hdr, bool lightingOnly,
-                                 const SpotShadowMaps& spotShadows, const LocalLightRecords& records) {
+                                 const LocalShadowMaps& shadows, const LocalLightRecords& records) {
     // Tiled and clustered: compute adding into the HDR buffer in place. The other methods blend light
     // geometry into it, then clamp it in place (image load/store).
     const bool tiled = frame.settings->localLights.method == LocalLightMethod::Tiled ||
@@ -605,22 +638,26 @@ fg::ResourceId addLocalLightPass(fg::FrameGraph& graph, LocalLightPass& state, c
             data.in = gbuffer;
             readGBuffer(b, gbuffer, !lightingOnly, true);
             data.hdr = b.write(hdr, tiled ? fg::Usage::ImageLoadStore : fg::Usage::Blend | fg::Usage::ImageLoadStore);
-            if (spotShadows.any()) data.spotShadows = b.read(spotShadows.depth, fg::Usage::Sampled);
+            if (shadows.spot.any()) data.spotShadows = b.read(shadows.spot.depth, fg::Usage::Sampled);
+            if (shadows.point.any()) data.pointShadows = b.read(shadows.point.depth, fg::Usage::Sampled);
             writeLightRecords(b, state, records);
         },
-        [&state, frame, lightingOnly, spotShadows, records](const LightData& data, const fg::PassResources& res) {
-            ensureState(state, frame, spotShadows.any());
+        [&state, frame, lightingOnly, shadows, records](const LightData& data, const fg::PassResources& res) {
+            ensureState(state, frame, shadows.spot.any(), shadows.point.any());
             const LocalLightSettings& s = frame.settings->localLights;
             state.stats = LocalLightStats{};
             state.stats.method = s.method;
             const std::shared_ptr<const std::vector<PointLight>> lights = frameLocalLights(frame);
             bindLightRecords(state, records, res);
-            if (spotShadows.any()) bindSpotShadows(state, frame, spotShadows, res.texture(data.spotShadows));
+            bindLocalShadows(state, frame, shadows,
+                             {shadows.spot.any() ? res.texture(data.spotShadows) : 0,
+                              shadows.point.any() ? res.texture(data.pointShadows) : 0});
             state.stats.requested = int(lights->size());
             const GLuint hdrTexture = res.texture(data.hdr);
             const bool clustered = s.method == LocalLightMethod::Clustered;
             const ClusteredChoice choice =
-                clustered ? chooseClusteredKernel(state, frame, lightingOnly, spotShadows.any(), int(lights->size()))
+                clustered ? chooseClusteredKernel(state, frame, lightingOnly,
+                                                  int(shadows.spot.any()) + 2 * int(shadows.point.any()), int(lights->size()))
                           : ClusteredChoice{};
             const bool clusteredAsTiled = clustered && choice.tiles;
             state.stats.slicesShaded = clustered && !choice.tiles;
@@ -648,7 +685,8 @@ fg::ResourceId addLocalLightPass(fg::FrameGraph& graph, LocalLightPass& state, c
                 // With many lights the variant that reads the supertile lists (LP_SUPERTILES).
                 const bool supertiles = useSupertiles(state, int(lights->size()), !unbounded(s));
                 if (supertiles && !state.clusteredSupertileProgram) {
-                    std::vector<std::string> d = clusteredDefines(state.layout, state.spotShadowVariant, state.clusterTileCompiled, state);
+                    std::vector<std::string> d = clusteredDefines(state.layout, state.spotShadowVariant, state.pointShadowVariant,
+                                                                  state.clusterTileCompiled, state);
                     d.push_back("LP_SUPERTILES");
                     state.clusteredSupertileProgram = frame.shaders->compute("local_light_clustered.comp", d);
                 }
@@ -812,7 +850,7 @@ fg::ResourceId addLocalLightOverlayPasses(fg::FrameGraph& graph, LocalLightPass&
                 readLightRecords(b);
             },
             [&state, frame, records](const OverlayData& data, const fg::PassResources& res) {
-                ensureState(state, frame, state.spotShadowVariant);
+                ensureState(state, frame, state.spotShadowVariant, state.pointShadowVariant);
                 bindLightRecords(state, records, res);
                 const GLuint velocity = data.velocity.valid() ? res.texture(data.velocity) : 0;
                 drawGlobes(state, frame, int(records.records->size()), res.texture(data.hdr), res.texture(data.in.depth),
@@ -830,7 +868,7 @@ fg::ResourceId addLocalLightOverlayPasses(fg::FrameGraph& graph, LocalLightPass&
                            readLightRecords(b);
                        },
                        [&state, frame, records](const OverlayData& data, const fg::PassResources& res) {
-                           ensureState(state, frame, state.spotShadowVariant);
+                           ensureState(state, frame, state.spotShadowVariant, state.pointShadowVariant);
                            bindLightRecords(state, records, res);
                            drawRanges(state, frame, *frameLocalLights(frame), res.texture(data.hdr));
                            unbindAll(state);
@@ -847,7 +885,7 @@ fg::ResourceId addLocalLightOverlayPasses(fg::FrameGraph& graph, LocalLightPass&
                            readLightRecords(b);
                        },
                        [&state, frame, records](const OverlayData& data, const fg::PassResources& res) {
-                           ensureState(state, frame, state.spotShadowVariant);
+                           ensureState(state, frame, state.spotShadowVariant, state.pointShadowVariant);
                            bindLightRecords(state, records, res);
                            const LocalLightSettings& ls = frame.settings->localLights;
                            const GLuint prog = state.heatmapProgram.id();
@@ -879,7 +917,7 @@ fg::ResourceId addLocalLightOverlayPasses(fg::FrameGraph& graph, LocalLightPass&
                            readLightRecords(b);
                        },
                        [&state, frame, tightClusters, records](const OverlayData& data, const fg::PassResources& res) {
-                           ensureState(state, frame, state.spotShadowVariant);
+                           ensureState(state, frame, state.spotShadowVariant, state.pointShadowVariant);
                            // Built here from this frame's lights as the frame's opaque surfaces used
                            // them: tightened to the G-buffer's depth for the deferred clustered
                            // method, whole froxels otherwise (the forward passes' lists).

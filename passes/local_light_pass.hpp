@@ -19,9 +19,21 @@
 #include "engine/render/light_clusters.hpp"
 #include "engine/render/local_lights.hpp"
 #include "passes/gbuffer_pass.hpp"
+#include "passes/point_shadow_pass.hpp"
 #include "passes/spot_shadow_pass.hpp"
 
 namespace lp {
+
+// The local lights' shadow maps of a frame: the shadowed spots' atlas and the shadowed point lights'
+// cubes (each absent when no such light casts).
+struct LocalShadowMaps {
+    SpotShadowMaps spot;
+    PointShadowMaps point;
+};
+// Their atlases' textures in a pass's execute (0: absent).
+struct LocalShadowAtlases {
+    GLuint spot = 0, point = 0;
+};
 
 // What the last executed local-light pass did, for tests and the UI.
 struct LocalLightStats {
@@ -100,7 +112,9 @@ struct LocalLightPass {
     // ... and with the material extensions' targets the G-buffer carries (LP_GBUFFER_FRESNEL,
     // LP_GBUFFER_CLEARCOAT: gbufferCarriesFresnel, gbufferCarriesClearcoat)
     bool fresnelVariant = false, clearcoatVariant = false;
-    gl::StreamBuffer spotShadows{"spot_shadows.ssbo"};  // LpSpotShadow per atlas tile (binding 4)
+    bool pointShadowVariant = false;  // ... and with LP_POINT_SHADOWS (only frames with a shadowed point light)
+    gl::StreamBuffer spotShadows{"spot_shadows.ssbo"};  // LpPerspectiveShadow per atlas tile (binding 4)
+    gl::StreamBuffer pointShadows{"point_shadows.ssbo"};  // LpPerspectiveShadow per cube face (LP_POINT_SHADOW_BUFFER)
     gl::Framebuffer fbo;
     // GpuLocalLight per light (binding 0): the frame's "local_lights.records", filled once a frame
     // (LocalLightRecords).
@@ -120,7 +134,7 @@ struct LocalLightPass {
 };
 
 // The frame's local lights as GPU records (eye space; a shadowed spot's record names its atlas
-// tile), made when the graph is built (outside every pass's timing window) and uploaded once a
+// tile, a shadowed point light's its cube), made when the graph is built (outside every pass's timing window) and uploaded once a
 // frame into LocalLightPass::lights, the graph's buffer "local_lights.records": the pass that shades
 // the lights first (local_lights; forward_opaque on the forward+ path) writes it (an upload), the
 // transparent pass and the overlays read it.
@@ -129,7 +143,7 @@ struct LocalLightRecords {
     std::shared_ptr<const std::vector<GpuLocalLight>> records;
 };
 LocalLightRecords importLocalLightRecords(fg::FrameGraph& graph, LocalLightPass& state, const FrameData& frame,
-                                          const SpotShadowMaps& spotShadows);
+                                          const LocalShadowMaps& shadows);
 // In a pass's setup: it fills the records (uploaded before the frame's first pass, outside every
 // pass's timing window), or reads what the frame's filling pass uploaded (the last version of
 // "local_lights.records", whichever pass wrote it).
@@ -141,19 +155,20 @@ void readLightRecords(fg::PassBuilder& b);
 void bindLightRecords(LocalLightPass& state, const LocalLightRecords& records, const fg::PassResources& res);
 
 // Adds the "local_lights" pass (read-modify-write of hdr; fills `records`). Whether the frame needs it
-// (lights on, some in view) is the frame builder's decision. With spotShadows.any() it also samples
-// their atlas.
+// (lights on, some in view) is the frame builder's decision. With shadows.spot.any() or
+// shadows.point.any() it also samples their atlases.
 fg::ResourceId addLocalLightPass(fg::FrameGraph& graph, LocalLightPass& state, const FrameData& frame,
                                  const GBuffer& gbuffer, fg::ResourceId hdr, bool lightingOnly,
-                                 const SpotShadowMaps& spotShadows, const LocalLightRecords& records);
+                                 const LocalShadowMaps& shadows, const LocalLightRecords& records);
 
 // For the forward passes (passes/forward_pass, passes/transparent_pass), inside their execute: binds
 // the frame's light records (SSBO 0, bindLightRecords), builds the clustered method's froxel grid from
 // them (counts SSBO 1, lists SSBO 2; the same build and buffers as the clustered local_lights pass)
-// and, when a spot casts a shadow, binds their shadow records (SSBO 4) and `spotAtlas` (unit 5). Sets
+// and, when a spot casts a shadow, binds their shadow records (SSBO 4) and `atlases.spot` (unit 5), when a
+// point light does, its cubes' records (SSBO 5) and `atlases.point` (unit 18). Sets
 // `prog`'s cluster uniforms and uLocalLightCount, uUnbounded, uSpecularMode. Returns the number of lights.
 int bindClusteredLightLists(LocalLightPass& state, GLuint prog, const FrameData& frame, const LocalLightRecords& records,
-                            const fg::PassResources& res, const SpotShadowMaps& spotShadows, GLuint spotAtlas);
+                            const fg::PassResources& res, const LocalShadowMaps& shadows, LocalShadowAtlases atlases);
 void unbindClusteredLightLists();
 
 // After the sky: "light_globes" (settings.localLights.globes, else the scene's lightGlobes) and the overlay views

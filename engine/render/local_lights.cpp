@@ -50,7 +50,7 @@ glm::vec3 transformDirection(const glm::mat4& m, glm::vec3 d) {
 }
 }  // namespace
 
-GpuLocalLight gpuLocalLight(const PointLight& l, const glm::mat4& view, int shadowLayer) {
+GpuLocalLight gpuLocalLight(const PointLight& l, const glm::mat4& view, int shadowLayer, int pointShadowCube) {
     GpuLocalLight g;
     g.positionRange = glm::vec4(transformPoint(view, l.position), l.range);
     float cosInner = -1.5f, cosOuter = -2.0f;  // a point light: lpSpotFalloff is exactly 1 everywhere
@@ -68,7 +68,7 @@ GpuLocalLight gpuLocalLight(const PointLight& l, const glm::mat4& view, int shad
     } else {
         g.bound = g.positionRange;  // a point light's bounds: its range sphere (localLightBounds)
     }
-    g.shadow = glm::vec4(float(shadowLayer), 0.0f, 0.0f, 0.0f);
+    g.shadow = glm::vec4(float(shadowLayer), float(pointShadowCube), 0.0f, 0.0f);
     return g;
 }
 

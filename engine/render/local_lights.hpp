@@ -23,7 +23,7 @@ struct GpuLocalLight {
     glm::vec4 intensity;      // rgb colour x radiant intensity, w cos(inner angle) (a point light: -1.5)
     glm::vec4 directionCos;   // eye-space spot axis, w cos(outer angle) (a point light: -2, so no falloff)
     glm::vec4 bound;          // eye-space bounding sphere of all the light reaches: centre, radius
-    glm::vec4 shadow;         // x: layer of the spot shadow map array, -1 none; yzw unused
+    glm::vec4 shadow;         // x: layer of the spot shadow map array, -1 none; y: point shadow cube, -1 none; zw unused
 };
 static_assert(sizeof(GpuLocalLight) == 80, "std430 layout of LpLocalLight");
 
@@ -37,8 +37,9 @@ struct BoundingSphere {
 };
 BoundingSphere localLightBounds(const PointLight& light);
 
-// The light as the shaders read it: eye space under `view`, shadowLayer -1 when it casts none.
-GpuLocalLight gpuLocalLight(const PointLight& light, const glm::mat4& view, int shadowLayer);
+// The light as the shaders read it: eye space under `view`; shadowLayer: its spot shadow tile,
+// pointShadowCube: its point shadow cube (passes/point_shadow_pass), each -1 when it has none.
+GpuLocalLight gpuLocalLight(const PointLight& light, const glm::mat4& view, int shadowLayer, int pointShadowCube = -1);
 
 // `count` deterministic demo lights spread through the box [lo, hi] (position and colour seeded by the
 // index): ranges shrink as count grows so that about 8 lights overlap a point of the box.

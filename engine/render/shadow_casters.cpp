@@ -83,6 +83,23 @@ bool casterBoxMayCast(const glm::mat4& objectToClip, glm::vec3 lo, glm::vec3 hi,
     return cmin.z <= 1.0f;  // a box wholly past the far plane is behind every receiver of the tile
 }
 
+namespace {
+// Appends cluster c to `list`, merged into the last draw of its kind where it continues it.
+void addCluster(CasterList& list, const CasterCluster& c) {
+    ++list.clusters;
+    list.triangles += c.indexCount / 3;
+    const bool tested = c.alpha != CasterAlpha::Opaque;
+    if (tested) list.alphaTriangles += c.indexCount / 3;
+    std::vector<CasterDraw>& draws = tested ? list.alphaDraws : list.draws;
+    const int material = tested ? c.material : -1;
+    if (!draws.empty() && draws.back().model == c.model && draws.back().material == material &&
+        draws.back().firstIndex + draws.back().indexCount == c.firstIndex)
+        draws.back().indexCount += c.indexCount;
+    else
+        draws.push_back({c.model, c.firstIndex, c.indexCount, material});
+}
+}  // namespace
+
 CasterList cullCasters(const std::vector<CasterCluster>& clusters, const Scene& scene, const glm::mat4& worldToClip,
                        float margin, bool cull) {
     CasterList list;
@@ -95,17 +112,29 @@ CasterList cullCasters(const std::vector<CasterCluster>& clusters, const Scene& 
             lastModel = c.model;
         }
         if (cull && !casterBoxMayCast(objectToClip, c.boundsMin, c.boundsMax, margin)) continue;
-        ++list.clusters;
-        list.triangles += c.indexCount / 3;
-        const bool tested = c.alpha != CasterAlpha::Opaque;
-        if (tested) list.alphaTriangles += c.indexCount / 3;
-        std::vector<CasterDraw>& draws = tested ? list.alphaDraws : list.draws;
-        const int material = tested ? c.material : -1;
-        if (!draws.empty() && draws.back().model == c.model && draws.back().material == material &&
-            draws.back().firstIndex + draws.back().indexCount == c.firstIndex)
-            draws.back().indexCount += c.indexCount;
-        else
-            draws.push_back({c.model, c.firstIndex, c.indexCount, material});
+        addCluster(list, c);
+    }
+    return list;
+}
+
+bool casterBoxReachesSphere(const glm::mat4& objectToWorld, glm::vec3 lo, glm::vec3 hi, glm::vec3 centre, float radius) {
+    glm::vec3 wmin(std::numeric_limits<float>::max()), wmax(-std::numeric_limits<float>::max());
+    for (int c = 0; c < 8; ++c) {
+        const glm::vec3 p = glm::vec3(objectToWorld * glm::vec4(c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z, 1.0f));
+        wmin = glm::min(wmin, p);
+        wmax = glm::max(wmax, p);
+    }
+    const glm::vec3 nearest = glm::clamp(centre, wmin, wmax);
+    const glm::vec3 d = nearest - centre;
+    return glm::dot(d, d) <= radius * radius;
+}
+
+CasterList castersInSphere(const std::vector<CasterCluster>& clusters, const Scene& scene, glm::vec3 centre, float radius) {
+    CasterList list;
+    for (const CasterCluster& c : clusters) {
+        if (c.model < 0 || size_t(c.model) >= scene.models.size()) continue;
+        if (!casterBoxReachesSphere(scene.models[size_t(c.model)].transform, c.boundsMin, c.boundsMax, centre, radius)) continue;
+        addCluster(list, c);
     }
     return list;
 }

@@ -84,4 +84,12 @@ bool casterBoxMayCast(const glm::mat4& objectToClip, glm::vec3 lo, glm::vec3 hi,
 CasterList cullCasters(const std::vector<CasterCluster>& clusters, const Scene& scene, const glm::mat4& worldToClip,
                        float margin, bool cull);
 
+// Whether object-space box [lo, hi] under `objectToWorld` may reach the sphere (world-space `centre`,
+// `radius`): the world-space box of its eight corners does. A point light's casters: what lies
+// outside its range cannot come between it and a point it lights (the segment stays inside).
+bool casterBoxReachesSphere(const glm::mat4& objectToWorld, glm::vec3 lo, glm::vec3 hi, glm::vec3 centre, float radius);
+
+// The draws of the clusters casterBoxReachesSphere keeps (each model placed by its transform).
+CasterList castersInSphere(const std::vector<CasterCluster>& clusters, const Scene& scene, glm::vec3 centre, float radius);
+
 }  // namespace lp

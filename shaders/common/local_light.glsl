@@ -12,7 +12,7 @@ struct LpLocalLight {
     vec4 intensity;      // rgb radiant intensity (colour x intensity), w cos(inner angle); a point light -1.5
     vec4 directionCos;   // xyz eye-space spot axis, w cos(outer angle); a point light -2 (no falloff)
     vec4 bound;          // eye-space bounding sphere of all the light reaches: xyz centre, w radius
-    vec4 shadow;         // x: layer of the spot shadow map array, < 0 none
+    vec4 shadow;         // x: layer of the spot shadow map array, < 0 none; y: point shadow cube, < 0 none
 };
 
 // Does the sphere (eye-space centre c, radius r) touch the screen tile between NDC x in [lo.x, hi.x],
@@ -77,24 +77,22 @@ float lpSpotFalloff(float cosAngle, float cosOuter, float cosInner) {
     return t * t * (3.0 - 2.0 * t);
 }
 
-#ifdef LP_SPOT_SHADOWS
+#if defined(LP_SPOT_SHADOWS) || defined(LP_POINT_SHADOWS)
 #include "common/shadow.glsl"
-// Spot shadow maps (passes/spot_shadow_pass): perspective depth tiles of one D32F atlas. Compared in
-// linear depth along the spot's axis, with a bias of a few texels' world size (a perspective map's
-// window depth is not linear, so the suns' receiver-plane gradient does not carry over), and the
-// suns' filters (shadow.glsl's taps; Poisson unrotated).
-struct LpSpotShadow {
-    mat4 eyeToClip;  // camera eye space -> the spot's clip space
+// Perspective shadow maps of local lights: a spot's (passes/spot_shadow_pass) and each face of a
+// point light's cube (passes/point_shadow_pass), square tiles of a D32F atlas. Compared in linear
+// depth along the map's axis, with a bias of a few texels' world size (a perspective map's window
+// depth is not linear, so the suns' receiver-plane gradient does not carry over), and the suns'
+// filters (shadow.glsl's taps; Poisson unrotated).
+struct LpPerspectiveShadow {
+    mat4 eyeToClip;  // camera eye space -> the map's clip space
     vec4 tile;       // xy first texel of the atlas tile, z tile size (texels), w a texel's world size per metre
     vec4 depth;      // x near, y far (metres along the axis), z filter (LP_SHADOW_FILTER_*), w normal bias (texels)
     vec4 bias;       // x constant depth bias (texels)
 };
-layout(std430, binding = 4) readonly buffer SpotShadows { LpSpotShadow uSpotShadows[]; };
-layout(binding = 5) uniform sampler2D uSpotShadowAtlas;
 
-// Fraction of the spot's light reaching P (0 shadowed .. 1 lit); L: unit direction to the light.
-float lpSpotShadow(int layer, vec3 P, vec3 N, vec3 L) {
-    LpSpotShadow s = uSpotShadows[layer];
+// Fraction of the light reaching P (0 shadowed .. 1 lit) by map s of `atlas`; L: unit direction to the light.
+float lpPerspectiveShadow(LpPerspectiveShadow s, sampler2D atlas, vec3 P, vec3 N, vec3 L) {
     float nl = clamp(dot(N, L), 0.0, 1.0);
     float texel = max((s.eyeToClip * vec4(P, 1.0)).w, 0.0) * s.tile.w;  // world size of a texel at P
     vec4 q = s.eyeToClip * vec4(P + N * (s.depth.w * texel * (1.0 - nl)), 1.0);
@@ -113,7 +111,7 @@ float lpSpotShadow(int layer, vec3 P, vec3 N, vec3 L) {
         ivec2 t;
         float weight;
         shadowTap(mode, k, pos, mat2(1.0), t, weight);
-        float stored = texelFetch(uSpotShadowAtlas, clamp(t, tileMin, tileMax), 0).r;
+        float stored = texelFetch(atlas, clamp(t, tileMin, tileMax), 0).r;
         float occluder = n * f / (f - stored * (f - n));  // window depth -> distance along the axis
         sum += weight * ((stored >= 1.0 || q.w - bias <= occluder) ? 1.0 : 0.0);
     }
@@ -121,7 +119,43 @@ float lpSpotShadow(int layer, vec3 P, vec3 N, vec3 L) {
 }
 #endif
 
-// Radiance from light l (a point light or a spot; with LP_SPOT_SHADOWS shadowed by its map) at P: lpLocalLightRadiance times the
+#ifdef LP_SPOT_SHADOWS
+// One map per shadowed spot (LpLocalLight.shadow.x), SSBO binding 4, atlas on unit 5.
+layout(std430, binding = 4) readonly buffer SpotShadows { LpPerspectiveShadow uSpotShadows[]; };
+layout(binding = 5) uniform sampler2D uSpotShadowAtlas;
+
+float lpSpotShadow(int layer, vec3 P, vec3 N, vec3 L) {
+    return lpPerspectiveShadow(uSpotShadows[layer], uSpotShadowAtlas, P, N, L);
+}
+#endif
+
+#ifdef LP_POINT_SHADOWS
+// Six maps per shadowed point light (cube LpLocalLight.shadow.y: entries 6 cube .. 6 cube + 5, faces
+// +X, -X, +Y, -Y, +Z, -Z), SSBO binding LP_POINT_SHADOW_BUFFER, atlas on unit LP_POINT_SHADOW_UNIT
+// (passes/local_light_pass.cpp binds both).
+#define LP_POINT_SHADOW_BUFFER 5
+#define LP_POINT_SHADOW_UNIT 18
+layout(std430, binding = LP_POINT_SHADOW_BUFFER) readonly buffer PointShadows { LpPerspectiveShadow uPointShadowFaces[]; };
+layout(binding = LP_POINT_SHADOW_UNIT) uniform sampler2D uPointShadowAtlas;
+
+// The face is the one whose clip w (the distance along its axis: the face matrices' last row) is
+// largest at P, the major axis of P's direction from the light (lp::pointShadowFace).
+float lpPointShadow(int cube, vec3 P, vec3 N, vec3 L) {
+    int first = 6 * cube, face = 0;
+    float best = -3.4e38;
+    for (int f = 0; f < 6; ++f) {
+        mat4 m = uPointShadowFaces[first + f].eyeToClip;
+        float w = m[0][3] * P.x + m[1][3] * P.y + m[2][3] * P.z + m[3][3];
+        if (w > best) {
+            best = w;
+            face = f;
+        }
+    }
+    return lpPerspectiveShadow(uPointShadowFaces[first + face], uPointShadowAtlas, P, N, L);
+}
+#endif
+
+// Radiance from light l (a point light or a spot; with LP_SPOT_SHADOWS / LP_POINT_SHADOWS shadowed by its map) at P: lpLocalLightRadiance times the
 // cone falloff. Zero exactly outside the cone and past the range, so every method can cut at the bound.
 vec3 lpShadeLocalLight(LpLocalLight l, vec3 P, vec3 N, vec3 V, vec3 kd, FresnelEnds ks, float shininess, int specularMode,
                        ClearcoatLayer coat) {
@@ -139,6 +173,10 @@ vec3 lpShadeLocalLight(LpLocalLight l, vec3 P, vec3 N, vec3 V, vec3 kd, FresnelE
 #ifdef LP_SPOT_SHADOWS
     if (l.shadow.x >= 0.0 && d > 0.0 && any(greaterThan(c, vec3(0.0))))
         c *= lpSpotShadow(int(l.shadow.x), P, N, toLight / d);
+#endif
+#ifdef LP_POINT_SHADOWS
+    if (l.shadow.y >= 0.0 && d > 0.0 && any(greaterThan(c, vec3(0.0))))
+        c *= lpPointShadow(int(l.shadow.y), P, N, toLight / d);
 #endif
     return c;
 }

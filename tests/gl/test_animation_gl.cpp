@@ -352,4 +352,65 @@ TEST(AnimationGl, ShadowCacheFollowsWhatMovedNotTheClock) {
     }
 }
 
+// The point-light cube's cache: an animated caster within the light's range that moved (by its
+// node, a skin or a morph target) redraws the cube, as a fresh redraw draws it; the same motion out
+// of the range, or the clock moving a model that does not move, keeps it.
+TEST(AnimationGl, PointShadowCacheFollowsTheCasterInRange) {
+    RenderSettings settings = smallSettings();
+    settings.shadows.size = 256;
+    RenderSettings fresh = settings;
+    fresh.shadows.cache = false;
+    auto note = [](const Renderer& r) {
+        for (const fg::PassDecision& d : r.graph().explain())
+            if (d.name == "point_shadows" && !d.notes.empty()) return d.notes.front();
+        return std::string();
+    };
+    auto readHdr = [](Renderer& r, RenderSettings s, float time) {
+        s.keepHdr = true;
+        r.render(s, time, false);
+        return r.readHdr().rgba;
+    };
+    for (Motion motion : {Motion::Node, Motion::Skin, Motion::Morph}) {
+        SCOPED_TRACE(motion == Motion::Node ? "node" : motion == Motion::Skin ? "skin" : "morph");
+        Scene scene = slidingScene();
+        scene.models[1] = slidingModel("slider", makeCube(0.5f), motion);
+        PointLight light;  // over the slider's path (x 0.4 .. 0.8 at t 0.2 .. 0.4), reaching it
+        light.position = {0.6f, 1.5f, 0.0f};
+        light.range = 4.0f;
+        light.intensity = 2.0f;
+        light.castsShadow = true;
+        scene.pointLights.push_back(light);
+        {
+            Renderer renderer(scene);
+            readHdr(renderer, settings, 0.2f);
+            readHdr(renderer, settings, 0.2f);
+            EXPECT_NE(note(renderer).find("kept (unchanged)"), std::string::npos) << note(renderer);
+            const std::vector<float> moved = readHdr(renderer, settings, 0.4f);
+            EXPECT_NE(note(renderer).find("redrawn (casters in range changed)"), std::string::npos) << note(renderer);
+            Renderer redraw(scene);
+            const std::vector<float> redrawn = readHdr(redraw, fresh, 0.4f);
+            size_t differing = 0;
+            for (size_t i = 0; i < moved.size(); ++i) differing += moved[i] != redrawn[i];
+            EXPECT_EQ(differing, 0u);
+        }
+        {
+            Scene far = scene;  // the light at the floor's far end: the slider never reaches its range
+            far.pointLights[0].position = {-2.8f, 0.5f, 0.0f};
+            far.pointLights[0].range = 1.5f;
+            Renderer renderer(far);
+            readHdr(renderer, settings, 0.2f);
+            readHdr(renderer, settings, 0.4f);
+            EXPECT_NE(note(renderer).find("kept (unchanged)"), std::string::npos) << note(renderer);
+        }
+        {
+            Scene still = scene;
+            still.models[1].playingClips.clear();
+            Renderer renderer(still);
+            readHdr(renderer, settings, 0.2f);
+            readHdr(renderer, settings, 0.4f);
+            EXPECT_NE(note(renderer).find("kept (unchanged)"), std::string::npos) << note(renderer);
+        }
+    }
+}
+
 }  // namespace lp
