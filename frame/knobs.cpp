@@ -262,7 +262,9 @@ std::vector<KnobEntry> makeKnobTable() {
                                  [](bool on) { return on ? "on" : "off"; });
         k.flags = {valueFlag("--shadow-cache")};
         k.help = "keep each sun's shadow atlas across frames and redraw a cascade only when its light matrix, the "
-                 "casters, the caster raster (hardware or geometry-shader growth included) or the slope bias changed";
+                 "casters, the caster raster (hardware or geometry-shader growth included) or the slope bias changed; "
+                 "likewise each point light's shadow cube, redrawn only when the light or a caster within its range "
+                 "moved or changed";
         k.choiceNoun = "setting";
         k.panel = {PanelSection::Shadows, PanelWidget::Combo, "cascade cache", ""};
         t.push_back(std::move(k));
