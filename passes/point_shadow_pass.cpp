@@ -116,7 +116,7 @@ struct Data {
 // One cube's row as the execute draws it.
 struct CubeWork {
     std::array<glm::mat4, kPointShadowFaces> worldToClip;
-    CasterList casters;
+    std::array<CasterList, kPointShadowFaces> casters;  // per face: those in range and in its view
     bool redraw = false;
 };
 }  // namespace
@@ -168,7 +168,9 @@ PointShadowMaps addPointShadowPass(fg::FrameGraph& graph, PointShadowPass& state
         maps.worldToClip.push_back(pointShadowFaceMatrices(l.position, nearPlane, farPlane, faceTan));
         CubeWork& w = work[size_t(r)];
         w.worldToClip = maps.worldToClip.back();
-        w.casters = castersInSphere(clusters, *frame.scene, l.position, farPlane);
+        // Each face: the casters in range that the rasteriser would not clip away wholly.
+        for (int f = 0; f < kPointShadowFaces; ++f)
+            w.casters[size_t(f)] = castersInSphereAndView(clusters, *frame.scene, l.position, farPlane, w.worldToClip[size_t(f)]);
         PointShadowKey& key = keys[size_t(r)];
         key.position = l.position;
         key.range = farPlane;
@@ -188,13 +190,19 @@ PointShadowMaps addPointShadowPass(fg::FrameGraph& graph, PointShadowPass& state
             else if (kept.casters != key.casters) why = "casters in range changed";
         }
         w.redraw = !why.empty();
-        const CasterList& c = w.casters;
+        const CasterList inRange = castersInSphere(clusters, *frame.scene, l.position, farPlane);
+        size_t draws = 0, triangles = 0, alphaTriangles = 0;
+        for (const CasterList& c : w.casters) {
+            draws += c.draws.size() + c.alphaDraws.size();
+            triangles += c.triangles;
+            alphaTriangles += c.alphaTriangles;
+        }
         graph.notePass("point_shadows", "light " + std::to_string(maps.light[size_t(r)]) + ": " +
-                                            std::to_string(c.draws.size() + c.alphaDraws.size()) + " draws, " +
-                                            std::to_string(c.triangles) + " triangles in range" +
-                                            (c.alphaTriangles ? ", " + std::to_string(c.alphaTriangles) + " alpha-tested" : "") +
-                                            " x 6 faces of " + std::to_string(maps.tileSize) + "^2; " +
-                                            (w.redraw ? "redrawn (" + why + ")" : std::string("kept (unchanged)")));
+                                            std::to_string(inRange.triangles) + " triangles in range; 6 faces of " +
+                                            std::to_string(maps.tileSize) + "^2 draw " + std::to_string(triangles) +
+                                            " in " + std::to_string(draws) + " draws" +
+                                            (alphaTriangles ? " (" + std::to_string(alphaTriangles) + " alpha-tested)" : "") +
+                                            "; " + (w.redraw ? "redrawn (" + why + ")" : std::string("kept (unchanged)")));
     }
     PointShadowPass* st = &state;
     fg::ResourceId keptAtlas;
@@ -256,7 +264,7 @@ PointShadowMaps addPointShadowPass(fg::FrameGraph& graph, PointShadowPass& state
                     glViewport(f * tile, GLint(r) * tile, tile, tile);
                     glScissor(f * tile, GLint(r) * tile, tile, tile);
                     drawCasters(frame, state.program.id(), alphaTested ? state.alphaProgram.id() : 0,
-                                work[r].worldToClip[size_t(f)], work[r].casters);
+                                work[r].worldToClip[size_t(f)], work[r].casters[size_t(f)]);
                 }
                 if (caching) state.rows[r] = keys[r];
                 ++state.stats.drawn;

@@ -129,6 +129,32 @@ bool casterBoxReachesSphere(const glm::mat4& objectToWorld, glm::vec3 lo, glm::v
     return glm::dot(d, d) <= radius * radius;
 }
 
+bool casterBoxInPerspectiveView(const glm::mat4& objectToClip, glm::vec3 lo, glm::vec3 hi) {
+    bool right = true, left = true, top = true, bottom = true;
+    for (int c = 0; c < 8; ++c) {
+        const glm::vec4 q = objectToClip * glm::vec4(c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z, 1.0f);
+        if (!(q.w > 0.0f)) return true;
+        right = right && q.x > q.w;
+        left = left && q.x < -q.w;
+        top = top && q.y > q.w;
+        bottom = bottom && q.y < -q.w;
+    }
+    return !(right || left || top || bottom);
+}
+
+CasterList castersInSphereAndView(const std::vector<CasterCluster>& clusters, const Scene& scene, glm::vec3 centre,
+                                  float radius, const glm::mat4& worldToClip) {
+    CasterList list;
+    for (const CasterCluster& c : clusters) {
+        if (c.model < 0 || size_t(c.model) >= scene.models.size()) continue;
+        const glm::mat4& transform = scene.models[size_t(c.model)].transform;
+        if (!casterBoxReachesSphere(transform, c.boundsMin, c.boundsMax, centre, radius)) continue;
+        if (!casterBoxInPerspectiveView(worldToClip * transform, c.boundsMin, c.boundsMax)) continue;
+        addCluster(list, c);
+    }
+    return list;
+}
+
 CasterList castersInSphere(const std::vector<CasterCluster>& clusters, const Scene& scene, glm::vec3 centre, float radius) {
     CasterList list;
     for (const CasterCluster& c : clusters) {

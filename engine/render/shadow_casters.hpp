@@ -92,4 +92,16 @@ bool casterBoxReachesSphere(const glm::mat4& objectToWorld, glm::vec3 lo, glm::v
 // The draws of the clusters casterBoxReachesSphere keeps (each model placed by its transform).
 CasterList castersInSphere(const std::vector<CasterCluster>& clusters, const Scene& scene, glm::vec3 centre, float radius);
 
+// Whether object-space box [lo, hi] under `objectToClip` (a perspective projection's clip space) may
+// draw into the viewport: false only when all eight corners lie in front of the eye (w > 0) and
+// beyond one side plane (x > w, x < -w, y > w or y < -w); a box reaching behind the eye is kept.
+// Exact for the depth drawn: the rasteriser clips what lies outside those planes (depth clamp lifts
+// only the near and far planes).
+bool casterBoxInPerspectiveView(const glm::mat4& objectToClip, glm::vec3 lo, glm::vec3 hi);
+
+// The draws of one face of a point light's cube: the clusters that reach the light's range sphere
+// and may draw into the face's view (casterBoxInPerspectiveView under worldToClip).
+CasterList castersInSphereAndView(const std::vector<CasterCluster>& clusters, const Scene& scene, glm::vec3 centre,
+                                  float radius, const glm::mat4& worldToClip);
+
 }  // namespace lp

@@ -1,7 +1,8 @@
 // The point-shadow cube's geometry (passes/point_shadow_pass): every direction from the light falls
 // in exactly the face pointShadowFace names, inside its tile at least kPointShadowFaceMargin texels
 // from the edge, and that face's clip w (what the shaders compare to pick it) is the largest; the
-// casters a cube draws are those whose bounds reach its range sphere.
+// casters a cube draws are those whose bounds reach its range sphere, each face those of them that
+// may reach its view.
 #include <gtest/gtest.h>
 
 #include <random>
@@ -56,4 +57,21 @@ TEST(PointShadowFaces, CastersAreTheClustersReachingTheRange) {
     const float corner = std::sqrt(2.5f * 2.5f + 0.5f);
     EXPECT_TRUE(casterBoxReachesSphere(moved, glm::vec3(-0.5f), glm::vec3(0.5f), glm::vec3(0.0f, 1.0f, 1.0f), corner + 1e-3f));
     EXPECT_FALSE(casterBoxReachesSphere(moved, glm::vec3(-0.5f), glm::vec3(0.5f), glm::vec3(0.0f, 1.0f, 1.0f), corner - 1e-3f));
+}
+
+// A cube face draws only the clusters that may reach its view: a box wholly beyond one side plane
+// is dropped, one inside, straddling a side or reaching behind the light is kept.
+TEST(PointShadowFaces, FaceDrawsOnlyCastersThatMayReachItsView) {
+    const glm::vec3 light(0.0f);
+    const auto faces = pointShadowFaceMatrices(light, 0.01f, 10.0f, pointShadowFaceTan(256));
+    const glm::mat4& plusX = faces[0];
+    auto box = [&](glm::vec3 centre, float half) {
+        return casterBoxInPerspectiveView(plusX * glm::translate(glm::mat4(1.0f), centre), glm::vec3(-half), glm::vec3(half));
+    };
+    EXPECT_TRUE(box({2.0f, 0.0f, 0.0f}, 0.2f));    // on the +X axis
+    EXPECT_FALSE(box({1.0f, 3.0f, 0.0f}, 0.2f));   // above the face's top plane: the +Y face's
+    EXPECT_FALSE(box({1.0f, 0.0f, -3.0f}, 0.2f));  // beyond a side plane: the -Z face's
+    EXPECT_TRUE(box({-2.0f, 0.0f, 0.0f}, 0.2f));   // behind the light (w < 0): kept, the test is conservative there
+    EXPECT_TRUE(box({2.0f, 2.1f, 0.0f}, 0.2f));    // straddling the 45-degree edge
+    EXPECT_TRUE(box({0.0f, 0.0f, 0.0f}, 0.5f));    // around the light
 }
