@@ -29,7 +29,7 @@ constexpr float kOverlayRadiance = 3.0f;
 constexpr float kHeatMax = 32.0f;       // lights per tile shown as red
 constexpr float kClusterHeatMax = 64.0f;  // lights per cluster shown as red
 constexpr GLuint kPointShadowBuffer = 5;  // LP_POINT_SHADOW_BUFFER in common/local_light.glsl
-constexpr GLuint kPointShadowUnit = 18;   // LP_POINT_SHADOW_UNIT in common/local_light.glsl
+constexpr GLuint kPointShadowUnit = 22;   // LP_POINT_SHADOW_UNIT in common/local_light.glsl
 
 int specularMode(const LocalLightSettings& s) {
     if (!s.specular) return 0;                 // LP_LOCAL_SPECULAR_OFF

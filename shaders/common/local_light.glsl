@@ -134,7 +134,7 @@ float lpSpotShadow(int layer, vec3 P, vec3 N, vec3 L) {
 // +X, -X, +Y, -Y, +Z, -Z), SSBO binding LP_POINT_SHADOW_BUFFER, atlas on unit LP_POINT_SHADOW_UNIT
 // (passes/local_light_pass.cpp binds both).
 #define LP_POINT_SHADOW_BUFFER 5
-#define LP_POINT_SHADOW_UNIT 18
+#define LP_POINT_SHADOW_UNIT 22
 layout(std430, binding = LP_POINT_SHADOW_BUFFER) readonly buffer PointShadows { LpPerspectiveShadow uPointShadowFaces[]; };
 layout(binding = LP_POINT_SHADOW_UNIT) uniform sampler2D uPointShadowAtlas;
 
