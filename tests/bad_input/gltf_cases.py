@@ -604,7 +604,7 @@ def add_cases(write, case, render_model, C):
             ("variants_index", [{"material": 0, "variants": [2]}], [{"name": "a"}],
              r"meshes\[0\]\.primitives\[0\]\.extensions\.KHR_materials_variants\.mappings\[0\]\.variants\[0\]: variant 2 does not exist \(1 variants\)$"),
             ("variants_twice", [{"material": 0, "variants": [0]}, {"material": 0, "variants": [0]}], [{"name": "a"}],
-             r"mappings\[1\]\.variants\[0\]: variant 0 is mapped twice in this primitive$"),
+             r"meshes\[0\]\.primitives\[0\]\.extensions\.KHR_materials_variants\.mappings\[1\]\.variants\[0\]: variant 0 is mapped twice in this primitive$"),
             ("variants_name", [{"material": 0, "variants": [0]}], [{"name": 5}],
              r"extensions\.KHR_materials_variants\.variants\[0\]\.name: expected a string, got 5$"),
     ]:
