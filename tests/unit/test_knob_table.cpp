@@ -372,6 +372,7 @@ TEST(ViewerPanel, KnobWidgetsComeOnlyFromTheTable) {
         {"p.name.c_str()", "the passes table's switches (--disable-pass)"},
         {"m.name.c_str()", "the materials' flat-lit switches (scene field models[].material.flat)"},
         {"pickerLabel", "the scene and environment file pickers (files, not settings)"},
+        {"\"material variant\"", "a glTF's KHR_materials_variants variant (scene content: models[].materialVariant)"},
         {"\"debug view\"", "--view, a command flag"},
         {"\"with panel\"", "--screenshot-ui, a viewer option"},
         {"\"follow camera path (p)\"", "whether the viewer's camera follows the scene's cameraPath (viewer state, 'p')"},
