@@ -31,11 +31,14 @@ void main() {
     vec3 P = gbufferPosition(p);
     vec4 spec = vec4(gbufferSpecular(p), gbufferShininess(p));
     vec3 kd = uLightingOnly ? vec3(1.0) : gbufferDiffuse(p);
-    FresnelEnds ks = gbufferFresnel(p);
     float pl = length(P);
     vec3 V = pl > 0.0 ? -P / pl : vec3(0.0, 0.0, 1.0);
     float ao = uAmbientOcclusion ? texelFetch(uAo, p, 0).r : 1.0;
     vec3 c = uAmbient * kd * ao * (uLightingOnly ? 1.0 : gbufferOcclusion(p));  // occlusion darkens ambient light only
-    c += lpSunRadiance(P, N, V, kd, ks, spec.a, vec2(p), gbufferClearcoat(p));
+#if defined(LP_GBUFFER_FRESNEL) || defined(LP_GBUFFER_CLEARCOAT)
+    c += lpSunRadiance(P, N, V, kd, gbufferFresnel(p), spec.a, vec2(p), gbufferClearcoat(p));
+#else
+    c += lpSunRadiance(P, N, V, kd, spec.rgb, spec.a, vec2(p), noClearcoat());  // the ends per sun, from F0
+#endif
     imageStore(uHdr, p, vec4(sanitizeHdr(c), 1.0));
 }

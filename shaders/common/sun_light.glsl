@@ -77,28 +77,47 @@ float shadowVisibility(int slot, vec3 P, vec3 N, float nl, vec2 pixel) {
     return 1.0;  // outside every cascade: nothing there casts
 }
 
-// Radiance the suns reflect at eye-space P (normal N, view direction V), shadows included; `pixel`
-// (integer pixel coordinates) seeds the filters' per-pixel rotation. Ambient not included. `coat`:
-// KHR_materials_clearcoat's layer (kd and ks already the base under it), its lobe added per sun.
+// How much of sun i reaches eye-space P (normal N; `coat`'s normal may face a sun the base's does
+// not): 0 behind both, else its shadow visibility. `pixel` seeds the filters' per-pixel rotation.
+float lpSunVisibility(int i, vec3 P, vec3 N, vec2 pixel, ClearcoatLayer coat) {
+    vec3 L = uLightDirEye[i];
+    float nl = dot(N, L);
+    float coatNl = coat.weight > 0.0 ? dot(coat.normal, L) : 0.0;
+    if (nl <= 0.0 && coatNl <= 0.0) return 0.0;
+    int slot = uLightShadowSlot[i];
+    return slot >= 0 ? shadowVisibility(slot, P, N, nl > 0.0 ? nl : coatNl, pixel) : 1.0;
+}
+
+// Radiance the suns reflect at eye-space P (normal N, view direction V), shadows included. Ambient
+// not included. `coat`: KHR_materials_clearcoat's layer (kd and ks already the base under it), its
+// lobe added per sun.
 vec3 lpSunRadiance(vec3 P, vec3 N, vec3 V, vec3 kd, FresnelEnds ks, float shininess, vec2 pixel, ClearcoatLayer coat) {
     vec3 c = vec3(0.0);
     for (int i = 0; i < uLightCount; ++i) {
-        vec3 L = uLightDirEye[i];
-        float nl = dot(N, L);
-        // The coat's own normal may face a sun the base's does not.
-        float coatNl = coat.weight > 0.0 ? dot(coat.normal, L) : 0.0;
-        if (nl <= 0.0 && coatNl <= 0.0) continue;
-        float visible = 1.0;
-        int slot = uLightShadowSlot[i];
-        if (slot >= 0) visible = shadowVisibility(slot, P, N, nl > 0.0 ? nl : coatNl, pixel);
+        float visible = lpSunVisibility(i, P, N, pixel, coat);
         if (visible > 0.0)
-            c += visible * (brdfRadiance(uBrdf, N, V, L, kd, ks, shininess, uLightIrradiance[i]) +
-                            clearcoatRadiance(coat, V, L, uLightIrradiance[i]));
+            c += visible * (brdfRadiance(uBrdf, N, V, uLightDirEye[i], kd, ks, shininess, uLightIrradiance[i]) +
+                            clearcoatRadiance(coat, V, uLightDirEye[i], uLightIrradiance[i]));
     }
     return c;
 }
 vec3 lpSunRadiance(vec3 P, vec3 N, vec3 V, vec3 kd, FresnelEnds ks, float shininess, vec2 pixel) {
     return lpSunRadiance(P, N, V, kd, ks, shininess, pixel, noClearcoat());
+}
+
+// The same for a material whose Fresnel ends follow from F0 (no KHR_materials_specular): F0 alone is
+// carried through the loop and the ends are made after each sun's shadow filter. Carried across the
+// filter, the ends (seven floats) made global_lights 1.43-1.52x slower on an H100 (cornell and gallery,
+// 1080p and 4K; bench/results/frame/2026-12-08_sun-loop-fresnel-ends).
+vec3 lpSunRadiance(vec3 P, vec3 N, vec3 V, vec3 kd, vec3 f0, float shininess, vec2 pixel, ClearcoatLayer coat) {
+    vec3 c = vec3(0.0);
+    for (int i = 0; i < uLightCount; ++i) {
+        float visible = lpSunVisibility(i, P, N, pixel, coat);
+        if (visible > 0.0)
+            c += visible * (brdfRadiance(uBrdf, N, V, uLightDirEye[i], kd, f0, shininess, uLightIrradiance[i]) +
+                            clearcoatRadiance(coat, V, uLightDirEye[i], uLightIrradiance[i]));
+    }
+    return c;
 }
 
 #endif
