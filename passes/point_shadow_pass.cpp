@@ -1,5 +1,6 @@
 #include "passes/point_shadow_pass.hpp"
 #include "passes/shadow_map_pass.hpp"
+#include "passes/shadow_depth_raster.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,6 +9,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "engine/core/fnv1a.hpp"
 #include "engine/core/log.hpp"
 #include "engine/gl/shader.hpp"
 #include "engine/gl/state.hpp"
@@ -51,21 +53,6 @@ bool PointShadowKey::operator==(const PointShadowKey& o) const {
     return std::memcmp(&position, &o.position, sizeof position) == 0 && std::memcmp(&range, &o.range, sizeof range) == 0 &&
            tileSize == o.tileSize && std::memcmp(&slopeBias, &o.slopeBias, sizeof slopeBias) == 0 && casters == o.casters;
 }
-
-namespace {
-// FNV-1a over raw bytes.
-struct Fnv1a {
-    uint64_t h = 1469598103934665603ull;
-    void add(const void* data, size_t n) {
-        const auto* p = static_cast<const unsigned char*>(data);
-        for (size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 1099511628211ull;
-    }
-    template <typename T>
-    void add(const T& v) {
-        add(&v, sizeof v);
-    }
-};
-}  // namespace
 
 uint64_t pointShadowCasterSignature(const FrameData& frame, glm::vec3 position, float range) {
     Fnv1a f;
@@ -236,21 +223,9 @@ PointShadowMaps addPointShadowPass(fg::FrameGraph& graph, PointShadowPass& state
                 state.alphaProgram = frame.shaders->graphics("shadow_depth.vert", "shadow_depth.frag",
                                                              std::vector<std::string>{"LP_SHADOW_ALPHA_TEST"});
             const GLuint fbo = state.fbo.id();
-            glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, res.texture(out.depth), 0);
-            glNamedFramebufferDrawBuffer(fbo, GL_NONE);
-            glNamedFramebufferReadBuffer(fbo, GL_NONE);
             const fg::TextureDesc& d = res.desc(out.depth);
-            gl::ScopedFramebuffer bind(fbo, d.width, d.height);
-            gl::ScopedEnable depthTest(GL_DEPTH_TEST, true);
-            gl::ScopedEnable cull(GL_CULL_FACE, false);  // thin walls and open meshes cast from both sides
-            gl::ScopedEnable blend(GL_BLEND, false);
-            gl::ScopedEnable offset(GL_POLYGON_OFFSET_FILL, true);
-            gl::ScopedEnable clamp(GL_DEPTH_CLAMP, true);  // casters before the near plane still cast
+            const ShadowDepthRaster raster(fbo, res.texture(out.depth), d.width, d.height, frame.settings->shadows.slopeBias);
             gl::ScopedEnable scissor(GL_SCISSOR_TEST, true);  // a row's clear leaves the kept rows alone
-            gl::ScopedRasterState saved;
-            glDepthFunc(GL_LESS);
-            glDepthMask(GL_TRUE);
-            glPolygonOffset(frame.settings->shadows.slopeBias, 0.0f);
             const float one = 1.0f;
             if (caching && state.rows.size() != work.size()) state.rows.resize(work.size());
             for (size_t r = 0; r < work.size(); ++r) {

@@ -12,6 +12,7 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include "engine/core/fnv1a.hpp"
 #include "engine/core/log.hpp"
 #include "engine/core/measured_cache.hpp"
 #include "engine/gl/raster_probe.hpp"
@@ -62,19 +63,6 @@ size_t ShadowMapPass::cacheBytes() const {
 }
 
 namespace {
-// FNV-1a over raw bytes.
-struct Fnv1a {
-    uint64_t h = 1469598103934665603ull;
-    void add(const void* data, size_t n) {
-        const auto* p = static_cast<const unsigned char*>(data);
-        for (size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 1099511628211ull;
-    }
-    template <typename T>
-    void add(const T& v) {
-        add(&v, sizeof v);
-    }
-};
-
 // Atlas texel of cascade c's tile's first texel (column tile % columns, row tile / columns).
 glm::ivec2 tileOrigin(const ShadowFrustum& fr, size_t c) {
     const int tile = fr.cascades[c].tile;

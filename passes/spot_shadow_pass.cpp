@@ -14,6 +14,7 @@
 #include "engine/render/local_lights.hpp"
 #include "engine/render/scene_gpu.hpp"
 #include "passes/skinning_pass.hpp"
+#include "passes/shadow_depth_raster.hpp"
 
 namespace lp {
 
@@ -89,20 +90,8 @@ SpotShadowMaps addSpotShadowPass(fg::FrameGraph& graph, SpotShadowPass& state, c
             // Every caster (the sun cascades' clusters, not culled), opaque and alpha-tested draws apart.
             const CasterList casters = cullCasters(frame.gpu->casterClusters, *frame.scene, glm::mat4(1.0f), 0.0f, false);
             const GLuint fbo = state.fbo.id();
-            glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, res.texture(out.depth), 0);
-            glNamedFramebufferDrawBuffer(fbo, GL_NONE);
-            glNamedFramebufferReadBuffer(fbo, GL_NONE);
             const fg::TextureDesc& d = res.desc(out.depth);
-            gl::ScopedFramebuffer bind(fbo, d.width, d.height);
-            gl::ScopedEnable depthTest(GL_DEPTH_TEST, true);
-            gl::ScopedEnable cull(GL_CULL_FACE, false);  // thin walls and open meshes cast from both sides
-            gl::ScopedEnable blend(GL_BLEND, false);
-            gl::ScopedEnable offset(GL_POLYGON_OFFSET_FILL, true);
-            gl::ScopedEnable clamp(GL_DEPTH_CLAMP, true);  // casters before the near plane still cast
-            gl::ScopedRasterState saved;
-            glDepthFunc(GL_LESS);
-            glDepthMask(GL_TRUE);
-            glPolygonOffset(frame.settings->shadows.slopeBias, 0.0f);
+            const ShadowDepthRaster raster(fbo, res.texture(out.depth), d.width, d.height, frame.settings->shadows.slopeBias);
             const float one = 1.0f;
             glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &one);
             for (size_t t = 0; t < matrices.size(); ++t) {
