@@ -33,16 +33,12 @@ struct Row {
     ImageError error;
     ImageError surface;  // the same frame over the pixels that see a surface
     ImageError term;     // the knob's light term alone (frame/light_terms.hpp), over those pixels
+    LightTerm termOf = LightTerm::Frame;  // which term that is
     bool reference = false;
 };
 
 std::string csvEscape(const std::string& s) { return s.find(',') == std::string::npos ? s : "\"" + s + "\""; }
 
-const Knob* findKnobIn(const std::vector<Knob>& knobs, const std::string& name) {
-    for (const Knob& k : knobs)
-        if (k.name == name) return &k;
-    return nullptr;
-}
 
 }  // namespace
 
@@ -177,6 +173,7 @@ int runSweep(const Options& o) {
             renderer.timers().flush();
             Row row;
             row.knob = knob.name;
+            row.termOf = knob.term;
             row.value = value.label;
             row.reference = !pathTraced && vi + 1 == steps;
             for (const auto& name : renderer.timers().passOrder()) {
@@ -227,9 +224,8 @@ int runSweep(const Options& o) {
               << (noise == referenceNoise.end() ? 0 : noise->second.samples) << ","
               << (noise == referenceNoise.end() ? 0.0 : noise->second.rmsStandardError);
             // Over the surfaces, and the knob's term alone over them (the frame's figures for a Frame knob).
-            const Knob* k = findKnobIn(knobs, r.knob);
             f << "," << r.surface.pixels << "," << r.surface.rmse << "," << r.surface.relativeError << ","
-              << enumName(kLightTermNames, k ? k->term : LightTerm::Frame) << "," << r.term.rmse << ","
+              << enumName(kLightTermNames, r.termOf) << "," << r.term.rmse << ","
               << r.term.relativeError << "\n";
         }
         outputs.add(outDir / "sweep.csv", f.str());

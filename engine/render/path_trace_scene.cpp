@@ -4,7 +4,7 @@
 #include <map>
 #include <string>
 
-#include "engine/scene/animation.hpp"
+#include "engine/scene/posed_vertices.hpp"
 
 namespace lp {
 
@@ -72,11 +72,7 @@ PathTraceScene buildPathTraceScene(const Scene& scene, double time) {
         }
         // An animated model's vertices where its clips put them at `time` (the rest pose otherwise).
         std::vector<Vertex> posed;
-        if (model.animation && !model.playingClips.empty()) {
-            posed = mesh.vertices;
-            poseVertices(*model.animation, animatedPose(*model.animation, model.playingClips, time), posed);
-        }
-        const std::vector<Vertex>& vertices = posed.empty() ? mesh.vertices : posed;
+        const std::vector<Vertex>& vertices = posedVertices(model, time, posed);
         const glm::mat4 toWorld = model.transform;
         const glm::mat3 normalToWorld = glm::transpose(glm::inverse(glm::mat3(toWorld)));
         for (const SubMesh& sub : mesh.subMeshes) {

@@ -3,7 +3,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "engine/render/bvh.hpp"
-#include "engine/scene/animation.hpp"
+#include "engine/scene/posed_vertices.hpp"
 
 namespace lp {
 
@@ -13,11 +13,7 @@ std::vector<uint8_t> surfaceMask(const Scene& scene, const Camera& camera, int w
     for (const ModelInstance& model : scene.models) {
         const MeshData& mesh = model.mesh;
         std::vector<Vertex> posed;
-        if (model.animation && !model.playingClips.empty()) {
-            posed = mesh.vertices;
-            poseVertices(*model.animation, animatedPose(*model.animation, model.playingClips, time), posed);
-        }
-        const std::vector<Vertex>& vertices = posed.empty() ? mesh.vertices : posed;
+        const std::vector<Vertex>& vertices = posedVertices(model, time, posed);
         for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3)
             for (size_t k = 0; k < 3; ++k) {
                 const uint32_t index = mesh.indices[i + k];
