@@ -1,5 +1,6 @@
 #include "tests/gl/render_fixture.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -27,6 +28,23 @@ ImageF renderHdr(Renderer& renderer, RenderSettings settings, float time) {
 ImageF renderHdr(const Scene& scene, RenderSettings settings, float time) {
     Renderer renderer(scene);
     return renderHdr(renderer, std::move(settings), time);
+}
+
+bool segmentHitsBox(glm::dvec3 a, glm::dvec3 b, glm::dvec3 lo, glm::dvec3 hi) {
+    const glm::dvec3 d = b - a;
+    double t0 = 0.0, t1 = 1.0;
+    for (int i = 0; i < 3; ++i) {
+        if (std::abs(d[i]) < 1e-12) {
+            if (a[i] < lo[i] || a[i] > hi[i]) return false;
+            continue;
+        }
+        double u = (lo[i] - a[i]) / d[i], v = (hi[i] - a[i]) / d[i];
+        if (u > v) std::swap(u, v);
+        t0 = std::max(t0, u);
+        t1 = std::min(t1, v);
+        if (t0 > t1) return false;
+    }
+    return true;
 }
 
 testing::AssertionResult valuesNear(const std::vector<float>& a, const std::vector<float>& b, int width, int channels,

@@ -29,6 +29,9 @@ ImageF renderHdr(Renderer& renderer, RenderSettings settings, float time = 0.0f)
 // y = planeY (row 0 = top, as readHdr gives it); none where the ray does not reach it: the analytic
 // expectation's surface point of a pixel.
 std::optional<glm::dvec3> planePoint(const Camera& camera, int width, int height, int x, int y, double planeY = 0.0);
+// Whether the segment a -> b passes through the axis-aligned box [lo, hi] (slab test): a CPU
+// occlusion test for shadows and for what the camera sees.
+bool segmentHitsBox(glm::dvec3 a, glm::dvec3 b, glm::dvec3 lo, glm::dvec3 hi);
 
 // Every value of `a` within `tolerance` of `b` (absolute; 0: equal, NaN never passes). On failure:
 // how many values differ, the first differing texel (x, y from the top, channel) with both values,

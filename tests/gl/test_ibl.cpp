@@ -718,6 +718,18 @@ TEST(Ibl, SpecularMaskingReachesTheExtractedLights) {
 
 namespace {
 // sphereUnderMap's sphere with glTF material `g` (metallic-roughness; the dielectric's F0 from its ior).
+// 48 x 36, the image-based light alone (no suns' pass, no AO), a small bake; the HDR buffer kept.
+RenderSettings iblOnlySettings() {
+    RenderSettings s;
+    s.width = 48;
+    s.height = 36;
+    s.keepHdr = true;
+    s.ao.enabled = false;
+    s.environment = lp::test::smallIblBake(512);
+    s.disabledPasses.insert("global_lights");
+    return s;
+}
+
 Scene gltfSphereUnderMap(const std::filesystem::path& map, const GltfBrdfMaterial& g) {
     Scene scene = sphereUnderMap(map, glm::vec3(g.baseColor), glm::vec3(float(gltfDielectricF0(g.ior))),
                                  shininessFromRoughness(float(g.roughness)));
@@ -821,14 +833,7 @@ TEST(Ibl, WhiteFurnaceGltfDielectricReflectsTheSpecificationsAlbedo) {
         SCOPED_TRACE("roughness " + std::to_string(m.roughness));
         const Scene scene = gltfSphereUnderMap(mapPath, m);
         Renderer r(scene);
-        RenderSettings s;
-        s.width = 48;
-        s.height = 36;
-        s.keepHdr = true;
-        s.ao.enabled = false;
-        s.environment = lp::test::smallIblBake(512);
-        s.disabledPasses.insert("global_lights");
-        r.render(s, 0.0f, false);
+        r.render(iblOnlySettings(), 0.0f, false);
         ASSERT_TRUE(r.graph().isLive("ibl"));
         const ImageF hdr = r.readHdr();
         const double alpha = m.roughness * m.roughness, a2 = alpha * alpha;
@@ -890,14 +895,7 @@ TEST(Ibl, WhiteFurnaceClearcoatStaysAtOrUnderOneWithTheLayeringsEnergy) {
         m.clearcoatRoughness = coatRoughness;
         const Scene scene = gltfSphereUnderMap(map.path, m);
         Renderer r(scene);
-        RenderSettings s;
-        s.width = 48;
-        s.height = 36;
-        s.keepHdr = true;
-        s.ao.enabled = false;
-        s.environment = lp::test::smallIblBake(512);
-        s.disabledPasses.insert("global_lights");
-        r.render(s, 0.0f, false);
+        r.render(iblOnlySettings(), 0.0f, false);
         ASSERT_TRUE(r.graph().isLive("ibl"));
         const ImageF hdr = r.readHdr();
         std::map<long, double> energyAt;

@@ -19,6 +19,7 @@
 #include "engine/render/scene_gpu.hpp"
 #include "engine/scene/primitives.hpp"
 #include "tests/gl/gl_fixture.hpp"
+#include "tests/gl/render_fixture.hpp"
 
 using namespace lp;
 using lp::test::runGlsl;
@@ -1192,24 +1193,6 @@ TEST(ClusteredLights, OverflowPastTheCapIsCountedAndWarned) {
 
 // ---- spot shadows ---------------------------------------------------------------------------------
 
-// Does the segment a -> b pass through the axis-aligned box [lo, hi]? (slab test)
-bool segmentHitsBox(glm::dvec3 a, glm::dvec3 b, glm::dvec3 lo, glm::dvec3 hi) {
-    double t0 = 0.0, t1 = 1.0;
-    const glm::dvec3 d = b - a;
-    for (int i = 0; i < 3; ++i) {
-        if (std::abs(d[i]) < 1e-12) {
-            if (a[i] < lo[i] || a[i] > hi[i]) return false;
-            continue;
-        }
-        double u = (lo[i] - a[i]) / d[i], v = (hi[i] - a[i]) / d[i];
-        if (u > v) std::swap(u, v);
-        t0 = std::max(t0, u);
-        t1 = std::min(t1, v);
-        if (t0 > t1) return false;
-    }
-    return true;
-}
-
 // A shadow-casting spot over a floor with a cube between them. Floor points whose path to the light
 // the cube blocks (and all floor points within 3 cm of them) receive nothing from the spot; points
 // 3 cm clear of any blocked point get exactly what they get without the shadow map (to fp16), in the
@@ -1240,7 +1223,7 @@ TEST(LocalLights, ShadowedSpotDarkensBehindAnOccluder) {
     const glm::dmat4 inv = glm::inverse(glm::dmat4(s.camera.projection(float(w) / float(h))) * glm::dmat4(s.camera.view()));
     const glm::dvec3 lo = glm::dvec3(cubeCentre - cubeHalf), hi = glm::dvec3(cubeCentre + cubeHalf);
     const glm::dvec3 eye(s.camera.position), light(l.position);
-    auto blocked = [&](glm::dvec3 p) { return segmentHitsBox(p, light, lo, hi); };
+    auto blocked = [&](glm::dvec3 p) { return test::segmentHitsBox(p, light, lo, hi); };
     for (LocalLightMethod m : {LocalLightMethod::Fullscreen, LocalLightMethod::Tiled, LocalLightMethod::Clustered}) {
         const std::vector<float> ref = plain.renderHdr(smallSettings(m));
         const std::vector<float> img = shaded.renderHdr(smallSettings(m));
@@ -1251,7 +1234,7 @@ TEST(LocalLights, ShadowedSpotDarkensBehindAnOccluder) {
                 glm::dvec4 a = inv * glm::dvec4(nx, ny, -1.0, 1.0), b = inv * glm::dvec4(nx, ny, 1.0, 1.0);
                 glm::dvec3 p0 = glm::dvec3(a) / a.w, p1 = glm::dvec3(b) / b.w;
                 glm::dvec3 p = p0 + (-p0.y / (p1.y - p0.y)) * (p1 - p0);
-                if (segmentHitsBox(eye, p, lo - 0.03, hi + 0.03)) continue;  // the camera sees the cube here
+                if (test::segmentHitsBox(eye, p, lo - 0.03, hi + 0.03)) continue;  // the camera sees the cube here
                 int hits = 0;
                 for (int k = 0; k < 9; ++k) hits += blocked(p + 0.03 * glm::dvec3(k % 3 - 1, 0, k / 3 - 1)) ? 1 : 0;
                 const size_t i = (size_t(y) * w + x) * 4;

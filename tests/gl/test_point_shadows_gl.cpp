@@ -28,24 +28,6 @@ struct Box {
     glm::dvec3 lo, hi;
 };
 
-// Whether segment a-b meets box [lo, hi] (slab test).
-bool segmentHitsBox(glm::dvec3 a, glm::dvec3 b, glm::dvec3 lo, glm::dvec3 hi) {
-    const glm::dvec3 d = b - a;
-    double t0 = 0.0, t1 = 1.0;
-    for (int i = 0; i < 3; ++i) {
-        if (std::abs(d[i]) < 1e-12) {
-            if (a[i] < lo[i] || a[i] > hi[i]) return false;
-            continue;
-        }
-        double u = (lo[i] - a[i]) / d[i], v = (hi[i] - a[i]) / d[i];
-        if (u > v) std::swap(u, v);
-        t0 = std::max(t0, u);
-        t1 = std::min(t1, v);
-        if (t0 > t1) return false;
-    }
-    return true;
-}
-
 ModelInstance grey(const std::string& name, MeshData mesh, glm::mat4 transform) {
     ModelInstance m;
     m.name = name;
@@ -174,14 +156,14 @@ void expectRayCastShadow(const PointScene& p, const ImageF& shadowed, const Imag
             const std::optional<glm::dvec3> q = test::planePoint(p.scene.camera, kWidth, kHeight, x, y);
             if (!q) continue;
             bool hidden = false;
-            for (const Box& b : p.boxes) hidden |= segmentHitsBox(eye, *q, b.lo - 0.03, b.hi + 0.03);
+            for (const Box& b : p.boxes) hidden |= test::segmentHitsBox(eye, *q, b.lo - 0.03, b.hi + 0.03);
             if (hidden) continue;
             int hits = 0;
             const double band = penumbraBand(*q, p.light, settings);
             for (int k = 0; k < 9; ++k) {
                 const glm::dvec3 s = *q + band * glm::dvec3(k % 3 - 1, 0, k / 3 - 1);
                 bool blocked = false;
-                for (const Box& b : p.boxes) blocked |= segmentHitsBox(s, p.light, b.lo, b.hi);
+                for (const Box& b : p.boxes) blocked |= test::segmentHitsBox(s, p.light, b.lo, b.hi);
                 hits += blocked ? 1 : 0;
             }
             const size_t i = (size_t(y) * kWidth + size_t(x)) * 4 + 1;
