@@ -188,6 +188,8 @@ std::string accumulationKey(const PathTracePass& state, const FrameData& frame, 
     key << " pose " << state.poseTime;  // where the animated models were posed (a still scene: never changes)
     for (int i = 0; i < 4; ++i)
         for (int j = 0; j < 4; ++j) key << ' ' << frame.view[i][j] << ' ' << frame.projection[i][j];
+    for (const DirectionalLight& sun : frameDirectionalLights(frame))  // a turning sun moves with the clock
+        key << ' ' << sun.direction.x << ' ' << sun.direction.y << ' ' << sun.direction.z;
     for (const GpuLocalLight& l : lights)
         key << ' ' << l.positionRange.x << ' ' << l.positionRange.y << ' ' << l.positionRange.z << ' ' << l.directionCos.x
             << ' ' << l.directionCos.y << ' ' << l.directionCos.z;

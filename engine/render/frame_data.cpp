@@ -13,9 +13,14 @@ const LightsWithoutIbl* substitute(const FrameData& frame) {
 }
 }  // namespace
 
-const std::vector<DirectionalLight>& frameDirectionalLights(const FrameData& frame) {
+std::vector<DirectionalLight> frameDirectionalLights(const FrameData& frame) {
     const LightsWithoutIbl* s = substitute(frame);
-    return s ? s->directionalLights : frame.scene->directionalLights;
+    std::vector<DirectionalLight> suns = s ? s->directionalLights : frame.scene->directionalLights;
+    for (DirectionalLight& sun : suns) {
+        sun.direction = sun.directionAt(frame.time);
+        sun.turnSpeed = 0.0f;
+    }
+    return suns;
 }
 
 glm::vec3 frameAmbient(const FrameData& frame) {

@@ -69,8 +69,9 @@ struct FrameData {
 bool iblLightsFrame(const Scene& scene, const RenderSettings& settings);
 // The directional lights and the constant ambient a frame shades with: the scene's own, or its
 // lightsWithoutIbl on a frame that IBL does not light (a frame without settings: the scene's own).
-// A frame that IBL lights has no constant ambient: the environment replaces it.
-const std::vector<DirectionalLight>& frameDirectionalLights(const FrameData& frame);
+// A frame that IBL lights has no constant ambient: the environment replaces it. Each sun's direction is
+// the one at the frame's time (a turning sun: DirectionalLight::directionAt).
+std::vector<DirectionalLight> frameDirectionalLights(const FrameData& frame);
 glm::vec3 frameAmbient(const FrameData& frame);
 
 }  // namespace lp

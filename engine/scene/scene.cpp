@@ -22,6 +22,11 @@ glm::mat4 Camera::projection(float aspect) const {
     return glm::perspective(glm::radians(fovYDegrees), aspect, nearPlane, farPlane);
 }
 
+glm::vec3 DirectionalLight::directionAt(float time) const {
+    if (turnSpeed == 0.0f) return direction;
+    return glm::normalize(glm::vec3(glm::rotate(glm::mat4(1.0f), turnSpeed * time, turnAxis) * glm::vec4(direction, 0.0f)));
+}
+
 Camera Scene::cameraAt(double time) const {
     Camera c = camera;
     if (!cameraPath) return c;

@@ -33,6 +33,12 @@ struct DirectionalLight {
     glm::vec3 color{1.0f};
     float intensity = 3.0f;
     bool castsShadows = true;
+    // "turn": the direction turns about `turnAxis` (unit) at `turnSpeed` radians per second of scene
+    // time: a moving sun, so that no shadow cache holds. 0: a still sun.
+    glm::vec3 turnAxis{0.0f, 1.0f, 0.0f};
+    float turnSpeed = 0.0f;
+    // The direction at `time` seconds on the scene's clock (`direction` at time 0).
+    glm::vec3 directionAt(float time) const;
 };
 
 // The cone of a spot light: the point light's shading times a falloff that is 1 within innerDegrees

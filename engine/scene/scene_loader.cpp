@@ -285,10 +285,16 @@ void parseModel(const Reader& r, const json& j, const std::string& w, const fs::
 void parseLight(const Reader& r, const json& j, const std::string& w, Scene& scene) {
     std::string type = r.string(j, "type", w);
     if (type == "directional") {
-        r.onlyKnown(j, w, {"type", "direction", "color", "intensity", "shadows"});
+        r.onlyKnown(j, w, {"type", "direction", "color", "intensity", "shadows", "turn"});
         DirectionalLight l;
         l.direction = r.vec3(j, "direction", w, l.direction);
         l.direction = r.unit(l.direction, w + ".direction");
+        if (j.contains("turn")) {
+            const std::string tw = w + ".turn";
+            r.onlyKnown(j["turn"], tw, {"axis", "speed"});
+            l.turnAxis = r.unit(r.vec3(j["turn"], "axis", tw, l.turnAxis), tw + ".axis");
+            l.turnSpeed = r.bounded(j["turn"], "speed", tw, 0.1f, -1e6f, 1e6f);
+        }
         l.color = r.color(j, "color", w, l.color);
         l.intensity = r.bounded(j, "intensity", w, l.intensity, 0.0f, kMaxIntensity);
         l.castsShadows = r.boolean(j, "shadows", w, l.castsShadows);

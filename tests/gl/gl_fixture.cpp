@@ -121,9 +121,9 @@ double smithShadowingGivenMaskingRef(SpecularMasking masking, double lambdaV, do
 }
 
 ShadowAtlasFrame drawShadowAtlas(const Scene& scene, const SceneGpu& gpu, const RenderSettings& settings,
-                                 ShadowMapPass& state, fg::TexturePool& pool) {
+                                 ShadowMapPass& state, fg::TexturePool& pool, float time) {
     gl::ShaderLibrary shaders;
-    FrameData frame = makeFrameData(scene, settings, 0.0f);
+    FrameData frame = makeFrameData(scene, settings, time);
     frame.gpu = &gpu;
     frame.shaders = &shaders;
     fg::FrameGraph graph;

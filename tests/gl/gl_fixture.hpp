@@ -74,7 +74,7 @@ struct ShadowAtlasFrame {
     std::vector<std::string> notes;
 };
 ShadowAtlasFrame drawShadowAtlas(const Scene& scene, const SceneGpu& gpu, const RenderSettings& settings,
-                                 ShadowMapPass& state, fg::TexturePool& pool);
+                                 ShadowMapPass& state, fg::TexturePool& pool, float time = 0.0f);
 
 // The same atlas's depth alone, with `kept` (a fresh ShadowMapPass where null) and a fresh pool.
 std::vector<float> shadowAtlas(const Scene& scene, const RenderSettings& settings, ShadowMapPass* kept = nullptr);

@@ -73,8 +73,8 @@ struct Tiles {
 
 // Draws one frame's shadow passes with `state` and cuts the cascade tiles out of the atlas.
 Tiles drawTiles(const Scene& scene, const SceneGpu& gpu, const RenderSettings& settings, ShadowMapPass& state,
-                fg::TexturePool& pool, std::vector<std::string>* notes = nullptr) {
-    const test::ShadowAtlasFrame atlas = test::drawShadowAtlas(scene, gpu, settings, state, pool);
+                fg::TexturePool& pool, std::vector<std::string>* notes = nullptr, float time = 0.0f) {
+    const test::ShadowAtlasFrame atlas = test::drawShadowAtlas(scene, gpu, settings, state, pool, time);
     if (notes) *notes = atlas.notes;
     const ShadowFrustum& fr = atlas.frustum;
     const size_t side = size_t(fr.tileSize), width = side * size_t(fr.columns);
@@ -93,11 +93,11 @@ Tiles drawTiles(const Scene& scene, const SceneGpu& gpu, const RenderSettings& s
 }
 
 // The same frame drawn from scratch: a fresh pass state, the cache off.
-Tiles redrawnTiles(const Scene& scene, const SceneGpu& gpu, RenderSettings settings) {
+Tiles redrawnTiles(const Scene& scene, const SceneGpu& gpu, RenderSettings settings, float time = 0.0f) {
     settings.shadows.cache = false;
     ShadowMapPass fresh;
     fg::TexturePool pool;
-    return drawTiles(scene, gpu, settings, fresh, pool);
+    return drawTiles(scene, gpu, settings, fresh, pool, nullptr, time);
 }
 
 void expectSameTiles(const Tiles& kept, const Tiles& redrawn, const std::string& what) {
@@ -208,6 +208,26 @@ TEST(ShadowCache, SunGeometryAndSettingsInvalidate) {
         EXPECT_EQ(countNotes(notes, "kept (unchanged)"), notes.size()) << "auto -> geometry-shader without the hardware";
         expectSameTiles(kept, redrawnTiles(scene, gpu, settings), "auto -> geometry-shader without the hardware");
     }
+}
+
+// A turning sun ("turn"): no cascade holds from one frame to the next, each frame's tiles equal a fresh
+// redraw at that time, and the same time drawn again keeps them.
+TEST(ShadowCache, ATurningSunRedrawsEveryFrame) {
+    Scene scene = castersOnAFloor();
+    scene.directionalLights[0].turnSpeed = 0.2f;
+    SceneGpu gpu(scene);
+    const RenderSettings settings = smallCascades(ShadowSettings::Raster::Plain);
+    ShadowMapPass state;
+    fg::TexturePool pool;
+    std::vector<std::string> notes;
+    drawTiles(scene, gpu, settings, state, pool, &notes, 0.0f);
+    for (float t : {0.05f, 0.1f, 0.5f}) {
+        const Tiles kept = drawTiles(scene, gpu, settings, state, pool, &notes, t);
+        EXPECT_EQ(countNotes(notes, "redrawn (light matrix changed)"), notes.size()) << "t = " << t << ": " << notes[0];
+        expectSameTiles(kept, redrawnTiles(scene, gpu, settings, t), "turning sun at t = " + std::to_string(t));
+    }
+    drawTiles(scene, gpu, settings, state, pool, &notes, 0.5f);
+    EXPECT_EQ(countNotes(notes, "kept (unchanged)"), notes.size()) << "the same time again: " << notes[0];
 }
 
 // The key alone: two tiles that differ only in how the casters were grown are not the same tile.

@@ -4,6 +4,7 @@
 // from above; the graph of each case has the passes that light it.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <map>
 #include <set>
@@ -237,4 +238,28 @@ TEST(ModelEnvironment, BundledStudioIsSmallNeutralAndLitFromAbove) {
     const LightExtraction e = extractEnvironmentLights(map, 0.0, EnvironmentSettings{}.extractLights,
                                                        EnvironmentSettings{}.extractThreshold);
     EXPECT_TRUE(e.lights.empty());
+}
+
+// A turning sun ("turn"): every pass reads the direction at the frame's time, and a still sun's
+// frame keeps the file's direction bit for bit.
+TEST(ModelEnvironment, FramesShadeATurningSunAtTheirTime) {
+    Scene s;
+    DirectionalLight sun;
+    sun.direction = glm::normalize(glm::vec3(0.3f, -1.0f, 0.2f));
+    sun.turnSpeed = 0.25f;
+    s.directionalLights = {sun, sun};
+    s.directionalLights[1].turnSpeed = 0.0f;
+    const RenderSettings settings = small();
+    for (float t : {0.0f, 1.0f, 7.5f}) {
+        const std::vector<DirectionalLight> suns = frameDirectionalLights(makeFrameData(s, settings, t));
+        ASSERT_EQ(suns.size(), 2u);
+        EXPECT_NEAR(glm::length(suns[0].direction - sun.directionAt(t)), 0.0f, 1e-6f) << "t = " << t;
+        EXPECT_NEAR(glm::dot(suns[0].direction, glm::vec3(0, 1, 0)), sun.direction.y, 1e-6f) << "the height stays";
+        EXPECT_EQ(suns[0].turnSpeed, 0.0f) << "the frame's copy is the still direction at t";
+        EXPECT_EQ(suns[1].direction, sun.direction) << "t = " << t;
+    }
+    // Half a radian about +Y moves the direction by the chord 2 h sin(0.25), h its horizontal length.
+    const float h = glm::length(glm::vec2(sun.direction.x, sun.direction.z));
+    EXPECT_NEAR(glm::length(frameDirectionalLights(makeFrameData(s, settings, 2.0f))[0].direction - sun.direction),
+                2.0f * h * std::sin(0.25f), 1e-5f);
 }

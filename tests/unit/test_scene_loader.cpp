@@ -263,3 +263,27 @@ TEST(SceneLoader, AModelFileNamedTwiceIsParsedOnce) {
     }
     EXPECT_EQ(warnings, 1) << "the missing material library is said once";
 }
+
+// "turn": a sun whose direction turns about an axis with the scene's clock; bad values name the field.
+TEST(SceneLoader, TurningSunRotatesItsDirectionAboutItsAxis) {
+    Scene s = parseScene(R"({"lights": [{"type": "directional", "direction": [1, -1, 0],
+                                         "turn": {"axis": [0, 2, 0], "speed": 0.5}}]})", "sun.json", false);
+    const DirectionalLight& sun = s.directionalLights[0];
+    EXPECT_FLOAT_EQ(sun.turnSpeed, 0.5f);
+    EXPECT_NEAR(glm::length(sun.turnAxis - glm::vec3(0, 1, 0)), 0.0f, 1e-6f);
+    const glm::vec3 d0 = glm::normalize(glm::vec3(1, -1, 0));
+    EXPECT_NEAR(glm::length(sun.directionAt(0.0f) - d0), 0.0f, 1e-6f);
+    // A quarter turn (pi/2 radians at 0.5 rad/s) about +Y takes +X to -Z; the height stays.
+    const glm::vec3 quarter = sun.directionAt(float(M_PI));
+    EXPECT_NEAR(glm::length(quarter - glm::vec3(0.0f, d0.y, -d0.x)), 0.0f, 1e-5f) << quarter.x << " " << quarter.z;
+    EXPECT_NEAR(glm::length(quarter), 1.0f, 1e-6f);
+    // Without "turn" the sun stays still at any time.
+    Scene still = parseScene(R"({"lights": [{"type": "directional", "direction": [0, -1, 0]}]})", "still.json", false);
+    EXPECT_EQ(still.directionalLights[0].directionAt(123.0f), still.directionalLights[0].direction);
+
+    EXPECT_NE(errorFor(R"({"lights": [{"type": "directional", "turn": {"axis": [0, 0, 0]}}]})").find("lights[0].turn.axis"),
+              std::string::npos);
+    EXPECT_NE(errorFor(R"({"lights": [{"type": "directional", "turn": {"sped": 1}}]})").find("sped"), std::string::npos);
+    EXPECT_NE(errorFor(R"({"lights": [{"type": "directional", "turn": {"speed": "fast"}}]})").find("lights[0].turn"),
+              std::string::npos);
+}
