@@ -4,6 +4,7 @@
 
 #include "engine/gl/shader.hpp"
 #include "engine/gl/state.hpp"
+#include "engine/gl/uniforms.hpp"
 
 namespace lp {
 
@@ -37,10 +38,6 @@ GLuint programFor(gl::Program& program, GBufferProgramKey& key, const FrameData&
            }).id();
 }
 
-void setInt(GLuint prog, const char* name, int v) { glProgramUniform1i(prog, glGetUniformLocation(prog, name), v); }
-void setFloat(GLuint prog, const char* name, float v) {
-    glProgramUniform1f(prog, glGetUniformLocation(prog, name), v);
-}
 
 // Runs `prog` once per texel of a w x h target bound as image 0 in `format`, with the G-buffer bound,
 // and puts the bindings it made back to 0 (the texture units in `units` too).
@@ -81,7 +78,8 @@ fg::ResourceId addAmbientOcclusionPasses(fg::FrameGraph& graph, AmbientOcclusion
         },
         [&state, frame, rawSize, scale](const DepthData& data, const fg::PassResources& res) {
             const GLuint prog = programFor(state.depth, state.depthLayout, frame, "ambient_occlusion_depth.comp");
-            setInt(prog, "uScale", scale);
+            const gl::Uniforms u(frame.shaders, prog);
+            u.set("uScale", scale);
             dispatchOver(prog, res, data.in, frame, res.texture(data.depth), GL_R32F, rawSize.x, rawSize.y, {});
         });
     const fg::ResourceId depth = dd.depth;
@@ -96,13 +94,14 @@ fg::ResourceId addAmbientOcclusionPasses(fg::FrameGraph& graph, AmbientOcclusion
         },
         [&state, frame, rawSize, scale](const GtaoData& data, const fg::PassResources& res) {
             const GLuint prog = programFor(state.gtao, state.gtaoLayout, frame, "ambient_occlusion.comp");
+            const gl::Uniforms u(frame.shaders, prog);
             const AoSettings& s = frame.settings->ao;
-            setInt(prog, "uScale", scale);
-            setFloat(prog, "uRadius", s.radius);
-            setInt(prog, "uDirections", s.directions);
-            setInt(prog, "uSteps", s.steps);
+            u.set("uScale", scale);
+            u.set("uRadius", s.radius);
+            u.set("uDirections", s.directions);
+            u.set("uSteps", s.steps);
             // projection[1][1] = 1 / tan(fov / 2): a metre at eye depth 1 spans height / 2 x that pixels.
-            setFloat(prog, "uPixelsPerMetre", 0.5f * float(frame.height) * frame.projection[1][1]);
+            u.set("uPixelsPerMetre", 0.5f * float(frame.height) * frame.projection[1][1]);
             glBindTextureUnit(kDepthUnit, res.texture(data.depth));
             dispatchOver(prog, res, data.in, frame, res.texture(data.raw), GL_R16F, rawSize.x, rawSize.y,
                          {kDepthUnit});
@@ -120,7 +119,8 @@ fg::ResourceId addAmbientOcclusionPasses(fg::FrameGraph& graph, AmbientOcclusion
         },
         [&state, frame, rawSize, scale](const BlurData& data, const fg::PassResources& res) {
             const GLuint prog = programFor(state.blur, state.blurLayout, frame, "ambient_occlusion_blur.comp");
-            setInt(prog, "uScale", scale);
+            const gl::Uniforms u(frame.shaders, prog);
+            u.set("uScale", scale);
             glBindTextureUnit(kDepthUnit, res.texture(data.depth));
             glBindTextureUnit(kRawUnit, res.texture(data.raw));
             dispatchOver(prog, res, data.in, frame, res.texture(data.blurred), GL_R16F, rawSize.x, rawSize.y,
@@ -139,8 +139,9 @@ fg::ResourceId addAmbientOcclusionPasses(fg::FrameGraph& graph, AmbientOcclusion
         },
         [&state, frame, scale](const DenoiseData& data, const fg::PassResources& res) {
             const GLuint prog = programFor(state.denoise, state.denoiseLayout, frame, "ambient_occlusion_denoise.comp");
-            setInt(prog, "uScale", scale);
-            setFloat(prog, "uIntensity", frame.settings->ao.intensity);
+            const gl::Uniforms u(frame.shaders, prog);
+            u.set("uScale", scale);
+            u.set("uIntensity", frame.settings->ao.intensity);
             glBindTextureUnit(kDepthUnit, res.texture(data.depth));
             glBindTextureUnit(kRawUnit, res.texture(data.blurred));
             dispatchOver(prog, res, data.in, frame, res.texture(data.ao), GL_R8, frame.width, frame.height,

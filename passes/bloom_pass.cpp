@@ -3,6 +3,7 @@
 #include "engine/gl/gpu_timer.hpp"
 #include "engine/gl/shader.hpp"
 #include "engine/gl/state.hpp"
+#include "engine/gl/uniforms.hpp"
 
 #ifdef LIGHTPASS_HAVE_CUDA
 #include "cuda/post_cuda.hpp"
@@ -16,9 +17,6 @@ struct Data {
     fg::ResourceId hdr, bloom;
     fg::ResourceId bright, blurH, mips;  // the GLSL path's scratch
 };
-
-void uniform1f(GLuint prog, const char* name, float v) { glProgramUniform1f(prog, glGetUniformLocation(prog, name), v); }
-void uniform1i(GLuint prog, const char* name, int v) { glProgramUniform1i(prog, glGetUniformLocation(prog, name), v); }
 
 // One step of the chain; the next step reads what this one stored (a barrier within the pass).
 void dispatch(GLuint prog, int width, int height) {
@@ -40,8 +38,9 @@ void blurWithFragments(BloomPass& st, const gl::ShaderLibrary& shaders, const Bl
     if (!st.fbo) st.fbo = gl::makeFramebuffer("bloom.blur_fragment");
     if (!st.vao) st.vao = gl::makeVertexArray("bloom.blur_fragment");
     const GLuint prog = st.blurFragment.id();
-    glProgramUniform1fv(prog, glGetUniformLocation(prog, "uWeights"), GLsizei(w.size()), w.data());
-    glProgramUniform1i(prog, glGetUniformLocation(prog, "uRadius"), int(w.size()) - 1);
+    const gl::Uniforms u(&shaders, prog);
+    u.setArray("uWeights", w.data(), int(w.size()));
+    u.set("uRadius", int(w.size()) - 1);
     gl::ScopedFramebuffer bind(st.fbo.id(), width, height);
     gl::ScopedEnable depth(GL_DEPTH_TEST, false);
     gl::ScopedEnable blend(GL_BLEND, false);
@@ -50,7 +49,7 @@ void blurWithFragments(BloomPass& st, const gl::ShaderLibrary& shaders, const Bl
     const GLuint sources[2] = {scratch.bright, scratch.blurH}, targets[2] = {scratch.blurH, bloom};
     for (int pass = 0; pass < 2; ++pass) {
         glNamedFramebufferTexture(st.fbo.id(), GL_COLOR_ATTACHMENT0, targets[pass], 0);
-        glProgramUniform2i(prog, glGetUniformLocation(prog, "uDirection"), pass == 0, pass == 1);
+        u.set("uDirection", glm::ivec2(pass == 0, pass == 1));
         glBindTextureUnit(0, sources[pass]);
         glDrawArrays(GL_TRIANGLES, 0, 3);
     }
@@ -79,9 +78,10 @@ void runBloomGlsl(BloomPass& st, const gl::ShaderLibrary& shaders, const BloomSc
         if (!st.bright) st.bright = shaders.compute("bloom_bright.comp");
         if (!st.blur) st.blur = shaders.compute("bloom_blur.comp");
         GLuint prog = st.bright.id();
-        uniform1f(prog, "uThreshold", p.threshold);
-        uniform1f(prog, "uKnee", p.knee);
-        uniform1f(prog, "uHighlight", p.highlight);
+        const gl::Uniforms bright(&shaders, prog);
+        bright.set("uThreshold", p.threshold);
+        bright.set("uKnee", p.knee);
+        bright.set("uHighlight", p.highlight);
         glBindTextureUnit(0, hdr);
         glBindImageTexture(0, scratch.bright, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
         dispatch(prog, width, height);
@@ -92,14 +92,14 @@ void runBloomGlsl(BloomPass& st, const gl::ShaderLibrary& shaders, const BloomSc
             return;
         }
         prog = st.blur.id();
-        glProgramUniform1fv(prog, glGetUniformLocation(prog, "uWeights"), GLsizei(w.size()), w.data());
-        uniform1i(prog, "uRadius", int(w.size()) - 1);
-        const GLint dir = glGetUniformLocation(prog, "uDirection");
-        glProgramUniform2i(prog, dir, 1, 0);
+        const gl::Uniforms blur(&shaders, prog);
+        blur.setArray("uWeights", w.data(), int(w.size()));
+        blur.set("uRadius", int(w.size()) - 1);
+        blur.set("uDirection", glm::ivec2(1, 0));
         glBindTextureUnit(0, scratch.bright);
         glBindImageTexture(0, scratch.blurH, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
         dispatch(prog, width, height);
-        glProgramUniform2i(prog, dir, 0, 1);
+        blur.set("uDirection", glm::ivec2(0, 1));
         glBindTextureUnit(0, scratch.blurH);
         glBindImageTexture(0, bloom, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
         glUseProgram(prog);
@@ -114,29 +114,31 @@ void runBloomGlsl(BloomPass& st, const gl::ShaderLibrary& shaders, const BloomSc
     // every tap exact (the pool hands the texture over with the default linear filter).
     glTextureParameteri(scratch.mips, GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
     GLuint prog = st.down.id();
-    uniform1f(prog, "uThreshold", p.threshold);
-    uniform1f(prog, "uKnee", p.knee);
-    uniform1f(prog, "uHighlight", p.highlight);
-    uniform1i(prog, "uKaris", p.karis);
+    const gl::Uniforms down(&shaders, prog);
+    down.set("uThreshold", p.threshold);
+    down.set("uKnee", p.knee);
+    down.set("uHighlight", p.highlight);
+    down.set("uKaris", p.karis);
     for (int l = 0; l < levels; ++l) {
-        uniform1i(prog, "uFirst", l == 0);
-        uniform1i(prog, "uSourceLevel", l == 0 ? 0 : l - 1);
+        down.set("uFirst", l == 0);
+        down.set("uSourceLevel", l == 0 ? 0 : l - 1);
         glBindTextureUnit(0, l == 0 ? hdr : scratch.mips);
         glBindImageTexture(0, scratch.mips, l, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
         dispatch(prog, post::mipSize(width, l), post::mipSize(height, l));
     }
     prog = st.up.id();
+    const gl::Uniforms up(&shaders, prog);
     glBindTextureUnit(0, scratch.mips);
     for (int l = levels - 2; l >= 0; --l) {
-        uniform1i(prog, "uCoarseLevel", l + 1);
-        uniform1i(prog, "uAddFine", 1);
-        uniform1f(prog, "uScale", 1.0f);
+        up.set("uCoarseLevel", l + 1);
+        up.set("uAddFine", 1);
+        up.set("uScale", 1.0f);
         glBindImageTexture(0, scratch.mips, l, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
         dispatch(prog, post::mipSize(width, l), post::mipSize(height, l));
     }
-    uniform1i(prog, "uCoarseLevel", 0);
-    uniform1i(prog, "uAddFine", 0);
-    uniform1f(prog, "uScale", 1.0f / float(levels));
+    up.set("uCoarseLevel", 0);
+    up.set("uAddFine", 0);
+    up.set("uScale", 1.0f / float(levels));
     glBindImageTexture(0, bloom, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
     glUseProgram(prog);
     gl::dispatch2D(width, height);  // the last step: the graph orders what reads `bloom`
@@ -147,7 +149,7 @@ void runBloomCompositeGlsl(BloomPass& st, const gl::ShaderLibrary& shaders, GLui
                            int height, float strength) {
     if (!st.composite) st.composite = shaders.compute("bloom_composite.comp");
     const GLuint prog = st.composite.id();
-    uniform1f(prog, "uStrength", strength);
+    gl::Uniforms(&shaders, prog).set("uStrength", strength);
     glBindTextureUnit(0, bloom);
     glBindImageTexture(0, hdr, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
     glUseProgram(prog);

@@ -8,6 +8,7 @@
 #include "engine/core/error.hpp"
 #include "engine/gl/shader.hpp"
 #include "engine/gl/state.hpp"
+#include "engine/gl/uniforms.hpp"
 
 namespace lp {
 
@@ -76,20 +77,18 @@ fg::ResourceId addEnvironmentViewPass(fg::FrameGraph& graph, DebugViewPass& stat
                                  return frame.shaders->compute("ibl_debug.comp", defines);
                              });
             const GLuint prog = state.environmentProgram.id();
+            const gl::Uniforms u(frame.shaders, prog);
             if (bake) glProgramUniform3fv(prog, glGetUniformLocation(prog, "uSh"), 9, glm::value_ptr(env.sh[0]));
             const float maxMip = bake ? float(env.prefiltered.levels - 1) : 0.0f;
-            glProgramUniform1i(prog, glGetUniformLocation(prog, "uMode"), mode);
-            glProgramUniform1i(prog, glGetUniformLocation(prog, "uDiffuseFromCube"),
-                               s.diffuse == IrradianceSource::Cubemap);
-            glProgramUniformMatrix3fv(prog, glGetUniformLocation(prog, "uEyeToWorld"), 1, GL_FALSE,
-                                      glm::value_ptr(glm::transpose(glm::mat3(frame.view))));
-            glProgramUniformMatrix4fv(prog, glGetUniformLocation(prog, "uInvProjection"), 1, GL_FALSE,
-                                      glm::value_ptr(glm::inverse(frame.projection)));
+            u.set("uMode", mode);
+            u.set("uDiffuseFromCube", s.diffuse == IrradianceSource::Cubemap);
+            u.set("uEyeToWorld", glm::transpose(glm::mat3(frame.view)));
+            u.set("uInvProjection", glm::inverse(frame.projection));
             // Without a map the environment is the plain colour, already scaled here.
-            glProgramUniform1f(prog, glGetUniformLocation(prog, "uIntensity"), frame.scene->environment.intensity);
-            glProgramUniform1f(prog, glGetUniformLocation(prog, "uMip"), std::min(float(s.debugMip), maxMip));
-            glProgramUniform1f(prog, glGetUniformLocation(prog, "uExposureEV"), exposureEvBase(*frame.settings, *frame.scene));
-            glProgramUniform1i(prog, glGetUniformLocation(prog, "uOperator"), int(s.toneMap));
+            u.set("uIntensity", frame.scene->environment.intensity);
+            u.set("uMip", std::min(float(s.debugMip), maxMip));
+            u.set("uExposureEV", exposureEvBase(*frame.settings, *frame.scene));
+            u.set("uOperator", int(s.toneMap));
             gl::ScopedEnable seamless(GL_TEXTURE_CUBE_MAP_SEAMLESS, true);
             bindGBuffer(prog, res, data.in, frame, false);
             glBindTextureUnit(7, res.texture(data.environment.cube));
@@ -175,25 +174,24 @@ fg::ResourceId addDebugViewPass(fg::FrameGraph& graph, DebugViewPass& state, con
                 return frame.shaders->compute("debug_view.comp", defines);
             });
             const GLuint prog = state.program.id();
-            glProgramUniform1i(prog, glGetUniformLocation(prog, "uMode"), mode);
-            glProgramUniform1f(prog, glGetUniformLocation(prog, "uNear"), frame.nearPlane);
-            glProgramUniform1f(prog, glGetUniformLocation(prog, "uFar"), frame.farPlane);
-            glProgramUniform1f(prog, glGetUniformLocation(prog, "uPositionScale"), 1.0f / frame.sceneExtent);
-            glProgramUniform2i(prog, glGetUniformLocation(prog, "uShadowGrid"), grid.x, grid.y);
-            glProgramUniform2f(prog, glGetUniformLocation(prog, "uOutputSize"), float(frame.outputWidth),
-                               float(frame.outputHeight));
-            glProgramUniform1f(prog, glGetUniformLocation(prog, "uVelocityFullScale"), kVelocityViewFullScalePixels);
+            const gl::Uniforms u(frame.shaders, prog);
+            u.set("uMode", mode);
+            u.set("uNear", frame.nearPlane);
+            u.set("uFar", frame.farPlane);
+            u.set("uPositionScale", 1.0f / frame.sceneExtent);
+            u.set("uShadowGrid", grid);
+            u.set("uOutputSize", glm::vec2(float(frame.outputWidth), float(frame.outputHeight)));
+            u.set("uVelocityFullScale", kVelocityViewFullScalePixels);
             const glm::mat4 eyeToWorld = glm::inverse(frame.view);
-            glProgramUniformMatrix4fv(prog, glGetUniformLocation(prog, "uEyeToWorld"), 1, GL_FALSE,
-                                      glm::value_ptr(eyeToWorld));
+            u.set("uEyeToWorld", eyeToWorld);
             glm::vec3 lo, hi;
             frame.scene->bounds(lo, hi);
             const glm::vec3 center = 0.5f * (lo + hi);
             const float halfSize = std::max(0.5f * std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z}), 1e-6f);
-            glProgramUniform3fv(prog, glGetUniformLocation(prog, "uSceneCenter"), 1, glm::value_ptr(center));
-            glProgramUniform1f(prog, glGetUniformLocation(prog, "uSceneHalfSize"), halfSize);
+            u.set("uSceneCenter", center);
+            u.set("uSceneHalfSize", halfSize);
             const glm::vec2 range = sceneDepthRange(frame);
-            glProgramUniform2f(prog, glGetUniformLocation(prog, "uDepthRange"), range.x, range.y);
+            u.set("uDepthRange", range);
             if (data.channel.valid()) glBindTextureUnit(kChannelUnit, res.texture(data.channel));
             else bindGBuffer(prog, res, data.in, frame, true);
             glBindImageTexture(0, res.texture(data.ldr), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);

@@ -2,6 +2,7 @@
 
 #include "engine/gl/shader.hpp"
 #include "engine/gl/state.hpp"
+#include "engine/gl/uniforms.hpp"
 
 namespace lp {
 
@@ -22,7 +23,8 @@ fg::ResourceId addDownsamplePass(fg::FrameGraph& graph, DownsamplePass& state, c
         [&state, frame, scale](const Data& data, const fg::PassResources& res) {
             if (!state.program) state.program = frame.shaders->compute("ssaa_downsample.comp");
             const GLuint prog = state.program.id();
-            glProgramUniform1i(prog, glGetUniformLocation(prog, "uScale"), scale);
+            const gl::Uniforms u(frame.shaders, prog);
+            u.set("uScale", scale);
             gl::dispatchTextureToImage(prog, 0, res.texture(data.source), res.texture(data.target), GL_RGBA16F,
                                        frame.outputWidth, frame.outputHeight);
         });

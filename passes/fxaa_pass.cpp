@@ -2,6 +2,7 @@
 
 #include "engine/gl/shader.hpp"
 #include "engine/gl/state.hpp"
+#include "engine/gl/uniforms.hpp"
 
 namespace lp {
 
@@ -21,7 +22,8 @@ fg::ResourceId addFxaaPass(fg::FrameGraph& graph, FxaaPass& state, const FrameDa
         [&state, frame](const Data& data, const fg::PassResources& res) {
             if (!state.program) state.program = frame.shaders->compute("fxaa.comp");
             const GLuint prog = state.program.id();
-            glProgramUniform1i(prog, glGetUniformLocation(prog, "uDither"), frame.settings->aa.dither);
+            const gl::Uniforms u(frame.shaders, prog);
+            u.set("uDither", frame.settings->aa.dither);
             gl::dispatchTextureToImage(prog, 0, res.texture(data.source), res.texture(data.target), GL_RGBA8,
                                        frame.outputWidth, frame.outputHeight);
         });

@@ -8,6 +8,7 @@
 #include "engine/core/log.hpp"
 #include "engine/gl/shader.hpp"
 #include "engine/gl/state.hpp"
+#include "engine/gl/uniforms.hpp"
 
 namespace lp {
 
@@ -20,8 +21,6 @@ struct Data {
     fg::ResourceId ao;                       // invalid: no ambient occlusion
     fg::ResourceId hdr;
 };
-
-GLint loc(GLuint prog, const char* name) { return glGetUniformLocation(prog, name); }
 
 // Shadow uniforms: per light its slot (or -1), per slot its cascades (see global_light.comp).
 void setShadowUniforms(GLuint prog, const FrameData& frame, const ShadowMaps& maps, int lightCount) {
@@ -47,17 +46,17 @@ void setShadowUniforms(GLuint prog, const FrameData& frame, const ShadowMaps& ma
         }
     }
     const ShadowSettings& s = frame.settings->shadows;
-    glProgramUniform1iv(prog, loc(prog, "uLightShadowSlot"), kMaxLights, slotOfLight.data());
-    glProgramUniform1iv(prog, loc(prog, "uShadowCascadeCount"), kMaxShadowedLights, cascadeCount.data());
-    glProgramUniformMatrix4fv(prog, loc(prog, "uShadowEyeToClip"), GLsizei(eyeToClip.size()), GL_FALSE,
-                              glm::value_ptr(eyeToClip[0]));
-    glProgramUniform4fv(prog, loc(prog, "uShadowCascade"), GLsizei(cascadeInfo.size()), glm::value_ptr(cascadeInfo[0]));
-    glProgramUniformMatrix3fv(prog, loc(prog, "uShadowEyeToLight"), kMaxShadowedLights, GL_FALSE, glm::value_ptr(eyeToLight[0]));
-    glProgramUniform1i(prog, loc(prog, "uShadowColumns"), columns);
-    glProgramUniform1i(prog, loc(prog, "uShadowTileSize"), tileSize);
-    glProgramUniform1i(prog, loc(prog, "uShadowAtlasMarked"), marked ? 1 : 0);
-    glProgramUniform1f(prog, loc(prog, "uShadowDepthBias"), s.depthBias);
-    glProgramUniform1f(prog, loc(prog, "uShadowNormalBias"), s.normalBias);
+    const gl::Uniforms u(frame.shaders, prog);
+    u.setArray("uLightShadowSlot", slotOfLight.data(), kMaxLights);
+    u.setArray("uShadowCascadeCount", cascadeCount.data(), kMaxShadowedLights);
+    u.setArray("uShadowEyeToClip", eyeToClip.data(), int(eyeToClip.size()));
+    u.setArray("uShadowCascade", cascadeInfo.data(), int(cascadeInfo.size()));
+    u.setArray("uShadowEyeToLight", eyeToLight.data(), kMaxShadowedLights);
+    u.set("uShadowColumns", columns);
+    u.set("uShadowTileSize", tileSize);
+    u.set("uShadowAtlasMarked", marked);
+    u.set("uShadowDepthBias", s.depthBias);
+    u.set("uShadowNormalBias", s.normalBias);
 }
 }  // namespace
 
@@ -77,13 +76,11 @@ int setSunUniforms(GLuint prog, const FrameData& frame, const ShadowMaps& shadow
         dirs.push_back(glm::normalize(glm::mat3(frame.view) * toLight));
         irr.push_back(lights[size_t(i)].color * lights[size_t(i)].intensity);
     }
-    glProgramUniform1i(prog, loc(prog, "uLightCount"), count);
-    if (count > 0) {
-        glProgramUniform3fv(prog, loc(prog, "uLightDirEye"), count, glm::value_ptr(dirs[0]));
-        glProgramUniform3fv(prog, loc(prog, "uLightIrradiance"), count, glm::value_ptr(irr[0]));
-    }
-    const glm::vec3 ambient = frameAmbient(frame);
-    glProgramUniform3fv(prog, loc(prog, "uAmbient"), 1, glm::value_ptr(ambient));
+    const gl::Uniforms u(frame.shaders, prog);
+    u.set("uLightCount", count);
+    u.setArray("uLightDirEye", dirs.data(), count);
+    u.setArray("uLightIrradiance", irr.data(), count);
+    u.set("uAmbient", frameAmbient(frame));
     setBrdfUniforms(prog, *frame.settings);
     setShadowUniforms(prog, frame, shadowMaps, count);
     return count;
@@ -111,8 +108,9 @@ fg::ResourceId addGlobalLightPass(fg::FrameGraph& graph, GlobalLightPass& state,
             });
             const GLuint prog = state.program.id();
             setSunUniforms(prog, frame, shadowMaps);
-            glProgramUniform1i(prog, loc(prog, "uLightingOnly"), lightingOnly);
-            glProgramUniform1i(prog, loc(prog, "uAmbientOcclusion"), data.ao.valid());
+            const gl::Uniforms u(frame.shaders, prog);
+            u.set("uLightingOnly", lightingOnly);
+            u.set("uAmbientOcclusion", data.ao.valid());
             bindGBuffer(prog, res, data.in, frame, !lightingOnly, true);
             for (size_t i = 0; i < data.shadowMaps.size(); ++i)
                 glBindTextureUnit(kShadowMapUnit + GLuint(i), res.texture(data.shadowMaps[i]));

@@ -3,6 +3,7 @@
 #include "engine/render/exposure.hpp"
 #include "engine/gl/shader.hpp"
 #include "engine/gl/state.hpp"
+#include "engine/gl/uniforms.hpp"
 
 namespace lp {
 
@@ -28,10 +29,11 @@ fg::ResourceId addHdrViewPass(fg::FrameGraph& graph, HdrViewPass& state, const F
         [&state, frame, mode](const Data& data, const fg::PassResources& res) {
             if (!state.program) state.program = frame.shaders->compute("hdr_view.comp");
             const GLuint prog = state.program.id();
-            glProgramUniform1i(prog, glGetUniformLocation(prog, "uMode"), mode);
-            glProgramUniform1f(prog, glGetUniformLocation(prog, "uExposureEV"), exposureEvBase(*frame.settings, *frame.scene));
-            glProgramUniform1i(prog, glGetUniformLocation(prog, "uOperator"), int(frame.settings->environment.toneMap));
-            glProgramUniform1i(prog, glGetUniformLocation(prog, "uAutoExposure"), data.exposure.valid());
+            const gl::Uniforms u(frame.shaders, prog);
+            u.set("uMode", mode);
+            u.set("uExposureEV", exposureEvBase(*frame.settings, *frame.scene));
+            u.set("uOperator", int(frame.settings->environment.toneMap));
+            u.set("uAutoExposure", data.exposure.valid());
             if (data.exposure.valid()) glBindTextureUnit(kExposureUnit, res.texture(data.exposure));
             const fg::TextureDesc& out = res.desc(data.ldr);
             gl::dispatchTextureToImage(prog, 0, res.texture(data.hdr), res.texture(data.ldr), GL_RGBA8, out.width,

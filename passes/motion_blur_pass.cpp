@@ -7,6 +7,7 @@
 #include "engine/gl/state.hpp"
 #include "engine/render/local_lights.hpp"
 #include "engine/render/scene_gpu.hpp"
+#include "engine/gl/uniforms.hpp"
 
 namespace lp {
 
@@ -69,8 +70,9 @@ fg::ResourceId addMotionBlurPasses(fg::FrameGraph& graph, MotionBlurPass& state,
         [&state, frame, k, tilesX, tilesY, settings](const TileData& d, const fg::PassResources& res) {
             if (!state.tiles) state.tiles = frame.shaders->compute("motion_blur_tiles.comp");
             const GLuint prog = state.tiles.id();
-            glProgramUniform1i(prog, glGetUniformLocation(prog, "uTileSize"), k);
-            glProgramUniform1f(prog, glGetUniformLocation(prog, "uShutter"), settings.shutter);
+            const gl::Uniforms u(frame.shaders, prog);
+            u.set("uTileSize", k);
+            u.set("uShutter", settings.shutter);
             glBindTextureUnit(0, res.texture(d.velocity));
             glBindImageTexture(0, res.texture(d.tiles), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG16F);
             glUseProgram(prog);
@@ -114,12 +116,12 @@ fg::ResourceId addMotionBlurPasses(fg::FrameGraph& graph, MotionBlurPass& state,
         [&state, frame, k, settings](const GatherData& d, const fg::PassResources& res) {
             if (!state.gather) state.gather = frame.shaders->compute("motion_blur.comp");
             const GLuint prog = state.gather.id();
-            glProgramUniform1i(prog, glGetUniformLocation(prog, "uTileSize"), k);
-            glProgramUniform1i(prog, glGetUniformLocation(prog, "uSamples"), settings.samples);
-            glProgramUniform1f(prog, glGetUniformLocation(prog, "uShutter"), settings.shutter);
-            glProgramUniform2f(prog, glGetUniformLocation(prog, "uNearFar"), frame.nearPlane, frame.farPlane);
-            glProgramUniform1i(prog, glGetUniformLocation(prog, "uReversedZ"),
-                               frame.settings->gbuffer.position == GBufferPositionMode::ReversedZ);
+            const gl::Uniforms u(frame.shaders, prog);
+            u.set("uTileSize", k);
+            u.set("uSamples", settings.samples);
+            u.set("uShutter", settings.shutter);
+            u.set("uNearFar", glm::vec2(frame.nearPlane, frame.farPlane));
+            u.set("uReversedZ", frame.settings->gbuffer.position == GBufferPositionMode::ReversedZ);
             glCopyImageSubData(res.texture(d.hdr), GL_TEXTURE_2D, 0, 0, 0, 0, res.texture(d.source), GL_TEXTURE_2D, 0,
                                0, 0, 0, frame.width, frame.height, 1);
             glBindTextureUnit(0, res.texture(d.source));

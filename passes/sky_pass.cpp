@@ -4,6 +4,7 @@
 
 #include "engine/gl/shader.hpp"
 #include "engine/gl/state.hpp"
+#include "engine/gl/uniforms.hpp"
 
 namespace lp {
 
@@ -28,20 +29,19 @@ fg::ResourceId addSkyPass(fg::FrameGraph& graph, SkyPass& state, const FrameData
                 return frame.shaders->compute("sky.comp", defines);
             });
             const GLuint prog = state.program.id();
+            const gl::Uniforms u(frame.shaders, prog);
             const Environment& environment = frame.scene->environment;
             glm::vec3 c = environment.color * environment.intensity;
-            glProgramUniform3fv(prog, glGetUniformLocation(prog, "uColor"), 1, glm::value_ptr(c));
+            u.set("uColor", c);
             const bool hasMap = !environment.map.empty() && data.cube.valid();
-            glProgramUniform1i(prog, glGetUniformLocation(prog, "uHasMap"), hasMap);
+            u.set("uHasMap", hasMap);
             if (hasMap) {
                 glBindTextureUnit(7, res.texture(data.cube));
-                glProgramUniform1f(prog, glGetUniformLocation(prog, "uIntensity"), environment.intensity);
+                u.set("uIntensity", environment.intensity);
                 glm::mat4 invProjection = glm::inverse(frame.projection);
                 glm::mat3 eyeToWorld = glm::transpose(glm::mat3(frame.view));
-                glProgramUniformMatrix4fv(prog, glGetUniformLocation(prog, "uInvProjection"), 1, GL_FALSE,
-                                          glm::value_ptr(invProjection));
-                glProgramUniformMatrix3fv(prog, glGetUniformLocation(prog, "uEyeToWorld"), 1, GL_FALSE,
-                                          glm::value_ptr(eyeToWorld));
+                u.set("uInvProjection", invProjection);
+                u.set("uEyeToWorld", eyeToWorld);
             }
             gl::ScopedEnable seamless(GL_TEXTURE_CUBE_MAP_SEAMLESS, true);
             glBindTextureUnit(0, res.texture(data.depth));

@@ -2,6 +2,7 @@
 
 #include "engine/gl/shader.hpp"
 #include "engine/gl/state.hpp"
+#include "engine/gl/uniforms.hpp"
 
 namespace lp {
 
@@ -73,8 +74,9 @@ fg::ResourceId addTaaPass(fg::FrameGraph& graph, TaaPass& state, const FrameData
         [s, frame, usable, write, signature, size](const Data& data, const fg::PassResources& res) {
             if (!s->program) s->program = frame.shaders->compute("taa.comp");
             const GLuint prog = s->program.id();
-            glProgramUniform1i(prog, glGetUniformLocation(prog, "uHistoryValid"), usable);
-            glProgramUniform1f(prog, glGetUniformLocation(prog, "uCurrentWeight"), frame.settings->aa.taaHistoryWeight);
+            const gl::Uniforms u(frame.shaders, prog);
+            u.set("uHistoryValid", usable);
+            u.set("uCurrentWeight", frame.settings->aa.taaHistoryWeight);
             const GLuint units[] = {kCurrentUnit, kVelocityUnit, kHistoryUnit, kHistoryVelocityUnit};
             const fg::ResourceId inputs[] = {data.current, data.velocity, data.history, data.historyVelocity};
             for (int i = 0; i < 4; ++i) glBindTextureUnit(units[i], res.texture(inputs[i]));

@@ -3,6 +3,7 @@
 #include "engine/render/exposure.hpp"
 #include "engine/gl/shader.hpp"
 #include "engine/gl/state.hpp"
+#include "engine/gl/uniforms.hpp"
 
 namespace lp {
 
@@ -31,10 +32,11 @@ fg::ResourceId addToneMapPass(fg::FrameGraph& graph, ToneMapPass& state, const F
                 program = frame.shaders->compute("tonemap.comp", floatTarget ? std::vector<std::string>{"LP_TONEMAP_FLOAT_TARGET"}
                                                                              : std::vector<std::string>{});
             const GLuint prog = program.id();
-            glProgramUniform1f(prog, glGetUniformLocation(prog, "uExposureEV"), exposureEvBase(*frame.settings, *frame.scene));
-            glProgramUniform1i(prog, glGetUniformLocation(prog, "uOperator"), int(frame.settings->environment.toneMap));
-            glProgramUniform1i(prog, glGetUniformLocation(prog, "uAutoExposure"), data.exposure.valid());
-            glProgramUniform1i(prog, glGetUniformLocation(prog, "uDither"), frame.settings->aa.dither);
+            const gl::Uniforms u(frame.shaders, prog);
+            u.set("uExposureEV", exposureEvBase(*frame.settings, *frame.scene));
+            u.set("uOperator", int(frame.settings->environment.toneMap));
+            u.set("uAutoExposure", data.exposure.valid());
+            u.set("uDither", frame.settings->aa.dither);
             if (data.exposure.valid()) glBindTextureUnit(kExposureUnit, res.texture(data.exposure));
             gl::dispatchTextureToImage(prog, 6, res.texture(data.hdr), res.texture(data.ldr), format, frame.outputWidth,
                                        frame.outputHeight);

@@ -4,6 +4,7 @@
 #include "engine/gl/gpu_timer.hpp"
 #include "engine/gl/shader.hpp"
 #include "engine/gl/state.hpp"
+#include "engine/gl/uniforms.hpp"
 
 #ifdef LIGHTPASS_HAVE_CUDA
 #include "cuda/post_cuda.hpp"
@@ -25,12 +26,12 @@ void runToonGlsl(ToonPass& state, const gl::ShaderLibrary& shaders, GLuint hdr, 
         state.layout = g.layout;
     }
     const GLuint prog = state.program.id();
-    glProgramUniform4f(prog, glGetUniformLocation(prog, "uGbufferCamera"), g.camera.x, g.camera.y, g.camera.z,
-                       g.camera.w);
-    glProgramUniform1i(prog, glGetUniformLocation(prog, "uLevels"), p.levels);
-    glProgramUniform1f(prog, glGetUniformLocation(prog, "uDepthEdge"), p.depthEdge);
-    glProgramUniform1f(prog, glGetUniformLocation(prog, "uNormalEdge"), p.normalEdge);
-    glProgramUniform1f(prog, glGetUniformLocation(prog, "uFarDepth"), p.farDepth);
+    const gl::Uniforms u(&shaders, prog);
+    u.set("uGbufferCamera", g.camera);
+    u.set("uLevels", p.levels);
+    u.set("uDepthEdge", p.depthEdge);
+    u.set("uNormalEdge", p.normalEdge);
+    u.set("uFarDepth", p.farDepth);
     glBindTextureUnit(0, g.depth);
     glBindTextureUnit(1, g.normal);
     glBindTextureUnit(3, g.position);

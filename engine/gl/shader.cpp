@@ -8,6 +8,7 @@
 
 #include "engine/core/error.hpp"
 #include "engine/core/paths.hpp"
+#include "engine/gl/uniforms.hpp"
 
 namespace lp::gl {
 namespace fs = std::filesystem;
@@ -128,8 +129,10 @@ ShaderSource ShaderLibrary::preprocess(const std::string& path, const std::vecto
 }
 
 Program ShaderLibrary::compute(const std::string& path, const std::vector<std::string>& defines) const {
-    Shader cs = compileStage(GL_COMPUTE_SHADER, preprocess(path, defines), path);
+    const ShaderSource src = preprocess(path, defines);
+    Shader cs = compileStage(GL_COMPUTE_SHADER, src, path);
     Program program = link({&cs}, path);
+    note(program, {&src}, path);
     remember({{path}, defines});
     return program;
 }
@@ -138,24 +141,32 @@ Program ShaderLibrary::computeFromSource(const std::string& name, const std::str
     ShaderSource src;
     Expander{root_, src, {}, {}}.expand(name, true, {}, &text);
     Shader cs = compileStage(GL_COMPUTE_SHADER, src, name);
-    return link({&cs}, name);
+    Program program = link({&cs}, name);
+    note(program, {&src}, name);
+    return program;
 }
 
 Program ShaderLibrary::graphics(const std::string& vertexPath, const std::string& fragmentPath,
                                 const std::vector<std::string>& defines) const {
-    Shader vs = compileStage(GL_VERTEX_SHADER, preprocess(vertexPath, defines), vertexPath);
-    Shader fs = compileStage(GL_FRAGMENT_SHADER, preprocess(fragmentPath, defines), fragmentPath);
+    const ShaderSource vsrc = preprocess(vertexPath, defines), fsrc = preprocess(fragmentPath, defines);
+    Shader vs = compileStage(GL_VERTEX_SHADER, vsrc, vertexPath);
+    Shader fs = compileStage(GL_FRAGMENT_SHADER, fsrc, fragmentPath);
     Program program = link({&vs, &fs}, vertexPath + "+" + fragmentPath);
+    note(program, {&vsrc, &fsrc}, vertexPath + "+" + fragmentPath);
     remember({{vertexPath, fragmentPath}, defines});
     return program;
 }
 
 Program ShaderLibrary::graphics(const std::string& vertexPath, const std::string& geometryPath,
                                 const std::string& fragmentPath, const std::vector<std::string>& defines) const {
-    Shader vs = compileStage(GL_VERTEX_SHADER, preprocess(vertexPath, defines), vertexPath);
-    Shader gs = compileStage(GL_GEOMETRY_SHADER, preprocess(geometryPath, defines), geometryPath);
-    Shader fs = compileStage(GL_FRAGMENT_SHADER, preprocess(fragmentPath, defines), fragmentPath);
-    Program program = link({&vs, &gs, &fs}, vertexPath + "+" + geometryPath + "+" + fragmentPath);
+    const ShaderSource vsrc = preprocess(vertexPath, defines), gsrc = preprocess(geometryPath, defines),
+                       fsrc = preprocess(fragmentPath, defines);
+    Shader vs = compileStage(GL_VERTEX_SHADER, vsrc, vertexPath);
+    Shader gs = compileStage(GL_GEOMETRY_SHADER, gsrc, geometryPath);
+    Shader fs = compileStage(GL_FRAGMENT_SHADER, fsrc, fragmentPath);
+    const std::string label = vertexPath + "+" + geometryPath + "+" + fragmentPath;
+    Program program = link({&vs, &gs, &fs}, label);
+    note(program, {&vsrc, &gsrc, &fsrc}, label);
     remember({{vertexPath, geometryPath, fragmentPath}, defines});
     return program;
 }
@@ -165,6 +176,23 @@ Program ShaderLibrary::build(const ProgramRecipe& recipe) const {
     if (recipe.stages.size() == 2) return graphics(recipe.stages[0], recipe.stages[1], recipe.defines);
     if (recipe.stages.size() == 3) return graphics(recipe.stages[0], recipe.stages[1], recipe.stages[2], recipe.defines);
     throw Error("program recipe needs 1 (compute), 2 (vertex, fragment) or 3 (vertex, geometry, fragment) stages");
+}
+
+void ShaderLibrary::note(const Program& program, const std::vector<const ShaderSource*>& stages,
+                         const std::string& label) const {
+    std::string all;
+    for (const ShaderSource* s : stages) all += s->text + "\n";
+    (*programs_)[program.id()] = {std::make_shared<const std::vector<std::string>>(gl::declaredUniforms(all)), label};
+}
+
+std::shared_ptr<const std::vector<std::string>> ShaderLibrary::declaredUniforms(GLuint program) const {
+    const auto it = programs_->find(program);
+    return it == programs_->end() ? nullptr : it->second.uniforms;
+}
+
+std::string ShaderLibrary::programLabel(GLuint program) const {
+    const auto it = programs_->find(program);
+    return it == programs_->end() ? std::string() : it->second.label;
 }
 
 void ShaderLibrary::remember(ProgramRecipe recipe) const {

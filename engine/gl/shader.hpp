@@ -2,6 +2,7 @@
 // GLSL loading: resolves `#include "common/x.glsl"` from the shader root, inserts `#line` markers so
 // the driver's error log can be mapped back to the original file and line, and injects #defines.
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -46,11 +47,22 @@ public:
     std::vector<ProgramRecipe> builtPrograms() const { return *built_; }
     // Builds a recipe again from the current files (throws like compute()/graphics()).
     Program build(const ProgramRecipe& recipe) const;
+    // The uniform names the stages of a program this library (or a copy) built declare, and its label
+    // (gl::Uniforms checks names against them); null and "" for a program it did not build.
+    std::shared_ptr<const std::vector<std::string>> declaredUniforms(GLuint program) const;
+    std::string programLabel(GLuint program) const;
 
 private:
+    struct ProgramInterface {
+        std::shared_ptr<const std::vector<std::string>> uniforms;
+        std::string label;
+    };
     void remember(ProgramRecipe recipe) const;
+    // Records a linked program's declared uniforms (a later program with the same GL name replaces it).
+    void note(const Program& program, const std::vector<const ShaderSource*>& stages, const std::string& label) const;
     std::filesystem::path root_;
     std::shared_ptr<std::vector<ProgramRecipe>> built_ = std::make_shared<std::vector<ProgramRecipe>>();
+    std::shared_ptr<std::map<GLuint, ProgramInterface>> programs_ = std::make_shared<std::map<GLuint, ProgramInterface>>();
 };
 
 // Rewrites "0:12(5): error" (Mesa) and "0(12) : error" (NVIDIA) to "shaders/file.glsl:12: error".
