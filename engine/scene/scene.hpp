@@ -114,6 +114,10 @@ struct ModelInstance {
     std::vector<int> playingClips;
     // "materialVariant": the KHR_materials_variants variant its glTF draws ("": the file's own materials).
     std::string materialVariant;
+    // "spin": the model turns about `spinAxis` (unit, through the mesh's own origin) at `spinSpeed`
+    // radians per second of scene time: a moving object, played as a one-clip animation (spinAnimation).
+    std::optional<glm::vec3> spinAxis;
+    float spinSpeed = 0.0f;
     // Whether the model's playing clips put some vertex elsewhere at time t1 than at t0.
     bool movesBetween(double t0, double t1) const;
 };

@@ -19,6 +19,7 @@
 #include "engine/io/obj_loader.hpp"
 #include "engine/scene/mesh_ops.hpp"
 #include "engine/scene/primitives.hpp"
+#include "engine/scene/spin.hpp"
 
 namespace lp {
 namespace fs = std::filesystem;
@@ -202,7 +203,7 @@ CameraPath parseCameraPath(const Reader& r, const json& j, const std::string& w)
 
 void parseModel(const Reader& r, const json& j, const std::string& w, const fs::path& base, ModelInstance& m) {
     r.onlyKnown(j, w, {"name", "obj", "gltf", "primitive", "translate", "rotate", "scale", "up", "material", "materialVariant",
-                       "lightShadows"});
+                       "lightShadows", "spin"});
     m.name = r.string(j, "name", w);
     std::string obj = r.string(j, "obj", w);
     std::string gltf = r.string(j, "gltf", w);
@@ -227,6 +228,13 @@ void parseModel(const Reader& r, const json& j, const std::string& w, const fs::
     if (j.contains("lightShadows")) {
         if (gltf.empty()) r.fail(w + ".lightShadows", "only a glTF model has lights (KHR_lights_punctual)");
         m.lightShadows = r.boolean(j, "lightShadows", w, false);
+    }
+    if (j.contains("spin")) {
+        const std::string sw = w + ".spin";
+        r.onlyKnown(j["spin"], sw, {"axis", "speed"});
+        m.spinAxis = r.unit(r.vec3(j["spin"], "axis", sw, glm::vec3(0.0f, 1.0f, 0.0f)), sw + ".axis");
+        m.spinSpeed = r.bounded(j["spin"], "speed", sw, 0.5f, -1e3f, 1e3f);
+        if (m.spinSpeed == 0.0f) m.spinAxis.reset();  // a spin of speed 0 stands still
     }
     if (m.name.empty()) m.name = !obj.empty() ? fs::path(obj).stem().string() : !gltf.empty() ? fs::path(gltf).stem().string() : m.primitive;
     glm::vec3 t = r.point(j, "translate", w, glm::vec3(0.0f));
@@ -405,6 +413,11 @@ void loadMesh(const Reader& r, ModelInstance& m, const std::string& where, Scene
         } catch (const Error& e) {  // "<scene>: models[i].obj: <obj>: <what>"
             r.fail(where + ".obj", e.what());
         }
+    }
+    if (m.spinAxis) {
+        if (m.animation) r.fail(where + ".spin", m.gltf.filename().string() + " has animations of its own; a model spins or plays them");
+        m.animation = std::make_shared<const NodeAnimation>(spinAnimation(m.mesh, *m.spinAxis, m.spinSpeed));
+        m.playingClips = {0};
     }
     for (auto& mat : m.mesh.materials) {
         if (m.diffuseOverride) {

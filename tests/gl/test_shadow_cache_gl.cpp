@@ -16,6 +16,7 @@
 #include "engine/graph/texture_pool.hpp"
 #include "engine/render/scene_gpu.hpp"
 #include "engine/scene/primitives.hpp"
+#include "engine/scene/spin.hpp"
 #include "frame/frame_builder.hpp"
 #include "frame/renderer.hpp"
 #include "passes/shadow_map_pass.hpp"
@@ -227,6 +228,32 @@ TEST(ShadowCache, ATurningSunRedrawsEveryFrame) {
         expectSameTiles(kept, redrawnTiles(scene, gpu, settings, t), "turning sun at t = " + std::to_string(t));
     }
     drawTiles(scene, gpu, settings, state, pool, &notes, 0.5f);
+    EXPECT_EQ(countNotes(notes, "kept (unchanged)"), notes.size()) << "the same time again: " << notes[0];
+}
+
+// A spinning caster ("spin"): its cascades are redrawn each frame it turns, equal to a fresh redraw.
+TEST(ShadowCache, ASpinningCasterRedrawsTheCascadesItCrosses) {
+    Scene scene = castersOnAFloor();
+    ModelInstance& spinner = scene.models[2];
+    spinner.animation = std::make_shared<const NodeAnimation>(spinAnimation(spinner.mesh, glm::vec3(0, 1, 0), 0.7f));
+    spinner.playingClips = {0};
+    SceneGpu gpu(scene);
+    const RenderSettings settings = smallCascades(ShadowSettings::Raster::Plain);
+    ShadowMapPass state;
+    fg::TexturePool pool;
+    std::vector<std::string> notes;
+    gpu.pose(scene, 0.0, 0.0, settings.skinning);  // what the renderer does before each frame's graph
+    drawTiles(scene, gpu, settings, state, pool, &notes, 0.0f);
+    float previous = 0.0f;
+    for (float t : {0.1f, 0.3f}) {
+        gpu.pose(scene, t, previous, settings.skinning);
+        previous = t;
+        const Tiles kept = drawTiles(scene, gpu, settings, state, pool, &notes, t);
+        EXPECT_GT(countNotes(notes, "redrawn (casters changed)"), 0u) << "t = " << t << ": " << notes[0];
+        expectSameTiles(kept, redrawnTiles(scene, gpu, settings, t), "spinning caster at t = " + std::to_string(t));
+    }
+    gpu.pose(scene, 0.3, 0.3, settings.skinning);
+    drawTiles(scene, gpu, settings, state, pool, &notes, 0.3f);
     EXPECT_EQ(countNotes(notes, "kept (unchanged)"), notes.size()) << "the same time again: " << notes[0];
 }
 
