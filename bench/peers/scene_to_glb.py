@@ -1,8 +1,10 @@
 #!/usr/bin/env python3
 """Converts a lightpass scene file into what a peer renderer (Filament through filly) loads:
 
-  OUTDIR/NAME.glb             the scene's triangles: one node per model (its transform as the node
-                              matrix), one primitive per material, and the camera as a glTF camera node
+  OUTDIR/NAME.glb             the scene's triangles: one mesh per model and one node per model or
+                              per instance of it (models[].instances; its transform as the node
+                              matrix), one primitive per material, and the camera as a glTF camera node.
+                              Motion ("spin", a sun's "turn") is not converted: the peer draws time 0
   OUTDIR/NAME.peer.json       the rest for the peer: camera, suns, point lights, environment map
                               (a Radiance .hdr), triangle count and world bounds, the material mapping
   OUTDIR/NAME.lightpass.json  the same scene for lightpass with the same light subset and map, so
@@ -667,16 +669,21 @@ def convert(scene_path, out_dir, name=None, suns=None, points=None, log=print):
             mesh = load_model_mesh(model, base, where, warnings)
         except ConvertError as e:
             raise ConvertError(f"{scene_path}: {where}: {e}")
+        # models[].instances: the mesh once, a node per instance (its placement after the model's own).
         xform = model_matrix(model)
-        world = (np.c_[mesh.positions.astype(np.float64), np.ones(len(mesh.positions))] @ xform.T)[:, :3]
+        instances = model.get("instances")
+        xforms = [model_matrix(p) @ xform for p in instances] if instances else [xform]
         used = np.unique(mesh.triangles)
-        lo, hi = np.minimum(lo, world[used].min(axis=0)), np.maximum(hi, world[used].max(axis=0))
+        homogeneous = np.c_[mesh.positions[used].astype(np.float64), np.ones(len(used))]
+        for x in xforms:
+            world = (homogeneous @ x.T)[:, :3]
+            lo, hi = np.minimum(lo, world.min(axis=0)), np.maximum(hi, world.max(axis=0))
         pos_acc = glb.accessor(mesh.positions, "VEC3", 34962, with_bounds=True)
         nrm_acc = glb.accessor(mesh.normals.astype(np.float32), "VEC3", 34962)
         primitives = []
         for mat_id in sorted(set(int(x) for x in mesh.triangle_material)):
             tris = mesh.triangles[mesh.triangle_material == mat_id].astype(np.uint32).reshape(-1)
-            triangles += len(tris) // 3
+            triangles += len(tris) // 3 * len(xforms)
             gm, record = gltf_material(mesh.materials[mat_id])
             gm["name"] = f"{model.get('name', where)}/{gm['name']}"
             record["name"] = gm["name"]
@@ -686,9 +693,11 @@ def convert(scene_path, out_dir, name=None, suns=None, points=None, log=print):
                                "indices": glb.accessor(tris, "SCALAR", 34963), "mode": 4,
                                "material": len(glb.gltf["materials"]) - 1})
         glb.gltf["meshes"].append({"name": model.get("name", where), "primitives": primitives})
-        glb.gltf["nodes"].append({"name": model.get("name", where), "mesh": len(glb.gltf["meshes"]) - 1,
-                                  "matrix": [float(x) for x in xform.T.reshape(-1)]})  # column-major
-        glb.gltf["scenes"][0]["nodes"].append(len(glb.gltf["nodes"]) - 1)
+        for k, x in enumerate(xforms):
+            node_name = model.get("name", where) + (f"[{k}]" if instances else "")
+            glb.gltf["nodes"].append({"name": node_name, "mesh": len(glb.gltf["meshes"]) - 1,
+                                      "matrix": [float(v) for v in x.T.reshape(-1)]})  # column-major
+            glb.gltf["scenes"][0]["nodes"].append(len(glb.gltf["nodes"]) - 1)
     if triangles == 0:
         raise ConvertError(f"{scene_path}: models: no triangles to convert")
     exts = sorted({e for m in glb.gltf["materials"] for e in m.get("extensions", {})})

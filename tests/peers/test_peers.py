@@ -118,6 +118,25 @@ class Converter(unittest.TestCase):
         self.assertEqual(m[12:15], [1.5, 2.0, 6.0])
         self.assertAlmostEqual(gltf["cameras"][0]["perspective"]["yfov"], 50 * 3.141592653589793 / 180, places=12)
 
+    def test_instances_are_one_mesh_and_a_node_each(self):
+        scene = {"camera": {"position": [0, 2, 6], "target": [0, 0, 0]},
+                 "models": [{"name": "balls", "primitive": "sphere", "scale": 0.5, "translate": [0, 1, 0],
+                             "instances": [{"translate": [-2, 0, 0]}, {"translate": [2, 0, 0], "scale": 2}]}]}
+        path = os.path.join(self.out, "instanced.json")
+        with open(path, "w") as f:
+            json.dump(scene, f)
+        side = self.convert(path)
+        gltf, _ = read_glb(os.path.join(self.out, "instanced.glb"))
+        self.assertEqual(len(gltf["meshes"]), 1)
+        meshes = [n for n in gltf["nodes"] if "mesh" in n]
+        self.assertEqual([n["mesh"] for n in meshes], [0, 0])
+        # Each node: the instance's placement after the model's own (column-major matrices).
+        self.assertEqual([n["matrix"][12:15] for n in meshes], [[-2, 1, 0], [2, 2, 0]])
+        self.assertEqual(meshes[1]["matrix"][0], 1.0)  # 0.5 x 2
+        one_copy = sum(gltf["accessors"][prim["indices"]]["count"] // 3 for prim in gltf["meshes"][0]["primitives"])
+        self.assertEqual(side["triangles"], 2 * one_copy)
+        self.assertAlmostEqual(side["bounds"][1][0], 2.5, places=5)
+
     def test_sidecar_and_matched_scene_keep_the_chosen_lights(self):
         side = self.convert(os.path.join(DATA, "small.json"), suns=1, points=1)
         self.assertEqual(len(side["suns"]), 1)
