@@ -198,7 +198,11 @@ FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const Fr
         for (const char* pass : {"gbuffer", "gbuffer_resolve"}) graph.notePass(pass, coat);
     }
     // one depth pass per shadow-casting directional light; global_lights and the shadowmap view read them.
+    if (const std::string why = sunShadowSkipReason(frame); !why.empty()) graph.skipPass("shadow_map", why);
     const ShadowMaps shadowMaps = addShadowMapPasses(graph, passes.shadowMaps, frame);
+    for (const LightShadowMap& map : shadowMaps)
+        if (!map.droppedCascades.empty())
+            graph.skipPass("shadow_map_" + std::to_string(map.light) + " cascades", map.droppedCascades);
     // Occlusion of the indirect light (ambient, IBL); the light passes read it, the ao view shows it.
     const std::string aoSkip = ambientOcclusionSkipReason(frame, iblAdded);
     fg::ResourceId ao;
@@ -217,8 +221,10 @@ FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const Fr
     LocalShadowMaps localShadows;
     LocalLightRecords lightRecords;  // uploaded once a frame by the first pass that shades the lights
     if (localSkip.empty()) {
+        if (const std::string why = spotShadowSkipReason(frame); !why.empty()) graph.skipPass("spot_shadows", why);
+        if (const std::string why = pointShadowSkipReason(frame); !why.empty()) graph.skipPass("point_shadows", why);
         localShadows.spot = addSpotShadowPass(graph, passes.spotShadows, frame);
-        localShadows.point = addPointShadowPass(graph, passes.pointShadows, frame);
+        localShadows.point = addPointShadowPass(graph, passes.pointShadows, frame);  // lets a kept atlas go if asked
         lightRecords = importLocalLightRecords(graph, passes.localLights, frame, localShadows);
         forwardLighting.localLights = true;
         forwardLighting.localShadows = localShadows;
@@ -259,7 +265,9 @@ FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const Fr
     // Motion blur on the HDR buffer, before bloom and the tone map.
     if (motionBlurSkip.empty()) hdr = addMotionBlurPasses(graph, passes.motionBlur, frame, gbuffer, hdr);
     else graph.skipPass("motion_blur", motionBlurSkip);
-    hdr = addPostPasses(graph, passes.post, frame, gbuffer, hdr);  // bloom, toon (not in the lighting view)
+    const PostResult post = addPostPasses(graph, passes.post, frame, gbuffer, hdr);  // bloom, toon (not in the lighting view)
+    for (const auto& [pass, why] : post.skipped) graph.skipPass(pass, why);
+    hdr = post.hdr;
     if (scaled && !supersampling) hdr = addUpscalePass(graph, passes.upscale, frame, hdr, UpscaleInput::Hdr);
     else graph.skipPass("upscale", supersampling ? "--aa ssaa: the frame is rendered above the output size"
                                                 : "render scale 1: the frame is rendered at the output size");

@@ -188,10 +188,7 @@ BloomResult addBloomPass(fg::FrameGraph& graph, BloomPass& state, PostBackend& b
                 (void)data, (void)res, (void)frame, (void)params, (void)fuse;
 #endif
             });
-        if (fuse) {
-            graph.skipPass("bloom_composite", "fused into the CUDA bloom pass");
-            return {made->hdr, made->bloom};
-        }
+        if (fuse) return {made->hdr, made->bloom, true};
     } else {
         const BloomScratchDescs scratch = bloomScratchDescs(params, frame.width, frame.height);
         const bool separable = params.method == post::BloomMethod::Separable;

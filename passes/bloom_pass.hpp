@@ -22,6 +22,7 @@ struct BloomPass {
 struct BloomResult {
     fg::ResourceId hdr;    // after the composite (unchanged when `composite` is false)
     fg::ResourceId bloom;  // the bloom buffer alone (RGBA16F, before strength)
+    bool fusedComposite = false;  // the CUDA bloom pass also composites: no bloom_composite pass
 };
 
 // `cuda.bloom` / `cuda.composite`: the post backend chose CUDA for that step. `fuse` (both in CUDA

@@ -108,6 +108,14 @@ struct CubeWork {
 };
 }  // namespace
 
+std::string pointShadowSkipReason(const FrameData& frame) {
+    const std::shared_ptr<const std::vector<PointLight>> lights = frameLocalLights(frame);
+    if (std::none_of(lights->begin(), lights->end(), [](const PointLight& l) { return !l.spot && l.castsShadow; }))
+        return "no point light casts a shadow (castsShadow, or a glTF model's \"lightShadows\")";
+    if (!frame.settings->shadows.enabled) return "shadows are off (--no-shadows)";
+    return "";
+}
+
 PointShadowMaps addPointShadowPass(fg::FrameGraph& graph, PointShadowPass& state, const FrameData& frame) {
     PointShadowMaps maps;
     const RenderSettings& s = *frame.settings;
@@ -121,14 +129,7 @@ PointShadowMaps addPointShadowPass(fg::FrameGraph& graph, PointShadowPass& state
         state.width = state.height = 0;
         state.rows.clear();
     }
-    if (casting == 0) {
-        graph.skipPass("point_shadows", "no point light casts a shadow (castsShadow, or a glTF model's \"lightShadows\")");
-        return maps;
-    }
-    if (!s.shadows.enabled) {
-        graph.skipPass("point_shadows", "shadows are off (--no-shadows)");
-        return maps;
-    }
+    if (!pointShadowSkipReason(frame).empty()) return maps;
     for (size_t i = 0; i < lights.size() && int(maps.light.size()) < kMaxPointShadows; ++i)
         if (!lights[i].spot && lights[i].castsShadow) maps.light.push_back(int(i));
     const int n = int(maps.light.size());

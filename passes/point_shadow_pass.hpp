@@ -94,6 +94,9 @@ struct PointShadowMaps {
     bool any() const { return !light.empty(); }
 };
 
+// Why the frame has no point_shadows pass ("": it has one); the frame builder records it.
+std::string pointShadowSkipReason(const FrameData& frame);
+// Adds the pass; with --shadow-cache off it first lets the kept atlas go, even on a frame without it.
 PointShadowMaps addPointShadowPass(fg::FrameGraph& graph, PointShadowPass& state, const FrameData& frame);
 
 }  // namespace lp

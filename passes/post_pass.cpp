@@ -184,8 +184,9 @@ PostBackendChoice postBackendChoice(PostPasses& state, const FrameData& frame, c
 #endif
 }
 
-fg::ResourceId addPostPasses(fg::FrameGraph& graph, PostPasses& state, const FrameData& frame, const GBuffer& gbuffer,
-                             fg::ResourceId hdr) {
+PostResult addPostPasses(fg::FrameGraph& graph, PostPasses& state, const FrameData& frame, const GBuffer& gbuffer,
+                         fg::ResourceId hdr) {
+    PostResult out{hdr, {}};
     post::PostConfig config = post::resolvePostConfig(frame.scene->effects, frame.settings->post, frame.farPlane);
     if (frame.settings->allPasses && !config.bloom) {  // measuring: the bloom work, added at strength 0
         config.bloom = true;
@@ -194,25 +195,29 @@ fg::ResourceId addPostPasses(fg::FrameGraph& graph, PostPasses& state, const Fra
     config.bloomParams.kernel = post::bloomKernelAtRenderSize(config.bloomParams.kernel, frame.width, frame.outputWidth);
     ++state.backend.frameIndex;  // every built frame, so CUDA registrations age even when culled
     // light alone, or one of its terms: no post effects
-    if (frame.settings->view == DebugView::Lighting || isShadingTermView(frame.settings->view)) return hdr;
+    if (frame.settings->view == DebugView::Lighting || isShadingTermView(frame.settings->view)) return out;
     const PostBackendChoice cuda = postBackendChoice(state, frame, config);
     if (config.bloom) {
         // CUDA fuses the composite into bloom's last kernel when both run in CUDA, unless the bloom
         // view shows the bloom alone or the user switched bloom_composite off on its own.
         const bool fuse = !config.bloomOnly && !frame.settings->disabledPasses.count("bloom_composite");
         BloomResult bloom = addBloomPass(graph, state.bloom, state.backend, cuda, fuse, frame, config, hdr);
-        if (config.bloomOnly) return bloom.bloom;
-        hdr = bloom.hdr;
+        if (bloom.fusedComposite) out.skipped.emplace_back("bloom_composite", "fused into the CUDA bloom pass");
+        if (config.bloomOnly) {
+            out.hdr = bloom.bloom;
+            return out;
+        }
+        out.hdr = bloom.hdr;
     } else {
-        graph.skipPass("bloom", frame.settings->post.bloom ? "switched off (--no-bloom)"
-                                                           : "off in the scene (effects.bloom.enabled) and no --bloom");
+        out.skipped.emplace_back("bloom", frame.settings->post.bloom ? "switched off (--no-bloom)"
+                                                                     : "off in the scene (effects.bloom.enabled) and no --bloom");
     }
     if (config.toon)
-        hdr = addToonPass(graph, state.toon, state.backend, cuda.toon, frame, config, gbuffer, hdr);
+        out.hdr = addToonPass(graph, state.toon, state.backend, cuda.toon, frame, config, gbuffer, out.hdr);
     else
-        graph.skipPass("toon", frame.settings->post.toon ? "switched off (--no-toon)"
-                                                         : "off in the scene (effects.toon.enabled) and no --toon");
-    return hdr;
+        out.skipped.emplace_back("toon", frame.settings->post.toon ? "switched off (--no-toon)"
+                                                                   : "off in the scene (effects.toon.enabled) and no --toon");
+    return out;
 }
 
 }  // namespace lp

@@ -16,11 +16,17 @@ struct PostPasses {
     ToonPass toon;
 };
 
-// Returns the HDR buffer for the tone map: hdr after bloom and toon, or the bloom buffer alone
-// when settings.post.bloomOnly (the bloom view). Called for every frame (it counts frames for the
-// CUDA registrations); adds nothing in the lighting view.
-fg::ResourceId addPostPasses(fg::FrameGraph& graph, PostPasses& state, const FrameData& frame, const GBuffer& gbuffer,
-                             fg::ResourceId hdr);
+struct PostResult {
+    // The HDR buffer for the tone map: hdr after bloom and toon, or the bloom buffer alone when
+    // settings.post.bloomOnly (the bloom view).
+    fg::ResourceId hdr;
+    // The post passes not added and why (bloom, toon, bloom_composite): the frame builder records them.
+    std::vector<std::pair<std::string, std::string>> skipped;
+};
+
+// Called for every frame (it counts frames for the CUDA registrations); adds nothing in the lighting view.
+PostResult addPostPasses(fg::FrameGraph& graph, PostPasses& state, const FrameData& frame, const GBuffer& gbuffer,
+                         fg::ResourceId hdr);
 
 // Per effect, whether it runs in CUDA this frame: decided before the passes are added, so the graph
 // knows each pass's kind and what it touches. `auto` measures both backends at this size and kernel

@@ -729,17 +729,28 @@ struct PendingWork {
 };
 }  // namespace
 
+namespace {
+// The suns that cast shadows this frame (every sun with --all-passes).
+int castingSuns(const FrameData& frame) {
+    int casting = 0;
+    for (const auto& l : frameDirectionalLights(frame)) casting += (l.castsShadows || frame.settings->allPasses) ? 1 : 0;
+    return casting;
+}
+}  // namespace
+
+std::string sunShadowSkipReason(const FrameData& frame) {
+    const int casting = castingSuns(frame);
+    if (casting == 0) return "no directional light casts shadows";
+    if (!frame.settings->shadows.enabled) return "shadows are off (--no-shadows)";
+    if (casting > kMaxShadowedLights)
+        return std::to_string(casting - kMaxShadowedLights) + " shadow-casting lights past the first " +
+               std::to_string(kMaxShadowedLights) + " are unshadowed";
+    return "";
+}
+
 ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const FrameData& frame) {
     ShadowMaps maps;
-    // Say why a frame has no (or fewer) shadow passes: 'lightpass graph' and the viewer show it.
-    const auto& lights = frameDirectionalLights(frame);
-    int casting = 0;
-    for (const auto& l : lights) casting += (l.castsShadows || frame.settings->allPasses) ? 1 : 0;
-    if (casting == 0) graph.skipPass("shadow_map", "no directional light casts shadows");
-    else if (!frame.settings->shadows.enabled) graph.skipPass("shadow_map", "shadows are off (--no-shadows)");
-    else if (casting > kMaxShadowedLights)
-        graph.skipPass("shadow_map", std::to_string(casting - kMaxShadowedLights) + " shadow-casting lights past the first " +
-                                         std::to_string(kMaxShadowedLights) + " are unshadowed");
+    const int casting = castingSuns(frame);
     // Caster clusters: made once at load with the GPU meshes; 'lightpass graph' (no GPU) makes them here.
     std::vector<CasterCluster> localClusters;
     if (!frame.gpu && frame.settings->shadows.enabled && casting > 0) localClusters = buildCasterClusters(*frame.scene);
@@ -779,8 +790,7 @@ ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const
         ShadowFrustum& fr = map.frustum;
         const std::string name = "shadow_map_" + std::to_string(light);
         // A small scene needs fewer cascades than asked for: say which were dropped and why.
-        if (const std::string why = droppedCascadesReason(fr, frame.settings->shadows.cascades); !why.empty())
-            graph.skipPass(name + " cascades", why);
+        map.droppedCascades = droppedCascadesReason(fr, frame.settings->shadows.cascades);
         const fg::TextureDesc desc{fr.tileSize * fr.columns, fr.tileSize * fr.rows, GL_DEPTH_COMPONENT32F};
         // --shadow-cache: which tiles the kept atlas already holds (None: kept).
         std::vector<ShadowTileKey> keys = shadowTileKeys(fr, frame.settings->shadows, knownRaster, state.hardwareConservative);

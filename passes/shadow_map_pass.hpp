@@ -284,9 +284,15 @@ struct LightShadowMap {
     fg::ResourceId depth;    // the atlas
     ShadowFrustum frustum;   // cascades, matrices, tile layout
     const bool* marked = nullptr;  // ShadowMapPass::atlasMarked, known once the pass has run this frame
+    // Why the light has fewer cascades than --shadow-cascades asks for ("": all of them); the frame
+    // builder records it as the skip "shadow_map_<light> cascades".
+    std::string droppedCascades;
 };
 using ShadowMaps = std::vector<LightShadowMap>;
 
+// Why the frame has no sun shadow pass, or fewer than its shadow-casting suns ("": one a sun); the
+// frame builder records it for "shadow_map".
+std::string sunShadowSkipReason(const FrameData& frame);
 ShadowMaps addShadowMapPasses(fg::FrameGraph& graph, ShadowMapPass& state, const FrameData& frame);
 
 // Draws the opaque draws of a caster list (engine/render/shadow_casters.hpp) with `prog` (bound),

@@ -24,21 +24,21 @@ struct Data {
 };
 }  // namespace
 
+std::string spotShadowSkipReason(const FrameData& frame) {
+    const std::shared_ptr<const std::vector<PointLight>> lights = frameLocalLights(frame);
+    if (std::none_of(lights->begin(), lights->end(), [](const PointLight& l) { return l.spot && l.castsShadow; }))
+        return "no spot light casts a shadow";
+    if (!frame.settings->shadows.enabled) return "shadows are off (--no-shadows)";
+    return "";
+}
+
 SpotShadowMaps addSpotShadowPass(fg::FrameGraph& graph, SpotShadowPass& state, const FrameData& frame) {
     SpotShadowMaps maps;
     const RenderSettings& s = *frame.settings;
     const std::shared_ptr<const std::vector<PointLight>> frameLights = frameLocalLights(frame);
     const std::vector<PointLight>& lights = *frameLights;
-    int casting = 0;
-    for (const auto& l : lights) casting += (l.spot && l.castsShadow) ? 1 : 0;
-    if (casting == 0) {
-        graph.skipPass("spot_shadows", "no spot light casts a shadow");
-        return maps;
-    }
-    if (!s.shadows.enabled) {
-        graph.skipPass("spot_shadows", "shadows are off (--no-shadows)");
-        return maps;
-    }
+    if (!spotShadowSkipReason(frame).empty()) return maps;
+    const int casting = int(std::count_if(lights.begin(), lights.end(), [](const PointLight& l) { return l.spot && l.castsShadow; }));
     for (size_t i = 0; i < lights.size() && int(maps.light.size()) < kMaxSpotShadows; ++i) {
         const PointLight& l = lights[i];
         if (!l.spot || !l.castsShadow) continue;

@@ -33,6 +33,8 @@ struct SpotShadowMaps {
     bool any() const { return !light.empty(); }
 };
 
+// Why the frame has no spot_shadows pass ("": it has one); the frame builder records it.
+std::string spotShadowSkipReason(const FrameData& frame);
 SpotShadowMaps addSpotShadowPass(fg::FrameGraph& graph, SpotShadowPass& state, const FrameData& frame);
 
 }  // namespace lp

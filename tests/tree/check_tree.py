@@ -8,6 +8,10 @@
       Fails unless every file under bench/results is reachable from bench/results/README.md: each
       result is a folder bench/results/<topic>/<date>_<what>/ whose README.md the index links, and
       every other file in that folder is named in its README.
+  check_tree.py skips-in-frame-builder SOURCE_DIR
+      Fails when product code other than the frame builder (frame/frame_builder.cpp) records a skipped
+      pass (FrameGraph::skipPass): a feature says why it would not run (its ...SkipReason function
+      or a result field) and the builder alone records it, so every skip decision is in one place.
 
 Outside a git checkout (a source tarball) both say so and exit 77, which CTest reports as skipped.
 """
@@ -123,8 +127,37 @@ def results_index(root, files):
     return 0
 
 
+SKIP_CALL = re.compile(r"\bskipPass\s*\(")
+SKIP_ALLOWED = {"frame/frame_builder.cpp", "engine/graph/frame_graph.hpp", "engine/graph/frame_graph.cpp"}
+PRODUCT_SOURCE = re.compile(r"^(app|engine|frame|passes|cuda)/.*\.(cpp|hpp|cu|cuh)$")
+
+
+def skips_in_frame_builder(root, files):
+    hits = []
+    for rel in files:
+        if not PRODUCT_SOURCE.match(rel) or rel in SKIP_ALLOWED:
+            continue
+        try:
+            text = open(os.path.join(root, rel), encoding="utf-8", errors="replace").read()
+        except OSError:
+            continue
+        for number, line in enumerate(text.split("\n"), 1):
+            if SKIP_CALL.search(line.split("//")[0]):
+                hits.append(f"{rel}:{number}: records a skipped pass outside the frame builder: {line.strip()}")
+    for hit in hits:
+        print(hit)
+    if hits:
+        print(f"{len(hits)} skip(s) recorded outside frame/frame_builder.cpp; return the reason and let the builder record it")
+        return 1
+    print("every skipped pass is recorded by frame/frame_builder.cpp")
+    return 0
+
+
+MODES = {"session-names": session_names, "results-index": results_index, "skips-in-frame-builder": skips_in_frame_builder}
+
+
 def main(argv):
-    if len(argv) != 3 or argv[1] not in ("session-names", "results-index"):
+    if len(argv) != 3 or argv[1] not in MODES:
         print(__doc__)
         return 2
     root = argv[2]
@@ -132,7 +165,7 @@ def main(argv):
     if files is None:
         print(f"skipped: {root} is not a git checkout (git ls-files failed), so there is no list of tracked files")
         return SKIP
-    return session_names(root, files) if argv[1] == "session-names" else results_index(root, files)
+    return MODES[argv[1]](root, files)
 
 
 if __name__ == "__main__":
