@@ -48,7 +48,8 @@ std::string formatNumber(double v) {
 // KHR_texture_basisu is not among them: its KTX2 images have no Debian decoder.
 const std::set<std::string> kSupportedExtensions = {"EXT_meshopt_compression", "KHR_draco_mesh_compression", "KHR_lights_punctual",
                                                      "KHR_materials_clearcoat", "KHR_materials_emissive_strength", "KHR_materials_ior", "KHR_materials_specular",
-                                                     "KHR_materials_unlit", "KHR_materials_variants",
+                                                     "KHR_materials_transmission", "KHR_materials_unlit", "KHR_materials_variants",
+                                                     "KHR_materials_volume",
                                                      "KHR_mesh_quantization", "KHR_texture_transform"};
 constexpr size_t kMaxElements = kMaxGltfElements;  // accessor count limit: 268M elements
 constexpr size_t kMaxNodeDepth = 1024;                        // levels of the node hierarchy
@@ -576,6 +577,8 @@ struct Loader {
         const ExtensionTexture coat = extensionTexture(m, "KHR_materials_clearcoat", "clearcoatTexture");
         const ExtensionTexture coatRoughness = extensionTexture(m, "KHR_materials_clearcoat", "clearcoatRoughnessTexture");
         const ExtensionTexture coatNormal = extensionTexture(m, "KHR_materials_clearcoat", "clearcoatNormalTexture");
+        const ExtensionTexture transmission = extensionTexture(m, "KHR_materials_transmission", "transmissionTexture");
+        const ExtensionTexture thickness = extensionTexture(m, "KHR_materials_volume", "thicknessTexture");
         const Slot textures[] = {
             {"pbrMetallicRoughness.baseColorTexture", pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, &pbr.baseColorTexture.extensions},
             {"pbrMetallicRoughness.metallicRoughnessTexture", pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
@@ -590,7 +593,10 @@ struct Loader {
             {"extensions.KHR_materials_clearcoat.clearcoatRoughnessTexture", coatRoughness.index, coatRoughness.texCoord,
              &coatRoughness.extensions},
             {"extensions.KHR_materials_clearcoat.clearcoatNormalTexture", coatNormal.index, coatNormal.texCoord,
-             &coatNormal.extensions}};
+             &coatNormal.extensions},
+            {"extensions.KHR_materials_transmission.transmissionTexture", transmission.index, transmission.texCoord,
+             &transmission.extensions},
+            {"extensions.KHR_materials_volume.thicknessTexture", thickness.index, thickness.texCoord, &thickness.extensions}};
         MaterialUvSets out;
         if (m.normalTexture.index >= 0) out.normalSet = uvSetOf(m.normalTexture.texCoord, m.normalTexture.extensions);
         // The clearcoat's normal map shares the base's tangent space (the extension asks both to use the
@@ -666,10 +672,46 @@ struct Loader {
                 const double e = m.emissiveFactor[size_t(c)];
                 out.emission[c] = std::isfinite(e) ? float(std::clamp(e, 0.0, 1.0)) * strength : 0.0f;
             }
-        // KHR_materials_ior: the dielectric F0 of the index, ((ior - 1) / (ior + 1))^2 (1.5: the default 0.04).
+        // KHR_materials_ior: the dielectric F0 of the index, ((ior - 1) / (ior + 1))^2 (1.5: the default 0.04),
+        // and the refracted ray's bend (Material::ior; 0, the specular-glossiness conversion, bends none).
         if (auto ior = m.extensions.find("KHR_materials_ior"); ior != m.extensions.end() && ior->second.Has("ior")) {
             const double n = ior->second.Get("ior").GetNumberAsDouble();
             out.specular = glm::vec3(float(((n - 1.0) / (n + 1.0)) * ((n - 1.0) / (n + 1.0))));
+            out.ior = std::isfinite(n) ? float(std::max(n, 1.0)) : 1.5f;
+        }
+        // KHR_materials_transmission: transmissionFactor x transmissionTexture.r of the dielectric base
+        // refracts (Material::transmission); KHR_materials_volume: the volume under it, thicknessFactor x
+        // thicknessTexture.g thick (model space; 0, the default, thin-walled), absorbing as
+        // attenuationColor^(d / attenuationDistance) (default +inf: none). The schema refused values
+        // outside the extensions' ranges; the clamps only keep the promise.
+        auto number = [](const tinygltf::Value& v, const char* key, double fallback) {
+            if (!v.Has(key) || !v.Get(key).IsNumber()) return fallback;
+            const double x = v.Get(key).GetNumberAsDouble();
+            return std::isfinite(x) ? x : fallback;
+        };
+        if (auto tr = m.extensions.find("KHR_materials_transmission"); tr != m.extensions.end()) {
+            out.transmission = float(std::clamp(number(tr->second, "transmissionFactor", 0.0), 0.0, 1.0));
+            const ExtensionTexture map = extensionTexture(m, "KHR_materials_transmission", "transmissionTexture");
+            if (out.transmission > 0.0f)
+                out.transmissionMap = texture(map.index, map.texCoord, map.extensions,
+                                              w + ".extensions.KHR_materials_transmission.transmissionTexture");
+        }
+        if (auto vol = m.extensions.find("KHR_materials_volume"); vol != m.extensions.end()) {
+            const tinygltf::Value& v = vol->second;
+            out.thickness = float(std::max(number(v, "thicknessFactor", 0.0), 0.0));
+            const double distance = v.Has("attenuationDistance") && v.Get("attenuationDistance").IsNumber()
+                                        ? v.Get("attenuationDistance").GetNumberAsDouble()
+                                        : std::numeric_limits<double>::infinity();
+            out.attenuationDistance = distance > 0.0 ? float(distance) : std::numeric_limits<float>::infinity();
+            if (v.Has("attenuationColor") && v.Get("attenuationColor").IsArray() && v.Get("attenuationColor").ArrayLen() == 3)
+                for (int c = 0; c < 3; ++c) {
+                    const double x = v.Get("attenuationColor").Get(c).GetNumberAsDouble();
+                    out.attenuationColor[c] = std::isfinite(x) ? float(std::clamp(x, 0.0, 1.0)) : 1.0f;
+                }
+            const ExtensionTexture map = extensionTexture(m, "KHR_materials_volume", "thicknessTexture");
+            if (out.transmission > 0.0f && out.thickness > 0.0f)
+                out.thicknessMap =
+                    texture(map.index, map.texCoord, map.extensions, w + ".extensions.KHR_materials_volume.thicknessTexture");
         }
         // KHR_materials_specular: the dielectric's F0 = min(F0_ior x specularColor, 1) x specular and its
         // f90 = specular, given (shaders/common/brdf.glsl's materialFresnelEnds), each factor times its

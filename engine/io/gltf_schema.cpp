@@ -269,6 +269,26 @@ public:
                 textureInfo(*c, "clearcoatRoughnessTexture", cw);
                 textureInfo(*c, "clearcoatNormalTexture", cw, "scale");
             }
+            if (const json* t = object(*ext, "KHR_materials_transmission", ew)) {
+                const std::string tw = join(ew, "KHR_materials_transmission");
+                if (const json* f = number(*t, "transmissionFactor", tw))
+                    if (!(f->get<double>() >= 0.0 && f->get<double>() <= 1.0))
+                        error(join(tw, "transmissionFactor"), numberText(*f) + " must be in [0, 1]");
+                textureInfo(*t, "transmissionTexture", tw);
+            }
+            if (const json* v = object(*ext, "KHR_materials_volume", ew)) {
+                const std::string vw = join(ew, "KHR_materials_volume");
+                if (const json* f = number(*v, "thicknessFactor", vw))
+                    if (f->get<double>() < 0.0) error(join(vw, "thicknessFactor"), numberText(*f) + " must be >= 0");
+                textureInfo(*v, "thicknessTexture", vw);
+                if (const json* d = number(*v, "attenuationDistance", vw))
+                    if (!(d->get<double>() > 0.0))
+                        error(join(vw, "attenuationDistance"), numberText(*d) + " must be > 0 (leave it out for no absorption)");
+                if (const json* c = numbers(*v, "attenuationColor", vw, 3, 3))
+                    for (size_t i = 0; i < 3; ++i)
+                        if (!((*c)[i].get<double>() >= 0.0 && (*c)[i].get<double>() <= 1.0))
+                            error(item(join(vw, "attenuationColor"), i), numberText((*c)[i]) + " must be in [0, 1]");
+            }
             object(*ext, "KHR_materials_unlit", ew);
         }
     }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <tuple>
@@ -63,6 +64,31 @@ Material convertMaterial(const tinyobj::material_t& m, const fs::path& dir, cons
     // alpha-blended by the transparent pass.
     if (std::isfinite(m.dissolve)) out.opacity = std::clamp(float(m.dissolve), 0.0f, 1.0f);
     else bad.push_back("d");
+    // The refraction/glass illumination models (the MTL specification's illum 4, 6 and 7) map onto
+    // KHR_materials_transmission with the index Ni: 6 and 7 add the refracted light filtered by Tf
+    // ("(1 - Ks) Tf It"): transmission 1 and base colour Tf (Kd has no share left); 4 is glass whose
+    // dissolve d refracts: transmission 1 - d, base Kd. A transmissive material is not also blended.
+    // Its volume's thickness (MTL has none) is set by loadObj from the material's triangles.
+    const bool glass = m.illum == 4 || m.illum == 6 || m.illum == 7;
+    if (glass) {
+        const float transmission = m.illum == 4 ? 1.0f - out.opacity : 1.0f;
+        if (transmission > 0.0f) {
+            out.transmission = transmission;
+            if (m.illum != 4) out.diffuse = glm::min(colorOr(m.transmittance, glm::vec3(1.0f), "Tf", bad), glm::vec3(1.0f));
+            if (std::isfinite(m.ior) && m.ior >= 1.0f) {
+                out.ior = float(m.ior);
+            } else {
+                out.ior = 1.0f;
+                std::ostringstream ni;
+                ni << m.ior;
+                std::string msg = file + ": material " + quoteUserText(m.name) + ": Ni " + ni.str() +
+                                  " is below 1 (or not finite); its refraction bends no ray (Ni 1)";
+                report.warnings.push_back(msg);
+                logWarn(msg);
+            }
+            out.opacity = 1.0f;
+        }
+    }
     if (out.opacity < 1.0f) out.alphaMode = AlphaMode::Blend;
     if (!bad.empty()) {
         std::string list;
@@ -107,6 +133,23 @@ private:
 };
 
 }  // namespace
+
+void setObjTransmissionThickness(MeshData& mesh) {
+    for (size_t mat = 0; mat < mesh.materials.size(); ++mat) {
+        Material& material = mesh.materials[mat];
+        if (!material.transmissive()) continue;
+        glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+        for (const SubMesh& sm : mesh.subMeshes) {
+            if (size_t(sm.material) != mat) continue;
+            for (uint32_t i = sm.firstIndex; i < sm.firstIndex + sm.indexCount && i < mesh.indices.size(); ++i) {
+                lo = glm::min(lo, mesh.vertices[mesh.indices[i]].position);
+                hi = glm::max(hi, mesh.vertices[mesh.indices[i]].position);
+            }
+        }
+        const glm::vec3 extent = hi - lo;
+        material.thickness = lo.x <= hi.x ? std::max(std::min({extent.x, extent.y, extent.z}), 0.0f) : 0.0f;
+    }
+}
 
 MeshData loadObj(const fs::path& path, MeshLoadReport* reportOut) {
     MeshLoadReport report;
@@ -278,6 +321,7 @@ MeshData loadObj(const fs::path& path, MeshLoadReport* reportOut) {
         mesh.subMeshes.push_back(SubMesh{uint32_t(mesh.indices.size()), uint32_t(list.size()), mat});
         mesh.indices.insert(mesh.indices.end(), list.begin(), list.end());
     }
+    setObjTransmissionThickness(mesh);
     if (missingNormals) {
         // Area-weighted, accumulated per OBJ position so that vertices split by UV seams share one
         // smooth normal.

@@ -12,4 +12,9 @@ namespace lp {
 // material values.
 MeshData loadObj(const std::filesystem::path& path, MeshLoadReport* report = nullptr);
 
+// MTL gives a transmissive (illum 4/6/7) material no volume thickness: each one's is the smallest
+// extent of the bounding box of its triangles (a solid's width: a sphere's diameter, a slab's
+// thickness; 0 for a flat pane, thin-walled). Called by loadObj.
+void setObjTransmissionThickness(MeshData& mesh);
+
 }  // namespace lp

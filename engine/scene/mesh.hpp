@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -65,7 +66,7 @@ enum class AlphaMode { Opaque, Mask, Blend };
 enum MaterialMapBit : uint32_t {
     kDiffuseMapBit = 1, kBumpMapBit = 2, kNormalMapBit = 4, kMetalRoughMapBit = 8, kOcclusionMapBit = 16, kEmissiveMapBit = 32,
     kSpecularMapBit = 64, kSpecularColorMapBit = 128, kClearcoatMapBit = 256, kClearcoatRoughnessMapBit = 512,
-    kClearcoatNormalMapBit = 1024
+    kClearcoatNormalMapBit = 1024, kTransmissionMapBit = 2048, kThicknessMapBit = 4096
 };
 
 // The one material model of both formats: metallic-roughness (glTF 2.0), with the dielectric F0
@@ -97,6 +98,19 @@ struct Material {
     TextureRef clearcoatRoughnessMap;
     TextureRef clearcoatNormalMap;
     float clearcoatNormalScale = 1.0f;
+    // KHR_materials_transmission + KHR_materials_volume (MTL: illum 4/6/7, Tf, Ni): the dielectric's
+    // base mixes its diffuse BRDF with a refracting BTDF by transmission x transmissionMap.r; the
+    // volume under the surface is thickness x thicknessMap.g (model space; 0: thin-walled) thick and
+    // absorbs as attenuationColor^(d / attenuationDistance) (infinite: no absorption). ior is the
+    // index of refraction (KHR_materials_ior; MTL Ni): the refracted ray's bend (the dielectric's F0
+    // stays `specular`).
+    float transmission = 0.0f;
+    TextureRef transmissionMap;
+    float ior = 1.5f;
+    float thickness = 0.0f;
+    TextureRef thicknessMap;
+    float attenuationDistance = std::numeric_limits<float>::infinity();
+    glm::vec3 attenuationColor{1.0f};
     float metallic = 0.0f;      // metallicFactor (MTL: 0)
     float shininess = 32.0f;    // Ns (Blinn-Phong exponent), clamped to [0, 10000]; glTF: from roughness
     float roughness = 0.5f;     // perceptual roughness: roughnessFactor, or from Ns (used with metallicRoughnessMap)
@@ -122,7 +136,8 @@ struct Material {
             {&metallicRoughnessMap, kMetalRoughMapBit}, {&occlusionMap, kOcclusionMapBit}, {&emissiveMap, kEmissiveMapBit},
             {&specularMap, kSpecularMapBit}, {&specularColorMap, kSpecularColorMapBit},
             {&clearcoatMap, kClearcoatMapBit}, {&clearcoatRoughnessMap, kClearcoatRoughnessMapBit},
-            {&clearcoatNormalMap, kClearcoatNormalMapBit}};
+            {&clearcoatNormalMap, kClearcoatNormalMapBit}, {&transmissionMap, kTransmissionMapBit},
+            {&thicknessMap, kThicknessMapBit}};
         uint32_t bits = 0;
         for (const auto& [map, bit] : maps)
             if (!map->empty() && map->uvSet == 1) bits |= bit;
@@ -131,6 +146,9 @@ struct Material {
     bool samplesUv1() const { return secondUvMaps() != 0; }
     // KHR_materials_clearcoat with a layer (the factor above 0; unlit materials take none).
     bool hasClearcoat() const { return clearcoat > 0.0f && !flat; }
+    // KHR_materials_transmission with some transmission (unlit materials take none): drawn by the
+    // transparent pass, refracting the opaque frame (passes/transparent_pass).
+    bool transmissive() const { return transmission > 0.0f && !flat; }
     // The dielectric's F0 of the factors alone (the maps taken as white): Ks, F0_ior, or with
     // KHR_materials_specular min(F0_ior x colour, 1) x weight.
     glm::vec3 dielectricF0Of() const {

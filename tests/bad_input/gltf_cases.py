@@ -596,6 +596,34 @@ def add_cases(write, case, render_model, C):
         write(f"{name}.gltf", g.as_gltf())
         case(22, f"gltf_{name}", render_model(f"{name}.gltf"), "error", r"{C}/" + name + r"\.gltf: " + regex,
              absent=["{O}/out.png"])
+    # KHR_materials_transmission and KHR_materials_volume: a factor outside [0, 1], a negative thickness,
+    # an attenuation distance of 0, an attenuation colour above 1 or of the wrong length, a string.
+    for name, ext, regex in [
+            ("transmission_factor", {"KHR_materials_transmission": {"transmissionFactor": 1.25}},
+             r"materials\[0\]\.extensions\.KHR_materials_transmission\.transmissionFactor: 1\.25 must be in \[0, 1\]$"),
+            ("transmission_factor_string", {"KHR_materials_transmission": {"transmissionFactor": "clear"}},
+             r"materials\[0\]\.extensions\.KHR_materials_transmission\.transmissionFactor: expected a number, got a string"),
+            ("transmission_texture_no_index", {"KHR_materials_transmission": {"transmissionFactor": 1, "transmissionTexture": {"texCoord": 0}}},
+             r"materials\[0\]\.extensions\.KHR_materials_transmission\.transmissionTexture\.index: missing \(the glTF schema requires it\)$"),
+            ("volume_thickness_negative", {"KHR_materials_transmission": {"transmissionFactor": 1},
+                                           "KHR_materials_volume": {"thicknessFactor": -0.5}},
+             r"materials\[0\]\.extensions\.KHR_materials_volume\.thicknessFactor: -0\.5 must be >= 0$"),
+            ("volume_attenuation_distance_zero", {"KHR_materials_transmission": {"transmissionFactor": 1},
+                                                  "KHR_materials_volume": {"attenuationDistance": 0}},
+             r"materials\[0\]\.extensions\.KHR_materials_volume\.attenuationDistance: 0 must be > 0 \(leave it out for no absorption\)$"),
+            ("volume_attenuation_colour", {"KHR_materials_transmission": {"transmissionFactor": 1},
+                                           "KHR_materials_volume": {"attenuationColor": [1, 1.5, 1]}},
+             r"materials\[0\]\.extensions\.KHR_materials_volume\.attenuationColor\[1\]: 1\.5 must be in \[0, 1\]$"),
+            ("volume_attenuation_colour_length", {"KHR_materials_transmission": {"transmissionFactor": 1},
+                                                  "KHR_materials_volume": {"attenuationColor": [1, 1]}},
+             r"materials\[0\]\.extensions\.KHR_materials_volume\.attenuationColor: expected an array of 3 numbers, got an array of 2$"),
+    ]:
+        g = lit_quad(material=0)
+        g.doc["materials"] = [{"extensions": ext}]
+        g.doc["extensionsUsed"] = sorted(ext)
+        write(f"{name}.gltf", g.as_gltf())
+        case(22, f"gltf_{name}", render_model(f"{name}.gltf"), "error", r"{C}/" + name + r"\.gltf: " + regex,
+             absent=["{O}/out.png"])
     # KHR_materials_variants: a mapping to a material or a variant that is not there, a variant mapped
     # twice in one primitive, a variant name that is not a string.
     for name, mappings, variants, regex in [

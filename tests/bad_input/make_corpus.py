@@ -207,6 +207,13 @@ write("nan_kd.mtl", "newmtl m\nKd nan nan nan\nNs abc\n")
 case(4, "nan_kd", render_model("nan_kd.obj"), "fallback",
      r"nan_kd.mtl:2: Kd: 'nan' is not a finite number; using the default 0.8 0.8 0.8.*nan_kd.mtl:3: Ns: 'abc' is not a number",
      outputs=["{O}/out.png"])
+# A glass material (illum 7: refraction) with an index below 1 (3ds Max writes Ni 0.001): no bend, one
+# warning naming the material; the model renders through the transmission path.
+write("glass_low_ni.obj", "mtllib glass_low_ni.mtl\nusemtl glass\n" + CUBE_OBJ)
+write("glass_low_ni.mtl", "newmtl glass\nKd 0.01 0.01 0.01\nTf 0.9 0.9 0.9\nNi 0.001\nillum 7\n")
+case(4, "mtl_glass_low_ni", render_model("glass_low_ni.obj"), "fallback",
+     r"glass_low_ni.obj: material 'glass': Ni 0.001 is below 1 \(or not finite\); its refraction bends no ray \(Ni 1\)",
+     outputs=["{O}/out.png"])
 write("nan_normal.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn nan 0 1\nf 1//1 2//1 3//1\n")
 case(4, "nan_normal", render_model("nan_normal.obj"), "fallback",
      r"nan_normal.obj:4: 1 normals or texture coordinates with NaN or Inf \(first here\) ignored", outputs=["{O}/out.png"])

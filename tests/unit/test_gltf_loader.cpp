@@ -762,6 +762,70 @@ TEST(GltfLoader, ClearcoatFactorsAndTextures) {
                        "materials[0].extensions.KHR_materials_clearcoat.clearcoatNormalTexture.index: missing (the glTF schema requires it)");
 }
 
+// KHR_materials_transmission + KHR_materials_volume: the factors and their textures (transmission .r,
+// thickness .g), the defaults (no volume: thin-walled, attenuationDistance +inf: no absorption, colour
+// white), KHR_materials_ior's index kept for the refraction; without a transmission factor the volume
+// alone transmits nothing; both extensions load without the "not supported" warning; bad values are
+// one-line errors naming the field.
+TEST(GltfLoader, TransmissionAndVolume) {
+    TempDir t;
+    nlohmann::json d = texturedQuad(nullptr, nullptr);
+    d["extensionsUsed"] = {"KHR_materials_transmission", "KHR_materials_volume", "KHR_materials_ior"};
+    nlohmann::json glass = {{"extensions",
+                             {{"KHR_materials_transmission", {{"transmissionFactor", 0.9}, {"transmissionTexture", {{"index", 0}}}}},
+                              {"KHR_materials_volume",
+                               {{"thicknessFactor", 0.25},
+                                {"thicknessTexture", {{"index", 0}}},
+                                {"attenuationDistance", 0.5},
+                                {"attenuationColor", {0.5, 0.75, 1.0}}}},
+                              {"KHR_materials_ior", {{"ior", 1.33}}}}}};
+    nlohmann::json thin = {{"extensions", {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}}}}};
+    nlohmann::json volumeOnly = {{"extensions", {{"KHR_materials_volume", {{"thicknessFactor", 1.0}}}}}};
+    d["materials"] = {glass, thin, volumeOnly};
+    d["meshes"][0]["primitives"] = {d["meshes"][0]["primitives"][0], d["meshes"][0]["primitives"][0], d["meshes"][0]["primitives"][0]};
+    for (int i = 0; i < 3; ++i) d["meshes"][0]["primitives"][size_t(i)]["material"] = i;
+    MeshLoadReport report;
+    const MeshData m = loadGltf(t.write("transmission.gltf", d.dump()), &report).mesh;
+    ASSERT_EQ(m.materials.size(), 3u);
+    const Material& a = m.materials[0];
+    EXPECT_TRUE(a.transmissive());
+    EXPECT_FLOAT_EQ(a.transmission, 0.9f);
+    EXPECT_FALSE(a.transmissionMap.empty()) << "transmissionTexture read";
+    EXPECT_FLOAT_EQ(a.thickness, 0.25f);
+    EXPECT_FALSE(a.thicknessMap.empty()) << "thicknessTexture read";
+    EXPECT_FLOAT_EQ(a.attenuationDistance, 0.5f);
+    EXPECT_EQ(a.attenuationColor, glm::vec3(0.5f, 0.75f, 1.0f));
+    EXPECT_FLOAT_EQ(a.ior, 1.33f);
+    EXPECT_NEAR(a.specular.x, (0.33f / 2.33f) * (0.33f / 2.33f), 1e-6f) << "F0 from the index, as before";
+    const Material& b = m.materials[1];
+    EXPECT_TRUE(b.transmissive());
+    EXPECT_EQ(b.thickness, 0.0f) << "no KHR_materials_volume: thin-walled";
+    EXPECT_TRUE(std::isinf(b.attenuationDistance)) << "the default distance: no absorption";
+    EXPECT_EQ(b.attenuationColor, glm::vec3(1.0f));
+    EXPECT_FLOAT_EQ(b.ior, 1.5f) << "KHR_materials_ior's default";
+    EXPECT_FALSE(m.materials[2].transmissive()) << "a volume without transmission transmits nothing";
+    for (const auto& w : report.warnings) {
+        EXPECT_EQ(w.find("KHR_materials_transmission' is not supported"), std::string::npos) << w;
+        EXPECT_EQ(w.find("KHR_materials_volume' is not supported"), std::string::npos) << w;
+    }
+    nlohmann::json bad = d;
+    bad["materials"][0]["extensions"]["KHR_materials_transmission"]["transmissionFactor"] = 1.5;
+    expectOneLineError(t.write("factor.gltf", bad.dump()),
+                       "materials[0].extensions.KHR_materials_transmission.transmissionFactor: 1.5 must be in [0, 1]");
+    bad = d;
+    bad["materials"][0]["extensions"]["KHR_materials_volume"]["thicknessFactor"] = -1;
+    expectOneLineError(t.write("thickness.gltf", bad.dump()),
+                       "materials[0].extensions.KHR_materials_volume.thicknessFactor: -1 must be >= 0");
+    bad = d;
+    bad["materials"][0]["extensions"]["KHR_materials_volume"]["attenuationDistance"] = -2;
+    expectOneLineError(t.write("distance.gltf", bad.dump()),
+                       "materials[0].extensions.KHR_materials_volume.attenuationDistance: -2 must be > 0");
+    bad = d;
+    bad["materials"][0]["extensions"]["KHR_materials_volume"]["attenuationColor"] = {0.5, -0.5, 1.0};
+    expectOneLineError(t.write("colour.gltf", bad.dump()),
+                       "materials[0].extensions.KHR_materials_volume.attenuationColor[1]: -0.5 must be in [0, 1]");
+}
+
 TEST(GltfLoader, SceneFileModelsGltf) {
     TempDir t;
     const std::string scene = R"({"models": [{"gltf": ")" + (kData / "lights.gltf").string() +
@@ -1148,13 +1212,13 @@ TEST(GltfSchema, WrongTypesLengthsAndEnumerationsAreErrorsNamingTheElement) {
 TEST(GltfSchema, UnsupportedOptionalExtensionsAreNamedInAWarning) {
     TempDir t;
     nlohmann::json d = schemaBase();
-    d["extensionsUsed"] = {"KHR_lights_punctual", "KHR_materials_transmission", "KHR_materials_sheen", "KHR_texture_transform",
+    d["extensionsUsed"] = {"KHR_lights_punctual", "KHR_materials_iridescence", "KHR_materials_sheen", "KHR_texture_transform",
                            "KHR_materials_clearcoat"};
     MeshLoadReport report;
     loadGltf(t.write("ext.gltf", d.dump()), &report);
     std::string all;
     for (const auto& w : report.warnings) all += w + "\n";
-    EXPECT_NE(all.find("extensionsUsed[1]: 'KHR_materials_transmission' is not supported; ignored (the model may look different)"), std::string::npos) << all;
+    EXPECT_NE(all.find("extensionsUsed[1]: 'KHR_materials_iridescence' is not supported; ignored (the model may look different)"), std::string::npos) << all;
     EXPECT_NE(all.find("extensionsUsed[2]: 'KHR_materials_sheen' is not supported"), std::string::npos) << all;
     EXPECT_EQ(all.find("KHR_materials_clearcoat is not supported"), std::string::npos) << all;
     EXPECT_EQ(all.find("KHR_lights_punctual is not supported"), std::string::npos) << all;
