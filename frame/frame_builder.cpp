@@ -255,10 +255,22 @@ FrameOutputs buildFrameGraph(fg::FrameGraph& graph, PassStates& passes, const Fr
     }
     if (skyAdded) hdr = addSkyPass(graph, passes.sky, frame, gbuffer.depth, hasMap ? environment.cube : fg::ResourceId{}, hdr);
     else graph.skipPass("sky", lightAlone ? lightAloneWhy : "scene has no environment (black, no map)");
-    // Alpha-blended surfaces over the opaque frame and the sky, back to front.
-    if (lightAlone) graph.skipPass("transparent", lightAloneWhy + " (the opaque surfaces')");
-    else if (!sceneHasTransparency(scene)) graph.skipPass("transparent", "no material of the scene is alpha-blended");
-    else hdr = addTransparentPass(graph, passes.transparent, passes.localLights, frame, gbuffer.depth, hdr, forwardLighting);
+    // Alpha-blended and transmissive surfaces over the opaque frame and the sky, back to front; the
+    // transmissive ones refract a copy of that frame.
+    const char* noTransmission = "no material of the scene is transmissive (KHR_materials_transmission, MTL illum 4/6/7)";
+    if (lightAlone) {
+        graph.skipPass("transmission_background", lightAloneWhy + " (the opaque surfaces')");
+        graph.skipPass("transparent", lightAloneWhy + " (the opaque surfaces')");
+    } else if (!sceneHasTransparency(scene)) {
+        graph.skipPass("transmission_background", noTransmission);
+        graph.skipPass("transparent", "no material of the scene is alpha-blended or transmissive");
+    } else {
+        fg::ResourceId background;
+        if (sceneHasTransmission(scene)) background = addTransmissionBackgroundPass(graph, frame, hdr);
+        else graph.skipPass("transmission_background", noTransmission);
+        hdr = addTransparentPass(graph, passes.transparent, passes.localLights, frame, gbuffer.depth, hdr, forwardLighting,
+                                 background);
+    }
     // globes and the light-ranges / lights-per-tile / lights-per-cluster overlays, over the sky too.
     if (!lightAlone && localSkip.empty() && localLightCount(scene, s.localLights) > 0)
         hdr = addLocalLightOverlayPasses(graph, passes.localLights, frame, gbuffer, hdr, lightRecords);

@@ -27,6 +27,7 @@ struct ForwardPass {
     int shadowFilter = -1;           // and for this sun shadow filter (sunShadowFilterDefine)
     bool vertexColors = false;       // and with LP_VERTEX_COLOR (the scene has vertex colours)
     bool secondUvSet = false;        // and with LP_SECOND_UV (a material samples TEXCOORD_1)
+    bool transmissionVariant = false;  // the transparent pass's: with LP_FORWARD_TRANSMISSION
     gl::Framebuffer fbo;
 };
 

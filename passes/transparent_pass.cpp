@@ -14,14 +14,72 @@ struct Data {
     fg::ResourceId depth;
     ForwardLightingReads reads;
     fg::ResourceId hdr;
+    fg::ResourceId background;  // the transmission background copy (invalid: no transmission)
+};
+struct CopyData {
+    fg::ResourceId hdr, background;
+};
+
+GLint loc(GLuint prog, const char* name) { return glGetUniformLocation(prog, name); }
+
+// forward.frag's LP_FORWARD_TRANSMISSION uniforms, looked up once per execute.
+struct TransmissionUniforms {
+    explicit TransmissionUniforms(GLuint prog)
+        : transmission(loc(prog, "uTransmission")), hasTransmissionMap(loc(prog, "uHasTransmissionMap")),
+          thickness(loc(prog, "uThickness")), hasThicknessMap(loc(prog, "uHasThicknessMap")), ior(loc(prog, "uIor")),
+          attenuationColor(loc(prog, "uAttenuationColor")), attenuationDistance(loc(prog, "uAttenuationDistance")) {}
+    void set(GLuint prog, const GpuMaterial& m) const {
+        const bool on = m.transmissive();
+        glProgramUniform1f(prog, transmission, on ? m.transmission : 0.0f);
+        glProgramUniform1i(prog, hasTransmissionMap, on && m.transmissionMap != 0);
+        glProgramUniform1f(prog, thickness, on ? std::max(m.thickness, 0.0f) : 0.0f);
+        glProgramUniform1i(prog, hasThicknessMap, on && m.thicknessMap != 0);
+        glProgramUniform1f(prog, ior, m.ior);
+        glProgramUniform3f(prog, attenuationColor, m.attenuationColor.x, m.attenuationColor.y, m.attenuationColor.z);
+        glProgramUniform1f(prog, attenuationDistance, m.attenuationDistance);
+        glBindTextureUnit(kTransmissionMapUnit, on ? m.transmissionMap : 0);
+        glBindTextureUnit(kThicknessMapUnit, on ? m.thicknessMap : 0);
+    }
+    GLint transmission, hasTransmissionMap, thickness, hasThicknessMap, ior, attenuationColor, attenuationDistance;
 };
 }  // namespace
 
 bool sceneHasTransparency(const Scene& scene) {
     for (const ModelInstance& model : scene.models)
         for (const Material& m : model.mesh.materials)
-            if (m.alphaMode == AlphaMode::Blend) return true;
+            if (m.alphaMode == AlphaMode::Blend || m.transmissive()) return true;
     return false;
+}
+
+bool sceneHasTransmission(const Scene& scene) {
+    for (const ModelInstance& model : scene.models)
+        for (const Material& m : model.mesh.materials)
+            if (m.transmissive()) return true;
+    return false;
+}
+
+int fullMipLevels(int width, int height) {
+    int levels = 1;
+    for (int size = std::max(width, height); size > 1; size /= 2) ++levels;
+    return levels;
+}
+
+fg::ResourceId addTransmissionBackgroundPass(fg::FrameGraph& graph, const FrameData& frame, fg::ResourceId hdr) {
+    const CopyData& d = graph.addPass<CopyData>(
+        "transmission_background", fg::PassKind::Compute,
+        [&](fg::PassBuilder& b, CopyData& data) {
+            data.hdr = b.read(hdr, fg::Usage::Transfer);
+            data.background = b.create("transmission.background",
+                                       {frame.width, frame.height, GL_RGBA16F, fullMipLevels(frame.width, frame.height)},
+                                       fg::Usage::Transfer);
+        },
+        [frame](const CopyData& data, const fg::PassResources& res) {
+            const GLuint background = res.texture(data.background);
+            glCopyImageSubData(res.texture(data.hdr), GL_TEXTURE_2D, 0, 0, 0, 0, background, GL_TEXTURE_2D, 0, 0, 0, 0,
+                               frame.width, frame.height, 1);
+            glGenerateTextureMipmap(background);
+        });
+    return d.background;
 }
 
 std::vector<TransparentDraw> sortTransparentDraws(const SceneGpu& gpu, const glm::mat4& view) {
@@ -41,7 +99,7 @@ std::vector<TransparentDraw> sortTransparentDraws(const SceneGpu& gpu, const glm
 
 fg::ResourceId addTransparentPass(fg::FrameGraph& graph, TransparentPass& state, LocalLightPass& localLights,
                                   const FrameData& frame, fg::ResourceId depth, fg::ResourceId hdr,
-                                  const ForwardLighting& lighting) {
+                                  const ForwardLighting& lighting, fg::ResourceId transmissionBackground) {
     ForwardLighting withoutAo = lighting;
     withoutAo.ao = {};
     const Data& d = graph.addPass<Data>(
@@ -50,6 +108,7 @@ fg::ResourceId addTransparentPass(fg::FrameGraph& graph, TransparentPass& state,
             data.depth = b.read(depth, fg::Usage::DepthTest);
             data.reads = declareForwardLighting(b, localLights, withoutAo);
             data.hdr = b.write(hdr, fg::Usage::Blend);
+            if (transmissionBackground.valid()) data.background = b.read(transmissionBackground, fg::Usage::Sampled);
             readPosedVertices(b, frame);
         },
         [&state, &localLights, frame, withoutAo](const Data& data, const fg::PassResources& res) {
@@ -59,7 +118,12 @@ fg::ResourceId addTransparentPass(fg::FrameGraph& graph, TransparentPass& state,
             glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, res.texture(data.hdr), 0);
             glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, res.texture(data.depth), 0);
             glNamedFramebufferDrawBuffer(fbo, GL_COLOR_ATTACHMENT0);
-            bindForwardLighting(forward, localLights, frame, withoutAo, data.reads, res, {"LP_FORWARD_TRANSPARENT"});
+            const bool transmission = data.background.valid();
+            std::vector<std::string> defines = {"LP_FORWARD_TRANSPARENT"};
+            if (transmission) defines.push_back("LP_FORWARD_TRANSMISSION");
+            if (forward.transmissionVariant != transmission) forward.program = {};  // compiled again with the define
+            forward.transmissionVariant = transmission;
+            bindForwardLighting(forward, localLights, frame, withoutAo, data.reads, res, defines);
             const GLuint prog = forward.program.id();
             const std::vector<TransparentDraw> order = sortTransparentDraws(*frame.gpu, frame.view);
             {
@@ -76,16 +140,21 @@ fg::ResourceId addTransparentPass(fg::FrameGraph& graph, TransparentPass& state,
                 glBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
                 glUseProgram(prog);
                 const ForwardMaterialUniforms material(prog);
+                const TransmissionUniforms transmissive(prog);
+                if (transmission) glBindTextureUnit(kTransmissionBackgroundUnit, res.texture(data.background));
                 for (const TransparentDraw& t : order) {
                     const GpuMesh& mesh = frame.gpu->meshes[size_t(t.mesh)];
                     const GpuDraw& dr = mesh.draws[size_t(t.draw)];
                     material.setModel(prog, frame.view, mesh.model);
                     material.set(prog, frame.gpu->materials[size_t(dr.material)]);
+                    if (transmission) transmissive.set(prog, frame.gpu->materials[size_t(dr.material)]);
                     glBindVertexArray(mesh.vao.id());
                     glDrawElements(GL_TRIANGLES, GLsizei(dr.indexCount), GL_UNSIGNED_INT,
                                    reinterpret_cast<const void*>(size_t(dr.firstIndex) * sizeof(uint32_t)));
                 }
                 state.drawn = int(order.size());
+                if (transmission)
+                    for (GLuint unit : {kTransmissionBackgroundUnit, kTransmissionMapUnit, kThicknessMapUnit}) glBindTextureUnit(unit, 0);
                 glBindVertexArray(0);
                 glUseProgram(0);
             }

@@ -39,6 +39,13 @@ Files (all small):
   clearcoat_spheres.glb    (models/) 3 rows of 5 red dielectric spheres (roughness 0.5) under a
                            KHR_materials_clearcoat coat: clearcoatFactor 0, 0.25, 0.5, 0.75, 1
                            (left to right) x clearcoatRoughnessFactor 0.05, 0.3, 0.6 (bottom to top)
+  transmission_glass.glb   (models/) KHR_materials_transmission + KHR_materials_volume in front of a
+                           striped wall (4 x 2.5, at z = -1.5, facing +Z): a clear glass sphere
+                           (radius 0.5 at (-1, 0.6, 0), ior 1.5, thickness 1: its diameter), an
+                           orange-tinted slab (0.9 x 1 x 0.2 at (0.25, 0.6, 0.2), thickness 0.2,
+                           attenuationColor (0.95, 0.45, 0.15) at attenuationDistance 0.1) and a
+                           frosted thin-walled pane (roughness 0.35, 0.6 x 0.9 at (1.3, 0.6, 0.3),
+                           thickness 0)
 """
 import base64, io, math, os, struct, sys
 
@@ -333,6 +340,70 @@ def clearcoat_spheres():
     b.save_glb(os.path.join(MODELS, "clearcoat_spheres.glb"))
 
 
+def box(sx, sy, sz):
+    """An axis-aligned box of size sx x sy x sz centred on the origin: 6 faces of 4 vertices, outward
+    normals, counter-clockwise from outside."""
+    P, N, UV, I = [], [], [], []
+    h = [sx / 2, sy / 2, sz / 2]
+    for axis in range(3):
+        for sign in (1, -1):
+            n = [0, 0, 0]
+            n[axis] = sign
+            u, v = (axis + 1) % 3, (axis + 2) % 3
+            if sign < 0:
+                u, v = v, u
+            base = len(P)
+            for a, b in ((-1, -1), (1, -1), (1, 1), (-1, 1)):
+                p = [0, 0, 0]
+                p[axis] = sign * h[axis]
+                p[u] = a * h[u]
+                p[v] = b * h[v]
+                P.append(p)
+                N.append(n)
+                UV.append([(a + 1) / 2, (1 - b) / 2])
+            I += [base, base + 1, base + 2, base, base + 2, base + 3]
+    return P, N, UV, I
+
+
+def transmission_glass():
+    b = Builder()
+    b.gltf.extensionsUsed = ["KHR_materials_transmission", "KHR_materials_volume", "KHR_materials_ior"]
+    # The wall: 16 vertical black and white stripes over a red-green-blue band, to see the refraction bend them.
+    stripes = np.zeros((256, 256, 4), dtype=np.uint8)
+    stripes[..., 3] = 255
+    for x in range(256):
+        stripes[:, x, :3] = 230 if (x // 16) % 2 == 0 else 20
+    stripes[112:144, :, :3] = [[200, 30, 30]] * 256
+    stripes[144:176, :, :3] = [[30, 170, 40]] * 256
+    stripes[80:112, :, :3] = [[40, 60, 200]] * 256
+    wall_texture = b.image(stripes)
+    wall = b.material(name="striped_wall", pbrMetallicRoughness=g.PbrMetallicRoughness(
+        baseColorTexture=g.TextureInfo(index=wall_texture), metallicFactor=0.0, roughnessFactor=0.8))
+    P = [[-2, 0, 0], [2, 0, 0], [2, 2.5, 0], [-2, 2.5, 0]]
+    attrs = dict(POSITION=b.floats(P, g.VEC3, bounds=True), NORMAL=b.floats(QUAD_N, g.VEC3), TEXCOORD_0=b.floats(QUAD_UV, g.VEC2))
+    b.node(mesh=b.mesh([g.Primitive(attributes=g.Attributes(**attrs), indices=b.indices(QUAD_I, U16), material=wall)]),
+           translation=[0, -0.2, -1.5])
+
+    def glass(name, rough, volume):
+        return b.material(name=name, extensions={"KHR_materials_transmission": {"transmissionFactor": 1.0},
+                                                 "KHR_materials_volume": volume, "KHR_materials_ior": {"ior": 1.5}},
+                          pbrMetallicRoughness=g.PbrMetallicRoughness(baseColorFactor=[1, 1, 1, 1], metallicFactor=0.0,
+                                                                      roughnessFactor=rough))
+
+    def solid(shape, material, translation):
+        P, N, UV, I = shape
+        attrs = dict(POSITION=b.floats(P, g.VEC3, bounds=True), NORMAL=b.floats(N, g.VEC3), TEXCOORD_0=b.floats(UV, g.VEC2))
+        b.node(mesh=b.mesh([g.Primitive(attributes=g.Attributes(**attrs), indices=b.indices(I, U16), material=material)]),
+               translation=translation)
+
+    Ps, Ns, UVs, Is = sphere()
+    solid((Ps, Ns, UVs, Is), glass("clear_glass", 0.0, {"thicknessFactor": 1.0}), [-1, 0.6, 0])
+    solid(box(0.9, 1.0, 0.2), glass("tinted_slab", 0.05, {"thicknessFactor": 0.2, "attenuationColor": [0.95, 0.45, 0.15],
+                                                          "attenuationDistance": 0.1}), [0.25, 0.6, 0.2])
+    solid(box(0.6, 0.9, 0.02), glass("frosted_pane", 0.35, {"thicknessFactor": 0.0}), [1.3, 0.6, 0.3])
+    b.save_glb(os.path.join(MODELS, "transmission_glass.glb"))
+
+
 def viking_room():
     src = os.path.join(ROOT, "..", "shared", "assets", "viking-room")
     if not os.path.exists(os.path.join(src, "viking_room.obj")):
@@ -382,5 +453,6 @@ lights()
 pbr_spheres()
 specular_spheres()
 clearcoat_spheres()
+transmission_glass()
 viking_room()
 print("wrote", OUT, "and", os.path.join(MODELS, "pbr_spheres.glb"))

@@ -160,7 +160,8 @@ SceneGpu::SceneGpu(const Scene& scene) {
             g.normalScale = m.normalScale;
             g.occlusionStrength = m.occlusionStrength;
             g.alphaMask = m.alphaMode == AlphaMode::Mask;
-            g.alphaBlend = m.alphaMode == AlphaMode::Blend;
+            // Transmissive materials refract the opaque frame: the transparent pass draws them too.
+            g.alphaBlend = m.alphaMode == AlphaMode::Blend || m.transmissive();
             g.alphaCutoff = m.alphaCutoff;
             g.doubleSided = m.doubleSided;
             g.flat = m.flat;
@@ -180,6 +181,15 @@ SceneGpu::SceneGpu(const Scene& scene) {
                 if (!m.clearcoatMap.empty()) g.clearcoatMap = texture(m.clearcoatMap, false);
                 if (!m.clearcoatRoughnessMap.empty()) g.clearcoatRoughnessMap = texture(m.clearcoatRoughnessMap, false);
                 if (!m.clearcoatNormalMap.empty()) g.clearcoatNormalMap = texture(m.clearcoatNormalMap, false);
+            }
+            if (m.transmissive()) {
+                g.transmission = m.transmission;
+                g.ior = m.ior;
+                g.thickness = m.thickness;
+                g.attenuationDistance = std::isfinite(m.attenuationDistance) ? m.attenuationDistance : 0.0f;
+                g.attenuationColor = m.attenuationColor;
+                if (!m.transmissionMap.empty()) g.transmissionMap = texture(m.transmissionMap, false);
+                if (!m.thicknessMap.empty()) g.thicknessMap = texture(m.thicknessMap, false);
             }
             g.secondUvMaps = m.secondUvMaps();
             secondUvSet |= g.secondUvMaps != 0;

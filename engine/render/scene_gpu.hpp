@@ -54,6 +54,16 @@ struct GpuMaterial {
     float clearcoatRoughness = 0.0f;
     float clearcoatNormalScale = 1.0f;
     GLuint clearcoatMap = 0, clearcoatRoughnessMap = 0, clearcoatNormalMap = 0;  // linear, 0: none
+    // Material::transmission and its volume (transmissive(): drawn by the transparent pass); maps
+    // linear, 0: none.
+    float transmission = 0.0f;
+    GLuint transmissionMap = 0;
+    float ior = 1.5f;
+    float thickness = 0.0f;
+    GLuint thicknessMap = 0;
+    float attenuationDistance = 0.0f;  // 0: infinite (no absorption)
+    glm::vec3 attenuationColor{1.0f};
+    bool transmissive() const { return transmission > 0.0f && !flat; }
     float metallic = 0.0f;
     float shininess = 32.0f;
     float roughness = 0.5f;
@@ -69,7 +79,8 @@ struct GpuMaterial {
     GLuint emissiveMap = 0;
     uint32_t secondUvMaps = 0;  // Material::secondUvMaps: the maps sampled with the second uv set (TEXCOORD_1)
     bool alphaMask = false;
-    bool alphaBlend = false;  // BLEND / MTL d < 1: drawn by the transparent pass, not into the G-buffer
+    // BLEND / MTL d < 1, or transmissive: drawn by the transparent pass, not into the G-buffer
+    bool alphaBlend = false;
     float alphaCutoff = 0.5f;
     bool doubleSided = true;
     bool flat = false;  // Material::flat; the viewer's panel switches it

@@ -53,6 +53,8 @@ struct LpSurface {
     float shininess;  // Blinn-Phong exponent (up to the IBL's roughness floor)
     float occlusion;  // the material's ambient occlusion (1: none)
     float alpha;      // base alpha (opacity x texture alpha)
+    vec3 baseColor;   // the base colour and metallic at the texel (KHR_materials_transmission's BTDF tint)
+    float metallic;
 };
 
 // Whether the fragment is dropped: a back face of a single-sided material, or MASK below the cutoff.
@@ -76,6 +78,8 @@ LpSurface lpEvaluateSurface(vec3 position, vec3 normal, vec4 tangent, UvSets uvs
     s.shininess = g.shininess;
     s.occlusion = g.occlusion;
     s.alpha = clamp(base.a, 0.0, 1.0);
+    s.baseColor = g.baseColor;
+    s.metallic = g.metallic;
     return s;
 }
 

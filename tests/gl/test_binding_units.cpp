@@ -106,7 +106,7 @@ Scene withShadowedLocalLights(Scene s) {
 
 TEST(BindingUnits, NoProgramBindsTwoResourcesToOneUnit) {
     gl::ShaderLibrary shaders;
-    const char* kScenes[] = {"clearcoat-spheres", "specular-spheres", "leaf-cards", "cornell"};
+    const char* kScenes[] = {"clearcoat-spheres", "specular-spheres", "leaf-cards", "cornell", "transmission"};
     struct Variant {
         RenderPath path;
         GBufferMode gbuffer;
