@@ -69,6 +69,7 @@ PathTraceScene buildPathTraceScene(const Scene& scene, double time) {
             out.unsampledMapMaterials +=
                 (!m.bumpMap.empty() || !m.specularMap.empty() || !m.specularColorMap.empty() || coatMaps) ? 1 : 0;
             out.hasMaskedMaterials = out.hasMaskedMaterials || alphaMode != 0.0f;
+            out.transmissiveMaterials += m.transmissive() ? 1 : 0;
         }
         // An animated model's vertices where its clips put them at `time` (the rest pose otherwise).
         std::vector<Vertex> posed;

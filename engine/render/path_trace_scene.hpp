@@ -63,6 +63,9 @@ struct PathTraceScene {
     // (normal maps are sampled) and KHR_materials_specular's two maps.
     size_t unsampledMapMaterials = 0;
     // (KHR_materials_clearcoat's three maps count among them: the tracer takes the coat's factors.)
+    // Transmissive materials (KHR_materials_transmission, MTL illum 4/6/7): the tracer does not refract
+    // yet and renders them as their base material.
+    size_t transmissiveMaterials = 0;
 };
 
 // Every model's triangles through its transform (normals by the inverse transpose), an animated
