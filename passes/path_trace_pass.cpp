@@ -118,12 +118,8 @@ void uploadScene(PathTracePass& state, const Scene& scene, double time) {
                     std::to_string(kTraversalStack - 1) + " its traversal stack holds");
     if (traced.unsampledMapMaterials > 0)
         logWarn("path tracer: " + std::to_string(traced.unsampledMapMaterials) +
-                " materials have a height (bump) map or KHR_materials_specular or KHR_materials_clearcoat maps, which "
+                 " materials have a height (bump) map or KHR_materials_specular, _clearcoat, _transmission or _volume maps, which "
                 "the tracer does not sample (their factors are used)");
-    if (traced.transmissiveMaterials > 0)
-        logWarn("path tracer: " + std::to_string(traced.transmissiveMaterials) +
-                " materials are transmissive (KHR_materials_transmission, MTL illum 4/6/7), which the tracer does not "
-                "refract: they are traced as their base material");
     state.srgbMaps = uploadMapArray(traced.srgbMaps, true, "srgb");
     state.linearMaps = uploadMapArray(traced.linearMaps, false, "linear");
     state.hasMaskedMaterials = traced.hasMaskedMaterials;

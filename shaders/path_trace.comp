@@ -129,6 +129,9 @@ void main() {
     // With the map's tables its light comes by two strategies; each is weighted by the power heuristic.
     bool sampleEnvironment = uHasEnvironmentMap && uEnvironmentCells.x > 0;
     float lastPdf = 0.0;  // the mixture's density of the ray being traced (0: the camera's ray)
+    // KHR_materials_volume: the ray is inside a transmissive volume that absorbs as medium.rgb^(d / medium.w).
+    bool inMedium = false;
+    vec4 medium = vec4(1.0, 1.0, 1.0, 0.0);
     for (int bounce = 0; bounce <= uBounces; ++bounce) {
         float t;
         vec2 bary;
@@ -144,6 +147,7 @@ void main() {
             radiance += throughput * environmentRadiance(dir) * weight;
             break;
         }
+        if (inMedium && medium.w > 0.0) throughput *= pow(max(medium.rgb, vec3(0.0)), vec3(t / medium.w));  // Beer-Lambert
         LpPathTraceTriangle T = uPtTriangles[tri];
         LpPathTraceMaterial m = uPtMaterials[int(T.position[0].w)];
         vec3 P = origin + t * dir;
@@ -152,7 +156,8 @@ void main() {
         vec3 N = normalize((1.0 - bary.x - bary.y) * T.normal[0].xyz + bary.x * T.normal[1].xyz + bary.y * T.normal[2].xyz);
         // Both normals on the side the ray came from (a double-sided material's back face is lit
         // like its front, as in the raster passes; a single-sided one is never hit from behind).
-        if (dot(Ng, V) < 0.0) Ng = -Ng;
+        bool backFace = dot(Ng, V) < 0.0;
+        if (backFace) Ng = -Ng;
         if (dot(N, Ng) < 0.0) N = -N;
         // KHR_materials_clearcoat's layer on the interpolated normal (the base's normal map leaves it
         // alone; its own map is not sampled): the factors.
@@ -191,6 +196,68 @@ void main() {
         vec3 kd = materialDiffuseAlbedo(uBrdf, base, metallic, dielectricF0, givenF90) * (1.0 - coat.weight);
         FresnelEnds ks = clearcoatBaseEnds(materialFresnelEnds(base, metallic, dielectricF0, max(m.mapParams.w, 0.0), givenF90), coat);
         vec3 Po = P + Ng * uRayEpsilon * (1.0 + maxComponent(abs(P)));
+        vec3 Pi = P - Ng * uRayEpsilon * (1.0 + maxComponent(abs(P)));  // on the far side, for refracted rays
+
+        // KHR_materials_transmission: the share tw of the dielectric base that refracts (metals do not),
+        // through a GGX-sampled microfacet normal (smooth: the shading normal). Inside a volume the
+        // boundary only reflects (Fresnel, total internal reflection) or lets the ray out; from outside
+        // the refracted branch is taken with probability pT and weighted tw (1 - F) base / pT, the
+        // diffuse keeps 1 - tw, and the reflection branch is divided by 1 - pT. Thin-walled (thickness
+        // 0): the ray passes straight through.
+        float tw = clamp(m.transmission.x, 0.0, 1.0) * (1.0 - metallic);
+        bool volume = m.transmission.z > 0.0;
+        float ior = max(m.transmission.y, 1.0);
+        float alphaT = ggxAlphaFromShininess(shininess);
+        if (tw > 0.0 && volume && backFace) {
+            vec3 tx, ty;
+            basis(N, tx, ty);
+            float u1 = rand(), u2 = rand();
+            float a2 = alphaT * alphaT;
+            float cosTheta = sqrt((1.0 - u1) / (1.0 + (a2 - 1.0) * u1));
+            float sinTheta = sqrt(max(1.0 - cosTheta * cosTheta, 0.0));
+            vec3 H = normalize(tx * (sinTheta * cos(2.0 * LP_PI * u2)) + ty * (sinTheta * sin(2.0 * LP_PI * u2)) + N * cosTheta);
+            float F = lpPtDielectricFresnel(clamp(dot(V, H), 0.0, 1.0), ior);
+            vec3 L = rand() < F ? reflect(-V, H) : refract(-V, H, ior);
+            bool leaves = dot(L, Ng) < 0.0;
+            if (dot(L, L) < 0.5) break;
+            origin = leaves ? Pi : Po;
+            inMedium = !leaves;
+            dir = normalize(L);
+            lastPdf = 0.0;
+            continue;
+        }
+        float pT = 0.0;
+        if (tw > 0.0) {
+            pT = clamp(tw * (1.0 - lpPtDielectricFresnel(clamp(dot(N, V), 0.0, 1.0), 1.0 / ior)), 0.0, 0.95);
+            kd *= 1.0 - tw;
+            if (rand() < pT) {
+                vec3 tx, ty;
+                basis(N, tx, ty);
+                float u1 = rand(), u2 = rand();
+                float a2 = alphaT * alphaT;
+                float cosTheta = sqrt((1.0 - u1) / (1.0 + (a2 - 1.0) * u1));
+                float sinTheta = sqrt(max(1.0 - cosTheta * cosTheta, 0.0));
+                vec3 H = normalize(tx * (sinTheta * cos(2.0 * LP_PI * u2)) + ty * (sinTheta * sin(2.0 * LP_PI * u2)) + N * cosTheta);
+                float F = lpPtDielectricFresnel(clamp(dot(V, H), 0.0, 1.0), 1.0 / ior);
+                vec3 L = volume ? refract(-V, H, 1.0 / ior) : -V;
+                if (dot(L, L) < 0.5 || dot(L, Ng) >= 0.0) break;
+                throughput *= tw * (1.0 - F) * base * (1.0 - coat.weight) / pT;
+                if (volume) {
+                    inMedium = true;
+                    medium = vec4(m.attenuation.rgb, m.transmission.w);
+                }
+                origin = Pi;
+                dir = normalize(L);
+                lastPdf = 0.0;
+                if (bounce + 1 >= uRouletteFrom) {
+                    float survive = min(maxComponent(throughput), 0.95);
+                    if (!(rand() < survive)) break;
+                    throughput /= survive;
+                }
+                continue;
+            }
+        }
+        float branch = 1.0 - pT;  // the reflection branch's probability
 
         // Direct light from the suns and the local lights (delta lights: no other way to reach them).
         for (int i = 0; i < uSunCount; ++i) {
@@ -232,7 +299,7 @@ void main() {
             float nl = dot(N, Le);
             float coatNl = coat.weight > 0.0 ? dot(coat.normal, Le) : 0.0;
             if (pe > 0.0 && (nl > 0.0 || coatNl > 0.0) && dot(Ng, Le) > 0.0 && visible(Po, Le, 3.0e38)) {
-                float pb = coatedMixturePdf(N, V, Le, pSpecular, alpha, coat, pCoat);
+                float pb = coatedMixturePdf(N, V, Le, pSpecular, alpha, coat, pCoat) * branch;
                 vec3 f = nl > 0.0 ? brdfDiffuse(uBrdf, N, V, Le, kd, ks) + brdfSpecular(uBrdf, N, V, Le, ks, shininess) : vec3(0.0);
                 vec3 coatCos = vec3(clearcoatSpecular(coat, V, Le) * max(coatNl, 0.0));
                 // f cos L / pe, weighted pe^2 / (pe^2 + pb^2).
@@ -267,7 +334,7 @@ void main() {
         if (dot(Ng, L) <= 0.0) break;
         vec3 fcos = coatedBrdfCosine(N, V, L, kd, ks, shininess, coat);
         if (maxComponent(fcos) <= 0.0) break;
-        float pdf = coatedMixturePdf(N, V, L, pSpecular, alpha, coat, pCoat);
+        float pdf = coatedMixturePdf(N, V, L, pSpecular, alpha, coat, pCoat) * branch;
         if (!(pdf > 0.0)) break;
         lastPdf = pdf;
         throughput *= fcos / pdf;

@@ -1,6 +1,7 @@
 #include "engine/render/path_trace_scene.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <string>
 
@@ -63,13 +64,20 @@ PathTraceScene buildPathTraceScene(const Scene& scene, double time) {
             g.mapParams = glm::vec4(m.normalScale, m.roughness, float(pathTraceMapBits(maps)),
                                     m.dielectricF90 ? std::clamp(*m.dielectricF90, 0.0f, 1.0f) : -1.0f);
             if (m.hasClearcoat()) g.clearcoat = glm::vec4(m.clearcoat, m.clearcoatRoughness, 0.0f, 0.0f);
+            if (m.transmissive()) {
+                g.transmission = glm::vec4(std::clamp(m.transmission, 0.0f, 1.0f), std::max(m.ior, 1.0f), std::max(m.thickness, 0.0f),
+                                           std::isfinite(m.attenuationDistance) ? m.attenuationDistance : 0.0f);
+                g.attenuation = glm::vec4(glm::clamp(m.attenuationColor, 0.0f, 1.0f), 1.0f);
+            }
             out.materials.push_back(g);
             const bool coatMaps = m.hasClearcoat() && (!m.clearcoatMap.empty() || !m.clearcoatRoughnessMap.empty() ||
                                                        !m.clearcoatNormalMap.empty());
             out.unsampledMapMaterials +=
-                (!m.bumpMap.empty() || !m.specularMap.empty() || !m.specularColorMap.empty() || coatMaps) ? 1 : 0;
+                (!m.bumpMap.empty() || !m.specularMap.empty() || !m.specularColorMap.empty() || coatMaps ||
+                 (m.transmissive() && (!m.transmissionMap.empty() || !m.thicknessMap.empty())))
+                    ? 1
+                    : 0;
             out.hasMaskedMaterials = out.hasMaskedMaterials || alphaMode != 0.0f;
-            out.transmissiveMaterials += m.transmissive() ? 1 : 0;
         }
         // An animated model's vertices where its clips put them at `time` (the rest pose otherwise).
         std::vector<Vertex> posed;

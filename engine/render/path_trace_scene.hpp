@@ -42,8 +42,14 @@ struct PathTraceMaterial {
     // KHR_materials_clearcoat: x its factor (0: no coat), y its roughness factor (the coat's maps are
     // not sampled: the factors alone, warned with the other unsampled maps), zw 0.
     glm::vec4 clearcoat{0.0f};
+    // KHR_materials_transmission (MTL glass): x the transmission factor (0: none; its map is not
+    // sampled), y the index of refraction, z the volume's thickness factor (0: thin-walled, the ray
+    // passes straight through; the tracer takes the volume from the geometry), w attenuationDistance
+    // (0: infinite, no absorption).
+    glm::vec4 transmission{0.0f, 1.5f, 0.0f, 0.0f};
+    glm::vec4 attenuation{1.0f};  // rgb: KHR_materials_volume's attenuationColor
 };
-static_assert(sizeof(PathTraceMaterial) == 112, "std430 layout of LpPathTraceMaterial");
+static_assert(sizeof(PathTraceMaterial) == 144, "std430 layout of LpPathTraceMaterial");
 
 // How each map (PathTraceMap i) is sampled, as bits (exact in a float): bit 4i the second uv set;
 // bits 4i + 1, 4i + 2 the wrap across u and bits 16 + 2i, 17 + 2i across v (0 repeat, 1 clamp to
@@ -60,12 +66,10 @@ struct PathTraceScene {
     bool hasMaskedMaterials = false;  // MASK or BLEND: rays test the base colour's alpha at hits
     // What the tracer leaves out of lightpass's material model (warned once by the pass).
     // Materials with maps the tracer does not sample (their factors are used): height (bump) maps
-    // (normal maps are sampled) and KHR_materials_specular's two maps.
+    // (normal maps are sampled), KHR_materials_specular's two maps and KHR_materials_transmission's and
+    // _volume's (the factors are used).
     size_t unsampledMapMaterials = 0;
     // (KHR_materials_clearcoat's three maps count among them: the tracer takes the coat's factors.)
-    // Transmissive materials (KHR_materials_transmission, MTL illum 4/6/7): the tracer does not refract
-    // yet and renders them as their base material.
-    size_t transmissiveMaterials = 0;
 };
 
 // Every model's triangles through its transform (normals by the inverse transpose), an animated

@@ -30,6 +30,9 @@ struct LpPathTraceMaterial {
     vec4 mapParams;  // x: normal scale, y: roughness factor, z: sampling bits (pathTraceMapBits),
                      // w: KHR_materials_specular's dielectric f90 (-1: none given)
     vec4 clearcoat;  // x: KHR_materials_clearcoat's factor (0: no coat), y: its roughness
+    vec4 transmission;  // x: KHR_materials_transmission's factor (0: none), y: ior, z: volume thickness
+                        // factor (0: thin-walled), w: attenuationDistance (0: infinite)
+    vec4 attenuation;   // rgb: attenuationColor
 };
 
 layout(std430, binding = LP_PT_BIND_NODES) readonly buffer PtNodes { LpBvhNode uPtNodes[]; };
@@ -111,9 +114,22 @@ bool lpPtIntersectTriangle(vec3 o, vec3 d, vec3 a, vec3 b, vec3 c, float tMin, f
 // side its normals face only (the raster passes cull its back faces).
 bool lpPtFaceCounts(int tri, vec3 d) {
     LpPathTraceTriangle T = uPtTriangles[tri];
-    if (uPtMaterials[int(T.position[0].w)].flags.y != 0.0) return true;
+    LpPathTraceMaterial m = uPtMaterials[int(T.position[0].w)];
+    if (m.flags.y != 0.0) return true;
+    if (m.transmission.x > 0.0 && m.transmission.z > 0.0) return true;  // a volume's inside is met from within
     vec3 n = T.normal[0].xyz + T.normal[1].xyz + T.normal[2].xyz;
     return dot(n, d) < 0.0;
+}
+
+// Fresnel reflectance of a smooth dielectric boundary for the cosine cosI on the incident side and
+// eta = n_incident / n_transmitted (1: total internal reflection).
+float lpPtDielectricFresnel(float cosI, float eta) {
+    float sin2T = eta * eta * max(1.0 - cosI * cosI, 0.0);
+    if (sin2T >= 1.0) return 1.0;
+    float cosT = sqrt(1.0 - sin2T);
+    float rs = (eta * cosI - cosT) / (eta * cosI + cosT);
+    float rp = (cosI - eta * cosT) / (cosI + eta * cosT);
+    return 0.5 * (rs * rs + rp * rp);
 }
 
 // Nearest hit in (tMin, tMax): triangle index (or -1), t, barycentrics. `anyHit`: stop at the first.
