@@ -95,6 +95,7 @@ vec3 lpTransmittedRadiance(vec3 P, vec3 N, vec3 V, LpSurface s, float thickness)
 void main() {
     // Derivatives before any discard (they need the whole quad).
     UvSets uvs = fragmentUvSets();
+    vec3 dPdx = dFdx(vPosition), dPdy = dFdy(vPosition);  // the triangle's plane: the IBL's geometric normal
     if (lpMaterialDiscards(uvs, vColor, gl_FrontFacing)) discard;
     LpSurface s = lpEvaluateSurface(vPosition, vNormal, vTangent, uvs, vColor, gl_FrontFacing);
 #ifdef LP_FORWARD_TRANSMISSION
@@ -133,7 +134,7 @@ void main() {
     vec3 c = uAmbient * kd * screenAo * occlusion;  // occlusion darkens ambient light only
     c += lpSunRadiance(P, N, V, kd, s.fresnel, s.shininess, vec2(pixel), s.coat);
     if (uIbl)
-        c += lpIblRadiance(uIrradiance, uPrefiltered, uDfg, N, V, kd, s.fresnel, s.shininess, occlusion, screenAo,
+        c += lpIblRadiance(uIrradiance, uPrefiltered, uDfg, N, lpIblFaceNormal(dPdx, dPdy, N, V), V, kd, s.fresnel, s.shininess, occlusion, screenAo,
                            uAmbientOcclusion, s.coat);
     if (uLocalLightCount > 0) {
         if (uUnbounded) {

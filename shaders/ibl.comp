@@ -20,6 +20,24 @@ uniform bool uLightingOnly;   // debug: white albedo
 layout(binding = 14) uniform sampler2D uAo;  // passes/ambient_occlusion_pass
 uniform bool uAmbientOcclusion;
 
+// Position difference to the neighbour along `step` on the same surface: of the two sides, the one
+// whose depth is nearer P's (across an edge the far side belongs to another surface); zero where
+// neither is a surface pixel.
+vec3 neighbourDelta(ivec2 p, ivec2 size, ivec2 step, vec3 P) {
+    vec3 best = vec3(0.0);
+    float bestDz = 3.0e38;
+    for (int side = -1; side <= 1; side += 2) {
+        ivec2 q = p + side * step;
+        if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size)) || gbufferIsBackground(q)) continue;
+        vec3 d = (gbufferPosition(q) - P) * float(side);
+        if (abs(d.z) < bestDz) {
+            bestDz = abs(d.z);
+            best = d;
+        }
+    }
+    return best;
+}
+
 void main() {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     ivec2 size = imageSize(uHdr);
@@ -34,7 +52,9 @@ void main() {
     vec3 V = pl > 0.0 ? -P / pl : vec3(0.0, 0.0, 1.0);
     float occlusion = uLightingOnly ? 1.0 : gbufferOcclusion(p);  // the material's ambient occlusion
     float screenAo = uAmbientOcclusion ? texelFetch(uAo, p, 0).r : 1.0;
-    vec3 c = lpIblRadiance(uIrradiance, uPrefiltered, uDfg, N, V, kd, gbufferFresnel(p), spec.a, occlusion, screenAo,
+    // The geometric normal from the depth of the pixel's neighbours (the G-buffer keeps only the mapped one).
+    vec3 Ng = lpIblFaceNormal(neighbourDelta(p, size, ivec2(1, 0), P), neighbourDelta(p, size, ivec2(0, 1), P), N, V);
+    vec3 c = lpIblRadiance(uIrradiance, uPrefiltered, uDfg, N, Ng, V, kd, gbufferFresnel(p), spec.a, occlusion, screenAo,
                            uAmbientOcclusion, gbufferClearcoat(p));
     vec3 hdr = imageLoad(uHdr, p).rgb;
     imageStore(uHdr, p, vec4(sanitizeHdr(hdr + c), 1.0));

@@ -61,7 +61,10 @@ vec3 lpIblClearcoatRadiance(samplerCube prefilteredMap, sampler2D dfg, Clearcoat
     return coat.weight * specularAo * (specular + lights) * lpClearcoatShown();
 }
 
-vec3 lpIblRadiance(samplerCube irradiance, samplerCube prefilteredMap, sampler2D dfg, vec3 N, vec3 V, vec3 kd,
+// `Ng`: the geometric normal (eye space, unit, on the viewer's side; the caller's lpIblFaceNormal or its
+// triangle's): light from below it cannot reach the surface, whatever the normal map says. The sampled
+// specular and the extracted sources are cut there, as the path tracer cuts its paths; Ng = N cuts nothing.
+vec3 lpIblRadiance(samplerCube irradiance, samplerCube prefilteredMap, sampler2D dfg, vec3 N, vec3 Ng, vec3 V, vec3 kd,
                    FresnelEnds f0, float shininess, float occlusion, float screenAo, bool aoOn, ClearcoatLayer coat) {
     float NdotV = clamp(dot(N, V), 0.0, 1.0);
     float roughness = roughnessFromShininess(shininess);
@@ -75,7 +78,8 @@ vec3 lpIblRadiance(samplerCube irradiance, samplerCube prefilteredMap, sampler2D
     vec3 fss = splitSumReflectance(f0, ab);
     vec3 la, lb;
     bool sampled = uSpecularSamples > 0 &&
-                   sampledSpecularRadiance(prefilteredMap, uMaxLod, Nw, normalize(uEyeToWorld * V), roughness * roughness,
+                   sampledSpecularRadiance(prefilteredMap, uMaxLod, Nw, normalize(uEyeToWorld * Ng), normalize(uEyeToWorld * V),
+                                           roughness * roughness,
                                            uSpecularSamples, uSpecularMasking, la, lb);
     vec3 specular = sampled ? f0.f0 * ab.x * la + f0.f90 * ab.y * lb
                             : textureLod(prefilteredMap, Rw, prefilteredLodFromRoughness(roughness, uMaxLod)).rgb * fss;
@@ -84,6 +88,7 @@ vec3 lpIblRadiance(samplerCube irradiance, samplerCube prefilteredMap, sampler2D
     vec3 lights = vec3(0.0);
     for (int i = 0; i < min(uIblLightCount, LP_MAX_IBL_LIGHTS); ++i) {
         vec3 D = uIblLightDirection[i] * uEyeToWorld;  // world -> eye: uEyeToWorld is a rotation
+        if (dot(Ng, D) <= 0.0) continue;  // below the geometric surface
         lights += environmentLightRadiance(N, V, D, uIblLightSinRadius[i], uIblLightIrradiance[i], kd, f0,
                                            roughness * roughness, fss, ao, specularAo);
     }
@@ -92,8 +97,23 @@ vec3 lpIblRadiance(samplerCube irradiance, samplerCube prefilteredMap, sampler2D
                          lpIblClearcoatRadiance(prefilteredMap, dfg, coat, V, ao, occlusion, aoOn));
 }
 vec3 lpIblRadiance(samplerCube irradiance, samplerCube prefilteredMap, sampler2D dfg, vec3 N, vec3 V, vec3 kd,
+                   FresnelEnds f0, float shininess, float occlusion, float screenAo, bool aoOn, ClearcoatLayer coat) {
+    return lpIblRadiance(irradiance, prefilteredMap, dfg, N, N, V, kd, f0, shininess, occlusion, screenAo, aoOn, coat);
+}
+vec3 lpIblRadiance(samplerCube irradiance, samplerCube prefilteredMap, sampler2D dfg, vec3 N, vec3 V, vec3 kd,
                    FresnelEnds f0, float shininess, float occlusion, float screenAo, bool aoOn) {
-    return lpIblRadiance(irradiance, prefilteredMap, dfg, N, V, kd, f0, shininess, occlusion, screenAo, aoOn, noClearcoat());
+    return lpIblRadiance(irradiance, prefilteredMap, dfg, N, N, V, kd, f0, shininess, occlusion, screenAo, aoOn, noClearcoat());
+}
+
+// The geometric normal of a surface point from the eye-space position P at it and its derivatives
+// across the screen (a face normal: where they span no plane, N), turned to the viewer's side V: the
+// Ng of lpIblRadiance.
+vec3 lpIblFaceNormal(vec3 dPdx, vec3 dPdy, vec3 N, vec3 V) {
+    vec3 c = cross(dPdx, dPdy);
+    float l = length(c);
+    if (!(l > 1e-30)) return N;
+    c /= l;
+    return dot(c, V) < 0.0 ? -c : c;
 }
 
 #endif
