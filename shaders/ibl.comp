@@ -20,19 +20,26 @@ uniform bool uLightingOnly;   // debug: white albedo
 layout(binding = 14) uniform sampler2D uAo;  // passes/ambient_occlusion_pass
 uniform bool uAmbientOcclusion;
 
-// Position difference to the neighbour along `step` on the same surface: of the two sides, the one
-// whose depth is nearer P's (across an edge the far side belongs to another surface); zero where
-// neither is a surface pixel.
+// Position difference to the neighbour along `step` on the same surface as p: of the two sides, the
+// one whose next pixel continues the line from that neighbour through p best (across an edge, or where
+// a grazing floor meets an object, the neighbour belongs to another surface and the line breaks; the
+// nearer depth alone picks the object over a grazing floor's next row); zero where neither side has one.
+bool surfaceAt(ivec2 q, ivec2 size) {
+    return all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, size)) && !gbufferIsBackground(q);
+}
 vec3 neighbourDelta(ivec2 p, ivec2 size, ivec2 step, vec3 P) {
     vec3 best = vec3(0.0);
-    float bestDz = 3.0e38;
+    float bestBreak = 3.0e38;
     for (int side = -1; side <= 1; side += 2) {
-        ivec2 q = p + side * step;
-        if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size)) || gbufferIsBackground(q)) continue;
-        vec3 d = (gbufferPosition(q) - P) * float(side);
-        if (abs(d.z) < bestDz) {
-            bestDz = abs(d.z);
-            best = d;
+        ivec2 q = p + side * step, q2 = p + 2 * side * step;
+        if (!surfaceAt(q, size)) continue;
+        vec3 Q = gbufferPosition(q);
+        // How far the pixel beyond q is from the line P -> Q continued (0 on a plane seen in perspective
+        // up to the line's curvature; an unknown pixel counts as a break as large as the step).
+        float lineBreak = surfaceAt(q2, size) ? length(gbufferPosition(q2) - (2.0 * Q - P)) : length(Q - P);
+        if (lineBreak < bestBreak) {
+            bestBreak = lineBreak;
+            best = (Q - P) * float(side);
         }
     }
     return best;

@@ -63,11 +63,18 @@ vec3 lpIblClearcoatRadiance(samplerCube prefilteredMap, sampler2D dfg, Clearcoat
 
 // `Ng`: the geometric normal (eye space, unit, on the viewer's side; the caller's lpIblFaceNormal or its
 // triangle's): light from below it cannot reach the surface, whatever the normal map says. The sampled
-// specular and the extracted sources are cut there, as the path tracer cuts its paths; Ng = N cuts nothing.
+// specular and the extracted sources are cut there, as the path tracer cuts its paths, where a map bends
+// N more than 25 degrees from it; within that, N and Ng differ by the tessellation (a coarse sphere's
+// facets, whose planes are not the surface, and the deferred pass's Ng from the depth of neighbours
+// across them: up to 20 degrees on scenes/ibl-spheres.json at 96 x 64), and nothing is cut (Ng = N
+// cuts nothing): a cut there would differ between forward+ and deferred by 3%.
+const float LP_IBL_HORIZON_MIN_BEND_COS = 0.906;  // cos 25 degrees
+vec3 iblHorizonNormal(vec3 N, vec3 Ng) { return dot(N, Ng) < LP_IBL_HORIZON_MIN_BEND_COS ? Ng : N; }
 vec3 lpIblRadiance(samplerCube irradiance, samplerCube prefilteredMap, sampler2D dfg, vec3 N, vec3 Ng, vec3 V, vec3 kd,
                    FresnelEnds f0, float shininess, float occlusion, float screenAo, bool aoOn, ClearcoatLayer coat) {
     float NdotV = clamp(dot(N, V), 0.0, 1.0);
     float roughness = roughnessFromShininess(shininess);
+    Ng = iblHorizonNormal(N, Ng);
     // The prefiltered chain assumes N = V = R; for rough lobes the reflected energy leans from R
     // towards N (Frostbite's dominant direction, Lagarde & de Rousiers 2014), which matters at grazing
     // angles where R skims the horizon of the map.
