@@ -60,7 +60,10 @@ void main() {
     float occlusion = uLightingOnly ? 1.0 : gbufferOcclusion(p);  // the material's ambient occlusion
     float screenAo = uAmbientOcclusion ? texelFetch(uAo, p, 0).r : 1.0;
     // The geometric normal from the depth of the pixel's neighbours (the G-buffer keeps only the mapped one).
-    vec3 Ng = lpIblFaceNormal(neighbourDelta(p, size, ivec2(1, 0), P), neighbourDelta(p, size, ivec2(0, 1), P), N, V);
+    // Only the sampled specular and the extracted sources use it: the split sum alone skips the 16 reads.
+    vec3 Ng = uSpecularSamples > 0 || uIblLightCount > 0
+                  ? lpIblFaceNormal(neighbourDelta(p, size, ivec2(1, 0), P), neighbourDelta(p, size, ivec2(0, 1), P), N, V)
+                  : N;
     vec3 c = lpIblRadiance(uIrradiance, uPrefiltered, uDfg, N, Ng, V, kd, gbufferFresnel(p), spec.a, occlusion, screenAo,
                            uAmbientOcclusion, gbufferClearcoat(p));
     vec3 hdr = imageLoad(uHdr, p).rgb;
