@@ -9,6 +9,10 @@ flat (uncompressed) Radiance RGBE .hdr, 2:1 equirectangular, lightpass's convent
   above the horizon, ahead of a camera looking down -Z: what a smooth plane seen at grazing angles
   reflects (bench/mitsuba/grazing_plane.py).
 - furnace.hdr: radiance 1 everywhere (white furnace: a sphere reflects exactly its albedo).
+- window.hdr: a dim room (0.2 above the horizon, 0.1 below) with one large hard-edged window of radiance
+  20, 60 degrees wide and 35 degrees tall, centred 25 degrees up behind a camera looking down -Z (it lights
+  the spheres from the front): too wide for light extraction, so the prefiltered chain carries it all and
+  a rough lobe sees its edge (issue #38).
 
     python3 bench/mitsuba/make_maps.py [OUTDIR]   (default bench/mitsuba/maps)
 """
@@ -52,6 +56,22 @@ def lamp_map(width=1024, lamp=50000.0, radius_texels=2.0, lamp_dirs=((0.10, 0.45
     return rgb.astype(np.float32)
 
 
+def window_map(width=1024, radiance=20.0, width_degrees=60.0, height_degrees=35.0, centre_elevation=25.0,
+               centre_azimuth=180.0, room=(0.2, 0.1)):
+    """A hard-edged rectangular window in longitude and latitude (texels wholly in or out), over a
+    uniform room: `room` above and below the horizon. Azimuth 180 is +Z (behind a camera looking down -Z)."""
+    h = width // 2
+    v = (np.arange(h) + 0.5) / h
+    u = (np.arange(width) + 0.5) / width
+    elevation = 90.0 - np.degrees(v * math.pi)
+    azimuth = np.degrees((u - 0.5) * 2 * math.pi)  # 0: -Z, +90: +X
+    off = (azimuth[None, :] - centre_azimuth + 180.0) % 360.0 - 180.0
+    inside = (np.abs(off) <= width_degrees / 2) & (np.abs(elevation[:, None] - centre_elevation) <= height_degrees / 2)
+    sky = np.where(elevation[:, None] > 0, room[0], room[1]) * np.ones((h, width))
+    sky = np.where(inside, radiance, sky)
+    return np.repeat(sky[..., None], 3, axis=2).astype(np.float32)
+
+
 def main():
     out = Path(sys.argv[1]) if len(sys.argv) > 1 else Path(__file__).resolve().parent / "maps"
     out.mkdir(parents=True, exist_ok=True)
@@ -62,7 +82,8 @@ def main():
         low.append((math.cos(e) * math.sin(a), math.sin(e), -math.cos(e) * math.cos(a)))
     write_rgbe(out / "lamps_low.hdr", lamp_map(lamp=20000.0, lamp_dirs=low))
     write_rgbe(out / "furnace.hdr", np.ones((64, 128, 3), np.float32))
-    print(f"wrote {out}/lamp50k.hdr, {out}/lamps_low.hdr, {out}/furnace.hdr")
+    write_rgbe(out / "window.hdr", window_map())
+    print(f"wrote {out}/lamp50k.hdr, {out}/lamps_low.hdr, {out}/furnace.hdr, {out}/window.hdr")
 
 
 if __name__ == "__main__":
