@@ -11,6 +11,7 @@
 #include "engine/gl/shader.hpp"
 #include "engine/core/log.hpp"
 #include "engine/gl/state.hpp"
+#include "engine/gl/uniforms.hpp"
 #include "engine/render/local_lights.hpp"
 
 namespace lp {
@@ -119,10 +120,10 @@ void makeLightRecords(const FrameData& frame, const std::vector<PointLight>& lig
 
 constexpr const char* kLightRecordsName = "local_lights.records";
 
-void setInt(GLuint prog, const char* name, int v) { glProgramUniform1i(prog, glGetUniformLocation(prog, name), v); }
-void setFloat(GLuint prog, const char* name, float v) { glProgramUniform1f(prog, glGetUniformLocation(prog, name), v); }
-void setMat4(GLuint prog, const char* name, const glm::mat4& m) {
-    glProgramUniformMatrix4fv(prog, glGetUniformLocation(prog, name), 1, GL_FALSE, glm::value_ptr(m));
+// A uniform of `prog` by name through gl::Uniforms (a name it does not declare: an error in checked builds).
+template <typename T>
+void setUniform(const FrameData& frame, GLuint prog, const char* name, const T& value) {
+    gl::Uniforms(frame.shaders, prog).set(name, value);
 }
 
 // Also detaches the pooled textures from the FBO, so it keeps no reference to textures the pool frees.
@@ -198,11 +199,11 @@ void bindLocalShadows(LocalLightPass& state, const FrameData& frame, const Local
     if (shadows.point.any()) bindPointShadows(state, frame, shadows.point, atlases.point);
 }
 
-void setClusterUniforms(GLuint prog, const ClusterGrid& g) {
-    glProgramUniform3i(prog, glGetUniformLocation(prog, "uClusterGrid"), g.tilesX, g.tilesY, g.slices);
-    setInt(prog, "uClusterTileSize", g.tileSize);
-    setFloat(prog, "uClusterNear", g.nearPlane);
-    setFloat(prog, "uClusterFar", g.farPlane);
+void setClusterUniforms(const FrameData& frame, GLuint prog, const ClusterGrid& g) {
+    setUniform(frame, prog, "uClusterGrid", glm::ivec3(g.tilesX, g.tilesY, g.slices));
+    setUniform(frame, prog, "uClusterTileSize", g.tileSize);
+    setUniform(frame, prog, "uClusterNear", g.nearPlane);
+    setUniform(frame, prog, "uClusterFar", g.farPlane);
 }
 
 // The frame's froxel grid (--cluster-size, --cluster-slices, the camera's depth range).
@@ -284,10 +285,10 @@ void finishClusterBuild(LocalLightPass& state) {
 // What every program that culls lights per tile of grid g reads (the supertile lists' build, the
 // whole and tight froxel builds, the clustered method's fused pass).
 void setTileCullUniforms(GLuint prog, const ClusterGrid& g, const FrameData& frame, int lightCount) {
-    setClusterUniforms(prog, g);
-    setInt(prog, "uLightCount", lightCount);
-    setMat4(prog, "uProjection", frame.projection);
-    glProgramUniform2i(prog, glGetUniformLocation(prog, "uImageSize"), frame.width, frame.height);
+    setClusterUniforms(frame, prog, g);
+    setUniform(frame, prog, "uLightCount", lightCount);
+    setUniform(frame, prog, "uProjection", frame.projection);
+    setUniform(frame, prog, "uImageSize", glm::ivec2(frame.width, frame.height));
 }
 
 // One work group per tile of the froxel grid, for the programs that cull per tile.
@@ -334,8 +335,8 @@ void buildSupertiles(LocalLightPass& state, const FrameData& frame, const Cluste
     const int side = state.supertileTiles > 0 ? state.supertileTiles : kSupertileTiles;
     const int capacity = std::max(1, std::min(lightCount, state.supertileCapacity > 0 ? state.supertileCapacity : kSupertileCapacity));
     for (const GLuint prog : readers) {
-        setInt(prog, "uSupertile", supertiles ? side : 0);
-        setInt(prog, "uSupertileCapacity", capacity);
+        setUniform(frame, prog, "uSupertile", supertiles ? side : 0);
+        setUniform(frame, prog, "uSupertileCapacity", capacity);
     }
     if (!supertiles) return;
     const int stX = (g.tilesX + side - 1) / side, stY = (g.tilesY + side - 1) / side;
@@ -354,9 +355,9 @@ void buildSupertiles(LocalLightPass& state, const FrameData& frame, const Cluste
     }
     const GLuint prog = state.clusterSupertileProgram.id();
     setTileCullUniforms(prog, g, frame, lightCount);
-    setInt(prog, "uSupertile", side);
-    setInt(prog, "uSupertileCapacity", capacity);
-    setInt(prog, "uBitWords", bitWords);
+    setUniform(frame, prog, "uSupertile", side);
+    setUniform(frame, prog, "uSupertileCapacity", capacity);
+    setUniform(frame, prog, "uBitWords", bitWords);
     glUseProgram(prog);
     glDispatchCompute(GLuint(stX), GLuint(stY), GLuint(groups));
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
@@ -423,7 +424,7 @@ void drawFragmentMethod(LocalLightPass& state, const FrameData& frame, const std
     glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, hdrTexture, 0);
     glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, 0, 0);
     glNamedFramebufferDrawBuffer(fbo, GL_COLOR_ATTACHMENT0);
-    setMat4(prog, "uProjection", frame.projection);
+    setUniform(frame, prog, "uProjection", frame.projection);
 
     gl::ScopedRasterState saved;
     gl::ScopedFramebuffer bind(fbo, frame.width, frame.height);
@@ -447,13 +448,13 @@ void drawFragmentMethod(LocalLightPass& state, const FrameData& frame, const std
 
     LocalLightStats& st = state.stats;
     if (method == LocalLightMethod::Volumes) {
-        setInt(prog, "uFirstLight", 0);
-        setInt(prog, "uMode", noBounds ? 0 : 1);
+        setUniform(frame, prog, "uFirstLight", 0);
+        setUniform(frame, prog, "uMode", noBounds ? 0 : 1);
         glDrawArraysInstanced(GL_TRIANGLES, 0, noBounds ? 3 : state.volumeVertices, count);
         st.drawn = count;
     } else {
-        setInt(prog, "uMode", 0);
-        const GLint locFirst = glGetUniformLocation(prog, "uFirstLight");
+        setUniform(frame, prog, "uMode", 0);
+        const GLint locFirst = gl::Uniforms(frame.shaders, prog).location("uFirstLight");
         for (int i = 0; i < count; ++i) {
             if (useScissor) {
                 const BoundingSphere b = localLightBounds(lights[size_t(i)]);
@@ -534,10 +535,10 @@ int bindClusteredLightLists(LocalLightPass& state, GLuint prog, const FrameData&
     const int count = int(records.records->size());
     bindLocalShadows(state, frame, shadows, atlases);
     bindWholeClusters(state, frame, records);
-    setClusterUniforms(prog, state.clusterGrid);
-    setInt(prog, "uLocalLightCount", count);
-    setInt(prog, "uUnbounded", unbounded(s));
-    setInt(prog, "uSpecularMode", specularMode(s));
+    setClusterUniforms(frame, prog, state.clusterGrid);
+    setUniform(frame, prog, "uLocalLightCount", count);
+    setUniform(frame, prog, "uUnbounded", unbounded(s));
+    setUniform(frame, prog, "uSpecularMode", specularMode(s));
     setBrdfUniforms(prog, *frame.settings);
     return count;
 }
@@ -667,11 +668,11 @@ fg::ResourceId addLocalLightPass(fg::FrameGraph& graph, LocalLightPass& state, c
             if (s.method == LocalLightMethod::Tiled || clusteredAsTiled) {
                 const GLuint prog = state.tiledProgram.id();
                 bindGBuffer(prog, res, data.in, frame, !lightingOnly, true);
-                setInt(prog, "uLightCount", int(lights->size()));
-                setMat4(prog, "uProjection", frame.projection);
-                setInt(prog, "uUnbounded", unbounded(s));
-                setInt(prog, "uLightingOnly", lightingOnly);
-                setInt(prog, "uSpecularMode", specularMode(s));
+                setUniform(frame, prog, "uLightCount", int(lights->size()));
+                setUniform(frame, prog, "uProjection", frame.projection);
+                setUniform(frame, prog, "uUnbounded", unbounded(s));
+                setUniform(frame, prog, "uLightingOnly", lightingOnly);
+                setUniform(frame, prog, "uSpecularMode", specularMode(s));
                 setBrdfUniforms(prog, *frame.settings);
                 buildSupertiles(state, frame,
                                 makeClusterGrid(frame.width, frame.height, kTileSize, 1, frame.nearPlane, frame.farPlane),
@@ -692,9 +693,9 @@ fg::ResourceId addLocalLightPass(fg::FrameGraph& graph, LocalLightPass& state, c
                 }
                 const GLuint prog = supertiles ? state.clusteredSupertileProgram.id() : state.clusteredProgram.id();
                 bindGBuffer(prog, res, data.in, frame, !lightingOnly, true);
-                setInt(prog, "uUnbounded", unbounded(s));
-                setInt(prog, "uLightingOnly", lightingOnly);
-                setInt(prog, "uSpecularMode", specularMode(s));
+                setUniform(frame, prog, "uUnbounded", unbounded(s));
+                setUniform(frame, prog, "uLightingOnly", lightingOnly);
+                setUniform(frame, prog, "uSpecularMode", specularMode(s));
                 setBrdfUniforms(prog, *frame.settings);
                 glBindImageTexture(0, hdrTexture, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
                 shadeClustered(state, frame, prog, int(lights->size()));
@@ -707,8 +708,8 @@ fg::ResourceId addLocalLightPass(fg::FrameGraph& graph, LocalLightPass& state, c
             if (s.method != LocalLightMethod::Tiled && s.method != LocalLightMethod::Clustered) {
                 const GLuint prog = state.fragmentProgram.id();
                 bindGBuffer(prog, res, data.in, frame, !lightingOnly, true);
-                setInt(prog, "uLightingOnly", lightingOnly);
-                setInt(prog, "uSpecularMode", specularMode(s));
+                setUniform(frame, prog, "uLightingOnly", lightingOnly);
+                setUniform(frame, prog, "uSpecularMode", specularMode(s));
                 setBrdfUniforms(prog, *frame.settings);
                 drawFragmentMethod(state, frame, *lights, hdrTexture);
                 // Blending can overflow fp16 to +Inf: clamp like every other HDR write.
@@ -763,10 +764,10 @@ void drawGlobes(LocalLightPass& state, const FrameData& frame, int count, GLuint
     if (velocity) {
         uploadGlobeMotion(state, frame);
         // Unjittered, like the G-buffer's: the same product, so a still light under a still camera gives 0.
-        setMat4(prog, "uViewProjection", frame.unjitteredProjection * frame.view);
-        setMat4(prog, "uPreviousViewProjection", frame.previousViewProjection);
+        setUniform(frame, prog, "uViewProjection", frame.unjitteredProjection * frame.view);
+        setUniform(frame, prog, "uPreviousViewProjection", frame.previousViewProjection);
         const glm::mat3 worldFromEye = glm::transpose(glm::mat3(frame.view));
-        glProgramUniformMatrix3fv(prog, glGetUniformLocation(prog, "uWorldFromEyeRotation"), 1, GL_FALSE,
+        glProgramUniformMatrix3fv(prog, gl::Uniforms(frame.shaders, prog).location("uWorldFromEyeRotation"), 1, GL_FALSE,
                                   glm::value_ptr(worldFromEye));
     }
     gl::ScopedRasterState saved;
@@ -782,10 +783,10 @@ void drawGlobes(LocalLightPass& state, const FrameData& frame, int count, GLuint
     glCullFace(GL_BACK);
     glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
     glUseProgram(prog);
-    setInt(prog, "uMode", 1);
-    setFloat(prog, "uGlobeScale", kGlobeScale);
-    setFloat(prog, "uRadiance", kGlobeRadiance);
-    setMat4(prog, "uProjection", gbufferDepthProjection(frame));
+    setUniform(frame, prog, "uMode", 1);
+    setUniform(frame, prog, "uGlobeScale", kGlobeScale);
+    setUniform(frame, prog, "uRadiance", kGlobeRadiance);
+    setUniform(frame, prog, "uProjection", gbufferDepthProjection(frame));
     glBindVertexArray(state.globeVao.id());
     glDrawArraysInstanced(GL_TRIANGLES, 0, state.globeVertices, count);
     glNamedFramebufferDrawBuffer(fbo, GL_COLOR_ATTACHMENT0);
@@ -807,18 +808,19 @@ void drawRanges(LocalLightPass& state, const FrameData& frame, const std::vector
     gl::ScopedEnable cull(GL_CULL_FACE, false);
     gl::ScopedEnable scissor(GL_SCISSOR_TEST, false);
     glUseProgram(prog);
-    setFloat(prog, "uRadiance", kOverlayRadiance);
-    setMat4(prog, "uProjection", frame.projection);
+    setUniform(frame, prog, "uRadiance", kOverlayRadiance);
+    setUniform(frame, prog, "uProjection", frame.projection);
     glBindVertexArray(state.volumeVao.id());
     if (frame.settings->localLights.method == LocalLightMethod::Volumes) {
-        setInt(prog, "uMode", 0);
+        setUniform(frame, prog, "uMode", 0);
         glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
         glDrawArraysInstanced(GL_TRIANGLES, 0, state.volumeVertices, int(lights.size()));
         return;
     }
-    setInt(prog, "uMode", 2);
-    const GLint locRect = glGetUniformLocation(prog, "uRectNdc");
-    const GLint locLight = glGetUniformLocation(prog, "uLightIndex");
+    setUniform(frame, prog, "uMode", 2);
+    const gl::Uniforms overlay(frame.shaders, prog);
+    const GLint locRect = overlay.location("uRectNdc");
+    const GLint locLight = overlay.location("uLightIndex");
     const float w = float(frame.width), h = float(frame.height);
     for (size_t i = 0; i < lights.size(); ++i) {
         const BoundingSphere b = localLightBounds(lights[i]);
@@ -889,12 +891,12 @@ fg::ResourceId addLocalLightOverlayPasses(fg::FrameGraph& graph, LocalLightPass&
                            bindLightRecords(state, records, res);
                            const LocalLightSettings& ls = frame.settings->localLights;
                            const GLuint prog = state.heatmapProgram.id();
-                           setInt(prog, "uLightingOnly", 0);
-                           setInt(prog, "uLightCount", int(records.records->size()));
-                           setMat4(prog, "uProjection", frame.projection);
-                           setInt(prog, "uUnbounded", unbounded(ls));
-                           setFloat(prog, "uHeatMax", kHeatMax);
-                           setFloat(prog, "uExposure", exposureEvBase(*frame.settings, *frame.scene));
+                           setUniform(frame, prog, "uLightingOnly", 0);
+                           setUniform(frame, prog, "uLightCount", int(records.records->size()));
+                           setUniform(frame, prog, "uProjection", frame.projection);
+                           setUniform(frame, prog, "uUnbounded", unbounded(ls));
+                           setUniform(frame, prog, "uHeatMax", kHeatMax);
+                           setUniform(frame, prog, "uExposure", exposureEvBase(*frame.settings, *frame.scene));
                            bindGBuffer(prog, res, data.in, frame, true);
                            glBindImageTexture(0, res.texture(data.hdr), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
                            glUseProgram(prog);
@@ -926,16 +928,16 @@ fg::ResourceId addLocalLightOverlayPasses(fg::FrameGraph& graph, LocalLightPass&
                            if (tightClusters) {
                                const GLuint build = state.clusterTightBuildProgram.id();
                                bindGBuffer(build, res, data.in, frame, true);
-                               setInt(build, "uLightingOnly", 0);
+                               setUniform(frame, build, "uLightingOnly", 0);
                                buildTightClusters(state, frame, build, count);
                            } else {
                                bindWholeClusters(state, frame, records);
                            }
                            const GLuint prog = state.clusterViewProgram.id();
-                           setClusterUniforms(prog, state.clusterGrid);
-                           setInt(prog, "uSlice", frame.settings->localLights.clusterSlice);
-                           setFloat(prog, "uHeatMax", kClusterHeatMax);
-                           setFloat(prog, "uExposure", exposureEvBase(*frame.settings, *frame.scene));
+                           setClusterUniforms(frame, prog, state.clusterGrid);
+                           setUniform(frame, prog, "uSlice", frame.settings->localLights.clusterSlice);
+                           setUniform(frame, prog, "uHeatMax", kClusterHeatMax);
+                           setUniform(frame, prog, "uExposure", exposureEvBase(*frame.settings, *frame.scene));
                            glBindImageTexture(0, res.texture(data.hdr), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
                            glUseProgram(prog);
                            gl::dispatch2D(frame.width, frame.height);
