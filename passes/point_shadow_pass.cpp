@@ -58,15 +58,16 @@ uint64_t pointShadowCasterSignature(const FrameData& frame, glm::vec3 position, 
     Fnv1a f;
     const Scene& scene = *frame.scene;
     if (!frame.gpu) {  // 'lightpass graph': nothing is drawn; the scene's transforms stand in
-        for (const ModelInstance& m : scene.models) f.add(m.transform);
+        for (const ModelInstance& m : scene.models)
+            for (size_t k = 0; k < m.instanceCount(); ++k) f.add(m.instanceTransform(k));
         return f.h;
     }
     const SceneGpu& gpu = *frame.gpu;
     f.add(&gpu);
     size_t within = 0;
     for (const CasterCluster& c : gpu.casterClusters) {
-        if (c.model < 0 || size_t(c.model) >= scene.models.size() || size_t(c.model) >= gpu.meshes.size()) continue;
-        const glm::mat4& transform = scene.models[size_t(c.model)].transform;
+        if (c.model < 0 || size_t(c.model) >= gpu.meshes.size()) continue;
+        const glm::mat4& transform = gpu.meshes[size_t(c.model)].model;  // the instance's placement
         if (!casterBoxReachesSphere(transform, c.boundsMin, c.boundsMax, position, range)) continue;
         ++within;
         const GpuMesh& mesh = gpu.meshes[size_t(c.model)];

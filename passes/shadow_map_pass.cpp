@@ -73,7 +73,8 @@ glm::ivec2 tileOrigin(const ShadowFrustum& fr, size_t c) {
 uint64_t casterSignature(const FrameData& frame) {
     Fnv1a f;
     if (!frame.gpu) {  // 'lightpass graph': nothing is drawn; the scene's transforms stand in
-        for (const ModelInstance& m : frame.scene->models) f.add(m.transform);
+        for (const ModelInstance& m : frame.scene->models)
+            for (size_t k = 0; k < m.instanceCount(); ++k) f.add(m.instanceTransform(k));
         return f.h;
     }
     const SceneGpu& gpu = *frame.gpu;

@@ -9,11 +9,12 @@
 
 namespace lp {
 
-std::vector<VisibilityDrawRecord> visibilityDrawRecords(const SceneGpu& gpu, const std::vector<uint32_t>& meshIndexCounts,
-                                                        const std::vector<uint32_t>& meshVertexCounts) {
+std::vector<VisibilityDrawRecord> visibilityDrawRecords(const SceneGpu& gpu, const std::vector<uint32_t>& meshIndexBases,
+                                                        const std::vector<uint32_t>& meshVertexBases) {
     std::vector<VisibilityDrawRecord> records;
-    uint32_t triangle = 0, indexBase = 0, vertexBase = 0;
+    uint32_t triangle = 0;
     for (size_t m = 0; m < gpu.meshes.size(); ++m) {
+        const uint32_t indexBase = meshIndexBases.at(m), vertexBase = meshVertexBases.at(m);
         for (const GpuDraw& d : gpu.meshes[m].draws) {
             VisibilityDrawRecord r;
             r.firstTriangle = triangle;
@@ -25,8 +26,6 @@ std::vector<VisibilityDrawRecord> visibilityDrawRecords(const SceneGpu& gpu, con
             records.push_back(r);
             triangle += d.indexCount / 3;
         }
-        indexBase += meshIndexCounts.at(m);
-        vertexBase += meshVertexCounts.at(m);
     }
     return records;
 }

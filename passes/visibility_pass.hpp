@@ -42,9 +42,10 @@ struct VisibilityDrawRecord {
     uint32_t indexCount = 0;
     uint32_t pad[2] = {0, 0};
 };
-// meshIndexCounts / meshVertexCounts: each mesh's buffer sizes in elements.
-std::vector<VisibilityDrawRecord> visibilityDrawRecords(const SceneGpu& gpu, const std::vector<uint32_t>& meshIndexCounts,
-                                                        const std::vector<uint32_t>& meshVertexCounts);
+// meshIndexBases / meshVertexBases: each mesh's first index and vertex in the concatenated buffers
+// (the instances of a model, sharing its buffers, share them).
+std::vector<VisibilityDrawRecord> visibilityDrawRecords(const SceneGpu& gpu, const std::vector<uint32_t>& meshIndexBases,
+                                                        const std::vector<uint32_t>& meshVertexBases);
 
 VisibilityBuffer addVisibilityPass(fg::FrameGraph& graph, VisibilityPass& state, const FrameData& frame);
 

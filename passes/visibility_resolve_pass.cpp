@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <cstdio>
 #include <iterator>
+#include <map>
+#include <set>
 
 #include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/type_ptr.hpp>
@@ -59,28 +61,38 @@ GLint bufferSize(GLuint buffer) {
     return size;
 }
 
-// The scene's geometry as storage buffers: every mesh's vertices and indices back to back (copied on
-// the GPU) and the draw table. Once per scene.
+// The scene's geometry as storage buffers: every stored mesh's vertices and indices back to back
+// (copied on the GPU; a model's instances share its buffers, so they are copied once) and the draw
+// table. Once per scene.
 void buildGeometry(VisibilityResolvePass& state, const SceneGpu& gpu) {
-    std::vector<uint32_t> indexCounts, vertexCounts;
+    struct Stored {
+        const GpuMesh* mesh;
+        GLint vertexBytes, indexBytes;
+        GLintptr vertexOffset, indexOffset;
+    };
+    std::vector<Stored> stored;
+    std::map<GLuint, size_t> storedIndex;  // vertex buffer -> its entry in `stored`
+    std::vector<uint32_t> indexBases, vertexBases;
     GLsizeiptr vertexBytes = 0, indexBytes = 0;
     for (const GpuMesh& m : gpu.meshes) {
-        const GLint vb = bufferSize(m.vertices.id()), ib = bufferSize(m.indices.id());
-        vertexCounts.push_back(uint32_t(vb / GLint(sizeof(GpuVertex))));
-        indexCounts.push_back(uint32_t(ib / GLint(sizeof(uint32_t))));
-        vertexBytes += vb;
-        indexBytes += ib;
+        auto it = storedIndex.find(m.vertices.id());
+        if (it == storedIndex.end()) {
+            const GLint vb = bufferSize(m.vertices.id()), ib = bufferSize(m.indices.id());
+            it = storedIndex.emplace(m.vertices.id(), stored.size()).first;
+            stored.push_back({&m, vb, ib, vertexBytes, indexBytes});
+            vertexBytes += vb;
+            indexBytes += ib;
+        }
+        const Stored& at = stored[it->second];
+        vertexBases.push_back(uint32_t(at.vertexOffset / GLintptr(sizeof(GpuVertex))));
+        indexBases.push_back(uint32_t(at.indexOffset / GLintptr(sizeof(uint32_t))));
     }
     // Empty storage buffers are not allowed: at least one element each.
     state.vertices = gl::makeBuffer(std::max<GLsizeiptr>(vertexBytes, 16), nullptr, 0, "gbuffer_resolve.vertices");
     state.indices = gl::makeBuffer(std::max<GLsizeiptr>(indexBytes, 16), nullptr, 0, "gbuffer_resolve.indices");
-    GLintptr vo = 0, io = 0;
-    for (const GpuMesh& m : gpu.meshes) {
-        const GLint vb = bufferSize(m.vertices.id()), ib = bufferSize(m.indices.id());
-        if (vb > 0) glCopyNamedBufferSubData(m.vertices.id(), state.vertices.id(), 0, vo, vb);
-        if (ib > 0) glCopyNamedBufferSubData(m.indices.id(), state.indices.id(), 0, io, ib);
-        vo += vb;
-        io += ib;
+    for (const Stored& st : stored) {
+        if (st.vertexBytes > 0) glCopyNamedBufferSubData(st.mesh->vertices.id(), state.vertices.id(), 0, st.vertexOffset, st.vertexBytes);
+        if (st.indexBytes > 0) glCopyNamedBufferSubData(st.mesh->indices.id(), state.indices.id(), 0, st.indexOffset, st.indexBytes);
     }
     // The second uv set, at the same vertex numbers; only a scene that samples it has one.
     state.uv1 = {};
@@ -89,12 +101,11 @@ void buildGeometry(VisibilityResolvePass& state, const SceneGpu& gpu) {
         state.uv1 = gl::makeBuffer(std::max<GLsizeiptr>(uvBytes, 16), nullptr, 0, "gbuffer_resolve.uv1");
         const float zero = 0.0f;
         glClearNamedBufferData(state.uv1.id(), GL_R32F, GL_RED, GL_FLOAT, &zero);
-        GLintptr uo = 0;
-        for (const GpuMesh& m : gpu.meshes) {
-            const GLint vb = bufferSize(m.vertices.id());
-            const GLint ub = m.uv1.id() != 0 ? bufferSize(m.uv1.id()) : 0;
-            if (ub > 0) glCopyNamedBufferSubData(m.uv1.id(), state.uv1.id(), 0, uo, ub);
-            uo += GLintptr(vb / GLint(sizeof(GpuVertex))) * GLintptr(sizeof(glm::vec2));
+        for (const Stored& st : stored) {
+            const GLuint uv1 = st.mesh->uv1.id();
+            const GLint ub = uv1 != 0 ? bufferSize(uv1) : 0;
+            const GLintptr uo = st.vertexOffset / GLintptr(sizeof(GpuVertex)) * GLintptr(sizeof(glm::vec2));
+            if (ub > 0) glCopyNamedBufferSubData(uv1, state.uv1.id(), 0, uo, ub);
         }
     }
     state.previousPositions = {};
@@ -104,7 +115,7 @@ void buildGeometry(VisibilityResolvePass& state, const SceneGpu& gpu) {
         const float zero = 0.0f;
         glClearNamedBufferData(state.previousPositions.id(), GL_R32F, GL_RED, GL_FLOAT, &zero);
     }
-    std::vector<VisibilityDrawRecord> records = visibilityDrawRecords(gpu, indexCounts, vertexCounts);
+    std::vector<VisibilityDrawRecord> records = visibilityDrawRecords(gpu, indexBases, vertexBases);
     state.drawCount = uint32_t(records.size());
     if (records.empty()) records.emplace_back();
     state.draws = gl::makeBuffer(GLsizeiptr(records.size() * sizeof(VisibilityDrawRecord)), records.data(), 0,
@@ -117,7 +128,9 @@ void buildGeometry(VisibilityResolvePass& state, const SceneGpu& gpu) {
 // positions for the velocity. Copies on the GPU, ordered by GL after earlier frames' reads.
 void copyPoses(VisibilityResolvePass& state, const SceneGpu& gpu) {
     GLintptr vo = 0;
+    std::set<GLuint> copied;  // buildGeometry's order: each vertex buffer once
     for (const GpuMesh& m : gpu.meshes) {
+        if (!copied.insert(m.vertices.id()).second) continue;
         const GLint vb = bufferSize(m.vertices.id());
         if (m.animated && vb > 0) {
             glCopyNamedBufferSubData(m.vertices.id(), state.vertices.id(), 0, vo, vb);
@@ -158,10 +171,10 @@ std::string megabytes(uint64_t bytes) {
 
 std::string visibilityBufferUnsupported(const Scene& scene, uint64_t maxStorageBlockBytes) {
     uint64_t vertexBytes = 0, indexBytes = 0, triangles = 0;
-    for (const ModelInstance& m : scene.models) {
+    for (const ModelInstance& m : scene.models) {  // stored once, drawn (and numbered) per instance
         vertexBytes += uint64_t(m.mesh.vertices.size()) * sizeof(GpuVertex);
         indexBytes += uint64_t(m.mesh.indices.size()) * sizeof(uint32_t);
-        triangles += m.mesh.indices.size() / 3;
+        triangles += uint64_t(m.instanceCount()) * (m.mesh.indices.size() / 3);
     }
     // id = triangle + 1 in 32 bits, 0 meaning none (shaders/common/visibility.glsl)
     if (triangles > uint64_t(UINT32_MAX) - 1)

@@ -82,25 +82,28 @@ PathTraceScene buildPathTraceScene(const Scene& scene, double time) {
         // An animated model's vertices where its clips put them at `time` (the rest pose otherwise).
         std::vector<Vertex> posed;
         const std::vector<Vertex>& vertices = posedVertices(model, time, posed);
-        const glm::mat4 toWorld = model.transform;
-        const glm::mat3 normalToWorld = glm::transpose(glm::inverse(glm::mat3(toWorld)));
-        for (const SubMesh& sub : mesh.subMeshes) {
-            const int material = firstMaterial + std::clamp(sub.material, 0, int(mesh.materials.size()) - 1);
-            const size_t end = std::min<size_t>(size_t(sub.firstIndex) + sub.indexCount, mesh.indices.size());
-            for (size_t i = sub.firstIndex; i + 2 < end; i += 3) {
-                for (int k = 0; k < 3; ++k) {
-                    const Vertex& v = vertices[mesh.indices[i + size_t(k)]];
-                    positions.push_back(glm::vec3(toWorld * glm::vec4(v.position, 1.0f)));
-                    const glm::vec3 n = normalToWorld * v.normal;
-                    const float len = glm::length(n);
-                    normals.push_back(len > 0.0f ? n / len : glm::vec3(0.0f, 1.0f, 0.0f));
-                    uvs.push_back(glm::vec4(v.uv, v.uv1));
-                    // A tangent is a direction on the surface: it goes with the model matrix itself.
-                    const glm::vec3 t = glm::mat3(toWorld) * glm::vec3(v.tangent);
-                    const float tl = glm::length(t);
-                    tangents.push_back(glm::vec4(tl > 0.0f ? t / tl : glm::vec3(1.0f, 0.0f, 0.0f), v.tangent.w < 0.0f ? -1.0f : 1.0f));
+        // Each instance is its own world-space triangles: the BVH is one level.
+        for (size_t instance = 0; instance < model.instanceCount(); ++instance) {
+            const glm::mat4& toWorld = model.instanceTransform(instance);
+            const glm::mat3 normalToWorld = glm::transpose(glm::inverse(glm::mat3(toWorld)));
+            for (const SubMesh& sub : mesh.subMeshes) {
+                const int material = firstMaterial + std::clamp(sub.material, 0, int(mesh.materials.size()) - 1);
+                const size_t end = std::min<size_t>(size_t(sub.firstIndex) + sub.indexCount, mesh.indices.size());
+                for (size_t i = sub.firstIndex; i + 2 < end; i += 3) {
+                    for (int k = 0; k < 3; ++k) {
+                        const Vertex& v = vertices[mesh.indices[i + size_t(k)]];
+                        positions.push_back(glm::vec3(toWorld * glm::vec4(v.position, 1.0f)));
+                        const glm::vec3 n = normalToWorld * v.normal;
+                        const float len = glm::length(n);
+                        normals.push_back(len > 0.0f ? n / len : glm::vec3(0.0f, 1.0f, 0.0f));
+                        uvs.push_back(glm::vec4(v.uv, v.uv1));
+                        // A tangent is a direction on the surface: it goes with the model matrix itself.
+                        const glm::vec3 t = glm::mat3(toWorld) * glm::vec3(v.tangent);
+                        const float tl = glm::length(t);
+                        tangents.push_back(glm::vec4(tl > 0.0f ? t / tl : glm::vec3(1.0f, 0.0f, 0.0f), v.tangent.w < 0.0f ? -1.0f : 1.0f));
+                    }
+                    materialOfTriangle.push_back(material);
                 }
-                materialOfTriangle.push_back(material);
             }
         }
     }

@@ -74,77 +74,14 @@ static_assert(offsetof(GpuVertex, normal) == offsetof(Vertex, normal) && offseto
               "GpuVertex is copied from the front of lp::Vertex");
 
 SceneGpu::SceneGpu(const Scene& scene) {
-    for (const auto& model : scene.models) {
+    std::map<std::string, size_t> geometryOwners;  // a geometry key (and uv1 or not) -> the mesh that uploaded it
+    for (size_t modelIndex = 0; modelIndex < scene.models.size(); ++modelIndex) {
+        const ModelInstance& model = scene.models[modelIndex];
         const MeshData& mesh = model.mesh;
-        GpuMesh gm;
-        gm.name = model.name;
-        gm.model = model.transform;
-        gm.boundsMin = mesh.boundsMin;
-        gm.boundsMax = mesh.boundsMax;
-        gm.vao = gl::makeVertexArray(model.name);
-        std::vector<GpuVertex> vertices(mesh.vertices.size());
-        for (size_t i = 0; i < vertices.size(); ++i) std::memcpy(&vertices[i], &mesh.vertices[i], sizeof(GpuVertex));
-        // An animated model's vertices are rewritten each frame it moves (pose); every other buffer is immutable.
-        gm.animated = model.animation && !model.playingClips.empty() && !model.animation->ranges.empty() && !vertices.empty();
-        gm.vertices = gl::makeBuffer(GLsizeiptr(vertices.size() * sizeof(GpuVertex)), vertices.data(),
-                                     gm.animated ? GL_DYNAMIC_STORAGE_BIT : 0, model.name + ".vertices");
-        gm.indices = gl::makeBuffer(GLsizeiptr(mesh.indices.size() * sizeof(uint32_t)), mesh.indices.data(), 0,
-                                    model.name + ".indices");
-        geometryBytes += vertices.size() * sizeof(GpuVertex) + mesh.indices.size() * sizeof(uint32_t);
-        const bool meshSamplesUv1 =
-            std::any_of(mesh.materials.begin(), mesh.materials.end(), [](const Material& m) { return m.samplesUv1(); });
-        if (meshSamplesUv1 && !mesh.vertices.empty()) {
-            std::vector<glm::vec2> uv1(mesh.vertices.size());
-            for (size_t i = 0; i < uv1.size(); ++i) uv1[i] = mesh.vertices[i].uv1;
-            gm.uv1 = gl::makeBuffer(GLsizeiptr(uv1.size() * sizeof(glm::vec2)), uv1.data(), 0, model.name + ".uv1");
-            geometryBytes += uv1.size() * sizeof(glm::vec2);
-        }
-        triangleCount += mesh.indices.size() / 3;
-        for (const Vertex& v : mesh.vertices)
-            if (v.color != glm::vec4(1.0f)) {
-                vertexColors = true;
-                break;
-            }
-        const GLuint vao = gm.vao.id();
-        glVertexArrayVertexBuffer(vao, 0, gm.vertices.id(), 0, sizeof(GpuVertex));
-        glVertexArrayElementBuffer(vao, gm.indices.id());
-        auto attrib = [vao](GLuint loc, GLint n, size_t offset) {
-            glEnableVertexArrayAttrib(vao, loc);
-            glVertexArrayAttribFormat(vao, loc, n, GL_FLOAT, GL_FALSE, GLuint(offset));
-            glVertexArrayAttribBinding(vao, loc, 0);
-        };
-        attrib(0, 3, offsetof(GpuVertex, position));
-        attrib(1, 3, offsetof(GpuVertex, normal));
-        attrib(2, 2, offsetof(GpuVertex, uv));
-        attrib(3, 4, offsetof(GpuVertex, tangent));
-        attrib(4, 4, offsetof(GpuVertex, color));
-        // Attribute kPreviousPositionAttribute, the previous frame's position (gbuffer.vert's velocity): an animated mesh's own
-        // buffer, else the vertex's position.
-        Pose pose;
-        if (gm.animated) {
-            std::vector<glm::vec4> previous(vertices.size());
-            for (size_t i = 0; i < previous.size(); ++i) previous[i] = glm::vec4(vertices[i].position, 1.0f);
-            gm.previousPositions = gl::makeBuffer(GLsizeiptr(previous.size() * sizeof(glm::vec4)), previous.data(), GL_DYNAMIC_STORAGE_BIT,
-                                                  model.name + ".previous_positions");
-            geometryBytes += previous.size() * sizeof(glm::vec4);
-            glVertexArrayVertexBuffer(vao, 2, gm.previousPositions.id(), 0, sizeof(glm::vec4));
-            pose.vertices = mesh.vertices;
-            pose.previous = std::move(previous);
-            animated = true;
-        } else {
-            glVertexArrayVertexBuffer(vao, 2, gm.vertices.id(), 0, sizeof(GpuVertex));
-        }
-        poses_.push_back(std::move(pose));
-        glEnableVertexArrayAttrib(vao, kPreviousPositionAttribute);
-        glVertexArrayAttribFormat(vao, kPreviousPositionAttribute, 3, GL_FLOAT, GL_FALSE, 0);
-        glVertexArrayAttribBinding(vao, kPreviousPositionAttribute, 2);
-        if (gm.uv1.id() != 0) {  // without it attribute 5 reads (0, 0): no material of the mesh samples it
-            glVertexArrayVertexBuffer(vao, 1, gm.uv1.id(), 0, sizeof(glm::vec2));
-            glEnableVertexArrayAttrib(vao, 5);
-            glVertexArrayAttribFormat(vao, 5, 2, GL_FLOAT, GL_FALSE, 0);
-            glVertexArrayAttribBinding(vao, 5, 1);
-        }
-
+        // An animated model's vertices are rewritten each frame it moves (pose); every other buffer is
+        // immutable, and a still model's instances share it.
+        const bool animatedModel =
+            model.animation && !model.playingClips.empty() && !model.animation->ranges.empty() && !mesh.vertices.empty();
         const int base = int(materials.size());
         for (const auto& m : mesh.materials) {
             GpuMaterial g;
@@ -195,6 +132,7 @@ SceneGpu::SceneGpu(const Scene& scene) {
             secondUvSet |= g.secondUvMaps != 0;
             materials.push_back(g);
         }
+        std::vector<GpuDraw> draws;
         for (const auto& sm : mesh.subMeshes) {
             // The centre of the draw's bounding box: the transparent pass sorts draws by its view depth.
             glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
@@ -204,9 +142,100 @@ SceneGpu::SceneGpu(const Scene& scene) {
                 hi = glm::max(hi, p);
             }
             const glm::vec3 centre = sm.indexCount > 0 ? 0.5f * (lo + hi) : glm::vec3(0.0f);
-            gm.draws.push_back({sm.firstIndex, sm.indexCount, base + sm.material, centre});
+            draws.push_back({sm.firstIndex, sm.indexCount, base + sm.material, centre});
         }
-        meshes.push_back(std::move(gm));
+        const bool meshSamplesUv1 =
+            std::any_of(mesh.materials.begin(), mesh.materials.end(), [](const Material& m) { return m.samplesUv1(); });
+        // The mesh whose buffers this model's copies draw: an earlier model's of the same file (or
+        // primitive), else its own first instance's. An animated model's copies each pose their own.
+        const std::string shareKey =
+            model.geometryKey.empty() || animatedModel ? std::string() : model.geometryKey + (meshSamplesUv1 ? " uv1" : "");
+        std::optional<size_t> owner;
+        if (auto it = geometryOwners.find(shareKey); !shareKey.empty() && it != geometryOwners.end()) owner = it->second;
+        for (size_t instance = 0; instance < model.instanceCount(); ++instance) {
+            GpuMesh gm;
+            gm.name = model.instances.empty() ? model.name : model.name + "[" + std::to_string(instance) + "]";
+            gm.model = model.instanceTransform(instance);
+            gm.sourceModel = modelIndex;
+            gm.instance = instance;
+            gm.boundsMin = mesh.boundsMin;
+            gm.boundsMax = mesh.boundsMax;
+            gm.draws = draws;
+            triangleCount += mesh.indices.size() / 3;
+            Pose pose;
+            if (!owner || animatedModel) {
+                gm.vao = gl::makeVertexArray(model.name);
+                std::vector<GpuVertex> vertices(mesh.vertices.size());
+                for (size_t i = 0; i < vertices.size(); ++i) std::memcpy(&vertices[i], &mesh.vertices[i], sizeof(GpuVertex));
+                gm.animated = animatedModel;
+                storedVertices += vertices.size();
+                gm.vertices = gl::makeBuffer(GLsizeiptr(vertices.size() * sizeof(GpuVertex)), vertices.data(),
+                                             gm.animated ? GL_DYNAMIC_STORAGE_BIT : 0, model.name + ".vertices");
+                gm.indices = gl::makeBuffer(GLsizeiptr(mesh.indices.size() * sizeof(uint32_t)), mesh.indices.data(), 0,
+                                            model.name + ".indices");
+                geometryBytes += vertices.size() * sizeof(GpuVertex) + mesh.indices.size() * sizeof(uint32_t);
+                if (meshSamplesUv1 && !mesh.vertices.empty()) {
+                    std::vector<glm::vec2> uv1(mesh.vertices.size());
+                    for (size_t i = 0; i < uv1.size(); ++i) uv1[i] = mesh.vertices[i].uv1;
+                    gm.uv1 = gl::makeBuffer(GLsizeiptr(uv1.size() * sizeof(glm::vec2)), uv1.data(), 0, model.name + ".uv1");
+                    geometryBytes += uv1.size() * sizeof(glm::vec2);
+                }
+                for (const Vertex& v : mesh.vertices)
+                    if (v.color != glm::vec4(1.0f)) {
+                        vertexColors = true;
+                        break;
+                    }
+                const GLuint vao = gm.vao.id();
+                glVertexArrayVertexBuffer(vao, 0, gm.vertices.id(), 0, sizeof(GpuVertex));
+                glVertexArrayElementBuffer(vao, gm.indices.id());
+                auto attrib = [vao](GLuint loc, GLint n, size_t offset) {
+                    glEnableVertexArrayAttrib(vao, loc);
+                    glVertexArrayAttribFormat(vao, loc, n, GL_FLOAT, GL_FALSE, GLuint(offset));
+                    glVertexArrayAttribBinding(vao, loc, 0);
+                };
+                attrib(0, 3, offsetof(GpuVertex, position));
+                attrib(1, 3, offsetof(GpuVertex, normal));
+                attrib(2, 2, offsetof(GpuVertex, uv));
+                attrib(3, 4, offsetof(GpuVertex, tangent));
+                attrib(4, 4, offsetof(GpuVertex, color));
+                // Attribute kPreviousPositionAttribute, the previous frame's position (gbuffer.vert's velocity): an animated mesh's own
+                // buffer, else the vertex's position.
+                if (gm.animated) {
+                    std::vector<glm::vec4> previous(vertices.size());
+                    for (size_t i = 0; i < previous.size(); ++i) previous[i] = glm::vec4(vertices[i].position, 1.0f);
+                    gm.previousPositions = gl::makeBuffer(GLsizeiptr(previous.size() * sizeof(glm::vec4)), previous.data(), GL_DYNAMIC_STORAGE_BIT,
+                                                          model.name + ".previous_positions");
+                    geometryBytes += previous.size() * sizeof(glm::vec4);
+                    glVertexArrayVertexBuffer(vao, 2, gm.previousPositions.id(), 0, sizeof(glm::vec4));
+                    pose.vertices = mesh.vertices;
+                    pose.previous = std::move(previous);
+                    animated = true;
+                } else {
+                    glVertexArrayVertexBuffer(vao, 2, gm.vertices.id(), 0, sizeof(GpuVertex));
+                }
+                glEnableVertexArrayAttrib(vao, kPreviousPositionAttribute);
+                glVertexArrayAttribFormat(vao, kPreviousPositionAttribute, 3, GL_FLOAT, GL_FALSE, 0);
+                glVertexArrayAttribBinding(vao, kPreviousPositionAttribute, 2);
+                if (gm.uv1.id() != 0) {  // without it attribute 5 reads (0, 0): no material of the mesh samples it
+                    glVertexArrayVertexBuffer(vao, 1, gm.uv1.id(), 0, sizeof(glm::vec2));
+                    glEnableVertexArrayAttrib(vao, 5);
+                    glVertexArrayAttribFormat(vao, 5, 2, GL_FLOAT, GL_FALSE, 0);
+                    glVertexArrayAttribBinding(vao, 5, 1);
+                }
+                if (!animatedModel) {
+                    owner = meshes.size();
+                    if (!shareKey.empty()) geometryOwners.emplace(shareKey, *owner);
+                }
+            } else {
+                const GpuMesh& from = meshes[*owner];
+                gm.vao = from.vao;
+                gm.vertices = from.vertices;
+                gm.indices = from.indices;
+                gm.uv1 = from.uv1;
+            }
+            poses_.push_back(std::move(pose));
+            meshes.push_back(std::move(gm));
+        }
     }
     casterClusters = buildCasterClusters(scene);
 }
@@ -218,9 +247,9 @@ void SceneGpu::pose(const Scene& scene, double time, double previousTime, Skinni
     const bool lostWork = !skinningWork_.empty() && !skinningWorkDone_;
     skinningWork_.clear();
     skinningWorkDone_ = false;
-    for (size_t i = 0; i < meshes.size() && i < scene.models.size(); ++i) {
-        if (!meshes[i].animated) continue;
-        const ModelInstance& model = scene.models[i];
+    for (size_t i = 0; i < meshes.size(); ++i) {
+        if (!meshes[i].animated || meshes[i].sourceModel >= scene.models.size()) continue;
+        const ModelInstance& model = scene.models[meshes[i].sourceModel];
         const NodeAnimation& animation = *model.animation;
         Pose& p = poses_[i];
         NodePose current = animatedPose(animation, model.playingClips, time);
@@ -365,20 +394,20 @@ void SceneGpu::poseOnGpu(size_t i, const ModelInstance& model, NodePose current,
     p.current = std::move(current);
 }
 
-void SceneGpu::bounds(const Scene& scene, glm::vec3& lo, glm::vec3& hi) const {
+void SceneGpu::bounds(const Scene& /*scene: the meshes hold its placements*/, glm::vec3& lo, glm::vec3& hi) const {
     lo = glm::vec3(std::numeric_limits<float>::max());
     hi = glm::vec3(std::numeric_limits<float>::lowest());
-    for (size_t m = 0; m < scene.models.size() && m < meshes.size(); ++m) {
+    for (size_t m = 0; m < meshes.size(); ++m) {
         const GpuMesh& gm = meshes[m];
         for (int c = 0; c < 8; ++c) {
             const glm::vec3 p((c & 1) ? gm.boundsMax.x : gm.boundsMin.x, (c & 2) ? gm.boundsMax.y : gm.boundsMin.y,
                               (c & 4) ? gm.boundsMax.z : gm.boundsMin.z);
-            const glm::vec3 w = glm::vec3(scene.models[m].transform * glm::vec4(p, 1.0f));
+            const glm::vec3 w = glm::vec3(gm.model * glm::vec4(p, 1.0f));  // the instance's placement
             lo = glm::min(lo, w);
             hi = glm::max(hi, w);
         }
     }
-    if (scene.models.empty()) lo = hi = glm::vec3(0.0f);
+    if (meshes.empty()) lo = hi = glm::vec3(0.0f);
 }
 
 }  // namespace lp

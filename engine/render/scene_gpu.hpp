@@ -13,6 +13,7 @@
 #include <glm/glm.hpp>
 
 #include "engine/gl/handles.hpp"
+#include "engine/gl/shared_handle.hpp"
 #include "engine/gl/stream_buffer.hpp"
 #include "engine/io/image_io.hpp"
 #include "engine/render/gpu_skinning.hpp"
@@ -116,20 +117,25 @@ struct SkinningDispatch {
     uint32_t poseBase = 0;
 };
 
+// One drawn copy of a model (placements order): a model's instances share its buffers, vertex array
+// and materials, each with its own `model` matrix; an animated model's instances have buffers of
+// their own (its pose is written into them).
 struct GpuMesh {
     std::string name;
-    gl::VertexArray vao;
-    gl::Buffer vertices;
-    gl::Buffer indices;
-    gl::Buffer uv1;  // the second uv set, a vec2 a vertex (attribute 5), where its materials sample it; else none
+    gl::Shared<gl::VertexArray> vao;
+    gl::Shared<gl::Buffer> vertices;
+    gl::Shared<gl::Buffer> indices;
+    gl::Shared<gl::Buffer> uv1;  // the second uv set, a vec2 a vertex (attribute 5), where its materials sample it; else none
     glm::mat4 model{1.0f};
+    size_t sourceModel = 0;  // index into Scene::models
+    size_t instance = 0;     // which of its instances
     std::vector<GpuDraw> draws;
     // An animated model (a glTF clip playing, SceneGpu::pose): `vertices` holds the pose at the frame's
     // time and `previousPositions` (a vec4 a vertex, w = 1; vertex attribute 6) the positions at the
     // previous frame's time, for motion vectors. A still mesh reads attribute 6 from `vertices`' own
     // positions: its previous position is its position.
     bool animated = false;
-    gl::Buffer previousPositions;
+    gl::Shared<gl::Buffer> previousPositions;
     // Changes whenever the pose in `vertices` changes (the shadow cascade cache and the visibility
     // resolve's copy of the geometry follow it); 0 for a mesh that never moves.
     uint64_t poseVersion = 0;
@@ -147,7 +153,8 @@ public:
     std::vector<CasterCluster> casterClusters;  // meshes[i] is CasterCluster::model i (shadow caster culling)
     size_t geometryBytes = 0;
     size_t textureBytes = 0;
-    size_t triangleCount = 0;
+    size_t triangleCount = 0;   // drawn: every instance's (the visibility buffer numbers them)
+    size_t storedVertices = 0;  // in vertex buffers: a mesh its instances share counts once
     bool vertexColors = false;  // some vertex has a colour other than white (the G-buffer programs read them: LP_VERTEX_COLOR)
     bool secondUvSet = false;   // some material samples TEXCOORD_1 (the programs read it: LP_SECOND_UV)
     bool animated = false;      // some mesh is animated (the visibility resolve reads previous positions)

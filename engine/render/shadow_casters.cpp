@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "engine/scene/placements.hpp"
+
 namespace lp {
 
 CasterAlpha casterAlpha(const MeshData& mesh, const SubMesh& sm) {
@@ -32,15 +34,17 @@ std::vector<CasterCluster> buildCasterClusters(const Scene& scene, uint32_t tria
     std::vector<CasterCluster> clusters;
     const uint32_t perCluster = std::max<uint32_t>(trianglesPerCluster, 1u) * 3u;
     int materialBase = 0;  // SceneGpu::materials holds every model's materials in model order
+    int placement = 0;     // the first instance of model m (placements order)
     for (size_t m = 0; m < scene.models.size(); ++m) {
         const MeshData& mesh = scene.models[m].mesh;
+        const size_t firstCluster = clusters.size();
         for (const SubMesh& sm : mesh.subMeshes) {
             const CasterAlpha alpha = casterAlpha(mesh, sm);
             if (alpha == CasterAlpha::None) continue;  // casts nothing
             const uint32_t end = std::min<uint32_t>(sm.firstIndex + sm.indexCount, uint32_t(mesh.indices.size()));
             for (uint32_t first = sm.firstIndex; first < end; first += perCluster) {
                 CasterCluster c;
-                c.model = int(m);
+                c.model = placement;
                 c.firstIndex = first;
                 c.indexCount = std::min(perCluster, end - first);
                 c.alpha = alpha;
@@ -61,6 +65,15 @@ std::vector<CasterCluster> buildCasterClusters(const Scene& scene, uint32_t tria
             }
         }
         materialBase += int(mesh.materials.size());
+        // Every further instance casts the same clusters (object-space bounds) from its own placement.
+        const size_t lastCluster = clusters.size();
+        for (size_t k = 1; k < scene.models[m].instanceCount(); ++k)
+            for (size_t i = firstCluster; i < lastCluster; ++i) {
+                CasterCluster c = clusters[i];
+                c.model = placement + int(k);
+                clusters.push_back(c);
+            }
+        placement += int(scene.models[m].instanceCount());
     }
     return clusters;
 }
@@ -105,10 +118,11 @@ CasterList cullCasters(const std::vector<CasterCluster>& clusters, const Scene& 
     CasterList list;
     int lastModel = -1;
     glm::mat4 objectToClip(1.0f);
+    const std::vector<Placement> placed = placements(scene);
     for (const CasterCluster& c : clusters) {
-        if (c.model < 0 || size_t(c.model) >= scene.models.size()) continue;
+        if (c.model < 0 || size_t(c.model) >= placed.size()) continue;
         if (c.model != lastModel) {
-            objectToClip = worldToClip * scene.models[size_t(c.model)].transform;
+            objectToClip = worldToClip * placed[size_t(c.model)].transform;
             lastModel = c.model;
         }
         if (cull && !casterBoxMayCast(objectToClip, c.boundsMin, c.boundsMax, margin)) continue;
@@ -145,9 +159,10 @@ bool casterBoxInPerspectiveView(const glm::mat4& objectToClip, glm::vec3 lo, glm
 CasterList castersInSphereAndView(const std::vector<CasterCluster>& clusters, const Scene& scene, glm::vec3 centre,
                                   float radius, const glm::mat4& worldToClip) {
     CasterList list;
+    const std::vector<Placement> placed = placements(scene);
     for (const CasterCluster& c : clusters) {
-        if (c.model < 0 || size_t(c.model) >= scene.models.size()) continue;
-        const glm::mat4& transform = scene.models[size_t(c.model)].transform;
+        if (c.model < 0 || size_t(c.model) >= placed.size()) continue;
+        const glm::mat4& transform = placed[size_t(c.model)].transform;
         if (!casterBoxReachesSphere(transform, c.boundsMin, c.boundsMax, centre, radius)) continue;
         if (!casterBoxInPerspectiveView(worldToClip * transform, c.boundsMin, c.boundsMax)) continue;
         addCluster(list, c);
@@ -157,9 +172,10 @@ CasterList castersInSphereAndView(const std::vector<CasterCluster>& clusters, co
 
 CasterList castersInSphere(const std::vector<CasterCluster>& clusters, const Scene& scene, glm::vec3 centre, float radius) {
     CasterList list;
+    const std::vector<Placement> placed = placements(scene);
     for (const CasterCluster& c : clusters) {
-        if (c.model < 0 || size_t(c.model) >= scene.models.size()) continue;
-        if (!casterBoxReachesSphere(scene.models[size_t(c.model)].transform, c.boundsMin, c.boundsMax, centre, radius)) continue;
+        if (c.model < 0 || size_t(c.model) >= placed.size()) continue;
+        if (!casterBoxReachesSphere(placed[size_t(c.model)].transform, c.boundsMin, c.boundsMax, centre, radius)) continue;
         addCluster(list, c);
     }
     return list;

@@ -37,7 +37,7 @@ enum class CasterAlpha {
 CasterAlpha casterAlpha(const MeshData& mesh, const SubMesh& sm);
 
 struct CasterCluster {
-    int model = 0;            // index into scene.models (and SceneGpu::meshes)
+    int model = 0;            // the drawn copy: index into placements(scene) (and SceneGpu::meshes)
     uint32_t firstIndex = 0;  // into the model's index buffer
     uint32_t indexCount = 0;
     glm::vec3 boundsMin{0.0f};  // object space
@@ -66,8 +66,9 @@ struct CasterList {
     size_t alphaTriangles = 0;  // of which alpha-tested
 };
 
-// Clusters of every model, in model then index order; every triangle of every sub-mesh that casts
-// (casterAlpha not None) is in exactly one, and a cluster holds one sub-mesh. Non-finite vertex
+// Clusters of every model, in model then index order, repeated for each of its instances; every
+// triangle of every sub-mesh that casts (casterAlpha not None) is in exactly one cluster per
+// instance, and a cluster holds one sub-mesh. Non-finite vertex
 // positions are left out of the bounds.
 std::vector<CasterCluster> buildCasterClusters(const Scene& scene, uint32_t trianglesPerCluster = kCasterClusterTriangles);
 

@@ -14,12 +14,15 @@ std::vector<uint8_t> surfaceMask(const Scene& scene, const Camera& camera, int w
         const MeshData& mesh = model.mesh;
         std::vector<Vertex> posed;
         const std::vector<Vertex>& vertices = posedVertices(model, time, posed);
-        for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3)
-            for (size_t k = 0; k < 3; ++k) {
-                const uint32_t index = mesh.indices[i + k];
-                if (index >= vertices.size()) return mask;  // the loader never leaves one; nothing to cast against
-                positions.push_back(glm::vec3(model.transform * glm::vec4(vertices[index].position, 1.0f)));
-            }
+        for (size_t instance = 0; instance < model.instanceCount(); ++instance) {
+            const glm::mat4& toWorld = model.instanceTransform(instance);
+            for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3)
+                for (size_t k = 0; k < 3; ++k) {
+                    const uint32_t index = mesh.indices[i + k];
+                    if (index >= vertices.size()) return mask;  // the loader never leaves one; nothing to cast against
+                    positions.push_back(glm::vec3(toWorld * glm::vec4(vertices[index].position, 1.0f)));
+                }
+        }
     }
     if (positions.empty() || width <= 0 || height <= 0) return mask;
     const Bvh bvh = buildBvh(positions);

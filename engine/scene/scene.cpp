@@ -41,13 +41,14 @@ void Scene::bounds(glm::vec3& lo, glm::vec3& hi) const {
     lo = glm::vec3(std::numeric_limits<float>::max());
     hi = glm::vec3(std::numeric_limits<float>::lowest());
     for (const auto& m : models) {
-        for (int c = 0; c < 8; ++c) {
-            glm::vec3 p((c & 1) ? m.mesh.boundsMax.x : m.mesh.boundsMin.x, (c & 2) ? m.mesh.boundsMax.y : m.mesh.boundsMin.y,
-                        (c & 4) ? m.mesh.boundsMax.z : m.mesh.boundsMin.z);
-            glm::vec3 w = glm::vec3(m.transform * glm::vec4(p, 1.0f));
-            lo = glm::min(lo, w);
-            hi = glm::max(hi, w);
-        }
+        for (size_t k = 0; k < m.instanceCount(); ++k)
+            for (int c = 0; c < 8; ++c) {
+                glm::vec3 p((c & 1) ? m.mesh.boundsMax.x : m.mesh.boundsMin.x, (c & 2) ? m.mesh.boundsMax.y : m.mesh.boundsMin.y,
+                            (c & 4) ? m.mesh.boundsMax.z : m.mesh.boundsMin.z);
+                glm::vec3 w = glm::vec3(m.instanceTransform(k) * glm::vec4(p, 1.0f));
+                lo = glm::min(lo, w);
+                hi = glm::max(hi, w);
+            }
     }
     if (models.empty()) lo = hi = glm::vec3(0.0f);
 }

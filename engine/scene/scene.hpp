@@ -98,6 +98,11 @@ struct ModelInstance {
     std::filesystem::path gltf;  // .gltf / .glb; empty for primitives and OBJ
     std::string primitive;      // "plane" | "sphere" | "cube" | ""
     glm::mat4 transform{1.0f};
+    // "instances": the places its one mesh is drawn at, each world-from-mesh (the instance's own
+    // placement times `transform`); empty: drawn once, at `transform`. The mesh is stored once.
+    std::vector<glm::mat4> instances;
+    size_t instanceCount() const { return instances.empty() ? 1 : instances.size(); }
+    const glm::mat4& instanceTransform(size_t k) const { return instances.empty() ? transform : instances[k]; }
     std::optional<glm::vec3> diffuseOverride;
     std::optional<glm::vec3> specularOverride;
     std::optional<float> shininessOverride;
@@ -108,6 +113,9 @@ struct ModelInstance {
     // no shadow flag); unset: they cast none.
     std::optional<bool> lightShadows;
     MeshData mesh;  // filled by the loader (a glTF's rest pose)
+    // Which vertices `mesh` holds: the canonical path of its file, or the primitive ("primitive:cube");
+    // empty: its own. Models of one key draw one copy on the GPU (each with its own materials).
+    std::string geometryKey;
     // A glTF's animations (null: none) and the clips that play on the scene's clock (--animation;
     // by default the first clip), indices into animation->clips.
     std::shared_ptr<const NodeAnimation> animation;

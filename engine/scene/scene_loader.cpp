@@ -35,6 +35,7 @@ constexpr float kMaxIntensity = 1e9f;         // light intensity (and colour com
 constexpr float kMinNear = 1e-6f;             // camera near plane, metres
 constexpr float kMaxFar = 1e7f;               // camera far plane, metres
 constexpr float kMaxDepthRatio = 1e6f;        // far / near: beyond it depth precision is gone
+constexpr size_t kMaxInstances = size_t(1) << 20;  // placements of one model (a million copies)
 
 std::string formatNumber(double v) {
     std::ostringstream s;
@@ -201,9 +202,28 @@ CameraPath parseCameraPath(const Reader& r, const json& j, const std::string& w)
     return path;
 }
 
+// "translate", "rotate" (degrees, applied Y, then X, then Z) and "scale" of a model or an instance.
+glm::mat4 placementOf(const Reader& r, const json& j, const std::string& w) {
+    glm::vec3 t = r.point(j, "translate", w, glm::vec3(0.0f));
+    glm::vec3 rot = r.vec3(j, "rotate", w, glm::vec3(0.0f));
+    glm::vec3 s = r.vec3(j, "scale", w, glm::vec3(1.0f));
+    if (s.x == 0.0f || s.y == 0.0f || s.z == 0.0f) r.fail(w + ".scale", "must not be zero");
+    for (int i = 0; i < 3; ++i)
+        if (std::abs(s[i]) > kMaxScale || std::abs(s[i]) < 1.0f / kMaxScale)
+            r.fail(w + ".scale", formatNumber(s[i]) + ": magnitude must be in [" + formatNumber(1.0f / kMaxScale) + ", " +
+                                     formatNumber(kMaxScale) + "]");
+    for (int i = 0; i < 3; ++i)
+        if (std::abs(rot[i]) > 1e6f) r.fail(w + ".rotate", formatNumber(rot[i]) + " degrees: magnitude must be <= 1e6");
+    glm::mat4 x = glm::translate(glm::mat4(1.0f), t);
+    x = glm::rotate(x, glm::radians(rot.y), glm::vec3(0, 1, 0));
+    x = glm::rotate(x, glm::radians(rot.x), glm::vec3(1, 0, 0));
+    x = glm::rotate(x, glm::radians(rot.z), glm::vec3(0, 0, 1));
+    return glm::scale(x, s);
+}
+
 void parseModel(const Reader& r, const json& j, const std::string& w, const fs::path& base, ModelInstance& m) {
     r.onlyKnown(j, w, {"name", "obj", "gltf", "primitive", "translate", "rotate", "scale", "up", "material", "materialVariant",
-                       "lightShadows", "spin"});
+                       "lightShadows", "spin", "instances"});
     m.name = r.string(j, "name", w);
     std::string obj = r.string(j, "obj", w);
     std::string gltf = r.string(j, "gltf", w);
@@ -237,24 +257,24 @@ void parseModel(const Reader& r, const json& j, const std::string& w, const fs::
         if (m.spinSpeed == 0.0f) m.spinAxis.reset();  // a spin of speed 0 stands still
     }
     if (m.name.empty()) m.name = !obj.empty() ? fs::path(obj).stem().string() : !gltf.empty() ? fs::path(gltf).stem().string() : m.primitive;
-    glm::vec3 t = r.point(j, "translate", w, glm::vec3(0.0f));
-    glm::vec3 rot = r.vec3(j, "rotate", w, glm::vec3(0.0f));
-    glm::vec3 s = r.vec3(j, "scale", w, glm::vec3(1.0f));
-    if (s.x == 0.0f || s.y == 0.0f || s.z == 0.0f) r.fail(w + ".scale", "must not be zero");
-    for (int i = 0; i < 3; ++i)
-        if (std::abs(s[i]) > kMaxScale || std::abs(s[i]) < 1.0f / kMaxScale)
-            r.fail(w + ".scale", formatNumber(s[i]) + ": magnitude must be in [" + formatNumber(1.0f / kMaxScale) + ", " +
-                                     formatNumber(kMaxScale) + "]");
-    for (int i = 0; i < 3; ++i)
-        if (std::abs(rot[i]) > 1e6f) r.fail(w + ".rotate", formatNumber(rot[i]) + " degrees: magnitude must be <= 1e6");
-    glm::mat4 x = glm::translate(glm::mat4(1.0f), t);
-    x = glm::rotate(x, glm::radians(rot.y), glm::vec3(0, 1, 0));
-    x = glm::rotate(x, glm::radians(rot.x), glm::vec3(1, 0, 0));
-    x = glm::rotate(x, glm::radians(rot.z), glm::vec3(0, 0, 1));
-    m.transform = glm::scale(x, s);
+    m.transform = placementOf(r, j, w);
     const std::string up = r.string(j, "up", w);
     if (!up.empty() && up != "y" && up != "z") r.fail(w + ".up", quoteUserText(up) + ": expected \"y\" or \"z\"");
     if (up == "z") m.transform = m.transform * zUpToYUp();  // turned Y-up first, then placed
+    if (j.contains("instances")) {
+        // The mesh is loaded once and drawn at each instance: its own placement after the model's.
+        const json& list = j["instances"];
+        const std::string wi = w + ".instances";
+        if (!list.is_array()) r.fail(wi, "expected an array of placements ({\"translate\", \"rotate\", \"scale\"})");
+        if (list.empty()) r.fail(wi, "is empty; give at least one placement, or leave \"instances\" out to draw the model once");
+        if (list.size() > kMaxInstances)
+            r.fail(wi, "has " + std::to_string(list.size()) + " placements, over the limit of " + std::to_string(kMaxInstances));
+        for (size_t k = 0; k < list.size(); ++k) {
+            const std::string wk = wi + "[" + std::to_string(k) + "]";
+            r.onlyKnown(list[k], wk, {"translate", "rotate", "scale"});
+            m.instances.push_back(placementOf(r, list[k], wk) * m.transform);
+        }
+    }
     if (j.contains("material")) {
         const json& mat = j["material"];
         const std::string mw = w + ".material";
@@ -369,7 +389,10 @@ void addGltfLights(const GltfContent& g, const glm::mat4& transform, std::option
 }
 
 // The files a scene's models name, each parsed once: a scene listing the same model N times parsed
-// it N times (0.23 s per copy of the gallery's models) and repeated its warnings N times.
+// it N times (0.23 s per copy of the gallery's models) and repeated its warnings N times. Keyed by
+// the canonical path alone: what else a model entry says (material overrides, a material variant,
+// the placement) is applied to its copy after the parse. Its vertices are the same for every entry
+// of the file, so those share one copy on the GPU (ModelInstance::geometryKey).
 struct ParsedFiles {
     std::map<fs::path, MeshData> obj;
     std::map<fs::path, GltfContent> gltf;
@@ -385,6 +408,7 @@ void loadMesh(const Reader& r, ModelInstance& m, const std::string& where, Scene
         if (m.primitive == "plane") m.mesh = makePlane(1.0f, 8);
         else if (m.primitive == "sphere") m.mesh = makeSphere(0.5f, 64, 32);
         else m.mesh = makeCube(1.0f);
+        m.geometryKey = "primitive:" + m.primitive;
     } else if (!m.gltf.empty()) {
         if (!fs::exists(m.gltf)) r.fail(where + ".gltf", m.gltf.string() + ": file not found");
         try {
@@ -392,6 +416,7 @@ void loadMesh(const Reader& r, ModelInstance& m, const std::string& where, Scene
             auto it = parsed.gltf.find(key);
             if (it == parsed.gltf.end()) it = parsed.gltf.emplace(key, loadGltf(m.gltf)).first;
             m.mesh = it->second.mesh;
+            m.geometryKey = "gltf:" + key.string();  // a material variant changes materials, not vertices
             if (!selectMaterialVariant(m.mesh, m.materialVariant))
                 r.fail(where + ".materialVariant", quoteUserText(m.materialVariant) + " is not a material variant of " +
                                                        m.gltf.filename().string() +
@@ -399,7 +424,8 @@ void loadMesh(const Reader& r, ModelInstance& m, const std::string& where, Scene
                                                                                         : " (" + materialVariantList(m.mesh) + ")"));
             m.animation = it->second.animation;
             if (m.animation) m.playingClips = chooseClips(*m.animation, "");  // the first clip, as glTF viewers play
-            addGltfLights(it->second, m.transform, m.lightShadows, scene);
+            for (size_t k = 0; k < m.instanceCount(); ++k)  // each instance brings the file's lights
+                addGltfLights(it->second, m.instanceTransform(k), m.lightShadows, scene);
         } catch (const Error& e) {  // "<scene>: models[i].gltf: <gltf>: <element>: <what>"
             r.fail(where + ".gltf", e.what());
         }
@@ -410,6 +436,7 @@ void loadMesh(const Reader& r, ModelInstance& m, const std::string& where, Scene
             auto it = parsed.obj.find(key);
             if (it == parsed.obj.end()) it = parsed.obj.emplace(key, loadObj(m.obj)).first;
             m.mesh = it->second;
+            m.geometryKey = "obj:" + key.string();
         } catch (const Error& e) {  // "<scene>: models[i].obj: <obj>: <what>"
             r.fail(where + ".obj", e.what());
         }
@@ -438,14 +465,17 @@ void loadMesh(const Reader& r, ModelInstance& m, const std::string& where, Scene
 // where squared lengths still fit a float: beyond, camera framing and shadow fitting overflow.
 void requirePlacedWithinRange(const Reader& r, const ModelInstance& m, const std::string& where) {
     constexpr double kMaxWorldCoordinate = 1e18;
-    const glm::dmat4 transform(m.transform);
-    for (int c = 0; c < 8; ++c) {
-        const glm::dvec3 p((c & 1) ? m.mesh.boundsMax.x : m.mesh.boundsMin.x, (c & 2) ? m.mesh.boundsMax.y : m.mesh.boundsMin.y,
-                           (c & 4) ? m.mesh.boundsMax.z : m.mesh.boundsMin.z);
-        const glm::dvec3 w(transform * glm::dvec4(p, 1.0));
-        for (int i = 0; i < 3; ++i)
-            if (!(std::abs(w[i]) <= kMaxWorldCoordinate))
-                r.fail(where, "placed up to " + formatNumber(std::abs(w[i])) + " m from the origin, beyond the 1e+18 m limit");
+    for (size_t k = 0; k < m.instanceCount(); ++k) {
+        const glm::dmat4 transform(m.instanceTransform(k));
+        const std::string place = m.instances.empty() ? where : where + ".instances[" + std::to_string(k) + "]";
+        for (int c = 0; c < 8; ++c) {
+            const glm::dvec3 p((c & 1) ? m.mesh.boundsMax.x : m.mesh.boundsMin.x, (c & 2) ? m.mesh.boundsMax.y : m.mesh.boundsMin.y,
+                               (c & 4) ? m.mesh.boundsMax.z : m.mesh.boundsMin.z);
+            const glm::dvec3 w(transform * glm::dvec4(p, 1.0));
+            for (int i = 0; i < 3; ++i)
+                if (!(std::abs(w[i]) <= kMaxWorldCoordinate))
+                    r.fail(place, "placed up to " + formatNumber(std::abs(w[i])) + " m from the origin, beyond the 1e+18 m limit");
+        }
     }
 }
 
@@ -515,9 +545,9 @@ Scene parseScene(const std::string& text, const fs::path& origin, bool loadMeshe
         }
     }
     if (loadMeshes) {
-        // Each model is its own copy of its mesh: a 3 MB scene naming 100000 spheres asked for 15 GB.
-        // The vertices and indices of all models together are bounded (2^26, up to ~3 GB), as are a
-        // glTF's instanced ones.
+        // Each model is its own copy of its mesh (its instances share it): a 3 MB scene naming 100000
+        // spheres asked for 15 GB. The vertices and indices of all models together are bounded
+        // (2^26, up to ~3 GB), as are a glTF's instanced ones.
         constexpr size_t kMaxSceneElements = size_t(1) << 26;
         size_t sceneElements = 0;
         ParsedFiles parsed;

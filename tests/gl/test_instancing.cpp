@@ -1,0 +1,176 @@
+// Scene-file "instances": a model stored once and drawn at each placement renders what the same
+// scene written as separate copies renders, in every path that draws meshes (deferred with both
+// G-buffer modes, forward+, the transparent pass, sun cascades, spot and point shadows, the path
+// tracer), while its vertices are uploaded once.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "engine/render/scene_gpu.hpp"
+#include "engine/scene/placements.hpp"
+#include "engine/scene/scene_loader.hpp"
+#include "frame/renderer.hpp"
+#include "tests/gl/render_fixture.hpp"
+#include "gl_fixture.hpp"
+
+using namespace lp;
+using lp::test::renderHdr;
+
+namespace {
+
+// Where the copies go: turned, scaled and moved, so that a placement read wrongly moves pixels.
+const std::vector<std::string> kCubePlacements = {
+    R"("translate": [-1.2, 0.3, 0], "rotate": [0, 30, 0], "scale": 0.6)",
+    R"("translate": [0.1, 0.25, -0.8], "rotate": [10, -20, 5], "scale": [0.5, 0.5, 0.8])",
+    R"("translate": [1.3, 0.4, 0.4], "rotate": [0, 75, 0], "scale": 0.8)",
+};
+const std::vector<std::string> kGlassPlacements = {
+    R"("translate": [-0.5, 0.9, 0.9], "scale": 0.5)",
+    R"("translate": [0.7, 0.8, 1.1], "scale": 0.4)",
+};
+
+std::string lightsAndCamera() {
+    return R"(
+      "camera": {"position": [0, 2.6, 4.2], "target": [0, 0.3, 0], "fov": 50, "near": 0.1, "far": 30},
+      "lights": [{"type": "directional", "direction": [-0.4, -1, -0.3], "intensity": 2, "shadows": true},
+                 {"type": "spot", "position": [-1.5, 2.5, 1.5], "direction": [0.5, -1, -0.5], "intensity": 6, "range": 6,
+                  "innerAngle": 25, "outerAngle": 40, "castsShadow": true},
+                 {"type": "point", "position": [1.2, 1.6, -0.6], "intensity": 2, "range": 4, "castsShadow": true}],
+      "ambient": 0.05)";
+}
+
+const char* kCube = R"("primitive": "cube", "material": {"diffuse": [0.7, 0.4, 0.2], "specular": [0.04, 0.04, 0.04], "roughness": 0.4})";
+const char* kGlass = R"("primitive": "sphere", "material": {"diffuse": [0.2, 0.5, 0.8], "opacity": 0.5})";
+const char* kFloor = R"({"primitive": "plane", "scale": 6})";
+
+// The scene with each model once and its placements under "instances".
+Scene instancedScene() {
+    auto list = [](const std::vector<std::string>& placements) {
+        std::string s;
+        for (const std::string& p : placements) s += (s.empty() ? "{" : ", {") + p + "}";
+        return "[" + s + "]";
+    };
+    const std::string json = std::string("{") + lightsAndCamera() + R"(, "models": [)" + kFloor + ", {" + kCube +
+                             R"(, "instances": )" + list(kCubePlacements) + "}, {" + kGlass + R"(, "instances": )" +
+                             list(kGlassPlacements) + "}]}";
+    return parseScene(json, "instanced.json", true);
+}
+
+// The same scene written out: one model entry per placement.
+Scene expandedScene() {
+    std::string models = kFloor;
+    for (const std::string& p : kCubePlacements) models += std::string(", {") + kCube + ", " + p + "}";
+    for (const std::string& p : kGlassPlacements) models += std::string(", {") + kGlass + ", " + p + "}";
+    return parseScene(std::string("{") + lightsAndCamera() + R"(, "models": [)" + models + "]}", "expanded.json", true);
+}
+
+RenderSettings small(RenderPath path, GBufferMode mode) {
+    RenderSettings s;
+    s.aa.method = AntiAliasing::Off;
+    s.aa.dither = false;
+    s.autoExposure = false;
+    s.width = 64;
+    s.height = 48;
+    s.keepHdr = true;
+    s.renderPath = path;
+    s.gbuffer.mode = mode;
+    return s;
+}
+
+}  // namespace
+
+TEST(Instancing, StoresTheMeshOnceAndDrawsEachPlacement) {
+    const Scene instanced = instancedScene(), expanded = expandedScene();
+    ASSERT_EQ(instanced.models.size(), 3u);
+    ASSERT_EQ(expanded.models.size(), 6u);
+    const SceneGpu one(instanced), copies(expanded);
+    // Drawn: the floor, three cubes and two spheres either way, with the same matrices.
+    ASSERT_EQ(one.meshes.size(), 6u);
+    ASSERT_EQ(copies.meshes.size(), 6u);
+    for (size_t i = 0; i < 6; ++i) EXPECT_EQ(one.meshes[i].model, copies.meshes[i].model) << "mesh " << i;
+    EXPECT_EQ(one.triangleCount, copies.triangleCount);
+    // Stored: the cube's and the sphere's vertices once instead of three and two times, whether
+    // the copies are instances of one model or model entries of one primitive (their geometry key).
+    const size_t plane = instanced.models[0].mesh.vertices.size(), cube = instanced.models[1].mesh.vertices.size(),
+                 sphere = instanced.models[2].mesh.vertices.size();
+    EXPECT_EQ(one.storedVertices, plane + cube + sphere);
+    EXPECT_EQ(copies.storedVertices, plane + cube + sphere);
+    EXPECT_EQ(sceneCounts(instanced).storedVertices, one.storedVertices);
+    EXPECT_EQ(sceneCounts(expanded).storedVertices, one.storedVertices);
+    Scene own = expanded;  // each entry its own vertices, as every scene was stored before
+    for (ModelInstance& m : own.models) m.geometryKey.clear();
+    const SceneGpu owned(own);
+    EXPECT_EQ(owned.storedVertices, plane + 3 * cube + 2 * sphere);
+    EXPECT_EQ(sceneCounts(own).storedVertices, owned.storedVertices);
+    EXPECT_LT(one.geometryBytes, owned.geometryBytes);
+    EXPECT_EQ(one.geometryBytes, copies.geometryBytes);
+    for (size_t i : {2u, 3u}) {
+        EXPECT_EQ(one.meshes[i].vertices.id(), one.meshes[1].vertices.id()) << "instance " << i;
+        EXPECT_EQ(one.meshes[i].vao.id(), one.meshes[1].vao.id()) << "instance " << i;
+        EXPECT_EQ(copies.meshes[i].vertices.id(), copies.meshes[1].vertices.id()) << "entry " << i;
+        EXPECT_NE(owned.meshes[i].vertices.id(), owned.meshes[1].vertices.id()) << "entry " << i;
+    }
+    EXPECT_EQ(one.meshes[5].indices.id(), one.meshes[4].indices.id());
+    // The materials are the model's, once: every cube instance draws the same one; model entries
+    // keep their own (their overrides may differ).
+    EXPECT_EQ(one.meshes[2].draws[0].material, one.meshes[1].draws[0].material);
+    EXPECT_EQ(one.materials.size(), 3u);
+    EXPECT_EQ(copies.materials.size(), 6u);
+    // Shadow caster clusters per drawn copy, in the same order.
+    ASSERT_EQ(one.casterClusters.size(), copies.casterClusters.size());
+    for (size_t i = 0; i < one.casterClusters.size(); ++i) {
+        EXPECT_EQ(one.casterClusters[i].model, copies.casterClusters[i].model) << i;
+        EXPECT_EQ(one.casterClusters[i].indexCount, copies.casterClusters[i].indexCount) << i;
+    }
+    glm::vec3 lo1, hi1, lo2, hi2;
+    one.bounds(instanced, lo1, hi1);
+    copies.bounds(expanded, lo2, hi2);
+    EXPECT_EQ(lo1, lo2);
+    EXPECT_EQ(hi1, hi2);
+}
+
+// Deferred (classic and visibility G-buffer) and forward+, with sun cascades, a spot's and a point
+// light's shadows and the transparent pass: the instanced scene's image is the expanded one's, texel
+// for texel (the same vertices, matrices and draw order; only where they are stored differs).
+TEST(Instancing, RendersWhatTheExpandedSceneRendersInEveryRasterPath) {
+    const Scene instanced = instancedScene(), expanded = expandedScene();
+    struct Way {
+        RenderPath path;
+        GBufferMode mode;
+        const char* name;
+    };
+    for (const Way& way : {Way{RenderPath::Deferred, GBufferMode::Classic, "deferred, classic G-buffer"},
+                           Way{RenderPath::Deferred, GBufferMode::Visibility, "deferred, visibility buffer"},
+                           Way{RenderPath::ForwardPlus, GBufferMode::Classic, "forward+"}}) {
+        const RenderSettings s = small(way.path, way.mode);
+        const ImageF a = renderHdr(instanced, s), b = renderHdr(expanded, s);
+        EXPECT_TRUE(test::imagesNear(a, b, 0.0f, std::string("instanced vs expanded, ") + way.name));
+        // Not a blank frame that matches anything: the lit cubes and their shadows are there.
+        float lo = 1e30f, hi = 0.0f;
+        for (size_t i = 0; i < a.rgba.size(); i += 4) {
+            lo = std::min(lo, a.rgba[i + 1]);
+            hi = std::max(hi, a.rgba[i + 1]);
+        }
+        EXPECT_GT(hi, 4.0f * lo + 0.01f) << way.name << ": the frame is flat (" << lo << " .. " << hi << ")";
+    }
+}
+
+// Each instance casts its own shadow: without the cube's instances the image changes (the test
+// above cannot pass on a frame that ignores them).
+TEST(Instancing, EveryInstanceIsDrawn) {
+    Scene fewer = instancedScene();
+    fewer.models[1].instances.pop_back();
+    const RenderSettings s = small(RenderPath::Deferred, GBufferMode::Classic);
+    EXPECT_FALSE(test::imagesNear(renderHdr(instancedScene(), s), renderHdr(fewer, s), 1e-3f, "three cubes vs two"));
+}
+
+TEST(Instancing, PathTracerMatchesTheExpandedScene) {
+    const Scene instanced = instancedScene(), expanded = expandedScene();
+    RenderSettings s = small(RenderPath::PathTraced, GBufferMode::Classic);
+    s.width = 24;
+    s.height = 16;
+    s.pathTrace.samples = 2;
+    EXPECT_TRUE(test::imagesNear(renderHdr(instanced, s), renderHdr(expanded, s), 0.0f, "path traced, instanced vs expanded"));
+}

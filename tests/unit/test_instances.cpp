@@ -1,0 +1,139 @@
+// Scene-file "instances": one mesh stored once, drawn at each placement (the instance's placement
+// after the model's own); the counts, bounds and caster clusters follow; bad lists are one line
+// naming the file, the place and what is wrong.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "engine/core/error.hpp"
+#include "engine/render/shadow_casters.hpp"
+#include "engine/scene/placements.hpp"
+#include "engine/scene/scene_loader.hpp"
+
+using namespace lp;
+
+namespace {
+std::string errorFor(const std::string& json) {
+    try {
+        parseScene(json, "grid.json", false);
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "";
+}
+
+std::string withInstances(const std::string& instances) {
+    return R"({"models": [{"primitive": "cube", "instances": )" + instances + "}]}";
+}
+
+void expectMatrixNear(const glm::mat4& a, const glm::mat4& b, const std::string& what) {
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r) EXPECT_NEAR(a[c][r], b[c][r], 1e-5f) << what << ": column " << c << ", row " << r;
+}
+}  // namespace
+
+TEST(SceneInstances, EachPlacementFollowsTheModelsOwn) {
+    const Scene s = parseScene(R"({"models": [
+        {"primitive": "cube", "scale": 0.5, "rotate": [0, 90, 0],
+         "instances": [{"translate": [2, 0, 0]}, {"translate": [0, 0, -3], "rotate": [0, 0, 90], "scale": [1, 2, 1]}]},
+        {"primitive": "plane"}]})",
+                               "grid.json", true);
+    ASSERT_EQ(s.models.size(), 2u);
+    const ModelInstance& cube = s.models[0];
+    ASSERT_EQ(cube.instanceCount(), 2u);
+    EXPECT_EQ(s.models[1].instanceCount(), 1u);
+    const glm::mat4 own = glm::scale(glm::rotate(glm::mat4(1.0f), glm::radians(90.0f), glm::vec3(0, 1, 0)), glm::vec3(0.5f));
+    expectMatrixNear(cube.transform, own, "the model's own placement");
+    expectMatrixNear(cube.instanceTransform(0), glm::translate(glm::mat4(1.0f), glm::vec3(2, 0, 0)) * own, "instances[0]");
+    const glm::mat4 second = glm::scale(glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(0, 0, -3)), glm::radians(90.0f),
+                                                    glm::vec3(0, 0, 1)),
+                                        glm::vec3(1, 2, 1));
+    expectMatrixNear(cube.instanceTransform(1), second * own, "instances[1]");
+    // The cube is +-0.25 after the model's scale: instances[0] reaches x = 2.25; instances[1] is
+    // +-0.5 along its y, turned onto x, at z = -3 (to -3.25); the plane spans +-0.5 in x and z.
+    glm::vec3 lo, hi;
+    s.bounds(lo, hi);
+    EXPECT_NEAR(hi.x, 2.25f, 1e-5f);
+    EXPECT_NEAR(lo.x, -0.5f, 1e-5f);
+    EXPECT_NEAR(lo.z, -3.25f, 1e-5f);
+    EXPECT_NEAR(hi.y, 0.25f, 1e-5f);
+
+    const std::vector<Placement> placed = placements(s);
+    ASSERT_EQ(placed.size(), 3u);
+    EXPECT_EQ(placed[1].model, 0u);
+    EXPECT_EQ(placed[1].instance, 1u);
+    EXPECT_EQ(placed[2].model, 1u);
+    const SceneCounts counts = sceneCounts(s);
+    EXPECT_EQ(counts.models, 2u);
+    EXPECT_EQ(counts.instances, 3u);
+    EXPECT_EQ(counts.storedVertices, cube.mesh.vertices.size() + s.models[1].mesh.vertices.size());
+    EXPECT_EQ(counts.drawnTriangles, 2 * cube.mesh.indices.size() / 3 + s.models[1].mesh.indices.size() / 3);
+    EXPECT_EQ(sceneCountsText(counts).find("2 models, 3 instances drawn"), 0u) << sceneCountsText(counts);
+}
+
+TEST(SceneInstances, CasterClustersRepeatPerInstance) {
+    const Scene s = parseScene(R"({"models": [{"primitive": "cube", "instances": [{"translate": [-2, 0, 0]}, {"translate": [2, 0, 0]}]},
+                                              {"primitive": "sphere"}]})",
+                               "grid.json", true);
+    const std::vector<CasterCluster> clusters = buildCasterClusters(s, 4);
+    // A cube is 12 triangles: 3 clusters of 4 per instance; the sphere's follow as placement 2.
+    ASSERT_GE(clusters.size(), 7u);
+    for (size_t i = 0; i < 3; ++i) {
+        EXPECT_EQ(clusters[i].model, 0) << i;
+        EXPECT_EQ(clusters[i + 3].model, 1) << i;
+        EXPECT_EQ(clusters[i + 3].firstIndex, clusters[i].firstIndex) << i;
+        EXPECT_EQ(clusters[i + 3].boundsMin, clusters[i].boundsMin) << i;  // object space: the same
+    }
+    EXPECT_EQ(clusters[6].model, 2);
+    // Culled against a light looking down on x in [-1, 1] (clip = world x, z): the instances at
+    // x = -2 and 2 (each +-0.5) lie outside it; only the sphere at the origin casts.
+    glm::mat4 worldToClip(0.0f);
+    worldToClip[0][0] = 1.0f;   // clip x = world x
+    worldToClip[2][1] = 1.0f;   // clip y = world z
+    worldToClip[1][2] = -0.1f;  // clip z: depth along -y, within [-1, 1]
+    worldToClip[3][3] = 1.0f;
+    const CasterList kept = cullCasters(clusters, s, worldToClip, 0.0f, true);
+    for (const CasterDraw& d : kept.draws) EXPECT_EQ(d.model, 2) << "an instance outside the tile was kept";
+    EXPECT_FALSE(kept.draws.empty());
+    EXPECT_EQ(cullCasters(clusters, s, worldToClip, 0.0f, false).triangles, 2 * 12 + s.models[1].mesh.indices.size() / 3);
+}
+
+TEST(SceneInstances, GltfLightsComeWithEachInstance) {
+    // A glTF's KHR_lights_punctual lights are placed by each instance.
+    const std::string file = std::string(LIGHTPASS_SOURCE_DIR) + "/tests/data/gltf/lights.gltf";
+    const Scene one = parseScene(R"({"models": [{"gltf": ")" + file + R"("}]})", "grid.json", true);
+    const Scene two = parseScene(R"({"models": [{"gltf": ")" + file + R"(", "instances": [{"translate": [0, 0, 0]}, {"translate": [5, 0, 0]}]}]})",
+                                 "grid.json", true);
+    ASSERT_FALSE(one.pointLights.empty());
+    ASSERT_EQ(two.pointLights.size(), 2 * one.pointLights.size());
+    const size_t n = one.pointLights.size();
+    for (size_t i = 0; i < n; ++i) {
+        EXPECT_EQ(two.pointLights[i].position, one.pointLights[i].position) << i;
+        EXPECT_NEAR(two.pointLights[n + i].position.x, one.pointLights[i].position.x + 5.0f, 1e-5f) << i;
+    }
+}
+
+TEST(SceneInstances, BadListsAreOneLineNamingThePlace) {
+    struct Case {
+        std::string instances, expected;
+    };
+    const Case cases[] = {
+        {R"({"translate": [1, 0, 0]})", "grid.json: models[0].instances: expected an array of placements"},
+        {"[]", "grid.json: models[0].instances: is empty"},
+        {"[{\"translate\": [1, 0, 0]}, 3]", "grid.json: models[0].instances[1]: expected an object"},
+        {"[{\"translate\": [1, 0, 0]}, {\"tranlate\": [1, 0, 0]}]",
+         "grid.json: models[0].instances[1].tranlate: unknown field (known: rotate, scale, translate)"},
+        {"[{\"translate\": [1, 1e39, 0]}]", "grid.json: models[0].instances[0].translate[1]: not a finite number"},
+        {"[{\"translate\": [1e8, 0, 0]}]", "grid.json: models[0].instances[0].translate: 1e+08 is too far from the origin"},
+        {"[{\"scale\": 0}]", "grid.json: models[0].instances[0].scale: must not be zero"},
+        {"[{\"rotate\": [0, \"a\", 0]}]", "grid.json: models[0].instances[0].rotate[1]: expected a number"},
+        {"[{\"translate\": [1, 0]}]", "grid.json: models[0].instances[0].translate: expected an array of 3 numbers"},
+    };
+    for (const Case& c : cases) {
+        const std::string error = errorFor(withInstances(c.instances));
+        EXPECT_EQ(error.find(c.expected), 0u) << c.instances << " gave: " << error;
+        EXPECT_EQ(error.find('\n'), std::string::npos) << error;
+    }
+}
