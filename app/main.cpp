@@ -25,6 +25,7 @@
 #include "engine/core/progress.hpp"
 #include "engine/post/backend_timings.hpp"
 #include "engine/post/post_config.hpp"
+#include "engine/scene/placements.hpp"
 #include "passes/post_backend.hpp"
 #include "passes/shadow_map_pass.hpp"
 #include "engine/core/log.hpp"
@@ -155,6 +156,7 @@ int commandGraph(const Options& o) {
     if (o.explain) noteEnvironmentLights(graph, scene, settings);
     std::printf("frame graph for %s, view '%s', %s\n", (o.model.empty() ? o.scene : o.model).c_str(),
                 viewName(settings.view), sizeLabel(settings).c_str());
+    if (o.explain) std::printf("scene: %s\n", sceneCountsText(sceneCounts(scene)).c_str());
     std::fputs((o.explain ? graph.explainText() : graph.describe()).c_str(), stdout);
     if (o.explain) {  // what auto would choose where it measured this size and kernel (any GPU)
         post::PostConfig config = post::resolvePostConfig(scene.effects, settings.post, frame.farPlane);

@@ -15,6 +15,7 @@
 #include "engine/gl/handles.hpp"
 #include "engine/io/image_io.hpp"
 #include "engine/render/floors.hpp"
+#include "engine/scene/placements.hpp"
 #include "frame/renderer.hpp"
 
 namespace lp::app {
@@ -98,6 +99,7 @@ int runFrameReport(const Options& o, const std::vector<std::string>& args) {
 
     FrameReport report;
     report.source = o.model.empty() ? o.scene : o.model;
+    report.sceneCounts = sceneCountsText(sceneCounts(scene));
     report.commandLine = commandLine(args);
     report.device = ctx->info().renderer;
     report.softwareRaster = ctx->isSoftware();

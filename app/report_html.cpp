@@ -365,6 +365,7 @@ std::string frameReportHtml(const FrameReport& r) {
       << "<tr><td>command</td><td><code id=\"command\">" << htmlEscape(r.commandLine) << "</code></td></tr>\n"
       << "<tr><td>device</td><td id=\"device\">" << htmlEscape(r.device)
       << (r.softwareRaster ? " (software rasteriser: GPU times are not meaningful)" : "") << "</td></tr>\n"
+      << "<tr><td>scene</td><td id=\"scene\">" << htmlEscape(r.sceneCounts) << "</td></tr>\n"
       << "<tr><td>size</td><td>" << htmlEscape(r.size) << ", view " << htmlEscape(r.view) << "</td></tr>\n"
       << "<tr><td>frame</td><td>" << num(r.frameMs, 3) << " GPU ms (median of " << r.frames << " frames after " << r.warmup
       << " warm-up frames)</td></tr>\n"

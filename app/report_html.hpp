@@ -105,6 +105,7 @@ struct ReportResource {
 
 struct FrameReport {
     std::string source;  // the scene or model file
+    std::string sceneCounts;  // sceneCountsText: models, instances, stored and drawn geometry
     std::string commandLine;
     std::string device;  // GL_RENDERER
     bool softwareRaster = false;
