@@ -1,12 +1,15 @@
 #!/usr/bin/env python3
 """Writes the generated bundled scenes: scenes/gallery.json (256 local lights),
-scenes/ibl-spheres.json (a material grid) and scenes/lights-4k.json (4096 local lights). Deterministic (fixed seed), so re-running changes nothing.
+scenes/ibl-spheres.json (a material grid), scenes/lights-4k.json (4096 local lights) and
+scenes/instanced-grid.json (one model drawn 48 times). Deterministic (fixed seed), so re-running changes nothing.
 
 gallery: the Stanford bunny, dragon and Happy Buddha (from ../shared/assets) on a floor, two suns with
 shadows, 256 ranged point lights orbiting above the floor, and an HDR sky.
 ibl-spheres: 7 x 3 spheres, roughness (shininess) across, specular up, under an HDR map, no local lights.
 lights-4k: the bundled Cornell box with two spheres lit by 4096 small ranged point lights and nothing
 else: no sun, no shadows, no environment map (so the graph has no shadow, IBL or sky pass).
+instanced-grid: the bundled Cornell box as one model with 48 "instances" (an 8 x 6 grid, each turned
+and scaled a little), stored once and drawn 48 times, on a floor under a sun with shadows and the sky.
 """
 import json
 import math
@@ -106,7 +109,33 @@ def lights_4k():
     }
 
 
+def instanced_grid():
+    rng = random.Random(4848)
+    instances = []
+    for row in range(6):
+        for col in range(8):
+            instances.append({
+                "translate": [round((col - 3.5) * 0.7, 3), 0.0, round(-row * 0.7, 3)],
+                "rotate": [0, round(rng.uniform(-180.0, 180.0), 1), 0],
+                "scale": round(rng.uniform(0.8, 1.1), 3),
+            })
+    return {
+        "description": "One model, many copies: the bundled Cornell box stored once and drawn at 48 placements "
+                       "(models[].instances), an 8 x 6 grid on a floor under a sun with shadows and the sky.",
+        "camera": {"position": [0.0, 2.6, 3.2], "target": [0.0, 0.0, -1.6], "fov": 50, "near": 0.1, "far": 40},
+        "models": [
+            {"name": "boxes", "obj": "../models/cornell_box.obj", "scale": 0.8, "translate": [-0.222, 0, -0.222],
+             "instances": instances},
+            {"name": "floor", "primitive": "plane", "scale": [12, 1, 10], "translate": [0, 0, -1.7],
+             "material": {"diffuse": [0.45, 0.45, 0.45], "specular": [0.04, 0.04, 0.04], "roughness": 0.7}},
+        ],
+        "lights": [{"type": "directional", "direction": [-0.5, -1.0, -0.35], "intensity": 2.5, "shadows": True}],
+        "environment": {"map": "../hdr/sky.hdr", "intensity": 0.6, "ibl": True},
+    }
+
+
 if __name__ == "__main__":
     write("gallery.json", gallery())
     write("ibl-spheres.json", ibl_spheres())
     write("lights-4k.json", lights_4k())
+    write("instanced-grid.json", instanced_grid())
