@@ -8,10 +8,13 @@
 #include <string>
 #include <vector>
 
+#include "engine/graph/texture_pool.hpp"
+#include "engine/render/motion.hpp"
 #include "engine/render/scene_gpu.hpp"
 #include "engine/scene/placements.hpp"
 #include "engine/scene/scene_loader.hpp"
 #include "frame/renderer.hpp"
+#include "passes/gbuffer_pass.hpp"
 #include "tests/gl/render_fixture.hpp"
 #include "gl_fixture.hpp"
 
@@ -173,4 +176,75 @@ TEST(Instancing, PathTracerMatchesTheExpandedScene) {
     s.height = 16;
     s.pathTrace.samples = 2;
     EXPECT_TRUE(test::imagesNear(renderHdr(instanced, s), renderHdr(expanded, s), 0.0f, "path traced, instanced vs expanded"));
+}
+
+namespace {
+// The G-buffer pass alone for a frame whose camera moved since the previous one: its velocity
+// target (RG16F), rows bottom first.
+std::vector<glm::vec2> velocityAfterCameraStep(const Scene& scene) {
+    RenderSettings settings = small(RenderPath::Deferred, GBufferMode::Classic);
+    Scene moved = scene;
+    const FrameData first = makeFrameData(moved, settings, 0.0f);
+    moved.camera.position += glm::vec3(0.2f, 0.1f, -0.25f);
+    FrameData frame = makeFrameData(moved, settings, 1.0f / 30.0f);
+    applyMotion(frame, motionHistoryOf(first), glm::vec2(0.0f));
+    SceneGpu gpu(moved);
+    gl::ShaderLibrary shaders;
+    frame.gpu = &gpu;
+    frame.shaders = &shaders;
+    GBufferPass state;
+    fg::FrameGraph graph;
+    fg::TexturePool pool;
+    GBufferChannels channels;
+    channels.velocity = true;
+    const GBuffer g = addGBufferPass(graph, state, frame, channels);
+    graph.markOutput(g.velocity);
+    graph.compile();
+    graph.execute(pool);
+    std::vector<glm::vec2> velocity(size_t(frame.width) * size_t(frame.height));
+    glGetTextureImage(graph.outputTexture(g.velocity), 0, GL_RG, GL_FLOAT, GLsizei(velocity.size() * sizeof(glm::vec2)),
+                      velocity.data());
+    return velocity;
+}
+}  // namespace
+
+// Motion vectors: each instance's previous position is its own placement through the previous
+// frame's camera, as each copy's is in the expanded scene.
+TEST(Instancing, MotionVectorsMatchTheExpandedScene) {
+    const std::vector<glm::vec2> a = velocityAfterCameraStep(instancedScene()), b = velocityAfterCameraStep(expandedScene());
+    std::vector<float> fa, fb;
+    for (const glm::vec2& v : a) fa.insert(fa.end(), {v.x, v.y});
+    for (const glm::vec2& v : b) fb.insert(fb.end(), {v.x, v.y});
+    EXPECT_TRUE(test::valuesNear(fa, fb, 64, 2, 0.0f, "velocity, instanced vs expanded"));
+    float largest = 0.0f;
+    for (const glm::vec2& v : a) largest = std::max(largest, glm::length(v));
+    EXPECT_GT(largest, 0.01f);  // the camera's step moves every surface
+}
+
+// Two model entries naming one OBJ: parsed once, its vertices stored once on the GPU, each entry
+// drawn with its own material override, and the image is the one with each entry's own copy.
+TEST(Instancing, ModelEntriesOfOneFileShareItsVerticesAndKeepTheirMaterials) {
+    const std::string box = test::repoPath("models/cornell_box.obj");
+    const Scene scene = parseScene(R"({
+      "camera": {"position": [0.2, 0.9, 2.2], "target": [0.2, 0.25, 0], "fov": 50, "near": 0.1, "far": 20},
+      "lights": [{"type": "directional", "direction": [-0.3, -1, -0.4], "intensity": 2, "shadows": true}],
+      "ambient": 0.05,
+      "models": [{"obj": ")" + box + R"(", "translate": [-0.5, 0, 0]},
+                 {"obj": ")" + box + R"(", "translate": [0.4, 0, -0.3], "rotate": [0, 40, 0], "material": {"diffuse": [0.1, 0.6, 0.2]}}]})",
+                                   "two-boxes.json", true);
+    ASSERT_EQ(scene.models.size(), 2u);
+    EXPECT_EQ(scene.models[0].geometryKey, scene.models[1].geometryKey);
+    Scene own = scene;
+    for (ModelInstance& m : own.models) m.geometryKey.clear();
+    const SceneGpu shared(scene), separate(own);
+    EXPECT_EQ(shared.meshes[1].vertices.id(), shared.meshes[0].vertices.id());
+    EXPECT_EQ(shared.storedVertices, scene.models[0].mesh.vertices.size());
+    EXPECT_EQ(separate.storedVertices, 2 * scene.models[0].mesh.vertices.size());
+    EXPECT_NE(shared.materials[shared.meshes[1].draws[0].material].diffuse,
+              shared.materials[shared.meshes[0].draws[0].material].diffuse);  // the override is the second entry's alone
+    for (GBufferMode mode : {GBufferMode::Classic, GBufferMode::Visibility}) {
+        const RenderSettings s = small(RenderPath::Deferred, mode);
+        EXPECT_TRUE(test::imagesNear(renderHdr(scene, s), renderHdr(own, s), 0.0f, std::string("one stored box vs two, ") +
+                                                                                   gbufferModeName(mode)));
+    }
 }
