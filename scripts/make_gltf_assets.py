@@ -442,6 +442,48 @@ def viking_room():
     b.save_glb(os.path.join(MODELS, "viking_room.glb"))
 
 
+def node_reuse(expanded, name):
+    """One box mesh drawn by five nodes (turned, scaled, one under a turned parent, one mirrored) and a
+    floor drawn once; `expanded`: the same file with one mesh entry per node (the same accessors), so
+    nothing is drawn twice. lightpass stores the reused box once; both render the same image."""
+    b = Builder()
+    b.material(name="box", pbrMetallicRoughness=g.PbrMetallicRoughness(baseColorFactor=[0.8, 0.5, 0.2, 1], metallicFactor=0, roughnessFactor=0.5),
+               doubleSided=False)
+    b.material(name="floor", pbrMetallicRoughness=g.PbrMetallicRoughness(baseColorFactor=[0.6, 0.6, 0.6, 1], metallicFactor=0, roughnessFactor=0.8))
+    P, N, I = [], [], []
+    for axis in range(3):
+        for sign in (1.0, -1.0):
+            n = [0.0, 0.0, 0.0]
+            n[axis] = sign
+            u, v = [0.0] * 3, [0.0] * 3
+            u[(axis + 1) % 3], v[(axis + 2) % 3] = 1.0, 1.0
+            if sign < 0:
+                u, v = v, u  # counter-clockwise seen from outside
+            base = len(P)
+            for cu, cv in ((-1, -1), (1, -1), (1, 1), (-1, 1)):
+                P.append([0.25 * (n[k] + cu * u[k] + cv * v[k]) for k in range(3)])
+                N.append(n)
+            I += [base, base + 1, base + 2, base, base + 2, base + 3]
+    box_attrs = dict(POSITION=b.floats(P, g.VEC3, bounds=True), NORMAL=b.floats(N, g.VEC3))
+    box_indices = b.indices(I, U16)
+    box_mesh = lambda: b.mesh([g.Primitive(attributes=g.Attributes(**box_attrs), indices=box_indices, material=0)])
+    shared = box_mesh()
+    mesh_of = (lambda: box_mesh()) if expanded else (lambda: shared)
+    F = [[-3, 0, -3], [3, 0, -3], [3, 0, 3], [-3, 0, 3]]
+    floor = b.mesh([g.Primitive(attributes=g.Attributes(POSITION=b.floats(F, g.VEC3, bounds=True), NORMAL=b.floats([[0, 1, 0]] * 4, g.VEC3)),
+                                indices=b.indices([0, 2, 1, 0, 3, 2], U16), material=1)])
+    b.node(mesh=floor)
+    s = math.sqrt(0.5)
+    c30, s30 = math.cos(math.radians(15)), math.sin(math.radians(15))
+    b.node(mesh=mesh_of(), translation=[-1.0, 0.25, 0.0])
+    b.node(mesh=mesh_of(), translation=[0.0, 0.5, -0.75], rotation=[0, s30, 0, c30], scale=[1.5, 2.0, 1.0])
+    child = b.node(root=False, mesh=mesh_of(), translation=[0.75, 0.0, 0.0], rotation=[s30, 0, 0, c30])
+    b.node(translation=[0.5, 0.3, 0.75], rotation=[0, s, 0, s], children=[child])
+    b.node(mesh=mesh_of(), translation=[1.5, 0.25, -0.5], scale=[-1.0, 1.0, 1.0])  # mirrors: stays baked
+    b.node(mesh=mesh_of(), translation=[-1.5, 0.5, 1.0], rotation=[s30, s30, 0, math.sqrt(1 - 2 * s30 * s30)])
+    b.save_gltf_embedded(os.path.join(OUT, name))
+
+
 forms()
 hierarchy()
 normal_plane(True, "normal_plane.glb")
@@ -455,4 +497,6 @@ specular_spheres()
 clearcoat_spheres()
 transmission_glass()
 viking_room()
+node_reuse(False, "node_reuse.gltf")
+node_reuse(True, "node_reuse_expanded.gltf")
 print("wrote", OUT, "and", os.path.join(MODELS, "pbr_spheres.glb"))

@@ -876,7 +876,7 @@ struct Repairs {
     }
 };
 
-GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
+GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut, bool instanceReusedMeshes) {
     MeshLoadReport report;
     const std::string file = path.string();
     const std::string bytes = readFileChecked(path, kMaxImageFileBytes, "a glTF file");
@@ -1449,9 +1449,13 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
     // walks by naming a child twice on each of 40 levels; depth is bounded so that a chain 200000 nodes
     // deep cannot overflow the stack; the instanced primitives and vertices are bounded so that 2000
     // nodes drawing one mesh of 20000 primitives cannot take minutes and gigabytes.
+    // How many nodes draw each mesh with nothing moving it (no clip on the node or above, no skin, no
+    // morph targets): a mesh two of them draw is stored once (instanceReusedMeshes).
+    std::vector<size_t> stillUses(model.meshes.size(), 0);
     {
         std::vector<int> parent(model.nodes.size(), -1);
         std::vector<bool> reached(model.nodes.size(), false);
+        std::vector<char> moves(model.nodes.size(), 0);  // a clip moves the node or an ancestor
         size_t drawnPrimitives = 0, drawnVertices = 0;
         struct Pending {
             int node, parent;
@@ -1476,6 +1480,10 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
             reached[size_t(p.node)] = true;
             parent[size_t(p.node)] = p.parent;
             const tinygltf::Node& node = model.nodes[size_t(p.node)];
+            moves[size_t(p.node)] = targeted[size_t(p.node)] || (p.parent >= 0 && moves[size_t(p.parent)]);
+            if (node.mesh >= 0 && size_t(node.mesh) < model.meshes.size() && !moves[size_t(p.node)] && node.skin < 0 &&
+                meshTargets(node.mesh) == 0)
+                ++stillUses[size_t(node.mesh)];
             if (node.mesh >= 0 && size_t(node.mesh) < model.meshes.size())
                 for (const auto& prim : model.meshes[size_t(node.mesh)].primitives) {
                     ++drawnPrimitives;
@@ -1642,6 +1650,7 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
             }
         }
     };
+    std::map<int, size_t> instancedSlot;  // a reused mesh -> its out.instancedMeshes entry
     // One node, its parent's world transform given (the tree check above has made sure each exists and
     // is reached once); its children are returned to the walk below, which keeps its own stack (a
     // recursive walk of a chain 1023 levels deep overflowed a 1 MiB stack).
@@ -1685,7 +1694,35 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
             rest.weights.assign(targets, 0.0f);
             for (size_t t = 0; t < restWeights.size(); ++t) rest.weights[t] = float(restWeights[t]);
             const int skin = node.skin >= 0 ? skinFor(node.skin, w) : -1;
-            for (size_t p = 0; p < drawn.primitives.size(); ++p) {
+            // A mesh other still nodes draw too: its primitives once, in its own space (the first node
+            // that draws it reads them), and this node's world transform. Mirroring nodes stay baked:
+            // addPrimitive turns their triangles to keep front faces front.
+            const bool reusedHere = instanceReusedMeshes && !animated && skin < 0 && targets == 0 &&
+                                    stillUses[size_t(node.mesh)] > 1 && glm::determinant(glm::mat3(world)) > 0.0f;
+            if (reusedHere) {
+                auto [slot, first] = instancedSlot.emplace(node.mesh, out.instancedMeshes.size());
+                if (first) {
+                    const size_t firstVertex = mesh.vertices.size(), firstIndex = mesh.indices.size(), firstSub = mesh.subMeshes.size();
+                    for (size_t p = 0; p < drawn.primitives.size(); ++p) addPrimitive(node.mesh, int(p), glm::mat4(1.0f));
+                    GltfInstancedMesh im;
+                    im.meshIndex = node.mesh;
+                    im.mesh.name = mesh.name + "/" + (drawn.name.empty() ? mw : drawn.name);
+                    im.mesh.vertices.assign(mesh.vertices.begin() + ptrdiff_t(firstVertex), mesh.vertices.end());
+                    for (size_t i = firstIndex; i < mesh.indices.size(); ++i) im.mesh.indices.push_back(mesh.indices[i] - uint32_t(firstVertex));
+                    for (size_t s = firstSub; s < mesh.subMeshes.size(); ++s) {
+                        SubMesh sub = mesh.subMeshes[s];
+                        sub.firstIndex -= uint32_t(firstIndex);
+                        im.mesh.subMeshes.push_back(std::move(sub));
+                    }
+                    mesh.vertices.resize(firstVertex);
+                    mesh.indices.resize(firstIndex);
+                    mesh.subMeshes.resize(firstSub);
+                    out.instancedMeshes.push_back(std::move(im));
+                }
+                out.instancedMeshes[slot->second].transforms.push_back(world);
+            }
+            const size_t primitivesHere = reusedHere ? 0 : drawn.primitives.size();  // a reused mesh: drawn above
+            for (size_t p = 0; p < primitivesHere; ++p) {
                 if (!animated && skin < 0 && targets == 0) {
                     addPrimitive(node.mesh, int(p), world);
                     continue;
@@ -1840,7 +1877,17 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut) {
     if (report.droppedDegenerate || report.droppedNonFinite)
         report.warnings.push_back(file + ": dropped " + std::to_string(report.droppedDegenerate) + " degenerate and " +
                                   std::to_string(report.droppedNonFinite) + " non-finite triangles");
-    if (mesh.indices.empty()) throw Error(file + ": no triangles (in the scene's nodes)");
+    // The reused meshes' materials are the file's, as `mesh` holds them (their sub-meshes index them).
+    std::vector<GltfInstancedMesh> instanced;
+    for (GltfInstancedMesh& im : out.instancedMeshes) {
+        if (im.mesh.indices.empty()) continue;  // points or lines only
+        im.mesh.materials = mesh.materials;
+        im.mesh.materialVariants = mesh.materialVariants;
+        computeBounds(im.mesh);
+        instanced.push_back(std::move(im));
+    }
+    out.instancedMeshes = std::move(instanced);
+    if (mesh.indices.empty() && out.instancedMeshes.empty()) throw Error(file + ": no triangles (in the scene's nodes)");
     computeBounds(mesh);
     // The whole file has loaded: now its warnings are news (a file that fails prints its one error alone).
     for (const std::string& warning : report.warnings) logWarn(warning);

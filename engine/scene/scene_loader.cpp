@@ -403,7 +403,54 @@ struct ParsedFiles {
     }
 };
 
-void loadMesh(const Reader& r, ModelInstance& m, const std::string& where, Scene& scene, ParsedFiles& parsed) {
+// A model entry's "material" overrides, on one of its meshes.
+void applyMaterialOverrides(const ModelInstance& m, MeshData& mesh) {
+    for (auto& mat : mesh.materials) {
+        if (m.diffuseOverride) {
+            mat.diffuse = *m.diffuseOverride;
+            mat.diffuseMap.clear();
+        }
+        if (m.specularOverride) mat.specular = *m.specularOverride;
+        if (m.shininessOverride) mat.shininess = *m.shininessOverride;
+        if (m.flatOverride) mat.flat = *m.flatOverride;
+        if (m.opacityOverride) {
+            mat.opacity = *m.opacityOverride;
+            mat.alphaMode = mat.opacity < 1.0f ? AlphaMode::Blend : AlphaMode::Opaque;
+        }
+    }
+}
+
+// A glTF's meshes that several still nodes draw (GltfContent::instancedMeshes) as models of their
+// own: each stored once and drawn at every node that draws it, under every placement of the model
+// entry `m` (its "instances" included), with m's material variant and overrides. `m` keeps the
+// file's other primitives or, where there are none, becomes the first of those models.
+void addReusedGltfMeshes(const GltfContent& g, ModelInstance& m, const std::string& fileKey, std::vector<ModelInstance>& extra) {
+    std::vector<ModelInstance> made;
+    for (const GltfInstancedMesh& im : g.instancedMeshes) {
+        ModelInstance reused = m;
+        reused.mesh = im.mesh;
+        reused.animation = nullptr;
+        reused.playingClips.clear();
+        reused.name = m.name + "/meshes[" + std::to_string(im.meshIndex) + "]";
+        reused.geometryKey = fileKey + "#meshes[" + std::to_string(im.meshIndex) + "]";
+        reused.instances.clear();
+        for (size_t k = 0; k < m.instanceCount(); ++k)
+            for (const glm::mat4& node : im.transforms) reused.instances.push_back(m.instanceTransform(k) * node);
+        selectMaterialVariant(reused.mesh, m.materialVariant);  // m's variant was checked against the file's list
+        applyMaterialOverrides(m, reused.mesh);
+        made.push_back(std::move(reused));
+    }
+    if (m.mesh.indices.empty() && !made.empty()) {
+        const std::string name = m.name;
+        m = std::move(made.front());
+        m.name = name;
+        made.erase(made.begin());
+    }
+    for (ModelInstance& x : made) extra.push_back(std::move(x));
+}
+
+void loadMesh(const Reader& r, ModelInstance& m, const std::string& where, Scene& scene, ParsedFiles& parsed,
+              std::vector<ModelInstance>& extra) {
     if (!m.primitive.empty()) {
         if (m.primitive == "plane") m.mesh = makePlane(1.0f, 8);
         else if (m.primitive == "sphere") m.mesh = makeSphere(0.5f, 64, 32);
@@ -412,9 +459,12 @@ void loadMesh(const Reader& r, ModelInstance& m, const std::string& where, Scene
     } else if (!m.gltf.empty()) {
         if (!fs::exists(m.gltf)) r.fail(where + ".gltf", m.gltf.string() + ": file not found");
         try {
-            const fs::path key = ParsedFiles::key(m.gltf);
+            // A spinning model turns as one mesh about its origin: its meshes that several nodes draw
+            // stay in it instead of becoming models of their own.
+            const bool split = !m.spinAxis;
+            const fs::path key = split ? ParsedFiles::key(m.gltf) : fs::path(ParsedFiles::key(m.gltf).string() + "#whole");
             auto it = parsed.gltf.find(key);
-            if (it == parsed.gltf.end()) it = parsed.gltf.emplace(key, loadGltf(m.gltf)).first;
+            if (it == parsed.gltf.end()) it = parsed.gltf.emplace(key, loadGltf(m.gltf, nullptr, split)).first;
             m.mesh = it->second.mesh;
             m.geometryKey = "gltf:" + key.string();  // a material variant changes materials, not vertices
             if (!selectMaterialVariant(m.mesh, m.materialVariant))
@@ -426,6 +476,7 @@ void loadMesh(const Reader& r, ModelInstance& m, const std::string& where, Scene
             if (m.animation) m.playingClips = chooseClips(*m.animation, "");  // the first clip, as glTF viewers play
             for (size_t k = 0; k < m.instanceCount(); ++k)  // each instance brings the file's lights
                 addGltfLights(it->second, m.instanceTransform(k), m.lightShadows, scene);
+            if (split) addReusedGltfMeshes(it->second, m, m.geometryKey, extra);
         } catch (const Error& e) {  // "<scene>: models[i].gltf: <gltf>: <element>: <what>"
             r.fail(where + ".gltf", e.what());
         }
@@ -446,19 +497,7 @@ void loadMesh(const Reader& r, ModelInstance& m, const std::string& where, Scene
         m.animation = std::make_shared<const NodeAnimation>(spinAnimation(m.mesh, *m.spinAxis, m.spinSpeed));
         m.playingClips = {0};
     }
-    for (auto& mat : m.mesh.materials) {
-        if (m.diffuseOverride) {
-            mat.diffuse = *m.diffuseOverride;
-            mat.diffuseMap.clear();
-        }
-        if (m.specularOverride) mat.specular = *m.specularOverride;
-        if (m.shininessOverride) mat.shininess = *m.shininessOverride;
-        if (m.flatOverride) mat.flat = *m.flatOverride;
-        if (m.opacityOverride) {
-            mat.opacity = *m.opacityOverride;
-            mat.alphaMode = mat.opacity < 1.0f ? AlphaMode::Blend : AlphaMode::Opaque;
-        }
-    }
+    applyMaterialOverrides(m, m.mesh);
 }
 
 // The model as placed (its mesh bounds through its transform, in double) must stay within +-1e18 m,
@@ -551,9 +590,16 @@ Scene parseScene(const std::string& text, const fs::path& origin, bool loadMeshe
         constexpr size_t kMaxSceneElements = size_t(1) << 26;
         size_t sceneElements = 0;
         ParsedFiles parsed;
-        for (size_t i = 0; i < scene.models.size(); ++i) {
+        std::vector<ModelInstance> extra;  // glTF meshes several nodes draw, as models of their own
+        const size_t listed = scene.models.size();
+        for (size_t i = 0; i < listed; ++i) {
             try {
-                loadMesh(r, scene.models[i], "models[" + std::to_string(i) + "]", scene, parsed);
+                const size_t before = extra.size();
+                loadMesh(r, scene.models[i], "models[" + std::to_string(i) + "]", scene, parsed, extra);
+                for (size_t e = before; e < extra.size(); ++e) {
+                    requirePlacedWithinRange(r, extra[e], "models[" + std::to_string(i) + "] (" + extra[e].name + ")");
+                    sceneElements += extra[e].mesh.vertices.size() + extra[e].mesh.indices.size();
+                }
                 requirePlacedWithinRange(r, scene.models[i], "models[" + std::to_string(i) + "]");
                 sceneElements += scene.models[i].mesh.vertices.size() + scene.models[i].mesh.indices.size();
                 if (sceneElements > kMaxSceneElements)
@@ -565,6 +611,7 @@ Scene parseScene(const std::string& text, const fs::path& origin, bool loadMeshe
                 throw Error(r.file + ": models[" + std::to_string(i) + "]: " + msg);
             }
         }
+        for (ModelInstance& e : extra) scene.models.push_back(std::move(e));
         if (!hasCamera) frameCamera(scene);
     }
     return scene;
@@ -635,20 +682,24 @@ Scene sceneForModel(const fs::path& file, bool zUp) {
     if (!fs::exists(file)) throw Error(file.string() + ": file not found");
     std::optional<Camera> fileCamera;
     bool fileLights = false;
+    std::vector<ModelInstance> reused;  // its meshes several nodes draw
     if (isGltfPath(file)) {
         m.gltf = file;
-        GltfContent g = loadGltf(file);
+        GltfContent g = loadGltf(file, nullptr, true);
         m.mesh = std::move(g.mesh);
+        m.geometryKey = "gltf:" + ParsedFiles::key(file).string();
         m.animation = g.animation;
         if (m.animation) m.playingClips = chooseClips(*m.animation, "");  // the first clip, as glTF viewers play
         addGltfLights(g, m.transform, std::nullopt, scene);
         fileLights = !g.directionalLights.empty() || !g.pointLights.empty();
         if (!g.cameras.empty()) fileCamera = g.cameras.front();
+        addReusedGltfMeshes(g, m, m.geometryKey, reused);
     } else {
         m.obj = file;
         m.mesh = loadObj(file);
     }
     scene.models.push_back(std::move(m));
+    for (ModelInstance& x : reused) scene.models.push_back(std::move(x));
     frameCamera(scene);
     if (fileCamera) scene.camera = *fileCamera;  // a glTF's first camera
     if (fileLights) {  // a glTF's KHR_lights_punctual: its own lighting, no environment added

@@ -8,6 +8,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "engine/core/error.hpp"
+#include "engine/io/gltf_loader.hpp"
 #include "engine/render/shadow_casters.hpp"
 #include "engine/scene/placements.hpp"
 #include "engine/scene/scene_loader.hpp"
@@ -136,4 +137,55 @@ TEST(SceneInstances, BadListsAreOneLineNamingThePlace) {
         EXPECT_EQ(error.find(c.expected), 0u) << c.instances << " gave: " << error;
         EXPECT_EQ(error.find('\n'), std::string::npos) << error;
     }
+}
+
+namespace {
+std::string gltfTestFile(const std::string& name) { return std::string(LIGHTPASS_SOURCE_DIR) + "/tests/data/gltf/" + name; }
+}  // namespace
+
+// glTF node reuse (tests/data/gltf/node_reuse.gltf, scripts/make_gltf_assets.py): the box that five
+// nodes draw is read once, in its own space, with the four non-mirroring nodes' world transforms;
+// the mirroring node and the floor stay baked. Without the option every node is baked, as before.
+TEST(GltfNodeReuse, AMeshSeveralStillNodesDrawIsReadOnce) {
+    const GltfContent baked = loadGltf(gltfTestFile("node_reuse.gltf"));
+    EXPECT_TRUE(baked.instancedMeshes.empty());
+    EXPECT_EQ(baked.mesh.indices.size() / 3, 2u + 5u * 12u);
+    const GltfContent g = loadGltf(gltfTestFile("node_reuse.gltf"), nullptr, true);
+    ASSERT_EQ(g.instancedMeshes.size(), 1u);
+    const GltfInstancedMesh& box = g.instancedMeshes[0];
+    EXPECT_EQ(box.meshIndex, 0);
+    EXPECT_EQ(box.mesh.indices.size() / 3, 12u);
+    EXPECT_EQ(box.mesh.vertices.size(), 24u);
+    EXPECT_EQ(g.mesh.indices.size() / 3, 2u + 12u);  // the floor and the mirrored box
+    ASSERT_EQ(box.transforms.size(), 4u);
+    EXPECT_NEAR(box.mesh.boundsMax.x, 0.25f, 1e-6f);  // its own space
+    // Node order; the third under a parent turned 90 degrees about +Y at (0.5, 0.3, 0.75): its
+    // (0.75, 0, 0) lands at (0.5, 0.3, 0).
+    const glm::vec3 t0(box.transforms[0][3]), t2(box.transforms[2][3]);
+    EXPECT_NEAR(glm::length(t0 - glm::vec3(-1.0f, 0.25f, 0.0f)), 0.0f, 1e-6f);
+    EXPECT_NEAR(glm::length(t2 - glm::vec3(0.5f, 0.3f, 0.0f)), 0.0f, 1e-6f);
+    ASSERT_EQ(box.mesh.materials.size(), g.mesh.materials.size());
+    EXPECT_EQ(box.mesh.materials[size_t(box.mesh.subMeshes[0].material)].name, "box");
+    // The expanded file (a mesh entry per node) has nothing to reuse.
+    EXPECT_TRUE(loadGltf(gltfTestFile("node_reuse_expanded.gltf"), nullptr, true).instancedMeshes.empty());
+}
+
+TEST(GltfNodeReuse, SceneModelsDrawTheReusedMeshAtEveryNodeUnderEveryInstance) {
+    const Scene s = parseScene(R"({"models": [{"name": "boxes", "gltf": ")" + gltfTestFile("node_reuse.gltf") +
+                                   R"(", "material": {"diffuse": [0.1, 0.2, 0.3]},
+                                   "instances": [{"translate": [0, 0, 0]}, {"translate": [10, 0, 0]}]}]})",
+                               "grid.json", true);
+    ASSERT_EQ(s.models.size(), 2u);
+    EXPECT_EQ(s.models[0].name, "boxes");
+    EXPECT_EQ(s.models[1].name, "boxes/meshes[0]");
+    EXPECT_EQ(s.models[1].instanceCount(), 8u);  // 4 nodes x 2 placements
+    EXPECT_NEAR(s.models[1].instanceTransform(4)[3].x, 10.0f - 1.0f, 1e-5f);
+    EXPECT_EQ(s.models[1].mesh.materials[0].diffuse, glm::vec3(0.1f, 0.2f, 0.3f));  // the entry's override
+    const SceneCounts counts = sceneCounts(s);
+    EXPECT_EQ(counts.storedVertices, 4u + 24u + 24u);
+    EXPECT_EQ(counts.drawnTriangles, 2u * (2u + 12u) + 8u * 12u);
+    // Loaded as a bare model (lightpass view): the same split.
+    const Scene bare = sceneForModel(gltfTestFile("node_reuse.gltf"));
+    ASSERT_EQ(bare.models.size(), 2u);
+    EXPECT_EQ(bare.models[1].instanceCount(), 4u);
 }
