@@ -484,6 +484,51 @@ def node_reuse(expanded, name):
     b.save_gltf_embedded(os.path.join(OUT, name))
 
 
+def gpu_instancing(expanded, name):
+    """EXT_mesh_gpu_instancing: the node_reuse box drawn at five instances (TRANSLATION, ROTATION,
+    SCALE accessors) under a node moved and turned, over a floor; `expanded`: the same placements
+    written as child nodes of that node, one mesh entry each."""
+    b = Builder()
+    b.material(name="box", pbrMetallicRoughness=g.PbrMetallicRoughness(baseColorFactor=[0.3, 0.5, 0.8, 1], metallicFactor=0, roughnessFactor=0.5),
+               doubleSided=False)
+    b.material(name="floor", pbrMetallicRoughness=g.PbrMetallicRoughness(baseColorFactor=[0.6, 0.6, 0.6, 1], metallicFactor=0, roughnessFactor=0.8))
+    P, N, I = [], [], []
+    for axis in range(3):
+        for sign in (1.0, -1.0):
+            n = [0.0, 0.0, 0.0]
+            n[axis] = sign
+            u, v = [0.0] * 3, [0.0] * 3
+            u[(axis + 1) % 3], v[(axis + 2) % 3] = 1.0, 1.0
+            if sign < 0:
+                u, v = v, u
+            base = len(P)
+            for cu, cv in ((-1, -1), (1, -1), (1, 1), (-1, 1)):
+                P.append([0.25 * (n[k] + cu * u[k] + cv * v[k]) for k in range(3)])
+                N.append(n)
+            I += [base, base + 1, base + 2, base, base + 2, base + 3]
+    box_attrs = dict(POSITION=b.floats(P, g.VEC3, bounds=True), NORMAL=b.floats(N, g.VEC3))
+    box_indices = b.indices(I, U16)
+    box_mesh = lambda: b.mesh([g.Primitive(attributes=g.Attributes(**box_attrs), indices=box_indices, material=0)])
+    F = [[-3, 0, -3], [3, 0, -3], [3, 0, 3], [-3, 0, 3]]
+    floor = b.mesh([g.Primitive(attributes=g.Attributes(POSITION=b.floats(F, g.VEC3, bounds=True), NORMAL=b.floats([[0, 1, 0]] * 4, g.VEC3)),
+                                indices=b.indices([0, 2, 1, 0, 3, 2], U16), material=1)])
+    b.node(mesh=floor)
+    c, s = math.cos(math.radians(20)), math.sin(math.radians(20))
+    T = [[-1.0, 0.25, 0.0], [0.0, 0.5, -0.75], [1.0, 0.3, 0.5], [-0.5, 0.4, 1.0], [1.2, 0.25, -0.8]]
+    R = [[0, 0, 0, 1], [0, s, 0, c], [s, 0, 0, c], [0, 0, s, c], [0, -s, 0, c]]
+    S = [[1, 1, 1], [1.5, 2.0, 1.0], [1, 1, 1], [0.8, 0.8, 0.8], [1.0, 1.2, 1.0]]
+    h = math.sqrt(0.5)
+    parent = dict(translation=[0.2, 0.0, -0.1], rotation=[0, math.sin(math.radians(10)), 0, math.cos(math.radians(10))])
+    if expanded:
+        children = [b.node(root=False, mesh=box_mesh(), translation=t, rotation=r, scale=sc) for t, r, sc in zip(T, R, S)]
+        b.node(children=children, **parent)
+    else:
+        b.gltf.extensionsUsed = ["EXT_mesh_gpu_instancing"]
+        b.node(mesh=box_mesh(), extensions={"EXT_mesh_gpu_instancing": {"attributes": {
+            "TRANSLATION": b.floats(T, g.VEC3), "ROTATION": b.floats(R, g.VEC4), "SCALE": b.floats(S, g.VEC3)}}}, **parent)
+    b.save_gltf_embedded(os.path.join(OUT, name))
+
+
 forms()
 hierarchy()
 normal_plane(True, "normal_plane.glb")
@@ -499,4 +544,6 @@ transmission_glass()
 viking_room()
 node_reuse(False, "node_reuse.gltf")
 node_reuse(True, "node_reuse_expanded.gltf")
+gpu_instancing(False, "gpu_instancing.gltf")
+gpu_instancing(True, "gpu_instancing_expanded.gltf")
 print("wrote", OUT, "and", os.path.join(MODELS, "pbr_spheres.glb"))

@@ -46,7 +46,7 @@ std::string formatNumber(double v) {
 
 // Extensions this loader understands; a file that requires any other is refused (the spec's rule).
 // KHR_texture_basisu is not among them: its KTX2 images have no Debian decoder.
-const std::set<std::string> kSupportedExtensions = {"EXT_meshopt_compression", "KHR_draco_mesh_compression", "KHR_lights_punctual",
+const std::set<std::string> kSupportedExtensions = {"EXT_mesh_gpu_instancing", "EXT_meshopt_compression", "KHR_draco_mesh_compression", "KHR_lights_punctual",
                                                      "KHR_materials_clearcoat", "KHR_materials_emissive_strength", "KHR_materials_ior", "KHR_materials_specular",
                                                      "KHR_materials_transmission", "KHR_materials_unlit", "KHR_materials_variants",
                                                      "KHR_materials_volume",
@@ -1483,7 +1483,7 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut, bool insta
             moves[size_t(p.node)] = targeted[size_t(p.node)] || (p.parent >= 0 && moves[size_t(p.parent)]);
             if (node.mesh >= 0 && size_t(node.mesh) < model.meshes.size() && !moves[size_t(p.node)] && node.skin < 0 &&
                 meshTargets(node.mesh) == 0)
-                ++stillUses[size_t(node.mesh)];
+                stillUses[size_t(node.mesh)] += node.extensions.count("EXT_mesh_gpu_instancing") ? 2 : 1;  // instances: reused
             if (node.mesh >= 0 && size_t(node.mesh) < model.meshes.size())
                 for (const auto& prim : model.meshes[size_t(node.mesh)].primitives) {
                     ++drawnPrimitives;
@@ -1675,6 +1675,48 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut, bool insta
         const glm::mat4 world = parent * Loader::localMatrix(node, r);
         for (int i = 0; i < 16; ++i)
             if (!std::isfinite(glm::value_ptr(world)[i])) L.fail(w, "transform is not finite");
+        // EXT_mesh_gpu_instancing: the node's mesh drawn at each instance's translation, rotation and
+        // scale (T x R x S) under the node's world transform; without it, once at `world`.
+        std::vector<glm::mat4> placed{world};
+        if (auto ext = node.extensions.find("EXT_mesh_gpu_instancing"); ext != node.extensions.end() && node.mesh >= 0) {
+            const std::string ew = w + ".extensions.EXT_mesh_gpu_instancing.attributes";
+            const tinygltf::Value& attributes = ext->second.Get("attributes");
+            if (!attributes.IsObject()) L.fail(ew, "missing (an object naming TRANSLATION, ROTATION and SCALE accessors)");
+            std::optional<size_t> count;
+            auto read = [&](const char* name, int type, Loader::View& v) {
+                if (!attributes.Has(name)) return false;
+                const tinygltf::Value& index = attributes.Get(name);
+                if (!index.IsInt()) L.fail(ew + "." + name, "expected an accessor index");
+                v = L.view(index.GetNumberAsInt(), ew + "." + name, {type}, floats);
+                if (count && v.count != *count)
+                    L.fail(ew + "." + name, std::to_string(v.count) + " instances, but the other attributes have " + std::to_string(*count));
+                count = v.count;
+                return true;
+            };
+            Loader::View tv, rv, sv;
+            const bool hasT = read("TRANSLATION", TINYGLTF_TYPE_VEC3, tv), hasR = read("ROTATION", TINYGLTF_TYPE_VEC4, rv),
+                       hasS = read("SCALE", TINYGLTF_TYPE_VEC3, sv);
+            if (!count) L.fail(ew, "names none of TRANSLATION, ROTATION and SCALE");
+            if (*count > kMaxDrawnPrimitives) L.fail(ew, std::to_string(*count) + " instances, over the limit of " + std::to_string(kMaxDrawnPrimitives));
+            placed.clear();
+            for (size_t i = 0; i < *count; ++i) {
+                const std::string iw = ew + " instance " + std::to_string(i);
+                glm::dvec3 t(0.0), s(1.0);
+                glm::dvec4 q(0.0, 0.0, 0.0, 1.0);
+                for (int c = 0; c < 3; ++c) {
+                    if (hasT) t[c] = Loader::component(tv, i, c);
+                    if (hasS) s[c] = Loader::component(sv, i, c);
+                }
+                if (hasR)
+                    for (int c = 0; c < 4; ++c) q[c] = Loader::component(rv, i, c);
+                if (!std::isfinite(t.x + t.y + t.z + s.x + s.y + s.z + q.x + q.y + q.z + q.w)) L.fail(iw, "is not finite");
+                if (!(glm::length(q) > 0.0)) L.fail(iw, "ROTATION has length 0 (not a rotation)");
+                q = glm::normalize(q);
+                const glm::dmat4 local = glm::translate(glm::dmat4(1.0), t) * glm::mat4_cast(glm::dquat(q.w, q.x, q.y, q.z)) *
+                                         glm::scale(glm::dmat4(1.0), s);
+                placed.push_back(world * glm::mat4(local));
+            }
+        }
         if (node.mesh >= 0) {
             if (size_t(node.mesh) >= model.meshes.size())
                 L.fail(w + ".mesh", std::to_string(node.mesh) + " does not exist (" + std::to_string(model.meshes.size()) + " meshes)");
@@ -1697,9 +1739,18 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut, bool insta
             // A mesh other still nodes draw too: its primitives once, in its own space (the first node
             // that draws it reads them), and this node's world transform. Mirroring nodes stay baked:
             // addPrimitive turns their triangles to keep front faces front.
-            const bool reusedHere = instanceReusedMeshes && !animated && skin < 0 && targets == 0 &&
-                                    stillUses[size_t(node.mesh)] > 1 && glm::determinant(glm::mat3(world)) > 0.0f;
-            if (reusedHere) {
+            const bool still = !animated && skin < 0 && targets == 0;
+            if (!still && placed.size() != 1)  // drawn once, at the node, as without the extension
+                L.warn(w + ".extensions.EXT_mesh_gpu_instancing", "its node is animated, skinned or morphed; drawn once, without its instances");
+            // The instances, each stored once (still, not mirroring, asked for) or baked.
+            std::vector<glm::mat4> reusedAt, bakedAt;
+            for (const glm::mat4& at : still ? placed : std::vector<glm::mat4>{world})
+                (instanceReusedMeshes && still && stillUses[size_t(node.mesh)] > 1 && glm::determinant(glm::mat3(at)) > 0.0f ? reusedAt : bakedAt)
+                    .push_back(at);
+            for (size_t b = 1; b < bakedAt.size(); ++b)  // further baked instances (the first is drawn below)
+                for (size_t p = 0; p < drawn.primitives.size(); ++p) addPrimitive(node.mesh, int(p), bakedAt[b]);
+            const bool reusedHere = bakedAt.empty();
+            if (!reusedAt.empty()) {
                 auto [slot, first] = instancedSlot.emplace(node.mesh, out.instancedMeshes.size());
                 if (first) {
                     const size_t firstVertex = mesh.vertices.size(), firstIndex = mesh.indices.size(), firstSub = mesh.subMeshes.size();
@@ -1719,12 +1770,13 @@ GltfContent loadGltf(const fs::path& path, MeshLoadReport* reportOut, bool insta
                     mesh.subMeshes.resize(firstSub);
                     out.instancedMeshes.push_back(std::move(im));
                 }
-                out.instancedMeshes[slot->second].transforms.push_back(world);
+                for (const glm::mat4& at : reusedAt) out.instancedMeshes[slot->second].transforms.push_back(at);
             }
+            const glm::mat4 bakedWorld = bakedAt.empty() ? world : bakedAt.front();
             const size_t primitivesHere = reusedHere ? 0 : drawn.primitives.size();  // a reused mesh: drawn above
             for (size_t p = 0; p < primitivesHere; ++p) {
                 if (!animated && skin < 0 && targets == 0) {
-                    addPrimitive(node.mesh, int(p), world);
+                    addPrimitive(node.mesh, int(p), bakedWorld);
                     continue;
                 }
                 // A node that moves, is skinned or morphed: its primitive read in the node's own space

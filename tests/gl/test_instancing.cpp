@@ -310,3 +310,21 @@ TEST(Instancing, GltfNodeReuseRendersTheExpandedFile) {
                                          std::string("node reuse vs expanded, ") + name));
     }
 }
+
+// EXT_mesh_gpu_instancing: the box's five instances, stored once, render what the same placements
+// written as child nodes (baked) render.
+TEST(Instancing, GltfGpuInstancingRendersTheExpandedFile) {
+    const Scene instanced = gltfScene("gpu_instancing.gltf"), expanded = gltfScene("gpu_instancing_expanded.gltf");
+    ASSERT_EQ(instanced.models.size(), 2u);
+    EXPECT_EQ(instanced.models[1].instanceCount(), 5u);
+    const SceneGpu one(instanced), baked(expanded);
+    EXPECT_EQ(one.storedVertices, 4u + 24u);
+    EXPECT_EQ(baked.storedVertices, 4u + 5u * 24u);
+    for (GBufferMode mode : {GBufferMode::Classic, GBufferMode::Visibility}) {
+        RenderSettings s = small(RenderPath::Deferred, mode);
+        s.width = 96;
+        s.height = 72;
+        EXPECT_TRUE(nearlyEveryTexelNear(renderHdr(instanced, s), renderHdr(expanded, s), 1e-3f, size_t(s.width * s.height / 100),
+                                         std::string("EXT_mesh_gpu_instancing vs child nodes, ") + gbufferModeName(mode)));
+    }
+}

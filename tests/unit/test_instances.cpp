@@ -3,7 +3,12 @@
 // naming the file, the place and what is wrong.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
+
+#include <unistd.h>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -188,4 +193,70 @@ TEST(GltfNodeReuse, SceneModelsDrawTheReusedMeshAtEveryNodeUnderEveryInstance) {
     const Scene bare = sceneForModel(gltfTestFile("node_reuse.gltf"));
     ASSERT_EQ(bare.models.size(), 2u);
     EXPECT_EQ(bare.models[1].instanceCount(), 4u);
+}
+
+// EXT_mesh_gpu_instancing (tests/data/gltf/gpu_instancing.gltf): five TRANSLATION / ROTATION / SCALE
+// instances of a box under a moved and turned node, as gpu_instancing_expanded.gltf writes them as
+// child nodes: the same world transforms; baked by default, stored once when asked.
+TEST(GltfGpuInstancing, InstancesAreTheNodesPlacements) {
+    const GltfContent baked = loadGltf(gltfTestFile("gpu_instancing.gltf"));
+    EXPECT_TRUE(baked.instancedMeshes.empty());
+    EXPECT_EQ(baked.mesh.indices.size() / 3, 2u + 5u * 12u);
+    const GltfContent g = loadGltf(gltfTestFile("gpu_instancing.gltf"), nullptr, true);
+    ASSERT_EQ(g.instancedMeshes.size(), 1u);
+    ASSERT_EQ(g.instancedMeshes[0].transforms.size(), 5u);
+    EXPECT_EQ(g.mesh.indices.size() / 3, 2u);  // the floor
+    // The expanded file's boxes, baked: each instance's box through its transform lands where the
+    // baked copy is (same vertex order: box k is vertices 4 + 24k .. of the expanded mesh).
+    const GltfContent expanded = loadGltf(gltfTestFile("gpu_instancing_expanded.gltf"));
+    const MeshData& box = g.instancedMeshes[0].mesh;
+    ASSERT_EQ(expanded.mesh.vertices.size(), 4u + 5u * box.vertices.size());
+    for (size_t k = 0; k < 5; ++k)
+        for (size_t v = 0; v < box.vertices.size(); ++v) {
+            const glm::vec3 placed(g.instancedMeshes[0].transforms[k] * glm::vec4(box.vertices[v].position, 1.0f));
+            EXPECT_NEAR(glm::length(placed - expanded.mesh.vertices[4 + k * box.vertices.size() + v].position), 0.0f, 1e-5f)
+                << "instance " << k << ", vertex " << v;
+        }
+}
+
+TEST(GltfGpuInstancing, BadAttributesAreOneLineNamingThem) {
+    const std::string text = [] {
+        std::ifstream f(gltfTestFile("gpu_instancing.gltf"));
+        std::stringstream s;
+        s << f.rdbuf();
+        return s.str();
+    }();
+    const auto dir = std::filesystem::temp_directory_path() / ("lp_gpu_instancing_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    struct Case {
+        std::string from, to, expected;
+    };
+    const std::string attributes = "nodes[1].extensions.EXT_mesh_gpu_instancing.attributes";
+    // The generated file names accessors 6, 7 and 8 (TRANSLATION, ROTATION, SCALE; 3 is the floor's
+    // 4 positions).
+    const size_t extension = text.find("\"EXT_mesh_gpu_instancing\": {");
+    ASSERT_NE(text.find("\"TRANSLATION\": 6", extension), std::string::npos) << "the asset changed; update the cases";
+    const Case cases[] = {
+        {"\"TRANSLATION\": 6", "\"TRANSLATION\": 99", attributes + ".TRANSLATION: accessor 99 does not exist"},
+        {"\"TRANSLATION\": 6", "\"TRANSLATION\": 7", attributes + ".TRANSLATION (accessors[7]): unexpected type"},
+        {"\"SCALE\": 8", "\"SCALE\": 3", attributes + ".SCALE: 4 instances, but the other attributes have 5"},
+        {"\"attributes\"", "\"attributez\"", attributes + ": missing"},
+    };
+    for (const Case& c : cases) {
+        std::string doc = text;
+        const size_t at = doc.find(c.from, extension);
+        ASSERT_NE(at, std::string::npos) << c.from;
+        doc.replace(at, c.from.size(), c.to);
+        const auto file = dir / "bad.gltf";
+        std::ofstream(file) << doc;
+        std::string error;
+        try {
+            loadGltf(file, nullptr, true);
+        } catch (const Error& e) {
+            error = e.what();
+        }
+        EXPECT_NE(error.find(c.expected), std::string::npos) << c.to << " gave: " << error;
+        EXPECT_EQ(error.find('\n'), std::string::npos) << error;
+    }
+    std::filesystem::remove_all(dir);
 }
