@@ -78,7 +78,7 @@ fg::ResourceId addEnvironmentViewPass(fg::FrameGraph& graph, DebugViewPass& stat
                              });
             const GLuint prog = state.environmentProgram.id();
             const gl::Uniforms u(frame.shaders, prog);
-            if (bake) glProgramUniform3fv(prog, glGetUniformLocation(prog, "uSh"), 9, glm::value_ptr(env.sh[0]));
+            if (bake) glProgramUniform3fv(prog, gl::Uniforms(frame.shaders, prog).location("uSh"), 9, glm::value_ptr(env.sh[0]));
             const float maxMip = bake ? float(env.prefiltered.levels - 1) : 0.0f;
             u.set("uMode", mode);
             u.set("uDiffuseFromCube", s.diffuse == IrradianceSource::Cubemap);

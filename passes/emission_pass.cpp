@@ -5,6 +5,7 @@
 
 #include "engine/gl/shader.hpp"
 #include "engine/gl/state.hpp"
+#include "engine/gl/uniforms.hpp"
 #include "engine/render/scene_gpu.hpp"
 #include "passes/skinning_pass.hpp"
 
@@ -61,9 +62,9 @@ fg::ResourceId addEmissionPass(fg::FrameGraph& graph, EmissionPass& state, const
             const GLuint prog = state.program.id();
             glUseProgram(prog);
             if (data.clearcoat.valid()) glBindTextureUnit(kEmissionClearcoatUnit, res.texture(data.clearcoat));
-            glProgramUniformMatrix4fv(prog, glGetUniformLocation(prog, "uProjection"), 1, GL_FALSE,
+            glProgramUniformMatrix4fv(prog, gl::Uniforms(frame.shaders, prog).location("uProjection"), 1, GL_FALSE,
                                       glm::value_ptr(gbufferDepthProjection(frame)));
-            auto loc = [prog](const char* name) { return glGetUniformLocation(prog, name); };
+            auto loc = [&frame, prog](const char* name) { return gl::Uniforms(frame.shaders, prog).location(name); };
             const GLint locMV = loc("uModelView"), locN = loc("uNormalMatrix");
             const GLint locE = loc("uEmission"), locHasE = loc("uHasEmissiveMap");
             const GLint locOpacity = loc("uOpacity"), locHasD = loc("uHasDiffuseMap"), locMask = loc("uAlphaMask");

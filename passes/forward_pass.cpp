@@ -5,6 +5,7 @@
 
 #include "engine/gl/shader.hpp"
 #include "engine/gl/state.hpp"
+#include "engine/gl/uniforms.hpp"
 #include "passes/ambient_occlusion_pass.hpp"
 #include "passes/global_light_pass.hpp"
 #include "passes/skinning_pass.hpp"
@@ -15,8 +16,6 @@ namespace {
 constexpr GLuint kSunShadowUnit = 10;  // LP_SUN_SHADOW_UNIT in forward.frag
 constexpr GLuint kEmissiveUnit = 6;    // uEmissiveMap in forward.frag
 constexpr GLuint kIblUnits[3] = {7, 8, 9};
-
-GLint loc(GLuint prog, const char* name) { return glGetUniformLocation(prog, name); }
 
 struct OpaqueData {
     fg::ResourceId depth;
@@ -70,25 +69,27 @@ void bindForwardLighting(ForwardPass& state, LocalLightPass& localLights, const 
         state.secondUvSet = secondUvSet;
     }
     const GLuint prog = state.program.id();
+    const gl::Uniforms u(frame.shaders, prog);
     setSunUniforms(prog, frame, lighting.shadowMaps);
+    setMaterialInputUniform(prog, frame);
     for (size_t i = 0; i < reads.shadowMaps.size(); ++i)
         glBindTextureUnit(kSunShadowUnit + GLuint(i), res.texture(reads.shadowMaps[i]));
     const bool ibl = reads.irradiance.valid();
-    glProgramUniform1i(prog, loc(prog, "uIbl"), ibl);
+    u.set("uIbl", ibl);
     if (ibl) {
         setIblUniforms(prog, frame, frame.environments->get(*frame.scene, frame.settings->environment, *frame.shaders, true));
         glBindTextureUnit(kIblUnits[0], res.texture(reads.irradiance));
         glBindTextureUnit(kIblUnits[1], res.texture(reads.prefiltered));
         glBindTextureUnit(kIblUnits[2], res.texture(reads.dfg));
     }
-    glProgramUniform1i(prog, loc(prog, "uAmbientOcclusion"), reads.ao.valid());
+    u.set("uAmbientOcclusion", reads.ao.valid());
     if (reads.ao.valid()) glBindTextureUnit(kAoTextureUnit, res.texture(reads.ao));
-    glProgramUniform1i(prog, loc(prog, "uLightingOnly"), lighting.lightingOnly);
-    glProgramUniform1i(prog, loc(prog, "uLocalLightCount"), 0);
+    u.set("uLightingOnly", lighting.lightingOnly);
+    u.set("uLocalLightCount", 0);
     if (lighting.localLights)
         bindClusteredLightLists(localLights, prog, frame, lighting.lightRecords, res, lighting.localShadows,
                                 {spotShadows ? res.texture(reads.spotAtlas) : 0, pointShadows ? res.texture(reads.pointAtlas) : 0});
-    glProgramUniformMatrix4fv(prog, loc(prog, "uProjection"), 1, GL_FALSE, glm::value_ptr(gbufferDepthProjection(frame)));
+    u.set("uProjection", gbufferDepthProjection(frame));
 }
 
 void unbindForwardLighting() {
@@ -98,9 +99,9 @@ void unbindForwardLighting() {
     glBindTextureUnit(kAoTextureUnit, 0);
 }
 
-ForwardMaterialUniforms::ForwardMaterialUniforms(GLuint prog)
-    : material(prog), emission(loc(prog, "uEmission")), hasEmissive(loc(prog, "uHasEmissiveMap")),
-      modelView(loc(prog, "uModelView")), normalMatrix(loc(prog, "uNormalMatrix")) {}
+ForwardMaterialUniforms::ForwardMaterialUniforms(const gl::Uniforms& u)
+    : material(u), emission(u.location("uEmission")), hasEmissive(u.location("uHasEmissiveMap")),
+      modelView(u.location("uModelView")), normalMatrix(u.location("uNormalMatrix")) {}
 
 void ForwardMaterialUniforms::setModel(GLuint prog, const glm::mat4& view, const glm::mat4& model) const {
     const glm::mat4 mv = view * model;
@@ -155,7 +156,7 @@ fg::ResourceId addForwardOpaquePass(fg::FrameGraph& graph, ForwardPass& state, L
                 glDepthFunc(GL_EQUAL);  // each visible fragment once: the one the pre-pass kept
                 glDepthMask(GL_FALSE);
                 glUseProgram(prog);
-                const ForwardMaterialUniforms material(prog);
+                const ForwardMaterialUniforms material(gl::Uniforms(frame.shaders, prog));
                 for (const auto& mesh : frame.gpu->meshes) {
                     material.setModel(prog, frame.view, mesh.model);
                     glBindVertexArray(mesh.vao.id());

@@ -63,7 +63,7 @@ void unbindForwardLighting();
 
 // Material uniforms of common/material.glsl and forward.frag's emission, looked up once per program.
 struct ForwardMaterialUniforms {
-    explicit ForwardMaterialUniforms(GLuint prog);
+    explicit ForwardMaterialUniforms(const gl::Uniforms& u);
     void set(GLuint prog, const GpuMaterial& m) const;  // also binds the material's textures (units 0..4, 6)
     // uModelView and uNormalMatrix of a mesh drawn with `view`.
     void setModel(GLuint prog, const glm::mat4& view, const glm::mat4& model) const;

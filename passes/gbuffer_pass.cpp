@@ -7,6 +7,7 @@
 
 #include "engine/gl/shader.hpp"
 #include "engine/gl/state.hpp"
+#include "engine/gl/uniforms.hpp"
 #include "engine/render/scene_gpu.hpp"
 #include "passes/skinning_pass.hpp"
 
@@ -29,8 +30,8 @@ GLenum gbufferSpecularFormat(GBufferNormalFormat format) {
     return shininessInNormalTarget(format) ? GL_SRGB8_ALPHA8 : GL_RGBA16F;
 }
 
-MaterialUniforms::MaterialUniforms(GLuint prog) {
-    auto loc = [prog](const char* name) { return glGetUniformLocation(prog, name); };
+MaterialUniforms::MaterialUniforms(const gl::Uniforms& u) {
+    auto loc = [&u](const char* name) { return u.location(name); };
     kd = loc("uDiffuse"); opacity = loc("uOpacity"); ks = loc("uSpecular"); metallic = loc("uMetallic");
     shininess = loc("uShininess"); roughness = loc("uRoughness"); hasDiffuse = loc("uHasDiffuseMap");
     hasBump = loc("uHasBumpMap"); bumpScale = loc("uBumpScale"); hasNormal = loc("uHasNormalMap");
@@ -207,24 +208,27 @@ void unbindGBufferImages() {
 }
 
 void setBackgroundMotionUniforms(GLuint program, const FrameData& frame) {
-    auto loc = [program](const char* name) { return glGetUniformLocation(program, name); };
+    const gl::Uniforms u(frame.shaders, program);
     const glm::mat4 viewProjection = frame.unjitteredProjection * frame.view;  // velocity is unjittered
     const glm::mat4 rotation = frame.unjitteredProjection * glm::mat4(glm::mat3(frame.view));
     const glm::vec2 jitterNdc =
         2.0f * frame.jitterPixels / glm::vec2(std::max(frame.outputWidth, 1), std::max(frame.outputHeight, 1));
-    glProgramUniform2fv(program, loc("uJitterNdc"), 1, glm::value_ptr(jitterNdc));
-    glProgramUniformMatrix4fv(program, loc("uInverseRotationProjection"), 1, GL_FALSE,
-                              glm::value_ptr(glm::inverse(rotation)));
-    glProgramUniformMatrix4fv(program, loc("uViewProjection"), 1, GL_FALSE, glm::value_ptr(viewProjection));
-    glProgramUniformMatrix4fv(program, loc("uPreviousViewProjection"), 1, GL_FALSE,
-                              glm::value_ptr(frame.previousViewProjection));
+    u.set("uJitterNdc", jitterNdc);
+    u.set("uInverseRotationProjection", glm::inverse(rotation));
+    u.set("uViewProjection", viewProjection);
+    u.set("uPreviousViewProjection", frame.previousViewProjection);
 }
 
-void setBrdfUniforms(GLuint prog, const RenderSettings& settings) {
-    glProgramUniform1i(prog, glGetUniformLocation(prog, "uBrdf"), int(settings.brdf));  // = LP_BRDF_*
-    glProgramUniform1i(prog, glGetUniformLocation(prog, "uSpecularMasking"), int(settings.specularMasking));
-    glProgramUniform1i(prog, glGetUniformLocation(prog, "uHiddenTerms"), hiddenShadingTerms(settings.view));
-    glProgramUniform1i(prog, glGetUniformLocation(prog, "uMaterialInput"), materialInputShown(settings.view));
+void setBrdfUniforms(GLuint prog, const FrameData& frame) {
+    const RenderSettings& settings = *frame.settings;
+    const gl::Uniforms u(frame.shaders, prog);
+    u.set("uBrdf", int(settings.brdf));  // = LP_BRDF_*
+    u.set("uSpecularMasking", int(settings.specularMasking));
+    u.set("uHiddenTerms", int(hiddenShadingTerms(settings.view)));
+}
+
+void setMaterialInputUniform(GLuint prog, const FrameData& frame) {
+    gl::Uniforms(frame.shaders, prog).set("uMaterialInput", int(materialInputShown(frame.settings->view)));
 }
 
 void bindGBuffer(GLuint program, const fg::PassResources& res, const GBuffer& g, const FrameData& frame, bool diffuse,
@@ -238,7 +242,7 @@ void bindGBuffer(GLuint program, const fg::PassResources& res, const GBuffer& g,
     if (shading && g.fresnel.valid()) glBindTextureUnit(kGBufferFresnelUnit, res.texture(g.fresnel));
     if (shading && g.clearcoat.valid()) glBindTextureUnit(kGBufferClearcoatUnit, res.texture(g.clearcoat));
     const glm::mat4& p = frame.projection;
-    glProgramUniform4f(program, glGetUniformLocation(program, "uGbufferCamera"), frame.nearPlane, frame.farPlane,
+    glProgramUniform4f(program, gl::Uniforms(frame.shaders, program).location("uGbufferCamera"), frame.nearPlane, frame.farPlane,
                        1.0f / p[1][1], p[1][1] / p[0][0]);
 }
 
@@ -319,14 +323,15 @@ GBuffer addGeometryPass(fg::FrameGraph& graph, GBufferPass& state, const FrameDa
             const glm::mat4 viewProjection = frame.unjitteredProjection * frame.view;  // velocity is unjittered
             const GLuint prog = program.id();
             glUseProgram(prog);
-            glProgramUniformMatrix4fv(prog, glGetUniformLocation(prog, "uProjection"), 1, GL_FALSE,
-                                      glm::value_ptr(gbufferDepthProjection(frame)));
-            setBrdfUniforms(prog, *frame.settings);
-            const GLint locClip = glGetUniformLocation(prog, "uClipFromModel");
-            const GLint locPreviousClip = glGetUniformLocation(prog, "uPreviousClipFromModel");
-            const GLint locMV = glGetUniformLocation(prog, "uModelView");
-            const GLint locN = glGetUniformLocation(prog, "uNormalMatrix");
-            const MaterialUniforms material(prog);
+            const gl::Uniforms u(frame.shaders, prog);
+            u.set("uProjection", gbufferDepthProjection(frame));
+            setBrdfUniforms(prog, frame);
+            setMaterialInputUniform(prog, frame);
+            const GLint locClip = u.location("uClipFromModel");
+            const GLint locPreviousClip = u.location("uPreviousClipFromModel");
+            const GLint locMV = u.location("uModelView");
+            const GLint locN = u.location("uNormalMatrix");
+            const MaterialUniforms material(u);
             for (const auto& mesh : frame.gpu->meshes) {
                 glm::mat4 mv = frame.view * mesh.model;
                 glm::mat3 nm = glm::inverseTranspose(glm::mat3(mv));
@@ -358,8 +363,8 @@ GBuffer addGeometryPass(fg::FrameGraph& graph, GBufferPass& state, const FrameDa
                                                        return frame.shaders->compute("gbuffer_background.comp", defines);
                                                    })
                                       .id();
-                glProgramUniform1ui(bg, glGetUniformLocation(bg, "uTargets"), bound);
-                glProgramUniform1f(bg, glGetUniformLocation(bg, "uBackgroundDepth"), farDepth);
+                glProgramUniform1ui(bg, gl::Uniforms(frame.shaders, bg).location("uTargets"), bound);
+                glProgramUniform1f(bg, gl::Uniforms(frame.shaders, bg).location("uBackgroundDepth"), farDepth);
                 setBackgroundMotionUniforms(bg, frame);
                 glBindTextureUnit(6, res.texture(out.depth));
                 glUseProgram(bg);

@@ -4,6 +4,7 @@
 // Writes only the channels some pass will read. Passes that read it use readGBuffer / bindGBuffer
 // and compile their programs with gbufferDefines() through programForLayout.
 #include "engine/gl/handles.hpp"
+#include "engine/gl/uniforms.hpp"
 #include "engine/graph/frame_graph.hpp"
 #include "engine/render/frame_data.hpp"
 #include "engine/render/scene_gpu.hpp"
@@ -88,7 +89,7 @@ void unbindMaterialTextures();
 // forward passes): their locations, looked up once per program.
 struct GpuMaterial;
 struct MaterialUniforms {
-    explicit MaterialUniforms(GLuint prog);
+    explicit MaterialUniforms(const gl::Uniforms& u);  // the program's, looked up (and checked) once
     void set(GLuint prog, const GpuMaterial& m) const;  // also binds the material's textures (units 0..4, 16, 17)
     GLint kd, opacity, ks, metallic, shininess, roughness, hasDiffuse, hasBump, bumpScale, hasNormal, normalScale,
         hasMetalRough, hasOcclusion, occlusionStrength, mask, cutoff, twoSided, flat, secondUvMaps, specularF90,
@@ -97,10 +98,12 @@ struct MaterialUniforms {
 };
 
 // common/brdf.glsl's uBrdf, uSpecularMasking and uHiddenTerms (the term views: lp::hiddenShadingTerms)
-// and common/material.glsl's uMaterialInput (lp::materialInputShown) from the settings, on every program
-// that evaluates the BRDF or stores a material for it (the G-buffer's diffuse colour depends on the
-// BRDF: materialDiffuseAlbedo).
-void setBrdfUniforms(GLuint prog, const RenderSettings& settings);
+// from the settings, on every program that evaluates the BRDF or stores a material for it (the
+// G-buffer's diffuse colour depends on the BRDF: materialDiffuseAlbedo).
+void setBrdfUniforms(GLuint prog, const FrameData& frame);
+// common/material.glsl's uMaterialInput (lp::materialInputShown), on the programs that read materials
+// (the G-buffer, the visibility resolve, the forward passes).
+void setMaterialInputUniform(GLuint prog, const FrameData& frame);
 
 // GL internal formats of the targets under a layout (docs/gbuffer.md). The colours that hold a
 // material's base colour in 8 bits are sRGB-encoded, as the textures they come from: kd in diffuse in

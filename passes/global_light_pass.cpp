@@ -81,7 +81,7 @@ int setSunUniforms(GLuint prog, const FrameData& frame, const ShadowMaps& shadow
     u.setArray("uLightDirEye", dirs.data(), count);
     u.setArray("uLightIrradiance", irr.data(), count);
     u.set("uAmbient", frameAmbient(frame));
-    setBrdfUniforms(prog, *frame.settings);
+    setBrdfUniforms(prog, frame);
     setShadowUniforms(prog, frame, shadowMaps, count);
     return count;
 }

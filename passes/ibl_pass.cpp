@@ -8,6 +8,7 @@
 
 #include "engine/gl/shader.hpp"
 #include "engine/gl/state.hpp"
+#include "engine/gl/uniforms.hpp"
 
 namespace lp {
 
@@ -66,15 +67,14 @@ EnvironmentTextures addIblBakePass(fg::FrameGraph& graph, const FrameData& frame
 
 void setIblUniforms(GLuint prog, const FrameData& frame, const BakedEnvironment& env) {
     const EnvironmentSettings& s = frame.settings->environment;
-    glProgramUniform3fv(prog, glGetUniformLocation(prog, "uSh"), 9, glm::value_ptr(env.sh[0]));
-    glProgramUniform1i(prog, glGetUniformLocation(prog, "uDiffuseFromCube"), s.diffuse == IrradianceSource::Cubemap);
-    glProgramUniformMatrix3fv(prog, glGetUniformLocation(prog, "uEyeToWorld"), 1, GL_FALSE,
-                              glm::value_ptr(glm::transpose(glm::mat3(frame.view))));
-    glProgramUniform1f(prog, glGetUniformLocation(prog, "uIntensity"), frame.scene->environment.intensity);
-    glProgramUniform1f(prog, glGetUniformLocation(prog, "uMaxLod"), float(env.prefiltered.levels - 1));
-    setBrdfUniforms(prog, *frame.settings);
-    glProgramUniform1i(prog, glGetUniformLocation(prog, "uSpecularSamples"),
-                       s.specular == IblSpecular::Sampled ? s.specularRuntimeSamples : 0);
+    const gl::Uniforms u(frame.shaders, prog);
+    u.setArray("uSh", env.sh.data(), 9);
+    u.set("uDiffuseFromCube", s.diffuse == IrradianceSource::Cubemap);
+    u.set("uEyeToWorld", glm::transpose(glm::mat3(frame.view)));
+    u.set("uIntensity", frame.scene->environment.intensity);
+    u.set("uMaxLod", float(env.prefiltered.levels - 1));
+    setBrdfUniforms(prog, frame);
+    u.set("uSpecularSamples", s.specular == IblSpecular::Sampled ? s.specularRuntimeSamples : 0);
     const int lights = std::min(int(env.lights.size()), kMaxEnvironmentLights);
     std::array<glm::vec3, kMaxEnvironmentLights> direction{}, irradiance{};
     std::array<float, kMaxEnvironmentLights> sinRadius{};
@@ -83,12 +83,10 @@ void setIblUniforms(GLuint prog, const FrameData& frame, const BakedEnvironment&
         irradiance[size_t(i)] = env.lights[size_t(i)].irradiance;
         sinRadius[size_t(i)] = std::sin(std::min(env.lights[size_t(i)].angularRadius, 1.5707963f));
     }
-    glProgramUniform1i(prog, glGetUniformLocation(prog, "uIblLightCount"), lights);
-    glProgramUniform3fv(prog, glGetUniformLocation(prog, "uIblLightDirection"), kMaxEnvironmentLights,
-                        glm::value_ptr(direction[0]));
-    glProgramUniform3fv(prog, glGetUniformLocation(prog, "uIblLightIrradiance"), kMaxEnvironmentLights,
-                        glm::value_ptr(irradiance[0]));
-    glProgramUniform1fv(prog, glGetUniformLocation(prog, "uIblLightSinRadius"), kMaxEnvironmentLights, sinRadius.data());
+    u.set("uIblLightCount", lights);
+    u.setArray("uIblLightDirection", direction.data(), kMaxEnvironmentLights);
+    u.setArray("uIblLightIrradiance", irradiance.data(), kMaxEnvironmentLights);
+    u.setArray("uIblLightSinRadius", sinRadius.data(), kMaxEnvironmentLights);
 }
 
 fg::ResourceId addIblPass(fg::FrameGraph& graph, IblPass& state, const FrameData& frame, const GBuffer& gbuffer,
@@ -114,8 +112,8 @@ fg::ResourceId addIblPass(fg::FrameGraph& graph, IblPass& state, const FrameData
             });
             const GLuint prog = state.program.id();
             setIblUniforms(prog, frame, env);
-            glProgramUniform1i(prog, glGetUniformLocation(prog, "uLightingOnly"), lightingOnly);
-            glProgramUniform1i(prog, glGetUniformLocation(prog, "uAmbientOcclusion"), data.ao.valid());
+            glProgramUniform1i(prog, gl::Uniforms(frame.shaders, prog).location("uLightingOnly"), lightingOnly);
+            glProgramUniform1i(prog, gl::Uniforms(frame.shaders, prog).location("uAmbientOcclusion"), data.ao.valid());
             gl::ScopedEnable seamless(GL_TEXTURE_CUBE_MAP_SEAMLESS, true);
             bindGBuffer(prog, res, data.in, frame, !lightingOnly, true);
             glBindTextureUnit(7, res.texture(data.environment.irradiance));

@@ -539,7 +539,7 @@ int bindClusteredLightLists(LocalLightPass& state, GLuint prog, const FrameData&
     setUniform(frame, prog, "uLocalLightCount", count);
     setUniform(frame, prog, "uUnbounded", unbounded(s));
     setUniform(frame, prog, "uSpecularMode", specularMode(s));
-    setBrdfUniforms(prog, *frame.settings);
+    setBrdfUniforms(prog, frame);
     return count;
 }
 
@@ -673,7 +673,7 @@ fg::ResourceId addLocalLightPass(fg::FrameGraph& graph, LocalLightPass& state, c
                 setUniform(frame, prog, "uUnbounded", unbounded(s));
                 setUniform(frame, prog, "uLightingOnly", lightingOnly);
                 setUniform(frame, prog, "uSpecularMode", specularMode(s));
-                setBrdfUniforms(prog, *frame.settings);
+                setBrdfUniforms(prog, frame);
                 buildSupertiles(state, frame,
                                 makeClusterGrid(frame.width, frame.height, kTileSize, 1, frame.nearPlane, frame.farPlane),
                                 int(lights->size()), {prog}, !unbounded(s));
@@ -696,7 +696,7 @@ fg::ResourceId addLocalLightPass(fg::FrameGraph& graph, LocalLightPass& state, c
                 setUniform(frame, prog, "uUnbounded", unbounded(s));
                 setUniform(frame, prog, "uLightingOnly", lightingOnly);
                 setUniform(frame, prog, "uSpecularMode", specularMode(s));
-                setBrdfUniforms(prog, *frame.settings);
+                setBrdfUniforms(prog, frame);
                 glBindImageTexture(0, hdrTexture, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
                 shadeClustered(state, frame, prog, int(lights->size()));
                 state.stats.drawn = int(lights->size());
@@ -710,7 +710,7 @@ fg::ResourceId addLocalLightPass(fg::FrameGraph& graph, LocalLightPass& state, c
                 bindGBuffer(prog, res, data.in, frame, !lightingOnly, true);
                 setUniform(frame, prog, "uLightingOnly", lightingOnly);
                 setUniform(frame, prog, "uSpecularMode", specularMode(s));
-                setBrdfUniforms(prog, *frame.settings);
+                setBrdfUniforms(prog, frame);
                 drawFragmentMethod(state, frame, *lights, hdrTexture);
                 // Blending can overflow fp16 to +Inf: clamp like every other HDR write.
                 glBindImageTexture(0, hdrTexture, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);

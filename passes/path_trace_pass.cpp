@@ -12,6 +12,7 @@
 #include "engine/core/log.hpp"
 #include "engine/gl/limits.hpp"
 #include "engine/gl/shader.hpp"
+#include "engine/gl/uniforms.hpp"
 #include "engine/gl/state.hpp"
 #include "engine/io/image_io.hpp"
 #include "engine/render/local_lights.hpp"
@@ -38,8 +39,6 @@ constexpr uint64_t kMaxMapBytes = uint64_t(1) << 30;
 struct Data {
     fg::ResourceId hdr;
 };
-
-GLint loc(GLuint prog, const char* name) { return glGetUniformLocation(prog, name); }
 
 template <typename T>
 gl::Buffer storage(const std::vector<T>& records, const std::string& name) {
@@ -201,14 +200,15 @@ void setUniforms(GLuint prog, const PathTracePass& state, const FrameData& frame
     const Scene& scene = *frame.scene;
     const glm::mat4 clipToWorld = glm::inverse(frame.projection * frame.view);
     const glm::vec3 camera = glm::vec3(glm::inverse(frame.view)[3]);
-    glProgramUniformMatrix4fv(prog, loc(prog, "uClipToWorld"), 1, GL_FALSE, glm::value_ptr(clipToWorld));
-    glProgramUniform3fv(prog, loc(prog, "uCameraPosition"), 1, glm::value_ptr(camera));
-    glProgramUniform1i(prog, loc(prog, "uPixelCentre"), s.pathTrace.pixelCentre);
-    glProgramUniform1i(prog, loc(prog, "uBounces"), s.pathTrace.interactions());
-    glProgramUniform1i(prog, loc(prog, "uRouletteFrom"), kRouletteFrom);
-    glProgramUniform1i(prog, loc(prog, "uPtNodeCount"), state.nodeCount);
-    glProgramUniform1f(prog, loc(prog, "uRayEpsilon"), state.rayEpsilon);
-    glProgramUniform1i(prog, loc(prog, "uHasMaskedMaterials"), state.hasMaskedMaterials);
+    const gl::Uniforms u(frame.shaders, prog);
+    u.set("uClipToWorld", clipToWorld);
+    u.set("uCameraPosition", camera);
+    u.set("uPixelCentre", s.pathTrace.pixelCentre);
+    u.set("uBounces", s.pathTrace.interactions());
+    u.set("uRouletteFrom", kRouletteFrom);
+    u.set("uPtNodeCount", state.nodeCount);
+    u.set("uRayEpsilon", state.rayEpsilon);
+    u.set("uHasMaskedMaterials", state.hasMaskedMaterials);
     const auto& suns = frameDirectionalLights(frame);
     if (int(suns.size()) > kMaxSuns)
         logWarn("path tracer: only the first " + std::to_string(kMaxSuns) + " of " + std::to_string(suns.size()) +
@@ -219,23 +219,20 @@ void setUniforms(GLuint prog, const PathTracePass& state, const FrameData& frame
         toLight.push_back(glm::normalize(-suns[size_t(i)].direction));
         irradiance.push_back(suns[size_t(i)].color * suns[size_t(i)].intensity);
     }
-    glProgramUniform1i(prog, loc(prog, "uSunCount"), sunCount);
-    if (sunCount > 0) {
-        glProgramUniform3fv(prog, loc(prog, "uSunToLight"), sunCount, glm::value_ptr(toLight[0]));
-        glProgramUniform3fv(prog, loc(prog, "uSunIrradiance"), sunCount, glm::value_ptr(irradiance[0]));
-    }
-    glProgramUniform1i(prog, loc(prog, "uLocalLightCount"), state.localLightCount);
-    glProgramUniform1i(prog, loc(prog, "uSpecularMode"),
-                       !s.localLights.specular ? 0 : (s.localLights.specularOutsideRange ? 2 : 1));
+    u.set("uSunCount", sunCount);
+    u.setArray("uSunToLight", toLight.data(), sunCount);
+    u.setArray("uSunIrradiance", irradiance.data(), sunCount);
+    u.set("uLocalLightCount", state.localLightCount);
+    u.set("uSpecularMode", !s.localLights.specular ? 0 : (s.localLights.specularOutsideRange ? 2 : 1));
     const Environment& e = scene.environment;
-    glProgramUniform1i(prog, loc(prog, "uHasEnvironmentMap"), bool(state.environment));
+    u.set("uHasEnvironmentMap", bool(state.environment));
     const glm::ivec2 cells = s.pathTrace.environmentSampling ? state.environmentCells : glm::ivec2(0);
-    glProgramUniform2i(prog, loc(prog, "uEnvironmentCells"), cells.x, cells.y);
+    u.set("uEnvironmentCells", cells);
     const glm::vec3 color = e.color * e.intensity;
-    glProgramUniform3fv(prog, loc(prog, "uEnvironmentColor"), 1, glm::value_ptr(color));
-    glProgramUniform1f(prog, loc(prog, "uEnvironmentIntensity"), e.intensity);
-    glProgramUniform1f(prog, loc(prog, "uEnvironmentRotation"), float(glm::radians(double(e.rotationDegrees))));
-    setBrdfUniforms(prog, s);
+    u.set("uEnvironmentColor", color);
+    u.set("uEnvironmentIntensity", e.intensity);
+    u.set("uEnvironmentRotation", float(glm::radians(double(e.rotationDegrees))));
+    setBrdfUniforms(prog, frame);
 }
 }  // namespace
 
@@ -299,6 +296,7 @@ fg::ResourceId addPathTracePass(fg::FrameGraph& graph, PathTracePass& state, con
                 state.localLightCount = int(records.size());
             }
             const GLuint prog = state.program.id();
+            const gl::Uniforms u(frame.shaders, prog);
             setUniforms(prog, state, frame);
             glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPtBindNodes, state.nodes.id());
             glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPtBindTriangles, state.triangles.id());
@@ -318,9 +316,9 @@ fg::ResourceId addPathTracePass(fg::FrameGraph& graph, PathTracePass& state, con
             // a new transient each frame).
             const bool tracing = state.accumulated < samples;  // samples missing: trace them now
             if (tracing) {
-                glProgramUniform1i(prog, loc(prog, "uTrace"), 1);
+                u.set("uTrace", 1);
                 for (int i = state.accumulated; i < samples; ++i) {
-                    glProgramUniform1i(prog, loc(prog, "uSample"), i);
+                    u.set("uSample", i);
                     gl::dispatch2D(frame.width, frame.height);
                     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
                     // Seconds of samples queued at once lost the context on an H100 (1024 samples of
@@ -332,8 +330,8 @@ fg::ResourceId addPathTracePass(fg::FrameGraph& graph, PathTracePass& state, con
                                 " samples a pixel at " + std::to_string(frame.width) + "x" + std::to_string(frame.height) +
                                 " (fewer --spp or a smaller --size)");
             } else {
-                glProgramUniform1i(prog, loc(prog, "uTrace"), 0);
-                glProgramUniform1i(prog, loc(prog, "uSample"), samples - 1);
+                u.set("uTrace", 0);
+                u.set("uSample", samples - 1);
                 gl::dispatch2D(frame.width, frame.height);
             }
             glUseProgram(0);

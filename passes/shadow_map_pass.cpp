@@ -18,6 +18,7 @@
 #include "engine/gl/raster_probe.hpp"
 #include "engine/gl/shader.hpp"
 #include "engine/gl/state.hpp"
+#include "engine/gl/uniforms.hpp"
 #include "engine/render/scene_gpu.hpp"
 #include "engine/render/shadow_casters.hpp"
 #include "passes/skinning_pass.hpp"
@@ -273,22 +274,22 @@ void drawCascadesByCompute(ShadowMapPass& state, const FrameData& frame, const S
     glBindImageTexture(0, state.depthBits.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, largeDraws);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, state.largeVertices.id());
-    glProgramUniform1i(prog, glGetUniformLocation(prog, "uTileSize"), fr.tileSize);
-    glProgramUniform1i(prog, glGetUniformLocation(prog, "uDepthZeroToOne"), depthZeroToOne ? 1 : 0);
-    glProgramUniform1f(prog, glGetUniformLocation(prog, "uSlopeBias"), frame.settings->shadows.slopeBias);
-    glProgramUniform1f(prog, glGetUniformLocation(prog, "uLargeTexels"), kComputeRasterMaxTexels);
+    glProgramUniform1i(prog, gl::Uniforms(frame.shaders, prog).location("uTileSize"), fr.tileSize);
+    glProgramUniform1i(prog, gl::Uniforms(frame.shaders, prog).location("uDepthZeroToOne"), depthZeroToOne ? 1 : 0);
+    glProgramUniform1f(prog, gl::Uniforms(frame.shaders, prog).location("uSlopeBias"), frame.settings->shadows.slopeBias);
+    glProgramUniform1f(prog, gl::Uniforms(frame.shaders, prog).location("uLargeTexels"), kComputeRasterMaxTexels);
     if (!state.rasterModel) state.rasterModel = gl::probeRasterInterpolation(*frame.shaders);
     // Edge functions of 32-bit integers: at most 8 sub-texel bits keep uLargeTexels' triangles exact.
-    glProgramUniform1i(prog, glGetUniformLocation(prog, "uSubTexel"), 1 << std::min(state.rasterModel->subpixelBits, 8));
-    glProgramUniform1i(prog, glGetUniformLocation(prog, "uSnappedDepthPlane"), state.rasterModel->fromSnappedVertices);
-    const GLint locMvp = glGetUniformLocation(prog, "uModelToClip");
-    const GLint locFirst = glGetUniformLocation(prog, "uFirstIndex");
-    const GLint locCount = glGetUniformLocation(prog, "uTriangleCount");
+    glProgramUniform1i(prog, gl::Uniforms(frame.shaders, prog).location("uSubTexel"), 1 << std::min(state.rasterModel->subpixelBits, 8));
+    glProgramUniform1i(prog, gl::Uniforms(frame.shaders, prog).location("uSnappedDepthPlane"), state.rasterModel->fromSnappedVertices);
+    const GLint locMvp = gl::Uniforms(frame.shaders, prog).location("uModelToClip");
+    const GLint locFirst = gl::Uniforms(frame.shaders, prog).location("uFirstIndex");
+    const GLint locCount = gl::Uniforms(frame.shaders, prog).location("uTriangleCount");
     for (size_t c = 0; c < fr.cascades.size(); ++c) {
         if (!redraw[c]) continue;  // kept from an earlier frame (--shadow-cache)
         const glm::ivec2 origin = tileOrigin(fr, c);
-        glProgramUniform2i(prog, glGetUniformLocation(prog, "uTileOrigin"), origin.x, origin.y);
-        glProgramUniform1i(prog, glGetUniformLocation(prog, "uCascade"), GLint(c));
+        glProgramUniform2i(prog, gl::Uniforms(frame.shaders, prog).location("uTileOrigin"), origin.x, origin.y);
+        glProgramUniform1i(prog, gl::Uniforms(frame.shaders, prog).location("uCascade"), GLint(c));
         for (const CasterDraw& draw : casters[c].draws) {
             if (draw.model < 0 || size_t(draw.model) >= frame.gpu->meshes.size()) continue;
             const GpuMesh& mesh = frame.gpu->meshes[size_t(draw.model)];
@@ -510,10 +511,10 @@ void drawAtlas(ShadowMapPass& state, const FrameData& frame, const ShadowFrustum
         for (GLuint prog : {conservativeProg, hardwareProgs[0], hardwareProgs[1], alphaTwin(conservativeProg),
                             alphaTwin(hardwareProgs[0]), alphaTwin(hardwareProgs[1])}) {
             if (!prog) continue;
-            glProgramUniform1i(prog, glGetUniformLocation(prog, "uDepthZeroToOne"), clipDepth == GL_ZERO_TO_ONE ? 1 : 0);
+            glProgramUniform1i(prog, gl::Uniforms(frame.shaders, prog).location("uDepthZeroToOne"), clipDepth == GL_ZERO_TO_ONE ? 1 : 0);
             // Slope-scaled bias against acne, for the faces towards the light only (shadow_depth.frag);
             // the constant part is the receiver's (see shadow.glsl).
-            glProgramUniform1f(prog, glGetUniformLocation(prog, "uSlopeBias"), frame.settings->shadows.slopeBias);
+            glProgramUniform1f(prog, gl::Uniforms(frame.shaders, prog).location("uSlopeBias"), frame.settings->shadows.slopeBias);
         }
         if (raster == Raster::Compute) {
             gl::ScopedEnable scissor(GL_SCISSOR_TEST, false);  // drawCascadesByCompute scissors per tile
@@ -538,7 +539,7 @@ void drawAtlas(ShadowMapPass& state, const FrameData& frame, const ShadowFrustum
             // texel's centre by a texel's world size in depth (shadow_caster_depth.glsl).
             const float texelDepth = fr.cascades[c].texelWorld / fr.cascades[c].depthRange;
             for (GLuint prog : {conservativeProg, hardwareProgs[0], alphaTwin(conservativeProg), alphaTwin(hardwareProgs[0])})
-                if (prog) glProgramUniform1f(prog, glGetUniformLocation(prog, "uTexelDepth"), texelDepth);
+                if (prog) glProgramUniform1f(prog, gl::Uniforms(frame.shaders, prog).location("uTexelDepth"), texelDepth);
             if (plainProg) {
                 // Split: only the faces towards the light (counter-clockwise in the light's window,
                 // as shadow_depth.geom's orientation), which need neither growth nor gl_FragDepth.
@@ -552,7 +553,7 @@ void drawAtlas(ShadowMapPass& state, const FrameData& frame, const ShadowFrustum
             if (conservativeProg) {
                 for (GLuint prog : {conservativeProg, alphaTwin(conservativeProg)})
                     if (prog)
-                        glProgramUniform4f(prog, glGetUniformLocation(prog, "uViewport"), float(x), float(y),
+                        glProgramUniform4f(prog, gl::Uniforms(frame.shaders, prog).location("uViewport"), float(x), float(y),
                                            float(fr.tileSize), float(fr.tileSize));
                 drawCasters(frame, conservativeProg, alphaTwin(conservativeProg), fr.cascades[c].worldToClip, regionCasters);
             }
@@ -577,7 +578,7 @@ void drawAtlas(ShadowMapPass& state, const FrameData& frame, const ShadowFrustum
                     }
                     for (GLuint p : {prog, alphaTwin(prog)})
                         if (p)
-                            glProgramUniform4f(p, glGetUniformLocation(p, "uViewport"), float(x), float(y),
+                            glProgramUniform4f(p, gl::Uniforms(frame.shaders, p).location("uViewport"), float(x), float(y),
                                                float(fr.tileSize), float(fr.tileSize));
                     drawCasters(frame, prog, alphaTwin(prog), fr.cascades[c].worldToClip, regionCasters);
                 }
@@ -1058,8 +1059,8 @@ namespace {
 // The uniforms of common/shadow_alpha.glsl in an LP_SHADOW_ALPHA_TEST program.
 struct ShadowAlphaUniforms {
     GLint modelToClip, opacity, hasDiffuseMap, secondUvMaps, alphaCutoff, alphaHashed;
-    explicit ShadowAlphaUniforms(GLuint prog) {
-        auto loc = [prog](const char* name) { return glGetUniformLocation(prog, name); };
+    explicit ShadowAlphaUniforms(const gl::Uniforms& u) {
+        auto loc = [&u](const char* name) { return u.location(name); };
         modelToClip = loc("uModelToClip"); opacity = loc("uOpacity"); hasDiffuseMap = loc("uHasDiffuseMap");
         secondUvMaps = loc("uSecondUvMaps"); alphaCutoff = loc("uAlphaCutoff"); alphaHashed = loc("uAlphaHashed");
     }
@@ -1076,7 +1077,7 @@ struct ShadowAlphaUniforms {
 
 void drawAlphaCasterList(const FrameData& frame, GLuint prog, const glm::mat4& worldToClip, const CasterList& casters) {
     if (casters.alphaDraws.empty()) return;
-    const ShadowAlphaUniforms u(prog);
+    const ShadowAlphaUniforms u(gl::Uniforms(frame.shaders, prog));
     int boundModel = -1, boundMaterial = -1;
     for (const CasterDraw& draw : casters.alphaDraws) {
         if (draw.model < 0 || size_t(draw.model) >= frame.gpu->meshes.size()) continue;
@@ -1102,7 +1103,7 @@ void drawCasters(const FrameData& frame, GLuint opaque, GLuint alphaTested, cons
                  const CasterList& casters) {
     if (!casters.draws.empty()) {
         glUseProgram(opaque);
-        drawCasterList(frame, opaque, glGetUniformLocation(opaque, "uModelToClip"), worldToClip, casters);
+        drawCasterList(frame, opaque, gl::Uniforms(frame.shaders, opaque).location("uModelToClip"), worldToClip, casters);
     }
     if (alphaTested && !casters.alphaDraws.empty()) {
         glUseProgram(alphaTested);

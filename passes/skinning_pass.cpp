@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "engine/gl/shader.hpp"
+#include "engine/gl/uniforms.hpp"
 #include "engine/render/scene_gpu.hpp"
 
 namespace lp {
@@ -62,8 +63,8 @@ void addSkinningPass(fg::FrameGraph& graph, SkinningPass& state, const FrameData
                      "LP_VERTEX_FLOATS " + std::to_string(sizeof(GpuVertex) / sizeof(float))});
             }
             const GLuint prog = state.program.id();
-            const GLint workCount = glGetUniformLocation(prog, "uWorkCount"), poseBase = glGetUniformLocation(prog, "uPoseBase"),
-                        weightBase = glGetUniformLocation(prog, "uWeightBase"), mode = glGetUniformLocation(prog, "uMode");
+            const GLint workCount = gl::Uniforms(frame.shaders, prog).location("uWorkCount"), poseBase = gl::Uniforms(frame.shaders, prog).location("uPoseBase"),
+                        weightBase = gl::Uniforms(frame.shaders, prog).location("uWeightBase"), mode = gl::Uniforms(frame.shaders, prog).location("uMode");
             const GLuint bindings[] = {kSkinningRestBinding,  kSkinningJointsBinding,   kSkinningDeltasBinding,   kSkinningRangesBinding,
                                        kSkinningWorkRangeBinding, kSkinningPoseBinding, kSkinningVerticesBinding, kSkinningPreviousBinding};
             glUseProgram(prog);

@@ -20,14 +20,12 @@ struct CopyData {
     fg::ResourceId hdr, background;
 };
 
-GLint loc(GLuint prog, const char* name) { return glGetUniformLocation(prog, name); }
-
 // forward.frag's LP_FORWARD_TRANSMISSION uniforms, looked up once per execute.
 struct TransmissionUniforms {
-    explicit TransmissionUniforms(GLuint prog)
-        : transmission(loc(prog, "uTransmission")), hasTransmissionMap(loc(prog, "uHasTransmissionMap")),
-          thickness(loc(prog, "uThickness")), hasThicknessMap(loc(prog, "uHasThicknessMap")), ior(loc(prog, "uIor")),
-          attenuationColor(loc(prog, "uAttenuationColor")), attenuationDistance(loc(prog, "uAttenuationDistance")) {}
+    explicit TransmissionUniforms(const gl::Uniforms& u)
+        : transmission(u.location("uTransmission")), hasTransmissionMap(u.location("uHasTransmissionMap")),
+          thickness(u.location("uThickness")), hasThicknessMap(u.location("uHasThicknessMap")), ior(u.location("uIor")),
+          attenuationColor(u.location("uAttenuationColor")), attenuationDistance(u.location("uAttenuationDistance")) {}
     void set(GLuint prog, const GpuMaterial& m) const {
         const bool on = m.transmissive();
         glProgramUniform1f(prog, transmission, on ? m.transmission : 0.0f);
@@ -139,8 +137,9 @@ fg::ResourceId addTransparentPass(fg::FrameGraph& graph, TransparentPass& state,
                 glBlendEquation(GL_FUNC_ADD);
                 glBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
                 glUseProgram(prog);
-                const ForwardMaterialUniforms material(prog);
-                const TransmissionUniforms transmissive(prog);
+                const gl::Uniforms uniforms(frame.shaders, prog);
+                const ForwardMaterialUniforms material(uniforms);
+                const TransmissionUniforms transmissive(uniforms);
                 if (transmission) glBindTextureUnit(kTransmissionBackgroundUnit, res.texture(data.background));
                 for (const TransparentDraw& t : order) {
                     const GpuMesh& mesh = frame.gpu->meshes[size_t(t.mesh)];

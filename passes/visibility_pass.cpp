@@ -4,6 +4,7 @@
 
 #include "engine/gl/shader.hpp"
 #include "engine/gl/state.hpp"
+#include "engine/gl/uniforms.hpp"
 #include "engine/render/scene_gpu.hpp"
 #include "passes/skinning_pass.hpp"
 
@@ -71,13 +72,13 @@ VisibilityBuffer addVisibilityPass(fg::FrameGraph& graph, VisibilityPass& state,
 
             const glm::mat4 projection = gbufferDepthProjection(frame);
             for (GLuint prog : {opaque, masked})
-                glProgramUniformMatrix4fv(prog, glGetUniformLocation(prog, "uProjection"), 1, GL_FALSE,
+                glProgramUniformMatrix4fv(prog, gl::Uniforms(frame.shaders, prog).location("uProjection"), 1, GL_FALSE,
                                           glm::value_ptr(projection));
-            const GLint opaqueMV = glGetUniformLocation(opaque, "uModelView");
-            const GLint opaqueFirst = glGetUniformLocation(opaque, "uFirstTriangle");
-            const GLint maskedMV = glGetUniformLocation(masked, "uModelView");
-            const GLint maskedFirst = glGetUniformLocation(masked, "uFirstTriangle");
-            auto loc = [masked](const char* name) { return glGetUniformLocation(masked, name); };
+            const GLint opaqueMV = gl::Uniforms(frame.shaders, opaque).location("uModelView");
+            const GLint opaqueFirst = gl::Uniforms(frame.shaders, opaque).location("uFirstTriangle");
+            const GLint maskedMV = gl::Uniforms(frame.shaders, masked).location("uModelView");
+            const GLint maskedFirst = gl::Uniforms(frame.shaders, masked).location("uFirstTriangle");
+            auto loc = [&frame, masked](const char* name) { return gl::Uniforms(frame.shaders, masked).location(name); };
             const GLint locKd = loc("uDiffuse"), locOpacity = loc("uOpacity"), locHasD = loc("uHasDiffuseMap");
             const GLint locCutoff = loc("uAlphaCutoff"), locSecondUv = loc("uSecondUvMaps");
             uint32_t firstTriangle = 0;  // the numbering of visibilityDrawRecords

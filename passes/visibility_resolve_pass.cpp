@@ -12,6 +12,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "engine/gl/shader.hpp"
+#include "engine/gl/uniforms.hpp"
 #include "engine/render/scene_gpu.hpp"
 #include "passes/skinning_pass.hpp"
 
@@ -249,7 +250,7 @@ GBuffer addVisibilityResolvePass(fg::FrameGraph& graph, VisibilityResolvePass& s
             const GLuint materialBuffer = state.materials.fill(materials.data(), materials.size() * sizeof(MaterialRecord));
 
             const GLuint bound = bindGBufferImages(res, d.out);
-            auto loc = [prog](const char* name) { return glGetUniformLocation(prog, name); };
+            auto loc = [&frame, prog](const char* name) { return gl::Uniforms(frame.shaders, prog).location(name); };
             glProgramUniform1ui(prog, loc("uTargets"), bound);
             glProgramUniform1ui(prog, loc("uDrawCount"), state.drawCount);
             glProgramUniformMatrix4fv(prog, loc("uInverseProjection"), 1, GL_FALSE,
@@ -264,7 +265,8 @@ GBuffer addVisibilityResolvePass(fg::FrameGraph& graph, VisibilityResolvePass& s
             glProgramUniform1i(prog, loc("uDepthZeroToOne"),
                                frame.settings->gbuffer.position == GBufferPositionMode::ReversedZ);
             setBackgroundMotionUniforms(prog, frame);
-            setBrdfUniforms(prog, *frame.settings);
+            setBrdfUniforms(prog, frame);
+            setMaterialInputUniform(prog, frame);
             const GLuint buffers[5] = {state.vertices.id(), state.indices.id(), state.draws.id(), meshBuffer, materialBuffer};
             for (GLuint i = 0; i < 5; ++i) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, buffers[i]);
             if (state.uv1) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, state.uv1.id());

@@ -13,6 +13,7 @@
 #include "engine/core/progress.hpp"
 #include "engine/gl/limits.hpp"
 #include "engine/gl/state.hpp"
+#include "engine/gl/uniforms.hpp"
 #include "engine/graph/frame_graph.hpp"
 #include "engine/io/image_io.hpp"
 #include "engine/render/ibl_lights.hpp"
@@ -209,7 +210,7 @@ void EnvironmentCache::generateCubeMips(const gl::Texture& cube, const gl::Shade
     glUseProgram(prog);
     for (int level = 1; level < cube.levels; ++level) {
         const int finer = std::max(cube.width >> (level - 1), 1);
-        glProgramUniform1i(prog, glGetUniformLocation(prog, "uFinerSize"), finer);
+        glProgramUniform1i(prog, gl::Uniforms(&shaders, prog).location("uFinerSize"), finer);
         glBindImageTexture(0, cube.id(), level - 1, GL_TRUE, 0, GL_READ_ONLY, GL_RGBA16F);
         glBindImageTexture(1, cube.id(), level, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
         dispatchCube(std::max(finer / 2, 1));
@@ -333,9 +334,9 @@ void EnvironmentCache::equirectToCube(ImageF map, double rotationDegrees, const 
     // average their footprint instead of aliasing.
     const double ratio = double(map.width) / (3.14159265358979 * cube.width);
     const int taps = std::clamp(int(std::ceil(2.0 * ratio)), 2, 8);
-    glProgramUniform1i(prog, glGetUniformLocation(prog, "uSize"), cube.width);
-    glProgramUniform1i(prog, glGetUniformLocation(prog, "uTaps"), taps);
-    glProgramUniform1f(prog, glGetUniformLocation(prog, "uRotation"), float(rotationDegrees * 3.14159265358979 / 180.0));
+    glProgramUniform1i(prog, gl::Uniforms(&shaders, prog).location("uSize"), cube.width);
+    glProgramUniform1i(prog, gl::Uniforms(&shaders, prog).location("uTaps"), taps);
+    glProgramUniform1f(prog, gl::Uniforms(&shaders, prog).location("uRotation"), float(rotationDegrees * 3.14159265358979 / 180.0));
     glBindTextureUnit(0, equirect.id());
     glBindImageTexture(0, cube.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glUseProgram(prog);
@@ -428,10 +429,10 @@ void EnvironmentCache::bakeIbl(BakedEnvironment& env, const Scene& scene, const 
     // Irradiance cube.
     if (!irradiance_) irradiance_ = shaders.compute("ibl_irradiance.comp");
     GLuint prog = irradiance_.id();
-    glProgramUniform1i(prog, glGetUniformLocation(prog, "uSize"), s.irradianceSize);
-    glProgramUniform1i(prog, glGetUniformLocation(prog, "uSamples"), s.irradianceSamples);
-    glProgramUniform1i(prog, glGetUniformLocation(prog, "uSourceSize"), source.width);
-    glProgramUniform1f(prog, glGetUniformLocation(prog, "uSourceMaxLod"), sourceMaxLod);
+    glProgramUniform1i(prog, gl::Uniforms(&shaders, prog).location("uSize"), s.irradianceSize);
+    glProgramUniform1i(prog, gl::Uniforms(&shaders, prog).location("uSamples"), s.irradianceSamples);
+    glProgramUniform1i(prog, gl::Uniforms(&shaders, prog).location("uSourceSize"), source.width);
+    glProgramUniform1f(prog, gl::Uniforms(&shaders, prog).location("uSourceMaxLod"), sourceMaxLod);
     glBindImageTexture(0, env.irradiance.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glUseProgram(prog);
     dispatchCube(s.irradianceSize);
@@ -445,15 +446,15 @@ void EnvironmentCache::bakeIbl(BakedEnvironment& env, const Scene& scene, const 
                        GL_TEXTURE_CUBE_MAP, 0, 0, 0, 0, s.specularSize, s.specularSize, 6);
     if (!prefilter_) prefilter_ = shaders.compute("ibl_prefilter.comp");
     prog = prefilter_.id();
-    glProgramUniform1i(prog, glGetUniformLocation(prog, "uSamples"), s.specularSamples);
-    glProgramUniform1i(prog, glGetUniformLocation(prog, "uSourceSize"), source.width);
-    glProgramUniform1f(prog, glGetUniformLocation(prog, "uSourceMaxLod"), sourceMaxLod);
+    glProgramUniform1i(prog, gl::Uniforms(&shaders, prog).location("uSamples"), s.specularSamples);
+    glProgramUniform1i(prog, gl::Uniforms(&shaders, prog).location("uSourceSize"), source.width);
+    glProgramUniform1f(prog, gl::Uniforms(&shaders, prog).location("uSourceMaxLod"), sourceMaxLod);
     glUseProgram(prog);
     for (int level = 1; level < s.specularLevels; ++level) {
         const int size = std::max(s.specularSize >> level, 1);
         const float roughness = prefilteredLevelRoughness(level, s.specularLevels);
-        glProgramUniform1i(prog, glGetUniformLocation(prog, "uSize"), size);
-        glProgramUniform1f(prog, glGetUniformLocation(prog, "uRoughness"), roughness);
+        glProgramUniform1i(prog, gl::Uniforms(&shaders, prog).location("uSize"), size);
+        glProgramUniform1f(prog, gl::Uniforms(&shaders, prog).location("uRoughness"), roughness);
         glBindImageTexture(0, env.prefiltered.id(), level, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
         dispatchCube(size);
         if (env.hasMap) {
@@ -501,9 +502,9 @@ const gl::Texture& EnvironmentCache::dfgLut(const EnvironmentSettings& s, Specul
     glTextureParameteri(dfg_.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     if (!dfgProgram_) dfgProgram_ = shaders.compute("ibl_dfg.comp");
     const GLuint prog = dfgProgram_.id();
-    glProgramUniform1i(prog, glGetUniformLocation(prog, "uSize"), s.dfgSize);
-    glProgramUniform1i(prog, glGetUniformLocation(prog, "uSamples"), s.dfgSamples);
-    glProgramUniform1i(prog, glGetUniformLocation(prog, "uSpecularMasking"), int(masking));
+    glProgramUniform1i(prog, gl::Uniforms(&shaders, prog).location("uSize"), s.dfgSize);
+    glProgramUniform1i(prog, gl::Uniforms(&shaders, prog).location("uSamples"), s.dfgSamples);
+    glProgramUniform1i(prog, gl::Uniforms(&shaders, prog).location("uSpecularMasking"), int(masking));
     glBindImageTexture(0, dfg_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG16F);
     glUseProgram(prog);
     gl::dispatch2D(s.dfgSize, s.dfgSize);
