@@ -182,12 +182,12 @@ void ShaderLibrary::note(const Program& program, const std::vector<const ShaderS
                          const std::string& label) const {
     std::string all;
     for (const ShaderSource* s : stages) all += s->text + "\n";
-    (*programs_)[program.id()] = {std::make_shared<const std::vector<std::string>>(gl::declaredUniforms(all)), label};
+    (*programs_)[program.id()] = {gl::declaredUniforms(all), label};
 }
 
-std::shared_ptr<const std::vector<std::string>> ShaderLibrary::declaredUniforms(GLuint program) const {
+const std::vector<std::string>* ShaderLibrary::declaredUniforms(GLuint program) const {
     const auto it = programs_->find(program);
-    return it == programs_->end() ? nullptr : it->second.uniforms;
+    return it == programs_->end() ? nullptr : &it->second.uniforms;
 }
 
 std::string ShaderLibrary::programLabel(GLuint program) const {

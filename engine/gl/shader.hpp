@@ -48,13 +48,14 @@ public:
     // Builds a recipe again from the current files (throws like compute()/graphics()).
     Program build(const ProgramRecipe& recipe) const;
     // The uniform names the stages of a program this library (or a copy) built declare, and its label
-    // (gl::Uniforms checks names against them); null and "" for a program it did not build.
-    std::shared_ptr<const std::vector<std::string>> declaredUniforms(GLuint program) const;
+    // (gl::Uniforms checks names against them); null and "" for a program it did not build. The names
+    // stay valid until the library builds another program of the same GL name.
+    const std::vector<std::string>* declaredUniforms(GLuint program) const;
     std::string programLabel(GLuint program) const;
 
 private:
     struct ProgramInterface {
-        std::shared_ptr<const std::vector<std::string>> uniforms;
+        std::vector<std::string> uniforms;
         std::string label;
     };
     void remember(ProgramRecipe recipe) const;

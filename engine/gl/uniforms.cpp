@@ -83,18 +83,14 @@ bool declaresUniform(const std::vector<std::string>& declared, const std::string
     return std::binary_search(declared.begin(), declared.end(), base);
 }
 
-Uniforms::Uniforms(GLuint program, std::shared_ptr<const std::vector<std::string>> declared, std::string label)
-    : program_(program), declared_(std::move(declared)), label_(std::move(label)) {}
-
 Uniforms::Uniforms(const ShaderLibrary* shaders, GLuint program)
-    : Uniforms(program, shaders ? shaders->declaredUniforms(program) : nullptr,
-               shaders ? shaders->programLabel(program) : std::string()) {}
+    : program_(program), shaders_(shaders), declared_(shaders ? shaders->declaredUniforms(program) : nullptr) {}
 
 GLint Uniforms::location(const std::string& name) const {
     const GLint at = glGetUniformLocation(program_, name.c_str());
     if (kUniformNamesChecked && at < 0 && declared_ && !declaresUniform(*declared_, name))
-        throw Error("shader program " + (label_.empty() ? std::to_string(program_) : label_) + " declares no uniform '" +
-                    name + "' (set from C++)");
+        throw Error("shader program " + shaders_->programLabel(program_) + " declares no uniform '" + name +
+                    "' (set from C++)");
     return at;
 }
 

@@ -4,7 +4,6 @@
 // (LIGHTPASS_GL_CHECKS, the default build and the tests), instead of a glUniform call on location -1
 // that silently does nothing. A declared uniform the compiler dropped (unused in this variant) is
 // skipped, as GL does.
-#include <memory>
 #include <string>
 #include <vector>
 
@@ -35,10 +34,8 @@ constexpr bool kUniformNamesChecked =
 
 class Uniforms {
 public:
-    // `declared`: the program's declared names (ShaderLibrary::declaredUniforms), or null: unchecked
-    // (a program built elsewhere). `label` names the program in errors.
-    Uniforms(GLuint program, std::shared_ptr<const std::vector<std::string>> declared, std::string label = {});
-    // The helper of a program `shaders` built (null: unchecked).
+    // The helper of a program `shaders` built; unchecked for a program it did not build or with
+    // null. Short-lived: it points into the library's record of the program.
     Uniforms(const ShaderLibrary* shaders, GLuint program);
 
     GLuint program() const { return program_; }
@@ -69,8 +66,8 @@ public:
 
 private:
     GLuint program_;
-    std::shared_ptr<const std::vector<std::string>> declared_;
-    std::string label_;
+    const ShaderLibrary* shaders_;                 // names the program in the error
+    const std::vector<std::string>* declared_;     // null: unchecked
 };
 
 }  // namespace lp::gl
