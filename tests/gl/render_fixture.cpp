@@ -4,10 +4,44 @@
 #include <cmath>
 #include <sstream>
 
+#include "engine/graph/frame_graph.hpp"
+#include "engine/graph/texture_pool.hpp"
+#include "engine/gl/shader.hpp"
+#include "engine/render/frame_data.hpp"
+#include "engine/render/scene_gpu.hpp"
 #include "engine/scene/scene.hpp"
 #include "frame/renderer.hpp"
+#include "passes/gbuffer_pass.hpp"
 
 namespace lp::test {
+
+VelocityImage renderGBufferVelocity(const Scene& scene, FrameData frame) {
+    SceneGpu gpu(scene);
+    gl::ShaderLibrary shaders;
+    frame.gpu = &gpu;
+    frame.shaders = &shaders;
+    GBufferPass state;
+    fg::FrameGraph graph;
+    fg::TexturePool pool;
+    GBufferChannels channels;
+    channels.velocity = true;
+    const GBuffer g = addGBufferPass(graph, state, frame, channels);
+    graph.markOutput(g.depth);
+    graph.markOutput(g.velocity);
+    graph.compile();
+    graph.execute(pool);
+    VelocityImage out;
+    out.width = frame.width;
+    out.height = frame.height;
+    const size_t n = size_t(frame.width) * size_t(frame.height);
+    out.depth.resize(n);
+    out.velocity.resize(n);
+    glGetTextureImage(graph.outputTexture(g.depth), 0, GL_DEPTH_COMPONENT, GL_FLOAT, GLsizei(n * sizeof(float)),
+                      out.depth.data());
+    glGetTextureImage(graph.outputTexture(g.velocity), 0, GL_RG, GL_FLOAT, GLsizei(n * sizeof(glm::vec2)),
+                      out.velocity.data());
+    return out;
+}
 
 std::optional<glm::dvec3> planePoint(const Camera& camera, int width, int height, int x, int y, double planeY) {
     const glm::dmat4 inv =

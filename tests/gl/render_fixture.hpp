@@ -14,6 +14,7 @@
 
 namespace lp {
 struct Camera;
+struct FrameData;
 struct Scene;
 class Renderer;
 }  // namespace lp
@@ -24,6 +25,15 @@ namespace lp::test {
 // first): by a fresh Renderer of `scene`, or by `renderer` (its caches and history kept).
 ImageF renderHdr(const Scene& scene, RenderSettings settings, float time = 0.0f);
 ImageF renderHdr(Renderer& renderer, RenderSettings settings, float time = 0.0f);
+
+// The G-buffer pass alone, asked for depth and velocity, for `frame` (its gpu and shaders made here).
+struct VelocityImage {
+    int width = 0, height = 0;
+    std::vector<float> depth;          // window depth, rows bottom first
+    std::vector<glm::vec2> velocity;   // gbuffer.velocity
+    glm::vec2 at(int x, int y) const { return velocity[size_t(y) * size_t(width) + size_t(x)]; }
+};
+VelocityImage renderGBufferVelocity(const Scene& scene, FrameData frame);
 
 // Where the centre ray of pixel (x, y) of a width x height image from `camera` meets the plane
 // y = planeY (row 0 = top, as readHdr gives it); none where the ray does not reach it: the analytic

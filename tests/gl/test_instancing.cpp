@@ -190,23 +190,7 @@ std::vector<glm::vec2> velocityAfterCameraStep(const Scene& scene) {
     moved.camera.position += glm::vec3(0.2f, 0.1f, -0.25f);
     FrameData frame = makeFrameData(moved, settings, 1.0f / 30.0f);
     applyMotion(frame, motionHistoryOf(first), glm::vec2(0.0f));
-    SceneGpu gpu(moved);
-    gl::ShaderLibrary shaders;
-    frame.gpu = &gpu;
-    frame.shaders = &shaders;
-    GBufferPass state;
-    fg::FrameGraph graph;
-    fg::TexturePool pool;
-    GBufferChannels channels;
-    channels.velocity = true;
-    const GBuffer g = addGBufferPass(graph, state, frame, channels);
-    graph.markOutput(g.velocity);
-    graph.compile();
-    graph.execute(pool);
-    std::vector<glm::vec2> velocity(size_t(frame.width) * size_t(frame.height));
-    glGetTextureImage(graph.outputTexture(g.velocity), 0, GL_RG, GL_FLOAT, GLsizei(velocity.size() * sizeof(glm::vec2)),
-                      velocity.data());
-    return velocity;
+    return test::renderGBufferVelocity(moved, frame).velocity;
 }
 }  // namespace
 

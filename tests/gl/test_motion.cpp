@@ -16,9 +16,12 @@
 #include "passes/gbuffer_pass.hpp"
 #include "passes/local_light_pass.hpp"
 #include "tests/gl/gl_fixture.hpp"
+#include "tests/gl/render_fixture.hpp"
 
 namespace lp {
 namespace {
+
+using test::VelocityImage;
 
 // A floor, a cube and a sphere at different depths, open sky behind them.
 Scene motionScene() {
@@ -39,42 +42,6 @@ Scene motionScene() {
     s.camera.nearPlane = 0.1f;
     s.camera.farPlane = 30.0f;
     return s;
-}
-
-struct VelocityImage {
-    int width = 0, height = 0;
-    std::vector<float> depth;          // window depth, rows bottom first
-    std::vector<glm::vec2> velocity;   // gbuffer.velocity
-    glm::vec2 at(int x, int y) const { return velocity[size_t(y) * size_t(width) + size_t(x)]; }
-};
-
-// The G-buffer pass alone, asked for depth and velocity, for `frame`.
-VelocityImage renderGBufferVelocity(const Scene& scene, FrameData frame) {
-    SceneGpu gpu(scene);
-    gl::ShaderLibrary shaders;
-    frame.gpu = &gpu;
-    frame.shaders = &shaders;
-    GBufferPass state;
-    fg::FrameGraph graph;
-    fg::TexturePool pool;
-    GBufferChannels channels;
-    channels.velocity = true;
-    const GBuffer g = addGBufferPass(graph, state, frame, channels);
-    graph.markOutput(g.depth);
-    graph.markOutput(g.velocity);
-    graph.compile();
-    graph.execute(pool);
-    VelocityImage out;
-    out.width = frame.width;
-    out.height = frame.height;
-    const size_t n = size_t(frame.width) * size_t(frame.height);
-    out.depth.resize(n);
-    out.velocity.resize(n);
-    glGetTextureImage(graph.outputTexture(g.depth), 0, GL_DEPTH_COMPONENT, GL_FLOAT, GLsizei(n * sizeof(float)),
-                      out.depth.data());
-    glGetTextureImage(graph.outputTexture(g.velocity), 0, GL_RG, GL_FLOAT, GLsizei(n * sizeof(glm::vec2)),
-                      out.velocity.data());
-    return out;
 }
 
 // Frame `current` of `scene` (camera as given) with `previous` as the frame before it.
@@ -139,7 +106,7 @@ TEST(Motion, CameraTranslationMatchesReprojectionPerPixel) {
     scene.camera.target += step;
     const FrameData second = frameAfter(scene, settings, &first, glm::vec2(0.0f), 1.0f / 30.0f);
     ASSERT_TRUE(second.hasPrevious);
-    const VelocityImage img = renderGBufferVelocity(scene, second);
+    const VelocityImage img = test::renderGBufferVelocity(scene, second);
     int surface = 0;
     EXPECT_LT(largestVelocityErrorPixels(img, second, &surface), kTolerancePixels);
     EXPECT_GT(surface, img.width * img.height / 2);  // most pixels are geometry
@@ -159,7 +126,7 @@ TEST(Motion, CameraRotationAndJitterMatchReprojectionIncludingTheBackground) {
     scene.camera.target = scene.camera.position + glm::vec3(yaw * glm::vec4(scene.camera.target - scene.camera.position, 0.0f));
     scene.camera.position += glm::vec3(0.05f, 0.0f, 0.0f);
     const FrameData second = frameAfter(scene, settings, &first, glm::vec2(-0.4f, 0.35f), 1.0f / 30.0f);
-    const VelocityImage img = renderGBufferVelocity(scene, second);
+    const VelocityImage img = test::renderGBufferVelocity(scene, second);
     int surface = 0;
     EXPECT_LT(largestVelocityErrorPixels(img, second, &surface), kTolerancePixels);
     EXPECT_LT(surface, img.width * img.height);  // some sky is in view, and it moved
@@ -172,7 +139,7 @@ TEST(Motion, StaticCameraGivesZeroVelocityEvenWithJitter) {
     const FrameData first = frameAfter(scene, settings, nullptr, glm::vec2(0.0f), 0.0f);
     const FrameData second = frameAfter(scene, settings, &first, glm::vec2(0.45f, -0.3f), 0.5f);
     for (const FrameData* f : {&first, &second}) {
-        const VelocityImage img = renderGBufferVelocity(scene, *f);
+        const VelocityImage img = test::renderGBufferVelocity(scene, *f);
         for (const glm::vec2& v : img.velocity) ASSERT_EQ(v, glm::vec2(0.0f));
     }
 }
