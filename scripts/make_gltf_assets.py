@@ -442,14 +442,9 @@ def viking_room():
     b.save_glb(os.path.join(MODELS, "viking_room.glb"))
 
 
-def node_reuse(expanded, name):
-    """One box mesh drawn by five nodes (turned, scaled, one under a turned parent, one mirrored) and a
-    floor drawn once; `expanded`: the same file with one mesh entry per node (the same accessors), so
-    nothing is drawn twice. lightpass stores the reused box once; both render the same image."""
-    b = Builder()
-    b.material(name="box", pbrMetallicRoughness=g.PbrMetallicRoughness(baseColorFactor=[0.8, 0.5, 0.2, 1], metallicFactor=0, roughnessFactor=0.5),
-               doubleSided=False)
-    b.material(name="floor", pbrMetallicRoughness=g.PbrMetallicRoughness(baseColorFactor=[0.6, 0.6, 0.6, 1], metallicFactor=0, roughnessFactor=0.8))
+def box_accessors(b):
+    """A 0.5 m box's positions, normals and indices (a quad a face, counter-clockwise seen from
+    outside; material 0); returns a function that makes a mesh entry of them."""
     P, N, I = [], [], []
     for axis in range(3):
         for sign in (1.0, -1.0):
@@ -466,13 +461,29 @@ def node_reuse(expanded, name):
             I += [base, base + 1, base + 2, base, base + 2, base + 3]
     box_attrs = dict(POSITION=b.floats(P, g.VEC3, bounds=True), NORMAL=b.floats(N, g.VEC3))
     box_indices = b.indices(I, U16)
-    box_mesh = lambda: b.mesh([g.Primitive(attributes=g.Attributes(**box_attrs), indices=box_indices, material=0)])
-    shared = box_mesh()
-    mesh_of = (lambda: box_mesh()) if expanded else (lambda: shared)
+    return lambda: b.mesh([g.Primitive(attributes=g.Attributes(**box_attrs), indices=box_indices, material=0)])
+
+
+def floor_node(b):
+    """A 6 m floor (material 1) as a root node."""
     F = [[-3, 0, -3], [3, 0, -3], [3, 0, 3], [-3, 0, 3]]
     floor = b.mesh([g.Primitive(attributes=g.Attributes(POSITION=b.floats(F, g.VEC3, bounds=True), NORMAL=b.floats([[0, 1, 0]] * 4, g.VEC3)),
                                 indices=b.indices([0, 2, 1, 0, 3, 2], U16), material=1)])
     b.node(mesh=floor)
+
+
+def node_reuse(expanded, name):
+    """One box mesh drawn by five nodes (turned, scaled, one under a turned parent, one mirrored) and a
+    floor drawn once; `expanded`: the same file with one mesh entry per node (the same accessors), so
+    nothing is drawn twice. lightpass stores the reused box once; both render the same image."""
+    b = Builder()
+    b.material(name="box", pbrMetallicRoughness=g.PbrMetallicRoughness(baseColorFactor=[0.8, 0.5, 0.2, 1], metallicFactor=0, roughnessFactor=0.5),
+               doubleSided=False)
+    b.material(name="floor", pbrMetallicRoughness=g.PbrMetallicRoughness(baseColorFactor=[0.6, 0.6, 0.6, 1], metallicFactor=0, roughnessFactor=0.8))
+    box_mesh = box_accessors(b)
+    shared = box_mesh()
+    mesh_of = (lambda: box_mesh()) if expanded else (lambda: shared)
+    floor_node(b)
     s = math.sqrt(0.5)
     c30, s30 = math.cos(math.radians(15)), math.sin(math.radians(15))
     b.node(mesh=mesh_of(), translation=[-1.0, 0.25, 0.0])
@@ -492,27 +503,8 @@ def gpu_instancing(expanded, name):
     b.material(name="box", pbrMetallicRoughness=g.PbrMetallicRoughness(baseColorFactor=[0.3, 0.5, 0.8, 1], metallicFactor=0, roughnessFactor=0.5),
                doubleSided=False)
     b.material(name="floor", pbrMetallicRoughness=g.PbrMetallicRoughness(baseColorFactor=[0.6, 0.6, 0.6, 1], metallicFactor=0, roughnessFactor=0.8))
-    P, N, I = [], [], []
-    for axis in range(3):
-        for sign in (1.0, -1.0):
-            n = [0.0, 0.0, 0.0]
-            n[axis] = sign
-            u, v = [0.0] * 3, [0.0] * 3
-            u[(axis + 1) % 3], v[(axis + 2) % 3] = 1.0, 1.0
-            if sign < 0:
-                u, v = v, u
-            base = len(P)
-            for cu, cv in ((-1, -1), (1, -1), (1, 1), (-1, 1)):
-                P.append([0.25 * (n[k] + cu * u[k] + cv * v[k]) for k in range(3)])
-                N.append(n)
-            I += [base, base + 1, base + 2, base, base + 2, base + 3]
-    box_attrs = dict(POSITION=b.floats(P, g.VEC3, bounds=True), NORMAL=b.floats(N, g.VEC3))
-    box_indices = b.indices(I, U16)
-    box_mesh = lambda: b.mesh([g.Primitive(attributes=g.Attributes(**box_attrs), indices=box_indices, material=0)])
-    F = [[-3, 0, -3], [3, 0, -3], [3, 0, 3], [-3, 0, 3]]
-    floor = b.mesh([g.Primitive(attributes=g.Attributes(POSITION=b.floats(F, g.VEC3, bounds=True), NORMAL=b.floats([[0, 1, 0]] * 4, g.VEC3)),
-                                indices=b.indices([0, 2, 1, 0, 3, 2], U16), material=1)])
-    b.node(mesh=floor)
+    box_mesh = box_accessors(b)
+    floor_node(b)
     c, s = math.cos(math.radians(20)), math.sin(math.radians(20))
     T = [[-1.0, 0.25, 0.0], [0.0, 0.5, -0.75], [1.0, 0.3, 0.5], [-0.5, 0.4, 1.0], [1.2, 0.25, -0.8]]
     R = [[0, 0, 0, 1], [0, s, 0, c], [s, 0, 0, c], [0, 0, s, c], [0, -s, 0, c]]
